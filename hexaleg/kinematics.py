@@ -1,0 +1,159 @@
+"""Closed-form leg kinematics from the paper's D-H table (Table 1), vectorized.
+
+These are the independent oracle the tests hold the Pinocchio model against,
+and the fast kernels of the sweeps once a test has proven them equal to it.
+Every function takes segment lengths ``(l1, l2, l3)`` [m] and joint angles
+with a trailing axis of size 3 (θ1 root, θ2 hip, θ3 knee) [rad], any leading
+shape; positions are expressed in the leg-root frame (z up, coxa along x at θ1 = 0).
+"""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg.limits import JointLimits
+
+ArrayF = npt.NDArray[np.float64]
+Lengths = tuple[float, float, float]
+
+
+def foot_position(lengths: Lengths, theta: npt.ArrayLike) -> ArrayF:
+    """Foot position p (..., 3) in the leg-root frame [m] (eq 7).
+
+    Args:
+        lengths: Coxa, femur, tibia lengths (l1, l2, l3) [m].
+        theta: Joint angles (..., 3) [rad].
+
+    """
+    l1, l2, l3 = lengths
+    theta = np.asarray(theta, dtype=float)
+    t1, t2, t3 = theta[..., 0], theta[..., 1], theta[..., 2]
+    t23 = t2 + t3
+    reach = l1 + l2 * np.cos(t2) + l3 * np.cos(t23)
+    return np.stack(
+        (np.cos(t1) * reach, np.sin(t1) * reach, l2 * np.sin(t2) + l3 * np.sin(t23)), axis=-1
+    )
+
+
+def planar_foot_position(lengths: Lengths, theta2: npt.ArrayLike, theta3: npt.ArrayLike) -> ArrayF:
+    """Foot position (x, z) (..., 2) in the leg plane at θ1 = 0 [m] (eq 14)."""
+    l1, l2, l3 = lengths
+    theta2 = np.asarray(theta2, dtype=float)
+    t23 = theta2 + np.asarray(theta3, dtype=float)
+    return np.stack(
+        (l1 + l2 * np.cos(theta2) + l3 * np.cos(t23), l2 * np.sin(theta2) + l3 * np.sin(t23)),
+        axis=-1,
+    )
+
+
+def foot_jacobian(lengths: Lengths, theta: npt.ArrayLike) -> ArrayF:
+    """Foot linear-velocity Jacobian dp/dθ (..., 3, 3) in the leg-root frame [m/rad] (eq 22)."""
+    l1, l2, l3 = lengths
+    theta = np.asarray(theta, dtype=float)
+    t1, t2, t3 = theta[..., 0], theta[..., 1], theta[..., 2]
+    c1, s1 = np.cos(t1), np.sin(t1)
+    t23 = t2 + t3
+    reach = l1 + l2 * np.cos(t2) + l3 * np.cos(t23)
+    dz2 = l3 * np.cos(t23) + l2 * np.cos(t2)  # d p_z / d θ2
+    dz3 = l3 * np.cos(t23)
+    dr2 = -l3 * np.sin(t23) - l2 * np.sin(t2)  # d reach / d θ2
+    dr3 = -l3 * np.sin(t23)
+    jac = np.empty((*theta.shape[:-1], 3, 3))
+    jac[..., 0, 0] = -s1 * reach
+    jac[..., 0, 1] = c1 * dr2
+    jac[..., 0, 2] = c1 * dr3
+    jac[..., 1, 0] = c1 * reach
+    jac[..., 1, 1] = s1 * dr2
+    jac[..., 1, 2] = s1 * dr3
+    jac[..., 2, 0] = 0.0
+    jac[..., 2, 1] = dz2
+    jac[..., 2, 2] = dz3
+    return jac
+
+
+def manipulability(lengths: Lengths, theta2: npt.ArrayLike, theta3: npt.ArrayLike) -> ArrayF:
+    """Manipulability w = |det J| [m³], factored: l2·l3·|sin θ3|·|l1 + l2 cos θ2 + l3 cos(θ2+θ3)|.
+
+    Independent of θ1. The factored form is algebraically equal to the paper's
+    printed simplification (eq 24/25, :func:`manipulability_eq25`); the tests prove both
+    equal |det J| of eq 22 and of the Pinocchio model.
+    """
+    l1, l2, l3 = lengths
+    theta2 = np.asarray(theta2, dtype=float)
+    theta3 = np.asarray(theta3, dtype=float)
+    reach = l1 + l2 * np.cos(theta2) + l3 * np.cos(theta2 + theta3)
+    return l2 * l3 * np.abs(np.sin(theta3) * reach)
+
+
+def manipulability_eq25(lengths: Lengths, theta2: npt.ArrayLike, theta3: npt.ArrayLike) -> ArrayF:
+    """The paper's printed simplified form of eq 24 (= eq 25), term by term [m³]."""
+    l1, l2, l3 = lengths
+    t2 = np.asarray(theta2, dtype=float)
+    t3 = np.asarray(theta3, dtype=float)
+    s2, c2, s3, c3 = np.sin(t2), np.cos(t2), np.sin(t3), np.cos(t3)
+    inner = l1 * s3 - l3 * s2 + l2 * c2 * s3 + l3 * c3**2 * s2 + l3 * c2 * c3 * s3
+    return np.abs(-l2 * l3 * inner)
+
+
+class InverseKinematics(NamedTuple):
+    """Result of :func:`inverse_kinematics`.
+
+    Attributes:
+        theta: Joint angles (..., 3) [rad]; where ``reachable`` is false, the
+            angles of the nearest configuration on the boundary of reach (finite, never NaN).
+        reachable: Whether the target is reached exactly (and, if limits were
+            given, within them) (...).
+
+    """
+
+    theta: ArrayF
+    reachable: npt.NDArray[np.bool_]
+
+
+def inverse_kinematics(
+    lengths: Lengths,
+    position: npt.ArrayLike,
+    limits: JointLimits | None = None,
+    tol: float = 1e-12,
+) -> InverseKinematics:
+    """Knee-down inverse kinematics (eq 8–9), vectorized, with a reachability flag.
+
+    θ1 = arctan(p_y / p_x) ∈ (−π/2, π/2] as in eq 8, so a foot behind the root
+    axis is reached with the coxa pointing away from it; the knee bends down
+    (θ3 ≤ 0). The hip elevation uses atan2 in the leg plane, which equals the
+    paper's arcsin form whenever the foot is outward of the hip; θ2 is wrapped
+    to (−π, π].
+
+    Args:
+        lengths: Coxa, femur, tibia lengths (l1, l2, l3) [m].
+        position: Foot targets (..., 3) in the leg-root frame [m].
+        limits: If given, targets whose solution violates them are flagged unreachable.
+        tol: Slack on the reach annulus |l2 − l3| ≤ r ≤ l2 + l3 [m].
+
+    """
+    l1, l2, l3 = lengths
+    p = np.asarray(position, dtype=float)
+    px, py, pz = p[..., 0], p[..., 1], p[..., 2]
+    theta1 = np.arctan2(py, px)
+    theta1 = np.where(theta1 > np.pi / 2, theta1 - np.pi, theta1)
+    theta1 = np.where(theta1 <= -np.pi / 2, theta1 + np.pi, theta1)
+    planar_x = px * np.cos(theta1) + py * np.sin(theta1) - l1  # hip to foot, along the coxa
+    r = np.hypot(planar_x, pz)  # r² = τ + l1² of eq 9
+    reachable = (r <= l2 + l3 + tol) & (r >= abs(l2 - l3) - tol) & (r > 0)
+    r_safe = np.where(r > 0, r, 1.0)
+    cos_knee = np.clip((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0, 1.0)
+    cos_hip = np.clip((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0, 1.0)
+    theta2 = _wrap(np.arctan2(pz, planar_x) + np.arccos(cos_hip))
+    theta3 = -np.arccos(cos_knee)
+    theta = np.stack((theta1, theta2, theta3), axis=-1)
+    if limits is not None:
+        reachable &= limits.contains(theta, tol=1e-12)
+    return InverseKinematics(theta, np.asarray(reachable))
+
+
+def _wrap(angle: ArrayF) -> ArrayF:
+    """Angles wrapped to (−π, π] [rad]."""
+    return np.pi - np.mod(np.pi - angle, 2 * np.pi)

@@ -1,0 +1,236 @@
+"""Pinocchio models built from the rendered URDF.
+
+:class:`HexapodModel` is the free-flyer hexapod (root joint ``root_joint``,
+configuration ``[x, y, z, qx, qy, qz, qw, legs…]``); :class:`LegModel` is one
+leg on a fixed base whose world frame is the leg-root frame of eq 7. Frames,
+joint axes and limits are read from the model, never re-typed here.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import ModelError
+from hexaleg.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
+
+ArrayF = npt.NDArray[np.float64]
+LEG_JOINTS: tuple[str, str, str] = ("root", "hip", "knee")
+"""Joint names of a leg, in the order of the paper's θ1, θ2, θ3."""
+
+
+def joint_name(leg: str, joint: str) -> str:
+    """URDF name of ``joint`` (root, hip, knee) of leg ``leg``."""
+    return f"{leg}_{joint}_joint"
+
+
+def root_frame_name(leg: str) -> str:
+    """Name of the leg-root frame (on the body, z up, x along the coxa at θ1 = 0)."""
+    return f"{leg}_root"
+
+
+def foot_frame_name(leg: str) -> str:
+    """Name of the foot frame (at the tibia tip)."""
+    return f"{leg}_foot"
+
+
+class _LegIndex:
+    """Where one leg lives in a Pinocchio model: its q/v indices and frame ids."""
+
+    def __init__(self, model: pin.Model, leg: str) -> None:
+        self.name = leg
+        ids = [_joint_id(model, joint_name(leg, j)) for j in LEG_JOINTS]
+        self.q = np.array([model.idx_qs[i] for i in ids])
+        self.v = np.array([model.idx_vs[i] for i in ids])
+        self.lower = model.lowerPositionLimit[self.q].copy()
+        self.upper = model.upperPositionLimit[self.q].copy()
+        self.root_frame = _frame_id(model, root_frame_name(leg))
+        self.foot_frame = _frame_id(model, foot_frame_name(leg))
+
+
+class LegModel:
+    """One leg on a fixed base, as Pinocchio sees it.
+
+    Attributes:
+        design: The design the model was built from.
+        urdf: The rendered URDF text.
+        model: The Pinocchio model (nq = nv = 3, q = (θ1, θ2, θ3) [rad]).
+        data: Pinocchio workspace for ``model``.
+
+    """
+
+    def __init__(self, design: HexapodDesign) -> None:
+        self.design = design
+        self.urdf = render_leg(design)
+        self.model = pin.buildModelFromXML(self.urdf)
+        self.data = self.model.createData()
+        self._leg = _LegIndex(self.model, SINGLE_LEG_NAME)
+        if self.model.nq != 3 or list(self._leg.q) != [0, 1, 2]:
+            raise ModelError(f"single-leg model has nq = {self.model.nq}, expected 3 in leg order")
+
+    @property
+    def joint_lower(self) -> ArrayF:
+        """Joint lower limits read from the URDF (θ1, θ2, θ3) [rad]."""
+        return self._leg.lower
+
+    @property
+    def joint_upper(self) -> ArrayF:
+        """Joint upper limits read from the URDF (θ1, θ2, θ3) [rad]."""
+        return self._leg.upper
+
+    def foot_position(self, theta: npt.ArrayLike) -> ArrayF:
+        """Foot position in the leg-root frame [m] at joint angles θ (3,) [rad]."""
+        q = np.asarray(theta, dtype=float)
+        pin.framesForwardKinematics(self.model, self.data, q)
+        return self.data.oMf[self._leg.foot_frame].translation.copy()
+
+    def foot_jacobian(self, theta: npt.ArrayLike) -> ArrayF:
+        """Foot linear-velocity Jacobian dp/dθ (3, 3) in the leg-root frame [m/rad]."""
+        q = np.asarray(theta, dtype=float)
+        jac = pin.computeFrameJacobian(
+            self.model, self.data, q, self._leg.foot_frame, pin.LOCAL_WORLD_ALIGNED
+        )
+        return jac[:3].copy()
+
+    def foot_positions(self, thetas: npt.ArrayLike) -> ArrayF:
+        """Foot positions (N, 3) [m] for joint angles (N, 3) [rad], one Pinocchio call each."""
+        thetas = np.asarray(thetas, dtype=float).reshape(-1, 3)
+        return np.array([self.foot_position(t) for t in thetas])
+
+
+class HexapodModel:
+    """The whole hexapod on a free-flyer root joint, as Pinocchio sees it.
+
+    Attributes:
+        design: The design the model was built from.
+        urdf: The rendered URDF text.
+        model: The Pinocchio model (nq = 7 + 18, nv = 6 + 18).
+        data: Pinocchio workspace for ``model``.
+        leg_names: Leg names in the design's mounting order.
+
+    """
+
+    def __init__(self, design: HexapodDesign) -> None:
+        self.design = design
+        self.urdf = render_hexapod(design)
+        self.model = pin.buildModelFromXML(self.urdf, pin.JointModelFreeFlyer())
+        self.data = self.model.createData()
+        self.leg_names: tuple[str, ...] = design.leg_names
+        self._legs = {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
+        self.base_frame = _frame_id(self.model, "base_link")
+
+    # -- indices ------------------------------------------------------------------------
+
+    def leg_q_indices(self, leg: str) -> npt.NDArray[np.int_]:
+        """Indices of (θ1, θ2, θ3) of ``leg`` in the configuration vector q."""
+        return self._leg(leg).q
+
+    def leg_v_indices(self, leg: str) -> npt.NDArray[np.int_]:
+        """Indices of (θ1, θ2, θ3) of ``leg`` in the velocity vector v."""
+        return self._leg(leg).v
+
+    def foot_frame_id(self, leg: str) -> int:
+        """Pinocchio frame id of the foot of ``leg``."""
+        return self._leg(leg).foot_frame
+
+    def root_frame_id(self, leg: str) -> int:
+        """Pinocchio frame id of the leg-root frame of ``leg``."""
+        return self._leg(leg).root_frame
+
+    def joint_limits(self, leg: str) -> tuple[ArrayF, ArrayF]:
+        """(lower, upper) joint limits of ``leg`` read from the URDF [rad]."""
+        index = self._leg(leg)
+        return index.lower, index.upper
+
+    # -- configurations -----------------------------------------------------------------
+
+    def configuration(
+        self,
+        base: pin.SE3 | None = None,
+        joint_angles: Mapping[str, npt.ArrayLike] | npt.ArrayLike | None = None,
+    ) -> ArrayF:
+        """Configuration vector q from a base pose and leg joint angles.
+
+        Args:
+            base: Body pose in the world frame; identity if omitted.
+            joint_angles: Either a mapping leg name → (θ1, θ2, θ3) [rad] or an
+                array (6, 3) in ``leg_names`` order; the nominal angles if omitted.
+
+        """
+        q = pin.neutral(self.model)
+        q[:7] = pin.SE3ToXYZQUAT(base if base is not None else pin.SE3.Identity())
+        if joint_angles is None:
+            joint_angles = {leg: self.design.nominal_angles for leg in self.leg_names}
+        if not isinstance(joint_angles, Mapping):
+            array = np.asarray(joint_angles, dtype=float).reshape(len(self.leg_names), 3)
+            joint_angles = dict(zip(self.leg_names, array, strict=True))
+        for leg, angles in joint_angles.items():
+            q[self._leg(leg).q] = np.asarray(angles, dtype=float)
+        return q
+
+    def nominal_base_pose(self) -> pin.SE3:
+        """Body pose of the nominal stance: level, at the nominal height above the origin."""
+        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self.design.nominal_height]))
+
+    def nominal_configuration(self) -> ArrayF:
+        """Configuration of the nominal stance: body level, every leg at its nominal angles."""
+        return self.configuration(self.nominal_base_pose())
+
+    def joint_angles(self, q: npt.ArrayLike) -> ArrayF:
+        """Leg joint angles (6, 3) [rad] from a configuration vector, in ``leg_names`` order."""
+        q = np.asarray(q, dtype=float)
+        return np.array([q[self._legs[leg].q] for leg in self.leg_names])
+
+    # -- kinematics ---------------------------------------------------------------------
+
+    def foot_positions(self, q: npt.ArrayLike) -> ArrayF:
+        """Foot positions (6, 3) in the world frame [m], in ``leg_names`` order."""
+        pin.framesForwardKinematics(self.model, self.data, np.asarray(q, dtype=float))
+        return np.array(
+            [self.data.oMf[self._legs[leg].foot_frame].translation for leg in self.leg_names]
+        )
+
+    def root_placements(self) -> dict[str, pin.SE3]:
+        """Placement of every leg-root frame in the body frame, read from the model."""
+        pin.framesForwardKinematics(self.model, self.data, pin.neutral(self.model))
+        base_inv = self.data.oMf[self.base_frame].inverse()
+        return {leg: base_inv * self.data.oMf[self._legs[leg].root_frame] for leg in self.leg_names}
+
+    def foot_jacobian(self, q: npt.ArrayLike, leg: str) -> ArrayF:
+        """dp/dv (3, nv) of the foot of ``leg`` in world axes (LOCAL_WORLD_ALIGNED) [m]."""
+        jac = pin.computeFrameJacobian(
+            self.model,
+            self.data,
+            np.asarray(q, dtype=float),
+            self._leg(leg).foot_frame,
+            pin.LOCAL_WORLD_ALIGNED,
+        )
+        return jac[:3].copy()
+
+    def leg_foot_jacobian(self, q: npt.ArrayLike, leg: str) -> ArrayF:
+        """The 3×3 block dp/dθ of ``leg``'s own joints, world axes [m/rad] (eq 20–22)."""
+        return self.foot_jacobian(q, leg)[:, self._leg(leg).v]
+
+    def _leg(self, leg: str) -> _LegIndex:
+        try:
+            return self._legs[leg]
+        except KeyError:
+            raise ModelError(
+                f"no leg named {leg!r}; legs are {', '.join(self.leg_names)}"
+            ) from None
+
+
+def _joint_id(model: pin.Model, name: str) -> int:
+    if not model.existJointName(name):
+        raise ModelError(f"the model has no joint named {name!r}")
+    return int(model.getJointId(name))
+
+
+def _frame_id(model: pin.Model, name: str) -> int:
+    if not model.existFrame(name):
+        raise ModelError(f"the model has no frame named {name!r}")
+    return int(model.getFrameId(name))

@@ -1,0 +1,140 @@
+"""Design → URDF text, through the Xacro templates in ``urdf/``.
+
+The templates are the single description of the robot's geometry; this module
+only turns a :class:`~hexaleg.design.HexapodDesign` into Xacro arguments and
+runs the ``xacro`` package in-process. Every argument is formatted here as a
+number (or a validated identifier), so no user string ever reaches Xacro's
+``${...}`` evaluator.
+"""
+
+from __future__ import annotations
+
+import io
+import logging
+import os
+from importlib import resources
+from pathlib import Path
+
+from hexaleg._io import atomic_write_text
+from hexaleg._version import __version__
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import TemplateError
+
+HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
+LEG_TEMPLATE = "leg.urdf.xacro"
+SINGLE_LEG_NAME = "leg"
+"""Prefix of the links and joints of the single fixed-base leg."""
+
+JOINT_EFFORT = 1000.0
+"""Effort limit written into the URDF [N·m]; kinematics does not use it."""
+JOINT_VELOCITY = 3.0
+"""Velocity limit written into the URDF [rad/s]; kinematics does not use it."""
+
+
+def template_dir() -> Path:
+    """Folder holding the Xacro templates.
+
+    Installed packages carry them as ``hexaleg/urdf``; a source checkout (or an
+    editable install) uses the repository's top-level ``urdf/``.
+    """
+    packaged = Path(str(resources.files("hexaleg") / "urdf"))
+    if (packaged / HEXAPOD_TEMPLATE).is_file():
+        return packaged
+    checkout = Path(__file__).resolve().parent.parent / "urdf"
+    if (checkout / HEXAPOD_TEMPLATE).is_file():
+        return checkout
+    raise TemplateError(f"Xacro templates not found in {packaged} or {checkout}")
+
+
+def render_hexapod(design: HexapodDesign, validate: bool = True) -> str:
+    """URDF of the whole hexapod (root link ``base_link``) for ``design``."""
+    mappings = _common_arguments(design)
+    mappings |= {
+        "body_length": _number(design.body_length),
+        "body_width": _number(design.body_width),
+        "body_height": _number(design.body_height),
+        "body_mass": _number(design.body_mass),
+    }
+    assert design.mounts is not None
+    for i, mount in enumerate(design.mounts, start=1):
+        mappings[f"leg{i}_name"] = mount.name  # validated identifier, see LegMount
+        for axis in ("x", "y", "z", "yaw"):
+            mappings[f"leg{i}_{axis}"] = _number(getattr(mount, axis))
+    return _render(HEXAPOD_TEMPLATE, mappings, validate)
+
+
+def render_leg(design: HexapodDesign, validate: bool = True) -> str:
+    """URDF of one leg on a fixed base: ``base_link`` is the leg-root frame of eq 7."""
+    mappings = _common_arguments(design) | {"leg_name": SINGLE_LEG_NAME}
+    return _render(LEG_TEMPLATE, mappings, validate)
+
+
+def write_urdf(design: HexapodDesign, path: str | os.PathLike[str]) -> Path:
+    """Render the hexapod URDF and write it to ``path`` atomically."""
+    return atomic_write_text(path, render_hexapod(design))
+
+
+def validate_urdf(xml: str) -> None:
+    """Check ``xml`` with yourdfpy; raise :class:`TemplateError` if it is not a valid URDF."""
+    import yourdfpy
+
+    try:
+        model = yourdfpy.URDF.load(
+            io.BytesIO(xml.encode("utf-8")), build_scene_graph=False, load_meshes=False
+        )
+    except Exception as err:  # yourdfpy raises many types on malformed input
+        raise TemplateError(f"yourdfpy could not load the rendered URDF: {err}") from err
+    logger = logging.getLogger("yourdfpy")
+    previous = logger.level
+    logger.setLevel(logging.CRITICAL)
+    try:
+        valid = model.validate()
+    finally:
+        logger.setLevel(previous)
+    if not valid:
+        raise TemplateError("yourdfpy rejected the rendered URDF")
+
+
+def _common_arguments(design: HexapodDesign) -> dict[str, str]:
+    limits = design.joint_range
+    return {
+        "l1": _number(design.l1),
+        "l2": _number(design.l2),
+        "l3": _number(design.l3),
+        "link_radius": _number(design.link_radius),
+        "link_linear_density": _number(design.link_linear_density),
+        "theta1_lower": _number(limits.theta1[0]),
+        "theta1_upper": _number(limits.theta1[1]),
+        "theta2_lower": _number(limits.theta2[0]),
+        "theta2_upper": _number(limits.theta2[1]),
+        "theta3_lower": _number(limits.theta3[0]),
+        "theta3_upper": _number(limits.theta3[1]),
+        "effort": _number(JOINT_EFFORT),
+        "velocity": _number(JOINT_VELOCITY),
+    }
+
+
+def _number(value: float) -> str:
+    """Shortest text that round-trips the float exactly; never an expression."""
+    return repr(float(value))
+
+
+def _render(template: str, mappings: dict[str, str], validate: bool) -> str:
+    import xacro
+
+    path = template_dir() / template
+    try:
+        document = xacro.process_file(str(path), mappings=mappings)
+    except Exception as err:  # xacro raises XacroException and plain errors alike
+        raise TemplateError(f"xacro failed on {path.name}: {err}") from err
+    for node in list(document.childNodes):  # xacro's banner names this machine's paths
+        if node.nodeType == node.COMMENT_NODE:
+            document.removeChild(node)
+    banner = document.createComment(
+        f" generated by hexaleg {__version__} from {template}: edit the design, not this file "
+    )
+    document.insertBefore(banner, document.documentElement)
+    xml = document.toprettyxml(indent="  ")
+    if validate:
+        validate_urdf(xml)
+    return xml

@@ -1,0 +1,55 @@
+"""Shared fixtures: models are rendered once per session (rendering costs ~50 ms)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg import HexapodDesign, HexapodModel, LegModel
+
+
+@pytest.fixture(scope="session")
+def default_design() -> HexapodDesign:
+    return HexapodDesign()
+
+
+@pytest.fixture(scope="session")
+def hexapod_model(default_design: HexapodDesign) -> HexapodModel:
+    return HexapodModel(default_design)
+
+
+@pytest.fixture(scope="session")
+def leg_model(default_design: HexapodDesign) -> LegModel:
+    return LegModel(default_design)
+
+
+def random_designs(count: int, seed: int) -> list[HexapodDesign]:
+    """Designs with random segment lengths, body sizes and nominal postures."""
+    rng = np.random.default_rng(seed)
+    designs = []
+    while len(designs) < count:
+        l1, l2, l3 = rng.uniform(0.02, 0.8, size=3)
+        try:
+            designs.append(
+                HexapodDesign(
+                    l1=l1,
+                    l2=l2,
+                    l3=l3,
+                    body_length=rng.uniform(0.3, 1.5),
+                    body_width=rng.uniform(0.2, 1.0),
+                    body_height=rng.uniform(0.01, 0.1),
+                    nominal_angles=(
+                        rng.uniform(-0.7, 0.7),
+                        rng.uniform(-0.5, 0.5),
+                        rng.uniform(-2.3, -0.3),
+                    ),
+                )
+            )
+        except ValueError:  # posture with the feet above the body: draw again
+            continue
+    return designs
+
+
+def random_angles(rng: np.random.Generator, count: int) -> np.ndarray:
+    """Joint angles (count, 3) spread over [-π, π] [rad]."""
+    return rng.uniform(-np.pi, np.pi, size=(count, 3))

@@ -1,0 +1,88 @@
+"""``hexaleg`` command line: design options, atomic output, one-line errors."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pinocchio as pin
+import pytest
+
+from hexaleg import HexapodDesign, render_hexapod
+from hexaleg.cli import main
+
+
+def test_urdf_to_stdout(capsys):
+    assert main(["urdf"]) == 0
+    assert capsys.readouterr().out == render_hexapod(HexapodDesign())
+
+
+def test_urdf_from_ratios_to_file(tmp_path):
+    out = tmp_path / "leg.urdf"
+    assert main(["urdf", "--ratios", "0.1", "0.45", "--total", "1.2", "-o", str(out)]) == 0
+    model = pin.buildModelFromXML(out.read_text(), pin.JointModelFreeFlyer())
+    assert model.nq == 25
+    assert out.read_text() == render_hexapod(HexapodDesign.from_ratios(0.1, 0.45, 1.2))
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [
+        (["--l1", "-1"], "l1 = -1 is not valid: must be finite and > 0 [m]"),
+        (["--l3", "nan"], "l3 = nan is not valid: must be finite"),
+        (["--ratios", "0.6", "0.5"], "l1_ratio + l3_ratio"),
+        (["--ratios", "0.1", "0.4", "--l2", "0.3"], "--ratios cannot be combined with --l2"),
+        (["--total", "2"], "--total only applies together with --ratios"),
+        (["--body-height", "0"], "body_height = 0"),
+        (["--nominal-angles", "0", "0", "0"], "nominal_angles.theta3"),
+    ],
+)
+def test_bad_design_is_one_line_and_writes_nothing(tmp_path, capsys, argv, expected):
+    assert main(["urdf", *argv, "-o", str(tmp_path / "robot.urdf")]) == 2
+    _assert_one_line_error(capsys.readouterr().err, expected)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_unparsable_value_is_one_line_and_writes_nothing(tmp_path, capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["urdf", "--l1", "abc", "-o", str(tmp_path / "robot.urdf")])
+    assert info.value.code == 2
+    _assert_one_line_error(capsys.readouterr().err, "argument --l1: invalid float value")
+    assert list(tmp_path.iterdir()) == []
+
+
+def _assert_one_line_error(err: str, expected: str) -> None:
+    assert err.count("\n") == 1, err
+    assert expected in err
+    assert "Traceback" not in err
+
+
+def test_negative_length_in_a_real_process(tmp_path):
+    result = subprocess.run(
+        [sys.executable, "-m", "hexaleg", "urdf", "--l1", "-1", "-o", str(tmp_path / "x.urdf")],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert result.returncode != 0
+    assert result.stderr.strip().count("\n") == 0 and "l1" in result.stderr
+    assert "Traceback" not in result.stderr
+    assert result.stdout == ""
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_failed_render_leaves_existing_file_untouched(tmp_path):
+    out = tmp_path / "robot.urdf"
+    out.write_text("previous")
+    assert main(["urdf", "--l2", "-3", "-o", str(out)]) == 2
+    assert out.read_text() == "previous"
+
+
+@pytest.mark.parametrize("command", [[], ["urdf"]])
+def test_help_explains_units(capsys, command):
+    with pytest.raises(SystemExit) as info:
+        main([*command, "--help"])
+    assert info.value.code == 0
+    text = capsys.readouterr().out
+    assert "radians" in text or "[rad]" in text
+    assert "[m]" in text or "SI units" in text

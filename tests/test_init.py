@@ -1,0 +1,36 @@
+"""The public API: every exported name exists, the list is sorted, versions agree."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import hexaleg
+
+
+def test_all_names_exist():
+    missing = [name for name in hexaleg.__all__ if not hasattr(hexaleg, name)]
+    assert missing == []
+
+
+def test_all_is_sorted():
+    assert hexaleg.__all__ == sorted(hexaleg.__all__)
+
+
+def test_version_matches_pyproject():
+    pyproject = Path(__file__).resolve().parent.parent / "pyproject.toml"
+    if pyproject.is_file():
+        version = re.search(r'^version = "([^"]+)"', pyproject.read_text(), re.M).group(1)
+        assert hexaleg.__version__ == version
+    from importlib.metadata import version as installed
+
+    assert installed("hexaleg") == hexaleg.__version__
+
+
+def test_import_does_no_heavy_work():
+    import subprocess
+    import sys
+
+    code = "import sys, hexaleg; print('matplotlib' in sys.modules, 'meshcat' in sys.modules)"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.stdout.split() == ["False", "False"]
