@@ -8,8 +8,11 @@ on stderr and exit status 2, never a traceback.
 from __future__ import annotations
 
 import argparse
+import json
+import math
 import sys
 from collections.abc import Callable, Sequence
+from pathlib import Path
 from typing import Any, NoReturn
 
 from hexaleg._version import __version__
@@ -113,6 +116,104 @@ def _cmd_urdf(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_workspace(args: argparse.Namespace) -> int:
+    from hexaleg.workspace import analyze_workspace
+
+    design = design_from_args(args)
+    if args.samples < 1:
+        raise _UsageError(f"--samples = {args.samples} is not valid: must be >= 1")
+    analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
+    if args.plot is not None:
+        from hexaleg.figures import write_workspace_figures
+
+        _report_files(write_workspace_figures(analysis, args.plot))
+    summary = analysis.to_dict()
+    if args.json:
+        _print_json(summary)
+        return 0
+    area = summary["area"]
+    mc = summary["monte_carlo"]
+    _print_table(
+        f"Swing-phase workspace, l = ({design.l1:.4g}, {design.l2:.4g}, {design.l3:.4g}) m",
+        [
+            ("planar area, rectangular domain (Table 3)", f"{area['rectangular']:.6f} m²"),
+            ("planar area, improved domain (Table 4)", f"{area['improved']:.6f} m²"),
+            (
+                "improved area, closed form 2π·l2·l3/3 (eq 16)",
+                f"{area['improved_closed_form']:.6f} m²",
+            ),
+            (f"Monte Carlo box min ({mc['samples']} samples)", _vector(mc["lower_bound"], "m")),
+            ("Monte Carlo box max", _vector(mc["upper_bound"], "m")),
+        ],
+    )
+    return 0
+
+
+def _cmd_manipulability(args: argparse.Namespace) -> int:
+    from hexaleg.manipulability import analyze_manipulability
+
+    design = design_from_args(args)
+    analysis = analyze_manipulability(design)
+    if args.plot is not None:
+        from hexaleg.design import l3_ratio_grid
+        from hexaleg.figures import write_manipulability_figures
+        from hexaleg.manipulability import average_manipulability_map
+        from hexaleg.paper import L1_RATIOS
+
+        average_map = average_manipulability_map(
+            L1_RATIOS, l3_ratio_grid(), design.leg_length, design.manipulability_limits
+        )
+        _report_files(write_manipulability_figures(analysis, average_map, args.plot))
+    summary = analysis.to_dict()
+    if args.json:
+        _print_json(summary)
+        return 0
+    optimum, average = summary["optimum"], summary["average"]
+    _print_table(
+        f"Manipulability, l = ({design.l1:.4g}, {design.l2:.4g}, {design.l3:.4g}) m",
+        [
+            ("optimum θ2, θ3 (eq 25–26)", f"{optimum['theta2']:.6f}, {optimum['theta3']:.6f} rad"),
+            (
+                "",
+                f"({math.degrees(optimum['theta2']):.4f}°, {math.degrees(optimum['theta3']):.4f}°)",
+            ),
+            ("optimum w = |det J|", f"{optimum['w']:.6g} m³"),
+            ("condition number at optimum", f"{optimum['condition_number']:.4g}"),
+            ("smallest singular value at optimum", f"{optimum['min_singular_value']:.4g} m/rad"),
+            ("average w_A, rectangular domain (eq 27)", f"{average['rectangular']:.6g} m³"),
+            ("average w_A, improved domain", f"{average['improved']:.6g} m³"),
+        ],
+    )
+    return 0
+
+
+def _print_json(data: dict[str, Any]) -> None:
+    print(json.dumps(data, indent=2, allow_nan=False))
+
+
+def _print_table(title: str, rows: Sequence[tuple[str, str]]) -> None:
+    width = max(len(name) for name, _ in rows)
+    print(title)
+    for name, value in rows:
+        print(f"  {name:<{width}}  {value}")
+
+
+def _vector(values: Sequence[float], unit: str) -> str:
+    return "(" + ", ".join(f"{v:.4f}" for v in values) + f") {unit}"
+
+
+def _report_files(paths: Sequence[Path]) -> None:
+    for path in paths:
+        print(f"wrote {path}", file=sys.stderr)
+
+
+def _add_output_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--json", action="store_true", help="print one JSON object (SI units, radians)"
+    )
+    parser.add_argument("--plot", metavar="DIR", help="write the figures (PNG) into DIR")
+
+
 Command = Callable[[argparse.Namespace], int]
 
 
@@ -142,6 +243,36 @@ def build_parser() -> argparse.ArgumentParser:
         "-o", "--output", metavar="FILE", help="write here (atomically) instead of stdout"
     )
     urdf.set_defaults(handler=_cmd_urdf)
+
+    workspace = commands.add_parser(
+        "workspace",
+        help="swing-phase workspace: Monte Carlo cloud, planar and improved areas",
+        description=(
+            "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "
+            "workspace areas on the rectangular (Table 3) and improved (Table 4) domains, and "
+            "eq 16's closed form. Areas in m², positions in m (leg-root frame)."
+        ),
+    )
+    add_design_options(workspace)
+    workspace.add_argument(
+        "--samples", type=int, default=20_000, help="Monte Carlo samples (default 20000)"
+    )
+    workspace.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    _add_output_options(workspace)
+    workspace.set_defaults(handler=_cmd_workspace)
+
+    manip = commands.add_parser(
+        "manipulability",
+        help="manipulability: optimum pose (Table 6) and average w_A (eq 27)",
+        description=(
+            "Manipulability w = |det J| of one leg (paper §5): optimum pose within eq 26's limits, "
+            "condition number and smallest singular value there, and the average w_A on the "
+            "rectangular and improved domains. Angles in rad, w in m³."
+        ),
+    )
+    add_design_options(manip)
+    _add_output_options(manip)
+    manip.set_defaults(handler=_cmd_manipulability)
     return parser
 
 

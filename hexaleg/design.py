@@ -330,3 +330,16 @@ def _require_ratio(name: str, value: Any) -> float:
     if not 0 < number < 1:
         raise DesignError(name, value, "must lie in the open interval (0, 1)")
     return number
+
+
+L3_RATIO_RANGE: tuple[float, float] = (0.10, 0.75)
+"""Tibia-ratio range of hexaleg's design sweeps [-]. The paper gives only the
+count (80 per coxa ratio); this range leaves a femur of at least 5 % of the leg
+for every coxa ratio up to 0.20."""
+
+
+def l3_ratio_grid(points: int = 80) -> npt.NDArray[np.float64]:
+    """Evenly spaced tibia ratios over :data:`L3_RATIO_RANGE` [-]."""
+    if points < 2:
+        raise DesignError("l3_points", points, "at least 2 tibia ratios")
+    return np.linspace(*L3_RATIO_RANGE, points)

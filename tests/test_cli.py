@@ -86,3 +86,42 @@ def test_help_explains_units(capsys, command):
     text = capsys.readouterr().out
     assert "radians" in text or "[rad]" in text
     assert "[m]" in text or "SI units" in text
+
+
+def test_workspace_json(capsys):
+    import json
+
+    from hexaleg.workspace import improved_area_closed_form
+
+    assert main(["workspace", "--ratios", "0.1", "0.45", "--samples", "200", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["area"]["improved"] == pytest.approx(
+        improved_area_closed_form(0.45, 0.45), rel=1e-10
+    )
+    assert data["area"]["improved_closed_form"] == pytest.approx(
+        2 * 3.141592653589793 * 0.45**2 / 3
+    )
+    assert data["area"]["rectangular"] > 0
+    assert data["design"]["l3"] == pytest.approx(0.45)
+
+
+def test_manipulability_json(capsys):
+    import json
+    import math
+
+    assert main(["manipulability", "--l1", "0.05", "--l2", "0.475", "--l3", "0.475", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert math.degrees(data["optimum"]["theta2"]) == pytest.approx(35.6827, abs=1e-3)
+    assert set(data["average"]) == {"rectangular", "improved"}
+
+
+def test_readable_tables(capsys):
+    assert main(["workspace", "--samples", "100"]) == 0
+    assert main(["manipulability"]) == 0
+    out = capsys.readouterr().out
+    assert "m²" in out and "m³" in out and "eq 16" in out
+
+
+def test_bad_sample_count(capsys):
+    assert main(["workspace", "--samples", "0"]) == 2
+    assert capsys.readouterr().err.count("\n") == 1

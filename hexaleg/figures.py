@@ -1,0 +1,214 @@
+"""Matplotlib figures of the paper, written as PNG files without a display.
+
+Uses matplotlib's object API (``Figure`` with the Agg canvas): no pyplot, no
+global state, safe in worker processes. Axes carry units; angles are plotted
+in degrees and lengths in metres, as labelled.
+"""
+
+from __future__ import annotations
+
+import io
+import os
+from collections.abc import Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from hexaleg._io import atomic_write_bytes
+from hexaleg.kinematics import Lengths, manipulability
+from hexaleg.limits import JointLimits
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+    from hexaleg.manipulability import AverageManipulabilityMap
+    from hexaleg.workspace import MonteCarloWorkspace, PlanarWorkspace
+
+DPI = 150
+_COLORS = ("#1b6ca8", "#e07b00", "#2f9e44", "#c92a2a", "#7048e8", "#495057")
+
+
+def _figure(width: float = 7.0, height: float = 5.0) -> Figure:
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
+
+
+def save(figure: Figure, path: str | os.PathLike[str]) -> Path:
+    """Render ``figure`` to PNG and write it atomically."""
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=DPI)
+    return atomic_write_bytes(path, buffer.getvalue())
+
+
+def monte_carlo_figure(cloud: MonteCarloWorkspace) -> Figure:
+    """Fig 5: the Monte Carlo point cloud of the foot in the leg-root frame."""
+    fig = _figure(7, 6)
+    ax = fig.add_subplot(projection="3d")
+    points = cloud.points
+    ax.scatter(points[:, 0], points[:, 1], points[:, 2], s=0.4, c=points[:, 2], cmap="viridis")
+    ax.scatter([0], [0], [0], s=40, c="k", marker="^", label="leg root")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_zlabel("z [m]")
+    ax.set_title(f"Foot workspace, Monte Carlo, N = {len(points):,} ({cloud.limits.name})")
+    ax.set_box_aspect(np.ptp(points, axis=0) + 1e-9)
+    ax.legend(loc="upper left")
+    return fig
+
+
+def planar_workspace_figure(rectangular: PlanarWorkspace, improved: PlanarWorkspace) -> Figure:
+    """Fig 6–7: planar workspace (θ1 = 0) of the rectangular and improved domains."""
+    fig = _figure()
+    ax = fig.add_subplot()
+    for ws, color, label in (
+        (rectangular, _COLORS[0], "rectangular (Table 3)"),
+        (improved, _COLORS[1], "improved (Table 4)"),
+    ):
+        closed = np.vstack([ws.boundary, ws.boundary[:1]])
+        ax.fill(closed[:, 0], closed[:, 1], color=color, alpha=0.25)
+        ax.plot(closed[:, 0], closed[:, 1], color=color, label=f"{label}: {ws.area:.4f} m²")
+    ax.plot([0, rectangular.lengths[0]], [0, 0], "k-", lw=3, label="coxa")
+    ax.set_xlabel("x in leg plane [m]")
+    ax.set_ylabel("z [m]")
+    ax.set_aspect("equal")
+    ax.grid(True, alpha=0.3)
+    ax.legend(loc="lower left", fontsize=8)
+    l1, l2, l3 = rectangular.lengths
+    ax.set_title(f"Planar foot workspace, l = ({l1:.3f}, {l2:.3f}, {l3:.3f}) m")
+    return fig
+
+
+def l1_series_figure(
+    workspaces: Sequence[PlanarWorkspace],
+    l1_ratios: Sequence[float],
+    l3_ratios: np.ndarray,
+    areas_by_l3: np.ndarray,
+    fixed_l1_ratio: float,
+) -> Figure:
+    """Fig 8: improved workspace per coxa ratio, its area, and the area against l3 ratio."""
+    fig = _figure(13, 4.5)
+    shapes, bars, curve = fig.subplots(1, 3)
+    for ws, ratio, color in zip(workspaces, l1_ratios, _COLORS, strict=False):
+        closed = np.vstack([ws.boundary, ws.boundary[:1]])
+        shapes.plot(closed[:, 0], closed[:, 1], color=color, label=f"l1 ratio {ratio:.2f}")
+    shapes.set_xlabel("x in leg plane [m]")
+    shapes.set_ylabel("z [m]")
+    shapes.set_aspect("equal")
+    shapes.grid(True, alpha=0.3)
+    shapes.legend(fontsize=8)
+    shapes.set_title("Improved workspace (l2 = l3)")
+    bars.bar([f"{r:.2f}" for r in l1_ratios], [ws.area for ws in workspaces], color=_COLORS[0])
+    bars.set_xlabel("l1 ratio [-]")
+    bars.set_ylabel("improved area [m²]")
+    bars.set_title("Area falls as the coxa grows")
+    curve.plot(l3_ratios, areas_by_l3, color=_COLORS[1])
+    best = int(np.argmax(areas_by_l3))
+    curve.axvline((1 - fixed_l1_ratio) / 2, color="k", ls="--", lw=1, label="l2 = l3")
+    curve.plot(l3_ratios[best], areas_by_l3[best], "o", color=_COLORS[3], label="largest area")
+    curve.set_xlabel("l3 ratio [-]")
+    curve.set_ylabel("improved area [m²]")
+    curve.set_title(f"l1 ratio {fixed_l1_ratio:.2f}: peak at l2 = l3")
+    curve.legend(fontsize=8)
+    curve.grid(True, alpha=0.3)
+    return fig
+
+
+def manipulability_surface_figure(
+    designs: Sequence[Lengths], limits: JointLimits, labels: Sequence[str]
+) -> Figure:
+    """Fig 10: w over (θ2, θ3) for several designs, as 3-D surfaces."""
+    from hexaleg.manipulability import joint_grid
+
+    hip, knee = joint_grid(limits)
+    t2, t3 = np.meshgrid(hip, knee, indexing="ij")
+    columns = 2 if len(designs) > 1 else 1
+    rows = int(np.ceil(len(designs) / columns))
+    fig = _figure(6 * columns, 4.5 * rows)
+    top = max(float(manipulability(d, t2, t3).max()) for d in designs)
+    for k, (lengths, label) in enumerate(zip(designs, labels, strict=True)):
+        ax = fig.add_subplot(rows, columns, k + 1, projection="3d")
+        w = manipulability(lengths, t2, t3)
+        ax.plot_surface(np.degrees(t2), np.degrees(t3), w, cmap="viridis", vmin=0, vmax=top)
+        ax.set_zlim(0, top)
+        ax.set_xlabel("θ2 [°]")
+        ax.set_ylabel("θ3 [°]")
+        ax.set_zlabel("w [m³]")
+        ax.set_title(label)
+    return fig
+
+
+def average_manipulability_figure(result: AverageManipulabilityMap) -> Figure:
+    """Fig 11: w_A against l3 ratio, one curve per l1 ratio, on both domains, peaks marked."""
+    fig = _figure(12, 4.8)
+    axes = fig.subplots(1, 2, sharey=True)
+    panels = (
+        (result.rectangular, result.peak_rectangular, "rectangular domain (eq 26)"),
+        (result.improved, result.peak_improved, "improved domain (eq 26 ∩ Table 4)"),
+    )
+    for ax, (values, peaks, title) in zip(axes, panels, strict=True):
+        for r1, row, peak, color in zip(result.l1_ratios, values, peaks, _COLORS, strict=False):
+            ax.plot(result.l3_ratios, row, color=color, label=f"l1 ratio {r1:.2f}: peak {peak:.3f}")
+            ax.axvline(peak, color=color, ls=":", lw=1)
+        ax.axvspan(0.40, 0.45, color="k", alpha=0.08, label="paper's claim 0.40–0.45")
+        ax.set_xlabel(f"l3 ratio [-] (total {result.total:g} m)")
+        ax.set_title(title)
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    axes[0].set_ylabel("average manipulability w_A [m³]")
+    return fig
+
+
+def write_workspace_figures(analysis, out_dir: str | os.PathLike[str]) -> list[Path]:
+    """Fig 5–8 for a :class:`~hexaleg.workspace.WorkspaceAnalysis`; returns the files."""
+    from hexaleg.design import l3_ratio_grid
+    from hexaleg.paper import L1_RATIOS
+    from hexaleg.workspace import improved_area_by_l3_ratio, planar_workspace
+
+    out = Path(out_dir)
+    design = analysis.design
+    total = design.leg_length
+    series = [
+        planar_workspace(
+            (r * total, (1 - r) * total / 2, (1 - r) * total / 2), design.improved_limits
+        )
+        for r in L1_RATIOS
+    ]
+    fixed = design.l1 / total
+    l3_ratios = l3_ratio_grid()
+    l3_ratios = l3_ratios[l3_ratios < 1 - fixed - 0.02]
+    areas = improved_area_by_l3_ratio(fixed, l3_ratios, total, design.improved_limits)
+    return [
+        save(monte_carlo_figure(analysis.monte_carlo), out / "workspace_monte_carlo.png"),
+        save(
+            planar_workspace_figure(analysis.rectangular, analysis.improved),
+            out / "workspace_planar.png",
+        ),
+        save(
+            l1_series_figure(series, L1_RATIOS, l3_ratios, areas, fixed),
+            out / "workspace_l1_series.png",
+        ),
+    ]
+
+
+def write_manipulability_figures(
+    analysis, average_map: AverageManipulabilityMap, out_dir: str | os.PathLike[str]
+) -> list[Path]:
+    """Fig 10–11 for a :class:`~hexaleg.manipulability.ManipulabilityAnalysis`."""
+    from hexaleg.paper import TABLE5
+
+    out = Path(out_dir)
+    design = analysis.design
+    scale = design.leg_length / 1000.0  # Table 5 is for a 1000 mm leg
+    designs = [design.lengths] + [
+        (r.l1_mm * scale, r.l2_mm * scale, r.l3_mm * scale) for r in TABLE5
+    ]
+    labels = ["this design"] + [f"Table 5, l1 ratio {r.l1_ratio:.2f}" for r in TABLE5]
+    surface = manipulability_surface_figure(designs[1:], design.manipulability_limits, labels[1:])
+    own = manipulability_surface_figure(designs[:1], design.manipulability_limits, labels[:1])
+    return [
+        save(own, out / "manipulability_surface.png"),
+        save(surface, out / "manipulability_surfaces_table5.png"),
+        save(average_manipulability_figure(average_map), out / "manipulability_average_map.png"),
+    ]

@@ -1,0 +1,278 @@
+"""Swing-phase workspace of one leg (paper §4): Monte Carlo cloud, planar and improved areas.
+
+The planar workspace (θ1 = 0, eq 14) is the image of a joint domain in
+(θ2, θ3) under the 2R map. On a single knee branch (θ3 ∈ [−π, 0]) that map is
+one-to-one, so the image's boundary is the image of the domain's boundary and
+its area follows exactly from Green's theorem, A = ½∮(x dz − z dx), integrated
+along the boundary with adaptive Gauss–Kronrod quadrature (no pixel counting).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+from scipy import integrate
+
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
+from hexaleg.kinematics import Lengths, foot_position, planar_foot_position
+from hexaleg.limits import JointLimits
+
+ArrayF = npt.NDArray[np.float64]
+
+
+@dataclass(frozen=True)
+class MonteCarloWorkspace:
+    """Foot positions of random joint samples (Fig 5).
+
+    Attributes:
+        theta: Joint samples (N, 3), uniform in the limits [rad].
+        points: Foot positions (N, 3) in the leg-root frame [m].
+        seed: Seed of the random generator.
+        limits: The joint limits sampled.
+
+    """
+
+    theta: ArrayF
+    points: ArrayF
+    seed: int
+    limits: JointLimits
+
+    @property
+    def lower_bound(self) -> ArrayF:
+        """Smallest x, y, z of the cloud in the leg-root frame [m]."""
+        return self.points.min(axis=0)
+
+    @property
+    def upper_bound(self) -> ArrayF:
+        """Largest x, y, z of the cloud in the leg-root frame [m]."""
+        return self.points.max(axis=0)
+
+
+def monte_carlo_workspace(
+    design: HexapodDesign,
+    samples: int = 20_000,
+    seed: int = 0,
+    limits: JointLimits | None = None,
+) -> MonteCarloWorkspace:
+    """Sample joint angles uniformly within limits and map them to foot positions (eq 7).
+
+    Args:
+        design: The design whose leg is sampled.
+        samples: Number of random configurations N.
+        seed: Seed of NumPy's default generator, for reproducible clouds.
+        limits: Joint limits to sample; the design's Table 2 ``workspace_limits`` by default.
+
+    """
+    if samples < 1:
+        raise HexalegError(f"samples = {samples} is not valid: must be a positive integer")
+    limits = design.workspace_limits if limits is None else limits
+    rng = np.random.default_rng(seed)
+    theta = rng.uniform(limits.lower, limits.upper, size=(samples, 3))
+    if limits.coupled_knee:  # resample the knee within its coupled bound
+        knee_lower = limits.knee_lower(theta[:, 1])
+        theta[:, 2] = knee_lower + rng.random(samples) * (limits.theta3[1] - knee_lower)
+    return MonteCarloWorkspace(theta, foot_position(design.lengths, theta), seed, limits)
+
+
+@dataclass(frozen=True)
+class PlanarWorkspace:
+    """Planar foot workspace at θ1 = 0 (eq 14) of one joint domain.
+
+    Attributes:
+        lengths: Segment lengths (l1, l2, l3) [m].
+        limits: The (θ2, θ3) domain; ``coupled_knee`` selects the improved domain.
+        boundary: Closed boundary polygon (M, 2) of (x, z) in the leg plane [m],
+            counter-clockwise, first point not repeated.
+        area: Area enclosed by the boundary [m²], by exact boundary integration.
+
+    """
+
+    lengths: Lengths
+    limits: JointLimits
+    boundary: ArrayF
+    area: float
+
+
+def planar_workspace(
+    lengths: Lengths, limits: JointLimits, points_per_edge: int = 200
+) -> PlanarWorkspace:
+    """Boundary and area of the planar workspace of ``limits`` (θ2, θ3 part).
+
+    Args:
+        lengths: Segment lengths (l1, l2, l3) [m].
+        limits: Joint domain; with ``coupled_knee`` the improved domain of Table 4.
+        points_per_edge: Samples along each of the four boundary edges of the polygon.
+
+    """
+    _require_single_knee_branch(limits)
+    edges = _boundary_edges(limits)
+    area = abs(sum(_green_integral(lengths, edge) for edge in edges))
+    polygon = np.concatenate(
+        [
+            planar_foot_position(
+                lengths, *edge.angles(np.linspace(edge.start, edge.stop, points_per_edge)[:-1])
+            )
+            for edge in edges
+        ]
+    )
+    if _shoelace(polygon) < 0:
+        polygon = polygon[::-1]
+    return PlanarWorkspace(tuple(lengths), limits, polygon, float(area))  # type: ignore[arg-type]
+
+
+def improved_area_closed_form(l2: float, l3: float) -> float:
+    """Improved-workspace area S_W = 2π·l2·l3/3 [m²] (eq 16)."""
+    return 2 * math.pi * l2 * l3 / 3
+
+
+def _require_single_knee_branch(limits: JointLimits) -> None:
+    lower, upper = limits.theta3
+    if lower < -math.pi or upper > 0:
+        raise HexalegError(
+            f"{limits.name}.theta3 = ({lower:.6g}, {upper:.6g}) spans both knee branches: "
+            "planar areas need θ3 within [-π, 0] [rad]"
+        )
+    if limits.theta2[1] - limits.theta2[0] > 2 * math.pi:
+        raise HexalegError(f"{limits.name}.theta2 spans more than a full turn")
+    if np.any(limits.knee_lower(np.array(limits.theta2)) >= upper):
+        raise HexalegError(f"{limits.name}: the coupled knee bound leaves an empty domain")
+
+
+@dataclass(frozen=True)
+class _Edge:
+    """One boundary edge of a (θ2, θ3) domain: θ(t) = (θ2, θ3) for t from start to stop."""
+
+    hip: Callable[[ArrayF], ArrayF]
+    knee: Callable[[ArrayF], ArrayF]
+    hip_rate: Callable[[ArrayF], ArrayF]  # dθ2/dt
+    knee_rate: Callable[[ArrayF], ArrayF]  # dθ3/dt
+    start: float
+    stop: float
+    kinks: tuple[float, ...] = ()
+
+    def angles(self, t: ArrayF) -> tuple[ArrayF, ArrayF]:
+        return self.hip(t), self.knee(t)
+
+
+def _boundary_edges(limits: JointLimits) -> list[_Edge]:
+    """The domain boundary in (θ2, θ3) as four parametrized edges, counter-clockwise in θ."""
+    (h_lo, h_hi), (k_lo, k_hi) = limits.theta2, limits.theta3
+
+    def const(value: float) -> Callable[[ArrayF], ArrayF]:
+        return lambda t: np.full_like(np.asarray(t, dtype=float), value)
+
+    def ident(t: ArrayF) -> ArrayF:
+        return np.asarray(t, dtype=float)
+
+    def coupled_rate(t: ArrayF) -> ArrayF:  # d/dθ2 of max(k_lo, -θ2 - π/2)
+        return np.where(limits.knee_lower(t) > k_lo, -1.0, 0.0)
+
+    kinks: tuple[float, ...] = ()
+    if limits.coupled_knee and h_lo < -k_lo - math.pi / 2 < h_hi:
+        kinks = (-k_lo - math.pi / 2,)
+    return [
+        _Edge(ident, limits.knee_lower, const(1.0), coupled_rate, h_lo, h_hi, kinks),
+        _Edge(const(h_hi), ident, const(0.0), const(1.0), float(limits.knee_lower(h_hi)), k_hi),
+        _Edge(ident, const(k_hi), const(1.0), const(0.0), h_hi, h_lo),
+        _Edge(const(h_lo), ident, const(0.0), const(1.0), k_hi, float(limits.knee_lower(h_lo))),
+    ]
+
+
+def _green_integral(lengths: Lengths, edge: _Edge) -> float:
+    """½∫(x dz − z dx) along one boundary edge, by adaptive Gauss–Kronrod quadrature."""
+    if edge.start == edge.stop:
+        return 0.0
+    _, l2, l3 = lengths
+
+    def integrand(t: float) -> float:
+        hip, knee = edge.angles(np.asarray(t))
+        x, z = planar_foot_position(lengths, hip, knee)
+        s2, c2 = math.sin(hip), math.cos(hip)
+        s23, c23 = math.sin(hip + knee), math.cos(hip + knee)
+        rate2, rate3 = float(edge.hip_rate(np.asarray(t))), float(edge.knee_rate(np.asarray(t)))
+        dx = (-l2 * s2 - l3 * s23) * rate2 - l3 * s23 * rate3
+        dz = (l2 * c2 + l3 * c23) * rate2 + l3 * c23 * rate3
+        return 0.5 * (x * dz - z * dx)
+
+    lo, hi = sorted((edge.start, edge.stop))
+    value, _ = integrate.quad(
+        integrand, lo, hi, epsabs=1e-15, epsrel=1e-13, limit=200, points=edge.kinks or None
+    )
+    return float(value if edge.start < edge.stop else -value)
+
+
+def _shoelace(polygon: ArrayF) -> float:
+    x, z = polygon[:, 0], polygon[:, 1]
+    return float(0.5 * np.sum(x * np.roll(z, -1) - np.roll(x, -1) * z))
+
+
+def improved_area_by_l3_ratio(
+    l1_ratio: float, l3_ratios: npt.ArrayLike, total: float, limits: JointLimits
+) -> ArrayF:
+    """Numerical improved-workspace area for each tibia ratio at a fixed coxa ratio [m²].
+
+    Used to show the paper's claim after eq 16: for fixed l1 the area peaks at l2 = l3.
+    """
+    l1 = l1_ratio * total
+    return np.array(
+        [
+            planar_workspace((l1, total - l1 - r3 * total, r3 * total), limits).area
+            for r3 in np.asarray(l3_ratios, dtype=float)
+        ]
+    )
+
+
+@dataclass(frozen=True)
+class WorkspaceAnalysis:
+    """Everything §4 tells about one design's swing-phase workspace.
+
+    Attributes:
+        design: The design analysed.
+        monte_carlo: The Monte Carlo cloud (Table 2 limits).
+        rectangular: Planar workspace on the rectangular domain (Table 3).
+        improved: Planar workspace on the improved domain (Table 4).
+        improved_closed_form: Eq 16's S_W = 2π·l2·l3/3 [m²].
+
+    """
+
+    design: HexapodDesign
+    monte_carlo: MonteCarloWorkspace
+    rectangular: PlanarWorkspace
+    improved: PlanarWorkspace
+    improved_closed_form: float
+
+    def to_dict(self) -> dict:
+        """JSON-ready summary (SI units: m, m², rad)."""
+        return {
+            "area": {
+                "improved": self.improved.area,
+                "improved_closed_form": self.improved_closed_form,
+                "rectangular": self.rectangular.area,
+            },
+            "monte_carlo": {
+                "samples": len(self.monte_carlo.points),
+                "seed": self.monte_carlo.seed,
+                "lower_bound": self.monte_carlo.lower_bound.tolist(),
+                "upper_bound": self.monte_carlo.upper_bound.tolist(),
+            },
+            "units": {"area": "m^2", "bound": "m, leg-root frame"},
+            "design": self.design.as_dict(),
+        }
+
+
+def analyze_workspace(
+    design: HexapodDesign, samples: int = 20_000, seed: int = 0
+) -> WorkspaceAnalysis:
+    """Monte Carlo cloud, planar and improved workspaces of ``design``'s leg."""
+    return WorkspaceAnalysis(
+        design=design,
+        monte_carlo=monte_carlo_workspace(design, samples, seed),
+        rectangular=planar_workspace(design.lengths, design.workspace_limits),
+        improved=planar_workspace(design.lengths, design.improved_limits),
+        improved_closed_form=improved_area_closed_form(design.l2, design.l3),
+    )
