@@ -7,7 +7,7 @@ names the field, the value given and what is allowed.
 Defaults (each one a field, none hidden in code):
 
 - segments: the paper's l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1);
-- body: a 1.0 m × 0.6 m × 0.2 m box (x forward, y left, z up), 60 kg;
+- body: a 1.0 m × 0.6 m × 0.1 m box (x forward, y left, z up), 60 kg;
 - mounting: legs at the four corners and the two side mid-points of the body's
   mid-plane, each pointing straight outward (front ±45°, middle ±90°,
   rear ±135°), named ``lf lm lr rf rm rr`` (left/right, front/middle/rear);
@@ -148,7 +148,7 @@ class HexapodDesign:
     l3: float = 0.4
     body_length: float = 1.0
     body_width: float = 0.6
-    body_height: float = 0.2
+    body_height: float = 0.1
     mounts: tuple[LegMount, ...] | None = None
     nominal_angles: tuple[float, float, float] = (0.0, 0.0, -math.pi / 2)
     workspace_limits: JointLimits = WORKSPACE_LIMITS

@@ -70,7 +70,7 @@ def test_urdf_carries_the_design(default_design):
     mount = joints["rm_mount_joint"].find("origin")
     assert [float(v) for v in mount.get("rpy").split()] == pytest.approx([0, 0, -np.pi / 2])
     body = next(link for link in root.iter("link") if link.get("name") == "base_link")
-    assert body.find("visual/geometry/box").get("size").split() == ["1.0", "0.6", "0.2"]
+    assert body.find("visual/geometry/box").get("size").split() == ["1.0", "0.6", "0.1"]
 
 
 def test_joint_limits_are_read_back_from_the_model(hexapod_model, default_design):

@@ -1,0 +1,29 @@
+"""Smoke test: the benchmark entry point runs on tiny sizes and its agreement checks pass."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+
+RUN = Path(__file__).resolve().parent.parent / "benchmarks" / "run.py"
+
+
+@pytest.mark.skipif(not RUN.is_file(), reason="benchmarks/ not shipped in this install")
+def test_benchmarks_run_quick_and_agree():
+    result = subprocess.run(
+        [sys.executable, str(RUN), "--quick", "--json", "--repeats", "1"],
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert result.returncode == 0, result.stderr
+    rows = json.loads(result.stdout)["rows"]
+    assert {r["workload"].split(",")[0] for r in rows} >= {"Monte Carlo workspace", "w_A"}
+    for row in rows:
+        assert row["median_s"] > 0
+        if row["max_difference"] is not None:
+            assert row["max_difference"] <= 1e-12
