@@ -135,13 +135,7 @@ def inverse_kinematics(
 
     """
     l1, l2, l3 = lengths
-    p = np.asarray(position, dtype=float)
-    px, py, pz = p[..., 0], p[..., 1], p[..., 2]
-    theta1 = np.arctan2(py, px)
-    theta1 = np.where(theta1 > np.pi / 2, theta1 - np.pi, theta1)
-    theta1 = np.where(theta1 <= -np.pi / 2, theta1 + np.pi, theta1)
-    planar_x = px * np.cos(theta1) + py * np.sin(theta1) - l1  # hip to foot, along the coxa
-    r = np.hypot(planar_x, pz)  # r² = τ + l1² of eq 9
+    theta1, planar_x, pz, r = _leg_plane(l1, position)
     reachable = (r <= l2 + l3 + tol) & (r >= abs(l2 - l3) - tol) & (r > 0)
     r_safe = np.where(r > 0, r, 1.0)
     cos_knee = np.clip((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0, 1.0)
@@ -152,6 +146,33 @@ def inverse_kinematics(
     if limits is not None:
         reachable &= limits.contains(theta, tol=1e-12)
     return InverseKinematics(theta, np.asarray(reachable))
+
+
+def reach_margin(lengths: Lengths, position: npt.ArrayLike) -> ArrayF:
+    """Signed distance of foot targets (..., 3) to the edge of the leg's reach [m].
+
+    Positive inside the annulus |l2 − l3| ≤ r ≤ l2 + l3 around the hip (the
+    branch of :func:`inverse_kinematics`), negative outside; continuous in the target.
+    """
+    l1, l2, l3 = lengths
+    r = _leg_plane(l1, position)[3]
+    return np.minimum(l2 + l3 - r, r - abs(l2 - l3))
+
+
+def _leg_plane(
+    l1: float, position: npt.ArrayLike
+) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
+    """θ1 ∈ (−π/2, π/2] toward the target, and the target in the leg plane seen from the hip.
+
+    Returns (θ1, planar_x, z, r): planar_x along the coxa, z up, r the hip-to-foot distance.
+    """
+    p = np.asarray(position, dtype=float)
+    px, py, pz = p[..., 0], p[..., 1], p[..., 2]
+    theta1 = np.arctan2(py, px)
+    theta1 = np.where(theta1 > np.pi / 2, theta1 - np.pi, theta1)
+    theta1 = np.where(theta1 <= -np.pi / 2, theta1 + np.pi, theta1)
+    planar_x = px * np.cos(theta1) + py * np.sin(theta1) - l1  # hip to foot, along the coxa
+    return theta1, planar_x, pz, np.hypot(planar_x, pz)  # r² = τ + l1² of eq 9
 
 
 def _wrap(angle: ArrayF) -> ArrayF:
