@@ -187,6 +187,111 @@ def _cmd_manipulability(args: argparse.Namespace) -> int:
     return 0
 
 
+def _cmd_flexibility(args: argparse.Namespace) -> int:
+    import warnings
+
+    from hexaleg.flexibility import FlexibilityWarning, flexibility
+
+    design = design_from_args(args)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
+        result = flexibility(design, mode=args.mode, stance=args.stance)
+    if args.plot is not None:
+        from hexaleg.figures import extremes_figure, save
+
+        _report_files([save(extremes_figure(result), Path(args.plot) / "flexibility_extremes.png")])
+    if args.json:
+        _print_json(result.to_dict())
+        return 0
+    rows = [("FB (eq 29)", f"{result.fb:.6f}")]
+    for axis, value in result.ranges.items():
+        unit = "m" if axis in ("x", "y", "z") else "rad"
+        shown = f"{value:.6f} {unit}" + (f" ({math.degrees(value):.3f}°)" if unit == "rad" else "")
+        rows.append((f"range {axis} (eq 28)", shown))
+    for extreme in result.extremes:
+        unit = "m" if extreme.axis in ("x", "y", "z") else "rad"
+        rows.append(
+            (
+                f"{extreme.axis} {'+' if extreme.sign > 0 else '-'}",
+                f"{extreme.value:+.6f} {unit}  limited by {extreme.limited_by}",
+            )
+        )
+    if not result.converged:
+        rows.append(
+            ("warning", "the optimizer did not converge everywhere; values are lower bounds")
+        )
+    _print_table(
+        f"Body flexibility ({result.mode}, stance {' '.join(result.legs)}), "
+        f"l = ({design.l1:.4g}, {design.l2:.4g}, {design.l3:.4g}) m",
+        rows,
+    )
+    return 0
+
+
+def _cmd_study(args: argparse.Namespace) -> int:
+    from hexaleg.design import l3_ratio_grid
+    from hexaleg.figures import write_study_figures
+    from hexaleg.study import StudySpec, peak_table, run_study, sensitivity_table
+
+    given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
+    if given or args.ratios is not None:
+        raise _UsageError(
+            f"a study sweeps the segment lengths: {', '.join(given) or '--ratios'} cannot be given"
+        )
+    if args.workers is not None and args.workers < 1:
+        raise _UsageError(f"--workers = {args.workers} is not valid: must be >= 1")
+    base = design_from_args(args)
+    spec = StudySpec(
+        tuple(args.l1_ratios),
+        tuple(l3_ratio_grid(args.l3_points)),
+        total=1.0 if args.total is None else args.total,
+        mode=args.mode,
+        stance=args.stance,
+        base=base,
+    )
+    executor, client = _study_executor(args.scheduler)
+    try:
+        table = run_study(
+            spec, args.output, executor=executor, workers=args.workers, resume=args.resume
+        )
+    finally:
+        if client is not None:
+            client.close()
+    paths = [Path(args.output) / name for name in ("study.csv", "study.json")]
+    paths += write_study_figures(table, args.output)
+    if args.sensitivity:
+        sensitivity = sensitivity_table(
+            spec.l1_ratios, spec.l3_ratios, spec.total, spec.stance, base
+        )
+        from hexaleg._io import atomic_write_text
+
+        paths.append(
+            atomic_write_text(
+                Path(args.output) / "sensitivity.csv", sensitivity.to_csv(index=False)
+            )
+        )
+    _report_files(paths)
+    failed = int((table["error"] != "").sum())
+    print(f"{len(table)} designs, {failed} failed; FB peaks (l1 ratio → l3 ratio, FB):")
+    for peak in peak_table(table).to_dict(orient="records"):
+        print(f"  {peak['l1_ratio']:.3f} → {peak['peak_l3_ratio']:.4f}, {peak['peak_fb']:.4f}")
+    return 0
+
+
+def _study_executor(scheduler: str | None) -> tuple[Any, Any]:
+    if scheduler is None:
+        return None, None
+    try:
+        from distributed import Client
+    except ImportError:
+        raise _UsageError("--scheduler needs Dask: pip install 'hexaleg[dask]'") from None
+    try:
+        client = Client(scheduler, timeout="10s")
+    except (OSError, TimeoutError) as err:
+        raise _UsageError(f"cannot reach the Dask scheduler at {scheduler}: {err}") from None
+    return client.get_executor(), client
+
+
 def _print_json(data: dict[str, Any]) -> None:
     print(json.dumps(data, indent=2, allow_nan=False))
 
@@ -273,7 +378,81 @@ def build_parser() -> argparse.ArgumentParser:
     add_design_options(manip)
     _add_output_options(manip)
     manip.set_defaults(handler=_cmd_manipulability)
+
+    flex = commands.add_parser(
+        "flexibility",
+        help="body flexibility with the feet planted: the 12 extremes, ranges and FB",
+        description=(
+            "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "
+            "[m] and rotates about them [rad], one coordinate at a time (--mode axis, the ADAMS "
+            "semantics) or with the other five free (--mode free), until a foot leaves its "
+            "reach, a joint hits its stance limit or the body touches the ground. Prints the "
+            "12 extremes with their causes, the ranges (eq 28) and FB (eq 29)."
+        ),
+    )
+    add_design_options(flex)
+    _add_stance_options(flex)
+    _add_output_options(flex)
+    flex.set_defaults(handler=_cmd_flexibility)
+
+    study = commands.add_parser(
+        "study",
+        help="design study: FB over coxa x tibia ratios (Fig 14-15), resumable",
+        description=(
+            "Sweep coxa and tibia ratios at a fixed total leg length and compute body "
+            "flexibility for each design, one task per design, on a local process pool or a "
+            "Dask cluster. Rows are written to DIR/rows.jsonl as they finish; --resume "
+            "continues an interrupted study. Writes study.csv, study.json and the figures."
+        ),
+    )
+    add_design_options(study)
+    _add_stance_options(study)
+    study.add_argument(
+        "--l1-ratios",
+        type=float,
+        nargs="+",
+        default=[0.05, 0.10, 0.15, 0.20],
+        metavar="R",
+        help="coxa ratios l1/L [-] (default: the paper's 0.05 0.10 0.15 0.20)",
+    )
+    study.add_argument(
+        "--l3-points",
+        type=int,
+        default=80,
+        metavar="N",
+        help="tibia ratios per coxa ratio (default 80)",
+    )
+    study.add_argument(
+        "--workers", type=int, metavar="N", help="local worker processes (default: CPUs)"
+    )
+    study.add_argument(
+        "--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://127.0.0.1:8786"
+    )
+    study.add_argument("--resume", action="store_true", help="continue the study already in DIR")
+    study.add_argument(
+        "--sensitivity", action="store_true", help="also write the posture/body sensitivity table"
+    )
+    study.add_argument(
+        "-o",
+        "--output",
+        metavar="DIR",
+        default="hexaleg-study",
+        help="output folder (default hexaleg-study)",
+    )
+    study.set_defaults(handler=_cmd_study)
     return parser
+
+
+def _add_stance_options(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument(
+        "--mode",
+        choices=("axis", "free"),
+        default="axis",
+        help="axis-locked (default) or free-coupled",
+    )
+    parser.add_argument(
+        "--stance", choices=("all", "tripod"), default="all", help="stance legs (default all six)"
+    )
 
 
 def main(argv: Sequence[str] | None = None) -> int:

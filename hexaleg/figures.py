@@ -212,3 +212,106 @@ def write_manipulability_figures(
         save(surface, out / "manipulability_surfaces_table5.png"),
         save(average_manipulability_figure(average_map), out / "manipulability_average_map.png"),
     ]
+
+
+def extremes_figure(result) -> Figure:
+    """The twelve body extremes of a :class:`~hexaleg.flexibility.FlexibilityResult`."""
+    from hexaleg.flexibility import AXES
+
+    fig = _figure(11, 4.8)
+    translation_ax, rotation_ax = fig.subplots(1, 2)
+    for ax, axes, scale, unit in (
+        (translation_ax, AXES[:3], 1.0, "m"),
+        (rotation_ax, AXES[3:], 180 / np.pi, "°"),
+    ):
+        for k, axis in enumerate(axes):
+            for sign, color in ((1, _COLORS[0]), (-1, _COLORS[1])):
+                extreme = result.extreme(axis, sign)
+                value = extreme.value * scale
+                ax.bar(k, value, color=color, width=0.6)
+                ax.annotate(
+                    str(extreme.limited_by),
+                    (k, value),
+                    xytext=(0, 4 if sign > 0 else -4),
+                    textcoords="offset points",
+                    ha="center",
+                    va="bottom" if sign > 0 else "top",
+                    fontsize=6.5,
+                    rotation=0,
+                    wrap=True,
+                )
+        ax.axhline(0, color="k", lw=0.8)
+        ax.set_xticks(range(3), axes)
+        ax.set_ylabel(f"extreme displacement from nominal [{unit}]")
+        ax.margins(y=0.25)
+        ax.grid(True, axis="y", alpha=0.3)
+    translation_ax.set_title("translations")
+    rotation_ax.set_title("rotations")
+    fig.suptitle(
+        f"Body extremes ({result.mode}, stance {'+'.join(result.legs)}), FB = {result.fb:.4f}"
+    )
+    return fig
+
+
+def fb_figure(table, peaks) -> Figure:
+    """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks marked."""
+    fig = _figure()
+    ax = fig.add_subplot()
+    for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), _COLORS, strict=False):
+        ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"l1 ratio {r1:.2f}")
+        peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
+        ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
+        ax.annotate(
+            f"{peak['peak_l3_ratio']:.3f}",
+            (peak["peak_l3_ratio"], peak["peak_fb"]),
+            xytext=(0, 6),
+            textcoords="offset points",
+            ha="center",
+            fontsize=8,
+            color=color,
+        )
+    ax.axvspan(0.40, 0.45, color="k", alpha=0.08, label="paper's claim 0.40–0.45")
+    ax.set_xlabel("l3 ratio [-]")
+    ax.set_ylabel("body flexibility FB [-] (eq 29)")
+    ax.set_title("Body flexibility against tibia ratio (peaks marked)")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    return fig
+
+
+def ranges_figure(table, l1_ratio: float) -> Figure:
+    """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio."""
+    fig = _figure(11, 4.5)
+    left, right = fig.subplots(1, 2)
+    group = table[np.isclose(table["l1_ratio"], l1_ratio)]
+    for k, axis in enumerate(("x", "y", "z")):
+        left.plot(group["l3_ratio"], group[f"range_{axis}"], color=_COLORS[k], label=f"S_{axis}")
+    for k, axis in enumerate(("roll", "pitch", "yaw")):
+        right.plot(
+            group["l3_ratio"],
+            np.degrees(group[f"range_{axis}"]),
+            color=_COLORS[k],
+            label=f"φ ({axis})",
+        )
+    left.set_ylabel("translation range [m]")
+    right.set_ylabel("rotation range [°]")
+    for ax in (left, right):
+        ax.set_xlabel("l3 ratio [-]")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+    fig.suptitle(f"Ranges of the body pose, l1 ratio {l1_ratio:.2f} (eq 28)")
+    return fig
+
+
+def write_study_figures(table, out_dir: str | os.PathLike[str]) -> list[Path]:
+    """Fig 14 (ranges, for the smallest coxa ratio) and Fig 15 (FB curves)."""
+    from hexaleg.study import peak_table
+
+    out = Path(out_dir)
+    valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
+    if valid.empty:
+        return []
+    return [
+        save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png"),
+        save(ranges_figure(valid, float(valid["l1_ratio"].min())), out / "flexibility_ranges.png"),
+    ]

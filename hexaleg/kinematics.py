@@ -134,15 +134,9 @@ def inverse_kinematics(
         tol: Slack on the reach annulus |l2 − l3| ≤ r ≤ l2 + l3 [m].
 
     """
-    l1, l2, l3 = lengths
-    theta1, planar_x, pz, r = _leg_plane(l1, position)
+    _, l2, l3 = lengths
+    theta, r = leg_solution(lengths, position)
     reachable = (r <= l2 + l3 + tol) & (r >= abs(l2 - l3) - tol) & (r > 0)
-    r_safe = np.where(r > 0, r, 1.0)
-    cos_knee = np.clip((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0, 1.0)
-    cos_hip = np.clip((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0, 1.0)
-    theta2 = _wrap(np.arctan2(pz, planar_x) + np.arccos(cos_hip))
-    theta3 = -np.arccos(cos_knee)
-    theta = np.stack((theta1, theta2, theta3), axis=-1)
     if limits is not None:
         reachable &= limits.contains(theta, tol=1e-12)
     return InverseKinematics(theta, np.asarray(reachable))
@@ -154,14 +148,12 @@ def reach_margin(lengths: Lengths, position: npt.ArrayLike) -> ArrayF:
     Positive inside the annulus |l2 − l3| ≤ r ≤ l2 + l3 around the hip (the
     branch of :func:`inverse_kinematics`), negative outside; continuous in the target.
     """
-    l1, l2, l3 = lengths
-    r = _leg_plane(l1, position)[3]
+    _, l2, l3 = lengths
+    r = leg_solution(lengths, position)[1]
     return np.minimum(l2 + l3 - r, r - abs(l2 - l3))
 
 
-def _leg_plane(
-    l1: float, position: npt.ArrayLike
-) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
+def _leg_plane(l1: float, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
     """θ1 ∈ (−π/2, π/2] toward the target, and the target in the leg plane seen from the hip.
 
     Returns (θ1, planar_x, z, r): planar_x along the coxa, z up, r the hip-to-foot distance.
@@ -173,6 +165,21 @@ def _leg_plane(
     theta1 = np.where(theta1 <= -np.pi / 2, theta1 + np.pi, theta1)
     planar_x = px * np.cos(theta1) + py * np.sin(theta1) - l1  # hip to foot, along the coxa
     return theta1, planar_x, pz, np.hypot(planar_x, pz)  # r² = τ + l1² of eq 9
+
+
+def leg_solution(lengths: Lengths, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF]:
+    """Knee-down joint angles (..., 3) [rad] and hip-to-foot distance r (...) [m].
+
+    The kernel behind :func:`inverse_kinematics` and :func:`reach_margin`: the
+    angles are those of the nearest configuration when r is out of reach.
+    """
+    l1, l2, l3 = lengths
+    theta1, planar_x, pz, r = _leg_plane(l1, position)
+    r_safe = np.where(r > 0, r, 1.0)
+    cos_knee = np.clip((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0, 1.0)
+    cos_hip = np.clip((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0, 1.0)
+    theta2 = _wrap(np.arctan2(pz, planar_x) + np.arccos(cos_hip))
+    return np.stack((theta1, theta2, -np.arccos(cos_knee)), axis=-1), r
 
 
 def _wrap(angle: ArrayF) -> ArrayF:

@@ -125,3 +125,63 @@ def test_readable_tables(capsys):
 def test_bad_sample_count(capsys):
     assert main(["workspace", "--samples", "0"]) == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_flexibility_json_has_the_documented_fields(capsys):
+    import json
+
+    assert main(["flexibility", "--stance", "tripod", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert 0 < data["fb"] < 1
+    assert set(data["ranges"]) == {"x", "y", "z", "roll", "pitch", "yaw"}
+    assert len(data["extremes"]) == 12
+    assert {"axis", "sign", "value", "limited_by"} <= set(data["extremes"][0])
+    assert data["stance"] == ["lf", "rm", "lr"]
+    design = data["design"]
+    for key in (
+        "l1",
+        "l2",
+        "l3",
+        "body_length",
+        "body_width",
+        "body_height",
+        "mounts",
+        "nominal_angles",
+        "stance_limits",
+    ):
+        assert key in design
+    # reproducible without hexaleg's defaults: the JSON design rebuilds the same result
+    from hexaleg import HexapodDesign, JointLimits, LegMount
+    from hexaleg.flexibility import flexibility
+
+    rebuilt = HexapodDesign(
+        l1=design["l1"],
+        l2=design["l2"],
+        l3=design["l3"],
+        body_length=design["body_length"],
+        body_width=design["body_width"],
+        body_height=design["body_height"],
+        mounts=tuple(LegMount(**m) for m in design["mounts"]),
+        nominal_angles=tuple(design["nominal_angles"]),
+        stance_limits=JointLimits(
+            **{
+                k: tuple(v) if isinstance(v, list) else v
+                for k, v in design["stance_limits"].items()
+            }
+        ),
+    )
+    assert flexibility(rebuilt, "axis", "tripod").fb == pytest.approx(data["fb"], rel=1e-12)
+
+
+def test_flexibility_table_and_free_mode(capsys, tmp_path):
+    assert main(["flexibility", "--mode", "free", "--plot", str(tmp_path)]) == 0
+    out = capsys.readouterr().out
+    assert "FB (eq 29)" in out and "limited by" in out
+    assert (tmp_path / "flexibility_extremes.png").stat().st_size > 20_000
+
+
+def test_flexibility_bad_choice_is_one_line(capsys):
+    with pytest.raises(SystemExit) as info:
+        main(["flexibility", "--mode", "sideways"])
+    assert info.value.code == 2
+    assert capsys.readouterr().err.count("\n") == 1

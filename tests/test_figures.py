@@ -44,3 +44,17 @@ def test_figures_are_not_blank(tmp_path, default_design):
     path = save(planar_workspace_figure(rect, improved), tmp_path / "planar.png")
     pixels = np.asarray(Image.open(path).convert("L"))
     assert (pixels < 250).mean() > 0.05  # a meaningful share is drawn
+
+
+def test_study_figures(tmp_path):
+    from hexaleg.figures import write_study_figures
+    from hexaleg.study import StudySpec, run_study
+
+    spec = StudySpec((0.05, 0.2), tuple(np.linspace(0.1, 0.7, 8)))
+    from concurrent.futures import ThreadPoolExecutor
+
+    table = run_study(spec, tmp_path, executor=ThreadPoolExecutor(2))
+    paths = write_study_figures(table, tmp_path)
+    assert sorted(p.name for p in paths) == ["flexibility_fb.png", "flexibility_ranges.png"]
+    for path in paths:
+        _assert_png(path)

@@ -1,0 +1,253 @@
+"""Stance phase: the closed chain of body, stance legs and ground (paper §3.2, eq 11–13, 30).
+
+The feet of the stance legs are pinned to footholds on the ground. Given a body
+pose, stance inverse kinematics gives every stance leg's joint angles; given the
+joint angles, stance forward kinematics fits the body pose (eq 13, a rigid
+least-squares fit for N ≥ 3 legs). Everything geometric (leg-root placements,
+footholds, the body box) is read from the Pinocchio model built from the URDF,
+and collected in a :class:`StanceGeometry` that the vectorized kernels use.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg.design import TRIPODS, HexapodDesign
+from hexaleg.exceptions import HexalegError, ModelError
+from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics
+from hexaleg.limits import JointLimits
+from hexaleg.model import HexapodModel
+
+ArrayF = npt.NDArray[np.float64]
+
+STANCE_SETS = {"tripod": TRIPODS[0], "all": None}
+"""Named stance-leg sets: the first tripod (lf, rm, lr) or all six legs."""
+
+
+def stance_legs(model: HexapodModel, stance: str | Sequence[str]) -> tuple[str, ...]:
+    """Resolve ``"tripod"``, ``"all"`` or an explicit list into leg names of ``model``."""
+    if isinstance(stance, str):
+        if stance not in STANCE_SETS:
+            raise HexalegError(
+                f"stance = {stance!r} is not valid: use one of {', '.join(STANCE_SETS)}"
+            )
+        legs = STANCE_SETS[stance] or model.leg_names
+    else:
+        legs = tuple(stance)
+    unknown = [leg for leg in legs if leg not in model.leg_names]
+    if unknown or len(set(legs)) != len(legs) or len(legs) < 3:
+        raise HexalegError(
+            f"stance legs {list(legs)} are not valid: at least 3 distinct legs of "
+            f"{', '.join(model.leg_names)}"
+        )
+    return tuple(legs)
+
+
+@dataclass(frozen=True)
+class StanceGeometry:
+    """What the stance kernels need, read from the Pinocchio model.
+
+    Attributes:
+        legs: Stance leg names (N,).
+        lengths: Segment lengths (l1, l2, l3) [m].
+        root_rotations: Leg-root frame orientations in the body frame (N, 3, 3).
+        root_positions: Leg-root frame origins in the body frame (N, 3) [m].
+        footholds: Fixed foot positions in the world frame (N, 3) [m].
+        nominal_height: Body-frame height above the ground at the nominal stance [m].
+        body_half_extents: Half sizes of the body's collision box (3,) [m].
+        limits: Joint limits that stop the body (the design's ``stance_limits``).
+
+    """
+
+    legs: tuple[str, ...]
+    lengths: tuple[float, float, float]
+    root_rotations: ArrayF
+    root_positions: ArrayF
+    footholds: ArrayF
+    nominal_height: float
+    body_half_extents: ArrayF
+    limits: JointLimits
+
+    @classmethod
+    def from_model(cls, model: HexapodModel, stance: str | Sequence[str] = "all") -> StanceGeometry:
+        """Read the stance geometry of ``model`` at its nominal stance, all from Pinocchio."""
+        legs = stance_legs(model, stance)
+        roots = model.root_placements()
+        feet = model.foot_positions(model.nominal_configuration())
+        index = [model.leg_names.index(leg) for leg in legs]
+        return cls(
+            legs=legs,
+            lengths=model.design.lengths,
+            root_rotations=np.array([roots[leg].rotation for leg in legs]),
+            root_positions=np.array([roots[leg].translation for leg in legs]),
+            footholds=feet[index],
+            nominal_height=float(model.nominal_base_pose().translation[2]),
+            body_half_extents=body_half_extents(model),
+            limits=model.design.stance_limits,
+        )
+
+    def with_design(self, design: HexapodDesign) -> StanceGeometry:
+        """The same body and mounting with ``design``'s legs and posture (closed form, eq 7).
+
+        Only valid when ``design`` has the mounts and body of the design this geometry
+        was read from; the tests prove it equal to :meth:`from_model` of ``design``.
+        """
+        height = design.nominal_height
+        foot_in_root = foot_position(design.lengths, design.nominal_angles)
+        footholds = self.root_positions + self.root_rotations @ foot_in_root
+        footholds[:, 2] += height
+        return StanceGeometry(
+            legs=self.legs,
+            lengths=design.lengths,
+            root_rotations=self.root_rotations,
+            root_positions=self.root_positions,
+            footholds=footholds,
+            nominal_height=height,
+            body_half_extents=self.body_half_extents,
+            limits=design.stance_limits,
+        )
+
+    @property
+    def nominal_pose(self) -> pin.SE3:
+        """Body pose of the nominal stance: level, at the nominal height."""
+        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self.nominal_height]))
+
+    def feet_in_roots(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
+        """Footholds seen from each leg root, for body poses.
+
+        Args:
+            rotation: Body orientations (..., 3, 3).
+            translation: Body positions (..., 3) [m].
+
+        Returns:
+            Foot targets (..., N, 3) in each leg-root frame [m].
+
+        """
+        rotation = np.asarray(rotation, dtype=float)
+        translation = np.asarray(translation, dtype=float)
+        # world → body: b = Rᵀ(f − t); body → root: R_rᵀ(b − p_r). Written as three
+        # broadcast multiply-adds each: NumPy's batched 3×3 matmul is slower here.
+        offset = self.footholds - translation[..., None, :]  # (..., N, 3)
+        in_body = sum(offset[..., i, None] * rotation[..., None, i, :] for i in range(3))
+        relative = in_body - self.root_positions
+        return sum(relative[..., i, None] * self.root_rotations[:, i, :] for i in range(3))
+
+    def body_corners(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
+        """World positions of the body box's 8 corners for body poses (..., 8, 3) [m]."""
+        rotation = np.asarray(rotation, dtype=float)
+        return self._corners @ np.swapaxes(rotation, -1, -2) + np.asarray(translation)[..., None, :]
+
+    def lowest_corner_height(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
+        """Height of the body box's lowest corner above the ground for body poses (...) [m]."""
+        rotation = np.asarray(rotation, dtype=float)
+        heights = rotation[..., 2, :] @ self._corners.T  # (..., 8)
+        return heights.min(axis=-1) + np.asarray(translation)[..., 2]
+
+    @property
+    def _corners(self) -> ArrayF:
+        signs = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
+        return signs * self.body_half_extents
+
+
+def body_half_extents(model: HexapodModel) -> ArrayF:
+    """Half sizes of ``base_link``'s collision box, read from the URDF's geometry [m]."""
+    geometry = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.COLLISION)
+    for obj in geometry.geometryObjects:
+        if obj.parentFrame == model.base_frame and hasattr(obj.geometry, "halfSide"):
+            return np.array(obj.geometry.halfSide, dtype=float)
+    raise ModelError("base_link has no box collision geometry")
+
+
+# -- stance inverse / forward kinematics ------------------------------------------------
+
+
+def stance_inverse_kinematics(geometry: StanceGeometry, body: pin.SE3) -> InverseKinematics:
+    """Joint angles (N, 3) [rad] of every stance leg for a body pose, feet on their footholds.
+
+    ``reachable`` (N,) flags legs whose foothold is out of reach or whose angles
+    leave the stance limits.
+    """
+    targets = geometry.feet_in_roots(body.rotation, body.translation)
+    return inverse_kinematics(geometry.lengths, targets, limits=geometry.limits)
+
+
+def stance_forward_kinematics(geometry: StanceGeometry, joint_angles: npt.ArrayLike) -> pin.SE3:
+    """Body pose from the stance legs' joint angles (N, 3) [rad] (eq 13, N ≥ 3).
+
+    Each leg gives its foot in the body frame, u_i = T_root·p(θ_i); the body pose
+    T_C with T_C·u_i = foothold_i is the rigid least-squares fit (Kabsch).
+    """
+    angles = np.asarray(joint_angles, dtype=float)
+    feet_body = geometry.root_positions + np.einsum(
+        "nij,nj->ni", geometry.root_rotations, foot_position(geometry.lengths, angles)
+    )
+    return rigid_fit(feet_body, geometry.footholds)
+
+
+def rigid_fit(source: npt.ArrayLike, target: npt.ArrayLike) -> pin.SE3:
+    """The rotation R and translation t minimizing Σ|R·s_i + t − t_i|² (N ≥ 3 points)."""
+    source = np.asarray(source, dtype=float)
+    target = np.asarray(target, dtype=float)
+    if source.shape[0] < 3:
+        raise HexalegError("a rigid fit needs at least 3 points")
+    cs, ct = source.mean(axis=0), target.mean(axis=0)
+    u, _, vt = np.linalg.svd((source - cs).T @ (target - ct))
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    rotation = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+    return pin.SE3(rotation, ct - rotation @ cs)
+
+
+# -- constraints on the Pinocchio model -------------------------------------------------
+
+
+def stance_configuration(
+    model: HexapodModel, geometry: StanceGeometry, body: pin.SE3
+) -> tuple[ArrayF, InverseKinematics]:
+    """Full configuration q for a body pose: stance legs by stance IK, swing legs nominal."""
+    solution = stance_inverse_kinematics(geometry, body)
+    angles = {leg: model.design.nominal_angles for leg in model.leg_names}
+    angles.update(zip(geometry.legs, solution.theta, strict=True))
+    return model.configuration(body, angles), solution
+
+
+def constraint_residual(model: HexapodModel, geometry: StanceGeometry, q: npt.ArrayLike) -> ArrayF:
+    """Foot anchoring residual (3N,): each stance foot minus its foothold, world frame [m]."""
+    feet = model.foot_positions(q)
+    index = [model.leg_names.index(leg) for leg in geometry.legs]
+    return (feet[index] - geometry.footholds).ravel()
+
+
+def constraint_jacobian(model: HexapodModel, geometry: StanceGeometry, q: npt.ArrayLike) -> ArrayF:
+    """Jacobian (3N, nv) of :func:`constraint_residual`, stacked foot rows from Pinocchio."""
+    q = np.asarray(q, dtype=float)
+    pin.computeJointJacobians(model.model, model.data, q)
+    pin.updateFramePlacements(model.model, model.data)
+    rows = [
+        pin.getFrameJacobian(
+            model.model, model.data, model.foot_frame_id(leg), pin.LOCAL_WORLD_ALIGNED
+        )[:3]
+        for leg in geometry.legs
+    ]
+    return np.vstack(rows)
+
+
+def mechanism_columns(model: HexapodModel, legs: Sequence[str]) -> npt.NDArray[np.int_]:
+    """Velocity indices of the closed-chain mechanism: the body (6) and the stance joints."""
+    return np.concatenate([np.arange(6), *(model.leg_v_indices(leg) for leg in legs)])
+
+
+def mobility(
+    model: HexapodModel, geometry: StanceGeometry, q: npt.ArrayLike, tol: float = 1e-9
+) -> int:
+    """Degrees of freedom of body + stance legs with the feet pinned (eq 1–2 predict 6).
+
+    nv of the mechanism (6 + 3N) minus the rank of its constraint Jacobian.
+    """
+    columns = mechanism_columns(model, geometry.legs)
+    jac = constraint_jacobian(model, geometry, q)[:, columns]
+    return int(len(columns) - np.linalg.matrix_rank(jac, tol=tol))

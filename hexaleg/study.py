@@ -1,0 +1,304 @@
+"""Design studies: many designs, one task each, on any ``concurrent.futures.Executor``.
+
+A study sweeps coxa and tibia ratios at a fixed total leg length (Fig 14–15),
+keeping every other field of a base design. Each finished row is appended to a
+journal (``rows.jsonl``) and flushed to disk as it arrives, so an interrupted
+study loses nothing: :func:`run_study` with ``resume=True`` recomputes only the
+missing rows. A design that fails (say, its nominal stance cannot stand) is
+recorded with its error and the study goes on.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+import sys
+from collections.abc import Iterable, Sequence
+from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from hexaleg._io import atomic_write_text
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
+from hexaleg.flexibility import AXES, DIRECTIONS, axis_locked_flexibility, free_flexibility
+from hexaleg.stance import StanceGeometry
+
+JOURNAL = "rows.jsonl"
+TABLE_CSV = "study.csv"
+TABLE_JSON = "study.json"
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """What a study computes.
+
+    Attributes:
+        l1_ratios: Coxa ratios l1/L [-].
+        l3_ratios: Tibia ratios l3/L [-].
+        total: Total leg length L [m].
+        mode: ``"axis"`` (axis-locked) or ``"free"`` (free-coupled) flexibility.
+        stance: ``"all"`` or ``"tripod"``.
+        base: Every other field of the designs (body, mounts, posture, limits).
+
+    """
+
+    l1_ratios: tuple[float, ...]
+    l3_ratios: tuple[float, ...]
+    total: float = 1.0
+    mode: str = "axis"
+    stance: str = "all"
+    base: HexapodDesign = field(default_factory=HexapodDesign)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
+        object.__setattr__(self, "l3_ratios", tuple(float(r) for r in self.l3_ratios))
+        if self.mode not in ("axis", "free"):
+            raise HexalegError(f"mode = {self.mode!r} is not valid: use 'axis' or 'free'")
+        if self.stance not in ("all", "tripod"):
+            raise HexalegError(f"stance = {self.stance!r} is not valid: use 'all' or 'tripod'")
+        if not self.l1_ratios or not self.l3_ratios:
+            raise HexalegError("a study needs at least one coxa ratio and one tibia ratio")
+
+    def keys(self) -> list[tuple[float, float]]:
+        """(l1 ratio, l3 ratio) of every design, in table order."""
+        return [(r1, r3) for r1 in self.l1_ratios for r3 in self.l3_ratios]
+
+    def fingerprint(self) -> dict[str, Any]:
+        """Everything that determines the results, JSON-ready (checked on resume)."""
+        return {
+            "l1_ratios": list(self.l1_ratios),
+            "l3_ratios": list(self.l3_ratios),
+            "total": self.total,
+            "mode": self.mode,
+            "stance": self.stance,
+            "base": {k: v for k, v in self.base.as_dict().items() if k not in ("l1", "l2", "l3")},
+        }
+
+
+@dataclass(frozen=True)
+class _Task:
+    l1_ratio: float
+    l3_ratio: float
+    spec: StudySpec
+    template: StanceGeometry | None  # fast path for axis-locked studies
+
+
+def evaluate(task: _Task) -> dict[str, Any]:
+    """One row of the study table; errors become a row with ``error`` set."""
+    row: dict[str, Any] = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
+    try:
+        design = HexapodDesign.from_ratios(
+            task.l1_ratio, task.l3_ratio, task.spec.total, **_base_fields(task.spec.base)
+        )
+        if task.spec.mode == "axis":
+            result = axis_locked_flexibility(design, task.spec.stance, geometry=task.template)
+        else:
+            import warnings
+
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                result = free_flexibility(design, task.spec.stance)
+    except HexalegError as err:
+        return row | {"l1": math.nan, "l2": math.nan, "l3": math.nan, "error": str(err)}
+    row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
+    row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
+    for extreme in result.extremes:
+        name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
+        row[name] = extreme.value
+        row[f"{name}_limited_by"] = str(extreme.limited_by)
+    return row | {"converged": result.converged, "error": ""}
+
+
+def _base_fields(base: HexapodDesign) -> dict[str, Any]:
+    fields = {k: getattr(base, k) for k in base.__dataclass_fields__ if k not in ("l1", "l2", "l3")}
+    return fields
+
+
+def run_study(
+    spec: StudySpec,
+    out_dir: str | os.PathLike[str],
+    executor: Executor | None = None,
+    workers: int | None = None,
+    resume: bool = False,
+    progress: bool | None = None,
+) -> Any:
+    """Run (or resume) a study and write its table; return it as a pandas DataFrame.
+
+    Args:
+        spec: What to compute.
+        out_dir: Folder for the journal, ``study.csv`` and ``study.json``.
+        executor: Where tasks run; a local process pool of ``workers`` if omitted.
+        workers: Size of the local pool (default: the number of CPUs).
+        resume: Continue the journal in ``out_dir`` instead of refusing to overwrite it.
+        progress: Show a progress bar; by default only when stdout is a terminal.
+
+    """
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    journal = out / JOURNAL
+    done = _read_journal(journal, spec) if resume else {}
+    if not resume and journal.exists():
+        raise HexalegError(
+            f"{out} already holds a study: pass --resume to continue it, or choose another -o"
+        )
+    if not journal.exists():
+        _append(journal, {"spec": spec.fingerprint()})
+    template = _template_geometry(spec) if spec.mode == "axis" else None
+    todo = [key for key in spec.keys() if key not in done]
+    own_pool = executor is None
+    if own_pool:
+        executor = ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1)
+    assert executor is not None
+    from tqdm import tqdm
+
+    show = sys.stdout.isatty() if progress is None else progress
+    bar = tqdm(
+        total=len(spec.keys()), initial=len(done), disable=not show, unit="design", file=sys.stderr
+    )
+    try:
+        futures: Iterable[Future] = [
+            executor.submit(evaluate, _Task(r1, r3, spec, template)) for r1, r3 in todo
+        ]
+        for future in as_completed(futures):
+            row = future.result()
+            _append(journal, row)
+            done[(row["l1_ratio"], row["l3_ratio"])] = row
+            bar.update()
+    finally:
+        bar.close()
+        if own_pool:
+            executor.shutdown(wait=True, cancel_futures=True)
+    return write_table(spec, [done[key] for key in spec.keys()], out)
+
+
+def _template_geometry(spec: StudySpec) -> StanceGeometry:
+    """Root placements and body box of the study's body, read once from Pinocchio."""
+    from hexaleg.model import HexapodModel
+
+    return StanceGeometry.from_model(HexapodModel(spec.base), spec.stance)
+
+
+def _append(journal: Path, record: dict[str, Any]) -> None:
+    with journal.open("a", encoding="utf-8") as handle:
+        handle.write(json.dumps(record, allow_nan=True) + "\n")
+        handle.flush()
+        os.fsync(handle.fileno())
+
+
+def _read_journal(journal: Path, spec: StudySpec) -> dict[tuple[float, float], dict[str, Any]]:
+    if not journal.exists():
+        return {}
+    rows: dict[tuple[float, float], dict[str, Any]] = {}
+    lines = journal.read_text(encoding="utf-8").splitlines()
+    for number, line in enumerate(lines):
+        try:
+            record = json.loads(line)
+        except json.JSONDecodeError:
+            if number == len(lines) - 1:
+                break  # the line being written when the study was killed
+            raise HexalegError(f"{journal}: line {number + 1} is corrupt") from None
+        if "spec" in record:
+            if record["spec"] != json.loads(json.dumps(spec.fingerprint())):
+                raise HexalegError(
+                    f"{journal.parent} holds a study with other options; "
+                    "resume it with the same ones"
+                )
+            continue
+        rows[(record["l1_ratio"], record["l3_ratio"])] = record
+    return rows
+
+
+def write_table(spec: StudySpec, rows: Sequence[dict[str, Any]], out: Path) -> Any:
+    """Write ``study.csv`` and ``study.json`` atomically; return the DataFrame."""
+    import pandas as pd
+
+    table = pd.DataFrame(rows).sort_values(["l1_ratio", "l3_ratio"], kind="stable")
+    table = table.reset_index(drop=True)
+    atomic_write_text(out / TABLE_CSV, table.to_csv(index=False))
+    payload = {
+        "spec": spec.fingerprint(),
+        "units": {"ratios": "1", "lengths and x y z": "m", "roll pitch yaw": "rad", "fb": "1"},
+        "peaks": peak_table(table).to_dict(orient="records"),
+        "rows": json.loads(table.to_json(orient="records")),
+    }
+    atomic_write_text(out / TABLE_JSON, json.dumps(payload, indent=1))
+    return table
+
+
+def peak_table(table: Any) -> Any:
+    """For each coxa ratio, the tibia ratio of the largest FB and that FB."""
+    import pandas as pd
+
+    rows = []
+    for r1, group in table.groupby("l1_ratio", sort=True):
+        valid = group.dropna(subset=["fb"]) if "fb" in group else group.iloc[0:0]
+        if valid.empty:
+            rows.append({"l1_ratio": r1, "peak_l3_ratio": math.nan, "peak_fb": math.nan})
+            continue
+        best = valid.loc[valid["fb"].idxmax()]
+        rows.append({"l1_ratio": r1, "peak_l3_ratio": best["l3_ratio"], "peak_fb": best["fb"]})
+    return pd.DataFrame(rows)
+
+
+# -- posture and body sensitivity -----------------------------------------------------
+
+SENSITIVITY_VARIANTS: tuple[tuple[str, dict[str, Any]], ...] = (
+    ("default", {}),
+    ("hip raised 0.2 rad", {"nominal_angles": (0.0, 0.2, -math.pi / 2 - 0.2)}),
+    ("hip lowered 0.2 rad", {"nominal_angles": (0.0, -0.2, -math.pi / 2 + 0.2)}),
+    ("knee bent 0.3 rad more", {"nominal_angles": (0.0, 0.0, -math.pi / 2 - 0.3)}),
+    ("knee opened 0.3 rad", {"nominal_angles": (0.0, 0.0, -math.pi / 2 + 0.3)}),
+    ("body 0.8 m long", {"body_length": 0.8, "mounts": None}),
+    ("body 1.2 m long", {"body_length": 1.2, "mounts": None}),
+    ("body 0.8 m wide", {"body_width": 0.8, "mounts": None}),
+)
+"""Posture and body changes the paper leaves open, each against the default design."""
+
+
+def sensitivity_table(
+    l1_ratios: Sequence[float],
+    l3_ratios: Sequence[float],
+    total: float = 1.0,
+    stance: str = "all",
+    base: HexapodDesign | None = None,
+    variants: Sequence[tuple[str, dict[str, Any]]] = SENSITIVITY_VARIANTS,
+) -> Any:
+    """Peak tibia ratio and FB per coxa ratio for each posture/body variant (axis-locked).
+
+    Runs in this process with the vectorized kernel: ~5 ms per design.
+    """
+    import pandas as pd
+
+    base = HexapodDesign() if base is None else base
+    rows = []
+    for name, changes in variants:
+        variant = base.replace(**changes)
+        spec = StudySpec(tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant)
+        template = _template_geometry(spec)
+        table = pd.DataFrame([evaluate(_Task(r1, r3, spec, template)) for r1, r3 in spec.keys()])
+        for peak in peak_table(table).to_dict(orient="records"):
+            rows.append(
+                {"variant": name, **peak, "failed_designs": int((table["error"] != "").sum())}
+            )
+    return pd.DataFrame(rows)
+
+
+def range_columns() -> list[str]:
+    """Names of the six range columns of a study table."""
+    return [f"range_{a}" for a in AXES]
+
+
+def extreme_columns() -> list[str]:
+    """Names of the twelve extreme columns of a study table."""
+    return [f"{a}_{'max' if s > 0 else 'min'}" for a, s in DIRECTIONS]
+
+
+def fb_values(table: Any, l1_ratio: float) -> np.ndarray:
+    """FB against the tibia ratios of one coxa ratio (NaN for failed designs)."""
+    group = table[np.isclose(table["l1_ratio"], l1_ratio)]
+    return group["fb"].to_numpy(dtype=float) if "fb" in group else np.full(len(group), np.nan)
