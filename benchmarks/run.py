@@ -175,9 +175,137 @@ def bench_average_manipulability(l3_points: int, repeats: int) -> list[Row]:
     ]
 
 
+def step_and_bisect_extremes(geometry, translation_step: float = 1e-3, angle_step: float = 1e-3):
+    """The straightforward way: step each direction until infeasible, then bisect 50 times."""
+    from hexaleg.flexibility import AXES, DIRECTIONS, direction_poses, stance_margins
+
+    def feasible(axis: int, value: float) -> bool:
+        rotation, translation = direction_poses(geometry, axis, value)
+        return bool(stance_margins(geometry, rotation, translation).min() >= 0)
+
+    values = []
+    for axis_name, sign in DIRECTIONS:
+        axis = AXES.index(axis_name)
+        step = translation_step if axis < 3 else angle_step
+        t = 0.0
+        while feasible(axis, sign * (t + step)):
+            t += step
+        lo, hi = t, t + step
+        for _ in range(50):
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if feasible(axis, sign * mid) else (lo, mid)
+        values.append(sign * lo)
+    return np.array(values)
+
+
+def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
+    """Axis-locked FB of one design, the Fig 15 sweep, and free-coupled FB."""
+    import tempfile
+    import warnings
+    from concurrent.futures import ProcessPoolExecutor
+
+    from hexaleg import HexapodDesign, HexapodModel
+    from hexaleg.design import l3_ratio_grid
+    from hexaleg.flexibility import axis_locked_extremes, free_flexibility
+    from hexaleg.paper import L1_RATIOS
+    from hexaleg.stance import StanceGeometry
+    from hexaleg.study import StudySpec, run_study
+
+    design = HexapodDesign()
+    model = HexapodModel(design)
+    geometry = StanceGeometry.from_model(model, "all")
+
+    def hexaleg_one():
+        return np.array([e.value for e in axis_locked_extremes(geometry)])
+
+    reference = hexaleg_one()
+    d_one = check_agree(
+        "axis-locked / step-and-bisect", reference, step_and_bisect_extremes(geometry), 1e-9
+    )
+    t_one = median_time(hexaleg_one, repeats)
+    t_naive_one = median_time(lambda: step_and_bisect_extremes(geometry), 3, min_time=0.0)
+    rows = [
+        Row(
+            "axis-locked FB, one design",
+            "hexaleg axis_locked_extremes",
+            t_one,
+            None,
+            None,
+            "≤ 5 ms",
+        ),
+        Row(
+            "axis-locked FB, one design",
+            "step (1 mm / 1 mrad) and bisect",
+            t_naive_one,
+            t_naive_one / t_one,
+            d_one,
+        ),
+    ]
+
+    spec = StudySpec(tuple(L1_RATIOS), tuple(l3_ratio_grid(l3_points)))
+    with ProcessPoolExecutor(2) as pool:
+        pool.submit(int).result()  # start the workers before timing, as a long-lived pool would be
+
+        def sweep():
+            with tempfile.TemporaryDirectory() as out:
+                return run_study(spec, out, executor=pool)["fb"].to_numpy()
+
+        fb_sweep = sweep()
+        t_sweep = median_time(sweep, max(3, repeats // 2), min_time=0.0)
+    subset = spec.keys()[:: max(1, len(spec.keys()) // 8)]
+    template = geometry
+
+    def naive_sweep():
+        out = []
+        for r1, r3 in subset:
+            g = template.with_design(HexapodDesign.from_ratios(r1, r3))
+            out.append(step_and_bisect_extremes(g))
+        return out
+
+    t_naive_sweep = median_time(naive_sweep, 1, min_time=0.0) * len(spec.keys()) / len(subset)
+    name = f"Fig 15 sweep, {len(spec.keys())} designs"
+    rows += [
+        Row(
+            name,
+            "hexaleg run_study, 2 processes",
+            t_sweep,
+            None,
+            None,
+            "≤ 2 s",
+            extra={"designs": len(fb_sweep)},
+        ),
+        Row(
+            name,
+            "step and bisect, 1 process",
+            t_naive_sweep,
+            t_naive_sweep / t_sweep,
+            None,
+            note=f"timed on {len(subset)} designs, scaled",
+        ),
+    ]
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        free = free_flexibility(design, "all", model)
+        t_free = median_time(lambda: free_flexibility(design, "all", model), 3, min_time=0.0)
+    rows.append(
+        Row(
+            "free-coupled FB, one design",
+            "hexaleg free_flexibility (SLSQP)",
+            t_free,
+            None,
+            None,
+            "≤ 1 s",
+            note=f"FB {free.fb:.4f}, converged {free.converged}",
+        )
+    )
+    return rows
+
+
 WORKLOADS = {
     "monte_carlo": lambda quick, r: bench_monte_carlo(2_000 if quick else 100_000, r),
     "average_manipulability": lambda quick, r: bench_average_manipulability(4 if quick else 80, r),
+    "flexibility": lambda quick, r: bench_flexibility(4 if quick else 80, r),
 }
 
 
