@@ -292,6 +292,44 @@ def _study_executor(scheduler: str | None) -> tuple[Any, Any]:
     return client.get_executor(), client
 
 
+def _cmd_view(args: argparse.Namespace) -> int:
+    import signal
+    import time
+
+    from hexaleg.flexibility import axis_locked_flexibility
+    from hexaleg.model import HexapodModel
+
+    design = design_from_args(args)
+    if args.port is not None and not 0 < args.port < 65536:
+        raise _UsageError(f"--port = {args.port} is not valid: must lie in 1..65535")
+    model = HexapodModel(design)
+    result = axis_locked_flexibility(design, args.stance, model)
+    if args.workspace is not None and args.workspace not in model.leg_names:
+        raise _UsageError(
+            f"--workspace = {args.workspace!r} is not valid: legs are {', '.join(model.leg_names)}"
+        )
+    from hexaleg import viewer as view
+
+    if args.html is not None:
+        path = view.write_static_html(model, result, args.html, args.workspace)
+        print(f"wrote {path}", file=sys.stderr)
+        return 0
+    server = view.LoopbackServer(args.host, args.port)
+    try:
+        view.build_scene(view.client(server), model, result, args.workspace)
+        print(f"hexaleg viewer: open {server.web_url}", flush=True)
+        print("serving until Ctrl-C", file=sys.stderr, flush=True)
+        for signum in (signal.SIGINT, signal.SIGTERM):  # Ctrl-C or kill: stop cleanly
+            signal.signal(signum, signal.default_int_handler)
+        while True:
+            time.sleep(0.5)
+    except KeyboardInterrupt:
+        print("hexaleg viewer: stopped", file=sys.stderr)
+        return 0
+    finally:
+        server.stop()
+
+
 def _print_json(data: dict[str, Any]) -> None:
     print(json.dumps(data, indent=2, allow_nan=False))
 
@@ -440,7 +478,31 @@ def build_parser() -> argparse.ArgumentParser:
         help="output folder (default hexaleg-study)",
     )
     study.set_defaults(handler=_cmd_study)
+    _add_view_command(commands)
     return parser
+
+
+def _add_view_command(commands: Any) -> None:
+    view = commands.add_parser(
+        "view",
+        help="3-D viewer of the nominal stance and the 12 body extremes (meshcat)",
+        description=(
+            "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
+            "12 axis-locked extreme poses (scene tree: hexaleg/extremes/x+ ... yaw-, limiting "
+            "link in red), with an animation of each from nominal to the extreme and back. "
+            "Binds 127.0.0.1 unless --host says otherwise; Ctrl-C stops it. --html writes a "
+            "self-contained snapshot instead of serving."
+        ),
+    )
+    add_design_options(view)
+    view.add_argument(
+        "--stance", choices=("all", "tripod"), default="all", help="stance legs (default all six)"
+    )
+    view.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
+    view.add_argument("--port", type=int, help="web port (default: the first free from 7000)")
+    view.add_argument("--html", metavar="FILE", help="write a static HTML snapshot and exit")
+    view.add_argument("--workspace", metavar="LEG", help="also draw this leg's workspace cloud")
+    view.set_defaults(handler=_cmd_view)
 
 
 def _add_stance_options(parser: argparse.ArgumentParser) -> None:

@@ -1,0 +1,290 @@
+"""3-D view of what the body can and cannot do, in meshcat (served on loopback).
+
+The scene holds the ground, the footholds, the robot at its nominal stance
+(``/hexaleg/nominal``), and the twelve axis-locked extreme poses, each under
+``/hexaleg/extremes/<axis><sign>`` (hidden until ticked in the scene tree) with
+the link whose joint stops it drawn in red. One animation plays the nominal
+robot out to each extreme and back, in turn. Optionally a leg's swing-phase
+workspace is drawn as a point cloud.
+
+meshcat 0.3.2's own server listens on all interfaces; :class:`LoopbackServer`
+runs its bridge in a thread of this process with tornado bound to the host
+given (127.0.0.1 unless the user asks), so stopping the process stops it all.
+"""
+
+from __future__ import annotations
+
+import asyncio
+import os
+import threading
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg._io import atomic_write_text
+from hexaleg.exceptions import HexalegError
+from hexaleg.flexibility import AXES, Extreme, FlexibilityResult, direction_poses
+from hexaleg.model import HexapodModel
+from hexaleg.stance import StanceGeometry, stance_configuration
+
+ROOT = "hexaleg"
+HIGHLIGHT = (0.9, 0.1, 0.1, 1.0)
+ANIMATION_FPS = 30
+FRAMES_PER_LEG_OF_TRIP = 20  # nominal → extreme; the way back takes as many
+
+
+class LoopbackServer:
+    """meshcat's ZMQ/WebSocket bridge in a background thread, bound to one host.
+
+    Attributes:
+        host: Interface the web and ZMQ servers bind (127.0.0.1 by default).
+        zmq_url: Where a ``meshcat.Visualizer`` sends commands.
+        web_url: The page to open in a browser.
+
+    """
+
+    def __init__(self, host: str = "127.0.0.1", port: int | None = None) -> None:
+        self.host = host
+        self._ready = threading.Event()
+        self._error: BaseException | None = None
+        self._bridge: Any = None
+        self._thread = threading.Thread(target=self._serve, args=(port,), daemon=True)
+        self._thread.start()
+        if not self._ready.wait(timeout=30):
+            raise HexalegError("the meshcat server did not start within 30 s")
+        if self._error is not None:
+            raise HexalegError(
+                f"cannot start the viewer on {host}:{port}: {self._error}"
+            ) from self._error
+        self.zmq_url: str = self._bridge.zmq_url
+        self.web_url: str = self._bridge.web_url
+
+    def _serve(self, port: int | None) -> None:
+        from meshcat.servers.zmqserver import ZMQWebSocketBridge
+
+        host = self.host
+
+        class Bridge(ZMQWebSocketBridge):  # type: ignore[misc]
+            def make_app(self) -> Any:
+                app = super().make_app()
+                listen = app.listen
+                app.listen = lambda port, **kwargs: listen(port, address=host, **kwargs)
+                return app
+
+        asyncio.set_event_loop(asyncio.new_event_loop())
+        try:
+            self._bridge = Bridge(host=host, port=port)
+        except BaseException as err:  # port taken, bad host: reported by __init__
+            self._error = err
+            self._ready.set()
+            return
+        self._ready.set()
+        self._bridge.run()
+
+    def stop(self) -> None:
+        """Stop the server thread and release its sockets."""
+        if self._bridge is None:
+            return
+        loop = self._bridge.ioloop
+        loop.add_callback(loop.stop)
+        self._thread.join(timeout=10)
+        self._bridge.zmq_socket.close(linger=0)
+
+    def __enter__(self) -> LoopbackServer:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.stop()
+
+
+def client(server: LoopbackServer) -> Any:
+    """A ``meshcat.Visualizer`` connected to ``server`` (without meshcat's stdout banner)."""
+    import contextlib
+    import io
+
+    import meshcat
+
+    with contextlib.redirect_stdout(io.StringIO()):
+        return meshcat.Visualizer(zmq_url=server.zmq_url)
+
+
+def extreme_name(extreme: Extreme) -> str:
+    """Scene-tree name of an extreme, e.g. ``x+`` or ``yaw-``."""
+    return f"{extreme.axis}{'+' if extreme.sign > 0 else '-'}"
+
+
+def build_scene(
+    viewer: Any,
+    model: HexapodModel,
+    result: FlexibilityResult,
+    workspace_leg: str | None = None,
+    workspace_samples: int = 4000,
+) -> None:
+    """Load the hexapod, footholds, ground, extremes and animation into ``viewer``.
+
+    Args:
+        viewer: A ``meshcat.Visualizer``.
+        model: The hexapod's Pinocchio model (its URDF gives the geometry).
+        result: Axis-locked extremes to show.
+        workspace_leg: If given, draw this leg's Monte Carlo workspace as a point cloud.
+        workspace_samples: Points in that cloud.
+
+    """
+    import meshcat.geometry as mg
+    from meshcat.animation import Animation
+    from pinocchio.visualize import MeshcatVisualizer
+
+    geometry = StanceGeometry.from_model(model, result.legs)
+    visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
+    viewer.delete()
+    viewer["/Grid"].set_property("visible", False)
+    _add_ground(viewer, mg, geometry)
+    for leg, foothold in zip(geometry.legs, geometry.footholds, strict=True):
+        node = viewer[f"{ROOT}/footholds/{leg}"]
+        node.set_object(mg.Sphere(0.03), mg.MeshLambertMaterial(color=0xD62728))
+        node.set_transform(_translation(foothold))
+
+    nominal = MeshcatVisualizer(model.model, None, visual)
+    nominal.initViewer(viewer=viewer)
+    nominal.loadViewerModel(rootNodeName=f"{ROOT}/nominal")
+    q_nominal = model.nominal_configuration()
+    nominal.display(q_nominal)
+
+    animation = Animation(default_framerate=ANIMATION_FPS)
+    frame = 0
+    for extreme in result.extremes:
+        q_extreme = _extreme_configuration(model, geometry, extreme)
+        copy = MeshcatVisualizer(model.model, None, visual)
+        copy.initViewer(viewer=viewer)
+        copy.loadViewerModel(rootNodeName=f"{ROOT}/extremes/{extreme_name(extreme)}")
+        for obj in _limiting_objects(visual, extreme):
+            copy.loadViewerGeometryObject(obj, pin.GeometryType.VISUAL, list(HIGHLIGHT))
+        copy.display(q_extreme)
+        viewer[f"{ROOT}/extremes/{extreme_name(extreme)}"].set_property("visible", False)
+        frame = _animate_trip(animation, viewer, nominal, model, geometry, extreme, frame)
+    viewer.set_animation(animation, play=False, repetitions=1)
+
+    if workspace_leg is not None:
+        _add_workspace(viewer, mg, model, workspace_leg, workspace_samples)
+    viewer["/Cameras/default"].set_transform(np.eye(4))
+    reach = float(np.abs(geometry.footholds[:, :2]).max())
+    viewer["/Cameras/default/rotated/<object>"].set_property(
+        "position",
+        [1.6 * reach, 1.1 * reach, 1.6 * reach],  # three.js axes: y up
+    )
+
+
+def _add_ground(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
+    span = 2.5 * (np.abs(geometry.footholds[:, :2]).max() + 0.2)
+    node = viewer[f"{ROOT}/ground"]
+    node.set_object(mg.Box([span, span, 0.01]), mg.MeshLambertMaterial(color=0xC8C8C8, opacity=0.9))
+    node.set_transform(_translation([0.0, 0.0, -0.005]))
+
+
+def _add_workspace(viewer: Any, mg: Any, model: HexapodModel, leg: str, samples: int) -> None:
+    from hexaleg.workspace import monte_carlo_workspace
+
+    if leg not in model.leg_names:
+        raise HexalegError(
+            f"--workspace {leg!r} is not valid: legs are {', '.join(model.leg_names)}"
+        )
+    cloud = monte_carlo_workspace(model.design, samples=samples, seed=0)
+    root = model.nominal_base_pose() * model.root_placements()[leg]
+    points = cloud.points @ root.rotation.T + root.translation
+    heights = (cloud.points[:, 2] - cloud.points[:, 2].min()) / max(
+        np.ptp(cloud.points[:, 2]), 1e-9
+    )
+    colors = np.stack([0.2 + 0.6 * heights, 0.4 * np.ones_like(heights), 1.0 - 0.6 * heights])
+    viewer[f"{ROOT}/workspace/{leg}"].set_object(
+        mg.PointCloud(
+            position=points.T.astype(np.float32), color=colors.astype(np.float32), size=0.01
+        )
+    )
+
+
+def _extreme_configuration(
+    model: HexapodModel, geometry: StanceGeometry, extreme: Extreme
+) -> np.ndarray:
+    rotation, translation = direction_poses(geometry, AXES.index(extreme.axis), extreme.value)
+    q, _ = stance_configuration(model, geometry, pin.SE3(rotation, translation))
+    return q
+
+
+def _limiting_objects(visual: Any, extreme: Extreme) -> list[Any]:
+    """Visual objects to highlight: the link a limiting joint moves, or the whole leg/body."""
+    cause = extreme.limited_by
+    if cause.kind == "joint":
+        link = {"root": "coxa", "hip": "femur", "knee": "tibia"}[cause.joint or ""]
+        prefixes: Sequence[str] = (f"{cause.leg}_{link}",)
+    elif cause.kind == "reach":
+        prefixes = tuple(f"{cause.leg}_{part}" for part in ("coxa", "femur", "tibia", "foot"))
+    elif cause.kind == "ground":
+        prefixes = ("base_link",)
+    else:
+        prefixes = ()
+    return [obj for obj in visual.geometryObjects if obj.name.rsplit("_", 1)[0] in prefixes]
+
+
+def _animate_trip(
+    animation: Any,
+    viewer: Any,
+    nominal: Any,
+    model: HexapodModel,
+    geometry: StanceGeometry,
+    extreme: Extreme,
+    frame: int,
+) -> int:
+    """Keyframes of the nominal robot going out to ``extreme`` and back; return the next frame."""
+    steps = np.concatenate(
+        [
+            np.linspace(0, 1, FRAMES_PER_LEG_OF_TRIP + 1),
+            np.linspace(1, 0, FRAMES_PER_LEG_OF_TRIP + 1)[1:],
+        ]
+    )
+    visual_model, visual_data = nominal.visual_model, nominal.visual_data
+    for s in steps:
+        rotation, translation = direction_poses(
+            geometry, AXES.index(extreme.axis), s * extreme.value
+        )
+        q, _ = stance_configuration(model, geometry, pin.SE3(rotation, translation))
+        pin.forwardKinematics(model.model, nominal.data, q)
+        pin.updateGeometryPlacements(model.model, nominal.data, visual_model, visual_data)
+        with animation.at_frame(viewer, frame) as keyframe:
+            for k, obj in enumerate(visual_model.geometryObjects):
+                name = nominal.getViewerNodeName(obj, pin.GeometryType.VISUAL)
+                keyframe[name].set_transform(visual_data.oMg[k].homogeneous)
+        frame += 1
+    return frame
+
+
+def _translation(position: Sequence[float]) -> np.ndarray:
+    transform = np.eye(4)
+    transform[:3, 3] = position
+    return transform
+
+
+def static_html(
+    model: HexapodModel,
+    result: FlexibilityResult,
+    workspace_leg: str | None = None,
+) -> str:
+    """A self-contained HTML page of the scene (no server needed to view it)."""
+    with LoopbackServer() as server:
+        viewer = client(server)
+        build_scene(viewer, model, result, workspace_leg)
+        html = viewer.static_html()
+        viewer.window.zmq_socket.close(linger=0)
+    return html
+
+
+def write_static_html(
+    model: HexapodModel,
+    result: FlexibilityResult,
+    path: str | os.PathLike[str],
+    workspace_leg: str | None = None,
+) -> Path:
+    """Write :func:`static_html` to ``path`` atomically."""
+    return atomic_write_text(path, static_html(model, result, workspace_leg))

@@ -1,0 +1,177 @@
+"""Viewer: loopback-only server, named extremes and animation, drawn in a real browser."""
+
+from __future__ import annotations
+
+import os
+import queue
+import shutil
+import signal
+import socket
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from pathlib import Path
+
+import numpy as np
+import psutil
+import pytest
+
+from hexaleg.flexibility import axis_locked_flexibility
+from hexaleg.viewer import LoopbackServer, build_scene, client, extreme_name
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+SERVER_START_TIMEOUT = 120
+SCREENSHOT_TIMEOUT = 120
+
+
+def _listening(pid: int) -> list[str]:
+    return [
+        c.laddr.ip
+        for c in psutil.Process(pid).net_connections("inet")
+        if c.status == psutil.CONN_LISTEN
+    ]
+
+
+def _free_port() -> int:
+    with socket.socket() as sock:
+        sock.bind(("127.0.0.1", 0))
+        return sock.getsockname()[1]
+
+
+def test_server_listens_on_loopback_only():
+    before = set(_listening(os.getpid()))
+    with LoopbackServer() as server:
+        assert server.web_url.startswith("http://127.0.0.1:")
+        assert server.zmq_url.startswith("tcp://127.0.0.1:")
+        opened = [ip for ip in _listening(os.getpid()) if ip not in before] or _listening(
+            os.getpid()
+        )
+        assert opened and all(ip == "127.0.0.1" for ip in _listening(os.getpid()))
+
+
+def _node(tree, path: str):
+    """The scene-tree node at ``path``; fails if any part is missing (no defaultdict creation)."""
+    node = tree
+    for part in path.split("/"):
+        assert part in node, f"{path}: no {part!r} among {sorted(node)}"
+        node = node[part]
+    return node
+
+
+def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default_design):
+    result = axis_locked_flexibility(default_design, "all", hexapod_model)
+    with LoopbackServer() as server:
+        build_scene(client(server), hexapod_model, result, workspace_leg="lf")
+        time.sleep(0.2)
+        tree = server._bridge.tree
+        names = {extreme_name(e) for e in result.extremes}
+        assert names == {f"{a}{s}" for a in ("x", "y", "z", "roll", "pitch", "yaw") for s in "+-"}
+        for name in names:
+            visuals = _node(tree, f"meshcat/hexaleg/extremes/{name}/visuals")
+            assert len(visuals) == 25  # body + 6 legs × (coxa, femur, tibia, foot)
+            assert all(child.object is not None for child in visuals.values())
+        assert len(_node(tree, "meshcat/hexaleg/nominal/visuals")) == 25
+        assert _node(tree, "meshcat/hexaleg/workspace/lf").object is not None
+        assert _node(tree, "meshcat/hexaleg/footholds/rm").object is not None
+        animated = [node for node in (tree, tree["meshcat"]) if node.animation is not None]
+        assert animated  # one animation: out to every extreme and back
+
+
+def _screenshot(url: str, path: Path) -> np.ndarray:
+    from PIL import Image
+
+    with tempfile.TemporaryDirectory() as profile:
+        subprocess.run(
+            [
+                CHROMIUM,
+                "--headless",
+                "--no-sandbox",
+                "--use-angle=swiftshader",
+                "--enable-unsafe-swiftshader",
+                "--disable-quic",
+                "--no-first-run",
+                "--disable-background-networking",
+                "--disable-component-update",
+                "--disable-sync",
+                f"--user-data-dir={profile}",
+                "--window-size=800,600",
+                "--virtual-time-budget=10000",
+                f"--screenshot={path}",
+                url,
+            ],
+            capture_output=True,
+            timeout=SCREENSHOT_TIMEOUT,
+            check=True,
+        )
+    return np.asarray(Image.open(path).convert("RGB"), dtype=int)
+
+
+@pytest.fixture(scope="module")
+def empty_scene(tmp_path_factory):
+    if CHROMIUM is None:
+        if os.environ.get("CI"):
+            pytest.fail("chromium is not installed: .ci/run must install it")
+        pytest.skip("chromium is not installed")
+    import meshcat
+
+    page = Path(meshcat.__file__).parent / "viewer" / "dist" / "index.html"
+    return _screenshot(page.as_uri(), tmp_path_factory.mktemp("empty") / "empty.png")
+
+
+def _drawn_share(image: np.ndarray, empty: np.ndarray) -> float:
+    return float((np.abs(image - empty).sum(axis=-1) > 30).mean())
+
+
+def test_view_serves_the_robot_in_a_browser_and_stops_on_ctrl_c(tmp_path, empty_scene):
+    port = _free_port()
+    process = subprocess.Popen(
+        [sys.executable, "-m", "hexaleg", "view", "--port", str(port)],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    lines: queue.Queue[str] = queue.Queue()
+    threading.Thread(target=lambda: [lines.put(x) for x in process.stdout], daemon=True).start()
+    try:
+        try:
+            line = lines.get(timeout=SERVER_START_TIMEOUT)  # the first line is the URL
+        except queue.Empty:
+            pytest.fail(f"hexaleg view printed no URL within {SERVER_START_TIMEOUT} s")
+        assert f"open http://127.0.0.1:{port}/static/" in line
+        ips = _listening(process.pid)
+        assert ips and all(ip == "127.0.0.1" for ip in ips), ips
+        image = _screenshot(f"http://127.0.0.1:{port}/static/", tmp_path / "live.png")
+        assert _drawn_share(image, empty_scene) > 0.05
+        process.send_signal(signal.SIGINT)
+        assert process.wait(timeout=30) == 0
+        assert "stopped" in process.stderr.read()
+    finally:
+        if process.poll() is None:
+            os.kill(process.pid, signal.SIGKILL)
+            process.wait(timeout=30)
+    assert (
+        not psutil.pid_exists(process.pid)
+        or psutil.Process(process.pid).status() == psutil.STATUS_ZOMBIE
+    )
+
+
+def test_static_html_draws_the_robot(tmp_path, empty_scene):
+    from hexaleg.cli import main
+
+    page = tmp_path / "scene.html"
+    assert main(["view", "--html", str(page), "--stance", "tripod"]) == 0
+    assert "<html" in page.read_text()[:2000].lower()
+    image = _screenshot(page.as_uri(), tmp_path / "static.png")
+    assert _drawn_share(image, empty_scene) > 0.05
+
+
+def test_view_rejects_bad_input_in_one_line(capsys, tmp_path):
+    from hexaleg.cli import main
+
+    assert main(["view", "--workspace", "zz", "--html", str(tmp_path / "x.html")]) == 2
+    assert main(["view", "--port", "70000"]) == 2
+    err = capsys.readouterr().err.splitlines()
+    assert len(err) == 2 and "--workspace" in err[0] and "--port" in err[1]
+    assert list(tmp_path.iterdir()) == []
