@@ -330,6 +330,35 @@ def _cmd_view(args: argparse.Namespace) -> int:
         server.stop()
 
 
+def _cmd_report(args: argparse.Namespace) -> int:
+    from hexaleg.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
+
+    for name in ("l3_points", "sensitivity_points"):
+        if getattr(args, name) < 2:
+            raise _UsageError(
+                f"--{name.replace('_', '-')} = {getattr(args, name)} is not valid: >= 2"
+            )
+    if args.workers is not None and args.workers < 1:
+        raise _UsageError(f"--workers = {args.workers} is not valid: must be >= 1")
+    design = design_from_args(args)
+    options = ReportOptions(
+        l3_points=args.l3_points,
+        sensitivity_points=args.sensitivity_points,
+        workers=args.workers,
+    )
+    data = build_report(args.output, design, options)
+    out = Path(args.output)
+    rec = data["recommendation"]
+    print(f"wrote {out / REPORT_MD} and {out / REPORT_HTML}")
+    print(
+        f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.2f} : {rec['l2_ratio']:.3f} : "
+        f"{rec['l3_ratio']:.3f} (tibia ratio band "
+        f"{rec['l3_band'][0]:.3f}-{rec['l3_band'][1]:.3f}); "
+        f"this design: FB = {data['flexibility']['axis']['fb']:.4f}"
+    )
+    return 0
+
+
 def _print_json(data: dict[str, Any]) -> None:
     print(json.dumps(data, indent=2, allow_nan=False))
 
@@ -479,6 +508,44 @@ def build_parser() -> argparse.ArgumentParser:
     )
     study.set_defaults(handler=_cmd_study)
     _add_view_command(commands)
+
+    report = commands.add_parser(
+        "report",
+        help="the main job: every analysis, figure and table, and a recommendation",
+        description=(
+            "Run the workspace, manipulability and body-flexibility analyses on the design (the "
+            "built-in default unless design options say otherwise) and the paper's sweeps, and "
+            "write DIR/report.md, DIR/report.html, the figures (PNG), tables and raw data "
+            "(CSV/JSON), the URDF and a static 3-D viewer. The folder is replaced only when the "
+            "new report is complete."
+        ),
+    )
+    add_design_options(report)
+    report.add_argument(
+        "-o",
+        "--output",
+        metavar="DIR",
+        default="hexaleg-report",
+        help="output folder (default hexaleg-report)",
+    )
+    report.add_argument(
+        "--l3-points",
+        type=int,
+        default=80,
+        metavar="N",
+        help="tibia ratios per coxa ratio in the sweeps (default 80, as the paper)",
+    )
+    report.add_argument(
+        "--sensitivity-points",
+        type=int,
+        default=40,
+        metavar="N",
+        help="tibia ratios in the posture sensitivity table (default 40)",
+    )
+    report.add_argument(
+        "--workers", type=int, metavar="N", help="local worker processes (default: CPUs)"
+    )
+    report.set_defaults(handler=_cmd_report)
     return parser
 
 

@@ -28,5 +28,5 @@ def test_readme_snippet_output():
 def test_readme_opens_with_the_two_setup_commands():
     block = re.search(r"```sh\n(.*?)```", README.read_text(), re.S).group(1).splitlines()
     assert len(block) == 2
-    assert block[0].startswith("python3 -m venv .venv && ") and "hexaleg" in block[0]
+    assert block[0].startswith("python3 -m venv .venv && ") and "hexaleg report" in block[0]
     assert block[1].startswith("python3 -m venv .venv && ") and block[1].endswith("pytest")
