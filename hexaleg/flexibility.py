@@ -7,7 +7,7 @@ limit, or the body touching the ground. All twelve directions are searched at
 once: a vectorized coarse scan finds the first infeasible sample (so a pose
 that is feasible again beyond the first failure never counts), nested scans
 shrink that bracket to ~1e-7 of the range, and the breaking constraint's own
-margin is interpolated linearly inside it.
+margin is refined by regula falsi inside it.
 
 Free-coupled: each coordinate is pushed as far as the mechanism allows with the
 other five free, a constrained nonlinear program (SLSQP) on the Pinocchio
@@ -51,6 +51,10 @@ SCAN_STEPS = 256
 """Resolution of the first-failure scan: t_max / 256 (≈ 8 mm or 0.7° for a 1 m leg)."""
 SCAN_CHUNKS = 8
 REFINE_ITERATIONS = 60
+MARGIN_ROUNDOFF = 1e-15
+"""A margin this small [m or rad] is zero to round-off: its end of the bracket is the root."""
+BRACKET_TOLERANCE = 1e-12
+"""Final bracket width relative to the searched distance (at least 1 m or 1 rad)."""
 
 
 class FlexibilityWarning(UserWarning):
@@ -129,6 +133,7 @@ class FlexibilityResult:
         mode: ``"axis"`` (axis-locked) or ``"free"`` (free-coupled).
         extremes: One per direction of :data:`DIRECTIONS`.
         converged: False if an optimizer (free mode) failed somewhere.
+        iterations: Optimizer iterations summed over the twelve directions (0 for axis mode).
 
     """
 
@@ -137,6 +142,7 @@ class FlexibilityResult:
     mode: str
     extremes: tuple[Extreme, ...]
     converged: bool = True
+    iterations: int = 0
 
     def extreme(self, axis: str, sign: int) -> Extreme:
         """The extreme in direction (axis, sign)."""
@@ -264,8 +270,8 @@ def first_crossings(
 
     The scan steps through (0, t_max] at t_max/:data:`SCAN_STEPS` in chunks, dropping
     directions that have broken, so only the first failure along the motion counts.
-    Each bracket is then shrunk by Illinois (regula falsi) iterations on the smallest
-    margin, whose first zero is where the first constraint breaks.
+    In each bracket every constraint that broke is solved on its own (smooth) margin by
+    Anderson–Björck regula falsi, and the earliest root wins.
 
     Args:
         margins: Maps (direction index (K,), t (K,)) to margins (K, C).
@@ -299,41 +305,55 @@ def first_crossings(
             d = active[k]
             lo[d], hi[d] = t[k, first[k] - 1], t[k, first[k]]
         broken[active[hit]] = True
+    which = np.full(count, -1)
     index = np.flatnonzero(broken)
     if index.size:
-        lo[index], hi[index] = _illinois(margins, index, lo[index], hi[index])
-    which = np.full(count, -1)
-    if index.size:
-        which[index] = np.argmin(margins(index, hi[index]), axis=-1)
+        # Solve every constraint that broke inside its bracket on its own smooth margin,
+        # then keep, per direction, the one that breaks first.
+        at_hi = margins(index, hi[index])
+        pair_row, pair_constraint = np.nonzero(at_hi < 0)
+        directions = index[pair_row]
+
+        def pair_margin(t: ArrayF) -> ArrayF:
+            return margins(directions, t)[np.arange(len(t)), pair_constraint]
+
+        root = _anderson_bjorck(pair_margin, lo[directions], hi[directions])
+        for d in index:
+            mine = np.flatnonzero(directions == d)
+            first = mine[np.argmin(root[mine])]
+            lo[d], which[d] = root[first], pair_constraint[first]
     return np.where(broken, lo, t_max), which
 
 
-def _illinois(
-    margins: Callable[[ArrayF, ArrayF], ArrayF], rows: ArrayF, lo: ArrayF, hi: ArrayF
-) -> tuple[ArrayF, ArrayF]:
-    """Shrink brackets [lo, hi] with g(lo) ≥ 0 > g(hi), g the smallest margin."""
+def _anderson_bjorck(g: Callable[[ArrayF], ArrayF], lo: ArrayF, hi: ArrayF) -> ArrayF:
+    """Roots of g in brackets [lo, hi] with g(lo) ≥ 0 > g(hi), vectorized; returns the feasible end.
 
-    def g(t: ArrayF) -> ArrayF:
-        return margins(rows, t).min(axis=-1)
-
+    Regula falsi with the Anderson–Björck correction: when the same end moves
+    twice, the other end's value is scaled by m = 1 − g(new)/g(old) (½ if m ≤ 0),
+    which keeps the bracket and converges superlinearly on smooth margins.
+    """
     g_lo, g_hi = g(lo), g(hi)
     side = np.zeros(len(lo))  # which end moved last: +1 lo, −1 hi
-    tolerance = 1e-13 * np.maximum(hi, 1.0)
+    tolerance = BRACKET_TOLERANCE * np.maximum(hi, 1.0)
     for _ in range(REFINE_ITERATIONS):
-        if np.all(hi - lo <= tolerance):
+        # done: a tight bracket, or a feasible end whose margin is at round-off level
+        done = (hi - lo <= tolerance) | (g_lo <= MARGIN_ROUNDOFF)
+        if np.all(done):
             break
         t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
-        stuck = ~((t > lo) & (t < hi))
-        t = np.where(stuck, 0.5 * (lo + hi), t)
+        t = np.where((t > lo) & (t < hi), t, 0.5 * (lo + hi))
         g_t = g(t)
-        feasible = g_t >= 0
-        # Illinois: halve the stale end's value when the same end moves twice
-        g_hi = np.where(feasible & (side > 0), 0.5 * g_hi, g_hi)
-        g_lo = np.where(~feasible & (side < 0), 0.5 * g_lo, g_lo)
+        feasible = (g_t >= 0) & ~done
+        replaced_hi = (g_t < 0) & ~done
+        old = np.where(feasible, g_lo, g_hi)  # value at the end being replaced
+        scale = 1.0 - g_t / np.where(old != 0, old, 1.0)
+        scale = np.where(scale > 0, scale, 0.5)
+        g_hi = np.where(feasible & (side > 0), scale * g_hi, g_hi)
+        g_lo = np.where(replaced_hi & (side < 0), scale * g_lo, g_lo)
         lo, g_lo = np.where(feasible, t, lo), np.where(feasible, g_t, g_lo)
-        hi, g_hi = np.where(feasible, hi, t), np.where(feasible, g_hi, g_t)
-        side = np.where(feasible, 1.0, -1.0)
-    return lo, hi
+        hi, g_hi = np.where(replaced_hi, t, hi), np.where(replaced_hi, g_t, g_hi)
+        side = np.where(feasible, 1.0, np.where(replaced_hi, -1.0, side))
+    return lo
 
 
 def axis_locked_extremes(geometry: StanceGeometry) -> tuple[Extreme, ...]:
@@ -394,10 +414,12 @@ def free_flexibility(
     problem = _FreeProblem(model, geometry)
     extremes = []
     converged = True
+    iterations = 0
     for extreme in locked:
-        result = problem.solve(extreme)
-        converged &= result[1]
-        extremes.append(result[0])
+        solved, ok, nit = problem.solve(extreme)
+        converged &= ok
+        iterations += nit
+        extremes.append(solved)
     if not converged:
         warnings.warn(
             "free-coupled flexibility: SLSQP did not converge for some directions; "
@@ -405,7 +427,7 @@ def free_flexibility(
             FlexibilityWarning,
             stacklevel=2,
         )
-    return FlexibilityResult(design, geometry.legs, "free", tuple(extremes), converged)
+    return FlexibilityResult(design, geometry.legs, "free", tuple(extremes), converged, iterations)
 
 
 class _FreeProblem:
@@ -481,7 +503,7 @@ class _FreeProblem:
         theta = inverse_kinematics(self.geometry.lengths, targets).theta
         return np.concatenate([nu, theta.ravel()])
 
-    def solve(self, extreme: Extreme) -> tuple[Extreme, bool]:
+    def solve(self, extreme: Extreme) -> tuple[Extreme, bool, int]:
         axis = AXES.index(extreme.axis)
         sign = extreme.sign
         x0 = self.start(extreme)
@@ -520,8 +542,8 @@ class _FreeProblem:
         feasible, cause = self._check(result.x)
         converged = bool(result.success) and feasible
         if feasible and sign * value > sign * extreme.value:
-            return Extreme(extreme.axis, sign, float(value), cause), converged
-        return extreme, converged  # the axis-locked pose is feasible: never report less
+            return Extreme(extreme.axis, sign, float(value), cause), converged, int(result.nit)
+        return extreme, converged, int(result.nit)  # axis-locked is feasible: never less
 
     def _check(self, x: ArrayF) -> tuple[bool, Cause]:
         """Feasibility of the NLP's answer, re-derived by stance IK from its body pose."""
