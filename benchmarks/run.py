@@ -38,7 +38,8 @@ class Row:
 
 def median_time(fn: Callable[[], object], repeats: int, min_time: float = 0.05) -> float:
     """Median wall time of ``fn`` over ``repeats`` runs (each run looped to ≥ min_time)."""
-    fn()  # warm-up
+    for _ in range(3):  # warm-up: caches, allocator, CPU frequency
+        fn()
     start = time.perf_counter()
     fn()
     once = time.perf_counter() - start
@@ -50,6 +51,27 @@ def median_time(fn: Callable[[], object], repeats: int, min_time: float = 0.05) 
             fn()
         samples.append((time.perf_counter() - start) / loops)
     return statistics.median(samples)
+
+
+def median_times(
+    fns: list[Callable[[], object]], repeats: int, min_time: float = 0.05
+) -> list[float]:
+    """Median wall times of several functions measured round-robin, so drift hits all alike."""
+    loops = []
+    for fn in fns:
+        for _ in range(3):
+            fn()
+        start = time.perf_counter()
+        fn()
+        loops.append(max(1, math.ceil(min_time / max(time.perf_counter() - start, 1e-9))))
+    samples: list[list[float]] = [[] for _ in fns]
+    for _ in range(repeats):
+        for k, fn in enumerate(fns):
+            start = time.perf_counter()
+            for _ in range(loops[k]):
+                fn()
+            samples[k].append((time.perf_counter() - start) / loops[k])
+    return [statistics.median(s) for s in samples]
 
 
 def check_agree(name: str, reference: np.ndarray, other: np.ndarray, atol: float) -> float:
@@ -98,8 +120,7 @@ def bench_monte_carlo(samples: int, repeats: int) -> list[Row]:
     reference = hexaleg_run()
     d_bare = check_agree("monte carlo / numpy", reference, bare_numpy(), 1e-12)
     d_pin = check_agree("monte carlo / pinocchio", reference[:loop_n], pinocchio_loop(), 1e-12)
-    t_hex = median_time(hexaleg_run, repeats)
-    t_bare = median_time(bare_numpy, repeats)
+    t_hex, t_bare = median_times([hexaleg_run, bare_numpy], repeats)
     t_pin = median_time(pinocchio_loop, max(3, repeats // 3)) * samples / loop_n
     name = f"Monte Carlo workspace, {samples:,} samples"
     return [
@@ -296,7 +317,8 @@ def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
             None,
             None,
             "≤ 1 s",
-            note=f"FB {free.fb:.4f}, converged {free.converged}",
+            note=f"FB {free.fb:.4f}, {free.iterations} SLSQP iterations, "
+            f"converged {free.converged}",
         )
     )
     return rows
@@ -361,11 +383,10 @@ def bench_forward_kinematics(samples: int, repeats: int) -> list[Row]:
 
     name = f"forward kinematics, {samples:,} configurations"
     reference = hexaleg_run()
-    t_hex = median_time(hexaleg_run, repeats)
-    rows = [Row(name, "hexaleg foot_position", t_hex, None, None)]
     d = check_agree("fk / numpy", reference, bare_numpy(), 1e-12)
-    t = median_time(bare_numpy, repeats)
-    rows.append(Row(name, "bare NumPy eq 7", t, t / t_hex, d))
+    t_hex, t = median_times([hexaleg_run, bare_numpy], repeats)
+    rows = [Row(name, "hexaleg foot_position", t_hex, None, None)]
+    rows.append(Row(name, "bare NumPy eq 7", t, t / t_hex, d, note="timed round-robin"))
     d = check_agree("fk / pinocchio", reference[:loop_n], pinocchio_loop(), 1e-12)
     t = median_time(pinocchio_loop, 3, min_time=0.0) * samples / loop_n
     rows.append(
