@@ -402,22 +402,24 @@ def build_parser() -> argparse.ArgumentParser:
     commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     commands.required = True
 
-    urdf = commands.add_parser(
+    urdf = _add_command(
+        commands,
         "urdf",
+        _cmd_urdf,
         help="write the hexapod's URDF for a design",
         description=(
             "Render the hexapod URDF from the Xacro templates for the given design. Joint "
             "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres."
         ),
     )
-    add_design_options(urdf)
     urdf.add_argument(
         "-o", "--output", metavar="FILE", help="write here (atomically) instead of stdout"
     )
-    urdf.set_defaults(handler=_cmd_urdf)
 
-    workspace = commands.add_parser(
+    workspace = _add_command(
+        commands,
         "workspace",
+        _cmd_workspace,
         help="swing-phase workspace: Monte Carlo cloud, planar and improved areas",
         description=(
             "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "
@@ -425,16 +427,16 @@ def build_parser() -> argparse.ArgumentParser:
             "eq 16's closed form. Areas in m², positions in m (leg-root frame)."
         ),
     )
-    add_design_options(workspace)
     workspace.add_argument(
         "--samples", type=int, default=20_000, help="Monte Carlo samples (default 20000)"
     )
     workspace.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     _add_output_options(workspace)
-    workspace.set_defaults(handler=_cmd_workspace)
 
-    manip = commands.add_parser(
+    manip = _add_command(
+        commands,
         "manipulability",
+        _cmd_manipulability,
         help="manipulability: optimum pose (Table 6) and average w_A (eq 27)",
         description=(
             "Manipulability w = |det J| of one leg (paper §5): optimum pose within eq 26's limits, "
@@ -442,12 +444,12 @@ def build_parser() -> argparse.ArgumentParser:
             "rectangular and improved domains. Angles in rad, w in m³."
         ),
     )
-    add_design_options(manip)
     _add_output_options(manip)
-    manip.set_defaults(handler=_cmd_manipulability)
 
-    flex = commands.add_parser(
+    flex = _add_command(
+        commands,
         "flexibility",
+        _cmd_flexibility,
         help="body flexibility with the feet planted: the 12 extremes, ranges and FB",
         description=(
             "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "
@@ -457,13 +459,13 @@ def build_parser() -> argparse.ArgumentParser:
             "12 extremes with their causes, the ranges (eq 28) and FB (eq 29)."
         ),
     )
-    add_design_options(flex)
     _add_stance_options(flex)
     _add_output_options(flex)
-    flex.set_defaults(handler=_cmd_flexibility)
 
-    study = commands.add_parser(
+    study = _add_command(
+        commands,
         "study",
+        _cmd_study,
         help="design study: FB over coxa x tibia ratios (Fig 14-15), resumable",
         description=(
             "Sweep coxa and tibia ratios at a fixed total leg length and compute body "
@@ -472,7 +474,6 @@ def build_parser() -> argparse.ArgumentParser:
             "continues an interrupted study. Writes study.csv, study.json and the figures."
         ),
     )
-    add_design_options(study)
     _add_stance_options(study)
     study.add_argument(
         "--l1-ratios",
@@ -506,11 +507,12 @@ def build_parser() -> argparse.ArgumentParser:
         default="hexaleg-study",
         help="output folder (default hexaleg-study)",
     )
-    study.set_defaults(handler=_cmd_study)
     _add_view_command(commands)
 
-    report = commands.add_parser(
+    report = _add_command(
+        commands,
         "report",
+        _cmd_report,
         help="the main job: every analysis, figure and table, and a recommendation",
         description=(
             "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -520,7 +522,6 @@ def build_parser() -> argparse.ArgumentParser:
             "new report is complete."
         ),
     )
-    add_design_options(report)
     report.add_argument(
         "-o",
         "--output",
@@ -545,13 +546,24 @@ def build_parser() -> argparse.ArgumentParser:
     report.add_argument(
         "--workers", type=int, metavar="N", help="local worker processes (default: CPUs)"
     )
-    report.set_defaults(handler=_cmd_report)
+    return parser
+
+
+def _add_command(
+    commands: Any, name: str, handler: Command, help: str, description: str
+) -> argparse.ArgumentParser:
+    """A subcommand taking the shared design options, dispatched to ``handler``."""
+    parser = commands.add_parser(name, help=help, description=description)
+    add_design_options(parser)
+    parser.set_defaults(handler=handler)
     return parser
 
 
 def _add_view_command(commands: Any) -> None:
-    view = commands.add_parser(
+    view = _add_command(
+        commands,
         "view",
+        _cmd_view,
         help="3-D viewer of the nominal stance and the 12 body extremes (meshcat)",
         description=(
             "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
@@ -561,7 +573,6 @@ def _add_view_command(commands: Any) -> None:
             "self-contained snapshot instead of serving."
         ),
     )
-    add_design_options(view)
     view.add_argument(
         "--stance", choices=("all", "tripod"), default="all", help="stance legs (default all six)"
     )
@@ -569,7 +580,6 @@ def _add_view_command(commands: Any) -> None:
     view.add_argument("--port", type=int, help="web port (default: the first free from 7000)")
     view.add_argument("--html", metavar="FILE", help="write a static HTML snapshot and exit")
     view.add_argument("--workspace", metavar="LEG", help="also draw this leg's workspace cloud")
-    view.set_defaults(handler=_cmd_view)
 
 
 def _add_stance_options(parser: argparse.ArgumentParser) -> None:
