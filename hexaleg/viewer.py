@@ -51,6 +51,7 @@ class LoopbackServer:
         self._ready = threading.Event()
         self._error: BaseException | None = None
         self._bridge: Any = None
+        self._http_servers: list[Any] = []
         self._thread = threading.Thread(target=self._serve, args=(port,), daemon=True)
         self._thread.start()
         if not self._ready.wait(timeout=30):
@@ -66,12 +67,19 @@ class LoopbackServer:
         from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
         host = self.host
+        http_servers = self._http_servers
 
         class Bridge(ZMQWebSocketBridge):  # type: ignore[misc]
             def make_app(self) -> Any:
                 app = super().make_app()
                 listen = app.listen
-                app.listen = lambda port, **kwargs: listen(port, address=host, **kwargs)
+
+                def listen_on_host(port: int, **kwargs: Any) -> Any:
+                    server = listen(port, address=host, **kwargs)
+                    http_servers.append(server)
+                    return server
+
+                app.listen = listen_on_host
                 return app
 
         asyncio.set_event_loop(asyncio.new_event_loop())
@@ -89,9 +97,17 @@ class LoopbackServer:
         if self._bridge is None:
             return
         loop = self._bridge.ioloop
-        loop.add_callback(loop.stop)
+
+        def shut_down() -> None:
+            for server in self._http_servers:  # release the listening port
+                server.stop()
+            loop.stop()
+
+        loop.add_callback(shut_down)
         self._thread.join(timeout=10)
+        self._bridge.zmq_stream.close(linger=0)
         self._bridge.zmq_socket.close(linger=0)
+        self._bridge = None
 
     def __enter__(self) -> LoopbackServer:
         return self
