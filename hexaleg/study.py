@@ -139,8 +139,12 @@ def run_study(
 
     """
     out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
     journal = out / JOURNAL
+    if out.exists() and (not out.is_dir() or (any(out.iterdir()) and not journal.exists())):
+        raise HexalegError(
+            f"-o {out} exists and is not a hexaleg study: choose a new or empty folder"
+        )
+    out.mkdir(parents=True, exist_ok=True)
     done = _read_journal(journal, spec) if resume else {}
     if not resume and journal.exists():
         raise HexalegError(

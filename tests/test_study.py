@@ -65,6 +65,15 @@ def test_an_existing_study_is_not_overwritten_without_resume(tmp_path):
         run_study(other, tmp_path, executor=ThreadPoolExecutor(1), resume=True)
 
 
+def test_a_folder_that_is_not_a_study_is_left_alone(tmp_path, capsys):
+    (tmp_path / "report.md").write_text("someone's report")
+    with pytest.raises(HexalegError, match="not a hexaleg study"):
+        run_study(SMALL, tmp_path, executor=ThreadPoolExecutor(1))
+    assert main(["study", "--l3-points", "2", "-o", str(tmp_path)]) == 2
+    assert capsys.readouterr().err.count("\n") == 1
+    assert [p.name for p in tmp_path.iterdir()] == ["report.md"]
+
+
 def test_resume_skips_finished_rows_and_survives_a_torn_line(tmp_path):
     full = run_study(SMALL, tmp_path / "full", executor=ThreadPoolExecutor(1))
     journal = (tmp_path / "full" / JOURNAL).read_text().splitlines()
