@@ -17,9 +17,10 @@ from pathlib import Path
 import numpy as np
 import psutil
 import pytest
+import umsgpack
 
 from hexaleg.flexibility import axis_locked_flexibility
-from hexaleg.viewer import LoopbackServer, build_scene, client, extreme_name
+from hexaleg.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 SERVER_START_TIMEOUT = 120
@@ -75,6 +76,21 @@ def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default
         assert len(_node(tree, "meshcat/hexaleg/nominal/visuals")) == 25
         assert _node(tree, "meshcat/hexaleg/workspace/lf").object is not None
         assert _node(tree, "meshcat/hexaleg/footholds/rm").object is not None
+        # the link whose joint stops each extreme is drawn in the highlight colour, others not
+        red = (
+            int(HIGHLIGHT[0] * 255) * 65536
+            + int(HIGHLIGHT[1] * 255) * 256
+            + int(HIGHLIGHT[2] * 255)
+        )
+        for extreme in result.extremes:
+            visuals = _node(tree, f"meshcat/hexaleg/extremes/{extreme_name(extreme)}/visuals")
+            colours = {
+                name: umsgpack.unpackb(node.object)["object"]["materials"][0]["color"]
+                for name, node in visuals.items()
+            }
+            cause = extreme.limited_by
+            link = {"root": "coxa", "hip": "femur", "knee": "tibia"}[cause.joint]
+            assert {name for name, c in colours.items() if c == red} == {f"{cause.leg}_{link}_0"}
         animated = [node for node in (tree, tree["meshcat"]) if node.animation is not None]
         assert animated  # one animation: out to every extreme and back
 
