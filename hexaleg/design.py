@@ -24,7 +24,7 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
-from typing import Any
+from typing import Any, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -219,17 +219,20 @@ class HexapodDesign:
         return self.l1 + self.l2 + self.l3
 
     @property
+    def legs(self) -> tuple[LegMount, ...]:
+        """The six leg mounts, in mounting order (``mounts`` as resolved on construction)."""
+        return cast(tuple[LegMount, ...], self.mounts)
+
+    @property
     def leg_names(self) -> tuple[str, ...]:
         """Names of the legs, in mounting order."""
-        assert self.mounts is not None  # set in __post_init__
-        return tuple(m.name for m in self.mounts)
+        return tuple(m.name for m in self.legs)
 
     @property
     def nominal_height(self) -> float:
         """Height of the body frame above the ground at the nominal stance [m]."""
-        assert self.mounts is not None
         foot_z = foot_position(self.lengths, self.nominal_angles)[2]
-        return float(-(self.mounts[0].z + foot_z))
+        return float(-(self.legs[0].z + foot_z))
 
     @property
     def joint_range(self) -> JointLimits:

@@ -96,8 +96,8 @@ def optimum_pose(lengths: Lengths, limits: JointLimits, starts: int = 8) -> Opti
     candidates = [np.unravel_index(i, values.shape) for i in order[: max(starts * 20, 1)]]
     seeds = _distinct_local_maxima(values, candidates, starts)
     bounds = [limits.theta2, limits.theta3]
-    best: OptimumPose | None = None
-    for i, j in seeds:
+
+    def refine(i: int, j: int) -> OptimumPose:
         result = optimize.minimize(
             _negative_w_and_gradient,
             x0=[hip[i], knee[j]],
@@ -107,13 +107,11 @@ def optimum_pose(lengths: Lengths, limits: JointLimits, starts: int = 8) -> Opti
             bounds=bounds,
             options={"ftol": 1e-15, "gtol": 1e-12, "maxiter": 500},
         )
-        pose = OptimumPose(
+        return OptimumPose(
             float(result.x[0]), float(result.x[1]), -float(result.fun), result.success
         )
-        if best is None or pose.w > best.w:
-            best = pose
-    assert best is not None
-    return best
+
+    return max((refine(i, j) for i, j in seeds), key=lambda pose: pose.w)
 
 
 def _distinct_local_maxima(values: ArrayF, candidates: list, count: int) -> list:

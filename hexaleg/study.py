@@ -155,9 +155,7 @@ def run_study(
     template = _template_geometry(spec) if spec.mode == "axis" else None
     todo = [key for key in spec.keys() if key not in done]
     own_pool = executor is None
-    if own_pool:
-        executor = ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1)
-    assert executor is not None
+    pool = executor or ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1)
     from tqdm import tqdm
 
     show = sys.stdout.isatty() if progress is None else progress
@@ -166,7 +164,7 @@ def run_study(
     )
     try:
         futures: Iterable[Future] = [
-            executor.submit(evaluate, _Task(r1, r3, spec, template)) for r1, r3 in todo
+            pool.submit(evaluate, _Task(r1, r3, spec, template)) for r1, r3 in todo
         ]
         for future in as_completed(futures):
             row = future.result()
@@ -176,7 +174,7 @@ def run_study(
     finally:
         bar.close()
         if own_pool:
-            executor.shutdown(wait=True, cancel_futures=True)
+            pool.shutdown(wait=True, cancel_futures=True)
     return write_table(spec, [done[key] for key in spec.keys()], out)
 
 

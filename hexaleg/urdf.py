@@ -55,8 +55,7 @@ def render_hexapod(design: HexapodDesign, validate: bool = True) -> str:
         "body_height": _number(design.body_height),
         "body_mass": _number(design.body_mass),
     }
-    assert design.mounts is not None
-    for i, mount in enumerate(design.mounts, start=1):
+    for i, mount in enumerate(design.legs, start=1):
         mappings[f"leg{i}_name"] = mount.name  # validated identifier, see LegMount
         for axis in ("x", "y", "z", "yaw"):
             mappings[f"leg{i}_{axis}"] = _number(getattr(mount, axis))
