@@ -31,6 +31,22 @@ class _Parser(argparse.ArgumentParser):
         self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
 
 
+def _at_least(minimum: int, maximum: int | None = None) -> Callable[[str], int]:
+    """Argparse type: an integer within [minimum, maximum]; argparse reports the rest."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if value < minimum or (maximum is not None and value > maximum):
+            allowed = f">= {minimum}" if maximum is None else f"in {minimum}..{maximum}"
+            raise argparse.ArgumentTypeError(f"{value} is not valid: must be {allowed}")
+        return value
+
+    return parse
+
+
 def add_design_options(parser: argparse.ArgumentParser) -> None:
     """Add the design options shared by every command."""
     default = HexapodDesign()
@@ -120,8 +136,6 @@ def _cmd_workspace(args: argparse.Namespace) -> int:
     from hexaleg.workspace import analyze_workspace
 
     design = design_from_args(args)
-    if args.samples < 1:
-        raise _UsageError(f"--samples = {args.samples} is not valid: must be >= 1")
     analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
     if args.plot is not None:
         from hexaleg.figures import write_workspace_figures
@@ -238,8 +252,6 @@ def _cmd_study(args: argparse.Namespace) -> int:
         raise _UsageError(
             f"a study sweeps the segment lengths: {', '.join(given) or '--ratios'} cannot be given"
         )
-    if args.workers is not None and args.workers < 1:
-        raise _UsageError(f"--workers = {args.workers} is not valid: must be >= 1")
     base = design_from_args(args)
     spec = StudySpec(
         tuple(args.l1_ratios),
@@ -300,8 +312,6 @@ def _cmd_view(args: argparse.Namespace) -> int:
     from hexaleg.model import HexapodModel
 
     design = design_from_args(args)
-    if args.port is not None and not 0 < args.port < 65536:
-        raise _UsageError(f"--port = {args.port} is not valid: must lie in 1..65535")
     model = HexapodModel(design)
     result = axis_locked_flexibility(design, args.stance, model)
     if args.workspace is not None and args.workspace not in model.leg_names:
@@ -333,13 +343,6 @@ def _cmd_view(args: argparse.Namespace) -> int:
 def _cmd_report(args: argparse.Namespace) -> int:
     from hexaleg.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
 
-    for name in ("l3_points", "sensitivity_points"):
-        if getattr(args, name) < 2:
-            raise _UsageError(
-                f"--{name.replace('_', '-')} = {getattr(args, name)} is not valid: >= 2"
-            )
-    if args.workers is not None and args.workers < 1:
-        raise _UsageError(f"--workers = {args.workers} is not valid: must be >= 1")
     design = design_from_args(args)
     options = ReportOptions(
         l3_points=args.l3_points,
@@ -428,7 +431,7 @@ def build_parser() -> argparse.ArgumentParser:
         ),
     )
     workspace.add_argument(
-        "--samples", type=int, default=20_000, help="Monte Carlo samples (default 20000)"
+        "--samples", type=_at_least(1), default=20_000, help="Monte Carlo samples (default 20000)"
     )
     workspace.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
     _add_output_options(workspace)
@@ -485,13 +488,13 @@ def build_parser() -> argparse.ArgumentParser:
     )
     study.add_argument(
         "--l3-points",
-        type=int,
+        type=_at_least(2),
         default=80,
         metavar="N",
         help="tibia ratios per coxa ratio (default 80)",
     )
     study.add_argument(
-        "--workers", type=int, metavar="N", help="local worker processes (default: CPUs)"
+        "--workers", type=_at_least(1), metavar="N", help="local worker processes (default: CPUs)"
     )
     study.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://127.0.0.1:8786"
@@ -531,20 +534,20 @@ def build_parser() -> argparse.ArgumentParser:
     )
     report.add_argument(
         "--l3-points",
-        type=int,
+        type=_at_least(2),
         default=80,
         metavar="N",
         help="tibia ratios per coxa ratio in the sweeps (default 80, as the paper)",
     )
     report.add_argument(
         "--sensitivity-points",
-        type=int,
+        type=_at_least(2),
         default=40,
         metavar="N",
         help="tibia ratios in the posture sensitivity table (default 40)",
     )
     report.add_argument(
-        "--workers", type=int, metavar="N", help="local worker processes (default: CPUs)"
+        "--workers", type=_at_least(1), metavar="N", help="local worker processes (default: CPUs)"
     )
     return parser
 
@@ -577,7 +580,9 @@ def _add_view_command(commands: Any) -> None:
         "--stance", choices=("all", "tripod"), default="all", help="stance legs (default all six)"
     )
     view.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
-    view.add_argument("--port", type=int, help="web port (default: the first free from 7000)")
+    view.add_argument(
+        "--port", type=_at_least(1, 65535), help="web port (default: the first free from 7000)"
+    )
     view.add_argument("--html", metavar="FILE", help="write a static HTML snapshot and exit")
     view.add_argument("--workspace", metavar="LEG", help="also draw this leg's workspace cloud")
 

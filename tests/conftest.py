@@ -53,3 +53,13 @@ def random_designs(count: int, seed: int) -> list[HexapodDesign]:
 def random_angles(rng: np.random.Generator, count: int) -> np.ndarray:
     """Joint angles (count, 3) spread over [-π, π] [rad]."""
     return rng.uniform(-np.pi, np.pi, size=(count, 3))
+
+
+def run_cli(argv: list[str]) -> int:
+    """Exit status of ``hexaleg argv``, whether main returns it or argparse exits with it."""
+    from hexaleg.cli import main
+
+    try:
+        return main(argv)
+    except SystemExit as exit_:
+        return int(exit_.code or 0)

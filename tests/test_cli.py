@@ -7,6 +7,7 @@ import sys
 
 import pinocchio as pin
 import pytest
+from conftest import run_cli
 
 from hexaleg import HexapodDesign, render_hexapod
 from hexaleg.cli import main
@@ -123,8 +124,9 @@ def test_readable_tables(capsys):
 
 
 def test_bad_sample_count(capsys):
-    assert main(["workspace", "--samples", "0"]) == 2
-    assert capsys.readouterr().err.count("\n") == 1
+    assert run_cli(["workspace", "--samples", "0"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--samples: 0 is not valid: must be >= 1" in err
 
 
 def test_flexibility_json_has_the_documented_fields(capsys):

@@ -14,6 +14,7 @@ from concurrent.futures import ThreadPoolExecutor
 import numpy as np
 import pandas as pd
 import pytest
+from conftest import run_cli
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -160,13 +161,13 @@ def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
     ("argv", "expected"),
     [
         (["--l1", "0.2"], "sweeps the segment lengths"),
-        (["--workers", "0"], "--workers"),
-        (["--l3-points", "1"], "l3_points"),
+        (["--workers", "0"], "--workers: 0 is not valid: must be >= 1"),
+        (["--l3-points", "1"], "--l3-points: 1 is not valid: must be >= 2"),
         (["--l1-ratios", "0.9"], "l1_ratio + l3_ratio"),
     ],
 )
 def test_study_usage_errors(tmp_path, capsys, argv, expected):
-    status = main(["study", *argv, "-o", str(tmp_path / "s")])
+    status = run_cli(["study", *argv, "-o", str(tmp_path / "s")])
     err = capsys.readouterr().err
     if "l1_ratio + l3_ratio" in expected:  # a failing design is a row, not an error
         assert status == 0

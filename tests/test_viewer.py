@@ -184,10 +184,10 @@ def test_static_html_draws_the_robot(tmp_path, empty_scene):
 
 
 def test_view_rejects_bad_input_in_one_line(capsys, tmp_path):
-    from hexaleg.cli import main
+    from conftest import run_cli
 
-    assert main(["view", "--workspace", "zz", "--html", str(tmp_path / "x.html")]) == 2
-    assert main(["view", "--port", "70000"]) == 2
+    assert run_cli(["view", "--workspace", "zz", "--html", str(tmp_path / "x.html")]) == 2
+    assert run_cli(["view", "--port", "70000"]) == 2
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 2 and "--workspace" in err[0] and "--port" in err[1]
     assert list(tmp_path.iterdir()) == []
