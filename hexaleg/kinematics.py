@@ -142,17 +142,6 @@ def inverse_kinematics(
     return InverseKinematics(theta, np.asarray(reachable))
 
 
-def reach_margin(lengths: Lengths, position: npt.ArrayLike) -> ArrayF:
-    """Signed distance of foot targets (..., 3) to the edge of the leg's reach [m].
-
-    Positive inside the annulus |l2 − l3| ≤ r ≤ l2 + l3 around the hip (the
-    branch of :func:`inverse_kinematics`), negative outside; continuous in the target.
-    """
-    _, l2, l3 = lengths
-    r = leg_solution(lengths, position)[1]
-    return np.minimum(l2 + l3 - r, r - abs(l2 - l3))
-
-
 def _leg_plane(l1: float, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
     """θ1 ∈ (−π/2, π/2] toward the target, and the target in the leg plane seen from the hip.
 
@@ -170,7 +159,7 @@ def _leg_plane(l1: float, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF, Arra
 def leg_solution(lengths: Lengths, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF]:
     """Knee-down joint angles (..., 3) [rad] and hip-to-foot distance r (...) [m].
 
-    The kernel behind :func:`inverse_kinematics` and :func:`reach_margin`: the
+    The kernel behind :func:`inverse_kinematics` and the flexibility margins: the
     angles are those of the nearest configuration when r is out of reach.
     """
     l1, l2, l3 = lengths

@@ -166,7 +166,7 @@ class _Builder:
 
         analysis = analyze_workspace(self.design, samples=self.options.monte_carlo_samples)
         self.data["workspace"] = analysis.to_dict()
-        figures = write_workspace_figures(analysis, self.out)
+        write_workspace_figures(analysis, self.out)
         scale = self.design.leg_length / 1000.0
         table5 = []
         for row in TABLE5:
@@ -227,7 +227,6 @@ class _Builder:
                 ],
             ),
         )
-        self.figures = figures
 
     def manipulability(self) -> None:
         from hexaleg.figures import write_manipulability_figures

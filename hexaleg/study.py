@@ -20,12 +20,10 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import numpy as np
-
 from hexaleg._io import atomic_write_text
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.flexibility import AXES, DIRECTIONS, axis_locked_flexibility, free_flexibility
+from hexaleg.flexibility import axis_locked_flexibility, free_flexibility
 from hexaleg.stance import StanceGeometry
 
 JOURNAL = "rows.jsonl"
@@ -288,19 +286,3 @@ def sensitivity_table(
                 {"variant": name, **peak, "failed_designs": int((table["error"] != "").sum())}
             )
     return pd.DataFrame(rows)
-
-
-def range_columns() -> list[str]:
-    """Names of the six range columns of a study table."""
-    return [f"range_{a}" for a in AXES]
-
-
-def extreme_columns() -> list[str]:
-    """Names of the twelve extreme columns of a study table."""
-    return [f"{a}_{'max' if s > 0 else 'min'}" for a, s in DIRECTIONS]
-
-
-def fb_values(table: Any, l1_ratio: float) -> np.ndarray:
-    """FB against the tibia ratios of one coxa ratio (NaN for failed designs)."""
-    group = table[np.isclose(table["l1_ratio"], l1_ratio)]
-    return group["fb"].to_numpy(dtype=float) if "fb" in group else np.full(len(group), np.nan)
