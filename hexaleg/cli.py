@@ -18,6 +18,8 @@ from typing import Any, NoReturn
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
+from hexaleg.report import ReportOptions
 
 EXIT_USAGE = 2
 
@@ -482,33 +484,19 @@ def build_parser() -> argparse.ArgumentParser:
         "--l1-ratios",
         type=float,
         nargs="+",
-        default=[0.05, 0.10, 0.15, 0.20],
+        default=list(L1_RATIOS),
         metavar="R",
-        help="coxa ratios l1/L [-] (default: the paper's 0.05 0.10 0.15 0.20)",
+        help="coxa ratios l1/L [-] (default: the paper's "
+        + " ".join(f"{r:.2f}" for r in L1_RATIOS)
+        + ")",
     )
-    study.add_argument(
-        "--l3-points",
-        type=_at_least(2),
-        default=80,
-        metavar="N",
-        help="tibia ratios per coxa ratio (default 80)",
-    )
-    study.add_argument(
-        "--workers", type=_at_least(1), metavar="N", help="local worker processes (default: CPUs)"
-    )
+    _add_sweep_options(study, "hexaleg-study")
     study.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://127.0.0.1:8786"
     )
     study.add_argument("--resume", action="store_true", help="continue the study already in DIR")
     study.add_argument(
         "--sensitivity", action="store_true", help="also write the posture/body sensitivity table"
-    )
-    study.add_argument(
-        "-o",
-        "--output",
-        metavar="DIR",
-        default="hexaleg-study",
-        help="output folder (default hexaleg-study)",
     )
     _add_view_command(commands)
 
@@ -525,31 +513,33 @@ def build_parser() -> argparse.ArgumentParser:
             "new report is complete."
         ),
     )
-    report.add_argument(
-        "-o",
-        "--output",
-        metavar="DIR",
-        default="hexaleg-report",
-        help="output folder (default hexaleg-report)",
-    )
-    report.add_argument(
-        "--l3-points",
-        type=_at_least(2),
-        default=80,
-        metavar="N",
-        help="tibia ratios per coxa ratio in the sweeps (default 80, as the paper)",
-    )
+    _add_sweep_options(report, "hexaleg-report")
     report.add_argument(
         "--sensitivity-points",
         type=_at_least(2),
-        default=40,
+        default=ReportOptions.sensitivity_points,
         metavar="N",
-        help="tibia ratios in the posture sensitivity table (default 40)",
-    )
-    report.add_argument(
-        "--workers", type=_at_least(1), metavar="N", help="local worker processes (default: CPUs)"
+        help="tibia ratios in the posture sensitivity table "
+        f"(default {ReportOptions.sensitivity_points})",
     )
     return parser
+
+
+def _add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
+    """Options of the commands that sweep designs: output folder, tibia ratios, workers."""
+    parser.add_argument(
+        "-o", "--output", metavar="DIR", default=output, help=f"output folder (default {output})"
+    )
+    parser.add_argument(
+        "--l3-points",
+        type=_at_least(2),
+        default=L3_RATIO_POINTS,
+        metavar="N",
+        help=f"tibia ratios per coxa ratio (default {L3_RATIO_POINTS}, as the paper)",
+    )
+    parser.add_argument(
+        "--workers", type=_at_least(1), metavar="N", help="local worker processes (default: CPUs)"
+    )
 
 
 def _add_command(

@@ -35,6 +35,14 @@ def _figure(width: float = 7.0, height: float = 5.0) -> Figure:
     return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
 
 
+def _shade_paper_claim(ax) -> None:
+    """Shade the tibia-ratio band the paper claims is best (§5.4, §6.3)."""
+    from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
+
+    lo, hi = CLAIMED_L3_RATIO_PEAK
+    ax.axvspan(lo, hi, color="k", alpha=0.08, label=f"paper's claim {lo:.2f}–{hi:.2f}")
+
+
 def save(figure: Figure, path: str | os.PathLike[str]) -> Path:
     """Render ``figure`` to PNG and write it atomically."""
     buffer = io.BytesIO()
@@ -151,7 +159,7 @@ def average_manipulability_figure(result: AverageManipulabilityMap) -> Figure:
         for r1, row, peak, color in zip(result.l1_ratios, values, peaks, _COLORS, strict=False):
             ax.plot(result.l3_ratios, row, color=color, label=f"l1 ratio {r1:.2f}: peak {peak:.3f}")
             ax.axvline(peak, color=color, ls=":", lw=1)
-        ax.axvspan(0.40, 0.45, color="k", alpha=0.08, label="paper's claim 0.40–0.45")
+        _shade_paper_claim(ax)
         ax.set_xlabel(f"l3 ratio [-] (total {result.total:g} m)")
         ax.set_title(title)
         ax.grid(True, alpha=0.3)
@@ -270,7 +278,7 @@ def fb_figure(table, peaks) -> Figure:
             fontsize=8,
             color=color,
         )
-    ax.axvspan(0.40, 0.45, color="k", alpha=0.08, label="paper's claim 0.40–0.45")
+    _shade_paper_claim(ax)
     ax.set_xlabel("l3 ratio [-]")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
     ax.set_title("Body flexibility against tibia ratio (peaks marked)")

@@ -26,6 +26,7 @@ from hexaleg._io import atomic_write_text
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign, l3_ratio_grid
 from hexaleg.exceptions import HexalegError
+from hexaleg.paper import L3_RATIO_POINTS
 
 REPORT_MD = "report.md"
 REPORT_HTML = "report.html"
@@ -45,7 +46,7 @@ class ReportOptions:
 
     """
 
-    l3_points: int = 80
+    l3_points: int = L3_RATIO_POINTS
     sensitivity_points: int = 40
     monte_carlo_samples: int = 20_000
     workers: int | None = None
