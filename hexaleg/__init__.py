@@ -3,31 +3,69 @@
 A design (coxa l1, femur l2, tibia l3, body, joint limits) becomes a URDF via
 Xacro, then a Pinocchio model; hexaleg measures leg workspace, manipulability
 and body flexibility on it. SI units and radians everywhere.
+
+The public API below is importable from ``hexaleg`` directly. Names load on first
+use (PEP 562), so ``import hexaleg`` and ``hexaleg --help`` stay instant.
 """
 
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
+
 from hexaleg._version import __version__
-from hexaleg.design import LEG_NAMES, TRIPODS, HexapodDesign, LegMount, default_mounts
-from hexaleg.exceptions import DesignError, HexalegError, ModelError, TemplateError
-from hexaleg.kinematics import (
-    InverseKinematics,
-    foot_jacobian,
-    foot_position,
-    inverse_kinematics,
-    manipulability,
-    planar_foot_position,
-)
-from hexaleg.limits import (
-    IMPROVED_LIMITS,
-    MANIPULABILITY_LIMITS,
-    STANCE_LIMITS,
-    WORKSPACE_LIMITS,
-    JointLimits,
-)
-from hexaleg.model import HexapodModel, LegModel
-from hexaleg.urdf import render_hexapod, render_leg, write_urdf
+
+_EXPORTS: dict[str, str] = {
+    # design and limits
+    "HexapodDesign": "hexaleg.design",
+    "LEG_NAMES": "hexaleg.design",
+    "LegMount": "hexaleg.design",
+    "TRIPODS": "hexaleg.design",
+    "default_mounts": "hexaleg.design",
+    "IMPROVED_LIMITS": "hexaleg.limits",
+    "JointLimits": "hexaleg.limits",
+    "MANIPULABILITY_LIMITS": "hexaleg.limits",
+    "STANCE_LIMITS": "hexaleg.limits",
+    "WORKSPACE_LIMITS": "hexaleg.limits",
+    # errors
+    "DesignError": "hexaleg.exceptions",
+    "HexalegError": "hexaleg.exceptions",
+    "ModelError": "hexaleg.exceptions",
+    "TemplateError": "hexaleg.exceptions",
+    # closed forms (the oracle)
+    "InverseKinematics": "hexaleg.kinematics",
+    "foot_jacobian": "hexaleg.kinematics",
+    "foot_position": "hexaleg.kinematics",
+    "inverse_kinematics": "hexaleg.kinematics",
+    "manipulability": "hexaleg.kinematics",
+    "planar_foot_position": "hexaleg.kinematics",
+    # robot
+    "HexapodModel": "hexaleg.robot.model",
+    "LegModel": "hexaleg.robot.model",
+    "render_hexapod": "hexaleg.robot.urdf",
+    "render_leg": "hexaleg.robot.urdf",
+    "write_urdf": "hexaleg.robot.urdf",
+    # swing phase
+    "ManipulabilityAnalysis": "hexaleg.swing.manipulability",
+    "analyze_manipulability": "hexaleg.swing.manipulability",
+    "WorkspaceAnalysis": "hexaleg.swing.workspace",
+    "analyze_workspace": "hexaleg.swing.workspace",
+    # stance phase
+    "StanceGeometry": "hexaleg.stance.geometry",
+    "FlexibilityResult": "hexaleg.stance.extremes",
+    "FlexibilityWarning": "hexaleg.stance.extremes",
+    "flexibility": "hexaleg.stance.flexibility",
+    # studies and output
+    "StudySpec": "hexaleg.study.sweep",
+    "run_study": "hexaleg.study.sweep",
+    "ReportOptions": "hexaleg.output.report.compute",
+    "build_report": "hexaleg.output.report",
+}
 
 __all__ = [
     "DesignError",
+    "FlexibilityResult",
+    "FlexibilityWarning",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
@@ -38,13 +76,22 @@ __all__ = [
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
+    "ManipulabilityAnalysis",
     "ModelError",
+    "ReportOptions",
     "STANCE_LIMITS",
+    "StanceGeometry",
+    "StudySpec",
     "TRIPODS",
     "TemplateError",
     "WORKSPACE_LIMITS",
+    "WorkspaceAnalysis",
     "__version__",
+    "analyze_manipulability",
+    "analyze_workspace",
+    "build_report",
     "default_mounts",
+    "flexibility",
     "foot_jacobian",
     "foot_position",
     "inverse_kinematics",
@@ -52,5 +99,50 @@ __all__ = [
     "planar_foot_position",
     "render_hexapod",
     "render_leg",
+    "run_study",
     "write_urdf",
 ]
+
+
+def __getattr__(name: str) -> Any:
+    """Import a public name from its module on first use."""
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
+    value = getattr(importlib.import_module(module), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_EXPORTS])
+
+
+if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+    from hexaleg.design import LEG_NAMES, TRIPODS, HexapodDesign, LegMount, default_mounts
+    from hexaleg.exceptions import DesignError, HexalegError, ModelError, TemplateError
+    from hexaleg.kinematics import (
+        InverseKinematics,
+        foot_jacobian,
+        foot_position,
+        inverse_kinematics,
+        manipulability,
+        planar_foot_position,
+    )
+    from hexaleg.limits import (
+        IMPROVED_LIMITS,
+        MANIPULABILITY_LIMITS,
+        STANCE_LIMITS,
+        WORKSPACE_LIMITS,
+        JointLimits,
+    )
+    from hexaleg.output.report import build_report
+    from hexaleg.output.report.compute import ReportOptions
+    from hexaleg.robot.model import HexapodModel, LegModel
+    from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
+    from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+    from hexaleg.stance.flexibility import flexibility
+    from hexaleg.stance.geometry import StanceGeometry
+    from hexaleg.study.sweep import StudySpec, run_study
+    from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
+    from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

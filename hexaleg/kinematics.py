@@ -14,10 +14,8 @@ from typing import NamedTuple
 import numpy as np
 import numpy.typing as npt
 
+from hexaleg._typing import ArrayF, Lengths
 from hexaleg.limits import JointLimits
-
-ArrayF = npt.NDArray[np.float64]
-Lengths = tuple[float, float, float]
 
 
 def foot_position(lengths: Lengths, theta: npt.ArrayLike) -> ArrayF:

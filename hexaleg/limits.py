@@ -79,13 +79,10 @@ class JointLimits:
 
     def envelope(self, other: JointLimits) -> JointLimits:
         """Smallest rectangular limit set containing both ``self`` and ``other``."""
-        return JointLimits(
-            *(
-                (min(a[0], b[0]), max(a[1], b[1]))
-                for a, b in ((getattr(self, j), getattr(other, j)) for j in JOINT_NAMES)
-            ),
-            name=f"{self.name}+{other.name}",
-        )
+        lower = np.minimum(self.lower, other.lower)
+        upper = np.maximum(self.upper, other.upper)
+        t1, t2, t3 = ((float(lo), float(hi)) for lo, hi in zip(lower, upper, strict=True))
+        return JointLimits(t1, t2, t3, name=f"{self.name}+{other.name}")
 
 
 WORKSPACE_LIMITS = JointLimits(

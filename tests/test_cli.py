@@ -92,7 +92,7 @@ def test_help_explains_units(capsys, command):
 def test_workspace_json(capsys):
     import json
 
-    from hexaleg.workspace import improved_area_closed_form
+    from hexaleg.swing.workspace import improved_area_closed_form
 
     assert main(["workspace", "--ratios", "0.1", "0.45", "--samples", "200", "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
@@ -154,7 +154,7 @@ def test_flexibility_json_has_the_documented_fields(capsys):
         assert key in design
     # reproducible without hexaleg's defaults: the JSON design rebuilds the same result
     from hexaleg import HexapodDesign, JointLimits, LegMount
-    from hexaleg.flexibility import flexibility
+    from hexaleg.stance import flexibility
 
     rebuilt = HexapodDesign(
         l1=design["l1"],

@@ -36,8 +36,8 @@ def test_swing_figures_from_the_cli(tmp_path):
 def test_figures_are_not_blank(tmp_path, default_design):
     from PIL import Image
 
-    from hexaleg.figures import planar_workspace_figure, save
-    from hexaleg.workspace import planar_workspace
+    from hexaleg.output.figures import planar_workspace_figure, save
+    from hexaleg.swing.workspace import planar_workspace
 
     rect = planar_workspace(default_design.lengths, default_design.workspace_limits)
     improved = planar_workspace(default_design.lengths, default_design.improved_limits)
@@ -47,7 +47,7 @@ def test_figures_are_not_blank(tmp_path, default_design):
 
 
 def test_study_figures(tmp_path):
-    from hexaleg.figures import write_study_figures
+    from hexaleg.output.figures import write_study_figures
     from hexaleg.study import StudySpec, run_study
 
     spec = StudySpec((0.05, 0.2), tuple(np.linspace(0.1, 0.7, 8)))

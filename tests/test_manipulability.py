@@ -9,7 +9,8 @@ import pytest
 from scipy import optimize
 
 from hexaleg import MANIPULABILITY_LIMITS, HexapodDesign, LegModel, manipulability
-from hexaleg.manipulability import (
+from hexaleg.paper import TABLE6, TABLE6_PRINTED_DIGITS
+from hexaleg.swing.manipulability import (
     analyze_manipulability,
     average_manipulability,
     average_manipulability_map,
@@ -19,7 +20,6 @@ from hexaleg.manipulability import (
     pose_indices,
     rectangular_and_improved,
 )
-from hexaleg.paper import TABLE6, TABLE6_PRINTED_DIGITS
 
 
 def test_indices_from_pinocchio_match_the_closed_form(leg_model, default_design):

@@ -9,7 +9,7 @@ import pytest
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
-from hexaleg.report import ReportOptions, build_report
+from hexaleg.output.report import ReportOptions, build_report
 
 REDUCED = ReportOptions(l3_points=8, sensitivity_points=4, workers=1, progress=False)
 SECTIONS = [
@@ -102,17 +102,25 @@ def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["again"]  # no staging folders left
 
 
-def test_failed_run_leaves_the_previous_report(tmp_path, monkeypatch):
+@pytest.mark.parametrize(
+    ("module", "name"),
+    [
+        ("hexaleg.output.report.compute", "sensitivity_table"),  # while computing
+        ("hexaleg.output.report.render", "write_static_html"),  # half-way through writing
+    ],
+)
+def test_failed_run_leaves_the_previous_report(tmp_path, monkeypatch, module, name):
+    import importlib
+
     out = tmp_path / "kept"
     build_report(out, options=REDUCED)
     before = (out / "report.json").read_text()
-    from hexaleg import report as report_module
 
-    def broken(self):
+    def broken(*args, **kwargs):
         raise RuntimeError("simulated failure in the middle")
 
-    monkeypatch.setattr(report_module._Builder, "study", broken)
-    with pytest.raises(RuntimeError):
+    monkeypatch.setattr(importlib.import_module(module), name, broken)
+    with pytest.raises(RuntimeError, match="simulated"):
         build_report(out, options=REDUCED)
     assert (out / "report.json").read_text() == before
     assert [p.name for p in tmp_path.iterdir()] == ["kept"]

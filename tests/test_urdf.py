@@ -13,7 +13,7 @@ from conftest import random_designs
 
 from hexaleg import HexapodDesign, HexapodModel, render_hexapod, render_leg, write_urdf
 from hexaleg.exceptions import TemplateError
-from hexaleg.urdf import template_dir, validate_urdf
+from hexaleg.robot.urdf import template_dir, validate_urdf
 
 
 def _yourdfpy(xml: str) -> yourdfpy.URDF:
@@ -125,7 +125,7 @@ def test_templates_ship_inside_the_installed_package(tmp_path):
     import sys
     from pathlib import Path
 
-    code = "import hexaleg, hexaleg.urdf as u; print(hexaleg.__file__); print(u.template_dir())"
+    code = "import hexaleg, hexaleg.robot.urdf as u; print(hexaleg.__file__); print(u.template_dir())"
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120
     )

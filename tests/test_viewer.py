@@ -19,8 +19,8 @@ import psutil
 import pytest
 import umsgpack
 
-from hexaleg.flexibility import axis_locked_flexibility
-from hexaleg.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
+from hexaleg.output.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
+from hexaleg.stance import axis_locked_flexibility
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 SERVER_START_TIMEOUT = 120

@@ -9,7 +9,7 @@ import pytest
 from scipy import integrate
 
 from hexaleg import IMPROVED_LIMITS, WORKSPACE_LIMITS, HexapodDesign, foot_position
-from hexaleg.workspace import (
+from hexaleg.swing.workspace import (
     analyze_workspace,
     improved_area_by_l3_ratio,
     improved_area_closed_form,

@@ -14,17 +14,25 @@ import json
 import math
 import os
 import sys
-from collections.abc import Iterable, Sequence
-from concurrent.futures import Executor, Future, ProcessPoolExecutor, as_completed
-from dataclasses import dataclass, field
+import warnings
+from collections.abc import Callable, Iterable
+from concurrent.futures import Executor, as_completed
+from dataclasses import dataclass, field, fields
 from pathlib import Path
 from typing import Any
 
+import pandas as pd
+from tqdm import tqdm
+
 from hexaleg._io import atomic_write_text
+from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.flexibility import axis_locked_flexibility, free_flexibility
-from hexaleg.stance import StanceGeometry
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.free_coupled import free_flexibility
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.study.executors import local_pool
 
 JOURNAL = "rows.jsonl"
 TABLE_CSV = "study.csv"
@@ -48,17 +56,15 @@ class StudySpec:
     l1_ratios: tuple[float, ...]
     l3_ratios: tuple[float, ...]
     total: float = 1.0
-    mode: str = "axis"
-    stance: str = "all"
+    mode: FlexibilityMode = "axis"
+    stance: StanceSet = "all"
     base: HexapodDesign = field(default_factory=HexapodDesign)
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
         object.__setattr__(self, "l3_ratios", tuple(float(r) for r in self.l3_ratios))
-        if self.mode not in ("axis", "free"):
-            raise HexalegError(f"mode = {self.mode!r} is not valid: use 'axis' or 'free'")
-        if self.stance not in ("all", "tripod"):
-            raise HexalegError(f"stance = {self.stance!r} is not valid: use 'all' or 'tripod'")
+        require_choice("mode", self.mode, FlexibilityMode)
+        require_choice("stance", self.stance, StanceSet)
         if not self.l1_ratios or not self.l3_ratios:
             raise HexalegError("a study needs at least one coxa ratio and one tibia ratio")
 
@@ -86,9 +92,13 @@ class _Task:
     template: StanceGeometry | None  # fast path for axis-locked studies
 
 
-def evaluate(task: _Task) -> dict[str, Any]:
+Row = dict[str, Any]
+"""One design's results: ratios, lengths [m], FB, ranges and extremes [m, rad], causes."""
+
+
+def evaluate(task: _Task) -> Row:
     """One row of the study table; errors become a row with ``error`` set."""
-    row: dict[str, Any] = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
+    row: Row = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
     try:
         design = HexapodDesign.from_ratios(
             task.l1_ratio, task.l3_ratio, task.spec.total, **_base_fields(task.spec.base)
@@ -96,8 +106,6 @@ def evaluate(task: _Task) -> dict[str, Any]:
         if task.spec.mode == "axis":
             result = axis_locked_flexibility(design, task.spec.stance, geometry=task.template)
         else:
-            import warnings
-
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 result = free_flexibility(design, task.spec.stance)
@@ -113,8 +121,40 @@ def evaluate(task: _Task) -> dict[str, Any]:
 
 
 def _base_fields(base: HexapodDesign) -> dict[str, Any]:
-    fields = {k: getattr(base, k) for k in base.__dataclass_fields__ if k not in ("l1", "l2", "l3")}
-    return fields
+    return {f.name: getattr(base, f.name) for f in fields(base) if f.name not in ("l1", "l2", "l3")}
+
+
+def sweep(
+    spec: StudySpec,
+    executor: Executor,
+    skip: Iterable[tuple[float, float]] = (),
+    on_row: Callable[[Row], None] | None = None,
+) -> dict[tuple[float, float], Row]:
+    """Evaluate every design of ``spec`` not in ``skip`` on ``executor``; rows by ratio pair.
+
+    ``on_row`` sees each row as it arrives (the journal and the progress bar use it).
+    """
+    template = _template_geometry(spec) if spec.mode == "axis" else None
+    done = set(skip)
+    futures = [
+        executor.submit(evaluate, _Task(r1, r3, spec, template))
+        for r1, r3 in spec.keys()
+        if (r1, r3) not in done
+    ]
+    rows: dict[tuple[float, float], Row] = {}
+    for future in as_completed(futures):
+        row = future.result()
+        rows[(row["l1_ratio"], row["l3_ratio"])] = row
+        if on_row is not None:
+            on_row(row)
+    return rows
+
+
+def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
+    """The whole study evaluated in this process, as a table (for small, fast studies)."""
+    template = _template_geometry(spec) if spec.mode == "axis" else None
+    rows = {(r1, r3): evaluate(_Task(r1, r3, spec, template)) for r1, r3 in spec.keys()}
+    return study_table(spec, rows)
 
 
 def run_study(
@@ -124,7 +164,7 @@ def run_study(
     workers: int | None = None,
     resume: bool = False,
     progress: bool | None = None,
-) -> Any:
+) -> pd.DataFrame:
     """Run (or resume) a study and write its table; return it as a pandas DataFrame.
 
     Args:
@@ -142,44 +182,42 @@ def run_study(
         raise HexalegError(
             f"-o {out} exists and is not a hexaleg study: choose a new or empty folder"
         )
-    out.mkdir(parents=True, exist_ok=True)
-    done = _read_journal(journal, spec) if resume else {}
     if not resume and journal.exists():
         raise HexalegError(
             f"{out} already holds a study: pass --resume to continue it, or choose another -o"
         )
+    out.mkdir(parents=True, exist_ok=True)
+    done = _read_journal(journal, spec)
     if not journal.exists():
         _append(journal, {"spec": spec.fingerprint()})
-    template = _template_geometry(spec) if spec.mode == "axis" else None
-    todo = [key for key in spec.keys() if key not in done]
-    own_pool = executor is None
-    pool = executor or ProcessPoolExecutor(max_workers=workers or os.cpu_count() or 1)
-    from tqdm import tqdm
-
     show = sys.stdout.isatty() if progress is None else progress
     bar = tqdm(
         total=len(spec.keys()), initial=len(done), disable=not show, unit="design", file=sys.stderr
     )
+
+    def record(row: Row) -> None:
+        _append(journal, row)
+        bar.update()
+
     try:
-        futures: Iterable[Future] = [
-            pool.submit(evaluate, _Task(r1, r3, spec, template)) for r1, r3 in todo
-        ]
-        for future in as_completed(futures):
-            row = future.result()
-            _append(journal, row)
-            done[(row["l1_ratio"], row["l3_ratio"])] = row
-            bar.update()
+        if executor is None:
+            with local_pool(workers) as pool:
+                done |= sweep(spec, pool, skip=done, on_row=record)
+        else:
+            done |= sweep(spec, executor, skip=done, on_row=record)
     finally:
         bar.close()
-        if own_pool:
-            pool.shutdown(wait=True, cancel_futures=True)
-    return write_table(spec, [done[key] for key in spec.keys()], out)
+    return write_table(spec, study_table(spec, done), out)
+
+
+def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.DataFrame:
+    """The rows of a finished sweep as a table, in (coxa, tibia) ratio order."""
+    table = pd.DataFrame([rows[key] for key in spec.keys()])
+    return table.sort_values(["l1_ratio", "l3_ratio"], kind="stable").reset_index(drop=True)
 
 
 def _template_geometry(spec: StudySpec) -> StanceGeometry:
     """Root placements and body box of the study's body, read once from Pinocchio."""
-    from hexaleg.model import HexapodModel
-
     return StanceGeometry.from_model(HexapodModel(spec.base), spec.stance)
 
 
@@ -190,10 +228,10 @@ def _append(journal: Path, record: dict[str, Any]) -> None:
         os.fsync(handle.fileno())
 
 
-def _read_journal(journal: Path, spec: StudySpec) -> dict[tuple[float, float], dict[str, Any]]:
+def _read_journal(journal: Path, spec: StudySpec) -> dict[tuple[float, float], Row]:
     if not journal.exists():
         return {}
-    rows: dict[tuple[float, float], dict[str, Any]] = {}
+    rows: dict[tuple[float, float], Row] = {}
     lines = journal.read_text(encoding="utf-8").splitlines()
     for number, line in enumerate(lines):
         try:
@@ -213,12 +251,15 @@ def _read_journal(journal: Path, spec: StudySpec) -> dict[tuple[float, float], d
     return rows
 
 
-def write_table(spec: StudySpec, rows: Sequence[dict[str, Any]], out: Path) -> Any:
-    """Write ``study.csv`` and ``study.json`` atomically; return the DataFrame."""
-    import pandas as pd
+def write_journal(out: Path, spec: StudySpec, table: pd.DataFrame) -> Path:
+    """Write a finished study's journal (``rows.jsonl``) in one go, atomically."""
+    records = [{"spec": spec.fingerprint()}, *table.to_dict(orient="records")]
+    text = "".join(json.dumps(record, allow_nan=True) + "\n" for record in records)
+    return atomic_write_text(out / JOURNAL, text)
 
-    table = pd.DataFrame(rows).sort_values(["l1_ratio", "l3_ratio"], kind="stable")
-    table = table.reset_index(drop=True)
+
+def write_table(spec: StudySpec, table: pd.DataFrame, out: Path) -> pd.DataFrame:
+    """Write ``study.csv`` and ``study.json`` atomically; return ``table``."""
     atomic_write_text(out / TABLE_CSV, table.to_csv(index=False))
     payload = {
         "spec": spec.fingerprint(),
@@ -230,10 +271,8 @@ def write_table(spec: StudySpec, rows: Sequence[dict[str, Any]], out: Path) -> A
     return table
 
 
-def peak_table(table: Any) -> Any:
+def peak_table(table: pd.DataFrame) -> pd.DataFrame:
     """For each coxa ratio, the tibia ratio of the largest FB and that FB."""
-    import pandas as pd
-
     rows = []
     for r1, group in table.groupby("l1_ratio", sort=True):
         valid = group.dropna(subset=["fb"]) if "fb" in group else group.iloc[0:0]
@@ -242,47 +281,4 @@ def peak_table(table: Any) -> Any:
             continue
         best = valid.loc[valid["fb"].idxmax()]
         rows.append({"l1_ratio": r1, "peak_l3_ratio": best["l3_ratio"], "peak_fb": best["fb"]})
-    return pd.DataFrame(rows)
-
-
-# -- posture and body sensitivity -----------------------------------------------------
-
-SENSITIVITY_VARIANTS: tuple[tuple[str, dict[str, Any]], ...] = (
-    ("default", {}),
-    ("hip raised 0.2 rad", {"nominal_angles": (0.0, 0.2, -math.pi / 2 - 0.2)}),
-    ("hip lowered 0.2 rad", {"nominal_angles": (0.0, -0.2, -math.pi / 2 + 0.2)}),
-    ("knee bent 0.3 rad more", {"nominal_angles": (0.0, 0.0, -math.pi / 2 - 0.3)}),
-    ("knee opened 0.3 rad", {"nominal_angles": (0.0, 0.0, -math.pi / 2 + 0.3)}),
-    ("body 0.8 m long", {"body_length": 0.8, "mounts": None}),
-    ("body 1.2 m long", {"body_length": 1.2, "mounts": None}),
-    ("body 0.8 m wide", {"body_width": 0.8, "mounts": None}),
-)
-"""Posture and body changes the paper leaves open, each against the default design."""
-
-
-def sensitivity_table(
-    l1_ratios: Sequence[float],
-    l3_ratios: Sequence[float],
-    total: float = 1.0,
-    stance: str = "all",
-    base: HexapodDesign | None = None,
-    variants: Sequence[tuple[str, dict[str, Any]]] = SENSITIVITY_VARIANTS,
-) -> Any:
-    """Peak tibia ratio and FB per coxa ratio for each posture/body variant (axis-locked).
-
-    Runs in this process with the vectorized kernel: ~5 ms per design.
-    """
-    import pandas as pd
-
-    base = HexapodDesign() if base is None else base
-    rows = []
-    for name, changes in variants:
-        variant = base.replace(**changes)
-        spec = StudySpec(tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant)
-        template = _template_geometry(spec)
-        table = pd.DataFrame([evaluate(_Task(r1, r3, spec, template)) for r1, r3 in spec.keys()])
-        for peak in peak_table(table).to_dict(orient="records"):
-            rows.append(
-                {"variant": name, **peak, "failed_designs": int((table["error"] != "").sum())}
-            )
     return pd.DataFrame(rows)

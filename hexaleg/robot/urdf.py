@@ -40,7 +40,7 @@ def template_dir() -> Path:
     packaged = Path(str(resources.files("hexaleg") / "urdf"))
     if (packaged / HEXAPOD_TEMPLATE).is_file():
         return packaged
-    checkout = Path(__file__).resolve().parent.parent / "urdf"
+    checkout = Path(__file__).resolve().parents[2] / "urdf"
     if (checkout / HEXAPOD_TEMPLATE).is_file():
         return checkout
     raise TemplateError(f"Xacro templates not found in {packaged} or {checkout}")

@@ -19,8 +19,9 @@ from conftest import run_cli
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
-from hexaleg.flexibility import flexibility
-from hexaleg.study import JOURNAL, StudySpec, peak_table, run_study, sensitivity_table
+from hexaleg.stance import flexibility
+from hexaleg.study import StudySpec, peak_table, run_study, sensitivity_table
+from hexaleg.study.sweep import JOURNAL
 
 SMALL = StudySpec((0.05, 0.2), tuple(np.linspace(0.1, 0.7, 7)))
 

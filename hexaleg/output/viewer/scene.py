@@ -1,4 +1,4 @@
-"""3-D view of what the body can and cannot do, in meshcat (served on loopback).
+"""The meshcat scene of what the body can and cannot do.
 
 The scene holds the ground, the footholds, the robot at its nominal stance
 (``/hexaleg/nominal``), and the twelve axis-locked extreme poses, each under
@@ -6,17 +6,11 @@ The scene holds the ground, the footholds, the robot at its nominal stance
 the link whose joint stops it drawn in red. One animation plays the nominal
 robot out to each extreme and back, in turn. Optionally a leg's swing-phase
 workspace is drawn as a point cloud.
-
-meshcat 0.3.2's own server listens on all interfaces; :class:`LoopbackServer`
-runs its bridge in a thread of this process with tornado bound to the host
-given (127.0.0.1 unless the user asks), so stopping the process stops it all.
 """
 
 from __future__ import annotations
 
-import asyncio
 import os
-import threading
 from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
@@ -26,105 +20,17 @@ import pinocchio as pin
 
 from hexaleg._io import atomic_write_text
 from hexaleg.exceptions import HexalegError
-from hexaleg.flexibility import AXES, Extreme, FlexibilityResult, direction_poses
-from hexaleg.model import HexapodModel
-from hexaleg.stance import StanceGeometry, stance_configuration
+from hexaleg.output.viewer.server import LoopbackServer, client
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.constraints import AXES, direction_poses
+from hexaleg.stance.extremes import Extreme, FlexibilityResult
+from hexaleg.stance.geometry import StanceGeometry, stance_configuration
+from hexaleg.swing.workspace import monte_carlo_workspace
 
 ROOT = "hexaleg"
 HIGHLIGHT = (0.9, 0.1, 0.1, 1.0)
 ANIMATION_FPS = 30
 FRAMES_PER_LEG_OF_TRIP = 20  # nominal → extreme; the way back takes as many
-
-
-class LoopbackServer:
-    """meshcat's ZMQ/WebSocket bridge in a background thread, bound to one host.
-
-    Attributes:
-        host: Interface the web and ZMQ servers bind (127.0.0.1 by default).
-        zmq_url: Where a ``meshcat.Visualizer`` sends commands.
-        web_url: The page to open in a browser.
-
-    """
-
-    def __init__(self, host: str = "127.0.0.1", port: int | None = None) -> None:
-        self.host = host
-        self._ready = threading.Event()
-        self._error: BaseException | None = None
-        self._bridge: Any = None
-        self._http_servers: list[Any] = []
-        self._thread = threading.Thread(target=self._serve, args=(port,), daemon=True)
-        self._thread.start()
-        if not self._ready.wait(timeout=30):
-            raise HexalegError("the meshcat server did not start within 30 s")
-        if self._error is not None:
-            raise HexalegError(
-                f"cannot start the viewer on {host}:{port}: {self._error}"
-            ) from self._error
-        self.zmq_url: str = self._bridge.zmq_url
-        self.web_url: str = self._bridge.web_url
-
-    def _serve(self, port: int | None) -> None:
-        from meshcat.servers.zmqserver import ZMQWebSocketBridge
-
-        host = self.host
-        http_servers = self._http_servers
-
-        class Bridge(ZMQWebSocketBridge):  # type: ignore[misc]
-            def make_app(self) -> Any:
-                app = super().make_app()
-                listen = app.listen
-
-                def listen_on_host(port: int, **kwargs: Any) -> Any:
-                    server = listen(port, address=host, **kwargs)
-                    http_servers.append(server)
-                    return server
-
-                app.listen = listen_on_host
-                return app
-
-        asyncio.set_event_loop(asyncio.new_event_loop())
-        try:
-            self._bridge = Bridge(host=host, port=port)
-        except BaseException as err:  # port taken, bad host: reported by __init__
-            self._error = err
-            self._ready.set()
-            return
-        self._ready.set()
-        self._bridge.run()
-
-    def stop(self) -> None:
-        """Stop the server thread and release its sockets."""
-        if self._bridge is None:
-            return
-        loop = self._bridge.ioloop
-
-        def shut_down() -> None:
-            for server in self._http_servers:  # release the listening port
-                server.stop()
-            loop.stop()
-
-        loop.add_callback(shut_down)
-        self._thread.join(timeout=10)
-        self._bridge.zmq_stream.close(linger=0)
-        self._bridge.zmq_socket.close(linger=0)
-        self._bridge = None
-
-    def __enter__(self) -> LoopbackServer:
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        self.stop()
-
-
-def client(server: LoopbackServer) -> Any:
-    """A ``meshcat.Visualizer`` connected to ``server`` (without meshcat's stdout banner)."""
-    import contextlib
-    import io
-
-    import meshcat
-
-    with contextlib.redirect_stdout(io.StringIO()):
-        return meshcat.Visualizer(zmq_url=server.zmq_url)
 
 
 def extreme_name(extreme: Extreme) -> str:
@@ -201,8 +107,6 @@ def _add_ground(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
 
 
 def _add_workspace(viewer: Any, mg: Any, model: HexapodModel, leg: str, samples: int) -> None:
-    from hexaleg.workspace import monte_carlo_workspace
-
     if leg not in model.leg_names:
         raise HexalegError(
             f"--workspace {leg!r} is not valid: legs are {', '.join(model.leg_names)}"

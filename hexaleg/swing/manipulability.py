@@ -14,12 +14,11 @@ import numpy as np
 import numpy.typing as npt
 from scipy import optimize
 
+from hexaleg._typing import ArrayF, Lengths
 from hexaleg.design import HexapodDesign
-from hexaleg.kinematics import Lengths, manipulability
+from hexaleg.kinematics import manipulability
 from hexaleg.limits import JointLimits
-from hexaleg.model import LegModel
-
-ArrayF = npt.NDArray[np.float64]
+from hexaleg.robot.model import LegModel
 
 GRID_STEP = math.radians(1.0)
 """Spacing of the w_A grid (eq 27): one characteristic value per degree [rad]."""

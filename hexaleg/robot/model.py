@@ -14,11 +14,11 @@ import numpy as np
 import numpy.typing as npt
 import pinocchio as pin
 
+from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
-from hexaleg.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
+from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
 
-ArrayF = npt.NDArray[np.float64]
 LEG_JOINTS: tuple[str, str, str] = ("root", "hip", "knee")
 """Joint names of a leg, in the order of the paper's θ1, θ2, θ3."""
 

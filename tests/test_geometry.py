@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.exceptions import HexalegError
-from hexaleg.stance import (
+from hexaleg.stance.geometry import (
     StanceGeometry,
     constraint_jacobian,
     constraint_residual,

@@ -17,26 +17,22 @@ import numpy as np
 import numpy.typing as npt
 import pinocchio as pin
 
+from hexaleg._typing import ArrayF, StanceSet, require_choice
 from hexaleg.design import TRIPODS, HexapodDesign
 from hexaleg.exceptions import HexalegError, ModelError
 from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics
 from hexaleg.limits import JointLimits
-from hexaleg.model import HexapodModel
+from hexaleg.robot.model import HexapodModel
 
-ArrayF = npt.NDArray[np.float64]
+STANCE_SETS: dict[str, tuple[str, ...] | None] = {"all": None, "tripod": TRIPODS[0]}
+"""Named stance-leg sets (see :data:`~hexaleg._typing.StanceSet`): all six legs, or the
+first tripod (lf, rm, lr)."""
 
-STANCE_SETS = {"tripod": TRIPODS[0], "all": None}
-"""Named stance-leg sets: the first tripod (lf, rm, lr) or all six legs."""
 
-
-def stance_legs(model: HexapodModel, stance: str | Sequence[str]) -> tuple[str, ...]:
+def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple[str, ...]:
     """Resolve ``"tripod"``, ``"all"`` or an explicit list into leg names of ``model``."""
     if isinstance(stance, str):
-        if stance not in STANCE_SETS:
-            raise HexalegError(
-                f"stance = {stance!r} is not valid: use one of {', '.join(STANCE_SETS)}"
-            )
-        legs = STANCE_SETS[stance] or model.leg_names
+        legs = STANCE_SETS[require_choice("stance", stance, StanceSet)] or model.leg_names
     else:
         legs = tuple(stance)
     unknown = [leg for leg in legs if leg not in model.leg_names]
@@ -74,7 +70,9 @@ class StanceGeometry:
     limits: JointLimits
 
     @classmethod
-    def from_model(cls, model: HexapodModel, stance: str | Sequence[str] = "all") -> StanceGeometry:
+    def from_model(
+        cls, model: HexapodModel, stance: StanceSet | Sequence[str] = "all"
+    ) -> StanceGeometry:
         """Read the stance geometry of ``model`` at its nominal stance, all from Pinocchio."""
         legs = stance_legs(model, stance)
         roots = model.root_placements()

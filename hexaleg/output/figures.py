@@ -14,16 +14,33 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
+import pandas as pd
 
 from hexaleg._io import atomic_write_bytes
-from hexaleg.kinematics import Lengths, manipulability
+from hexaleg._typing import Lengths
+from hexaleg.design import l3_ratio_grid
+from hexaleg.kinematics import manipulability
 from hexaleg.limits import JointLimits
+from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, L1_RATIOS, TABLE5
+from hexaleg.stance.constraints import AXES
+from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.study.sweep import peak_table
+from hexaleg.swing.manipulability import (
+    AverageManipulabilityMap,
+    ManipulabilityAnalysis,
+    joint_grid,
+)
+from hexaleg.swing.workspace import (
+    MonteCarloWorkspace,
+    PlanarWorkspace,
+    WorkspaceAnalysis,
+    improved_area_by_l3_ratio,
+    planar_workspace,
+)
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
-
-    from hexaleg.manipulability import AverageManipulabilityMap
-    from hexaleg.workspace import MonteCarloWorkspace, PlanarWorkspace
 
 DPI = 150
 _COLORS = ("#1b6ca8", "#e07b00", "#2f9e44", "#c92a2a", "#7048e8", "#495057")
@@ -35,10 +52,8 @@ def _figure(width: float = 7.0, height: float = 5.0) -> Figure:
     return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
 
 
-def _shade_paper_claim(ax) -> None:
+def _shade_paper_claim(ax: Axes) -> None:
     """Shade the tibia-ratio band the paper claims is best (§5.4, §6.3)."""
-    from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
-
     lo, hi = CLAIMED_L3_RATIO_PEAK
     ax.axvspan(lo, hi, color="k", alpha=0.08, label=f"paper's claim {lo:.2f}–{hi:.2f}")
 
@@ -127,8 +142,6 @@ def manipulability_surface_figure(
     designs: Sequence[Lengths], limits: JointLimits, labels: Sequence[str]
 ) -> Figure:
     """Fig 10: w over (θ2, θ3) for several designs, as 3-D surfaces."""
-    from hexaleg.manipulability import joint_grid
-
     hip, knee = joint_grid(limits)
     t2, t3 = np.meshgrid(hip, knee, indexing="ij")
     columns = 2 if len(designs) > 1 else 1
@@ -168,12 +181,10 @@ def average_manipulability_figure(result: AverageManipulabilityMap) -> Figure:
     return fig
 
 
-def write_workspace_figures(analysis, out_dir: str | os.PathLike[str]) -> list[Path]:
+def write_workspace_figures(
+    analysis: WorkspaceAnalysis, out_dir: str | os.PathLike[str]
+) -> list[Path]:
     """Fig 5–8 for a :class:`~hexaleg.workspace.WorkspaceAnalysis`; returns the files."""
-    from hexaleg.design import l3_ratio_grid
-    from hexaleg.paper import L1_RATIOS
-    from hexaleg.workspace import improved_area_by_l3_ratio, planar_workspace
-
     out = Path(out_dir)
     design = analysis.design
     total = design.leg_length
@@ -201,11 +212,11 @@ def write_workspace_figures(analysis, out_dir: str | os.PathLike[str]) -> list[P
 
 
 def write_manipulability_figures(
-    analysis, average_map: AverageManipulabilityMap, out_dir: str | os.PathLike[str]
+    analysis: ManipulabilityAnalysis,
+    average_map: AverageManipulabilityMap,
+    out_dir: str | os.PathLike[str],
 ) -> list[Path]:
     """Fig 10–11 for a :class:`~hexaleg.manipulability.ManipulabilityAnalysis`."""
-    from hexaleg.paper import TABLE5
-
     out = Path(out_dir)
     design = analysis.design
     scale = design.leg_length / 1000.0  # Table 5 is for a 1000 mm leg
@@ -222,10 +233,8 @@ def write_manipulability_figures(
     ]
 
 
-def extremes_figure(result) -> Figure:
+def extremes_figure(result: FlexibilityResult) -> Figure:
     """The twelve body extremes of a :class:`~hexaleg.flexibility.FlexibilityResult`."""
-    from hexaleg.flexibility import AXES
-
     fig = _figure(11, 4.8)
     translation_ax, rotation_ax = fig.subplots(1, 2)
     for ax, axes, scale, unit in (
@@ -261,7 +270,7 @@ def extremes_figure(result) -> Figure:
     return fig
 
 
-def fb_figure(table, peaks) -> Figure:
+def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
     """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks marked."""
     fig = _figure()
     ax = fig.add_subplot()
@@ -287,7 +296,7 @@ def fb_figure(table, peaks) -> Figure:
     return fig
 
 
-def ranges_figure(table, l1_ratio: float) -> Figure:
+def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
     """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio."""
     fig = _figure(11, 4.5)
     left, right = fig.subplots(1, 2)
@@ -311,10 +320,8 @@ def ranges_figure(table, l1_ratio: float) -> Figure:
     return fig
 
 
-def write_study_figures(table, out_dir: str | os.PathLike[str]) -> list[Path]:
+def write_study_figures(table: pd.DataFrame, out_dir: str | os.PathLike[str]) -> list[Path]:
     """Fig 14 (ranges, for the smallest coxa ratio) and Fig 15 (FB curves)."""
-    from hexaleg.study import peak_table
-
     out = Path(out_dir)
     valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
     if valid.empty:

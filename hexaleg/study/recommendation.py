@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-ArrayF = npt.NDArray[np.float64]
+from hexaleg._typing import ArrayF
 
 BAND = 0.97
 """Share of the best combined score that defines the recommended band."""

@@ -12,17 +12,19 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 import numpy.typing as npt
 from scipy import integrate
 
+from hexaleg._typing import ArrayF, Lengths
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.kinematics import Lengths, foot_position, planar_foot_position
+from hexaleg.kinematics import foot_position, planar_foot_position
 from hexaleg.limits import JointLimits
 
-ArrayF = npt.NDArray[np.float64]
+Length = TypeVar("Length", float, ArrayF)
 
 
 @dataclass(frozen=True)
@@ -125,8 +127,8 @@ def planar_workspace(
     return PlanarWorkspace(tuple(lengths), limits, polygon, float(area))  # type: ignore[arg-type]
 
 
-def improved_area_closed_form(l2: float, l3: float) -> float:
-    """Improved-workspace area S_W = 2π·l2·l3/3 [m²] (eq 16)."""
+def improved_area_closed_form(l2: Length, l3: Length) -> Length:
+    """Improved-workspace area S_W = 2π·l2·l3/3 [m²] (eq 16), of one design or an array."""
     return 2 * math.pi * l2 * l3 / 3
 
 

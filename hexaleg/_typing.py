@@ -1,0 +1,44 @@
+"""Types shared across hexaleg: arrays, and the modes and names that select behaviour.
+
+Each mode is declared once here as a ``Literal``; :func:`require_choice` is the one
+place that checks a value against it and names the valid choices in the error.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Literal, get_args
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg.exceptions import HexalegError
+
+ArrayF = npt.NDArray[np.float64]
+"""A float64 NumPy array; shapes and units are given where it is used."""
+
+Lengths = tuple[float, float, float]
+"""Segment lengths (l1, l2, l3) [m]."""
+
+FlexibilityMode = Literal["axis", "free"]
+"""Axis-locked (one body coordinate moves, the other five held) or free-coupled."""
+
+StanceSet = Literal["all", "tripod"]
+"""Named stance-leg sets: all six legs, or the first tripod (lf, rm, lr)."""
+
+CauseKind = Literal["joint", "reach", "ground", "range"]
+"""What stops the body: a joint limit, a foothold out of reach, the ground, or nothing."""
+
+
+def choices(literal: Any) -> tuple[str, ...]:
+    """The values a ``Literal`` type allows, in declaration order."""
+    return tuple(get_args(literal))
+
+
+def require_choice(name: str, value: Any, literal: Any) -> Any:
+    """Return ``value`` if ``literal`` allows it; raise :class:`HexalegError` naming the choices."""
+    allowed = choices(literal)
+    if value not in allowed:
+        raise HexalegError(
+            f"{name} = {value!r} is not valid: use one of {', '.join(repr(a) for a in allowed)}"
+        )
+    return value

@@ -1,0 +1,79 @@
+"""``hexaleg flexibility``: the 12 body extremes with their causes, ranges and FB (paper §6)."""
+
+from __future__ import annotations
+
+import argparse
+import math
+import warnings
+from pathlib import Path
+
+from hexaleg.cli.options import (
+    add_design_options,
+    add_mode_option,
+    add_output_options,
+    add_stance_option,
+    design_from_args,
+)
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.output.figures import extremes_figure, save
+from hexaleg.stance.constraints import TRANSLATIONS
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+from hexaleg.stance.flexibility import flexibility
+
+DESCRIPTION = (
+    "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "
+    "[m] and rotates about them [rad], one coordinate at a time (--mode axis, the ADAMS "
+    "semantics) or with the other five free (--mode free), until a foot leaves its "
+    "reach, a joint hits its stance limit or the body touches the ground. Prints the "
+    "12 extremes with their causes, the ranges (eq 28) and FB (eq 29)."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    add_mode_option(parser)
+    add_stance_option(parser)
+    add_output_options(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compute the extremes; print a table or JSON, and write the figure if asked."""
+    design = design_from_args(args)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
+        result = flexibility(design, mode=args.mode, stance=args.stance)
+    if args.plot is not None:
+        report_files([save(extremes_figure(result), Path(args.plot) / "flexibility_extremes.png")])
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    print_table(
+        lengths_title(
+            f"Body flexibility ({result.mode}, stance {' '.join(result.legs)})", design.lengths
+        ),
+        _rows(result),
+    )
+    return 0
+
+
+def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:
+    rows = [("FB (eq 29)", f"{result.fb:.6f}")]
+    for axis, value in result.ranges.items():
+        if axis in TRANSLATIONS:
+            rows.append((f"range {axis} (eq 28)", f"{value:.6f} m"))
+        else:
+            rows.append((f"range {axis} (eq 28)", f"{value:.6f} rad ({math.degrees(value):.3f}°)"))
+    for extreme in result.extremes:
+        unit = "m" if extreme.axis in TRANSLATIONS else "rad"
+        rows.append(
+            (
+                f"{extreme.axis} {'+' if extreme.sign > 0 else '-'}",
+                f"{extreme.value:+.6f} {unit}  limited by {extreme.limited_by}",
+            )
+        )
+    if not result.converged:
+        rows.append(
+            ("warning", "the optimizer did not converge everywhere; values are lower bounds")
+        )
+    return rows

@@ -1,0 +1,116 @@
+"""The ``hexaleg`` command line: parser, dispatch, and the one-line error contract.
+
+Each command lives in its own module of this package with ``DESCRIPTION``,
+``add_arguments(parser)`` and ``run(args) -> int``. :data:`COMMANDS` names them
+with their one-line help, so ``hexaleg --help`` lists every command without
+importing any analysis; only the command that runs is imported.
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+from collections.abc import Sequence
+from typing import NamedTuple, NoReturn
+
+from hexaleg._version import __version__
+from hexaleg.exceptions import HexalegError
+
+EXIT_USAGE = 2
+"""Exit status of a user mistake (argparse's own convention)."""
+EXIT_INTERRUPTED = 130
+
+
+class Command(NamedTuple):
+    """A subcommand: its name, the module that implements it, and its one-line help."""
+
+    name: str
+    module: str
+    help: str
+
+
+COMMANDS: tuple[Command, ...] = (
+    Command("urdf", "hexaleg.cli.urdf", "write the hexapod's URDF for a design"),
+    Command(
+        "workspace",
+        "hexaleg.cli.workspace",
+        "swing-phase workspace: Monte Carlo cloud, planar and improved areas",
+    ),
+    Command(
+        "manipulability",
+        "hexaleg.cli.manipulability",
+        "manipulability: optimum pose (Table 6) and average w_A (eq 27)",
+    ),
+    Command(
+        "flexibility",
+        "hexaleg.cli.flexibility",
+        "body flexibility with the feet planted: the 12 extremes, ranges and FB",
+    ),
+    Command(
+        "study",
+        "hexaleg.cli.study",
+        "design study: FB over coxa x tibia ratios (Fig 14-15), resumable",
+    ),
+    Command(
+        "view",
+        "hexaleg.cli.view",
+        "3-D viewer of the nominal stance and the 12 body extremes (meshcat)",
+    ),
+    Command(
+        "report",
+        "hexaleg.cli.report",
+        "the main job: every analysis, figure and table, and a recommendation",
+    ),
+)
+
+
+class Parser(argparse.ArgumentParser):
+    """argparse that reports a usage mistake in one line, without the usage block."""
+
+    def error(self, message: str) -> NoReturn:
+        """Exit with status 2 and one line naming the mistake."""
+        self.exit(EXIT_USAGE, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+
+
+def build_parser(only: str | None = None) -> argparse.ArgumentParser:
+    """The ``hexaleg`` parser; with ``only``, just that command's module is imported."""
+    parser = Parser(
+        prog="hexaleg",
+        description=(
+            "Choose the segment lengths of a hexapod's legs: URDF, workspace, manipulability "
+            "and body flexibility. All inputs and outputs use SI units (m, kg) and radians."
+        ),
+    )
+    parser.add_argument("--version", action="version", version=f"hexaleg {__version__}")
+    commands = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=Parser)
+    commands.required = True
+    for command in COMMANDS:
+        sub = commands.add_parser(command.name, help=command.help)
+        if only is None or command.name == only:
+            module = importlib.import_module(command.module)
+            sub.description = module.DESCRIPTION
+            module.add_arguments(sub)
+            sub.set_defaults(run=module.run)
+    return parser
+
+
+def _chosen_command(argv: Sequence[str]) -> str | None:
+    names = {c.name for c in COMMANDS}
+    first = next((arg for arg in argv if not arg.startswith("-")), None)
+    return first if first in names else None
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the ``hexaleg`` command line; return the exit status."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    command = _chosen_command(argv)
+    args = build_parser(command or "").parse_args(argv)
+    try:
+        return int(args.run(args))
+    except HexalegError as err:
+        print(f"hexaleg {args.command}: error: {err}", file=sys.stderr)
+        return EXIT_USAGE
+    except KeyboardInterrupt:
+        print(f"hexaleg {args.command}: interrupted", file=sys.stderr)
+        return EXIT_INTERRUPTED

@@ -1,0 +1,57 @@
+"""``hexaleg manipulability``: optimum pose (Table 6) and average w_A (eq 27) of one leg."""
+
+from __future__ import annotations
+
+import argparse
+import math
+
+from hexaleg.cli.options import add_design_options, add_output_options, design_from_args
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.design import l3_ratio_grid
+from hexaleg.output.figures import write_manipulability_figures
+from hexaleg.paper import L1_RATIOS
+from hexaleg.swing.manipulability import analyze_manipulability, average_manipulability_map
+
+DESCRIPTION = (
+    "Manipulability w = |det J| of one leg (paper §5): optimum pose within eq 26's limits, "
+    "condition number and smallest singular value there, and the average w_A on the "
+    "rectangular and improved domains. Angles in rad, w in m³."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    add_output_options(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Analyse manipulability; print a table or JSON, and write figures if asked."""
+    design = design_from_args(args)
+    analysis = analyze_manipulability(design)
+    if args.plot is not None:
+        average_map = average_manipulability_map(
+            L1_RATIOS, l3_ratio_grid(), design.leg_length, design.manipulability_limits
+        )
+        report_files(write_manipulability_figures(analysis, average_map, args.plot))
+    summary = analysis.to_dict()
+    if args.json:
+        print_json(summary)
+        return 0
+    optimum, average = summary["optimum"], summary["average"]
+    print_table(
+        lengths_title("Manipulability", design.lengths),
+        [
+            ("optimum θ2, θ3 (eq 25–26)", f"{optimum['theta2']:.6f}, {optimum['theta3']:.6f} rad"),
+            (
+                "",
+                f"({math.degrees(optimum['theta2']):.4f}°, {math.degrees(optimum['theta3']):.4f}°)",
+            ),
+            ("optimum w = |det J|", f"{optimum['w']:.6g} m³"),
+            ("condition number at optimum", f"{optimum['condition_number']:.4g}"),
+            ("smallest singular value at optimum", f"{optimum['min_singular_value']:.4g} m/rad"),
+            ("average w_A, rectangular domain (eq 27)", f"{average['rectangular']:.6g} m³"),
+            ("average w_A, improved domain", f"{average['improved']:.6g} m³"),
+        ],
+    )
+    return 0

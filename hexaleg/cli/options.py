@@ -1,0 +1,140 @@
+"""Options shared by several commands, declared once: design, sweep, stance and output."""
+
+from __future__ import annotations
+
+import argparse
+from collections.abc import Callable
+from typing import Any
+
+from hexaleg._typing import FlexibilityMode, StanceSet, choices
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
+from hexaleg.paper import L3_RATIO_POINTS
+
+DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
+
+
+class UsageError(HexalegError):
+    """A combination of command-line options that does not make sense."""
+
+
+def bounded_int(minimum: int, maximum: int | None = None) -> Callable[[str], int]:
+    """Argparse type: an integer within [minimum, maximum]; argparse reports the rest."""
+
+    def parse(text: str) -> int:
+        try:
+            value = int(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(f"{text!r} is not an integer") from None
+        if value < minimum or (maximum is not None and value > maximum):
+            allowed = f">= {minimum}" if maximum is None else f"in {minimum}..{maximum}"
+            raise argparse.ArgumentTypeError(f"{value} is not valid: must be {allowed}")
+        return value
+
+    return parse
+
+
+def add_design_options(parser: argparse.ArgumentParser) -> None:
+    """Add the design options every command takes."""
+    default = HexapodDesign()
+    group = parser.add_argument_group(DESIGN_GROUP)
+    for name, what in (("l1", "coxa"), ("l2", "femur"), ("l3", "tibia")):
+        group.add_argument(
+            f"--{name}",
+            type=float,
+            metavar="M",
+            help=f"{what} length [m] (default {getattr(default, name):g})",
+        )
+    group.add_argument(
+        "--ratios",
+        type=float,
+        nargs=2,
+        metavar=("L1", "L3"),
+        help="coxa and tibia as fractions of --total, instead of --l1/--l2/--l3 [-]",
+    )
+    group.add_argument(
+        "--total",
+        type=float,
+        metavar="M",
+        help="total leg length l1+l2+l3 for --ratios [m] (default 1.0)",
+    )
+    for axis, name in (("x", "body_length"), ("y", "body_width"), ("z", "body_height")):
+        group.add_argument(
+            f"--{name.replace('_', '-')}",
+            type=float,
+            metavar="M",
+            help=f"body extent along {axis} [m] (default {getattr(default, name):g})",
+        )
+    group.add_argument(
+        "--nominal-angles",
+        type=float,
+        nargs=3,
+        metavar=("T1", "T2", "T3"),
+        help="standing joint angles θ1 θ2 θ3 of every leg [rad] (default "
+        + " ".join(f"{a:.4g}" for a in default.nominal_angles)
+        + ")",
+    )
+
+
+def design_from_args(args: argparse.Namespace) -> HexapodDesign:
+    """Build the design the shared options describe (validated)."""
+    fields: dict[str, Any] = {}
+    for name in ("body_length", "body_width", "body_height"):
+        if getattr(args, name) is not None:
+            fields[name] = getattr(args, name)
+    if args.nominal_angles is not None:
+        fields["nominal_angles"] = tuple(args.nominal_angles)
+    if args.ratios is not None:
+        given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
+        if given:
+            raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
+        total = 1.0 if args.total is None else args.total
+        return HexapodDesign.from_ratios(args.ratios[0], args.ratios[1], total, **fields)
+    if args.total is not None:
+        raise UsageError("--total only applies together with --ratios")
+    for name in ("l1", "l2", "l3"):
+        if getattr(args, name) is not None:
+            fields[name] = getattr(args, name)
+    return HexapodDesign(**fields)
+
+
+def add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
+    """Options of the commands that sweep designs: output folder, tibia ratios, workers."""
+    parser.add_argument(
+        "-o", "--output", metavar="DIR", default=output, help=f"output folder (default {output})"
+    )
+    parser.add_argument(
+        "--l3-points",
+        type=bounded_int(2),
+        default=L3_RATIO_POINTS,
+        metavar="N",
+        help=f"tibia ratios per coxa ratio (default {L3_RATIO_POINTS}, as the paper)",
+    )
+    parser.add_argument(
+        "--workers", type=bounded_int(1), metavar="N", help="local worker processes (default: CPUs)"
+    )
+
+
+def add_stance_option(parser: argparse.ArgumentParser) -> None:
+    """``--stance``: which legs stand."""
+    parser.add_argument(
+        "--stance", choices=choices(StanceSet), default="all", help="stance legs (default all six)"
+    )
+
+
+def add_mode_option(parser: argparse.ArgumentParser) -> None:
+    """``--mode``: axis-locked or free-coupled flexibility."""
+    parser.add_argument(
+        "--mode",
+        choices=choices(FlexibilityMode),
+        default="axis",
+        help="axis-locked (default) or free-coupled",
+    )
+
+
+def add_output_options(parser: argparse.ArgumentParser) -> None:
+    """``--json`` and ``--plot DIR`` of the single-design analyses."""
+    parser.add_argument(
+        "--json", action="store_true", help="print one JSON object (SI units, radians)"
+    )
+    parser.add_argument("--plot", metavar="DIR", help="write the figures (PNG) into DIR")

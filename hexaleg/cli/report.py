@@ -1,0 +1,51 @@
+"""``hexaleg report``: the main job — every analysis, figure and table, and a recommendation."""
+
+from __future__ import annotations
+
+import argparse
+from pathlib import Path
+
+from hexaleg.cli.options import add_design_options, add_sweep_options, bounded_int, design_from_args
+from hexaleg.output.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
+
+DESCRIPTION = (
+    "Run the workspace, manipulability and body-flexibility analyses on the design (the "
+    "built-in default unless design options say otherwise) and the paper's sweeps, and "
+    "write DIR/report.md, DIR/report.html, the figures (PNG), tables and raw data "
+    "(CSV/JSON), the URDF and a static 3-D viewer. The folder is replaced only when the "
+    "new report is complete."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    add_sweep_options(parser, "hexaleg-report")
+    parser.add_argument(
+        "--sensitivity-points",
+        type=bounded_int(2),
+        default=ReportOptions.sensitivity_points,
+        metavar="N",
+        help="tibia ratios in the posture sensitivity table "
+        f"(default {ReportOptions.sensitivity_points})",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    """Build the report and print where it is and what it recommends."""
+    options = ReportOptions(
+        l3_points=args.l3_points,
+        sensitivity_points=args.sensitivity_points,
+        workers=args.workers,
+    )
+    data = build_report(args.output, design_from_args(args), options)
+    out = Path(args.output)
+    rec = data["recommendation"]
+    print(f"wrote {out / REPORT_MD} and {out / REPORT_HTML}")
+    print(
+        f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.2f} : {rec['l2_ratio']:.3f} : "
+        f"{rec['l3_ratio']:.3f} (tibia ratio band "
+        f"{rec['l3_band'][0]:.3f}-{rec['l3_band'][1]:.3f}); "
+        f"this design: FB = {data['flexibility']['axis']['fb']:.4f}"
+    )
+    return 0

@@ -1,0 +1,59 @@
+"""``hexaleg workspace``: the swing-phase workspace of one leg (paper §4)."""
+
+from __future__ import annotations
+
+import argparse
+
+from hexaleg.cli.options import (
+    add_design_options,
+    add_output_options,
+    bounded_int,
+    design_from_args,
+)
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files, vector
+from hexaleg.output.figures import write_workspace_figures
+from hexaleg.swing.workspace import analyze_workspace
+
+DESCRIPTION = (
+    "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "
+    "workspace areas on the rectangular (Table 3) and improved (Table 4) domains, and "
+    "eq 16's closed form. Areas in m², positions in m (leg-root frame)."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    parser.add_argument(
+        "--samples", type=bounded_int(1), default=20_000, help="Monte Carlo samples (default 20000)"
+    )
+    parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    add_output_options(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Analyse the workspace; print a table or JSON, and write figures if asked."""
+    design = design_from_args(args)
+    analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
+    if args.plot is not None:
+        report_files(write_workspace_figures(analysis, args.plot))
+    summary = analysis.to_dict()
+    if args.json:
+        print_json(summary)
+        return 0
+    area = summary["area"]
+    mc = summary["monte_carlo"]
+    print_table(
+        lengths_title("Swing-phase workspace", design.lengths),
+        [
+            ("planar area, rectangular domain (Table 3)", f"{area['rectangular']:.6f} m²"),
+            ("planar area, improved domain (Table 4)", f"{area['improved']:.6f} m²"),
+            (
+                "improved area, closed form 2π·l2·l3/3 (eq 16)",
+                f"{area['improved_closed_form']:.6f} m²",
+            ),
+            (f"Monte Carlo box min ({mc['samples']} samples)", vector(mc["lower_bound"], "m")),
+            ("Monte Carlo box max", vector(mc["upper_bound"], "m")),
+        ],
+    )
+    return 0

@@ -1,0 +1,1 @@
+"""What hexaleg shows: matplotlib figures, the report, and the meshcat viewer."""

@@ -1,0 +1,122 @@
+"""Bracketing root-finders for margins along many one-dimensional searches at once.
+
+Pure numerics, independent of the robot: :func:`first_crossings` finds, for each of
+many directions, the *first* parameter t at which any of several margins turns
+negative (a chunked scan, so a region that is feasible again beyond the first failure
+never counts), then solves each broken margin inside its bracket with
+:func:`anderson_bjorck`, a vectorized regula falsi that keeps the feasible end.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF
+from hexaleg.exceptions import HexalegError
+
+IndexArray = npt.NDArray[np.int_]
+
+SCAN_STEPS = 256
+"""Resolution of the first-failure scan: t_max / 256 (≈ 8 mm or 0.7° for a 1 m leg)."""
+SCAN_CHUNKS = 8
+REFINE_ITERATIONS = 60
+MARGIN_ROUNDOFF = 1e-15
+"""A margin this small [m or rad] is zero to round-off: its end of the bracket is the root."""
+BRACKET_TOLERANCE = 1e-12
+"""Final bracket width relative to the searched distance (at least 1 m or 1 rad)."""
+
+
+def first_crossings(
+    margins: Callable[[IndexArray, ArrayF], ArrayF], t_max: ArrayF
+) -> tuple[ArrayF, npt.NDArray[np.int_]]:
+    """For each direction d, the first t ∈ (0, t_max[d]] where any margin turns negative.
+
+    The scan steps through (0, t_max] at t_max/:data:`SCAN_STEPS` in chunks, dropping
+    directions that have broken, so only the first failure along the motion counts.
+    In each bracket every constraint that broke is solved on its own (smooth) margin by
+    Anderson–Björck regula falsi, and the earliest root wins.
+
+    Args:
+        margins: Maps (direction index (K,), t (K,)) to margins (K, C).
+        t_max: Search range per direction (D,).
+
+    Returns:
+        The crossing t per direction (t_max where nothing breaks), and the index of
+        the breaking constraint (−1 where nothing breaks).
+
+    """
+    t_max = np.asarray(t_max, dtype=float)
+    count = len(t_max)
+    lo, hi = np.zeros(count), t_max.copy()
+    broken = np.zeros(count, dtype=bool)
+    per_chunk = SCAN_STEPS // SCAN_CHUNKS
+    fractions = np.linspace(0.0, 1.0, per_chunk + 1)
+    for chunk in range(SCAN_CHUNKS):
+        active = np.flatnonzero(~broken)
+        if active.size == 0:
+            break
+        start = t_max[active] * chunk / SCAN_CHUNKS
+        t = start[:, None] + (t_max[active] / SCAN_CHUNKS)[:, None] * fractions
+        rows = np.broadcast_to(active[:, None], t.shape)
+        smallest = margins(rows.ravel(), t.ravel()).min(axis=-1).reshape(t.shape)
+        if chunk == 0 and np.any(smallest[:, 0] < 0):
+            raise HexalegError("the nominal stance itself violates a stance constraint")
+        infeasible = smallest < 0
+        hit = infeasible.any(axis=1)
+        first = np.argmax(infeasible, axis=1)
+        for k in np.flatnonzero(hit):
+            d = active[k]
+            lo[d], hi[d] = t[k, first[k] - 1], t[k, first[k]]
+        broken[active[hit]] = True
+    which = np.full(count, -1)
+    index = np.flatnonzero(broken)
+    if index.size:
+        # Solve every constraint that broke inside its bracket on its own smooth margin,
+        # then keep, per direction, the one that breaks first.
+        at_hi = margins(index, hi[index])
+        pair_row, pair_constraint = np.nonzero(at_hi < 0)
+        directions = index[pair_row]
+
+        def pair_margin(t: ArrayF) -> ArrayF:
+            return margins(directions, t)[np.arange(len(t)), pair_constraint]
+
+        root = anderson_bjorck(pair_margin, lo[directions], hi[directions])
+        for d in index:
+            mine = np.flatnonzero(directions == d)
+            first = mine[np.argmin(root[mine])]
+            lo[d], which[d] = root[first], pair_constraint[first]
+    return np.where(broken, lo, t_max), which
+
+
+def anderson_bjorck(g: Callable[[ArrayF], ArrayF], lo: ArrayF, hi: ArrayF) -> ArrayF:
+    """Roots of g in brackets [lo, hi] with g(lo) ≥ 0 > g(hi), vectorized; returns the feasible end.
+
+    Regula falsi with the Anderson–Björck correction: when the same end moves
+    twice, the other end's value is scaled by m = 1 − g(new)/g(old) (½ if m ≤ 0),
+    which keeps the bracket and converges superlinearly on smooth margins.
+    """
+    g_lo, g_hi = g(lo), g(hi)
+    side = np.zeros(len(lo))  # which end moved last: +1 lo, −1 hi
+    tolerance = BRACKET_TOLERANCE * np.maximum(hi, 1.0)
+    for _ in range(REFINE_ITERATIONS):
+        # done: a tight bracket, or a feasible end whose margin is at round-off level
+        done = (hi - lo <= tolerance) | (g_lo <= MARGIN_ROUNDOFF)
+        if np.all(done):
+            break
+        t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
+        t = np.where((t > lo) & (t < hi), t, 0.5 * (lo + hi))
+        g_t = g(t)
+        feasible = (g_t >= 0) & ~done
+        replaced_hi = (g_t < 0) & ~done
+        old = np.where(feasible, g_lo, g_hi)  # value at the end being replaced
+        scale = 1.0 - g_t / np.where(old != 0, old, 1.0)
+        scale = np.where(scale > 0, scale, 0.5)
+        g_hi = np.where(feasible & (side > 0), scale * g_hi, g_hi)
+        g_lo = np.where(replaced_hi & (side < 0), scale * g_lo, g_lo)
+        lo, g_lo = np.where(feasible, t, lo), np.where(feasible, g_t, g_lo)
+        hi, g_hi = np.where(replaced_hi, t, hi), np.where(replaced_hi, g_t, g_hi)
+        side = np.where(feasible, 1.0, np.where(replaced_hi, -1.0, side))
+    return lo

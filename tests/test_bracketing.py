@@ -1,0 +1,36 @@
+"""The bracketing root-finder: the first failure along a search, not a later one."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hexaleg.stance.bracketing import anderson_bjorck, first_crossings
+
+
+def test_first_failure_wins_over_a_later_feasible_region():
+    """A margin that dips below zero and recovers: the extreme stops at the dip."""
+
+    def margins(direction, t):
+        dip = np.abs(t - 0.35) - 0.05  # negative on (0.30, 0.40), feasible again after
+        other = 0.8 - t  # breaks at 0.8
+        return np.stack([dip, other], axis=-1)
+
+    t, which = first_crossings(margins, np.array([1.0, 0.5]))
+    np.testing.assert_allclose(t, [0.30, 0.30], atol=1e-12)
+    assert which.tolist() == [0, 0]
+
+
+def test_nothing_breaking_reports_the_search_range():
+    def margins(direction, t):
+        return np.ones((*np.shape(t), 1))
+
+    t, which = first_crossings(margins, np.array([2.0]))
+    assert t.tolist() == [2.0] and which.tolist() == [-1]
+
+
+def test_anderson_bjorck_finds_smooth_roots_and_keeps_the_feasible_end():
+    """Known roots: g(t) = c − t² has its root at √c; the returned end is never past it."""
+    c = np.array([0.5, 2.0, 0.01])
+    roots = anderson_bjorck(lambda t: c - t**2, np.zeros(3), np.full(3, 2.0))
+    np.testing.assert_allclose(roots, np.sqrt(c), rtol=1e-11)
+    assert np.all(c - roots**2 >= 0)
