@@ -6,8 +6,8 @@ Run: python examples/02_workspace_and_manipulability.py
 import math
 
 import hexaleg
-from hexaleg.manipulability import analyze_manipulability
-from hexaleg.workspace import analyze_workspace
+from hexaleg.swing.manipulability import analyze_manipulability
+from hexaleg.swing.workspace import analyze_workspace
 
 
 def main() -> None:

@@ -6,7 +6,7 @@ Run: python examples/03_body_flexibility.py
 import math
 
 import hexaleg
-from hexaleg.flexibility import flexibility
+from hexaleg.stance import flexibility
 
 
 def main() -> None:

@@ -8,7 +8,7 @@ import tempfile
 
 import numpy as np
 
-from hexaleg.figures import write_study_figures
+from hexaleg.output.figures import write_study_figures
 from hexaleg.study import StudySpec, peak_table, run_study
 
 

@@ -187,3 +187,27 @@ def test_flexibility_bad_choice_is_one_line(capsys):
         main(["flexibility", "--mode", "sideways"])
     assert info.value.code == 2
     assert capsys.readouterr().err.count("\n") == 1
+
+
+def test_top_level_help_lists_every_command(capsys):
+    from hexaleg.cli import COMMANDS
+
+    with pytest.raises(SystemExit) as info:
+        main(["--help"])
+    assert info.value.code == 0
+    text = capsys.readouterr().out
+    for command in COMMANDS:
+        assert command.name in text
+
+
+@pytest.mark.parametrize(
+    "name", ["urdf", "workspace", "manipulability", "flexibility", "study", "view", "report"]
+)
+def test_each_command_module_has_the_command_interface(name):
+    import importlib
+
+    from hexaleg.cli import COMMANDS
+
+    command = next(c for c in COMMANDS if c.name == name)
+    module = importlib.import_module(command.module)
+    assert module.DESCRIPTION and callable(module.add_arguments) and callable(module.run)

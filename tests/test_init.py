@@ -34,3 +34,29 @@ def test_import_does_no_heavy_work():
     code = "import sys, hexaleg; print('matplotlib' in sys.modules, 'meshcat' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.stdout.split() == ["False", "False"]
+
+
+def test_cli_import_loads_no_analysis_library():
+    """``hexaleg --help`` must stay instant: the CLI front door imports no numerics."""
+    import subprocess
+    import sys
+
+    heavy = ["numpy", "scipy", "pinocchio", "pandas", "matplotlib", "meshcat", "tqdm"]
+    code = f"import sys, hexaleg.cli; print([m for m in {heavy!r} if m in sys.modules])"
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"
+
+
+def test_public_names_come_from_their_modules():
+    import hexaleg
+    from hexaleg.stance.flexibility import flexibility
+    from hexaleg.swing.workspace import analyze_workspace
+
+    assert hexaleg.flexibility is flexibility
+    assert hexaleg.analyze_workspace is analyze_workspace
+    assert "analyze_manipulability" in dir(hexaleg)
+    import pytest
+
+    with pytest.raises(AttributeError):
+        hexaleg.no_such_name  # noqa: B018

@@ -125,7 +125,9 @@ def test_templates_ship_inside_the_installed_package(tmp_path):
     import sys
     from pathlib import Path
 
-    code = "import hexaleg, hexaleg.robot.urdf as u; print(hexaleg.__file__); print(u.template_dir())"
+    code = (
+        "import hexaleg, hexaleg.robot.urdf as u; print(hexaleg.__file__); print(u.template_dir())"
+    )
     out = subprocess.run(
         [sys.executable, "-c", code], capture_output=True, text=True, cwd=tmp_path, timeout=120
     )
