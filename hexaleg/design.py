@@ -48,17 +48,28 @@ TRIPODS: tuple[tuple[str, str, str], tuple[str, str, str]] = (
 )
 """The two alternating tripods of the default leg names."""
 
-_POSITIVE_FIELDS = {
-    "l1": "m",
-    "l2": "m",
-    "l3": "m",
-    "body_length": "m",
-    "body_width": "m",
-    "body_height": "m",
-    "body_mass": "kg",
-    "link_linear_density": "kg/m",
-    "link_radius": "m",
+SEGMENT_RANGE = (1e-3, 100.0)
+"""Plausible segment length l1, l2, l3 [m]: a millimetre to a hundred metres."""
+BODY_RANGE = (1e-2, 100.0)
+"""Plausible body extent and leg-mount offset [m]."""
+
+FIELD_RANGES: dict[str, tuple[float, float, str]] = {
+    "l1": (*SEGMENT_RANGE, "m"),
+    "l2": (*SEGMENT_RANGE, "m"),
+    "l3": (*SEGMENT_RANGE, "m"),
+    "body_length": (*BODY_RANGE, "m"),
+    "body_width": (*BODY_RANGE, "m"),
+    "body_height": (*BODY_RANGE, "m"),
+    "body_mass": (1e-3, 1e6, "kg"),
+    "link_linear_density": (1e-4, 1e5, "kg/m"),
+    "link_radius": (1e-4, 10.0, "m"),
 }
+"""Each physical field's plausible range (lower, upper, unit); values outside are refused."""
+
+FOOT_MASS = 1e-3
+"""Mass of each foot link [kg]: negligible beside the legs, but a valid inertial, so
+that every simulator keeps the foot (sdformat drops massless links, PyBullet weighs
+them 1 kg)."""
 
 _NAME_PATTERN = re.compile(r"^[a-z][a-z0-9_]{0,31}$")
 
@@ -89,10 +100,10 @@ class LegMount:
             )
         for name in ("x", "y", "z", "yaw"):
             value = getattr(self, name)
-            _require_finite(f"mounts[{self.name}].{name}", value)
-            object.__setattr__(self, name, float(value))
-        if not -math.pi <= self.yaw <= math.pi:
-            raise DesignError(f"mounts[{self.name}].yaw", self.yaw, "must lie in [-π, π] [rad]")
+            field = f"mounts[{self.name}].{name}"
+            limit = math.pi if name == "yaw" else BODY_RANGE[1]
+            unit = "rad" if name == "yaw" else "m"
+            object.__setattr__(self, name, require_in_range(field, value, -limit, limit, unit))
 
     @property
     def position(self) -> npt.NDArray[np.float64]:
@@ -160,8 +171,9 @@ class HexapodDesign:
     link_radius: float = field(default=0.025)
 
     def __post_init__(self) -> None:
-        for name, unit in _POSITIVE_FIELDS.items():
-            object.__setattr__(self, name, _require_positive(name, getattr(self, name), unit))
+        for name, (lower, upper, unit) in FIELD_RANGES.items():
+            value = require_in_range(name, getattr(self, name), lower, upper, unit)
+            object.__setattr__(self, name, value)
         self._validate_mounts()
         self._validate_nominal_stance()
 
@@ -180,9 +192,9 @@ class HexapodDesign:
             **fields: Any other :class:`HexapodDesign` field.
 
         """
-        total = _require_positive("total", total, "m")
-        l1_ratio = _require_ratio("l1_ratio", l1_ratio)
-        l3_ratio = _require_ratio("l3_ratio", l3_ratio)
+        total = require_in_range("total", total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
+        l1_ratio = require_ratio("l1_ratio", l1_ratio)
+        l3_ratio = require_ratio("l3_ratio", l3_ratio)
         if not l1_ratio + l3_ratio < 1.0:
             raise DesignError(
                 "l1_ratio + l3_ratio",
@@ -217,6 +229,12 @@ class HexapodDesign:
     def leg_length(self) -> float:
         """Total leg length L = l1 + l2 + l3 [m] (eq 29)."""
         return self.l1 + self.l2 + self.l3
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the whole robot [kg]: body, six legs' links, six feet."""
+        legs = 6 * (self.link_linear_density * self.leg_length + FOOT_MASS)
+        return self.body_mass + legs
 
     @property
     def legs(self) -> tuple[LegMount, ...]:
@@ -321,14 +339,16 @@ def _require_finite(name: str, value: Any) -> float:
     return number
 
 
-def _require_positive(name: str, value: Any, unit: str) -> float:
+def require_in_range(name: str, value: Any, lower: float, upper: float, unit: str) -> float:
+    """``value`` as a float if it is a real number in [lower, upper]; else a DesignError."""
     number = _require_finite(name, value)
-    if not number > 0:
-        raise DesignError(name, value, f"must be finite and > 0 [{unit}]")
+    if not lower <= number <= upper:
+        raise DesignError(name, value, f"must lie in [{lower:g}, {upper:g}] [{unit}]")
     return number
 
 
-def _require_ratio(name: str, value: Any) -> float:
+def require_ratio(name: str, value: Any) -> float:
+    """``value`` as a float if it lies in the open interval (0, 1); else a DesignError."""
     number = _require_finite(name, value)
     if not 0 < number < 1:
         raise DesignError(name, value, "must lie in the open interval (0, 1)")
@@ -341,8 +361,12 @@ count (80 per coxa ratio); this range leaves a femur of at least 5 % of the leg
 for every coxa ratio up to 0.20."""
 
 
+MAX_L3_POINTS = 1000
+"""Most tibia ratios per coxa ratio in a sweep: 1000 keeps a sweep to minutes on 2 cores."""
+
+
 def l3_ratio_grid(points: int = 80) -> npt.NDArray[np.float64]:
     """Evenly spaced tibia ratios over :data:`L3_RATIO_RANGE` [-]."""
-    if points < 2:
-        raise DesignError("l3_points", points, "at least 2 tibia ratios")
+    if not 2 <= points <= MAX_L3_POINTS:
+        raise DesignError("l3_points", points, f"from 2 to {MAX_L3_POINTS} tibia ratios")
     return np.linspace(*L3_RATIO_RANGE, points)

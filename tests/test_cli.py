@@ -29,7 +29,7 @@ def test_urdf_from_ratios_to_file(tmp_path):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["--l1", "-1"], "l1 = -1 is not valid: must be finite and > 0 [m]"),
+        (["--l1", "-1"], "l1 = -1 is not valid: must lie in [0.001, 100] [m]"),
         (["--l3", "nan"], "l3 = nan is not valid: must be finite"),
         (["--ratios", "0.6", "0.5"], "l1_ratio + l3_ratio"),
         (["--ratios", "0.1", "0.4", "--l2", "0.3"], "--ratios cannot be combined with --l2"),
@@ -126,7 +126,7 @@ def test_readable_tables(capsys):
 def test_bad_sample_count(capsys):
     assert run_cli(["workspace", "--samples", "0"]) == 2
     err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "--samples: 0 is not valid: must be >= 1" in err
+    assert err.count("\n") == 1 and "--samples: 0 is not valid: must be in 1..5000000" in err
 
 
 def test_flexibility_json_has_the_documented_fields(capsys):
@@ -211,3 +211,98 @@ def test_each_command_module_has_the_command_interface(name):
     command = next(c for c in COMMANDS if c.name == name)
     module = importlib.import_module(command.module)
     assert module.DESCRIPTION and callable(module.add_arguments) and callable(module.run)
+
+
+BAD_VALUES = [
+    (["urdf", "--l1=1e308"], "l1 = 1e+308 is not valid: must lie in [0.001, 100] [m]"),
+    (
+        ["urdf", "--body-length=1e-300"],
+        "body_length = 1e-300 is not valid: must lie in [0.01, 100]",
+    ),
+    (["flexibility", "--l1", "1e-9"], "l1 = 1e-09 is not valid: must lie in [0.001, 100] [m]"),
+    (["flexibility", "--l1=1e308"], "l1 = 1e+308 is not valid"),
+    (["workspace", "--l1", "1e6", "--l2", "1e6", "--l3", "1e6"], "l1 = 1e+06 is not valid"),
+    (["manipulability", "--l2=1e308", "--json"], "l2 = 1e+308 is not valid"),
+    (["workspace", "--seed=-1"], "--seed: -1 is not valid: must be in 0..4294967295"),
+    (["workspace", "--samples", "1e12"], "--samples: '1e12' is not an integer"),
+    (["workspace", "--samples", "1000000000000"], "--samples: 1000000000000 is not valid"),
+    (
+        ["study", "--l3-points", "100000000"],
+        "--l3-points: 100000000 is not valid: must be in 2..1000",
+    ),
+    (
+        ["report", "--l3-points", "100000000"],
+        "--l3-points: 100000000 is not valid: must be in 2..1000",
+    ),
+    (["report", "--sensitivity-points", "100000"], "--sensitivity-points: 100000 is not valid"),
+    (
+        ["study", "--l1-ratios", "-1"],
+        "l1_ratios = -1 is not valid: must lie in the open interval (0, 1)",
+    ),
+    (["study", "--l1-ratios", "0"], "l1_ratios = 0 is not valid"),
+    (["study", "--l1-ratios", "inf"], "l1_ratios = inf is not valid: must be finite"),
+    (["study", "--l1-ratios", "1e308"], "l1_ratios = 1e+308 is not valid"),
+    (["study", "--l1-ratios", "1e999"], "l1_ratios = inf is not valid"),
+    (["study", "--l1-ratios=nan"], "l1_ratios = nan is not valid"),
+    (["study", "--l1-ratios", "0.9"], "must leave room for femur and tibia"),
+    (["study", "--l1-ratios", *["0.1"] * 21], "at most 20 coxa ratios"),
+]
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"), BAD_VALUES, ids=lambda v: " ".join(v) if isinstance(v, list) else ""
+)
+def test_bad_values_are_refused_in_one_line_and_write_nothing(
+    tmp_path, monkeypatch, capsys, argv, expected
+):
+    monkeypatch.chdir(tmp_path)
+    output = ["-o", str(tmp_path / "out")] if argv[0] in ("urdf", "study", "report") else []
+    assert run_cli([*argv, *output]) == 2
+    captured = capsys.readouterr()
+    _assert_one_line_error(captured.err, expected)
+    assert list(tmp_path.iterdir()) == []
+
+
+def test_ratios_without_total_say_which_total(capsys):
+    assert main(["urdf", "--ratios", "0.1", "0.4"]) == 0
+    captured = capsys.readouterr()
+    assert captured.err == "hexaleg: note: --ratios without --total: total leg length 1 m\n"
+    assert captured.out == render_hexapod(HexapodDesign.from_ratios(0.1, 0.4, 1.0))
+
+
+def test_too_many_workers_are_capped_with_one_line(tmp_path, capsys):
+    from hexaleg.study.executors import max_workers
+
+    out = tmp_path / "s"
+    assert (
+        main(
+            [
+                "study",
+                "--workers",
+                "100000",
+                "--l1-ratios",
+                "0.1",
+                "--l3-points",
+                "3",
+                "-o",
+                str(out),
+            ]
+        )
+        == 0
+    )
+    notes = [line for line in capsys.readouterr().err.splitlines() if "note" in line]
+    assert notes == [
+        f"hexaleg: note: --workers 100000 capped at {max_workers()} (4 per CPU on this machine)"
+    ]
+    assert (out / "study.csv").is_file()
+
+
+@pytest.mark.parametrize("command", ["study", "report", "workspace"])
+def test_help_states_the_upper_bounds(capsys, command):
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = " ".join(capsys.readouterr().out.split())
+    if command == "workspace":
+        assert "1..5000000" in text and "0..4294967295" in text
+    else:
+        assert "2..1000" in text and "at most 4 per CPU" in text

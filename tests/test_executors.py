@@ -20,3 +20,64 @@ def test_unreachable_scheduler_is_a_hexaleg_error():
     with pytest.raises(HexalegError, match="cannot reach the Dask scheduler"):
         with dask_executor("tcp://127.0.0.1:9"):
             pass
+
+
+ORPHAN_SCRIPT = """
+import os, sys, time
+from hexaleg.study.executors import local_pool
+with local_pool(2) as pool:
+    futures = [pool.submit(time.sleep, 600) for _ in range(2)]
+    time.sleep(1.0)
+    print(" ".join(str(pid) for pid in pool._processes), flush=True)
+    time.sleep(600)
+"""
+
+
+def test_workers_die_with_their_parent_even_on_sigkill():
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    psutil = pytest.importorskip("psutil")
+    parent = subprocess.Popen(
+        [sys.executable, "-c", ORPHAN_SCRIPT], stdout=subprocess.PIPE, text=True
+    )
+    try:
+        workers = [int(pid) for pid in parent.stdout.readline().split()]
+        assert len(workers) == 2 and all(psutil.pid_exists(pid) for pid in workers)
+    finally:
+        os.kill(parent.pid, signal.SIGKILL)  # the parent alone, as an OOM killer would
+        parent.wait(timeout=30)
+    deadline = time.monotonic() + 20
+    while time.monotonic() < deadline and any(_alive(psutil, pid) for pid in workers):
+        time.sleep(0.1)
+    assert not any(_alive(psutil, pid) for pid in workers)
+
+
+def _alive(psutil, pid: int) -> bool:
+    try:
+        return psutil.Process(pid).status() != psutil.STATUS_ZOMBIE
+    except psutil.NoSuchProcess:
+        return False
+
+
+def test_one_blas_thread_per_worker():
+    with local_pool(1) as pool:
+        assert set(pool.submit(_blas_threads).result(timeout=60)) <= {1}
+
+
+def _blas_threads() -> list[int]:
+    import numpy  # noqa: F401
+    from threadpoolctl import threadpool_info
+
+    return [info["num_threads"] for info in threadpool_info() if info["user_api"] == "blas"]
+
+
+def test_more_workers_than_allowed_are_refused():
+    from hexaleg.study.executors import max_workers
+
+    with pytest.raises(HexalegError, match="workers = "):
+        with local_pool(max_workers() + 1):
+            pass

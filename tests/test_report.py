@@ -140,3 +140,40 @@ def test_report_for_another_design(tmp_path):
     data = build_report(tmp_path / "r", design, REDUCED)
     assert data["design"]["l3"] == pytest.approx(0.45)
     assert "0.1, 0.45, 0.45" in (tmp_path / "r" / "report.md").read_text()
+
+
+def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
+    """kill -9 mid-report leaves its staging folder; the next run removes it."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    out = tmp_path / "r"
+    argv = ["report", "-o", str(out), "--l3-points", "40", "--workers", "1"]
+    process = subprocess.Popen(
+        [sys.executable, "-m", "hexaleg", *argv],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.DEVNULL,
+        start_new_session=True,
+    )
+    deadline = time.monotonic() + 120
+    try:
+        while time.monotonic() < deadline:
+            staged = [p for p in tmp_path.iterdir() if p.name.startswith(".r.staging-")]
+            if staged and any(staged[0].iterdir()):
+                break  # it has started writing
+            assert process.poll() is None, "the report ended before it could be killed"
+            time.sleep(0.02)
+        else:
+            pytest.fail("the report staged nothing within 120 s")
+    finally:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(timeout=30)
+    assert not out.exists() and len(staged) == 1
+    build_report(out, options=REDUCED)
+    assert [p.name for p in tmp_path.iterdir()] == ["r"]
+    mask = os.umask(0)
+    os.umask(mask)
+    assert out.stat().st_mode & 0o777 == 0o777 & ~mask  # a normal folder, not mkdtemp's 0700

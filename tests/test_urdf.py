@@ -67,7 +67,7 @@ def test_urdf_carries_the_design(default_design):
         default_design.joint_range.theta3[0]
     )
     assert knee.find("origin").get("xyz") == f"{default_design.l2!r} 0 0"
-    mount = joints["rm_mount_joint"].find("origin")
+    mount = joints["rm_root_joint"].find("origin")
     assert [float(v) for v in mount.get("rpy").split()] == pytest.approx([0, 0, -np.pi / 2])
     body = next(link for link in root.iter("link") if link.get("name") == "base_link")
     assert body.find("visual/geometry/box").get("size").split() == ["1.0", "0.6", "0.1"]

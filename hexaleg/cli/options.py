@@ -3,13 +3,18 @@
 from __future__ import annotations
 
 import argparse
+import sys
 from collections.abc import Callable
 from typing import Any
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
-from hexaleg.design import HexapodDesign
+from hexaleg.design import MAX_L3_POINTS, HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L3_RATIO_POINTS
+from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
+
+DEFAULT_TOTAL = 1.0
+"""Total leg length [m] of ``--ratios`` when ``--total`` is not given (the paper's 1000 mm)."""
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -56,7 +61,7 @@ def add_design_options(parser: argparse.ArgumentParser) -> None:
         "--total",
         type=float,
         metavar="M",
-        help="total leg length l1+l2+l3 for --ratios [m] (default 1.0)",
+        help=f"total leg length l1+l2+l3 for --ratios [m] (default {DEFAULT_TOTAL:g})",
     )
     for axis, name in (("x", "body_length"), ("y", "body_width"), ("z", "body_height")):
         group.add_argument(
@@ -88,8 +93,11 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
         given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
         if given:
             raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
-        total = 1.0 if args.total is None else args.total
-        return HexapodDesign.from_ratios(args.ratios[0], args.ratios[1], total, **fields)
+        total = DEFAULT_TOTAL if args.total is None else args.total
+        design = HexapodDesign.from_ratios(args.ratios[0], args.ratios[1], total, **fields)
+        if args.total is None:  # said only once the design stands: an error stays one line
+            note(f"--ratios without --total: total leg length {DEFAULT_TOTAL:g} m")
+        return design
     if args.total is not None:
         raise UsageError("--total only applies together with --ratios")
     for name in ("l1", "l2", "l3"):
@@ -105,14 +113,35 @@ def add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
     )
     parser.add_argument(
         "--l3-points",
-        type=bounded_int(2),
+        type=bounded_int(2, MAX_L3_POINTS),
         default=L3_RATIO_POINTS,
         metavar="N",
-        help=f"tibia ratios per coxa ratio (default {L3_RATIO_POINTS}, as the paper)",
+        help=f"tibia ratios per coxa ratio, 2..{MAX_L3_POINTS} "
+        f"(default {L3_RATIO_POINTS}, as the paper)",
     )
     parser.add_argument(
-        "--workers", type=bounded_int(1), metavar="N", help="local worker processes (default: CPUs)"
+        "--workers",
+        type=bounded_int(1),
+        metavar="N",
+        help=f"local worker processes (default: CPUs; at most {WORKERS_PER_CPU} per CPU, "
+        f"here {max_workers()})",
     )
+
+
+def capped_workers(requested: int | None) -> int | None:
+    """``--workers`` within :func:`max_workers`; says so on stderr when it caps."""
+    if requested is not None and requested > max_workers():
+        note(
+            f"--workers {requested} capped at {max_workers()} "
+            f"({WORKERS_PER_CPU} per CPU on this machine)"
+        )
+        return max_workers()
+    return requested
+
+
+def note(message: str) -> None:
+    """One line on stderr telling the user what hexaleg chose for them."""
+    print(f"hexaleg: note: {message}", file=sys.stderr)
 
 
 def add_stance_option(parser: argparse.ArgumentParser) -> None:

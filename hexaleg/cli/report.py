@@ -5,8 +5,15 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from hexaleg.cli.options import add_design_options, add_sweep_options, bounded_int, design_from_args
+from hexaleg.cli.options import (
+    add_design_options,
+    add_sweep_options,
+    bounded_int,
+    capped_workers,
+    design_from_args,
+)
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
+from hexaleg.output.report.compute import MAX_SENSITIVITY_POINTS
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -23,10 +30,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_sweep_options(parser, "hexaleg-report")
     parser.add_argument(
         "--sensitivity-points",
-        type=bounded_int(2),
+        type=bounded_int(2, MAX_SENSITIVITY_POINTS),
         default=ReportOptions.sensitivity_points,
         metavar="N",
-        help="tibia ratios in the posture sensitivity table "
+        help=f"tibia ratios in the posture sensitivity table, 2..{MAX_SENSITIVITY_POINTS} "
         f"(default {ReportOptions.sensitivity_points})",
     )
 
@@ -36,7 +43,7 @@ def run(args: argparse.Namespace) -> int:
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
-        workers=args.workers,
+        workers=capped_workers(args.workers),
     )
     data = build_report(args.output, design_from_args(args), options)
     out = Path(args.output)

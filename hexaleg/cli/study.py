@@ -14,6 +14,7 @@ from hexaleg.cli.options import (
     add_mode_option,
     add_stance_option,
     add_sweep_options,
+    capped_workers,
     design_from_args,
 )
 from hexaleg.cli.output import report_files
@@ -22,7 +23,14 @@ from hexaleg.output.figures import write_study_figures
 from hexaleg.paper import L1_RATIOS
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.sensitivity import sensitivity_table
-from hexaleg.study.sweep import TABLE_CSV, TABLE_JSON, StudySpec, peak_table, run_study
+from hexaleg.study.sweep import (
+    MAX_L1_RATIOS,
+    TABLE_CSV,
+    TABLE_JSON,
+    StudySpec,
+    peak_table,
+    run_study,
+)
 
 DESCRIPTION = (
     "Sweep coxa and tibia ratios at a fixed total leg length and compute body "
@@ -43,7 +51,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         nargs="+",
         default=list(L1_RATIOS),
         metavar="R",
-        help="coxa ratios l1/L [-] (default: the paper's "
+        help=f"coxa ratios l1/L in (0, 1), at most {MAX_L1_RATIOS} [-] (default: the paper's "
         + " ".join(f"{r:.2f}" for r in L1_RATIOS)
         + ")",
     )
@@ -74,7 +82,9 @@ def run(args: argparse.Namespace) -> int:
         base=base,
     )
     executor: AbstractContextManager[Executor] = (
-        local_pool(args.workers) if args.scheduler is None else dask_executor(args.scheduler)
+        local_pool(capped_workers(args.workers))
+        if args.scheduler is None
+        else dask_executor(args.scheduler)
     )
     with executor as pool:
         table = run_study(spec, args.output, executor=pool, resume=args.resume)

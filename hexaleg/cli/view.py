@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import ipaddress
 import sys
 
 from hexaleg.cli.options import (
@@ -11,6 +12,7 @@ from hexaleg.cli.options import (
     add_stance_option,
     bounded_int,
     design_from_args,
+    note,
 )
 from hexaleg.cli.output import report_files
 from hexaleg.output.viewer import (
@@ -56,6 +58,11 @@ def run(args: argparse.Namespace) -> int:
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace)])
         return 0
+    if not is_loopback(args.host):
+        note(
+            f"--host {args.host} serves the scene beyond this machine, to anyone who can "
+            "reach it, without authentication"
+        )
     server = LoopbackServer(args.host, args.port)
     try:
         build_scene(client(server), model, result, args.workspace)
@@ -67,3 +74,13 @@ def run(args: argparse.Namespace) -> int:
     serve_until_stopped(server)
     print("hexaleg viewer: stopped", file=sys.stderr)
     return 0
+
+
+def is_loopback(host: str) -> bool:
+    """Whether ``host`` names this machine only (127.0.0.0/8, ::1 or localhost)."""
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False

@@ -12,7 +12,10 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files, vector
 from hexaleg.output.figures import write_workspace_figures
-from hexaleg.swing.workspace import analyze_workspace
+from hexaleg.swing.workspace import MAX_SAMPLES, analyze_workspace
+
+MAX_SEED = 2**32 - 1
+"""Largest seed accepted (NumPy takes any non-negative integer; 32 bits is plenty)."""
 
 DESCRIPTION = (
     "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "
@@ -25,9 +28,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     parser.add_argument(
-        "--samples", type=bounded_int(1), default=20_000, help="Monte Carlo samples (default 20000)"
+        "--samples",
+        type=bounded_int(1, MAX_SAMPLES),
+        default=20_000,
+        help=f"Monte Carlo samples, 1..{MAX_SAMPLES} (default 20000)",
     )
-    parser.add_argument("--seed", type=int, default=0, help="random seed (default 0)")
+    parser.add_argument(
+        "--seed",
+        type=bounded_int(0, MAX_SEED),
+        default=0,
+        help=f"random seed, 0..{MAX_SEED} (default 0)",
+    )
     add_output_options(parser)
 
 

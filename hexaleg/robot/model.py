@@ -29,8 +29,12 @@ def joint_name(leg: str, joint: str) -> str:
 
 
 def root_frame_name(leg: str) -> str:
-    """Name of the leg-root frame (on the body, z up, x along the coxa at θ1 = 0)."""
-    return f"{leg}_root"
+    """Name of the leg-root frame (on the body, z up, x along the coxa at θ1 = 0).
+
+    It is the root joint's own frame: the URDF puts the leg mount on that joint's
+    origin, so no massless link is needed (simulators drop or weigh those).
+    """
+    return joint_name(leg, "root")
 
 
 def foot_frame_name(leg: str) -> str:

@@ -17,7 +17,7 @@ from pathlib import Path
 
 from hexaleg._io import atomic_write_text
 from hexaleg._version import __version__
-from hexaleg.design import HexapodDesign
+from hexaleg.design import FOOT_MASS, HexapodDesign
 from hexaleg.exceptions import TemplateError
 
 HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
@@ -102,6 +102,7 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
         "l3": _number(design.l3),
         "link_radius": _number(design.link_radius),
         "link_linear_density": _number(design.link_linear_density),
+        "foot_mass": _number(FOOT_MASS),
         "theta1_lower": _number(limits.theta1[0]),
         "theta1_upper": _number(limits.theta1[1]),
         "theta2_lower": _number(limits.theta2[0]),

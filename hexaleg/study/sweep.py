@@ -26,13 +26,22 @@ from tqdm import tqdm
 
 from hexaleg._io import atomic_write_text
 from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
-from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.design import (
+    MAX_L3_POINTS,
+    SEGMENT_RANGE,
+    HexapodDesign,
+    require_in_range,
+    require_ratio,
+)
+from hexaleg.exceptions import DesignError, HexalegError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.executors import local_pool
+
+MAX_L1_RATIOS = 20
+"""Most coxa ratios in one study."""
 
 JOURNAL = "rows.jsonl"
 TABLE_CSV = "study.csv"
@@ -67,6 +76,24 @@ class StudySpec:
         require_choice("stance", self.stance, StanceSet)
         if not self.l1_ratios or not self.l3_ratios:
             raise HexalegError("a study needs at least one coxa ratio and one tibia ratio")
+        if len(self.l1_ratios) > MAX_L1_RATIOS or len(self.l3_ratios) > MAX_L3_POINTS:
+            raise HexalegError(
+                f"a study takes at most {MAX_L1_RATIOS} coxa ratios and {MAX_L3_POINTS} "
+                f"tibia ratios (given {len(self.l1_ratios)} and {len(self.l3_ratios)})"
+            )
+        for r1 in self.l1_ratios:
+            require_ratio("l1_ratios", r1)
+        for r3 in self.l3_ratios:
+            require_ratio("l3_ratios", r3)
+        crowded = [r1 for r1 in self.l1_ratios if not r1 + min(self.l3_ratios) < 1]
+        if crowded:
+            raise DesignError(
+                "l1_ratios",
+                crowded[0],
+                f"must leave room for femur and tibia: l1 ratio + smallest l3 ratio "
+                f"({min(self.l3_ratios):.3g}) < 1",
+            )
+        require_in_range("total", self.total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
 
     def keys(self) -> list[tuple[float, float]]:
         """(l1 ratio, l3 ratio) of every design, in table order."""

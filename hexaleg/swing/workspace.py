@@ -26,6 +26,9 @@ from hexaleg.limits import JointLimits
 
 Length = TypeVar("Length", float, ArrayF)
 
+MAX_SAMPLES = 5_000_000
+"""Most Monte Carlo samples: about 1 GB of arrays at the peak, well within 24 GiB."""
+
 
 @dataclass(frozen=True)
 class MonteCarloWorkspace:
@@ -70,8 +73,8 @@ def monte_carlo_workspace(
         limits: Joint limits to sample; the design's Table 2 ``workspace_limits`` by default.
 
     """
-    if samples < 1:
-        raise HexalegError(f"samples = {samples} is not valid: must be a positive integer")
+    if not 1 <= samples <= MAX_SAMPLES:
+        raise HexalegError(f"samples = {samples} is not valid: must lie in 1..{MAX_SAMPLES:,}")
     limits = design.workspace_limits if limits is None else limits
     rng = np.random.default_rng(seed)
     theta = rng.uniform(limits.lower, limits.upper, size=(samples, 3))

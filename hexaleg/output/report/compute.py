@@ -18,14 +18,15 @@ from tqdm import tqdm
 
 from hexaleg._typing import ArrayF
 from hexaleg._version import __version__
-from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.design import MAX_L3_POINTS, HexapodDesign, l3_ratio_grid
+from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.paper.reproduction import table5_reproduction, table6_reproduction
 from hexaleg.robot.model import HexapodModel, LegModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
-from hexaleg.study.executors import local_pool
+from hexaleg.study.executors import local_pool, max_workers
 from hexaleg.study.recommendation import Recommendation, recommend
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import StudySpec, peak_table, study_table, sweep
@@ -36,12 +37,16 @@ from hexaleg.swing.manipulability import (
     average_manipulability_map,
 )
 from hexaleg.swing.workspace import (
+    MAX_SAMPLES,
     WorkspaceAnalysis,
     analyze_workspace,
     improved_area_closed_form,
 )
 
 T = TypeVar("T")
+
+MAX_SENSITIVITY_POINTS = 400
+"""Most tibia ratios per variant in the sensitivity table (8 variants × 2 coxa ratios)."""
 
 
 @dataclass(frozen=True)
@@ -62,6 +67,17 @@ class ReportOptions:
     monte_carlo_samples: int = 20_000
     workers: int | None = None
     progress: bool | None = None
+
+    def __post_init__(self) -> None:
+        for name, (lower, upper) in {
+            "l3_points": (2, MAX_L3_POINTS),
+            "sensitivity_points": (2, MAX_SENSITIVITY_POINTS),
+            "monte_carlo_samples": (1, MAX_SAMPLES),
+            "workers": (1, max_workers()),
+        }.items():
+            value = getattr(self, name)
+            if value is not None and not lower <= value <= upper:
+                raise HexalegError(f"{name} = {value} is not valid: must lie in {lower}..{upper}")
 
 
 @dataclass(frozen=True)

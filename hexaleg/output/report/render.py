@@ -9,14 +9,13 @@ from __future__ import annotations
 import json
 import os
 import shutil
-import tempfile
 from pathlib import Path
 from typing import Any
 
 import markdown
 import pandas as pd
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import atomic_write_text, retired_folder, staging_folder
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.figures import (
     extremes_figure,
@@ -51,8 +50,7 @@ def render_report(data: ReportData, out_dir: str | os.PathLike[str]) -> Path:
     """Write the report folder for ``data`` atomically; return its path."""
     out = Path(out_dir)
     check_target(out)
-    out.parent.mkdir(parents=True, exist_ok=True)
-    staging = Path(tempfile.mkdtemp(prefix=f".{out.name}.", dir=out.parent))
+    staging = staging_folder(out)
     try:
         _write_files(data, staging)
         _swap_in(staging, out)
@@ -113,7 +111,7 @@ def _html(text: str) -> str:
 def _swap_in(staging: Path, out: Path) -> None:
     old = None
     if out.exists():
-        old = out.with_name(f".{out.name}.old-{os.getpid()}")
+        old = retired_folder(out)
         out.rename(old)
     staging.rename(out)
     if old is not None:

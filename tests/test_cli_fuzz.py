@@ -1,0 +1,143 @@
+"""Every subcommand, driven with arbitrary text and numbers: exit 0 or 2, never a traceback.
+
+On exit 2 the user sees at most one line on stderr and no file is written. The slow
+back-ends of ``report``, ``study`` and ``view`` (minutes of sweeps, a server that runs
+until Ctrl-C) are replaced by quick stand-ins: what is fuzzed is everything in front
+of them — parsing, validation and the design.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import io
+import os
+import tempfile
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from hexaleg.cli import COMMANDS, build_parser
+from hexaleg.cli.main import main
+
+PATH_OPTIONS = {"-o", "--output", "--plot", "--html"}
+PATHS = st.sampled_from(["out", "out/sub", "out.urdf", "scene.html", ""])
+NUMBERS = st.one_of(
+    st.integers(min_value=-(10**13), max_value=10**13).map(str),
+    st.floats(allow_nan=True, allow_infinity=True).map(repr),
+    st.floats(min_value=-2.0, max_value=2.0).map(lambda x: f"{x:.3f}"),
+)
+TEXT = st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=12)
+VALUES = st.one_of(NUMBERS, TEXT)
+
+
+def _options(command: str) -> list[argparse.Action]:
+    parser = build_parser(command)
+    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return [
+        action
+        for action in sub.choices[command]._actions
+        if action.option_strings and not set(action.option_strings) & {"-h", "--help"}
+    ]
+
+
+@st.composite
+def invocations(draw, command: str) -> list[str]:
+    argv = [command]
+    for action in draw(st.lists(st.sampled_from(_options(command)), max_size=3)):
+        argv.append(action.option_strings[-1])
+        if action.nargs == 0:
+            continue
+        count = {None: 1, "+": draw(st.integers(1, 3)), "?": 1}.get(action.nargs, action.nargs)
+        source = PATHS if PATH_OPTIONS & set(action.option_strings) else VALUES
+        argv += [draw(source) for _ in range(int(count))]
+    return argv
+
+
+@pytest.fixture(scope="module")
+def quick_backends():
+    """Stand-ins for the slow back-ends; everything before them runs for real."""
+    table = pd.DataFrame(
+        [
+            {"l1_ratio": 0.1, "l3_ratio": 0.4, "fb": 0.2, "error": ""},
+            {"l1_ratio": 0.1, "l3_ratio": 0.5, "fb": 0.21, "error": ""},
+        ]
+    )
+    for axis in ("x", "y", "z", "roll", "pitch", "yaw"):
+        table[f"range_{axis}"] = 0.1
+
+    def fake_report(out, design, options):
+        return {
+            "recommendation": {
+                "l1_ratio": 0.1,
+                "l2_ratio": 0.5,
+                "l3_ratio": 0.4,
+                "l3_band": [0.3, 0.5],
+            },
+            "flexibility": {"axis": {"fb": 0.2}},
+        }
+
+    def fake_html(model, result, path, workspace_leg=None):
+        return Path(path)
+
+    class FakeServer:
+        web_url = "http://127.0.0.1:7000/static/"
+
+        def __init__(self, host, port):
+            self.host = host
+
+    patches = {
+        "hexaleg.cli.report.build_report": fake_report,
+        "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,
+        "hexaleg.cli.study.write_study_figures": lambda table, out: [],
+        "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
+        "hexaleg.cli.study.atomic_write_text": lambda path, text: Path(path),
+        "hexaleg.cli.view.write_static_html": fake_html,
+        "hexaleg.cli.view.LoopbackServer": FakeServer,
+        "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.client": lambda server: None,
+        "hexaleg.cli.view.serve_until_stopped": lambda server: None,
+    }
+    with pytest.MonkeyPatch.context() as monkeypatch:
+        for target, value in patches.items():
+            monkeypatch.setattr(target, value)
+        yield
+
+
+def _run(argv: list[str]) -> tuple[int, str]:
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+        try:
+            status = main(argv)
+        except SystemExit as exit_:
+            status = int(exit_.code or 0)
+    return status, err.getvalue()
+
+
+@pytest.mark.parametrize("command", [c.name for c in COMMANDS])
+def test_arbitrary_input_is_refused_cleanly_or_accepted(command, quick_backends):
+    @settings(
+        max_examples=40,
+        deadline=None,
+        suppress_health_check=[HealthCheck.function_scoped_fixture, HealthCheck.too_slow],
+    )
+    @given(argv=invocations(command))
+    def check(argv: list[str]) -> None:
+        with tempfile.TemporaryDirectory() as folder:
+            cwd = os.getcwd()
+            os.chdir(folder)
+            try:
+                status, err = _run(argv)
+                written = sorted(p.name for p in Path(folder).iterdir())
+            finally:
+                os.chdir(cwd)
+        assert status in (0, 2), (argv, status, err)
+        assert "Traceback" not in err, (argv, err)
+        if status == 2:
+            assert err.count("\n") <= 1, (argv, err)
+            assert written == [], (argv, written)
+
+    check()

@@ -1,0 +1,41 @@
+"""Atomic output: staging folders have a normal mode and never outlive a killed writer."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+
+from hexaleg._io import remove_stale_staging, staging_folder
+
+
+def _umask() -> int:
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _dead_pid() -> int:
+    process = subprocess.Popen([sys.executable, "-c", "pass"])
+    process.wait(timeout=60)
+    return process.pid
+
+
+def test_staging_folder_has_a_normal_folders_mode(tmp_path):
+    staging = staging_folder(tmp_path / "out")
+    assert staging.parent == tmp_path and staging.name.startswith(f".out.staging-{os.getpid()}.")
+    assert staging.stat().st_mode & 0o777 == 0o777 & ~_umask()
+
+
+def test_only_staging_of_ended_processes_is_removed(tmp_path):
+    dead = tmp_path / f".out.staging-{_dead_pid()}.abc"
+    mine = tmp_path / f".out.staging-{os.getpid()}.def"
+    other_target = tmp_path / f".other.staging-{_dead_pid()}.ghi"
+    user_folder = tmp_path / ".out.mine"
+    for folder in (dead, mine, other_target, user_folder):
+        folder.mkdir()
+        (folder / "file").write_text("x")
+    assert remove_stale_staging(tmp_path / "out") == [dead]
+    assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
+        p.name for p in (mine, other_target, user_folder)
+    )
