@@ -25,8 +25,9 @@ FlexibilityMode = Literal["axis", "free"]
 StanceSet = Literal["all", "tripod"]
 """Named stance-leg sets: all six legs, or the first tripod (lf, rm, lr)."""
 
-CauseKind = Literal["joint", "reach", "ground", "range"]
-"""What stops the body: a joint limit, a foothold out of reach, the ground, or nothing."""
+CauseKind = Literal["joint", "reach", "ground", "collision", "range"]
+"""What stops the body: a joint limit, a foothold out of reach, the ground, two of the
+robot's own parts touching, or nothing within the searched range."""
 
 
 def choices(literal: Any) -> tuple[str, ...]:

@@ -66,6 +66,9 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
 }
 """Each physical field's plausible range (lower, upper, unit); values outside are refused."""
 
+SEGMENTS = ("l1", "l2", "l3")
+"""The segment-length fields: coxa, femur, tibia."""
+
 FOOT_MASS = 1e-3
 """Mass of each foot link [kg]: negligible beside the legs, but a valid inertial, so
 that every simulator keeps the foot (sdformat drops massless links, PyBullet weighs
@@ -203,6 +206,21 @@ class HexapodDesign:
             )
         l1, l3 = l1_ratio * total, l3_ratio * total
         return cls(l1=l1, l2=total - l1 - l3, l3=l3, **fields)
+
+    def with_ratios(
+        self, l1_ratio: float, l3_ratio: float, total: float | None = None
+    ) -> HexapodDesign:
+        """Copy of the design (body, mounts, posture, limits) with its segments at these ratios.
+
+        Args:
+            l1_ratio: Coxa length over total leg length [-].
+            l3_ratio: Tibia length over total leg length [-].
+            total: Total leg length [m]; this design's own if omitted.
+
+        """
+        kept = {f.name: getattr(self, f.name) for f in fields(self) if f.name not in SEGMENTS}
+        total = self.leg_length if total is None else total
+        return HexapodDesign.from_ratios(l1_ratio, l3_ratio, total, **kept)
 
     def replace(self, **changes: Any) -> HexapodDesign:
         """Copy with some fields changed (validated again).

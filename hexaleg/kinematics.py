@@ -140,7 +140,7 @@ def inverse_kinematics(
     return InverseKinematics(theta, np.asarray(reachable))
 
 
-def _leg_plane(l1: float, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
+def leg_plane(l1: float, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
     """θ1 ∈ (−π/2, π/2] toward the target, and the target in the leg plane seen from the hip.
 
     Returns (θ1, planar_x, z, r): planar_x along the coxa, z up, r the hip-to-foot distance.
@@ -160,13 +160,29 @@ def leg_solution(lengths: Lengths, position: npt.ArrayLike) -> tuple[ArrayF, Arr
     The kernel behind :func:`inverse_kinematics` and the flexibility margins: the
     angles are those of the nearest configuration when r is out of reach.
     """
-    l1, l2, l3 = lengths
-    theta1, planar_x, pz, r = _leg_plane(l1, position)
+    theta1, planar_x, pz, r = leg_plane(lengths[0], position)
+    return plane_solution(lengths, theta1, planar_x, pz, r), r
+
+
+def plane_solution(
+    lengths: Lengths, theta1: ArrayF, planar_x: ArrayF, pz: ArrayF, r: ArrayF
+) -> ArrayF:
+    """Knee-down joint angles (..., 3) [rad] from a target already in the leg plane.
+
+    Args:
+        lengths: Segment lengths (l1, l2, l3) [m].
+        theta1: Root angle toward the target [rad] (from :func:`leg_plane`).
+        planar_x: Hip-to-target distance along the coxa [m].
+        pz: Target height [m].
+        r: Hip-to-target distance [m].
+
+    """
+    _, l2, l3 = lengths
     r_safe = np.where(r > 0, r, 1.0)
     cos_knee = np.clip((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0, 1.0)
     cos_hip = np.clip((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0, 1.0)
     theta2 = _wrap(np.arctan2(pz, planar_x) + np.arccos(cos_hip))
-    return np.stack((theta1, theta2, -np.arccos(cos_knee)), axis=-1), r
+    return np.stack((theta1, theta2, -np.arccos(cos_knee)), axis=-1)
 
 
 def _wrap(angle: ArrayF) -> ArrayF:

@@ -306,3 +306,22 @@ def test_help_states_the_upper_bounds(capsys, command):
         assert "1..5000000" in text and "0..4294967295" in text
     else:
         assert "2..1000" in text and "at most 4 per CPU" in text
+
+
+@pytest.mark.parametrize(
+    ("command", "absent", "present"),
+    [
+        ("study", ["--l1 ", "--l2 ", "--l3 ", "--ratios"], ["--total", "--body-length"]),
+        ("workspace", ["--body-length", "--nominal-angles"], ["--l1", "--ratios"]),
+        ("manipulability", ["--body-width", "--nominal-angles"], ["--l3", "--total"]),
+        ("report", [], ["--l1-ratios", "--body-length", "--nominal-angles"]),
+    ],
+)
+def test_each_command_offers_only_the_options_it_uses(capsys, command, absent, present):
+    with pytest.raises(SystemExit):
+        main([command, "--help"])
+    text = capsys.readouterr().out
+    for option in absent:
+        assert option not in text
+    for option in present:
+        assert option in text

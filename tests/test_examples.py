@@ -21,6 +21,9 @@ EXPECTED = {
 @pytest.mark.skipif(not EXAMPLES.is_dir(), reason="examples/ not shipped in this install")
 @pytest.mark.parametrize("script", sorted(EXPECTED))
 def test_example_runs_and_prints_what_it_should(script, tmp_path):
+    import tempfile
+
+    before = set(Path(tempfile.gettempdir()).glob("hexaleg-*"))
     argv = [sys.executable, str(EXAMPLES / script)]
     if script == "04_design_study.py":
         argv.append(str(tmp_path))
@@ -28,6 +31,7 @@ def test_example_runs_and_prints_what_it_should(script, tmp_path):
     assert result.returncode == 0, result.stderr
     for fragment in EXPECTED[script]:
         assert fragment in result.stdout, (fragment, result.stdout)
+    assert set(Path(tempfile.gettempdir()).glob("hexaleg-*")) <= before  # nothing left behind
 
 
 def test_every_example_is_listed():

@@ -58,3 +58,52 @@ def test_study_figures(tmp_path):
     assert sorted(p.name for p in paths) == ["flexibility_fb.png", "flexibility_ranges.png"]
     for path in paths:
         _assert_png(path)
+
+
+def _overlap(a, b) -> bool:
+    return a.x0 < b.x1 and b.x0 < a.x1 and a.y0 < b.y1 and b.y0 < a.y1
+
+
+def test_planar_legend_leaves_the_workspace_visible_and_the_ground_is_drawn(default_design):
+    from hexaleg.kinematics import planar_foot_position
+    from hexaleg.output.figures import planar_workspace_figure
+    from hexaleg.swing.workspace import planar_workspace
+
+    rect = planar_workspace(default_design.lengths, default_design.workspace_limits)
+    improved = planar_workspace(default_design.lengths, default_design.improved_limits)
+    foot = tuple(planar_foot_position(default_design.lengths, 0.0, -np.pi / 2))
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    fig = planar_workspace_figure(rect, improved, foot)
+    FigureCanvasAgg(fig).draw()
+    (ax,) = fig.axes
+    renderer = fig.canvas.get_renderer()
+    legend = fig.legends[0].get_window_extent(renderer)
+    assert not _overlap(legend, ax.get_window_extent(renderer))
+    labels = [text.get_text() for text in fig.legends[0].get_texts()]
+    assert "ground at the nominal stance" in labels
+    ground = next(
+        line for line in ax.get_lines() if line.get_label() == "ground at the nominal stance"
+    )
+    assert ground.get_ydata()[0] == pytest.approx(-default_design.l3)
+
+
+def test_monte_carlo_has_a_colour_bar_and_names_its_limits_as_the_paper(default_design):
+    from hexaleg.output.figures import monte_carlo_figure
+    from hexaleg.swing.workspace import monte_carlo_workspace
+
+    fig = monte_carlo_figure(monte_carlo_workspace(default_design, samples=500))
+    title = fig.axes[0].get_title()
+    assert "Table 2 limits" in title and "workspace_limits" not in title
+    assert len(fig.axes) == 2  # the cloud and its colour bar
+
+
+def test_the_manipulability_surface_names_its_lengths(default_design, tmp_path):
+    from hexaleg.output.figures import manipulability_surface_figure
+
+    fig = manipulability_surface_figure(
+        [default_design.lengths],
+        default_design.manipulability_limits,
+        ["this design, l = (0.2, 0.4, 0.4) m"],
+    )
+    assert "0.2, 0.4, 0.4" in fig.axes[0].get_title()

@@ -11,8 +11,9 @@ from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report import ReportOptions, build_report
 
-REDUCED = ReportOptions(l3_points=8, sensitivity_points=4, workers=1, progress=False)
+REDUCED = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False)
 SECTIONS = [
+    "## Decision",
     "## Design",
     "## 1. Swing phase: workspace",
     "## 2. Manipulability",
@@ -177,3 +178,65 @@ def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     mask = os.umask(0)
     os.umask(mask)
     assert out.stat().st_mode & 0o777 == 0o777 & ~mask  # a normal folder, not mkdtemp's 0700
+
+
+def test_the_decision_comes_first_and_scores_the_users_design(report):
+    import math
+
+    from hexaleg.stance import flexibility
+    from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
+
+    out, data = report
+    text = (out / "report.md").read_text()
+    assert text.index("## Decision") < text.index("## Design") < text.index("## 5. Recommendation")
+    design = HexapodDesign()
+    yours = data["decision"]["yours"]["metrics"]
+    # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB
+    assert yours["improved_area"] == pytest.approx(2 * math.pi * 0.4 * 0.4 / 3, rel=1e-12)
+    improved = rectangular_and_improved(design.manipulability_limits)[1]
+    assert yours["average_manipulability"] == pytest.approx(
+        float(average_manipulability(design.lengths, improved)), rel=1e-12
+    )
+    assert yours["flexibility"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
+    maxima = data["recommendation"]["maxima"]
+    score = sum(yours[k] / maxima[k] for k in maxima) / 3
+    assert data["decision"]["yours"]["score"] == pytest.approx(score, rel=1e-12)
+    recommended = data["decision"]["recommended"]
+    assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-9)
+    assert recommended["score"] > data["decision"]["yours"]["score"]
+    assert f"{yours['flexibility']:.4g}" in text.split("## Design")[0]
+
+
+def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
+    design = HexapodDesign(l1=0.15, l2=0.6, l3=0.45, body_length=1.4, body_width=0.8)
+    free = build_report(tmp_path / "free", design, REDUCED)["recommendation"]
+    options = ReportOptions(
+        l3_points=REDUCED.l3_points,
+        sensitivity_points=REDUCED.sensitivity_points,
+        workers=1,
+        progress=False,
+        l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
+    )
+    fixed = build_report(tmp_path / "fixed", design, options)["recommendation"]
+    assert free["l1_ratio"] == pytest.approx(0.10)
+    assert fixed["l1_ratio"] == pytest.approx(0.125)
+    assert sum(fixed["lengths_m"]) == pytest.approx(1.2)
+    assert fixed["l3_ratio"] != pytest.approx(free["l3_ratio"], abs=1e-4)
+    # the sensitivity variants are relative to the user's body, not absolute sizes
+    import pandas as pd
+
+    variants = pd.read_csv(tmp_path / "fixed" / "sensitivity.csv")
+    names = list(dict.fromkeys(variants["variant"]))
+    assert names[0] == "your design" and "body 20 % wider (0.96 m)" in names
+    peak = variants.groupby("variant", sort=False)["peak_fb"].first()
+    assert peak["body 20 % wider (0.96 m)"] != pytest.approx(peak["your design"])
+
+
+@pytest.mark.parametrize("points", [2, 9])
+def test_grids_too_coarse_to_locate_the_peaks_are_refused(tmp_path, capsys, points):
+    with pytest.raises(HexalegError, match="too coarse"):
+        ReportOptions(l3_points=points)
+    assert main(["report", "--l3-points", str(points), "-o", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "too coarse to locate the peaks" in err
+    assert list(tmp_path.iterdir()) == []

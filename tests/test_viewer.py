@@ -88,9 +88,10 @@ def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default
                 name: umsgpack.unpackb(node.object)["object"]["materials"][0]["color"]
                 for name, node in visuals.items()
             }
-            cause = extreme.limited_by
-            link = {"root": "coxa", "hip": "femur", "knee": "tibia"}[cause.joint]
-            assert {name for name, c in colours.items() if c == red} == {f"{cause.leg}_{link}_0"}
+            links = {"root": "coxa", "hip": "femur", "knee": "tibia"}
+            binding = {f"{c.leg}_{links[c.joint]}_0" for c in extreme.binding}
+            assert extreme.limited_by in extreme.binding
+            assert {name for name, c in colours.items() if c == red} == binding
         animated = [node for node in (tree, tree["meshcat"]) if node.animation is not None]
         assert animated  # one animation: out to every extreme and back
 
@@ -236,3 +237,12 @@ def test_binding_beyond_loopback_warns_once(monkeypatch, capsys):
     )
     assert main(["view"]) == 0
     assert not [line for line in capsys.readouterr().err.splitlines() if "note" in line]
+
+
+def test_meshcat_chatter_is_not_shown_to_the_user(capfd):
+    """A second server finds port 7000 taken: meshcat would print "Port: ... in use"."""
+    with LoopbackServer() as first, LoopbackServer() as second:
+        assert first.web_url != second.web_url
+    captured = capfd.readouterr()
+    assert "in use" not in captured.err + captured.out
+    assert "opened:" not in captured.err

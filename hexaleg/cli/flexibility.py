@@ -8,6 +8,7 @@ import warnings
 from pathlib import Path
 
 from hexaleg.cli.options import (
+    add_collisions_option,
     add_design_options,
     add_mode_option,
     add_output_options,
@@ -34,6 +35,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_design_options(parser)
     add_mode_option(parser)
     add_stance_option(parser)
+    add_collisions_option(parser)
     add_output_options(parser)
 
 
@@ -42,7 +44,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
-        result = flexibility(design, mode=args.mode, stance=args.stance)
+        result = flexibility(design, args.mode, args.stance, collisions=args.collisions)
     if args.plot is not None:
         report_files([save(extremes_figure(result), Path(args.plot) / "flexibility_extremes.png")])
     if args.json:
@@ -69,7 +71,7 @@ def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:
         rows.append(
             (
                 f"{extreme.axis} {'+' if extreme.sign > 0 else '-'}",
-                f"{extreme.value:+.6f} {unit}  limited by {extreme.limited_by}",
+                f"{extreme.value:+.6f} {unit}  limited by {extreme.description}",
             )
         )
     if not result.converged:

@@ -21,7 +21,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
-    add_design_options(parser)
+    add_design_options(parser, body=False, posture=False)  # one leg: no body, no stance
     add_output_options(parser)
 
 

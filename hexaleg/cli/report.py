@@ -6,7 +6,9 @@ import argparse
 from pathlib import Path
 
 from hexaleg.cli.options import (
+    add_collisions_option,
     add_design_options,
+    add_l1_ratios_option,
     add_sweep_options,
     bounded_int,
     capped_workers,
@@ -28,6 +30,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     add_sweep_options(parser, "hexaleg-report")
+    add_collisions_option(parser)
+    add_l1_ratios_option(
+        parser,
+        "the paper's four, recommending among those ≥ 0.10; one value fixes the coxa",
+    )
     parser.add_argument(
         "--sensitivity-points",
         type=bounded_int(2, MAX_SENSITIVITY_POINTS),
@@ -44,13 +51,15 @@ def run(args: argparse.Namespace) -> int:
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
         workers=capped_workers(args.workers),
+        l1_ratios=None if args.l1_ratios is None else tuple(args.l1_ratios),
+        collisions=args.collisions,
     )
     data = build_report(args.output, design_from_args(args), options)
     out = Path(args.output)
     rec = data["recommendation"]
     print(f"wrote {out / REPORT_MD} and {out / REPORT_HTML}")
     print(
-        f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.2f} : {rec['l2_ratio']:.3f} : "
+        f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.3f} : {rec['l2_ratio']:.3f} : "
         f"{rec['l3_ratio']:.3f} (tibia ratio band "
         f"{rec['l3_band'][0]:.3f}-{rec['l3_band'][1]:.3f}); "
         f"this design: FB = {data['flexibility']['axis']['fb']:.4f}"

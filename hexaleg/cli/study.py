@@ -9,8 +9,9 @@ from pathlib import Path
 
 from hexaleg._io import atomic_write_text
 from hexaleg.cli.options import (
-    UsageError,
+    add_collisions_option,
     add_design_options,
+    add_l1_ratios_option,
     add_mode_option,
     add_stance_option,
     add_sweep_options,
@@ -24,7 +25,6 @@ from hexaleg.paper import L1_RATIOS
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import (
-    MAX_L1_RATIOS,
     TABLE_CSV,
     TABLE_JSON,
     StudySpec,
@@ -42,19 +42,11 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
-    add_design_options(parser)
+    add_design_options(parser, lengths=False)
     add_mode_option(parser)
     add_stance_option(parser)
-    parser.add_argument(
-        "--l1-ratios",
-        type=float,
-        nargs="+",
-        default=list(L1_RATIOS),
-        metavar="R",
-        help=f"coxa ratios l1/L in (0, 1), at most {MAX_L1_RATIOS} [-] (default: the paper's "
-        + " ".join(f"{r:.2f}" for r in L1_RATIOS)
-        + ")",
-    )
+    add_collisions_option(parser)
+    add_l1_ratios_option(parser, "the paper's " + " ".join(f"{r:.2f}" for r in L1_RATIOS))
     add_sweep_options(parser, "hexaleg-study")
     parser.add_argument(
         "--scheduler", metavar="ADDRESS", help="run on a Dask cluster, e.g. tcp://127.0.0.1:8786"
@@ -67,19 +59,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
-    given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
-    if given or args.ratios is not None:
-        raise UsageError(
-            f"a study sweeps the segment lengths: {', '.join(given) or '--ratios'} cannot be given"
-        )
     base = design_from_args(args)
     spec = StudySpec(
-        tuple(args.l1_ratios),
+        tuple(args.l1_ratios or L1_RATIOS),
         tuple(l3_ratio_grid(args.l3_points)),
         total=1.0 if args.total is None else args.total,
         mode=args.mode,
         stance=args.stance,
         base=base,
+        collisions=args.collisions,
     )
     executor: AbstractContextManager[Executor] = (
         local_pool(capped_workers(args.workers))

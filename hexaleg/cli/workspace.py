@@ -26,7 +26,7 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
-    add_design_options(parser)
+    add_design_options(parser, body=False, posture=False)  # one leg: no body, no stance
     parser.add_argument(
         "--samples",
         type=bounded_int(1, MAX_SAMPLES),

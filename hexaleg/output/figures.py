@@ -19,7 +19,7 @@ import pandas as pd
 from hexaleg._io import atomic_write_bytes
 from hexaleg._typing import Lengths
 from hexaleg.design import l3_ratio_grid
-from hexaleg.kinematics import manipulability
+from hexaleg.kinematics import manipulability, planar_foot_position
 from hexaleg.limits import JointLimits
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, L1_RATIOS, TABLE5
 from hexaleg.stance.constraints import AXES
@@ -70,19 +70,44 @@ def monte_carlo_figure(cloud: MonteCarloWorkspace) -> Figure:
     fig = _figure(7, 6)
     ax = fig.add_subplot(projection="3d")
     points = cloud.points
-    ax.scatter(points[:, 0], points[:, 1], points[:, 2], s=0.4, c=points[:, 2], cmap="viridis")
+    cloud_art = ax.scatter(
+        points[:, 0], points[:, 1], points[:, 2], s=0.4, c=points[:, 2], cmap="viridis"
+    )
     ax.scatter([0], [0], [0], s=40, c="k", marker="^", label="leg root")
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
-    ax.set_title(f"Foot workspace, Monte Carlo, N = {len(points):,} ({cloud.limits.name})")
+    limits = LIMIT_SET_TITLES.get(cloud.limits.name, cloud.limits.name)
+    ax.set_title(f"Foot workspace, Monte Carlo, N = {len(points):,} ({limits})")
     ax.set_box_aspect(np.ptp(points, axis=0) + 1e-9)
     ax.legend(loc="upper left")
+    fig.colorbar(cloud_art, ax=ax, shrink=0.6, label="foot height z [m] (leg-root frame)")
     return fig
 
 
-def planar_workspace_figure(rectangular: PlanarWorkspace, improved: PlanarWorkspace) -> Figure:
-    """Fig 6–7: planar workspace (θ1 = 0) of the rectangular and improved domains."""
+LIMIT_SET_TITLES = {
+    "workspace_limits": "Table 2 limits",
+    "improved_limits": "Table 4 limits",
+    "manipulability_limits": "eq 26 limits",
+    "stance_limits": "stance limits",
+}
+"""How a figure names each of the design's joint-limit sets."""
+
+
+def planar_workspace_figure(
+    rectangular: PlanarWorkspace,
+    improved: PlanarWorkspace,
+    nominal_foot: tuple[float, float] | None = None,
+) -> Figure:
+    """Fig 6–7: planar workspace (θ1 = 0) of the rectangular and improved domains.
+
+    Args:
+        rectangular: The rectangular-domain workspace (Table 3).
+        improved: The improved-domain workspace (Table 4).
+        nominal_foot: The foot (x, z) at the nominal stance in the leg plane [m]; if
+            given, the ground line through it and the standing height are drawn.
+
+    """
     fig = _figure()
     ax = fig.add_subplot()
     for ws, color, label in (
@@ -93,11 +118,24 @@ def planar_workspace_figure(rectangular: PlanarWorkspace, improved: PlanarWorksp
         ax.fill(closed[:, 0], closed[:, 1], color=color, alpha=0.25)
         ax.plot(closed[:, 0], closed[:, 1], color=color, label=f"{label}: {ws.area:.4f} m²")
     ax.plot([0, rectangular.lengths[0]], [0, 0], "k-", lw=3, label="coxa")
+    if nominal_foot is not None:
+        x_foot, z_foot = nominal_foot
+        ax.axhline(z_foot, color="#8a5a00", lw=1.5, label="ground at the nominal stance")
+        ax.plot([x_foot], [z_foot], "o", color="#8a5a00", label="nominal foot")
+        ax.annotate(
+            f"leg root {-z_foot:.3f} m above the ground",
+            (0.0, z_foot / 2),
+            xytext=(6, 0),
+            textcoords="offset points",
+            fontsize=8,
+            va="center",
+        )
+        ax.plot([0, 0], [0, z_foot], color="#8a5a00", ls=":", lw=1)
     ax.set_xlabel("x in leg plane [m]")
     ax.set_ylabel("z [m]")
     ax.set_aspect("equal")
     ax.grid(True, alpha=0.3)
-    ax.legend(loc="lower left", fontsize=8)
+    fig.legend(loc="outside lower center", ncols=3, fontsize=8)
     l1, l2, l3 = rectangular.lengths
     ax.set_title(f"Planar foot workspace, l = ({l1:.3f}, {l2:.3f}, {l3:.3f}) m")
     return fig
@@ -120,7 +158,7 @@ def l1_series_figure(
     shapes.set_ylabel("z [m]")
     shapes.set_aspect("equal")
     shapes.grid(True, alpha=0.3)
-    shapes.legend(fontsize=8)
+    shapes.legend(fontsize=8, loc="upper left", bbox_to_anchor=(0.0, -0.18), ncols=2)
     shapes.set_title("Improved workspace (l2 = l3)")
     bars.bar([f"{r:.2f}" for r in l1_ratios], [ws.area for ws in workspaces], color=_COLORS[0])
     bars.set_xlabel("l1 ratio [-]")
@@ -201,7 +239,11 @@ def write_workspace_figures(
     return [
         save(monte_carlo_figure(analysis.monte_carlo), out / "workspace_monte_carlo.png"),
         save(
-            planar_workspace_figure(analysis.rectangular, analysis.improved),
+            planar_workspace_figure(
+                analysis.rectangular,
+                analysis.improved,
+                tuple(planar_foot_position(design.lengths, *design.nominal_angles[1:])),
+            ),
             out / "workspace_planar.png",
         ),
         save(
@@ -223,7 +265,10 @@ def write_manipulability_figures(
     designs = [design.lengths] + [
         (r.l1_mm * scale, r.l2_mm * scale, r.l3_mm * scale) for r in TABLE5
     ]
-    labels = ["this design"] + [f"Table 5, l1 ratio {r.l1_ratio:.2f}" for r in TABLE5]
+    l1, l2, l3 = design.lengths
+    labels = [f"this design, l = ({l1:.3g}, {l2:.3g}, {l3:.3g}) m"] + [
+        f"Table 5, l1 ratio {r.l1_ratio:.2f}" for r in TABLE5
+    ]
     surface = manipulability_surface_figure(designs[1:], design.manipulability_limits, labels[1:])
     own = manipulability_surface_figure(designs[:1], design.manipulability_limits, labels[:1])
     return [
@@ -247,7 +292,7 @@ def extremes_figure(result: FlexibilityResult) -> Figure:
                 value = extreme.value * scale
                 ax.bar(k, value, color=color, width=0.6)
                 ax.annotate(
-                    str(extreme.limited_by),
+                    extreme.description,
                     (k, value),
                     xytext=(0, 4 if sign > 0 else -4),
                     textcoords="offset points",

@@ -18,6 +18,7 @@ from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.bracketing import IndexArray, first_crossings
+from hexaleg.stance.collisions import SelfCollision, collision_limited
 from hexaleg.stance.constraints import (
     AXES,
     DIRECTIONS,
@@ -27,7 +28,7 @@ from hexaleg.stance.constraints import (
     direction_poses,
     stance_margins,
 )
-from hexaleg.stance.extremes import Extreme, FlexibilityResult
+from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry
 
 
@@ -48,12 +49,15 @@ def axis_locked_extremes(geometry: StanceGeometry) -> tuple[Extreme, ...]:
         )
         return stance_margins(geometry, rotation, translation)
 
-    t_cross, which = first_crossings(margins, search_ranges(geometry))
+    crossings = first_crossings(margins, search_ranges(geometry))
     labels = constraint_labels(geometry.legs)
-    return tuple(
-        Extreme(axis, sign, float(sign * t), labels[k] if k >= 0 else Cause("range"))
-        for (axis, sign), t, k in zip(DIRECTIONS, t_cross, which, strict=True)
-    )
+    extremes = []
+    for d, (axis, sign) in enumerate(DIRECTIONS):
+        displacement = np.zeros(len(AXES))
+        displacement[axis_of[d]] = sign * crossings.t[d]
+        binding = [labels[c] for c in crossings.binding[d]] or [Cause("range")]
+        extremes.append(pose_extreme(geometry, axis, sign, displacement, binding))
+    return tuple(extremes)
 
 
 def axis_locked_flexibility(
@@ -61,6 +65,7 @@ def axis_locked_flexibility(
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
     geometry: StanceGeometry | None = None,
+    collisions: bool = False,
 ) -> FlexibilityResult:
     """Axis-locked flexibility of ``design`` (the ADAMS semantics).
 
@@ -70,6 +75,7 @@ def axis_locked_flexibility(
         model: Its Pinocchio model, if already built.
         geometry: A template geometry of the same body and mounts (fast path for
             sweeps: the design's legs replace the template's by :meth:`StanceGeometry.with_design`).
+        collisions: Also stop where two of the robot's own parts touch (coal).
 
     """
     if geometry is None:
@@ -77,4 +83,8 @@ def axis_locked_flexibility(
         geometry = StanceGeometry.from_model(model, stance)
     else:
         geometry = geometry.with_design(design)
-    return FlexibilityResult(design, geometry.legs, "axis", axis_locked_extremes(geometry))
+    extremes = axis_locked_extremes(geometry)
+    if collisions:
+        model = HexapodModel(design) if model is None else model
+        extremes = collision_limited(geometry, SelfCollision(model, geometry), extremes)
+    return FlexibilityResult(design, geometry.legs, "axis", extremes, collisions=collisions)

@@ -10,6 +10,7 @@ never counts), then solves each broken margin inside its bracket with
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import NamedTuple
 
 import numpy as np
 import numpy.typing as npt
@@ -27,39 +28,63 @@ MARGIN_ROUNDOFF = 1e-15
 """A margin this small [m or rad] is zero to round-off: its end of the bracket is the root."""
 BRACKET_TOLERANCE = 1e-12
 """Final bracket width relative to the searched distance (at least 1 m or 1 rad)."""
+TIE_TOLERANCE = 1e-9
+"""Roots this close (relative, at least 1 m or 1 rad) break together: a tie, such as two
+mirror-image legs, is decided by constraint order, never by round-off."""
+
+
+class Crossings(NamedTuple):
+    """Result of :func:`first_crossings`.
+
+    Attributes:
+        t: The crossing per direction (t_max where nothing breaks) (D,).
+        which: The breaking constraint per direction, the first in constraint order
+            among ties (−1 where nothing breaks) (D,).
+        binding: Every constraint that breaks there, per direction, in constraint order.
+
+    """
+
+    t: ArrayF
+    which: npt.NDArray[np.int_]
+    binding: tuple[tuple[int, ...], ...]
 
 
 def first_crossings(
-    margins: Callable[[IndexArray, ArrayF], ArrayF], t_max: ArrayF
-) -> tuple[ArrayF, npt.NDArray[np.int_]]:
+    margins: Callable[[IndexArray, ArrayF], ArrayF],
+    t_max: ArrayF,
+    steps: int = SCAN_STEPS,
+    chunks: int = SCAN_CHUNKS,
+) -> Crossings:
     """For each direction d, the first t ∈ (0, t_max[d]] where any margin turns negative.
 
     The scan steps through (0, t_max] at t_max/:data:`SCAN_STEPS` in chunks, dropping
     directions that have broken, so only the first failure along the motion counts.
     In each bracket every constraint that broke is solved on its own (smooth) margin by
-    Anderson–Björck regula falsi, and the earliest root wins.
+    Anderson–Björck regula falsi, and the earliest root wins; roots within
+    :data:`TIE_TOLERANCE` of it bind too.
 
     Args:
         margins: Maps (direction index (K,), t (K,)) to margins (K, C).
         t_max: Search range per direction (D,).
+        steps: Scan resolution: t_max / steps.
+        chunks: The scan runs in this many chunks, dropping directions that broke.
 
     Returns:
-        The crossing t per direction (t_max where nothing breaks), and the index of
-        the breaking constraint (−1 where nothing breaks).
+        The crossings, breaking constraints and every binding constraint per direction.
 
     """
     t_max = np.asarray(t_max, dtype=float)
     count = len(t_max)
     lo, hi = np.zeros(count), t_max.copy()
     broken = np.zeros(count, dtype=bool)
-    per_chunk = SCAN_STEPS // SCAN_CHUNKS
+    per_chunk = steps // chunks
     fractions = np.linspace(0.0, 1.0, per_chunk + 1)
-    for chunk in range(SCAN_CHUNKS):
+    for chunk in range(chunks):
         active = np.flatnonzero(~broken)
         if active.size == 0:
             break
-        start = t_max[active] * chunk / SCAN_CHUNKS
-        t = start[:, None] + (t_max[active] / SCAN_CHUNKS)[:, None] * fractions
+        start = t_max[active] * chunk / chunks
+        t = start[:, None] + (t_max[active] / chunks)[:, None] * fractions
         rows = np.broadcast_to(active[:, None], t.shape)
         smallest = margins(rows.ravel(), t.ravel()).min(axis=-1).reshape(t.shape)
         if chunk == 0 and np.any(smallest[:, 0] < 0):
@@ -72,6 +97,7 @@ def first_crossings(
             lo[d], hi[d] = t[k, first[k] - 1], t[k, first[k]]
         broken[active[hit]] = True
     which = np.full(count, -1)
+    binding: list[tuple[int, ...]] = [()] * count
     index = np.flatnonzero(broken)
     if index.size:
         # Solve every constraint that broke inside its bracket on its own smooth margin,
@@ -85,10 +111,12 @@ def first_crossings(
 
         root = anderson_bjorck(pair_margin, lo[directions], hi[directions])
         for d in index:
-            mine = np.flatnonzero(directions == d)
-            first = mine[np.argmin(root[mine])]
-            lo[d], which[d] = root[first], pair_constraint[first]
-    return np.where(broken, lo, t_max), which
+            mine = np.flatnonzero(directions == d)  # in constraint order
+            earliest = root[mine].min()
+            tied = mine[root[mine] <= earliest + TIE_TOLERANCE * max(1.0, abs(earliest))]
+            lo[d], which[d] = earliest, pair_constraint[tied[0]]
+            binding[d] = tuple(int(c) for c in pair_constraint[tied])
+    return Crossings(np.where(broken, lo, t_max), which, tuple(binding))
 
 
 def anderson_bjorck(g: Callable[[ArrayF], ArrayF], lo: ArrayF, hi: ArrayF) -> ArrayF:

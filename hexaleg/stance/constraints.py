@@ -9,6 +9,7 @@ names a constraint; :func:`direction_poses` moves the body along one coordinate.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -17,7 +18,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, CauseKind
-from hexaleg.kinematics import leg_solution
+from hexaleg.kinematics import leg_plane, plane_solution
 from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.stance.geometry import StanceGeometry
 
@@ -34,11 +35,13 @@ class Cause:
 
     Attributes:
         kind: ``"joint"`` (a joint limit), ``"reach"`` (foothold out of the leg's
-            reach), ``"ground"`` (the body touches the ground) or ``"range"`` (nothing
-            broke within the searched range).
+            reach), ``"ground"`` (the body touches the ground), ``"collision"`` (two of
+            the robot's own parts touch) or ``"range"`` (nothing broke within the
+            searched range).
         leg: Leg name, for joint and reach causes.
         joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
+        links: The two links that touch, for collision causes.
 
     """
 
@@ -46,6 +49,7 @@ class Cause:
     leg: str | None = None
     joint: str | None = None
     bound: str | None = None
+    links: tuple[str, str] | None = None
 
     def __str__(self) -> str:
         if self.kind == "joint":
@@ -55,11 +59,63 @@ class Cause:
             return f"{self.leg} foothold out of reach ({edge})"
         if self.kind == "ground":
             return "body touches the ground"
+        if self.kind == "collision" and self.links:
+            return f"{self.links[0]} touches {self.links[1]}"
         return "end of the searched range"
+
+    def same_constraint_as(self, other: Cause) -> bool:
+        """Whether ``other`` is the same kind of constraint, perhaps on another leg."""
+        same = (self.kind, self.joint, self.bound) == (other.kind, other.joint, other.bound)
+        return same and self.kind != "collision"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form."""
-        return {"kind": self.kind, "leg": self.leg, "joint": self.joint, "bound": self.bound}
+        return {
+            "kind": self.kind,
+            "leg": self.leg,
+            "joint": self.joint,
+            "bound": self.bound,
+            "links": list(self.links) if self.links else None,
+        }
+
+
+def rpy_rotation(rpy: npt.ArrayLike) -> ArrayF:
+    """Rotations (..., 3, 3) from roll, pitch, yaw (..., 3) [rad], as Pinocchio's ``rpy``.
+
+    R = Rz(yaw)·Ry(pitch)·Rx(roll): roll, pitch and yaw about the world x, y, z axes.
+    """
+    rpy = np.asarray(rpy, dtype=float)
+    cos, sin = np.cos(rpy), np.sin(rpy)
+    cr, cp, cy = cos[..., 0], cos[..., 1], cos[..., 2]
+    sr, sp, sy = sin[..., 0], sin[..., 1], sin[..., 2]
+    rotation = np.empty((*rpy.shape[:-1], 3, 3))
+    rotation[..., 0, 0] = cy * cp
+    rotation[..., 0, 1] = cy * sp * sr - sy * cr
+    rotation[..., 0, 2] = cy * sp * cr + sy * sr
+    rotation[..., 1, 0] = sy * cp
+    rotation[..., 1, 1] = sy * sp * sr + cy * cr
+    rotation[..., 1, 2] = sy * sp * cr - cy * sr
+    rotation[..., 2, 0] = -sp
+    rotation[..., 2, 1] = cp * sr
+    rotation[..., 2, 2] = cp * cr
+    return rotation
+
+
+def displacement_poses(
+    geometry: StanceGeometry, displacement: npt.ArrayLike
+) -> tuple[ArrayF, ArrayF]:
+    """Body rotations (..., 3, 3) and translations (..., 3) displaced from the nominal stance.
+
+    Args:
+        geometry: Provides the nominal pose (level, at the nominal height).
+        displacement: (..., 6) = x, y, z [m] added to the nominal position and roll,
+            pitch, yaw [rad] (Pinocchio's ``rpy``, about the world axes), world frame.
+
+    """
+    displacement = np.asarray(displacement, dtype=float)
+    translation = displacement[..., :3].copy()
+    translation[..., 2] += geometry.nominal_height
+    return rpy_rotation(displacement[..., 3:]), translation
 
 
 def direction_poses(
@@ -73,23 +129,10 @@ def direction_poses(
         value: Signed displacement per sample [m or rad].
 
     """
-    axis_index = np.asarray(axis_index)
-    value = np.asarray(value, dtype=float)
-    axis_index, value = np.broadcast_arrays(axis_index, value)
-    translation = np.zeros((*value.shape, 3))
-    translation[..., 2] = geometry.nominal_height
-    is_translation = axis_index < 3
-    for k in range(3):
-        translation[..., k] += np.where(is_translation & (axis_index == k), value, 0.0)
-    rotation = np.broadcast_to(np.eye(3), (*value.shape, 3, 3)).copy()
-    c, s = np.cos(value), np.sin(value)
-    for k, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):  # about x, y, z
-        sel = axis_index == 3 + k
-        rotation[sel, i, i] = c[sel]
-        rotation[sel, j, j] = c[sel]
-        rotation[sel, i, j] = -s[sel]
-        rotation[sel, j, i] = s[sel]
-    return rotation, translation
+    axis_index, value = np.broadcast_arrays(np.asarray(axis_index), np.asarray(value, dtype=float))
+    displacement = np.zeros((*value.shape, len(AXES)))
+    np.put_along_axis(displacement, axis_index[..., None], value[..., None], axis=-1)
+    return displacement_poses(geometry, displacement)
 
 
 def constraint_labels(legs: Sequence[str]) -> list[Cause]:
@@ -110,14 +153,45 @@ def stance_margins(geometry: StanceGeometry, rotation: ArrayF, translation: Arra
     per leg and joint the lower and upper limit [rad]; last the lowest body corner's
     height above the ground [m].
     """
-    _, l2, l3 = geometry.lengths
+    return _margins(geometry, rotation, translation, smooth=False)
+
+
+def smooth_stance_margins(
+    geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF
+) -> ArrayF:
+    """:func:`stance_margins` in forms smooth up to the boundary, for gradient-based search.
+
+    Same columns and the same zero set (so the same feasible poses), but reach as squared
+    distances, (l2 + l3)² − r² and r² − (l2 − l3)² [m²], and the knee's fixed limits on
+    cos θ3 = (r² − l2² − l3²)/(2·l2·l3) [-] instead of θ3 through arccos, whose slope is
+    infinite where the leg straightens. (A coupled knee bound keeps the θ3 form.)
+    """
+    return _margins(geometry, rotation, translation, smooth=True)
+
+
+def _margins(
+    geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF, smooth: bool
+) -> ArrayF:
+    lengths = geometry.lengths
+    _, l2, l3 = lengths
     targets = geometry.feet_in_roots(rotation, translation)  # (..., N, 3)
-    theta, r = leg_solution(geometry.lengths, targets)  # knee-down IK (..., N, 3), (..., N)
-    reach = np.stack([l2 + l3 - r, r - abs(l2 - l3)], axis=-1)  # (..., N, 2)
+    theta1, planar_x, z, r = leg_plane(lengths[0], targets)
+    theta = plane_solution(lengths, theta1, planar_x, z, r)  # knee-down IK (..., N, 3)
     limits = geometry.limits
-    lower = np.broadcast_to(limits.lower, theta.shape).copy()
-    lower[..., 2] = limits.knee_lower(theta[..., 1])
-    joints = np.stack([theta - lower, limits.upper - theta], axis=-1)  # (..., N, 3, 2)
+    joints = np.empty((*theta.shape, 2))  # (..., N, 3, 2): lower, upper margin per joint
+    joints[..., 0] = theta - limits.lower
+    joints[..., 1] = limits.upper - theta
+    if limits.coupled_knee:
+        joints[..., 2, 0] = theta[..., 2] - limits.knee_lower(theta[..., 1])
+    if smooth:
+        r2 = planar_x**2 + z**2
+        reach = np.stack([(l2 + l3) ** 2 - r2, r2 - (l2 - l3) ** 2], axis=-1)
+        if not limits.coupled_knee and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0:
+            cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
+            joints[..., 2, 0] = cos_knee - math.cos(limits.theta3[0])
+            joints[..., 2, 1] = math.cos(limits.theta3[1]) - cos_knee
+    else:
+        reach = np.stack([l2 + l3 - r, r - abs(l2 - l3)], axis=-1)  # (..., N, 2)
     ground = geometry.lowest_corner_height(rotation, translation)
     shape = theta.shape[:-2]
     return np.concatenate(

@@ -3,12 +3,18 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Sequence
+from dataclasses import dataclass, field
 from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode
 from hexaleg.design import HexapodDesign
-from hexaleg.stance.constraints import AXES, TRANSLATIONS, Cause
+from hexaleg.stance.constraints import AXES, TRANSLATIONS, Cause, displacement_poses
+from hexaleg.stance.geometry import StanceGeometry, stance_inverse_kinematics
 
 
 class FlexibilityWarning(UserWarning):
@@ -23,7 +29,12 @@ class Extreme:
         axis: One of :data:`AXES`.
         sign: +1 or −1.
         value: Signed displacement from the nominal pose at the extreme [m or rad].
-        limited_by: The constraint that stops it.
+        limited_by: The constraint that stops it: the first, in constraint order, of
+            those that bind together (mirror-image legs often do).
+        binding: Every constraint that binds there, ``limited_by`` first.
+        pose: The body's displacement from the nominal stance there: x, y, z [m], roll,
+            pitch, yaw [rad] (world frame, Pinocchio's ``rpy``).
+        joint_angles: Each stance leg's (θ1, θ2, θ3) there [rad].
 
     """
 
@@ -31,6 +42,24 @@ class Extreme:
     sign: int
     value: float
     limited_by: Cause
+    binding: tuple[Cause, ...] = ()
+    pose: tuple[float, ...] = ()
+    joint_angles: dict[str, tuple[float, float, float]] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not self.binding:
+            object.__setattr__(self, "binding", (self.limited_by,))
+
+    @property
+    def description(self) -> str:
+        """What stops the body, naming every leg that binds: "lf, rf knee joint at ..."."""
+        first, others = self.limited_by, self.binding[1:]
+        if not others:
+            return str(first)
+        if first.leg and all(c.leg and c.same_constraint_as(first) for c in others):
+            legs = ", ".join([first.leg, *(c.leg for c in others if c.leg)])
+            return str(first).replace(first.leg, legs, 1)
+        return f"{first} (also {', '.join(str(c) for c in others)})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (value in m or rad)."""
@@ -39,7 +68,10 @@ class Extreme:
             "sign": self.sign,
             "value": self.value,
             "limited_by": self.limited_by.to_dict(),
-            "description": str(self.limited_by),
+            "description": self.description,
+            "binding": [cause.to_dict() for cause in self.binding],
+            "pose": list(self.pose),
+            "joint_angles": {leg: list(angles) for leg, angles in self.joint_angles.items()},
         }
 
 
@@ -54,6 +86,7 @@ class FlexibilityResult:
         extremes: One per direction of :data:`DIRECTIONS`.
         converged: False if an optimizer (free mode) failed somewhere.
         iterations: Optimizer iterations summed over the twelve directions (0 for axis mode).
+        collisions: Whether the robot's own parts touching stopped the body too.
 
     """
 
@@ -63,6 +96,7 @@ class FlexibilityResult:
     extremes: tuple[Extreme, ...]
     converged: bool = True
     iterations: int = 0
+    collisions: bool = False
 
     def extreme(self, axis: str, sign: int) -> Extreme:
         """The extreme in direction (axis, sign)."""
@@ -85,9 +119,16 @@ class FlexibilityResult:
             "mode": self.mode,
             "stance": list(self.legs),
             "converged": self.converged,
+            "collisions": self.collisions,
             "ranges": self.ranges,
             "extremes": [e.to_dict() for e in self.extremes],
-            "units": {"x y z": "m", "roll pitch yaw": "rad", "fb": "1"},
+            "units": {
+                "x y z": "m",
+                "roll pitch yaw": "rad",
+                "fb": "1",
+                "pose": "x y z [m], roll pitch yaw [rad], world frame, from the nominal stance",
+                "joint_angles": "rad",
+            },
             "design": self.design.as_dict(),
         }
 
@@ -103,3 +144,28 @@ def flexibility_index(ranges: dict[str, float], leg_length: float) -> float:
     translation = sum(ranges[a] for a in TRANSLATIONS) / (2 * leg_length)
     rotation = sum(math.degrees(ranges[a]) for a in AXES[3:]) / 180.0
     return (translation + rotation) / 6.0
+
+
+def pose_extreme(
+    geometry: StanceGeometry,
+    axis: str,
+    sign: int,
+    displacement: npt.ArrayLike,
+    binding: Sequence[Cause],
+) -> Extreme:
+    """The extreme reached at a body displacement (6,), with every stance leg's angles there."""
+    d = np.asarray(displacement, dtype=float)
+    rotation, translation = displacement_poses(geometry, d)
+    theta = stance_inverse_kinematics(geometry, pin.SE3(rotation, translation)).theta
+    return Extreme(
+        axis,
+        sign,
+        float(d[AXES.index(axis)]),
+        binding[0],
+        tuple(binding),
+        tuple(float(v) for v in d),
+        {
+            leg: (float(a), float(b), float(c))
+            for leg, (a, b, c) in zip(geometry.legs, theta, strict=True)
+        },
+    )

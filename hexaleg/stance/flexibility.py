@@ -21,8 +21,12 @@ def flexibility(
     mode: FlexibilityMode = "axis",
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
+    collisions: bool = False,
 ) -> FlexibilityResult:
-    """Body flexibility of ``design``: ``mode`` is ``"axis"`` (axis-locked) or ``"free"``."""
+    """Body flexibility of ``design``: ``mode`` is ``"axis"`` (axis-locked) or ``"free"``.
+
+    With ``collisions``, the body also stops where two of the robot's own parts touch.
+    """
     if require_choice("mode", mode, FlexibilityMode) == "axis":
-        return axis_locked_flexibility(design, stance, model)
-    return free_flexibility(design, stance, model)
+        return axis_locked_flexibility(design, stance, model, collisions=collisions)
+    return free_flexibility(design, stance, model, collisions=collisions)

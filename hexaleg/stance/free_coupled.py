@@ -1,188 +1,213 @@
 """Free-coupled body flexibility: each coordinate pushed as far as the mechanism allows.
 
-The other five body coordinates are free to help: a constrained nonlinear program
-(SLSQP) on the Pinocchio model's configuration, with the foot-anchor constraints and
-their Jacobians from Pinocchio, started from the axis-locked extreme so its range is
-never smaller.
+The other five body coordinates are free to help. The body pose is the variable,
+d = (x, y, z, roll, pitch, yaw) displaced from the nominal stance (world frame,
+Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-down
+IK (eq 8–9), whose solution Pinocchio's model reproduces (tested). Each direction
+is a small smooth nonlinear program, max ±d_k subject to every margin of
+:func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0, solved by SLSQP from
+several deterministic starts (:mod:`~hexaleg.stance.multistart`): the axis-locked extreme, and
+mirrored low-discrepancy perturbations of the coupled coordinates. The best
+feasible answer wins after an exact feasibility check, so the range is never
+smaller than the axis-locked one; the result is flagged converged only where the
+optimizer converged and at least two starts agreed on the optimum.
 """
 
 from __future__ import annotations
 
+import math
 import warnings
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
-import pinocchio as pin
-from scipy import optimize
 
 from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.kinematics import inverse_kinematics
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_extremes
+from hexaleg.stance.collisions import SelfCollision, collision_limited
 from hexaleg.stance.constraints import (
     AXES,
     Cause,
     constraint_labels,
-    direction_poses,
+    displacement_poses,
+    smooth_stance_margins,
     stance_margins,
 )
-from hexaleg.stance.extremes import Extreme, FlexibilityResult, FlexibilityWarning
-from hexaleg.stance.geometry import (
-    StanceGeometry,
-    constraint_jacobian,
-    constraint_residual,
-    mechanism_columns,
+from hexaleg.stance.extremes import (
+    Extreme,
+    FlexibilityResult,
+    FlexibilityWarning,
+    pose_extreme,
 )
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.multistart import box_starts, maximize_coordinate
+
+FEASIBILITY_TOLERANCE = 1e-9
+"""Largest constraint violation [m or rad] an answer may have (exact margins)."""
+MARGIN_FLOOR = 1e-11
+"""The NLP asks every smooth margin to exceed this, so answers land inside the boundary."""
+STEP = 1e-7
+"""Finite-difference step of the margins' Jacobian [m or rad]."""
+ACTIVE_TOLERANCE = 1e-8
+"""Margins this close to the smallest [m or rad] bind together at a free extreme."""
+BOX_STARTS = 16
+"""Starts per direction spread over the search box (scrambled Sobol, seeded by direction)."""
+BOX_SCALE = 1.3
+"""The search box reaches this multiple of each coordinate's larger axis-locked extreme."""
+ENOUGH = (6, 3)
+"""Stop a direction's search once 6 starts have run and 3 of them reached the best value."""
+MAX_ITERATIONS = 40
+"""SLSQP iterations per start: converging starts need 5–20; the rest are cut short."""
+ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
+"""Roll, pitch, yaw stay in Pinocchio's rpy ranges, so each pose has one name [rad]."""
+
+
+@dataclass(frozen=True)
+class DirectionSolution:
+    """The free-coupled answer for one direction.
+
+    Attributes:
+        extreme: The extreme, with its pose and binding constraints.
+        converged: The winning start's optimizer converged and another start agreed.
+        iterations: SLSQP iterations over every start.
+
+    """
+
+    extreme: Extreme
+    converged: bool
+    iterations: int
 
 
 def free_flexibility(
     design: HexapodDesign,
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
+    collisions: bool = False,
 ) -> FlexibilityResult:
-    """Free-coupled flexibility: each coordinate's extreme with the other five free."""
+    """Free-coupled flexibility: each coordinate's extreme with the other five free.
+
+    Args:
+        design: The design.
+        stance: ``"all"``, ``"tripod"`` or a list of stance legs.
+        model: Its Pinocchio model, if already built.
+        collisions: Also stop where two of the robot's own parts touch (coal).
+
+    """
     model = HexapodModel(design) if model is None else model
     geometry = StanceGeometry.from_model(model, stance)
+    collision = SelfCollision(model, geometry) if collisions else None
     locked = axis_locked_extremes(geometry)
-    problem = _FreeProblem(model, geometry)
-    extremes = []
-    converged = True
-    iterations = 0
-    for extreme in locked:
-        solved, ok, nit = problem.solve(extreme)
-        converged &= ok
-        iterations += nit
-        extremes.append(solved)
-    if not converged:
+    if collision is not None:
+        locked = collision_limited(geometry, collision, locked)
+    problem = _FreeProblem(geometry, collision)
+    solutions = [problem.solve(extreme, locked) for extreme in locked]
+    doubtful = [_name(s.extreme) for s in solutions if not s.converged]
+    if doubtful:
         warnings.warn(
-            "free-coupled flexibility: SLSQP did not converge for some directions; "
-            "their axis-locked values are kept",
+            "free-coupled flexibility: the optimizer did not converge, or its starts did "
+            f"not agree, for {', '.join(doubtful)}; the best feasible values found are kept",
             FlexibilityWarning,
             stacklevel=2,
         )
-    return FlexibilityResult(design, geometry.legs, "free", tuple(extremes), converged, iterations)
+    return FlexibilityResult(
+        design,
+        geometry.legs,
+        "free",
+        tuple(s.extreme for s in solutions),
+        converged=not doubtful,
+        iterations=sum(s.iterations for s in solutions),
+        collisions=collisions,
+    )
+
+
+def _name(extreme: Extreme) -> str:
+    return f"{extreme.axis}{'+' if extreme.sign > 0 else '-'}"
+
+
+def starts(k: int, sign: int, locked: Sequence[Extreme]) -> list[ArrayF]:
+    """Where the search for direction (k, sign) starts.
+
+    The axis-locked extreme (pulled back by a hair), then :data:`BOX_STARTS` points
+    spread over a box around the nominal stance reaching :data:`BOX_SCALE` times each
+    coordinate's larger axis-locked extreme: the better optima couple coordinates
+    (z− with yaw and a sideways shift, say), which no start on the axis finds.
+    """
+    value = {(e.axis, e.sign): e.value for e in locked}
+    half = np.array([BOX_SCALE * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
+    at_extreme = np.zeros(len(AXES))
+    at_extreme[k] = value[(AXES[k], sign)] - sign * 1e-9
+    seed = 2 * k + (sign > 0)
+    return [at_extreme, *box_starts(np.maximum(half, 1e-3), BOX_STARTS, seed=seed)]
 
 
 class _FreeProblem:
-    """max ±coordinate s.t. feet on footholds, joints within limits, body above ground.
+    """max ±d_k over body displacements d (6,) with every stance margin ≥ 0."""
 
-    Variables x = (ν, θ): ν ∈ R⁶ the body displacement, pose = nominal·exp6(ν);
-    θ the stance legs' joint angles. Constraint Jacobians come from Pinocchio.
-    """
-
-    def __init__(self, model: HexapodModel, geometry: StanceGeometry) -> None:
-        self.model = model
+    def __init__(self, geometry: StanceGeometry, collision: SelfCollision | None) -> None:
         self.geometry = geometry
-        self.columns = mechanism_columns(model, geometry.legs)
-        self.q_index = np.concatenate([model.leg_q_indices(leg) for leg in geometry.legs])
-        self.q_swing = model.nominal_configuration()
-        self.nominal = geometry.nominal_pose
+        self.collision = collision
         self.labels = constraint_labels(geometry.legs)
-        self.corners = geometry.body_corners(np.eye(3), np.zeros(3))
-        limits = geometry.limits
-        n = len(geometry.legs)
-        self.bounds = [(None, None)] * 6 + [
-            (float(limits.lower[j]), float(limits.upper[j])) for _ in range(n) for j in range(3)
-        ]
+        self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
 
-    def pose(self, x: ArrayF) -> pin.SE3:
-        return self.nominal * pin.exp6(x[:6])
+    def margins(self, d: ArrayF) -> ArrayF:
+        """Smooth margins at d (6,), less the floor: the NLP's inequality constraints."""
+        return self._smooth(d[None])[0] - MARGIN_FLOOR
 
-    def configuration(self, x: ArrayF) -> ArrayF:
-        q = self.q_swing.copy()
-        q[:7] = pin.SE3ToXYZQUAT(self.pose(x))
-        q[self.q_index] = x[6:]
-        return q
+    def jacobian(self, d: ArrayF) -> ArrayF:
+        """Forward differences of :meth:`margins`, all seven poses in one vectorized call."""
+        values = self._smooth(d + self.basis)
+        return (values[1:] - values[0]).T / STEP
 
-    def coordinate(self, x: ArrayF, axis: int) -> float:
-        pose = self.pose(x)
-        if axis < 3:
-            return float(pose.translation[axis])
-        return float(pin.rpy.matrixToRpy(pose.rotation)[axis - 3])
+    def _smooth(self, displacements: ArrayF) -> ArrayF:
+        rotation, translation = displacement_poses(self.geometry, displacements)
+        margins = smooth_stance_margins(self.geometry, rotation, translation)
+        if self.collision is None:
+            return margins
+        clearance = self.collision.clearances(rotation, translation)[0]
+        return np.concatenate([margins, clearance[..., None]], axis=-1)
 
-    def equality(self, x: ArrayF) -> ArrayF:
-        return constraint_residual(self.model, self.geometry, self.configuration(x))
+    def exact(self, d: ArrayF) -> ArrayF:
+        """Exact margins at d (6,) [m or rad], the collision clearance last if checked."""
+        rotation, translation = displacement_poses(self.geometry, d)
+        margins = stance_margins(self.geometry, rotation, translation)
+        if self.collision is None:
+            return margins
+        return np.append(margins, self.collision.clearances(rotation, translation)[0])
 
-    def equality_jacobian(self, x: ArrayF) -> ArrayF:
-        jac = constraint_jacobian(self.model, self.geometry, self.configuration(x))[:, self.columns]
-        jac[:, :6] = jac[:, :6] @ pin.Jexp6(x[:6])
-        return jac
+    def binding(self, d: ArrayF) -> list[Cause]:
+        """The constraints that bind at d, in constraint order; touching pairs last."""
+        margins = self.exact(d)
+        active = np.flatnonzero(margins <= margins.min() + ACTIVE_TOLERANCE)
+        causes = [self.labels[i] for i in active if i < len(self.labels)]
+        if self.collision is not None and len(self.labels) in active:
+            causes += self.collision.closest_pairs(*displacement_poses(self.geometry, d))
+        return causes
 
-    def ground(self, x: ArrayF) -> ArrayF:
-        pose = self.pose(x)
-        return (self.corners @ pose.rotation.T + pose.translation)[:, 2]
+    def feasible(self, d: ArrayF) -> bool:
+        """The exact check every answer must pass."""
+        return bool(self.exact(d).min() >= -FEASIBILITY_TOLERANCE)
 
-    def ground_jacobian(self, x: ArrayF) -> ArrayF:
-        pose = self.pose(x)
-        jac = np.zeros((len(self.corners), len(x)))
-        for k, corner in enumerate(self.corners):
-            # d(corner z)/dν_local = e_z·R·[I, −[c]×]
-            local = np.hstack([np.eye(3), -pin.skew(corner)])
-            jac[k, :6] = (pose.rotation @ local)[2] @ pin.Jexp6(x[:6])
-        return jac
-
-    def knee_coupling(self, x: ArrayF) -> ArrayF:
-        theta = x[6:].reshape(-1, 3)
-        return theta[:, 2] - self.geometry.limits.knee_lower(theta[:, 1])
-
-    def start(self, extreme: Extreme) -> ArrayF:
-        """A feasible start: the axis-locked extreme pulled back by a hair."""
-        axis = AXES.index(extreme.axis)
-        back = extreme.value - extreme.sign * 1e-9
-        rotation, translation = direction_poses(self.geometry, axis, back)
-        body = pin.SE3(rotation, translation)
-        nu = pin.log6(self.nominal.inverse() * body).vector
-        targets = self.geometry.feet_in_roots(body.rotation, body.translation)
-        theta = inverse_kinematics(self.geometry.lengths, targets).theta
-        return np.concatenate([nu, theta.ravel()])
-
-    def solve(self, extreme: Extreme) -> tuple[Extreme, bool, int]:
-        axis = AXES.index(extreme.axis)
-        sign = extreme.sign
-        x0 = self.start(extreme)
-        nominal_value = self.coordinate(np.zeros_like(x0), axis)
-        step = 1e-7
-
-        def objective(x: ArrayF) -> tuple[float, ArrayF]:
-            value = self.coordinate(x, axis)
-            grad = np.zeros_like(x)
-            for k in range(6):  # the pose depends on ν only
-                dx = np.zeros_like(x)
-                dx[k] = step
-                grad[k] = (self.coordinate(x + dx, axis) - self.coordinate(x - dx, axis)) / (
-                    2 * step
-                )
-            return -sign * value, -sign * grad
-
-        constraints = [
-            {"type": "eq", "fun": self.equality, "jac": self.equality_jacobian},
-            {"type": "ineq", "fun": self.ground, "jac": self.ground_jacobian},
-        ]
-        if self.geometry.limits.coupled_knee:
-            constraints.append({"type": "ineq", "fun": self.knee_coupling})
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)
-            result = optimize.minimize(
-                objective,
-                x0,
-                jac=True,
-                method="SLSQP",
-                bounds=self.bounds,
-                constraints=constraints,
-                options={"maxiter": 200, "ftol": 1e-10},
-            )
-        value = self.coordinate(result.x, axis) - nominal_value
-        feasible, cause = self._check(result.x)
-        converged = bool(result.success) and feasible
-        if feasible and sign * value > sign * extreme.value:
-            return Extreme(extreme.axis, sign, float(value), cause), converged, int(result.nit)
-        return extreme, converged, int(result.nit)  # axis-locked is feasible: never less
-
-    def _check(self, x: ArrayF) -> tuple[bool, Cause]:
-        """Feasibility of the NLP's answer, re-derived by stance IK from its body pose."""
-        pose = self.pose(x)
-        margins = stance_margins(self.geometry, pose.rotation, pose.translation)
-        residual = np.abs(self.equality(x)).max()
-        feasible = bool(margins.min() >= -1e-7 and residual <= 1e-7)
-        return feasible, self.labels[int(np.argmin(margins))]
+    def solve(self, extreme: Extreme, locked: Sequence[Extreme]) -> DirectionSolution:
+        """The free extreme of ``extreme``'s direction, never short of ``extreme`` itself."""
+        k = AXES.index(extreme.axis)
+        result = maximize_coordinate(
+            k,
+            extreme.sign,
+            self.margins,
+            self.jacobian,
+            starts(k, extreme.sign, locked),
+            self.feasible,
+            bounds=[(None, None)] * 3 + list(ROTATION_BOUNDS),
+            max_iterations=MAX_ITERATIONS,
+            enough=ENOUGH,
+        )
+        if result is None:
+            return DirectionSolution(extreme, False, 0)
+        converged = result.success and result.agreed
+        if result.value <= extreme.sign * extreme.value:  # axis-locked is feasible: keep it
+            return DirectionSolution(extreme, converged, result.iterations)
+        binding = self.binding(result.x)
+        solved = pose_extreme(self.geometry, extreme.axis, extreme.sign, result.x, binding)
+        return DirectionSolution(solved, converged, result.iterations)

@@ -128,12 +128,9 @@ class StanceGeometry:
         """
         rotation = np.asarray(rotation, dtype=float)
         translation = np.asarray(translation, dtype=float)
-        # world → body: b = Rᵀ(f − t); body → root: R_rᵀ(b − p_r). Written as three
-        # broadcast multiply-adds each: NumPy's batched 3×3 matmul is slower here.
-        offset = self.footholds - translation[..., None, :]  # (..., N, 3)
-        in_body = sum(offset[..., i, None] * rotation[..., None, i, :] for i in range(3))
-        relative = in_body - self.root_positions
-        return sum(relative[..., i, None] * self.root_rotations[:, i, :] for i in range(3))
+        # world → body: b = Rᵀ(f − t), row-wise (f − t)·R; body → root: R_rᵀ(b − p_r).
+        in_body = (self.footholds - translation[..., None, :]) @ rotation  # (..., N, 3)
+        return np.einsum("...nj,nji->...ni", in_body - self.root_positions, self.root_rotations)
 
     def body_corners(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
         """World positions of the body box's 8 corners for body poses (..., 8, 3) [m]."""

@@ -2,17 +2,17 @@
 
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.recommendation import Recommendation, recommend
-from hexaleg.study.sensitivity import SENSITIVITY_VARIANTS, sensitivity_table
+from hexaleg.study.sensitivity import relative_variants, sensitivity_table
 from hexaleg.study.sweep import StudySpec, peak_table, run_study, sweep, sweep_in_process
 
 __all__ = [
-    "SENSITIVITY_VARIANTS",
     "Recommendation",
     "StudySpec",
     "dask_executor",
     "local_pool",
     "peak_table",
     "recommend",
+    "relative_variants",
     "run_study",
     "sensitivity_table",
     "sweep",

@@ -15,19 +15,33 @@ import pandas as pd
 
 from hexaleg._typing import StanceSet
 from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
 from hexaleg.study.sweep import StudySpec, peak_table, sweep_in_process
 
-SENSITIVITY_VARIANTS: tuple[tuple[str, dict[str, Any]], ...] = (
-    ("default", {}),
-    ("hip raised 0.2 rad", {"nominal_angles": (0.0, 0.2, -math.pi / 2 - 0.2)}),
-    ("hip lowered 0.2 rad", {"nominal_angles": (0.0, -0.2, -math.pi / 2 + 0.2)}),
-    ("knee bent 0.3 rad more", {"nominal_angles": (0.0, 0.0, -math.pi / 2 - 0.3)}),
-    ("knee opened 0.3 rad", {"nominal_angles": (0.0, 0.0, -math.pi / 2 + 0.3)}),
-    ("body 0.8 m long", {"body_length": 0.8, "mounts": None}),
-    ("body 1.2 m long", {"body_length": 1.2, "mounts": None}),
-    ("body 0.8 m wide", {"body_width": 0.8, "mounts": None}),
-)
-"""Posture and body changes the paper leaves open, each against the default design."""
+Variant = tuple[str, dict[str, Any]]
+"""A name and the design fields it changes."""
+
+
+def relative_variants(base: HexapodDesign) -> tuple[Variant, ...]:
+    """Posture and body changes the paper leaves open, each relative to ``base``.
+
+    The hip raised or lowered by 0.2 rad (the knee compensating so the tibia keeps its
+    direction), the knee bent or opened by 0.3 rad, and the body 20 % longer, shorter,
+    wider or narrower, with the legs following the body's corners.
+    """
+    t1, t2, t3 = base.nominal_angles
+    length, width = base.body_length, base.body_width
+    return (
+        ("your design", {}),
+        ("hip raised 0.2 rad", {"nominal_angles": (t1, t2 + 0.2, t3 - 0.2)}),
+        ("hip lowered 0.2 rad", {"nominal_angles": (t1, t2 - 0.2, t3 + 0.2)}),
+        ("knee bent 0.3 rad more", {"nominal_angles": (t1, t2, t3 - 0.3)}),
+        ("knee opened 0.3 rad", {"nominal_angles": (t1, t2, t3 + 0.3)}),
+        (f"body 20 % shorter ({0.8 * length:.3g} m)", {"body_length": 0.8 * length}),
+        (f"body 20 % longer ({1.2 * length:.3g} m)", {"body_length": 1.2 * length}),
+        (f"body 20 % narrower ({0.8 * width:.3g} m)", {"body_width": 0.8 * width}),
+        (f"body 20 % wider ({1.2 * width:.3g} m)", {"body_width": 1.2 * width}),
+    )
 
 
 def sensitivity_table(
@@ -36,20 +50,43 @@ def sensitivity_table(
     total: float = 1.0,
     stance: StanceSet = "all",
     base: HexapodDesign | None = None,
-    variants: Sequence[tuple[str, dict[str, Any]]] = SENSITIVITY_VARIANTS,
+    variants: Sequence[Variant] | None = None,
 ) -> pd.DataFrame:
     """Peak tibia ratio and FB per coxa ratio for each posture/body variant (axis-locked).
 
-    Runs in this process with the vectorized kernel: ~5 ms per design.
+    Runs in this process with the vectorized kernel: ~5 ms per design. A variant whose
+    posture leaves the stance limits or cannot stand gives NaN peaks and says why.
+
+    Args:
+        l1_ratios: Coxa ratios [-].
+        l3_ratios: Tibia ratios [-].
+        total: Total leg length [m].
+        stance: Stance legs.
+        base: The design the variants change (default: hexaleg's default design).
+        variants: Names and changes; by default :func:`relative_variants` of ``base``.
+
     """
     base = HexapodDesign() if base is None else base
     rows = []
-    for name, changes in variants:
-        variant = base.replace(**changes)
+    for name, changes in relative_variants(base) if variants is None else variants:
+        try:
+            variant = base.replace(**changes)
+        except HexalegError as err:
+            for r1 in l1_ratios:
+                rows.append(
+                    {
+                        "variant": name,
+                        "l1_ratio": r1,
+                        "peak_l3_ratio": math.nan,
+                        "peak_fb": math.nan,
+                        "failed_designs": len(l3_ratios),
+                        "note": str(err),
+                    }
+                )
+            continue
         spec = StudySpec(tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant)
         table = sweep_in_process(spec)
         for peak in peak_table(table).to_dict(orient="records"):
-            rows.append(
-                {"variant": name, **peak, "failed_designs": int((table["error"] != "").sum())}
-            )
+            failed = int(((table["l1_ratio"] == peak["l1_ratio"]) & (table["error"] != "")).sum())
+            rows.append({"variant": name, **peak, "failed_designs": failed, "note": ""})
     return pd.DataFrame(rows)

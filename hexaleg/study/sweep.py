@@ -17,7 +17,7 @@ import sys
 import warnings
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, as_completed
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -29,6 +29,7 @@ from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
 from hexaleg.design import (
     MAX_L3_POINTS,
     SEGMENT_RANGE,
+    SEGMENTS,
     HexapodDesign,
     require_in_range,
     require_ratio,
@@ -59,6 +60,7 @@ class StudySpec:
         mode: ``"axis"`` (axis-locked) or ``"free"`` (free-coupled) flexibility.
         stance: ``"all"`` or ``"tripod"``.
         base: Every other field of the designs (body, mounts, posture, limits).
+        collisions: The robot's own parts touching also stop the body.
 
     """
 
@@ -68,6 +70,7 @@ class StudySpec:
     mode: FlexibilityMode = "axis"
     stance: StanceSet = "all"
     base: HexapodDesign = field(default_factory=HexapodDesign)
+    collisions: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
@@ -107,7 +110,8 @@ class StudySpec:
             "total": self.total,
             "mode": self.mode,
             "stance": self.stance,
-            "base": {k: v for k, v in self.base.as_dict().items() if k not in ("l1", "l2", "l3")},
+            "collisions": self.collisions,
+            "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
         }
 
 
@@ -127,15 +131,16 @@ def evaluate(task: _Task) -> Row:
     """One row of the study table; errors become a row with ``error`` set."""
     row: Row = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
     try:
-        design = HexapodDesign.from_ratios(
-            task.l1_ratio, task.l3_ratio, task.spec.total, **_base_fields(task.spec.base)
-        )
-        if task.spec.mode == "axis":
-            result = axis_locked_flexibility(design, task.spec.stance, geometry=task.template)
+        design = task.spec.base.with_ratios(task.l1_ratio, task.l3_ratio, task.spec.total)
+        spec = task.spec
+        if spec.mode == "axis":
+            result = axis_locked_flexibility(
+                design, spec.stance, geometry=task.template, collisions=spec.collisions
+            )
         else:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                result = free_flexibility(design, task.spec.stance)
+                result = free_flexibility(design, spec.stance, collisions=spec.collisions)
     except HexalegError as err:
         return row | {"l1": math.nan, "l2": math.nan, "l3": math.nan, "error": str(err)}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
@@ -143,12 +148,8 @@ def evaluate(task: _Task) -> Row:
     for extreme in result.extremes:
         name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
         row[name] = extreme.value
-        row[f"{name}_limited_by"] = str(extreme.limited_by)
+        row[f"{name}_limited_by"] = extreme.description
     return row | {"converged": result.converged, "error": ""}
-
-
-def _base_fields(base: HexapodDesign) -> dict[str, Any]:
-    return {f.name: getattr(base, f.name) for f in fields(base) if f.name not in ("l1", "l2", "l3")}
 
 
 def sweep(

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import sys
 import warnings
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any, TypeVar
 
@@ -18,7 +18,7 @@ from tqdm import tqdm
 
 from hexaleg._typing import ArrayF
 from hexaleg._version import __version__
-from hexaleg.design import MAX_L3_POINTS, HexapodDesign, l3_ratio_grid
+from hexaleg.design import MAX_L3_POINTS, HexapodDesign, l3_ratio_grid, require_ratio
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.paper.reproduction import table5_reproduction, table6_reproduction
@@ -26,10 +26,12 @@ from hexaleg.robot.model import HexapodModel, LegModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
+from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.executors import local_pool, max_workers
-from hexaleg.study.recommendation import Recommendation, recommend
+from hexaleg.study.metrics import design_metrics, ratio_metrics
+from hexaleg.study.recommendation import Metrics, Recommendation, combined_score, recommend
 from hexaleg.study.sensitivity import sensitivity_table
-from hexaleg.study.sweep import StudySpec, peak_table, study_table, sweep
+from hexaleg.study.sweep import MAX_L1_RATIOS, StudySpec, peak_table, study_table, sweep
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
@@ -45,6 +47,9 @@ from hexaleg.swing.workspace import (
 
 T = TypeVar("T")
 
+MIN_L3_POINTS = 10
+"""Fewest tibia ratios a report accepts: coarser grids cannot bracket the peaks [-]."""
+
 MAX_SENSITIVITY_POINTS = 400
 """Most tibia ratios per variant in the sensitivity table (8 variants × 2 coxa ratios)."""
 
@@ -59,6 +64,10 @@ class ReportOptions:
         monte_carlo_samples: Samples of the Monte Carlo workspace.
         workers: Local processes for the flexibility study (default: CPUs).
         progress: Show a progress bar; by default only on a terminal.
+        l1_ratios: Coxa ratios to sweep and recommend from (a fixed coxa: one ratio);
+            by default the paper's four, recommending among the practical ones (≥ 0.10).
+        collisions: The robot's own parts touching also stop the body, in the design's
+            flexibility and in the study.
 
     """
 
@@ -67,8 +76,16 @@ class ReportOptions:
     monte_carlo_samples: int = 20_000
     workers: int | None = None
     progress: bool | None = None
+    l1_ratios: tuple[float, ...] | None = None
+    collisions: bool = False
 
     def __post_init__(self) -> None:
+        if self.l1_ratios is not None:
+            object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
+            if not 1 <= len(self.l1_ratios) <= MAX_L1_RATIOS:
+                raise HexalegError(f"l1_ratios: give 1 to {MAX_L1_RATIOS} coxa ratios")
+            for ratio in self.l1_ratios:
+                require_ratio("l1_ratios", ratio)
         for name, (lower, upper) in {
             "l3_points": (2, MAX_L3_POINTS),
             "sensitivity_points": (2, MAX_SENSITIVITY_POINTS),
@@ -78,6 +95,48 @@ class ReportOptions:
             value = getattr(self, name)
             if value is not None and not lower <= value <= upper:
                 raise HexalegError(f"{name} = {value} is not valid: must lie in {lower}..{upper}")
+        if self.l3_points < MIN_L3_POINTS:
+            raise HexalegError(
+                f"l3_points = {self.l3_points} is too coarse to locate the peaks: "
+                f"the report needs {MIN_L3_POINTS}..{MAX_L3_POINTS} tibia ratios"
+            )
+
+    @property
+    def swept_l1_ratios(self) -> tuple[float, ...]:
+        """The coxa ratios the sweeps cover [-]."""
+        return self.l1_ratios or L1_RATIOS
+
+
+@dataclass(frozen=True)
+class Decision:
+    """The user's design beside the recommended one, on the recommendation's scale.
+
+    Attributes:
+        yours: The user's design's metrics (:data:`~hexaleg.study.recommendation.METRICS`).
+        your_score: Its combined score [-].
+        recommended: The recommended ratios at the user's leg length, body and posture;
+            ``None`` if that design cannot stand.
+        recommended_metrics: The recommended design's metrics (NaN if it cannot stand).
+        recommended_score: Its combined score [-].
+
+    """
+
+    yours: Metrics
+    your_score: float
+    recommended: HexapodDesign | None
+    recommended_metrics: Metrics
+    recommended_score: float
+
+    def to_json(self) -> dict[str, Any]:
+        """JSON-ready form (metrics in m², m³ and 1)."""
+        return {
+            "yours": {"metrics": dict(self.yours), "score": self.your_score},
+            "recommended": {
+                "lengths_m": list(self.recommended.lengths) if self.recommended else None,
+                "metrics": dict(self.recommended_metrics),
+                "score": self.recommended_score,
+            },
+        }
 
 
 @dataclass(frozen=True)
@@ -97,8 +156,9 @@ class ReportData:
         free: Free-coupled flexibility, all six feet down.
         study_spec: The FB sweep (Fig 14–15) on the design's body and posture.
         study: Its table, one row per design.
-        sensitivity: Peak FB per posture/body variant.
+        sensitivity: Peak FB per posture/body variant, each relative to this design.
         recommendation: Recommended segment ratios and the scores behind them.
+        decision: This design beside the recommended one, metric by metric.
 
     """
 
@@ -116,6 +176,7 @@ class ReportData:
     study: pd.DataFrame
     sensitivity: pd.DataFrame
     recommendation: Recommendation
+    decision: Decision
 
     @property
     def study_peaks(self) -> pd.DataFrame:
@@ -149,9 +210,12 @@ class ReportData:
                     "l2_ratio": rec.l2_ratio,
                     "l3_ratio": rec.l3_ratio,
                     "l3_band": list(rec.l3_band),
+                    "score": rec.score,
+                    "maxima": rec.maxima,
                     "peaks": rec.peaks.to_dict(orient="records"),
                     "lengths_m": [rec.l1_ratio * total, rec.l2_ratio * total, rec.l3_ratio * total],
                 },
+                "decision": self.decision.to_json(),
             }
         )
 
@@ -168,28 +232,40 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
             return result
 
         l3_ratios = l3_ratio_grid(options.l3_points)
+        l1_ratios = options.swept_l1_ratios
         model = step("model and URDF", lambda: HexapodModel(design))
         workspace = step(
             "workspace", lambda: analyze_workspace(design, samples=options.monte_carlo_samples)
         )
         manipulability, average_map = step(
-            "manipulability", lambda: _manipulability(design, l3_ratios)
+            "manipulability", lambda: _manipulability(design, l1_ratios, l3_ratios)
         )
-        axis, free = step("body flexibility", lambda: _flexibility(design, model))
-        spec = StudySpec(tuple(L1_RATIOS), tuple(l3_ratios), design.leg_length, base=design)
+        axis, free = step(
+            "body flexibility", lambda: _flexibility(design, model, options.collisions)
+        )
+        spec = StudySpec(
+            l1_ratios,
+            tuple(l3_ratios),
+            design.leg_length,
+            base=design,
+            collisions=options.collisions,
+        )
         study = step("design study", lambda: _study(spec, options.workers))
         sensitivity = step(
             "posture sensitivity",
             lambda: sensitivity_table(
-                (L1_RATIOS[1], L1_RATIOS[3]),
+                _sensitivity_l1_ratios(l1_ratios),
                 tuple(l3_ratio_grid(options.sensitivity_points)),
                 design.leg_length,
                 base=design,
             ),
         )
+        template = StanceGeometry.from_model(model, "all")
         recommendation = step(
-            "recommendation", lambda: _recommendation(average_map, study, design.leg_length)
+            "recommendation",
+            lambda: _recommendation(design, template, average_map, study, options),
         )
+        decision = _decision(design, template, recommendation, options.collisions)
     return ReportData(
         design=design,
         options=options,
@@ -207,26 +283,27 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
         study=study,
         sensitivity=sensitivity,
         recommendation=recommendation,
+        decision=decision,
     )
 
 
 def _manipulability(
-    design: HexapodDesign, l3_ratios: ArrayF
+    design: HexapodDesign, l1_ratios: Sequence[float], l3_ratios: ArrayF
 ) -> tuple[ManipulabilityAnalysis, AverageManipulabilityMap]:
     analysis = analyze_manipulability(design, LegModel(design))
     average_map = average_manipulability_map(
-        L1_RATIOS, l3_ratios, design.leg_length, design.manipulability_limits
+        l1_ratios, l3_ratios, design.leg_length, design.manipulability_limits
     )
     return analysis, average_map
 
 
 def _flexibility(
-    design: HexapodDesign, model: HexapodModel
+    design: HexapodDesign, model: HexapodModel, collisions: bool
 ) -> tuple[FlexibilityResult, FlexibilityResult]:
-    axis = axis_locked_flexibility(design, "all", model)
+    axis = axis_locked_flexibility(design, "all", model, collisions=collisions)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
-        free = free_flexibility(design, "all", model)
+        free = free_flexibility(design, "all", model, collisions=collisions)
     return axis, free
 
 
@@ -235,18 +312,59 @@ def _study(spec: StudySpec, workers: int | None) -> pd.DataFrame:
         return study_table(spec, sweep(spec, pool))
 
 
+def _sensitivity_l1_ratios(l1_ratios: Sequence[float]) -> tuple[float, ...]:
+    """The paper's second and fourth coxa ratios, or the smallest and largest swept."""
+    if tuple(l1_ratios) == L1_RATIOS:
+        return (L1_RATIOS[1], L1_RATIOS[3])
+    return tuple(sorted({min(l1_ratios), max(l1_ratios)}))
+
+
 def _recommendation(
-    average_map: AverageManipulabilityMap, study: pd.DataFrame, total: float
+    design: HexapodDesign,
+    template: StanceGeometry,
+    average_map: AverageManipulabilityMap,
+    study: pd.DataFrame,
+    options: ReportOptions,
 ) -> Recommendation:
     """Recommend ratios from the three metrics on the (coxa, tibia) ratio grid."""
     r1, r3 = average_map.l1_ratios, average_map.l3_ratios
+    total = design.leg_length
     l2 = (1 - r1[:, None] - r3[None, :]) * total
     area = np.where(l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan)
     fb = np.full(area.shape, np.nan)
     for i, ratio in enumerate(r1):
         rows = study[np.isclose(study["l1_ratio"], ratio)]
         fb[i] = rows["fb"].to_numpy(dtype=float) if "fb" in rows else np.nan
-    return recommend(r1, r3, area, average_map.improved, fb)
+    maps = {
+        "improved_area": area,
+        "average_manipulability": average_map.improved,
+        "flexibility": fb,
+    }
+    return recommend(
+        r1,
+        r3,
+        maps,
+        candidates=options.l1_ratios,
+        evaluate=lambda a, b: ratio_metrics(design, a, b, template, options.collisions),
+    )
+
+
+def _decision(
+    design: HexapodDesign, template: StanceGeometry, rec: Recommendation, collisions: bool
+) -> Decision:
+    yours = design_metrics(design, template, collisions)
+    recommended_metrics = ratio_metrics(design, rec.l1_ratio, rec.l3_ratio, template, collisions)
+    try:
+        recommended: HexapodDesign | None = design.with_ratios(rec.l1_ratio, rec.l3_ratio)
+    except HexalegError:
+        recommended = None
+    return Decision(
+        yours=yours,
+        your_score=combined_score(yours, rec.maxima),
+        recommended=recommended,
+        recommended_metrics=recommended_metrics,
+        recommended_score=combined_score(recommended_metrics, rec.maxima),
+    )
 
 
 def _plain(value: Any) -> Any:

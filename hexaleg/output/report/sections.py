@@ -14,10 +14,9 @@ from typing import Any
 
 from hexaleg._version import __version__
 from hexaleg.output.report.compute import ReportData
-from hexaleg.paper import L1_RATIOS
 from hexaleg.paper.reproduction import digits_transposed
 from hexaleg.stance.constraints import TRANSLATIONS
-from hexaleg.study.recommendation import BAND
+from hexaleg.study.recommendation import BAND, PRACTICAL_L1_RATIO
 
 
 @dataclass(frozen=True)
@@ -57,9 +56,9 @@ def extremes_rows(data: ReportData) -> list[dict[str, Any]]:
                 "sign": e_axis.sign,
                 "unit": "m" if e_axis.axis in TRANSLATIONS else "rad",
                 "axis_locked": e_axis.value,
-                "limited_by": str(e_axis.limited_by),
+                "limited_by": e_axis.description,
                 "free_coupled": e_free.value,
-                "free_limited_by": str(e_free.limited_by),
+                "free_limited_by": e_free.description,
             }
         )
     return rows
@@ -86,6 +85,60 @@ def header(data: ReportData) -> str:
         "Feng, *Design and Dimensional Optimization of Legged Structures for Construction "
         "Robots*). Raw numbers: [report.json](report.json) and the CSV files beside this page."
     )
+
+
+def decision_section(data: ReportData) -> Section:
+    """The answer first: the recommended design beside the user's, metric by metric."""
+    rec, decision, design = data.recommendation, data.decision, data.design
+    total = design.leg_length
+    lengths = ", ".join(f"{r * total:.3f}" for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio))
+    yours = ", ".join(f"{length:.3f}" for length in design.lengths)
+    coxa = (
+        f"the coxa ratios you allowed ({', '.join(f'{r:.3g}' for r in data.options.l1_ratios)})"
+        if data.options.l1_ratios
+        else f"the paper's practical coxa ratios (≥ {PRACTICAL_L1_RATIO:.2f})"
+    )
+    rows = [
+        (
+            label,
+            f"{decision.yours[name]:.4g}",
+            f"{decision.recommended_metrics[name]:.4g}",
+            _change(decision.yours[name], decision.recommended_metrics[name]),
+        )
+        for name, label in METRIC_LABELS.items()
+    ]
+    rows.append(
+        (
+            "combined score [-] (1 = best of the grid in every metric)",
+            f"{decision.your_score:.4f}",
+            f"{decision.recommended_score:.4f}",
+            _change(decision.your_score, decision.recommended_score),
+        )
+    )
+    return Section(
+        "Decision",
+        (
+            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
+            f"{rec.l3_ratio:.3f}**, for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
+            f"chosen among {coxa}; any tibia ratio in {rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} "
+            f"keeps ≥ {BAND:.0%} of its score. Both designs keep your body, mounts and posture; "
+            "the score divides each metric by its best value over the whole grid of section 5.",
+            table(["metric", "your design", "recommended", "recommended vs yours"], rows),
+        ),
+    )
+
+
+METRIC_LABELS = {
+    "improved_area": "improved workspace area [m²] (eq 16)",
+    "average_manipulability": "average manipulability w_A [m³] (eq 27, improved domain)",
+    "flexibility": "body flexibility FB [-] (eq 29, axis-locked)",
+}
+
+
+def _change(yours: float, recommended: float) -> str:
+    if not (math.isfinite(yours) and math.isfinite(recommended)) or yours == 0:
+        return "—"
+    return f"{recommended / yours - 1:+.1%}"
 
 
 def design_section(data: ReportData) -> Section:
@@ -261,15 +314,16 @@ def flexibility_section(data: ReportData) -> Section:
             "All six feet on their nominal footholds. Axis-locked (the paper's ADAMS study: one "
             f"coordinate moves, the other five held) **FB = {data.axis.fb:.4f}**; free-coupled "
             f"(the other five free to help) FB = {data.free.fb:.4f}. Each extreme stops at the "
-            "first constraint that breaks, named below; angles in radians.",
+            "first constraint that breaks, named below; rotations in radians and, as in the "
+            "figure, degrees.",
             table(
                 ["direction", "axis-locked", "stopped by", "free-coupled", "stopped by"],
                 [
                     (
                         f"{r['axis']} {'+' if r['sign'] > 0 else '−'}",
-                        f"{r['axis_locked']:+.4f} {r['unit']}",
+                        _displacement(r["axis_locked"], r["unit"]),
                         r["limited_by"],
-                        f"{r['free_coupled']:+.4f} {r['unit']}",
+                        _displacement(r["free_coupled"], r["unit"]),
                         r["free_limited_by"],
                     )
                     for r in extremes_rows(data)
@@ -280,6 +334,12 @@ def flexibility_section(data: ReportData) -> Section:
     )
 
 
+def _displacement(value: float, unit: str) -> str:
+    if unit == "rad":
+        return f"{value:+.4f} rad ({math.degrees(value):+.2f}°)"
+    return f"{value:+.4f} {unit}"
+
+
 def study_section(data: ReportData) -> Section:
     """The FB sweep over segment ratios (Fig 14–15)."""
     study = data.study
@@ -288,12 +348,12 @@ def study_section(data: ReportData) -> Section:
     return Section(
         "3.1 Design study: FB against segment ratios (Fig 14–15)",
         (
-            f"{len(study)} designs ({len(L1_RATIOS)} coxa ratios × "
+            f"{len(study)} designs ({len(data.study_spec.l1_ratios)} coxa ratios × "
             f"{len(data.study_spec.l3_ratios)} tibia ratios, total {data.design.leg_length:g} m, "
             f"this design's body and posture); {failed} could not stand. Table: "
             "[study/study.csv](study/study.csv).",
-            figure("flexibility_fb.png", "Fig 15: FB against tibia ratio, peaks marked"),
             figure("flexibility_ranges.png", "Fig 14: the six ranges for the smallest coxa ratio"),
+            figure("flexibility_fb.png", "Fig 15: FB against tibia ratio, peaks marked"),
             table(
                 ["l1 ratio", "FB peak l3 ratio", "peak FB"],
                 [
@@ -316,7 +376,8 @@ def sensitivity_section(data: ReportData) -> Section:
         "3.2 Sensitivity to posture and body (not given by the paper)",
         (
             f"Axis-locked FB peak for {len(data.sensitivity['variant'].unique())} variants of "
-            f"the nominal posture and body, {data.options.sensitivity_points} tibia ratios each.",
+            f"your design's posture and body, {data.options.sensitivity_points} tibia ratios "
+            "each. Each variant changes your design by the amount it names.",
             table(
                 ["variant", "l1 ratio", "peak l3 ratio", "peak FB", "designs that cannot stand"],
                 [
@@ -325,7 +386,7 @@ def sensitivity_section(data: ReportData) -> Section:
                         f"{r['l1_ratio']:.2f}",
                         f"{r['peak_l3_ratio']:.3f}",
                         f"{r['peak_fb']:.4f}",
-                        str(r["failed_designs"]),
+                        str(r["failed_designs"]) + (f" ({r['note']})" if r["note"] else ""),
                     )
                     for r in rows
                 ],
@@ -357,8 +418,9 @@ def recommendation_section(data: ReportData) -> Section:
         (
             "Each metric on the same grid — improved workspace area (eq 16), average "
             "manipulability on the improved domain (eq 27), and axis-locked body flexibility "
-            "(eq 29) — is divided by its best value over the tibia ratios of each coxa ratio, "
-            "and the three are averaged with equal weights. Where each peaks:",
+            "(eq 29) — is divided by its best value over the whole grid, and the three are "
+            "averaged with equal weights, so scores compare across coxa ratios. Where each "
+            "peaks, and the best score each coxa ratio reaches:",
             table(
                 [
                     "l1 ratio",
@@ -381,10 +443,12 @@ def recommendation_section(data: ReportData) -> Section:
                 ],
             ),
             "Every metric grows as the coxa shrinks (Table 5, Fig 11, Fig 15), so the coxa "
-            "should be as short as the root actuator's packaging allows; at the paper's "
-            f"practical lower bound l1 ratio = {rec.l1_ratio:.2f}:",
-            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.2f} : {rec.l2_ratio:.3f} : "
-            f"{rec.l3_ratio:.3f}** (for a {total:g} m leg: {rec.l1_ratio * total:.3f} m, "
+            "should be as short as the root actuator's packaging allows. The recommendation "
+            "takes the best score among the allowed coxa ratios, its tibia ratio refined "
+            "between grid points with every metric computed exactly:",
+            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
+            f"{rec.l3_ratio:.3f}** (score {rec.score:.4f}; for a {total:g} m leg: "
+            f"{rec.l1_ratio * total:.3f} m, "
             f"{rec.l2_ratio * total:.3f} m, {rec.l3_ratio * total:.3f} m). Any tibia ratio in "
             f"{rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} keeps ≥ {BAND:.0%} of the best combined "
             "score; choose within it by the constraints these metrics leave out (ground "
@@ -394,6 +458,7 @@ def recommendation_section(data: ReportData) -> Section:
 
 
 SECTIONS: tuple[Callable[[ReportData], Section], ...] = (
+    decision_section,
     design_section,
     workspace_section,
     manipulability_section,

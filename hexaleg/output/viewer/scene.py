@@ -22,7 +22,7 @@ from hexaleg._io import atomic_write_text
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.constraints import AXES, direction_poses
+from hexaleg.stance.constraints import Cause, displacement_poses
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry, stance_configuration
 from hexaleg.swing.workspace import monte_carlo_workspace
@@ -126,26 +126,35 @@ def _add_workspace(viewer: Any, mg: Any, model: HexapodModel, leg: str, samples:
 
 
 def _extreme_configuration(
-    model: HexapodModel, geometry: StanceGeometry, extreme: Extreme
+    model: HexapodModel, geometry: StanceGeometry, extreme: Extreme, share: float = 1.0
 ) -> np.ndarray:
-    rotation, translation = direction_poses(geometry, AXES.index(extreme.axis), extreme.value)
+    """The robot at ``share`` of the way from nominal to the extreme's pose (free or not)."""
+    rotation, translation = displacement_poses(geometry, share * np.asarray(extreme.pose))
     q, _ = stance_configuration(model, geometry, pin.SE3(rotation, translation))
     return q
 
 
 def _limiting_objects(visual: Any, extreme: Extreme) -> list[Any]:
-    """Visual objects to highlight: the link a limiting joint moves, or the whole leg/body."""
-    cause = extreme.limited_by
+    """Visual objects to highlight for every binding constraint.
+
+    The link a limiting joint moves, a whole leg out of reach, or the body on the ground.
+    """
+    links = {link for cause in extreme.binding for link in _limiting_links(cause)}
+    return [obj for obj in visual.geometryObjects if obj.name.rsplit("_", 1)[0] in links]
+
+
+def _limiting_links(cause: Cause) -> tuple[str, ...]:
     if cause.kind == "joint":
-        link = {"root": "coxa", "hip": "femur", "knee": "tibia"}[cause.joint or ""]
-        prefixes: Sequence[str] = (f"{cause.leg}_{link}",)
-    elif cause.kind == "reach":
-        prefixes = tuple(f"{cause.leg}_{part}" for part in ("coxa", "femur", "tibia", "foot"))
-    elif cause.kind == "ground":
-        prefixes = ("base_link",)
-    else:
-        prefixes = ()
-    return [obj for obj in visual.geometryObjects if obj.name.rsplit("_", 1)[0] in prefixes]
+        return (f"{cause.leg}_{JOINT_LINKS[cause.joint or '']}",)
+    if cause.kind == "reach":
+        return tuple(f"{cause.leg}_{part}" for part in ("coxa", "femur", "tibia", "foot"))
+    if cause.kind == "ground":
+        return ("base_link",)
+    return ()
+
+
+JOINT_LINKS = {"root": "coxa", "hip": "femur", "knee": "tibia"}
+"""The link each leg joint moves."""
 
 
 def _animate_trip(
@@ -166,10 +175,7 @@ def _animate_trip(
     )
     visual_model, visual_data = nominal.visual_model, nominal.visual_data
     for s in steps:
-        rotation, translation = direction_poses(
-            geometry, AXES.index(extreme.axis), s * extreme.value
-        )
-        q, _ = stance_configuration(model, geometry, pin.SE3(rotation, translation))
+        q = _extreme_configuration(model, geometry, extreme, s)
         pin.forwardKinematics(model.model, nominal.data, q)
         pin.updateGeometryPlacements(model.model, nominal.data, visual_model, visual_data)
         with animation.at_frame(viewer, frame) as keyframe:

@@ -47,7 +47,12 @@ class LoopbackServer:
         self.web_url: str = bridge.web_url
 
     def _serve(self, port: int | None) -> None:
+        from meshcat.servers import zmqserver
         from meshcat.servers.zmqserver import ZMQWebSocketBridge
+
+        # meshcat's server prints "Port: 6000 in use, trying another..." and "opened: <...>"
+        # for every browser tab: noise to a hexaleg user. Only that module's print is muted.
+        zmqserver.print = _quiet
 
         host = self.host
         http_servers = self._http_servers
@@ -118,3 +123,7 @@ def serve_until_stopped(server: LoopbackServer, poll: float = 0.5) -> None:
         pass
     finally:
         server.stop()
+
+
+def _quiet(*args: Any, **kwargs: Any) -> None:
+    """Drop what meshcat's server module prints."""

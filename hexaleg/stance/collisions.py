@@ -1,0 +1,160 @@
+"""Self-collision: the robot's own parts touching, as one more constraint on the body.
+
+The geometry is the URDF's collision geometry (the body box and each leg link's
+cylinder), read by Pinocchio into a geometry model; distances come from coal
+through ``pinocchio.computeDistances``. Every pair of parts is checked except those
+joined by a joint (the body and a coxa, a coxa and its femur, a femur and its tibia),
+which touch by construction. The clearance (smallest distance over the pairs) is a
+margin like the others: ≥ 0 holds.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg._typing import ArrayF
+from hexaleg.exceptions import HexalegError
+from hexaleg.kinematics import inverse_kinematics
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.bracketing import IndexArray, first_crossings
+from hexaleg.stance.constraints import AXES, Cause, direction_poses
+from hexaleg.stance.extremes import Extreme, pose_extreme
+from hexaleg.stance.geometry import StanceGeometry
+
+COLLISION_SCAN_STEPS = 16
+"""Resolution of the collision scan along each direction, up to its other extreme."""
+TIE_DISTANCE = 1e-6
+"""Pairs this close to the closest [m] touch together (mirror-image legs do; coal tells
+their distances apart only to about 2e-7 m near contact)."""
+CONTACT_DISTANCE = 1e-5
+"""Two parts touch when closer than this [m] (10 µm): coal resolves distances near
+contact only to a few 1e-7 m and reports intersecting cylinders at distance 0, so a
+pose reported collision-free is so with this margin to spare."""
+
+
+class SelfCollision:
+    """Distances between the robot's own parts at stance poses.
+
+    Attributes:
+        pairs: The checked pairs, as link names.
+
+    """
+
+    def __init__(self, model: HexapodModel, geometry: StanceGeometry) -> None:
+        self.model = model
+        self.geometry = geometry
+        self.geometry_model = pin.buildGeomFromUrdfString(
+            model.model, model.urdf, pin.GeometryType.COLLISION
+        )
+        self.geometry_model.addAllCollisionPairs()
+        kept = [p for p in self.geometry_model.collisionPairs if not self._joined(p)]
+        self.geometry_model.removeAllCollisionPairs()
+        for pair in kept:
+            self.geometry_model.addCollisionPair(pair)
+        self.geometry_data = pin.GeometryData(self.geometry_model)
+        self._q_template = model.nominal_configuration()
+        self._q_stance = np.concatenate([model.leg_q_indices(leg) for leg in geometry.legs])
+        names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
+        self.pairs: tuple[tuple[str, str], ...] = tuple(
+            (names[p.first], names[p.second]) for p in self.geometry_model.collisionPairs
+        )
+        nominal = self.clearance(np.eye(3), np.array([0.0, 0.0, geometry.nominal_height]))
+        if nominal[0] <= 0:
+            raise HexalegError(f"at the nominal stance, {nominal[1]}: the design collides")
+
+    def _joined(self, pair: pin.CollisionPair) -> bool:
+        objects = self.geometry_model.geometryObjects
+        a, b = objects[pair.first].parentJoint, objects[pair.second].parentJoint
+        parents = self.model.model.parents
+        return a == b or parents[a] == b or parents[b] == a
+
+    def configurations(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
+        """Configurations (P, nq) for body poses (P, 3, 3), (P, 3).
+
+        Stance legs by the closed-form IK (one vectorized call), swing legs nominal.
+        """
+        rotation = np.asarray(rotation, dtype=float).reshape(-1, 3, 3)
+        translation = np.asarray(translation, dtype=float).reshape(-1, 3)
+        targets = self.geometry.feet_in_roots(rotation, translation)
+        theta = inverse_kinematics(self.geometry.lengths, targets).theta
+        q = np.repeat(self._q_template[None], len(rotation), axis=0)
+        q[:, self._q_stance] = theta.reshape(len(rotation), -1)
+        q[:, :3] = translation
+        q[:, 3:7] = [pin.Quaternion(r).coeffs() for r in rotation]  # x, y, z, w
+        return q
+
+    def distances(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
+        """Distance of every pair [m] at one body pose (feet on their footholds)."""
+        self._compute(self.configurations(rotation, translation)[0])
+        return np.array([r.min_distance for r in self.geometry_data.distanceResults])
+
+    def clearances(self, rotation: ArrayF, translation: ArrayF) -> tuple[ArrayF, list[int]]:
+        """The clearance at each body pose (P,) [m], and the closest pair's index.
+
+        The clearance is the smallest distance less :data:`CONTACT_DISTANCE`: ≥ 0 holds.
+        """
+        distances, closest = [], []
+        for q in self.configurations(rotation, translation):
+            index = self._compute(q)
+            distances.append(self.geometry_data.distanceResults[index].min_distance)
+            closest.append(index)
+        return np.array(distances) - CONTACT_DISTANCE, closest
+
+    def clearance(self, rotation: ArrayF, translation: ArrayF) -> tuple[float, Cause]:
+        """The clearance [m] at one body pose, and the pair it is between."""
+        distances, closest = self.clearances(rotation, translation)
+        return float(distances[0]), Cause("collision", links=self.pairs[closest[0]])
+
+    def closest_pairs(self, rotation: ArrayF, translation: ArrayF) -> list[Cause]:
+        """Every pair as close as the closest (within coal's resolution), in pair order."""
+        distances = self.distances(rotation, translation)
+        tied = np.flatnonzero(distances <= distances.min() + TIE_DISTANCE)
+        return [Cause("collision", links=self.pairs[i]) for i in tied]
+
+    def _compute(self, q: ArrayF) -> int:
+        """Distances of every pair at ``q``; the index of the closest pair."""
+        return int(
+            pin.computeDistances(
+                self.model.model, self.model.data, self.geometry_model, self.geometry_data, q
+            )
+        )
+
+
+def collision_limited(
+    geometry: StanceGeometry, collision: SelfCollision, extremes: Sequence[Extreme]
+) -> tuple[Extreme, ...]:
+    """Axis-locked extremes cut short where two parts touch first along each direction.
+
+    Each direction is scanned from nominal to its extreme (:data:`COLLISION_SCAN_STEPS`
+    steps); where the clearance turns negative, the crossing is solved on the clearance.
+    """
+    axis_of = np.array([AXES.index(e.axis) for e in extremes])
+    sign_of = np.array([e.sign for e in extremes], dtype=float)
+
+    def clearance(direction: IndexArray, t: ArrayF) -> ArrayF:
+        rotation, translation = direction_poses(
+            geometry, axis_of[direction], sign_of[direction] * t
+        )
+        return collision.clearances(rotation, translation)[0][:, None]
+
+    reach = np.array([abs(e.value) for e in extremes])
+    crossings = first_crossings(clearance, reach, steps=COLLISION_SCAN_STEPS, chunks=1)
+    limited = []
+    for k, extreme in enumerate(extremes):
+        if crossings.which[k] < 0:
+            limited.append(extreme)
+            continue
+        displacement = np.zeros(len(AXES))
+        displacement[axis_of[k]] = sign_of[k] * crossings.t[k]
+        rotation, translation = direction_poses(geometry, axis_of[k], displacement[axis_of[k]])
+        binding = collision.closest_pairs(rotation, translation)
+        limited.append(pose_extreme(geometry, extreme.axis, extreme.sign, displacement, binding))
+    return tuple(limited)
+
+
+def _link_name(geometry_name: str) -> str:
+    """``lf_femur_0`` → ``lf_femur``: the link a geometry object belongs to."""
+    return geometry_name.rsplit("_", 1)[0]

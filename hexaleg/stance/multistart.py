@@ -1,0 +1,134 @@
+"""A multi-start driver for "push one coordinate as far as the constraints allow".
+
+Pure numerics, independent of the robot: :func:`maximize_coordinate` runs SLSQP on
+max ±x_k subject to g(x) ≥ 0 from every start, keeps the answers a caller's exact
+check accepts, and says whether the best was reached by more than one start.
+:func:`mirrored_starts` spreads deterministic starts (a scrambled Sobol sequence
+with a fixed seed, each point also mirrored) around a centre.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import optimize
+from scipy.stats import qmc
+
+from hexaleg._typing import ArrayF
+
+AGREEMENT = 1e-6
+"""Starts whose optima differ by less than this (relative, at least 1 unit) agree."""
+
+
+@dataclass(frozen=True)
+class MultiStartResult:
+    """The best accepted answer of a multi-start run.
+
+    Attributes:
+        x: The maximizer: of the answers that agree with the best, the earliest start's.
+        value: ±x_k there (the quantity maximized).
+        success: SLSQP reported success from the winning start.
+        agreed: At least two starts reached ``value`` (within :data:`AGREEMENT`).
+        values: Every accepted start's value, best first.
+        iterations: SLSQP iterations over every start.
+
+    """
+
+    x: ArrayF
+    value: float
+    success: bool
+    agreed: bool
+    values: tuple[float, ...]
+    iterations: int
+
+
+def maximize_coordinate(
+    k: int,
+    sign: int,
+    constraints: Callable[[ArrayF], ArrayF],
+    jacobian: Callable[[ArrayF], ArrayF],
+    starts: Sequence[ArrayF],
+    accept: Callable[[ArrayF], bool],
+    bounds: Sequence[tuple[float | None, float | None]] | None = None,
+    max_iterations: int = 60,
+    enough: tuple[int, int] | None = None,
+) -> MultiStartResult | None:
+    """Maximize sign·x_k subject to constraints(x) ≥ 0 from the starts, in order.
+
+    Args:
+        k: The coordinate to push.
+        sign: +1 to maximize it, −1 to minimize it.
+        constraints: g(x), every component to be ≥ 0.
+        jacobian: dg/dx.
+        starts: Where SLSQP starts (feasible or not).
+        accept: The exact check an answer must pass to count.
+        bounds: Bounds on x, if any.
+        max_iterations: SLSQP iterations per start.
+        enough: (runs, agreeing): stop once at least ``runs`` starts have run and
+            ``agreeing`` of them reached the best value; every start runs if None.
+
+    Returns:
+        The best accepted answer, or None if no start gave one.
+
+    """
+    gradient = np.zeros(len(starts[0]))
+    gradient[k] = -sign
+    accepted: list[tuple[float, ArrayF, bool]] = []
+    iterations = 0
+    for run, start in enumerate(starts, start=1):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            result = optimize.minimize(
+                lambda x: float(gradient @ x),
+                np.asarray(start, dtype=float),
+                jac=lambda x: gradient,
+                method="SLSQP",
+                bounds=bounds,
+                constraints={"type": "ineq", "fun": constraints, "jac": jacobian},
+                options={"maxiter": max_iterations, "ftol": 1e-12},
+            )
+        iterations += int(result.nit)
+        if accept(result.x):
+            accepted.append((float(sign * result.x[k]), result.x, bool(result.success)))
+        if enough is not None and run >= enough[0] and _agreeing(accepted) >= enough[1]:
+            break
+    if not accepted:
+        return None
+    best = max(v for v, _, _ in accepted)
+    tolerance = AGREEMENT * max(1.0, abs(best))
+    # Among answers that agree with the best, the earliest start's wins: mirror-image
+    # optima of equal value are never chosen by round-off.
+    value, x, success = next(item for item in accepted if item[0] >= best - tolerance)
+    values = tuple(sorted((v for v, _, _ in accepted), reverse=True))
+    return MultiStartResult(x, value, success, _agreeing(accepted) >= 2, values, iterations)
+
+
+def _agreeing(accepted: Sequence[tuple[float, ArrayF, bool]]) -> int:
+    """How many accepted answers reach the best value (within :data:`AGREEMENT`)."""
+    if not accepted:
+        return 0
+    best = max(value for value, _, _ in accepted)
+    tolerance = AGREEMENT * max(1.0, abs(best))
+    return sum(value >= best - tolerance for value, _, _ in accepted)
+
+
+def box_starts(half_widths: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
+    """``count`` deterministic starts spread over the box ±half_widths (scrambled Sobol)."""
+    half_widths = np.asarray(half_widths, dtype=float)
+    points = qmc.Sobol(len(half_widths), scramble=True, seed=seed).random(count) * 2 - 1
+    return list(points * half_widths)
+
+
+def mirrored_starts(center: ArrayF, scales: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
+    """``2·count`` starts: centre ± Sobol points in the box ±scales (zero scales stay put).
+
+    Deterministic for a given seed; each point comes with its mirror image through the
+    centre, so a symmetric robot is searched symmetrically.
+    """
+    center = np.asarray(center, dtype=float)
+    scales = np.asarray(scales, dtype=float)
+    points = qmc.Sobol(len(center), scramble=True, seed=seed).random(count) * 2 - 1
+    return [center + mirror * point * scales for point in points for mirror in (1.0, -1.0)]

@@ -1,0 +1,74 @@
+"""The multi-start driver: global among local optima, agreement, and exact acceptance."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from hexaleg.stance.multistart import box_starts, maximize_coordinate, mirrored_starts
+
+# Feasible set: two disks, radius 1 at the origin and radius 0.5 at (2.2, 0): the
+# largest x is 2.7 in the small disk; starts near the origin find only 1.0.
+
+
+def _constraints(x):
+    big = 1.0 - x[0] ** 2 - x[1] ** 2
+    small = 0.25 - (x[0] - 2.2) ** 2 - x[1] ** 2
+    return np.array([max(big, small)])
+
+
+def _jacobian(x):
+    big = 1.0 - x[0] ** 2 - x[1] ** 2
+    small = 0.25 - (x[0] - 2.2) ** 2 - x[1] ** 2
+    if big >= small:
+        return np.array([[-2 * x[0], -2 * x[1]]])
+    return np.array([[-2 * (x[0] - 2.2), -2 * x[1]]])
+
+
+def _feasible(x):
+    return bool(_constraints(x)[0] >= -1e-9)
+
+
+def test_the_best_local_optimum_wins_and_agreement_is_counted():
+    starts = [
+        np.array([0.1, 0.0]),
+        np.array([-0.2, 0.3]),
+        np.array([2.1, 0.1]),
+        np.array([2.3, -0.1]),
+    ]
+    result = maximize_coordinate(0, 1, _constraints, _jacobian, starts, _feasible)
+    assert result.value == pytest.approx(2.7, abs=1e-7)
+    assert result.agreed  # two starts in the small disk reached 2.7
+    assert sorted(np.round(result.values, 6)) == [1.0, 1.0, 2.7, 2.7]
+    lone = maximize_coordinate(0, 1, _constraints, _jacobian, starts[:3], _feasible)
+    assert lone.value == pytest.approx(2.7, abs=1e-7) and not lone.agreed
+
+
+def test_minimizing_and_rejected_answers():
+    starts = [np.array([0.0, 0.5]), np.array([0.2, -0.4])]
+    result = maximize_coordinate(1, -1, _constraints, _jacobian, starts, _feasible)
+    assert result.value == pytest.approx(1.0, abs=1e-7)  # min y = -1
+    assert maximize_coordinate(1, -1, _constraints, _jacobian, starts, lambda x: False) is None
+
+
+def test_early_stop_once_enough_starts_agree():
+    def disk(x):
+        return np.array([1.0 - x[0] ** 2 - x[1] ** 2])
+
+    def disk_jacobian(x):
+        return np.array([[-2 * x[0], -2 * x[1]]])
+
+    starts = [np.array([0.1 * k - 0.3, 0.1]) for k in range(8)]
+    result = maximize_coordinate(0, 1, disk, disk_jacobian, starts, _feasible, enough=(3, 3))
+    assert len(result.values) == 3 and result.value == pytest.approx(1.0, abs=1e-7)
+    everything = maximize_coordinate(0, 1, disk, disk_jacobian, starts, _feasible)
+    assert len(everything.values) == 8
+
+
+def test_starts_are_deterministic_and_mirrored():
+    a = box_starts(np.array([1.0, 2.0, 0.0]), 8, seed=3)
+    b = box_starts(np.array([1.0, 2.0, 0.0]), 8, seed=3)
+    np.testing.assert_array_equal(np.array(a), np.array(b))
+    assert np.all(np.abs(np.array(a)) <= [1.0, 2.0, 0.0])
+    mirrored = np.array(mirrored_starts(np.array([1.0, 1.0]), np.array([0.5, 0.5]), 4))
+    np.testing.assert_allclose(mirrored[0::2] + mirrored[1::2], 2.0)
