@@ -25,6 +25,10 @@ FlexibilityMode = Literal["axis", "free"]
 StanceSet = Literal["all", "tripod"]
 """Named stance-leg sets: all six legs, or the first tripod (lf, rm, lr)."""
 
+Distribution = Literal["min-norm", "min-torque"]
+"""How the stance feet share the load: least squares of the forces, or of the torques
+relative to their ratings under friction and unilateral contact."""
+
 CauseKind = Literal["joint", "reach", "ground", "collision", "range"]
 """What stops the body: a joint limit, a foothold out of reach, the ground, two of the
 robot's own parts touching, or nothing within the searched range."""

@@ -66,6 +66,15 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
 }
 """Each physical field's plausible range (lower, upper, unit); values outside are refused."""
 
+DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
+"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators. At the
+nominal stance each hip holds about 46 N·m (a sixth of the 84 kg robot, 0.4 m out) and
+the knee almost nothing; the ratings leave room for the body's extremes, where hip and
+knee torques peak, and for a payload of a few times the body's mass."""
+
+TORQUE_RANGE = (1e-3, 1e6)
+"""Plausible rated torque [N·m]."""
+
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
 
@@ -154,6 +163,8 @@ class HexapodDesign:
         body_mass: Body mass [kg].
         link_linear_density: Mass per length of coxa, femur and tibia [kg/m].
         link_radius: Radius of the links' cylinder geometry [m].
+        rated_torques: The actuators' rated torques (root, hip, knee) [N·m], written to
+            each joint's URDF ``effort``; the statics compare every torque with them.
 
     """
 
@@ -172,11 +183,13 @@ class HexapodDesign:
     body_mass: float = 60.0
     link_linear_density: float = 4.0
     link_radius: float = field(default=0.025)
+    rated_torques: tuple[float, float, float] = DEFAULT_RATED_TORQUES
 
     def __post_init__(self) -> None:
         for name, (lower, upper, unit) in FIELD_RANGES.items():
             value = require_in_range(name, getattr(self, name), lower, upper, unit)
             object.__setattr__(self, name, value)
+        self._validate_rated_torques()
         self._validate_mounts()
         self._validate_nominal_stance()
 
@@ -298,6 +311,16 @@ class HexapodDesign:
         return out
 
     # -- validation -----------------------------------------------------------------------
+
+    def _validate_rated_torques(self) -> None:
+        torques = tuple(self.rated_torques)
+        if len(torques) != 3:
+            raise DesignError("rated_torques", torques, "three torques (root, hip, knee) [N·m]")
+        checked = tuple(
+            require_in_range(f"rated_torques.{joint}", value, *TORQUE_RANGE, "N·m")
+            for joint, value in zip(("root", "hip", "knee"), torques, strict=True)
+        )
+        object.__setattr__(self, "rated_torques", checked)
 
     def _validate_mounts(self) -> None:
         mounts = self.mounts

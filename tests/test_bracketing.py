@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from hexaleg.stance.bracketing import anderson_bjorck, first_crossings
 
@@ -15,17 +16,18 @@ def test_first_failure_wins_over_a_later_feasible_region():
         other = 0.8 - t  # breaks at 0.8
         return np.stack([dip, other], axis=-1)
 
-    t, which = first_crossings(margins, np.array([1.0, 0.5]))
+    t, which, binding = first_crossings(margins, np.array([1.0, 0.5]))
     np.testing.assert_allclose(t, [0.30, 0.30], atol=1e-12)
     assert which.tolist() == [0, 0]
+    assert binding == ((0,), (0,))
 
 
 def test_nothing_breaking_reports_the_search_range():
     def margins(direction, t):
         return np.ones((*np.shape(t), 1))
 
-    t, which = first_crossings(margins, np.array([2.0]))
-    assert t.tolist() == [2.0] and which.tolist() == [-1]
+    t, which, binding = first_crossings(margins, np.array([2.0]))
+    assert t.tolist() == [2.0] and which.tolist() == [-1] and binding == ((),)
 
 
 def test_anderson_bjorck_finds_smooth_roots_and_keeps_the_feasible_end():
@@ -34,3 +36,14 @@ def test_anderson_bjorck_finds_smooth_roots_and_keeps_the_feasible_end():
     roots = anderson_bjorck(lambda t: c - t**2, np.zeros(3), np.full(3, 2.0))
     np.testing.assert_allclose(roots, np.sqrt(c), rtol=1e-11)
     assert np.all(c - roots**2 >= 0)
+
+
+def test_ties_are_broken_by_constraint_order_and_all_named():
+    """Two mirror-image margins cross together (to round-off): the first is named, both bind."""
+
+    def margins(direction, t):
+        return np.stack([0.4 - t * (1 + 1e-15), 0.9 - t, 0.4 - t], axis=-1)
+
+    crossings = first_crossings(margins, np.array([1.0]))
+    assert crossings.t[0] == pytest.approx(0.4, abs=1e-12)
+    assert crossings.which.tolist() == [0] and crossings.binding == ((0, 2),)

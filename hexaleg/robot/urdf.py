@@ -25,8 +25,6 @@ LEG_TEMPLATE = "leg.urdf.xacro"
 SINGLE_LEG_NAME = "leg"
 """Prefix of the links and joints of the single fixed-base leg."""
 
-JOINT_EFFORT = 1000.0
-"""Effort limit written into the URDF [N·m]; kinematics does not use it."""
 JOINT_VELOCITY = 3.0
 """Velocity limit written into the URDF [rad/s]; kinematics does not use it."""
 
@@ -109,7 +107,9 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
         "theta2_upper": _number(limits.theta2[1]),
         "theta3_lower": _number(limits.theta3[0]),
         "theta3_upper": _number(limits.theta3[1]),
-        "effort": _number(JOINT_EFFORT),
+        "root_effort": _number(design.rated_torques[0]),
+        "hip_effort": _number(design.rated_torques[1]),
+        "knee_effort": _number(design.rated_torques[2]),
         "velocity": _number(JOINT_VELOCITY),
     }
 
