@@ -21,8 +21,10 @@ SECTIONS = [
     "## 3. Body flexibility",
     "## 3.1 Design study",
     "## 3.2 Sensitivity",
+    "## 3.3 Statics",
     "## 4. 3-D view",
     "## 5. Recommendation",
+    "## 5.1 Pareto front",
 ]
 FILES = [
     "report.md",
@@ -46,6 +48,10 @@ FILES = [
     "flexibility_extremes.png",
     "flexibility_fb.png",
     "flexibility_ranges.png",
+    "study_statics.png",
+    "loads.png",
+    "pareto_front.png",
+    "pareto_front.csv",
 ]
 
 

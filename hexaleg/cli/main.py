@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 from collections.abc import Sequence
 from typing import NamedTuple, NoReturn
@@ -46,6 +47,11 @@ COMMANDS: tuple[Command, ...] = (
         "flexibility",
         "hexaleg.cli.flexibility",
         "body flexibility with the feet planted: the 12 extremes, ranges and FB",
+    ),
+    Command(
+        "loads",
+        "hexaleg.cli.loads",
+        "statics: foot forces, joint torques, stability, slopes and payload capacity",
     ),
     Command(
         "study",
@@ -114,3 +120,6 @@ def main(argv: Sequence[str] | None = None) -> int:
     except KeyboardInterrupt:
         print(f"hexaleg {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
+    except BrokenPipeError:  # stdout closed early, as by `| head`: not a failure to report
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        return 0

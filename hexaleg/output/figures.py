@@ -24,6 +24,7 @@ from hexaleg.limits import JointLimits
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, L1_RATIOS, TABLE5
 from hexaleg.stance.constraints import AXES
 from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.stance.loads import LoadsAnalysis
 from hexaleg.study.sweep import peak_table
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
@@ -375,3 +376,100 @@ def write_study_figures(table: pd.DataFrame, out_dir: str | os.PathLike[str]) ->
         save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png"),
         save(ranges_figure(valid, float(valid["l1_ratio"].min())), out / "flexibility_ranges.png"),
     ]
+
+
+def loads_figure(analysis: LoadsAnalysis) -> Figure:
+    """Peak |τ| per joint type against its rating, and the steepest slope per heading."""
+    fig = _figure(11, 4.5)
+    torques, slopes = fig.subplots(1, 2)
+    nominal = analysis.nominal.peak_torques()
+    joints = list(nominal)
+    x = np.arange(len(joints))
+    torques.bar(x - 0.2, [nominal[j] for j in joints], 0.4, color=_COLORS[0], label="nominal")
+    torques.bar(
+        x + 0.2,
+        [analysis.peak_torques[j] for j in joints],
+        0.4,
+        color=_COLORS[1],
+        label=f"peak over the 12 {analysis.mode} extremes",
+    )
+    for k, rated in enumerate(analysis.design.rated_torques):
+        torques.hlines(rated, k - 0.45, k + 0.45, colors="k", linestyles="--", lw=1.5)
+    torques.plot([], [], "k--", label="rated torque")
+    torques.set_xticks(x, joints)
+    torques.set_ylabel("peak |τ| over the stance legs [N·m]")
+    torques.set_title(f"Joint torques ({analysis.distribution} forces)")
+    top = max(max(analysis.design.rated_torques), max(analysis.peak_torques.values()))
+    torques.set_ylim(0, 1.45 * top)
+    torques.legend(fontsize=8, loc="upper left", ncols=3)
+    torques.grid(True, axis="y", alpha=0.3)
+    labels = [f"{np.degrees(s.heading):+.0f}°" for s in analysis.slopes]
+    slopes.bar(
+        labels,
+        [np.degrees(s.max_slope) for s in analysis.slopes],
+        color=[_COLORS[2] if s.limited_by == "slide" else _COLORS[3] for s in analysis.slopes],
+    )
+    for k, s in enumerate(analysis.slopes):
+        slopes.annotate(s.limited_by, (k, np.degrees(s.max_slope)), ha="center", va="bottom")
+    slopes.set_xlabel("uphill heading, body frame")
+    slopes.set_ylabel("max slope [°]")
+    slopes.set_title(f"Steepest slope (μ = {analysis.friction:g})")
+    slopes.grid(True, axis="y", alpha=0.3)
+    l1, l2, l3 = analysis.design.lengths
+    fig.suptitle(
+        f"Statics, l = ({l1:.3g}, {l2:.3g}, {l3:.3g}) m, payload {analysis.payload.mass:g} kg; "
+        f"capacity {analysis.capacity.mass:.1f} kg ({analysis.capacity.limited_by})"
+    )
+    return fig
+
+
+def statics_study_figure(table: pd.DataFrame) -> Figure:
+    """Peak hip and knee torque and payload capacity against tibia ratio, per coxa ratio."""
+    fig = _figure(13, 4.5)
+    panels = fig.subplots(1, 3)
+    columns = (
+        ("peak_hip_torque", "peak hip |τ| over the extremes [N·m]"),
+        ("peak_knee_torque", "peak knee |τ| over the extremes [N·m]"),
+        ("payload_capacity", "payload capacity at the nominal stance [kg]"),
+    )
+    for ax, (column, label) in zip(panels, columns, strict=True):
+        for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), _COLORS, strict=False):
+            ax.plot(group["l3_ratio"], group[column], color=color, label=f"l1 ratio {r1:.2f}")
+        ax.set_xlabel("l3 ratio [-]")
+        ax.set_ylabel(label)
+        ax.grid(True, alpha=0.3)
+    panels[0].legend(fontsize=8)
+    fig.suptitle(
+        "What each design costs: torques and payload (axis-locked extremes, min-norm forces)"
+    )
+    return fig
+
+
+def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
+    """FB against payload capacity for every design; the Pareto front and its best marked."""
+    fig = _figure(7.5, 5.5)
+    ax = fig.add_subplot()
+    ax.scatter(table["payload_capacity"], table["fb"], s=8, color="#bbbbbb", label="every design")
+    for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), _COLORS, strict=False):
+        ax.scatter(
+            group["payload_capacity"],
+            group["flexibility"],
+            s=24,
+            color=color,
+            label=f"Pareto front, l1 ratio {r1:.2f}",
+        )
+    best = front.iloc[0]
+    ax.scatter(
+        [best["payload_capacity"]],
+        [best["flexibility"]],
+        s=220,
+        marker="*",
+        color="k",
+        label=f"recommended: l3 ratio {best['l3_ratio']:.3f}, l1 ratio {best['l1_ratio']:.2f}",
+    )
+    ax.set_xlabel("payload capacity [kg]")
+    ax.set_ylabel("body flexibility FB [-] (eq 29)")
+    ax.set_title("Pareto front of improved area, w_A, FB and payload capacity")
+    ax.grid(True, alpha=0.3)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    return fig

@@ -15,7 +15,7 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
-from hexaleg.design import HexapodDesign
+from hexaleg.design import FOOT_MASS, HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
 
@@ -118,14 +118,56 @@ class HexapodModel:
 
     """
 
-    def __init__(self, design: HexapodDesign) -> None:
+    def __init__(self, design: HexapodDesign, _model: pin.Model | None = None) -> None:
         self.design = design
-        self.urdf = render_hexapod(design)
-        self.model = pin.buildModelFromXML(self.urdf, pin.JointModelFreeFlyer())
+        self._urdf = None if _model is not None else render_hexapod(design)
+        self.model = (
+            pin.buildModelFromXML(self._urdf, pin.JointModelFreeFlyer())
+            if _model is None
+            else _model
+        )
         self.data = self.model.createData()
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         self.base_frame = _frame_id(self.model, "base_link")
+
+    @property
+    def urdf(self) -> str:
+        """The rendered URDF text (rendered on first use for a :meth:`with_design` copy)."""
+        if self._urdf is None:
+            self._urdf = render_hexapod(self.design)
+        return self._urdf
+
+    def with_design(self, design: HexapodDesign) -> HexapodModel:
+        """The model of ``design``, whose segments and rated torques differ, without Xacro.
+
+        The fast path of sweeps: joint placements, the foot frames, the links' inertias
+        (rods of the design's density, the tibia carrying its foot) and the effort limits
+        are set as the URDF would set them; the tests prove the result equal to
+        ``HexapodModel(design)``. Every other field must be this model's design's.
+        """
+        kept = ("l1", "l2", "l3", "rated_torques")
+        if self.design.replace(**{f: getattr(design, f) for f in kept}) != design:
+            raise ModelError("with_design changes only segment lengths and rated torques")
+        model = pin.Model(self.model)
+        radius, density = design.link_radius, design.link_linear_density
+        for leg in self.leg_names:
+            root, hip, knee = (_joint_id(model, joint_name(leg, j)) for j in LEG_JOINTS)
+            model.jointPlacements[hip] = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))
+            model.jointPlacements[knee] = pin.SE3(np.eye(3), np.array([design.l2, 0.0, 0.0]))
+            model.inertias[root] = _rod(design.l1, radius, density)
+            model.inertias[hip] = _rod(design.l2, radius, density)
+            foot = pin.Inertia(
+                FOOT_MASS, np.array([design.l3, 0.0, 0.0]), 0.4 * FOOT_MASS * radius**2 * np.eye(3)
+            )
+            model.inertias[knee] = _rod(design.l3, 0.8 * radius, density) + foot
+            for name in (f"{leg}_foot_joint", foot_frame_name(leg)):
+                frame = model.frames[_frame_id(model, name)]
+                frame.placement = pin.SE3(np.eye(3), np.array([design.l3, 0.0, 0.0]))
+                model.frames[_frame_id(model, name)] = frame
+            for joint, effort in zip((root, hip, knee), design.rated_torques, strict=True):
+                model.effortLimit[model.idx_vs[joint]] = effort
+        return HexapodModel(design, _model=model)
 
     # -- indices ------------------------------------------------------------------------
 
@@ -238,3 +280,11 @@ def _frame_id(model: pin.Model, name: str) -> int:
     if not model.existFrame(name):
         raise ModelError(f"the model has no frame named {name!r}")
     return int(model.getFrameId(name))
+
+
+def _rod(length: float, radius: float, density: float) -> pin.Inertia:
+    """A solid cylinder along +x from the joint, as the Xacro templates write it [kg, m]."""
+    mass = density * length
+    side = mass * (3 * radius**2 + length**2) / 12
+    rotational = np.diag([mass * radius**2 / 2, side, side])
+    return pin.Inertia(mass, np.array([length / 2, 0.0, 0.0]), rotational)

@@ -28,7 +28,7 @@ from hexaleg.stance.constraints import (
     direction_poses,
     stance_margins,
 )
-from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extreme
+from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extremes
 from hexaleg.stance.geometry import StanceGeometry
 
 
@@ -51,13 +51,13 @@ def axis_locked_extremes(geometry: StanceGeometry) -> tuple[Extreme, ...]:
 
     crossings = first_crossings(margins, search_ranges(geometry))
     labels = constraint_labels(geometry.legs)
-    extremes = []
-    for d, (axis, sign) in enumerate(DIRECTIONS):
-        displacement = np.zeros(len(AXES))
-        displacement[axis_of[d]] = sign * crossings.t[d]
-        binding = [labels[c] for c in crossings.binding[d]] or [Cause("range")]
-        extremes.append(pose_extreme(geometry, axis, sign, displacement, binding))
-    return tuple(extremes)
+    displacements = np.zeros((len(DIRECTIONS), len(AXES)))
+    displacements[np.arange(len(DIRECTIONS)), axis_of] = sign_of * crossings.t
+    directions = [
+        (axis, sign, [labels[c] for c in crossings.binding[d]] or [Cause("range")])
+        for d, (axis, sign) in enumerate(DIRECTIONS)
+    ]
+    return pose_extremes(geometry, directions, displacements)
 
 
 def axis_locked_flexibility(

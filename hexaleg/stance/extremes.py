@@ -9,12 +9,12 @@ from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode
 from hexaleg.design import HexapodDesign
+from hexaleg.kinematics import leg_solution
 from hexaleg.stance.constraints import AXES, TRANSLATIONS, Cause, displacement_poses
-from hexaleg.stance.geometry import StanceGeometry, stance_inverse_kinematics
+from hexaleg.stance.geometry import StanceGeometry
 
 
 class FlexibilityWarning(UserWarning):
@@ -154,18 +154,39 @@ def pose_extreme(
     binding: Sequence[Cause],
 ) -> Extreme:
     """The extreme reached at a body displacement (6,), with every stance leg's angles there."""
-    d = np.asarray(displacement, dtype=float)
+    return pose_extremes(geometry, [(axis, sign, binding)], np.asarray(displacement)[None])[0]
+
+
+def pose_extremes(
+    geometry: StanceGeometry,
+    directions: Sequence[tuple[str, int, Sequence[Cause]]],
+    displacements: npt.ArrayLike,
+) -> tuple[Extreme, ...]:
+    """Extremes at body displacements (K, 6), the legs' angles by one vectorized IK.
+
+    Args:
+        geometry: The stance.
+        directions: Per extreme, its axis, sign and binding constraints.
+        displacements: Per extreme, the body displacement there (m, rad).
+
+    """
+    d = np.asarray(displacements, dtype=float).reshape(-1, len(AXES))
     rotation, translation = displacement_poses(geometry, d)
-    theta = stance_inverse_kinematics(geometry, pin.SE3(rotation, translation)).theta
-    return Extreme(
-        axis,
-        sign,
-        float(d[AXES.index(axis)]),
-        binding[0],
-        tuple(binding),
-        tuple(float(v) for v in d),
-        {
-            leg: (float(a), float(b), float(c))
-            for leg, (a, b, c) in zip(geometry.legs, theta, strict=True)
-        },
-    )
+    theta, _ = leg_solution(geometry.lengths, geometry.feet_in_roots(rotation, translation))
+    extremes = []
+    for (axis, sign, binding), pose, angles in zip(directions, d, theta, strict=True):
+        extremes.append(
+            Extreme(
+                axis,
+                sign,
+                float(pose[AXES.index(axis)]),
+                binding[0],
+                tuple(binding),
+                tuple(pose.tolist()),
+                {
+                    leg: (float(a), float(b), float(c))
+                    for leg, (a, b, c) in zip(geometry.legs, angles, strict=True)
+                },
+            )
+        )
+    return tuple(extremes)

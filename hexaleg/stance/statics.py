@@ -148,6 +148,13 @@ class Statics:
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._robot_mass = float(pin.computeTotalMass(model.model))
+        self._hull: tuple[ArrayF, ArrayF] | None = None  # (feet, their polygon)
+
+    def _polygon(self, feet_xy: ArrayF) -> ArrayF:
+        """The support polygon, computed once: planted feet do not move."""
+        if self._hull is None or np.abs(self._hull[0] - feet_xy).max() > 1e-12:
+            self._hull = (feet_xy.copy(), support_polygon(feet_xy))
+        return self._hull[1]
 
     def state(
         self,
@@ -170,11 +177,14 @@ class Statics:
         q = np.asarray(q, dtype=float)
         gravity = np.asarray(gravity, dtype=float)
         model, data = self.model.model, self._data
-        model.gravity.linear = gravity
+        tilted = gravity[2] != -GRAVITY
+        if tilted:
+            model.gravity.linear = gravity
         try:
             generalized = pin.computeGeneralizedGravity(model, data, q).copy()
         finally:
-            model.gravity.linear = np.array([0.0, 0.0, -GRAVITY])
+            if tilted:
+                model.gravity.linear = np.array([0.0, 0.0, -GRAVITY])
         pin.computeJointJacobians(model, data, q)
         pin.updateFramePlacements(model, data)
         jacobians = [
@@ -195,14 +205,16 @@ class Statics:
         mass = self._robot_mass + payload.mass
         com = (self._robot_mass * com_robot + payload.mass * point) / mass
         forces = self._distribute(feet, com, mass, gravity, generalized, jacobians, distribution)
-        torques = generalized - sum(j.T @ f for j, f in zip(jacobians, forces, strict=True))
+        torques = generalized - np.vstack(jacobians).T @ forces.ravel()
         return StaticState(
             legs=self.legs,
             foot_forces=forces,
             joint_torques=torques[self._v],
             com=com,
             mass=mass,
-            stability_margin=stability_margin(feet[:, :2], ground_point(com, gravity)),
+            stability_margin=signed_distance(
+                self._polygon(feet[:, :2]), ground_point(com, gravity)
+            ),
             free_flyer_residual=float(np.abs(torques[:6]).max()),
         )
 
@@ -217,8 +229,8 @@ class Statics:
         distribution: Distribution,
     ) -> ArrayF:
         a, b = equilibrium(feet, com, mass, gravity)
-        if distribution == "min-norm":
-            return np.asarray(np.linalg.lstsq(a, b, rcond=None)[0], dtype=float).reshape(-1, 3)
+        if distribution == "min-norm":  # f = Aᵀ(AAᵀ)⁻¹b: A has full row rank for ≥ 3 feet
+            return (a.T @ np.linalg.solve(a @ a.T, b)).reshape(-1, 3)
         # min Σ (τ_j/rated_j)², τ = h − Jᵀf on the stance joints, as a QP in f
         columns = self._v.ravel()
         weights = np.tile(1.0 / self.rated, len(self.legs)) ** 2
@@ -243,11 +255,16 @@ class Statics:
 
 def equilibrium(feet: ArrayF, com: ArrayF, mass: float, gravity: ArrayF) -> tuple[ArrayF, ArrayF]:
     """A f = b: Σ f_i = −M·g and Σ (p_i − c) × f_i = 0, for f stacked per foot (3N,)."""
-    a = np.zeros((6, 3 * len(feet)))
-    for i, foot in enumerate(feet):
-        a[:3, 3 * i : 3 * i + 3] = np.eye(3)
-        a[3:, 3 * i : 3 * i + 3] = pin.skew(foot - com)
-    return a, np.concatenate([-mass * gravity, np.zeros(3)])
+    r = np.asarray(feet) - com  # (N, 3)
+    a = np.zeros((6, len(r), 3))
+    a[0, :, 0] = a[1, :, 1] = a[2, :, 2] = 1.0
+    # rows 3..5: the cross-product matrix [r_i]× of each foot, side by side
+    a[3, :, 1], a[3, :, 2] = -r[:, 2], r[:, 1]
+    a[4, :, 0], a[4, :, 2] = r[:, 2], -r[:, 0]
+    a[5, :, 0], a[5, :, 1] = -r[:, 1], r[:, 0]
+    b = np.zeros(6)
+    b[:3] = -mass * gravity
+    return a.reshape(6, -1), b
 
 
 def friction_pyramid(legs: int, friction: float) -> tuple[ArrayF, ArrayF]:
@@ -272,7 +289,11 @@ def ground_point(com: ArrayF, gravity: ArrayF) -> ArrayF:
 
 def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:
     """Signed distance [m] from ``point`` to the convex hull of the feet: > 0 inside."""
-    polygon = support_polygon(feet_xy)
+    return signed_distance(support_polygon(feet_xy), point)
+
+
+def signed_distance(polygon: ArrayF, point: ArrayF) -> float:
+    """Signed distance [m] from ``point`` to a counter-clockwise convex polygon: > 0 inside."""
     edges = np.roll(polygon, -1, axis=0) - polygon
     lengths = np.linalg.norm(edges, axis=1)
     relative = point - polygon
@@ -378,8 +399,12 @@ def payload_capacity(
     """The largest payload at the statics' payload point that the nominal stance holds.
 
     Every stance joint's |τ| must stay within its rating and the stability margin
-    positive; found by bisection on the mass, to 1e-6 relative.
+    positive. With min-norm forces every torque is affine in the payload (the six
+    equilibrium equations about a fixed point are affine in it), so each joint's limit
+    is solved exactly; min-torque forces are found by bisection, to 1e-6 relative.
     """
+    if distribution == "min-norm":
+        return _affine_capacity(statics, q)
 
     def check(mass: float) -> tuple[bool, str]:
         try:
@@ -388,7 +413,7 @@ def payload_capacity(
             return False, "stability"
         ratios = state.torque_ratios(statics.rated)
         if ratios.max() > 1.0:
-            leg, joint = np.unravel_index(int(np.argmax(ratios)), ratios.shape)
+            leg, joint = _first_tied(ratios)
             return False, f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
         if state.stability_margin <= 0:
             return False, "stability"
@@ -409,3 +434,60 @@ def payload_capacity(
         else:
             hi, cause = mid, why
     return PayloadCapacity(lo, cause)
+
+
+def _affine_capacity(statics: Statics, q: npt.ArrayLike) -> PayloadCapacity:
+    """Payload capacity with min-norm forces: τ(m) = τ0 + m·τ1, solved joint by joint."""
+    empty = statics.state(q, payload=statics.payload.with_mass(0.0))
+    unit = statics.state(q, payload=statics.payload.with_mass(1.0))
+    base, slope = empty.joint_torques, unit.joint_torques - empty.joint_torques
+    rated = np.broadcast_to(statics.rated, base.shape)
+    if np.any(np.abs(base) > rated) or empty.stability_margin <= 0:
+        ratios = np.abs(base) / rated
+        leg, joint = _first_tied(ratios)
+        cause = "stability" if ratios.max() <= 1 else f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+        return PayloadCapacity(0.0, cause)
+    with np.errstate(divide="ignore", invalid="ignore"):  # slope 0: that joint never binds
+        limit = np.where(slope > 0, (rated - base) / slope, (-rated - base) / slope)
+    limit = np.where(np.abs(slope) > 0, limit, np.inf)
+    leg, joint = _first_tied(-limit)
+    mass, cause = float(limit[leg, joint]), f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+    tipping = _tipping_payload(empty, unit, statics)
+    if tipping < mass:
+        mass, cause = tipping, "stability"
+    if mass >= PAYLOAD_SEARCH_LIMIT:
+        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, "search limit")
+    return PayloadCapacity(mass, cause)
+
+
+def _tipping_payload(empty: StaticState, unit: StaticState, statics: Statics) -> float:
+    """The payload at which the centre of mass's footprint leaves the support polygon."""
+    mass0 = empty.mass
+    point = unit.com * unit.mass - empty.com * mass0  # the payload's position (1 kg)
+    polygon = statics._hull[1] if statics._hull is not None else None
+    if polygon is None or signed_distance(polygon, point[:2]) > 0:
+        return math.inf  # a payload inside the polygon only steadies the robot
+
+    def margin(mass: float) -> float:
+        com = (mass0 * empty.com + mass * point) / (mass0 + mass)
+        return signed_distance(polygon, com[:2])
+
+    lo, hi = 0.0, PAYLOAD_SEARCH_LIMIT
+    if margin(hi) > 0:
+        return math.inf
+    while hi - lo > 1e-9 * max(hi, 1.0):
+        mid = 0.5 * (lo + hi)
+        lo, hi = (mid, hi) if margin(mid) > 0 else (lo, mid)
+    return lo
+
+
+def _first_tied(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
+    """(leg, joint) of the largest value, the first in leg order among near-equal ones.
+
+    Mirror-image legs tie, and round-off must not choose between them.
+    """
+    flat = values.ravel()
+    best = flat.max()
+    index = int(np.flatnonzero(flat >= best - tolerance * max(1.0, abs(best)))[0])
+    leg, joint = np.unravel_index(index, values.shape)
+    return int(leg), int(joint)

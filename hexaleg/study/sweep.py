@@ -18,6 +18,7 @@ import warnings
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass, field
+from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
@@ -39,6 +40,7 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.loads import loads_at_extremes
 from hexaleg.study.executors import local_pool
 
 MAX_L1_RATIOS = 20
@@ -131,19 +133,22 @@ def evaluate(task: _Task) -> Row:
     """One row of the study table; errors become a row with ``error`` set."""
     row: Row = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
     try:
-        design = task.spec.base.with_ratios(task.l1_ratio, task.l3_ratio, task.spec.total)
         spec = task.spec
+        design = spec.base.with_ratios(task.l1_ratio, task.l3_ratio, spec.total)
+        model = base_model(spec.base).with_design(design)
         if spec.mode == "axis":
             result = axis_locked_flexibility(
-                design, spec.stance, geometry=task.template, collisions=spec.collisions
+                design, spec.stance, model, geometry=task.template, collisions=spec.collisions
             )
         else:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
-                result = free_flexibility(design, spec.stance, collisions=spec.collisions)
+                result = free_flexibility(design, spec.stance, model, collisions=spec.collisions)
+        loads = loads_at_extremes(model, result)
     except HexalegError as err:
         return row | {"l1": math.nan, "l2": math.nan, "l3": math.nan, "error": str(err)}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
+    row |= loads.study_columns()
     row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
     for extreme in result.extremes:
         name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
@@ -176,6 +181,21 @@ def sweep(
         if on_row is not None:
             on_row(row)
     return rows
+
+
+@lru_cache(maxsize=4)
+def base_model(base: HexapodDesign) -> HexapodModel:
+    """The base design's Pinocchio model, built once per process.
+
+    Each design of a study derives its own from it (:meth:`HexapodModel.with_design`).
+    It is sent to no worker: a pickled model is 2 MB and 70 ms each way.
+    """
+    return HexapodModel(base)
+
+
+def _template_geometry(spec: StudySpec) -> StanceGeometry:
+    """Root placements and body box of the study's body, read once from Pinocchio."""
+    return StanceGeometry.from_model(base_model(spec.base), spec.stance)
 
 
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
@@ -242,11 +262,6 @@ def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.Dat
     """The rows of a finished sweep as a table, in (coxa, tibia) ratio order."""
     table = pd.DataFrame([rows[key] for key in spec.keys()])
     return table.sort_values(["l1_ratio", "l3_ratio"], kind="stable").reset_index(drop=True)
-
-
-def _template_geometry(spec: StudySpec) -> StanceGeometry:
-    """Root placements and body box of the study's body, read once from Pinocchio."""
-    return StanceGeometry.from_model(HexapodModel(spec.base), spec.stance)
 
 
 def _append(journal: Path, record: dict[str, Any]) -> None:

@@ -27,9 +27,17 @@ from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.loads import LoadsAnalysis, loads_at_extremes
 from hexaleg.study.executors import local_pool, max_workers
 from hexaleg.study.metrics import design_metrics, ratio_metrics
-from hexaleg.study.recommendation import Metrics, Recommendation, combined_score, recommend
+from hexaleg.study.pareto import pareto_table
+from hexaleg.study.recommendation import (
+    PRACTICAL_L1_RATIO,
+    Metrics,
+    Recommendation,
+    combined_score,
+    recommend,
+)
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import MAX_L1_RATIOS, StudySpec, peak_table, study_table, sweep
 from hexaleg.swing.manipulability import (
@@ -159,6 +167,10 @@ class ReportData:
         sensitivity: Peak FB per posture/body variant, each relative to this design.
         recommendation: Recommended segment ratios and the scores behind them.
         decision: This design beside the recommended one, metric by metric.
+        loads: Statics at the nominal stance and the axis-locked extremes.
+        free_loads: Statics at the free-coupled extremes.
+        pareto: The designs of the grid no other beats in area, w_A, FB and payload
+            capacity at once, best score first (its first row is the Pareto recommendation).
 
     """
 
@@ -177,6 +189,9 @@ class ReportData:
     sensitivity: pd.DataFrame
     recommendation: Recommendation
     decision: Decision
+    loads: LoadsAnalysis
+    free_loads: LoadsAnalysis
+    pareto: pd.DataFrame
 
     @property
     def study_peaks(self) -> pd.DataFrame:
@@ -216,6 +231,11 @@ class ReportData:
                     "lengths_m": [rec.l1_ratio * total, rec.l2_ratio * total, rec.l3_ratio * total],
                 },
                 "decision": self.decision.to_json(),
+                "loads": {
+                    "axis": _without_design(self.loads.to_dict()),
+                    "free": _without_design(self.free_loads.to_dict()),
+                },
+                "pareto_front": self.pareto.to_dict(orient="records"),
             }
         )
 
@@ -223,7 +243,7 @@ class ReportData:
 def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
     """Run every analysis of the report on ``design``, with a progress bar on a terminal."""
     show = sys.stdout.isatty() if options.progress is None else options.progress
-    with tqdm(total=7, disable=not show, file=sys.stderr, unit="step") as bar:
+    with tqdm(total=8, disable=not show, file=sys.stderr, unit="step") as bar:
 
         def step(name: str, run: Callable[[], T]) -> T:
             bar.set_description(name)
@@ -266,6 +286,9 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
             lambda: _recommendation(design, template, average_map, study, options),
         )
         decision = _decision(design, template, recommendation, options.collisions)
+        loads, free_loads = step(
+            "statics", lambda: (loads_at_extremes(model, axis), loads_at_extremes(model, free))
+        )
     return ReportData(
         design=design,
         options=options,
@@ -284,6 +307,11 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
         sensitivity=sensitivity,
         recommendation=recommendation,
         decision=decision,
+        loads=loads,
+        free_loads=free_loads,
+        pareto=pareto_table(
+            _candidates(_pareto_grid(average_map, study, design.leg_length), options.l1_ratios)
+        ),
     )
 
 
@@ -365,6 +393,40 @@ def _decision(
         recommended_metrics=recommended_metrics,
         recommended_score=combined_score(recommended_metrics, rec.maxima),
     )
+
+
+def _pareto_grid(
+    average_map: AverageManipulabilityMap, study: pd.DataFrame, total: float
+) -> pd.DataFrame:
+    """Every design of the sweep with the four metrics of the Pareto front."""
+    grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
+    grid["improved_area"] = improved_area_closed_form(
+        grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)
+    )
+    w_a = {
+        (r1, r3): value
+        for i, r1 in enumerate(average_map.l1_ratios)
+        for r3, value in zip(average_map.l3_ratios, average_map.improved[i], strict=True)
+    }
+    grid["average_manipulability"] = [
+        w_a.get((r1, r3), np.nan) for r1, r3 in zip(grid["l1_ratio"], grid["l3_ratio"], strict=True)
+    ]
+    grid["flexibility"] = study["fb"] if "fb" in study else np.nan
+    grid["payload_capacity"] = study["payload_capacity"] if "payload_capacity" in study else np.nan
+    return grid
+
+
+def _candidates(grid: pd.DataFrame, l1_ratios: Sequence[float] | None) -> pd.DataFrame:
+    """The designs whose coxa ratio the recommendation may take (as :func:`recommend`)."""
+    if l1_ratios is not None:
+        return grid[np.isclose(grid["l1_ratio"].to_numpy()[:, None], l1_ratios).any(axis=1)]
+    practical = grid[grid["l1_ratio"] >= PRACTICAL_L1_RATIO - 1e-12]
+    return practical if len(practical) else grid
+
+
+def _without_design(data: dict[str, Any]) -> dict[str, Any]:
+    """A JSON object without its ``design`` (the report states it once)."""
+    return {key: value for key, value in data.items() if key != "design"}
 
 
 def _plain(value: Any) -> Any:

@@ -19,7 +19,10 @@ from hexaleg._io import atomic_write_text, retired_folder, staging_folder
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.figures import (
     extremes_figure,
+    loads_figure,
+    pareto_figure,
     save,
+    statics_study_figure,
     write_manipulability_figures,
     write_study_figures,
     write_workspace_figures,
@@ -83,6 +86,10 @@ def _write_files(data: ReportData, out: Path) -> None:
     write_journal(study, data.study_spec, data.study)
     write_table(data.study_spec, data.study, study)
     write_study_figures(data.study, out)
+    save(statics_study_figure(data.study), out / "study_statics.png")
+    save(loads_figure(data.loads), out / "loads.png")
+    save(pareto_figure(data.study, data.pareto), out / "pareto_front.png")
+    _write_csv(out / "pareto_front.csv", data.pareto.to_dict(orient="records"))
     atomic_write_text(out / "sensitivity.csv", data.sensitivity.to_csv(index=False))
     write_static_html(data.model, data.axis, out / "viewer.html", data.model.leg_names[0])
     _write_csv(

@@ -395,6 +395,92 @@ def sensitivity_section(data: ReportData) -> Section:
     )
 
 
+def statics_section(data: ReportData) -> Section:
+    """What the design costs: torques against ratings, stability, slopes, payload."""
+    loads, free = data.loads, data.free_loads
+    nominal = loads.nominal.peak_torques()
+    rows = [
+        (
+            joint,
+            f"{rated:g}",
+            f"{nominal[joint]:.1f}",
+            f"{loads.peak_torques[joint]:.1f}",
+            f"{free.peak_torques[joint]:.1f}",
+        )
+        for joint, rated in zip(nominal, data.design.rated_torques, strict=True)
+    ]
+    slopes = ", ".join(
+        f"{math.degrees(s.heading):+.0f}°: {math.degrees(s.max_slope):.1f}° ({s.limited_by})"
+        for s in loads.slopes
+    )
+    return Section(
+        "3.3 Statics: what the design costs",
+        (
+            f"The robot weighs {loads.nominal.mass * 9.81:.0f} N ({loads.nominal.mass:.2f} kg). "
+            "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
+            "Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over the stance legs, in N·m:",
+            table(
+                [
+                    "joint",
+                    "rated",
+                    "nominal stance",
+                    "over the axis-locked extremes",
+                    "over the free-coupled extremes",
+                ],
+                rows,
+            ),
+            f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
+            f"Steepest slope by uphill heading (μ = {loads.friction:g}): {slopes}. Payload "
+            f"capacity at the centre of the body's top face: **{loads.capacity.mass:.1f} kg**, "
+            f"limited by {loads.capacity.limited_by}. Per design of the sweep:",
+            figure(
+                "study_statics.png",
+                "Peak hip and knee torque and payload capacity against tibia ratio",
+            ),
+            figure("loads.png", "This design: peak torques against their ratings, and slopes"),
+        ),
+    )
+
+
+def pareto_section(data: ReportData) -> Section:
+    """The Pareto front with payload capacity, and the design chosen on it."""
+    front = data.pareto
+    best = front.iloc[0]
+    total = data.design.leg_length
+    rows = [
+        (
+            f"{r['l1_ratio']:.2f}",
+            f"{r['l3_ratio']:.3f}",
+            f"{r['improved_area']:.4f}",
+            f"{r['average_manipulability']:.4f}",
+            f"{r['flexibility']:.4f}",
+            f"{r['payload_capacity']:.1f}",
+            f"{r['score']:.4f}",
+        )
+        for r in front.head(12).to_dict(orient="records")
+    ]
+    return Section(
+        "5.1 Pareto front: workspace, manipulability, flexibility and payload",
+        (
+            f"Among the sweep's designs at the allowed coxa ratios (as in section 5), "
+            f"{len(front)} are beaten by no other in improved area, w_A, FB and payload "
+            "capacity at once. The grid is dense and "
+            "every metric on it exact, so the front is read off it directly (no evolutionary "
+            "search could be more exact). Rule: on the front, the design with the best "
+            "equal-weight score, each metric divided by its best value on the grid.",
+            f"**Pareto recommendation: l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
+            f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}** (for a "
+            f"{total:g} m leg: {best['l1']:.3f}, {best['l2']:.3f}, {best['l3']:.3f} m; payload "
+            f"capacity {best['payload_capacity']:.1f} kg, FB {best['flexibility']:.4f}).",
+            table(
+                ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
+                rows,
+            ),
+            figure("pareto_front.png", "FB against payload capacity; the front and its best"),
+        ),
+    )
+
+
 def viewer_section(data: ReportData) -> Section:
     """Where the 3-D view is and how to use it."""
     return Section(
@@ -465,8 +551,10 @@ SECTIONS: tuple[Callable[[ReportData], Section], ...] = (
     flexibility_section,
     study_section,
     sensitivity_section,
+    statics_section,
     viewer_section,
     recommendation_section,
+    pareto_section,
 )
 """The report's sections, in order."""
 

@@ -1,0 +1,103 @@
+"""``hexaleg loads``: foot forces, joint torques, stability, slopes and payload capacity."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from hexaleg._typing import Distribution, choices
+from hexaleg.cli.options import (
+    add_design_options,
+    add_mode_option,
+    add_output_options,
+    add_stance_option,
+    design_from_args,
+)
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.output.figures import loads_figure, save
+from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.stance.loads import LoadsAnalysis, analyze_loads
+from hexaleg.stance.statics import DEFAULT_FRICTION, Payload
+
+DESCRIPTION = (
+    "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "
+    "gravity and the joint torques holding the nominal stance and each of the 12 body "
+    "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
+    "the largest payload the nominal stance holds within the rated torques."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    parser.add_argument(
+        "--payload", type=float, default=0.0, metavar="KG", help="payload mass [kg] (default 0)"
+    )
+    parser.add_argument(
+        "--payload-at",
+        type=float,
+        nargs=3,
+        metavar=("X", "Y", "Z"),
+        help="payload position in the body frame [m] (default: the centre of the top face)",
+    )
+    parser.add_argument(
+        "--friction",
+        type=float,
+        default=DEFAULT_FRICTION,
+        metavar="MU",
+        help=f"friction coefficient between feet and ground [-] (default {DEFAULT_FRICTION})",
+    )
+    add_stance_option(parser)
+    parser.add_argument(
+        "--distribution",
+        choices=choices(Distribution),
+        default="min-norm",
+        help="how the feet share the load: least forces (default) or least torque/rating",
+    )
+    add_mode_option(parser)
+    add_output_options(parser)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Compute the statics; print a table or JSON, and write the figure if asked."""
+    design = design_from_args(args)
+    payload = Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
+    analysis = analyze_loads(
+        design, payload, args.friction, args.stance, args.distribution, args.mode
+    )
+    if args.plot is not None:
+        report_files([save(loads_figure(analysis), Path(args.plot) / "loads.png")])
+    if args.json:
+        print_json(analysis.to_dict())
+        return 0
+    print_table(lengths_title("Statics", design.lengths), _rows(analysis))
+    return 0
+
+
+def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
+    rated = dict(zip(LEG_JOINTS, analysis.design.rated_torques, strict=True))
+    nominal = analysis.nominal.peak_torques()
+    rows = [
+        ("total mass", f"{analysis.nominal.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
+        ("stability margin, nominal", f"{analysis.nominal.stability_margin:.4f} m"),
+    ]
+    for joint in LEG_JOINTS:
+        rows.append(
+            (
+                f"peak |τ| {joint}: nominal / extremes",
+                f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
+                f"(rated {rated[joint]:g} N·m)",
+            )
+        )
+    for slope in analysis.slopes:
+        rows.append(
+            (
+                f"max slope, uphill at {math.degrees(slope.heading):+.0f}°",
+                f"{slope.max_slope:.4f} rad ({math.degrees(slope.max_slope):.1f}°), "
+                f"limited by {slope.limited_by}",
+            )
+        )
+    capacity = analysis.capacity
+    rows.append(("payload capacity", f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"))
+    return rows

@@ -1,0 +1,229 @@
+"""What a design costs: the statics at the nominal stance and at each body extreme.
+
+:func:`analyze_loads` gathers, for one design, the foot forces and joint torques
+holding the nominal stance, the torques and stability margin at each of the twelve
+flexibility extremes (the pose each extreme reports), the steepest slope per heading
+and the payload capacity.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
+from hexaleg.design import HexapodDesign
+from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.stance.extremes import Extreme, FlexibilityResult
+from hexaleg.stance.flexibility import flexibility
+from hexaleg.stance.geometry import stance_legs
+from hexaleg.stance.statics import (
+    DEFAULT_FRICTION,
+    Payload,
+    PayloadCapacity,
+    SlopeLimit,
+    Statics,
+    StaticState,
+    payload_capacity,
+    slope_limits,
+)
+
+
+@dataclass(frozen=True)
+class ExtremeLoads:
+    """The statics at one flexibility extreme.
+
+    Attributes:
+        extreme: The extreme (its pose and joint angles).
+        state: Forces, torques and stability margin there.
+
+    """
+
+    extreme: Extreme
+    state: StaticState
+
+
+@dataclass(frozen=True)
+class LoadsAnalysis:
+    """Everything the statics tell about one design.
+
+    Attributes:
+        design: The design.
+        payload: The payload carried.
+        friction: Friction coefficient μ [-].
+        distribution: How the feet share the load.
+        nominal: The statics at the nominal stance.
+        extremes: The statics at each of the twelve extremes.
+        slopes: The steepest slope per heading.
+        capacity: The largest payload at the payload's point.
+        mode: Which flexibility extremes (axis-locked or free-coupled).
+
+    """
+
+    design: HexapodDesign
+    payload: Payload
+    friction: float
+    distribution: Distribution
+    nominal: StaticState
+    extremes: tuple[ExtremeLoads, ...]
+    slopes: tuple[SlopeLimit, ...]
+    capacity: PayloadCapacity
+    mode: FlexibilityMode
+
+    @property
+    def peak_torques(self) -> dict[str, float]:
+        """Largest |τ| per joint type over the nominal stance and every extreme [N·m]."""
+        states = [self.nominal, *(e.state for e in self.extremes)]
+        return {j: max(s.peak_torques()[j] for s in states) for j in LEG_JOINTS}
+
+    @property
+    def worst_slope(self) -> SlopeLimit:
+        """The heading with the smallest max slope."""
+        return min(self.slopes, key=lambda s: s.max_slope)
+
+    def study_columns(self) -> dict[str, float | str]:
+        """The design's columns in a study table (N·m, m, rad, kg)."""
+        nominal = self.nominal.peak_torques()
+        columns: dict[str, float | str] = {}
+        for joint in LEG_JOINTS:
+            columns[f"peak_{joint}_torque_nominal"] = nominal[joint]
+            columns[f"peak_{joint}_torque"] = self.peak_torques[joint]
+        return columns | {
+            "stability_margin": self.nominal.stability_margin,
+            "worst_max_slope": self.worst_slope.max_slope,
+            "payload_capacity": self.capacity.mass,
+            "payload_limited_by": self.capacity.limited_by,
+        }
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (SI units: N, N·m, m, kg, rad)."""
+        legs = self.nominal.legs
+        return {
+            "design": self.design.as_dict(),
+            "payload": {
+                "mass": self.payload.mass,
+                "position": list(self.payload.position or (0.0, 0.0, self.design.body_height / 2)),
+            },
+            "friction": self.friction,
+            "distribution": self.distribution,
+            "stance": list(legs),
+            "mass": self.nominal.mass,
+            "com": self.nominal.com.tolist(),
+            "nominal": _state_dict(self.nominal),
+            "extremes_mode": self.mode,
+            "extremes": [
+                {
+                    "axis": e.extreme.axis,
+                    "sign": e.extreme.sign,
+                    "value": e.extreme.value,
+                    "joint_torques": _torques(legs, e.state),
+                    "peak_torque": e.state.peak_torques(),
+                    "stability_margin": e.state.stability_margin,
+                }
+                for e in self.extremes
+            ],
+            "peak_torque": self.peak_torques,
+            "slopes": [
+                {"heading": s.heading, "max_slope": s.max_slope, "limited_by": s.limited_by}
+                for s in self.slopes
+            ],
+            "payload_capacity": {
+                "mass": self.capacity.mass,
+                "limited_by": self.capacity.limited_by,
+            },
+            "units": {
+                "force": "N, ground frame",
+                "torque": "N·m",
+                "mass": "kg",
+                "com, position, stability_margin": "m",
+                "heading, max_slope, value of roll/pitch/yaw": "rad",
+            },
+        }
+
+
+def _torques(legs: Sequence[str], state: StaticState) -> dict[str, dict[str, float]]:
+    return {
+        leg: dict(zip(LEG_JOINTS, (float(t) for t in torques), strict=True))
+        for leg, torques in zip(legs, state.joint_torques, strict=True)
+    }
+
+
+def _state_dict(state: StaticState) -> dict[str, Any]:
+    return {
+        "foot_forces": {
+            leg: [float(f) for f in force]
+            for leg, force in zip(state.legs, state.foot_forces, strict=True)
+        },
+        "joint_torques": _torques(state.legs, state),
+        "peak_torque": state.peak_torques(),
+        "stability_margin": state.stability_margin,
+    }
+
+
+def extreme_configuration(model: HexapodModel, extreme: Extreme) -> np.ndarray:
+    """The configuration at an extreme, from its reported pose and joint angles."""
+    pose = np.asarray(extreme.pose)
+    base = pin.SE3(
+        pin.rpy.rpyToMatrix(*pose[3:]), pose[:3] + np.array([0.0, 0.0, model.design.nominal_height])
+    )
+    return model.configuration(base, extreme.joint_angles)
+
+
+def analyze_loads(
+    design: HexapodDesign,
+    payload: Payload | None = None,
+    friction: float = DEFAULT_FRICTION,
+    stance: StanceSet | Sequence[str] = "all",
+    distribution: Distribution = "min-norm",
+    mode: FlexibilityMode = "axis",
+    model: HexapodModel | None = None,
+) -> LoadsAnalysis:
+    """The statics of ``design``: nominal stance, twelve extremes, slopes, payload capacity.
+
+    Args:
+        design: The design.
+        payload: A point mass on the body (none by default).
+        friction: Friction coefficient μ [-].
+        stance: Stance legs.
+        distribution: ``"min-norm"`` or ``"min-torque"``.
+        mode: The extremes of axis-locked or free-coupled flexibility.
+        model: The design's Pinocchio model, if already built.
+
+    """
+    model = HexapodModel(design) if model is None else model
+    result = flexibility(design, mode, stance_legs(model, stance), model)
+    return loads_at_extremes(model, result, payload, friction, distribution)
+
+
+def loads_at_extremes(
+    model: HexapodModel,
+    result: FlexibilityResult,
+    payload: Payload | None = None,
+    friction: float = DEFAULT_FRICTION,
+    distribution: Distribution = "min-norm",
+) -> LoadsAnalysis:
+    """The statics of a flexibility result's design, at its nominal stance and extremes."""
+    design, legs, mode = result.design, result.legs, result.mode
+    statics = Statics(model, legs, payload, friction)
+    q = model.nominal_configuration()
+    nominal = statics.state(q, distribution)
+    extremes = tuple(
+        ExtremeLoads(e, statics.state(extreme_configuration(model, e), distribution))
+        for e in result.extremes
+    )
+    feet = model.foot_positions(q)[[model.leg_names.index(leg) for leg in legs]]
+    return LoadsAnalysis(
+        design=design,
+        payload=statics.payload,
+        friction=friction,
+        distribution=distribution,
+        nominal=nominal,
+        extremes=extremes,
+        slopes=slope_limits(feet[:, :2], nominal.com, friction),
+        capacity=payload_capacity(statics, q, distribution),
+        mode=mode,
+    )

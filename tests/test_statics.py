@@ -1,0 +1,252 @@
+"""Statics against independent oracles: least squares, moments by hand, a hand-built polygon."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.stance import StanceGeometry, stance_configuration
+from hexaleg.stance.statics import (
+    Payload,
+    Statics,
+    payload_capacity,
+    slope_gravity,
+    slope_limits,
+    stability_margin,
+)
+
+G = np.array([0.0, 0.0, -9.81])
+
+
+def _poses(model, legs, count, seed):
+    """Random feasible stance configurations around the nominal stance."""
+    geometry = StanceGeometry.from_model(model, legs)
+    rng = np.random.default_rng(seed)
+    found = []
+    while len(found) < count:
+        x, y, z, roll, pitch, yaw = rng.uniform(-1, 1, 6) * [0.08, 0.08, 0.05, 0.1, 0.1, 0.15]
+        body = pin.SE3(
+            pin.rpy.rpyToMatrix(roll, pitch, yaw), np.array([x, y, geometry.nominal_height + z])
+        )
+        q, solution = stance_configuration(model, geometry, body)
+        if solution.reachable.all():
+            found.append(q)
+    return found
+
+
+@pytest.fixture(scope="module")
+def model():
+    return HexapodModel(HexapodDesign())
+
+
+@pytest.mark.parametrize("legs", [("lf", "lm", "lr", "rf", "rm", "rr"), ("lf", "rm", "lr")])
+def test_min_norm_forces_equal_a_least_squares_solve(model, legs):
+    statics = Statics(model, legs, Payload(15.0, (0.1, -0.05, 0.05)))
+    for q in _poses(model, legs, 5, seed=1):
+        state = statics.state(q)
+        # the test's own equilibrium: total mass and centre of mass from Pinocchio's
+        # per-body inertias, the payload added by hand
+        data = model.model.createData()
+        pin.forwardKinematics(model.model, data, q)
+        masses = [inertia.mass for inertia in model.model.inertias[1:]]
+        centres = [
+            data.oMi[i].act(model.model.inertias[i].lever) for i in range(1, model.model.njoints)
+        ]
+        body = data.oMi[1]
+        payload_point = body.act(np.array([0.1, -0.05, 0.05]))
+        mass = sum(masses) + 15.0
+        com = (
+            sum(m * c for m, c in zip(masses, centres, strict=True)) + 15.0 * payload_point
+        ) / mass
+        pin.framesForwardKinematics(model.model, data, q)
+        feet = [data.oMf[model.foot_frame_id(leg)].translation for leg in legs]
+        rows = np.zeros((6, 3 * len(legs)))
+        for i, foot in enumerate(feet):
+            rows[:3, 3 * i : 3 * i + 3] = np.eye(3)
+            r = foot - com
+            rows[3:, 3 * i : 3 * i + 3] = [[0, -r[2], r[1]], [r[2], 0, -r[0]], [-r[1], r[0], 0]]
+        rhs = np.concatenate([-mass * G, np.zeros(3)])
+        expected = np.linalg.pinv(rows) @ rhs
+        np.testing.assert_allclose(state.foot_forces.ravel(), expected, atol=1e-9)
+        assert state.mass == pytest.approx(mass, rel=1e-12)
+        np.testing.assert_allclose(state.com, com, atol=1e-12)
+
+
+def test_torques_equal_moments_of_foot_forces_and_rod_weights_by_hand(model):
+    """τ_joint = −axis·[(p_foot − o) × f + Σ_rods beyond the joint (c_k − o) × m_k g]."""
+    design = model.design
+    legs = model.leg_names
+    statics = Statics(model, legs)
+    for q in _poses(model, legs, 4, seed=2):
+        state = statics.state(q)
+        data = model.model.createData()
+        pin.framesForwardKinematics(model.model, data, q)
+        pin.computeJointJacobians(model.model, data, q)
+        for n, leg in enumerate(legs):
+            names = [f"{leg}_{j}_joint" for j in ("root", "hip", "knee")]
+            joints = [model.model.getJointId(name) for name in names]
+            origins = [data.oMi[j].translation for j in joints]
+            axes = [  # each joint's axis in the world: the angular part of its motion
+                pin.getJointJacobian(model.model, data, j, pin.WORLD)[3:, model.model.idx_vs[j]]
+                for j in joints
+            ]
+            foot = data.oMf[model.foot_frame_id(leg)].translation
+            # each rod: from its joint to the next joint (or the foot), mass density × length
+            ends = [*origins[1:], foot]
+            lengths = (design.l1, design.l2, design.l3)
+            rods = [
+                (design.link_linear_density * length, 0.5 * (start + end))
+                for length, start, end in zip(lengths, origins, ends, strict=True)
+            ]
+            foot_mass = 1e-3  # hexaleg's foot link
+            for k in range(3):
+                moment = np.cross(foot - origins[k], state.foot_forces[n])
+                for mass, centre in rods[k:]:
+                    moment += np.cross(centre - origins[k], mass * G)
+                moment += np.cross(foot - origins[k], foot_mass * G)
+                assert state.joint_torques[n, k] == pytest.approx(-axes[k] @ moment, abs=1e-9)
+
+
+@pytest.mark.parametrize("distribution", ["min-norm", "min-torque"])
+def test_free_flyer_rows_vanish(model, distribution):
+    statics = Statics(model, model.leg_names, Payload(30.0, (0.2, 0.1, 0.05)))
+    tolerance = 1e-9 if distribution == "min-norm" else 1e-6  # the QP's own tolerance
+    for q in _poses(model, model.leg_names, 5, seed=3):
+        assert statics.state(q, distribution).free_flyer_residual <= tolerance
+
+
+def test_min_torque_never_has_a_higher_peak_ratio_than_min_norm(model):
+    statics = Statics(model, model.leg_names, friction=0.8)
+    rated = np.array(model.design.rated_torques)
+    for q in _poses(model, model.leg_names, 8, seed=4):
+        norm = statics.state(q, "min-norm")
+        torque = statics.state(q, "min-torque")
+        assert (
+            np.sum(torque.torque_ratios(rated) ** 2)
+            <= np.sum(norm.torque_ratios(rated) ** 2) + 1e-9
+        )
+        assert torque.torque_ratios(rated).max() <= norm.torque_ratios(rated).max() + 1e-9
+        forces = torque.foot_forces
+        assert np.all(forces[:, 2] >= -1e-7)
+        assert np.all(np.abs(forces[:, :2]) <= 0.8 * forces[:, 2:3] + 1e-6)  # in the cone
+
+
+def test_stability_margin_on_a_hand_built_square():
+    square = np.array([[0, 0], [2, 0], [2, 2], [0, 2], [1, 1]])  # a foot inside is ignored
+    assert stability_margin(square, np.array([1.0, 1.0])) == pytest.approx(1.0)
+    assert stability_margin(square, np.array([0.5, 1.0])) == pytest.approx(0.5)
+    assert stability_margin(square, np.array([3.0, 1.0])) == pytest.approx(-1.0)
+    assert stability_margin(square, np.array([3.0, 3.0])) == pytest.approx(-math.sqrt(2))
+
+
+def test_slope_limits_tip_or_slide_as_geometry_says():
+    feet = np.array([[1.0, 0.5], [-1.0, 0.5], [-1.0, -0.5], [1.0, -0.5]])
+    com = np.array([0.0, 0.0, 0.5])
+    ahead, left, behind, right = slope_limits(feet, com, friction=10.0)
+    assert ahead.max_slope == pytest.approx(math.atan2(1.0, 0.5)) and ahead.limited_by == "tip"
+    assert left.max_slope == pytest.approx(math.atan2(0.5, 0.5)) and left.limited_by == "tip"
+    assert (behind.max_slope, right.max_slope) == pytest.approx((ahead.max_slope, left.max_slope))
+    slide = slope_limits(feet, com, friction=0.3)[0]
+    assert slide.max_slope == pytest.approx(math.atan(0.3)) and slide.limited_by == "slide"
+    gravity = slope_gravity(0.3, 0.0)
+    assert np.linalg.norm(gravity) == pytest.approx(9.81) and gravity[0] < 0
+
+
+def test_payload_capacity_grows_with_the_rated_torques():
+    capacities = []
+    for scale in (0.5, 1.0, 2.0):
+        design = HexapodDesign(rated_torques=tuple(scale * t for t in (60.0, 150.0, 120.0)))
+        model = HexapodModel(design)
+        statics = Statics(model, model.leg_names)
+        capacity = payload_capacity(statics, model.nominal_configuration())
+        capacities.append(capacity.mass)
+        # at the capacity the limiting joint is at its rating
+        state = statics.state(model.nominal_configuration(), payload=Payload(capacity.mass))
+        assert state.torque_ratios(np.array(design.rated_torques)).max() == pytest.approx(
+            1.0, abs=1e-5
+        )
+    assert capacities[0] < capacities[1] < capacities[2]
+
+
+def test_with_design_equals_the_model_built_from_the_urdf(model):
+    design = HexapodDesign(l1=0.12, l2=0.5, l3=0.33, rated_torques=(20.0, 90.0, 70.0))
+    fast, slow = model.with_design(design), HexapodModel(design)
+    for a, b in zip(fast.model.jointPlacements, slow.model.jointPlacements, strict=True):
+        np.testing.assert_allclose(a.homogeneous, b.homogeneous, atol=1e-15)
+    for a, b in zip(fast.model.inertias, slow.model.inertias, strict=True):
+        assert a.mass == pytest.approx(b.mass, abs=1e-15)
+        np.testing.assert_allclose(a.lever, b.lever, atol=1e-15)
+        np.testing.assert_allclose(a.inertia, b.inertia, atol=1e-15)
+    for a, b in zip(fast.model.frames, slow.model.frames, strict=True):
+        assert a.name == b.name
+        np.testing.assert_allclose(a.placement.homogeneous, b.placement.homogeneous, atol=1e-15)
+    np.testing.assert_array_equal(fast.model.effortLimit, slow.model.effortLimit)
+    from hexaleg.exceptions import ModelError
+
+    with pytest.raises(ModelError):
+        model.with_design(HexapodDesign(body_width=0.8))
+
+
+def test_loads_json_has_every_documented_field(capsys):
+    import json
+
+    from hexaleg.cli import main
+
+    argv = ["loads", "--payload", "20", "--payload-at", "0.1", "0", "0.05", "--friction", "0.5"]
+    assert main([*argv, "--stance", "tripod", "--distribution", "min-torque", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["design"]["rated_torques"] == [60.0, 150.0, 120.0]
+    assert data["payload"] == {"mass": 20.0, "position": [0.1, 0.0, 0.05]}
+    assert data["friction"] == 0.5 and data["distribution"] == "min-torque"
+    assert data["mass"] == pytest.approx(HexapodDesign().total_mass + 20.0)
+    assert len(data["com"]) == 3
+    assert set(data["nominal"]["foot_forces"]) == {"lf", "rm", "lr"}
+    assert set(data["nominal"]["joint_torques"]["lf"]) == {"root", "hip", "knee"}
+    assert "stability_margin" in data["nominal"]
+    assert len(data["extremes"]) == 12
+    assert {"axis", "sign", "value", "joint_torques", "peak_torque", "stability_margin"} <= set(
+        data["extremes"][0]
+    )
+    assert [s["heading"] for s in data["slopes"]] == pytest.approx(
+        [0, math.pi / 2, math.pi, -math.pi / 2]
+    )
+    assert {s["limited_by"] for s in data["slopes"]} <= {"tip", "slide"}
+    assert set(data["payload_capacity"]) == {"mass", "limited_by"}
+    total = sum(np.array(f) for f in data["nominal"]["foot_forces"].values())
+    np.testing.assert_allclose(total, [0, 0, data["mass"] * 9.81], atol=1e-5)
+
+
+def test_loads_bad_input_is_one_line(capsys, tmp_path):
+    from conftest import run_cli
+
+    assert run_cli(["loads", "--payload", "-5"]) == 2
+    assert run_cli(["loads", "--friction", "0"]) == 2
+    assert run_cli(["loads", "--distribution", "cheapest"]) == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert len(lines) == 3 and "payload" in lines[0] and "friction" in lines[1]
+
+
+def test_study_rows_carry_the_statics(tmp_path):
+    from concurrent.futures import ThreadPoolExecutor
+
+    from hexaleg.stance.loads import analyze_loads
+    from hexaleg.study import StudySpec, run_study
+
+    table = run_study(StudySpec((0.1,), (0.3, 0.45)), tmp_path, executor=ThreadPoolExecutor(1))
+    for column in (
+        "peak_hip_torque_nominal",
+        "peak_knee_torque",
+        "stability_margin",
+        "worst_max_slope",
+        "payload_capacity",
+        "payload_limited_by",
+    ):
+        assert column in table
+    row = table.iloc[1]
+    single = analyze_loads(HexapodDesign.from_ratios(0.1, 0.45))
+    assert row["payload_capacity"] == pytest.approx(single.capacity.mass, rel=1e-9)
+    assert row["peak_hip_torque"] == pytest.approx(single.peak_torques["hip"], rel=1e-9)
