@@ -20,6 +20,7 @@ from hexaleg.stance import (
     axis_locked_flexibility,
     free_flexibility,
 )
+from hexaleg.stance.loads import loads_at_extremes
 from hexaleg.study import StudySpec, run_study
 
 
@@ -81,7 +82,7 @@ def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
     rows += [
         Row(
             name,
-            "hexaleg run_study, 2 processes",
+            "hexaleg run_study (with statics), 2 processes",
             t_sweep,
             None,
             None,
@@ -112,6 +113,19 @@ def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
             "≤ 0.5 s",
             note=f"FB {free.fb:.4f}, {free.iterations} SLSQP iterations, "
             f"converged {free.converged}",
+        )
+    )
+    locked = axis_locked_flexibility(design, "all", model)
+    t_statics = median_time(lambda: loads_at_extremes(model, locked), repeats)
+    rows.append(
+        Row(
+            "statics at nominal + 12 extremes, one design",
+            "hexaleg loads_at_extremes (min-norm)",
+            t_statics,
+            None,
+            None,
+            "≤ 5 ms",
+            note="13 poses: forces, torques, margin; slopes; payload capacity",
         )
     )
     short_body = HexapodDesign(body_length=0.1, body_width=0.4)  # its legs collide under yaw

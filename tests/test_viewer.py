@@ -246,3 +246,29 @@ def test_meshcat_chatter_is_not_shown_to_the_user(capfd):
     captured = capfd.readouterr()
     assert "in use" not in captured.err + captured.out
     assert "opened:" not in captured.err
+
+
+def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_design):
+    from hexaleg.output.viewer.scene import torque_colour
+    from hexaleg.stance.loads import loads_at_extremes
+
+    result = axis_locked_flexibility(default_design, "all", hexapod_model)
+    loads = loads_at_extremes(hexapod_model, result)
+    with LoopbackServer() as server:
+        build_scene(client(server), hexapod_model, result, loads=loads)
+        time.sleep(0.2)
+        tree = server._bridge.tree
+        assert _node(tree, "meshcat/hexaleg/legend").object is not None
+        visuals = _node(tree, "meshcat/hexaleg/nominal/visuals")
+        rated = np.array(default_design.rated_torques)
+        for leg, torques in zip(loads.nominal.legs, loads.nominal.joint_torques, strict=True):
+            for link, torque, limit in zip(("coxa", "femur", "tibia"), torques, rated, strict=True):
+                colour = umsgpack.unpackb(visuals[f"{leg}_{link}_0"].object)["object"]["materials"][
+                    0
+                ]["color"]
+                red, green, blue, _ = torque_colour(abs(torque) / limit)
+                expected = int(red * 255) * 65536 + int(green * 255) * 256 + int(blue * 255)
+                assert colour == expected
+        hip = umsgpack.unpackb(visuals["lf_femur_0"].object)["object"]["materials"][0]["color"]
+        knee = umsgpack.unpackb(visuals["lf_tibia_0"].object)["object"]["materials"][0]["color"]
+        assert hip != knee  # the nominal hip works, the vertical tibia's knee hardly

@@ -24,6 +24,7 @@ from hexaleg.output.viewer import (
 )
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.loads import loads_at_extremes
 
 DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
@@ -55,8 +56,9 @@ def run(args: argparse.Namespace) -> int:
             f"--workspace = {args.workspace!r} is not valid: legs are {', '.join(model.leg_names)}"
         )
     result = axis_locked_flexibility(design, args.stance, model)
+    loads = loads_at_extremes(model, result)
     if args.html is not None:
-        report_files([write_static_html(model, result, args.html, args.workspace)])
+        report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0
     if not is_loopback(args.host):
         note(
@@ -65,7 +67,7 @@ def run(args: argparse.Namespace) -> int:
         )
     server = LoopbackServer(args.host, args.port)
     try:
-        build_scene(client(server), model, result, args.workspace)
+        build_scene(client(server), model, result, args.workspace, loads=loads)
     except BaseException:
         server.stop()
         raise

@@ -91,7 +91,9 @@ def _write_files(data: ReportData, out: Path) -> None:
     save(pareto_figure(data.study, data.pareto), out / "pareto_front.png")
     _write_csv(out / "pareto_front.csv", data.pareto.to_dict(orient="records"))
     atomic_write_text(out / "sensitivity.csv", data.sensitivity.to_csv(index=False))
-    write_static_html(data.model, data.axis, out / "viewer.html", data.model.leg_names[0])
+    write_static_html(
+        data.model, data.axis, out / "viewer.html", data.model.leg_names[0], data.loads
+    )
     _write_csv(
         out / "recommendation_scores.csv",
         data.recommendation.scores.to_dict(orient="records"),

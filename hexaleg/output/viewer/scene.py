@@ -10,6 +10,7 @@ workspace is drawn as a point cloud.
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -25,6 +26,8 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.constraints import Cause, displacement_poses
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry, stance_configuration
+from hexaleg.stance.loads import LoadsAnalysis
+from hexaleg.stance.statics import StaticState
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 ROOT = "hexaleg"
@@ -44,6 +47,7 @@ def build_scene(
     result: FlexibilityResult,
     workspace_leg: str | None = None,
     workspace_samples: int = 4000,
+    loads: LoadsAnalysis | None = None,
 ) -> None:
     """Load the hexapod, footholds, ground, extremes and animation into ``viewer``.
 
@@ -53,6 +57,8 @@ def build_scene(
         result: Axis-locked extremes to show.
         workspace_leg: If given, draw this leg's Monte Carlo workspace as a point cloud.
         workspace_samples: Points in that cloud.
+        loads: If given, each stance leg's coxa, femur and tibia is coloured by its
+            joint's |τ| / rated at each pose shown (legend in the scene).
 
     """
     import meshcat.geometry as mg
@@ -72,16 +78,22 @@ def build_scene(
     nominal = MeshcatVisualizer(model.model, None, visual)
     nominal.initViewer(viewer=viewer)
     nominal.loadViewerModel(rootNodeName=f"{ROOT}/nominal")
+    if loads is not None:
+        _colour_by_torque(nominal, visual, loads.nominal, model.design.rated_torques)
+        _add_torque_legend(viewer, mg, geometry)
     q_nominal = model.nominal_configuration()
     nominal.display(q_nominal)
 
     animation = Animation(default_framerate=ANIMATION_FPS)
     frame = 0
-    for extreme in result.extremes:
+    for k, extreme in enumerate(result.extremes):
         q_extreme = _extreme_configuration(model, geometry, extreme)
         copy = MeshcatVisualizer(model.model, None, visual)
         copy.initViewer(viewer=viewer)
         copy.loadViewerModel(rootNodeName=f"{ROOT}/extremes/{extreme_name(extreme)}")
+        if loads is not None:
+            state = loads.extremes[k].state
+            _colour_by_torque(copy, visual, state, model.design.rated_torques)
         for obj in _limiting_objects(visual, extreme):
             copy.loadViewerGeometryObject(obj, pin.GeometryType.VISUAL, list(HIGHLIGHT))
         copy.display(q_extreme)
@@ -97,6 +109,62 @@ def build_scene(
         "position",
         [1.6 * reach, 1.1 * reach, 1.6 * reach],  # three.js axes: y up
     )
+
+
+def torque_colour(ratio: float) -> tuple[float, float, float, float]:
+    """The colour of a link whose joint works at ``ratio`` = |τ| / rated.
+
+    Viridis, from dark blue (idle) to yellow (at its rating): never the highlight red.
+    """
+    from matplotlib import colormaps
+
+    red, green, blue, alpha = colormaps["viridis"](float(np.clip(ratio, 0.0, 1.0)))
+    return (red, green, blue, alpha)
+
+
+def _colour_by_torque(robot: Any, visual: Any, state: StaticState, rated: Sequence[float]) -> None:
+    """Reload each stance leg's links in the colour of its joint's |τ| / rated."""
+    ratios = np.abs(state.joint_torques) / np.asarray(rated)
+    for leg, leg_ratios in zip(state.legs, ratios, strict=True):
+        for joint, ratio in zip(("root", "hip", "knee"), leg_ratios, strict=True):
+            link = f"{leg}_{JOINT_LINKS[joint]}"
+            for obj in visual.geometryObjects:
+                if obj.name.rsplit("_", 1)[0] == link:
+                    robot.loadViewerGeometryObject(
+                        obj, pin.GeometryType.VISUAL, list(torque_colour(ratio))
+                    )
+
+
+def _add_torque_legend(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
+    """A colour bar of |τ| / rated, drawn on a thin board behind the robot, facing the camera."""
+    import io
+
+    from matplotlib.colorbar import ColorbarBase
+    from matplotlib.colors import Normalize
+    from matplotlib.figure import Figure
+
+    figure = Figure(figsize=(6.0, 1.2), dpi=160, layout="constrained")
+    axis = figure.add_subplot()
+    ColorbarBase(axis, cmap="viridis", norm=Normalize(0, 1), orientation="horizontal")
+    axis.set_xlabel("leg link colour: its joint's |τ| / rated torque", fontsize=13)
+    axis.tick_params(labelsize=12)
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png")
+    texture = mg.ImageTexture(image=mg.PngImage(buffer.getvalue()))
+    node = viewer[f"{ROOT}/legend"]
+    reach = float(np.abs(geometry.footholds[:, :2]).max())
+    # A box face maps the image's width along the box's z: build the board tall, then turn
+    # it on its side (about x) and toward the default camera (front right, about z).
+    node.set_object(mg.Box([0.002, 0.24 * reach, 1.2 * reach]), mg.MeshBasicMaterial(map=texture))
+    turn = -math.pi / 4
+    about_z = np.array(
+        [[math.cos(turn), -math.sin(turn), 0.0], [math.sin(turn), math.cos(turn), 0.0], [0, 0, 1]]
+    )
+    on_side = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
+    transform = np.eye(4)
+    transform[:3, :3] = about_z @ on_side
+    transform[:3, 3] = [-0.7 * reach, 0.7 * reach, 0.6 * reach]
+    node.set_transform(transform)
 
 
 def _add_ground(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
@@ -196,11 +264,12 @@ def static_html(
     model: HexapodModel,
     result: FlexibilityResult,
     workspace_leg: str | None = None,
+    loads: LoadsAnalysis | None = None,
 ) -> str:
     """A self-contained HTML page of the scene (no server needed to view it)."""
     with LoopbackServer() as server:
         viewer = client(server)
-        build_scene(viewer, model, result, workspace_leg)
+        build_scene(viewer, model, result, workspace_leg, loads=loads)
         html = viewer.static_html()
         viewer.window.zmq_socket.close(linger=0)
     return html
@@ -211,6 +280,7 @@ def write_static_html(
     result: FlexibilityResult,
     path: str | os.PathLike[str],
     workspace_leg: str | None = None,
+    loads: LoadsAnalysis | None = None,
 ) -> Path:
     """Write :func:`static_html` to ``path`` atomically."""
-    return atomic_write_text(path, static_html(model, result, workspace_leg))
+    return atomic_write_text(path, static_html(model, result, workspace_leg, loads))
