@@ -33,7 +33,7 @@ def test_study_rows_equal_single_design_results(tmp_path):
     single = flexibility(HexapodDesign.from_ratios(row["l1_ratio"], row["l3_ratio"]), "axis", "all")
     assert row["fb"] == pytest.approx(single.fb, rel=1e-12)
     assert row["range_x"] == pytest.approx(single.ranges["x"], rel=1e-12)
-    assert row["x_max_limited_by"] == str(single.extreme("x", 1).limited_by)
+    assert row["x_max_limited_by"] == single.extreme("x", 1).description
     saved = pd.read_csv(tmp_path / "study.csv")
     assert len(saved) == 14
     payload = json.loads((tmp_path / "study.json").read_text())
@@ -161,7 +161,7 @@ def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["--l1", "0.2"], "sweeps the segment lengths"),
+        (["--l1", "0.2"], "unrecognized arguments: --l1 0.2"),
         (["--workers", "0"], "--workers: 0 is not valid: must be >= 1"),
         (["--l3-points", "1"], "--l3-points: 1 is not valid: must be in 2..1000"),
         (["--l1-ratios", "0.9"], "must leave room for femur and tibia"),

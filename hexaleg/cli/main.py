@@ -13,7 +13,7 @@ import importlib
 import os
 import sys
 from collections.abc import Sequence
-from typing import NamedTuple, NoReturn
+from typing import Any, NamedTuple, NoReturn
 
 from hexaleg._version import __version__
 from hexaleg.exceptions import HexalegError
@@ -72,7 +72,14 @@ COMMANDS: tuple[Command, ...] = (
 
 
 class Parser(argparse.ArgumentParser):
-    """argparse that reports a usage mistake in one line, without the usage block."""
+    """argparse that reports a usage mistake in one line, without the usage block.
+
+    Abbreviations are off: ``study --l1 0.2`` must not quietly mean ``--l1-ratios 0.2``.
+    """
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        kwargs.setdefault("allow_abbrev", False)
+        super().__init__(*args, **kwargs)
 
     def error(self, message: str) -> NoReturn:
         """Exit with status 2 and one line naming the mistake."""

@@ -47,6 +47,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
+    design = design_from_args(args)  # a bad design is refused before any note is printed
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
@@ -54,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
         l1_ratios=None if args.l1_ratios is None else tuple(args.l1_ratios),
         collisions=args.collisions,
     )
-    data = build_report(args.output, design_from_args(args), options)
+    data = build_report(args.output, design, options)
     out = Path(args.output)
     rec = data["recommendation"]
     print(f"wrote {out / REPORT_MD} and {out / REPORT_HTML}")

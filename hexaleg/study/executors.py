@@ -72,7 +72,7 @@ def dask_executor(address: str) -> Iterator[Executor]:
         raise HexalegError("--scheduler needs Dask: pip install 'hexaleg[dask]'") from None
     try:
         client = Client(address, timeout=DASK_CONNECT_TIMEOUT)
-    except (OSError, TimeoutError) as err:
+    except (OSError, TimeoutError, ValueError) as err:  # ValueError: not an address at all
         raise HexalegError(f"cannot reach the Dask scheduler at {address}: {err}") from None
     try:
         yield client.get_executor()
