@@ -80,7 +80,7 @@ def quick_backends():
             "flexibility": {"axis": {"fb": 0.2}},
         }
 
-    def fake_html(model, result, path, workspace_leg=None):
+    def fake_html(model, result, path, workspace_leg=None, loads=None):
         return Path(path)
 
     class FakeServer:
