@@ -142,8 +142,10 @@ LOST_VIOLATION = 1e-3
 
 
 def _give_up_if_lost(constraints: Callable[[ArrayF], ArrayF]) -> Callable[..., None]:
-    """An SLSQP callback that stops a start still infeasible after :data:`LOST_AFTER` steps:
-    such starts rarely recover, and they cost the most iterations."""
+    """An SLSQP callback that stops a start still infeasible after :data:`LOST_AFTER` steps.
+
+    Such starts rarely recover, and they cost the most iterations.
+    """
     count = 0
 
     def callback(intermediate_result: optimize.OptimizeResult) -> None:
