@@ -24,6 +24,7 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
+from functools import cached_property
 from typing import Any, cast
 
 import numpy as np
@@ -277,7 +278,7 @@ class HexapodDesign:
         """Names of the legs, in mounting order."""
         return tuple(m.name for m in self.legs)
 
-    @property
+    @cached_property
     def nominal_height(self) -> float:
         """Height of the body frame above the ground at the nominal stance [m]."""
         foot_z = foot_position(self.lengths, self.nominal_angles)[2]
