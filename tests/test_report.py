@@ -211,6 +211,18 @@ def test_the_decision_comes_first_and_scores_the_users_design(report):
     assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-9)
     assert recommended["score"] > data["decision"]["yours"]["score"]
     assert f"{yours['flexibility']:.4g}" in text.split("## Design")[0]
+    # payload capacities, recomputed on models built from each design's own URDF
+    from hexaleg.stance.loads import analyze_loads
+
+    assert data["decision"]["yours"]["payload_capacity"] == pytest.approx(
+        analyze_loads(design).capacity.mass, rel=1e-9
+    )
+    lengths = recommended["lengths_m"]
+    theirs = HexapodDesign(l1=lengths[0], l2=lengths[1], l3=lengths[2])
+    assert recommended["payload_capacity"] == pytest.approx(
+        analyze_loads(theirs).capacity.mass, rel=1e-9
+    )
+    assert "Counting payload capacity too" in text.split("## Design")[0]
 
 
 def test_a_fixed_coxa_moves_the_recommendation(tmp_path):

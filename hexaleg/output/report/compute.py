@@ -6,6 +6,7 @@ report shows. It writes nothing: the sections turn it into text, the renderer in
 
 from __future__ import annotations
 
+import math
 import sys
 import warnings
 from collections.abc import Callable, Sequence
@@ -126,6 +127,9 @@ class Decision:
             ``None`` if that design cannot stand.
         recommended_metrics: The recommended design's metrics (NaN if it cannot stand).
         recommended_score: Its combined score [-].
+        your_payload: The user's design's payload capacity [kg] (not in the score).
+        recommended_payload: The recommended design's payload capacity [kg] (NaN if it
+            cannot stand).
 
     """
 
@@ -134,15 +138,22 @@ class Decision:
     recommended: HexapodDesign | None
     recommended_metrics: Metrics
     recommended_score: float
+    your_payload: float
+    recommended_payload: float
 
     def to_json(self) -> dict[str, Any]:
         """JSON-ready form (metrics in m², m³ and 1)."""
         return {
-            "yours": {"metrics": dict(self.yours), "score": self.your_score},
+            "yours": {
+                "metrics": dict(self.yours),
+                "score": self.your_score,
+                "payload_capacity": self.your_payload,
+            },
             "recommended": {
                 "lengths_m": list(self.recommended.lengths) if self.recommended else None,
                 "metrics": dict(self.recommended_metrics),
                 "score": self.recommended_score,
+                "payload_capacity": self.recommended_payload,
             },
         }
 
@@ -285,10 +296,10 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
             "recommendation",
             lambda: _recommendation(design, template, average_map, study, options),
         )
-        decision = _decision(design, template, recommendation, options.collisions)
         loads, free_loads = step(
             "statics", lambda: (loads_at_extremes(model, axis), loads_at_extremes(model, free))
         )
+        decision = _decision(design, model, template, recommendation, loads, options.collisions)
     return ReportData(
         design=design,
         options=options,
@@ -378,7 +389,12 @@ def _recommendation(
 
 
 def _decision(
-    design: HexapodDesign, template: StanceGeometry, rec: Recommendation, collisions: bool
+    design: HexapodDesign,
+    model: HexapodModel,
+    template: StanceGeometry,
+    rec: Recommendation,
+    loads: LoadsAnalysis,
+    collisions: bool,
 ) -> Decision:
     yours = design_metrics(design, template, collisions)
     recommended_metrics = ratio_metrics(design, rec.l1_ratio, rec.l3_ratio, template, collisions)
@@ -386,7 +402,14 @@ def _decision(
         recommended: HexapodDesign | None = design.with_ratios(rec.l1_ratio, rec.l3_ratio)
     except HexalegError:
         recommended = None
+    payload = math.nan
+    if recommended is not None:
+        their_model = model.with_design(recommended)
+        locked = axis_locked_flexibility(recommended, "all", their_model, collisions=collisions)
+        payload = loads_at_extremes(their_model, locked).capacity.mass
     return Decision(
+        your_payload=loads.capacity.mass,
+        recommended_payload=payload,
         yours=yours,
         your_score=combined_score(yours, rec.maxima),
         recommended=recommended,

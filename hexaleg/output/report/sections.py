@@ -115,6 +115,15 @@ def decision_section(data: ReportData) -> Section:
             _change(decision.your_score, decision.recommended_score),
         )
     )
+    rows.append(
+        (
+            "payload capacity [kg] (section 3.3; not in the score)",
+            f"{decision.your_payload:.1f}",
+            f"{decision.recommended_payload:.1f}",
+            _change(decision.your_payload, decision.recommended_payload),
+        )
+    )
+    best = data.pareto.iloc[0]
     return Section(
         "Decision",
         (
@@ -124,6 +133,10 @@ def decision_section(data: ReportData) -> Section:
             f"keeps ≥ {BAND:.0%} of its score. Both designs keep your body, mounts and posture; "
             "the score divides each metric by its best value over the whole grid of section 5.",
             table(["metric", "your design", "recommended", "recommended vs yours"], rows),
+            "Counting payload capacity too, the Pareto front of section 5.1 recommends "
+            f"l1 : l2 : l3 = {best['l1_ratio']:.3f} : {1 - best['l1_ratio'] - best['l3_ratio']:.3f}"
+            f" : {best['l3_ratio']:.3f} ({best['l1']:.3f}, {best['l2']:.3f}, {best['l3']:.3f} m; "
+            f"payload capacity {best['payload_capacity']:.1f} kg).",
         ),
     )
 
