@@ -63,3 +63,33 @@ def run_cli(argv: list[str]) -> int:
         return main(argv)
     except SystemExit as exit_:
         return int(exit_.code or 0)
+
+
+def kill_hexaleg_when(argv: list[str], ready, what: str, timeout: float = 120.0) -> None:
+    """Run ``hexaleg argv`` in a session of its own; SIGKILL the whole group once
+    ``ready()`` is true (fail if it never is, or if the command ends first)."""
+    import os
+    import signal
+    import subprocess
+    import sys
+    import time
+
+    process = subprocess.Popen(
+        [sys.executable, "-m", "hexaleg", *argv],
+        start_new_session=True,
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+    )
+    deadline = time.monotonic() + timeout
+    try:
+        while not ready():
+            if process.poll() is not None:
+                pytest.fail(
+                    f"{what} ended before it could be killed: {process.stderr.read().decode()}"
+                )
+            if time.monotonic() > deadline:
+                pytest.fail(f"{what} was not ready to be killed within {timeout:g} s")
+            time.sleep(0.01)
+    finally:
+        os.killpg(process.pid, signal.SIGKILL)
+        process.wait(timeout=30)

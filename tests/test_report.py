@@ -152,33 +152,21 @@ def test_report_for_another_design(tmp_path):
 def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     """kill -9 mid-report leaves its staging folder; the next run removes it."""
     import os
-    import signal
-    import subprocess
-    import sys
-    import time
+
+    from conftest import kill_hexaleg_when
 
     out = tmp_path / "r"
+
+    def staging() -> list:
+        return [p for p in tmp_path.iterdir() if p.name.startswith(".r.staging-")]
+
+    def writing() -> bool:  # it has started writing its staging folder
+        staged = staging()
+        return bool(staged) and any(staged[0].iterdir())
+
     argv = ["report", "-o", str(out), "--l3-points", "40", "--workers", "1"]
-    process = subprocess.Popen(
-        [sys.executable, "-m", "hexaleg", *argv],
-        stdout=subprocess.DEVNULL,
-        stderr=subprocess.DEVNULL,
-        start_new_session=True,
-    )
-    deadline = time.monotonic() + 120
-    try:
-        while time.monotonic() < deadline:
-            staged = [p for p in tmp_path.iterdir() if p.name.startswith(".r.staging-")]
-            if staged and any(staged[0].iterdir()):
-                break  # it has started writing
-            assert process.poll() is None, "the report ended before it could be killed"
-            time.sleep(0.02)
-        else:
-            pytest.fail("the report staged nothing within 120 s")
-    finally:
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait(timeout=30)
-    assert not out.exists() and len(staged) == 1
+    kill_hexaleg_when(argv, writing, "the report")
+    assert not out.exists() and len(staging()) == 1
     build_report(out, options=REDUCED)
     assert [p.name for p in tmp_path.iterdir()] == ["r"]
     mask = os.umask(0)

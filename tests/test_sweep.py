@@ -4,17 +4,12 @@ from __future__ import annotations
 
 import json
 import math
-import os
-import signal
-import subprocess
-import sys
-import time
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pandas as pd
 import pytest
-from conftest import run_cli
+from conftest import kill_hexaleg_when, run_cli
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -99,26 +94,12 @@ def test_killed_study_resumes_to_the_same_table(tmp_path):
     """Kill the CLI's whole process group mid-study, resume it, compare with a straight run."""
     out = tmp_path / "killed"
     argv = ["study", "--l1-ratios", "0.05", "0.1", "--l3-points", "300", "--workers", "1"]
-    command = [sys.executable, "-m", "hexaleg", *argv, "-o", str(out)]
-    process = subprocess.Popen(
-        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE
-    )
     journal = out / JOURNAL
-    deadline = time.monotonic() + 120
-    try:
-        while time.monotonic() < deadline:
-            if journal.exists() and journal.read_text().count("\n") > 40:
-                break
-            if process.poll() is not None:
-                pytest.fail(
-                    f"study ended before it could be killed: {process.stderr.read().decode()}"
-                )
-            time.sleep(0.01)
-        else:
-            pytest.fail("the study wrote no rows within 120 s")
-    finally:
-        os.killpg(process.pid, signal.SIGKILL)
-        process.wait(timeout=30)
+
+    def rows_written() -> bool:
+        return journal.exists() and journal.read_text().count("\n") > 40
+
+    kill_hexaleg_when([*argv, "-o", str(out)], rows_written, "the study")
     rows_at_kill = journal.read_text().count("\n") - 1
     assert 0 < rows_at_kill < 600
     assert not (out / "study.csv").exists()
