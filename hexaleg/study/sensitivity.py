@@ -84,7 +84,9 @@ def sensitivity_table(
                     }
                 )
             continue
-        spec = StudySpec(tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant)
+        spec = StudySpec(
+            tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant, statics=False
+        )
         table = sweep_in_process(spec)
         for peak in peak_table(table).to_dict(orient="records"):
             failed = int(((table["l1_ratio"] == peak["l1_ratio"]) & (table["error"] != "")).sum())

@@ -63,6 +63,7 @@ class StudySpec:
         stance: ``"all"`` or ``"tripod"``.
         base: Every other field of the designs (body, mounts, posture, limits).
         collisions: The robot's own parts touching also stop the body.
+        statics: Also compute each design's torques, stability, slopes and payload.
 
     """
 
@@ -73,6 +74,7 @@ class StudySpec:
     stance: StanceSet = "all"
     base: HexapodDesign = field(default_factory=HexapodDesign)
     collisions: bool = False
+    statics: bool = True
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
@@ -113,6 +115,7 @@ class StudySpec:
             "mode": self.mode,
             "stance": self.stance,
             "collisions": self.collisions,
+            "statics": self.statics,
             "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
         }
 
@@ -144,11 +147,11 @@ def evaluate(task: _Task) -> Row:
             with warnings.catch_warnings():
                 warnings.simplefilter("ignore")
                 result = free_flexibility(design, spec.stance, model, collisions=spec.collisions)
-        loads = loads_at_extremes(model, result)
+        statics = loads_at_extremes(model, result).study_columns() if spec.statics else {}
     except HexalegError as err:
         return row | {"l1": math.nan, "l2": math.nan, "l3": math.nan, "error": str(err)}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
-    row |= loads.study_columns()
+    row |= statics
     row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
     for extreme in result.extremes:
         name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
