@@ -3,8 +3,8 @@
 Pure numerics, independent of the robot: :func:`maximize_coordinate` runs SLSQP on
 max ±x_k subject to g(x) ≥ 0 from every start, keeps the answers a caller's exact
 check accepts, and says whether the best was reached by more than one start.
-:func:`mirrored_starts` spreads deterministic starts (a scrambled Sobol sequence
-with a fixed seed, each point also mirrored) around a centre.
+:func:`box_starts` spreads deterministic starts (a scrambled Sobol sequence with a
+fixed seed) over a box.
 """
 
 from __future__ import annotations
@@ -121,18 +121,6 @@ def box_starts(half_widths: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
     half_widths = np.asarray(half_widths, dtype=float)
     points = qmc.Sobol(len(half_widths), scramble=True, seed=seed).random(count) * 2 - 1
     return list(points * half_widths)
-
-
-def mirrored_starts(center: ArrayF, scales: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
-    """``2·count`` starts: centre ± Sobol points in the box ±scales (zero scales stay put).
-
-    Deterministic for a given seed; each point comes with its mirror image through the
-    centre, so a symmetric robot is searched symmetrically.
-    """
-    center = np.asarray(center, dtype=float)
-    scales = np.asarray(scales, dtype=float)
-    points = qmc.Sobol(len(center), scramble=True, seed=seed).random(count) * 2 - 1
-    return [center + mirror * point * scales for point in points for mirror in (1.0, -1.0)]
 
 
 LOST_AFTER = 12
