@@ -8,9 +8,11 @@ Defaults (each one a field, none hidden in code):
 
 - segments: the paper's l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1);
 - body: a 1.0 m × 0.6 m × 0.1 m box (x forward, y left, z up), 60 kg;
-- mounting: legs at the four corners and the two side mid-points of the body's
-  mid-plane, each pointing straight outward (front ±45°, middle ±90°,
-  rear ±135°), named ``lf lm lr rf rm rr`` (left/right, front/middle/rear);
+- mounting (``layout = "rectangle"``): legs at the four corners and the two side
+  mid-points of the body's mid-plane, each pointing straight outward (front ±45°,
+  middle ±90°, rear ±135°), named ``lf lm lr rf rm rr`` (left/right,
+  front/middle/rear); ``"hexagon"`` and ``"custom"`` layouts are in
+  :mod:`hexaleg.layouts`;
 - nominal posture: every leg at θ = (0, 0, −π/2): coxa outward, femur
   horizontal, tibia vertical. The body then stands at l3 above the ground.
 
@@ -21,7 +23,6 @@ how results depend on them.
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Sequence
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
@@ -30,8 +31,20 @@ from typing import Any, cast
 import numpy as np
 import numpy.typing as npt
 
+from hexaleg._checks import require_finite, require_in_range, require_ratio
 from hexaleg.exceptions import DesignError
 from hexaleg.kinematics import foot_position
+from hexaleg.layouts import (
+    LAYOUTS,
+    LEG_NAMES,
+    TRIPODS,
+    Layout,
+    LegMount,
+    hexagon_mounts,
+    rectangle_mounts,
+    require_apart,
+    same_mounts,
+)
 from hexaleg.limits import (
     IMPROVED_LIMITS,
     MANIPULABILITY_LIMITS,
@@ -39,15 +52,6 @@ from hexaleg.limits import (
     WORKSPACE_LIMITS,
     JointLimits,
 )
-
-LEG_NAMES: tuple[str, ...] = ("lf", "lm", "lr", "rf", "rm", "rr")
-"""Default leg names: left/right × front/middle/rear."""
-
-TRIPODS: tuple[tuple[str, str, str], tuple[str, str, str]] = (
-    ("lf", "rm", "lr"),
-    ("rf", "lm", "rr"),
-)
-"""The two alternating tripods of the default leg names."""
 
 SEGMENT_RANGE = (1e-3, 100.0)
 """Plausible segment length l1, l2, l3 [m]: a millimetre to a hundred metres."""
@@ -61,6 +65,11 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
     "body_length": (*BODY_RANGE, "m"),
     "body_width": (*BODY_RANGE, "m"),
     "body_height": (*BODY_RANGE, "m"),
+    "body_radius": (*BODY_RANGE, "m"),
+    "first_leg_angle": (0.0, math.pi / 3, "rad"),
+    "middle_leg_offset": (0.0, BODY_RANGE[1], "m"),
+    "front_yaw": (0.0, math.pi, "rad"),
+    "rear_yaw": (0.0, math.pi, "rad"),
     "body_mass": (1e-3, 1e6, "kg"),
     "link_linear_density": (1e-4, 1e5, "kg/m"),
     "link_radius": (1e-4, 10.0, "m"),
@@ -84,64 +93,26 @@ FOOT_MASS = 1e-3
 that every simulator keeps the foot (sdformat drops massless links, PyBullet weighs
 them 1 kg)."""
 
-_NAME_PATTERN = re.compile(r"^[a-z][a-z0-9_]{0,31}$")
-
-
-@dataclass(frozen=True)
-class LegMount:
-    """Where one leg's root joint sits on the body.
-
-    Attributes:
-        name: Leg name, a lower-case identifier used in URDF link/joint names.
-        x: Root position along the body's x axis (forward) [m].
-        y: Root position along the body's y axis (left) [m].
-        z: Root position along the body's z axis (up) [m].
-        yaw: Direction of the coxa at θ1 = 0, about the body z axis [rad].
-
-    """
-
-    name: str
-    x: float
-    y: float
-    z: float
-    yaw: float
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not _NAME_PATTERN.match(self.name):
-            raise DesignError(
-                "mount.name", self.name, "a lower-case identifier like 'lf' (letters, digits, _)"
-            )
-        for name in ("x", "y", "z", "yaw"):
-            value = getattr(self, name)
-            field = f"mounts[{self.name}].{name}"
-            limit = math.pi if name == "yaw" else BODY_RANGE[1]
-            unit = "rad" if name == "yaw" else "m"
-            object.__setattr__(self, name, require_in_range(field, value, -limit, limit, unit))
-
-    @property
-    def position(self) -> npt.NDArray[np.float64]:
-        """Root position in the body frame [m]."""
-        return np.array([self.x, self.y, self.z])
+__all__ = [
+    "LEG_NAMES",
+    "TRIPODS",
+    "HexapodDesign",
+    "LegMount",
+    "default_mounts",
+    "require_in_range",
+    "require_ratio",
+]
 
 
 def default_mounts(body_length: float, body_width: float) -> tuple[LegMount, ...]:
-    """Legs at the corners and side mid-points of the body's mid-plane, pointing outward.
+    """The paper's rectangle: legs at the corners and side mid-points, pointing outward.
 
     Args:
         body_length: Body extent along x [m].
         body_width: Body extent along y [m].
 
     """
-    hx, hy = body_length / 2, body_width / 2
-    q = math.pi / 4
-    return (
-        LegMount("lf", hx, hy, 0.0, q),
-        LegMount("lm", 0.0, hy, 0.0, 2 * q),
-        LegMount("lr", -hx, hy, 0.0, 3 * q),
-        LegMount("rf", hx, -hy, 0.0, -q),
-        LegMount("rm", 0.0, -hy, 0.0, -2 * q),
-        LegMount("rr", -hx, -hy, 0.0, -3 * q),
-    )
+    return rectangle_mounts(body_length, body_width)
 
 
 @dataclass(frozen=True)
@@ -152,10 +123,23 @@ class HexapodDesign:
         l1: Coxa length [m].
         l2: Femur length [m].
         l3: Tibia length [m].
-        body_length: Body box extent along x [m].
-        body_width: Body box extent along y [m].
-        body_height: Body box extent along z [m].
-        mounts: The six leg roots; ``None`` means :func:`default_mounts` of the body size.
+        body_length: Body box extent along x [m] (rectangle and custom layouts).
+        body_width: Body box extent along y [m] (rectangle and custom layouts).
+        body_height: Body extent along z [m].
+        layout: How the legs sit on the body (:mod:`hexaleg.layouts`): ``"rectangle"``
+            (the paper's box), ``"hexagon"`` (a cylinder body, legs every 60°) or
+            ``"custom"`` (``mounts`` given); ``None`` means ``"custom"`` when ``mounts``
+            is given, else ``"rectangle"``.
+        body_radius: Hexagon layout: leg roots' distance from the body axis, and the
+            radius of the cylinder body [m].
+        first_leg_angle: Hexagon layout: direction of the left front leg, from straight
+            ahead, in [0, π/3] [rad].
+        middle_leg_offset: Rectangle layout: how much further out than the body's side
+            the middle legs sit [m].
+        front_yaw: Rectangle layout: direction of the left front coxa; the right one
+            mirrors it [rad].
+        rear_yaw: Rectangle layout: direction of the left rear coxa; mirrored [rad].
+        mounts: The six leg roots; ``None`` means: placed by the layout.
         nominal_angles: Standing joint angles (θ1, θ2, θ3) of every leg [rad].
         workspace_limits: Table 2 limits, used for the Monte Carlo workspace.
         improved_limits: Table 4 limits (coupled knee), the improved workspace.
@@ -175,6 +159,12 @@ class HexapodDesign:
     body_length: float = 1.0
     body_width: float = 0.6
     body_height: float = 0.1
+    layout: Layout | None = None
+    body_radius: float = 0.4
+    first_leg_angle: float = math.pi / 6
+    middle_leg_offset: float = 0.0
+    front_yaw: float = math.pi / 4
+    rear_yaw: float = 3 * math.pi / 4
     mounts: tuple[LegMount, ...] | None = None
     nominal_angles: tuple[float, float, float] = (0.0, 0.0, -math.pi / 2)
     workspace_limits: JointLimits = WORKSPACE_LIMITS
@@ -191,7 +181,7 @@ class HexapodDesign:
             value = require_in_range(name, getattr(self, name), lower, upper, unit)
             object.__setattr__(self, name, value)
         self._validate_rated_torques()
-        self._validate_mounts()
+        self._place_legs()
         self._validate_nominal_stance()
 
     # -- constructors ---------------------------------------------------------------------
@@ -239,14 +229,12 @@ class HexapodDesign:
     def replace(self, **changes: Any) -> HexapodDesign:
         """Copy with some fields changed (validated again).
 
-        Changing the body size without passing ``mounts`` moves default-placed legs
-        to the new body's corners; explicitly placed legs stay where they were.
+        Legs placed by a layout follow the new body fields; passing ``mounts`` without
+        ``layout`` places the legs by hand (``layout = "custom"``).
         """
-        if (
-            "mounts" not in changes
-            and {"body_length", "body_width"} & changes.keys()
-            and self.mounts == default_mounts(self.body_length, self.body_width)
-        ):
+        if "mounts" in changes:
+            changes.setdefault("layout", "custom" if changes["mounts"] is not None else None)
+        elif changes.get("layout", self.layout) != "custom":
             changes["mounts"] = None
         return replace(self, **changes)
 
@@ -285,6 +273,35 @@ class HexapodDesign:
         return float(-(self.legs[0].z + foot_z))
 
     @property
+    def nominal_footholds(self) -> npt.NDArray[np.float64]:
+        """Every foot at the nominal stance, body frame at the origin (6, 3) [m] (eq 7)."""
+        foot = foot_position(self.lengths, self.nominal_angles)
+        rows = []
+        for m in self.legs:
+            c, s = math.cos(m.yaw), math.sin(m.yaw)
+            rows.append(
+                m.position
+                + np.array([c * foot[0] - s * foot[1], s * foot[0] + c * foot[1], foot[2]])
+            )
+        return np.array(rows)
+
+    @property
+    def body_shape(self) -> str:
+        """``"cylinder"`` for the hexagon layout's round body, else ``"box"``."""
+        return "cylinder" if self.layout == "hexagon" else "box"
+
+    @property
+    def body_description(self) -> str:
+        """The body in words, with its sizes [m]."""
+        if self.body_shape == "cylinder":
+            return (
+                f"hexagon layout: cylinder of radius {self.body_radius:g} m and height "
+                f"{self.body_height:g} m, legs every 60° from {self.first_leg_angle:.4g} rad"
+            )
+        size = f"{self.body_length:g} × {self.body_width:g} × {self.body_height:g} m box"
+        return f"{self.layout} layout: {size}"
+
+    @property
     def joint_range(self) -> JointLimits:
         """Envelope of every named limit set: the joint limits written into the URDF."""
         envelope = self.workspace_limits
@@ -305,6 +322,7 @@ class HexapodDesign:
                     "theta2": list(value.theta2),
                     "theta3": list(value.theta3),
                     "coupled_knee": value.coupled_knee,
+                    "name": value.name,
                 }
             elif isinstance(value, tuple):
                 value = list(value)
@@ -323,13 +341,29 @@ class HexapodDesign:
         )
         object.__setattr__(self, "rated_torques", checked)
 
-    def _validate_mounts(self) -> None:
+    def _place_legs(self) -> None:
+        layout = self.layout
+        if layout is None:
+            layout = "rectangle" if self.mounts is None else "custom"
+        if layout not in LAYOUTS:
+            raise DesignError("layout", layout, "one of " + ", ".join(map(repr, LAYOUTS)))
+        object.__setattr__(self, "layout", layout)
+        placed = self.layout_mounts()
         mounts = self.mounts
         if mounts is None:
-            mounts = default_mounts(self.body_length, self.body_width)
+            if placed is None:
+                raise DesignError("mounts", None, 'layout "custom" needs the six mounts')
+            mounts = placed
         if not isinstance(mounts, Sequence) or not all(isinstance(m, LegMount) for m in mounts):
             raise DesignError("mounts", mounts, "a sequence of six LegMount")
         mounts = tuple(mounts)
+        if placed is not None and not same_mounts(mounts, placed):
+            raise DesignError(
+                "mounts",
+                "given",
+                f"the {layout} layout places the legs itself: drop the mounts, or set "
+                'layout = "custom" to place them by hand',
+            )
         if len(mounts) != 6:
             raise DesignError("mounts", len(mounts), "exactly 6 legs (a hexapod)")
         names = [m.name for m in mounts]
@@ -343,13 +377,34 @@ class HexapodDesign:
                 "every leg root at the same height, so that all feet reach level ground [m]",
             )
         object.__setattr__(self, "mounts", mounts)
+        require_apart(
+            "mounts",
+            tuple(names),
+            [(m.x, m.y) for m in mounts],
+            2 * self.link_radius,
+            "two link radii, so that their coxas do not overlap",
+        )
+
+    def layout_mounts(self) -> tuple[LegMount, ...] | None:
+        """The mounts this design's layout places, or ``None`` for a custom layout."""
+        if self.layout == "rectangle" or self.layout is None:
+            return rectangle_mounts(
+                self.body_length,
+                self.body_width,
+                self.middle_leg_offset,
+                self.front_yaw,
+                self.rear_yaw,
+            )
+        if self.layout == "hexagon":
+            return hexagon_mounts(self.body_radius, self.first_leg_angle)
+        return None
 
     def _validate_nominal_stance(self) -> None:
         angles = tuple(self.nominal_angles)
         if len(angles) != 3:
             raise DesignError("nominal_angles", angles, "three angles (θ1, θ2, θ3) [rad]")
         for name, value in zip(("theta1", "theta2", "theta3"), angles, strict=True):
-            _require_finite(f"nominal_angles.{name}", value)
+            require_finite(f"nominal_angles.{name}", value)
         angles = tuple(float(a) for a in angles)
         object.__setattr__(self, "nominal_angles", angles)
         limits = self.stance_limits
@@ -361,6 +416,13 @@ class HexapodDesign:
                     angles[i],
                     f"must lie within stance_limits.{name} = [{lower:.6g}, {upper:.6g}] [rad]",
                 )
+        require_apart(
+            "nominal footholds",
+            self.leg_names,
+            self.nominal_footholds[:, :2],
+            2 * self.link_radius,
+            "two link radii, so that their tibias do not overlap",
+        )
         clearance = self.nominal_height - self.body_height / 2
         if not clearance > 0:
             raise DesignError(
@@ -369,32 +431,6 @@ class HexapodDesign:
                 "the feet must stand below the body's underside (clearance "
                 f"{clearance:.4g} m); lower the hip or bend the knee further down",
             )
-
-
-def _require_finite(name: str, value: Any) -> float:
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise DesignError(name, value, "must be a real number") from None
-    if not math.isfinite(number):
-        raise DesignError(name, value, "must be finite")
-    return number
-
-
-def require_in_range(name: str, value: Any, lower: float, upper: float, unit: str) -> float:
-    """``value`` as a float if it is a real number in [lower, upper]; else a DesignError."""
-    number = _require_finite(name, value)
-    if not lower <= number <= upper:
-        raise DesignError(name, value, f"must lie in [{lower:g}, {upper:g}] [{unit}]")
-    return number
-
-
-def require_ratio(name: str, value: Any) -> float:
-    """``value`` as a float if it lies in the open interval (0, 1); else a DesignError."""
-    number = _require_finite(name, value)
-    if not 0 < number < 1:
-        raise DesignError(name, value, "must lie in the open interval (0, 1)")
-    return number
 
 
 L3_RATIO_RANGE: tuple[float, float] = (0.10, 0.75)

@@ -32,6 +32,11 @@ class Command(NamedTuple):
 
 
 COMMANDS: tuple[Command, ...] = (
+    Command(
+        "design",
+        "hexaleg.cli.design",
+        "start a TOML design file, or show the design it and the options resolve to",
+    ),
     Command("urdf", "hexaleg.cli.urdf", "write the hexapod's URDF for a design"),
     Command(
         "workspace",

@@ -59,6 +59,12 @@ def add_design_options(
     """
     default = HexapodDesign()
     group = parser.add_argument_group(DESIGN_GROUP)
+    group.add_argument(
+        "--design",
+        metavar="FILE",
+        help="read the design from a TOML design file (hexaleg design init) or a .json "
+        "design printed by hexaleg; the options below override its values",
+    )
     if lengths:
         for name, what in (("l1", "coxa"), ("l2", "femur"), ("l3", "tibia")):
             group.add_argument(
@@ -79,9 +85,11 @@ def add_design_options(
         type=float,
         metavar="M",
         help=(
-            f"total leg length l1+l2+l3 for --ratios [m] (default {DEFAULT_TOTAL:g})"
+            f"total leg length l1+l2+l3 for --ratios [m] (default: the --design file's, "
+            f"else {DEFAULT_TOTAL:g})"
             if lengths
-            else f"total leg length l1+l2+l3 of every swept design [m] (default {DEFAULT_TOTAL:g})"
+            else f"total leg length l1+l2+l3 of every swept design [m] (default: the --design "
+            f"file's, else {DEFAULT_TOTAL:g})"
         ),
     )
     if body:
@@ -98,6 +106,16 @@ def add_design_options(
         )
 
 
+LAYOUT_OPTIONS: tuple[tuple[str, str], ...] = (
+    ("body_radius", "hexagon: leg roots' radius and the round body's [m]"),
+    ("first_leg_angle", "hexagon: left front leg's direction from straight ahead, 0..π/3 [rad]"),
+    ("middle_leg_offset", "rectangle: middle legs this much wider than the body [m]"),
+    ("front_yaw", "rectangle: left front coxa direction, the right one mirrored [rad]"),
+    ("rear_yaw", "rectangle: left rear coxa direction, the right one mirrored [rad]"),
+)
+"""The layout's number-valued options: design field and help."""
+
+
 def _add_body_options(group: argparse._ArgumentGroup, default: HexapodDesign) -> None:
     for axis, name in (("x", "body_length"), ("y", "body_width"), ("z", "body_height")):
         group.add_argument(
@@ -106,31 +124,69 @@ def _add_body_options(group: argparse._ArgumentGroup, default: HexapodDesign) ->
             metavar="M",
             help=f"body extent along {axis} [m] (default {getattr(default, name):g})",
         )
+    group.add_argument(
+        "--layout",
+        choices=("rectangle", "hexagon"),
+        help="legs on a rectangular body's corners and sides (default), or every 60° "
+        "around a round one (custom mounts: in a --design file)",
+    )
+    for name, what in LAYOUT_OPTIONS:
+        unit = "RAD" if "[rad]" in what else "M"
+        group.add_argument(
+            f"--{name.replace('_', '-')}",
+            type=float,
+            metavar=unit,
+            help=f"{what} (default {getattr(default, name):.4g})",
+        )
+
+
+DESIGN_FLAGS: tuple[str, ...] = (
+    "body_length",
+    "body_width",
+    "body_height",
+    "layout",
+    *(name for name, _ in LAYOUT_OPTIONS),
+)
+"""Design fields set by an option of the same name."""
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
-    """Build the design the shared options describe (validated)."""
-    fields: dict[str, Any] = {}
-    for name in ("body_length", "body_width", "body_height"):
-        if getattr(args, name, None) is not None:
-            fields[name] = getattr(args, name)
+    """Build the design the shared options describe (validated).
+
+    A ``--design`` file gives the starting design (it must be valid on its own); the
+    options given beside it override its values.
+    """
+    from hexaleg.design_file import load_design  # reads TOML only when asked
+
+    path = getattr(args, "design", None)
+    base = HexapodDesign() if path is None else load_design(path)
+    changes: dict[str, Any] = {
+        name: getattr(args, name) for name in DESIGN_FLAGS if getattr(args, name, None) is not None
+    }
     if getattr(args, "nominal_angles", None) is not None:
-        fields["nominal_angles"] = tuple(args.nominal_angles)
+        changes["nominal_angles"] = tuple(args.nominal_angles)
     if getattr(args, "ratios", None) is not None:
         given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
         if given:
             raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
-        total = DEFAULT_TOTAL if args.total is None else args.total
-        design = HexapodDesign.from_ratios(args.ratios[0], args.ratios[1], total, **fields)
-        if args.total is None:  # said only once the design stands: an error stays one line
+        total = study_total(args, base)
+        design = base.replace(**changes).with_ratios(args.ratios[0], args.ratios[1], total)
+        if args.total is None and path is None:  # said once the design stands: errors stay 1 line
             note(f"--ratios without --total: total leg length {DEFAULT_TOTAL:g} m")
         return design
     if args.total is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
     for name in ("l1", "l2", "l3"):
         if getattr(args, name, None) is not None:
-            fields[name] = getattr(args, name)
-    return HexapodDesign(**fields)
+            changes[name] = getattr(args, name)
+    return base.replace(**changes) if changes else base
+
+
+def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:
+    """Total leg length [m]: ``--total``, else the ``--design`` file's, else the default."""
+    if args.total is not None:
+        return float(args.total)
+    return design.leg_length if getattr(args, "design", None) else DEFAULT_TOTAL
 
 
 def add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
@@ -205,6 +261,25 @@ def add_l1_ratios_option(parser: argparse.ArgumentParser, default: str) -> None:
         metavar="R",
         help=f"coxa ratios l1/L in (0, 1), at most {MAX_L1_RATIOS} [-] (default: {default})",
     )
+
+
+def add_field_sweep_option(parser: argparse.ArgumentParser, what: str) -> None:
+    """``--sweep FIELD=START:STOP:COUNT``: a body field swept in the sensitivity table."""
+    from hexaleg.study.sensitivity import MAX_SWEEP_POINTS, SWEEPABLE
+
+    parser.add_argument(
+        "--sweep",
+        metavar="FIELD=A:B:N",
+        help=f"{what}: FIELD from A to B in N steps (2..{MAX_SWEEP_POINTS}), e.g. "
+        f"body_width=0.4:0.8:9; FIELD is one of {', '.join(SWEEPABLE)}",
+    )
+
+
+def field_sweep_from_args(args: argparse.Namespace) -> Any:
+    """The parsed ``--sweep`` (a :class:`~hexaleg.study.sensitivity.FieldSweep`) or ``None``."""
+    from hexaleg.study.sensitivity import FieldSweep
+
+    return None if args.sweep is None else FieldSweep.parse(args.sweep)
 
 
 def add_collisions_option(parser: argparse.ArgumentParser) -> None:

@@ -8,11 +8,13 @@ from pathlib import Path
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
+    add_field_sweep_option,
     add_l1_ratios_option,
     add_sweep_options,
     bounded_int,
     capped_workers,
     design_from_args,
+    field_sweep_from_args,
 )
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
 from hexaleg.output.report.compute import MAX_SENSITIVITY_POINTS
@@ -43,17 +45,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"tibia ratios in the posture sensitivity table, 2..{MAX_SENSITIVITY_POINTS} "
         f"(default {ReportOptions.sensitivity_points})",
     )
+    add_field_sweep_option(parser, "sensitivity table over one body field instead of the variants")
 
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
     design = design_from_args(args)  # a bad design is refused before any note is printed
+    sweep = field_sweep_from_args(args)
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
         workers=capped_workers(args.workers),
         l1_ratios=None if args.l1_ratios is None else tuple(args.l1_ratios),
         collisions=args.collisions,
+        sweep=sweep,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)

@@ -11,12 +11,15 @@ from hexaleg._io import atomic_write_text
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
+    add_field_sweep_option,
     add_l1_ratios_option,
     add_mode_option,
     add_stance_option,
     add_sweep_options,
     capped_workers,
     design_from_args,
+    field_sweep_from_args,
+    study_total,
 )
 from hexaleg.cli.output import report_files
 from hexaleg.design import l3_ratio_grid
@@ -55,15 +58,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--sensitivity", action="store_true", help="also write the posture/body sensitivity table"
     )
+    add_field_sweep_option(
+        parser, "also write the sensitivity table (FB peak per value) over one body field"
+    )
 
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
     base = design_from_args(args)
+    field_sweep = field_sweep_from_args(args)
     spec = StudySpec(
         tuple(args.l1_ratios or L1_RATIOS),
         tuple(l3_ratio_grid(args.l3_points)),
-        total=1.0 if args.total is None else args.total,
+        total=study_total(args, base),
         mode=args.mode,
         stance=args.stance,
         base=base,
@@ -78,9 +85,10 @@ def run(args: argparse.Namespace) -> int:
         table = run_study(spec, args.output, executor=pool, resume=args.resume)
     out = Path(args.output)
     paths = [out / TABLE_CSV, out / TABLE_JSON, *write_study_figures(table, out)]
-    if args.sensitivity:
+    if args.sensitivity or field_sweep is not None:
+        variants = None if field_sweep is None else field_sweep.variants()
         sensitivity = sensitivity_table(
-            spec.l1_ratios, spec.l3_ratios, spec.total, spec.stance, base
+            spec.l1_ratios, spec.l3_ratios, spec.total, spec.stance, base, variants
         )
         paths.append(atomic_write_text(out / "sensitivity.csv", sensitivity.to_csv(index=False)))
     report_files(paths)

@@ -48,8 +48,10 @@ def render_hexapod(design: HexapodDesign, validate: bool = True) -> str:
     """URDF of the whole hexapod (root link ``base_link``) for ``design``."""
     mappings = _common_arguments(design)
     mappings |= {
+        "body_shape": design.body_shape,  # a validated literal: "box" or "cylinder"
         "body_length": _number(design.body_length),
         "body_width": _number(design.body_width),
+        "body_radius": _number(design.body_radius),
         "body_height": _number(design.body_height),
         "body_mass": _number(design.body_mass),
     }

@@ -150,7 +150,7 @@ def stance_margins(geometry: StanceGeometry, rotation: ArrayF, translation: Arra
     """Every constraint's margin (..., 8N + 1) for body poses: ≥ 0 feasible, < 0 broken.
 
     Columns (see :func:`constraint_labels`): per leg the outer and inner reach [m];
-    per leg and joint the lower and upper limit [rad]; last the lowest body corner's
+    per leg and joint the lower and upper limit [rad]; last the body's lowest point's
     height above the ground [m].
     """
     return _margins(geometry, rotation, translation, smooth=False)
@@ -192,7 +192,7 @@ def _margins(
             joints[..., 2, 1] = math.cos(limits.theta3[1]) - cos_knee
     else:
         reach = np.stack([l2 + l3 - r, r - abs(l2 - l3)], axis=-1)  # (..., N, 2)
-    ground = geometry.lowest_corner_height(rotation, translation)
+    ground = geometry.lowest_body_height(rotation, translation)
     shape = theta.shape[:-2]
     return np.concatenate(
         [reach.reshape(*shape, -1), joints.reshape(*shape, -1), ground[..., None]], axis=-1

@@ -55,7 +55,9 @@ class StanceGeometry:
         root_positions: Leg-root frame origins in the body frame (N, 3) [m].
         footholds: Fixed foot positions in the world frame (N, 3) [m].
         nominal_height: Body-frame height above the ground at the nominal stance [m].
-        body_half_extents: Half sizes of the body's collision box (3,) [m].
+        body_half_extents: Half sizes of the body's collision shape (3,) [m]: of its box,
+            or (radius, radius, half height) of its cylinder.
+        body_round: Whether the body's collision shape is a cylinder about z (else a box).
         limits: Joint limits that stop the body (the design's ``stance_limits``).
 
     """
@@ -67,6 +69,7 @@ class StanceGeometry:
     footholds: ArrayF
     nominal_height: float
     body_half_extents: ArrayF
+    body_round: bool
     limits: JointLimits
 
     @classmethod
@@ -75,6 +78,7 @@ class StanceGeometry:
     ) -> StanceGeometry:
         """Read the stance geometry of ``model`` at its nominal stance, all from Pinocchio."""
         legs = stance_legs(model, stance)
+        half_extents, round_body = body_collision_shape(model)
         roots = model.root_placements()
         feet = model.foot_positions(model.nominal_configuration())
         index = [model.leg_names.index(leg) for leg in legs]
@@ -85,7 +89,8 @@ class StanceGeometry:
             root_positions=np.array([roots[leg].translation for leg in legs]),
             footholds=feet[index],
             nominal_height=float(model.nominal_base_pose().translation[2]),
-            body_half_extents=body_half_extents(model),
+            body_half_extents=half_extents,
+            body_round=round_body,
             limits=model.design.stance_limits,
         )
 
@@ -107,6 +112,7 @@ class StanceGeometry:
             footholds=footholds,
             nominal_height=height,
             body_half_extents=self.body_half_extents,
+            body_round=self.body_round,
             limits=design.stance_limits,
         )
 
@@ -134,14 +140,25 @@ class StanceGeometry:
 
     def body_corners(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
         """World positions of the body box's 8 corners for body poses (..., 8, 3) [m]."""
+        if self.body_round:
+            raise HexalegError("a cylinder body has no corners")
         rotation = np.asarray(rotation, dtype=float)
         return self._corners @ np.swapaxes(rotation, -1, -2) + np.asarray(translation)[..., None, :]
 
-    def lowest_corner_height(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
-        """Height of the body box's lowest corner above the ground for body poses (...) [m]."""
+    def lowest_body_height(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
+        """Height of the body's lowest point above the ground for body poses (...) [m].
+
+        A box's lowest point is a corner: −Σ_k h_k |R_zk|. A cylinder's lies on a rim:
+        −r·√(R_zx² + R_zy²) − h |R_zz| (r its radius, h its half height).
+        """
         rotation = np.asarray(rotation, dtype=float)
-        heights = rotation[..., 2, :] @ self._corners.T  # (..., 8)
-        return heights.min(axis=-1) + np.asarray(translation)[..., 2]
+        tilt = rotation[..., 2, :]  # the body axes' z components
+        hx, _, hz = self.body_half_extents
+        if self.body_round:
+            drop = hx * np.hypot(tilt[..., 0], tilt[..., 1]) + hz * np.abs(tilt[..., 2])
+        else:
+            drop = np.abs(tilt) @ self.body_half_extents
+        return np.asarray(translation)[..., 2] - drop
 
     @property
     def _corners(self) -> ArrayF:
@@ -149,13 +166,21 @@ class StanceGeometry:
         return signs * self.body_half_extents
 
 
-def body_half_extents(model: HexapodModel) -> ArrayF:
-    """Half sizes of ``base_link``'s collision box, read from the URDF's geometry [m]."""
+def body_collision_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
+    """``base_link``'s collision shape read from the URDF: half extents [m] and roundness.
+
+    A box gives its half sizes; a cylinder (radius r, length 2h, about z) gives (r, r, h).
+    """
     geometry = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.COLLISION)
     for obj in geometry.geometryObjects:
-        if obj.parentFrame == model.base_frame and hasattr(obj.geometry, "halfSide"):
-            return np.array(obj.geometry.halfSide, dtype=float)
-    raise ModelError("base_link has no box collision geometry")
+        if obj.parentFrame != model.base_frame:
+            continue
+        if hasattr(obj.geometry, "halfSide"):
+            return np.array(obj.geometry.halfSide, dtype=float), False
+        if hasattr(obj.geometry, "halfLength") and hasattr(obj.geometry, "radius"):
+            r, h = float(obj.geometry.radius), float(obj.geometry.halfLength)
+            return np.array([r, r, h]), True
+    raise ModelError("base_link has no box or cylinder collision geometry")
 
 
 # -- stance inverse / forward kinematics ------------------------------------------------

@@ -1,6 +1,8 @@
-"""How the FB peak moves with what the paper leaves open: posture and body size.
+"""How the FB peak moves with what the paper leaves open: posture, body size, any body field.
 
-Each variant changes the base design; the study of that variant is run in this
+Each variant changes the base design: by default the posture and body changes of
+:func:`relative_variants`, or one body field swept over a range (:func:`field_variants`,
+``--sweep body_width=0.4:0.8:9``); the study of that variant is run in this
 process with the vectorized axis-locked kernel (~5 ms per design) and reduced to
 its peak tibia ratio and FB per coxa ratio.
 """
@@ -8,18 +10,96 @@ its peak tibia ratio and FB per coxa ratio.
 from __future__ import annotations
 
 import math
+import re
 from collections.abc import Sequence
+from dataclasses import dataclass
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from hexaleg._typing import StanceSet
-from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.design import FIELD_RANGES, HexapodDesign
+from hexaleg.exceptions import DesignError, HexalegError
 from hexaleg.study.sweep import StudySpec, peak_table, sweep_in_process
 
 Variant = tuple[str, dict[str, Any]]
 """A name and the design fields it changes."""
+
+SWEEPABLE: tuple[str, ...] = (
+    "body_length",
+    "body_width",
+    "body_height",
+    "body_radius",
+    "first_leg_angle",
+    "middle_leg_offset",
+    "front_yaw",
+    "rear_yaw",
+)
+"""Body and layout fields a sensitivity sweep can vary (the segments are the ratios)."""
+
+MAX_SWEEP_POINTS = 50
+"""Most values of a swept field."""
+
+
+@dataclass(frozen=True)
+class FieldSweep:
+    """One design field at evenly spaced values: ``FIELD=START:STOP:COUNT``.
+
+    Attributes:
+        field: The design field (one of :data:`SWEEPABLE`).
+        start: First value [m or rad].
+        stop: Last value [m or rad].
+        count: Number of values, 2..:data:`MAX_SWEEP_POINTS`.
+
+    """
+
+    field: str
+    start: float
+    stop: float
+    count: int
+
+    def __post_init__(self) -> None:
+        if self.field not in SWEEPABLE:
+            raise DesignError("--sweep", self.field, "a field among " + ", ".join(SWEEPABLE))
+        lower, upper, unit = FIELD_RANGES[self.field]
+        for name in ("start", "stop"):
+            value = getattr(self, name)
+            if not (math.isfinite(value) and lower <= value <= upper):
+                raise DesignError(
+                    f"--sweep {self.field} {name}",
+                    value,
+                    f"must lie in [{lower:g}, {upper:g}] [{unit}]",
+                )
+        if not 2 <= self.count <= MAX_SWEEP_POINTS:
+            raise DesignError(
+                f"--sweep {self.field} count", self.count, f"from 2 to {MAX_SWEEP_POINTS} values"
+            )
+
+    @classmethod
+    def parse(cls, text: str) -> FieldSweep:
+        """``FIELD=START:STOP:COUNT``, e.g. ``body_width=0.4:0.8:9``."""
+        match = re.fullmatch(r"\s*([a-z_]+)\s*=\s*([^:]+):([^:]+):([^:]+)\s*", text)
+        if match is None:
+            raise DesignError("--sweep", text, "FIELD=START:STOP:COUNT, e.g. body_width=0.4:0.8:9")
+        try:
+            start, stop = float(match[2]), float(match[3])
+            count = int(match[4])
+        except ValueError:
+            raise DesignError(
+                "--sweep", text, "START and STOP numbers, COUNT an integer (body_width=0.4:0.8:9)"
+            ) from None
+        return cls(match[1], start, stop, count)
+
+    @property
+    def values(self) -> tuple[float, ...]:
+        """The swept values [m or rad]."""
+        return tuple(float(v) for v in np.linspace(self.start, self.stop, self.count))
+
+    def variants(self) -> tuple[Variant, ...]:
+        """One variant per value, named ``field = value unit``."""
+        unit = FIELD_RANGES[self.field][2]
+        return tuple((f"{self.field} = {v:.4g} {unit}", {self.field: v}) for v in self.values)
 
 
 def relative_variants(base: HexapodDesign) -> tuple[Variant, ...]:
@@ -27,20 +107,31 @@ def relative_variants(base: HexapodDesign) -> tuple[Variant, ...]:
 
     The hip raised or lowered by 0.2 rad (the knee compensating so the tibia keeps its
     direction), the knee bent or opened by 0.3 rad, and the body 20 % longer, shorter,
-    wider or narrower, with the legs following the body's corners.
+    wider or narrower, with the legs following the body's corners (a hexagonal body: its
+    radius 20 % smaller or larger).
     """
     t1, t2, t3 = base.nominal_angles
     length, width = base.body_length, base.body_width
+    if base.layout == "hexagon":
+        radius = base.body_radius
+        body: tuple[Variant, ...] = (
+            (f"body 20 % smaller ({0.8 * radius:.3g} m radius)", {"body_radius": 0.8 * radius}),
+            (f"body 20 % larger ({1.2 * radius:.3g} m radius)", {"body_radius": 1.2 * radius}),
+        )
+    else:
+        body = (
+            (f"body 20 % shorter ({0.8 * length:.3g} m)", {"body_length": 0.8 * length}),
+            (f"body 20 % longer ({1.2 * length:.3g} m)", {"body_length": 1.2 * length}),
+            (f"body 20 % narrower ({0.8 * width:.3g} m)", {"body_width": 0.8 * width}),
+            (f"body 20 % wider ({1.2 * width:.3g} m)", {"body_width": 1.2 * width}),
+        )
     return (
         ("your design", {}),
         ("hip raised 0.2 rad", {"nominal_angles": (t1, t2 + 0.2, t3 - 0.2)}),
         ("hip lowered 0.2 rad", {"nominal_angles": (t1, t2 - 0.2, t3 + 0.2)}),
         ("knee bent 0.3 rad more", {"nominal_angles": (t1, t2, t3 - 0.3)}),
         ("knee opened 0.3 rad", {"nominal_angles": (t1, t2, t3 + 0.3)}),
-        (f"body 20 % shorter ({0.8 * length:.3g} m)", {"body_length": 0.8 * length}),
-        (f"body 20 % longer ({1.2 * length:.3g} m)", {"body_length": 1.2 * length}),
-        (f"body 20 % narrower ({0.8 * width:.3g} m)", {"body_width": 0.8 * width}),
-        (f"body 20 % wider ({1.2 * width:.3g} m)", {"body_width": 1.2 * width}),
+        *body,
     )
 
 

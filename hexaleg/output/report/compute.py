@@ -39,7 +39,7 @@ from hexaleg.study.recommendation import (
     combined_score,
     recommend,
 )
-from hexaleg.study.sensitivity import sensitivity_table
+from hexaleg.study.sensitivity import FieldSweep, sensitivity_table
 from hexaleg.study.sweep import MAX_L1_RATIOS, StudySpec, peak_table, study_table, sweep
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
@@ -77,6 +77,8 @@ class ReportOptions:
             by default the paper's four, recommending among the practical ones (≥ 0.10).
         collisions: The robot's own parts touching also stop the body, in the design's
             flexibility and in the study.
+        sweep: A body field to sweep in the sensitivity table instead of the posture and
+            body variants (``--sweep body_width=0.4:0.8:9``).
 
     """
 
@@ -87,6 +89,7 @@ class ReportOptions:
     progress: bool | None = None
     l1_ratios: tuple[float, ...] | None = None
     collisions: bool = False
+    sweep: FieldSweep | None = None
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:
@@ -289,6 +292,7 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
                 tuple(l3_ratio_grid(options.sensitivity_points)),
                 design.leg_length,
                 base=design,
+                variants=None if options.sweep is None else options.sweep.variants(),
             ),
         )
         template = StanceGeometry.from_model(model, "all")

@@ -160,10 +160,7 @@ def design_section(data: ReportData) -> Section:
     rows = [
         ("coxa l1, femur l2, tibia l3 [m]", f"{d.l1:.4g}, {d.l2:.4g}, {d.l3:.4g}"),
         ("leg length L [m]", f"{d.leg_length:.4g}"),
-        (
-            "body length × width × height [m]",
-            f"{d.body_length:g} × {d.body_width:g} × {d.body_height:g}",
-        ),
+        ("body", d.body_description),
         ("nominal joint angles θ1, θ2, θ3 [rad]", ", ".join(f"{a:.4f}" for a in d.nominal_angles)),
         ("nominal body height [m]", f"{d.nominal_height:.4f}"),
         (
@@ -385,11 +382,18 @@ def study_section(data: ReportData) -> Section:
 def sensitivity_section(data: ReportData) -> Section:
     """How the FB peak moves with posture and body."""
     rows = data.sensitivity.to_dict(orient="records")
+    count = len(data.sensitivity["variant"].unique())
+    sweep = data.options.sweep
+    what = (
+        f"{count} variants of your design's posture and body"
+        if sweep is None
+        else f"your design with {sweep.field} from {sweep.start:g} to {sweep.stop:g} "
+        f"({count} values, --sweep)"
+    )
     return Section(
         "3.2 Sensitivity to posture and body (not given by the paper)",
         (
-            f"Axis-locked FB peak for {len(data.sensitivity['variant'].unique())} variants of "
-            f"your design's posture and body, {data.options.sensitivity_points} tibia ratios "
+            f"Axis-locked FB peak for {what}, {data.options.sensitivity_points} tibia ratios "
             "each. Each variant changes your design by the amount it names.",
             table(
                 ["variant", "l1 ratio", "peak l3 ratio", "peak FB", "designs that cannot stand"],

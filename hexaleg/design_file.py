@@ -1,0 +1,328 @@
+"""Design files: a :class:`~hexaleg.design.HexapodDesign` kept in TOML (or JSON) in version control.
+
+TOML is the designer's format: every field of the design, SI units and radians, each
+key commented with its unit; an angle may be given in degrees instead under the same
+key with ``_deg`` appended (``first_leg_angle_deg = 30``). JSON is the ``design`` object
+of any hexaleg JSON output (or the whole output), so a result can be reproduced from
+what it printed. The extension tells them apart.
+
+A file is read whole and checked key by key: an unknown key, a value of the wrong type
+or out of its range is refused with a :class:`DesignFileError` that names the file, the
+line (where it can be found) and the key.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+import math
+import os
+import re
+import sys
+from collections.abc import Mapping
+from pathlib import Path
+from typing import Any, cast
+
+import tomli_w
+
+from hexaleg.design import HexapodDesign, LegMount
+from hexaleg.exceptions import DesignError, HexalegError
+from hexaleg.layouts import LAYOUTS
+from hexaleg.limits import JointLimits
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+SUFFIXES = (".toml", ".json")
+"""Extensions of design files: TOML written by hand, JSON printed by hexaleg."""
+
+DEGREES_SUFFIX = "_deg"
+
+_DEFAULT = HexapodDesign()
+
+SCALARS: dict[str, str] = {
+    "l1": "coxa length [m]",
+    "l2": "femur length [m]",
+    "l3": "tibia length [m]",
+    "body_length": "body extent along x, forward [m] (rectangle and custom layouts)",
+    "body_width": "body extent along y, left [m] (rectangle and custom layouts)",
+    "body_height": "body extent along z, up [m]",
+    "body_radius": "hexagon layout: leg roots' distance from the body axis = body radius [m]",
+    "first_leg_angle": "hexagon layout: left front leg's direction from straight ahead, "
+    "0..π/3 [rad]",
+    "middle_leg_offset": "rectangle layout: middle legs this much wider than the body [m]",
+    "front_yaw": "rectangle layout: left front coxa direction (right mirrors it) [rad]",
+    "rear_yaw": "rectangle layout: left rear coxa direction (right mirrors it) [rad]",
+    "body_mass": "body mass [kg]",
+    "link_linear_density": "mass per length of coxa, femur and tibia [kg/m]",
+    "link_radius": "radius of the links' cylinders [m]",
+}
+"""Every number-valued key with its comment (unit in brackets)."""
+
+TRIPLES: dict[str, str] = {
+    "nominal_angles": "standing joint angles θ1, θ2, θ3 of every leg [rad]",
+    "rated_torques": "actuators' rated torques: root, hip, knee [N·m]",
+}
+"""Keys holding three numbers."""
+
+LIMIT_SETS: dict[str, str] = {
+    "workspace_limits": "Table 2 limits: the Monte Carlo workspace",
+    "improved_limits": "Table 4 limits (coupled knee): the improved workspace",
+    "manipulability_limits": "eq 26 limits: optimum pose and average manipulability",
+    "stance_limits": "limits that stop the body in stance (the paper's §6)",
+}
+"""Joint-limit tables: theta1, theta2, theta3 = [lower, upper] [rad], coupled_knee, name."""
+
+MOUNT_KEYS: dict[str, str] = {
+    "name": "leg name: a lower-case identifier",
+    "x": "forward [m]",
+    "y": "left [m]",
+    "z": "up [m] (the same for every leg)",
+    "yaw": "coxa direction at θ1 = 0 [rad]",
+}
+
+ANGLES = {"first_leg_angle", "front_yaw", "rear_yaw", "nominal_angles", "theta1", "theta2",
+          "theta3", "yaw"}  # fmt: skip
+"""Keys that are angles [rad]: each also accepted in degrees as ``<key>_deg``."""
+
+TOP_KEYS = ("layout", *SCALARS, *TRIPLES, *LIMIT_SETS, "mount", "mounts")
+
+
+class DesignFileError(HexalegError):
+    """A design file that cannot be read, or that describes no valid design."""
+
+
+class UnknownKeyError(DesignError):
+    """A key that no design field has (a typo, most often)."""
+
+    def __init__(self, field: str, hint: str) -> None:
+        super().__init__(field, None, hint)
+        self.args = (f"unknown key {field!r}: {hint}",)
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+# -- reading ------------------------------------------------------------------------------
+
+
+def load_design(path: str | os.PathLike[str]) -> HexapodDesign:
+    """The design a TOML or JSON design file describes (validated).
+
+    Raises:
+        DesignFileError: naming the file, the line where it can be found and the key.
+
+    """
+    path = Path(path)
+    if path.suffix.lower() not in SUFFIXES:
+        raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
+    json_file = path.suffix.lower() == ".json"
+    try:
+        data = json.loads(text) if json_file else tomllib.loads(text)
+    except json.JSONDecodeError as err:
+        raise DesignFileError(f"{path}, line {err.lineno}: not valid JSON ({err.msg})") from None
+    except tomllib.TOMLDecodeError as err:
+        raise DesignFileError(f"{path}: not valid TOML ({err})") from None
+    if json_file and isinstance(data, dict) and isinstance(data.get("design"), dict):
+        data = data["design"]  # a whole hexaleg JSON output
+    if not isinstance(data, dict):
+        raise DesignFileError(f"{path}: expected a table of design keys, got {type(data).__name__}")
+    try:
+        return design_from_mapping(data)
+    except DesignError as err:
+        line = _line_of(text, err.field, json_file)
+        where = f"{path}, line {line}" if line else str(path)
+        raise DesignFileError(f"{where}: {err}") from None
+
+
+def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
+    """The design of a mapping of design keys (a parsed TOML file or a JSON ``design``)."""
+    data = _radians(data, "")
+    unknown = [key for key in data if key not in TOP_KEYS]
+    if unknown:
+        raise _unknown(unknown[0], TOP_KEYS, "")
+    if "mount" in data and "mounts" in data:
+        raise DesignError("mount", "given twice", "give the mounts as [[mount]] or mounts, once")
+    kwargs: dict[str, Any] = {}
+    for key, value in data.items():
+        if key in SCALARS:
+            kwargs[key] = _number(key, value, SCALARS[key])
+        elif key in TRIPLES:
+            kwargs[key] = _numbers(key, value, 3, TRIPLES[key])
+        elif key in LIMIT_SETS:
+            kwargs[key] = _limits(key, value)
+        elif key == "layout":
+            if value not in LAYOUTS:
+                raise DesignError("layout", value, "one of " + ", ".join(map(repr, LAYOUTS)))
+            kwargs[key] = value
+        else:
+            kwargs["mounts"] = _mounts(key, value)
+    return HexapodDesign(**kwargs)
+
+
+def _radians(table: Mapping[str, Any], prefix: str) -> dict[str, Any]:
+    """``table`` with every ``<angle>_deg`` key turned into ``<angle>`` in radians."""
+    out: dict[str, Any] = {}
+    for key, value in table.items():
+        if not key.endswith(DEGREES_SUFFIX):
+            out[key] = value
+            continue
+        base = key[: -len(DEGREES_SUFFIX)]
+        if base not in ANGLES:
+            raise DesignError(prefix + key, value, "only angle keys take degrees (_deg)")
+        if base in table:
+            raise DesignError(prefix + key, value, f"give {base} in radians or degrees, not both")
+        if isinstance(value, list):
+            out[base] = [_degrees(f"{prefix}{key}", v) for v in value]
+        else:
+            out[base] = _degrees(prefix + key, value)
+    return out
+
+
+def _degrees(key: str, value: Any) -> float:
+    return math.radians(_number(key, value, "[°]"))
+
+
+def _number(key: str, value: Any, comment: str) -> float:
+    if isinstance(value, bool) or not isinstance(value, int | float):
+        unit = re.findall(r"\[([^\]]+)\]", comment)
+        raise DesignError(key, value, f"must be a number{f' [{unit[-1]}]' if unit else ''}")
+    return float(value)
+
+
+def _numbers(key: str, value: Any, count: int, comment: str) -> tuple[float, ...]:
+    if not isinstance(value, list) or len(value) != count:
+        raise DesignError(key, value, f"must be a list of {count} numbers ({comment})")
+    return tuple(_number(key, v, comment) for v in value)
+
+
+def _limits(key: str, value: Any) -> JointLimits:
+    default: JointLimits = getattr(_DEFAULT, key)
+    if not isinstance(value, dict):
+        raise DesignError(key, value, "must be a table of theta1, theta2, theta3 [rad]")
+    table = _radians(value, f"{key}.")
+    known = ("theta1", "theta2", "theta3", "coupled_knee", "name")
+    unknown = [k for k in table if k not in known]
+    if unknown:
+        raise _unknown(unknown[0], known, f"{key}.")
+    bounds = {
+        joint: _numbers(f"{key}.{joint}", table[joint], 2, "lower, upper [rad]")
+        if joint in table
+        else getattr(default, joint)
+        for joint in ("theta1", "theta2", "theta3")
+    }
+    coupled = table.get("coupled_knee", default.coupled_knee)
+    if not isinstance(coupled, bool):
+        raise DesignError(f"{key}.coupled_knee", coupled, "must be true or false")
+    name = table.get("name", default.name)
+    if not isinstance(name, str):
+        raise DesignError(f"{key}.name", name, "must be a string")
+    limits = JointLimits(
+        cast(tuple[float, float], bounds["theta1"]),
+        cast(tuple[float, float], bounds["theta2"]),
+        cast(tuple[float, float], bounds["theta3"]),
+        coupled_knee=coupled,
+        name=name,
+    )
+    return default if limits == default else limits
+
+
+def _mounts(key: str, value: Any) -> tuple[LegMount, ...]:
+    if not isinstance(value, list) or not all(isinstance(m, dict) for m in value):
+        raise DesignError(key, value, "must be six [[mount]] tables of name, x, y, z, yaw")
+    mounts = []
+    for i, raw in enumerate(value):
+        table = _radians(raw, f"{key}[{i}].")
+        unknown = [k for k in table if k not in MOUNT_KEYS]
+        if unknown:
+            raise _unknown(unknown[0], tuple(MOUNT_KEYS), f"{key}[{i}].")
+        missing = [k for k in MOUNT_KEYS if k not in table]
+        if missing:
+            raise DesignError(f"{key}[{i}]", raw, f"needs {', '.join(missing)} as well")
+        numbers = {k: _number(f"{key}[{i}].{k}", table[k], MOUNT_KEYS[k]) for k in "xyz"}
+        yaw = _number(f"{key}[{i}].yaw", table["yaw"], MOUNT_KEYS["yaw"])
+        mounts.append(LegMount(table["name"], yaw=yaw, **numbers))
+    return tuple(mounts)
+
+
+def _unknown(key: str, known: tuple[str, ...], prefix: str) -> DesignError:
+    close = difflib.get_close_matches(key.removesuffix(DEGREES_SUFFIX), known, n=1)
+    hint = f"did you mean {close[0]!r}?" if close else "known keys: " + ", ".join(known)
+    return UnknownKeyError(prefix + key, hint)
+
+
+def _line_of(text: str, field: str, json_file: bool) -> int | None:
+    """First line of ``text`` that sets the key ``field`` names (best effort)."""
+    parts = [p for p in re.split(r"[.\[\]*]+", field) if p and not p.isdigit()]
+    if not parts:
+        return None
+    key = {"mounts": "mount"}.get(parts[0], parts[0]) if not json_file else parts[0]
+    last = parts[-1]
+    patterns = [last, key] if last != key else [key]
+    for name in patterns:
+        for variant in (name, name + DEGREES_SUFFIX):
+            if json_file:
+                pattern = rf'"{re.escape(variant)}"\s*:'
+            else:
+                pattern = rf"^\s*(\[\[?\s*{re.escape(variant)}\s*\]\]?|{re.escape(variant)}\s*=)"
+            for number, line in enumerate(text.splitlines(), start=1):
+                if re.search(pattern, line):
+                    return number
+    return None
+
+
+def _reason(err: Exception) -> str:
+    return err.strerror if isinstance(err, OSError) and err.strerror else str(err)
+
+
+# -- writing ------------------------------------------------------------------------------
+
+
+def design_toml(design: HexapodDesign) -> str:
+    """The design as a commented TOML design file (every field; mounts when custom)."""
+    lines = [
+        "# hexaleg design file: SI units (m, kg, N·m) and radians.",
+        "# Any angle key also takes degrees as <key>_deg, e.g. first_leg_angle_deg = 30.",
+        "# Every command reads it with --design FILE; options given beside it override it.",
+        "",
+        _line("layout", design.layout, '"rectangle", "hexagon" or "custom" (then six [[mount]])'),
+    ]
+    for key, comment in SCALARS.items():
+        lines.append(_line(key, getattr(design, key), comment))
+    for key, comment in TRIPLES.items():
+        lines.append(_line(key, list(getattr(design, key)), comment))
+    for key, comment in LIMIT_SETS.items():
+        limits: JointLimits = getattr(design, key)
+        lines += ["", f"[{key}]  # {comment}"]
+        for joint, what in zip(
+            ("theta1", "theta2", "theta3"), ("root", "hip", "knee"), strict=True
+        ):
+            lines.append(_line(joint, list(getattr(limits, joint)), f"{what}: lower, upper [rad]"))
+        lines.append(_line("coupled_knee", limits.coupled_knee, "also θ3 ≥ −θ2 − π/2 (Table 4)"))
+        lines.append(_line("name", limits.name, "label in reports"))
+    if design.layout == "custom":
+        for mount in design.legs:
+            lines += ["", "[[mount]]"]
+            lines += [_line(k, getattr(mount, k), c) for k, c in MOUNT_KEYS.items()]
+    else:
+        lines += ["", '# layout = "custom" places each leg by hand, with six tables like:']
+        lines += ["# [[mount]]"] + [
+            "# " + _line(k, getattr(design.legs[0], k), c) for k, c in MOUNT_KEYS.items()
+        ]
+    return "\n".join(lines) + "\n"
+
+
+def _line(key: str, value: Any, comment: str) -> str:
+    """``key = value  # comment`` on one line; angles also shown in degrees."""
+    items = value if isinstance(value, list) else [value]
+    texts = [tomli_w.dumps({"v": item}).strip().removeprefix("v = ") for item in items]
+    text = f"[{', '.join(texts)}]" if isinstance(value, list) else texts[0]
+    if key in ANGLES:
+        comment += " (" + ", ".join(f"{math.degrees(v):.6g}°" for v in items) + ")"
+    return f"{key} = {text}  # {comment}"

@@ -1,0 +1,166 @@
+"""Where the six legs sit on the body: leg mounts and the body layouts that place them.
+
+A layout turns a few body fields into six :class:`LegMount` (leg-root position and
+coxa direction in the body frame, x forward, y left, z up):
+
+- ``"rectangle"``: legs at the four corners and the two side mid-points of a
+  ``body_length`` × ``body_width`` box's mid-plane (the paper's robot); the middle legs
+  may sit ``middle_leg_offset`` further out and the front/rear legs point at
+  ``front_yaw``/``rear_yaw`` (left side; the right side mirrors them);
+- ``"hexagon"``: legs every 60° at ``body_radius`` from the centre, the first at
+  ``first_leg_angle`` from straight ahead, each pointing radially; the body is a
+  cylinder of that radius;
+- ``"custom"``: the six mounts given one by one.
+
+Legs are named ``lf lm lr rf rm rr`` (left/right, front/middle/rear) in every layout
+but ``"custom"``, so the tripods (lf, rm, lr) and (rf, lm, rr) alternate around the body.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._checks import require_in_range
+from hexaleg.exceptions import DesignError
+
+Layout = Literal["rectangle", "hexagon", "custom"]
+"""How the legs are placed on the body."""
+
+LAYOUTS: tuple[str, ...] = ("rectangle", "hexagon", "custom")
+
+LEG_NAMES: tuple[str, ...] = ("lf", "lm", "lr", "rf", "rm", "rr")
+"""Leg names of the built-in layouts: left/right × front/middle/rear."""
+
+TRIPODS: tuple[tuple[str, str, str], tuple[str, str, str]] = (
+    ("lf", "rm", "lr"),
+    ("rf", "lm", "rr"),
+)
+"""The two alternating tripods of the built-in layouts' leg names."""
+
+MOUNT_RANGE = 100.0
+"""Largest leg-root offset from the body centre along any axis [m]."""
+
+_NAME_PATTERN = re.compile(r"^[a-z][a-z0-9_]{0,31}$")
+
+
+@dataclass(frozen=True)
+class LegMount:
+    """Where one leg's root joint sits on the body.
+
+    Attributes:
+        name: Leg name, a lower-case identifier used in URDF link/joint names.
+        x: Root position along the body's x axis (forward) [m].
+        y: Root position along the body's y axis (left) [m].
+        z: Root position along the body's z axis (up) [m].
+        yaw: Direction of the coxa at θ1 = 0, about the body z axis [rad].
+
+    """
+
+    name: str
+    x: float
+    y: float
+    z: float
+    yaw: float
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.name, str) or not _NAME_PATTERN.match(self.name):
+            raise DesignError(
+                "mount.name", self.name, "a lower-case identifier like 'lf' (letters, digits, _)"
+            )
+        for name in ("x", "y", "z", "yaw"):
+            value = getattr(self, name)
+            field = f"mounts[{self.name}].{name}"
+            limit = math.pi if name == "yaw" else MOUNT_RANGE
+            unit = "rad" if name == "yaw" else "m"
+            object.__setattr__(self, name, require_in_range(field, value, -limit, limit, unit))
+
+    @property
+    def position(self) -> npt.NDArray[np.float64]:
+        """Root position in the body frame [m]."""
+        return np.array([self.x, self.y, self.z])
+
+
+def rectangle_mounts(
+    body_length: float,
+    body_width: float,
+    middle_leg_offset: float = 0.0,
+    front_yaw: float = math.pi / 4,
+    rear_yaw: float = 3 * math.pi / 4,
+) -> tuple[LegMount, ...]:
+    """Legs at the corners and side mid-points of a rectangular body's mid-plane.
+
+    Args:
+        body_length: Body extent along x [m].
+        body_width: Body extent along y [m].
+        middle_leg_offset: How much further out than the body's side the middle legs sit [m].
+        front_yaw: Direction of the left front coxa (the right one mirrors it) [rad].
+        rear_yaw: Direction of the left rear coxa (the right one mirrors it) [rad].
+
+    """
+    hx, hy = body_length / 2, body_width / 2
+    wide = hy + middle_leg_offset
+    return (
+        LegMount("lf", hx, hy, 0.0, front_yaw),
+        LegMount("lm", 0.0, wide, 0.0, math.pi / 2),
+        LegMount("lr", -hx, hy, 0.0, rear_yaw),
+        LegMount("rf", hx, -hy, 0.0, -front_yaw),
+        LegMount("rm", 0.0, -wide, 0.0, -math.pi / 2),
+        LegMount("rr", -hx, -hy, 0.0, -rear_yaw),
+    )
+
+
+def hexagon_mounts(
+    body_radius: float, first_leg_angle: float = math.pi / 6
+) -> tuple[LegMount, ...]:
+    """Legs every 60° at ``body_radius`` from the body centre, each pointing radially.
+
+    Counter-clockwise from ``first_leg_angle`` (measured from straight ahead) the legs
+    are lf, lm, lr, rr, rm, rf; they are returned in the order lf, lm, lr, rf, rm, rr.
+
+    Args:
+        body_radius: Distance of every leg root from the body's vertical axis [m].
+        first_leg_angle: Direction of the left front leg from the x axis [rad].
+
+    """
+    around = ("lf", "lm", "lr", "rr", "rm", "rf")
+    mounts = {}
+    for k, name in enumerate(around):
+        angle = first_leg_angle + k * math.pi / 3
+        yaw = math.atan2(math.sin(angle), math.cos(angle))
+        mounts[name] = LegMount(
+            name, body_radius * math.cos(angle), body_radius * math.sin(angle), 0.0, yaw
+        )
+    return tuple(mounts[name] for name in LEG_NAMES)
+
+
+def same_mounts(a: tuple[LegMount, ...], b: tuple[LegMount, ...], tol: float = 1e-9) -> bool:
+    """Whether two mount sets have the same names, in order, at the same places (± tol)."""
+    if [m.name for m in a] != [m.name for m in b]:
+        return False
+    return all(
+        abs(getattr(m, f) - getattr(n, f)) <= tol
+        for m, n in zip(a, b, strict=True)
+        for f in ("x", "y", "z", "yaw")
+    )
+
+
+def require_apart(
+    what: str, names: tuple[str, ...], points: npt.ArrayLike, distance: float, unit_note: str
+) -> None:
+    """Refuse two of ``points`` (N, 2) closer than ``distance`` [m], naming the legs."""
+    points = np.asarray(points, dtype=float)
+    for i in range(len(points)):
+        for j in range(i + 1, len(points)):
+            gap = float(np.hypot(*(points[i] - points[j])))
+            if gap < distance:
+                raise DesignError(
+                    what,
+                    f"{names[i]} and {names[j]} {gap:.4g} m apart",
+                    f"legs must be at least {distance:.4g} m apart ({unit_note})",
+                )
