@@ -139,6 +139,18 @@ def hexagon_mounts(
     return tuple(mounts[name] for name in LEG_NAMES)
 
 
+def first_tripod(mounts: tuple[LegMount, ...]) -> tuple[str, ...]:
+    """The tripod (every other leg around the body) that holds the first leg.
+
+    The built-in layouts' names give :data:`TRIPODS` ``[0]``; custom legs are taken in
+    order of their direction from the body centre, counter-clockwise from straight ahead.
+    """
+    if {m.name for m in mounts} == set(LEG_NAMES):
+        return TRIPODS[0]
+    around = sorted(mounts, key=lambda m: math.atan2(m.y, m.x) % (2 * math.pi))
+    return tuple(m.name for m in around[0::2])
+
+
 def same_mounts(a: tuple[LegMount, ...], b: tuple[LegMount, ...], tol: float = 1e-9) -> bool:
     """Whether two mount sets have the same names, in order, at the same places (± tol)."""
     if [m.name for m in a] != [m.name for m in b]:

@@ -25,6 +25,13 @@ from hexaleg.cli.main import main
 
 PATH_OPTIONS = {"-o", "--output", "--plot", "--html"}
 PATHS = st.sampled_from(["out", "out/sub", "out.urdf", "scene.html", ""])
+DESIGN_FILES = {
+    "hexagon.toml": 'layout = "hexagon"\nbody_radius = 0.3\nfirst_leg_angle_deg = 20\n',
+    "typo.toml": "body_radus = 0.3\n",
+    "broken.toml": "l1 = \n",
+    "design.json": '{"l1": 0.25, "layout": "rectangle", "middle_leg_offset": 0.1}',
+}
+"""Design files present in the folder every invocation runs in (read, never written)."""
 NUMBERS = st.one_of(
     st.integers(min_value=-(10**13), max_value=10**13).map(str),
     st.floats(allow_nan=True, allow_infinity=True).map(repr),
@@ -34,25 +41,46 @@ TEXT = st.text(alphabet=st.characters(blacklist_categories=("Cs",)), max_size=12
 VALUES = st.one_of(NUMBERS, TEXT)
 
 
-def _options(command: str) -> list[argparse.Action]:
-    parser = build_parser(command)
-    sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+COMMAND_LINES = [
+    *(c.name for c in COMMANDS if c.name != "design"),
+    "design init",
+    "design show",
+]
+"""Every command, and each action of the commands that have actions."""
+
+
+def _parser(command_line: str) -> argparse.ArgumentParser:
+    words = command_line.split()
+    parser = build_parser(words[0])
+    for word in words:
+        sub = next(a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+        parser = sub.choices[word]
+    return parser
+
+
+def _options(command_line: str) -> list[argparse.Action]:
     return [
         action
-        for action in sub.choices[command]._actions
+        for action in _parser(command_line)._actions
         if action.option_strings and not set(action.option_strings) & {"-h", "--help"}
     ]
 
 
 @st.composite
-def invocations(draw, command: str) -> list[str]:
-    argv = [command]
-    for action in draw(st.lists(st.sampled_from(_options(command)), max_size=3)):
+def invocations(draw, command_line: str) -> list[str]:
+    argv = command_line.split()
+    for action in _parser(command_line)._actions:
+        if not action.option_strings and not isinstance(action, argparse._SubParsersAction):
+            argv.append(draw(st.sampled_from(["robot.toml", "robot.json", "sub/robot.toml", ""])))
+    for action in draw(st.lists(st.sampled_from(_options(command_line)), max_size=3)):
         argv.append(action.option_strings[-1])
         if action.nargs == 0:
             continue
         count = {None: 1, "+": draw(st.integers(1, 3)), "?": 1}.get(action.nargs, action.nargs)
-        source = PATHS if PATH_OPTIONS & set(action.option_strings) else VALUES
+        if "--design" in action.option_strings:
+            source = st.sampled_from([*DESIGN_FILES, "missing.toml", "robot.yaml"])
+        else:
+            source = PATHS if PATH_OPTIONS & set(action.option_strings) else VALUES
         argv += [draw(source) for _ in range(int(count))]
     return argv
 
@@ -117,7 +145,7 @@ def _run(argv: list[str]) -> tuple[int, str]:
     return status, err.getvalue()
 
 
-@pytest.mark.parametrize("command", [c.name for c in COMMANDS])
+@pytest.mark.parametrize("command", COMMAND_LINES)
 def test_arbitrary_input_is_refused_cleanly_or_accepted(command, quick_backends):
     @settings(
         max_examples=40,
@@ -129,9 +157,13 @@ def test_arbitrary_input_is_refused_cleanly_or_accepted(command, quick_backends)
         with tempfile.TemporaryDirectory() as folder:
             cwd = os.getcwd()
             os.chdir(folder)
+            for name, text in DESIGN_FILES.items():
+                Path(name).write_text(text)
             try:
                 status, err = _run(argv)
-                written = sorted(p.name for p in Path(folder).iterdir())
+                written = sorted(
+                    p.name for p in Path(folder).iterdir() if p.name not in DESIGN_FILES
+                )
             finally:
                 os.chdir(cwd)
         assert status in (0, 2), (argv, status, err)

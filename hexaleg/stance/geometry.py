@@ -18,21 +18,23 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF, StanceSet, require_choice
-from hexaleg.design import TRIPODS, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ModelError
 from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics
+from hexaleg.layouts import first_tripod
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import HexapodModel
 
-STANCE_SETS: dict[str, tuple[str, ...] | None] = {"all": None, "tripod": TRIPODS[0]}
-"""Named stance-leg sets (see :data:`~hexaleg._typing.StanceSet`): all six legs, or the
-first tripod (lf, rm, lr)."""
-
 
 def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple[str, ...]:
-    """Resolve ``"tripod"``, ``"all"`` or an explicit list into leg names of ``model``."""
+    """Resolve ``"tripod"``, ``"all"`` or an explicit list into leg names of ``model``.
+
+    ``"tripod"`` is the first tripod: (lf, rm, lr) for the built-in layouts, every other
+    leg around the body for custom ones (:func:`~hexaleg.layouts.first_tripod`).
+    """
     if isinstance(stance, str):
-        legs = STANCE_SETS[require_choice("stance", stance, StanceSet)] or model.leg_names
+        require_choice("stance", stance, StanceSet)
+        legs = first_tripod(model.design.legs) if stance == "tripod" else model.leg_names
     else:
         legs = tuple(stance)
     unknown = [leg for leg in legs if leg not in model.leg_names]
