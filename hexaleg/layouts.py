@@ -133,10 +133,14 @@ def hexagon_mounts(
     for k, name in enumerate(around):
         angle = first_leg_angle + k * math.pi / 3
         yaw = math.atan2(math.sin(angle), math.cos(angle))
-        mounts[name] = LegMount(
-            name, body_radius * math.cos(angle), body_radius * math.sin(angle), 0.0, yaw
-        )
+        x, y = (_clean(body_radius * f(angle), body_radius) for f in (math.cos, math.sin))
+        mounts[name] = LegMount(name, x, y, 0.0, yaw)
     return tuple(mounts[name] for name in LEG_NAMES)
+
+
+def _clean(value: float, scale: float) -> float:
+    """``value`` with rounding noise (cos 90° = 6e-17) set to an exact zero."""
+    return 0.0 if abs(value) < 1e-12 * scale else value
 
 
 def first_tripod(mounts: tuple[LegMount, ...]) -> tuple[str, ...]:

@@ -74,8 +74,10 @@ def test_free_extremes_with_collisions_are_collision_free(short_body):
 
 
 def test_a_design_that_collides_standing_is_refused():
-    with pytest.raises(HexalegError, match="at the nominal stance"):
-        flexibility(HexapodDesign(body_length=0.05, body_width=0.4), "axis", collisions=True)
+    # the left front coxa turned back across the middle one (legs 5 cm apart, feet apart)
+    crossed = HexapodDesign(body_length=0.1, body_width=0.4, front_yaw=2.0)
+    with pytest.raises(HexalegError, match="at the nominal stance, lf_coxa touches lm_coxa"):
+        flexibility(crossed, "axis", collisions=True)
 
 
 def test_cli_reports_the_two_links(capsys):

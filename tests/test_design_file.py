@@ -204,3 +204,14 @@ def test_design_show_derives_height_mass_and_footholds(tmp_path, capsys, design)
     assert run_cli(["design", "show", "--design", str(path)]) == 0
     text = capsys.readouterr().out
     assert design.layout in text and all(leg in text for leg in model.leg_names)
+
+
+def test_a_study_of_a_design_file_sweeps_its_leg_length_and_body(tmp_path, capsys):
+    design = HexapodDesign(layout="hexagon", l1=0.15, l2=0.5, l3=0.55)
+    (tmp_path / "robot.toml").write_text(design_toml(design))
+    out = tmp_path / "study"
+    argv = ["study", "-o", str(out), "--design", str(tmp_path / "robot.toml")]
+    assert run_cli([*argv, "--l1-ratios", "0.1", "--l3-points", "2", "--workers", "1"]) == 0
+    spec = json.loads((out / "study.json").read_text())["spec"]
+    assert spec["total"] == pytest.approx(1.2)
+    assert spec["base"]["layout"] == "hexagon"

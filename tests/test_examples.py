@@ -15,6 +15,13 @@ EXPECTED = {
     "03_body_flexibility.py": ["stance all: FB = 0.2307", "stopped by", "free-coupled"],
     "04_design_study.py": ["34 designs", "FB peaks at l3 ratio", "flexibility_fb.png"],
     "05_dask_study.py": ["scheduler at tcp://127.0.0.1:", "9 designs"],
+    "06_hexagonal_robot.py": [
+        "hexagon_robot.toml: hexagon layout",
+        "pointing  +30.0°",
+        "stopped by",
+        "payload capacity",
+        "body_radius = 0.45 m: peak FB",
+    ],
 }
 
 

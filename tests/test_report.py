@@ -149,6 +149,25 @@ def test_report_for_another_design(tmp_path):
     assert "0.1, 0.45, 0.45" in (tmp_path / "r" / "report.md").read_text()
 
 
+def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
+    from hexaleg.cli import main
+    from hexaleg.design_file import design_toml
+    from hexaleg.stance import flexibility
+
+    design = HexapodDesign(layout="hexagon", body_radius=0.35, l1=0.12, l2=0.45, l3=0.43)
+    (tmp_path / "robot.toml").write_text(design_toml(design))
+    argv = ["report", "-o", str(tmp_path / "r"), "--design", str(tmp_path / "robot.toml")]
+    argv += ["--l3-points", "10", "--sensitivity-points", "4", "--workers", "1"]
+    assert main([*argv, "--sweep", "body_radius=0.3:0.4:3"]) == 0
+    data = json.loads((tmp_path / "r" / "report.json").read_text())
+    assert data["design"]["layout"] == "hexagon"
+    assert data["flexibility"]["axis"]["fb"] == pytest.approx(flexibility(design).fb, rel=1e-12)
+    variants = {row["variant"] for row in data["sensitivity"]}
+    assert variants == {f"body_radius = {r:g} m" for r in (0.3, 0.35, 0.4)}
+    text = (tmp_path / "r" / "report.md").read_text()
+    assert "cylinder of radius 0.35 m" in text and "body_radius from 0.3 to 0.4" in text
+
+
 def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     """kill -9 mid-report leaves its staging folder; the next run removes it."""
     import os

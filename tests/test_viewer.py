@@ -19,6 +19,7 @@ import psutil
 import pytest
 import umsgpack
 
+from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.output.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
 from hexaleg.stance import axis_locked_flexibility
 
@@ -272,3 +273,22 @@ def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_des
         hip = umsgpack.unpackb(visuals["lf_femur_0"].object)["object"]["materials"][0]["color"]
         knee = umsgpack.unpackb(visuals["lf_tibia_0"].object)["object"]["materials"][0]["color"]
         assert hip != knee  # the nominal hip works, the vertical tibia's knee hardly
+
+
+def test_hexagonal_robot_is_drawn_with_a_round_body(tmp_path, empty_scene):
+    from hexaleg.cli import main
+
+    design = HexapodDesign(layout="hexagon", body_radius=0.35)
+    model = HexapodModel(design)
+    result = axis_locked_flexibility(design, "all", model)
+    with LoopbackServer() as server:
+        build_scene(client(server), model, result)
+        time.sleep(0.2)
+        body = _node(server._bridge.tree, "meshcat/hexaleg/nominal/visuals/base_link_0")
+        geometry = umsgpack.unpackb(body.object)["object"]["geometries"][0]
+        assert geometry["type"] == "CylinderGeometry"
+        assert geometry["radiusTop"] == pytest.approx(design.body_radius)
+    page = tmp_path / "hexagon.html"
+    assert main(["view", "--layout", "hexagon", "--body-radius", "0.35", "--html", str(page)]) == 0
+    image = _screenshot(page.as_uri(), tmp_path / "hexagon.png")
+    assert _drawn_share(image, empty_scene) > 0.05
