@@ -171,12 +171,13 @@ def require_apart(
 ) -> None:
     """Refuse two of ``points`` (N, 2) closer than ``distance`` [m], naming the legs."""
     points = np.asarray(points, dtype=float)
-    for i in range(len(points)):
-        for j in range(i + 1, len(points)):
-            gap = float(np.hypot(*(points[i] - points[j])))
-            if gap < distance:
-                raise DesignError(
-                    what,
-                    f"{names[i]} and {names[j]} {gap:.4g} m apart",
-                    f"legs must be at least {distance:.4g} m apart ({unit_note})",
-                )
+    gaps = np.hypot(*(points[:, None, :] - points[None, :, :]).transpose(2, 0, 1))
+    gaps[np.diag_indices(len(points))] = np.inf
+    if gaps.min() >= distance:
+        return
+    i, j = sorted(np.unravel_index(int(np.argmin(gaps)), gaps.shape))
+    raise DesignError(
+        what,
+        f"{names[i]} and {names[j]} {gaps[i, j]:.4g} m apart",
+        f"legs must be at least {distance:.4g} m apart ({unit_note})",
+    )

@@ -9,6 +9,7 @@ joint axes and limits are read from the model, never re-typed here.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from dataclasses import fields
 
 import numpy as np
 import numpy.typing as npt
@@ -130,6 +131,7 @@ class HexapodModel:
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         self.base_frame = _frame_id(self.model, "base_link")
+        self._collision: pin.GeometryModel | None = None
 
     @property
     def urdf(self) -> str:
@@ -137,6 +139,14 @@ class HexapodModel:
         if self._urdf is None:
             self._urdf = render_hexapod(self.design)
         return self._urdf
+
+    def collision_model(self) -> pin.GeometryModel:
+        """A copy of the URDF's collision geometry (body and links), parsed once per model."""
+        if self._collision is None:
+            self._collision = pin.buildGeomFromUrdfString(
+                self.model, self.urdf, pin.GeometryType.COLLISION
+            )
+        return self._collision.copy()
 
     def with_design(self, design: HexapodDesign) -> HexapodModel:
         """The model of ``design``, whose segments and rated torques differ, without Xacro.
@@ -146,8 +156,12 @@ class HexapodModel:
         are set as the URDF would set them; the tests prove the result equal to
         ``HexapodModel(design)``. Every other field must be this model's design's.
         """
-        kept = ("l1", "l2", "l3", "rated_torques")
-        if self.design.replace(**{f: getattr(design, f) for f in kept}) != design:
+        changed = ("l1", "l2", "l3", "rated_torques")
+        if any(
+            getattr(self.design, f.name) != getattr(design, f.name)
+            for f in fields(design)
+            if f.name not in changed
+        ):
             raise ModelError("with_design changes only segment lengths and rated torques")
         model = pin.Model(self.model)
         radius, density = design.link_radius, design.link_linear_density

@@ -54,6 +54,8 @@ def first_crossings(
     t_max: ArrayF,
     steps: int = SCAN_STEPS,
     chunks: int = SCAN_CHUNKS,
+    tolerance: float = BRACKET_TOLERANCE,
+    check_start: bool = True,
 ) -> Crossings:
     """For each direction d, the first t ∈ (0, t_max[d]] where any margin turns negative.
 
@@ -68,6 +70,9 @@ def first_crossings(
         t_max: Search range per direction (D,).
         steps: Scan resolution: t_max / steps.
         chunks: The scan runs in this many chunks, dropping directions that broke.
+        tolerance: Final bracket width, relative to the searched distance (at least 1).
+        check_start: Evaluate t = 0 too and refuse a start that already violates a
+            margin; pass False when the caller has checked it (each t is evaluated once).
 
     Returns:
         The crossings, breaking constraints and every binding constraint per direction.
@@ -78,23 +83,25 @@ def first_crossings(
     lo, hi = np.zeros(count), t_max.copy()
     broken = np.zeros(count, dtype=bool)
     per_chunk = steps // chunks
-    fractions = np.linspace(0.0, 1.0, per_chunk + 1)
     for chunk in range(chunks):
         active = np.flatnonzero(~broken)
         if active.size == 0:
             break
-        start = t_max[active] * chunk / chunks
+        with_start = chunk == 0 and check_start
+        fractions = np.arange(0 if with_start else 1, per_chunk + 1) / per_chunk
+        start = t_max[active] * chunk / chunks  # evaluated by the previous chunk
         t = start[:, None] + (t_max[active] / chunks)[:, None] * fractions
         rows = np.broadcast_to(active[:, None], t.shape)
         smallest = margins(rows.ravel(), t.ravel()).min(axis=-1).reshape(t.shape)
-        if chunk == 0 and np.any(smallest[:, 0] < 0):
+        if with_start and np.any(smallest[:, 0] < 0):
             raise HexalegError("the nominal stance itself violates a stance constraint")
         infeasible = smallest < 0
         hit = infeasible.any(axis=1)
         first = np.argmax(infeasible, axis=1)
         for k in np.flatnonzero(hit):
             d = active[k]
-            lo[d], hi[d] = t[k, first[k] - 1], t[k, first[k]]
+            lo[d] = t[k, first[k] - 1] if first[k] > 0 else start[k]
+            hi[d] = t[k, first[k]]
         broken[active[hit]] = True
     which = np.full(count, -1)
     binding: list[tuple[int, ...]] = [()] * count
@@ -109,7 +116,7 @@ def first_crossings(
         def pair_margin(t: ArrayF) -> ArrayF:
             return margins(directions, t)[np.arange(len(t)), pair_constraint]
 
-        root = anderson_bjorck(pair_margin, lo[directions], hi[directions])
+        root = anderson_bjorck(pair_margin, lo[directions], hi[directions], tolerance)
         for d in index:
             mine = np.flatnonzero(directions == d)  # in constraint order
             earliest = root[mine].min()
@@ -119,7 +126,12 @@ def first_crossings(
     return Crossings(np.where(broken, lo, t_max), which, tuple(binding))
 
 
-def anderson_bjorck(g: Callable[[ArrayF], ArrayF], lo: ArrayF, hi: ArrayF) -> ArrayF:
+def anderson_bjorck(
+    g: Callable[[ArrayF], ArrayF],
+    lo: ArrayF,
+    hi: ArrayF,
+    relative_tolerance: float = BRACKET_TOLERANCE,
+) -> ArrayF:
     """Roots of g in brackets [lo, hi] with g(lo) ≥ 0 > g(hi), vectorized; returns the feasible end.
 
     Regula falsi with the Anderson–Björck correction: when the same end moves
@@ -128,7 +140,7 @@ def anderson_bjorck(g: Callable[[ArrayF], ArrayF], lo: ArrayF, hi: ArrayF) -> Ar
     """
     g_lo, g_hi = g(lo), g(hi)
     side = np.zeros(len(lo))  # which end moved last: +1 lo, −1 hi
-    tolerance = BRACKET_TOLERANCE * np.maximum(hi, 1.0)
+    tolerance = relative_tolerance * np.maximum(hi, 1.0)
     for _ in range(REFINE_ITERATIONS):
         # done: a tight bracket, or a feasible end whose margin is at round-off level
         done = (hi - lo <= tolerance) | (g_lo <= MARGIN_ROUNDOFF)

@@ -26,6 +26,11 @@ from hexaleg.stance.geometry import StanceGeometry
 
 COLLISION_SCAN_STEPS = 16
 """Resolution of the collision scan along each direction, up to its other extreme."""
+COLLISION_SCAN_CHUNKS = 4
+"""The scan runs in this many chunks: a direction stops being scanned once it collides."""
+COLLISION_TOLERANCE = 1e-10
+"""Bracket width of a collision crossing, relative to the searched distance: coal's
+distances near contact are good to a few 1e-7 m, so a tighter root means nothing."""
 TIE_DISTANCE = 1e-6
 """Pairs this close to the closest [m] touch together (mirror-image legs do; coal tells
 their distances apart only to about 2e-7 m near contact)."""
@@ -46,9 +51,7 @@ class SelfCollision:
     def __init__(self, model: HexapodModel, geometry: StanceGeometry) -> None:
         self.model = model
         self.geometry = geometry
-        self.geometry_model = pin.buildGeomFromUrdfString(
-            model.model, model.urdf, pin.GeometryType.COLLISION
-        )
+        self.geometry_model = model.collision_model()
         self.geometry_model.addAllCollisionPairs()
         kept = [p for p in self.geometry_model.collisionPairs if not self._joined(p)]
         self.geometry_model.removeAllCollisionPairs()
@@ -141,7 +144,14 @@ def collision_limited(
         return collision.clearances(rotation, translation)[0][:, None]
 
     reach = np.array([abs(e.value) for e in extremes])
-    crossings = first_crossings(clearance, reach, steps=COLLISION_SCAN_STEPS, chunks=1)
+    crossings = first_crossings(  # the nominal stance's clearance is checked on construction
+        clearance,
+        reach,
+        steps=COLLISION_SCAN_STEPS,
+        chunks=COLLISION_SCAN_CHUNKS,
+        tolerance=COLLISION_TOLERANCE,
+        check_start=False,
+    )
     limited = []
     for k, extreme in enumerate(extremes):
         if crossings.which[k] < 0:

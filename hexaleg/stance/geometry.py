@@ -173,8 +173,7 @@ def body_collision_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
 
     A box gives its half sizes; a cylinder (radius r, length 2h, about z) gives (r, r, h).
     """
-    geometry = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.COLLISION)
-    for obj in geometry.geometryObjects:
+    for obj in model.collision_model().geometryObjects:
         if obj.parentFrame != model.base_frame:
             continue
         if hasattr(obj.geometry, "halfSide"):

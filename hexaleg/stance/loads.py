@@ -78,7 +78,8 @@ class LoadsAnalysis:
     def peak_torques(self) -> dict[str, float]:
         """Largest |τ| per joint type over the nominal stance and every extreme [N·m]."""
         states = [self.nominal, *(e.state for e in self.extremes)]
-        return {j: max(s.peak_torques()[j] for s in states) for j in LEG_JOINTS}
+        peaks = np.abs(np.concatenate([s.joint_torques for s in states])).max(axis=0)
+        return {joint: float(peak) for joint, peak in zip(LEG_JOINTS, peaks, strict=True)}
 
     @property
     def worst_slope(self) -> SlopeLimit:
@@ -87,11 +88,11 @@ class LoadsAnalysis:
 
     def study_columns(self) -> dict[str, float | str]:
         """The design's columns in a study table (N·m, m, rad, kg)."""
-        nominal = self.nominal.peak_torques()
+        nominal, overall = self.nominal.peak_torques(), self.peak_torques
         columns: dict[str, float | str] = {}
         for joint in LEG_JOINTS:
             columns[f"peak_{joint}_torque_nominal"] = nominal[joint]
-            columns[f"peak_{joint}_torque"] = self.peak_torques[joint]
+            columns[f"peak_{joint}_torque"] = overall[joint]
         return columns | {
             "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
@@ -215,7 +216,6 @@ def loads_at_extremes(
         ExtremeLoads(e, statics.state(extreme_configuration(model, e), distribution))
         for e in result.extremes
     )
-    feet = model.foot_positions(q)[[model.leg_names.index(leg) for leg in legs]]
     return LoadsAnalysis(
         design=design,
         payload=statics.payload,
@@ -223,7 +223,7 @@ def loads_at_extremes(
         distribution=distribution,
         nominal=nominal,
         extremes=extremes,
-        slopes=slope_limits(feet[:, :2], nominal.com, friction),
-        capacity=payload_capacity(statics, q, distribution),
+        slopes=slope_limits(statics.support, nominal.com, friction),
+        capacity=payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
     )

@@ -148,13 +148,26 @@ class Statics:
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._robot_mass = float(pin.computeTotalMass(model.model))
-        self._hull: tuple[ArrayF, ArrayF] | None = None  # (feet, their polygon)
+        self._jacobian = np.zeros((3 * len(self.legs), model.model.nv))  # stacked foot rows
+        self._support: SupportPolygon | None = None
+        self._support_feet = np.zeros((len(self.legs), 2))
+        self._downward = np.array([0.0, 0.0, -GRAVITY])
 
-    def _polygon(self, feet_xy: ArrayF) -> ArrayF:
+    @property
+    def support(self) -> SupportPolygon:
+        """The stance feet's support polygon (planted feet do not move)."""
+        if self._support is None:
+            self.state(self.model.nominal_configuration())
+        assert self._support is not None
+        return self._support
+
+    def _polygon(self, feet_xy: ArrayF) -> SupportPolygon:
         """The support polygon, computed once: planted feet do not move."""
-        if self._hull is None or np.abs(self._hull[0] - feet_xy).max() > 1e-12:
-            self._hull = (feet_xy.copy(), support_polygon(feet_xy))
-        return self._hull[1]
+        support = self._support
+        if support is None or np.abs(self._support_feet - feet_xy).max() > 1e-12:
+            self._support_feet = feet_xy.copy()
+            self._support = support = SupportPolygon.of_feet(feet_xy)
+        return support
 
     def state(
         self,
@@ -172,49 +185,50 @@ class Statics:
             payload: The payload; this object's own if omitted.
 
         """
-        require_choice("distribution", distribution, Distribution)
+        if distribution != "min-norm":
+            require_choice("distribution", distribution, Distribution)
         payload = self.payload if payload is None else payload
         q = np.asarray(q, dtype=float)
         gravity = np.asarray(gravity, dtype=float)
         model, data = self.model.model, self._data
-        tilted = gravity[2] != -GRAVITY
+        tilted = bool(gravity[2] != -GRAVITY)
         if tilted:
             model.gravity.linear = gravity
         try:
             generalized = pin.computeGeneralizedGravity(model, data, q).copy()
         finally:
             if tilted:
-                model.gravity.linear = np.array([0.0, 0.0, -GRAVITY])
+                model.gravity.linear = self._downward
         pin.computeJointJacobians(model, data, q)
         pin.updateFramePlacements(model, data)
-        jacobians = [
-            pin.getFrameJacobian(model, data, fid, pin.LOCAL_WORLD_ALIGNED)[:3]
-            for fid in self._feet
-        ]
-        feet = np.array([data.oMf[fid].translation for fid in self._feet])
-        com_robot = pin.centerOfMass(model, data, q, False).copy()
-        body = data.oMf[self.model.base_frame]
-        offset = body.rotation @ payload.point(self.model)
-        point = body.translation + offset
+        jacobian = self._jacobian
+        feet = np.empty((len(self._feet), 3))
+        for i, fid in enumerate(self._feet):
+            jacobian[3 * i : 3 * i + 3] = pin.getFrameJacobian(
+                model, data, fid, pin.LOCAL_WORLD_ALIGNED
+            )[:3]
+            feet[i] = data.oMf[fid].translation
+        com = pin.centerOfMass(model, data, False).copy()
+        mass = self._robot_mass
         if payload.mass > 0:  # the payload's weight through the body at its point
+            body = data.oMf[self.model.base_frame]
+            offset = body.rotation @ payload.point(self.model)
             frame = pin.getFrameJacobian(
                 model, data, self.model.base_frame, pin.LOCAL_WORLD_ALIGNED
             )
             point_jacobian = frame[:3] - pin.skew(offset) @ frame[3:]
             generalized -= point_jacobian.T @ (payload.mass * gravity)
-        mass = self._robot_mass + payload.mass
-        com = (self._robot_mass * com_robot + payload.mass * point) / mass
-        forces = self._distribute(feet, com, mass, gravity, generalized, jacobians, distribution)
-        torques = generalized - np.vstack(jacobians).T @ forces.ravel()
+            mass += payload.mass
+            com = (self._robot_mass * com + payload.mass * (body.translation + offset)) / mass
+        forces = self._distribute(feet, com, mass, gravity, generalized, jacobian, distribution)
+        torques = generalized - jacobian.T @ forces.ravel()
         return StaticState(
             legs=self.legs,
             foot_forces=forces,
             joint_torques=torques[self._v],
             com=com,
             mass=mass,
-            stability_margin=signed_distance(
-                self._polygon(feet[:, :2]), ground_point(com, gravity)
-            ),
+            stability_margin=self._polygon(feet[:, :2]).signed_distance(ground_point(com, gravity)),
             free_flyer_residual=float(np.abs(torques[:6]).max()),
         )
 
@@ -225,7 +239,7 @@ class Statics:
         mass: float,
         gravity: ArrayF,
         generalized: ArrayF,
-        jacobians: list[ArrayF],
+        jacobian: ArrayF,
         distribution: Distribution,
     ) -> ArrayF:
         a, b = equilibrium(feet, com, mass, gravity)
@@ -234,7 +248,7 @@ class Statics:
         # min Σ (τ_j/rated_j)², τ = h − Jᵀf on the stance joints, as a QP in f
         columns = self._v.ravel()
         weights = np.tile(1.0 / self.rated, len(self.legs)) ** 2
-        jt = np.vstack(jacobians)[:, columns].T  # (3N joints, 3N forces)
+        jt = jacobian[:, columns].T  # (3N joints, 3N forces)
         h = generalized[columns]
         hessian = jt.T @ (weights[:, None] * jt) + 1e-12 * np.eye(jt.shape[1])
         linear = -jt.T @ (weights * h)
@@ -287,47 +301,62 @@ def ground_point(com: ArrayF, gravity: ArrayF) -> ArrayF:
     return (com + t * gravity)[:2]
 
 
+@dataclass(frozen=True)
+class SupportPolygon:
+    """The convex hull of the stance feet on the ground, with its edges precomputed.
+
+    Attributes:
+        vertices: Hull vertices, counter-clockwise (K, 2) [m].
+        edges: Vector from each vertex to the next (K, 2) [m].
+        lengths: Edge lengths (K,) [m].
+
+    """
+
+    vertices: ArrayF
+    edges: ArrayF
+    lengths: ArrayF
+
+    @classmethod
+    def of_feet(cls, feet_xy: npt.ArrayLike) -> SupportPolygon:
+        """The support polygon of the feet (x, y) (N, 2) [m]."""
+        feet_xy = np.asarray(feet_xy, dtype=float)
+        try:
+            hull = ConvexHull(feet_xy)
+        except Exception as err:  # qhull raises its own error type on degenerate input
+            raise HexalegError(f"the stance feet span no support polygon: {err}") from err
+        vertices = feet_xy[hull.vertices]
+        edges = np.roll(vertices, -1, axis=0) - vertices
+        return cls(vertices, edges, np.hypot(edges[:, 0], edges[:, 1]))
+
+    def signed_distance(self, point: npt.ArrayLike) -> float:
+        """Signed distance [m] from ``point`` (x, y) to the boundary: > 0 inside."""
+        relative = np.asarray(point, dtype=float)[:2] - self.vertices
+        edges = self.edges
+        inward = (edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]) / self.lengths
+        if inward.min() >= 0:
+            return float(inward.min())
+        along = (relative[:, 0] * edges[:, 0] + relative[:, 1] * edges[:, 1]) / self.lengths**2
+        gap = relative - np.clip(along, 0.0, 1.0)[:, None] * edges
+        return -float(np.hypot(gap[:, 0], gap[:, 1]).min())
+
+    def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
+        """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""
+        best = math.inf
+        for a, edge in zip(self.vertices, self.edges, strict=True):
+            denominator = direction[0] * -edge[1] - direction[1] * -edge[0]
+            if abs(denominator) < 1e-15:
+                continue
+            rhs = a - point
+            t = (rhs[0] * -edge[1] - rhs[1] * -edge[0]) / denominator
+            s = (direction[0] * rhs[1] - direction[1] * rhs[0]) / denominator
+            if t >= 0 and -1e-12 <= s <= 1 + 1e-12:
+                best = min(best, t)
+        return best
+
+
 def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:
     """Signed distance [m] from ``point`` to the convex hull of the feet: > 0 inside."""
-    return signed_distance(support_polygon(feet_xy), point)
-
-
-def signed_distance(polygon: ArrayF, point: ArrayF) -> float:
-    """Signed distance [m] from ``point`` to a counter-clockwise convex polygon: > 0 inside."""
-    edges = np.roll(polygon, -1, axis=0) - polygon
-    lengths = np.linalg.norm(edges, axis=1)
-    relative = point - polygon
-    inward = (edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]) / lengths
-    if np.all(inward >= 0):
-        return float(inward.min())
-    along = np.clip(np.einsum("ij,ij->i", relative, edges) / lengths**2, 0.0, 1.0)
-    nearest = polygon + along[:, None] * edges
-    return -float(np.linalg.norm(point - nearest, axis=1).min())
-
-
-def support_polygon(feet_xy: ArrayF) -> ArrayF:
-    """The convex hull of the stance feet (x, y), counter-clockwise (K, 2) [m]."""
-    try:
-        hull = ConvexHull(np.asarray(feet_xy, dtype=float))
-    except Exception as err:  # qhull raises its own error type on degenerate input
-        raise HexalegError(f"the stance feet span no support polygon: {err}") from err
-    return np.asarray(feet_xy)[hull.vertices]
-
-
-def exit_distance(polygon: ArrayF, point: ArrayF, direction: ArrayF) -> float:
-    """How far from ``point`` (inside) along ``direction`` the polygon's boundary lies [m]."""
-    best = math.inf
-    for a, b in zip(polygon, np.roll(polygon, -1, axis=0), strict=True):
-        edge = b - a
-        denominator = direction[0] * -edge[1] - direction[1] * -edge[0]
-        if abs(denominator) < 1e-15:
-            continue
-        rhs = a - point
-        t = (rhs[0] * -edge[1] - rhs[1] * -edge[0]) / denominator
-        s = (direction[0] * rhs[1] - direction[1] * rhs[0]) / denominator
-        if t >= 0 and -1e-12 <= s <= 1 + 1e-12:
-            best = min(best, t)
-    return best
+    return SupportPolygon.of_feet(feet_xy).signed_distance(point)
 
 
 @dataclass(frozen=True)
@@ -348,7 +377,10 @@ class SlopeLimit:
 
 
 def slope_limits(
-    feet_xy: ArrayF, com: ArrayF, friction: float, headings: Sequence[float] = SLOPE_HEADINGS
+    feet_xy: ArrayF | SupportPolygon,
+    com: ArrayF,
+    friction: float,
+    headings: Sequence[float] = SLOPE_HEADINGS,
 ) -> tuple[SlopeLimit, ...]:
     """The max slope per heading: the smaller of the tip-over angle and atan μ.
 
@@ -357,12 +389,12 @@ def slope_limits(
     c meets the ground c_z·tan α downhill of c's footprint, and the robot tips when
     that point leaves the support polygon.
     """
-    polygon = support_polygon(feet_xy)
+    polygon = feet_xy if isinstance(feet_xy, SupportPolygon) else SupportPolygon.of_feet(feet_xy)
     slide = math.atan(friction)
     limits = []
     for heading in headings:
         downhill = -np.array([math.cos(heading), math.sin(heading)])
-        tip = math.atan2(exit_distance(polygon, com[:2], downhill), com[2])
+        tip = math.atan2(polygon.exit_distance(com[:2], downhill), com[2])
         limits.append(SlopeLimit(heading, min(tip, slide), "tip" if tip < slide else "slide"))
     return tuple(limits)
 
@@ -394,7 +426,10 @@ class PayloadCapacity:
 
 
 def payload_capacity(
-    statics: Statics, q: npt.ArrayLike, distribution: Distribution = "min-norm"
+    statics: Statics,
+    q: npt.ArrayLike,
+    distribution: Distribution = "min-norm",
+    at: StaticState | None = None,
 ) -> PayloadCapacity:
     """The largest payload at the statics' payload point that the nominal stance holds.
 
@@ -402,9 +437,16 @@ def payload_capacity(
     positive. With min-norm forces every torque is affine in the payload (the six
     equilibrium equations about a fixed point are affine in it), so each joint's limit
     is solved exactly; min-torque forces are found by bisection, to 1e-6 relative.
+
+    Args:
+        statics: The robot on its stance legs, with the payload's point.
+        q: The stance configuration (the nominal one).
+        distribution: ``"min-norm"`` or ``"min-torque"``.
+        at: ``statics.state(q)`` if already computed (saves one evaluation).
+
     """
     if distribution == "min-norm":
-        return _affine_capacity(statics, q)
+        return _affine_capacity(statics, q, at)
 
     def check(mass: float) -> tuple[bool, str]:
         try:
@@ -436,13 +478,25 @@ def payload_capacity(
     return PayloadCapacity(lo, cause)
 
 
-def _affine_capacity(statics: Statics, q: npt.ArrayLike) -> PayloadCapacity:
-    """Payload capacity with min-norm forces: τ(m) = τ0 + m·τ1, solved joint by joint."""
-    empty = statics.state(q, payload=statics.payload.with_mass(0.0))
-    unit = statics.state(q, payload=statics.payload.with_mass(1.0))
-    base, slope = empty.joint_torques, unit.joint_torques - empty.joint_torques
+def _affine_capacity(statics: Statics, q: npt.ArrayLike, at: StaticState | None) -> PayloadCapacity:
+    """Payload capacity with min-norm forces: τ(m) = τ(0) + m·τ1, solved joint by joint.
+
+    Two evaluations fix the line (the payload's own state and one kilogram more or
+    less); the centre of mass moves along the segment from the robot's own toward the
+    payload's point.
+    """
+    m0 = statics.payload.mass
+    at = statics.state(q) if at is None else at
+    m1 = m0 + 1.0 if m0 + 1.0 <= PAYLOAD_SEARCH_LIMIT else m0 - 1.0
+    other = statics.state(q, payload=statics.payload.with_mass(m1))
+    slope = (other.joint_torques - at.joint_torques) / (m1 - m0)
+    base = at.joint_torques - m0 * slope
+    point = (other.com * other.mass - at.com * at.mass) / (m1 - m0)  # the payload's place
+    robot_mass = at.mass - m0
+    robot_com = (at.com * at.mass - m0 * point) / robot_mass
     rated = np.broadcast_to(statics.rated, base.shape)
-    if np.any(np.abs(base) > rated) or empty.stability_margin <= 0:
+    support = statics.support
+    if np.any(np.abs(base) > rated) or support.signed_distance(robot_com) <= 0:
         ratios = np.abs(base) / rated
         leg, joint = _first_tied(ratios)
         cause = "stability" if ratios.max() <= 1 else f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
@@ -452,7 +506,7 @@ def _affine_capacity(statics: Statics, q: npt.ArrayLike) -> PayloadCapacity:
     limit = np.where(np.abs(slope) > 0, limit, np.inf)
     leg, joint = _first_tied(-limit)
     mass, cause = float(limit[leg, joint]), f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
-    tipping = _tipping_payload(empty, unit, statics)
+    tipping = _tipping_payload(support, robot_com, robot_mass, point)
     if tipping < mass:
         mass, cause = tipping, "stability"
     if mass >= PAYLOAD_SEARCH_LIMIT:
@@ -460,25 +514,20 @@ def _affine_capacity(statics: Statics, q: npt.ArrayLike) -> PayloadCapacity:
     return PayloadCapacity(mass, cause)
 
 
-def _tipping_payload(empty: StaticState, unit: StaticState, statics: Statics) -> float:
-    """The payload at which the centre of mass's footprint leaves the support polygon."""
-    mass0 = empty.mass
-    point = unit.com * unit.mass - empty.com * mass0  # the payload's position (1 kg)
-    polygon = statics._hull[1] if statics._hull is not None else None
-    if polygon is None or signed_distance(polygon, point[:2]) > 0:
+def _tipping_payload(
+    support: SupportPolygon, robot_com: ArrayF, robot_mass: float, point: ArrayF
+) -> float:
+    """The payload [kg] at which the centre of mass's footprint leaves the support polygon.
+
+    With a payload m at p the footprint is c_r + s·(p − c_r), s = m / (M_r + m) < 1: it
+    leaves where that segment crosses the boundary, at m = M_r·s / (1 − s).
+    """
+    if support.signed_distance(point) > 0:
         return math.inf  # a payload inside the polygon only steadies the robot
-
-    def margin(mass: float) -> float:
-        com = (mass0 * empty.com + mass * point) / (mass0 + mass)
-        return signed_distance(polygon, com[:2])
-
-    lo, hi = 0.0, PAYLOAD_SEARCH_LIMIT
-    if margin(hi) > 0:
-        return math.inf
-    while hi - lo > 1e-9 * max(hi, 1.0):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if margin(mid) > 0 else (lo, mid)
-    return lo
+    towards = point[:2] - robot_com[:2]
+    span = float(np.hypot(towards[0], towards[1]))
+    s = support.exit_distance(robot_com[:2], towards / span) / span
+    return math.inf if s >= 1 else robot_mass * s / (1 - s)
 
 
 def _first_tied(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
