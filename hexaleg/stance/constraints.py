@@ -161,10 +161,12 @@ def smooth_stance_margins(
 ) -> ArrayF:
     """:func:`stance_margins` in forms smooth up to the boundary, for gradient-based search.
 
-    Same columns and the same zero set (so the same feasible poses), but reach as squared
-    distances, (l2 + l3)² − r² and r² − (l2 − l3)² [m²], and the knee's fixed limits on
-    cos θ3 = (r² − l2² − l3²)/(2·l2·l3) [-] instead of θ3 through arccos, whose slope is
-    infinite where the leg straightens. (A coupled knee bound keeps the θ3 form.)
+    The same feasible poses: the legs' columns as in :func:`stance_margins` with the same
+    zero sets, but reach as squared distances, (l2 + l3)² − r² and r² − (l2 − l3)² [m²],
+    and the knee's fixed limits on cos θ3 = (r² − l2² − l3²)/(2·l2·l3) [-] instead of θ3
+    through arccos, whose slope is infinite where the leg straightens (a coupled knee
+    bound keeps the θ3 form); the ground as several smooth columns instead of the
+    lowest point's kinked one (``StanceGeometry.smooth_ground_margins``).
     """
     return _margins(geometry, rotation, translation, smooth=True)
 
@@ -192,8 +194,9 @@ def _margins(
             joints[..., 2, 1] = math.cos(limits.theta3[1]) - cos_knee
     else:
         reach = np.stack([l2 + l3 - r, r - abs(l2 - l3)], axis=-1)  # (..., N, 2)
-    ground = geometry.lowest_body_height(rotation, translation)
+    if smooth:
+        ground = geometry.smooth_ground_margins(rotation, translation)
+    else:
+        ground = geometry.lowest_body_height(rotation, translation)[..., None]
     shape = theta.shape[:-2]
-    return np.concatenate(
-        [reach.reshape(*shape, -1), joints.reshape(*shape, -1), ground[..., None]], axis=-1
-    )
+    return np.concatenate([reach.reshape(*shape, -1), joints.reshape(*shape, -1), ground], axis=-1)

@@ -56,12 +56,20 @@ BOX_STARTS = 16
 """Starts per direction spread over the search box (scrambled Sobol, seeded by direction)."""
 BOX_SCALE = 1.3
 """The search box reaches this multiple of each coordinate's larger axis-locked extreme."""
-ENOUGH = (6, 3)
-"""Stop a direction's search once 6 starts have run and 3 of them reached the best value."""
+ENOUGH = (4, 3)
+"""Stop a direction's search once 4 starts have run and 3 of them reached the best value."""
 MAX_ITERATIONS = 40
 """SLSQP iterations per start: converging starts need 5–20; the rest are cut short."""
 ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
 """Roll, pitch, yaw stay in Pinocchio's rpy ranges, so each pose has one name [rad]."""
+MIRRORS: dict[str, tuple[ArrayF, ArrayF]] = {
+    "left-right": (np.diag([1.0, -1.0, 1.0]), np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])),
+    "front-back": (np.diag([-1.0, 1.0, 1.0]), np.array([-1.0, 1.0, 1.0, 1.0, -1.0, -1.0])),
+}
+"""Reflections of the body frame (3 × 3) and what each does to a displacement
+(x, y, z, roll, pitch, yaw): the reflected pose of d is flip·d (R → M·R·M in rpy)."""
+SYMMETRY_TOLERANCE = 1e-9
+"""Mounts, footholds and limits must mirror to this [m or rad] for a symmetry to count."""
 
 
 @dataclass(frozen=True)
@@ -102,7 +110,12 @@ def free_flexibility(
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
     problem = _FreeProblem(geometry, collision)
-    solutions = [problem.solve(extreme, locked) for extreme in locked]
+    flips = mirror_flips(geometry)
+    solved: dict[tuple[str, int], DirectionSolution] = {}
+    for extreme in locked:
+        mirrored = problem.mirrored(extreme, solved, flips)
+        solved[(extreme.axis, extreme.sign)] = mirrored or problem.solve(extreme, locked)
+    solutions = [solved[(e.axis, e.sign)] for e in locked]
     doubtful = [_name(s.extreme) for s in solutions if not s.converged]
     if doubtful:
         warnings.warn(
@@ -120,6 +133,36 @@ def free_flexibility(
         iterations=sum(s.iterations for s in solutions),
         collisions=collisions,
     )
+
+
+def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
+    """The displacement flips (:data:`MIRRORS`) of the reflections the stance is symmetric under.
+
+    Symmetric: each stance leg's root, coxa direction and foothold reflect onto another
+    stance leg's, the root joint's limits are symmetric (a reflection negates θ1), and
+    the body (a centred box or cylinder) is its own mirror image.
+    """
+    lower, upper = geometry.limits.theta1
+    if abs(lower + upper) > SYMMETRY_TOLERANCE:
+        return []
+    flips = []
+    keep_handed = np.diag([1.0, -1.0, 1.0])  # the mirrored leg frame stays right-handed
+    for reflection, flip in MIRRORS.values():
+        roots = geometry.root_positions @ reflection
+        feet = geometry.footholds @ reflection
+        frames = reflection @ geometry.root_rotations @ keep_handed
+        matched = all(
+            any(
+                np.abs(roots[i] - geometry.root_positions[j]).max() < SYMMETRY_TOLERANCE
+                and np.abs(feet[i] - geometry.footholds[j]).max() < SYMMETRY_TOLERANCE
+                and np.abs(frames[i] - geometry.root_rotations[j]).max() < SYMMETRY_TOLERANCE
+                for j in range(len(geometry.legs))
+            )
+            for i in range(len(geometry.legs))
+        )
+        if matched:
+            flips.append(flip)
+    return flips
 
 
 def _name(extreme: Extreme) -> str:
@@ -150,15 +193,28 @@ class _FreeProblem:
         self.collision = collision
         self.labels = constraint_labels(geometry.legs)
         self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
+        self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
+        self._values = np.zeros(0)
 
     def margins(self, d: ArrayF) -> ArrayF:
         """Smooth margins at d (6,), less the floor: the NLP's inequality constraints."""
-        return self._smooth(d[None])[0] - MARGIN_FLOOR
+        return self._around(d)[0] - MARGIN_FLOOR
 
     def jacobian(self, d: ArrayF) -> ArrayF:
         """Forward differences of :meth:`margins`, all seven poses in one vectorized call."""
-        values = self._smooth(d + self.basis)
+        values = self._around(d)
         return (values[1:] - values[0]).T / STEP
+
+    def _around(self, d: ArrayF) -> ArrayF:
+        """Smooth margins at d and its six forward steps (7, C), kept for the next call.
+
+        SLSQP asks for the Jacobian where it last asked for the margins; one vectorized
+        evaluation serves both, and costs about what one pose alone does.
+        """
+        if self._at is None or not np.array_equal(self._at, d):
+            self._values = self._smooth(d + self.basis)
+            self._at = np.array(d, dtype=float)
+        return self._values
 
     def _smooth(self, displacements: ArrayF) -> ArrayF:
         rotation, translation = displacement_poses(self.geometry, displacements)
@@ -188,6 +244,33 @@ class _FreeProblem:
     def feasible(self, d: ArrayF) -> bool:
         """The exact check every answer must pass."""
         return bool(self.exact(d).min() >= -FEASIBILITY_TOLERANCE)
+
+    def mirrored(
+        self,
+        extreme: Extreme,
+        solved: dict[tuple[str, int], DirectionSolution],
+        flips: Sequence[ArrayF],
+    ) -> DirectionSolution | None:
+        """``extreme``'s direction as the mirror image of the opposite one, if solved.
+
+        The reflected pose must pass the exact feasibility check and reach at least the
+        axis-locked extreme; its binding constraints are found at the pose as for any
+        answer. None when no symmetry gives it.
+        """
+        k = AXES.index(extreme.axis)
+        opposite = solved.get((extreme.axis, -extreme.sign))
+        if opposite is None:
+            return None
+        for flip in flips:
+            if flip[k] > 0:
+                continue
+            d = flip * np.asarray(opposite.extreme.pose)
+            if not self.feasible(d) or extreme.sign * d[k] < extreme.sign * extreme.value:
+                continue
+            binding = self.binding(d)
+            solved_extreme = pose_extreme(self.geometry, extreme.axis, extreme.sign, d, binding)
+            return DirectionSolution(solved_extreme, opposite.converged, 0)
+        return None
 
     def solve(self, extreme: Extreme, locked: Sequence[Extreme]) -> DirectionSolution:
         """The free extreme of ``extreme``'s direction, never short of ``extreme`` itself."""
