@@ -20,9 +20,10 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import inverse_kinematics
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.bracketing import IndexArray, first_crossings
-from hexaleg.stance.constraints import AXES, Cause, direction_poses
+from hexaleg.stance.constraints import AXES, Cause, direction_poses, displacement_poses
 from hexaleg.stance.extremes import Extreme, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.symmetry import mirror_flips, mirror_of
 
 COLLISION_SCAN_STEPS = 16
 """Resolution of the collision scan along each direction, up to its other extreme."""
@@ -133,9 +134,28 @@ def collision_limited(
 
     Each direction is scanned from nominal to its extreme (:data:`COLLISION_SCAN_STEPS`
     steps); where the clearance turns negative, the crossing is solved on the clearance.
+    A robot standing on all its legs that is its own mirror image scans one of each
+    mirrored pair of directions and takes the other from the mirror
+    (:mod:`~hexaleg.stance.symmetry`), its touching pairs found at the mirrored pose.
     """
-    axis_of = np.array([AXES.index(e.axis) for e in extremes])
-    sign_of = np.array([e.sign for e in extremes], dtype=float)
+    flips = mirror_flips(geometry) if len(geometry.legs) == len(collision.model.leg_names) else []
+    mirrored: dict[int, tuple[int, ArrayF]] = {}  # direction → (its mirror image's, flip)
+    for k, extreme in enumerate(extremes):
+        axis = AXES.index(extreme.axis)
+        flip = mirror_of(axis, extreme.sign, flips)
+        source = next(
+            (
+                j
+                for j, e in enumerate(extremes[:k])
+                if (e.axis, e.sign) == (extreme.axis, -extreme.sign)
+            ),
+            None,
+        )
+        if flip is not None and source is not None and source not in mirrored:
+            mirrored[k] = (source, flip)
+    scanned = [k for k in range(len(extremes)) if k not in mirrored]
+    axis_of = np.array([AXES.index(extremes[k].axis) for k in scanned])
+    sign_of = np.array([extremes[k].sign for k in scanned], dtype=float)
 
     def clearance(direction: IndexArray, t: ArrayF) -> ArrayF:
         rotation, translation = direction_poses(
@@ -143,7 +163,7 @@ def collision_limited(
         )
         return collision.clearances(rotation, translation)[0][:, None]
 
-    reach = np.array([abs(e.value) for e in extremes])
+    reach = np.array([abs(extremes[k].value) for k in scanned])
     crossings = first_crossings(  # the nominal stance's clearance is checked on construction
         clearance,
         reach,
@@ -152,17 +172,31 @@ def collision_limited(
         tolerance=COLLISION_TOLERANCE,
         check_start=False,
     )
-    limited = []
-    for k, extreme in enumerate(extremes):
-        if crossings.which[k] < 0:
-            limited.append(extreme)
+    limited: dict[int, Extreme] = {}
+    for i, k in enumerate(scanned):
+        extreme = extremes[k]
+        if crossings.which[i] < 0:
+            limited[k] = extreme
             continue
         displacement = np.zeros(len(AXES))
-        displacement[axis_of[k]] = sign_of[k] * crossings.t[k]
-        rotation, translation = direction_poses(geometry, axis_of[k], displacement[axis_of[k]])
-        binding = collision.closest_pairs(rotation, translation)
-        limited.append(pose_extreme(geometry, extreme.axis, extreme.sign, displacement, binding))
-    return tuple(limited)
+        displacement[axis_of[i]] = sign_of[i] * crossings.t[i]
+        limited[k] = _touching(geometry, collision, extreme, displacement)
+    for k, (source, flip) in mirrored.items():
+        if limited[source] is extremes[source]:  # nothing touches: nor in the mirror
+            limited[k] = extremes[k]
+        else:
+            displacement = flip * np.asarray(limited[source].pose)
+            limited[k] = _touching(geometry, collision, extremes[k], displacement)
+    return tuple(limited[k] for k in range(len(extremes)))
+
+
+def _touching(
+    geometry: StanceGeometry, collision: SelfCollision, extreme: Extreme, displacement: ArrayF
+) -> Extreme:
+    """``extreme``'s direction stopped at ``displacement`` by the parts that touch there."""
+    rotation, translation = displacement_poses(geometry, displacement)
+    binding = collision.closest_pairs(rotation, translation)
+    return pose_extreme(geometry, extreme.axis, extreme.sign, displacement, binding)
 
 
 def _link_name(geometry_name: str) -> str:

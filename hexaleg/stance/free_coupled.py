@@ -43,6 +43,7 @@ from hexaleg.stance.extremes import (
 )
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.multistart import box_starts, maximize_coordinate
+from hexaleg.stance.symmetry import mirror_flips
 
 FEASIBILITY_TOLERANCE = 1e-9
 """Largest constraint violation [m or rad] an answer may have (exact margins)."""
@@ -63,14 +64,6 @@ MAX_ITERATIONS = 40
 """SLSQP iterations per start: converging starts need 5–20; the rest are cut short."""
 ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
 """Roll, pitch, yaw stay in Pinocchio's rpy ranges, so each pose has one name [rad]."""
-MIRRORS: dict[str, tuple[ArrayF, ArrayF]] = {
-    "left-right": (np.diag([1.0, -1.0, 1.0]), np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])),
-    "front-back": (np.diag([-1.0, 1.0, 1.0]), np.array([-1.0, 1.0, 1.0, 1.0, -1.0, -1.0])),
-}
-"""Reflections of the body frame (3 × 3) and what each does to a displacement
-(x, y, z, roll, pitch, yaw): the reflected pose of d is flip·d (R → M·R·M in rpy)."""
-SYMMETRY_TOLERANCE = 1e-9
-"""Mounts, footholds and limits must mirror to this [m or rad] for a symmetry to count."""
 
 
 @dataclass(frozen=True)
@@ -134,36 +127,6 @@ def free_flexibility(
         iterations=sum(s.iterations for s in solutions),
         collisions=collisions,
     )
-
-
-def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
-    """The displacement flips (:data:`MIRRORS`) of the reflections the stance is symmetric under.
-
-    Symmetric: each stance leg's root, coxa direction and foothold reflect onto another
-    stance leg's, the root joint's limits are symmetric (a reflection negates θ1), and
-    the body (a centred box or cylinder) is its own mirror image.
-    """
-    lower, upper = geometry.limits.theta1
-    if abs(lower + upper) > SYMMETRY_TOLERANCE:
-        return []
-    flips = []
-    keep_handed = np.diag([1.0, -1.0, 1.0])  # the mirrored leg frame stays right-handed
-    for reflection, flip in MIRRORS.values():
-        roots = geometry.root_positions @ reflection
-        feet = geometry.footholds @ reflection
-        frames = reflection @ geometry.root_rotations @ keep_handed
-        matched = all(
-            any(
-                np.abs(roots[i] - geometry.root_positions[j]).max() < SYMMETRY_TOLERANCE
-                and np.abs(feet[i] - geometry.footholds[j]).max() < SYMMETRY_TOLERANCE
-                and np.abs(frames[i] - geometry.root_rotations[j]).max() < SYMMETRY_TOLERANCE
-                for j in range(len(geometry.legs))
-            )
-            for i in range(len(geometry.legs))
-        )
-        if matched:
-            flips.append(flip)
-    return flips
 
 
 def _name(extreme: Extreme) -> str:

@@ -1,0 +1,59 @@
+"""Mirror symmetry of a stance: which reflections map the robot onto itself.
+
+A robot that is its own mirror image reaches, in each mirrored direction, the mirror
+image of what it reaches in the other: y−, roll− and yaw− mirror y+, roll+ and yaw+
+under the left-right reflection, x−, pitch− and yaw− mirror x+, pitch+ and yaw+ under
+the front-back one. The flexibility searches solve one of each pair and take the other
+from the mirror, re-checked like any answer.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from hexaleg._typing import ArrayF
+from hexaleg.stance.geometry import StanceGeometry
+
+MIRRORS: dict[str, tuple[ArrayF, ArrayF]] = {
+    "left-right": (np.diag([1.0, -1.0, 1.0]), np.array([1.0, -1.0, 1.0, -1.0, 1.0, -1.0])),
+    "front-back": (np.diag([-1.0, 1.0, 1.0]), np.array([-1.0, 1.0, 1.0, 1.0, -1.0, -1.0])),
+}
+"""Reflections of the body frame (3 × 3) and what each does to a displacement
+(x, y, z, roll, pitch, yaw): the reflected pose of d is flip·d (R → M·R·M in rpy)."""
+SYMMETRY_TOLERANCE = 1e-9
+"""Mounts, footholds and limits must mirror to this [m or rad] for a symmetry to count."""
+
+
+def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
+    """The displacement flips (:data:`MIRRORS`) of the reflections the stance is symmetric under.
+
+    Symmetric: each stance leg's root, coxa direction and foothold reflect onto another
+    stance leg's, the root joint's limits are symmetric (a reflection negates θ1), and
+    the body (a centred box or cylinder) is its own mirror image.
+    """
+    lower, upper = geometry.limits.theta1
+    if abs(lower + upper) > SYMMETRY_TOLERANCE:
+        return []
+    flips = []
+    keep_handed = np.diag([1.0, -1.0, 1.0])  # the mirrored leg frame stays right-handed
+    for reflection, flip in MIRRORS.values():
+        roots = geometry.root_positions @ reflection
+        feet = geometry.footholds @ reflection
+        frames = reflection @ geometry.root_rotations @ keep_handed
+        matched = all(
+            any(
+                np.abs(roots[i] - geometry.root_positions[j]).max() < SYMMETRY_TOLERANCE
+                and np.abs(feet[i] - geometry.footholds[j]).max() < SYMMETRY_TOLERANCE
+                and np.abs(frames[i] - geometry.root_rotations[j]).max() < SYMMETRY_TOLERANCE
+                for j in range(len(geometry.legs))
+            )
+            for i in range(len(geometry.legs))
+        )
+        if matched:
+            flips.append(flip)
+    return flips
+
+
+def mirror_of(k: int, sign: int, flips: list[ArrayF]) -> ArrayF | None:
+    """A flip mapping direction (k, −sign) onto (k, sign), if the stance has one."""
+    return next((flip for flip in flips if flip[k] < 0), None)

@@ -1,0 +1,62 @@
+"""Mirror symmetry: which robots are their own mirror image, and mirrored extremes are real."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+
+from hexaleg import HexapodDesign, HexapodModel, JointLimits
+from hexaleg.limits import STANCE_LIMITS
+from hexaleg.stance import StanceGeometry
+from hexaleg.stance.axis_locked import axis_locked_extremes
+from hexaleg.stance.free_coupled import _FreeProblem
+from hexaleg.stance.symmetry import MIRRORS, mirror_flips
+
+LEFT_RIGHT, FRONT_BACK = (tuple(flip) for _, flip in MIRRORS.values())
+
+
+@pytest.mark.parametrize(
+    ("design", "stance", "expected"),
+    [
+        (HexapodDesign(), "all", {LEFT_RIGHT, FRONT_BACK}),
+        (HexapodDesign(layout="hexagon"), "all", {LEFT_RIGHT, FRONT_BACK}),
+        (HexapodDesign(layout="hexagon", first_leg_angle=0.3), "all", set()),  # 0.3 ≠ −0.3 mod 60°
+        (HexapodDesign(front_yaw=0.5), "all", {LEFT_RIGHT}),
+        (HexapodDesign(), "tripod", {FRONT_BACK}),  # (lf, rm, lr): front and back swap
+        (
+            HexapodDesign(
+                stance_limits=JointLimits(
+                    (-0.5, 0.7), STANCE_LIMITS.theta2, STANCE_LIMITS.theta3, name="lopsided"
+                )
+            ),
+            "all",
+            set(),
+        ),
+    ],
+    ids=["box", "hexagon", "hexagon turned", "front legs angled", "tripod", "lopsided root"],
+)
+def test_mirror_flips_find_exactly_the_robots_symmetries(design, stance, expected):
+    geometry = StanceGeometry.from_model(HexapodModel(design), stance)
+    assert {tuple(flip) for flip in mirror_flips(geometry)} == expected
+
+
+def test_a_mirrored_free_extreme_equals_solving_it_directly():
+    design = HexapodDesign(l1=0.15, l2=0.5, l3=0.35)
+    geometry = StanceGeometry.from_model(HexapodModel(design))
+    locked = axis_locked_extremes(geometry)
+    problem = _FreeProblem(geometry, None)
+    flips = mirror_flips(geometry)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for axis in ("y", "roll", "yaw"):
+            plus, minus = (
+                next(e for e in locked if (e.axis, e.sign) == (axis, s)) for s in (1, -1)
+            )
+            solved = {(axis, 1): problem.solve(plus, locked)}
+            mirrored = problem.mirrored(minus, solved, flips)
+            direct = problem.solve(minus, locked)
+            assert mirrored is not None
+            assert mirrored.extreme.value == pytest.approx(direct.extreme.value, abs=1e-6)
+            assert problem.feasible(np.asarray(mirrored.extreme.pose))
