@@ -29,7 +29,7 @@ COLLISION_SCAN_STEPS = 16
 """Resolution of the collision scan along each direction, up to its other extreme."""
 COLLISION_SCAN_CHUNKS = 4
 """The scan runs in this many chunks: a direction stops being scanned once it collides."""
-COLLISION_TOLERANCE = 1e-10
+COLLISION_TOLERANCE = 1e-8
 """Bracket width of a collision crossing, relative to the searched distance: coal's
 distances near contact are good to a few 1e-7 m, so a tighter root means nothing."""
 TIE_DISTANCE = 1e-6
