@@ -67,3 +67,23 @@ def test_symmetric_robot_has_symmetric_extremes(hexapod_model, default_design):
 def test_fb_lies_in_0_1(l1_ratio, l3_ratio):
     result = flexibility(HexapodDesign.from_ratios(l1_ratio, l3_ratio), "axis", "all")
     assert 0 <= result.fb <= 1
+
+
+@pytest.mark.parametrize("layout", ["rectangle", "hexagon"])
+def test_many_designs_searched_together_equal_each_searched_alone(layout):
+    from hexaleg.design import l3_ratio_grid
+    from hexaleg.stance.axis_locked import axis_locked_extremes, axis_locked_extremes_many
+
+    base = HexapodDesign(layout=layout)
+    template = StanceGeometry.from_model(HexapodModel(base))
+    geometries = [
+        template.with_design(base.with_ratios(r1, r3))
+        for r1 in (0.05, 0.2)
+        for r3 in l3_ratio_grid(9)
+    ]
+    together = axis_locked_extremes_many(geometries)
+    for geometry, extremes in zip(geometries, together, strict=True):
+        alone = axis_locked_extremes(geometry)
+        assert [e.value for e in extremes] == pytest.approx([e.value for e in alone], abs=1e-12)
+        assert [e.binding for e in extremes] == [e.binding for e in alone]
+        assert [e.pose for e in extremes] == [e.pose for e in alone]

@@ -11,10 +11,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
+from typing import cast
 
 import numpy as np
 
-from hexaleg._typing import ArrayF, StanceSet
+from hexaleg._typing import ArrayF, Lengths, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.bracketing import IndexArray, first_crossings
@@ -60,6 +62,54 @@ def axis_locked_extremes(geometry: StanceGeometry) -> tuple[Extreme, ...]:
     return pose_extremes(geometry, directions, displacements)
 
 
+def axis_locked_extremes_many(
+    geometries: Sequence[StanceGeometry],
+) -> list[tuple[Extreme, ...]]:
+    """The twelve axis-locked extremes of each of many stances in one vectorized search.
+
+    The stances must share their body, mounts, stance legs and limits (as the designs of
+    a sweep do: :meth:`StanceGeometry.with_design` of one template) and may differ in
+    segment lengths, footholds and height: those become per-direction arrays, so the
+    numerical work grows with the number of designs and the call overhead does not.
+    Each design's extremes equal :func:`axis_locked_extremes` of its own geometry.
+    """
+    count = len(DIRECTIONS)
+    template = geometries[0]
+    lengths = np.array([g.lengths for g in geometries])  # (D, 3)
+    footholds = np.array([g.footholds for g in geometries])  # (D, N, 3)
+    heights = np.array([g.nominal_height for g in geometries])  # (D,)
+    design_of = np.repeat(np.arange(len(geometries)), count)
+    axis_of = np.tile([AXES.index(a) for a, _ in DIRECTIONS], len(geometries))
+    sign_of = np.tile([float(s) for _, s in DIRECTIONS], len(geometries))
+
+    def margins(direction: IndexArray, t: ArrayF) -> ArrayF:
+        which = design_of[direction]
+        # per-direction arrays where the kernels take numbers: they broadcast alike
+        rows = replace(
+            template,
+            lengths=cast(Lengths, tuple(lengths[which, j, None] for j in range(3))),
+            footholds=footholds[which],
+            nominal_height=cast(float, heights[which]),
+        )
+        rotation, translation = direction_poses(rows, axis_of[direction], sign_of[direction] * t)
+        return stance_margins(rows, rotation, translation)
+
+    t_max = np.concatenate([search_ranges(g) for g in geometries])
+    crossings = first_crossings(margins, t_max)
+    labels = constraint_labels(template.legs)
+    results = []
+    for i, geometry in enumerate(geometries):
+        mine = range(i * count, (i + 1) * count)
+        displacements = np.zeros((count, len(AXES)))
+        displacements[np.arange(count), axis_of[mine]] = sign_of[mine] * crossings.t[mine]
+        directions = [
+            (axis, sign, [labels[c] for c in crossings.binding[d]] or [Cause("range")])
+            for d, (axis, sign) in zip(mine, DIRECTIONS, strict=True)
+        ]
+        results.append(pose_extremes(geometry, directions, displacements))
+    return results
+
+
 def axis_locked_flexibility(
     design: HexapodDesign,
     stance: StanceSet | Sequence[str] = "all",
@@ -83,7 +133,41 @@ def axis_locked_flexibility(
         geometry = StanceGeometry.from_model(model, stance)
     else:
         geometry = geometry.with_design(design)
-    extremes = axis_locked_extremes(geometry)
+    return _result(design, geometry, axis_locked_extremes(geometry), model, collisions)
+
+
+def axis_locked_flexibility_many(
+    designs: Sequence[HexapodDesign],
+    template: StanceGeometry,
+    models: Sequence[HexapodModel],
+    collisions: bool = False,
+) -> list[FlexibilityResult]:
+    """:func:`axis_locked_flexibility` of many designs of one body, searched together.
+
+    Args:
+        designs: Designs differing from ``template``'s only in their legs and posture.
+        template: The stance geometry of their body, mounts and stance legs.
+        models: Each design's Pinocchio model (used for collisions).
+        collisions: Also stop where two of the robot's own parts touch (coal).
+
+    """
+    geometries = [template.with_design(design) for design in designs]
+    return [
+        _result(design, geometry, extremes, model, collisions)
+        for design, geometry, extremes, model in zip(
+            designs, geometries, axis_locked_extremes_many(geometries), models, strict=True
+        )
+    ]
+
+
+def _result(
+    design: HexapodDesign,
+    geometry: StanceGeometry,
+    extremes: tuple[Extreme, ...],
+    model: HexapodModel | None,
+    collisions: bool,
+) -> FlexibilityResult:
+    """The result of a design's axis-locked extremes, cut short by collisions if asked."""
     if collisions:
         model = HexapodModel(design) if model is None else model
         extremes = collision_limited(geometry, SelfCollision(model, geometry), extremes)

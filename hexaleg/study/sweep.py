@@ -37,7 +37,8 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import DesignError, HexalegError
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
+from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.loads import loads_at_extremes
@@ -120,10 +121,14 @@ class StudySpec:
         }
 
 
+CHUNK = 8
+"""Designs per task: the axis-locked search runs them together (a third less time per
+design than one by one), and two workers still share 320 designs evenly."""
+
+
 @dataclass(frozen=True)
 class _Task:
-    l1_ratio: float
-    l3_ratio: float
+    keys: tuple[tuple[float, float], ...]  # (l1 ratio, l3 ratio) of each design
     spec: StudySpec
     template: StanceGeometry | None  # fast path for axis-locked studies
 
@@ -132,32 +137,65 @@ Row = dict[str, Any]
 """One design's results: ratios, lengths [m], FB, ranges and extremes [m, rad], causes."""
 
 
-def evaluate(task: _Task) -> Row:
-    """One row of the study table; errors become a row with ``error`` set."""
-    row: Row = {"l1_ratio": task.l1_ratio, "l3_ratio": task.l3_ratio}
-    try:
-        spec = task.spec
-        design = spec.base.with_ratios(task.l1_ratio, task.l3_ratio, spec.total)
-        model = base_model(spec.base).with_design(design)
-        if spec.mode == "axis":
-            result = axis_locked_flexibility(
-                design, spec.stance, model, geometry=task.template, collisions=spec.collisions
+def evaluate(task: _Task) -> list[Row]:
+    """The rows of a task's designs; a design's error becomes its row's ``error``."""
+    spec = task.spec
+    designs: dict[tuple[float, float], HexapodDesign] = {}
+    rows: dict[tuple[float, float], Row] = {}
+    for key in task.keys:
+        try:
+            designs[key] = spec.base.with_ratios(key[0], key[1], spec.total)
+        except HexalegError as err:
+            rows[key] = _error_row(key, err)
+    results: dict[tuple[float, float], FlexibilityResult] = {}
+    if spec.mode == "axis" and task.template is not None and designs:
+        try:
+            models = [base_model(spec.base).with_design(d) for d in designs.values()]
+            found = axis_locked_flexibility_many(
+                list(designs.values()), task.template, models, spec.collisions
             )
-        else:
-            with warnings.catch_warnings():
-                warnings.simplefilter("ignore")
-                result = free_flexibility(design, spec.stance, model, collisions=spec.collisions)
-        statics = loads_at_extremes(model, result).study_columns() if spec.statics else {}
-    except HexalegError as err:
-        return row | {"l1": math.nan, "l2": math.nan, "l3": math.nan, "error": str(err)}
+            results = dict(zip(designs, found, strict=True))
+        except HexalegError:
+            results = {}  # one design spoils the batch: each is tried on its own below
+    for key, design in designs.items():
+        try:
+            rows[key] = _row(key, design, spec, task.template, results.get(key))
+        except HexalegError as err:
+            rows[key] = _error_row(key, err)
+    return [rows[key] for key in task.keys]
+
+
+def _row(
+    key: tuple[float, float],
+    design: HexapodDesign,
+    spec: StudySpec,
+    template: StanceGeometry | None,
+    result: FlexibilityResult | None,
+) -> Row:
+    """One design's row: its flexibility (computed here unless given) and statics."""
+    model = base_model(spec.base).with_design(design)
+    if result is None and spec.mode == "axis":
+        result = axis_locked_flexibility(
+            design, spec.stance, model, geometry=template, collisions=spec.collisions
+        )
+    elif result is None:
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            result = free_flexibility(design, spec.stance, model, collisions=spec.collisions)
+    row: Row = {"l1_ratio": key[0], "l3_ratio": key[1]}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
-    row |= statics
+    row |= loads_at_extremes(model, result).study_columns() if spec.statics else {}
     row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
     for extreme in result.extremes:
         name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
         row[name] = extreme.value
         row[f"{name}_limited_by"] = extreme.description
     return row | {"converged": result.converged, "error": ""}
+
+
+def _error_row(key: tuple[float, float], err: HexalegError) -> Row:
+    return {"l1_ratio": key[0], "l3_ratio": key[1], "l1": math.nan, "l2": math.nan,
+            "l3": math.nan, "error": str(err)}  # fmt: skip
 
 
 def sweep(
@@ -172,17 +210,18 @@ def sweep(
     """
     template = _template_geometry(spec) if spec.mode == "axis" else None
     done = set(skip)
+    todo = [key for key in spec.keys() if key not in done]
+    size = CHUNK if spec.mode == "axis" else 1  # free-coupled designs take a second each
     futures = [
-        executor.submit(evaluate, _Task(r1, r3, spec, template))
-        for r1, r3 in spec.keys()
-        if (r1, r3) not in done
+        executor.submit(evaluate, _Task(tuple(todo[i : i + size]), spec, template))
+        for i in range(0, len(todo), size)
     ]
     rows: dict[tuple[float, float], Row] = {}
     for future in as_completed(futures):
-        row = future.result()
-        rows[(row["l1_ratio"], row["l3_ratio"])] = row
-        if on_row is not None:
-            on_row(row)
+        for row in future.result():
+            rows[(row["l1_ratio"], row["l3_ratio"])] = row
+            if on_row is not None:
+                on_row(row)
     return rows
 
 
@@ -204,8 +243,13 @@ def _template_geometry(spec: StudySpec) -> StanceGeometry:
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
     """The whole study evaluated in this process, as a table (for small, fast studies)."""
     template = _template_geometry(spec) if spec.mode == "axis" else None
-    rows = {(r1, r3): evaluate(_Task(r1, r3, spec, template)) for r1, r3 in spec.keys()}
-    return study_table(spec, rows)
+    keys = spec.keys()
+    rows = [
+        row
+        for i in range(0, len(keys), CHUNK)
+        for row in evaluate(_Task(tuple(keys[i : i + CHUNK]), spec, template))
+    ]
+    return study_table(spec, {(row["l1_ratio"], row["l3_ratio"]): row for row in rows})
 
 
 def run_study(
