@@ -33,7 +33,7 @@ def test_nothing_breaking_reports_the_search_range():
 def test_anderson_bjorck_finds_smooth_roots_and_keeps_the_feasible_end():
     """Known roots: g(t) = c − t² has its root at √c; the returned end is never past it."""
     c = np.array([0.5, 2.0, 0.01])
-    roots = anderson_bjorck(lambda t: c - t**2, np.zeros(3), np.full(3, 2.0))
+    roots = anderson_bjorck(lambda t, i: c[i] - t**2, np.zeros(3), np.full(3, 2.0))
     np.testing.assert_allclose(roots, np.sqrt(c), rtol=1e-11)
     assert np.all(c - roots**2 >= 0)
 

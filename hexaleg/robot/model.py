@@ -119,7 +119,12 @@ class HexapodModel:
 
     """
 
-    def __init__(self, design: HexapodDesign, _model: pin.Model | None = None) -> None:
+    def __init__(
+        self,
+        design: HexapodDesign,
+        _model: pin.Model | None = None,
+        _legs: dict[str, _LegIndex] | None = None,
+    ) -> None:
         self.design = design
         self._urdf = None if _model is not None else render_hexapod(design)
         self.model = (
@@ -129,7 +134,7 @@ class HexapodModel:
         )
         self.data = self.model.createData()
         self.leg_names: tuple[str, ...] = design.leg_names
-        self._legs = {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
+        self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         self.base_frame = _frame_id(self.model, "base_link")
         self._collision: pin.GeometryModel | None = None
 
@@ -181,7 +186,7 @@ class HexapodModel:
                 model.frames[_frame_id(model, name)] = frame
             for joint, effort in zip((root, hip, knee), design.rated_torques, strict=True):
                 model.effortLimit[model.idx_vs[joint]] = effort
-        return HexapodModel(design, _model=model)
+        return HexapodModel(design, _model=model, _legs=self._legs)  # same joints and frames
 
     # -- indices ------------------------------------------------------------------------
 

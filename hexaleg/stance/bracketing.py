@@ -113,8 +113,8 @@ def first_crossings(
         pair_row, pair_constraint = np.nonzero(at_hi < 0)
         directions = index[pair_row]
 
-        def pair_margin(t: ArrayF) -> ArrayF:
-            return margins(directions, t)[np.arange(len(t)), pair_constraint]
+        def pair_margin(t: ArrayF, pairs: IndexArray) -> ArrayF:
+            return margins(directions[pairs], t)[np.arange(len(t)), pair_constraint[pairs]]
 
         root = anderson_bjorck(pair_margin, lo[directions], hi[directions], tolerance)
         for d in index:
@@ -127,7 +127,7 @@ def first_crossings(
 
 
 def anderson_bjorck(
-    g: Callable[[ArrayF], ArrayF],
+    g: Callable[[ArrayF, IndexArray], ArrayF],
     lo: ArrayF,
     hi: ArrayF,
     relative_tolerance: float = BRACKET_TOLERANCE,
@@ -137,26 +137,37 @@ def anderson_bjorck(
     Regula falsi with the Anderson–Björck correction: when the same end moves
     twice, the other end's value is scaled by m = 1 − g(new)/g(old) (½ if m ≤ 0),
     which keeps the bracket and converges superlinearly on smooth margins.
+
+    Args:
+        g: ``g(t, index)``: the functions numbered ``index`` at ``t`` (both (K,)); only
+            brackets still open are evaluated.
+        lo: Feasible ends (D,).
+        hi: Infeasible ends (D,).
+        relative_tolerance: Final bracket width relative to ``hi`` (at least 1).
+
     """
-    g_lo, g_hi = g(lo), g(hi)
+    lo, hi = lo.astype(float), hi.astype(float)
+    every = np.arange(len(lo))
+    g_lo, g_hi = g(lo, every), g(hi, every)
     side = np.zeros(len(lo))  # which end moved last: +1 lo, −1 hi
     tolerance = relative_tolerance * np.maximum(hi, 1.0)
     for _ in range(REFINE_ITERATIONS):
         # done: a tight bracket, or a feasible end whose margin is at round-off level
-        done = (hi - lo <= tolerance) | (g_lo <= MARGIN_ROUNDOFF)
-        if np.all(done):
+        live = np.flatnonzero((hi - lo > tolerance) & (g_lo > MARGIN_ROUNDOFF))
+        if live.size == 0:
             break
-        t = (lo * g_hi - hi * g_lo) / (g_hi - g_lo)
-        t = np.where((t > lo) & (t < hi), t, 0.5 * (lo + hi))
-        g_t = g(t)
-        feasible = (g_t >= 0) & ~done
-        replaced_hi = (g_t < 0) & ~done
-        old = np.where(feasible, g_lo, g_hi)  # value at the end being replaced
+        a, b, ga, gb = lo[live], hi[live], g_lo[live], g_hi[live]
+        t = (a * gb - b * ga) / (gb - ga)
+        t = np.where((t > a) & (t < b), t, 0.5 * (a + b))
+        g_t = g(t, live)
+        feasible = g_t >= 0
+        old = np.where(feasible, ga, gb)  # value at the end being replaced
         scale = 1.0 - g_t / np.where(old != 0, old, 1.0)
         scale = np.where(scale > 0, scale, 0.5)
-        g_hi = np.where(feasible & (side > 0), scale * g_hi, g_hi)
-        g_lo = np.where(replaced_hi & (side < 0), scale * g_lo, g_lo)
-        lo, g_lo = np.where(feasible, t, lo), np.where(feasible, g_t, g_lo)
-        hi, g_hi = np.where(replaced_hi, t, hi), np.where(replaced_hi, g_t, g_hi)
-        side = np.where(feasible, 1.0, np.where(replaced_hi, -1.0, side))
+        moved = side[live]
+        gb = np.where(feasible & (moved > 0), scale * gb, gb)
+        ga = np.where(~feasible & (moved < 0), scale * ga, ga)
+        lo[live], g_lo[live] = np.where(feasible, t, a), np.where(feasible, g_t, ga)
+        hi[live], g_hi[live] = np.where(feasible, b, t), np.where(feasible, gb, g_t)
+        side[live] = np.where(feasible, 1.0, -1.0)
     return lo

@@ -140,26 +140,29 @@ Row = dict[str, Any]
 def evaluate(task: _Task) -> list[Row]:
     """The rows of a task's designs; a design's error becomes its row's ``error``."""
     spec = task.spec
-    designs: dict[tuple[float, float], HexapodDesign] = {}
+    designs: dict[tuple[float, float], tuple[HexapodDesign, HexapodModel]] = {}
     rows: dict[tuple[float, float], Row] = {}
     for key in task.keys:
         try:
-            designs[key] = spec.base.with_ratios(key[0], key[1], spec.total)
+            design = spec.base.with_ratios(key[0], key[1], spec.total)
+            designs[key] = (design, base_model(spec.base).with_design(design))
         except HexalegError as err:
             rows[key] = _error_row(key, err)
     results: dict[tuple[float, float], FlexibilityResult] = {}
     if spec.mode == "axis" and task.template is not None and designs:
         try:
-            models = [base_model(spec.base).with_design(d) for d in designs.values()]
             found = axis_locked_flexibility_many(
-                list(designs.values()), task.template, models, spec.collisions
+                [design for design, _ in designs.values()],
+                task.template,
+                [model for _, model in designs.values()],
+                spec.collisions,
             )
             results = dict(zip(designs, found, strict=True))
         except HexalegError:
             results = {}  # one design spoils the batch: each is tried on its own below
-    for key, design in designs.items():
+    for key, (design, model) in designs.items():
         try:
-            rows[key] = _row(key, design, spec, task.template, results.get(key))
+            rows[key] = _row(key, design, model, spec, task.template, results.get(key))
         except HexalegError as err:
             rows[key] = _error_row(key, err)
     return [rows[key] for key in task.keys]
@@ -168,12 +171,12 @@ def evaluate(task: _Task) -> list[Row]:
 def _row(
     key: tuple[float, float],
     design: HexapodDesign,
+    model: HexapodModel,
     spec: StudySpec,
     template: StanceGeometry | None,
     result: FlexibilityResult | None,
 ) -> Row:
     """One design's row: its flexibility (computed here unless given) and statics."""
-    model = base_model(spec.base).with_design(design)
     if result is None and spec.mode == "axis":
         result = axis_locked_flexibility(
             design, spec.stance, model, geometry=template, collisions=spec.collisions
