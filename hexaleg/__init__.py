@@ -18,10 +18,14 @@ from hexaleg._version import __version__
 _EXPORTS: dict[str, str] = {
     # design and limits
     "HexapodDesign": "hexaleg.design",
-    "LEG_NAMES": "hexaleg.design",
-    "LegMount": "hexaleg.design",
-    "TRIPODS": "hexaleg.design",
+    "LEG_NAMES": "hexaleg.layouts",
+    "LegMount": "hexaleg.layouts",
+    "TRIPODS": "hexaleg.layouts",
     "default_mounts": "hexaleg.design",
+    "hexagon_mounts": "hexaleg.layouts",
+    "rectangle_mounts": "hexaleg.layouts",
+    "design_toml": "hexaleg.design_file",
+    "load_design": "hexaleg.design_file",
     "IMPROVED_LIMITS": "hexaleg.limits",
     "JointLimits": "hexaleg.limits",
     "MANIPULABILITY_LIMITS": "hexaleg.limits",
@@ -91,12 +95,16 @@ __all__ = [
     "analyze_workspace",
     "build_report",
     "default_mounts",
+    "design_toml",
     "flexibility",
     "foot_jacobian",
     "foot_position",
+    "hexagon_mounts",
     "inverse_kinematics",
+    "load_design",
     "manipulability",
     "planar_foot_position",
+    "rectangle_mounts",
     "render_hexapod",
     "render_leg",
     "run_study",
@@ -119,7 +127,8 @@ def __dir__() -> list[str]:
 
 
 if TYPE_CHECKING:  # the same names, for type checkers and IDEs
-    from hexaleg.design import LEG_NAMES, TRIPODS, HexapodDesign, LegMount, default_mounts
+    from hexaleg.design import HexapodDesign, default_mounts
+    from hexaleg.design_file import design_toml, load_design
     from hexaleg.exceptions import DesignError, HexalegError, ModelError, TemplateError
     from hexaleg.kinematics import (
         InverseKinematics,
@@ -129,6 +138,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         manipulability,
         planar_foot_position,
     )
+    from hexaleg.layouts import LEG_NAMES, TRIPODS, LegMount, hexagon_mounts, rectangle_mounts
     from hexaleg.limits import (
         IMPROVED_LIMITS,
         MANIPULABILITY_LIMITS,
