@@ -14,6 +14,8 @@ import shutil
 import tempfile
 from pathlib import Path
 
+from hexaleg.exceptions import HexalegError
+
 
 def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
     """Write ``text`` to ``path`` via a temporary file in the same folder and a rename."""
@@ -21,10 +23,23 @@ def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
 
 
 def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
-    """Write ``data`` to ``path`` via a temporary file in the same folder and a rename."""
+    """Write ``data`` to ``path`` via a temporary file in the same folder and a rename.
+
+    Raises:
+        HexalegError: ``path`` names a folder (or nothing), or the folder cannot be
+            written; one line, nothing left behind.
+
+    """
     target = Path(path)
-    target.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    if not str(path):
+        raise HexalegError("an empty path is not a file to write")
+    if target.is_dir():
+        raise HexalegError(f"{target} is a folder, not a file to write")
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+    except OSError as err:
+        raise HexalegError(f"cannot write {target}: {err.strerror or err}") from None
     try:
         os.fchmod(fd, 0o666 & ~_current_umask())  # as open() would create it
         with os.fdopen(fd, "wb") as handle:
@@ -32,8 +47,10 @@ def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
             handle.flush()
             os.fsync(handle.fileno())
         os.replace(tmp, target)
-    except BaseException:
+    except BaseException as err:
         Path(tmp).unlink(missing_ok=True)
+        if isinstance(err, OSError):
+            raise HexalegError(f"cannot write {target}: {err.strerror or err}") from None
         raise
     return target
 

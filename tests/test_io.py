@@ -6,7 +6,9 @@ import os
 import subprocess
 import sys
 
-from hexaleg._io import remove_stale_staging, staging_folder
+import pytest
+
+from hexaleg._io import atomic_write_text, remove_stale_staging, staging_folder
 
 
 def _umask() -> int:
@@ -39,3 +41,17 @@ def test_only_staging_of_ended_processes_is_removed(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == sorted(
         p.name for p in (mine, other_target, user_folder)
     )
+
+
+@pytest.mark.parametrize("where", ["", "folder", "missing-parent-is-a-file/x.txt"])
+def test_unwritable_targets_are_one_line_errors_and_leave_nothing(tmp_path, where):
+    from hexaleg.exceptions import HexalegError
+
+    (tmp_path / "folder").mkdir()
+    (tmp_path / "missing-parent-is-a-file").write_text("a file, not a folder")
+    before = sorted(p.name for p in tmp_path.rglob("*"))
+    path = str(tmp_path / where) if where else ""
+    with pytest.raises(HexalegError) as caught:
+        atomic_write_text(path, "text")
+    assert "\n" not in str(caught.value)
+    assert sorted(p.name for p in tmp_path.rglob("*")) == before
