@@ -387,7 +387,7 @@ class HexapodDesign:
 
     def layout_mounts(self) -> tuple[LegMount, ...] | None:
         """The mounts this design's layout places, or ``None`` for a custom layout."""
-        if self.layout == "rectangle" or self.layout is None:
+        if self.layout == "rectangle":
             return rectangle_mounts(
                 self.body_length,
                 self.body_width,

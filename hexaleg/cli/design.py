@@ -4,13 +4,17 @@ from __future__ import annotations
 
 import argparse
 import math
-import sys
 from pathlib import Path
 from typing import Any
 
 from hexaleg.cli.options import UsageError, add_design_options, design_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
 from hexaleg.design import HexapodDesign
+
+INIT_DESCRIPTION = (
+    "Write FILE: every design field with its unit in a comment, at the defaults or at "
+    "the values the options give (say --layout hexagon --body-radius 0.35)."
+)
 
 DESCRIPTION = (
     "Keep your robot in a design file: `design init FILE` writes a commented TOML file "
@@ -24,7 +28,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     actions = parser.add_subparsers(dest="action", metavar="ACTION", parser_class=type(parser))
     actions.required = True
     init = actions.add_parser(
-        "init", help="write a commented TOML design file", description=init_description()
+        "init", help="write a commented TOML design file", description=INIT_DESCRIPTION
     )
     init.add_argument("file", metavar="FILE", help="the .toml file to write")
     init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
@@ -37,14 +41,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     add_design_options(show)
     show.add_argument("--json", action="store_true", help="print one JSON object")
-
-
-def init_description() -> str:
-    """``design init``'s description."""
-    return (
-        "Write FILE: every design field with its unit in a comment, at the defaults or at "
-        "the values the options give (say --layout hexagon --body-radius 0.35)."
-    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -108,4 +104,3 @@ def show(design: HexapodDesign) -> None:
             f"{mount.yaw:8.4f} ({math.degrees(mount.yaw):6.1f}°)  "
             + ", ".join(f"{v:.4f}" for v in foot)
         )
-    sys.stdout.flush()

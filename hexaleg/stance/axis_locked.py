@@ -42,24 +42,7 @@ def search_ranges(geometry: StanceGeometry) -> ArrayF:
 
 def axis_locked_extremes(geometry: StanceGeometry) -> tuple[Extreme, ...]:
     """The twelve axis-locked extremes of a stance geometry, with their causes."""
-    axis_of = np.array([AXES.index(a) for a, _ in DIRECTIONS])
-    sign_of = np.array([s for _, s in DIRECTIONS], dtype=float)
-
-    def margins(direction: IndexArray, t: ArrayF) -> ArrayF:
-        rotation, translation = direction_poses(
-            geometry, axis_of[direction], sign_of[direction] * t
-        )
-        return stance_margins(geometry, rotation, translation)
-
-    crossings = first_crossings(margins, search_ranges(geometry))
-    labels = constraint_labels(geometry.legs)
-    displacements = np.zeros((len(DIRECTIONS), len(AXES)))
-    displacements[np.arange(len(DIRECTIONS)), axis_of] = sign_of * crossings.t
-    directions = [
-        (axis, sign, [labels[c] for c in crossings.binding[d]] or [Cause("range")])
-        for d, (axis, sign) in enumerate(DIRECTIONS)
-    ]
-    return pose_extremes(geometry, directions, displacements)
+    return axis_locked_extremes_many([geometry])[0]
 
 
 def axis_locked_extremes_many(
@@ -71,7 +54,7 @@ def axis_locked_extremes_many(
     a sweep do: :meth:`StanceGeometry.with_design` of one template) and may differ in
     segment lengths, footholds and height: those become per-direction arrays, so the
     numerical work grows with the number of designs and the call overhead does not.
-    Each design's extremes equal :func:`axis_locked_extremes` of its own geometry.
+    One geometry alone is :func:`axis_locked_extremes`.
     """
     count = len(DIRECTIONS)
     template = geometries[0]

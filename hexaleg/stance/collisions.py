@@ -23,7 +23,7 @@ from hexaleg.stance.bracketing import IndexArray, first_crossings
 from hexaleg.stance.constraints import AXES, Cause, direction_poses, displacement_poses
 from hexaleg.stance.extremes import Extreme, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.symmetry import mirror_flips, mirror_of
+from hexaleg.stance.symmetry import mirror_flips, reversing
 
 COLLISION_SCAN_STEPS = 16
 """Resolution of the collision scan along each direction, up to its other extreme."""
@@ -139,20 +139,13 @@ def collision_limited(
     (:mod:`~hexaleg.stance.symmetry`), its touching pairs found at the mirrored pose.
     """
     flips = mirror_flips(geometry) if len(geometry.legs) == len(collision.model.leg_names) else []
+    index = {(e.axis, e.sign): k for k, e in enumerate(extremes)}
     mirrored: dict[int, tuple[int, ArrayF]] = {}  # direction → (its mirror image's, flip)
     for k, extreme in enumerate(extremes):
-        axis = AXES.index(extreme.axis)
-        flip = mirror_of(axis, extreme.sign, flips)
-        source = next(
-            (
-                j
-                for j, e in enumerate(extremes[:k])
-                if (e.axis, e.sign) == (extreme.axis, -extreme.sign)
-            ),
-            None,
-        )
-        if flip is not None and source is not None and source not in mirrored:
-            mirrored[k] = (source, flip)
+        source = index.get((extreme.axis, -extreme.sign))
+        reverse = reversing(AXES.index(extreme.axis), flips)
+        if reverse and source is not None and source < k and source not in mirrored:
+            mirrored[k] = (source, reverse[0])
     scanned = [k for k in range(len(extremes)) if k not in mirrored]
     axis_of = np.array([AXES.index(extremes[k].axis) for k in scanned])
     sign_of = np.array([extremes[k].sign for k in scanned], dtype=float)

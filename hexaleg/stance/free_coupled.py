@@ -43,7 +43,7 @@ from hexaleg.stance.extremes import (
 )
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.multistart import box_starts, maximize_coordinate
-from hexaleg.stance.symmetry import mirror_flips
+from hexaleg.stance.symmetry import mirror_flips, reversing
 
 FEASIBILITY_TOLERANCE = 1e-9
 """Largest constraint violation [m or rad] an answer may have (exact margins)."""
@@ -225,9 +225,7 @@ class _FreeProblem:
         opposite = solved.get((extreme.axis, -extreme.sign))
         if opposite is None:
             return None
-        for flip in flips:
-            if flip[k] > 0:
-                continue
+        for flip in reversing(k, list(flips)):
             d = flip * np.asarray(opposite.extreme.pose)
             if not self.feasible(d) or extreme.sign * d[k] < extreme.sign * extreme.value:
                 continue

@@ -54,6 +54,6 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
     return flips
 
 
-def mirror_of(k: int, sign: int, flips: list[ArrayF]) -> ArrayF | None:
-    """A flip mapping direction (k, −sign) onto (k, sign), if the stance has one."""
-    return next((flip for flip in flips if flip[k] < 0), None)
+def reversing(k: int, flips: list[ArrayF]) -> list[ArrayF]:
+    """The flips that map coordinate k's + direction onto its − one (and back)."""
+    return [flip for flip in flips if flip[k] < 0]

@@ -211,13 +211,10 @@ def sweep(
 
     ``on_row`` sees each row as it arrives (the journal and the progress bar use it).
     """
-    template = _template_geometry(spec) if spec.mode == "axis" else None
     done = set(skip)
-    todo = [key for key in spec.keys() if key not in done]
-    size = CHUNK if spec.mode == "axis" else 1  # free-coupled designs take a second each
     futures = [
-        executor.submit(evaluate, _Task(tuple(todo[i : i + size]), spec, template))
-        for i in range(0, len(todo), size)
+        executor.submit(evaluate, task)
+        for task in _tasks(spec, [key for key in spec.keys() if key not in done])
     ]
     rows: dict[tuple[float, float], Row] = {}
     for future in as_completed(futures):
@@ -238,6 +235,16 @@ def base_model(base: HexapodDesign) -> HexapodModel:
     return HexapodModel(base)
 
 
+def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
+    """The designs ``keys`` in tasks: :data:`CHUNK` per axis-locked search, free ones alone.
+
+    A free-coupled design takes about a second, so it is a task of its own.
+    """
+    template = _template_geometry(spec) if spec.mode == "axis" else None
+    size = CHUNK if spec.mode == "axis" else 1
+    return [_Task(tuple(keys[i : i + size]), spec, template) for i in range(0, len(keys), size)]
+
+
 def _template_geometry(spec: StudySpec) -> StanceGeometry:
     """Root placements and body box of the study's body, read once from Pinocchio."""
     return StanceGeometry.from_model(base_model(spec.base), spec.stance)
@@ -245,13 +252,7 @@ def _template_geometry(spec: StudySpec) -> StanceGeometry:
 
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
     """The whole study evaluated in this process, as a table (for small, fast studies)."""
-    template = _template_geometry(spec) if spec.mode == "axis" else None
-    keys = spec.keys()
-    rows = [
-        row
-        for i in range(0, len(keys), CHUNK)
-        for row in evaluate(_Task(tuple(keys[i : i + CHUNK]), spec, template))
-    ]
+    rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate(task)]
     return study_table(spec, {(row["l1_ratio"], row["l3_ratio"]): row for row in rows})
 
 
