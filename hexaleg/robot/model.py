@@ -49,12 +49,14 @@ class _LegIndex:
     def __init__(self, model: pin.Model, leg: str) -> None:
         self.name = leg
         ids = [_joint_id(model, joint_name(leg, j)) for j in LEG_JOINTS]
+        self.joints = tuple(ids)
         self.q = np.array([model.idx_qs[i] for i in ids])
         self.v = np.array([model.idx_vs[i] for i in ids])
         self.lower = model.lowerPositionLimit[self.q].copy()
         self.upper = model.upperPositionLimit[self.q].copy()
         self.root_frame = _frame_id(model, root_frame_name(leg))
         self.foot_frame = _frame_id(model, foot_frame_name(leg))
+        self.foot_joint_frame = _frame_id(model, f"{leg}_foot_joint")
 
 
 class LegModel:
@@ -132,11 +134,18 @@ class HexapodModel:
             if _model is None
             else _model
         )
-        self.data = self.model.createData()
+        self._data: pin.Data | None = None
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         self.base_frame = _frame_id(self.model, "base_link")
         self._collision: pin.GeometryModel | None = None
+
+    @property
+    def data(self) -> pin.Data:
+        """Pinocchio workspace for ``model`` (created on first use: sweeps derive many models)."""
+        if self._data is None:
+            self._data = self.model.createData()
+        return self._data
 
     @property
     def urdf(self) -> str:
@@ -170,22 +179,30 @@ class HexapodModel:
             raise ModelError("with_design changes only segment lengths and rated torques")
         model = pin.Model(self.model)
         radius, density = design.link_radius, design.link_linear_density
-        for leg in self.leg_names:
-            root, hip, knee = (_joint_id(model, joint_name(leg, j)) for j in LEG_JOINTS)
-            model.jointPlacements[hip] = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))
-            model.jointPlacements[knee] = pin.SE3(np.eye(3), np.array([design.l2, 0.0, 0.0]))
-            model.inertias[root] = _rod(design.l1, radius, density)
-            model.inertias[hip] = _rod(design.l2, radius, density)
-            foot = pin.Inertia(
-                FOOT_MASS, np.array([design.l3, 0.0, 0.0]), 0.4 * FOOT_MASS * radius**2 * np.eye(3)
-            )
-            model.inertias[knee] = _rod(design.l3, 0.8 * radius, density) + foot
-            for name in (f"{leg}_foot_joint", foot_frame_name(leg)):
-                frame = model.frames[_frame_id(model, name)]
-                frame.placement = pin.SE3(np.eye(3), np.array([design.l3, 0.0, 0.0]))
-                model.frames[_frame_id(model, name)] = frame
-            for joint, effort in zip((root, hip, knee), design.rated_torques, strict=True):
+        hip_placement = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))
+        knee_placement = pin.SE3(np.eye(3), np.array([design.l2, 0.0, 0.0]))
+        foot_placement = pin.SE3(np.eye(3), np.array([design.l3, 0.0, 0.0]))
+        foot = pin.Inertia(
+            FOOT_MASS, np.array([design.l3, 0.0, 0.0]), 0.4 * FOOT_MASS * radius**2 * np.eye(3)
+        )
+        inertias = (
+            _rod(design.l1, radius, density),
+            _rod(design.l2, radius, density),
+            _rod(design.l3, 0.8 * radius, density) + foot,
+        )
+        for index in self._legs.values():
+            _, hip, knee = index.joints
+            model.jointPlacements[hip] = hip_placement
+            model.jointPlacements[knee] = knee_placement
+            for joint, inertia, effort in zip(
+                index.joints, inertias, design.rated_torques, strict=True
+            ):
+                model.inertias[joint] = inertia
                 model.effortLimit[model.idx_vs[joint]] = effort
+            for frame_id in (index.foot_joint_frame, index.foot_frame):
+                frame = model.frames[frame_id]
+                frame.placement = foot_placement
+                model.frames[frame_id] = frame
         return HexapodModel(design, _model=model, _legs=self._legs)  # same joints and frames
 
     # -- indices ------------------------------------------------------------------------
