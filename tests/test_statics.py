@@ -156,6 +156,62 @@ def test_slope_limits_tip_or_slide_as_geometry_says():
     assert np.linalg.norm(gravity) == pytest.approx(9.81) and gravity[0] < 0
 
 
+def test_exit_distances_reach_a_square_boundary_as_trigonometry_says():
+    from hexaleg.stance.statics import SupportPolygon
+
+    square = SupportPolygon.of_feet([[-1, -1], [1, -1], [1, 1], [-1, 1]])
+    angles = np.linspace(-math.pi, math.pi, 37)
+    directions = np.column_stack([np.cos(angles), np.sin(angles)])
+    # from the centre, the side x = ±1 or y = ±1 met first: 1 / max(|cos|, |sin|)
+    expected = 1 / np.maximum(np.abs(np.cos(angles)), np.abs(np.sin(angles)))
+    got = square.exit_distances(np.zeros(2), directions)
+    assert got == pytest.approx(expected, rel=1e-12)
+    # off centre, toward +x: 1 − 0.25 away
+    assert square.exit_distance(np.array([0.25, 0.5]), np.array([1.0, 0.0])) == pytest.approx(0.75)
+
+
+@pytest.mark.parametrize("distribution", ["min-norm", "min-torque"])
+def test_states_of_many_poses_equal_each_pose_alone(model, distribution):
+    legs = ("lf", "rm", "lr")
+    statics = Statics(model, legs, Payload(12.0, (0.05, 0.02, 0.05)), friction=0.8)
+    poses = _poses(model, legs, 5, seed=11)
+    together = statics.states(poses, distribution)
+    # min-norm is a direct solve; min-torque is ProxQP's iterate, which stops at its own
+    # tolerance (1e-9): round-off in its inputs (BLAS kernels follow memory alignment)
+    # moves the answer within it, by ~1e-10 of the forces
+    relative = 1e-12 if distribution == "min-norm" else 1e-8
+    for q, state in zip(poses, together, strict=True):
+        alone = statics.state(q, distribution)
+        assert state.joint_torques == pytest.approx(alone.joint_torques, rel=relative, abs=1e-9)
+        assert state.foot_forces == pytest.approx(alone.foot_forces, rel=relative, abs=1e-9)
+        assert state.com == pytest.approx(alone.com, abs=1e-15)
+        assert state.stability_margin == pytest.approx(alone.stability_margin, abs=1e-15)
+
+
+def test_extreme_configurations_put_the_body_at_each_pose_and_swing_legs_at_rest(model):
+    """Against Pinocchio's own rpy module and the extremes' joint angles, leg by leg."""
+    from hexaleg.stance import axis_locked_flexibility, free_flexibility
+    from hexaleg.stance.loads import extreme_configurations
+
+    design = model.design
+    for result in (
+        axis_locked_flexibility(design, "tripod", model),
+        free_flexibility(design, "tripod", model),
+    ):
+        q = extreme_configurations(model, result.extremes)
+        for extreme, qk in zip(result.extremes, q, strict=True):
+            pose = np.array(extreme.pose)
+            body = pin.XYZQUATToSE3(qk[:7])
+            assert body.rotation == pytest.approx(pin.rpy.rpyToMatrix(*pose[3:]), abs=1e-14)
+            assert body.translation == pytest.approx(
+                pose[:3] + [0.0, 0.0, design.nominal_height], abs=1e-15
+            )
+            for leg in model.leg_names:
+                angles = qk[model.leg_q_indices(leg)]
+                expected = extreme.joint_angles.get(leg, design.nominal_angles)
+                assert angles == pytest.approx(np.array(expected), abs=0)
+
+
 def test_payload_capacity_grows_with_the_rated_torques():
     capacities = []
     for scale in (0.5, 1.0, 2.0):

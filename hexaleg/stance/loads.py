@@ -13,9 +13,9 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import pinocchio as pin
+from scipy.spatial.transform import Rotation
 
-from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
+from hexaleg._typing import ArrayF, Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
@@ -165,13 +165,21 @@ def _state_dict(state: StaticState) -> dict[str, Any]:
     }
 
 
-def extreme_configuration(model: HexapodModel, extreme: Extreme) -> np.ndarray:
-    """The configuration at an extreme, from its reported pose and joint angles."""
-    pose = np.asarray(extreme.pose)
-    base = pin.SE3(
-        pin.rpy.rpyToMatrix(*pose[3:]), pose[:3] + np.array([0.0, 0.0, model.design.nominal_height])
-    )
-    return model.configuration(base, extreme.joint_angles)
+def extreme_configurations(model: HexapodModel, extremes: Sequence[Extreme]) -> ArrayF:
+    """The configurations (K, nq) at extremes, from their reported poses and joint angles.
+
+    Swing legs (not in an extreme's joint angles) keep their nominal angles, as in
+    the viewer.
+    """
+    poses = np.array([e.pose for e in extremes], dtype=float).reshape(-1, 6)
+    q = np.tile(model.nominal_configuration(), (len(poses), 1))
+    q[:, :3] += poses[:, :3]
+    # Pinocchio's rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll): extrinsic x, y, z; quaternions
+    # are (x, y, z, w) in both
+    q[:, 3:7] = Rotation.from_euler("xyz", poses[:, 3:]).as_quat()
+    for leg in extremes[0].joint_angles if extremes else ():
+        q[:, model.leg_q_indices(leg)] = [e.joint_angles[leg] for e in extremes]
+    return q
 
 
 def analyze_loads(
@@ -211,10 +219,11 @@ def loads_at_extremes(
     design, legs, mode = result.design, result.legs, result.mode
     statics = Statics(model, legs, payload, friction)
     q = model.nominal_configuration()
-    nominal = statics.state(q, distribution)
+    nominal, *at_extremes = statics.states(
+        [q, *extreme_configurations(model, result.extremes)], distribution
+    )
     extremes = tuple(
-        ExtremeLoads(e, statics.state(extreme_configuration(model, e), distribution))
-        for e in result.extremes
+        ExtremeLoads(e, state) for e, state in zip(result.extremes, at_extremes, strict=True)
     )
     return LoadsAnalysis(
         design=design,

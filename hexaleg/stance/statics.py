@@ -144,11 +144,9 @@ class Statics:
         self.payload = payload or Payload()
         self.friction = friction
         self.rated = np.array(model.design.rated_torques)
-        self._data = model.model.createData()
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._robot_mass = float(pin.computeTotalMass(model.model))
-        self._jacobian = np.zeros((3 * len(self.legs), model.model.nv))  # stacked foot rows
         self._support: SupportPolygon | None = None
         self._support_feet = np.zeros((len(self.legs), 2))
         self._downward = np.array([0.0, 0.0, -GRAVITY])
@@ -185,12 +183,67 @@ class Statics:
             payload: The payload; this object's own if omitted.
 
         """
+        return self.states([q], distribution, gravity, payload)[0]
+
+    def states(
+        self,
+        configurations: Sequence[npt.ArrayLike],
+        distribution: Distribution = "min-norm",
+        gravity: npt.ArrayLike = (0.0, 0.0, -GRAVITY),
+        payload: Payload | None = None,
+    ) -> list[StaticState]:
+        """:meth:`state` of each configuration, the linear algebra done for all at once."""
         if distribution != "min-norm":
             require_choice("distribution", distribution, Distribution)
         payload = self.payload if payload is None else payload
-        q = np.asarray(q, dtype=float)
         gravity = np.asarray(gravity, dtype=float)
-        model, data = self.model.model, self._data
+        count, legs = len(configurations), len(self.legs)
+        nv = self.model.model.nv
+        generalized = np.empty((count, nv))
+        jacobians = np.empty((count, 3 * legs, nv))
+        feet = np.empty((count, legs, 3))
+        com = np.empty((count, 3))
+        for k, q in enumerate(configurations):
+            generalized[k], com[k] = self._pinocchio_terms(
+                np.asarray(q, dtype=float), gravity, payload, jacobians[k], feet[k]
+            )
+        mass = self._robot_mass + payload.mass
+        if distribution == "min-norm":  # f = Aᵀ(AAᵀ)⁻¹b: A has full row rank for ≥ 3 feet
+            a, b = equilibrium(feet, com, mass, gravity)
+            multipliers = np.linalg.solve(a @ a.swapaxes(1, 2), b[..., None])
+            forces = (a.swapaxes(1, 2) @ multipliers)[..., 0]
+        else:
+            forces = np.array(
+                [self._min_torque(*terms, mass, gravity) for terms in zip(
+                    feet, com, generalized, jacobians, strict=True)]
+            )  # fmt: skip
+        torques = generalized - np.einsum("kfv,kf->kv", jacobians, forces)
+        residuals = np.abs(torques[:, :6]).max(axis=1)
+        joint_torques = torques[:, self._v]
+        return [
+            StaticState(
+                legs=self.legs,
+                foot_forces=forces[k].reshape(-1, 3),
+                joint_torques=joint_torques[k],
+                com=com[k],
+                mass=mass,
+                stability_margin=self._polygon(feet[k, :, :2]).signed_distance(
+                    ground_point(com[k], gravity)
+                ),
+                free_flyer_residual=float(residuals[k]),
+            )
+            for k in range(count)
+        ]
+
+    def _pinocchio_terms(
+        self, q: ArrayF, gravity: ArrayF, payload: Payload, jacobian: ArrayF, feet: ArrayF
+    ) -> tuple[ArrayF, ArrayF]:
+        """Generalized gravity and centre of mass at ``q``.
+
+        The stacked foot Jacobian (world axes) and the foot positions are written into
+        ``jacobian`` and ``feet``.
+        """
+        model, data = self.model.model, self.model.data
         tilted = bool(gravity[2] != -GRAVITY)
         if tilted:
             model.gravity.linear = gravity
@@ -201,15 +254,12 @@ class Statics:
                 model.gravity.linear = self._downward
         pin.computeJointJacobians(model, data, q)
         pin.updateFramePlacements(model, data)
-        jacobian = self._jacobian
-        feet = np.empty((len(self._feet), 3))
         for i, fid in enumerate(self._feet):
             jacobian[3 * i : 3 * i + 3] = pin.getFrameJacobian(
                 model, data, fid, pin.LOCAL_WORLD_ALIGNED
             )[:3]
             feet[i] = data.oMf[fid].translation
-        com = pin.centerOfMass(model, data, False).copy()
-        mass = self._robot_mass
+        com = pin.centerOfMass(model, data, False)
         if payload.mass > 0:  # the payload's weight through the body at its point
             body = data.oMf[self.model.base_frame]
             offset = body.rotation @ payload.point(self.model)
@@ -218,34 +268,21 @@ class Statics:
             )
             point_jacobian = frame[:3] - pin.skew(offset) @ frame[3:]
             generalized -= point_jacobian.T @ (payload.mass * gravity)
-            mass += payload.mass
+            mass = self._robot_mass + payload.mass
             com = (self._robot_mass * com + payload.mass * (body.translation + offset)) / mass
-        forces = self._distribute(feet, com, mass, gravity, generalized, jacobian, distribution)
-        torques = generalized - jacobian.T @ forces.ravel()
-        return StaticState(
-            legs=self.legs,
-            foot_forces=forces,
-            joint_torques=torques[self._v],
-            com=com,
-            mass=mass,
-            stability_margin=self._polygon(feet[:, :2]).signed_distance(ground_point(com, gravity)),
-            free_flyer_residual=float(np.abs(torques[:6]).max()),
-        )
+        return generalized, com
 
-    def _distribute(
+    def _min_torque(
         self,
         feet: ArrayF,
         com: ArrayF,
-        mass: float,
-        gravity: ArrayF,
         generalized: ArrayF,
         jacobian: ArrayF,
-        distribution: Distribution,
+        mass: float,
+        gravity: ArrayF,
     ) -> ArrayF:
+        """Forces f (3N,) minimizing Σ (τ_j/rated_j)², τ = h − Jᵀf on the stance joints (a QP)."""
         a, b = equilibrium(feet, com, mass, gravity)
-        if distribution == "min-norm":  # f = Aᵀ(AAᵀ)⁻¹b: A has full row rank for ≥ 3 feet
-            return (a.T @ np.linalg.solve(a @ a.T, b)).reshape(-1, 3)
-        # min Σ (τ_j/rated_j)², τ = h − Jᵀf on the stance joints, as a QP in f
         columns = self._v.ravel()
         weights = np.tile(1.0 / self.rated, len(self.legs)) ** 2
         jt = jacobian[:, columns].T  # (3N joints, 3N forces)
@@ -264,21 +301,24 @@ class Statics:
             raise HexalegError(
                 "no foot forces hold this pose within the friction cone (min-torque)"
             )
-        return np.asarray(solution).reshape(-1, 3)
+        return np.asarray(solution)
 
 
 def equilibrium(feet: ArrayF, com: ArrayF, mass: float, gravity: ArrayF) -> tuple[ArrayF, ArrayF]:
-    """A f = b: Σ f_i = −M·g and Σ (p_i − c) × f_i = 0, for f stacked per foot (3N,)."""
-    r = np.asarray(feet) - com  # (N, 3)
-    a = np.zeros((6, len(r), 3))
-    a[0, :, 0] = a[1, :, 1] = a[2, :, 2] = 1.0
+    """A f = b: Σ f_i = −M·g and Σ (p_i − c) × f_i = 0, for f stacked per foot (3N,).
+
+    Batched too: feet (..., N, 3) and com (..., 3) give A (..., 6, 3N) and b (..., 6).
+    """
+    r = np.asarray(feet) - np.asarray(com)[..., None, :]  # (..., N, 3)
+    a = np.zeros((*r.shape[:-2], 6, r.shape[-2], 3))
+    a[..., 0, :, 0] = a[..., 1, :, 1] = a[..., 2, :, 2] = 1.0
     # rows 3..5: the cross-product matrix [r_i]× of each foot, side by side
-    a[3, :, 1], a[3, :, 2] = -r[:, 2], r[:, 1]
-    a[4, :, 0], a[4, :, 2] = r[:, 2], -r[:, 0]
-    a[5, :, 0], a[5, :, 1] = -r[:, 1], r[:, 0]
-    b = np.zeros(6)
-    b[:3] = -mass * gravity
-    return a.reshape(6, -1), b
+    a[..., 3, :, 1], a[..., 3, :, 2] = -r[..., 2], r[..., 1]
+    a[..., 4, :, 0], a[..., 4, :, 2] = r[..., 2], -r[..., 0]
+    a[..., 5, :, 0], a[..., 5, :, 1] = -r[..., 1], r[..., 0]
+    b = np.zeros((*r.shape[:-2], 6))
+    b[..., :3] = -mass * gravity
+    return a.reshape(*r.shape[:-2], 6, -1), b
 
 
 def friction_pyramid(legs: int, friction: float) -> tuple[ArrayF, ArrayF]:
@@ -341,17 +381,23 @@ class SupportPolygon:
 
     def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
         """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""
-        best = math.inf
-        for a, edge in zip(self.vertices, self.edges, strict=True):
-            denominator = direction[0] * -edge[1] - direction[1] * -edge[0]
-            if abs(denominator) < 1e-15:
-                continue
-            rhs = a - point
-            t = (rhs[0] * -edge[1] - rhs[1] * -edge[0]) / denominator
-            s = (direction[0] * rhs[1] - direction[1] * rhs[0]) / denominator
-            if t >= 0 and -1e-12 <= s <= 1 + 1e-12:
-                best = min(best, t)
-        return best
+        return float(self.exit_distances(point, np.asarray(direction)[None])[0])
+
+    def exit_distances(self, point: ArrayF, directions: ArrayF) -> ArrayF:
+        """:meth:`exit_distance` along each of ``directions`` (H, 2) [m] (inf: none)."""
+
+        def cross(u: ArrayF, v: ArrayF) -> ArrayF:
+            return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+        d = np.asarray(directions, dtype=float)[:, None, :]  # (H, 1, 2)
+        offset = self.vertices - np.asarray(point)[:2]  # (K, 2), point to each vertex
+        denominator = cross(d, self.edges)  # (H, K)
+        parallel = np.abs(denominator) < 1e-15
+        denominator = np.where(parallel, 1.0, denominator)
+        t = cross(offset, self.edges) / denominator  # along the ray
+        s = cross(offset, d) / denominator  # along the edge
+        hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
+        return np.where(hit, t, np.inf).min(axis=1)
 
 
 def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:
@@ -391,12 +437,12 @@ def slope_limits(
     """
     polygon = feet_xy if isinstance(feet_xy, SupportPolygon) else SupportPolygon.of_feet(feet_xy)
     slide = math.atan(friction)
-    limits = []
-    for heading in headings:
-        downhill = -np.array([math.cos(heading), math.sin(heading)])
-        tip = math.atan2(polygon.exit_distance(com[:2], downhill), com[2])
-        limits.append(SlopeLimit(heading, min(tip, slide), "tip" if tip < slide else "slide"))
-    return tuple(limits)
+    downhill = -np.column_stack([np.cos(headings), np.sin(headings)])
+    tips = np.arctan2(polygon.exit_distances(com[:2], downhill), com[2])
+    return tuple(
+        SlopeLimit(heading, min(float(tip), slide), "tip" if tip < slide else "slide")
+        for heading, tip in zip(headings, tips, strict=True)
+    )
 
 
 def slope_gravity(angle: float, heading: float) -> ArrayF:
