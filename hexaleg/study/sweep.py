@@ -1,8 +1,8 @@
-"""Design studies: many designs, one task each, on any ``concurrent.futures.Executor``.
+"""Design studies: many designs in tasks, on any ``concurrent.futures.Executor``.
 
 A study sweeps coxa and tibia ratios at a fixed total leg length (Fig 14–15),
 keeping every other field of a base design. Each finished row is appended to a
-journal (``rows.jsonl``) and flushed to disk as it arrives, so an interrupted
+journal (``rows.jsonl``) and flushed to disk as its task finishes, so an interrupted
 study loses nothing: :func:`run_study` with ``resume=True`` recomputes only the
 missing rows. A design that fails (say, its nominal stance cannot stand) is
 recorded with its error and the study goes on.
@@ -205,11 +205,12 @@ def sweep(
     spec: StudySpec,
     executor: Executor,
     skip: Iterable[tuple[float, float]] = (),
-    on_row: Callable[[Row], None] | None = None,
+    on_rows: Callable[[list[Row]], None] | None = None,
 ) -> dict[tuple[float, float], Row]:
     """Evaluate every design of ``spec`` not in ``skip`` on ``executor``; rows by ratio pair.
 
-    ``on_row`` sees each row as it arrives (the journal and the progress bar use it).
+    ``on_rows`` sees each task's rows as they arrive (the journal and the progress bar
+    use it).
     """
     done = set(skip)
     futures = [
@@ -218,10 +219,11 @@ def sweep(
     ]
     rows: dict[tuple[float, float], Row] = {}
     for future in as_completed(futures):
-        for row in future.result():
+        finished = future.result()
+        for row in finished:
             rows[(row["l1_ratio"], row["l3_ratio"])] = row
-            if on_row is not None:
-                on_row(row)
+        if on_rows is not None:
+            on_rows(finished)
     return rows
 
 
@@ -288,22 +290,22 @@ def run_study(
     out.mkdir(parents=True, exist_ok=True)
     done = _read_journal(journal, spec)
     if not journal.exists():
-        _append(journal, {"spec": spec.fingerprint()})
+        _append(journal, [{"spec": spec.fingerprint()}])
     show = sys.stdout.isatty() if progress is None else progress
     bar = tqdm(
         total=len(spec.keys()), initial=len(done), disable=not show, unit="design", file=sys.stderr
     )
 
-    def record(row: Row) -> None:
-        _append(journal, row)
-        bar.update()
+    def record(rows: list[Row]) -> None:
+        _append(journal, rows)
+        bar.update(len(rows))
 
     try:
         if executor is None:
             with local_pool(workers) as pool:
-                done |= sweep(spec, pool, skip=done, on_row=record)
+                done |= sweep(spec, pool, skip=done, on_rows=record)
         else:
-            done |= sweep(spec, executor, skip=done, on_row=record)
+            done |= sweep(spec, executor, skip=done, on_rows=record)
     finally:
         bar.close()
     return write_table(spec, study_table(spec, done), out)
@@ -315,9 +317,10 @@ def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.Dat
     return table.sort_values(["l1_ratio", "l3_ratio"], kind="stable").reset_index(drop=True)
 
 
-def _append(journal: Path, record: dict[str, Any]) -> None:
+def _append(journal: Path, records: list[dict[str, Any]]) -> None:
+    """Append records to the journal, one line each, on disk before returning."""
     with journal.open("a", encoding="utf-8") as handle:
-        handle.write(json.dumps(record, allow_nan=True) + "\n")
+        handle.write("".join(json.dumps(record, allow_nan=True) + "\n" for record in records))
         handle.flush()
         os.fsync(handle.fileno())
 
