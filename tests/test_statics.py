@@ -204,7 +204,7 @@ def test_extreme_configurations_put_the_body_at_each_pose_and_swing_legs_at_rest
             body = pin.XYZQUATToSE3(qk[:7])
             assert body.rotation == pytest.approx(pin.rpy.rpyToMatrix(*pose[3:]), abs=1e-14)
             assert body.translation == pytest.approx(
-                pose[:3] + [0.0, 0.0, design.nominal_height], abs=1e-15
+                pose[:3] + np.array([0.0, 0.0, design.nominal_height]), abs=1e-15
             )
             for leg in model.leg_names:
                 angles = qk[model.leg_q_indices(leg)]
