@@ -6,8 +6,9 @@ Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-do
 IK (eq 8–9), whose solution Pinocchio's model reproduces (tested). Each direction
 is a small smooth nonlinear program, max ±d_k subject to every margin of
 :func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0, solved by SLSQP from
-several deterministic starts (:mod:`~hexaleg.stance.multistart`): the axis-locked extreme, and
-mirrored low-discrepancy perturbations of the coupled coordinates. The best
+several deterministic starts (:mod:`~hexaleg.stance.multistart`): the axis-locked extreme, the
+feasible pose of a vectorized scan of the coupled coordinates that reaches furthest, and
+low-discrepancy points of a box around the nominal stance. The best
 feasible answer wins after an exact feasibility check, so the range is never
 smaller than the axis-locked one; the result is flagged converged only where the
 optimizer converged and at least two starts agreed on the optimum.
@@ -57,9 +58,10 @@ BOX_STARTS = 16
 """Starts per direction spread over the search box (scrambled Sobol, seeded by direction)."""
 BOX_SCALE = 1.3
 """The search box reaches this multiple of each coordinate's larger axis-locked extreme."""
-ENOUGH = (6, 3)
-"""Stop a direction's search once 6 starts have run and 3 of them reached the best value:
-four agreeing starts can all sit in one local optimum (pitch+ of a 0.15/0.25/0.6 m tripod)."""
+ENOUGH = (7, 3)
+"""Stop a direction's search once 7 starts have run and 3 of them reached the best value:
+agreeing starts can all sit in one local optimum (pitch+ of a 0.15/0.25/0.6 m tripod with
+four starts; z− of a 0.05/0.5/0.45 m robot with six, once the scanned start came first)."""
 MAX_ITERATIONS = 40
 """SLSQP iterations per start: converging starts need 5–20; the rest are cut short."""
 ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
@@ -133,20 +135,41 @@ def _name(extreme: Extreme) -> str:
     return f"{extreme.axis}{'+' if extreme.sign > 0 else '-'}"
 
 
-def starts(k: int, sign: int, locked: Sequence[Extreme]) -> list[ArrayF]:
-    """Where the search for direction (k, sign) starts.
+def search_box(locked: Sequence[Extreme]) -> ArrayF:
+    """Half widths (6,) of the box the starts spread over [m, rad].
 
-    The axis-locked extreme (pulled back by a hair), then :data:`BOX_STARTS` points
-    spread over a box around the nominal stance reaching :data:`BOX_SCALE` times each
-    coordinate's larger axis-locked extreme: the better optima couple coordinates
-    (z− with yaw and a sideways shift, say), which no start on the axis finds.
+    :data:`BOX_SCALE` times each coordinate's larger axis-locked extreme.
     """
     value = {(e.axis, e.sign): e.value for e in locked}
     half = np.array([BOX_SCALE * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
+    return np.maximum(half, 1e-3)
+
+
+def starts(
+    k: int, sign: int, locked: Sequence[Extreme], scanned: Sequence[ArrayF] = ()
+) -> list[ArrayF]:
+    """Where the search for direction (k, sign) starts.
+
+    The axis-locked extreme (pulled back by a hair), the ``scanned`` feasible poses that
+    reach furthest, then :data:`BOX_STARTS` points spread over the search box
+    (:func:`search_box`): the better optima couple coordinates (z− with yaw and a
+    sideways shift, say), which no start on the axis finds.
+    """
     at_extreme = np.zeros(len(AXES))
-    at_extreme[k] = value[(AXES[k], sign)] - sign * 1e-9
-    seed = 2 * k + (sign > 0)
-    return [at_extreme, *box_starts(np.maximum(half, 1e-3), BOX_STARTS, seed=seed)]
+    at_extreme[k] = next(e.value for e in locked if (e.axis, e.sign) == (AXES[k], sign))
+    at_extreme[k] -= sign * 1e-9
+    boxed = box_starts(search_box(locked), BOX_STARTS, seed=_seed(k, sign))
+    return [at_extreme, *scanned, *boxed]
+
+
+def _seed(k: int, sign: int) -> int:
+    return 2 * k + (sign > 0)
+
+
+SCAN_SAMPLES = 1024
+"""Poses of the search box whose exact margins are checked at once, before any start:
+the feasible one reaching furthest starts right after the axis-locked extreme (more
+scanned starts crowd out the box starts, and agreeing starts then share one optimum)."""
 
 
 class _FreeProblem:
@@ -234,6 +257,21 @@ class _FreeProblem:
             return DirectionSolution(solved_extreme, opposite.converged, 0)
         return None
 
+    def scanned(self, k: int, sign: int, locked: Sequence[Extreme]) -> list[ArrayF]:
+        """The scanned feasible pose reaching furthest in direction (k, sign), if any.
+
+        A list of at most one start, from :data:`SCAN_SAMPLES` poses of the search box.
+        The scan continues the box starts' own low-discrepancy sequence and checks the
+        stance margins only: checking collisions at every sample would cost more than the
+        start saves.
+        """
+        samples = np.asarray(box_starts(search_box(locked), SCAN_SAMPLES, seed=_seed(k, sign)))
+        rotation, translation = displacement_poses(self.geometry, samples)
+        feasible = np.flatnonzero(stance_margins(self.geometry, rotation, translation).min(-1) >= 0)
+        if feasible.size == 0:
+            return []
+        return [samples[feasible[np.argmax(sign * samples[feasible, k])]]]
+
     def solve(self, extreme: Extreme, locked: Sequence[Extreme]) -> DirectionSolution:
         """The free extreme of ``extreme``'s direction, never short of ``extreme`` itself."""
         k = AXES.index(extreme.axis)
@@ -242,7 +280,7 @@ class _FreeProblem:
             extreme.sign,
             self.margins,
             self.jacobian,
-            starts(k, extreme.sign, locked),
+            starts(k, extreme.sign, locked, self.scanned(k, extreme.sign, locked)),
             self.feasible,
             bounds=[(None, None)] * 3 + list(ROTATION_BOUNDS),
             max_iterations=MAX_ITERATIONS,
