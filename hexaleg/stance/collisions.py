@@ -54,7 +54,14 @@ class SelfCollision:
         self.geometry = geometry
         self.geometry_model = model.collision_model()
         self.geometry_model.addAllCollisionPairs()
-        kept = [p for p in self.geometry_model.collisionPairs if not self._joined(p)]
+        parent_joints = [o.parentJoint for o in self.geometry_model.geometryObjects]
+        parents = list(model.model.parents)
+
+        def joined(pair: pin.CollisionPair) -> bool:
+            a, b = parent_joints[pair.first], parent_joints[pair.second]
+            return a == b or parents[a] == b or parents[b] == a
+
+        kept = [p for p in self.geometry_model.collisionPairs if not joined(p)]
         self.geometry_model.removeAllCollisionPairs()
         for pair in kept:
             self.geometry_model.addCollisionPair(pair)
@@ -68,12 +75,6 @@ class SelfCollision:
         nominal = self.clearance(np.eye(3), np.array([0.0, 0.0, geometry.nominal_height]))
         if nominal[0] <= 0:
             raise HexalegError(f"at the nominal stance, {nominal[1]}: the design collides")
-
-    def _joined(self, pair: pin.CollisionPair) -> bool:
-        objects = self.geometry_model.geometryObjects
-        a, b = objects[pair.first].parentJoint, objects[pair.second].parentJoint
-        parents = self.model.model.parents
-        return a == b or parents[a] == b or parents[b] == a
 
     def configurations(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
         """Configurations (P, nq) for body poses (P, 3, 3), (P, 3).
