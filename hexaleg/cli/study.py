@@ -28,6 +28,7 @@ from hexaleg.paper import L1_RATIOS
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import (
+    CHUNK,
     TABLE_CSV,
     TABLE_JSON,
     StudySpec,
@@ -37,8 +38,10 @@ from hexaleg.study.sweep import (
 
 DESCRIPTION = (
     "Sweep coxa and tibia ratios at a fixed total leg length and compute body "
-    "flexibility for each design, one task per design, on a local process pool or a "
-    "Dask cluster. Rows are written to DIR/rows.jsonl as they finish; --resume "
+    "flexibility, statics and payload for each design, in tasks of "
+    f"{CHUNK} axis-locked designs "
+    "(one free-coupled design) on a local process pool or a Dask cluster. Rows are "
+    "written to DIR/rows.jsonl as each task finishes; --resume "
     "continues an interrupted study. Writes study.csv, study.json and the figures."
 )
 
