@@ -70,3 +70,22 @@ def test_starts_are_deterministic_and_inside_the_box():
     b = box_starts(np.array([1.0, 2.0, 0.0]), 8, seed=3)
     np.testing.assert_array_equal(np.array(a), np.array(b))
     assert np.all(np.abs(np.array(a)) <= [1.0, 2.0, 0.0])
+
+
+def test_guided_starts_that_agree_on_a_local_optimum_do_not_stop_the_search():
+    # three promising-looking starts all climb to x = 1 in the big disk; the fourth and
+    # fifth reach 2.7 in the small one
+    starts = [
+        np.array([0.1, 0.0]),
+        np.array([-0.2, 0.3]),
+        np.array([0.0, -0.3]),
+        np.array([2.1, 0.1]),
+        np.array([2.3, -0.1]),
+    ]
+    fooled = maximize_coordinate(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 3))
+    assert fooled.value == pytest.approx(1.0, abs=1e-7) and len(fooled.values) == 3
+    guided = maximize_coordinate(
+        0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 2), guided=3
+    )
+    assert guided.value == pytest.approx(2.7, abs=1e-7)
+    assert len(guided.values) == 5 and guided.agreed  # two unguided starts agree on 2.7

@@ -55,6 +55,7 @@ def maximize_coordinate(
     bounds: Sequence[tuple[float | None, float | None]] | None = None,
     max_iterations: int = 60,
     enough: tuple[int, int] | None = None,
+    guided: int = 0,
 ) -> MultiStartResult | None:
     """Maximize sign·x_k subject to constraints(x) ≥ 0 from the starts, in order.
 
@@ -69,6 +70,9 @@ def maximize_coordinate(
         max_iterations: SLSQP iterations per start.
         enough: (runs, agreeing): stop once at least ``runs`` starts have run and
             ``agreeing`` of them reached the best value; every start runs if None.
+        guided: The first this many starts were chosen for promise (an extreme, a
+            scan's best): they may win, but only the others' agreement stops the search,
+            since guided starts tend to share one optimum.
 
     Returns:
         The best accepted answer, or None if no start gave one.
@@ -77,6 +81,7 @@ def maximize_coordinate(
     gradient = np.zeros(len(starts[0]))
     gradient[k] = -sign
     accepted: list[tuple[float, ArrayF, bool]] = []
+    independent: list[float] = []  # values of accepted starts that are not guided
     iterations = 0
     for run, start in enumerate(starts, start=1):
         with warnings.catch_warnings():
@@ -94,7 +99,14 @@ def maximize_coordinate(
         iterations += int(result.nit)
         if accept(result.x):
             accepted.append((float(sign * result.x[k]), result.x, bool(result.success)))
-        if enough is not None and run >= enough[0] and _agreeing(accepted) >= enough[1]:
+            if run > guided:
+                independent.append(accepted[-1][0])
+        if (
+            enough is not None
+            and run >= enough[0]
+            and accepted
+            and _agreeing(independent, max(v for v, _, _ in accepted)) >= enough[1]
+        ):
             break
     if not accepted:
         return None
@@ -104,16 +116,14 @@ def maximize_coordinate(
     # optima of equal value are never chosen by round-off.
     value, x, success = next(item for item in accepted if item[0] >= best - tolerance)
     values = tuple(sorted((v for v, _, _ in accepted), reverse=True))
-    return MultiStartResult(x, value, success, _agreeing(accepted) >= 2, values, iterations)
+    agreed = _agreeing([v for v, _, _ in accepted], best) >= 2
+    return MultiStartResult(x, value, success, agreed, values, iterations)
 
 
-def _agreeing(accepted: Sequence[tuple[float, ArrayF, bool]]) -> int:
-    """How many accepted answers reach the best value (within :data:`AGREEMENT`)."""
-    if not accepted:
-        return 0
-    best = max(value for value, _, _ in accepted)
+def _agreeing(values: Sequence[float], best: float) -> int:
+    """How many of ``values`` reach ``best`` (within :data:`AGREEMENT`)."""
     tolerance = AGREEMENT * max(1.0, abs(best))
-    return sum(value >= best - tolerance for value, _, _ in accepted)
+    return sum(value >= best - tolerance for value in values)
 
 
 def box_starts(half_widths: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
