@@ -22,6 +22,30 @@ def test_first_failure_wins_over_a_later_feasible_region():
     assert binding == ((0,), (0,))
 
 
+def test_a_cheaper_scan_finds_the_same_crossings_and_margins_solve_them():
+    """The scan's stand-in only says where a margin is negative; the roots come from margins."""
+    calls = {"margins": 0, "scan": 0}
+
+    def margins(direction, t):
+        calls["margins"] += len(t)
+        dip = np.abs(t - 0.35) - 0.05
+        return np.stack([dip, 0.8 - t], axis=-1)
+
+    def scan(direction, t):
+        calls["scan"] += len(t)
+        values = margins(direction, t)
+        calls["margins"] -= len(t)
+        return np.where(values < 0, values, np.inf)
+
+    alone = first_crossings(margins, np.array([1.0, 0.5]))
+    spent_alone = calls["margins"]
+    calls.update(margins=0, scan=0)
+    scanned = first_crossings(margins, np.array([1.0, 0.5]), scan=scan)
+    np.testing.assert_array_equal(scanned.t, alone.t)
+    assert scanned.which.tolist() == alone.which.tolist() and scanned.binding == alone.binding
+    assert calls["scan"] > 0 and calls["margins"] < spent_alone  # the scan used the stand-in
+
+
 def test_nothing_breaking_reports_the_search_range():
     def margins(direction, t):
         return np.ones((*np.shape(t), 1))

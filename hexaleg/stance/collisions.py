@@ -66,6 +66,8 @@ class SelfCollision:
         for pair in kept:
             self.geometry_model.addCollisionPair(pair)
         self.geometry_data = pin.GeometryData(self.geometry_model)
+        for request in self.geometry_data.collisionRequests:  # "touching" for coal's yes/no
+            request.security_margin = CONTACT_DISTANCE
         self._q_template = model.nominal_configuration()
         self._q_stance = np.concatenate([model.leg_q_indices(leg) for leg in geometry.legs])
         names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
@@ -107,6 +109,21 @@ class SelfCollision:
             distances.append(self.geometry_data.distanceResults[index].min_distance)
             closest.append(index)
         return np.array(distances) - CONTACT_DISTANCE, closest
+
+    def scan_clearances(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
+        """The clearance at each pose where two parts touch, +inf where none do (P,) [m].
+
+        Coal's yes/no collision check (parts closer than :data:`CONTACT_DISTANCE`) costs
+        half of every pair's distance: a scan that mostly meets no contact asks it first.
+        """
+        clearances = np.full(len(np.asarray(rotation).reshape(-1, 9)), np.inf)
+        for k, q in enumerate(self.configurations(rotation, translation)):
+            if pin.computeCollisions(
+                self.model.model, self.model.data, self.geometry_model, self.geometry_data, q, True
+            ):
+                index = self._compute(q)
+                clearances[k] = self.geometry_data.distanceResults[index].min_distance
+        return clearances - CONTACT_DISTANCE
 
     def clearance(self, rotation: ArrayF, translation: ArrayF) -> tuple[float, Cause]:
         """The clearance [m] at one body pose, and the pair it is between."""
@@ -157,6 +174,12 @@ def collision_limited(
         )
         return collision.clearances(rotation, translation)[0][:, None]
 
+    def touching(direction: IndexArray, t: ArrayF) -> ArrayF:
+        rotation, translation = direction_poses(
+            geometry, axis_of[direction], sign_of[direction] * t
+        )
+        return collision.scan_clearances(rotation, translation)[:, None]
+
     reach = np.array([abs(extremes[k].value) for k in scanned])
     crossings = first_crossings(  # the nominal stance's clearance is checked on construction
         clearance,
@@ -165,6 +188,7 @@ def collision_limited(
         chunks=COLLISION_SCAN_CHUNKS,
         tolerance=COLLISION_TOLERANCE,
         check_start=False,
+        scan=touching,
     )
     limited: dict[int, Extreme] = {}
     for i, k in enumerate(scanned):
