@@ -143,7 +143,8 @@ class StanceGeometry:
         translation = np.asarray(translation, dtype=float)
         # world → body: b = Rᵀ(f − t), row-wise (f − t)·R; body → root: R_rᵀ(b − p_r).
         in_body = (self.footholds - translation[..., None, :]) @ rotation  # (..., N, 3)
-        return np.einsum("...nj,nji->...ni", in_body - self.root_positions, self.root_rotations)
+        # row-wise (b − p_r)·R_r per leg n, as a batch of (1, 3) @ (3, 3) products
+        return ((in_body - self.root_positions)[..., None, :] @ self.root_rotations)[..., 0, :]
 
     def body_corners(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
         """World positions of the body box's 8 corners for body poses (..., 8, 3) [m]."""
