@@ -60,6 +60,16 @@ BRUTE_DESIGNS = [
     ((0.3, 0.15, 0.55), "all", "rectangle"),  # roll± once 4 % short
     ((0.1, 0.5, 0.4), "tripod", "rectangle"),  # roll− once 7 % short
     ((0.05, 0.5, 0.45), "all", "rectangle"),  # z−: five local optima within 12 %
+    pytest.param(
+        (0.178, 0.183, 0.639),
+        "tripod",
+        "rectangle",
+        marks=pytest.mark.xfail(
+            strict=True,
+            reason="tripod roll−: hexaleg finds 0.178 rad, the brute force 0.219 (19 % short); "
+            "a tripod's directions need more global search: issue 11 stays open",
+        ),
+    ),
 ]
 """(lengths, stance, layout): the issue's designs, sweep designs once short, and the
 two ways a search can lean on symmetry (mirror images are taken, not solved)."""

@@ -65,7 +65,7 @@ agreed on a local optimum of z− of a 0.05/0.5/0.45 m robot (0.4 % short) and o
 0.19/0.15/0.66 m tripod (3 % short); four voting starts sat in one for pitch+ of a
 0.15/0.25/0.6 m tripod."""
 MAX_ITERATIONS = 40
-"""SLSQP iterations per start: converging starts need 5–20; the rest are cut short."""
+"""SLSQP iterations per start: converging starts need 5–40 (a tripod's the most)."""
 ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
 """Roll, pitch, yaw stay in Pinocchio's rpy ranges, so each pose has one name [rad]."""
 

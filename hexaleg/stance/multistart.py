@@ -94,7 +94,6 @@ def maximize_coordinate(
                 bounds=bounds,
                 constraints={"type": "ineq", "fun": constraints, "jac": jacobian},
                 options={"maxiter": max_iterations, "ftol": 1e-12},
-                callback=_give_up_if_lost(constraints),
             )
         iterations += int(result.nit)
         if accept(result.x):
@@ -131,25 +130,3 @@ def box_starts(half_widths: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
     half_widths = np.asarray(half_widths, dtype=float)
     points = qmc.Sobol(len(half_widths), scramble=True, seed=seed).random(count) * 2 - 1
     return list(points * half_widths)
-
-
-LOST_AFTER = 12
-"""Iterations after which a start still far from feasible is abandoned."""
-LOST_VIOLATION = 1e-3
-"""How far from feasible [in the constraints' units] counts as lost."""
-
-
-def _give_up_if_lost(constraints: Callable[[ArrayF], ArrayF]) -> Callable[..., None]:
-    """An SLSQP callback that stops a start still infeasible after :data:`LOST_AFTER` steps.
-
-    Such starts rarely recover, and they cost the most iterations.
-    """
-    count = 0
-
-    def callback(intermediate_result: optimize.OptimizeResult) -> None:
-        nonlocal count
-        count += 1
-        if count >= LOST_AFTER and constraints(intermediate_result.x).min() < -LOST_VIOLATION:
-            raise StopIteration
-
-    return callback
