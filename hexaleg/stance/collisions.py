@@ -168,17 +168,14 @@ def collision_limited(
     axis_of = np.array([AXES.index(extremes[k].axis) for k in scanned])
     sign_of = np.array([extremes[k].sign for k in scanned], dtype=float)
 
+    def poses(direction: IndexArray, t: ArrayF) -> tuple[ArrayF, ArrayF]:
+        return direction_poses(geometry, axis_of[direction], sign_of[direction] * t)
+
     def clearance(direction: IndexArray, t: ArrayF) -> ArrayF:
-        rotation, translation = direction_poses(
-            geometry, axis_of[direction], sign_of[direction] * t
-        )
-        return collision.clearances(rotation, translation)[0][:, None]
+        return collision.clearances(*poses(direction, t))[0][:, None]
 
     def touching(direction: IndexArray, t: ArrayF) -> ArrayF:
-        rotation, translation = direction_poses(
-            geometry, axis_of[direction], sign_of[direction] * t
-        )
-        return collision.scan_clearances(rotation, translation)[:, None]
+        return collision.scan_clearances(*poses(direction, t))[:, None]
 
     reach = np.array([abs(extremes[k].value) for k in scanned])
     crossings = first_crossings(  # the nominal stance's clearance is checked on construction

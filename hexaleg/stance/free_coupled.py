@@ -147,21 +147,12 @@ def search_box(locked: Sequence[Extreme]) -> ArrayF:
     return np.maximum(half, 1e-3)
 
 
-def starts(
-    k: int, sign: int, locked: Sequence[Extreme], scanned: Sequence[ArrayF] = ()
-) -> list[ArrayF]:
-    """Where the search for direction (k, sign) starts.
-
-    The axis-locked extreme (pulled back by a hair), the ``scanned`` feasible poses that
-    reach furthest, then :data:`BOX_STARTS` points spread over the search box
-    (:func:`search_box`): the better optima couple coordinates (z− with yaw and a
-    sideways shift, say), which no start on the axis finds.
-    """
-    at_extreme = np.zeros(len(AXES))
-    at_extreme[k] = next(e.value for e in locked if (e.axis, e.sign) == (AXES[k], sign))
-    at_extreme[k] -= sign * 1e-9
-    boxed = box_starts(search_box(locked), BOX_STARTS, seed=_seed(k, sign))
-    return [at_extreme, *scanned, *boxed]
+def axis_locked_start(k: int, sign: int, locked: Sequence[Extreme]) -> ArrayF:
+    """The axis-locked extreme of direction (k, sign), pulled back by a hair: the first start."""
+    start = np.zeros(len(AXES))
+    start[k] = next(e.value for e in locked if (e.axis, e.sign) == (AXES[k], sign))
+    start[k] -= sign * 1e-9
+    return start
 
 
 def _seed(k: int, sign: int) -> int:
@@ -259,15 +250,12 @@ class _FreeProblem:
             return DirectionSolution(solved_extreme, opposite.converged, 0)
         return None
 
-    def scanned(self, k: int, sign: int, locked: Sequence[Extreme]) -> list[ArrayF]:
-        """The scanned feasible pose reaching furthest in direction (k, sign), if any.
+    def scanned(self, k: int, sign: int, samples: ArrayF) -> list[ArrayF]:
+        """The feasible sample reaching furthest in direction (k, sign), if any.
 
-        A list of at most one start, from :data:`SCAN_SAMPLES` poses of the search box.
-        The scan continues the box starts' own low-discrepancy sequence and checks the
-        stance margins only: checking collisions at every sample would cost more than the
-        start saves.
+        A list of at most one start. The scan checks the stance margins only: checking
+        collisions at every sample would cost more than the start saves.
         """
-        samples = np.asarray(box_starts(search_box(locked), SCAN_SAMPLES, seed=_seed(k, sign)))
         rotation, translation = displacement_poses(self.geometry, samples)
         feasible = np.flatnonzero(stance_margins(self.geometry, rotation, translation).min(-1) >= 0)
         if feasible.size == 0:
@@ -277,18 +265,28 @@ class _FreeProblem:
     def solve(self, extreme: Extreme, locked: Sequence[Extreme]) -> DirectionSolution:
         """The free extreme of ``extreme``'s direction, never short of ``extreme`` itself."""
         k = AXES.index(extreme.axis)
-        every = starts(k, extreme.sign, locked, self.scanned(k, extreme.sign, locked))
+        # The starts: the axis-locked extreme and the furthest feasible pose of a scan of
+        # the search box (guided), then the scan's first BOX_STARTS points: the better
+        # optima couple coordinates (z− with yaw and a sideways shift, say), which no start
+        # on the axis finds. The scan is the box starts' own Sobol sequence, continued.
+        samples = np.asarray(
+            box_starts(search_box(locked), SCAN_SAMPLES, seed=_seed(k, extreme.sign))
+        )
+        guided = [
+            axis_locked_start(k, extreme.sign, locked),
+            *self.scanned(k, extreme.sign, samples),
+        ]
         result = maximize_coordinate(
             k,
             extreme.sign,
             self.margins,
             self.jacobian,
-            every,
+            [*guided, *samples[:BOX_STARTS]],
             self.feasible,
             bounds=[(None, None)] * 3 + list(ROTATION_BOUNDS),
             max_iterations=MAX_ITERATIONS,
             enough=ENOUGH,
-            guided=len(every) - BOX_STARTS,
+            guided=len(guided),
         )
         if result is None:
             return DirectionSolution(extreme, False, 0)
