@@ -89,3 +89,32 @@ def test_guided_starts_that_agree_on_a_local_optimum_do_not_stop_the_search():
     )
     assert guided.value == pytest.approx(2.7, abs=1e-7)
     assert len(guided.values) == 5 and guided.agreed  # two unguided starts agree on 2.7
+
+
+def test_scaled_starts_answer_in_the_callers_coordinates():
+    # an ellipse 100 units long in x: max x = 100 at (100, 0), whatever the scale
+    def ellipse(x):
+        return np.array([1.0 - (x[0] / 100) ** 2 - x[1] ** 2])
+
+    def ellipse_jacobian(x):
+        return np.array([[-2 * x[0] / 100**2, -2 * x[1]]])
+
+    def inside(x):
+        return bool(ellipse(x)[0] >= -1e-9)
+
+    starts = [np.array([10.0, 0.5]), np.array([-30.0, -0.2])]
+    plain = maximize_coordinate(0, 1, ellipse, ellipse_jacobian, starts, inside)
+    scaled = maximize_coordinate(
+        0, 1, ellipse, ellipse_jacobian, starts, inside, scales=[None, np.array([100.0, 1.0])]
+    )
+    for result in (plain, scaled):
+        assert result.value == pytest.approx(100.0, rel=1e-7)
+        np.testing.assert_allclose(result.x, [100.0, 0.0], atol=1e-3)
+        assert result.agreed
+    # one point run twice, scaled and not, agrees only with itself
+    twice = maximize_coordinate(
+        0, 1, ellipse, ellipse_jacobian, starts[:1] * 2, inside, scales=[None, [100.0, 1.0]]
+    )
+    assert twice.value == pytest.approx(100.0, rel=1e-7) and not twice.agreed
+    with pytest.raises(ValueError, match="1 scales for 2 starts"):
+        maximize_coordinate(0, 1, ellipse, ellipse_jacobian, starts, inside, scales=[None])
