@@ -65,6 +65,10 @@ BRUTE_DESIGNS = [
     ((0.1, 0.5, 0.4), "tripod", "rectangle"),  # roll− once 7 % short
     ((0.05, 0.5, 0.45), "all", "rectangle"),  # z−: five local optima within 12 %
     ((0.178, 0.183, 0.639), "tripod", "rectangle"),  # roll− once 19 % short
+    # two random Fig 15-style tripods that unscaled starts got wrong: roll+ 0.2328 rad
+    # (0.4535 found), and roll− 0.1523 and yaw± 0.3713 rad (0.2082, 0.3818 found)
+    ((0.25760963626455174, 0.4420870017419507, 0.3003033619934976), "tripod", "rectangle"),
+    ((0.18986180759758675, 0.15155430580598717, 0.6585838865964261), "tripod", "rectangle"),
 ]
 """(lengths, stance, layout): the issue's designs, sweep designs once short, and the
 two ways a search can lean on symmetry (mirror images are taken, not solved)."""
