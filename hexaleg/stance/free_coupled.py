@@ -34,7 +34,6 @@ from hexaleg.stance.constraints import (
     Cause,
     constraint_labels,
     displacement_poses,
-    smooth_stance_margins,
     stance_margins,
 )
 from hexaleg.stance.extremes import (
@@ -44,6 +43,7 @@ from hexaleg.stance.extremes import (
     pose_extreme,
 )
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.margin_kernel import compiled_smooth_margins
 from hexaleg.stance.multistart import box_starts, maximize_coordinate
 from hexaleg.stance.symmetry import mirror_flips, reversing
 
@@ -175,6 +175,7 @@ class _FreeProblem:
         self.geometry = geometry
         self.collision = collision
         self.labels = constraint_labels(geometry.legs)
+        self._smooth_margins = compiled_smooth_margins(geometry)
         self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
         self._values = np.zeros(0)
@@ -194,17 +195,16 @@ class _FreeProblem:
         SLSQP asks for the Jacobian where it last asked for the margins; one vectorized
         evaluation serves both, and costs about what one pose alone does.
         """
-        if self._at is None or not np.array_equal(self._at, d):
+        if self._at is None or not (self._at == d).all():
             self._values = self._smooth(d + self.basis)
             self._at = np.array(d, dtype=float)
         return self._values
 
     def _smooth(self, displacements: ArrayF) -> ArrayF:
-        rotation, translation = displacement_poses(self.geometry, displacements)
-        margins = smooth_stance_margins(self.geometry, rotation, translation)
+        margins = self._smooth_margins(displacements)
         if self.collision is None:
             return margins
-        clearance = self.collision.clearances(rotation, translation)[0]
+        clearance = self.collision.clearances(*displacement_poses(self.geometry, displacements))[0]
         return np.concatenate([margins, clearance[..., None]], axis=-1)
 
     def exact(self, d: ArrayF) -> ArrayF:

@@ -90,13 +90,15 @@ def maximize_coordinate(
     """
     gradient = np.zeros(len(starts[0]))
     gradient[k] = -sign
-    # accepted answers: value, x, success, and the first start from the same point
+    # accepted answers: value, x, success, and the first run from the same start point
     accepted: list[tuple[float, ArrayF, bool, int]] = []
     independent: list[float] = []  # values of accepted starts that are not guided
     iterations = 0
     if scales is not None and len(scales) != len(starts):
         raise ValueError(f"{len(scales)} scales for {len(starts)} starts")
+    first_run_from: dict[bytes, int] = {}  # start point → the first run from it
     for run, start in enumerate(starts, start=1):
+        origin = first_run_from.setdefault(np.asarray(start, dtype=float).tobytes(), run)
         scale = None if scales is None else scales[run - 1]
         x, nit, success = _run_slsqp(
             gradient,
@@ -109,7 +111,6 @@ def maximize_coordinate(
         )
         iterations += nit
         if accept(x):
-            origin = next(i for i, other in enumerate(starts) if np.array_equal(other, start))
             accepted.append((float(sign * x[k]), x, success, origin))
             if run > guided:
                 independent.append(accepted[-1][0])
