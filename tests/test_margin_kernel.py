@@ -13,9 +13,9 @@ from hypothesis.extra.numpy import arrays
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.limits import IMPROVED_LIMITS, STANCE_LIMITS, JointLimits
-from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins
+from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins, stance_margins
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import compiled_smooth_margins
+from hexaleg.stance.margin_kernel import compiled_margins
 
 # the knee's three smooth forms: cos θ3 (the stance limits), the hip-coupled bound, and
 # θ3 itself where the knee may straighten past 0 (cos θ3 is then not monotonic)
@@ -37,8 +37,9 @@ def _geometry(name: str) -> StanceGeometry:
     return StanceGeometry.from_model(HexapodModel(design), stance)
 
 
-def _reference(geometry: StanceGeometry, displacements: np.ndarray) -> np.ndarray:
-    return smooth_stance_margins(geometry, *displacement_poses(geometry, displacements))
+def _reference(geometry: StanceGeometry, displacements: np.ndarray, smooth: bool) -> np.ndarray:
+    margins = smooth_stance_margins if smooth else stance_margins
+    return margins(geometry, *displacement_poses(geometry, displacements))
 
 
 def test_the_variants_cover_each_knee_form_and_body():
@@ -58,23 +59,23 @@ DISPLACEMENTS = arrays(
 ).map(lambda unit: unit * np.array([0.8, 0.8, 0.5, 1.2, 1.2, 2.5]))
 
 
+@pytest.mark.parametrize("smooth", [True, False], ids=["smooth", "exact"])
 @pytest.mark.parametrize("name", list(VARIANTS))
 @settings(max_examples=40, deadline=None)
 @given(displacements=DISPLACEMENTS)
-def test_compiled_margins_equal_the_numpy_reference(name, displacements):
+def test_compiled_margins_equal_the_numpy_reference(name, smooth, displacements):
     geometry = _geometry(name)
-    compiled = compiled_smooth_margins(geometry)(displacements)
-    np.testing.assert_allclose(
-        compiled, _reference(geometry, displacements), rtol=1e-12, atol=1e-12
-    )
+    compiled = compiled_margins(geometry, smooth)(displacements)
+    reference = _reference(geometry, displacements, smooth)
+    np.testing.assert_allclose(compiled, reference, rtol=1e-12, atol=1e-12)
 
 
 def test_any_batch_shape_and_a_single_displacement():
     geometry = _geometry("box, all legs, cos θ3 knee")
-    margins = compiled_smooth_margins(geometry)
+    margins = compiled_margins(geometry)
     rng = np.random.default_rng(3)
     batch = rng.uniform(-0.2, 0.2, size=(2, 3, 6))
-    reference = _reference(geometry, batch)
+    reference = _reference(geometry, batch, smooth=True)
     assert margins(batch).shape == reference.shape == (2, 3, 8 * 6 + 8)
     np.testing.assert_allclose(margins(batch), reference, rtol=1e-12, atol=1e-12)
     np.testing.assert_allclose(margins(batch[0, 0]), reference[0, 0], rtol=1e-12, atol=1e-12)

@@ -111,11 +111,7 @@ def axis_locked_flexibility(
         collisions: Also stop where two of the robot's own parts touch (coal).
 
     """
-    if geometry is None:
-        model = HexapodModel(design) if model is None else model
-        geometry = StanceGeometry.from_model(model, stance)
-    else:
-        geometry = geometry.with_design(design)
+    geometry = StanceGeometry.of_design(design, stance, model, geometry)
     return _result(design, geometry, axis_locked_extremes(geometry), model, collisions)
 
 

@@ -34,7 +34,6 @@ from hexaleg.stance.constraints import (
     Cause,
     constraint_labels,
     displacement_poses,
-    stance_margins,
 )
 from hexaleg.stance.extremes import (
     Extreme,
@@ -43,7 +42,7 @@ from hexaleg.stance.extremes import (
     pose_extreme,
 )
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import compiled_smooth_margins
+from hexaleg.stance.margin_kernel import compiled_margins
 from hexaleg.stance.multistart import box_starts, maximize_coordinate
 from hexaleg.stance.symmetry import mirror_flips, reversing
 
@@ -94,6 +93,7 @@ def free_flexibility(
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
     collisions: bool = False,
+    geometry: StanceGeometry | None = None,
 ) -> FlexibilityResult:
     """Free-coupled flexibility: each coordinate's extreme with the other five free.
 
@@ -102,11 +102,14 @@ def free_flexibility(
         stance: ``"all"``, ``"tripod"`` or a list of stance legs.
         model: Its Pinocchio model, if already built.
         collisions: Also stop where two of the robot's own parts touch (coal).
+        geometry: A template geometry of the same body and mounts (fast path for
+            sweeps: the design's legs replace the template's by :meth:`StanceGeometry.with_design`).
 
     """
-    model = HexapodModel(design) if model is None else model
-    geometry = StanceGeometry.from_model(model, stance)
-    collision = SelfCollision(model, geometry) if collisions else None
+    geometry = StanceGeometry.of_design(design, stance, model, geometry)
+    collision = None
+    if collisions:
+        collision = SelfCollision(HexapodModel(design) if model is None else model, geometry)
     locked = axis_locked_extremes(geometry)
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
@@ -175,7 +178,8 @@ class _FreeProblem:
         self.geometry = geometry
         self.collision = collision
         self.labels = constraint_labels(geometry.legs)
-        self._smooth_margins = compiled_smooth_margins(geometry)
+        self._smooth_margins = compiled_margins(geometry)
+        self._exact_margins = compiled_margins(geometry, smooth=False)
         self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
         self._values = np.zeros(0)
@@ -209,11 +213,11 @@ class _FreeProblem:
 
     def exact(self, d: ArrayF) -> ArrayF:
         """Exact margins at d (6,) [m or rad], the collision clearance last if checked."""
-        rotation, translation = displacement_poses(self.geometry, d)
-        margins = stance_margins(self.geometry, rotation, translation)
+        margins = self._exact_margins(d)
         if self.collision is None:
             return margins
-        return np.append(margins, self.collision.clearances(rotation, translation)[0])
+        clearance = self.collision.clearances(*displacement_poses(self.geometry, d))[0]
+        return np.append(margins, clearance)
 
     def binding(self, d: ArrayF) -> list[Cause]:
         """The constraints that bind at d, in constraint order; touching pairs last."""
@@ -259,8 +263,7 @@ class _FreeProblem:
         A list of at most one start. The scan checks the stance margins only: checking
         collisions at every sample would cost more than the start saves.
         """
-        rotation, translation = displacement_poses(self.geometry, samples)
-        feasible = np.flatnonzero(stance_margins(self.geometry, rotation, translation).min(-1) >= 0)
+        feasible = np.flatnonzero(self._exact_margins(samples).min(-1) >= 0)
         if feasible.size == 0:
             return []
         return [samples[feasible[np.argmax(sign * samples[feasible, k])]]]

@@ -101,6 +101,25 @@ class StanceGeometry:
             limits=model.design.stance_limits,
         )
 
+    @classmethod
+    def of_design(
+        cls,
+        design: HexapodDesign,
+        stance: StanceSet | Sequence[str] = "all",
+        model: HexapodModel | None = None,
+        template: StanceGeometry | None = None,
+    ) -> StanceGeometry:
+        """``design``'s stance geometry: from ``template`` if given, else from its model.
+
+        A template of the same body and mounts (a study's, read once) gives it by
+        :meth:`with_design` in closed form, without rendering the design's URDF; its
+        stance legs are the template's. Otherwise it is read from ``model`` (built if
+        omitted) by :meth:`from_model`.
+        """
+        if template is not None:
+            return template.with_design(design)
+        return cls.from_model(HexapodModel(design) if model is None else model, stance)
+
     def with_design(self, design: HexapodDesign) -> StanceGeometry:
         """The same body and mounting with ``design``'s legs and posture (closed form, eq 7).
 

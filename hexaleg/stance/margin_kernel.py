@@ -1,10 +1,12 @@
-"""The free-coupled search's inner loop, compiled: smooth stance margins of body displacements.
+"""The free-coupled search's inner loop, compiled: stance margins of body displacements.
 
 SLSQP asks for the margins of seven poses at a time (a point and its six forward steps)
 some thousand times per design. In NumPy each call is ~40 array operations on 42 leg
 solutions, and their overhead, not the arithmetic, was half of the search's time.
-:func:`compiled_smooth_margins` computes the same numbers in one Numba-compiled loop:
-``smooth_stance_margins(geometry, *displacement_poses(geometry, d))``, column for column.
+:func:`compiled_margins` computes the same numbers in one Numba-compiled loop:
+``smooth_stance_margins(geometry, *displacement_poses(geometry, d))`` column for column,
+or with ``smooth=False`` those of ``stance_margins`` (the exact check every answer and
+the start scan pass).
 The NumPy functions stay the reference (they also serve the axis-locked search, whose
 batches of thousands of poses NumPy handles well); the tests hold the kernel to them.
 """
@@ -23,20 +25,23 @@ from hexaleg.stance.geometry import StanceGeometry
 
 THETA_FORM, COUPLED_FORM, COSINE_FORM = 0, 1, 2
 """How the knee's lower and upper margins are written (see ``smooth_stance_margins``):
-on θ3, θ3 above the hip-coupled bound, or on cos θ3."""
+on θ3, θ3 above the hip-coupled bound, or on cos θ3 (smooth margins only)."""
 
 
-def compiled_smooth_margins(geometry: StanceGeometry) -> Callable[[npt.ArrayLike], ArrayF]:
-    """Smooth stance margins of displacements d (..., 6) from the nominal stance.
+def compiled_margins(
+    geometry: StanceGeometry, smooth: bool = True
+) -> Callable[[npt.ArrayLike], ArrayF]:
+    """Stance margins of displacements d (..., 6) from the nominal stance.
 
     The returned function equals ``smooth_stance_margins(geometry,
     *displacement_poses(geometry, d))`` (..., 8N + K): reach [m²], joint margins [rad]
-    (the knee's on cos θ3 where that form applies [-]) and the ground [m or m²].
+    (the knee's on cos θ3 where that form applies [-]) and the ground [m or m²]; with
+    ``smooth=False``, ``stance_margins`` (..., 8N + 1) [m or rad].
     """
     limits = geometry.limits
     if limits.coupled_knee:
         knee = COUPLED_FORM
-    elif -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0:
+    elif smooth and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0:
         knee = COSINE_FORM
     else:
         knee = THETA_FORM
@@ -51,19 +56,20 @@ def compiled_smooth_margins(geometry: StanceGeometry) -> Callable[[npt.ArrayLike
         knee,
         bool(geometry.body_round),
         np.ascontiguousarray(geometry.body_half_extents, dtype=float),
+        smooth,
     )
 
     def margins(displacements: npt.ArrayLike) -> ArrayF:
         d = np.asarray(displacements, dtype=float)
         flat = np.ascontiguousarray(d.reshape(-1, 6))
-        values: ArrayF = _smooth_margins(flat, *parameters)
+        values: ArrayF = _margins(flat, *parameters)
         return values.reshape(*d.shape[:-1], values.shape[-1])
 
     return margins
 
 
 @numba.njit(cache=True)
-def _smooth_margins(
+def _margins(
     displacements: ArrayF,
     height: float,
     footholds: ArrayF,
@@ -75,9 +81,10 @@ def _smooth_margins(
     knee: int,
     round_body: bool,
     half_extents: ArrayF,
+    smooth: bool,
 ) -> ArrayF:  # pragma: no cover - compiled; tested against the NumPy reference
     legs = footholds.shape[0]
-    ground = 2 if round_body else 8
+    ground = 1 if not smooth else 2 if round_body else 8
     l1, l2, l3 = lengths[0], lengths[1], lengths[2]
     cos_low, cos_high = math.cos(lower[2]), math.cos(upper[2])
     out = np.empty((displacements.shape[0], 8 * legs + ground))
@@ -123,8 +130,12 @@ def _smooth_margins(
             theta3 = -math.acos(min(max((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0), 1.0))
             r2 = planar_x**2 + pz**2
             cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)  # the smooth form's, on r²
-            out[p, 2 * n] = (l2 + l3) ** 2 - r2
-            out[p, 2 * n + 1] = r2 - (l2 - l3) ** 2
+            if smooth:
+                out[p, 2 * n] = (l2 + l3) ** 2 - r2
+                out[p, 2 * n + 1] = r2 - (l2 - l3) ** 2
+            else:
+                out[p, 2 * n] = l2 + l3 - r
+                out[p, 2 * n + 1] = r - abs(l2 - l3)
             j = 2 * legs + 6 * n
             out[p, j] = theta1 - lower[0]
             out[p, j + 1] = upper[0] - theta1
@@ -137,9 +148,20 @@ def _smooth_margins(
             elif knee == 2:
                 out[p, j + 4] = cos_knee - cos_low
                 out[p, j + 5] = cos_high - cos_knee
-        # the ground, as StanceGeometry.smooth_ground_margins
+        # the ground, as StanceGeometry.lowest_body_height and smooth_ground_margins
         g = 8 * legs
-        if round_body:
+        if not smooth and round_body:
+            out[p, g] = tz - (
+                half_extents[0] * math.hypot(rotation[2, 0], rotation[2, 1])
+                + half_extents[2] * abs(rotation[2, 2])
+            )
+        elif not smooth:
+            out[p, g] = tz - (
+                abs(rotation[2, 0]) * half_extents[0]
+                + abs(rotation[2, 1]) * half_extents[1]
+                + abs(rotation[2, 2]) * half_extents[2]
+            )
+        elif round_body:
             radius, half = half_extents[0], half_extents[2]
             centre = tz - half * abs(rotation[2, 2])
             out[p, g] = centre

@@ -130,7 +130,7 @@ design than one by one), and two workers still share 320 designs evenly."""
 class _Task:
     keys: tuple[tuple[float, float], ...]  # (l1 ratio, l3 ratio) of each design
     spec: StudySpec
-    template: StanceGeometry | None  # fast path for axis-locked studies
+    template: StanceGeometry | None  # the study's body and mounts, read once
 
 
 Row = dict[str, Any]
@@ -184,7 +184,9 @@ def _row(
     elif result is None:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            result = free_flexibility(design, spec.stance, model, collisions=spec.collisions)
+            result = free_flexibility(
+                design, spec.stance, model, collisions=spec.collisions, geometry=template
+            )
     row: Row = {"l1_ratio": key[0], "l3_ratio": key[1]}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
     row |= loads_at_extremes(model, result).study_columns() if spec.statics else {}
@@ -242,7 +244,7 @@ def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
 
     A free-coupled design takes about a second, so it is a task of its own.
     """
-    template = _template_geometry(spec) if spec.mode == "axis" else None
+    template = _template_geometry(spec)
     size = CHUNK if spec.mode == "axis" else 1
     return [_Task(tuple(keys[i : i + size]), spec, template) for i in range(0, len(keys), size)]
 
