@@ -137,6 +137,17 @@ def test_with_design_equals_reading_the_model(hexapod_model):
         np.testing.assert_allclose(fast.body_half_extents, slow.body_half_extents)
 
 
+def test_of_design_takes_the_template_or_reads_the_model(hexapod_model):
+    design = HexapodDesign.from_ratios(0.1, 0.45)
+    template = StanceGeometry.from_model(hexapod_model, "tripod")
+    fast = StanceGeometry.of_design(design, "all", template=template)
+    assert fast.legs == template.legs  # a template's stance legs win
+    np.testing.assert_array_equal(fast.footholds, template.with_design(design).footholds)
+    slow = StanceGeometry.of_design(design, "tripod")
+    assert slow.legs == template.legs and slow.lengths == design.lengths
+    np.testing.assert_allclose(slow.footholds, fast.footholds, atol=1e-12)
+
+
 def test_body_box_is_read_from_the_urdf(hexapod_model, default_design):
     geometry = StanceGeometry.from_model(hexapod_model)
     np.testing.assert_allclose(

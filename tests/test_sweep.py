@@ -175,3 +175,28 @@ def test_peak_table_and_sensitivity():
     )
     assert sensitivity["variant"].tolist() == ["default", "hip raised"]
     assert sensitivity["peak_fb"].notna().all()
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.stance.extremes.FlexibilityWarning")
+def test_free_study_rows_equal_single_design_results_without_rendering_each_urdf(monkeypatch):
+    from hexaleg.robot import model as model_module
+    from hexaleg.study.sweep import sweep_in_process
+
+    rendered = []
+    real_render = model_module.render_hexapod
+
+    def counting_render(design):
+        rendered.append(design)
+        return real_render(design)
+
+    monkeypatch.setattr(model_module, "render_hexapod", counting_render)
+    spec = StudySpec((0.1,), (0.35, 0.45, 0.55), mode="free", statics=False)
+    table = sweep_in_process(spec)
+    # the study's base body is read once at most (it may be cached); its designs never
+    assert all(design == spec.base for design in rendered) and len(rendered) <= 1
+    for _, row in table.iterrows():
+        single = flexibility(
+            HexapodDesign.from_ratios(row["l1_ratio"], row["l3_ratio"]), "free", "all"
+        )
+        assert row["fb"] == pytest.approx(single.fb, rel=1e-9)
+        assert row["z_min"] == pytest.approx(single.extreme("z", -1).value, rel=1e-9)
