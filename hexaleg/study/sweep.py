@@ -242,7 +242,7 @@ def base_model(base: HexapodDesign) -> HexapodModel:
 def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
     """The designs ``keys`` in tasks: :data:`CHUNK` per axis-locked search, free ones alone.
 
-    A free-coupled design takes about a second, so it is a task of its own.
+    A free-coupled design takes a few tenths of a second, so it is a task of its own.
     """
     template = _template_geometry(spec)
     size = CHUNK if spec.mode == "axis" else 1
