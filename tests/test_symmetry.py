@@ -12,7 +12,7 @@ from hexaleg.limits import STANCE_LIMITS
 from hexaleg.stance import StanceGeometry
 from hexaleg.stance.axis_locked import axis_locked_extremes
 from hexaleg.stance.free_coupled import _FreeProblem
-from hexaleg.stance.symmetry import MIRRORS, mirror_flips
+from hexaleg.stance.symmetry import MIRRORS, keeping, mirror_flips
 
 LEFT_RIGHT, FRONT_BACK = (tuple(flip) for _, flip in MIRRORS.values())
 
@@ -60,3 +60,36 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
             assert mirrored is not None
             assert mirrored.extreme.value == pytest.approx(direct.extreme.value, abs=1e-6)
             assert problem.feasible(np.asarray(mirrored.extreme.pose))
+
+
+def test_the_symmetries_that_keep_a_coordinate():
+    left_right, front_back = (flip for _, flip in MIRRORS.values())
+    both = left_right * front_back
+    as_sets = lambda flips: {tuple(f) for f in flips}  # noqa: E731
+    assert as_sets(keeping(2, [left_right, front_back])) == as_sets([left_right, front_back, both])
+    assert as_sets(keeping(5, [left_right, front_back])) == as_sets([both])  # yaw
+    assert as_sets(keeping(0, [left_right, front_back])) == as_sets([left_right])  # x
+    assert keeping(1, [left_right]) == []  # y: the one mirror reverses it
+
+
+def test_mirror_image_optima_are_reported_as_one_pose():
+    geometry = StanceGeometry.from_model(HexapodModel(HexapodDesign()), "all")
+    problem = _FreeProblem(geometry, None)
+    assert len(problem.flips) == 2
+    z = 2  # z−'s optimum of the default design (as found): yaw and a sideways shift
+    pose = np.array(
+        [
+            -0.11845213835774489,
+            -0.14288266234399993,
+            -0.23744482708278944,
+            -0.03959812194043945,
+            0.012492998212773257,
+            0.3107475359124815,
+        ]
+    )
+    images = [pose, *(flip * pose for flip in keeping(z, problem.flips))]
+    assert all(problem.feasible(image) for image in images)
+    chosen = [problem.canonical(image, z) for image in images]
+    for image in chosen[1:]:
+        np.testing.assert_array_equal(image, chosen[0])
+    assert chosen[0][z] == pose[z]

@@ -44,7 +44,7 @@ from hexaleg.stance.extremes import (
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.margin_kernel import compiled_margins
 from hexaleg.stance.multistart import box_starts, maximize_coordinate
-from hexaleg.stance.symmetry import mirror_flips, reversing
+from hexaleg.stance.symmetry import keeping, mirror_flips, reversing
 
 FEASIBILITY_TOLERANCE = 1e-9
 """Largest constraint violation [m or rad] an answer may have (exact margins)."""
@@ -114,7 +114,7 @@ def free_flexibility(
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
     problem = _FreeProblem(geometry, collision)
-    flips = mirror_flips(geometry)
+    flips = problem.flips
     solved: dict[tuple[str, int], DirectionSolution] = {}
     for extreme in locked:
         mirrored = problem.mirrored(extreme, solved, flips)
@@ -137,6 +137,10 @@ def free_flexibility(
         iterations=sum(s.iterations for s in solutions),
         collisions=collisions,
     )
+
+
+def _rounded(pose: ArrayF) -> tuple[float, ...]:
+    return tuple(float(v) for v in np.round(pose, 6))
 
 
 def _name(extreme: Extreme) -> str:
@@ -180,6 +184,7 @@ class _FreeProblem:
         self.labels = constraint_labels(geometry.legs)
         self._smooth_margins = compiled_margins(geometry)
         self._exact_margins = compiled_margins(geometry, smooth=False)
+        self.flips = mirror_flips(geometry)
         self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
         self._values = np.zeros(0)
@@ -304,6 +309,18 @@ class _FreeProblem:
         converged = result.success and result.agreed
         if result.value <= extreme.sign * extreme.value:  # axis-locked is feasible: keep it
             return DirectionSolution(extreme, converged, result.iterations)
-        binding = self.binding(result.x)
-        solved = pose_extreme(self.geometry, extreme.axis, extreme.sign, result.x, binding)
+        pose = self.canonical(result.x, k)
+        binding = self.binding(pose)
+        solved = pose_extreme(self.geometry, extreme.axis, extreme.sign, pose, binding)
         return DirectionSolution(solved, converged, result.iterations)
+
+    def canonical(self, d: ArrayF, k: int) -> ArrayF:
+        """Of d and its feasible mirror images that keep coordinate k, the largest.
+
+        A symmetric robot's optima come in mirror-image sets of equal value, and which
+        one a start reaches first can follow round-off (a BLAS thread count, say). The
+        largest pose in lexicographic order, compared at 1e-6, is the same whichever it is.
+        """
+        images: list[ArrayF] = [d, *(flip * d for flip in keeping(k, self.flips))]
+        feasible = [image for image in images if self.feasible(image)]
+        return max(feasible, key=_rounded)

@@ -57,3 +57,15 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
 def reversing(k: int, flips: list[ArrayF]) -> list[ArrayF]:
     """The flips that map coordinate k's + direction onto its − one (and back)."""
     return [flip for flip in flips if flip[k] < 0]
+
+
+def keeping(k: int, flips: list[ArrayF]) -> list[ArrayF]:
+    """The symmetries (products of the flips, identity excluded) that keep coordinate k.
+
+    They map an optimum of direction (k, ±) onto equally good ones: its mirror images.
+    """
+    group = {tuple(np.ones(6))}
+    for flip in flips:
+        group |= {tuple(np.asarray(g) * flip) for g in group}
+    group.discard(tuple(np.ones(6)))
+    return [np.array(g) for g in sorted(group) if g[k] > 0]
