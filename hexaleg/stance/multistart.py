@@ -81,8 +81,8 @@ def maximize_coordinate(
         guided: The first this many starts were chosen for promise (an extreme, a
             scan's best): they may win, but only the others' agreement stops the search,
             since guided starts tend to share one optimum.
-        scales: Per start, the scale of the coordinates it runs in (u = x / scale), or
-            None to run it in x; every start runs in x if omitted.
+        scales: Per start, the positive scale of the coordinates it runs in
+            (u = x / scale), or None to run it in x; every start runs in x if omitted.
 
     Returns:
         The best accepted answer, or None if no start gave one.
@@ -125,8 +125,8 @@ def maximize_coordinate(
         return None
     best = max(item[0] for item in accepted)
     tolerance = AGREEMENT * max(1.0, abs(best))
-    # Among answers that agree with the best, the earliest start's wins: mirror-image
-    # optima of equal value are never chosen by round-off.
+    # Among answers that agree with the best, the earliest start's wins (which of several
+    # equal optima that is can follow round-off: callers with symmetries pick one).
     value, x, success, _ = next(item for item in accepted if item[0] >= best - tolerance)
     values = tuple(sorted((item[0] for item in accepted), reverse=True))
     # A start point run twice (scaled and not) agrees with itself: count points, not runs.
