@@ -40,3 +40,19 @@ def test_unknown_mode_is_an_error(default_design):
 
     with pytest.raises(HexalegError, match="mode"):
         flexibility(default_design, "sideways")
+
+
+def test_a_plot_label_names_the_first_cause_and_counts_the_others():
+    from hexaleg.stance.constraints import Cause
+    from hexaleg.stance.extremes import Extreme
+
+    knee = Cause("joint", "lf", "knee", "upper")
+    alone = Extreme("z", -1, -0.2, knee)
+    assert alone.label == alone.description == "lf knee joint at its upper limit"
+    mirrored = Extreme("z", -1, -0.2, knee, (knee, Cause("joint", "rf", "knee", "upper")))
+    assert mirrored.label == mirrored.description == "lf, rf knee joint at its upper limit"
+    mixed = Extreme(
+        "z", -1, -0.2, knee, (knee, Cause("joint", "lr", "hip", "lower"), Cause("ground"))
+    )
+    assert mixed.description.startswith("lf knee joint at its upper limit (also lr hip")
+    assert mixed.label == "lf knee joint at its upper limit (+2 more)"

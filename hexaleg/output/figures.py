@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import io
 import os
+import textwrap
 from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -279,6 +280,10 @@ def write_manipulability_figures(
     ]
 
 
+LABEL_WIDTH = 26
+"""Characters per line of a bar's cause in the extremes figure (three bars share an axis)."""
+
+
 def extremes_figure(result: FlexibilityResult) -> Figure:
     """The twelve body extremes of a :class:`~hexaleg.flexibility.FlexibilityResult`."""
     fig = _figure(11, 4.8)
@@ -293,7 +298,7 @@ def extremes_figure(result: FlexibilityResult) -> Figure:
                 value = extreme.value * scale
                 ax.bar(k, value, color=color, width=0.6)
                 ax.annotate(
-                    extreme.description,
+                    textwrap.fill(extreme.label, LABEL_WIDTH),
                     (k, value),
                     xytext=(0, 4 if sign > 0 else -4),
                     textcoords="offset points",

@@ -61,6 +61,14 @@ class Extreme:
             return str(first).replace(first.leg, legs, 1)
         return f"{first} (also {', '.join(str(c) for c in others)})"
 
+    @property
+    def label(self) -> str:
+        """:attr:`description` short enough for a plot: the first cause and how many more."""
+        first, others = self.limited_by, self.binding[1:]
+        if not others or "(also " not in self.description:
+            return self.description
+        return f"{first} (+{len(others)} more)"
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (value in m or rad)."""
         return {
