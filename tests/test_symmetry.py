@@ -47,7 +47,6 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
     geometry = StanceGeometry.from_model(HexapodModel(design))
     locked = axis_locked_extremes(geometry)
     problem = _FreeProblem(geometry, None)
-    flips = mirror_flips(geometry)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for axis in ("y", "roll", "yaw"):
@@ -55,7 +54,7 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
                 next(e for e in locked if (e.axis, e.sign) == (axis, s)) for s in (1, -1)
             )
             solved = {(axis, 1): problem.solve(plus, locked)}
-            mirrored = problem.mirrored(minus, solved, flips)
+            mirrored = problem.mirrored(minus, solved)
             direct = problem.solve(minus, locked)
             assert mirrored is not None
             assert mirrored.extreme.value == pytest.approx(direct.extreme.value, abs=1e-6)

@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, CauseKind
 from hexaleg.kinematics import leg_plane, plane_solution
+from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.stance.geometry import StanceGeometry
 
@@ -146,6 +147,15 @@ def constraint_labels(legs: Sequence[str]) -> list[Cause]:
     return [*labels, Cause("ground")]
 
 
+def knee_on_cosine(limits: JointLimits) -> bool:
+    """Whether the smooth margins bound the knee on cos θ3 rather than on θ3.
+
+    So they do for fixed knee limits within [−π, 0], where cos θ3 is monotonic; a coupled
+    knee bound keeps the θ3 form.
+    """
+    return not limits.coupled_knee and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0
+
+
 def stance_margins(geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF) -> ArrayF:
     """Every constraint's margin (..., 8N + 1) for body poses: ≥ 0 feasible, < 0 broken.
 
@@ -188,7 +198,7 @@ def _margins(
     if smooth:
         r2 = planar_x**2 + z**2
         reach = np.stack([(l2 + l3) ** 2 - r2, r2 - (l2 - l3) ** 2], axis=-1)
-        if not limits.coupled_knee and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0:
+        if knee_on_cosine(limits):
             cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
             joints[..., 2, 0] = cos_knee - math.cos(limits.theta3[0])
             joints[..., 2, 1] = math.cos(limits.theta3[1]) - cos_knee

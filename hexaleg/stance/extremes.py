@@ -53,20 +53,22 @@ class Extreme:
     @property
     def description(self) -> str:
         """What stops the body, naming every leg that binds: "lf, rf knee joint at ..."."""
+        return self._summary(list_others=True)
+
+    @property
+    def label(self) -> str:
+        """:attr:`description` short enough for a plot: the first cause and how many more."""
+        return self._summary(list_others=False)
+
+    def _summary(self, list_others: bool) -> str:
         first, others = self.limited_by, self.binding[1:]
         if not others:
             return str(first)
         if first.leg and all(c.leg and c.same_constraint_as(first) for c in others):
             legs = ", ".join([first.leg, *(c.leg for c in others if c.leg)])
             return str(first).replace(first.leg, legs, 1)
-        return f"{first} (also {', '.join(str(c) for c in others)})"
-
-    @property
-    def label(self) -> str:
-        """:attr:`description` short enough for a plot: the first cause and how many more."""
-        first, others = self.limited_by, self.binding[1:]
-        if not others or "(also " not in self.description:
-            return self.description
+        if list_others:
+            return f"{first} (also {', '.join(str(c) for c in others)})"
         return f"{first} (+{len(others)} more)"
 
     def to_dict(self) -> dict[str, Any]:

@@ -114,10 +114,9 @@ def free_flexibility(
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
     problem = _FreeProblem(geometry, collision)
-    flips = problem.flips
     solved: dict[tuple[str, int], DirectionSolution] = {}
     for extreme in locked:
-        mirrored = problem.mirrored(extreme, solved, flips)
+        mirrored = problem.mirrored(extreme, solved)
         solved[(extreme.axis, extreme.sign)] = mirrored or problem.solve(extreme, locked)
     solutions = [solved[(e.axis, e.sign)] for e in locked]
     doubtful = [_name(s.extreme) for s in solutions if not s.converged]
@@ -241,7 +240,6 @@ class _FreeProblem:
         self,
         extreme: Extreme,
         solved: dict[tuple[str, int], DirectionSolution],
-        flips: Sequence[ArrayF],
     ) -> DirectionSolution | None:
         """``extreme``'s direction as the mirror image of the opposite one, if solved.
 
@@ -253,7 +251,7 @@ class _FreeProblem:
         opposite = solved.get((extreme.axis, -extreme.sign))
         if opposite is None:
             return None
-        for flip in reversing(k, list(flips)):
+        for flip in reversing(k, self.flips):
             d = flip * np.asarray(opposite.extreme.pose)
             if not self.feasible(d) or extreme.sign * d[k] < extreme.sign * extreme.value:
                 continue

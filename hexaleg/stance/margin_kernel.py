@@ -21,6 +21,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.stance.constraints import knee_on_cosine
 from hexaleg.stance.geometry import StanceGeometry
 
 THETA_FORM, COUPLED_FORM, COSINE_FORM = 0, 1, 2
@@ -41,7 +42,7 @@ def compiled_margins(
     limits = geometry.limits
     if limits.coupled_knee:
         knee = COUPLED_FORM
-    elif smooth and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0:
+    elif smooth and knee_on_cosine(limits):
         knee = COSINE_FORM
     else:
         knee = THETA_FORM
@@ -143,9 +144,9 @@ def _margins(
             out[p, j + 3] = upper[1] - theta2
             out[p, j + 4] = theta3 - lower[2]
             out[p, j + 5] = upper[2] - theta3
-            if knee == 1:
+            if knee == COUPLED_FORM:
                 out[p, j + 4] = theta3 - max(lower[2], -theta2 - math.pi / 2)
-            elif knee == 2:
+            elif knee == COSINE_FORM:
                 out[p, j + 4] = cos_knee - cos_low
                 out[p, j + 5] = cos_high - cos_knee
         # the ground, as StanceGeometry.lowest_body_height and smooth_ground_margins

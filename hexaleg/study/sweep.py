@@ -130,7 +130,7 @@ design than one by one), and two workers still share 320 designs evenly."""
 class _Task:
     keys: tuple[tuple[float, float], ...]  # (l1 ratio, l3 ratio) of each design
     spec: StudySpec
-    template: StanceGeometry | None  # the study's body and mounts, read once
+    template: StanceGeometry  # the study's body and mounts, read once
 
 
 Row = dict[str, Any]
@@ -149,7 +149,7 @@ def evaluate(task: _Task) -> list[Row]:
         except HexalegError as err:
             rows[key] = _error_row(key, err)
     results: dict[tuple[float, float], FlexibilityResult] = {}
-    if spec.mode == "axis" and task.template is not None and designs:
+    if spec.mode == "axis" and designs:
         try:
             found = axis_locked_flexibility_many(
                 [design for design, _ in designs.values()],
@@ -173,7 +173,7 @@ def _row(
     design: HexapodDesign,
     model: HexapodModel,
     spec: StudySpec,
-    template: StanceGeometry | None,
+    template: StanceGeometry,
     result: FlexibilityResult | None,
 ) -> Row:
     """One design's row: its flexibility (computed here unless given) and statics."""
