@@ -20,7 +20,7 @@ from hexaleg.stance import (
     axis_locked_flexibility,
     free_flexibility,
 )
-from hexaleg.stance.loads import loads_at_extremes
+from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.study import StudySpec, run_study
 
 

@@ -13,7 +13,7 @@ import numpy as np
 
 from hexaleg.design_file import load_design
 from hexaleg.stance import flexibility
-from hexaleg.stance.loads import analyze_loads
+from hexaleg.statics.loads import analyze_loads
 from hexaleg.study.sensitivity import FieldSweep, sensitivity_table
 
 DESIGN_FILE = Path(__file__).with_name("hexagon_robot.toml")

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.stance.bracketing import anderson_bjorck, first_crossings
+from hexaleg.numerics.bracketing import anderson_bjorck, first_crossings
 
 
 def test_first_failure_wins_over_a_later_feasible_region():

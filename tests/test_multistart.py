@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.stance.multistart import box_starts, maximize_coordinate
+from hexaleg.numerics.multistart import box_starts, maximize_coordinate
 
 # Feasible set: two disks, radius 1 at the origin and radius 0.5 at (2.2, 0): the
 # largest x is 2.7 in the small disk; starts near the origin find only 1.0.

@@ -219,7 +219,7 @@ def test_the_decision_comes_first_and_scores_the_users_design(report):
     assert recommended["score"] > data["decision"]["yours"]["score"]
     assert f"{yours['flexibility']:.4g}" in text.split("## Design")[0]
     # payload capacities, recomputed on models built from each design's own URDF
-    from hexaleg.stance.loads import analyze_loads
+    from hexaleg.statics.loads import analyze_loads
 
     assert data["decision"]["yours"]["payload_capacity"] == pytest.approx(
         analyze_loads(design).capacity.mass, rel=1e-9

@@ -10,7 +10,7 @@ import pytest
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.stance import StanceGeometry, stance_configuration
-from hexaleg.stance.statics import (
+from hexaleg.statics import (
     Payload,
     Statics,
     payload_capacity,
@@ -157,7 +157,7 @@ def test_slope_limits_tip_or_slide_as_geometry_says():
 
 
 def test_exit_distances_reach_a_square_boundary_as_trigonometry_says():
-    from hexaleg.stance.statics import SupportPolygon
+    from hexaleg.statics import SupportPolygon
 
     square = SupportPolygon.of_feet([[-1, -1], [1, -1], [1, 1], [-1, 1]])
     angles = np.linspace(-math.pi, math.pi, 37)
@@ -191,7 +191,7 @@ def test_states_of_many_poses_equal_each_pose_alone(model, distribution):
 def test_extreme_configurations_put_the_body_at_each_pose_and_swing_legs_at_rest(model):
     """Against Pinocchio's own rpy module and the extremes' joint angles, leg by leg."""
     from hexaleg.stance import axis_locked_flexibility, free_flexibility
-    from hexaleg.stance.loads import extreme_configurations
+    from hexaleg.statics.loads import extreme_configurations
 
     design = model.design
     for result in (
@@ -289,7 +289,7 @@ def test_loads_bad_input_is_one_line(capsys, tmp_path):
 def test_study_rows_carry_the_statics(tmp_path):
     from concurrent.futures import ThreadPoolExecutor
 
-    from hexaleg.stance.loads import analyze_loads
+    from hexaleg.statics.loads import analyze_loads
     from hexaleg.study import StudySpec, run_study
 
     table = run_study(StudySpec((0.1,), (0.3, 0.45)), tmp_path, executor=ThreadPoolExecutor(1))

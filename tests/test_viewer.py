@@ -251,7 +251,7 @@ def test_meshcat_chatter_is_not_shown_to_the_user(capfd):
 
 def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_design):
     from hexaleg.output.viewer.scene import torque_colour
-    from hexaleg.stance.loads import loads_at_extremes
+    from hexaleg.statics.loads import loads_at_extremes
 
     result = axis_locked_flexibility(default_design, "all", hexapod_model)
     loads = loads_at_extremes(hexapod_model, result)

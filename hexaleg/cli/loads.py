@@ -17,8 +17,8 @@ from hexaleg.cli.options import (
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
 from hexaleg.output.figures import loads_figure, save
 from hexaleg.robot.model import LEG_JOINTS
-from hexaleg.stance.loads import LoadsAnalysis, analyze_loads
-from hexaleg.stance.statics import DEFAULT_FRICTION, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
 
 DESCRIPTION = (
     "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "

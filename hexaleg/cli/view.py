@@ -24,7 +24,7 @@ from hexaleg.output.viewer import (
 )
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
-from hexaleg.stance.loads import loads_at_extremes
+from hexaleg.statics.loads import loads_at_extremes
 
 DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "

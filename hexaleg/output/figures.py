@@ -25,7 +25,7 @@ from hexaleg.limits import JointLimits
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, L1_RATIOS, TABLE5
 from hexaleg.stance.constraints import AXES
 from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.stance.loads import LoadsAnalysis
+from hexaleg.statics.loads import LoadsAnalysis
 from hexaleg.study.sweep import peak_table
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,

@@ -3,7 +3,7 @@
 The body moves along one of x, y, z, roll, pitch, yaw from the nominal stance, the
 other five held, until the first constraint breaks: a foot out of reach, a joint
 past its stance limit, or the body touching the ground. All twelve directions are
-searched at once by :func:`~hexaleg.stance.bracketing.first_crossings` on the
+searched at once by :func:`~hexaleg.numerics.bracketing.first_crossings` on the
 vectorized margins of :mod:`hexaleg.stance.constraints`.
 """
 
@@ -18,8 +18,8 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, Lengths, StanceSet
 from hexaleg.design import HexapodDesign
+from hexaleg.numerics.bracketing import IndexArray, first_crossings
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.bracketing import IndexArray, first_crossings
 from hexaleg.stance.collisions import SelfCollision, collision_limited
 from hexaleg.stance.constraints import (
     AXES,

@@ -18,8 +18,8 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import inverse_kinematics
+from hexaleg.numerics.bracketing import IndexArray, first_crossings
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.bracketing import IndexArray, first_crossings
 from hexaleg.stance.constraints import AXES, Cause, direction_poses, displacement_poses
 from hexaleg.stance.extremes import Extreme, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry

@@ -6,7 +6,7 @@ Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-do
 IK (eq 8–9), whose solution Pinocchio's model reproduces (tested). Each direction
 is a small smooth nonlinear program, max ±d_k subject to every margin of
 :func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0, solved by SLSQP from
-several deterministic starts (:mod:`~hexaleg.stance.multistart`): the axis-locked extreme, the
+several deterministic starts (:mod:`~hexaleg.numerics.multistart`): the axis-locked extreme, the
 feasible pose of a vectorized scan of the coupled coordinates that reaches furthest (these
 two run both in metres and radians and scaled to the search box), and low-discrepancy
 points of a box around the nominal stance (scaled). The best
@@ -26,6 +26,7 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
+from hexaleg.numerics.multistart import box_starts, maximize_coordinate
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_extremes
 from hexaleg.stance.collisions import SelfCollision, collision_limited
@@ -43,7 +44,6 @@ from hexaleg.stance.extremes import (
 )
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.margin_kernel import compiled_margins
-from hexaleg.stance.multistart import box_starts, maximize_coordinate
 from hexaleg.stance.symmetry import keeping, mirror_flips, reversing
 
 FEASIBILITY_TOLERANCE = 1e-9

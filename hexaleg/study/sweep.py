@@ -41,7 +41,7 @@ from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flex
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.loads import loads_at_extremes
+from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.study.executors import local_pool
 
 MAX_L1_RATIOS = 20

@@ -28,7 +28,7 @@ from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 from hexaleg.study.executors import local_pool, max_workers
 from hexaleg.study.metrics import design_metrics, ratio_metrics
 from hexaleg.study.pareto import pareto_table

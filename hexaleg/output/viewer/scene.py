@@ -26,8 +26,8 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.constraints import Cause, displacement_poses
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry, stance_configuration
-from hexaleg.stance.loads import LoadsAnalysis
-from hexaleg.stance.statics import StaticState
+from hexaleg.statics.forces import StaticState
+from hexaleg.statics.loads import LoadsAnalysis
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 ROOT = "hexaleg"

@@ -21,16 +21,9 @@ from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
-from hexaleg.stance.statics import (
-    DEFAULT_FRICTION,
-    Payload,
-    PayloadCapacity,
-    SlopeLimit,
-    Statics,
-    StaticState,
-    payload_capacity,
-    slope_limits,
-)
+from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics, StaticState
+from hexaleg.statics.slopes import SlopeLimit, slope_limits
 
 
 @dataclass(frozen=True)

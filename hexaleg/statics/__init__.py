@@ -1,0 +1,51 @@
+"""Statics: what holding a pose costs — foot forces, joint torques, stability, slopes, payload.
+
+:mod:`.forces` balances gravity with the stance feet's forces and gives the joint
+torques; :mod:`.support` is the support polygon and the stability margin; :mod:`.slopes`
+the steepest slope per heading; :mod:`.capacity` the largest payload; :mod:`.loads`
+gathers them at the nominal stance and at each body extreme.
+"""
+
+from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
+from hexaleg.statics.forces import (
+    DEFAULT_FRICTION,
+    GRAVITY,
+    Payload,
+    Statics,
+    StaticState,
+    equilibrium,
+    friction_pyramid,
+)
+from hexaleg.statics.loads import (
+    ExtremeLoads,
+    LoadsAnalysis,
+    analyze_loads,
+    extreme_configurations,
+    loads_at_extremes,
+)
+from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_gravity, slope_limits
+from hexaleg.statics.support import SupportPolygon, ground_point, stability_margin
+
+__all__ = [
+    "DEFAULT_FRICTION",
+    "GRAVITY",
+    "SLOPE_HEADINGS",
+    "ExtremeLoads",
+    "LoadsAnalysis",
+    "Payload",
+    "PayloadCapacity",
+    "SlopeLimit",
+    "StaticState",
+    "Statics",
+    "SupportPolygon",
+    "analyze_loads",
+    "equilibrium",
+    "extreme_configurations",
+    "friction_pyramid",
+    "ground_point",
+    "loads_at_extremes",
+    "payload_capacity",
+    "slope_gravity",
+    "slope_limits",
+    "stability_margin",
+]

@@ -1,0 +1,147 @@
+"""Payload capacity: the largest payload the nominal stance holds within ratings, upright."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF, Distribution
+from hexaleg.exceptions import HexalegError
+from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics, StaticState
+from hexaleg.statics.support import SupportPolygon
+
+
+@dataclass(frozen=True)
+class PayloadCapacity:
+    """The largest payload the robot holds at its nominal stance.
+
+    Attributes:
+        mass: The payload [kg].
+        limited_by: ``"<leg> <joint>"`` whose torque reaches its rating, ``"stability"``,
+            or ``"search limit"`` if nothing binds below :data:`PAYLOAD_SEARCH_LIMIT`.
+
+    """
+
+    mass: float
+    limited_by: str
+
+
+def payload_capacity(
+    statics: Statics,
+    q: npt.ArrayLike,
+    distribution: Distribution = "min-norm",
+    at: StaticState | None = None,
+) -> PayloadCapacity:
+    """The largest payload at the statics' payload point that the nominal stance holds.
+
+    Every stance joint's |τ| must stay within its rating and the stability margin
+    positive. With min-norm forces every torque is affine in the payload (the six
+    equilibrium equations about a fixed point are affine in it), so each joint's limit
+    is solved exactly; min-torque forces are found by bisection, to 1e-6 relative.
+
+    Args:
+        statics: The robot on its stance legs, with the payload's point.
+        q: The stance configuration (the nominal one).
+        distribution: ``"min-norm"`` or ``"min-torque"``.
+        at: ``statics.state(q)`` if already computed (saves one evaluation).
+
+    """
+    if distribution == "min-norm":
+        return _affine_capacity(statics, q, at)
+
+    def check(mass: float) -> tuple[bool, str]:
+        try:
+            state = statics.state(q, distribution, payload=statics.payload.with_mass(mass))
+        except HexalegError:
+            return False, "stability"
+        ratios = state.torque_ratios(statics.rated)
+        if ratios.max() > 1.0:
+            leg, joint = _first_tied(ratios)
+            return False, f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+        if state.stability_margin <= 0:
+            return False, "stability"
+        return True, ""
+
+    ok, cause = check(0.0)
+    if not ok:
+        return PayloadCapacity(0.0, cause)
+    ok, cause = check(PAYLOAD_SEARCH_LIMIT)
+    if ok:
+        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, "search limit")
+    lo, hi = 0.0, PAYLOAD_SEARCH_LIMIT
+    while hi - lo > 1e-6 * max(hi, 1.0):
+        mid = 0.5 * (lo + hi)
+        ok, why = check(mid)
+        if ok:
+            lo = mid
+        else:
+            hi, cause = mid, why
+    return PayloadCapacity(lo, cause)
+
+
+def _affine_capacity(statics: Statics, q: npt.ArrayLike, at: StaticState | None) -> PayloadCapacity:
+    """Payload capacity with min-norm forces: τ(m) = τ(0) + m·τ1, solved joint by joint.
+
+    Two evaluations fix the line (the payload's own state and one kilogram more or
+    less); the centre of mass moves along the segment from the robot's own toward the
+    payload's point.
+    """
+    m0 = statics.payload.mass
+    at = statics.state(q) if at is None else at
+    m1 = m0 + 1.0 if m0 + 1.0 <= PAYLOAD_SEARCH_LIMIT else m0 - 1.0
+    other = statics.state(q, payload=statics.payload.with_mass(m1))
+    slope = (other.joint_torques - at.joint_torques) / (m1 - m0)
+    base = at.joint_torques - m0 * slope
+    point = (other.com * other.mass - at.com * at.mass) / (m1 - m0)  # the payload's place
+    robot_mass = at.mass - m0
+    robot_com = (at.com * at.mass - m0 * point) / robot_mass
+    rated = np.broadcast_to(statics.rated, base.shape)
+    support = statics.support
+    if np.any(np.abs(base) > rated) or support.signed_distance(robot_com) <= 0:
+        ratios = np.abs(base) / rated
+        leg, joint = _first_tied(ratios)
+        cause = "stability" if ratios.max() <= 1 else f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+        return PayloadCapacity(0.0, cause)
+    with np.errstate(divide="ignore", invalid="ignore"):  # slope 0: that joint never binds
+        limit = np.where(slope > 0, (rated - base) / slope, (-rated - base) / slope)
+    limit = np.where(np.abs(slope) > 0, limit, np.inf)
+    leg, joint = _first_tied(-limit)
+    mass, cause = float(limit[leg, joint]), f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+    tipping = _tipping_payload(support, robot_com, robot_mass, point)
+    if tipping < mass:
+        mass, cause = tipping, "stability"
+    if mass >= PAYLOAD_SEARCH_LIMIT:
+        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, "search limit")
+    return PayloadCapacity(mass, cause)
+
+
+def _tipping_payload(
+    support: SupportPolygon, robot_com: ArrayF, robot_mass: float, point: ArrayF
+) -> float:
+    """The payload [kg] at which the centre of mass's footprint leaves the support polygon.
+
+    With a payload m at p the footprint is c_r + s·(p − c_r), s = m / (M_r + m) < 1: it
+    leaves where that segment crosses the boundary, at m = M_r·s / (1 − s).
+    """
+    if support.signed_distance(point) > 0:
+        return math.inf  # a payload inside the polygon only steadies the robot
+    towards = point[:2] - robot_com[:2]
+    span = float(np.hypot(towards[0], towards[1]))
+    s = support.exit_distance(robot_com[:2], towards / span) / span
+    return math.inf if s >= 1 else robot_mass * s / (1 - s)
+
+
+def _first_tied(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
+    """(leg, joint) of the largest value, the first in leg order among near-equal ones.
+
+    Mirror-image legs tie, and round-off must not choose between them.
+    """
+    flat = values.ravel()
+    best = flat.max()
+    index = int(np.flatnonzero(flat >= best - tolerance * max(1.0, abs(best)))[0])
+    leg, joint = np.unravel_index(index, values.shape)
+    return int(leg), int(joint)

@@ -1,0 +1,82 @@
+"""The support polygon of the stance feet and the stability margin inside it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+from scipy.spatial import ConvexHull
+
+from hexaleg._typing import ArrayF
+from hexaleg.exceptions import HexalegError
+
+
+def ground_point(com: ArrayF, gravity: ArrayF) -> ArrayF:
+    """Where the gravity line through the centre of mass meets the ground z = 0 (x, y) [m]."""
+    t = com[2] / -gravity[2]
+    return (com + t * gravity)[:2]
+
+
+@dataclass(frozen=True)
+class SupportPolygon:
+    """The convex hull of the stance feet on the ground, with its edges precomputed.
+
+    Attributes:
+        vertices: Hull vertices, counter-clockwise (K, 2) [m].
+        edges: Vector from each vertex to the next (K, 2) [m].
+        lengths: Edge lengths (K,) [m].
+
+    """
+
+    vertices: ArrayF
+    edges: ArrayF
+    lengths: ArrayF
+
+    @classmethod
+    def of_feet(cls, feet_xy: npt.ArrayLike) -> SupportPolygon:
+        """The support polygon of the feet (x, y) (N, 2) [m]."""
+        feet_xy = np.asarray(feet_xy, dtype=float)
+        try:
+            hull = ConvexHull(feet_xy)
+        except Exception as err:  # qhull raises its own error type on degenerate input
+            raise HexalegError(f"the stance feet span no support polygon: {err}") from err
+        vertices = feet_xy[hull.vertices]
+        edges = np.roll(vertices, -1, axis=0) - vertices
+        return cls(vertices, edges, np.hypot(edges[:, 0], edges[:, 1]))
+
+    def signed_distance(self, point: npt.ArrayLike) -> float:
+        """Signed distance [m] from ``point`` (x, y) to the boundary: > 0 inside."""
+        relative = np.asarray(point, dtype=float)[:2] - self.vertices
+        edges = self.edges
+        inward = (edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]) / self.lengths
+        if inward.min() >= 0:
+            return float(inward.min())
+        along = (relative[:, 0] * edges[:, 0] + relative[:, 1] * edges[:, 1]) / self.lengths**2
+        gap = relative - np.clip(along, 0.0, 1.0)[:, None] * edges
+        return -float(np.hypot(gap[:, 0], gap[:, 1]).min())
+
+    def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
+        """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""
+        return float(self.exit_distances(point, np.asarray(direction)[None])[0])
+
+    def exit_distances(self, point: ArrayF, directions: ArrayF) -> ArrayF:
+        """:meth:`exit_distance` along each of ``directions`` (H, 2) [m] (inf: none)."""
+
+        def cross(u: ArrayF, v: ArrayF) -> ArrayF:
+            return u[..., 0] * v[..., 1] - u[..., 1] * v[..., 0]
+
+        d = np.asarray(directions, dtype=float)[:, None, :]  # (H, 1, 2)
+        offset = self.vertices - np.asarray(point)[:2]  # (K, 2), point to each vertex
+        denominator = cross(d, self.edges)  # (H, K)
+        parallel = np.abs(denominator) < 1e-15
+        denominator = np.where(parallel, 1.0, denominator)
+        t = cross(offset, self.edges) / denominator  # along the ray
+        s = cross(offset, d) / denominator  # along the edge
+        hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
+        return np.where(hit, t, np.inf).min(axis=1)
+
+
+def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:
+    """Signed distance [m] from ``point`` to the convex hull of the feet: > 0 inside."""
+    return SupportPolygon.of_feet(feet_xy).signed_distance(point)
