@@ -43,7 +43,7 @@ def test_unknown_mode_is_an_error(default_design):
 
 
 def test_a_plot_label_names_the_first_cause_and_counts_the_others():
-    from hexaleg.stance.constraints import Cause
+    from hexaleg.cause import Cause
     from hexaleg.stance.extremes import Extreme
 
     knee = Cause("joint", "lf", "knee", "upper")

@@ -5,8 +5,9 @@
 :mod:`.free_coupled` find the twelve extremes; :mod:`.flexibility` is the front door.
 """
 
+from hexaleg.cause import Cause
 from hexaleg.stance.axis_locked import axis_locked_extremes, axis_locked_flexibility
-from hexaleg.stance.constraints import AXES, DIRECTIONS, Cause, direction_poses, stance_margins
+from hexaleg.stance.constraints import AXES, DIRECTIONS, direction_poses, stance_margins
 from hexaleg.stance.extremes import (
     Extreme,
     FlexibilityResult,

@@ -16,11 +16,12 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
+from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import inverse_kinematics
 from hexaleg.numerics.bracketing import IndexArray, first_crossings
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.constraints import AXES, Cause, direction_poses, displacement_poses
+from hexaleg.stance.constraints import AXES, direction_poses, displacement_poses
 from hexaleg.stance.extremes import Extreme, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.stance.symmetry import mirror_flips, reversing

@@ -3,7 +3,7 @@
 With the feet pinned to their footholds, a body pose is feasible while every stance
 foot is within its leg's reach, every joint within its stance limits, and the body
 above the ground. :func:`stance_margins` gives each constraint's margin (≥ 0 holds)
-for many poses at once, by the closed-form knee-down IK (eq 8–9); :class:`Cause`
+for many poses at once, by the closed-form knee-down IK (eq 8–9); a :class:`~hexaleg.cause.Cause`
 names a constraint; :func:`direction_poses` moves the body along one coordinate.
 """
 
@@ -11,13 +11,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg._typing import ArrayF, CauseKind
+from hexaleg._typing import ArrayF
+from hexaleg.cause import Cause
 from hexaleg.kinematics import leg_plane, plane_solution
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LEG_JOINTS
@@ -28,56 +27,6 @@ AXES: tuple[str, ...] = ("x", "y", "z", "roll", "pitch", "yaw")
 TRANSLATIONS = AXES[:3]
 DIRECTIONS: tuple[tuple[str, int], ...] = tuple((a, s) for a in AXES for s in (1, -1))
 """The twelve (axis, sign) directions of the flexibility study."""
-
-
-@dataclass(frozen=True)
-class Cause:
-    """The constraint that stops the body.
-
-    Attributes:
-        kind: ``"joint"`` (a joint limit), ``"reach"`` (foothold out of the leg's
-            reach), ``"ground"`` (the body touches the ground), ``"collision"`` (two of
-            the robot's own parts touch) or ``"range"`` (nothing broke within the
-            searched range).
-        leg: Leg name, for joint and reach causes.
-        joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint causes.
-        bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
-        links: The two links that touch, for collision causes.
-
-    """
-
-    kind: CauseKind
-    leg: str | None = None
-    joint: str | None = None
-    bound: str | None = None
-    links: tuple[str, str] | None = None
-
-    def __str__(self) -> str:
-        if self.kind == "joint":
-            return f"{self.leg} {self.joint} joint at its {self.bound} limit"
-        if self.kind == "reach":
-            edge = "too far" if self.bound == "outer" else "too close"
-            return f"{self.leg} foothold out of reach ({edge})"
-        if self.kind == "ground":
-            return "body touches the ground"
-        if self.kind == "collision" and self.links:
-            return f"{self.links[0]} touches {self.links[1]}"
-        return "end of the searched range"
-
-    def same_constraint_as(self, other: Cause) -> bool:
-        """Whether ``other`` is the same kind of constraint, perhaps on another leg."""
-        same = (self.kind, self.joint, self.bound) == (other.kind, other.joint, other.bound)
-        return same and self.kind != "collision"
-
-    def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form."""
-        return {
-            "kind": self.kind,
-            "leg": self.leg,
-            "joint": self.joint,
-            "bound": self.bound,
-            "links": list(self.links) if self.links else None,
-        }
 
 
 def rpy_rotation(rpy: npt.ArrayLike) -> ArrayF:

@@ -11,9 +11,10 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import FlexibilityMode
+from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.kinematics import leg_solution
-from hexaleg.stance.constraints import AXES, TRANSLATIONS, Cause, displacement_poses
+from hexaleg.stance.constraints import AXES, TRANSLATIONS, displacement_poses
 from hexaleg.stance.geometry import StanceGeometry
 
 

@@ -20,10 +20,11 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg._io import atomic_write_text
+from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.constraints import Cause, displacement_poses
+from hexaleg.stance.constraints import displacement_poses
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry, stance_configuration
 from hexaleg.statics.forces import StaticState
