@@ -85,6 +85,13 @@ knee torques peak, and for a payload of a few times the body's mass."""
 TORQUE_RANGE = (1e-3, 1e6)
 """Plausible rated torque [N·m]."""
 
+DEFAULT_RATED_SPEEDS: tuple[float, float, float] = (3.0, 3.0, 3.0)
+"""Rated joint speeds (root, hip, knee) [rad/s]: about 29 rpm at the output, typical of
+geared actuators of the default ratings; written to each URDF joint's ``velocity``."""
+
+SPEED_RANGE = (1e-3, 1e4)
+"""Plausible rated joint speed [rad/s]."""
+
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
 
@@ -150,6 +157,8 @@ class HexapodDesign:
         link_radius: Radius of the links' cylinder geometry [m].
         rated_torques: The actuators' rated torques (root, hip, knee) [N·m], written to
             each joint's URDF ``effort``; the statics compare every torque with them.
+        rated_speeds: The actuators' rated speeds (root, hip, knee) [rad/s], written to
+            each joint's URDF ``velocity``; a gait compares every joint speed with them.
 
     """
 
@@ -175,12 +184,14 @@ class HexapodDesign:
     link_linear_density: float = 4.0
     link_radius: float = field(default=0.025)
     rated_torques: tuple[float, float, float] = DEFAULT_RATED_TORQUES
+    rated_speeds: tuple[float, float, float] = DEFAULT_RATED_SPEEDS
 
     def __post_init__(self) -> None:
         for name, (lower, upper, unit) in FIELD_RANGES.items():
             value = require_in_range(name, getattr(self, name), lower, upper, unit)
             object.__setattr__(self, name, value)
-        self._validate_rated_torques()
+        self._validate_ratings("rated_torques", TORQUE_RANGE, "N·m")
+        self._validate_ratings("rated_speeds", SPEED_RANGE, "rad/s")
         self._place_legs()
         self._validate_nominal_stance()
 
@@ -331,15 +342,15 @@ class HexapodDesign:
 
     # -- validation -----------------------------------------------------------------------
 
-    def _validate_rated_torques(self) -> None:
-        torques = tuple(self.rated_torques)
-        if len(torques) != 3:
-            raise DesignError("rated_torques", torques, "three torques (root, hip, knee) [N·m]")
+    def _validate_ratings(self, name: str, plausible: tuple[float, float], unit: str) -> None:
+        ratings = tuple(getattr(self, name))
+        if len(ratings) != 3:
+            raise DesignError(name, ratings, f"three values (root, hip, knee) [{unit}]")
         checked = tuple(
-            require_in_range(f"rated_torques.{joint}", value, *TORQUE_RANGE, "N·m")
-            for joint, value in zip(("root", "hip", "knee"), torques, strict=True)
+            require_in_range(f"{name}.{joint}", value, *plausible, unit)
+            for joint, value in zip(("root", "hip", "knee"), ratings, strict=True)
         )
-        object.__setattr__(self, "rated_torques", checked)
+        object.__setattr__(self, name, checked)
 
     def _place_legs(self) -> None:
         layout = self.layout

@@ -63,6 +63,7 @@ SCALARS: dict[str, str] = {
 TRIPLES: dict[str, str] = {
     "nominal_angles": "standing joint angles θ1, θ2, θ3 of every leg [rad]",
     "rated_torques": "actuators' rated torques: root, hip, knee [N·m]",
+    "rated_speeds": "actuators' rated speeds: root, hip, knee [rad/s]",
 }
 """Keys holding three numbers."""
 

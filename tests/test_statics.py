@@ -229,7 +229,9 @@ def test_payload_capacity_grows_with_the_rated_torques():
 
 
 def test_with_design_equals_the_model_built_from_the_urdf(model):
-    design = HexapodDesign(l1=0.12, l2=0.5, l3=0.33, rated_torques=(20.0, 90.0, 70.0))
+    design = HexapodDesign(
+        l1=0.12, l2=0.5, l3=0.33, rated_torques=(20.0, 90.0, 70.0), rated_speeds=(1.0, 2.0, 4.0)
+    )
     fast, slow = model.with_design(design), HexapodModel(design)
     for a, b in zip(fast.model.jointPlacements, slow.model.jointPlacements, strict=True):
         np.testing.assert_allclose(a.homogeneous, b.homogeneous, atol=1e-15)
@@ -241,6 +243,7 @@ def test_with_design_equals_the_model_built_from_the_urdf(model):
         assert a.name == b.name
         np.testing.assert_allclose(a.placement.homogeneous, b.placement.homogeneous, atol=1e-15)
     np.testing.assert_array_equal(fast.model.effortLimit, slow.model.effortLimit)
+    np.testing.assert_array_equal(fast.model.velocityLimit, slow.model.velocityLimit)
     from hexaleg.exceptions import ModelError
 
     with pytest.raises(ModelError):

@@ -139,3 +139,17 @@ def test_templates_ship_inside_the_installed_package(tmp_path):
     else:
         assert templates == package / "urdf"
     assert (templates / "leg.xacro").is_file()
+
+
+def test_urdf_joints_carry_the_rated_torques_and_speeds():
+    design = HexapodDesign(rated_torques=(11.0, 22.0, 33.0), rated_speeds=(1.5, 2.5, 3.5))
+    root = ET.fromstring(render_hexapod(design))
+    expected = {"root": (11.0, 1.5), "hip": (22.0, 2.5), "knee": (33.0, 3.5)}
+    seen = 0
+    for joint in root.iter("joint"):
+        kind = joint.get("name", "").split("_")[-2]
+        if joint.get("type") == "revolute":
+            limit = joint.find("limit")
+            assert (float(limit.get("effort")), float(limit.get("velocity"))) == expected[kind]
+            seen += 1
+    assert seen == 18

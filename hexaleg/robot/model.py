@@ -170,13 +170,13 @@ class HexapodModel:
         are set as the URDF would set them; the tests prove the result equal to
         ``HexapodModel(design)``. Every other field must be this model's design's.
         """
-        changed = ("l1", "l2", "l3", "rated_torques")
+        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds")
         if any(
             getattr(self.design, f.name) != getattr(design, f.name)
             for f in fields(design)
             if f.name not in changed
         ):
-            raise ModelError("with_design changes only segment lengths and rated torques")
+            raise ModelError("with_design changes only segment lengths and ratings")
         model = pin.Model(self.model)
         radius, density = design.link_radius, design.link_linear_density
         hip_placement = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))
@@ -194,11 +194,12 @@ class HexapodModel:
             _, hip, knee = index.joints
             model.jointPlacements[hip] = hip_placement
             model.jointPlacements[knee] = knee_placement
-            for joint, inertia, effort in zip(
-                index.joints, inertias, design.rated_torques, strict=True
+            for joint, inertia, effort, speed in zip(
+                index.joints, inertias, design.rated_torques, design.rated_speeds, strict=True
             ):
                 model.inertias[joint] = inertia
                 model.effortLimit[model.idx_vs[joint]] = effort
+                model.velocityLimit[model.idx_vs[joint]] = speed
             for frame_id in (index.foot_joint_frame, index.foot_frame):
                 frame = model.frames[frame_id]
                 frame.placement = foot_placement

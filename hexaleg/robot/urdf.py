@@ -25,9 +25,6 @@ LEG_TEMPLATE = "leg.urdf.xacro"
 SINGLE_LEG_NAME = "leg"
 """Prefix of the links and joints of the single fixed-base leg."""
 
-JOINT_VELOCITY = 3.0
-"""Velocity limit written into the URDF [rad/s]; kinematics does not use it."""
-
 
 def template_dir() -> Path:
     """Folder holding the Xacro templates.
@@ -112,7 +109,9 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
         "root_effort": _number(design.rated_torques[0]),
         "hip_effort": _number(design.rated_torques[1]),
         "knee_effort": _number(design.rated_torques[2]),
-        "velocity": _number(JOINT_VELOCITY),
+        "root_velocity": _number(design.rated_speeds[0]),
+        "hip_velocity": _number(design.rated_speeds[1]),
+        "knee_velocity": _number(design.rated_speeds[2]),
     }
 
 
