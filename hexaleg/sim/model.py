@@ -222,6 +222,7 @@ class SimModel:
         hexapod: The Pinocchio model it was built from.
         payload: The payload carried.
         gains: The joint servo gains.
+        spec: The ``mujoco.MjSpec`` it was compiled from.
         mj: The compiled ``mujoco.MjModel``.
         qpos: Address of each leg joint in ``qpos`` (legs, 3), Pinocchio's leg order.
         dof: Address of each leg joint in ``qvel`` (legs, 3).
@@ -245,7 +246,8 @@ class SimModel:
         self.hexapod = model
         self.payload = payload or Payload()
         self.gains = ServoGains.from_bandwidth(model) if gains is None else gains
-        self.mj = robot_spec(model, self.payload, friction, self.gains, timestep).compile()
+        self.spec = robot_spec(model, self.payload, friction, self.gains, timestep)
+        self.mj = self.spec.compile()
 
         def ids(kind: Any, names: list[list[str]] | list[str]) -> npt.NDArray[np.int_]:
             found = np.vectorize(lambda n: mujoco.mj_name2id(self.mj, kind, n))(names)
@@ -279,6 +281,13 @@ class SimModel:
         qpos[3], qpos[4:7] = q[6], q[3:6]
         qpos[self.qpos] = self.hexapod.joint_angles(q)
         return qpos
+
+    def configuration_of(self, qpos: npt.ArrayLike) -> ArrayF:
+        """Pinocchio configuration of a MuJoCo ``qpos`` (the inverse of :meth:`qpos_of`)."""
+        qpos = np.asarray(qpos, dtype=float)
+        base = np.concatenate((qpos[:3], qpos[4:7], qpos[3:4]))
+        base[3:] /= np.linalg.norm(base[3:])
+        return self.hexapod.configuration(pin.XYZQUATToSE3(base), qpos[self.qpos])
 
     def command(self, q_ref: ArrayF, v_ref: ArrayF, torque: ArrayF) -> ArrayF:
         """Actuator controls (legs·3,) giving τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇).
