@@ -55,7 +55,7 @@ def run_plan(sim: SimModel, plan: Plan, duration: float, frame_rate: float = FRA
     require_in_range("frame_rate", frame_rate, 1e-3, 1000.0, "1/s")
     model = sim.hexapod
     steps = round(duration / sim.timestep)
-    times = np.arange(steps) * sim.timestep
+    times = np.arange(steps, dtype=float) * sim.timestep
     reference, rates, torques, standing = plan.reference(times)
     controls = sim.command(reference, rates, torques)
     data = start(sim, model.configuration(model.nominal_base_pose(), plan.angles[0]))

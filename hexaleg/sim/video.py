@@ -82,8 +82,8 @@ def write_video(
         output = folder / f"video{target.suffix.lower()}"
         (folder / "model.xml").write_text(sim.spec.to_xml())
         np.save(folder / "frames.npy", np.array([sim.qpos_of(q) for q in frames]))
-        job = {"width": VIDEO_SIZE[0], "height": VIDEO_SIZE[1], "frame_rate": frame_rate}
-        job |= {"distance": 3.2 * reach, "output": str(output)}
+        job: dict[str, float | str] = {"width": VIDEO_SIZE[0], "height": VIDEO_SIZE[1]}
+        job |= {"frame_rate": frame_rate, "distance": 3.2 * reach, "output": str(output)}
         (folder / "job.json").write_text(json.dumps(job))
         for backend in _backends():
             error = _render(folder, backend)
