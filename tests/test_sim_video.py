@@ -51,3 +51,28 @@ def test_video_has_a_frame_per_configuration_and_shows_the_body_moving(tmp_path,
             pictures.append(np.asarray(image.convert("RGB"), dtype=float))
     assert np.abs(pictures[0] - pictures[2]).mean() > 1.0  # the floor moves under the camera
     assert not list(tmp_path.glob(".*"))  # no temporary file left beside it
+
+
+@pytest.mark.slow
+def test_still_is_one_png_picture(tmp_path):
+    from PIL import Image
+
+    from hexaleg.sim.video import write_still
+
+    model = HexapodModel(HexapodDesign())
+    outcome = write_still(SimModel(model), model.nominal_configuration(), tmp_path / "still.png")
+    if outcome.path is None:
+        if os.environ.get("CI"):
+            pytest.fail(f"no offscreen OpenGL in CI: {outcome.tried}")
+        pytest.skip(f"no offscreen OpenGL here: {outcome.tried}")
+    with Image.open(outcome.path) as image:
+        assert image.format == "PNG" and image.size == VIDEO_SIZE
+        pixels = np.asarray(image.convert("RGB"), dtype=float)
+    assert pixels.std() > 10.0  # a picture, not a blank frame
+
+
+def test_still_must_be_png():
+    from hexaleg.sim.video import write_still
+
+    with pytest.raises(HexalegError, match=r"still = 'x\.jpg' is not valid"):
+        write_still(None, np.zeros(25), "x.jpg")  # type: ignore[arg-type]

@@ -80,6 +80,9 @@ def render(folder: Path) -> None:
             camera.lookat[:] = [qpos[0], qpos[1], 0.5 * qpos[2]]
             renderer.update_scene(data, camera)
             images.append(Image.fromarray(renderer.render()))
+    if len(images) == 1:
+        images[0].save(job["output"])
+        return
     images[0].save(
         job["output"],
         save_all=True,

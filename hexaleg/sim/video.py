@@ -1,11 +1,12 @@
-"""A simulated run as an animated image, rendered by MuJoCo offscreen (EGL or OSMesa).
+"""A simulated run as an animated image or a still, rendered by MuJoCo offscreen (EGL or OSMesa).
 
 MuJoCo renders without a display through EGL (``libegl1``, with Mesa's software
 driver where there is no GPU) or OSMesa (``libosmesa6``), chosen by ``MUJOCO_GL`` when
 it is first imported. Each backend is therefore tried in a child process
 (:mod:`hexaleg.sim._render`): the user's own ``MUJOCO_GL`` first, then EGL, then
 OSMesa. Where none works, :func:`write_video` writes nothing and says which it tried.
-Frames are encoded by Pillow as an animated GIF or WebP, chosen by the file's suffix.
+Frames are encoded by Pillow as an animated GIF or WebP, chosen by the file's suffix;
+a still is a PNG.
 """
 
 from __future__ import annotations
@@ -36,8 +37,8 @@ RENDER_TIMEOUT = 900.0
 
 
 @dataclass(frozen=True)
-class VideoOutcome:
-    """What :func:`write_video` did.
+class RenderOutcome:
+    """What :func:`write_video` or :func:`write_still` did.
 
     Attributes:
         path: The file written, or None where no backend could render.
@@ -64,7 +65,7 @@ def check_video_path(path: str | os.PathLike[str]) -> Path:
 
 def write_video(
     sim: SimModel, frames: ArrayF, frame_rate: float, path: str | os.PathLike[str]
-) -> VideoOutcome:
+) -> RenderOutcome:
     """Render Pinocchio configurations ``frames`` (F, nq) of ``sim`` into ``path``.
 
     Args:
@@ -74,12 +75,24 @@ def write_video(
         path: The file to write, ``.gif`` or ``.webp``; written atomically, or not at all.
 
     """
-    target = check_video_path(path)
+    return _render_files(sim, frames, frame_rate, check_video_path(path))
+
+
+def write_still(sim: SimModel, q: ArrayF, path: str | os.PathLike[str]) -> RenderOutcome:
+    """Render one Pinocchio configuration ``q`` of ``sim`` as a PNG picture at ``path``."""
+    target = Path(path)
+    if target.suffix.lower() != ".png":
+        raise HexalegError(f"still = {str(path)!r} is not valid: the file must end in .png")
+    return _render_files(sim, np.asarray(q, dtype=float)[None, :], 1.0, target)
+
+
+def _render_files(sim: SimModel, frames: ArrayF, frame_rate: float, target: Path) -> RenderOutcome:
+    """Render ``frames`` into ``target`` with the first backend that works."""
     reach = float(np.abs(sim.hexapod.design.nominal_footholds[:, :2]).max())
     tried: list[str] = []
     with tempfile.TemporaryDirectory(prefix="hexaleg-video-") as tmp:
         folder = Path(tmp)
-        output = folder / f"video{target.suffix.lower()}"
+        output = folder / f"render{target.suffix.lower()}"
         (folder / "model.xml").write_text(sim.spec.to_xml())
         np.save(folder / "frames.npy", np.array([sim.qpos_of(q) for q in frames]))
         job: dict[str, float | str] = {"width": VIDEO_SIZE[0], "height": VIDEO_SIZE[1]}
@@ -89,9 +102,9 @@ def write_video(
             error = _render(folder, backend)
             if error is None and output.is_file():
                 written = atomic_write_bytes(target, output.read_bytes())
-                return VideoOutcome(written, backend, (*tried, backend))
+                return RenderOutcome(written, backend, (*tried, backend))
             tried.append(f"{backend} ({error or 'wrote nothing'})")
-    return VideoOutcome(None, None, tuple(tried))
+    return RenderOutcome(None, None, tuple(tried))
 
 
 def _backends() -> tuple[str, ...]:
