@@ -150,8 +150,17 @@ def test_reflected_inertia_equals_the_default_legs_hand_computed():
         + 0.4 * foot * r**2 + foot * (l2**2 + l3**2)
     )  # fmt: skip
     knee = m3 * (3 * rt**2 + l3**2) / 12 + m3 * (l3 / 2) ** 2 + 0.4 * foot * r**2 + foot * l3**2
+    own = np.array([root, hip, knee])
+    np.testing.assert_allclose(reflected_inertia(HexapodModel(design), 0.0), own, rtol=1e-12)
+    # a standing foot carrying m: the foot moves at (l1 + l2)·θ̇1 (the root turns the whole
+    # leg), √(l2² + l3²)·θ̇2 (hip to foot) and l3·θ̇3 (knee to foot)
+    lever = np.array([(l1 + l2) ** 2, l2**2 + l3**2, l3**2])
+    np.testing.assert_allclose(
+        reflected_inertia(HexapodModel(design), 20.0), own + 20.0 * lever, rtol=1e-12
+    )
+    third = design.total_mass / 3  # the default: a tripod foot's share
     inertia = reflected_inertia(HexapodModel(design))
-    np.testing.assert_allclose(inertia, [root, hip, knee], rtol=1e-12)
+    np.testing.assert_allclose(inertia, own + third * lever, rtol=1e-12)
     gains = ServoGains.from_bandwidth(HexapodModel(design), bandwidth=5.0, damping_ratio=0.7)
     omega = 2 * np.pi * 5.0
     np.testing.assert_allclose(gains.stiffness, inertia * omega**2, rtol=1e-12)
@@ -179,6 +188,7 @@ def test_servo_applies_feed_forward_plus_pd_on_the_tracking_error(models):
     ("gains", "field"),
     [
         (((-1.0, 1.0, 1.0), (1.0, 1.0, 1.0)), "stiffness.root"),
+        (((1.0, 0.0, 1.0), (1.0, 1.0, 1.0)), "stiffness.hip"),
         (((1, 1, 1), (1, float("nan"), 1)), "damping.hip"),
     ],
 )

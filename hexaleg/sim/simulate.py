@@ -47,14 +47,14 @@ def plan_of(analysis: GaitAnalysis) -> Plan:
 def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
     """Raise a one-line error if the planned period breaks a constraint.
 
-    A stride beyond the design's max stride is named as such; any other broken
-    constraint (too high a step, say) by its first violation.
+    A stride beyond the design's max stride is named as such; a gait no stride makes
+    walkable (too high a step, say) by its first violation.
     """
     if analysis.feasible:
         return
     gait = analysis.gait
     limit = max_stride(Walker(model, gait, analysis.payload, analysis.distribution))
-    if gait.stride > limit.value:
+    if 0 < limit.value < gait.stride:  # at 0 no stride at all is walkable: say why
         raise DesignError(
             "stride",
             gait.stride,
