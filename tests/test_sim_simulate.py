@@ -1,4 +1,4 @@
-"""The planned gait walked in MuJoCo: the default robot walks; impossible gaits are refused first."""
+"""The planned gait walked in MuJoCo: the default robot walks; impossible gaits are refused."""
 
 from __future__ import annotations
 
