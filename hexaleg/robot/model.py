@@ -18,10 +18,8 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.design import FOOT_MASS, HexapodDesign
 from hexaleg.exceptions import ModelError
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
-
-LEG_JOINTS: tuple[str, str, str] = ("root", "hip", "knee")
-"""Joint names of a leg, in the order of the paper's θ1, θ2, θ3."""
 
 
 def joint_name(leg: str, joint: str) -> str:
