@@ -22,7 +22,7 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any, Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 import numpy.typing as npt
@@ -189,7 +189,7 @@ def resolve_layout(layout: Any, mounts: Any) -> Layout:
     """The layout a design names; ``None`` means custom with mounts, else the rectangle."""
     if layout is None:
         return "rectangle" if mounts is None else "custom"
-    return require_choice("layout", layout, Layout)  # type: ignore[no-any-return]
+    return cast(Layout, require_choice("layout", layout, Layout))
 
 
 def checked_mounts(

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
 from hexaleg.design import DESIGN_FIELDS, MAX_L3_POINTS, SEGMENTS, HexapodDesign
@@ -104,15 +104,16 @@ METAVARS = {"m": "M", "rad": "RAD"}
 
 def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
     """``--<field>`` of one design field, as its declaration describes it."""
+    flag = cast(str, spec.flag)
     if spec.kind == "choice":  # custom mounts are given in a --design file
         layouts = tuple(c for c in choices(Layout) if c != "custom")
         help = f"{spec.described} (default {layouts[0]}; custom needs a --design file)"
-        group.add_argument(spec.flag, choices=layouts, help=help)
+        group.add_argument(flag, choices=layouts, help=help)
         return
     if spec.kind == "triple":
         default = " ".join(f"{v:.4g}" for v in spec.default)
         group.add_argument(
-            spec.flag,
+            flag,
             type=float,
             nargs=len(spec.items),
             metavar=tuple(item.upper() for item in spec.items),
@@ -120,7 +121,7 @@ def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
         )
         return
     group.add_argument(
-        spec.flag,
+        flag,
         type=float,
         metavar=METAVARS.get(spec.unit, "X"),
         help=f"{spec.described} (default {spec.default:.4g})",
