@@ -4,18 +4,10 @@ A :class:`HexapodDesign` is immutable and validated on construction: every
 field is checked in ``__post_init__`` and a :class:`~hexaleg.exceptions.ParameterError`
 names the field, the value given and what is allowed.
 
-Defaults (each one a field, none hidden in code):
-
-- segments: the paper's l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1);
-- body: a 1.0 m × 0.6 m × 0.1 m box (x forward, y left, z up), 60 kg;
-- mounting (``layout = "rectangle"``): legs at the four corners and the two side
-  mid-points of the body's mid-plane, each pointing straight outward (front ±45°,
-  middle ±90°, rear ±135°), named ``lf lm lr rf rm rr`` (left/right,
-  front/middle/rear); ``"hexagon"`` and ``"custom"`` layouts are in
-  :mod:`hexaleg.layouts`;
-- nominal posture: every leg at θ = (0, 0, −π/2): coxa outward, femur
-  horizontal, tibia vertical. The body then stands at l3 above the ground.
-
+Every default is a field's declaration (none hidden in code): the paper's segments
+l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1) on hexaleg's box body, legs at its corners
+and side mid-points (:mod:`hexaleg.layouts`), standing with femur level and tibia
+vertical, so that the body stands at l3 above the ground.
 The paper gives no body size, mounting or posture; the study functions report
 how results depend on them.
 """
@@ -30,7 +22,7 @@ from typing import Any, cast
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg._checks import require_in_range, require_ratio
+from hexaleg._checks import require_in_range, require_instance, require_ratio
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.kinematics import foot_position
@@ -40,6 +32,7 @@ from hexaleg.layouts import (
     Layout,
     LegMount,
     checked_mounts,
+    default_mounts,
     hexagon_mounts,
     rectangle_mounts,
     require_apart,
@@ -61,10 +54,9 @@ BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
 
 DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators. At the
-nominal stance each hip holds about 46 N·m (a sixth of the 84 kg robot, 0.4 m out) and
-the knee almost nothing; the ratings leave room for the body's extremes, where hip and
-knee torques peak, and for a payload of a few times the body's mass."""
+"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: each hip
+holds about 46 N·m at the nominal stance; the rest is room for the body's extremes and
+a payload of a few times the body's mass."""
 
 TORQUE_RANGE = (1e-3, 1e6)
 """Plausible rated torque [N·m]."""
@@ -80,9 +72,8 @@ SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
 
 FOOT_MASS = 1e-3
-"""Mass of each foot link [kg]: negligible beside the legs, but a valid inertial, so
-that every simulator keeps the foot (sdformat drops massless links, PyBullet weighs
-them 1 kg)."""
+"""Mass of each foot link [kg]: negligible, but a valid inertial, so that every simulator
+keeps the foot (sdformat drops massless links, PyBullet weighs them 1 kg)."""
 
 __all__ = [
     "DESIGN_FIELDS",
@@ -92,20 +83,15 @@ __all__ = [
     "HexapodDesign",
     "LegMount",
     "default_mounts",
+    "require_design",
     "require_in_range",
     "require_ratio",
 ]
 
 
-def default_mounts(body_length: float, body_width: float) -> tuple[LegMount, ...]:
-    """The paper's rectangle: legs at the corners and side mid-points, pointing outward.
-
-    Args:
-        body_length: Body extent along x [m].
-        body_width: Body extent along y [m].
-
-    """
-    return rectangle_mounts(body_length, body_width)
+def require_design(value: Any, name: str = "design") -> HexapodDesign:
+    """``value`` if it is a :class:`HexapodDesign`; else a ParameterError naming ``name``."""
+    return require_instance(name, value, HexapodDesign, "a HexapodDesign")
 
 
 @dataclass(frozen=True)
@@ -293,15 +279,10 @@ class HexapodDesign:
     @property
     def nominal_footholds(self) -> npt.NDArray[np.float64]:
         """Every foot at the nominal stance, body frame at the origin (6, 3) [m] (eq 7)."""
-        foot = foot_position(self.lengths, self.nominal_angles)
-        rows = []
-        for m in self.legs:
-            c, s = math.cos(m.yaw), math.sin(m.yaw)
-            rows.append(
-                m.position
-                + np.array([c * foot[0] - s * foot[1], s * foot[0] + c * foot[1], foot[2]])
-            )
-        return np.array(rows)
+        x, y, z = foot_position(self.lengths, self.nominal_angles)
+        turns = [(math.cos(m.yaw), math.sin(m.yaw)) for m in self.legs]
+        feet = np.array([[c * x - s * y, s * x + c * y, z] for c, s in turns])
+        return np.array([m.position for m in self.legs]) + feet
 
     @property
     def body_shape(self) -> str:
@@ -335,13 +316,7 @@ class HexapodDesign:
             if f.name == "mounts":
                 value = [vars(m).copy() for m in value]
             elif isinstance(value, JointLimits):
-                value = {
-                    "theta1": list(value.theta1),
-                    "theta2": list(value.theta2),
-                    "theta3": list(value.theta3),
-                    "coupled_knee": value.coupled_knee,
-                    "name": value.name,
-                }
+                value = value.as_dict()
             elif isinstance(value, tuple):
                 value = list(value)
             out[f.name] = value

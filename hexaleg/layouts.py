@@ -117,6 +117,17 @@ def rectangle_mounts(
     )
 
 
+def default_mounts(body_length: float, body_width: float) -> tuple[LegMount, ...]:
+    """The paper's rectangle: legs at the corners and side mid-points, pointing outward.
+
+    Args:
+        body_length: Body extent along x [m].
+        body_width: Body extent along y [m].
+
+    """
+    return rectangle_mounts(body_length, body_width)
+
+
 def hexagon_mounts(
     body_radius: float, first_leg_angle: float = math.pi / 6
 ) -> tuple[LegMount, ...]:

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -64,6 +65,11 @@ class JointLimits:
             if not (-math.pi <= lower and upper <= math.pi):
                 raise ParameterError(field, bounds, "bounds must lie in [-π, π] [rad]")
             object.__setattr__(self, joint, (lower, upper))
+
+    def as_dict(self) -> dict[str, Any]:
+        """The limits as plain JSON-ready values [rad]."""
+        bounds = {joint: list(getattr(self, joint)) for joint in JOINT_NAMES}
+        return {**bounds, "coupled_knee": self.coupled_knee, "name": self.name}
 
     @property
     def lower(self) -> npt.NDArray[np.float64]:
