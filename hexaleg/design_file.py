@@ -89,6 +89,9 @@ class UnknownKeyError(ParameterError):
     def __str__(self) -> str:
         return str(self.args[0])
 
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.field, self.allowed))
+
 
 # -- reading ------------------------------------------------------------------------------
 
