@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign
-from hexaleg.exceptions import DesignError, HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.statics.forces import Payload
 
@@ -94,7 +94,9 @@ def test_an_over_long_stride_is_refused_before_simulating(monkeypatch):
 
     monkeypatch.setattr(simulate, "SimModel", no_simulation)
     monkeypatch.setattr(simulate, "run_plan", no_simulation)
-    with pytest.raises(DesignError, match=r"stride = 0\.9 is not valid: must be at most 0\.6") as e:
+    with pytest.raises(
+        ParameterError, match=r"stride = 0\.9 is not valid: must be at most 0\.6"
+    ) as e:
         simulate_gait(design, gait)
     assert "\n" not in str(e.value) and "max stride" in str(e.value)
 
@@ -107,7 +109,7 @@ def test_a_step_too_high_is_refused_by_its_first_violation(monkeypatch):
 
 @pytest.mark.parametrize("cycles", [1, 0, 201, 2.5, True])
 def test_cycles_out_of_range_are_refused(cycles):
-    with pytest.raises(DesignError, match="cycles"):
+    with pytest.raises(ParameterError, match="cycles"):
         simulate_gait(HexapodDesign(), cycles=cycles)
 
 

@@ -14,7 +14,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 
 
 @dataclass(frozen=True)
@@ -49,7 +49,7 @@ class Plan:
                 f"plan standing has shape {self.standing.shape}, expected {shape[:2]}"
             )
         if not (np.isfinite(self.period) and self.period > 0):
-            raise HexalegError(f"plan period = {self.period:g} is not valid: must be > 0 [s]")
+            raise ParameterError("period", self.period, "must be > 0 [s]")
 
     @property
     def samples(self) -> int:

@@ -11,7 +11,8 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 from __future__ import annotations
 
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import DesignError, HexalegError
+from hexaleg._checks import require_int
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.limits import max_stride
 from hexaleg.gait.spec import Gait
@@ -55,20 +56,13 @@ def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
     gait = analysis.gait
     limit = max_stride(Walker(model, gait, analysis.payload, analysis.distribution))
     if 0 < limit.value < gait.stride:  # at 0 no stride at all is walkable: say why
-        raise DesignError(
+        raise ParameterError(
             "stride",
             gait.stride,
             f"must be at most {limit.value:.4g} [m], this design's max stride at step height "
             f"{gait.step_height:g} m (beyond it: {limit.limited_by})",
         )
     raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}")
-
-
-def _require_cycles(cycles: int) -> int:
-    low, high = CYCLES_RANGE
-    if isinstance(cycles, bool) or not isinstance(cycles, int) or not low <= cycles <= high:
-        raise DesignError("cycles", cycles, f"must be an integer in [{low}, {high}]")
-    return cycles
 
 
 def simulate_gait(
@@ -93,12 +87,12 @@ def simulate_gait(
         model: The design's Pinocchio model, if already built.
 
     Raises:
-        DesignError: ``stride`` beyond the design's max stride, or bad ``cycles``.
+        ParameterError: ``stride`` beyond the design's max stride, or bad ``cycles``.
         HexalegError: The planned period breaks another constraint, or MuJoCo is missing.
 
     """
     require_mujoco()
-    cycles = _require_cycles(cycles)
+    cycles = require_int("cycles", cycles, *CYCLES_RANGE)
     model = HexapodModel(design) if model is None else model
     analysis = analyze_gait(design, gait, payload, friction=friction, model=model, limits=False)
     require_walkable(analysis, model)

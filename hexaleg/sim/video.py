@@ -23,7 +23,7 @@ import numpy as np
 
 from hexaleg._io import atomic_write_bytes
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import ParameterError
 from hexaleg.sim.model import SimModel
 
 VIDEO_SUFFIXES = (".gif", ".webp")
@@ -56,9 +56,10 @@ def check_video_path(path: str | os.PathLike[str]) -> Path:
     """``path`` if it ends in a suffix of :data:`VIDEO_SUFFIXES`; else a one-line error."""
     target = Path(path)
     if target.suffix.lower() not in VIDEO_SUFFIXES:
-        raise HexalegError(
-            f"video = {str(path)!r} is not valid: the file must end in "
-            f"{' or '.join(VIDEO_SUFFIXES)} (animated image)"
+        raise ParameterError(
+            "video",
+            str(path),
+            f"the file must end in {' or '.join(VIDEO_SUFFIXES)} (animated image)",
         )
     return target
 
@@ -82,7 +83,7 @@ def write_still(sim: SimModel, q: ArrayF, path: str | os.PathLike[str]) -> Rende
     """Render one Pinocchio configuration ``q`` of ``sim`` as a PNG picture at ``path``."""
     target = Path(path)
     if target.suffix.lower() != ".png":
-        raise HexalegError(f"still = {str(path)!r} is not valid: the file must end in .png")
+        raise ParameterError("still", str(path), "the file must end in .png")
     return _render_files(sim, np.asarray(q, dtype=float)[None, :], 1.0, target)
 
 
