@@ -10,8 +10,8 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 
 from __future__ import annotations
 
-from hexaleg.design import HexapodDesign
 from hexaleg._checks import require_int
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.limits import max_stride
