@@ -8,8 +8,9 @@ from typing import Any
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.gait.spec import Gait
+from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.measure import WalkMetrics
-from hexaleg.sim.model import ServoGains
+from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.standing import StandingCheck
 from hexaleg.statics.forces import Payload
 
@@ -50,6 +51,10 @@ class SimulationResult:
         """The frame half a period into the last cycle: one tripod up, mid-swing."""
         time = (self.cycles - 0.75) * self.gait.period
         return min(len(self.frames) - 1, round(time * self.frame_rate))
+
+    def sim_model(self) -> SimModel:
+        """The MuJoCo model the walk ran on, built again (for a video or a still)."""
+        return SimModel(HexapodModel(self.design), self.payload, self.friction, self.gains)
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: the fields of the simulate issue (SI units: m, rad, N, N·m)."""

@@ -11,6 +11,7 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 from __future__ import annotations
 
 from hexaleg._checks import require_int
+from hexaleg._typing import Distribution
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
@@ -72,6 +73,7 @@ def simulate_gait(
     *,
     cycles: int = DEFAULT_CYCLES,
     friction: float = DEFAULT_FRICTION,
+    distribution: Distribution = "min-norm",
     gains: ServoGains | None = None,
     model: HexapodModel | None = None,
 ) -> SimulationResult:
@@ -83,6 +85,8 @@ def simulate_gait(
         payload: A point mass on the body (none by default).
         cycles: Periods to simulate, 2 … 200; the first is not measured.
         friction: Coefficient of friction μ between feet and floor [-].
+        distribution: How the plan shares the load among the standing feet
+            (``"min-norm"`` or ``"min-torque"``, as in ``loads``): its feed-forward torques.
         gains: Joint servo gains (default: :meth:`ServoGains.from_bandwidth`).
         model: The design's Pinocchio model, if already built.
 
@@ -94,7 +98,15 @@ def simulate_gait(
     require_mujoco()
     cycles = require_int("cycles", cycles, *CYCLES_RANGE)
     model = HexapodModel(design) if model is None else model
-    analysis = analyze_gait(design, gait, payload, friction=friction, model=model, limits=False)
+    analysis = analyze_gait(
+        design,
+        gait,
+        payload,
+        distribution=distribution,
+        friction=friction,
+        model=model,
+        limits=False,
+    )
     require_walkable(analysis, model)
     sim = SimModel(model, analysis.payload, friction, gains)
     plan = plan_of(analysis)
