@@ -6,7 +6,6 @@ report shows. It writes nothing: the sections turn it into text, the renderer in
 
 from __future__ import annotations
 
-import math
 import sys
 import warnings
 from collections.abc import Callable, Sequence
@@ -29,15 +28,16 @@ from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.study.decision import (
+    Decision,
+    DecisionOptions,
+    decide,
+    grid_recommendation,
+    pareto_front,
+)
 from hexaleg.study.executors import local_pool, max_workers
-from hexaleg.study.metrics import design_metrics, ratio_metrics
-from hexaleg.study.pareto import pareto_table
 from hexaleg.study.recommendation import (
-    PRACTICAL_L1_RATIO,
-    Metrics,
     Recommendation,
-    combined_score,
-    recommend,
 )
 from hexaleg.study.sensitivity import FieldSweep, sensitivity_table
 from hexaleg.study.sweep import MAX_L1_RATIOS, StudySpec, peak_table, study_table, sweep
@@ -51,7 +51,6 @@ from hexaleg.swing.workspace import (
     MAX_SAMPLES,
     WorkspaceAnalysis,
     analyze_workspace,
-    improved_area_closed_form,
 )
 
 T = TypeVar("T")
@@ -117,48 +116,6 @@ class ReportOptions:
     def swept_l1_ratios(self) -> tuple[float, ...]:
         """The coxa ratios the sweeps cover [-]."""
         return self.l1_ratios or L1_RATIOS
-
-
-@dataclass(frozen=True)
-class Decision:
-    """The user's design beside the recommended one, on the recommendation's scale.
-
-    Attributes:
-        yours: The user's design's metrics (:data:`~hexaleg.study.recommendation.METRICS`).
-        your_score: Its combined score [-].
-        recommended: The recommended ratios at the user's leg length, body and posture;
-            ``None`` if that design cannot stand.
-        recommended_metrics: The recommended design's metrics (NaN if it cannot stand).
-        recommended_score: Its combined score [-].
-        your_payload: The user's design's payload capacity [kg] (not in the score).
-        recommended_payload: The recommended design's payload capacity [kg] (NaN if it
-            cannot stand).
-
-    """
-
-    yours: Metrics
-    your_score: float
-    recommended: HexapodDesign | None
-    recommended_metrics: Metrics
-    recommended_score: float
-    your_payload: float
-    recommended_payload: float
-
-    def to_json(self) -> dict[str, Any]:
-        """JSON-ready form (metrics in m², m³ and 1)."""
-        return {
-            "yours": {
-                "metrics": dict(self.yours),
-                "score": self.your_score,
-                "payload_capacity": self.your_payload,
-            },
-            "recommended": {
-                "lengths_m": list(self.recommended.lengths) if self.recommended else None,
-                "metrics": dict(self.recommended_metrics),
-                "score": self.recommended_score,
-                "payload_capacity": self.recommended_payload,
-            },
-        }
 
 
 @dataclass(frozen=True)
@@ -296,14 +253,15 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
             ),
         )
         template = StanceGeometry.from_model(model, "all")
+        choice = DecisionOptions(options.l1_ratios, options.collisions)
         recommendation = step(
             "recommendation",
-            lambda: _recommendation(design, template, average_map, study, options),
+            lambda: grid_recommendation(design, template, average_map, study, choice),
         )
         loads, free_loads = step(
             "statics", lambda: (loads_at_extremes(model, axis), loads_at_extremes(model, free))
         )
-        decision = _decision(design, model, template, recommendation, loads, options.collisions)
+        decision = decide(design, model, template, recommendation, loads.capacity.mass, choice)
     return ReportData(
         design=design,
         options=options,
@@ -324,9 +282,7 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
         decision=decision,
         loads=loads,
         free_loads=free_loads,
-        pareto=pareto_table(
-            _candidates(_pareto_grid(average_map, study, design.leg_length), options.l1_ratios)
-        ),
+        pareto=pareto_front(average_map, study, choice),
     )
 
 
@@ -360,95 +316,6 @@ def _sensitivity_l1_ratios(l1_ratios: Sequence[float]) -> tuple[float, ...]:
     if tuple(l1_ratios) == L1_RATIOS:
         return (L1_RATIOS[1], L1_RATIOS[3])
     return tuple(sorted({min(l1_ratios), max(l1_ratios)}))
-
-
-def _recommendation(
-    design: HexapodDesign,
-    template: StanceGeometry,
-    average_map: AverageManipulabilityMap,
-    study: pd.DataFrame,
-    options: ReportOptions,
-) -> Recommendation:
-    """Recommend ratios from the three metrics on the (coxa, tibia) ratio grid."""
-    r1, r3 = average_map.l1_ratios, average_map.l3_ratios
-    total = design.leg_length
-    l2 = (1 - r1[:, None] - r3[None, :]) * total
-    area = np.where(l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan)
-    fb = np.full(area.shape, np.nan)
-    for i, ratio in enumerate(r1):
-        rows = study[np.isclose(study["l1_ratio"], ratio)]
-        fb[i] = rows["fb"].to_numpy(dtype=float) if "fb" in rows else np.nan
-    maps = {
-        "improved_area": area,
-        "average_manipulability": average_map.improved,
-        "flexibility": fb,
-    }
-    return recommend(
-        r1,
-        r3,
-        maps,
-        candidates=options.l1_ratios,
-        evaluate=lambda a, b: ratio_metrics(design, a, b, template, options.collisions),
-    )
-
-
-def _decision(
-    design: HexapodDesign,
-    model: HexapodModel,
-    template: StanceGeometry,
-    rec: Recommendation,
-    loads: LoadsAnalysis,
-    collisions: bool,
-) -> Decision:
-    yours = design_metrics(design, template, collisions)
-    recommended_metrics = ratio_metrics(design, rec.l1_ratio, rec.l3_ratio, template, collisions)
-    try:
-        recommended: HexapodDesign | None = design.with_ratios(rec.l1_ratio, rec.l3_ratio)
-    except HexalegError:
-        recommended = None
-    payload = math.nan
-    if recommended is not None:
-        their_model = model.with_design(recommended)
-        locked = axis_locked_flexibility(recommended, "all", their_model, collisions=collisions)
-        payload = loads_at_extremes(their_model, locked).capacity.mass
-    return Decision(
-        your_payload=loads.capacity.mass,
-        recommended_payload=payload,
-        yours=yours,
-        your_score=combined_score(yours, rec.maxima),
-        recommended=recommended,
-        recommended_metrics=recommended_metrics,
-        recommended_score=combined_score(recommended_metrics, rec.maxima),
-    )
-
-
-def _pareto_grid(
-    average_map: AverageManipulabilityMap, study: pd.DataFrame, total: float
-) -> pd.DataFrame:
-    """Every design of the sweep with the four metrics of the Pareto front."""
-    grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
-    grid["improved_area"] = improved_area_closed_form(
-        grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)
-    )
-    w_a = {
-        (r1, r3): value
-        for i, r1 in enumerate(average_map.l1_ratios)
-        for r3, value in zip(average_map.l3_ratios, average_map.improved[i], strict=True)
-    }
-    grid["average_manipulability"] = [
-        w_a.get((r1, r3), np.nan) for r1, r3 in zip(grid["l1_ratio"], grid["l3_ratio"], strict=True)
-    ]
-    grid["flexibility"] = study["fb"] if "fb" in study else np.nan
-    grid["payload_capacity"] = study["payload_capacity"] if "payload_capacity" in study else np.nan
-    return grid
-
-
-def _candidates(grid: pd.DataFrame, l1_ratios: Sequence[float] | None) -> pd.DataFrame:
-    """The designs whose coxa ratio the recommendation may take (as :func:`recommend`)."""
-    if l1_ratios is not None:
-        return grid[np.isclose(grid["l1_ratio"].to_numpy()[:, None], l1_ratios).any(axis=1)]
-    practical = grid[grid["l1_ratio"] >= PRACTICAL_L1_RATIO - 1e-12]
-    return practical if len(practical) else grid
 
 
 def _without_design(data: dict[str, Any]) -> dict[str, Any]:
