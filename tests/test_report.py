@@ -112,8 +112,8 @@ def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
 @pytest.mark.parametrize(
     ("module", "name"),
     [
-        ("hexaleg.output.report.compute", "sensitivity_table"),  # while computing
-        ("hexaleg.output.report.render", "write_static_html"),  # half-way through writing
+        ("hexaleg.output.report.sensitivity", "sensitivity_table"),  # while computing
+        ("hexaleg.output.report.viewer", "write_static_html"),  # half-way through writing
     ],
 )
 def test_failed_run_leaves_the_previous_report(tmp_path, monkeypatch, module, name):

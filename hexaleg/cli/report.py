@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     field_sweep_from_args,
 )
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
-from hexaleg.output.report.compute import MAX_SENSITIVITY_POINTS
+from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "

@@ -34,11 +34,19 @@ def shade_paper_claim(ax: Axes) -> None:
     ax.axvspan(lo, hi, color="k", alpha=0.08, label=f"paper's claim {lo:.2f}–{hi:.2f}")
 
 
-def save(figure: Figure, path: str | os.PathLike[str]) -> Path:
-    """Render ``figure`` to PNG and write it atomically."""
+def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Path:
+    """Render ``figure`` to PNG (and, if ``svg``, to SVG beside it), atomically.
+
+    Returns the PNG's path.
+    """
     buffer = io.BytesIO()
     figure.savefig(buffer, format="png", dpi=DPI)
-    return atomic_write_bytes(path, buffer.getvalue())
+    written = atomic_write_bytes(path, buffer.getvalue())
+    if svg:
+        vector = io.BytesIO()
+        figure.savefig(vector, format="svg", metadata={"Date": None})
+        atomic_write_bytes(Path(path).with_suffix(".svg"), vector.getvalue())
+    return written
 
 
 LIMIT_SET_TITLES = {

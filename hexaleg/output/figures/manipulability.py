@@ -78,10 +78,12 @@ def write_manipulability_figures(
     average_map: AverageManipulabilityMap,
     out_dir: str | os.PathLike[str],
     surfaces: Sequence[ManipulabilitySurface] | None = None,
+    svg: bool = False,
 ) -> list[Path]:
     """Fig 10–11 of a :class:`~hexaleg.swing.manipulability.ManipulabilityAnalysis`.
 
-    ``surfaces`` are the design's own and Table 5's (:func:`table5_surfaces` if omitted).
+    ``surfaces`` are the design's own and Table 5's (:func:`table5_surfaces` if omitted);
+    ``svg`` writes an SVG beside each PNG.
     """
     out = Path(out_dir)
     surfaces = list(surfaces or table5_surfaces(analysis))
@@ -93,10 +95,14 @@ def write_manipulability_figures(
         save(
             manipulability_surface_figure(surfaces[:1], labels[:1]),
             out / "manipulability_surface.png",
+            svg,
         ),
         save(
             manipulability_surface_figure(surfaces[1:], labels[1:]),
             out / "manipulability_surfaces_table5.png",
+            svg,
         ),
-        save(average_manipulability_figure(average_map), out / "manipulability_average_map.png"),
+        save(
+            average_manipulability_figure(average_map), out / "manipulability_average_map.png", svg
+        ),
     ]

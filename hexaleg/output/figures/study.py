@@ -66,15 +66,24 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
     return fig
 
 
-def write_study_figures(table: pd.DataFrame, out_dir: str | os.PathLike[str]) -> list[Path]:
-    """Fig 14 (ranges, for the smallest coxa ratio) and Fig 15 (FB curves)."""
+def write_study_figures(
+    table: pd.DataFrame, out_dir: str | os.PathLike[str], svg: bool = False
+) -> list[Path]:
+    """Fig 15 (FB curves) and Fig 14 (ranges, for the smallest coxa ratio); the PNGs.
+
+    ``svg`` writes an SVG beside each PNG.
+    """
     out = Path(out_dir)
     valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
     if valid.empty:
         return []
     return [
-        save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png"),
-        save(ranges_figure(valid, float(valid["l1_ratio"].min())), out / "flexibility_ranges.png"),
+        save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png", svg),
+        save(
+            ranges_figure(valid, float(valid["l1_ratio"].min())),
+            out / "flexibility_ranges.png",
+            svg,
+        ),
     ]
 
 

@@ -128,16 +128,18 @@ def write_workspace_figures(
     analysis: WorkspaceAnalysis,
     out_dir: str | os.PathLike[str],
     series: CoxaSeries | None = None,
+    svg: bool = False,
 ) -> list[Path]:
-    """Fig 5–8 of a :class:`~hexaleg.swing.workspace.WorkspaceAnalysis`; returns the files.
+    """Fig 5–8 of a :class:`~hexaleg.swing.workspace.WorkspaceAnalysis`; returns the PNGs.
 
-    ``series`` is Fig 8's data (computed for the paper's coxa ratios if omitted).
+    ``series`` is Fig 8's data (computed for the paper's coxa ratios if omitted); ``svg``
+    writes an SVG beside each PNG.
     """
     out = Path(out_dir)
     design = analysis.design
     series = series or coxa_series(design, L1_RATIOS)
     return [
-        save(monte_carlo_figure(analysis.monte_carlo), out / "workspace_monte_carlo.png"),
+        save(monte_carlo_figure(analysis.monte_carlo), out / "workspace_monte_carlo.png", svg),
         save(
             planar_workspace_figure(
                 analysis.rectangular,
@@ -145,6 +147,7 @@ def write_workspace_figures(
                 tuple(planar_foot_position(design.lengths, *design.nominal_angles[1:])),
             ),
             out / "workspace_planar.png",
+            svg,
         ),
-        save(l1_series_figure(series), out / "workspace_l1_series.png"),
+        save(l1_series_figure(series), out / "workspace_l1_series.png", svg),
     ]
