@@ -9,19 +9,29 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from hexaleg.output.figures.canvas import COLORS, new_figure, save, shade_paper_claim
+from hexaleg.output.figures.canvas import (
+    COLORS,
+    drawn,
+    log_scale,
+    name_largest,
+    new_figure,
+    save,
+    shade_paper_band,
+)
+from hexaleg.output.figures.statics import design_names
 from hexaleg.study.sweep import peak_table
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
+@drawn
 def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
     """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks marked."""
-    fig = new_figure()
+    fig = new_figure(4.8)
     ax = fig.add_subplot()
     for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
-        ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"l1 ratio {r1:.2f}")
+        ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"coxa ratio {r1:.2f}")
         peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
         ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
         ax.annotate(
@@ -33,36 +43,44 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
             fontsize=8,
             color=color,
         )
-    shade_paper_claim(ax)
-    ax.set_xlabel("l3 ratio [-]")
+    shade_paper_band(ax, "FB peaks")
+    ax.set_xlabel("tibia ratio l3 / L [-]")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
-    ax.set_title("Body flexibility against tibia ratio (peaks marked)")
+    ax.set_title("Body flexibility against tibia ratio, for each coxa ratio (peaks marked)")
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=8)
+    ax.legend()
     return fig
 
 
+@drawn
 def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
     """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio."""
-    fig = new_figure(11, 4.5)
+    fig = new_figure(3.6)
     left, right = fig.subplots(1, 2)
     group = table[np.isclose(table["l1_ratio"], l1_ratio)]
     for k, axis in enumerate(("x", "y", "z")):
-        left.plot(group["l3_ratio"], group[f"range_{axis}"], color=COLORS[k], label=f"S_{axis}")
-    for k, axis in enumerate(("roll", "pitch", "yaw")):
+        left.plot(
+            group["l3_ratio"],
+            group[f"range_{axis}"],
+            color=COLORS[k],
+            label=f"S_{axis} along {axis}",
+        )
+    for k, (axis, about) in enumerate((("roll", "x"), ("pitch", "y"), ("yaw", "z"))):
         right.plot(
             group["l3_ratio"],
             np.degrees(group[f"range_{axis}"]),
             color=COLORS[k],
-            label=f"φ ({axis})",
+            label=f"φ_{about} ({axis})",
         )
     left.set_ylabel("translation range [m]")
     right.set_ylabel("rotation range [°]")
     for ax in (left, right):
-        ax.set_xlabel("l3 ratio [-]")
+        ax.set_xlabel("tibia ratio l3 / L [-]")
         ax.grid(True, alpha=0.3)
-        ax.legend(fontsize=8)
-    fig.suptitle(f"Ranges of the body pose, l1 ratio {l1_ratio:.2f} (eq 28)")
+        ax.legend()
+    fig.suptitle(
+        f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
+    )
     return fig
 
 
@@ -87,9 +105,14 @@ def write_study_figures(
     ]
 
 
+@drawn
 def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
-    """FB against payload capacity for every design; the Pareto front and its best marked."""
-    fig = new_figure(7.5, 5.5)
+    """FB against payload capacity for every design; the Pareto front and its best marked.
+
+    Payload capacity spans decades over a sweep (a 5 cm femur lifts tonnes), so its axis
+    is logarithmic and the largest is named.
+    """
+    fig = new_figure(5.2)
     ax = fig.add_subplot()
     ax.scatter(table["payload_capacity"], table["fb"], s=8, color="#bbbbbb", label="every design")
     for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
@@ -98,7 +121,7 @@ def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
             group["flexibility"],
             s=24,
             color=color,
-            label=f"Pareto front, l1 ratio {r1:.2f}",
+            label=f"on the front, coxa ratio {r1:.2f}",
         )
     best = front.iloc[0]
     ax.scatter(
@@ -107,11 +130,13 @@ def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
         s=220,
         marker="*",
         color="k",
-        label=f"recommended: l3 ratio {best['l3_ratio']:.3f}, l1 ratio {best['l1_ratio']:.2f}",
+        label=f"recommended: coxa ratio {best['l1_ratio']:.2f}, tibia ratio {best['l3_ratio']:.3f}",
     )
-    ax.set_xlabel("payload capacity [kg]")
+    log_scale(ax, "x")
+    name_largest(ax, table["payload_capacity"], table["fb"], design_names(table), by="x")
+    ax.set_xlabel("payload capacity [kg], log scale")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
-    ax.set_title("Pareto front of improved area, w_A, FB and payload capacity")
-    ax.grid(True, alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2, fontsize=8)
+    ax.set_title("Designs no other beats in workspace, manipulability, FB and payload at once")
+    ax.grid(True, which="both", alpha=0.3)
+    fig.legend(loc="outside lower center", ncols=2)
     return fig

@@ -14,7 +14,6 @@ import sys
 from collections.abc import Callable, Iterator, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import MappingProxyType
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
 
 from tqdm import tqdm
@@ -45,7 +44,7 @@ class ReportData:
     design: HexapodDesign
     options: ReportOptions
     model: HexapodModel
-    records: Mapping[type, Any] = field(default_factory=lambda: MappingProxyType({}))
+    records: Mapping[type, Any] = field(default_factory=dict)
 
     def __getitem__(self, kind: type[R]) -> R:
         """The record of type ``kind``; fails if no part computed it (yet)."""
@@ -61,12 +60,12 @@ class ReportData:
     def with_record(self, record: object) -> ReportData:
         """A copy holding ``record`` too."""
         records = {**self.records, type(record): record}
-        return ReportData(self.design, self.options, self.model, MappingProxyType(records))
+        return ReportData(self.design, self.options, self.model, records)
 
     def only(self, kinds: Sequence[type]) -> ReportData:
         """A copy holding only the records of ``kinds`` (what a part declared it needs)."""
         records: dict[type, Any] = {kind: self[kind] for kind in kinds}
-        return ReportData(self.design, self.options, self.model, MappingProxyType(records))
+        return ReportData(self.design, self.options, self.model, records)
 
 
 def _no_files(data: ReportData, out: Path) -> None:
