@@ -41,6 +41,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.output.report.document import Figure, Section, report_json
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import Part, ReportData, compute_order, compute_parts
+from hexaleg.output.report.pdf import REPORT_PDF, require_pdf_engine
 from hexaleg.output.report.registry import PARTS
 from hexaleg.output.report.render import (
     REPORT_HTML,
@@ -55,6 +56,7 @@ __all__ = [
     "REPORT_HTML",
     "REPORT_JSON",
     "REPORT_MD",
+    "REPORT_PDF",
     "Figure",
     "Part",
     "ReportData",
@@ -75,9 +77,15 @@ def build_report(
     out_dir: str | os.PathLike[str],
     design: HexapodDesign | None = None,
     options: ReportOptions | None = None,
+    pdf: bool = False,
 ) -> dict[str, Any]:
-    """Run every analysis and write the report folder; return the report's numbers."""
+    """Run every analysis and write the report folder; return the report's numbers.
+
+    With ``pdf``, the folder also holds ``report.pdf`` (needs the ``[pdf]`` extra).
+    """
     check_target(Path(out_dir))  # before the minutes of computing, not after
+    if pdf:
+        require_pdf_engine()
     data = compute_report(design or HexapodDesign(), options or ReportOptions())
-    render_report(data, out_dir)
+    render_report(data, out_dir, pdf)
     return report_json(data, compute_order(PARTS))

@@ -14,6 +14,7 @@ from typing import Any
 from hexaleg._io import atomic_write_text
 from hexaleg.output.report.document import report_html, report_json, report_markdown, sections
 from hexaleg.output.report.part import Part, ReportData, compute_order
+from hexaleg.output.report.pdf import write_pdf
 from hexaleg.output.report.registry import PARTS
 
 REPORT_MD = "report.md"
@@ -21,8 +22,13 @@ REPORT_HTML = "report.html"
 REPORT_JSON = "report.json"
 
 
-def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS) -> None:
-    """Write every part's files, then ``report.md``, ``report.html`` and ``report.json``."""
+def write_content(
+    data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS, pdf: bool = False
+) -> None:
+    """Write every part's files, then ``report.md``, ``report.html`` and ``report.json``.
+
+    With ``pdf``, also ``report.pdf``: the same sections with vector figures.
+    """
     for part in parts:
         part.files(data, out)
     report = sections(data, parts)
@@ -30,3 +36,5 @@ def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] = PART
     atomic_write_text(out / REPORT_HTML, report_html(report, out))
     numbers = report_json(data, compute_order(parts))
     atomic_write_text(out / REPORT_JSON, json.dumps(numbers, indent=1, allow_nan=True))
+    if pdf:
+        write_pdf(report, out)

@@ -167,7 +167,11 @@ def _figure_html(figure: Figure, number: int, folder: Path, medium: Medium) -> s
             f"<a href='{png}'><img src='{png}' alt='{caption}' width='{width}' "
             f"height='{height}'></a>"
         )
-    links = f" (full size: <a href='{png}'>PNG</a>, for print: <a href='{svg}'>SVG</a>)"
+    links = (
+        ""  # the PDF is the print version
+        if medium == "print"
+        else f" (full size: <a href='{png}'>PNG</a>, for print: <a href='{svg}'>SVG</a>)"
+    )
     return f"<figure>{image}<figcaption>{caption}{links}</figcaption></figure>"
 
 

@@ -83,7 +83,11 @@ def section(data: ReportData) -> Section:
                     for r in extremes_rows(record)
                 ],
             ),
-            Figure("flexibility_extremes", "The 12 axis-locked extremes and what stops each"),
+            Figure(
+                "flexibility_extremes",
+                "How far the body moves along and about each axis with all six feet planted "
+                "(axis-locked), and what stops it",
+            ),
         ),
     )
 

@@ -11,6 +11,7 @@ from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import table5_surfaces, write_manipulability_figures
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import Part, ReportData
+from hexaleg.paper import CLAIMED_W_A_PEAK
 from hexaleg.paper.reproduction import digits_transposed, table6_reproduction
 from hexaleg.robot.model import LegModel
 from hexaleg.swing.manipulability import (
@@ -76,14 +77,18 @@ def section(data: ReportData) -> Section:
             "evaluate eq 25 at the paper's own angles.",
             _table6(record.table6),
             _table6_flags(record.table6),
-            Figure("manipulability_surface", "w over (θ2, θ3) for this design"),
+            Figure(
+                "manipulability_surface",
+                "Manipulability w over the hip and knee angles for this design's leg",
+            ),
             Figure(
                 "manipulability_surfaces_table5",
-                "Fig 10: w over (θ2, θ3) for the Table 5 designs",
+                "The same for the Table 5 designs (the paper's Fig 10)",
             ),
             Figure(
                 "manipulability_average_map",
-                "Fig 11: average manipulability against tibia ratio",
+                "Average manipulability w_A against tibia ratio, for each coxa ratio, on both "
+                "joint domains; the dashed line is the paper's claim (the paper's Fig 11)",
             ),
             table(
                 ["l1 ratio", "w_A peak l3 ratio, rectangular", "w_A peak l3 ratio, improved"],
@@ -94,7 +99,8 @@ def section(data: ReportData) -> Section:
                     )
                 ],
             ),
-            "The paper says w_A peaks near l3 ≈ 0.45. On eq 26's rectangular domain hexaleg "
+            f"The paper says w_A peaks at l3 ≈ {CLAIMED_W_A_PEAK} (§5.4). On eq 26's rectangular "
+            "domain hexaleg "
             f"finds {w_map.peak_rectangular.min():.3f}–{w_map.peak_rectangular.max():.3f}: the "
             "claim does **not** hold there. On the improved domain the peak is "
             f"{w_map.peak_improved.min():.3f}–{w_map.peak_improved.max():.3f}, near the claim "

@@ -71,7 +71,11 @@ def section(data: ReportData) -> Section:
                 ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
                 rows,
             ),
-            Figure("pareto_front", "FB against payload capacity; the front and its best"),
+            Figure(
+                "pareto_front",
+                "Body flexibility against payload capacity (log scale) for every design of the "
+                "sweep; the front and its best marked, the largest capacity named",
+            ),
         ),
     )
 

@@ -77,7 +77,7 @@ def section(data: ReportData) -> Section:
                     for r in rec.peaks.to_dict(orient="records")
                 ],
             ),
-            "Every metric grows as the coxa shrinks (Table 5, Fig 11, Fig 15), so the coxa "
+            "Every metric grows as the coxa shrinks (Table 5, sections 2 and 3.1), so the coxa "
             "should be as short as the root actuator's packaging allows. The recommendation "
             "takes the best score among the allowed coxa ratios, its tibia ratio refined "
             "between grid points with every metric computed exactly:",

@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg.output.figures import loads_figure, save, statics_study_figure
+from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.part import Part, ReportData
@@ -40,50 +41,73 @@ def compute(data: ReportData) -> StaticsRecord:
 
 def section(data: ReportData) -> Section:
     """What the design costs: torques against ratings, stability, slopes, payload."""
-    record = data[StaticsRecord]
-    loads, free = record.axis, record.free
-    nominal = loads.nominal.peak_torques()
-    rows = [
-        (
-            joint,
-            f"{rated:g}",
-            f"{nominal[joint]:.1f}",
-            f"{loads.peak_torques[joint]:.1f}",
-            f"{free.peak_torques[joint]:.1f}",
-        )
-        for joint, rated in zip(nominal, data.design.rated_torques, strict=True)
-    ]
-    slopes = ", ".join(
-        f"{math.degrees(s.heading):+.0f}°: {math.degrees(s.max_slope):.1f}° ({s.limited_by})"
-        for s in loads.slopes
-    )
+    loads = data[StaticsRecord].axis
+    differ = slopes_differ(loads)
     return Section(
         "3.3 Statics: what the design costs",
         (
             f"The robot weighs {loads.nominal.mass * 9.81:.0f} N ({loads.nominal.mass:.2f} kg). "
             "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
             "Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over the stance legs, in N·m:",
-            table(
-                [
-                    "joint",
-                    "rated",
-                    "nominal stance",
-                    "over the axis-locked extremes",
-                    "over the free-coupled extremes",
-                ],
-                rows,
-            ),
+            _torque_table(data),
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
-            f"Steepest slope by uphill heading (μ = {loads.friction:g}): {slopes}. Payload "
-            f"capacity at the centre of the body's top face: **{loads.capacity.mass:.1f} kg**, "
-            f"limited by {loads.capacity.limited_by}. Per design of the sweep:",
+            f"Payload capacity at the centre of the body's top face: "
+            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}. "
+            f"Steepest slope the robot stands on, body level with the ground (μ = "
+            f"{loads.friction:g}):",
+            _slope_table(loads, differ),
+            Figure(
+                "loads",
+                "This design's largest joint torques against their ratings"
+                + (", and the steepest slope by uphill heading" if differ else ""),
+            ),
             Figure(
                 "study_statics",
-                "Peak hip and knee torque and payload capacity against tibia ratio",
+                "Every design of the sweep: largest hip and knee torque, and payload capacity "
+                "(log scale), against tibia ratio for each coxa ratio",
             ),
-            Figure("loads", "This design: peak torques against their ratings, and slopes"),
         ),
     )
+
+
+def _torque_table(data: ReportData) -> str:
+    record = data[StaticsRecord]
+    nominal = record.axis.nominal.peak_torques()
+    rows = [
+        (
+            joint,
+            f"{rated:g}",
+            f"{nominal[joint]:.1f}",
+            f"{record.axis.peak_torques[joint]:.1f}",
+            f"{record.free.peak_torques[joint]:.1f}",
+        )
+        for joint, rated in zip(nominal, data.design.rated_torques, strict=True)
+    ]
+    header = ["joint", "rated", "nominal stance", "over the axis-locked extremes"]
+    return table([*header, "over the free-coupled extremes"], rows)
+
+
+def _slope_table(loads: LoadsAnalysis, differ: bool) -> str:
+    """One line when every uphill heading gives the same slope and cause, else one a heading."""
+    header = ["uphill heading (body frame, 0° = forward)", "steepest slope [°]", "stopped by"]
+    headings = [f"{math.degrees(s.heading):+.0f}°" for s in loads.slopes]
+    if not differ:
+        first = loads.slopes[0]
+        row = (
+            f"every heading ({', '.join(headings)})",
+            f"{math.degrees(first.max_slope):.1f}",
+            SLOPE_CAUSES.get(str(first.limited_by), str(first.limited_by)),
+        )
+        return table(header, [row])
+    rows = [
+        (
+            heading,
+            f"{math.degrees(s.max_slope):.1f}",
+            SLOPE_CAUSES.get(str(s.limited_by), str(s.limited_by)),
+        )
+        for heading, s in zip(headings, loads.slopes, strict=True)
+    ]
+    return table(header, rows)
 
 
 def write_files(data: ReportData, out: Path) -> None:

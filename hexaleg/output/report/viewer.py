@@ -33,14 +33,17 @@ def compute(data: ReportData) -> ViewerRecord:
 
 def section(data: ReportData) -> Section:
     """Where the 3-D view is and how to use it."""
+    leg = data[ViewerRecord].workspace_leg
     return Section(
         "4. 3-D view",
         (
-            "[viewer.html](viewer.html) is a self-contained meshcat scene (no server needed): "
-            "the nominal stance, the footholds, one leg's workspace cloud, and the 12 extremes "
-            "under `hexaleg/extremes/` in the scene tree (tick to show; the limiting link is "
-            "red). Open Controls → Animations → play to see the body go out to each extreme and "
-            "back. `hexaleg view` serves the same scene live on 127.0.0.1.",
+            f"[{PAGE}]({PAGE}) is a self-contained meshcat scene (no server needed): the "
+            f"nominal stance, the footholds, the {leg} leg's workspace cloud, and the 12 "
+            "extremes under `hexaleg/extremes/` in the scene tree (tick to show; the link whose "
+            "joint stops the body is red). Each leg link is coloured by its joint's |τ| / rated "
+            "torque at the pose shown; the colour scale stands beside the scene. Open Controls "
+            "→ Animations → play to see the body go out to each extreme and back. `hexaleg "
+            "view` serves the same scene live on 127.0.0.1.",
         ),
     )
 

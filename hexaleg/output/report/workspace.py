@@ -53,11 +53,20 @@ def section(data: ReportData) -> Section:
             f"rectangular domain (Table 3), **{area['improved']:.4f} m²** on the improved domain "
             f"(Table 4), against eq 16's 2π·l2·l3/3 = {area['improved_closed_form']:.4f} m². "
             "Areas are exact boundary integrals (Green's theorem), not pixel counts.",
-            Figure("workspace_monte_carlo", "Fig 5: Monte Carlo foot workspace (Table 2 limits)"),
-            Figure("workspace_planar", "Fig 6–7: rectangular and improved planar workspaces"),
+            Figure(
+                "workspace_monte_carlo",
+                "Reachable foot positions of one leg, by Monte Carlo (Table 2 limits; the paper's "
+                "Fig 5)",
+            ),
+            Figure(
+                "workspace_planar",
+                "Foot workspace in the leg's plane on the rectangular and improved joint domains "
+                "(the paper's Fig 6–7)",
+            ),
             Figure(
                 "workspace_l1_series",
-                "Fig 8: improved workspace per coxa ratio; area peaks at l2 = l3",
+                "Improved workspace for each coxa ratio, its area, and the area against tibia "
+                "ratio: it peaks at femur = tibia (the paper's Fig 8)",
             ),
             "Table 5 designs (1 m leg; lengths in mm as in the paper): the numerical improved "
             "area equals eq 16 to rounding error, and shrinks as the coxa grows.",
