@@ -11,7 +11,9 @@ from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report import ReportOptions, build_report
 
-REDUCED = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False)
+REDUCED = ReportOptions(
+    l3_points=10, sensitivity_points=4, workers=1, progress=False, vector_figures=False
+)
 SECTIONS = [
     "## Decision",
     "## Design",
@@ -240,6 +242,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
         sensitivity_points=REDUCED.sensitivity_points,
         workers=1,
         progress=False,
+        vector_figures=False,
         l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
     )
     fixed = build_report(tmp_path / "fixed", design, options)["recommendation"]

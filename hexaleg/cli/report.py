@@ -66,8 +66,9 @@ def run(args: argparse.Namespace) -> int:
         l1_ratios=None if args.l1_ratios is None else tuple(args.l1_ratios),
         collisions=args.collisions,
         sweep=sweep,
+        pdf=args.pdf,
     )
-    data = build_report(args.output, design, options, pdf=args.pdf)
+    data = build_report(args.output, design, options)
     out = Path(args.output)
     rec = data["recommendation"]
     written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if args.pdf else [])

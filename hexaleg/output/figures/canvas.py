@@ -12,6 +12,7 @@ from __future__ import annotations
 import functools
 import io
 import os
+import zlib
 from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, ParamSpec
@@ -153,12 +154,20 @@ def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Pat
     with matplotlib.rc_context(STYLE):  # ticks made while drawing take the same sizes
         buffer = io.BytesIO()
         figure.savefig(buffer, format="png", dpi=DPI)  # lays out, so every text exists
-        metadata = {SMALLEST_TEXT_KEY: f"{smallest_text_px(figure):.2f}"}
-        buffer = io.BytesIO()
-        figure.savefig(buffer, format="png", dpi=DPI, metadata=metadata)
-        written = atomic_write_bytes(path, buffer.getvalue())
+        smallest = f"{smallest_text_px(figure):.2f}"
+        written = atomic_write_bytes(
+            path, _with_text(buffer.getvalue(), SMALLEST_TEXT_KEY, smallest)
+        )
         if svg:
             vector = io.BytesIO()
             figure.savefig(vector, format="svg", metadata={"Date": None})
             atomic_write_bytes(Path(path).with_suffix(".svg"), vector.getvalue())
     return written
+
+
+def _with_text(png: bytes, key: str, value: str) -> bytes:
+    """``png`` with a ``tEXt`` chunk ``key`` = ``value`` after its header chunk."""
+    header_end = 8 + 4 + 4 + 13 + 4  # signature, then IHDR: length, type, 13 bytes, CRC
+    body = b"tEXt" + key.encode("latin-1") + b"\0" + value.encode("latin-1")
+    chunk = (len(body) - 4).to_bytes(4, "big") + body + zlib.crc32(body).to_bytes(4, "big")
+    return png[:header_end] + chunk + png[header_end:]

@@ -19,7 +19,7 @@ Write one module here, e.g. ``walking.py``, holding:
 - ``section(data: ReportData) -> Section``: the title and blocks — markdown text, tables
   made with :func:`~.document.table`, and :class:`~.document.Figure` ``(name, caption)``
   for a figure your ``files`` writes as ``<name>.png`` and ``<name>.svg``
-  (``save(figure, out / "<name>.png", svg=True)``);
+  (``save(figure, out / "<name>.png", svg=data.options.svg)``);
 - optionally ``write_files(data, out)`` (figures, CSV) and ``to_json(record) -> dict``
   (your top-level keys of ``report.json``, SI units);
 - ``PART = Part(WalkingRecord, compute, section, needs=(StaticsRecord,), step="walking",
@@ -77,15 +77,15 @@ def build_report(
     out_dir: str | os.PathLike[str],
     design: HexapodDesign | None = None,
     options: ReportOptions | None = None,
-    pdf: bool = False,
 ) -> dict[str, Any]:
     """Run every analysis and write the report folder; return the report's numbers.
 
-    With ``pdf``, the folder also holds ``report.pdf`` (needs the ``[pdf]`` extra).
+    With ``options.pdf``, the folder also holds ``report.pdf`` (the ``[pdf]`` extra).
     """
+    options = options or ReportOptions()
     check_target(Path(out_dir))  # before the minutes of computing, not after
-    if pdf:
+    if options.pdf:
         require_pdf_engine()
-    data = compute_report(design or HexapodDesign(), options or ReportOptions())
-    render_report(data, out_dir, pdf)
+    data = compute_report(design or HexapodDesign(), options)
+    render_report(data, out_dir)
     return report_json(data, compute_order(PARTS))

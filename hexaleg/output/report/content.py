@@ -22,19 +22,17 @@ REPORT_HTML = "report.html"
 REPORT_JSON = "report.json"
 
 
-def write_content(
-    data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS, pdf: bool = False
-) -> None:
+def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS) -> None:
     """Write every part's files, then ``report.md``, ``report.html`` and ``report.json``.
 
-    With ``pdf``, also ``report.pdf``: the same sections with vector figures.
+    With the ``pdf`` option, also ``report.pdf``: the same sections with vector figures.
     """
     for part in parts:
         part.files(data, out)
     report = sections(data, parts)
-    atomic_write_text(out / REPORT_MD, report_markdown(report))
+    atomic_write_text(out / REPORT_MD, report_markdown(report, out))
     atomic_write_text(out / REPORT_HTML, report_html(report, out))
     numbers = report_json(data, compute_order(parts))
     atomic_write_text(out / REPORT_JSON, json.dumps(numbers, indent=1, allow_nan=True))
-    if pdf:
+    if data.options.pdf:
         write_pdf(report, out)

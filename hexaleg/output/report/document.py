@@ -87,25 +87,26 @@ def figure_numbers(report: Sequence[Section]) -> dict[str, int]:
     return {name: k for k, name in enumerate(names, start=1)}
 
 
-def report_markdown(report: Sequence[Section]) -> str:
-    """The whole report as markdown."""
+def report_markdown(report: Sequence[Section], folder: Path) -> str:
+    """The whole report as markdown; figures are looked up in ``folder`` for their SVG."""
     numbers = figure_numbers(report)
     parts = [f"# {TITLE}\n\n{preamble()}"]
     for section in report:
         blocks = [
-            _figure_markdown(b, numbers[b.name]) if isinstance(b, Figure) else b
+            _figure_markdown(b, numbers[b.name], folder) if isinstance(b, Figure) else b
             for b in section.blocks
         ]
         parts.append(f"## {section.title}\n\n" + "\n\n".join(blocks))
     return "\n\n".join(parts) + "\n"
 
 
-def _figure_markdown(figure: Figure, number: int) -> str:
+def _figure_markdown(figure: Figure, number: int, folder: Path) -> str:
     caption = f"Figure {number}: {figure.caption}"
-    return (
-        f"![{caption}]({figure.name}.png)\n\n*{caption}* (full size: [PNG]({figure.name}.png), "
-        f"for print: [SVG]({figure.name}.svg))"
-    )
+    png, svg = f"{figure.name}.png", f"{figure.name}.svg"
+    links = f"full size: [PNG]({png})"
+    if (folder / svg).exists():
+        links += f", for print: [SVG]({svg})"
+    return f"![{caption}]({png})\n\n*{caption}* ({links})"
 
 
 def report_html(report: Sequence[Section], folder: Path, medium: Medium = "screen") -> str:
@@ -167,11 +168,10 @@ def _figure_html(figure: Figure, number: int, folder: Path, medium: Medium) -> s
             f"<a href='{png}'><img src='{png}' alt='{caption}' width='{width}' "
             f"height='{height}'></a>"
         )
-    links = (
-        ""  # the PDF is the print version
-        if medium == "print"
-        else f" (full size: <a href='{png}'>PNG</a>, for print: <a href='{svg}'>SVG</a>)"
-    )
+    links = f" (full size: <a href='{png}'>PNG</a>"
+    if (folder / svg).exists():
+        links += f", for print: <a href='{svg}'>SVG</a>"
+    links = "" if medium == "print" else links + ")"  # the PDF is the print version
     return f"<figure>{image}<figcaption>{caption}{links}</figcaption></figure>"
 
 

@@ -101,7 +101,7 @@ def _displacement(value: float, unit: str) -> str:
 def write_files(data: ReportData, out: Path) -> None:
     """The extremes figure and ``extremes.csv``."""
     record = data[FlexibilityRecord]
-    save(extremes_figure(record.axis), out / "flexibility_extremes.png", svg=True)
+    save(extremes_figure(record.axis), out / "flexibility_extremes.png", svg=data.options.svg)
     write_csv(out / "extremes.csv", extremes_rows(record))
 
 

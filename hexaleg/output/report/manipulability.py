@@ -172,7 +172,7 @@ def write_files(data: ReportData, out: Path) -> None:
     """Fig 10–11, ``table6.csv`` and ``average_manipulability.csv``."""
     record = data[ManipulabilityRecord]
     write_manipulability_figures(
-        record.analysis, record.average_map, out, record.surfaces, svg=True
+        record.analysis, record.average_map, out, record.surfaces, svg=data.options.svg
     )
     write_csv(out / "table6.csv", record.table6)
     write_csv(out / "average_manipulability.csv", average_manipulability_rows(record.average_map))

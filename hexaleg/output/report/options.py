@@ -36,6 +36,10 @@ class ReportOptions:
             flexibility and in the study.
         sweep: A body field to sweep in the sensitivity table instead of the posture and
             body variants (``--sweep body_width=0.4:0.8:9``).
+        pdf: Also write ``report.pdf`` (needs the ``[pdf]`` extra).
+        vector_figures: Write an SVG beside each PNG, linked from the report for print
+            (always with ``pdf``, which is made of them); off, the figures take half the
+            time.
 
     """
 
@@ -47,6 +51,8 @@ class ReportOptions:
     l1_ratios: tuple[float, ...] | None = None
     collisions: bool = False
     sweep: FieldSweep | None = None
+    pdf: bool = False
+    vector_figures: bool = True
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:
@@ -74,6 +80,11 @@ class ReportOptions:
     def swept_l1_ratios(self) -> tuple[float, ...]:
         """The coxa ratios the sweeps cover [-]."""
         return self.l1_ratios or L1_RATIOS
+
+    @property
+    def svg(self) -> bool:
+        """Whether the report writes an SVG beside each PNG."""
+        return self.vector_figures or self.pdf
 
     @property
     def decision(self) -> DecisionOptions:

@@ -83,7 +83,11 @@ def section(data: ReportData) -> Section:
 def write_files(data: ReportData, out: Path) -> None:
     """The front figure and ``pareto_front.csv``."""
     front = data[ParetoRecord].front
-    save(pareto_figure(data[StudyRecord].table, front), out / "pareto_front.png", svg=True)
+    save(
+        pareto_figure(data[StudyRecord].table, front),
+        out / "pareto_front.png",
+        svg=data.options.svg,
+    )
     write_csv(out / "pareto_front.csv", front.to_dict(orient="records"))
 
 

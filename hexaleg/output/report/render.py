@@ -18,13 +18,13 @@ from hexaleg.output.report.part import ReportData
 __all__ = ["REPORT_HTML", "REPORT_JSON", "REPORT_MD", "check_target", "render_report"]
 
 
-def render_report(data: ReportData, out_dir: str | os.PathLike[str], pdf: bool = False) -> Path:
-    """Write the report folder for ``data`` atomically (with ``report.pdf`` if ``pdf``)."""
+def render_report(data: ReportData, out_dir: str | os.PathLike[str]) -> Path:
+    """Write the report folder for ``data`` atomically; return its path."""
     out = Path(out_dir)
     check_target(out)
     staging = staging_folder(out)
     try:
-        write_content(data, staging, pdf=pdf)
+        write_content(data, staging)
         _swap_in(staging, out)
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)

@@ -112,8 +112,12 @@ def _slope_table(loads: LoadsAnalysis, differ: bool) -> str:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The study's torques and payload against tibia ratio, and this design's loads."""
-    save(statics_study_figure(data[StudyRecord].table), out / "study_statics.png", svg=True)
-    save(loads_figure(data[StaticsRecord].axis), out / "loads.png", svg=True)
+    save(
+        statics_study_figure(data[StudyRecord].table),
+        out / "study_statics.png",
+        svg=data.options.svg,
+    )
+    save(loads_figure(data[StaticsRecord].axis), out / "loads.png", svg=data.options.svg)
 
 
 def to_json(record: StaticsRecord) -> dict[str, Any]:

@@ -99,7 +99,7 @@ def write_files(data: ReportData, out: Path) -> None:
     record = data[StudyRecord]
     write_journal(out / FOLDER, record.spec, record.table)
     write_table(record.spec, record.table, out / FOLDER)
-    write_study_figures(record.table, out, svg=True)
+    write_study_figures(record.table, out, svg=data.options.svg)
 
 
 def to_json(record: StudyRecord) -> dict[str, Any]:

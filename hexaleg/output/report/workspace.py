@@ -102,7 +102,7 @@ def _table5(rows: list[dict[str, Any]]) -> str:
 def write_files(data: ReportData, out: Path) -> None:
     """Fig 5–8 and ``table5.csv``."""
     record = data[WorkspaceRecord]
-    write_workspace_figures(record.analysis, out, record.series, svg=True)
+    write_workspace_figures(record.analysis, out, record.series, svg=data.options.svg)
     write_csv(out / "table5.csv", record.table5)
 
 
