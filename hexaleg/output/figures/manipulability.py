@@ -31,7 +31,7 @@ def manipulability_surface_figure(
 
     columns = 2 if len(surfaces) > 1 else 1
     rows = int(np.ceil(len(surfaces) / columns))
-    fig = new_figure(5.0 if rows == 1 else 3.3 * rows + 0.3)
+    fig = new_figure(4.6, 5.6) if rows == 1 else new_figure(3.3 * rows + 0.3)
     top = max(float(surface.w.max()) for surface in surfaces)
     for k, (surface, label) in enumerate(zip(surfaces, labels, strict=True)):
         ax = fig.add_subplot(rows, columns, k + 1, projection="3d")
