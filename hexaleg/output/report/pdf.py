@@ -3,8 +3,8 @@
 Engine: WeasyPrint (PyPI ``weasyprint``, the ``[pdf]`` extra). Chosen over Chromium's
 print-to-PDF because it installs with pip like the rest of hexaleg (Chromium is a system
 package, absent on most servers and CI images), it draws SVG figures as vectors into the
-PDF, and it implements CSS paged media: A4 pages with numbered footers, each section on a
-new page, and ``break-inside: avoid`` honoured for tables and figures, so no table is cut
+PDF, and it implements CSS paged media: A4 pages with numbered footers, headings kept with
+what follows, and ``break-inside: avoid`` honoured for tables and figures, so no table is cut
 across pages. It needs Pango (a system library present on common Linux distributions).
 
 The PDF is made from the same sections as ``report.html``, with the print stylesheet of
