@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
@@ -67,9 +68,8 @@ class ReportOptions:
             "monte_carlo_samples": (1, MAX_SAMPLES),
             "workers": (1, max_workers()),
         }.items():
-            value = getattr(self, name)
-            if value is not None and not lower <= value <= upper:
-                raise HexalegError(f"{name} = {value} is not valid: must lie in {lower}..{upper}")
+            if getattr(self, name) is not None:
+                require_int(name, getattr(self, name), lower, upper)
         if self.l3_points < MIN_L3_POINTS:
             raise HexalegError(
                 f"l3_points = {self.l3_points} is too coarse to locate the peaks: "

@@ -20,7 +20,7 @@ import pinocchio as pin
 
 from hexaleg._io import atomic_write_text
 from hexaleg.cause import Cause
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import HIGHLIGHT, torque_colour, with_legend
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
@@ -161,9 +161,7 @@ def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> 
     import meshcat.geometry as mg
 
     if leg not in model.leg_names:
-        raise HexalegError(
-            f"--workspace {leg!r} is not valid: legs are {', '.join(model.leg_names)}"
-        )
+        raise ParameterError("--workspace", leg, f"legs are {', '.join(model.leg_names)}")
     cloud = monte_carlo_workspace(model.design, samples=samples, seed=0)
     root = model.nominal_base_pose() * model.root_placements()[leg]
     points = cloud.points @ root.rotation.T + root.translation
