@@ -101,6 +101,7 @@ def test_report_json_equals_what_was_returned(report):
     assert sum(rec["lengths_m"]) == pytest.approx(1.0)
 
 
+@pytest.mark.slow
 def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     out = tmp_path / "again"
     first = build_report(out, options=REDUCED)
@@ -111,6 +112,7 @@ def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["again"]  # no staging folders left
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("module", "name"),
     [
@@ -144,6 +146,7 @@ def test_refuses_a_folder_that_is_not_a_report(tmp_path, capsys):
     assert [p.name for p in tmp_path.iterdir()] == ["mine.txt"]
 
 
+@pytest.mark.slow
 def test_report_for_another_design(tmp_path):
     design = HexapodDesign.from_ratios(0.1, 0.45)
     data = build_report(tmp_path / "r", design, REDUCED)
@@ -151,6 +154,7 @@ def test_report_for_another_design(tmp_path):
     assert "0.1, 0.45, 0.45" in (tmp_path / "r" / "report.md").read_text()
 
 
+@pytest.mark.slow
 def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
     from hexaleg.cli import main
     from hexaleg.design_file import design_toml
@@ -170,6 +174,7 @@ def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
     assert "cylinder of radius 0.35 m" in text and "body_radius from 0.3 to 0.4" in text
 
 
+@pytest.mark.slow
 def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     """kill -9 mid-report leaves its staging folder; the next run removes it."""
     import os
@@ -234,6 +239,7 @@ def test_the_decision_comes_first_and_scores_the_users_design(report):
     assert "Counting payload capacity too" in text.split("## Design")[0]
 
 
+@pytest.mark.slow
 def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
     design = HexapodDesign(l1=0.15, l2=0.6, l3=0.45, body_length=1.4, body_width=0.8)
     free = build_report(tmp_path / "free", design, REDUCED)["recommendation"]
