@@ -41,6 +41,8 @@ class ReportOptions:
         vector_figures: Write an SVG beside each PNG, linked from the report for print
             (always with ``pdf``, which is made of them); off, the figures take half the
             time.
+        simulate: Also walk the default gait in MuJoCo (the ``[sim]`` extra) for the
+            "Simulated walk" section.
 
     """
 
@@ -54,6 +56,7 @@ class ReportOptions:
     sweep: FieldSweep | None = None
     pdf: bool = False
     vector_figures: bool = True
+    simulate: bool = False
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:
