@@ -122,7 +122,7 @@ def quick_backends():
         "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
         "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
-        "hexaleg.cli.study.atomic_write_text": lambda path, text: Path(path),
+        "hexaleg.cli.study.write_text": lambda path, text: Path(path),
         "hexaleg.cli.view.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
         "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,

@@ -7,13 +7,14 @@ never cares which it got, and both release what they started on exit.
 from __future__ import annotations
 
 import ctypes
+import errno
 import os
 import signal
 import sys
 import threading
 import time
 from collections.abc import Iterator
-from concurrent.futures import Executor, ProcessPoolExecutor
+from concurrent.futures import BrokenExecutor, Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 
 from threadpoolctl import threadpool_limits
@@ -78,6 +79,30 @@ def dask_executor(address: str) -> Iterator[Executor]:
         yield client.get_executor()
     finally:
         client.close()
+
+
+@contextmanager
+def worker_failures() -> Iterator[None]:
+    """Turn workers that cannot start or that die into one :class:`HexalegError`.
+
+    A process pool whose workers cannot be created (the limit on processes,
+    ``ulimit -u``; no memory) or that lost one (killed, out of memory) cannot finish
+    its tasks; what was done before stays done (a study's journal keeps it).
+    """
+    try:
+        yield
+    except BrokenExecutor as err:
+        raise HexalegError(
+            "a worker process died (killed, or out of memory?); finished work is kept: "
+            f"try again, or with fewer --workers ({err})"
+        ) from None
+    except OSError as err:
+        if err.errno not in (errno.EAGAIN, errno.ENOMEM):
+            raise
+        raise HexalegError(
+            f"cannot start worker processes: {err.strerror} (is the limit on processes, "
+            "ulimit -u, too low?); try fewer --workers"
+        ) from None
 
 
 def init_worker(parent: int) -> None:

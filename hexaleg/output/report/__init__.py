@@ -9,7 +9,6 @@ a static viewer, and swaps the folder in only when complete.
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any
 
 from hexaleg.design import HexapodDesign
@@ -40,7 +39,7 @@ def build_report(
     options: ReportOptions | None = None,
 ) -> dict[str, Any]:
     """Run every analysis and write the report folder; return the report's numbers."""
-    check_target(Path(out_dir))  # before the minutes of computing, not after
+    check_target(out_dir)  # before the minutes of computing, not after
     data = compute_report(design or HexapodDesign(), options or ReportOptions())
     render_report(data, out_dir)
     return data.to_json()
