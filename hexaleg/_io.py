@@ -196,8 +196,8 @@ def _stat(path: Path) -> os.stat_result | None:
     except FileNotFoundError:
         return None
     except OSError as err:  # a name too long, a loop of links, a file in the path
-        if err.errno in (errno.ENOENT, errno.ENOTDIR):
-            return None
+        if err.errno in (errno.ENOENT, errno.ENOTDIR, errno.ENAMETOOLONG):
+            return None  # nothing there (a name too long is refused by check_creatable)
         raise HexalegError(f"cannot write {shown(path)}: {os_reason(err)}") from None
 
 
