@@ -16,6 +16,7 @@ one line; the rows before it stay, and ``--resume`` continues from them.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -113,7 +114,8 @@ def append_rows(journal: Path, rows: list[Record]) -> None:
                     view = view[os.write(fd, view) :]
                 os.fsync(fd)
             except OSError:
-                os.ftruncate(fd, size)  # no half line left behind, if the system lets us
+                with contextlib.suppress(OSError):  # no half line left, if the system lets us
+                    os.ftruncate(fd, size)
                 raise
         finally:
             os.close(fd)
