@@ -47,7 +47,7 @@ class Progress:
         self._clock = clock
         self._start = self._last = clock()
         self._first = done
-        self._printed = False
+        self._printed: int | None = None  # how many were done at the last line
         self._bar: tqdm[None] | None = None
         self._lines = show is not False and self._stream is not None
         if self._lines and _is_terminal(self._stream):
@@ -75,10 +75,10 @@ class Progress:
         return text
 
     def close(self) -> None:
-        """End the bar, or print the last line if lines were printed."""
+        """End the bar, or print the last line if lines were printed (and it is news)."""
         if self._bar is not None:
             self._bar.close()
-        elif self._printed:
+        elif self._printed is not None and self._printed != self.done:
             self._print()
 
     def __enter__(self) -> Progress:
@@ -90,7 +90,7 @@ class Progress:
     def _print(self) -> None:
         print(f"hexaleg: {self.line()}", file=self._stream, flush=True)
         self._last = self._clock()
-        self._printed = True
+        self._printed = self.done
 
 
 def _is_terminal(stream: TextIO) -> bool:
