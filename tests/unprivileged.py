@@ -21,6 +21,8 @@ from pathlib import Path
 
 import pytest
 
+SYSTEM_BIN = ("/usr/bin", "/usr/local/bin")
+"""Where a Python of the same version may be found for the plain user."""
 UID = 54_321
 """The plain user's uid and gid (no account needed; unlikely to own any process)."""
 
@@ -38,10 +40,10 @@ def run_plain(
 ) -> subprocess.CompletedProcess[str]:
     """``hexaleg argv`` in ``cwd`` as the plain user (at most ``nproc`` processes)."""
     prefix = _privileges_dropped()
-    if nproc is not None:
+    if nproc is not None:  # set first: the limit is inherited across the change of user
         if shutil.which("prlimit") is None:
             pytest.skip("prlimit (util-linux) is not installed")
-        prefix += ["prlimit", f"--nproc={nproc}"]
+        prefix = ["prlimit", f"--nproc={nproc}", *prefix]
     env = {
         "PATH": os.environ.get("PATH", "/usr/bin:/bin"),
         "HOME": str(cwd),
@@ -72,21 +74,26 @@ def _privileges_dropped() -> list[str]:
 def _interpreter() -> tuple[str, ...]:
     """A command that runs ``python -m hexaleg`` and that the plain user can execute."""
     run_module = "import runpy; runpy.run_module('hexaleg', run_name='__main__', alter_sys=True)"
-    if _runs_as_plain_user([sys.executable]):
-        return (sys.executable, "-c", run_module)
     version = f"python{sys.version_info.major}.{sys.version_info.minor}"
-    for folder in ("/usr/bin", "/usr/local/bin"):
-        candidate = [str(Path(folder, version))]
-        if Path(candidate[0]).exists() and _runs_as_plain_user(candidate):
-            packages = sysconfig.get_paths()["purelib"]
-            code = f"import site, sys; site.addsitedir({packages!r}); sys.argv[0] = 'hexaleg'; "
-            return (candidate[0], "-c", code + run_module)
+    packages = sysconfig.get_paths()["purelib"]
+    given_packages = f"import site; site.addsitedir({packages!r}); "
+    candidates = [(sys.executable, "")]
+    candidates += [(str(Path(folder, version)), given_packages) for folder in SYSTEM_BIN]
+    for interpreter, setup in candidates:
+        if Path(interpreter).exists() and _runs_as_plain_user(interpreter, setup):
+            return (interpreter, "-c", setup + run_module)
     pytest.skip(f"no {version} that a plain user may run ({sys.executable} is private)")
 
 
-def _runs_as_plain_user(interpreter: list[str]) -> bool:
-    check = [*_privileges_dropped(), *interpreter, "-c", "import sys; sys.exit(0)"]
+def _runs_as_plain_user(interpreter: str, setup: str) -> bool:
+    """Whether the plain user can run ``interpreter`` and import what hexaleg needs.
+
+    A trivial script is not enough: the modules Python starts with are frozen into it,
+    so it starts even where the plain user cannot read its library.
+    """
+    code = setup + "import json, numpy, hexaleg"
+    check = [*_privileges_dropped(), interpreter, "-c", code]
     try:
-        return subprocess.run(check, capture_output=True, timeout=60).returncode == 0
+        return subprocess.run(check, capture_output=True, timeout=120).returncode == 0
     except OSError:
         return False
