@@ -99,6 +99,10 @@ def replace_folder(path: str | os.PathLike[str], kind: str) -> Iterator[Path]:
     error or interrupt the staging folder is removed and the target left as it was.
     """
     target = check_replaceable_folder(path, kind)
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        raise HexalegError(f"cannot create {shown(target.parent)}: {os_reason(err)}") from None
     recover_interrupted_swap(target)
     staging = Path(tempfile.mkdtemp(prefix=stale_prefix(target.name, "staging"), dir=target.parent))
     try:

@@ -239,3 +239,8 @@ def test_two_runs_in_one_process_are_told_apart(tmp_path):
                 pass
     with lock_folder(tmp_path, "study"):  # released
         pass
+
+
+def test_missing_parent_folders_are_made(tmp_path):
+    _write_report(tmp_path / "a" / "b" / "r", {"report.md": "new"})
+    assert _entries(tmp_path / "a" / "b") == ["r"]
