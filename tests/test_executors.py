@@ -15,6 +15,7 @@ def test_local_pool_runs_tasks_and_is_shut_down_on_exit():
         pool.submit(pow, 2, 3)
 
 
+@pytest.mark.slow  # Dask waits out its connect timeout (10 s)
 def test_unreachable_scheduler_is_a_hexaleg_error():
     pytest.importorskip("distributed")
     with pytest.raises(HexalegError, match="cannot reach the Dask scheduler"):
