@@ -34,7 +34,6 @@ layout, the links to each figure's PNG and SVG all follow.
 from __future__ import annotations
 
 import os
-from pathlib import Path
 from typing import Any
 
 from hexaleg.design import HexapodDesign
@@ -83,7 +82,7 @@ def build_report(
     With ``options.pdf``, the folder also holds ``report.pdf`` (the ``[pdf]`` extra).
     """
     options = options or ReportOptions()
-    check_target(Path(out_dir))  # before the minutes of computing, not after
+    check_target(out_dir)  # before the minutes of computing, not after
     if options.pdf:
         require_pdf_engine()
     if options.simulate:
