@@ -6,6 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hexaleg._io import check_output_file
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
@@ -63,8 +64,11 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     gait = gait_from_args(args)
     payload = payload_from_args(args)
+    for path in (args.html, args.video):  # refused before simulating, not after
+        if path is not None:
+            check_output_file(path)
     if args.video is not None:
-        check_video_path(args.video)  # a wrong suffix is refused before simulating
+        check_video_path(args.video)
     result = simulate_gait(
         design,
         gait,

@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hexaleg._io import atomic_write_bytes
+from hexaleg._io import write_bytes
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
 from hexaleg.sim.model import SimModel
@@ -102,7 +102,7 @@ def _render_files(sim: SimModel, frames: ArrayF, frame_rate: float, target: Path
         for backend in _backends():
             error = _render(folder, backend)
             if error is None and output.is_file():
-                written = atomic_write_bytes(target, output.read_bytes())
+                written = write_bytes(target, output.read_bytes())
                 return RenderOutcome(written, backend, (*tried, backend))
             tried.append(f"{backend} ({error or 'wrote nothing'})")
     return RenderOutcome(None, None, tuple(tried))
