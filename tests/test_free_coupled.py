@@ -163,7 +163,7 @@ def test_a_search_whose_starts_disagree_is_flagged(monkeypatch):
     from hexaleg import HexapodDesign
     from hexaleg.stance import FlexibilityWarning, free_coupled
 
-    monkeypatch.setattr(free_coupled, "BOX_STARTS", 0)  # the axis-locked start alone
+    monkeypatch.setattr(free_coupled, "CLIMBS", 0)  # the climb from the axis-locked extreme alone
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = free_flexibility(HexapodDesign())

@@ -29,6 +29,11 @@ DIRECTIONS: tuple[tuple[str, int], ...] = tuple((a, s) for a in AXES for s in (1
 """The twelve (axis, sign) directions of the flexibility study."""
 
 
+def direction_label(axis: str, sign: int) -> str:
+    """A direction's label: ``x+``, ``yaw-``."""
+    return f"{axis}{'+' if sign > 0 else '-'}"
+
+
 def rpy_rotation(rpy: npt.ArrayLike) -> ArrayF:
     """Rotations (..., 3, 3) from roll, pitch, yaw (..., 3) [rad], as Pinocchio's ``rpy``.
 
