@@ -23,14 +23,19 @@ import tempfile
 from collections.abc import Callable
 from functools import cache
 from pathlib import Path
-from typing import Any, TypeVar
+from typing import Any, TypeVar, cast
 
 import numba
 
 F = TypeVar("F", bound=Callable[..., Any])
 
 PACKAGE = Path(__file__).resolve().parent
-COMPILED_MODULES = ("numerics/lp.py", "stance/margin_kernel.py", "stance/climb.py", "stance/paths.py")
+COMPILED_MODULES = (
+    "numerics/lp.py",
+    "stance/margin_kernel.py",
+    "stance/climb.py",
+    "stance/paths.py",
+)
 """The modules (relative to the package) that define compiled functions."""
 
 
@@ -41,13 +46,14 @@ def compiled(function: F) -> F:
         raise RuntimeError(f"{source} defines compiled code but is not in COMPILED_MODULES")
     directory = cache_directory()
     if directory is None:
-        return numba.njit(cache=False)(function)  # type: ignore[no-any-return]
-    previous = numba.config.CACHE_DIR
-    numba.config.CACHE_DIR = str(directory)  # numba fixes a function's cache path here
+        return cast(F, numba.njit(cache=False)(function))
+    config: Any = numba.config
+    previous = config.CACHE_DIR
+    config.CACHE_DIR = str(directory)  # numba fixes a function's cache path here
     try:
-        return numba.njit(cache=True)(function)  # type: ignore[no-any-return]
+        return cast(F, numba.njit(cache=True)(function))
     finally:
-        numba.config.CACHE_DIR = previous
+        config.CACHE_DIR = previous
 
 
 @cache
@@ -61,8 +67,11 @@ def cache_directory() -> Path | None:
 
 
 def cache_candidates() -> list[Path]:
-    """Where the cache may go, in order: NUMBA_CACHE_DIR if set, the user's cache folder,
-    a per-user folder in the temporary directory."""
+    """Where the cache may go, in order.
+
+    ``$NUMBA_CACHE_DIR/hexaleg`` if that is set, the user's cache folder, and a
+    per-user folder in the temporary directory.
+    """
     candidates = []
     if os.environ.get("NUMBA_CACHE_DIR"):
         candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / "hexaleg")

@@ -11,7 +11,7 @@ from hexaleg.numerics.lp import elastic_lp
 
 def _highs(objective, offsets, rows, lower, upper, penalty):
     """The same program for HiGHS: minimize −c·x + penalty·Σt, −a·x − t ≤ g."""
-    m, n = rows.shape
+    m = rows.shape[0]
     cost = np.concatenate([-objective, np.full(m, penalty)])
     bounds = list(zip(lower, upper, strict=True)) + [(0, None)] * m
     result = linprog(cost, A_ub=np.hstack([-rows, -np.eye(m)]), b_ub=offsets, bounds=bounds)
@@ -33,7 +33,9 @@ def test_random_programs_reach_highs_optimum(seed):
         assert np.all(x >= lower - 1e-12) and np.all(x <= upper + 1e-12) and np.all(t >= 0)
         assert np.all(offsets + rows @ x + t >= -1e-10)
         value = objective @ x - 100.0 * t.sum()
-        assert value == pytest.approx(_highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9)
+        assert value == pytest.approx(
+            _highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9
+        )
 
 
 def test_degenerate_programs_terminate():
@@ -46,5 +48,7 @@ def test_degenerate_programs_terminate():
 
 def test_a_relaxation_is_used_only_where_no_step_can_satisfy_the_constraint():
     # x ≥ 2 within |x| ≤ 1: the best is x = 1, short by t = 1
-    x, t = elastic_lp(np.array([0.0]), np.array([-2.0]), np.array([[1.0]]), -np.ones(1), np.ones(1), 5.0)
+    x, t = elastic_lp(
+        np.array([0.0]), np.array([-2.0]), np.array([[1.0]]), -np.ones(1), np.ones(1), 5.0
+    )
     assert x[0] == pytest.approx(1.0) and t[0] == pytest.approx(1.0)

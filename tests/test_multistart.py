@@ -34,7 +34,11 @@ def _maximize(k, sign, constraints, jacobian, points, accept, enough=None, guide
     problem = CoordinateProblem(k, sign, constraints, jacobian, accept)
     scales = scales or [None] * len(points)
     starts = [
-        Start(np.asarray(p, dtype=float), None if s is None else np.asarray(s, dtype=float), i >= guided)
+        Start(
+            np.asarray(p, dtype=float),
+            None if s is None else np.asarray(s, dtype=float),
+            i >= guided,
+        )
         for i, (p, s) in enumerate(zip(points, scales, strict=True))
     ]
     return maximize_coordinate(problem, starts, enough=enough)
@@ -95,9 +99,7 @@ def test_guided_starts_that_agree_on_a_local_optimum_do_not_stop_the_search():
     ]
     fooled = _maximize(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 3))
     assert fooled.value == pytest.approx(1.0, abs=1e-7) and len(fooled.values) == 3
-    guided = _maximize(
-        0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 2), guided=3
-    )
+    guided = _maximize(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 2), guided=3)
     assert guided.value == pytest.approx(2.7, abs=1e-7)
     assert len(guided.values) == 5 and guided.agreed  # two unguided starts agree on 2.7
 

@@ -57,8 +57,8 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
             plus, minus = (
                 next(e for e in locked if (e.axis, e.sign) == (axis, s)) for s in (1, -1)
             )
-            mirrored = search.mirrored(minus, search.solve(plus), left_right)
-            direct = search.solve(minus)
+            mirrored = search.mirrored(minus, search.solve(plus, *search.basins(plus)), left_right)
+            direct = search.solve(minus, *search.basins(minus))
             assert mirrored is not None
             assert mirrored.value == pytest.approx(direct.value, abs=1e-6)
             assert problem.feasible(np.asarray(mirrored.pose))
@@ -67,7 +67,9 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
 def test_each_mirrored_direction_comes_from_its_opposite_solved_first():
     left_right, front_back = (flip for _, flip in MIRRORS.values())
     sources = mirror_sources(DIRECTIONS, [left_right, front_back])
-    taken = {DIRECTIONS[i]: (DIRECTIONS[source], tuple(flip)) for i, (source, flip) in sources.items()}
+    taken = {
+        DIRECTIONS[i]: (DIRECTIONS[source], tuple(flip)) for i, (source, flip) in sources.items()
+    }
     # y, roll reverse under left-right; x, pitch under front-back; yaw under either (the first)
     assert set(taken) == {("x", -1), ("y", -1), ("roll", -1), ("pitch", -1), ("yaw", -1)}
     for (axis, _), (source, flip) in taken.items():

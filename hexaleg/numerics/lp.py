@@ -155,8 +155,11 @@ def _entering(
 def _ratio_test(
     tableau: ArrayF, bound: ArrayF, basis: np.ndarray, entering: int, direction: float
 ) -> tuple[int, float]:  # pragma: no cover - compiled
-    """The row whose basic variable stops the entering one first (−1: its own bound), and
-    how far the entering variable moves. Ties go to the smallest basic index."""
+    """The row whose basic variable stops the entering one first, and the step.
+
+    −1 if the entering variable reaches its own bound first. Ties go to the smallest
+    basic index.
+    """
     leaving, step = -1, bound[entering]
     for i in range(tableau.shape[0]):
         rate = -direction * tableau[i, entering]  # d(basic_i) / d(step)

@@ -128,7 +128,9 @@ def maximize_coordinate(
         x, nit, success = _run_slsqp(problem, point, start.scale)
         iterations += nit
         if problem.accept(x):
-            answers.append(_Answer(float(problem.sign * x[problem.k]), x, success, origin, start.votes))
+            answers.append(
+                _Answer(float(problem.sign * x[problem.k]), x, success, origin, start.votes)
+            )
         if enough is not None and run >= enough[0] and _enough_agree(answers, enough[1]):
             break
     if not answers:

@@ -1,4 +1,4 @@
-"""Climbs, compiled: one body coordinate pushed as far as the stance margins allow, from many starts.
+"""Climbs, compiled: one body coordinate pushed as far as the stance margins allow.
 
 A climb is sequential linear programming with a trust region: at the current
 displacement it linearizes the smooth stance margins (:mod:`.margin_kernel`, forward
@@ -202,8 +202,11 @@ def correction(
     low: ArrayF,
     high: ArrayF,
 ) -> ArrayF:  # pragma: no cover - compiled
-    """``trial`` moved back onto the tight constraints (least squares on their margins
-    ``values`` there, with the current Jacobian); empty if that leaves the bounds."""
+    """``trial`` moved back onto the tight constraints; empty if that leaves the bounds.
+
+    The least-norm shift that zeroes their linearized margins (``values`` at ``trial``,
+    the Jacobian of the current point).
+    """
     gradients = np.ascontiguousarray(jacobian[tight] / norms[tight].reshape(-1, 1))
     gram = gradients @ gradients.T + 1e-12 * np.eye(tight.shape[0])  # the least-norm shift
     shift = gradients.T @ np.linalg.solve(gram, -values[tight] / norms[tight])

@@ -47,8 +47,11 @@ class SearchEvidence:
 
     @property
     def converged(self) -> bool:
-        """The evidence supports a maximum: a converged, reachable optimum that two
-        searches from different starts reached, and no better pose left unexplained."""
+        """Whether the evidence supports a maximum.
+
+        A converged, reachable optimum that two searches from different starts reached,
+        and no better pose left unexplained.
+        """
         return (
             self.polished
             and self.reachable

@@ -8,8 +8,10 @@ IK (eq 8–9). Each direction is a small nonlinear program, max ±d_k with every
 whose feasible set is thin and has many local optima. The search for direction k:
 
 1. **Climbs** (:mod:`.climb`, compiled): a local search from each of :data:`CLIMBS`
-   scrambled-Sobol starts spread over a box around the nominal stance, and from the
-   axis-locked extreme. Where each ends is a local optimum; equal values form a basin.
+   scrambled-Sobol starts spread over a box around the nominal stance, from the
+   axis-locked extreme, and then from the best point every other direction reached
+   (the far tips of the feasible set, where the optima of neighbouring directions
+   often lie). Where each ends is a local optimum; equal values form a basin.
 2. **Polish**: SLSQP from the best basin's point gives the optimum to full precision and
    the constraints that bind there; the next basins are polished in turn while they
    could still beat it.
@@ -55,7 +57,11 @@ from hexaleg.stance.symmetry import mirror_sources
 CLIMBS = 48
 """Climbs per direction from the search box (besides the one from the axis-locked extreme)."""
 BOX_SCALE = 1.5
-"""The search box reaches this multiple of each coordinate's larger axis-locked extreme."""
+"""The search box reaches this multiple of each coordinate's larger axis-locked extreme:
+the climbs' unit lengths."""
+SPREAD = 2.0
+"""The climbs' starts fill the search box scaled by this: starts far from the nominal
+stance, infeasible at first, end in more different basins."""
 CLIMB_TOLERANCE = 1e-6
 """A climb that ends with an exact margin below −this [m or rad] found no optimum."""
 BASIN_TOLERANCE = 1e-4
@@ -164,6 +170,17 @@ def _seed(k: int, sign: int) -> int:
     return 2 * k + (sign > 0)
 
 
+def _grouped(members: Sequence[tuple[float, ArrayF, float]]) -> list[Basin]:
+    """Climb ends (value, point, smallest exact margin) grouped into basins, best first."""
+    basins: list[Basin] = []
+    for value, point, margin in sorted(members, key=lambda member: -member[0]):
+        if basins and basins[-1].value - value <= BASIN_TOLERANCE * max(1.0, abs(value)):
+            basins[-1] = basins[-1].with_member(point, margin)
+        else:
+            basins.append(Basin(value, (point,), (margin,)))
+    return basins
+
+
 class _Search:
     """The twelve free extremes of one stance (see the module's description)."""
 
@@ -177,15 +194,27 @@ class _Search:
         """Every direction: solved, or taken from its mirror image where that holds."""
         directions = [(e.axis, e.sign) for e in self.locked]
         sources = mirror_sources(directions, self.problem.flips)
-        solved = {i: self.solve(e) for i, e in enumerate(self.locked) if i not in sources}
+        basins = {i: self.basins(e) for i, e in enumerate(self.locked) if i not in sources}
+        tips = {i: found[0].points[0] for i, (found, _) in basins.items() if found}
+        solved = {}
+        for i, found in basins.items():
+            others = [tip for j, tip in tips.items() if j != i]
+            solved[i] = self.solve(
+                self.locked[i], *self.with_climbs_from(self.locked[i], others, *found)
+            )
         for i, (source, flip) in sources.items():
             mirrored = self.mirrored(self.locked[i], solved[source], flip)
-            solved[i] = mirrored if mirrored is not None else self.solve(self.locked[i])
+            if mirrored is None:
+                mirrored = self.solve(self.locked[i], *self.basins(self.locked[i]))
+            solved[i] = mirrored
         return tuple(solved[i] for i in range(len(self.locked)))
 
     def mirrored(self, locked: Extreme, source: Extreme, flip: ArrayF) -> Extreme | None:
-        """``locked``'s direction as the mirror image of ``source``, if it passes the exact
-        check and reaches the axis-locked extreme; its binding constraints found there."""
+        """``locked``'s direction as the mirror image of ``source``, if that holds.
+
+        The mirrored pose must pass the exact check and reach the axis-locked extreme;
+        its binding constraints are found there.
+        """
         d = flip * np.asarray(source.pose)
         k = AXES.index(locked.axis)
         if not self.problem.feasible(d) or locked.sign * d[k] < locked.sign * locked.value:
@@ -195,42 +224,60 @@ class _Search:
         )
         return replace(extreme, evidence=source.evidence)
 
-    def solve(self, locked: Extreme) -> Extreme:
-        """The free extreme of ``locked``'s direction, never short of ``locked`` itself."""
+    def solve(self, locked: Extreme, basins: list[Basin], climbs: int) -> Extreme:
+        """The free extreme of ``locked``'s direction from its climbs' basins.
+
+        Never short of ``locked`` itself.
+        """
         k, sign = AXES.index(locked.axis), locked.sign
-        basins, climbs = self.basins(k, locked)
         if self.problem.collision is None:
             starts = [basin.points[:POLISH_TRIES] for basin in basins]
         else:
             starts = [(axis_locked_start(locked),)]
-            starts += [b.points[:POLISH_TRIES] for b in basins[:COLLISION_BASINS]]
+            for basin in basins[:COLLISION_BASINS]:
+                clear = self.problem.clear_on_the_way_back(basin.points[0], self.box)
+                tries = basin.points[:POLISH_TRIES]
+                starts.append(tries if clear is None else (clear, *tries))
         answer, evidence = self.best_reachable(k, sign, locked, starts, basins, climbs)
         if answer is None:
             return replace(locked, evidence=evidence)
         pose = self.problem.canonical(answer, k)
-        extreme = pose_extreme(self.problem.geometry, locked.axis, sign, pose, self.problem.binding(pose))
+        extreme = pose_extreme(
+            self.problem.geometry, locked.axis, sign, pose, self.problem.binding(pose)
+        )
         return replace(extreme, evidence=evidence)
 
-    def basins(self, k: int, locked: Extreme) -> tuple[list[Basin], int]:
-        """The climbs' feasible ends grouped by value, best first, and the climbs run."""
-        sign = locked.sign
-        starts = np.array(
-            [axis_locked_start(locked), *box_starts(self.box, CLIMBS, seed=_seed(k, sign))]
-        )
+    def basins(self, locked: Extreme) -> tuple[list[Basin], int]:
+        """Basins of the first climbs, best first, and how many climbs ran.
+
+        From the axis-locked extreme and from :data:`CLIMBS` spread starts.
+        """
+        k, sign = AXES.index(locked.axis), locked.sign
+        spread = box_starts(SPREAD * self.box, CLIMBS, seed=_seed(k, sign))
+        return self.with_climbs_from(locked, [axis_locked_start(locked), *spread], [], 0)
+
+    def with_climbs_from(
+        self, locked: Extreme, starts: Sequence[ArrayF], basins: list[Basin], climbs: int
+    ) -> tuple[list[Basin], int]:
+        """``basins`` and ``climbs`` with those of climbs from ``starts`` added."""
+        k, sign = AXES.index(locked.axis), locked.sign
+        if not starts:
+            return basins, climbs
         ends, iterations = climb_all(
-            self.problem.smooth_kernel, starts, self.box, k, float(sign), LOWER, UPPER
+            self.problem.smooth_kernel, np.array(starts), self.box, k, float(sign), LOWER, UPPER
         )
         self.iterations += int(iterations.sum())
         margins = self.problem.exact_margins(ends).min(axis=-1)
-        feasible = margins >= -CLIMB_TOLERANCE
-        values, points, margins = sign * ends[feasible, k], ends[feasible], margins[feasible]
-        basins: list[Basin] = []
-        for i in np.argsort(-values, kind="stable"):
-            if basins and basins[-1].value - values[i] <= BASIN_TOLERANCE * max(1.0, abs(values[i])):
-                basins[-1] = basins[-1].with_member(points[i], float(margins[i]))
-            else:
-                basins.append(Basin(float(values[i]), (points[i],), (float(margins[i]),)))
-        return basins, len(starts)
+        members = [
+            (float(sign * end[k]), end, float(margin))
+            for end, margin in zip(ends, margins, strict=True)
+            if margin >= -CLIMB_TOLERANCE
+        ]
+        for basin in basins:
+            members += [
+                (basin.value, p, m) for p, m in zip(basin.points, basin.margins, strict=True)
+            ]
+        return _grouped(members), climbs + len(starts)
 
     def best_reachable(
         self,

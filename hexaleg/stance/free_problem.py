@@ -10,6 +10,7 @@ margin everywhere.
 
 from __future__ import annotations
 
+import itertools
 import math
 
 import numpy as np
@@ -20,7 +21,7 @@ from hexaleg.numerics.multistart import CoordinateProblem
 from hexaleg.stance.collisions import SelfCollision
 from hexaleg.stance.constraints import constraint_labels, displacement_poses
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import kernel_geometry, margins_of
+from hexaleg.stance.margin_kernel import KernelGeometry, kernel_geometry, margins_of
 from hexaleg.stance.paths import RESOLUTION, retreat
 from hexaleg.stance.symmetry import keeping, search_flips
 
@@ -50,16 +51,14 @@ class FreeProblem:
         self.labels = constraint_labels(geometry.legs)
         self.smooth_kernel = kernel_geometry([geometry], smooth=True)
         self.exact_kernel = kernel_geometry([geometry], smooth=False)
-        every_leg_stands = collision is None or len(geometry.legs) == len(
-            collision.model.leg_names
-        )
+        every_leg_stands = collision is None or len(geometry.legs) == len(collision.model.leg_names)
         self.flips = search_flips(geometry, every_leg_stands)
         self.basis = np.vstack([np.zeros(6), STEP * np.eye(6)])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
         self._values = np.zeros(0)
 
     def coordinate_problem(self, k: int, sign: int) -> CoordinateProblem:
-        """The program of direction (k, sign) for :func:`~hexaleg.numerics.multistart.maximize_coordinate`."""
+        """The program of direction (k, sign), for SLSQP (:mod:`~hexaleg.numerics.multistart`)."""
         bounds = [(None, None)] * 3 + list(ROTATION_BOUNDS)
         return CoordinateProblem(
             k, sign, self.margins, self.jacobian, self.feasible, bounds, MAX_ITERATIONS
@@ -93,7 +92,7 @@ class FreeProblem:
         return np.concatenate([margins, clearance[..., None]], axis=-1)
 
     @staticmethod
-    def _kernel(kernel: object, displacements: ArrayF) -> ArrayF:
+    def _kernel(kernel: KernelGeometry, displacements: ArrayF) -> ArrayF:
         flat = np.ascontiguousarray(np.reshape(displacements, (-1, 6)), dtype=float)
         return margins_of(kernel, flat, np.zeros(len(flat), dtype=np.int64))
 
@@ -131,12 +130,30 @@ class FreeProblem:
         reached, path = retreat(self.smooth_kernel, self.exact_kernel, np.asarray(d, float), scale)
         if not reached or self.collision is None:
             return bool(reached)
-        for start, end in zip(path[:-1], path[1:], strict=True):
+        for start, end in itertools.pairwise(path):
             steps = max(1, math.ceil(np.abs(end - start).max() / RESOLUTION))
             points = start + (end - start) * (np.arange(1, steps + 1) / steps)[:, None]
             if self.collision.scan_clearances(*displacement_poses(self.geometry, points)).min() < 0:
                 return False
         return True
+
+    def clear_on_the_way_back(self, d: ArrayF, scale: ArrayF) -> ArrayF | None:
+        """The first pose free of self-collision on a feasible path from d toward nominal.
+
+        A start for the search with collisions: a stance optimum where parts touch,
+        moved back along its path (:func:`~.paths.retreat`, checked every 1 cm) until
+        they do not. None if no such pose is found.
+        """
+        if self.collision is None:
+            return np.asarray(d, dtype=float)
+        _, path = retreat(self.smooth_kernel, self.exact_kernel, np.asarray(d, float), scale)
+        for start, end in itertools.pairwise(path):
+            steps = max(1, math.ceil(np.abs(end - start).max() / (10 * RESOLUTION)))
+            points = start + (end - start) * (np.arange(steps + 1) / steps)[:, None]
+            clear = self.collision.scan_clearances(*displacement_poses(self.geometry, points))
+            if (clear >= 0).any():
+                return np.asarray(points[np.argmax(clear >= 0)])
+        return None
 
     def canonical(self, d: ArrayF, k: int) -> ArrayF:
         """Of d and its feasible mirror images that keep coordinate k, the largest.
@@ -144,10 +161,11 @@ class FreeProblem:
         A symmetric robot's optima come in mirror-image sets of equal value, and which
         one a search reaches first can follow round-off (a BLAS thread count, say). The
         largest pose in lexicographic order, compared at 1e-6, is the same whichever it is.
+        d itself has passed the exact check (coal's distances near contact can follow
+        its previous query by a few 1e-7 m: d is not checked again).
         """
-        images: list[ArrayF] = [d, *(flip * d for flip in keeping(k, self.flips))]
-        feasible = [image for image in images if self.feasible(image)]
-        return max(feasible, key=_rounded)
+        images = [flip * d for flip in keeping(k, self.flips)]
+        return max([d, *(image for image in images if self.feasible(image))], key=_rounded)
 
 
 def _rounded(pose: ArrayF) -> tuple[float, ...]:

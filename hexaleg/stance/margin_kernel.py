@@ -197,8 +197,10 @@ def foot_in_root(
 def knee_down_angles(
     lengths: ArrayF, px: float, py: float, pz: float
 ) -> tuple[float, float, float, float, float]:  # pragma: no cover - compiled
-    """θ1, θ2, θ3 [rad] of the knee-down IK (eq 8–9), r² and r [m², m]: as
-    ``kinematics.leg_plane`` and ``plane_solution``, clipped where out of reach."""
+    """θ1, θ2, θ3 [rad] of the knee-down IK (eq 8–9), and r², r [m², m].
+
+    As ``kinematics.leg_plane`` and ``plane_solution``, clipped where out of reach.
+    """
     l1, l2, l3 = lengths[0], lengths[1], lengths[2]
     theta1 = math.atan2(py, px)
     if theta1 > math.pi / 2:
@@ -255,8 +257,10 @@ def leg_margins(
 def ground_margins(
     geometry: KernelGeometry, tz: float, rotation: ArrayF, out: ArrayF
 ) -> None:  # pragma: no cover - compiled
-    """Write the ground's margins, as ``StanceGeometry.lowest_body_height`` (exact) or
-    ``smooth_ground_margins``, after the legs' columns of ``out``."""
+    """Write the ground's margins after the legs' columns of ``out``.
+
+    As ``StanceGeometry.lowest_body_height`` (exact) or ``smooth_ground_margins``.
+    """
     g = 8 * geometry.root_positions.shape[0]
     half = geometry.half_extents
     tilt_x, tilt_y, tilt_z = rotation[2, 0], rotation[2, 1], rotation[2, 2]

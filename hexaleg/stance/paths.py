@@ -1,4 +1,4 @@
-"""Feasible paths from the nominal stance, compiled: is a pose reachable with the feet planted?
+"""Feasible paths from the nominal stance, compiled: which poses the body can reach.
 
 A pose is reachable when a path of feasible poses joins it to the nominal stance. The
 path here is a polyline whose every point, at steps of at most :data:`RESOLUTION`

@@ -9,9 +9,9 @@ from the mirror, re-checked like any answer.
 
 from __future__ import annotations
 
-import numpy as np
-
 from collections.abc import Sequence
+
+import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.stance.constraints import AXES
@@ -58,8 +58,11 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
 
 
 def search_flips(geometry: StanceGeometry, every_leg_stands: bool = True) -> list[ArrayF]:
-    """The flips a search may use: :func:`mirror_flips`, or none where parts other than
-    the stance legs matter (self-collision) and some legs swing."""
+    """The flips a search may use.
+
+    :func:`mirror_flips`, or none where parts other than the stance legs matter
+    (self-collision) and some legs swing.
+    """
     return mirror_flips(geometry) if every_leg_stands else []
 
 
