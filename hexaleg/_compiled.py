@@ -42,7 +42,10 @@ COMPILED_MODULES = (
 def compiled(function: F) -> F:
     """``numba.njit(cache=True)`` with the cache in :func:`cache_directory` (off if None)."""
     source = Path(function.__code__.co_filename).resolve()
-    if source.relative_to(PACKAGE).as_posix() not in COMPILED_MODULES:
+    listed = source.is_relative_to(PACKAGE) and (
+        source.relative_to(PACKAGE).as_posix() in COMPILED_MODULES
+    )
+    if not listed:
         raise RuntimeError(f"{source} defines compiled code but is not in COMPILED_MODULES")
     directory = cache_directory()
     if directory is None:
