@@ -4,7 +4,8 @@ A displacement d = (x, y, z [m], roll, pitch, yaw [rad]) moves the body from the
 stance (world frame, Pinocchio's rpy). :func:`margins_of` gives, for many displacements
 at once, ``stance_margins`` (the exact check) or ``smooth_stance_margins`` (the forms a
 gradient-based search needs) of :mod:`hexaleg.stance.constraints`, column for column:
-the NumPy functions there are the readable reference the tests hold this kernel to.
+the NumPy functions there are the readable reference the tests hold this kernel to
+(and the rotation of a roll, pitch and yaw, :func:`rpy_matrix`, is Pinocchio's).
 The axis-locked search asks for the poses of many designs of one body at once (a
 :class:`KernelGeometry` holds each design's lengths, footholds and height; each pose
 names its design); the free-coupled search (:mod:`.climb`) asks for one pose at a time
@@ -22,12 +23,21 @@ import numpy.typing as npt
 
 from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
-from hexaleg.stance.constraints import knee_on_cosine
+from hexaleg.limits import JointLimits
 from hexaleg.stance.geometry import StanceGeometry
 
 THETA_FORM, COUPLED_FORM, COSINE_FORM = 0, 1, 2
 """How the knee's lower and upper margins are written (see ``smooth_stance_margins``):
 on θ3, θ3 above the hip-coupled bound, or on cos θ3 (smooth margins only)."""
+
+
+def knee_on_cosine(limits: JointLimits) -> bool:
+    """Whether the smooth margins bound the knee on cos θ3 rather than on θ3.
+
+    So they do for fixed knee limits within [−π, 0], where cos θ3 is monotonic; a coupled
+    knee bound keeps the θ3 form.
+    """
+    return not limits.coupled_knee and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0
 
 
 class KernelGeometry(NamedTuple):
