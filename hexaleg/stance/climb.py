@@ -150,7 +150,7 @@ def trial_margins(geometry: KernelGeometry, u: ArrayF, scale: ArrayF) -> ArrayF:
 @compiled
 def row_norms(jacobian: ArrayF) -> ArrayF:  # pragma: no cover - compiled
     """Each margin's gradient length (1 where it is flat): margins / norms are distances."""
-    norms = np.sqrt((jacobian**2).sum(axis=1))
+    norms: ArrayF = np.sqrt((jacobian**2).sum(axis=1))
     for i in range(norms.shape[0]):
         if norms[i] < 1e-300:
             norms[i] = 1.0
@@ -210,7 +210,7 @@ def correction(
     gradients = np.ascontiguousarray(jacobian[tight] / norms[tight].reshape(-1, 1))
     gram = gradients @ gradients.T + 1e-12 * np.eye(tight.shape[0])  # the least-norm shift
     shift = gradients.T @ np.linalg.solve(gram, -values[tight] / norms[tight])
-    corrected = trial + shift
+    corrected: ArrayF = trial + shift
     if np.any(corrected < low) or np.any(corrected > high) or not math.isfinite(shift.sum()):
         return np.empty(0)
     return corrected

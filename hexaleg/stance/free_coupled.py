@@ -156,7 +156,8 @@ def search_box(locked: Sequence[Extreme]) -> ArrayF:
     """
     value = {(e.axis, e.sign): e.value for e in locked}
     half = np.array([BOX_SCALE * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
-    return np.maximum(half, 1e-3)
+    box: ArrayF = np.maximum(half, 1e-3)
+    return box
 
 
 def axis_locked_start(extreme: Extreme) -> ArrayF:

@@ -66,12 +66,14 @@ class FreeProblem:
 
     def margins(self, d: ArrayF) -> ArrayF:
         """Smooth margins at d (6,), less the floor: the NLP's inequality constraints."""
-        return self._around(d)[0] - MARGIN_FLOOR
+        values: ArrayF = self._around(d)[0] - MARGIN_FLOOR
+        return values
 
     def jacobian(self, d: ArrayF) -> ArrayF:
         """Forward differences of :meth:`margins`, all seven poses in one call."""
         values = self._around(d)
-        return (values[1:] - values[0]).T / STEP
+        jacobian: ArrayF = (values[1:] - values[0]).T / STEP
+        return jacobian
 
     def _around(self, d: ArrayF) -> ArrayF:
         """Smooth margins at d and its six forward steps (7, C), kept for the next call.
@@ -85,7 +87,7 @@ class FreeProblem:
         return self._values
 
     def _smooth(self, displacements: ArrayF) -> ArrayF:
-        margins = self._kernel(self.smooth_kernel, displacements)
+        margins: ArrayF = self._kernel(self.smooth_kernel, displacements)
         if self.collision is None:
             return margins
         clearance = self.collision.clearances(*displacement_poses(self.geometry, displacements))[0]
@@ -102,7 +104,7 @@ class FreeProblem:
 
     def exact(self, d: ArrayF) -> ArrayF:
         """Exact margins at d (6,) [m or rad], the collision clearance last if checked."""
-        margins = self._kernel(self.exact_kernel, d)[0]
+        margins: ArrayF = self._kernel(self.exact_kernel, d)[0]
         if self.collision is None:
             return margins
         clearance = self.collision.clearances(*displacement_poses(self.geometry, d))[0]

@@ -126,7 +126,7 @@ def column_count(geometry: KernelGeometry) -> int:  # pragma: no cover - compile
         ground = 2
     else:
         ground = 8
-    return 8 * geometry.root_positions.shape[0] + ground
+    return int(8 * geometry.root_positions.shape[0] + ground)
 
 
 @compiled
