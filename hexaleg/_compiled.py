@@ -85,7 +85,7 @@ def cache_candidates() -> list[Path]:
     else:
         candidates.append(Path.home() / ".cache" / "hexaleg")
     user = os.getuid() if hasattr(os, "getuid") else os.getlogin()
-    candidates.append(Path(tempfile.gettempdir()) / f"hexaleg-{user}")
+    candidates.append(Path(tempfile.gettempdir()) / f".hexaleg-cache-{user}")
     return candidates
 
 

@@ -11,7 +11,8 @@ whose feasible set is thin and has many local optima. The search for direction k
    scrambled-Sobol starts spread over a box around the nominal stance, from the
    axis-locked extreme, and then from the best point every other direction reached
    (the far tips of the feasible set, where the optima of neighbouring directions
-   often lie). Where each ends is a local optimum; equal values form a basin.
+   often lie) and from the direction's own best point made mirror-symmetric. Where
+   each ends is a local optimum; equal values form a basin.
 2. **Polish**: SLSQP from the best basin's point gives the optimum to full precision and
    the constraints that bind there; the next basins are polished in turn while they
    could still beat it.
@@ -37,7 +38,14 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.numerics.multistart import MultiStartResult, Start, box_starts, maximize_coordinate
+from hexaleg.numerics.multistart import (
+    AGREEMENT,
+    CoordinateProblem,
+    MultiStartResult,
+    Start,
+    box_starts,
+    maximize_coordinate,
+)
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_extremes
 from hexaleg.stance.climb import climb_all
@@ -52,7 +60,7 @@ from hexaleg.stance.extremes import (
 )
 from hexaleg.stance.free_problem import LOWER, UPPER, FreeProblem
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.symmetry import mirror_sources
+from hexaleg.stance.symmetry import keeping, mirror_sources
 
 CLIMBS = 48
 """Climbs per direction from the search box (besides the one from the axis-locked extreme)."""
@@ -199,9 +207,9 @@ class _Search:
         tips = {i: found[0].points[0] for i, (found, _) in basins.items() if found}
         solved = {}
         for i, found in basins.items():
-            others = [tip for j, tip in tips.items() if j != i]
+            starts = [tip for j, tip in tips.items() if j != i] + self.symmetric(i, tips)
             solved[i] = self.solve(
-                self.locked[i], *self.with_climbs_from(self.locked[i], others, *found)
+                self.locked[i], *self.with_climbs_from(self.locked[i], starts, *found)
             )
         for i, (source, flip) in sources.items():
             mirrored = self.mirrored(self.locked[i], solved[source], flip)
@@ -209,6 +217,17 @@ class _Search:
                 mirrored = self.solve(self.locked[i], *self.basins(self.locked[i]))
             solved[i] = mirrored
         return tuple(solved[i] for i in range(len(self.locked)))
+
+    def symmetric(self, i: int, tips: dict[int, ArrayF]) -> list[ArrayF]:
+        """Direction i's best point made symmetric under each mirror that keeps its coordinate.
+
+        The mean of the point and its image: optima on a plane of symmetry draw few
+        climbs from starts off it.
+        """
+        if i not in tips:
+            return []
+        k = AXES.index(self.locked[i].axis)
+        return [(tips[i] + flip * tips[i]) / 2 for flip in keeping(k, self.problem.flips)]
 
     def mirrored(self, locked: Extreme, source: Extreme, flip: ArrayF) -> Extreme | None:
         """``locked``'s direction as the mirror image of ``source``, if that holds.
@@ -304,14 +323,9 @@ class _Search:
             bound = basins[i].value if self.problem.collision is None else np.inf
             if best is not None and bound <= best.value + BASIN_TOLERANCE:
                 break
-            result = None
-            for point in start:
-                result = maximize_coordinate(problem, [Start(point, self.box)])
-                if result is not None:
-                    break
+            result = self.polished(problem, start, -np.inf if np.isinf(bound) else bound)
             if result is None:
                 continue
-            self.iterations += result.iterations
             answers.append(result.value)
             if result.value <= floor or (best is not None and result.value <= best.value):
                 continue
@@ -321,6 +335,24 @@ class _Search:
                 unreachable = result.value
         evidence = self.evidence(best, floor, unreachable, basins, climbs, answers)
         return (None if best is None else best.x), evidence
+
+    def polished(
+        self, problem: CoordinateProblem, points: Sequence[ArrayF], value: float
+    ) -> MultiStartResult | None:
+        """The best SLSQP answer from ``points`` in turn, stopping at one that reaches ``value``.
+
+        A basin's climbs reached ``value``: a polish that ends lower went astray.
+        """
+        best: MultiStartResult | None = None
+        for point in points:
+            result = maximize_coordinate(problem, [Start(point, self.box)])
+            if result is not None:
+                self.iterations += result.iterations
+                if best is None or result.value > best.value:
+                    best = result
+            if best is not None and best.value >= value - AGREEMENT * max(1.0, abs(value)):
+                break
+        return best
 
     def evidence(
         self,
