@@ -28,6 +28,7 @@ def test_free_coupled_is_never_smaller_than_axis_locked(design, stance):
     assert free.extreme("x", 1).value > locked.extreme("x", 1).value
 
 
+@pytest.mark.slow
 def test_causes_do_not_depend_on_the_blas_thread_count():
     """Mirror-image legs bind together; which one is named must not follow round-off."""
     import json
