@@ -86,6 +86,14 @@ class SelfCollision:
         self._compute(self.configurations(rotation, translation)[0])
         return np.array([r.min_distance for r in self.geometry_data.distanceResults])
 
+    def pair_clearances(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
+        """Every pair's distance less :data:`CONTACT_DISTANCE` at each body pose (P, pairs) [m]."""
+        rows = []
+        for q in self.configurations(rotation, translation):
+            self._compute(q)
+            rows.append([r.min_distance for r in self.geometry_data.distanceResults])
+        return np.array(rows) - CONTACT_DISTANCE
+
     def clearances(self, rotation: ArrayF, translation: ArrayF) -> tuple[ArrayF, list[int]]:
         """The clearance at each body pose (P,) [m], and the closest pair's index.
 

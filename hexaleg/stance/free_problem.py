@@ -31,6 +31,9 @@ MARGIN_FLOOR = 1e-11
 """SLSQP asks every smooth margin to exceed this, so answers land inside the boundary."""
 STEP = 1e-7
 """Finite-difference step of the margins' Jacobian [m or rad]."""
+COLLISION_STEP = 1e-5
+"""... and of the distances between parts [m or rad]: coal resolves them near contact
+only to a few 1e-7 m, so a step of 1e-7 would differentiate its noise."""
 ACTIVE_TOLERANCE = 1e-8
 """Margins this close to the smallest [m or rad] bind together at a free extreme."""
 MAX_ITERATIONS = 60
@@ -56,6 +59,7 @@ class FreeProblem:
         self.basis = np.vstack([np.zeros(6), STEP * np.eye(6)])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
         self._values = np.zeros(0)
+        self._steps = np.zeros(0)  # each margin's finite-difference step
 
     def coordinate_problem(self, k: int, sign: int) -> CoordinateProblem:
         """The program of direction (k, sign), for SLSQP (:mod:`~hexaleg.numerics.multistart`)."""
@@ -72,26 +76,26 @@ class FreeProblem:
     def jacobian(self, d: ArrayF) -> ArrayF:
         """Forward differences of :meth:`margins`, all seven poses in one call."""
         values = self._around(d)
-        jacobian: ArrayF = (values[1:] - values[0]).T / STEP
+        jacobian: ArrayF = (values[1:] - values[0]).T / self._steps[:, None]
         return jacobian
 
     def _around(self, d: ArrayF) -> ArrayF:
         """Smooth margins at d and its six forward steps (7, C), kept for the next call.
 
         SLSQP asks for the Jacobian where it last asked for the margins; one evaluation
-        serves both.
+        serves both. With self-collision, every pair's distance (less the contact
+        distance) is a margin of its own, each smooth where the minimum is not.
         """
         if self._at is None or not (self._at == d).all():
-            self._values = self._smooth(d + self.basis)
-            self._at = np.array(d, dtype=float)
+            margins = self._kernel(self.smooth_kernel, d + self.basis)
+            self._steps = np.full(margins.shape[-1], STEP)
+            if self.collision is not None:
+                poses = displacement_poses(self.geometry, d + self.basis * COLLISION_STEP / STEP)
+                pairs = self.collision.pair_clearances(*poses)
+                margins = np.concatenate([margins, pairs], axis=-1)
+                self._steps = np.append(self._steps, np.full(pairs.shape[-1], COLLISION_STEP))
+            self._values, self._at = margins, np.array(d, dtype=float)
         return self._values
-
-    def _smooth(self, displacements: ArrayF) -> ArrayF:
-        margins: ArrayF = self._kernel(self.smooth_kernel, displacements)
-        if self.collision is None:
-            return margins
-        clearance = self.collision.clearances(*displacement_poses(self.geometry, displacements))[0]
-        return np.concatenate([margins, clearance[..., None]], axis=-1)
 
     @staticmethod
     def _kernel(kernel: KernelGeometry, displacements: ArrayF) -> ArrayF:
