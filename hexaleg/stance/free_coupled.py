@@ -346,6 +346,8 @@ class _Search:
         best: MultiStartResult | None = None
         for point in points:
             result = maximize_coordinate(problem, [Start(point, self.box)])
+            if result is None:
+                result = self.unpolished(problem, point)
             if result is not None:
                 self.iterations += result.iterations
                 if best is None or result.value > best.value:
@@ -353,6 +355,14 @@ class _Search:
             if best is not None and best.value >= value - AGREEMENT * max(1.0, abs(value)):
                 break
         return best
+
+    def unpolished(self, problem: CoordinateProblem, point: ArrayF) -> MultiStartResult | None:
+        """A climb's end as the answer where SLSQP gave none (flagged: not polished)."""
+        x = self.problem.feasible_nearby(point)
+        if x is None:
+            return None
+        value = float(problem.sign * x[problem.k])
+        return MultiStartResult(x, value, False, False, (value,), 0)
 
     def evidence(
         self,
