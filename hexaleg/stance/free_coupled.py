@@ -341,18 +341,23 @@ class _Search:
     ) -> MultiStartResult | None:
         """The best SLSQP answer from ``points`` in turn, stopping at one that reaches ``value``.
 
-        A basin's climbs reached ``value``: a polish that ends lower went astray.
+        A basin's climbs reached ``value``: a polish that ends lower went astray, and
+        one where SLSQP does not report convergence is tried again from the next point.
         """
         best: MultiStartResult | None = None
         for point in points:
             result = maximize_coordinate(problem, [Start(point, self.box)])
             if result is None:
                 result = self.unpolished(problem, point)
-            if result is not None:
-                self.iterations += result.iterations
-                if best is None or result.value > best.value:
-                    best = result
-            if best is not None and best.value >= value - AGREEMENT * max(1.0, abs(value)):
+            if result is None:
+                continue
+            self.iterations += result.iterations
+            tolerance = AGREEMENT * max(1.0, abs(result.value))
+            if best is None or result.value > best.value + tolerance:
+                best = result
+            elif result.value >= best.value - tolerance and result.success and not best.success:
+                best = result  # the same optimum, where SLSQP also says it converged
+            if best.success and best.value >= value - AGREEMENT * max(1.0, abs(value)):
                 break
         return best
 
