@@ -111,7 +111,7 @@ def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
             None,
             None,
             "≤ 0.5 s",
-            note=f"FB {free.fb:.4f}, {free.iterations} SLSQP iterations, "
+            note=f"FB {free.fb:.4f}, {free.iterations} iterations (climbs, SLSQP), "
             f"converged {free.converged}",
         )
     )

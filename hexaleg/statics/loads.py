@@ -13,11 +13,11 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
-from hexaleg._typing import ArrayF, Distribution, FlexibilityMode, StanceSet
+from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
@@ -156,23 +156,6 @@ def _state_dict(state: StaticState) -> dict[str, Any]:
         "peak_torque": state.peak_torques(),
         "stability_margin": state.stability_margin,
     }
-
-
-def extreme_configurations(model: HexapodModel, extremes: Sequence[Extreme]) -> ArrayF:
-    """The configurations (K, nq) at extremes, from their reported poses and joint angles.
-
-    Swing legs (not in an extreme's joint angles) keep their nominal angles, as in
-    the viewer.
-    """
-    poses = np.array([e.pose for e in extremes], dtype=float).reshape(-1, 6)
-    q = np.tile(model.nominal_configuration(), (len(poses), 1))
-    q[:, :3] += poses[:, :3]
-    # Pinocchio's rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll): extrinsic x, y, z; quaternions
-    # are (x, y, z, w) in both
-    q[:, 3:7] = Rotation.from_euler("xyz", poses[:, 3:]).as_quat()
-    for leg in extremes[0].joint_angles if extremes else ():
-        q[:, model.leg_q_indices(leg)] = [e.joint_angles[leg] for e in extremes]
-    return q
 
 
 def analyze_loads(
