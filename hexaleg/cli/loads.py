@@ -87,7 +87,8 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                f"(rated {rated[joint]:g} N·m)",
+                f"(rated {rated[joint]:g} N·m)"
+                + (", OVER RATING" if analysis.peak_torques[joint] > rated[joint] else ""),
             )
         )
     for slope in analysis.slopes:
@@ -100,4 +101,5 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         )
     capacity = analysis.capacity
     rows.append(("payload capacity", f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"))
+    rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
     return rows

@@ -412,10 +412,10 @@ def loads_figure(analysis: LoadsAnalysis) -> Figure:
     slopes.bar(
         labels,
         [np.degrees(s.max_slope) for s in analysis.slopes],
-        color=[_COLORS[2] if s.limited_by == "slide" else _COLORS[3] for s in analysis.slopes],
+        color=[_COLORS[2] if s.limited_by.kind == "slide" else _COLORS[3] for s in analysis.slopes],
     )
     for k, s in enumerate(analysis.slopes):
-        slopes.annotate(s.limited_by, (k, np.degrees(s.max_slope)), ha="center", va="bottom")
+        slopes.annotate(str(s.limited_by), (k, np.degrees(s.max_slope)), ha="center", va="bottom")
     slopes.set_xlabel("uphill heading, body frame")
     slopes.set_ylabel("max slope [°]")
     slopes.set_title(f"Steepest slope (μ = {analysis.friction:g})")
