@@ -29,6 +29,7 @@ import pinocchio as pin
 import qpsolvers
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
@@ -74,9 +75,13 @@ class Payload:
 
     def point(self, model: HexapodModel) -> ArrayF:
         """The payload's position in the body frame [m]."""
+        return np.array(self.position_on(model.design))
+
+    def position_on(self, design: HexapodDesign) -> list[float]:
+        """The payload's position on ``design``'s body, body frame [m]: its own, or the top face's centre."""
         if self.position is not None:
-            return np.array(self.position)
-        return np.array([0.0, 0.0, model.design.body_height / 2])
+            return list(self.position)
+        return [0.0, 0.0, design.body_height / 2]
 
     def with_mass(self, mass: float) -> Payload:
         """The same point with another mass [kg]."""

@@ -113,7 +113,7 @@ class LoadsAnalysis:
             "design": self.design.as_dict(),
             "payload": {
                 "mass": self.payload.mass,
-                "position": list(self.payload.position or (0.0, 0.0, self.design.body_height / 2)),
+                "position": self.payload.position_on(self.design),
             },
             "friction": self.friction,
             "distribution": self.distribution,

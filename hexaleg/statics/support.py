@@ -47,14 +47,17 @@ class SupportPolygon:
 
     def signed_distance(self, point: npt.ArrayLike) -> float:
         """Signed distance [m] from ``point`` (x, y) to the boundary: > 0 inside."""
-        relative = np.asarray(point, dtype=float)[:2] - self.vertices
+        return float(self.signed_distances(np.asarray(point, dtype=float)[None, :2])[0])
+
+    def signed_distances(self, points: npt.ArrayLike) -> ArrayF:
+        """:meth:`signed_distance` of each of ``points`` (P, 2) (P,) [m]."""
+        relative = np.asarray(points, dtype=float)[:, None, :2] - self.vertices  # (P, K, 2)
         edges = self.edges
-        inward = (edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]) / self.lengths
-        if inward.min() >= 0:
-            return float(inward.min())
-        along = (relative[:, 0] * edges[:, 0] + relative[:, 1] * edges[:, 1]) / self.lengths**2
-        gap = relative - np.clip(along, 0.0, 1.0)[:, None] * edges
-        return -float(np.hypot(gap[:, 0], gap[:, 1]).min())
+        inward = (edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]) / self.lengths
+        along = (relative[..., 0] * edges[:, 0] + relative[..., 1] * edges[:, 1]) / self.lengths**2
+        gap = relative - np.clip(along, 0.0, 1.0)[..., None] * edges
+        inside = inward.min(axis=1)
+        return np.where(inside >= 0, inside, -np.hypot(gap[..., 0], gap[..., 1]).min(axis=1))
 
     def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
         """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""

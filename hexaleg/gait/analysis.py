@@ -1,0 +1,209 @@
+"""The front door of walking: :func:`analyze_gait` gives one design's gait period, measured.
+
+It walks the gait (:class:`~hexaleg.gait.walk.Walker`): foot paths and joint motion
+(:mod:`.trajectory`), constraints (:mod:`.feasibility`), inverse dynamics and the feet's
+forces (:mod:`.dynamics`), the ZMP (:mod:`.stability`) and the metrics (:mod:`.metrics`),
+then the max stride and max speed (:mod:`.limits`). The result keeps every time series a
+simulator or an optimizer needs: the joint trajectories (q, q̇, q̈), the planned
+torques and the feet's forces at each sample.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg._typing import ArrayF, Distribution
+from hexaleg.design import HexapodDesign
+from hexaleg.gait.feasibility import Violation
+from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
+from hexaleg.gait.metrics import GaitMetrics, gait_metrics
+from hexaleg.gait.spec import Gait
+from hexaleg.gait.stability import zero_moment_points, zmp_margins
+from hexaleg.gait.walk import Walker
+from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.ratings import OverRating, over_rating
+
+
+@dataclass(frozen=True)
+class GaitAnalysis:
+    """One design walking one gait period: time series, metrics, feasibility and limits.
+
+    Arrays are per sample (N, at t_k = k·T/N) and per leg (6, ``legs`` order).
+
+    Attributes:
+        design: The design.
+        gait: The gait.
+        payload: The payload carried.
+        distribution: How the standing feet share the load.
+        mass: Total mass, payload included [kg].
+        legs: Leg names.
+        times: t_k (N,) [s].
+        stance: Whether each foot stands (N, 6).
+        joint_angles: q (N, 6, 3) [rad], (root, hip, knee) per leg.
+        joint_velocities: q̇ (N, 6, 3) [rad/s].
+        joint_accelerations: q̈ (N, 6, 3) [rad/s²].
+        configurations: Pinocchio's q of the free-flyer model (N, nq) [m, -, rad]: the
+            body's position (world frame, the ground at z = 0), its orientation
+            (identity: it never rotates) and the joints.
+        generalized_velocities: Pinocchio's v (N, nv) [m/s, rad/s] (the body's in its
+            own frame, which stays level).
+        generalized_accelerations: Pinocchio's a (N, nv) [m/s², rad/s²].
+        base_velocity: The body's constant velocity v·u, world frame (3,) [m/s].
+        joint_torques: τ (N, 6, 3) [N·m].
+        foot_forces: Each foot's force from the ground (N, 6, 3), ground frame [N]
+            (zero while it swings).
+        feet: Foot positions (N, 6, 3) in the body frame [m].
+        zmp: The zero-moment point (N, 2) [m], ground frame.
+        zmp_margin: Its signed distance inside the support polygon (N,) [m].
+        metrics: Peaks, RMS, positive work, cost of transport, ZMP margin.
+        violations: Every constraint the period breaks, earliest first (none: feasible).
+        max_stride: The largest feasible stride (None if not computed).
+        max_speed: The fastest walk within the ratings (None if not computed).
+
+    """
+
+    design: HexapodDesign
+    gait: Gait
+    payload: Payload
+    distribution: Distribution
+    mass: float
+    legs: tuple[str, ...]
+    times: ArrayF
+    stance: npt.NDArray[np.bool_]
+    joint_angles: ArrayF
+    joint_velocities: ArrayF
+    joint_accelerations: ArrayF
+    configurations: ArrayF
+    generalized_velocities: ArrayF
+    generalized_accelerations: ArrayF
+    base_velocity: ArrayF
+    joint_torques: ArrayF
+    foot_forces: ArrayF
+    feet: ArrayF
+    zmp: ArrayF
+    zmp_margin: ArrayF
+    metrics: GaitMetrics
+    violations: tuple[Violation, ...]
+    max_stride: StrideLimit | None
+    max_speed: SpeedLimit | None
+
+    @property
+    def feasible(self) -> bool:
+        """Whether the period breaks no constraint."""
+        return not self.violations
+
+    @property
+    def over_rating(self) -> tuple[OverRating, ...]:
+        """Each joint whose peak |τ| or |q̇| exceeds its rating, with when it peaks."""
+        places = [f"t = {t:.3f} s" for t in self.times]
+        design = self.design
+        return over_rating(
+            self.legs, self.joint_torques, design.rated_torques, places
+        ) + over_rating(self.legs, self.joint_velocities, design.rated_speeds, places, "speed")
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (SI units: s, m, kg, N·m, rad/s, W, J; the time series not included)."""
+        return {
+            "design": self.design.as_dict(),
+            "gait": self.gait.to_dict(),
+            "payload": {
+                "mass": self.payload.mass,
+                "position": self.payload.position_on(self.design),
+            },
+            "distribution": self.distribution,
+            "mass": self.mass,
+            **self.metrics.to_dict(),
+            "feasible": self.feasible,
+            "violations": [v.to_dict() for v in self.violations],
+            "max_stride": None if self.max_stride is None else self.max_stride.value,
+            "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
+            "over_rating": [o.to_dict() for o in self.over_rating],
+            "units": {
+                "period, time": "s",
+                "stride, step_height, max_stride, min_zmp_margin, position": "m",
+                "heading": "rad",
+                "speed, max_speed": "m/s",
+                "mass": "kg",
+                "peak_torque, rms_torque": "N·m",
+                "peak_speed": "rad/s",
+                "peak_power": "W",
+                "positive_work": "J",
+                "cost_of_transport, duty_factor": "1",
+            },
+        }
+
+
+def analyze_gait(
+    design: HexapodDesign,
+    gait: Gait | None = None,
+    payload: Payload | None = None,
+    *,
+    distribution: Distribution = "min-norm",
+    friction: float = DEFAULT_FRICTION,
+    model: HexapodModel | None = None,
+    limits: bool = True,
+    gravity: float = GRAVITY,
+) -> GaitAnalysis:
+    """One gait period of ``design``: time series, metrics, feasibility, max stride and speed.
+
+    Args:
+        design: The design.
+        gait: The gait (:class:`~hexaleg.gait.spec.Gait`'s defaults if omitted).
+        payload: A point mass on the body (none by default).
+        distribution: ``"min-norm"`` (default) or ``"min-torque"`` forces.
+        friction: Friction coefficient μ [-] (min-torque forces).
+        model: The design's Pinocchio model, if already built.
+        limits: Also compute the max stride and max speed (the slower part).
+        gravity: Gravitational acceleration g [m/s²].
+
+    """
+    gait = Gait() if gait is None else gait
+    model = HexapodModel(design) if model is None else model
+    walker = Walker(model, gait, payload, distribution, friction, gravity)
+    walk = walker.stride(gait.stride)
+    loads = walker.loads(gait.stride, walk, gait.period)
+    period, beta = gait.period, walker.phases.duty_factor
+    torques, forces = loads.split.torques(period), loads.split.forces(period)
+    velocities = walk.motion.velocity / period
+    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
+    travel = np.arange(gait.samples)[:, None] / gait.samples * (gait.stride / beta) * walker.heading
+    zmp = zero_moment_points(wrench, walker.frames.height) + travel[:, :2]
+    margins = zmp_margins(zmp, walk.paths.position + travel[:, None, :], walker.phases.stance)
+    mass = float(pin.computeTotalMass(model.model)) + walker.payload.mass
+    stride_limit = max_stride(walker) if limits else None
+    known = (walk, loads) if distribution == "min-norm" else None
+    speed_limit = max_speed(walker, stride_limit, known) if limits else None
+    return GaitAnalysis(
+        design=design,
+        gait=gait,
+        payload=walker.payload,
+        distribution=distribution,
+        mass=mass,
+        legs=model.leg_names,
+        times=walker.times(period),
+        stance=walker.phases.stance,
+        joint_angles=walk.motion.angles,
+        joint_velocities=velocities,
+        joint_accelerations=walk.motion.acceleration / period**2,
+        configurations=loads.rnea.configurations,
+        generalized_velocities=loads.rnea.velocities / period,
+        generalized_accelerations=loads.rnea.accelerations / period**2,
+        base_velocity=gait.speed * walker.heading,
+        joint_torques=torques,
+        foot_forces=forces,
+        feet=walk.paths.position,
+        zmp=zmp,
+        zmp_margin=margins,
+        metrics=gait_metrics(
+            torques, velocities, period, mass * gravity * gait.stride / beta, margins
+        ),
+        violations=walker.violations(walk),
+        max_stride=stride_limit,
+        max_speed=speed_limit,
+    )
