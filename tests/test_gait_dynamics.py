@@ -88,7 +88,7 @@ def _ry_down(a):
 
 
 def _links(lengths, q):
-    """Each link's frame (rotation, origin) in the leg-root frame, by the D-H chain; complex-safe."""
+    """Each link's frame (rotation, origin) in the leg-root frame, D-H chain (complex-safe)."""
     l1, l2, _ = lengths
     r1 = _rz(q[0])
     r2 = r1 @ _ry_down(q[1])
@@ -100,7 +100,9 @@ def _links(lengths, q):
 
 
 def _cross(a, b):
-    return np.array([a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]])
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
 
 
 def mass_matrix(lengths, bodies, q):
@@ -272,7 +274,9 @@ def test_the_zmp_is_the_centroidal_momentum_rates(walked, hexapod_model):
 
 
 def test_a_random_design_balances_too():
-    design = HexapodDesign(l1=0.15, l2=0.45, l3=0.5, body_length=0.8, nominal_angles=(0.1, 0.2, -1.7))
+    design = HexapodDesign(
+        l1=0.15, l2=0.45, l3=0.5, body_length=0.8, nominal_angles=(0.1, 0.2, -1.7)
+    )
     model = HexapodModel(design)
     walked = analyze_gait(
         design, Gait(pattern="wave", stride=0.15, heading=0.7, samples=24), model=model,

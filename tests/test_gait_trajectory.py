@@ -10,16 +10,12 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from hexaleg import HexapodDesign, HexapodModel
+from hexaleg import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait import Gait, analyze_gait, duty_factor, gait_phases, legs_around
 from hexaleg.gait.feasibility import COLUMNS, violations
-from hexaleg.gait.trajectory import (
-    LegFrames,
-    foot_acceleration_bias,
-    inverse_jacobian_times,
-    knee_heights,
-)
+from hexaleg.gait.jacobian import inverse_times, leg_partials, rate_times, transpose_times
+from hexaleg.gait.trajectory import LegFrames, knee_heights
 from hexaleg.kinematics import foot_jacobian, foot_position
 from hexaleg.layouts import LegMount
 
@@ -62,7 +58,13 @@ def test_patterns_swing_their_documented_groups_in_turn(pattern, groups):
 
 def test_custom_legs_go_around_the_body_from_straight_ahead():
     mounts = tuple(
-        LegMount(f"leg{k}", 0.5 * math.cos(a), 0.5 * math.sin(a), 0.0, math.atan2(math.sin(a), math.cos(a)))
+        LegMount(
+            f"leg{k}",
+            0.5 * math.cos(a),
+            0.5 * math.sin(a),
+            0.0,
+            math.atan2(math.sin(a), math.cos(a)),
+        )
         for k, a in enumerate(np.radians([200, 20, 80, 320, 140, 260]))
     )
     design = HexapodDesign(mounts=mounts, body_radius=0.5)
@@ -142,23 +144,24 @@ def test_standing_feet_stay_put_and_swinging_feet_follow_the_definition(fine, he
         assert beta == 0.5
 
 
-def test_the_closed_form_jacobian_inverse_and_its_rate():
+def test_the_closed_form_jacobian_products():
     rng = np.random.default_rng(7)
     lengths = (0.17, 0.43, 0.38)
     theta = rng.uniform(-1.2, 1.2, (40, 3))
     theta[:, 2] = -rng.uniform(0.3, 2.5, 40)
     rates, push = rng.normal(size=(2, 40, 3))
-    jac = foot_jacobian(lengths, theta)
+    jac, leg = foot_jacobian(lengths, theta), leg_partials(lengths, theta)
     np.testing.assert_allclose(
-        inverse_jacobian_times(lengths, theta, push),
-        np.linalg.solve(jac, push[..., None])[..., 0],
-        atol=1e-10,
+        inverse_times(leg, push), np.linalg.solve(jac, push[..., None])[..., 0], atol=1e-10
     )
-    h = 1e-6  # J̇·θ̇ = d/dε J(θ + ε·θ̇)·θ̇, central differences
+    np.testing.assert_allclose(
+        transpose_times(leg, push), (np.swapaxes(jac, 1, 2) @ push[..., None])[..., 0], atol=1e-14
+    )
+    h = 1e-6  # J̇·θ̇ = d/dε J(θ + ε·θ̇)·θ̇, central differences (error ~h²)
     ahead = foot_jacobian(lengths, theta + h * rates) @ rates[..., None]
     behind = foot_jacobian(lengths, theta - h * rates) @ rates[..., None]
     np.testing.assert_allclose(
-        foot_acceleration_bias(lengths, theta, rates), (ahead - behind)[..., 0] / (2 * h), atol=1e-7
+        rate_times(leg, rates), (ahead - behind)[..., 0] / (2 * h), atol=1e-7
     )
 
 
@@ -166,9 +169,10 @@ def test_knee_heights_are_the_femur_tips(hexapod_model):
     frames = LegFrames.from_model(hexapod_model)
     theta = np.random.default_rng(2).uniform(-1, 1, (9, 6, 3))
     knee = foot_position((frames.lengths[0], frames.lengths[1], 0.0), theta)
-    expected = frames.height + (
-        frames.root_positions + np.einsum("nij,knj->kni", frames.root_rotations, knee)
-    )[..., 2]
+    expected = (
+        frames.height
+        + (frames.root_positions + np.einsum("nij,knj->kni", frames.root_rotations, knee))[..., 2]
+    )
     np.testing.assert_allclose(knee_heights(frames, theta), expected, atol=1e-14)
 
 

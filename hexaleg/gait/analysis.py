@@ -10,12 +10,12 @@ torques and the feet's forces at each sample.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
-import pinocchio as pin
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
@@ -108,7 +108,7 @@ class GaitAnalysis:
         ) + over_rating(self.legs, self.joint_velocities, design.rated_speeds, places, "speed")
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready summary (SI units: s, m, kg, N·m, rad/s, W, J; the time series not included)."""
+        """JSON-ready summary (SI: s, m, kg, N·m, rad/s, W, J); the time series are left out."""
         return {
             "design": self.design.as_dict(),
             "gait": self.gait.to_dict(),
@@ -148,6 +148,7 @@ def analyze_gait(
     friction: float = DEFAULT_FRICTION,
     model: HexapodModel | None = None,
     limits: bool = True,
+    speed: bool = False,
     gravity: float = GRAVITY,
 ) -> GaitAnalysis:
     """One gait period of ``design``: time series, metrics, feasibility, max stride and speed.
@@ -160,6 +161,9 @@ def analyze_gait(
         friction: Friction coefficient μ [-] (min-torque forces).
         model: The design's Pinocchio model, if already built.
         limits: Also compute the max stride and max speed (the slower part).
+        speed: Without ``limits``, still compute the max speed, at the gait's stride only
+            (zero if it is infeasible): with min-norm forces that needs no search and no
+            more inverse dynamics.
         gravity: Gravitational acceleration g [m/s²].
 
     """
@@ -175,10 +179,12 @@ def analyze_gait(
     travel = np.arange(gait.samples)[:, None] / gait.samples * (gait.stride / beta) * walker.heading
     zmp = zero_moment_points(wrench, walker.frames.height) + travel[:, :2]
     margins = zmp_margins(zmp, walk.paths.position + travel[:, None, :], walker.phases.stance)
-    mass = float(pin.computeTotalMass(model.model)) + walker.payload.mass
-    stride_limit = max_stride(walker) if limits else None
+    mass = walker.robot.mass
     known = (walk, loads) if distribution == "min-norm" else None
-    speed_limit = max_speed(walker, stride_limit, known) if limits else None
+    stride_limit = max_stride(walker) if limits else None
+    speed_limit = (
+        max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
+    )
     return GaitAnalysis(
         design=design,
         gait=gait,
@@ -203,7 +209,35 @@ def analyze_gait(
         metrics=gait_metrics(
             torques, velocities, period, mass * gravity * gait.stride / beta, margins
         ),
-        violations=walker.violations(walk),
+        violations=walk.violations,
         max_stride=stride_limit,
         max_speed=speed_limit,
     )
+
+
+STUDY_GAIT = Gait()
+"""The gait every design of a study walks: :class:`Gait`'s defaults."""
+
+
+def gait_study_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, float | str]:
+    """A study row's walking columns: ``design`` walking :data:`STUDY_GAIT`, no payload.
+
+    Peak torques [N·m], positive work [J] and cost of transport [-] are NaN when the
+    period is infeasible (``gait_feasible`` false); the max speed [m/s] is given either
+    way, at the gait's stride (zero if it is infeasible), with what limits it. The max
+    stride is left out: its search would cost more than the rest of the row.
+    """
+    walked = analyze_gait(design, STUDY_GAIT, model=model, limits=False, speed=True)
+    assert walked.max_speed is not None
+    metrics, ok = walked.metrics, walked.feasible
+    columns: dict[str, float | str] = {
+        f"gait_peak_{joint}_torque": value if ok else math.nan
+        for joint, value in metrics.peak_torque.items()
+    }
+    return columns | {
+        "gait_positive_work": metrics.positive_work if ok else math.nan,
+        "gait_cost_of_transport": metrics.cost_of_transport if ok else math.nan,
+        "gait_feasible": ok,
+        "gait_max_speed": walked.max_speed.value,
+        "gait_max_speed_limited_by": str(walked.max_speed.limited_by),
+    }

@@ -25,22 +25,12 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
+from hexaleg.gait.jacobian import leg_partials, transpose_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import Payload, equilibrium, min_norm_forces, min_torque_forces
-
-
-def loaded_model(model: HexapodModel, payload: Payload, gravity: float) -> pin.Model:
-    """A copy of the model with the payload's point mass on the body and gravity g [m/s²] along −z."""
-    copy = pin.Model(model.model)
-    if payload.mass > 0:
-        base = int(copy.getJointId("root_joint"))
-        point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
-        copy.inertias[base] = copy.inertias[base] + point
-    copy.gravity.linear = np.array([0.0, 0.0, -gravity])
-    return copy
 
 
 @dataclass(frozen=True)
@@ -63,45 +53,62 @@ class GeneralizedForces:
     inertial: ArrayF
 
 
-def generalized_forces(
-    model: HexapodModel,
-    motion: JointMotion,
-    base_travel: ArrayF,
-    payload: Payload,
-    gravity: float,
-) -> GeneralizedForces:
-    """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
+class LoadedRobot:
+    """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
+
+    The payload is a point mass added to the body's inertia (its weight and, were the body
+    to accelerate, its inertia); gravity g [m/s²] points along −z.
 
     Args:
         model: The robot.
-        motion: Joint angles and their phase derivatives (N, 6, 3), ``leg_names`` order.
-        base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
         payload: A point mass on the body.
         gravity: Gravitational acceleration g [m/s²].
 
     """
-    count = len(motion.angles)
-    loaded = loaded_model(model, payload, gravity)
-    data = loaded.createData()
-    q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
-    v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
-    q = np.tile(model.nominal_configuration(), (count, 1))
-    q[:, :3] += np.arange(count)[:, None] / count * base_travel
-    q[:, q_index] = motion.angles
-    velocity = np.zeros((count, loaded.nv))
-    velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
-    velocity[:, v_index] = motion.velocity
-    acceleration = np.zeros((count, loaded.nv))
-    acceleration[:, v_index] = motion.acceleration
-    static = np.array([pin.computeGeneralizedGravity(loaded, data, qk) for qk in q])
-    loaded.gravity.linear = np.zeros(3)
-    inertial = np.array(
-        [
-            pin.rnea(loaded, data, qk, vk, ak)
-            for qk, vk, ak in zip(q, velocity, acceleration, strict=True)
-        ]
-    )
-    return GeneralizedForces(q, velocity, acceleration, static, inertial)
+
+    def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
+        self.model = pin.Model(model.model)
+        if payload.mass > 0:
+            base = int(self.model.getJointId("root_joint"))
+            point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
+            self.model.inertias[base] = self.model.inertias[base] + point
+        self.gravity = np.array([0.0, 0.0, -gravity])
+        self.model.gravity.linear = self.gravity
+        self.data = self.model.createData()
+        self.mass = float(pin.computeTotalMass(self.model))
+        self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
+        self.v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
+        self.height = float(model.nominal_base_pose().translation[2])
+
+    def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
+        """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
+
+        Args:
+            motion: Joint angles and their phase derivatives (N, 6, 3), ``leg_names`` order.
+            base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
+
+        """
+        count, model, data = len(motion.angles), self.model, self.data
+        q = np.zeros((count, model.nq))
+        q[:, :3] = np.arange(count)[:, None] / count * base_travel
+        q[:, 2] += self.height
+        q[:, 6] = 1.0  # level: the identity quaternion (x, y, z, w)
+        q[:, self.q_index] = motion.angles
+        velocity = np.zeros((count, model.nv))
+        velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
+        velocity[:, self.v_index] = motion.velocity
+        acceleration = np.zeros((count, model.nv))
+        acceleration[:, self.v_index] = motion.acceleration
+        static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
+        for k in range(count):
+            static[k] = pin.computeGeneralizedGravity(model, data, q[k])
+        model.gravity.linear = np.zeros(3)
+        try:
+            for k in range(count):
+                inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
+        finally:
+            model.gravity.linear = self.gravity
+        return GeneralizedForces(q, velocity, acceleration, static, inertial)
 
 
 @dataclass(frozen=True)
@@ -170,9 +177,9 @@ def min_norm_split(
     split = min_norm_forces(a, both).reshape(count, -1, 3, 2)
     forces = np.zeros((count, 6, 3, 2))
     forces[rows, standing] = split
-    jacobian = foot_jacobian(frames.lengths, motion.angles)  # leg-root frames
+    leg = leg_partials(frames.lengths, motion.angles)
     in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (2, N, 6, 3)
-    pushed = np.einsum("nlij,knli->knlj", jacobian, in_roots)  # Jᵀf per leg
+    pushed = transpose_times(leg, in_roots)  # Jᵀf per leg
     joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
     torques = joints - pushed
     return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])

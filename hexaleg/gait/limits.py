@@ -8,14 +8,18 @@
   constraint that breaks in the first broken bracket is solved on its own worst sample's
   margin to :data:`STRIDE_TOLERANCE`.
 - Max speed: the largest v = S/(β·T) at which every joint's peak |τ| and |q̇| stays within
-  its rating and the period is feasible, at the gait's stride (a shorter period) or at the
-  max stride, whichever is faster. With minimum-norm forces every torque is τ_s + τ_i/T²
-  and every speed θ'/T exactly, so the shortest period is solved joint by joint in closed
-  form; min-torque forces are bisected on 1/T² to :data:`SPEED_TOLERANCE`.
+  its rating and the period is feasible: a shorter period at the gait's stride S, or, if
+  that stride is infeasible, at the max stride. (Not the faster of the two: at a max
+  stride bound by reach a leg straightens, its joint speeds are unbounded and the speed
+  there is zero; the search would cost more than the walk.) With minimum-norm forces every
+  torque is τ_s + τ_i/T² and every speed θ'/T exactly, so the shortest period is solved
+  joint by joint in closed form; min-torque forces are bisected on 1/T² to
+  :data:`SPEED_TOLERANCE`.
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
@@ -26,7 +30,7 @@ from hexaleg.cause import Cause
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
-from hexaleg.numerics.bracketing import first_crossings
+from hexaleg.numerics.bracketing import TIE_TOLERANCE, first_crossings
 from hexaleg.robot.model import LEG_JOINTS
 
 STRIDE_TOLERANCE = 1e-9
@@ -100,9 +104,12 @@ def max_stride(walker: Walker) -> StrideLimit:
 
 
 def _out_of_reach(walker: Walker) -> float:
-    """A stride [m] no gait reaches: a standing foot ends S/2 from its nominal foothold, at
-    least S/2 − d from its leg's root (d the foothold's distance from the root), which
-    must stay within l1 + l2 + l3; the leg nearest its foothold bounds S by 2·(d + l)."""
+    """A stride [m] no gait reaches.
+
+    A standing foot ends S/2 from its nominal foothold, at least S/2 − d from its leg's
+    root (d the foothold's distance from the root), which must stay within l1 + l2 + l3:
+    the leg nearest its foothold bounds S by 2·(d + l).
+    """
     frames = walker.frames
     offsets = np.linalg.norm(frames.footholds - frames.root_positions, axis=1)
     return float(2.0 * (offsets.min() + sum(frames.lengths)))
@@ -136,42 +143,38 @@ def max_speed(
     walker: Walker,
     stride_limit: StrideLimit | None = None,
     at_gait_stride: tuple[Stride, Loads] | None = None,
+    fallback: bool = True,
 ) -> SpeedLimit:
-    """The fastest feasible walk within the ratings, at the gait's stride or the max stride.
+    """The fastest walk within the ratings, at the gait's stride or at the max stride.
+
+    The max stride only if the gait's own stride is infeasible (see the module docstring).
 
     Args:
         walker: The robot and its gait.
-        stride_limit: The gait's max stride, if already known.
+        stride_limit: The gait's max stride, if already known (needed only when the
+            gait's own stride is infeasible).
         at_gait_stride: The motion and min-norm loads at the gait's stride, if already known.
+        fallback: Walk the max stride when the gait's stride is infeasible; if false, the
+            speed is then zero, limited by the stride's first violation.
 
     """
-    stride_limit = max_stride(walker) if stride_limit is None else stride_limit
-    best = _speed_at(walker, walker.gait.stride, at_gait_stride)
-    if 0 < stride_limit.value != walker.gait.stride:
-        best = max(best, _speed_at(walker, stride_limit.value, None, best.value), key=_value)
-    return best
-
-
-def _value(limit: SpeedLimit) -> float:
-    return limit.value
-
-
-def _speed_at(
-    walker: Walker, stride: float, known: tuple[Stride, Loads] | None, beat: float = 0.0
-) -> SpeedLimit:
-    """The speed limit at stride S [m]; the torques are skipped if the speed ratings alone
-    keep it at or below ``beat`` [m/s]."""
-    walk = walker.stride(stride) if known is None else known[0]
-    found = walker.violations(walk)
+    stride = walker.gait.stride
+    walk = walker.stride(stride) if at_gait_stride is None else at_gait_stride[0]
+    found = walk.violations
+    if found and not fallback:
+        return SpeedLimit(0.0, stride, math.inf, found[0].cause)
     if found:
-        return SpeedLimit(0.0, stride, float("inf"), found[0].cause)
+        stride_limit = max_stride(walker) if stride_limit is None else stride_limit
+        if stride_limit.value == 0:
+            return SpeedLimit(0.0, stride, math.inf, found[0].cause)
+        stride, walk, at_gait_stride = stride_limit.value, walker.stride(stride_limit.value), None
+        found = walk.violations
+        if found:  # the max stride is feasible by construction; kept for round-off
+            return SpeedLimit(0.0, stride, math.inf, found[0].cause)
     speed_room = _speed_room(walker, walk)
-    by_speed = _limit(walker, stride, np.full_like(speed_room, np.inf), speed_room)
-    if by_speed.value <= beat:
-        return by_speed
     if walker.distribution != "min-norm":
         return _bisected_speed(walker, stride, walk, speed_room)
-    loads = walker.loads(stride, walk, 1.0) if known is None else known[1]
+    loads = walker.loads(stride, walk, 1.0) if at_gait_stride is None else at_gait_stride[1]
     return _closed_form_speed(walker, stride, loads, speed_room)
 
 
@@ -200,10 +203,12 @@ def _closed_form_speed(
 def _limit(walker: Walker, stride: float, torque_room: ArrayF, speed_room: ArrayF) -> SpeedLimit:
     """The speed limit from each joint's largest w = 1/T² (N, 6, 3) by torque and by speed."""
     rooms = np.nan_to_num(np.stack((torque_room, speed_room)), nan=0.0)  # (2, N, 6, 3)
-    index = np.unravel_index(int(np.argmin(rooms)), rooms.shape)
-    w = max(float(rooms[index]), 0.0)
-    kind = "torque" if index[0] == 0 else "speed"
-    cause = Cause(kind, walker.frames.legs[int(index[2])], LEG_JOINTS[int(index[3])])
+    rooms = np.moveaxis(rooms, 1, -1)  # (kind, leg, joint, sample): ties go in leg order
+    least = float(rooms.min())
+    tied = rooms <= least + TIE_TOLERANCE * max(abs(least), 1e-300)  # mirror legs tie
+    kind, leg, joint, _ = np.unravel_index(int(np.argmax(tied)), rooms.shape)
+    w = max(least, 0.0)
+    cause = Cause(("torque", "speed")[kind], walker.frames.legs[leg], LEG_JOINTS[joint])
     period = float("inf") if w == 0 else float(1.0 / np.sqrt(w))
     return SpeedLimit(float(stride * np.sqrt(w) / walker.phases.duty_factor), stride, period, cause)
 

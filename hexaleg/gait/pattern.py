@@ -24,6 +24,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
 import numpy.typing as npt
@@ -64,7 +65,7 @@ def swing_starts(design: HexapodDesign, pattern: GaitPattern) -> npt.NDArray[np.
     return np.array([(-around.index(leg)) % groups for leg in design.leg_names])
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)  # compared and hashed by identity: one per pattern and N
 class GaitPhases:
     """Where each leg is in its cycle at each of the N samples.
 
@@ -96,9 +97,16 @@ def gait_phases(design: HexapodDesign, pattern: GaitPattern, samples: int) -> Ga
     With u = k·n − N·g (mod N·n) the leg's time since its swing started, in units of
     T/(N·n): it swings while u < N, at s = u/N, and stands after, at σ = (u − N)/(N·(n − 1)).
     """
-    groups = GROUPS[pattern]
+    starts = tuple(int(g) for g in swing_starts(design, pattern))
+    return _phases(starts, GROUPS[pattern], samples)
+
+
+@lru_cache(maxsize=32)
+def _phases(starts: tuple[int, ...], groups: int, samples: int) -> GaitPhases:
+    """:func:`gait_phases`, shared (read-only) by every design of a study."""
     k = np.arange(samples)[:, None]
-    since = np.mod(k * groups - samples * swing_starts(design, pattern)[None, :], samples * groups)
+    since = np.mod(k * groups - samples * np.array(starts)[None, :], samples * groups)
     swing = since < samples
     phase = np.where(swing, since / samples, (since - samples) / (samples * (groups - 1)))
+    swing.flags.writeable = phase.flags.writeable = False
     return GaitPhases(groups, swing, phase)

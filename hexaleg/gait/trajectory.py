@@ -16,17 +16,19 @@ touchdown join the stance with equal velocity (−v·u) and zero acceleration: t
 twice continuously differentiable. Derivatives are taken by φ (d/dt = (1/T)·d/dφ), so one
 motion serves every period. Joint angles come from the knee-down closed-form IK (eq 8–9)
 in each leg-root frame; joint velocities and accelerations are exact:
-θ' = J⁻¹·p' and θ'' = J⁻¹·(p'' − J'·θ'), J the foot Jacobian of eq 22.
+θ' = J⁻¹·p' and θ'' = J⁻¹·(p'' − J'·θ'), J the foot Jacobian of eq 22 in closed form
+(:mod:`hexaleg.gait.jacobian`).
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import lru_cache
 
 import numpy as np
-import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Lengths
+from hexaleg.gait.jacobian import inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
 from hexaleg.robot.model import HexapodModel
@@ -71,7 +73,7 @@ class LegFrames:
         )
 
     def to_roots(self, vectors: ArrayF, points: bool = True) -> ArrayF:
-        """Body-frame points (or, ``points=False``, directions) (..., 6, 3) in the leg-root frames."""
+        """Body-frame points (``points=False``: directions) (..., 6, 3) in the leg-root frames."""
         relative = vectors - self.root_positions if points else vectors
         return _rotate(relative, self.root_rotations, transpose=True)
 
@@ -109,8 +111,9 @@ class PathShapes:
     lift_dd: ArrayF
 
 
+@lru_cache(maxsize=32)
 def path_shapes(phases: GaitPhases) -> PathShapes:
-    """The shapes of every foot's path at every sample."""
+    """The shapes of every foot's path at every sample (shared, read-only, per phases)."""
     beta, s, swing = phases.duty_factor, phases.phase, phases.swing
     rate = 1.0 / (1.0 - beta)  # ds/dφ
     h = s**3 * (10 - 15 * s + 6 * s**2)
@@ -120,7 +123,7 @@ def path_shapes(phases: GaitPhases) -> PathShapes:
     lift_d = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s)
     lift_dd = 384 * s * (1 - s) * (1 - 5 * s + 5 * s**2)
     zero = np.zeros_like(s)
-    return PathShapes(
+    shapes = PathShapes(
         along=np.where(swing, -0.5 + h / beta - (1 - beta) * s / beta, 0.5 - s),
         along_d=np.where(swing, h_d * rate / beta - 1 / beta, -1 / beta),
         along_dd=np.where(swing, h_dd * rate**2 / beta, zero),
@@ -128,6 +131,9 @@ def path_shapes(phases: GaitPhases) -> PathShapes:
         lift_d=np.where(swing, lift_d * rate, zero),
         lift_dd=np.where(swing, lift_dd * rate**2, zero),
     )
+    for array in vars(shapes).values():
+        array.flags.writeable = False
+    return shapes
 
 
 @dataclass(frozen=True)
@@ -180,67 +186,11 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
     velocity = frames.to_roots(paths.velocity, points=False)
     acceleration = frames.to_roots(paths.acceleration, points=False)
     angles, reach = leg_solution(frames.lengths, targets)
-    with np.errstate(divide="ignore", invalid="ignore"):  # a straight leg: unbounded rates
-        rates = inverse_jacobian_times(frames.lengths, angles, velocity)
-        bias = foot_acceleration_bias(frames.lengths, angles, rates)
-    return JointMotion(
-        angles, rates, inverse_jacobian_times(frames.lengths, angles, acceleration - bias), reach
-    )
-
-
-def inverse_jacobian_times(lengths: Lengths, theta: npt.ArrayLike, rhs: npt.ArrayLike) -> ArrayF:
-    """J⁻¹·ṗ (..., 3) [rad/s]: the joint rates that move the foot at ṗ (leg-root frame) [m/s].
-
-    J (eq 22) splits: across the coxa only the root turns, ω1 = (−sin θ1·ṗx + cos θ1·ṗy)/R;
-    along it and up, the hip and knee solve the leg plane's 2×2 system
-    [[∂R/∂θ2, ∂R/∂θ3], [∂Z/∂θ2, ∂Z/∂θ3]]·(ω2, ω3) = (cos θ1·ṗx + sin θ1·ṗy, ṗz), whose
-    determinant is l2·l3·sin θ3. Singular where R = 0 (the foot on the root's axis) or
-    sin θ3 = 0 (a straight knee); no gait within the stance limits comes near either.
-    """
-    l1, l2, l3 = lengths
-    theta = np.asarray(theta, dtype=float)
-    rhs = np.asarray(rhs, dtype=float)
-    t1, t2, t23 = theta[..., 0], theta[..., 1], theta[..., 1] + theta[..., 2]
-    c1, s1 = np.cos(t1), np.sin(t1)
-    c2, s2, c23, s23 = np.cos(t2), np.sin(t2), np.cos(t23), np.sin(t23)
-    reach = l1 + l2 * c2 + l3 * c23
-    radial = c1 * rhs[..., 0] + s1 * rhs[..., 1]
-    across = -s1 * rhs[..., 0] + c1 * rhs[..., 1]
-    r2, r3 = -l2 * s2 - l3 * s23, -l3 * s23  # ∂R/∂θ2, ∂R/∂θ3
-    z2, z3 = l2 * c2 + l3 * c23, l3 * c23  # ∂Z/∂θ2, ∂Z/∂θ3
-    det = r2 * z3 - r3 * z2
-    with np.errstate(divide="ignore", invalid="ignore"):  # singular: unbounded rates
-        return np.stack(
-            (
-                across / reach,
-                (z3 * radial - r3 * rhs[..., 2]) / det,
-                (r2 * rhs[..., 2] - z2 * radial) / det,
-            ),
-            axis=-1,
-        )
-
-
-def foot_acceleration_bias(lengths: Lengths, theta: npt.ArrayLike, rates: npt.ArrayLike) -> ArrayF:
-    """J̇·θ̇ (..., 3) in the leg-root frame: the foot's acceleration at θ̈ = 0 [m/s²].
-
-    With R = l1 + l2 cos θ2 + l3 cos(θ2+θ3) the reach along the coxa and Z the height
-    (eq 7), the leg plane's centripetal terms are R_q = −(l2 cos θ2·ω2² + l3 cos θ23·ω23²),
-    Z_q = −(l2 sin θ2·ω2² + l3 sin θ23·ω23²) (ω23 = ω2 + ω3), and the root's turn adds
-    −R·ω1² (centripetal) and 2·Ṙ·ω1 (Coriolis) across the coxa.
-    """
-    l1, l2, l3 = lengths
-    theta = np.asarray(theta, dtype=float)
-    rates = np.asarray(rates, dtype=float)
-    t1, t2, t23 = theta[..., 0], theta[..., 1], theta[..., 1] + theta[..., 2]
-    w1, w2, w23 = rates[..., 0], rates[..., 1], rates[..., 1] + rates[..., 2]
-    c1, s1 = np.cos(t1), np.sin(t1)
-    reach = l1 + l2 * np.cos(t2) + l3 * np.cos(t23)
-    reach_rate = -l2 * np.sin(t2) * w2 - l3 * np.sin(t23) * w23
-    reach_q = -(l2 * np.cos(t2) * w2**2 + l3 * np.cos(t23) * w23**2)
-    height_q = -(l2 * np.sin(t2) * w2**2 + l3 * np.sin(t23) * w23**2)
-    radial = reach_q - reach * w1**2
-    across = 2 * reach_rate * w1
-    return np.stack((c1 * radial - s1 * across, s1 * radial + c1 * across, height_q), axis=-1)
+    leg = leg_partials(frames.lengths, angles)
+    rates = inverse_times(leg, velocity)
+    with np.errstate(invalid="ignore"):  # a straight leg: unbounded rates
+        accelerations = inverse_times(leg, acceleration - rate_times(leg, rates))
+    return JointMotion(angles, rates, accelerations, reach)
 
 
 def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:

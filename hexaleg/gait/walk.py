@@ -17,7 +17,7 @@ from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
-    generalized_forces,
+    LoadedRobot,
     min_norm_split,
     min_torque_split,
 )
@@ -39,10 +39,11 @@ from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 
 @dataclass(frozen=True)
 class Stride:
-    """The feet's paths and the joints' motion of one stride (any period)."""
+    """The feet's paths, the joints' motion and the broken constraints of one stride."""
 
     paths: FootPaths
     motion: JointMotion
+    violations: tuple[Violation, ...]
 
 
 @dataclass(frozen=True)
@@ -86,6 +87,14 @@ class Walker:
         self.bounds = JointBounds.from_model(model)
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
         self.shapes: PathShapes = path_shapes(self.phases)
+        self._robot: LoadedRobot | None = None
+
+    @property
+    def robot(self) -> LoadedRobot:
+        """The Pinocchio model with the payload (built on first use)."""
+        if self._robot is None:
+            self._robot = LoadedRobot(self.model, self.payload, self.gravity)
+        return self._robot
 
     @property
     def heading(self) -> ArrayF:
@@ -93,11 +102,14 @@ class Walker:
         return np.array([np.cos(self.gait.heading), np.sin(self.gait.heading), 0.0])
 
     def stride(self, stride: float) -> Stride:
-        """The paths and joint motion of stride S [m]."""
+        """The paths, joint motion and violations of stride S [m]."""
         paths = foot_paths(
             self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
         )
-        return Stride(paths, joint_motion(self.frames, paths))
+        motion = joint_motion(self.frames, paths)
+        margins = self.margins(motion.angles, motion.reach)
+        found = violations(margins, self.frames.legs, self.times(self.gait.period))
+        return Stride(paths, motion, found)
 
     def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
@@ -109,11 +121,6 @@ class Walker:
         """
         return gait_margins(self.frames, self.bounds, self.phases.stance, theta, reach)
 
-    def violations(self, walk: Stride) -> tuple[Violation, ...]:
-        """Every constraint a stride breaks, at the first sample it does, earliest first."""
-        margins = self.margins(walk.motion.angles, walk.motion.reach)
-        return violations(margins, self.frames.legs, self.times(self.gait.period))
-
     def times(self, period: float) -> ArrayF:
         """The sample times t_k = k·T/N (N,) [s]."""
         return np.arange(self.gait.samples) * period / self.gait.samples
@@ -121,7 +128,7 @@ class Walker:
     def loads(self, stride: float, walk: Stride, period: float) -> Loads:
         """RNEA along the period and the feet's forces (min-torque: at period T [s])."""
         travel = stride / self.phases.duty_factor * self.heading
-        rnea = generalized_forces(self.model, walk.motion, travel, self.payload, self.gravity)
+        rnea = self.robot.generalized_forces(walk.motion, travel)
         position = walk.paths.position
         if self.distribution == "min-norm":
             split = min_norm_split(

@@ -78,7 +78,7 @@ class Payload:
         return np.array(self.position_on(model.design))
 
     def position_on(self, design: HexapodDesign) -> list[float]:
-        """The payload's position on ``design``'s body, body frame [m]: its own, or the top face's centre."""
+        """The payload's position on ``design``'s body [m], body frame: its own, or the top's centre."""
         if self.position is not None:
             return list(self.position)
         return [0.0, 0.0, design.body_height / 2]
