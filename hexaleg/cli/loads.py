@@ -31,6 +31,14 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
+    add_payload_options(parser)
+    add_stance_option(parser)
+    add_mode_option(parser)
+    add_output_options(parser)
+
+
+def add_payload_options(parser: argparse.ArgumentParser) -> None:
+    """``--payload``, ``--payload-at``, ``--friction`` and ``--distribution`` (loads, gait)."""
     parser.add_argument(
         "--payload", type=float, default=0.0, metavar="KG", help="payload mass [kg] (default 0)"
     )
@@ -48,21 +56,23 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="MU",
         help=f"friction coefficient between feet and ground [-] (default {DEFAULT_FRICTION})",
     )
-    add_stance_option(parser)
     parser.add_argument(
         "--distribution",
         choices=choices(Distribution),
         default="min-norm",
         help="how the feet share the load: least forces (default) or least torque/rating",
     )
-    add_mode_option(parser)
-    add_output_options(parser)
+
+
+def payload_from_args(args: argparse.Namespace) -> Payload:
+    """The payload ``--payload`` and ``--payload-at`` describe (validated)."""
+    return Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
 
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
     design = design_from_args(args)
-    payload = Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
+    payload = payload_from_args(args)
     analysis = analyze_loads(
         design, payload, args.friction, args.stance, args.distribution, args.mode
     )

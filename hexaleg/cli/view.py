@@ -45,6 +45,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--html", metavar="FILE", help="write a static HTML snapshot and exit")
     parser.add_argument("--workspace", metavar="LEG", help="also draw this leg's workspace cloud")
+    parser.add_argument(
+        "--gait",
+        action="store_true",
+        help="animate one period of the default tripod gait instead (hexaleg gait --html "
+        "for other gaits), legs coloured by |τ|/rated",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -55,6 +61,8 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError(
             f"--workspace = {args.workspace!r} is not valid: legs are {', '.join(model.leg_names)}"
         )
+    if args.gait:
+        return _view_gait(model, args)
     result = axis_locked_flexibility(design, args.stance, model)
     loads = loads_at_extremes(model, result)
     if args.html is not None:
@@ -75,6 +83,26 @@ def run(args: argparse.Namespace) -> int:
     print("serving until Ctrl-C", file=sys.stderr, flush=True)
     serve_until_stopped(server)
     print("hexaleg viewer: stopped", file=sys.stderr)
+    return 0
+
+
+def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
+    """``--gait``: the default gait's animation, written or served."""
+    from hexaleg.gait import analyze_gait
+    from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
+
+    analysis = analyze_gait(model.design, model=model, limits=False)
+    if args.html is not None:
+        report_files([write_gait_html(model, analysis, args.html)])
+        return 0
+    server = LoopbackServer(args.host, args.port)
+    try:
+        build_gait_scene(client(server), model, analysis)
+    except BaseException:
+        server.stop()
+        raise
+    print(f"hexaleg viewer: open {server.web_url}", flush=True)
+    serve_until_stopped(server)
     return 0
 
 

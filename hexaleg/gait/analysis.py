@@ -24,8 +24,9 @@ from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import zero_moment_points, zmp_margins
+from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Walker
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 from hexaleg.statics.ratings import OverRating, over_rating
 
@@ -43,6 +44,7 @@ class GaitAnalysis:
         distribution: How the standing feet share the load.
         mass: Total mass, payload included [kg].
         legs: Leg names.
+        frames: The legs' roots and nominal footholds in the body frame (from the model).
         times: t_k (N,) [s].
         stance: Whether each foot stands (N, 6).
         joint_angles: q (N, 6, 3) [rad], (root, hip, knee) per leg.
@@ -74,6 +76,7 @@ class GaitAnalysis:
     distribution: Distribution
     mass: float
     legs: tuple[str, ...]
+    frames: LegFrames
     times: ArrayF
     stance: npt.NDArray[np.bool_]
     joint_angles: ArrayF
@@ -106,6 +109,28 @@ class GaitAnalysis:
         return over_rating(
             self.legs, self.joint_torques, design.rated_torques, places
         ) + over_rating(self.legs, self.joint_velocities, design.rated_speeds, places, "speed")
+
+    def time_series(self) -> dict[str, ArrayF]:
+        """The time series as named columns (N,) each.
+
+        ``t`` [s]; per leg and joint ``<leg>_<joint>_q`` [rad], ``_qd`` [rad/s], ``_qdd``
+        [rad/s²], ``_tau`` [N·m]; per leg ``<leg>_stance`` (1 standing, 0 swinging) and
+        its foot's force ``<leg>_fx``, ``_fy``, ``_fz`` [N], ground frame.
+        """
+        columns = {"t": self.times}
+        for i, leg in enumerate(self.legs):
+            for j, joint in enumerate(LEG_JOINTS):
+                for suffix, values in (
+                    ("q", self.joint_angles),
+                    ("qd", self.joint_velocities),
+                    ("qdd", self.joint_accelerations),
+                    ("tau", self.joint_torques),
+                ):
+                    columns[f"{leg}_{joint}_{suffix}"] = values[:, i, j]
+            columns[f"{leg}_stance"] = self.stance[:, i].astype(float)
+            for axis, k in (("x", 0), ("y", 1), ("z", 2)):
+                columns[f"{leg}_f{axis}"] = self.foot_forces[:, i, k]
+        return columns
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI: s, m, kg, N·m, rad/s, W, J); the time series are left out."""
@@ -192,6 +217,7 @@ def analyze_gait(
         distribution=distribution,
         mass=mass,
         legs=model.leg_names,
+        frames=walker.frames,
         times=walker.times(period),
         stance=walker.phases.stance,
         joint_angles=walk.motion.angles,

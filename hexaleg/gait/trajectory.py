@@ -77,6 +77,12 @@ class LegFrames:
         relative = vectors - self.root_positions if points else vectors
         return _rotate(relative, self.root_rotations, transpose=True)
 
+    def points_in_body(self, points: ArrayF) -> ArrayF:
+        """Points (K, 3) given in a leg-root frame, seen from each leg's: (6, K, 3), body frame."""
+        return self.root_positions[:, None, :] + np.einsum(
+            "nij,kj->nki", self.root_rotations, points
+        )
+
     def to_body(self, vectors: ArrayF) -> ArrayF:
         """Leg-root-frame directions (..., 6, 3) in the body frame."""
         return _rotate(vectors, self.root_rotations, transpose=False)

@@ -19,7 +19,6 @@ gravity line through c meets the ground to the nearest edge of the support polyg
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -28,9 +27,10 @@ import numpy.typing as npt
 import pinocchio as pin
 import qpsolvers
 
+from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import DesignError, HexalegError
 from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
@@ -59,18 +59,17 @@ class Payload:
     position: tuple[float, float, float] | None = None
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.mass) and 0 <= self.mass <= PAYLOAD_SEARCH_LIMIT):
-            raise HexalegError(
-                f"payload mass = {self.mass:g} is not valid: must lie in "
-                f"[0, {PAYLOAD_SEARCH_LIMIT:g}] [kg]"
-            )
+        mass = require_in_range("payload mass", self.mass, 0.0, PAYLOAD_SEARCH_LIMIT, "kg")
+        object.__setattr__(self, "mass", mass)
         if self.position is not None:
-            position = tuple(float(v) for v in self.position)
-            if len(position) != 3 or not all(math.isfinite(v) and abs(v) <= 100 for v in position):
-                raise HexalegError(
-                    f"payload position = {self.position} is not valid: three coordinates "
-                    "in [-100, 100] [m], body frame"
+            if len(self.position) != 3:
+                raise DesignError(
+                    "payload position", self.position, "three coordinates [m], body frame"
                 )
+            position = tuple(
+                require_in_range(f"payload position {axis}", value, -100.0, 100.0, "m")
+                for axis, value in zip("xyz", self.position, strict=True)
+            )
             object.__setattr__(self, "position", position)
 
     def point(self, model: HexapodModel) -> ArrayF:
@@ -78,7 +77,7 @@ class Payload:
         return np.array(self.position_on(model.design))
 
     def position_on(self, design: HexapodDesign) -> list[float]:
-        """The payload's position on ``design``'s body [m], body frame: its own, or the top's centre."""
+        """Where the payload sits on ``design``'s body [m], body frame (default: top centre)."""
         if self.position is not None:
             return list(self.position)
         return [0.0, 0.0, design.body_height / 2]
@@ -140,8 +139,7 @@ class Statics:
         payload: Payload | None = None,
         friction: float = DEFAULT_FRICTION,
     ) -> None:
-        if not (math.isfinite(friction) and 0 < friction <= 10):
-            raise HexalegError(f"friction = {friction:g} is not valid: must lie in (0, 10] [-]")
+        friction = require_in_range("friction", friction, 1e-6, 10.0, "-")
         self.model = model
         self.legs = tuple(legs)
         self.payload = payload or Payload()
