@@ -171,8 +171,8 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
         ("feasible", "yes" if analysis.feasible else f"no: {analysis.violations[0]}"),
     ]
     if analysis.max_stride is not None:
-        limit = analysis.max_stride
-        rows.append(("max stride", f"{limit.value:.4f} m, limited by {limit.limited_by}"))
+        stride = analysis.max_stride
+        rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

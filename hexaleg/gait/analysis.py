@@ -248,10 +248,11 @@ STUDY_GAIT = Gait()
 def gait_study_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, float | str]:
     """A study row's walking columns: ``design`` walking :data:`STUDY_GAIT`, no payload.
 
-    Peak torques [N·m], positive work [J] and cost of transport [-] are NaN when the
-    period is infeasible (``gait_feasible`` false); the max speed [m/s] is given either
-    way, at the gait's stride (zero if it is infeasible), with what limits it. The max
-    stride is left out: its search would cost more than the rest of the row.
+    Peak torques per joint and over all three (``gait_peak_torque``) [N·m], positive work
+    [J] and cost of transport [-] are NaN when the period is infeasible (``gait_feasible``
+    false); the max speed [m/s] is given either way, at the gait's stride (zero if it is
+    infeasible), with what limits it. The max stride is left out: its search would cost
+    more than the rest of the row.
     """
     walked = analyze_gait(design, STUDY_GAIT, model=model, limits=False, speed=True)
     assert walked.max_speed is not None
@@ -261,6 +262,7 @@ def gait_study_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, 
         for joint, value in metrics.peak_torque.items()
     }
     return columns | {
+        "gait_peak_torque": max(metrics.peak_torque.values()) if ok else math.nan,
         "gait_positive_work": metrics.positive_work if ok else math.nan,
         "gait_cost_of_transport": metrics.cost_of_transport if ok else math.nan,
         "gait_feasible": ok,

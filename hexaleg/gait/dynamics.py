@@ -22,6 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
@@ -138,7 +139,7 @@ class ForceSplit:
         return self.static_torques + self.inertial_torques / period**2
 
 
-def stance_indices(phases: GaitPhases) -> ArrayF:
+def stance_indices(phases: GaitPhases) -> npt.NDArray[np.intp]:
     """The standing legs' indices at each sample (N, 6β), in leg order."""
     stance = phases.stance
     return np.nonzero(stance)[1].reshape(len(stance), -1)

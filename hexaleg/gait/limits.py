@@ -24,13 +24,14 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
-from hexaleg.numerics.bracketing import TIE_TOLERANCE, first_crossings
+from hexaleg.numerics.bracketing import TIE_TOLERANCE, IndexArray, first_crossings
 from hexaleg.robot.model import LEG_JOINTS
 
 STRIDE_TOLERANCE = 1e-9
@@ -89,9 +90,10 @@ def max_stride(walker: Walker) -> StrideLimit:
     if not feasible(_margins(walker, np.array([0.0]))).all():
         return StrideLimit(0.0, _first_cause(walker, 0.0))
 
-    def worst(_: ArrayF, strides: ArrayF) -> ArrayF:  # broken below −TOLERANCE
+    def worst(_: IndexArray, strides: ArrayF) -> ArrayF:  # broken below −TOLERANCE
         every = _margins(walker, strides) + TOLERANCE
-        return every.reshape(len(strides), -1).min(axis=1, keepdims=True)
+        smallest: ArrayF = every.reshape(len(strides), -1).min(axis=1, keepdims=True)
+        return smallest
 
     reach = _out_of_reach(walker)
     found = first_crossings(
@@ -124,7 +126,7 @@ def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
     return walker.margins(angles, reach)
 
 
-def _feasible(walker: Walker, strides: ArrayF) -> ArrayF:
+def _feasible(walker: Walker, strides: ArrayF) -> npt.NDArray[np.bool_]:
     """Whether each stride's period is feasible (M,)."""
     return feasible(_margins(walker, strides))
 

@@ -79,9 +79,8 @@ class LegFrames:
 
     def points_in_body(self, points: ArrayF) -> ArrayF:
         """Points (K, 3) given in a leg-root frame, seen from each leg's: (6, K, 3), body frame."""
-        return self.root_positions[:, None, :] + np.einsum(
-            "nij,kj->nki", self.root_rotations, points
-        )
+        turned: ArrayF = np.einsum("nij,kj->nki", self.root_rotations, points)
+        return self.root_positions[:, None, :] + turned
 
     def to_body(self, vectors: ArrayF) -> ArrayF:
         """Leg-root-frame directions (..., 6, 3) in the body frame."""
@@ -159,7 +158,8 @@ def foot_paths(
     z = np.array([0.0, 0.0, 1.0])
 
     def combine(along: ArrayF, lift: ArrayF) -> ArrayF:
-        return stride * along[..., None] * u + step_height * lift[..., None] * z
+        combined: ArrayF = stride * along[..., None] * u + step_height * lift[..., None] * z
+        return combined
 
     return FootPaths(
         position=frames.footholds + combine(shapes.along, shapes.lift),

@@ -155,11 +155,11 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
 
 
 def walking_study_figure(table: pd.DataFrame) -> Figure:
-    """The study's peak hip torque and cost of transport against tibia ratio, per coxa ratio."""
+    """The study's peak joint torque and cost of transport against tibia ratio, per coxa ratio."""
     fig = _figure(12, 4.5)
     panels = fig.subplots(1, 2)
     columns = (
-        ("gait_peak_hip_torque", "peak hip |τ| walking [N·m]"),
+        ("gait_peak_torque", "peak |τ| of any joint, walking [N·m]"),
         ("gait_cost_of_transport", "cost of transport W⁺/(M·g·d) [-]"),
     )
     for ax, (column, label) in zip(panels, columns, strict=True):

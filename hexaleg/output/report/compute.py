@@ -41,6 +41,7 @@ from hexaleg.study.recommendation import (
 )
 from hexaleg.study.sensitivity import FieldSweep, sensitivity_table
 from hexaleg.study.sweep import MAX_L1_RATIOS, StudySpec, peak_table, study_table, sweep
+from hexaleg.study.walking import WalkingComparison, walking_or_none
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
@@ -185,6 +186,7 @@ class ReportData:
         free_loads: Statics at the free-coupled extremes.
         pareto: The designs of the grid no other beats in area, w_A, FB and payload
             capacity at once, best score first (its first row is the Pareto recommendation).
+        walking: The grid's best walking legs against the paper's (None: none walks).
 
     """
 
@@ -206,6 +208,7 @@ class ReportData:
     loads: LoadsAnalysis
     free_loads: LoadsAnalysis
     pareto: pd.DataFrame
+    walking: WalkingComparison | None = None
 
     @property
     def study_peaks(self) -> pd.DataFrame:
@@ -250,6 +253,7 @@ class ReportData:
                     "free": _without_design(self.free_loads.to_dict()),
                 },
                 "pareto_front": self.pareto.to_dict(orient="records"),
+                "walking": None if self.walking is None else self.walking.to_dict(),
             }
         )
 
@@ -327,6 +331,7 @@ def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
         pareto=pareto_table(
             _candidates(_pareto_grid(average_map, study, design.leg_length), options.l1_ratios)
         ),
+        walking=walking_or_none(study, spec),
     )
 
 

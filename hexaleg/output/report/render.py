@@ -33,6 +33,7 @@ from hexaleg.output.report.sections import (
     extremes_rows,
     report_markdown,
 )
+from hexaleg.output.report.walking import walking_section, write_walking_figure
 from hexaleg.output.viewer.scene import write_static_html
 from hexaleg.study.sweep import write_journal, write_table
 
@@ -87,6 +88,7 @@ def _write_files(data: ReportData, out: Path) -> None:
     write_table(data.study_spec, data.study, study)
     write_study_figures(data.study, out)
     save(statics_study_figure(data.study), out / "study_statics.png")
+    write_walking_figure(data.study, out)
     save(loads_figure(data.loads), out / "loads.png")
     save(pareto_figure(data.study, data.pareto), out / "pareto_front.png")
     _write_csv(out / "pareto_front.csv", data.pareto.to_dict(orient="records"))
@@ -98,7 +100,7 @@ def _write_files(data: ReportData, out: Path) -> None:
         out / "recommendation_scores.csv",
         data.recommendation.scores.to_dict(orient="records"),
     )
-    text = report_markdown(data)
+    text = report_markdown(data) + "\n" + walking_section(data.walking).markdown() + "\n"
     atomic_write_text(out / REPORT_MD, text)
     atomic_write_text(out / REPORT_HTML, _html(text))
     atomic_write_text(out / REPORT_JSON, json.dumps(data.to_json(), indent=1, allow_nan=True))
