@@ -225,6 +225,11 @@ def test_payload_capacity_grows_with_the_rated_torques():
         assert state.torque_ratios(np.array(design.rated_torques)).max() == pytest.approx(
             1.0, abs=1e-5
         )
+        # and the cause names that joint, by the same Cause type as the extremes
+        cause = capacity.limited_by
+        ratios = state.torque_ratios(np.array(design.rated_torques))
+        leg, joint = state.legs.index(cause.leg), ("root", "hip", "knee").index(cause.joint)
+        assert cause.kind == "torque" and ratios[leg, joint] == pytest.approx(1.0, abs=1e-5)
     assert capacities[0] < capacities[1] < capacities[2]
 
 

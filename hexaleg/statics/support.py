@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
-from scipy.spatial import ConvexHull
 
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import HexalegError
@@ -37,11 +36,11 @@ class SupportPolygon:
     def of_feet(cls, feet_xy: npt.ArrayLike) -> SupportPolygon:
         """The support polygon of the feet (x, y) (N, 2) [m]."""
         feet_xy = np.asarray(feet_xy, dtype=float)
-        try:
-            hull = ConvexHull(feet_xy)
-        except Exception as err:  # qhull raises its own error type on degenerate input
-            raise HexalegError(f"the stance feet span no support polygon: {err}") from err
-        vertices = feet_xy[hull.vertices]
+        vertices = feet_xy[_hull(feet_xy)]
+        if len(vertices) < 3:
+            raise HexalegError(
+                f"the stance feet span no support polygon: {len(feet_xy)} feet on one line"
+            )
         edges = np.roll(vertices, -1, axis=0) - vertices
         return cls(vertices, edges, np.hypot(edges[:, 0], edges[:, 1]))
 
@@ -78,6 +77,32 @@ class SupportPolygon:
         s = cross(offset, d) / denominator  # along the edge
         hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
         return np.where(hit, t, np.inf).min(axis=1)
+
+
+def _hull(points: ArrayF) -> list[int]:
+    """Indices of the convex hull's vertices, counter-clockwise (Andrew's monotone chain).
+
+    A handful of feet: plain Python beats qhull's setup tenfold. Collinear points on an
+    edge are left out; all points on one line give fewer than three.
+    """
+    order = sorted(range(len(points)), key=lambda k: (points[k, 0], points[k, 1]))
+
+    def turn(o: int, a: int, b: int) -> float:
+        return float(
+            (points[a, 0] - points[o, 0]) * (points[b, 1] - points[o, 1])
+            - (points[a, 1] - points[o, 1]) * (points[b, 0] - points[o, 0])
+        )
+
+    def chain(indices: list[int]) -> list[int]:
+        kept: list[int] = []
+        for k in indices:
+            while len(kept) >= 2 and turn(kept[-2], kept[-1], k) <= 0:
+                kept.pop()
+            kept.append(k)
+        return kept
+
+    lower, upper = chain(order), chain(order[::-1])
+    return lower[:-1] + upper[:-1]
 
 
 def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:
