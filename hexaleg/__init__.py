@@ -34,6 +34,7 @@ _EXPORTS: dict[str, str] = {
     # errors
     "DesignError": "hexaleg.exceptions",
     "HexalegError": "hexaleg.exceptions",
+    "ParameterError": "hexaleg.exceptions",
     "ModelError": "hexaleg.exceptions",
     "TemplateError": "hexaleg.exceptions",
     # closed forms (the oracle)
@@ -90,6 +91,7 @@ __all__ = [
     "MANIPULABILITY_LIMITS",
     "ManipulabilityAnalysis",
     "ModelError",
+    "ParameterError",
     "Payload",
     "ReportOptions",
     "STANCE_LIMITS",
@@ -140,7 +142,13 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import design_toml, load_design
-    from hexaleg.exceptions import DesignError, HexalegError, ModelError, TemplateError
+    from hexaleg.exceptions import (
+        DesignError,
+        HexalegError,
+        ModelError,
+        ParameterError,
+        TemplateError,
+    )
     from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
     from hexaleg.gait.spec import Gait
     from hexaleg.kinematics import (

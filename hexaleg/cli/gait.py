@@ -19,7 +19,8 @@ from hexaleg.cli.options import (
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 
 DEFAULT = Gait()
 DESCRIPTION = (

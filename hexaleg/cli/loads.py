@@ -15,8 +15,8 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures import loads_figure, save
-from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
 

@@ -25,8 +25,9 @@ from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
-from hexaleg.gait.walk import Walker
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 from hexaleg.statics.ratings import OverRating, over_rating
 
@@ -197,26 +198,33 @@ def analyze_gait(
     walker = Walker(model, gait, payload, distribution, friction, gravity)
     walk = walker.stride(gait.stride)
     loads = walker.loads(gait.stride, walk, gait.period)
-    period, beta = gait.period, walker.phases.duty_factor
-    torques, forces = loads.split.torques(period), loads.split.forces(period)
-    velocities = walk.motion.velocity / period
-    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
-    travel = np.arange(gait.samples)[:, None] / gait.samples * (gait.stride / beta) * walker.heading
-    zmp = zero_moment_points(wrench, walker.frames.height) + travel[:, :2]
-    margins = zmp_margins(zmp, walk.paths.position + travel[:, None, :], walker.phases.stance)
-    mass = walker.robot.mass
     known = (walk, loads) if distribution == "min-norm" else None
     stride_limit = max_stride(walker) if limits else None
     speed_limit = (
         max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
     )
+    return _analysis(walker, walk, loads, stride_limit, speed_limit)
+
+
+def _analysis(
+    walker: Walker,
+    walk: Stride,
+    loads: Loads,
+    stride_limit: StrideLimit | None,
+    speed_limit: SpeedLimit | None,
+) -> GaitAnalysis:
+    """The result of a walk: its time series at the gait's period, metrics and limits."""
+    gait, period = walker.gait, walker.gait.period
+    torques, velocities = loads.split.torques(period), walk.motion.velocity / period
+    zmp, margins = _zero_moment_points(walker, walk, loads)
+    weight_travel = walker.robot.mass * walker.gravity * gait.stride / walker.phases.duty_factor
     return GaitAnalysis(
-        design=design,
+        design=walker.model.design,
         gait=gait,
         payload=walker.payload,
-        distribution=distribution,
-        mass=mass,
-        legs=model.leg_names,
+        distribution=walker.distribution,
+        mass=walker.robot.mass,
+        legs=walker.frames.legs,
         frames=walker.frames,
         times=walker.times(period),
         stance=walker.phases.stance,
@@ -228,17 +236,28 @@ def analyze_gait(
         generalized_accelerations=loads.rnea.accelerations / period**2,
         base_velocity=gait.speed * walker.heading,
         joint_torques=torques,
-        foot_forces=forces,
+        foot_forces=loads.split.forces(period),
         feet=walk.paths.position,
         zmp=zmp,
         zmp_margin=margins,
-        metrics=gait_metrics(
-            torques, velocities, period, mass * gravity * gait.stride / beta, margins
-        ),
+        metrics=gait_metrics(torques, velocities, period, weight_travel, margins),
         violations=walk.violations,
         max_stride=stride_limit,
         max_speed=speed_limit,
     )
+
+
+def _zero_moment_points(walker: Walker, walk: Stride, loads: Loads) -> tuple[ArrayF, ArrayF]:
+    """The ZMP at each sample (N, 2), ground frame [m], and its margin in the polygon (N,) [m]."""
+    gait = walker.gait
+    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / gait.period**2
+    travel = (
+        np.arange(gait.samples)[:, None] / gait.samples * (gait.stride / walker.phases.duty_factor)
+    )
+    body = travel * walker.heading  # the body's origin over the ground (N, 3)
+    zmp = zero_moment_points(wrench, walker.frames.height) + body[:, :2]
+    feet = walk.paths.position + body[:, None, :]
+    return zmp, zmp_margins(zmp, feet, walker.phases.stance)
 
 
 STUDY_GAIT = Gait()

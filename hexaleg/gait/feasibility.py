@@ -24,8 +24,8 @@ import numpy.typing as npt
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.gait.trajectory import LegFrames, knee_heights
-from hexaleg.limits import JointLimits
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.limits import LEG_JOINTS, JointLimits
+from hexaleg.robot.model import HexapodModel
 
 TOLERANCE = 1e-12
 """How far past a bound a margin may go before the constraint counts as broken [m or rad]."""

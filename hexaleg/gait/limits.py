@@ -31,8 +31,8 @@ from hexaleg.cause import Cause
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.numerics.bracketing import TIE_TOLERANCE, IndexArray, first_crossings
-from hexaleg.robot.model import LEG_JOINTS
 
 STRIDE_TOLERANCE = 1e-9
 """Width of the max stride's final bracket [m]: the value is feasible, value + this is not."""

@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg._typing import ArrayF
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 
 
 def per_joint(values: ArrayF) -> dict[str, float]:

@@ -19,8 +19,8 @@ import pandas as pd
 
 from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures import save
-from hexaleg.robot.model import LEG_JOINTS
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes

@@ -11,7 +11,7 @@ import numpy.typing as npt
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics, StaticState
 from hexaleg.statics.support import SupportPolygon
 

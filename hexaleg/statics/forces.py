@@ -27,11 +27,12 @@ import numpy.typing as npt
 import pinocchio as pin
 import qpsolvers
 
-from hexaleg._checks import require_in_range
+from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import DesignError, HexalegError
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
 GRAVITY = 9.81
@@ -62,13 +63,10 @@ class Payload:
         mass = require_in_range("payload mass", self.mass, 0.0, PAYLOAD_SEARCH_LIMIT, "kg")
         object.__setattr__(self, "mass", mass)
         if self.position is not None:
-            if len(self.position) != 3:
-                raise DesignError(
-                    "payload position", self.position, "three coordinates [m], body frame"
-                )
+            given = require_numbers("payload position", self.position, "xyz", "body-frame [m]")
             position = tuple(
-                require_in_range(f"payload position {axis}", value, -100.0, 100.0, "m")
-                for axis, value in zip("xyz", self.position, strict=True)
+                require_in_range(f"payload position.{axis}", v, -100.0, 100.0, "m")
+                for axis, v in zip("xyz", given, strict=True)
             )
             object.__setattr__(self, "position", position)
 
@@ -139,7 +137,8 @@ class Statics:
         payload: Payload | None = None,
         friction: float = DEFAULT_FRICTION,
     ) -> None:
-        friction = require_in_range("friction", friction, 1e-6, 10.0, "-")
+        if not 0 < require_in_range("friction", friction, 0.0, 10.0, "-"):
+            raise ParameterError("friction", friction, "must lie in (0, 10] [-]")
         self.model = model
         self.legs = tuple(legs)
         self.payload = payload or Payload()

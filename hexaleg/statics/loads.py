@@ -17,7 +17,8 @@ from scipy.spatial.transform import Rotation
 
 from hexaleg._typing import ArrayF, Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs

@@ -14,7 +14,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 
 Quantity = Literal["torque", "speed"]
 """What is compared with its rating: joint torque [N·m] or joint speed [rad/s]."""

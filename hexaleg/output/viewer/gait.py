@@ -18,6 +18,7 @@ import pinocchio as pin
 
 from hexaleg._io import atomic_write_text
 from hexaleg.gait.analysis import GaitAnalysis
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.viewer.scene import (
     JOINT_LINKS,
     ROOT,
@@ -26,7 +27,7 @@ from hexaleg.output.viewer.scene import (
     torque_colour,
 )
 from hexaleg.output.viewer.server import LoopbackServer, client
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 
 NODE = f"{ROOT}/gait"
