@@ -251,6 +251,9 @@ def test_the_static_limit_equals_the_statics_at_the_nominal_stance(hexapod_model
         payload, model=hexapod_model, limits=False,
     )  # fmt: skip
     np.testing.assert_allclose(slow.joint_torques[0, index], loads.joint_torques, atol=0.05)
+    # standing still, the ZMP is the centre of mass's footprint: its margin is the statics'
+    assert slow.zmp_margin[0] == pytest.approx(loads.stability_margin, abs=1e-3)
+    assert slow.min_zmp_margin == slow.zmp_margin.min()
 
 
 def test_the_zmp_is_the_centroidal_momentum_rates(walked, hexapod_model):

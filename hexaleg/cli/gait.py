@@ -168,7 +168,7 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     rows += [
         ("positive work per period", f"{metrics.positive_work:.2f} J"),
         ("cost of transport", f"{metrics.cost_of_transport:.4f}"),
-        ("min ZMP margin", f"{metrics.min_zmp_margin:.4f} m"),
+        ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m"),
         ("feasible", "yes" if analysis.feasible else f"no: {analysis.violations[0]}"),
     ]
     if analysis.max_stride is not None:

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -62,9 +63,9 @@ class GaitAnalysis:
         foot_forces: Each foot's force from the ground (N, 6, 3), ground frame [N]
             (zero while it swings).
         feet: Foot positions (N, 6, 3) in the body frame [m].
-        zmp: The zero-moment point (N, 2) [m], ground frame.
-        zmp_margin: Its signed distance inside the support polygon (N,) [m].
-        metrics: Peaks, RMS, positive work, cost of transport, ZMP margin.
+        zmp: The zero-moment point (N, 2) [m], ground frame (its margin:
+            :attr:`zmp_margin`, computed on first use).
+        metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
         max_speed: The fastest walk within the ratings (None if not computed).
@@ -91,11 +92,21 @@ class GaitAnalysis:
     foot_forces: ArrayF
     feet: ArrayF
     zmp: ArrayF
-    zmp_margin: ArrayF
     metrics: GaitMetrics
     violations: tuple[Violation, ...]
     max_stride: StrideLimit | None
     max_speed: SpeedLimit | None
+
+    @cached_property
+    def zmp_margin(self) -> ArrayF:
+        """The ZMP's signed distance inside the standing feet's polygon (N,) [m]."""
+        body = self.configurations[:, None, :3] - np.array([0.0, 0.0, self.frames.height])
+        return zmp_margins(self.zmp, self.feet + body, self.stance)
+
+    @property
+    def min_zmp_margin(self) -> float:
+        """The smallest ZMP margin over the period [m] (positive: inside throughout)."""
+        return float(self.zmp_margin.min())
 
     @property
     def feasible(self) -> bool:
@@ -145,6 +156,7 @@ class GaitAnalysis:
             "distribution": self.distribution,
             "mass": self.mass,
             **self.metrics.to_dict(),
+            "min_zmp_margin": self.min_zmp_margin,
             "feasible": self.feasible,
             "violations": [v.to_dict() for v in self.violations],
             "max_stride": None if self.max_stride is None else self.max_stride.value,
@@ -216,7 +228,8 @@ def _analysis(
     """The result of a walk: its time series at the gait's period, metrics and limits."""
     gait, period = walker.gait, walker.gait.period
     torques, velocities = loads.split.torques(period), walk.motion.velocity / period
-    zmp, margins = _zero_moment_points(walker, walk, loads)
+    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
+    travel = loads.rnea.configurations[:, :2]  # the body's origin over the ground
     weight_travel = walker.robot.mass * walker.gravity * gait.stride / walker.phases.duty_factor
     return GaitAnalysis(
         design=walker.model.design,
@@ -238,26 +251,12 @@ def _analysis(
         joint_torques=torques,
         foot_forces=loads.split.forces(period),
         feet=walk.paths.position,
-        zmp=zmp,
-        zmp_margin=margins,
-        metrics=gait_metrics(torques, velocities, period, weight_travel, margins),
+        zmp=zero_moment_points(wrench, walker.frames.height) + travel,
+        metrics=gait_metrics(torques, velocities, period, weight_travel),
         violations=walk.violations,
         max_stride=stride_limit,
         max_speed=speed_limit,
     )
-
-
-def _zero_moment_points(walker: Walker, walk: Stride, loads: Loads) -> tuple[ArrayF, ArrayF]:
-    """The ZMP at each sample (N, 2), ground frame [m], and its margin in the polygon (N,) [m]."""
-    gait = walker.gait
-    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / gait.period**2
-    travel = (
-        np.arange(gait.samples)[:, None] / gait.samples * (gait.stride / walker.phases.duty_factor)
-    )
-    body = travel * walker.heading  # the body's origin over the ground (N, 3)
-    zmp = zero_moment_points(wrench, walker.frames.height) + body[:, :2]
-    feet = walk.paths.position + body[:, None, :]
-    return zmp, zmp_margins(zmp, feet, walker.phases.stance)
 
 
 STUDY_GAIT = Gait()

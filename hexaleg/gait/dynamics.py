@@ -26,7 +26,7 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
-from hexaleg.gait.jacobian import leg_partials, transpose_times
+from hexaleg.gait.jacobian import transpose_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
@@ -58,7 +58,8 @@ class LoadedRobot:
     """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
 
     The payload is a point mass added to the body's inertia (its weight and, were the body
-    to accelerate, its inertia); gravity g [m/s²] points along −z.
+    to accelerate, its inertia); gravity g [m/s²] points along −z. Without a payload, at
+    the model's own gravity, the model itself serves (a study's designs are not copied).
 
     Args:
         model: The robot.
@@ -68,14 +69,15 @@ class LoadedRobot:
     """
 
     def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
-        self.model = pin.Model(model.model)
+        self.gravity = np.array([0.0, 0.0, -gravity])
+        own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
+        self.model = model.model if own else pin.Model(model.model)
         if payload.mass > 0:
             base = int(self.model.getJointId("root_joint"))
             point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
             self.model.inertias[base] = self.model.inertias[base] + point
-        self.gravity = np.array([0.0, 0.0, -gravity])
         self.model.gravity.linear = self.gravity
-        self.data = self.model.createData()
+        self.data = model.data if own else self.model.createData()
         self.mass = float(pin.computeTotalMass(self.model))
         self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
         self.v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
@@ -178,9 +180,8 @@ def min_norm_split(
     split = min_norm_forces(a, both).reshape(count, -1, 3, 2)
     forces = np.zeros((count, 6, 3, 2))
     forces[rows, standing] = split
-    leg = leg_partials(frames.lengths, motion.angles)
     in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (2, N, 6, 3)
-    pushed = transpose_times(leg, in_roots)  # Jᵀf per leg
+    pushed = transpose_times(motion.partials, in_roots)  # Jᵀf per leg
     joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
     torques = joints - pushed
     return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])

@@ -26,7 +26,7 @@ def per_joint(values: ArrayF) -> dict[str, float]:
 
 @dataclass(frozen=True)
 class GaitMetrics:
-    """The metrics of one gait period.
+    """The motor and energy metrics of one gait period (the ZMP's is the analysis's).
 
     Attributes:
         peak_torque: Largest |τ| per joint type [N·m].
@@ -35,7 +35,6 @@ class GaitMetrics:
         peak_power: Largest |τ·q̇| per joint type [W].
         positive_work: W⁺ per period [J].
         cost_of_transport: W⁺ / (M·g·v·T) [-].
-        min_zmp_margin: Smallest signed distance of the ZMP inside the support polygon [m].
 
     """
 
@@ -45,7 +44,6 @@ class GaitMetrics:
     peak_power: dict[str, float]
     positive_work: float
     cost_of_transport: float
-    min_zmp_margin: float
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (N·m, rad/s, W, J, m)."""
@@ -56,7 +54,6 @@ class GaitMetrics:
             "peak_power": self.peak_power,
             "positive_work": self.positive_work,
             "cost_of_transport": self.cost_of_transport,
-            "min_zmp_margin": self.min_zmp_margin,
         }
 
 
@@ -70,7 +67,6 @@ def gait_metrics(
     speeds: ArrayF,
     period: float,
     weight_travel: float,
-    zmp_margins: ArrayF,
 ) -> GaitMetrics:
     """The metrics of a period's samples.
 
@@ -79,7 +75,6 @@ def gait_metrics(
         speeds: q̇ (N, 6, 3) [rad/s].
         period: T [s].
         weight_travel: M·g·v·T: the weight carried times the distance walked [J].
-        zmp_margins: The ZMP's margin at each sample (N,) [m].
 
     """
     power = torques * speeds
@@ -91,5 +86,4 @@ def gait_metrics(
         peak_power=per_joint(np.abs(power).max(axis=(0, 1))),
         positive_work=work,
         cost_of_transport=work / weight_travel,
-        min_zmp_margin=float(zmp_margins.min()),
     )

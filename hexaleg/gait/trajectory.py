@@ -26,12 +26,13 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
+import pinocchio as pin
 
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.gait.jacobian import inverse_times, leg_partials, rate_times
+from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model import HexapodModel, joint_name
 
 
 @dataclass(frozen=True)
@@ -59,7 +60,7 @@ class LegFrames:
     def from_model(cls, model: HexapodModel) -> LegFrames:
         """The legs of ``model`` at its nominal stance."""
         design = model.design
-        roots = model.root_placements()
+        roots = _root_placements(model)
         rotations = np.array([roots[leg].rotation for leg in model.leg_names])
         positions = np.array([roots[leg].translation for leg in model.leg_names])
         foot = foot_position(design.lengths, design.nominal_angles)
@@ -85,6 +86,21 @@ class LegFrames:
     def to_body(self, vectors: ArrayF) -> ArrayF:
         """Leg-root-frame directions (..., 6, 3) in the body frame."""
         return _rotate(vectors, self.root_rotations, transpose=False)
+
+
+def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
+    """Each leg-root frame in the body frame: the root joints' placements on the free flyer.
+
+    Read without kinematics when the roots hang on the free-flyer joint, as the templates
+    build them (a study's designs then need no Pinocchio data); otherwise from the model's
+    forward kinematics.
+    """
+    pinocchio = model.model
+    base = pinocchio.getJointId("root_joint")
+    ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
+    if any(pinocchio.parents[i] != base for i in ids.values()):
+        return model.root_placements()
+    return {leg: pinocchio.jointPlacements[i] for leg, i in ids.items()}
 
 
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
@@ -177,6 +193,7 @@ class JointMotion:
         velocity: dθ/dφ [rad]; divide by T for q̇ [rad/s].
         acceleration: d²θ/dφ² [rad]; divide by T² for q̈ [rad/s²].
         reach: Hip-to-foot distance r (N, 6) [m].
+        partials: The foot Jacobian's terms at these angles (for J⁻¹, Jᵀ and J̇).
 
     """
 
@@ -184,6 +201,7 @@ class JointMotion:
     velocity: ArrayF
     acceleration: ArrayF
     reach: ArrayF
+    partials: LegPartials
 
 
 def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
@@ -196,7 +214,7 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
     rates = inverse_times(leg, velocity)
     with np.errstate(invalid="ignore"):  # a straight leg: unbounded rates
         accelerations = inverse_times(leg, acceleration - rate_times(leg, rates))
-    return JointMotion(angles, rates, accelerations, reach)
+    return JointMotion(angles, rates, accelerations, reach, leg)
 
 
 def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:
