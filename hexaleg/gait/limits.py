@@ -219,10 +219,12 @@ def _bisected_speed(walker: Walker, stride: float, walk: Stride, speed_room: Arr
     """Min-torque forces: bisect w = 1/T² between 0 and the speed ratings' bound."""
     rated_torque, _ = walker.rated()
     bound = float(np.nan_to_num(np.min(speed_room), nan=0.0))
+    rnea = walker.generalized_forces(stride, walk)  # the same at every period
 
     def ratios(w: float) -> ArrayF:
-        period = float("inf") if w == 0 else 1.0 / np.sqrt(w)
-        return np.abs(walker.loads(stride, walk, period).split.torques(period)) / rated_torque
+        period = math.inf if w == 0 else 1.0 / math.sqrt(w)
+        torques = walker.loads(stride, walk, period, rnea).split.torques(period)
+        return np.abs(torques) / rated_torque
 
     if ratios(bound).max() <= 1:
         return _limit(walker, stride, np.full_like(speed_room, np.inf), speed_room)

@@ -125,10 +125,15 @@ class Walker:
         """The sample times t_k = k·T/N (N,) [s]."""
         return np.arange(self.gait.samples) * period / self.gait.samples
 
-    def loads(self, stride: float, walk: Stride, period: float) -> Loads:
-        """RNEA along the period and the feet's forces (min-torque: at period T [s])."""
-        travel = stride / self.phases.duty_factor * self.heading
-        rnea = self.robot.generalized_forces(walk.motion, travel)
+    def loads(
+        self, stride: float, walk: Stride, period: float, rnea: GeneralizedForces | None = None
+    ) -> Loads:
+        """RNEA along the period and the feet's forces (min-torque: at period T [s]).
+
+        ``rnea``, the stride's generalized forces if already computed (they do not depend
+        on the period), saves the inverse dynamics.
+        """
+        rnea = self.generalized_forces(stride, walk) if rnea is None else rnea
         position = walk.paths.position
         if self.distribution == "min-norm":
             split = min_norm_split(
@@ -146,6 +151,11 @@ class Walker:
                 self.friction,
             )
         return Loads(rnea, split)
+
+    def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
+        """RNEA along the period of stride S [m], as static + inertial/T² (any period)."""
+        travel = stride / self.phases.duty_factor * self.heading
+        return self.robot.generalized_forces(walk.motion, travel)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
         """Rated torques [N·m] and speeds [rad/s] (root, hip, knee)."""
