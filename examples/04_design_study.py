@@ -1,6 +1,9 @@
 """A small design study on a local process pool: FB against the tibia ratio (Fig 15).
 
 Run: python examples/04_design_study.py [OUTPUT_DIR]
+
+The table and figures are kept in OUTPUT_DIR; without it they are written to a
+temporary folder, removed when the script ends.
 """
 
 import sys
@@ -27,4 +30,9 @@ def main(out_dir: str) -> None:
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else tempfile.mkdtemp(prefix="hexaleg-study-"))
+    if len(sys.argv) > 1:
+        main(sys.argv[1])
+    else:
+        with tempfile.TemporaryDirectory(prefix="hexaleg-study-") as folder:
+            main(folder)
+        print(f"{folder} removed: pass OUTPUT_DIR to keep the table and figures")

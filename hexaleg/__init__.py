@@ -69,7 +69,7 @@ _EXPORTS: dict[str, str] = {
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
-    "ReportOptions": "hexaleg.output.report.compute",
+    "ReportOptions": "hexaleg.output.report.options",
     "build_report": "hexaleg.output.report",
 }
 
@@ -168,7 +168,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         JointLimits,
     )
     from hexaleg.output.report import build_report
-    from hexaleg.output.report.compute import ReportOptions
+    from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning

@@ -1,99 +1,172 @@
-"""Atomic file output: a failed or interrupted write leaves no file behind.
+"""Writing hexaleg's output files: one mechanism for every command.
 
-Folders are built in a staging folder beside the target (named after the process
-that owns it) and renamed into place when complete. A process killed mid-write
-cannot remove its staging folder; the next run for the same target does, once the
-owner is gone.
+- :func:`check_output_file` and :func:`check_output_folder` refuse, before any computing,
+  a path that cannot be written: empty, a folder where a file is meant (``nothere/``), a
+  name longer than the file system allows, a folder the user cannot write, a read-only file.
+- :func:`write_bytes` / :func:`write_text` write one file:
+
+  - a regular file (new or existing) atomically: a temporary file beside it, then a
+    rename, so a failed or interrupted write leaves the old file or nothing; an existing
+    file keeps its mode (and, where allowed, its owner);
+  - through a symbolic link, to the link's target (atomically there): the link stays;
+  - a file with other hard links, or in a folder the user cannot write, in place (the
+    same inode, so every link sees the new content): the data is complete in memory
+    before the first byte is written, but that write is not atomic;
+  - device nodes and FIFOs directly, and ``/dev/stdout``, ``/dev/stderr``,
+    ``/dev/fd/N`` through the process's own stream (never replaced, never truncated).
+
+Folders hexaleg builds and swaps in whole (a report) are in :mod:`hexaleg._folders`.
+Every OS error becomes a one-line :class:`~hexaleg.exceptions.HexalegError`.
 """
 
 from __future__ import annotations
 
+import errno
 import os
 import re
-import shutil
+import stat
+import sys
 import tempfile
 from pathlib import Path
 
 from hexaleg.exceptions import HexalegError
 
+STDOUT = "/dev/stdout"
+"""The path that means "standard output" to :func:`write_text` (as on Linux)."""
 
-def atomic_write_text(path: str | os.PathLike[str], text: str) -> Path:
-    """Write ``text`` to ``path`` via a temporary file in the same folder and a rename."""
-    return atomic_write_bytes(path, text.encode("utf-8"))
+_STREAM = re.compile(r"^/(?:dev/fd|proc/self/fd)/(\d+)$")
+_STREAMS = {"/dev/stdout": 1, "/dev/stderr": 2}
+_SHOWN_PATH = 120
+"""Longest path quoted whole in a message [characters]."""
+_SHORT_NAME = 100
+"""Bytes of a target's name kept in its temporary and staging names (the system's limit
+on a name, usually 255 bytes, must leave room for the suffixes)."""
 
 
-def atomic_write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
-    """Write ``data`` to ``path`` via a temporary file in the same folder and a rename.
+def write_text(path: str | os.PathLike[str], text: str) -> Path:
+    """Write ``text`` (UTF-8) to ``path`` as described in the module; return ``path``."""
+    return write_bytes(path, text.encode("utf-8"))
+
+
+def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
+    """Write ``data`` to ``path`` as described in the module; return ``path``.
 
     Raises:
-        HexalegError: ``path`` names a folder (or nothing), or the folder cannot be
-            written; one line, nothing left behind.
+        HexalegError: ``path`` is empty or a folder, the file is read-only, or the system
+            refuses the write (permission, name too long, disk full); one line, and no
+            temporary file is left behind.
 
     """
-    target = Path(path)
-    if not str(path):
-        raise HexalegError("an empty path is not a file to write")
-    if target.is_dir():
-        raise HexalegError(f"{target} is a folder, not a file to write")
+    text = _text(path)
+    stream = _standard_stream(text)
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
+        if stream is not None:
+            _write_stream(stream, data)
+            return Path(text)
+        target = Path(os.path.realpath(text))  # through symbolic links, to their target
+        existing = _stat(target)
+        if existing is None or stat.S_ISREG(existing.st_mode):
+            _refuse_unwritable_file(text, target, existing)
+        if existing is None:
+            _write_atomically(target, data, None)
+        elif stat.S_ISDIR(existing.st_mode):
+            raise HexalegError(f"{shown(text)} is a folder, not a file to write")
+        elif not stat.S_ISREG(existing.st_mode):
+            _write_direct(target, data)  # a device node, a FIFO
+        elif _in_place(target, existing):
+            _write_direct(target, data, truncate=True)
+        else:
+            _write_atomically(target, data, existing)
     except OSError as err:
-        raise HexalegError(f"cannot write {target}: {err.strerror or err}") from None
-    try:
-        os.fchmod(fd, 0o666 & ~_current_umask())  # as open() would create it
-        with os.fdopen(fd, "wb") as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, target)
-    except BaseException as err:
-        Path(tmp).unlink(missing_ok=True)
-        if isinstance(err, OSError):
-            raise HexalegError(f"cannot write {target}: {err.strerror or err}") from None
-        raise
-    return target
+        raise HexalegError(f"cannot write {shown(text)}: {os_reason(err)}") from None
+    return Path(text)
 
 
-def _current_umask() -> int:
-    mask = os.umask(0)
-    os.umask(mask)
-    return mask
+def check_output_file(path: str | os.PathLike[str]) -> Path:
+    """Refuse, before computing, a file path :func:`write_bytes` could not write.
 
+    Returns ``path`` as a :class:`Path`, unchanged.
 
-def staging_folder(target: Path) -> Path:
-    """A new, empty folder beside ``target`` to build it in, with a normal folder's mode.
+    Raises:
+        HexalegError: see :func:`write_bytes`, and a path ending in ``/``.
 
-    Staging folders left by processes that no longer run (killed mid-write) are
-    removed first.
     """
-    target.parent.mkdir(parents=True, exist_ok=True)
-    remove_stale_staging(target)
-    staging = Path(
-        tempfile.mkdtemp(prefix=f".{target.name}.staging-{os.getpid()}.", dir=target.parent)
-    )
-    staging.chmod(0o777 & ~_current_umask())  # as mkdir would create it, not mkdtemp's 0700
-    return staging
+    text = _text(path)
+    if _standard_stream(text) is not None:
+        return Path(text)
+    if text.endswith(("/", os.sep)):
+        raise HexalegError(
+            f"{shown(text)} ends in '/', which names a folder: name the file to write"
+        )
+    target = Path(os.path.realpath(text))
+    existing = _stat(target)
+    if existing is not None and stat.S_ISDIR(existing.st_mode):
+        raise HexalegError(f"{shown(text)} is a folder, not a file to write")
+    if existing is None or stat.S_ISREG(existing.st_mode):
+        _refuse_unwritable_file(text, target, existing)
+    return Path(text)
 
 
-def retired_folder(target: Path) -> Path:
-    """Where ``target`` goes while its replacement is swapped in (removed right after)."""
-    return target.with_name(f".{target.name}.staging-{os.getpid()}.old")
+def check_output_folder(path: str | os.PathLike[str]) -> Path:
+    """Refuse, before computing, a folder that files cannot be written into (or created as).
+
+    Returns ``path`` as a :class:`Path`, unchanged.
+    """
+    text = _text(path)
+    target = Path(os.path.realpath(text))
+    existing = _stat(target)
+    if existing is not None and not stat.S_ISDIR(existing.st_mode):
+        raise HexalegError(f"{shown(text)} is a file, not a folder")
+    if existing is None:
+        check_creatable(text, target)
+    elif not os.access(target, os.W_OK | os.X_OK):
+        raise HexalegError(f"cannot write in {shown(text)}: {os.strerror(errno.EACCES)}")
+    return Path(text)
 
 
-def remove_stale_staging(target: Path) -> list[Path]:
-    """Remove the staging folders of ``target`` whose owning process has ended."""
-    pattern = re.compile(rf"^\.{re.escape(target.name)}\.staging-(\d+)\.")
-    removed = []
-    for entry in target.parent.iterdir() if target.parent.is_dir() else ():
-        match = pattern.match(entry.name)
-        if match and entry.is_dir() and not _running(int(match.group(1))):
-            shutil.rmtree(entry, ignore_errors=True)
-            removed.append(entry)
-    return removed
+def check_creatable(text: str, target: Path) -> None:
+    """Refuse a ``target`` that cannot be created.
+
+    Its nearest existing ancestor must be a folder this process can write, and each name
+    to create must be within the file system's limit.
+    """
+    ancestor, missing = target.parent, [target.name]
+    while _stat(ancestor) is None and ancestor != ancestor.parent:
+        missing.append(ancestor.name)
+        ancestor = ancestor.parent
+    if not ancestor.is_dir():
+        raise HexalegError(f"cannot write {shown(text)}: {shown(ancestor)} is not a folder")
+    limit = _name_max(ancestor)
+    for name in missing:
+        if len(os.fsencode(name)) > limit:
+            raise HexalegError(
+                f"cannot write {shown(text)}: a name in it is longer than the "
+                f"{limit} bytes the file system allows"
+            )
+    if not os.access(ancestor, os.W_OK | os.X_OK):
+        raise HexalegError(f"cannot write in {shown(ancestor)}: {os.strerror(errno.EACCES)}")
 
 
-def _running(pid: int) -> bool:
+def shown(path: str | os.PathLike[str]) -> str:
+    """``path`` for a one-line message: control characters escaped, a long one cut."""
+    text = os.fspath(path)
+    if not text.isprintable():
+        text = text.encode("unicode_escape").decode("ascii")
+    return text if len(text) <= _SHOWN_PATH else f"{text[:40]}…{text[-40:]}"
+
+
+def os_reason(err: OSError) -> str:
+    """An OS error in words, without its errno number: ``Permission denied``."""
+    return err.strerror or str(err)
+
+
+def short_name(name: str) -> str:
+    """``name`` cut to :data:`_SHORT_NAME` bytes, for the names derived from it."""
+    return os.fsencode(name)[:_SHORT_NAME].decode("utf-8", errors="ignore")
+
+
+def process_running(pid: int) -> bool:
+    """Whether a process ``pid`` exists (owned by anyone)."""
     try:
         os.kill(pid, 0)
     except ProcessLookupError:
@@ -101,3 +174,176 @@ def _running(pid: int) -> bool:
     except PermissionError:  # alive, owned by someone else
         return True
     return True
+
+
+def current_umask() -> int:
+    """The process's umask (read without changing it for longer than a call)."""
+    mask = os.umask(0)
+    os.umask(mask)
+    return mask
+
+
+def _text(path: str | os.PathLike[str]) -> str:
+    text = os.fspath(path)
+    if not text:
+        raise HexalegError("an empty path names no file or folder: give a name")
+    return text
+
+
+def _stat(path: Path) -> os.stat_result | None:
+    try:
+        return path.stat()
+    except FileNotFoundError:
+        return None
+    except OSError as err:  # a name too long, a loop of links, a file in the path
+        if err.errno in (errno.ENOENT, errno.ENOTDIR, errno.ENAMETOOLONG):
+            return None  # nothing there (a name too long is refused by check_creatable)
+        raise HexalegError(f"cannot write {shown(path)}: {os_reason(err)}") from None
+
+
+def _name_max(folder: Path) -> int:
+    try:
+        return os.pathconf(folder, "PC_NAME_MAX")
+    except (OSError, ValueError):
+        return 255
+
+
+def _refuse_unwritable_file(text: str, target: Path, existing: os.stat_result | None) -> None:
+    if existing is None:
+        check_creatable(text, target)
+    elif not os.access(target, os.W_OK):
+        raise HexalegError(
+            f"{shown(text)} is read-only (mode {stat.S_IMODE(existing.st_mode):04o}): "
+            "make it writable, or choose another name"
+        )
+    elif not _in_place(target, existing):
+        check_creatable(text, target)  # the rename needs to write its folder
+
+
+def _in_place(target: Path, existing: os.stat_result) -> bool:
+    """Other hard links share the file, or its folder is not ours to write: keep the inode."""
+    return existing.st_nlink > 1 or not os.access(target.parent, os.W_OK | os.X_OK)
+
+
+def _standard_stream(text: str) -> int | None:
+    match = _STREAM.match(text)
+    return int(match.group(1)) if match else _STREAMS.get(text)
+
+
+def _write_stream(fd: int, data: bytes) -> None:
+    """Write to this process's own stdout, stderr or descriptor ``fd``."""
+    stream = {1: sys.stdout, 2: sys.stderr}.get(fd)
+    if fd in (1, 2) and stream is None:
+        name = "output" if fd == 1 else "error"
+        raise HexalegError(f"standard {name} is closed: pass -o FILE, or open it")
+    if stream is None:
+        _write_all(fd, data)
+        return
+    buffer = getattr(stream, "buffer", None)
+    if buffer is None:  # a text-only stream (a test's StringIO)
+        stream.write(data.decode("utf-8", errors="replace"))
+    else:
+        stream.flush()
+        buffer.write(data)
+    stream.flush()
+
+
+def _write_direct(target: Path, data: bytes, truncate: bool = False) -> None:
+    """Write into the existing file ``target`` itself: no temporary file, no rename."""
+    fd = os.open(target, os.O_WRONLY | os.O_CLOEXEC)  # never O_CREAT: it must exist
+    try:
+        _write_all(fd, data)
+        if truncate:
+            os.ftruncate(fd, len(data))
+            os.fsync(fd)
+    finally:
+        os.close(fd)
+
+
+def _write_all(fd: int, data: bytes) -> None:
+    view = memoryview(data)
+    while view:
+        view = view[os.write(fd, view) :]
+
+
+def _write_atomically(target: Path, data: bytes, existing: os.stat_result | None) -> None:
+    """A temporary file beside ``target``, renamed over it once complete and on disk."""
+    folder = target.parent
+    folder.mkdir(parents=True, exist_ok=True)
+    remove_stale(folder, target.name, "tmp")
+    fd, tmp = tempfile.mkstemp(prefix=stale_prefix(target.name, "tmp"), dir=folder)
+    try:
+        if existing is None:
+            os.fchmod(fd, 0o666 & ~current_umask())  # as open() would create it
+        else:
+            _keep_owner(fd, existing)
+            os.fchmod(fd, stat.S_IMODE(existing.st_mode))
+        with os.fdopen(fd, "wb") as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    fsync_folder(folder)
+
+
+def _keep_owner(fd: int, existing: os.stat_result) -> None:
+    try:
+        os.fchown(fd, existing.st_uid, existing.st_gid)
+    except PermissionError:  # not root: the file becomes ours, as any editor's save would
+        pass
+
+
+def fsync_folder(folder: Path) -> None:
+    """Put a rename in ``folder`` on disk (best effort: not every file system allows it)."""
+    try:
+        fd = os.open(folder, os.O_RDONLY | os.O_CLOEXEC)
+    except OSError:
+        return
+    try:
+        os.fsync(fd)
+    except OSError:
+        pass
+    finally:
+        os.close(fd)
+
+
+def stale_prefix(name: str, role: str) -> str:
+    """The name prefix of this process's ``role`` entry for the target ``name``.
+
+    ``role`` is ``tmp``, ``staging`` or ``parked``; the prefix ``.<name>.<role>-<pid>.``
+    names the owning process, so that the entries of ended processes can be found.
+    """
+    return f".{short_name(name)}.{role}-{os.getpid()}."
+
+
+def stale_entries(folder: Path, name: str, role: str) -> list[Path]:
+    """``role`` entries for ``name`` in ``folder`` whose owning process has ended."""
+    pattern = re.compile(rf"^\.{re.escape(short_name(name))}\.{role}-(\d+)\.")
+    try:
+        entries = list(folder.iterdir())
+    except OSError:
+        return []
+    return [
+        entry
+        for entry in sorted(entries)
+        if (match := pattern.match(entry.name)) and not process_running(int(match.group(1)))
+    ]
+
+
+def remove_stale(folder: Path, name: str, role: str) -> list[Path]:
+    """Remove the temporary files of ``name`` left by ended processes (a kill mid-write)."""
+    removed = []
+    for entry in stale_entries(folder, name, role):
+        if entry.is_file() and not entry.is_symlink():
+            entry.unlink(missing_ok=True)
+            removed.append(entry)
+    return removed
+
+
+atomic_write_text = write_text
+"""Former name of :func:`write_text`."""
+atomic_write_bytes = write_bytes
+"""Former name of :func:`write_bytes`."""

@@ -24,7 +24,11 @@ from hexaleg.cli import COMMANDS, build_parser
 from hexaleg.cli.main import main
 
 PATH_OPTIONS = {"-o", "--output", "--plot", "--html"}
-PATHS = st.sampled_from(["out", "out/sub", "out.urdf", "scene.html", ""])
+PATHS = st.sampled_from(
+    ["out", "out/sub", "out.urdf", "scene.html", "", ".", "nothere/", "n" * 300, "x/" + "n" * 300]
+)
+"""Output paths: plain ones, and ones a careless user types (empty, the current folder, a
+folder where a file is meant, names over the system's 255-byte limit)."""
 DESIGN_FILES = {
     "hexagon.toml": 'layout = "hexagon"\nbody_radius = 0.3\nfirst_leg_angle_deg = 20\n',
     "typo.toml": "body_radus = 0.3\n",
@@ -122,7 +126,7 @@ def quick_backends():
         "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
         "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
-        "hexaleg.cli.study.atomic_write_text": lambda path, text: Path(path),
+        "hexaleg.cli.study.write_text": lambda path, text: Path(path),
         "hexaleg.cli.view.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
         "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,

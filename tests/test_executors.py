@@ -15,6 +15,7 @@ def test_local_pool_runs_tasks_and_is_shut_down_on_exit():
         pool.submit(pow, 2, 3)
 
 
+@pytest.mark.slow  # Dask waits out its connect timeout (10 s)
 def test_unreachable_scheduler_is_a_hexaleg_error():
     pytest.importorskip("distributed")
     with pytest.raises(HexalegError, match="cannot reach the Dask scheduler"):
@@ -81,3 +82,51 @@ def test_more_workers_than_allowed_are_refused():
     with pytest.raises(HexalegError, match="workers = "):
         with local_pool(max_workers() + 1):
             pass
+
+
+def test_a_worker_that_dies_is_one_line():
+    import os
+
+    from hexaleg.study.executors import worker_failures
+
+    with local_pool(1) as pool:
+        with pytest.raises(HexalegError, match="a worker process died") as caught:
+            with worker_failures():
+                pool.submit(os._exit, 1).result(timeout=60)
+    assert "\n" not in str(caught.value)
+
+
+def _cannot_set_up(parent: int) -> None:
+    raise RuntimeError("can't start new thread")
+
+
+def test_workers_that_cannot_set_up_are_one_line_before_any_task(monkeypatch):
+    from hexaleg.study import executors
+
+    monkeypatch.setattr(executors, "init_worker", _cannot_set_up)
+    with pytest.raises(HexalegError, match="ulimit -u"):
+        with local_pool(2):
+            pytest.fail("the pool was handed out")
+
+
+@pytest.mark.slow  # a few short studies as a plain user
+def test_a_low_limit_on_processes_is_one_line_never_a_hang_or_a_traceback():
+    """Issue 21, item 11: `ulimit -u` too low for the pool (root ignores it: a plain user)."""
+    import shutil
+
+    from unprivileged import plain_folder, run_plain
+
+    folder = plain_folder()
+    try:
+        statuses = []
+        for limit in (2, 3, 4, 5):
+            argv = ["study", "--l1-ratios", "0.1", "--l3-points", "2", "--workers", "2"]
+            result = run_plain([*argv, "-o", f"s{limit}"], cwd=folder, nproc=limit, timeout=300)
+            statuses.append(result.returncode)
+            assert "Traceback" not in result.stderr, result.stderr
+            assert result.returncode in (0, 2), result.stderr
+            if result.returncode == 2:
+                assert result.stderr.count("\n") == 1 and "ulimit -u" in result.stderr
+        assert 2 in statuses  # the smallest limits leave no room for the pool
+    finally:
+        shutil.rmtree(folder, ignore_errors=True)

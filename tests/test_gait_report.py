@@ -9,7 +9,9 @@ import pytest
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT, gait_study_columns
-from hexaleg.output.report.walking import walking_section, write_walking_figure
+from hexaleg.output.figures.canvas import save
+from hexaleg.output.figures.gait import walking_study_figure
+from hexaleg.output.report.walking import WalkingRecord, section
 from hexaleg.study.sweep import StudySpec, sweep_in_process
 from hexaleg.study.walking import WalkingComparison, walking_comparison, walking_or_none
 
@@ -73,20 +75,28 @@ def _comparison(torque: float, energy: float) -> WalkingComparison:
     ],
 )
 def test_the_section_states_the_claim_whatever_the_grid_shows(torque, energy, verdict):
-    text = walking_section(_comparison(torque, energy)).markdown()
-    assert text.startswith("## Walking") and verdict in text
+    text = _section_text(_comparison(torque, energy))
+    assert verdict in text
     assert f"saves {100 * (1 - torque / 100):.0f} % of the paper's leg's peak torque" in text
-    assert "its hip" in text and "walks slower" in text and "study_walking.png" in text
+    assert "its hip" in text and "walks slower" in text and "study_walking" in text
     assert "| least peak torque | 0.2 | 0.6 |" in text
 
 
+def _section_text(comparison: WalkingComparison | None) -> str:
+    from hexaleg.output.report.part import ReportData
+
+    data = ReportData(HexapodDesign(), None, None, {WalkingRecord: WalkingRecord(comparison)})  # type: ignore[arg-type]
+    found = section(data)
+    return found.title + "\n" + "\n".join(str(block) for block in found.blocks)
+
+
 def test_no_walking_design_is_said_plainly():
-    assert "No design of the grid walks" in walking_section(None).markdown()
+    assert "No design of the grid walks" in _section_text(None)
 
 
 def test_the_study_figure_is_written(small_study, tmp_path):
     _, table = small_study
-    assert write_walking_figure(table, tmp_path).stat().st_size > 20_000
+    assert save(walking_study_figure(table), tmp_path / "walking.png").stat().st_size > 20_000
 
 
 def test_the_study_columns_turn_off(small_study):

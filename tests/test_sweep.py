@@ -90,6 +90,7 @@ def test_resume_skips_finished_rows_and_survives_a_torn_line(tmp_path):
     pd.testing.assert_frame_equal(resumed, full)
 
 
+@pytest.mark.slow  # a study killed mid-run, resumed, and run straight to compare
 def test_killed_study_resumes_to_the_same_table(tmp_path):
     """Kill the CLI's whole process group mid-study, resume it, compare with a straight run."""
     out = tmp_path / "killed"
@@ -130,6 +131,7 @@ def test_dask_cluster_on_loopback(tmp_path, capsys):
     ).read_text()
 
 
+@pytest.mark.slow  # Dask waits out its connect timeout (10 s)
 def test_unreachable_scheduler_is_one_line(tmp_path, capsys):
     status = main(
         ["study", "--l3-points", "2", "--scheduler", "tcp://127.0.0.1:9", "-o", str(tmp_path / "s")]

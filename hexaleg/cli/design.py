@@ -56,14 +56,15 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _init(path: Path, design: HexapodDesign, force: bool) -> int:
-    from hexaleg._io import atomic_write_text
+    from hexaleg._io import check_output_file, write_text
     from hexaleg.design_file import design_toml
 
     if path.suffix.lower() != ".toml":
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    report_files([atomic_write_text(path, design_toml(design))])
+    check_output_file(path)
+    report_files([write_text(path, design_toml(design))])
     return 0
 
 

@@ -7,6 +7,7 @@ import math
 import warnings
 from pathlib import Path
 
+from hexaleg._io import check_output_folder
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -42,6 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     design = design_from_args(args)
+    if args.plot is not None:
+        check_output_folder(args.plot)  # before computing
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
         result = flexibility(design, args.mode, args.stance, collisions=args.collisions)

@@ -6,6 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hexaleg._io import check_output_folder
 from hexaleg._typing import Distribution, choices
 from hexaleg.cli.options import (
     add_design_options,
@@ -72,6 +73,8 @@ def payload_from_args(args: argparse.Namespace) -> Payload:
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
     design = design_from_args(args)
+    if args.plot is not None:
+        check_output_folder(args.plot)  # before computing
     payload = payload_from_args(args)
     analysis = analyze_loads(
         design, payload, args.friction, args.stance, args.distribution, args.mode

@@ -15,6 +15,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NamedTuple, NoReturn
 
+from hexaleg._io import os_reason
 from hexaleg._version import __version__
 from hexaleg.exceptions import HexalegError
 
@@ -130,13 +131,46 @@ def main(argv: Sequence[str] | None = None) -> int:
     command = _chosen_command(argv)
     args = build_parser(command or "").parse_args(argv)
     try:
-        return int(args.run(args))
+        status = int(args.run(args))
+        _flush_stdout()
+        return status
     except HexalegError as err:
-        print(f"hexaleg {args.command}: error: {err}", file=sys.stderr)
-        return EXIT_USAGE
+        return _fail(args.command, str(err))
     except KeyboardInterrupt:
         print(f"hexaleg {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
     except BrokenPipeError:  # stdout closed early, as by `| head`: not a failure to report
-        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+        _drop_stdout()
         return 0
+    except OSError as err:  # the system refused: a full disk, a closed stream, a lost mount
+        where = f" ({err.filename})" if err.filename else ""
+        return _fail(args.command, f"{os_reason(err)}{where}")
+
+
+def _fail(command: str, message: str) -> int:
+    """One line on stderr; what stdout still holds is written, or dropped if it cannot be."""
+    try:
+        _flush_stdout()
+    except OSError:
+        _drop_stdout()
+    print(f"hexaleg {command}: error: {message}", file=sys.stderr)
+    return EXIT_USAGE
+
+
+def _flush_stdout() -> None:
+    """Flush stdout here, where a failure (``> /dev/full``) can still be one line."""
+    if sys.stdout is not None:
+        try:
+            sys.stdout.flush()
+        except OSError as err:
+            if isinstance(err, BrokenPipeError):
+                raise
+            raise HexalegError(f"cannot write to standard output: {os_reason(err)}") from None
+
+
+def _drop_stdout() -> None:
+    """Point stdout at /dev/null, so that the interpreter's last flush cannot fail."""
+    try:
+        os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
+    except (OSError, AttributeError, ValueError):  # no stdout at all
+        pass

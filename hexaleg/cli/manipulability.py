@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from hexaleg._io import check_output_folder
 from hexaleg.cli.options import add_design_options, add_output_options, design_from_args
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
 from hexaleg.design import l3_ratio_grid
@@ -28,6 +29,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse manipulability; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
+    if args.plot is not None:
+        check_output_folder(args.plot)  # before computing
     analysis = analyze_manipulability(design)
     if args.plot is not None:
         average_map = average_manipulability_map(

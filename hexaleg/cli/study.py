@@ -7,7 +7,7 @@ from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import check_output_folder, write_text
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -70,6 +70,7 @@ def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
     base = design_from_args(args)
     field_sweep = field_sweep_from_args(args)
+    check_output_folder(args.output)  # the study folder itself is checked as it is claimed
     spec = StudySpec(
         tuple(args.l1_ratios or L1_RATIOS),
         tuple(l3_ratio_grid(args.l3_points)),
@@ -93,7 +94,7 @@ def run(args: argparse.Namespace) -> int:
         sensitivity = sensitivity_table(
             spec.l1_ratios, spec.l3_ratios, spec.total, spec.stance, base, variants
         )
-        paths.append(atomic_write_text(out / "sensitivity.csv", sensitivity.to_csv(index=False)))
+        paths.append(write_text(out / "sensitivity.csv", sensitivity.to_csv(index=False)))
     report_files(paths)
     failed = int((table["error"] != "").sum())
     print(f"{len(table)} designs, {failed} failed; FB peaks (l1 ratio → l3 ratio, FB):")

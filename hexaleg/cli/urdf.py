@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import argparse
-import sys
 
+from hexaleg._io import STDOUT, check_output_file
 from hexaleg.cli.options import add_design_options, design_from_args
 from hexaleg.cli.output import report_files
-from hexaleg.robot.urdf import render_hexapod, write_urdf
+from hexaleg.robot.urdf import write_urdf
 
 DESCRIPTION = (
     "Render the hexapod URDF from the Xacro templates for the given design. Joint "
@@ -19,15 +19,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     parser.add_argument(
-        "-o", "--output", metavar="FILE", help="write here (atomically) instead of stdout"
+        "-o",
+        "--output",
+        metavar="FILE",
+        help="write here instead of stdout (a file is replaced atomically, keeping its mode)",
     )
 
 
 def run(args: argparse.Namespace) -> int:
-    """Write the URDF to stdout or, atomically, to the file given."""
+    """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
     design = design_from_args(args)
-    if args.output is None or args.output == "-":
-        sys.stdout.write(render_hexapod(design))
-    else:
-        report_files([write_urdf(design, args.output)])
+    target = check_output_file(STDOUT if args.output in (None, "-") else args.output)
+    written = write_urdf(design, target)
+    if args.output not in (None, "-"):
+        report_files([written])
     return 0

@@ -3,9 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import ipaddress
 import sys
 
+from hexaleg._io import check_output_file
 from hexaleg.cli.options import (
     add_design_options,
     add_stance_option,
@@ -22,6 +22,7 @@ from hexaleg.output.viewer import (
     serve_until_stopped,
     write_static_html,
 )
+from hexaleg.output.viewer.server import is_loopback
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.statics.loads import loads_at_extremes
@@ -30,8 +31,9 @@ DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
     "12 axis-locked extreme poses (scene tree: hexaleg/extremes/x+ ... yaw-, limiting "
     "link in red), with an animation of each from nominal to the extreme and back. "
-    "Binds 127.0.0.1 unless --host says otherwise; Ctrl-C stops it. --html writes a "
-    "self-contained snapshot instead of serving."
+    "The web page binds 127.0.0.1 unless --host says otherwise (the socket that changes "
+    "the scene stays on 127.0.0.1); Ctrl-C stops it. --html writes a self-contained "
+    "snapshot instead of serving."
 )
 
 
@@ -39,7 +41,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     add_stance_option(parser)
-    parser.add_argument("--host", default="127.0.0.1", help="interface to bind (default 127.0.0.1)")
+    parser.add_argument(
+        "--host",
+        default="127.0.0.1",
+        help="interface the web page binds (default 127.0.0.1; 0.0.0.0 or :: for every one)",
+    )
     parser.add_argument(
         "--port", type=bounded_int(1, 65535), help="web port (default: the first free from 7000)"
     )
@@ -56,6 +62,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
     design = design_from_args(args)
+    if args.html is not None:
+        check_output_file(args.html)
     model = HexapodModel(design)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
@@ -69,9 +77,12 @@ def run(args: argparse.Namespace) -> int:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0
     if not is_loopback(args.host):
+        port = "chosen below" if args.port is None else args.port
         note(
-            f"--host {args.host} serves the scene beyond this machine, to anyone who can "
-            "reach it, without authentication"
+            f"--host {args.host} serves the scene's web page (port {port}) beyond this "
+            "machine, to anyone who can reach it, without authentication: they can watch "
+            "the robot and its extremes, not change them (the command socket stays on "
+            "127.0.0.1)"
         )
     server = LoopbackServer(args.host, args.port)
     try:
@@ -104,13 +115,3 @@ def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     print(f"hexaleg viewer: open {server.web_url}", flush=True)
     serve_until_stopped(server)
     return 0
-
-
-def is_loopback(host: str) -> bool:
-    """Whether ``host`` names this machine only (127.0.0.0/8, ::1 or localhost)."""
-    if host == "localhost":
-        return True
-    try:
-        return ipaddress.ip_address(host).is_loopback
-    except ValueError:
-        return False

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 
+from hexaleg._io import check_output_folder
 from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
@@ -42,6 +43,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse the workspace; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
+    if args.plot is not None:
+        check_output_folder(args.plot)  # before computing
     analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
     if args.plot is not None:
         report_files(write_workspace_figures(analysis, args.plot))

@@ -5,7 +5,9 @@ keeping every other field of a base design. Each finished row is appended to a
 journal (``rows.jsonl``) and flushed to disk as its task finishes, so an interrupted
 study loses nothing: :func:`run_study` with ``resume=True`` recomputes only the
 missing rows. A design that fails (say, its nominal stance cannot stand) is
-recorded with its error and the study goes on.
+recorded with its error and the study goes on. The journal's rules (torn lines, corrupt
+lines, a full disk) are in :mod:`hexaleg.study.journal`; one run at a time holds the
+study folder.
 """
 
 from __future__ import annotations
@@ -13,7 +15,6 @@ from __future__ import annotations
 import json
 import math
 import os
-import sys
 import warnings
 from collections.abc import Callable, Iterable
 from concurrent.futures import Executor, as_completed
@@ -23,9 +24,9 @@ from pathlib import Path
 from typing import Any
 
 import pandas as pd
-from tqdm import tqdm
 
-from hexaleg._io import atomic_write_text
+from hexaleg._folders import claim_folder, lock_folder
+from hexaleg._io import write_text
 from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
 from hexaleg.design import (
     MAX_L3_POINTS,
@@ -44,12 +45,20 @@ from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.loads import loads_at_extremes
-from hexaleg.study.executors import local_pool
+from hexaleg.study.executors import local_pool, worker_failures
+from hexaleg.study.journal import (
+    FOLDER_KIND,
+    JOURNAL,
+    adopt_unmarked_study,
+    append_rows,
+    start_journal,
+    write_finished_journal,
+)
+from hexaleg.study.progress import Progress
 
 MAX_L1_RATIOS = 20
 """Most coxa ratios in one study."""
 
-JOURNAL = "rows.jsonl"
 TABLE_CSV = "study.csv"
 TABLE_JSON = "study.json"
 
@@ -214,17 +223,18 @@ def sweep(
     use it).
     """
     done = set(skip)
-    futures = [
-        executor.submit(evaluate, task)
-        for task in _tasks(spec, [key for key in spec.keys() if key not in done])
-    ]
     rows: dict[tuple[float, float], Row] = {}
-    for future in as_completed(futures):
-        finished = future.result()
-        for row in finished:
-            rows[(row["l1_ratio"], row["l3_ratio"])] = row
-        if on_rows is not None:
-            on_rows(finished)
+    with worker_failures():
+        futures = [
+            executor.submit(evaluate, task)
+            for task in _tasks(spec, [key for key in spec.keys() if key not in done])
+        ]
+        for future in as_completed(futures):
+            finished = future.result()
+            for row in finished:
+                rows[(row["l1_ratio"], row["l3_ratio"])] = row
+            if on_rows is not None:
+                on_rows(finished)
     return rows
 
 
@@ -271,45 +281,35 @@ def run_study(
 
     Args:
         spec: What to compute.
-        out_dir: Folder for the journal, ``study.csv`` and ``study.json``.
+        out_dir: Folder for the journal, ``study.csv`` and ``study.json``: new, empty, or
+            a study folder hexaleg wrote; held (locked) by this run until it returns.
         executor: Where tasks run; a local process pool of ``workers`` if omitted.
         workers: Size of the local pool (default: the number of CPUs).
         resume: Continue the journal in ``out_dir`` instead of refusing to overwrite it.
-        progress: Show a progress bar; by default only when stdout is a terminal.
+        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
+            else a line every few seconds (:class:`~hexaleg.study.progress.Progress`).
+
+    Raises:
+        HexalegError: ``out_dir`` is not a study folder, is in use by another run, holds
+            a study with other options or a corrupt journal; a journal write failed.
 
     """
-    out = Path(out_dir)
-    journal = out / JOURNAL
-    if out.exists() and (not out.is_dir() or (any(out.iterdir()) and not journal.exists())):
-        raise HexalegError(
-            f"-o {out} exists and is not a hexaleg study: choose a new or empty folder"
-        )
-    if not resume and journal.exists():
-        raise HexalegError(
-            f"{out} already holds a study: pass --resume to continue it, or choose another -o"
-        )
-    out.mkdir(parents=True, exist_ok=True)
-    done = _read_journal(journal, spec)
-    if not journal.exists():
-        _append(journal, [{"spec": spec.fingerprint()}])
-    show = sys.stdout.isatty() if progress is None else progress
-    bar = tqdm(
-        total=len(spec.keys()), initial=len(done), disable=not show, unit="design", file=sys.stderr
-    )
+    adopt_unmarked_study(out_dir)
+    out = claim_folder(out_dir, FOLDER_KIND)
+    with lock_folder(out, "study"):
+        done = start_journal(out, spec.fingerprint(), spec.keys(), resume)
+        with Progress(len(spec.keys()), len(done), "designs", progress) as shown:
 
-    def record(rows: list[Row]) -> None:
-        _append(journal, rows)
-        bar.update(len(rows))
+            def record(rows: list[Row]) -> None:
+                append_rows(out / JOURNAL, rows)
+                shown.update(len(rows))
 
-    try:
-        if executor is None:
-            with local_pool(workers) as pool:
-                done |= sweep(spec, pool, skip=done, on_rows=record)
-        else:
-            done |= sweep(spec, executor, skip=done, on_rows=record)
-    finally:
-        bar.close()
-    return write_table(spec, study_table(spec, done), out)
+            if executor is None:
+                with local_pool(workers) as pool:
+                    done |= sweep(spec, pool, skip=done, on_rows=record)
+            else:
+                done |= sweep(spec, executor, skip=done, on_rows=record)
+        return write_table(spec, study_table(spec, done), out)
 
 
 def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.DataFrame:
@@ -318,54 +318,21 @@ def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.Dat
     return table.sort_values(["l1_ratio", "l3_ratio"], kind="stable").reset_index(drop=True)
 
 
-def _append(journal: Path, records: list[dict[str, Any]]) -> None:
-    """Append records to the journal, one line each, on disk before returning."""
-    with journal.open("a", encoding="utf-8") as handle:
-        handle.write("".join(json.dumps(record, allow_nan=True) + "\n" for record in records))
-        handle.flush()
-        os.fsync(handle.fileno())
-
-
-def _read_journal(journal: Path, spec: StudySpec) -> dict[tuple[float, float], Row]:
-    if not journal.exists():
-        return {}
-    rows: dict[tuple[float, float], Row] = {}
-    lines = journal.read_text(encoding="utf-8").splitlines()
-    for number, line in enumerate(lines):
-        try:
-            record = json.loads(line)
-        except json.JSONDecodeError:
-            if number == len(lines) - 1:
-                break  # the line being written when the study was killed
-            raise HexalegError(f"{journal}: line {number + 1} is corrupt") from None
-        if "spec" in record:
-            if record["spec"] != json.loads(json.dumps(spec.fingerprint())):
-                raise HexalegError(
-                    f"{journal.parent} holds a study with other options; "
-                    "resume it with the same ones"
-                )
-            continue
-        rows[(record["l1_ratio"], record["l3_ratio"])] = record
-    return rows
-
-
 def write_journal(out: Path, spec: StudySpec, table: pd.DataFrame) -> Path:
     """Write a finished study's journal (``rows.jsonl``) in one go, atomically."""
-    records = [{"spec": spec.fingerprint()}, *table.to_dict(orient="records")]
-    text = "".join(json.dumps(record, allow_nan=True) + "\n" for record in records)
-    return atomic_write_text(out / JOURNAL, text)
+    return write_finished_journal(out, spec.fingerprint(), table.to_dict(orient="records"))
 
 
 def write_table(spec: StudySpec, table: pd.DataFrame, out: Path) -> pd.DataFrame:
     """Write ``study.csv`` and ``study.json`` atomically; return ``table``."""
-    atomic_write_text(out / TABLE_CSV, table.to_csv(index=False))
+    write_text(out / TABLE_CSV, table.to_csv(index=False))
     payload = {
         "spec": spec.fingerprint(),
         "units": {"ratios": "1", "lengths and x y z": "m", "roll pitch yaw": "rad", "fb": "1"},
         "peaks": peak_table(table).to_dict(orient="records"),
         "rows": json.loads(table.to_json(orient="records")),
     }
-    atomic_write_text(out / TABLE_JSON, json.dumps(payload, indent=1))
+    write_text(out / TABLE_JSON, json.dumps(payload, indent=1))
     return table
 
 

@@ -1,60 +1,86 @@
-"""The report's "Walking" section: the grid walking the default gait, against the sequel's claim.
+"""Report part: walking, the grid walking the default gait against the sequel's claim.
 
-Presentation only: the numbers come from :class:`~hexaleg.study.walking.WalkingComparison`
-(computed with the report's data) and the study's ``gait_*`` columns. :func:`walking_section`
-is one of the report's sections; :func:`write_walking_figure` writes its figure.
+Presentation only: the numbers come from the study's ``gait_*`` columns and from
+:func:`hexaleg.study.walking.walking_comparison` (the grid's least-torque and least-energy
+legs against the paper's 0.2/0.4/0.4 leg, pure data).
 """
 
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-import pandas as pd
+from hexaleg.output.figures.canvas import save
+from hexaleg.output.figures.gait import walking_study_figure
+from hexaleg.output.report.document import Figure, Section, table
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.study import StudyRecord
+from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
 
-from hexaleg.output.figures import save
-from hexaleg.output.figures_gait import walking_study_figure
-from hexaleg.output.report.sections import Section, figure, table
-from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison
-
-FIGURE = "study_walking.png"
-
-
-def write_walking_figure(study: pd.DataFrame, out: Path) -> Path:
-    """Write the study's peak torque and cost of transport figure into ``out``."""
-    return save(walking_study_figure(study), out / FIGURE)
+FIGURE = "study_walking"
 
 
-def walking_section(comparison: WalkingComparison | None) -> Section:
-    """The section: the gait, the best walking legs against the paper's, and the figure."""
+@dataclass(frozen=True)
+class WalkingRecord:
+    """The grid's best walking legs against the paper's (None: no design walks the gait).
+
+    Attributes:
+        comparison: The comparison, or None.
+
+    """
+
+    comparison: WalkingComparison | None
+
+
+def compute(data: ReportData) -> WalkingRecord:
+    """Compare the study's walking columns with the paper's leg on this design's body."""
+    study = data[StudyRecord]
+    return WalkingRecord(walking_or_none(study.table, study.spec))
+
+
+def section(data: ReportData) -> Section:
+    """The gait, the best walking legs against the paper's, the claim, and the figure."""
+    comparison = data[WalkingRecord].comparison
+    title = "3.4 Walking: what a gait period costs"
     if comparison is None:
-        return Section("Walking", ("No design of the grid walks the default gait.",))
+        return Section(title, ("No design of the grid walks the default gait.",))
     gait = comparison.gait
     rows = [
         _row("the paper's leg", comparison.reference),
         _row("least peak torque", comparison.least_torque),
         _row("least cost of transport", comparison.least_energy),
     ]
-    blocks = (
-        f"Every design of the grid walks one period of the default gait: a "
-        f"{gait['pattern']} at {gait['speed']:.2g} m/s (period {gait['period']:g} s, stride "
-        f"{gait['stride']:g} m, step height {gait['step_height']:g} m), no payload; "
-        f"{comparison.walking} of the {comparison.designs} designs can (the others break a "
-        "stance limit or reach on the way). Torques from Pinocchio's inverse dynamics on the "
-        "whole robot, the standing feet sharing the load by least forces.",
-        table(
-            ["leg", "l1/L", "l3/L", "peak torque [N·m]", "cost of transport", "max speed [m/s]"],
-            rows,
-        ),
-        _claim(comparison),
-        figure(
-            FIGURE,
-            "Walking the default gait: peak joint torque and cost of transport against "
-            "the tibia ratio, per coxa ratio",
+    return Section(
+        title,
+        (
+            f"Every design of the grid walks one period of the default gait: a "
+            f"{gait['pattern']} at {gait['speed']:.2g} m/s (period {gait['period']:g} s, stride "
+            f"{gait['stride']:g} m, step height {gait['step_height']:g} m), no payload; "
+            f"{comparison.walking} of the {comparison.designs} designs can (the others break "
+            "a stance limit or reach on the way). Torques from Pinocchio's inverse dynamics on "
+            "the whole robot, the standing feet sharing the load by least forces; `hexaleg "
+            "gait` walks any gait with any payload.",
+            table(
+                [
+                    "leg",
+                    "l1/L",
+                    "l3/L",
+                    "peak torque [N·m]",
+                    "cost of transport",
+                    "max speed [m/s]",
+                ],
+                rows,
+            ),
+            _claim(comparison),
+            Figure(
+                FIGURE,
+                "Walking the default gait: peak joint torque and cost of transport against the "
+                "tibia ratio, for each coxa ratio (gaps: designs that cannot walk it)",
+            ),
         ),
     )
-    return Section("Walking", blocks)
 
 
 def _row(name: str, row: dict[str, Any]) -> list[str]:
@@ -110,3 +136,25 @@ def _why(comparison: WalkingComparison) -> str:
         + f" within its ratings ({float(best['gait_max_speed']):.2f} against "
         f"{float(reference['gait_max_speed']):.2f} m/s, {best['gait_max_speed_limited_by']})."
     )
+
+
+def write_files(data: ReportData, out: Path) -> None:
+    """The study's peak torque and cost of transport against tibia ratio."""
+    figure = walking_study_figure(data[StudyRecord].table)
+    save(figure, out / f"{FIGURE}.png", svg=data.options.svg)
+
+
+def to_json(record: WalkingRecord) -> dict[str, Any]:
+    """``walking``: the comparison (null when no design walks the gait)."""
+    return {"walking": None if record.comparison is None else record.comparison.to_dict()}
+
+
+PART = Part(
+    WalkingRecord,
+    compute,
+    section,
+    needs=(StudyRecord,),
+    step="walking",
+    files=write_files,
+    json=to_json,
+)

@@ -3,8 +3,9 @@
 The scene holds the ground and the robot (``/hexaleg/gait``); one animation plays the
 period in real time (one keyframe per sample): the body walking at its constant velocity,
 each leg's coxa, femur and tibia in the colour of its root, hip and knee's |τ|/rated
-torque at that instant (viridis, as the statics view; legend in the scene). Served by
-``hexaleg view --gait`` or written as a static page by ``hexaleg gait --html``.
+torque at that instant (viridis, as the statics view; the legend beside the scene in the
+static page). Served by ``hexaleg view --gait`` or written as a static page by
+``hexaleg gait --html``.
 """
 
 from __future__ import annotations
@@ -19,13 +20,8 @@ import pinocchio as pin
 from hexaleg._io import atomic_write_text
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.viewer.scene import (
-    JOINT_LINKS,
-    ROOT,
-    _add_ground,
-    _add_torque_legend,
-    torque_colour,
-)
+from hexaleg.output.viewer.legend import torque_colour, with_legend
+from hexaleg.output.viewer.scene import JOINT_LINKS, ROOT, _add_ground, _place_camera, _robot
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
@@ -45,19 +41,14 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
         analysis: The gait period to play.
 
     """
-    import meshcat.geometry as mg
     from meshcat.animation import Animation
-    from pinocchio.visualize import MeshcatVisualizer
 
     geometry = StanceGeometry.from_model(model, "all")
     visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
     viewer.delete()
     viewer["/Grid"].set_property("visible", False)
-    _add_ground(viewer, mg, geometry)
-    _add_torque_legend(viewer, mg, geometry)
-    robot = MeshcatVisualizer(model.model, None, visual)
-    robot.initViewer(viewer=viewer)
-    robot.loadViewerModel(rootNodeName=NODE)
+    _add_ground(viewer, geometry)
+    robot = _robot(viewer, model, visual, NODE)
     robot.display(analysis.configurations[0])
     rate = analysis.gait.samples / analysis.gait.period  # real time
     animation = Animation(default_framerate=max(1, round(rate)))
@@ -77,12 +68,7 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
                         "material.color", "color", [red, green, blue]
                     )
     _send_last(viewer, animation)
-    reach = float(np.abs(geometry.footholds[:, :2]).max())
-    viewer["/Cameras/default"].set_transform(np.eye(4))
-    viewer["/Cameras/default/rotated/<object>"].set_property(
-        "position",
-        [1.6 * reach, 1.1 * reach, 1.6 * reach],  # three.js axes: y up
-    )
+    _place_camera(viewer, geometry)
 
 
 def _send_last(viewer: Any, animation: Any) -> None:
@@ -131,7 +117,7 @@ def gait_html(model: HexapodModel, analysis: GaitAnalysis) -> str:
     with LoopbackServer() as server:
         viewer = client(server)
         build_gait_scene(viewer, model, analysis)
-        html: str = viewer.static_html()
+        html: str = with_legend(viewer.static_html())
         viewer.window.zmq_socket.close(linger=0)
     return html
 

@@ -2,7 +2,12 @@
 
 meshcat 0.3.2's own server listens on all interfaces; :class:`LoopbackServer` runs
 its bridge in a thread of this process with tornado bound to the host given
-(127.0.0.1 unless the user asks), so stopping the process stops it all.
+(127.0.0.1 unless the user asks), so stopping the process stops it all. Its two sockets:
+
+- the web page and its WebSocket, on ``host`` (``--host``, ``--port``): a browser
+  watches the scene there, and cannot change it (messages from the page are dropped);
+- the ZMQ command socket that changes the scene, always on 127.0.0.1 at a port the
+  system picks: never beyond this machine, and never on a port the user asked for.
 """
 
 from __future__ import annotations
@@ -10,21 +15,27 @@ from __future__ import annotations
 import asyncio
 import contextlib
 import io
+import ipaddress
 import signal
+import socket
 import threading
 import time
 from typing import Any
 
 from hexaleg.exceptions import HexalegError
 
+COMMAND_SOCKET = "tcp://127.0.0.1:*"
+"""Where the ZMQ command socket binds: loopback, at a port the system picks."""
+
 
 class LoopbackServer:
     """meshcat's ZMQ/WebSocket bridge in a background thread, bound to one host.
 
     Attributes:
-        host: Interface the web and ZMQ servers bind (127.0.0.1 by default).
-        zmq_url: Where a ``meshcat.Visualizer`` sends commands.
-        web_url: The page to open in a browser.
+        host: Interface the web server binds (127.0.0.1 by default).
+        zmq_url: Where a ``meshcat.Visualizer`` sends commands (always on 127.0.0.1).
+        web_url: The page to open in a browser (on this machine, for a wildcard host).
+        web_port: The web server's port.
 
     """
 
@@ -44,9 +55,12 @@ class LoopbackServer:
             ) from self._error
         bridge: Any = self._bridge  # set by the server thread before _ready
         self.zmq_url: str = bridge.zmq_url
-        self.web_url: str = bridge.web_url
+        self.web_port: int = bridge.fileserver_port
+        self.web_url: str = browser_url(host, self.web_port)
+        bridge.web_url = self.web_url  # what meshcat answers a client asking for the URL
 
     def _serve(self, port: int | None) -> None:
+        import zmq
         from meshcat.servers import zmqserver
         from meshcat.servers.zmqserver import ZMQWebSocketBridge
 
@@ -59,7 +73,7 @@ class LoopbackServer:
 
         class Bridge(ZMQWebSocketBridge):
             def make_app(self) -> Any:
-                app = super().make_app()
+                app = _read_only_app(self)
                 listen = app.listen
 
                 def listen_on_host(port: int, **kwargs: Any) -> Any:
@@ -70,9 +84,13 @@ class LoopbackServer:
                 app.listen = listen_on_host
                 return app
 
+            def setup_zmq(self, url: str) -> Any:
+                zmq_socket, stream, _ = super().setup_zmq(url)
+                return zmq_socket, stream, zmq_socket.getsockopt_string(zmq.LAST_ENDPOINT)
+
         asyncio.set_event_loop(asyncio.new_event_loop())
         try:
-            self._bridge = Bridge(host=host, port=port)
+            self._bridge = Bridge(zmq_url=COMMAND_SOCKET, host=host, port=port)
         except BaseException as err:  # port taken, bad host: reported by __init__
             self._error = err
             self._ready.set()
@@ -127,3 +145,61 @@ def serve_until_stopped(server: LoopbackServer, poll: float = 0.5) -> None:
 
 def _quiet(*args: Any, **kwargs: Any) -> None:
     """Drop what meshcat's server module prints."""
+
+
+def _read_only_app(bridge: Any) -> Any:
+    """The meshcat web application, with a WebSocket that only sends the scene to the page."""
+    import tornado.web
+    from meshcat.servers.zmqserver import (
+        VIEWER_HTML,
+        VIEWER_ROOT,
+        StaticFileHandlerNoCache,
+        WebSocketHandler,
+    )
+
+    class WatchOnly(WebSocketHandler):
+        def on_message(self, message: Any) -> None:
+            """Drop what a page sends (meshcat would forward it to the command socket)."""
+
+    return tornado.web.Application(
+        [
+            (
+                r"/static/(.*)",
+                StaticFileHandlerNoCache,
+                {"path": VIEWER_ROOT, "default_filename": VIEWER_HTML},
+            ),
+            (r"/", WatchOnly, {"bridge": bridge}),
+        ]
+    )
+
+
+def is_loopback(host: str) -> bool:
+    """Whether every address ``host`` names is on this machine only (127.0.0.0/8, ::1).
+
+    ``127.1`` and ``localhost`` are; ``0.0.0.0`` (every interface) is not.
+    """
+    try:
+        infos = socket.getaddrinfo(host, None, type=socket.SOCK_STREAM)
+    except (OSError, UnicodeError, ValueError):  # not an address, not a known name
+        return False
+    return bool(infos) and all(
+        ipaddress.ip_address(str(info[4][0]).split("%")[0]).is_loopback for info in infos
+    )
+
+
+def browser_url(host: str, port: int) -> str:
+    """The page's URL as a browser opens it.
+
+    A wildcard host (``0.0.0.0``, ``::``) becomes this machine's loopback, an IPv6
+    address gets its brackets, a numeric shorthand (``127.1``) its full form; a name
+    stays as given.
+    """
+    wildcard = {"": "127.0.0.1", "0.0.0.0": "127.0.0.1", "::": "::1"}
+    shown = wildcard.get(host, host)
+    try:
+        info = socket.getaddrinfo(shown, None, flags=socket.AI_NUMERICHOST)[0]
+    except (OSError, UnicodeError, ValueError):  # a name: shown as given
+        return f"http://{shown}:{port}/static/"
+    address = ipaddress.ip_address(str(info[4][0]))
+    text = f"[{address}]" if address.version == 6 else str(address)
+    return f"http://{text}:{port}/static/"

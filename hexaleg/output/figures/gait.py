@@ -1,6 +1,6 @@
-"""Figures of a gait period and of the study's walking columns (PNG, no display).
+"""Walking figures: a gait period's joints and feet, and the study's walking columns.
 
-Matplotlib's object API, as :mod:`hexaleg.output.figures`: torque, speed and power
+Drawn for the page as every figure of :mod:`hexaleg.output.figures`: torque, speed and power
 against the phase per joint type (one curve per leg, each drawn solid while it stands,
 thin while it swings, under a footfall diagram with each leg's stance shaded); the feet's
 paths in the body frame over the legs' reach; and the study's peak torque and cost of
@@ -20,26 +20,19 @@ import pandas as pd
 from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.figures import save
+from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
-DPI = 150
-LEG_COLORS = ("#1b6ca8", "#e07b00", "#2f9e44", "#c92a2a", "#7048e8", "#495057")
+LEG_COLORS = COLORS
 """One colour per leg, in ``leg_names`` order."""
 QUANTITIES = (
     ("torque", "τ [N·m]"),
     ("speed", "q̇ [rad/s]"),
     ("power", "τ·q̇ [W]"),
 )
-
-
-def _figure(width: float, height: float) -> Figure:
-    from matplotlib.figure import Figure
-
-    return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
 
 
 def _series(analysis: GaitAnalysis, quantity: str) -> ArrayF:
@@ -50,9 +43,10 @@ def _series(analysis: GaitAnalysis, quantity: str) -> ArrayF:
     return analysis.joint_torques * analysis.joint_velocities
 
 
+@drawn
 def joint_figure(analysis: GaitAnalysis) -> Figure:
     """Torque, speed and power against the phase, per joint type, one curve per leg."""
-    fig = _figure(13, 10)
+    fig = new_figure(8.5)
     grid = fig.add_gridspec(4, 3, height_ratios=(0.55, 1, 1, 1))
     phase = analysis.times / analysis.gait.period
     _footfalls(fig.add_subplot(grid[0, :]), analysis, phase)
@@ -63,22 +57,22 @@ def joint_figure(analysis: GaitAnalysis) -> Figure:
             ax = fig.add_subplot(grid[row, j])
             for i, leg in enumerate(analysis.legs):
                 stand = np.where(analysis.stance[:, i], values[:, i, j], np.nan)
-                ax.plot(phase, values[:, i, j], color=LEG_COLORS[i], lw=0.8, alpha=0.6)
-                ax.plot(phase, stand, color=LEG_COLORS[i], lw=2.0, label=leg)
+                ax.plot(phase, values[:, i, j], color=LEG_COLORS[i], lw=0.6, alpha=0.6)
+                ax.plot(phase, stand, color=LEG_COLORS[i], lw=1.5, label=leg)
             if quantity in rated:
                 limit = rated[quantity][j]
                 for sign in (1, -1):
                     ax.axhline(sign * limit, color="k", ls="--", lw=1)
-            ax.set_title(f"{joint} {quantity}", fontsize=10)
+            ax.set_title(f"{joint} {quantity}")
             ax.set_xlim(0, 1)
             ax.grid(True, alpha=0.3)
             if j == 0:
                 ax.set_ylabel(label)
             if row == len(QUANTITIES):
                 ax.set_xlabel("phase t/T [-]")
-            if row == 1 and j == 2:
-                ax.legend(fontsize=7, ncols=3, loc="upper right", title="thick: standing")
-    fig.suptitle(_title(analysis) + "; dashed: the ratings")
+    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=6,
+               title="one curve per leg, thick while it stands; dashed: the ratings")  # fmt: skip
+    fig.suptitle(_title(analysis))
     return fig
 
 
@@ -101,18 +95,19 @@ def _footfalls(ax: Axes, analysis: GaitAnalysis, phase: ArrayF) -> None:
     ax.set_ylim(0, 1)
     ax.set_xlim(0, 1)
     ax.set_title(f"stance (shaded), {analysis.gait.pattern}, duty factor "
-                 f"{analysis.gait.duty_factor:.3g}", fontsize=10)  # fmt: skip
+                 f"{analysis.gait.duty_factor:.3g}")  # fmt: skip
 
 
 def _title(analysis: GaitAnalysis) -> str:
     gait, (l1, l2, l3) = analysis.gait, analysis.design.lengths
     return (
         f"l = ({l1:.3g}, {l2:.3g}, {l3:.3g}) m, {gait.pattern}: T = {gait.period:.3g} s, "
-        f"S = {gait.stride:.3g} m, H = {gait.step_height:.3g} m, v = {gait.speed:.3g} m/s, "
+        f"S = {gait.stride:.3g} m, H = {gait.step_height:.3g} m,\nv = {gait.speed:.3g} m/s, "
         f"payload {analysis.payload.mass:g} kg"
     )
 
 
+@drawn
 def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None = None) -> Figure:
     """The feet's paths in the body frame: from above and from the side.
 
@@ -122,15 +117,15 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
             instance its Monte Carlo workspace within the stance limits), drawn faintly.
 
     """
-    fig = _figure(13, 6)
-    top, side = fig.subplots(1, 2, width_ratios=(1.2, 1))
+    fig = new_figure(8.5)
+    top, side = fig.subplots(2, 1, height_ratios=(2.2, 1))
     ground = -analysis.frames.height
     for i, leg in enumerate(analysis.legs):
         color = LEG_COLORS[i]
         if reach is not None and leg in reach:
             cloud = reach[leg]
             near = np.abs(cloud[:, 2] - ground) < 0.02  # the ground's slice, seen from above
-            top.scatter(cloud[near, 0], cloud[near, 1], s=3, color=color, alpha=0.25, lw=0)
+            top.scatter(cloud[near, 0], cloud[near, 1], s=2, color=color, alpha=0.25, lw=0)
         feet = analysis.feet[:, i]
         standing = analysis.stance[:, i]
         for ax, (a, b) in ((top, (0, 1)), (side, (0, 2))):
@@ -141,36 +136,34 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
     top.set_aspect("equal")
     top.set_xlabel("x, body frame [m]")
     top.set_ylabel("y [m]")
-    top.set_title("from above (x: nominal foothold, dots: standing; shade: reach on the ground)",
-                  fontsize=9)  # fmt: skip
-    top.legend(fontsize=7, ncols=6, loc="upper center")
+    top.set_title("from above (x: nominal foothold, dots: standing, shade: reach on the ground)")
+    top.legend(ncols=6, loc="upper center")
     side.axhline(ground, color="k", lw=1)
     side.set_xlabel("x, body frame [m]")
     side.set_ylabel("z, body frame [m]")
-    side.set_title("from the side (the line: the ground)", fontsize=9)
+    side.set_title("from the side (the line: the ground)")
     for ax in (top, side):
         ax.grid(True, alpha=0.3)
     fig.suptitle(_title(analysis))
     return fig
 
 
+@drawn
 def walking_study_figure(table: pd.DataFrame) -> Figure:
     """The study's peak joint torque and cost of transport against tibia ratio, per coxa ratio."""
-    fig = _figure(12, 4.5)
-    panels = fig.subplots(1, 2)
+    fig = new_figure(6.0)
+    panels = fig.subplots(2, 1, sharex=True)
     columns = (
-        ("gait_peak_torque", "peak |τ| of any joint, walking [N·m]"),
-        ("gait_cost_of_transport", "cost of transport W⁺/(M·g·d) [-]"),
+        ("gait_peak_torque", "peak |τ|, any joint [N·m]"),
+        ("gait_cost_of_transport", "cost of transport [-]"),
     )
     for ax, (column, label) in zip(panels, columns, strict=True):
-        for k, (r1, group) in enumerate(table.groupby("l1_ratio", sort=True)):
-            ax.plot(
-                group["l3_ratio"], group[column], color=LEG_COLORS[k % 6], label=f"l1/L = {r1:g}"
-            )
-        ax.set_xlabel("tibia ratio l3/L [-]")
+        for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
+            ax.plot(group["l3_ratio"], group[column], color=color, label=f"coxa ratio {r1:.2f}")
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    panels[0].legend(fontsize=8)
+    panels[1].set_xlabel("tibia ratio l3 / L [-]")
+    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5))
     fig.suptitle("Walking the default tripod gait (gaps: a design that cannot walk it)")
     return fig
 
@@ -180,6 +173,7 @@ def write_gait_figures(
 ) -> list[Path]:
     """Write ``gait_joints.png`` and ``gait_feet.png`` into ``out_dir``."""
     out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
     return [
         save(joint_figure(analysis), out / "gait_joints.png"),
         save(foot_paths_figure(analysis, reach), out / "gait_feet.png"),
