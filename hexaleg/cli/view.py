@@ -15,6 +15,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import report_files
 from hexaleg.exceptions import ParameterError
+from hexaleg.gait import analyze_gait
 from hexaleg.output.viewer import (
     LoopbackServer,
     build_scene,
@@ -22,6 +23,7 @@ from hexaleg.output.viewer import (
     serve_until_stopped,
     write_static_html,
 )
+from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.server import is_loopback
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
@@ -99,9 +101,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     """``--gait``: the default gait's animation, written or served."""
-    from hexaleg.gait import analyze_gait
-    from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
-
     analysis = analyze_gait(model.design, model=model, limits=False)
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])
