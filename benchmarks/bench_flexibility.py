@@ -57,7 +57,7 @@ def bench_flexibility(l3_points: int, repeats: int) -> list[Row]:
         ),
     ]
 
-    spec = StudySpec(tuple(L1_RATIOS), tuple(l3_ratio_grid(l3_points)))
+    spec = StudySpec(tuple(L1_RATIOS), tuple(l3_ratio_grid(l3_points)), gait=False)
     with ProcessPoolExecutor(2) as pool:
         pool.submit(int).result()  # start the workers before timing, as a long-lived pool would be
 

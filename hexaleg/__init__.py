@@ -60,6 +60,12 @@ _EXPORTS: dict[str, str] = {
     "FlexibilityResult": "hexaleg.stance.extremes",
     "FlexibilityWarning": "hexaleg.stance.extremes",
     "flexibility": "hexaleg.stance.flexibility",
+    # statics and walking
+    "Payload": "hexaleg.statics.forces",
+    "analyze_loads": "hexaleg.statics.loads",
+    "Gait": "hexaleg.gait.spec",
+    "GaitAnalysis": "hexaleg.gait.analysis",
+    "analyze_gait": "hexaleg.gait.analysis",
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
@@ -71,6 +77,8 @@ __all__ = [
     "DesignError",
     "FlexibilityResult",
     "FlexibilityWarning",
+    "Gait",
+    "GaitAnalysis",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
@@ -84,6 +92,7 @@ __all__ = [
     "ManipulabilityAnalysis",
     "ModelError",
     "ParameterError",
+    "Payload",
     "ReportOptions",
     "STANCE_LIMITS",
     "StanceGeometry",
@@ -93,6 +102,8 @@ __all__ = [
     "WORKSPACE_LIMITS",
     "WorkspaceAnalysis",
     "__version__",
+    "analyze_gait",
+    "analyze_loads",
     "analyze_manipulability",
     "analyze_workspace",
     "build_report",
@@ -138,6 +149,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         ParameterError,
         TemplateError,
     )
+    from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+    from hexaleg.gait.spec import Gait
     from hexaleg.kinematics import (
         InverseKinematics,
         foot_jacobian,
@@ -161,6 +174,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry
+    from hexaleg.statics.forces import Payload
+    from hexaleg.statics.loads import analyze_loads
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

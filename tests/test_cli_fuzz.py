@@ -130,6 +130,8 @@ def quick_backends():
         "hexaleg.cli.view.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
         "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.build_gait_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
     }

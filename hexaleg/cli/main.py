@@ -60,6 +60,11 @@ COMMANDS: tuple[Command, ...] = (
         "statics: foot forces, joint torques, stability, slopes and payload capacity",
     ),
     Command(
+        "gait",
+        "hexaleg.cli.gait",
+        "walking: torques, joint speeds, power and energy of a gait period; max stride and speed",
+    ),
+    Command(
         "study",
         "hexaleg.cli.study",
         "design study: FB over coxa x tibia ratios (Fig 14-15), resumable",

@@ -15,6 +15,7 @@ from hexaleg.output.report import (
     statics,
     study,
     viewer,
+    walking,
     workspace,
 )
 from hexaleg.output.report.part import Part
@@ -28,6 +29,7 @@ PARTS: tuple[Part[Any], ...] = (
     study.PART,
     sensitivity.PART,
     statics.PART,
+    walking.PART,
     viewer.PART,
     recommendation.PART,
     pareto.PART,
