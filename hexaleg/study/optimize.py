@@ -1,0 +1,405 @@
+"""The search: the best design of a space that meets a goal, by differential evolution (pymoo).
+
+The optimizer is pymoo's differential evolution (``DE/rand/1/bin``), chosen over Optuna
+for four reasons:
+
+- constraints are first-class: every requirement is an inequality g ≤ 0 and the
+  survival is feasibility-first (a feasible design beats any infeasible one; among
+  infeasible ones the smaller violation wins), so the search also returns the least
+  infeasible design, which the conflict analysis starts from; Optuna's constraint
+  handling is an add-on of its samplers (``constraints_func``, deprecated in 5.0);
+- the problem is a few continuous variables with a cheap, deterministic, piecewise-smooth
+  objective, where a population method converges to the optimum's neighbourhood (the
+  tests hold it within 0.5 % of a dense grid); Optuna's TPE models noisy, expensive
+  trials and does not converge tightly, its GP sampler needs PyTorch, its CMA-ES has no
+  constraints;
+- a generation is a batch of designs evaluated together, so it maps onto any
+  ``concurrent.futures.Executor`` (the local process pool or a Dask cluster, as
+  :mod:`hexaleg.study.sweep` does) while staying reproducible: the algorithm draws from its
+  own seeded generator and sees the results in the order it asked for them, whatever
+  order the workers finish in;
+- pymoo 0.6.2 is maintained, and keeps its random state in the algorithm, not NumPy's globals.
+
+pymoo offers no storage to resume from; the search keeps its own journal instead: every
+evaluated design is appended (JSON lines, on disk before the next generation), and a
+resumed search replays the same seeded algorithm, reading the designs it has already
+evaluated from the journal. The replay asks for exactly the same points, so a resumed
+search ends exactly where an uninterrupted one would.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import sys
+from collections.abc import Sequence
+from concurrent.futures import Executor
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+from scipy.stats import qmc
+from tqdm import tqdm
+
+from hexaleg._typing import ArrayF
+from hexaleg.cause import Cause
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.study.evaluation import Evaluation, Goal, evaluate_design
+from hexaleg.study.search_space import SearchSpace
+from hexaleg.study.sweep import base_model
+
+GENERATIONS = 60
+"""Generations of a search with the default budget."""
+
+POPULATION_PER_VARIABLE = 10
+"""Designs per generation for each free variable (at least :data:`MIN_POPULATION`)."""
+
+MIN_POPULATION = 24
+
+CROSSOVER = 0.7
+"""DE crossover rate CR [-]."""
+
+DIFFERENTIAL_WEIGHT = 0.6
+"""DE differential weight F [-]."""
+
+CHUNK = 6
+"""Designs per executor task."""
+
+INVALID = 1e6
+"""Constraint violation and cost of a design that cannot exist or stand."""
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """How hard and how a search looks.
+
+    Attributes:
+        seed: Seed of the initial designs and the algorithm's generator.
+        evaluations: Designs to evaluate, at most; by default :data:`GENERATIONS`
+            generations of the population.
+
+    """
+
+    seed: int = 0
+    evaluations: int | None = None
+
+    def __post_init__(self) -> None:
+        if not 0 <= self.seed < 2**32:
+            raise HexalegError(f"seed = {self.seed} is not valid: must lie in 0..2**32-1")
+        if self.evaluations is not None and self.evaluations < 2 * MIN_POPULATION:
+            raise HexalegError(
+                f"evaluations = {self.evaluations} is not valid: at least {2 * MIN_POPULATION}"
+            )
+
+    def population(self, variables: int) -> int:
+        """Designs per generation."""
+        return max(MIN_POPULATION, POPULATION_PER_VARIABLE * variables)
+
+    def generations(self, variables: int) -> int:
+        """Generations, the first being the initial population."""
+        if self.evaluations is None:
+            return GENERATIONS
+        return max(2, self.evaluations // self.population(variables))
+
+    def budget(self, variables: int) -> int:
+        """Designs evaluated in all."""
+        return self.population(variables) * self.generations(variables)
+
+
+@dataclass(frozen=True)
+class SearchOutcome:
+    """What a search found.
+
+    Attributes:
+        x: The best point (the feasible one with the best objective, else the least
+            infeasible).
+        evaluation: Its metrics, as the search measured them.
+        feasible: Whether it meets every constraint of the goal.
+        evaluations: Designs evaluated (journal replays included).
+        method: The algorithm and its settings, in words.
+
+    """
+
+    x: ArrayF
+    evaluation: Evaluation
+    feasible: bool
+    evaluations: int
+    method: str
+
+
+# -- evaluating designs in workers --------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class _Task:
+    space: SearchSpace
+    goal: Goal
+    points: tuple[tuple[float, ...], ...]
+
+
+@lru_cache(maxsize=4)
+def _template(base: HexapodDesign) -> StanceGeometry:
+    """The base design's stance geometry, read once per process."""
+    return StanceGeometry.from_model(base_model(base))
+
+
+def evaluate_points(task: _Task) -> list[Evaluation]:
+    """The evaluation of each point of a task (runs in a worker)."""
+    out = []
+    for x in task.points:
+        try:
+            design = task.space.design(x)
+        except HexalegError as err:
+            out.append(Evaluation(error=str(err)))
+            continue
+        if task.space.same_body:
+            model = base_model(task.space.base).with_design(design)
+            out.append(evaluate_design(design, task.goal, model, _template(task.space.base)))
+        else:
+            out.append(evaluate_design(design, task.goal))
+    return out
+
+
+class Journal:
+    """Every evaluated design of a decision, one JSON line each, for resuming.
+
+    Args:
+        path: The journal file; ``None`` keeps nothing.
+        header: What determines the results (checked on resume).
+        resume: Continue an existing journal instead of refusing to overwrite it.
+
+    """
+
+    def __init__(self, path: str | os.PathLike[str] | None, header: dict[str, Any], resume: bool):
+        self.path = None if path is None else Path(path)
+        self._rows: dict[tuple[str, tuple[float, ...]], Evaluation] = {}
+        if self.path is None:
+            return
+        header = json.loads(json.dumps(header))
+        if self.path.exists() and not resume:
+            raise HexalegError(
+                f"--journal {self.path} exists: pass --resume to continue it, or choose another"
+            )
+        if resume and self.path.exists():
+            self._read(header)
+        else:
+            self._append([{"decide": header}])
+
+    def lookup(self, key: str, x: tuple[float, ...]) -> Evaluation | None:
+        """The evaluation of point ``x`` in search ``key``, if journalled."""
+        return self._rows.get((key, x))
+
+    def record(
+        self, key: str, points: Sequence[tuple[float, ...]], found: Sequence[Evaluation]
+    ) -> None:
+        """Keep these evaluations (on disk before returning)."""
+        for x, evaluation in zip(points, found, strict=True):
+            self._rows[(key, x)] = evaluation
+        self._append(
+            [
+                {"search": key, "x": list(x), **_to_json(e)}
+                for x, e in zip(points, found, strict=True)
+            ]
+        )
+
+    def _append(self, records: list[dict[str, Any]]) -> None:
+        if self.path is None:
+            return
+        with self.path.open("a", encoding="utf-8") as handle:
+            handle.write("".join(json.dumps(r) + "\n" for r in records))
+            handle.flush()
+            os.fsync(handle.fileno())
+
+    def _read(self, header: dict[str, Any]) -> None:
+        assert self.path is not None
+        lines = self.path.read_text(encoding="utf-8").splitlines()
+        for number, line in enumerate(lines):
+            try:
+                record = json.loads(line)
+            except json.JSONDecodeError:
+                if number == len(lines) - 1:
+                    break  # the line being written when the search was stopped
+                raise HexalegError(f"{self.path}: line {number + 1} is corrupt") from None
+            if "decide" in record:
+                if record["decide"] != header:
+                    raise HexalegError(
+                        f"{self.path} holds a decision with other options; resume it with the "
+                        "same ones"
+                    )
+                continue
+            x = tuple(float(v) for v in record["x"])
+            self._rows[(record["search"], x)] = _from_json(record)
+
+
+def _to_json(evaluation: Evaluation) -> dict[str, Any]:
+    causes = {
+        metric: {"kind": c.kind, "leg": c.leg, "joint": c.joint}
+        for metric, c in evaluation.causes.items()
+    }
+    return {"values": dict(evaluation.values), "causes": causes, "error": evaluation.error}
+
+
+def _from_json(record: dict[str, Any]) -> Evaluation:
+    causes = {metric: Cause(**cause) for metric, cause in record["causes"].items()}
+    return Evaluation(record["values"], causes, record["error"])
+
+
+# -- the search ---------------------------------------------------------------------------
+
+
+class _Evaluator:
+    """Evaluates batches of points on the executor, journalled, with a progress bar."""
+
+    def __init__(
+        self,
+        space: SearchSpace,
+        goal: Goal,
+        executor: Executor | None,
+        journal: Journal | None,
+        key: str,
+        bar: tqdm[Any],
+    ) -> None:
+        self.space, self.goal, self.executor = space, goal, executor
+        self.journal, self.key, self.bar = journal, key, bar
+        self.seen: dict[tuple[float, ...], Evaluation] = {}
+
+    def __call__(self, points: ArrayF) -> list[Evaluation]:
+        keys = [tuple(float(v) for v in x) for x in points]
+        found: dict[tuple[float, ...], Evaluation] = {}
+        for x in keys:
+            known = self.seen.get(x) or (self.journal.lookup(self.key, x) if self.journal else None)
+            if known is not None:
+                found[x] = known
+        missing = list(dict.fromkeys(x for x in keys if x not in found))
+        self.bar.update(len(keys) - len(missing))
+        tasks = [_Task(self.space, self.goal, tuple(missing[i : i + CHUNK]))
+                 for i in range(0, len(missing), CHUNK)]  # fmt: skip
+        if self.executor is None:
+            results = [evaluate_points(task) for task in tasks]
+        else:
+            results = [
+                f.result() for f in [self.executor.submit(evaluate_points, t) for t in tasks]
+            ]
+        for task, evaluations in zip(tasks, results, strict=True):
+            found.update(zip(task.points, evaluations, strict=True))
+            if self.journal is not None:
+                self.journal.record(self.key, task.points, evaluations)
+            self.bar.update(len(task.points))
+        self.seen.update(found)
+        return [found[x] for x in keys]
+
+
+def objective_and_constraints(goal: Goal, evaluation: Evaluation) -> tuple[float, ArrayF]:
+    """The cost to minimize and the scaled constraint values g (≤ 0: met) of an evaluation."""
+    count = max(1, len(goal.constraints))
+    if evaluation.error:
+        return INVALID, np.full(count, INVALID)
+    checks = {c.name: c for c in evaluation.checks(goal.requirements)}
+    g = [-checks[name].margin / max(abs(checks[name].required), 1e-9) for name in goal.constraints]
+    cost = goal.objective.cost(float(evaluation.values[goal.objective.name]))
+    return cost, np.array(g or [0.0])
+
+
+def run_search(
+    space: SearchSpace,
+    goal: Goal,
+    settings: SearchSettings,
+    executor: Executor | None = None,
+    journal: Journal | None = None,
+    progress: bool | None = None,
+    starts: Sequence[npt.ArrayLike] = (),
+) -> SearchOutcome:
+    """The best design of ``space`` for ``goal`` (pymoo differential evolution).
+
+    Args:
+        space: The free variables and their bounds.
+        goal: The requirements to meet and the objective.
+        settings: Seed and budget.
+        executor: Where designs are evaluated; this process if omitted.
+        journal: Where evaluated designs are kept (and read back on resume).
+        progress: Show a progress bar on stderr; by default only on a terminal.
+        starts: Points put into the initial population (e.g. the user's design).
+
+    """
+    from pymoo.algorithms.soo.nonconvex.de import DE
+    from pymoo.core.problem import Problem
+
+    variables = len(space.variables)
+    population, generations = settings.population(variables), settings.generations(variables)
+    show = sys.stderr.isatty() if progress is None else progress
+    key = json.dumps({"goal": _goal_key(goal), "space": _space_key(space)}, sort_keys=True)
+    with tqdm(
+        total=population * generations, disable=not show, unit="design", file=sys.stderr
+    ) as bar:
+        evaluate = _Evaluator(space, goal, executor, journal, key, bar)
+
+        class _Problem(Problem):
+            def _evaluate(self, x: ArrayF, out: dict[str, Any], *args: Any, **kwargs: Any) -> None:
+                scored = [objective_and_constraints(goal, e) for e in evaluate(x)]
+                out["F"] = np.array([[cost] for cost, _ in scored])
+                out["G"] = np.array([g for _, g in scored])
+
+        problem = _Problem(
+            n_var=variables, n_obj=1, n_ieq_constr=max(1, len(goal.constraints)),
+            xl=space.lower, xu=space.upper,
+        )  # fmt: skip
+        algorithm = DE(
+            pop_size=population,
+            sampling=initial_points(space, population, settings.seed, starts),
+            variant="DE/rand/1/bin",
+            CR=CROSSOVER,
+            F=DIFFERENTIAL_WEIGHT,
+            return_least_infeasible=True,
+        )
+        algorithm.setup(problem, termination=("n_gen", generations), seed=settings.seed)
+        while algorithm.has_next():
+            algorithm.next()
+    best = algorithm.result()  # the least infeasible design if none is feasible
+    x = np.atleast_2d(best.X)[0]
+    evaluation = evaluate.seen[tuple(float(v) for v in x)]
+    return SearchOutcome(
+        x=x,
+        evaluation=evaluation,
+        feasible=evaluation.meets(goal),
+        evaluations=population * generations,
+        method=method_text(population, generations),
+    )
+
+
+def method_text(population: int, generations: int) -> str:
+    """The algorithm and its settings, in words."""
+    import pymoo
+
+    return (
+        f"pymoo {pymoo.__version__} differential evolution (DE/rand/1/bin, CR {CROSSOVER}, "
+        f"F {DIFFERENTIAL_WEIGHT}), population {population}, {generations} generations, "
+        "feasibility-first constraints"
+    )
+
+
+def initial_points(
+    space: SearchSpace, population: int, seed: int, starts: Sequence[npt.ArrayLike] = ()
+) -> ArrayF:
+    """A seeded Latin hypercube over the bounds, its first rows replaced by ``starts`` (clipped)."""
+    sampler = qmc.LatinHypercube(d=len(space.variables), seed=np.random.default_rng(seed))
+    points = qmc.scale(sampler.random(population), space.lower, space.upper)
+    for row, start in enumerate(list(starts)[:population]):
+        points[row] = np.clip(np.asarray(start, dtype=float), space.lower, space.upper)
+    return points
+
+
+def _goal_key(goal: Goal) -> dict[str, Any]:
+    return {
+        "requirements": goal.requirements.to_dict(),
+        "objective": str(goal.objective),
+        "relaxed": goal.relaxed,
+    }
+
+
+def _space_key(space: SearchSpace) -> list[list[Any]]:
+    return [[v.name, v.lower, v.upper] for v in space.variables]
