@@ -59,6 +59,11 @@ COMMANDS: tuple[Command, ...] = (
         "statics: foot forces, joint torques, stability, slopes and payload capacity",
     ),
     Command(
+        "decide",
+        "hexaleg.cli.decide",
+        "requirements in, design out: the best leg meeting payload, slope, clearance, ...",
+    ),
+    Command(
         "study",
         "hexaleg.cli.study",
         "design study: FB over coxa x tibia ratios (Fig 14-15), resumable",

@@ -175,7 +175,7 @@ class Requirements:
             elif key in DEGREE_KEYS:
                 if DEGREE_KEYS[key] in table:
                     raise DesignError(field, raw, "give the slope in radians or degrees, not both")
-                values[DEGREE_KEYS[key]] = math.radians(require_finite(field, raw))
+                values[DEGREE_KEYS[key]] = math.radians(require_in_range(field, raw, 0, 90, "°"))
             else:
                 values[key] = require_finite(field, raw)
         try:

@@ -19,7 +19,7 @@ of mass c meets the ground inside the support polygon (c_z·tan α below the dis
 from c's footprint to the polygon's nearest edge: the worst heading is toward that
 edge), and tan α ≤ μ. Each condition holds on an interval of m from 0 (the torque bound
 is convex in m, the tip margin concave), so the largest payload and the steepest slope
-are found joint by joint, exactly or by bisection to round-off.
+are found joint by joint, exactly or by bisection to 10⁻¹⁰ kg.
 """
 
 from __future__ import annotations
@@ -37,8 +37,8 @@ from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Statics
 from hexaleg.statics.support import SupportPolygon
 
-BISECTIONS = 60
-"""Halvings of the payload interval [0, 10⁴ kg]: to round-off."""
+BISECTIONS = 48
+"""Halvings of the payload interval [0, 10⁴ kg]: to 4·10⁻¹¹ kg."""
 
 
 @dataclass(frozen=True)
@@ -140,7 +140,7 @@ class Standing:
         crossing = crossing - np.arctan2(normal, tangential)  # A·sin(α + φ) = rated
         crossing = np.where(amplitude <= self.rated, math.pi / 2, crossing)
         crossing = np.where(normal > self.rated, 0.0, np.maximum(crossing, 0.0))
-        leg, joint = np.unravel_index(int(np.argmin(crossing)), crossing.shape)
+        leg, joint = _first_lowest(crossing)
         limits = [
             (math.atan(self.friction), Cause("slide")),
             (self.tip_slope(mass), Cause("tip")),
@@ -157,15 +157,13 @@ class Standing:
         if math.tan(slope) > self.friction:
             return 0.0, Cause("slide")
         tip = Cause("tip" if slope > 0 else "stability")
-        tip_mass = _largest(
-            lambda m: np.array([self._tip_margin(float(m[0]), slope)]), (1,), PAYLOAD_SEARCH_LIMIT
-        )[0]
+        tip_mass = self.tip_payload(slope)
         torque_mass = _largest(
             lambda m: self.rated - self.worst_torques(m, slope),
             self.down.shape[1:],
             PAYLOAD_SEARCH_LIMIT,
         )
-        leg, joint = np.unravel_index(int(np.argmin(torque_mass)), torque_mass.shape)
+        leg, joint = _first_lowest(torque_mass)
         limits = [
             (float(tip_mass), tip),
             (float(torque_mass[leg, joint]), Cause("torque", self.legs[leg], LEG_JOINTS[joint])),
@@ -175,10 +173,33 @@ class Standing:
             return PAYLOAD_SEARCH_LIMIT, Cause("search limit")
         return mass, cause
 
-    def _tip_margin(self, mass: float, slope: float) -> float:
-        """Distance [m] the gravity line keeps inside the polygon in the worst heading."""
-        com = self.com(mass)
-        return self.support.signed_distance(com[:2]) - float(com[2]) * math.tan(slope)
+    def tip_payload(self, slope: float) -> float:
+        """The payload [kg] at which the robot tips on ``slope`` [rad] in the worst heading.
+
+        The gravity line stays inside while every edge's inward distance of the centre of
+        mass's footprint exceeds c_z·tan α; with the payload m the centre of mass moves
+        along the segment from the robot's own toward the payload's point,
+        c = c_r + s·(p − c_r) with s = m / (M + m), and each edge's margin is affine in s:
+        it is lost at the smallest root (inf: never; 0: already).
+        """
+        start = self._edge_margins(self.robot_com, slope)
+        end = self._edge_margins(self.payload_point, slope)
+        if start.min() <= 0:
+            return 0.0
+        falling = end < 0
+        if not falling.any():
+            return math.inf
+        share = float((start[falling] / (start[falling] - end[falling])).min())
+        return self.robot_mass * share / (1 - share)
+
+    def _edge_margins(self, point: ArrayF, slope: float) -> ArrayF:
+        """Each support edge's inward distance of ``point``'s footprint less z·tan α (K,) [m]."""
+        relative = point[:2] - self.support.vertices
+        edges = self.support.edges
+        inward = (
+            edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]
+        ) / self.support.lengths
+        return inward - float(point[2]) * math.tan(slope)
 
 
 def _largest(margins: Callable[[ArrayF], ArrayF], shape: tuple[int, ...], upper: float) -> ArrayF:
@@ -197,3 +218,15 @@ def _largest(margins: Callable[[ArrayF], ArrayF], shape: tuple[int, ...], upper:
         lower = np.where(inside, middle, lower)
         higher = np.where(inside, higher, middle)
     return np.where(at_zero > 0, np.where(at_upper > 0, np.inf, lower), 0.0)
+
+
+def _first_lowest(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
+    """(leg, joint) of the smallest value, the first in leg order among near-equal ones.
+
+    Mirror-image legs tie, and round-off must not choose between them.
+    """
+    flat = values.ravel()
+    lowest = float(flat.min())
+    slack = tolerance * max(1.0, abs(lowest)) if math.isfinite(lowest) else 0.0
+    leg, joint = np.unravel_index(int(np.flatnonzero(flat <= lowest + slack)[0]), values.shape)
+    return int(leg), int(joint)
