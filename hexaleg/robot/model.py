@@ -163,20 +163,21 @@ class HexapodModel:
         return self._collision.copy()
 
     def with_design(self, design: HexapodDesign) -> HexapodModel:
-        """The model of ``design``, whose segments and rated torques differ, without Xacro.
+        """The model of ``design``, whose segments, ratings or posture differ, without Xacro.
 
         The fast path of sweeps: joint placements, the foot frames, the links' inertias
         (rods of the design's density, the tibia carrying its foot) and the effort limits
-        are set as the URDF would set them; the tests prove the result equal to
-        ``HexapodModel(design)``. Every other field must be this model's design's.
+        are set as the URDF would set them (the nominal posture is not in the URDF); the
+        tests prove the result equal to ``HexapodModel(design)``. Every other field must
+        be this model's design's.
         """
-        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds")
+        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles")
         if any(
             getattr(self.design, f.name) != getattr(design, f.name)
             for f in fields(design)
             if f.name not in changed
         ):
-            raise ModelError("with_design changes only segment lengths and ratings")
+            raise ModelError("with_design changes only segment lengths, ratings and posture")
         model = pin.Model(self.model)
         radius, density = design.link_radius, design.link_linear_density
         hip_placement = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))

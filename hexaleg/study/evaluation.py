@@ -62,6 +62,9 @@ METRIC_UNITS: dict[str, str] = {
 GAIT_METRICS = ("speed", "step_height", "peak_torque", "cost_of_transport")
 """Metrics of a tripod gait (:mod:`hexaleg.gait`)."""
 
+STATICS_METRICS = ("payload", "slope", *GAIT_METRICS)
+"""Metrics that need the design's Pinocchio model."""
+
 
 @dataclass(frozen=True)
 class Objective:
@@ -185,7 +188,7 @@ def _measure(
         "mass": design.total_mass,
     }
     causes: dict[str, Cause] = {}
-    if template is None and {"fb", "w_A", "area", "ground_clearance"} & set(wanted):
+    if template is None and {"fb", "ground_clearance"} & set(wanted):
         model = HexapodModel(design) if model is None else model
         template = StanceGeometry.from_model(model)  # the design's own: exact
     if "fb" in wanted:
@@ -201,7 +204,7 @@ def _measure(
             geometry.lowest_body_height(np.eye(3), [0.0, 0.0, geometry.nominal_height])
         )
     if {"payload", "slope"} & set(wanted):
-        model = HexapodModel(design) if model is None else model
+        model = HexapodModel(design) if model is None else model  # the exact path
         _standing_metrics(model, goal.requirements, values, causes)
     return Evaluation({name: values[name] for name in wanted}, causes)
 

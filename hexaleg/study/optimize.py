@@ -1,7 +1,8 @@
 """The search: the best design of a space that meets a goal, by differential evolution (pymoo).
 
-The optimizer is pymoo's differential evolution (``DE/rand/1/bin``), chosen over Optuna
-for four reasons:
+The optimizer is pymoo's differential evolution (``DE/best/1/bin``, CR 0.9, F 0.5: on
+the tests' problems it reaches optima where three constraints meet to 10⁻⁶, where
+``DE/rand/1/bin`` stops 1 % short), chosen over Optuna for four reasons:
 
 - constraints are first-class: every requirement is an inequality g ≤ 0 and the
   survival is feasibility-first (a feasible design beats any infeasible one; among
@@ -44,12 +45,13 @@ import numpy.typing as npt
 from scipy.stats import qmc
 from tqdm import tqdm
 
+from hexaleg._io import atomic_write_text
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Evaluation, Goal, evaluate_design
+from hexaleg.study.evaluation import STATICS_METRICS, Evaluation, Goal, evaluate_design
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
 
@@ -61,10 +63,13 @@ POPULATION_PER_VARIABLE = 10
 
 MIN_POPULATION = 24
 
-CROSSOVER = 0.7
-"""DE crossover rate CR [-]."""
+VARIANT = "DE/best/1/bin"
+"""Mutation from the best design of the generation, one difference, binomial crossover."""
 
-DIFFERENTIAL_WEIGHT = 0.6
+CROSSOVER = 0.9
+"""DE crossover rate CR [-]: high, as the lengths interact through the leg-length sum."""
+
+DIFFERENTIAL_WEIGHT = 0.5
 """DE differential weight F [-]."""
 
 CHUNK = 6
@@ -151,6 +156,7 @@ def _template(base: HexapodDesign) -> StanceGeometry:
 def evaluate_points(task: _Task) -> list[Evaluation]:
     """The evaluation of each point of a task (runs in a worker)."""
     out = []
+    statics = bool(set(task.goal.metrics) & set(STATICS_METRICS))
     for x in task.points:
         try:
             design = task.space.design(x)
@@ -158,8 +164,9 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
             out.append(Evaluation(error=str(err)))
             continue
         if task.space.same_body:
-            model = base_model(task.space.base).with_design(design)
-            out.append(evaluate_design(design, task.goal, model, _template(task.space.base)))
+            base = task.space.base
+            model = base_model(base).with_design(design) if statics else None
+            out.append(evaluate_design(design, task.goal, model, _template(base)))
         else:
             out.append(evaluate_design(design, task.goal))
     return out
@@ -217,13 +224,14 @@ class Journal:
 
     def _read(self, header: dict[str, Any]) -> None:
         assert self.path is not None
-        lines = self.path.read_text(encoding="utf-8").splitlines()
-        for number, line in enumerate(lines):
+        text = self.path.read_text(encoding="utf-8")
+        if text and not text.endswith("\n"):  # the line being written when it was stopped
+            text = text[: text.rfind("\n") + 1]
+            atomic_write_text(self.path, text)
+        for number, line in enumerate(text.splitlines()):
             try:
                 record = json.loads(line)
             except json.JSONDecodeError:
-                if number == len(lines) - 1:
-                    break  # the line being written when the search was stopped
                 raise HexalegError(f"{self.path}: line {number + 1} is corrupt") from None
             if "decide" in record:
                 if record["decide"] != header:
@@ -351,7 +359,7 @@ def run_search(
         algorithm = DE(
             pop_size=population,
             sampling=initial_points(space, population, settings.seed, starts),
-            variant="DE/rand/1/bin",
+            variant=VARIANT,
             CR=CROSSOVER,
             F=DIFFERENTIAL_WEIGHT,
             return_least_infeasible=True,
@@ -376,7 +384,7 @@ def method_text(population: int, generations: int) -> str:
     import pymoo
 
     return (
-        f"pymoo {pymoo.__version__} differential evolution (DE/rand/1/bin, CR {CROSSOVER}, "
+        f"pymoo {pymoo.__version__} differential evolution ({VARIANT}, CR {CROSSOVER}, "
         f"F {DIFFERENTIAL_WEIGHT}), population {population}, {generations} generations, "
         "feasibility-first constraints"
     )

@@ -148,7 +148,7 @@ class Requirements:
     # -- construction -------------------------------------------------------------------
 
     @classmethod
-    def from_table(cls, table: Mapping[str, Any], source: str = "[requirements]") -> Requirements:
+    def from_table(cls, table: Mapping[str, Any], source: str = "requirements") -> Requirements:
         """The requirements of a design file's ``[requirements]`` table.
 
         Args:
