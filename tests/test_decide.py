@@ -9,8 +9,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
 import pytest
-
 from conftest import random_designs, run_cli
+
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position
@@ -247,7 +247,7 @@ def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):
 @pytest.mark.slow
 def test_search_is_within_half_a_percent_of_a_dense_grid():
     """Three free lengths, payload and slope required, FB maximized: the best feasible design
-    of a 2 cm grid of exact evaluations (written here from the analyses' APIs) against the search."""
+    of a 2 cm grid of exact evaluations (written here from the analyses' APIs) vs the search."""
     design = HexapodDesign()
     requirements = Requirements(payload=60.0, slope=math.radians(20)).resolved(design)
     result = _decide(design, requirements, Objective("fb"), settings=SearchSettings(seed=4))

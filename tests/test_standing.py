@@ -6,11 +6,12 @@ import math
 
 import numpy as np
 import pytest
-
 from conftest import random_designs
+
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.statics import Payload, Statics, payload_capacity, slope_gravity
 from hexaleg.study.standing import Standing
+
 
 def _headings(count):
     return np.linspace(-math.pi, math.pi, count + 1)[:-1]

@@ -131,8 +131,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     requirements = goal.requirements
     required = float(getattr(requirements, name))
     kind = KINDS[name]
-    sense = "maximize" if kind.sense == "at least" else "minimize"
-    objective = Objective(kind.metric, sense)
+    objective = Objective(kind.metric, "maximize" if kind.sense == "at least" else "minimize")
     if name == "leg_length":
         longest = LEG_RELAXATION * required
         relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)

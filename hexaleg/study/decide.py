@@ -34,8 +34,9 @@ from hexaleg.study.evaluation import (
     evaluate_design,
 )
 from hexaleg.study.executors import local_pool
-from hexaleg.study.optimize import Journal, SearchOutcome, SearchSettings, run_search
+from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
+from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import FreeVariable, SearchSpace, search_space
 
 
@@ -163,36 +164,14 @@ def decide(
     objective = objective or Objective()
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective)
-    unavailable = set(goal.metrics) & set(GAIT_METRICS)
-    if unavailable:
-        raise HexalegError(
-            f"{', '.join(sorted(unavailable))}: walking requirements and objectives need "
-            "hexaleg's gait analysis, not in this version"
-        )
+    _require_available(goal)
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
     )
-    header = _fingerprint(design, goal, space, settings)
-    kept = Journal(journal, header, resume)
-    searches: list[SearchOutcome] = []
+    kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with _executor(executor, workers) as pool:
-
-        def search(where: SearchSpace, what: Goal, *starts: npt.ArrayLike) -> SearchOutcome:
-            starts_ = (*starts, where.point(design))
-            found = run_search(where, what, settings, pool, kept, progress, starts_)
-            searches.append(found)
-            return found
-
-        outcome = search(space, goal)
-        conflict = None
-        if not outcome.feasible:
-            conflict = find_conflict(
-                space, goal, outcome.evaluation, lambda s, g: search(s, g, outcome.x)
-            )
-            missed = [r.point for r in conflict.relaxations if r.meets_original]
-            if missed:  # a relaxed search met everything: search again from there
-                outcome = search(space, goal, *missed)
-                conflict = None if outcome.feasible else conflict
+        search = _Searches(design, settings, pool, kept, progress)
+        outcome, conflict = _search_or_conflict(space, goal, search)
     best = CheckedDesign.of(space.design(outcome.x), goal)
     return DecideResult(
         requirements=requirements,
@@ -203,9 +182,61 @@ def decide(
         feasible=best.meets_all,
         conflict=conflict,
         method=outcome.method,
-        evaluations=sum(s.evaluations for s in searches),
+        evaluations=sum(found.evaluations for found in search.done),
         seed=settings.seed,
     )
+
+
+class _Searches:
+    """Runs the searches of one decision, all from the user's design among other starts."""
+
+    def __init__(
+        self,
+        design: HexapodDesign,
+        settings: SearchSettings,
+        executor: Executor,
+        journal: Journal,
+        progress: bool | None,
+    ) -> None:
+        self.design, self.settings, self.executor = design, settings, executor
+        self.journal, self.progress = journal, progress
+        self.done: list[SearchOutcome] = []
+
+    def __call__(self, space: SearchSpace, goal: Goal, *starts: npt.ArrayLike) -> SearchOutcome:
+        """The outcome of one search of ``space`` for ``goal``."""
+        starts = (*starts, space.point(self.design))
+        found = run_search(
+            space, goal, self.settings, self.executor, self.journal, self.progress, starts
+        )
+        self.done.append(found)
+        return found
+
+
+def _search_or_conflict(
+    space: SearchSpace, goal: Goal, search: _Searches
+) -> tuple[SearchOutcome, Conflict | None]:
+    """The best design; if none meets every requirement, also what conflicts."""
+    outcome = search(space, goal)
+    if outcome.feasible:
+        return outcome, None
+    least = outcome
+    conflict = find_conflict(space, goal, least.evaluation, lambda s, g: search(s, g, least.x))
+    missed = [r.point for r in conflict.relaxations if r.meets_original]
+    if missed:  # a relaxed search met everything after all: search again from there
+        outcome = search(space, goal, *missed)
+        if outcome.feasible:
+            return outcome, None
+    return outcome, conflict
+
+
+def _require_available(goal: Goal) -> None:
+    """Refuse, in one line, the walking metrics until the gait analysis is there."""
+    unavailable = set(goal.metrics) & set(GAIT_METRICS)
+    if unavailable:
+        raise HexalegError(
+            f"{', '.join(sorted(unavailable))}: walking requirements and objectives need "
+            "hexaleg's gait analysis, not in this version"
+        )
 
 
 @contextmanager

@@ -31,27 +31,27 @@ search ends exactly where an uninterrupted one would.
 from __future__ import annotations
 
 import json
-import os
 import sys
 from collections.abc import Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass
 from functools import lru_cache
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 import numpy.typing as npt
+import pymoo
+from pymoo.algorithms.soo.nonconvex.de import DE
+from pymoo.core.problem import Problem
 from scipy.stats import qmc
 from tqdm import tqdm
 
-from hexaleg._io import atomic_write_text
 from hexaleg._typing import ArrayF
-from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import STATICS_METRICS, Evaluation, Goal, evaluate_design
+from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
 
@@ -172,91 +172,6 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
     return out
 
 
-class Journal:
-    """Every evaluated design of a decision, one JSON line each, for resuming.
-
-    Args:
-        path: The journal file; ``None`` keeps nothing.
-        header: What determines the results (checked on resume).
-        resume: Continue an existing journal instead of refusing to overwrite it.
-
-    """
-
-    def __init__(self, path: str | os.PathLike[str] | None, header: dict[str, Any], resume: bool):
-        self.path = None if path is None else Path(path)
-        self._rows: dict[tuple[str, tuple[float, ...]], Evaluation] = {}
-        if self.path is None:
-            return
-        header = json.loads(json.dumps(header))
-        if self.path.exists() and not resume:
-            raise HexalegError(
-                f"--journal {self.path} exists: pass --resume to continue it, or choose another"
-            )
-        if resume and self.path.exists():
-            self._read(header)
-        else:
-            self._append([{"decide": header}])
-
-    def lookup(self, key: str, x: tuple[float, ...]) -> Evaluation | None:
-        """The evaluation of point ``x`` in search ``key``, if journalled."""
-        return self._rows.get((key, x))
-
-    def record(
-        self, key: str, points: Sequence[tuple[float, ...]], found: Sequence[Evaluation]
-    ) -> None:
-        """Keep these evaluations (on disk before returning)."""
-        for x, evaluation in zip(points, found, strict=True):
-            self._rows[(key, x)] = evaluation
-        self._append(
-            [
-                {"search": key, "x": list(x), **_to_json(e)}
-                for x, e in zip(points, found, strict=True)
-            ]
-        )
-
-    def _append(self, records: list[dict[str, Any]]) -> None:
-        if self.path is None:
-            return
-        with self.path.open("a", encoding="utf-8") as handle:
-            handle.write("".join(json.dumps(r) + "\n" for r in records))
-            handle.flush()
-            os.fsync(handle.fileno())
-
-    def _read(self, header: dict[str, Any]) -> None:
-        assert self.path is not None
-        text = self.path.read_text(encoding="utf-8")
-        if text and not text.endswith("\n"):  # the line being written when it was stopped
-            text = text[: text.rfind("\n") + 1]
-            atomic_write_text(self.path, text)
-        for number, line in enumerate(text.splitlines()):
-            try:
-                record = json.loads(line)
-            except json.JSONDecodeError:
-                raise HexalegError(f"{self.path}: line {number + 1} is corrupt") from None
-            if "decide" in record:
-                if record["decide"] != header:
-                    raise HexalegError(
-                        f"{self.path} holds a decision with other options; resume it with the "
-                        "same ones"
-                    )
-                continue
-            x = tuple(float(v) for v in record["x"])
-            self._rows[(record["search"], x)] = _from_json(record)
-
-
-def _to_json(evaluation: Evaluation) -> dict[str, Any]:
-    causes = {
-        metric: {"kind": c.kind, "leg": c.leg, "joint": c.joint}
-        for metric, c in evaluation.causes.items()
-    }
-    return {"values": dict(evaluation.values), "causes": causes, "error": evaluation.error}
-
-
-def _from_json(record: dict[str, Any]) -> Evaluation:
-    causes = {metric: Cause(**cause) for metric, cause in record["causes"].items()}
-    return Evaluation(record["values"], causes, record["error"])
-
-
 # -- the search ---------------------------------------------------------------------------
 
 
@@ -302,6 +217,22 @@ class _Evaluator:
         return [found[x] for x in keys]
 
 
+class _Problem(Problem):  # type: ignore[misc]  # pymoo ships no type information
+    """The search as pymoo sees it: each design's cost and scaled constraints, in batches."""
+
+    def __init__(self, space: SearchSpace, goal: Goal, evaluate: _Evaluator) -> None:
+        count = max(1, len(goal.constraints))
+        super().__init__(
+            n_var=len(space.variables), n_obj=1, n_ieq_constr=count, xl=space.lower, xu=space.upper
+        )
+        self.goal, self.batch = goal, evaluate
+
+    def _evaluate(self, x: ArrayF, out: dict[str, Any], *args: Any, **kwargs: Any) -> None:
+        scored = [objective_and_constraints(self.goal, e) for e in self.batch(x)]
+        out["F"] = np.array([[cost] for cost, _ in scored])
+        out["G"] = np.array([g for _, g in scored])
+
+
 def objective_and_constraints(goal: Goal, evaluation: Evaluation) -> tuple[float, ArrayF]:
     """The cost to minimize and the scaled constraint values g (≤ 0: met) of an evaluation."""
     count = max(1, len(goal.constraints))
@@ -334,9 +265,6 @@ def run_search(
         starts: Points put into the initial population (e.g. the user's design).
 
     """
-    from pymoo.algorithms.soo.nonconvex.de import DE
-    from pymoo.core.problem import Problem
-
     variables = len(space.variables)
     population, generations = settings.population(variables), settings.generations(variables)
     show = sys.stderr.isatty() if progress is None else progress
@@ -345,17 +273,6 @@ def run_search(
         total=population * generations, disable=not show, unit="design", file=sys.stderr
     ) as bar:
         evaluate = _Evaluator(space, goal, executor, journal, key, bar)
-
-        class _Problem(Problem):
-            def _evaluate(self, x: ArrayF, out: dict[str, Any], *args: Any, **kwargs: Any) -> None:
-                scored = [objective_and_constraints(goal, e) for e in evaluate(x)]
-                out["F"] = np.array([[cost] for cost, _ in scored])
-                out["G"] = np.array([g for _, g in scored])
-
-        problem = _Problem(
-            n_var=variables, n_obj=1, n_ieq_constr=max(1, len(goal.constraints)),
-            xl=space.lower, xu=space.upper,
-        )  # fmt: skip
         algorithm = DE(
             pop_size=population,
             sampling=initial_points(space, population, settings.seed, starts),
@@ -364,6 +281,7 @@ def run_search(
             F=DIFFERENTIAL_WEIGHT,
             return_least_infeasible=True,
         )
+        problem = _Problem(space, goal, evaluate)
         algorithm.setup(problem, termination=("n_gen", generations), seed=settings.seed)
         while algorithm.has_next():
             algorithm.next()
@@ -381,8 +299,6 @@ def run_search(
 
 def method_text(population: int, generations: int) -> str:
     """The algorithm and its settings, in words."""
-    import pymoo
-
     return (
         f"pymoo {pymoo.__version__} differential evolution ({VARIANT}, CR {CROSSOVER}, "
         f"F {DIFFERENTIAL_WEIGHT}), population {population}, {generations} generations, "
@@ -395,7 +311,7 @@ def initial_points(
 ) -> ArrayF:
     """A seeded Latin hypercube over the bounds, its first rows replaced by ``starts`` (clipped)."""
     sampler = qmc.LatinHypercube(d=len(space.variables), seed=np.random.default_rng(seed))
-    points = qmc.scale(sampler.random(population), space.lower, space.upper)
+    points: ArrayF = qmc.scale(sampler.random(population), space.lower, space.upper)
     for row, start in enumerate(list(starts)[:population]):
         points[row] = np.clip(np.asarray(start, dtype=float), space.lower, space.upper)
     return points

@@ -134,7 +134,8 @@ class SearchSpace:
             else getattr(design, name)
             for name in self.names
         ]
-        return np.clip(np.array(values, dtype=float), self.lower, self.upper)
+        clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
+        return clipped
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
