@@ -93,7 +93,7 @@ def test_a_resumed_journal_ends_where_an_uninterrupted_search_does(tmp_path):
         _decide(design, requirements, settings=settings, journal=journal)
     other = tmp_path / "other.jsonl"
     shutil.copy(journal, other)
-    with pytest.raises(Exception, match="other options"):
+    with pytest.raises(Exception, match="no decision with these options"):
         _decide(design, requirements.replace(ground_clearance=0.3), settings=settings,
                 journal=other, resume=True)  # fmt: skip
 

@@ -65,31 +65,45 @@ class Journal:
     def _append(self, records: list[dict[str, Any]]) -> None:
         if self.path is None:
             return
-        with self.path.open("a", encoding="utf-8") as handle:
-            handle.write("".join(json.dumps(r) + "\n" for r in records))
-            handle.flush()
-            os.fsync(handle.fileno())
+        try:
+            with self.path.open("a", encoding="utf-8") as handle:
+                handle.write("".join(json.dumps(r) + "\n" for r in records))
+                handle.flush()
+                os.fsync(handle.fileno())
+        except OSError as err:
+            raise HexalegError(f"--journal {self.path}: cannot write it ({err.strerror})") from None
 
     def _read(self, header: dict[str, Any]) -> None:
         assert self.path is not None
-        text = self.path.read_text(encoding="utf-8")
+        try:
+            text = self.path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as err:
+            raise HexalegError(f"--journal {self.path}: cannot read it ({err})") from None
         if text and not text.endswith("\n"):  # the line being written when it was stopped
             text = text[: text.rfind("\n") + 1]
             atomic_write_text(self.path, text)
-        for number, line in enumerate(text.splitlines()):
+        lines = text.splitlines()
+        if not lines or _header(lines[0]) != header:
+            raise HexalegError(
+                f"--journal {self.path} holds no decision with these options; resume it with "
+                "the same ones"
+            )
+        for number, line in enumerate(lines[1:], start=2):
             try:
                 record = json.loads(line)
-            except json.JSONDecodeError:
-                raise HexalegError(f"{self.path}: line {number + 1} is corrupt") from None
-            if "decide" in record:
-                if record["decide"] != header:
-                    raise HexalegError(
-                        f"{self.path} holds a decision with other options; resume it with the "
-                        "same ones"
-                    )
-                continue
-            x = tuple(float(v) for v in record["x"])
-            self._rows[(record["search"], x)] = _from_json(record)
+                x = tuple(float(v) for v in record["x"])
+                self._rows[(record["search"], x)] = _from_json(record)
+            except (json.JSONDecodeError, KeyError, TypeError, ValueError):
+                raise HexalegError(f"{self.path}: line {number} is corrupt") from None
+
+
+def _header(line: str) -> Any:
+    """What a journal's first line says determines its results (None: not a journal)."""
+    try:
+        record = json.loads(line)
+    except json.JSONDecodeError:
+        return None
+    return record.get("decide") if isinstance(record, dict) else None
 
 
 def _to_json(evaluation: Evaluation) -> dict[str, Any]:
