@@ -25,6 +25,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
@@ -155,6 +156,7 @@ def evaluate_design(
     goal: Goal,
     model: HexapodModel | None = None,
     template: StanceGeometry | None = None,
+    flexibility: FlexibilityResult | None = None,
 ) -> Evaluation:
     """Measure every metric ``goal`` needs on ``design``.
 
@@ -164,13 +166,15 @@ def evaluate_design(
         model: The design's Pinocchio model; built from its URDF if omitted.
         template: A stance geometry of the same body and mounts (fast path); read from
             the model if omitted.
+        flexibility: The design's axis-locked flexibility, if already computed (a
+            search computes a batch of designs' at once).
 
     A design whose analyses fail (its nominal stance cannot stand) is returned with
     ``error`` set and no values.
 
     """
     try:
-        return _measure(design, goal, model, template)
+        return _measure(design, goal, model, template, flexibility)
     except HexalegError as err:
         return Evaluation(error=str(err))
 
@@ -180,6 +184,7 @@ def _measure(
     goal: Goal,
     model: HexapodModel | None,
     template: StanceGeometry | None,
+    flexibility: FlexibilityResult | None,
 ) -> Evaluation:
     wanted = goal.metrics
     values: dict[str, float] = {
@@ -192,7 +197,9 @@ def _measure(
         model = HexapodModel(design) if model is None else model
         template = StanceGeometry.from_model(model)  # the design's own: exact
     if "fb" in wanted:
-        values["fb"] = axis_locked_flexibility(design, "all", geometry=template).fb
+        if flexibility is None:
+            flexibility = axis_locked_flexibility(design, "all", geometry=template)
+        values["fb"] = flexibility.fb
     if "area" in wanted:
         values["area"] = improved_area_closed_form(design.l2, design.l3)
     if "w_A" in wanted:

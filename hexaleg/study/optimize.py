@@ -49,6 +49,9 @@ from tqdm import tqdm
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.axis_locked import axis_locked_flexibility_many
+from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import STATICS_METRICS, Evaluation, Goal, evaluate_design
 from hexaleg.study.search_journal import Journal
@@ -72,8 +75,8 @@ CROSSOVER = 0.9
 DIFFERENTIAL_WEIGHT = 0.5
 """DE differential weight F [-]."""
 
-CHUNK = 6
-"""Designs per executor task."""
+CHUNK = 8
+"""Designs per executor task: their flexibility is searched together."""
 
 INVALID = 1e6
 """Constraint violation and cost of a design that cannot exist or stand."""
@@ -155,21 +158,39 @@ def _template(base: HexapodDesign) -> StanceGeometry:
 
 def evaluate_points(task: _Task) -> list[Evaluation]:
     """The evaluation of each point of a task (runs in a worker)."""
-    out = []
-    statics = bool(set(task.goal.metrics) & set(STATICS_METRICS))
-    for x in task.points:
+    space, goal = task.space, task.goal
+    designs: dict[int, HexapodDesign] = {}
+    out: dict[int, Evaluation] = {}
+    for k, x in enumerate(task.points):
         try:
-            design = task.space.design(x)
+            designs[k] = space.design(x)
         except HexalegError as err:
-            out.append(Evaluation(error=str(err)))
-            continue
-        if task.space.same_body:
-            base = task.space.base
-            model = base_model(base).with_design(design) if statics else None
-            out.append(evaluate_design(design, task.goal, model, _template(base)))
-        else:
-            out.append(evaluate_design(design, task.goal))
-    return out
+            out[k] = Evaluation(error=str(err))
+    if not space.same_body:
+        out |= {k: evaluate_design(design, goal) for k, design in designs.items()}
+        return [out[k] for k in range(len(task.points))]
+    base, template = base_model(space.base), _template(space.base)
+    statics = bool(set(goal.metrics) & set(STATICS_METRICS))
+    found = _flexibilities(list(designs.values()), template, base) if "fb" in goal.metrics else {}
+    for k, design in designs.items():
+        model = base.with_design(design) if statics else None
+        out[k] = evaluate_design(design, goal, model, template, found.get(id(design)))
+    return [out[k] for k in range(len(task.points))]
+
+
+def _flexibilities(
+    designs: list[HexapodDesign], template: StanceGeometry, base: HexapodModel
+) -> dict[int, FlexibilityResult]:
+    """Axis-locked flexibility of designs of one body, searched together (by ``id``).
+
+    A design that spoils the batch (its stance cannot be solved) leaves it empty: each
+    is then searched on its own, and fails on its own.
+    """
+    try:
+        found = axis_locked_flexibility_many(designs, template, [base] * len(designs))
+    except HexalegError:
+        return {}
+    return {id(design): result for design, result in zip(designs, found, strict=True)}
 
 
 # -- the search ---------------------------------------------------------------------------
