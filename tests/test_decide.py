@@ -263,6 +263,8 @@ def test_search_is_within_half_a_percent_of_a_dense_grid():
                     designs.append(design.replace(l1=l1, l2=l2, l3=l3))
                 except HexalegError:  # cannot stand: its feet above the body's underside
                     continue
+        if not designs:
+            continue
         found = axis_locked_flexibility_many(designs, template, [base] * len(designs))
         for candidate, flexible in zip(designs, found, strict=True):
             if flexible.fb <= best:
@@ -274,3 +276,14 @@ def test_search_is_within_half_a_percent_of_a_dense_grid():
     found = result.best.evaluation.values["fb"]
     assert result.feasible and all(c.met for c in result.best.checks)
     assert found >= (1 - 5e-3) * best
+
+
+def test_a_task_of_designs_that_cannot_exist_is_measured_as_errors():
+    from hexaleg.study.optimize import _Task, evaluate_points
+    from hexaleg.study.search_space import search_space
+
+    design = HexapodDesign()
+    goal = Goal(Requirements(min_fb=0.1).resolved(design))
+    space = search_space(design, 1.0)
+    found = evaluate_points(_Task(space, goal, ((0.5, 0.5, 0.01), (0.3, 0.3, 0.02))))
+    assert all(e.error for e in found)

@@ -154,7 +154,9 @@ def _design_block(
 def _row(check: RequirementCheck, binding: bool) -> tuple[str, str, str, str]:
     sign = "≥" if KINDS[check.name].sense == "at least" else "≤"
     required = f"{check.name} {sign} {format_value(check.name, check.required)}"
-    margin = f"margin {check.margin:+.4g} {KINDS[check.name].unit}".replace(" 1", "")
+    shown = 0.0 if abs(check.margin) < 1e-9 * max(abs(check.required), 1.0) else check.margin
+    unit = KINDS[check.name].unit
+    margin = f"margin {shown:+.4g}" + ("" if unit == "1" else f" {unit}")
     if binding:
         state = "binds" if check.binds else ("" if check.met else "NOT MET")
     else:

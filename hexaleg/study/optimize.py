@@ -186,6 +186,8 @@ def _flexibilities(
     A design that spoils the batch (its stance cannot be solved) leaves it empty: each
     is then searched on its own, and fails on its own.
     """
+    if not designs:
+        return {}
     try:
         found = axis_locked_flexibility_many(designs, template, [base] * len(designs))
     except HexalegError:
