@@ -34,6 +34,7 @@ _EXPORTS: dict[str, str] = {
     # errors
     "DesignError": "hexaleg.exceptions",
     "HexalegError": "hexaleg.exceptions",
+    "ParameterError": "hexaleg.exceptions",
     "ModelError": "hexaleg.exceptions",
     "TemplateError": "hexaleg.exceptions",
     # closed forms (the oracle)
@@ -89,6 +90,7 @@ __all__ = [
     "ManipulabilityAnalysis",
     "ModelError",
     "Objective",
+    "ParameterError",
     "ReportOptions",
     "Requirements",
     "STANCE_LIMITS",
@@ -139,7 +141,13 @@ def __dir__() -> list[str]:
 if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import design_toml, load_design
-    from hexaleg.exceptions import DesignError, HexalegError, ModelError, TemplateError
+    from hexaleg.exceptions import (
+        DesignError,
+        HexalegError,
+        ModelError,
+        ParameterError,
+        TemplateError,
+    )
     from hexaleg.kinematics import (
         InverseKinematics,
         foot_jacobian,

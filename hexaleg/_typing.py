@@ -11,7 +11,7 @@ from typing import Any, Literal, get_args
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import ParameterError
 
 ArrayF = npt.NDArray[np.float64]
 """A float64 NumPy array; shapes and units are given where it is used."""
@@ -40,10 +40,8 @@ def choices(literal: Any) -> tuple[str, ...]:
 
 
 def require_choice(name: str, value: Any, literal: Any) -> Any:
-    """Return ``value`` if ``literal`` allows it; raise :class:`HexalegError` naming the choices."""
+    """``value`` if ``literal`` allows it; else a :class:`ParameterError` naming the choices."""
     allowed = choices(literal)
-    if value not in allowed:
-        raise HexalegError(
-            f"{name} = {value!r} is not valid: use one of {', '.join(repr(a) for a in allowed)}"
-        )
+    if not any(isinstance(value, type(a)) and value == a for a in allowed):  # arrays: no truth
+        raise ParameterError(name, value, f"use one of {', '.join(repr(a) for a in allowed)}")
     return value

@@ -1,21 +1,13 @@
 """The hexapod design: segment lengths, body, leg mounting, posture and limits.
 
 A :class:`HexapodDesign` is immutable and validated on construction: every
-field is checked in ``__post_init__`` and a :class:`~hexaleg.exceptions.DesignError`
+field is checked in ``__post_init__`` and a :class:`~hexaleg.exceptions.ParameterError`
 names the field, the value given and what is allowed.
 
-Defaults (each one a field, none hidden in code):
-
-- segments: the paper's l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1);
-- body: a 1.0 m × 0.6 m × 0.1 m box (x forward, y left, z up), 60 kg;
-- mounting (``layout = "rectangle"``): legs at the four corners and the two side
-  mid-points of the body's mid-plane, each pointing straight outward (front ±45°,
-  middle ±90°, rear ±135°), named ``lf lm lr rf rm rr`` (left/right,
-  front/middle/rear); ``"hexagon"`` and ``"custom"`` layouts are in
-  :mod:`hexaleg.layouts`;
-- nominal posture: every leg at θ = (0, 0, −π/2): coxa outward, femur
-  horizontal, tibia vertical. The body then stands at l3 above the ground.
-
+Every default is a field's declaration (none hidden in code): the paper's segments
+l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1) on hexaleg's box body, legs at its corners
+and side mid-points (:mod:`hexaleg.layouts`), standing with femur level and tibia
+vertical, so that the body stands at l3 above the ground.
 The paper gives no body size, mounting or posture; the study functions report
 how results depend on them.
 """
@@ -23,30 +15,33 @@ how results depend on them.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import dataclass, fields, replace
 from functools import cached_property
 from typing import Any, cast
 
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg._checks import require_finite, require_in_range, require_ratio
-from hexaleg.exceptions import DesignError
+from hexaleg._checks import require_in_range, require_instance, require_ratio
+from hexaleg.exceptions import ParameterError
+from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.kinematics import foot_position
 from hexaleg.layouts import (
-    LAYOUTS,
     LEG_NAMES,
     TRIPODS,
     Layout,
     LegMount,
+    checked_mounts,
+    default_mounts,
     hexagon_mounts,
     rectangle_mounts,
     require_apart,
-    same_mounts,
+    resolve_layout,
 )
 from hexaleg.limits import (
     IMPROVED_LIMITS,
+    JOINT_NAMES,
+    LEG_JOINTS,
     MANIPULABILITY_LIMITS,
     STANCE_LIMITS,
     WORKSPACE_LIMITS,
@@ -58,29 +53,10 @@ SEGMENT_RANGE = (1e-3, 100.0)
 BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
 
-FIELD_RANGES: dict[str, tuple[float, float, str]] = {
-    "l1": (*SEGMENT_RANGE, "m"),
-    "l2": (*SEGMENT_RANGE, "m"),
-    "l3": (*SEGMENT_RANGE, "m"),
-    "body_length": (*BODY_RANGE, "m"),
-    "body_width": (*BODY_RANGE, "m"),
-    "body_height": (*BODY_RANGE, "m"),
-    "body_radius": (*BODY_RANGE, "m"),
-    "first_leg_angle": (0.0, math.pi / 3, "rad"),
-    "middle_leg_offset": (0.0, BODY_RANGE[1], "m"),
-    "front_yaw": (0.0, math.pi, "rad"),
-    "rear_yaw": (0.0, math.pi, "rad"),
-    "body_mass": (1e-3, 1e6, "kg"),
-    "link_linear_density": (1e-4, 1e5, "kg/m"),
-    "link_radius": (1e-4, 10.0, "m"),
-}
-"""Each physical field's plausible range (lower, upper, unit); values outside are refused."""
-
 DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators. At the
-nominal stance each hip holds about 46 N·m (a sixth of the 84 kg robot, 0.4 m out) and
-the knee almost nothing; the ratings leave room for the body's extremes, where hip and
-knee torques peak, and for a payload of a few times the body's mass."""
+"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: each hip
+holds about 46 N·m at the nominal stance; the rest is room for the body's extremes and
+a payload of a few times the body's mass."""
 
 TORQUE_RANGE = (1e-3, 1e6)
 """Plausible rated torque [N·m]."""
@@ -96,103 +72,120 @@ SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
 
 FOOT_MASS = 1e-3
-"""Mass of each foot link [kg]: negligible beside the legs, but a valid inertial, so
-that every simulator keeps the foot (sdformat drops massless links, PyBullet weighs
-them 1 kg)."""
+"""Mass of each foot link [kg]: negligible, but a valid inertial, so that every simulator
+keeps the foot (sdformat drops massless links, PyBullet weighs them 1 kg)."""
 
 __all__ = [
+    "DESIGN_FIELDS",
+    "FIELD_RANGES",
     "LEG_NAMES",
     "TRIPODS",
     "HexapodDesign",
     "LegMount",
     "default_mounts",
+    "require_design",
     "require_in_range",
     "require_ratio",
 ]
 
 
-def default_mounts(body_length: float, body_width: float) -> tuple[LegMount, ...]:
-    """The paper's rectangle: legs at the corners and side mid-points, pointing outward.
-
-    Args:
-        body_length: Body extent along x [m].
-        body_width: Body extent along y [m].
-
-    """
-    return rectangle_mounts(body_length, body_width)
+def require_design(value: Any, name: str = "design") -> HexapodDesign:
+    """``value`` if it is a :class:`HexapodDesign`; else a ParameterError naming ``name``."""
+    return require_instance(name, value, HexapodDesign, "a HexapodDesign")
 
 
 @dataclass(frozen=True)
 class HexapodDesign:
     """A hexapod whose legs are to be sized.
 
-    Attributes:
-        l1: Coxa length [m].
-        l2: Femur length [m].
-        l3: Tibia length [m].
-        body_length: Body box extent along x [m] (rectangle and custom layouts).
-        body_width: Body box extent along y [m] (rectangle and custom layouts).
-        body_height: Body extent along z [m].
-        layout: How the legs sit on the body (:mod:`hexaleg.layouts`): ``"rectangle"``
-            (the paper's box), ``"hexagon"`` (a cylinder body, legs every 60°) or
-            ``"custom"`` (``mounts`` given); ``None`` means ``"custom"`` when ``mounts``
-            is given, else ``"rectangle"``.
-        body_radius: Hexagon layout: leg roots' distance from the body axis, and the
-            radius of the cylinder body [m].
-        first_leg_angle: Hexagon layout: direction of the left front leg, from straight
-            ahead, in [0, π/3] [rad].
-        middle_leg_offset: Rectangle layout: how much further out than the body's side
-            the middle legs sit [m].
-        front_yaw: Rectangle layout: direction of the left front coxa; the right one
-            mirrors it [rad].
-        rear_yaw: Rectangle layout: direction of the left rear coxa; mirrored [rad].
-        mounts: The six leg roots; ``None`` means: placed by the layout.
-        nominal_angles: Standing joint angles (θ1, θ2, θ3) of every leg [rad].
-        workspace_limits: Table 2 limits, used for the Monte Carlo workspace.
-        improved_limits: Table 4 limits (coupled knee), the improved workspace.
-        manipulability_limits: Eq 26 limits, for the optimum pose and w_A.
-        stance_limits: Limits that stop the body in the flexibility study (§6).
-        body_mass: Body mass [kg].
-        link_linear_density: Mass per length of coxa, femur and tibia [kg/m].
-        link_radius: Radius of the links' cylinder geometry [m].
-        rated_torques: The actuators' rated torques (root, hip, knee) [N·m], written to
-            each joint's URDF ``effort``; the statics compare every torque with them.
-        rated_speeds: The actuators' rated speeds (root, hip, knee) [rad/s], written to
-            each joint's URDF ``velocity``; a gait compares every joint speed with them.
+    Every field is declared once below (:func:`~hexaleg.field_spec.declare`): what it
+    is, its unit and plausible range, and the command-line group that offers it. The
+    ``Attributes`` section that follows is written from those declarations.
 
     """
 
-    l1: float = 0.2
-    l2: float = 0.4
-    l3: float = 0.4
-    body_length: float = 1.0
-    body_width: float = 0.6
-    body_height: float = 0.1
-    layout: Layout | None = None
-    body_radius: float = 0.4
-    first_leg_angle: float = math.pi / 6
-    middle_leg_offset: float = 0.0
-    front_yaw: float = math.pi / 4
-    rear_yaw: float = 3 * math.pi / 4
-    mounts: tuple[LegMount, ...] | None = None
-    nominal_angles: tuple[float, float, float] = (0.0, 0.0, -math.pi / 2)
-    workspace_limits: JointLimits = WORKSPACE_LIMITS
-    improved_limits: JointLimits = IMPROVED_LIMITS
-    manipulability_limits: JointLimits = MANIPULABILITY_LIMITS
-    stance_limits: JointLimits = STANCE_LIMITS
-    body_mass: float = 60.0
-    link_linear_density: float = 4.0
-    link_radius: float = field(default=0.025)
-    rated_torques: tuple[float, float, float] = DEFAULT_RATED_TORQUES
-    rated_speeds: tuple[float, float, float] = DEFAULT_RATED_SPEEDS
+    # fmt: off
+    l1: float = declare(0.2, "coxa length", "m", SEGMENT_RANGE, option="lengths")
+    l2: float = declare(0.4, "femur length", "m", SEGMENT_RANGE, option="lengths")
+    l3: float = declare(0.4, "tibia length", "m", SEGMENT_RANGE, option="lengths")
+    body_length: float = declare(
+        1.0, "body box extent along x, forward", "m", BODY_RANGE, option="body",
+        applies="rectangle and custom layouts",
+    )
+    body_width: float = declare(
+        0.6, "body box extent along y, left", "m", BODY_RANGE, option="body",
+        applies="rectangle and custom layouts",
+    )
+    body_height: float = declare(0.1, "body extent along z, up", "m", BODY_RANGE, option="body")
+    layout: Layout | None = declare(
+        None, "how the legs sit on the body: rectangle (the paper's box), hexagon (legs "
+        "every 60° around a cylinder) or custom (the six mounts given; the default when "
+        "mounts are)", kind="choice", option="body",
+    )
+    body_radius: float = declare(
+        0.4, "leg roots' distance from the body axis, and the cylinder body's radius", "m",
+        BODY_RANGE, option="body", applies="hexagon layout",
+    )
+    first_leg_angle: float = declare(
+        math.pi / 6, "left front leg's direction from straight ahead, in [0, π/3]", "rad",
+        (0.0, math.pi / 3), option="body", applies="hexagon layout",
+    )
+    middle_leg_offset: float = declare(
+        0.0, "how much further out than the body's side the middle legs sit", "m",
+        (0.0, BODY_RANGE[1]), option="body", applies="rectangle layout",
+    )
+    front_yaw: float = declare(
+        math.pi / 4, "left front coxa direction; the right one mirrors it", "rad",
+        (0.0, math.pi), option="body", applies="rectangle layout",
+    )
+    rear_yaw: float = declare(
+        3 * math.pi / 4, "left rear coxa direction; the right one mirrors it", "rad",
+        (0.0, math.pi), option="body", applies="rectangle layout",
+    )
+    mounts: tuple[LegMount, ...] | None = declare(
+        None, "the six leg roots (name, x, y, z [m], yaw [rad]); unset: placed by the layout",
+        kind="mounts",
+    )
+    nominal_angles: tuple[float, float, float] = declare(
+        (0.0, 0.0, -math.pi / 2), "standing joint angles of every leg", "rad", kind="triple",
+        items=JOINT_NAMES, option="posture",
+    )
+    workspace_limits: JointLimits = declare(
+        WORKSPACE_LIMITS, "Table 2 limits: the Monte Carlo workspace", kind="limits"
+    )
+    improved_limits: JointLimits = declare(
+        IMPROVED_LIMITS, "Table 4 limits (coupled knee): the improved workspace", kind="limits"
+    )
+    manipulability_limits: JointLimits = declare(
+        MANIPULABILITY_LIMITS, "eq 26 limits: the optimum pose and average manipulability",
+        kind="limits",
+    )
+    stance_limits: JointLimits = declare(
+        STANCE_LIMITS, "limits that stop the body in stance (the paper's §6)", kind="limits"
+    )
+    body_mass: float = declare(60.0, "body mass", "kg", (1e-3, 1e6))
+    link_linear_density: float = declare(
+        4.0, "mass per length of coxa, femur and tibia", "kg/m", (1e-4, 1e5)
+    )
+    link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
+    rated_torques: tuple[float, float, float] = declare(
+        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort)", "N·m",
+        TORQUE_RANGE,
+        kind="triple", items=LEG_JOINTS,
+    )
+    rated_speeds: tuple[float, float, float] = declare(
+        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
+        SPEED_RANGE,
+        kind="triple", items=LEG_JOINTS,
+    )
 
     def __post_init__(self) -> None:
-        for name, (lower, upper, unit) in FIELD_RANGES.items():
-            value = require_in_range(name, getattr(self, name), lower, upper, unit)
-            object.__setattr__(self, name, value)
-        self._validate_ratings("rated_torques", TORQUE_RANGE, "N·m")
-        self._validate_ratings("rated_speeds", SPEED_RANGE, "rad/s")
-        self._place_legs()
+        for spec in DESIGN_FIELDS:  # each value on its own first, then how they fit together
+            object.__setattr__(self, spec.name, spec.check(getattr(self, spec.name)))
+        layout = resolve_layout(self.layout, self.mounts)
+        object.__setattr__(self, "layout", layout)
+        mounts = checked_mounts(layout, self.mounts, self.layout_mounts(), self.link_radius)
+        object.__setattr__(self, "mounts", mounts)
         self._validate_nominal_stance()
 
     # -- constructors ---------------------------------------------------------------------
@@ -214,7 +207,7 @@ class HexapodDesign:
         l1_ratio = require_ratio("l1_ratio", l1_ratio)
         l3_ratio = require_ratio("l3_ratio", l3_ratio)
         if not l1_ratio + l3_ratio < 1.0:
-            raise DesignError(
+            raise ParameterError(
                 "l1_ratio + l3_ratio",
                 l1_ratio + l3_ratio,
                 "must be < 1 so that the femur ratio 1 - l1_ratio - l3_ratio is positive",
@@ -286,15 +279,10 @@ class HexapodDesign:
     @property
     def nominal_footholds(self) -> npt.NDArray[np.float64]:
         """Every foot at the nominal stance, body frame at the origin (6, 3) [m] (eq 7)."""
-        foot = foot_position(self.lengths, self.nominal_angles)
-        rows = []
-        for m in self.legs:
-            c, s = math.cos(m.yaw), math.sin(m.yaw)
-            rows.append(
-                m.position
-                + np.array([c * foot[0] - s * foot[1], s * foot[0] + c * foot[1], foot[2]])
-            )
-        return np.array(rows)
+        x, y, z = foot_position(self.lengths, self.nominal_angles)
+        turns = [(math.cos(m.yaw), math.sin(m.yaw)) for m in self.legs]
+        feet = np.array([[c * x - s * y, s * x + c * y, z] for c, s in turns])
+        return np.array([m.position for m in self.legs]) + feet
 
     @property
     def body_shape(self) -> str:
@@ -328,73 +316,13 @@ class HexapodDesign:
             if f.name == "mounts":
                 value = [vars(m).copy() for m in value]
             elif isinstance(value, JointLimits):
-                value = {
-                    "theta1": list(value.theta1),
-                    "theta2": list(value.theta2),
-                    "theta3": list(value.theta3),
-                    "coupled_knee": value.coupled_knee,
-                    "name": value.name,
-                }
+                value = value.as_dict()
             elif isinstance(value, tuple):
                 value = list(value)
             out[f.name] = value
         return out
 
     # -- validation -----------------------------------------------------------------------
-
-    def _validate_ratings(self, name: str, plausible: tuple[float, float], unit: str) -> None:
-        ratings = tuple(getattr(self, name))
-        if len(ratings) != 3:
-            raise DesignError(name, ratings, f"three values (root, hip, knee) [{unit}]")
-        checked = tuple(
-            require_in_range(f"{name}.{joint}", value, *plausible, unit)
-            for joint, value in zip(("root", "hip", "knee"), ratings, strict=True)
-        )
-        object.__setattr__(self, name, checked)
-
-    def _place_legs(self) -> None:
-        layout = self.layout
-        if layout is None:
-            layout = "rectangle" if self.mounts is None else "custom"
-        if layout not in LAYOUTS:
-            raise DesignError("layout", layout, "one of " + ", ".join(map(repr, LAYOUTS)))
-        object.__setattr__(self, "layout", layout)
-        placed = self.layout_mounts()
-        mounts = self.mounts
-        if mounts is None:
-            if placed is None:
-                raise DesignError("mounts", None, 'layout "custom" needs the six mounts')
-            mounts = placed
-        if not isinstance(mounts, Sequence) or not all(isinstance(m, LegMount) for m in mounts):
-            raise DesignError("mounts", mounts, "a sequence of six LegMount")
-        mounts = tuple(mounts)
-        if placed is not None and not same_mounts(mounts, placed):
-            raise DesignError(
-                "mounts",
-                "given",
-                f"the {layout} layout places the legs itself: drop the mounts, or set "
-                'layout = "custom" to place them by hand',
-            )
-        if len(mounts) != 6:
-            raise DesignError("mounts", len(mounts), "exactly 6 legs (a hexapod)")
-        names = [m.name for m in mounts]
-        if len(set(names)) != len(names):
-            raise DesignError("mounts", names, "leg names must be unique")
-        heights = {m.z for m in mounts}
-        if len(heights) != 1:
-            raise DesignError(
-                "mounts[*].z",
-                sorted(heights),
-                "every leg root at the same height, so that all feet reach level ground [m]",
-            )
-        object.__setattr__(self, "mounts", mounts)
-        require_apart(
-            "mounts",
-            tuple(names),
-            [(m.x, m.y) for m in mounts],
-            2 * self.link_radius,
-            "two link radii, so that their coxas do not overlap",
-        )
 
     def layout_mounts(self) -> tuple[LegMount, ...] | None:
         """The mounts this design's layout places, or ``None`` for a custom layout."""
@@ -411,18 +339,12 @@ class HexapodDesign:
         return None
 
     def _validate_nominal_stance(self) -> None:
-        angles = tuple(self.nominal_angles)
-        if len(angles) != 3:
-            raise DesignError("nominal_angles", angles, "three angles (θ1, θ2, θ3) [rad]")
-        for name, value in zip(("theta1", "theta2", "theta3"), angles, strict=True):
-            require_finite(f"nominal_angles.{name}", value)
-        angles = tuple(float(a) for a in angles)
-        object.__setattr__(self, "nominal_angles", angles)
+        angles = self.nominal_angles
         limits = self.stance_limits
-        for i, name in enumerate(("theta1", "theta2", "theta3")):
+        for i, name in enumerate(JOINT_NAMES):
             lower, upper = getattr(limits, name)
             if not lower <= angles[i] <= upper:
-                raise DesignError(
+                raise ParameterError(
                     f"nominal_angles.{name}",
                     angles[i],
                     f"must lie within stance_limits.{name} = [{lower:.6g}, {upper:.6g}] [rad]",
@@ -436,12 +358,27 @@ class HexapodDesign:
         )
         clearance = self.nominal_height - self.body_height / 2
         if not clearance > 0:
-            raise DesignError(
+            raise ParameterError(
                 "nominal_angles",
                 angles,
                 "the feet must stand below the body's underside (clearance "
                 f"{clearance:.4g} m); lower the hip or bend the knee further down",
             )
+
+
+DESIGN_FIELDS: tuple[FieldSpec, ...] = field_specs(HexapodDesign)
+"""Every design field's declaration, in order: what validation, files, options and docs read."""
+
+HexapodDesign.__doc__ = (
+    cast(str, HexapodDesign.__doc__).rstrip() + "\n\n" + attributes_section(DESIGN_FIELDS)
+)
+
+FIELD_RANGES: dict[str, tuple[float, float, str]] = {
+    spec.name: (*spec.bounds, spec.unit)
+    for spec in DESIGN_FIELDS
+    if spec.kind == "number" and spec.bounds is not None
+}
+"""Each number field's plausible range (lower, upper, unit); values outside are refused."""
 
 
 L3_RATIO_RANGE: tuple[float, float] = (0.10, 0.75)
@@ -457,5 +394,5 @@ MAX_L3_POINTS = 1000
 def l3_ratio_grid(points: int = 80) -> npt.NDArray[np.float64]:
     """Evenly spaced tibia ratios over :data:`L3_RATIO_RANGE` [-]."""
     if not 2 <= points <= MAX_L3_POINTS:
-        raise DesignError("l3_points", points, f"from 2 to {MAX_L3_POINTS} tibia ratios")
+        raise ParameterError("l3_points", points, f"from 2 to {MAX_L3_POINTS} tibia ratios")
     return np.linspace(*L3_RATIO_RANGE, points)

@@ -18,6 +18,7 @@ import json
 import math
 import os
 import re
+import stat
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
@@ -25,9 +26,11 @@ from typing import Any, TypeVar, cast
 
 import tomli_w
 
-from hexaleg.design import HexapodDesign, LegMount
-from hexaleg.exceptions import DesignError, HexalegError
-from hexaleg.limits import JointLimits
+from hexaleg._checks import require_finite
+from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
+from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.field_spec import FieldSpec
+from hexaleg.limits import JOINT_NAMES, LEG_JOINTS, JointLimits
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -39,42 +42,24 @@ T = TypeVar("T")
 SUFFIXES = (".toml", ".json")
 """Extensions of design files: TOML written by hand, JSON printed by hexaleg."""
 
+MAX_FILE_BYTES = 16 * 2**20
+"""Largest design file read [bytes]: a hand-written design is a few kB, a whole hexaleg
+JSON output (a study's table included) well under this."""
+
 DEGREES_SUFFIX = "_deg"
 
 _DEFAULT = HexapodDesign()
 
-SCALARS: dict[str, str] = {
-    "l1": "coxa length [m]",
-    "l2": "femur length [m]",
-    "l3": "tibia length [m]",
-    "body_length": "body extent along x, forward [m] (rectangle and custom layouts)",
-    "body_width": "body extent along y, left [m] (rectangle and custom layouts)",
-    "body_height": "body extent along z, up [m]",
-    "body_radius": "hexagon layout: leg roots' distance from the body axis = body radius [m]",
-    "first_leg_angle": "hexagon layout: left front leg's direction from straight ahead, "
-    "0..π/3 [rad]",
-    "middle_leg_offset": "rectangle layout: middle legs this much wider than the body [m]",
-    "front_yaw": "rectangle layout: left front coxa direction (right mirrors it) [rad]",
-    "rear_yaw": "rectangle layout: left rear coxa direction (right mirrors it) [rad]",
-    "body_mass": "body mass [kg]",
-    "link_linear_density": "mass per length of coxa, femur and tibia [kg/m]",
-    "link_radius": "radius of the links' cylinders [m]",
-}
+FIELDS: dict[str, FieldSpec] = {spec.key: spec for spec in DESIGN_FIELDS}
+"""Every design field by its key in a file."""
+
+SCALARS: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind == "number"}
 """Every number-valued key with its comment (unit in brackets)."""
 
-TRIPLES: dict[str, str] = {
-    "nominal_angles": "standing joint angles θ1, θ2, θ3 of every leg [rad]",
-    "rated_torques": "actuators' rated torques: root, hip, knee [N·m]",
-    "rated_speeds": "actuators' rated speeds: root, hip, knee [rad/s]",
-}
+TRIPLES: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind == "triple"}
 """Keys holding three numbers."""
 
-LIMIT_SETS: dict[str, str] = {
-    "workspace_limits": "Table 2 limits: the Monte Carlo workspace",
-    "improved_limits": "Table 4 limits (coupled knee): the improved workspace",
-    "manipulability_limits": "eq 26 limits: optimum pose and average manipulability",
-    "stance_limits": "limits that stop the body in stance (the paper's §6)",
-}
+LIMIT_SETS: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind == "limits"}
 """Joint-limit tables: theta1, theta2, theta3 = [lower, upper] [rad], coupled_knee, name."""
 
 MOUNT_KEYS: dict[str, str] = {
@@ -85,22 +70,23 @@ MOUNT_KEYS: dict[str, str] = {
     "yaw": "coxa direction at θ1 = 0 [rad]",
 }
 
-ANGLES = {"first_leg_angle", "front_yaw", "rear_yaw", "nominal_angles", "theta1", "theta2",
-          "theta3", "yaw"}  # fmt: skip
+ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 """Keys that are angles [rad]: each also accepted in degrees as ``<key>_deg``."""
 
 REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by
 :meth:`hexaleg.study.requirements.Requirements.from_table`."""
 
-TOP_KEYS = ("layout", *SCALARS, *TRIPLES, *LIMIT_SETS, "mount", "mounts", REQUIREMENTS)
+TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS)
+"""Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, and the
+``[requirements]`` table."""
 
 
 class DesignFileError(HexalegError):
     """A design file that cannot be read, or that describes no valid design."""
 
 
-class UnknownKeyError(DesignError):
+class UnknownKeyError(ParameterError):
     """A key that no design field has (a typo, most often)."""
 
     def __init__(self, field: str, hint: str) -> None:
@@ -109,6 +95,9 @@ class UnknownKeyError(DesignError):
 
     def __str__(self) -> str:
         return str(self.args[0])
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (type(self), (self.field, self.allowed))
 
 
 # -- reading ------------------------------------------------------------------------------
@@ -132,7 +121,7 @@ def load_design_file(
     Args:
         path: The TOML or JSON design file.
         read_requirements: Reads the table (empty if the file has none); a
-            :class:`~hexaleg.exceptions.DesignError` it raises is reported with the file
+            :class:`~hexaleg.exceptions.ParameterError` it raises is reported with the file
             and line like the design's own.
 
     Raises:
@@ -142,10 +131,7 @@ def load_design_file(
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
-    try:
-        text = path.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as err:
-        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
+    text = _read_text(path)
     json_file = path.suffix.lower() == ".json"
     try:
         data = json.loads(text) if json_file else tomllib.loads(text)
@@ -153,6 +139,10 @@ def load_design_file(
         raise DesignFileError(f"{path}, line {err.lineno}: not valid JSON ({err.msg})") from None
     except tomllib.TOMLDecodeError as err:
         raise DesignFileError(f"{path}: not valid TOML ({err})") from None
+    except RecursionError:
+        raise DesignFileError(f"{path}: values nested too deeply to be a design") from None
+    except ValueError as err:  # an integer of thousands of digits
+        raise DesignFileError(f"{path}: {_first_sentence(err)}") from None
     if json_file and isinstance(data, dict) and isinstance(data.get("design"), dict):
         data = data["design"]  # a whole hexaleg JSON output
     if not isinstance(data, dict):
@@ -160,12 +150,38 @@ def load_design_file(
     try:
         design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
         if not isinstance(table, dict):
-            raise DesignError(REQUIREMENTS, table, "must be a [requirements] table")
+            raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
         return design, read_requirements(table)
-    except DesignError as err:
+    except ParameterError as err:
         line = _line_of(text, err.field, json_file)
         where = f"{path}, line {line}" if line else str(path)
         raise DesignFileError(f"{where}: {err}") from None
+
+
+def _read_text(path: Path) -> str:
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never blocks on a FIFO."""
+    try:
+        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
+    except OSError as err:
+        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
+    try:
+        if not stat.S_ISREG(os.fstat(fd).st_mode):
+            raise DesignFileError(f"--design {path}: not a regular file")
+        with os.fdopen(fd, "rb", closefd=False) as file:
+            data = file.read(MAX_FILE_BYTES + 1)
+        if len(data) > MAX_FILE_BYTES:
+            raise DesignFileError(
+                f"--design {path}: larger than {MAX_FILE_BYTES // 2**20} MiB, not a design file"
+            )
+        return data.decode("utf-8")
+    except (OSError, UnicodeDecodeError) as err:
+        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
+    finally:
+        os.close(fd)
+
+
+def _first_sentence(err: Exception) -> str:
+    return str(err).split(";")[0].split(": value has")[0]
 
 
 def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
@@ -175,19 +191,20 @@ def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
     if unknown:
         raise _unknown(unknown[0], TOP_KEYS, "")
     if "mount" in data and "mounts" in data:
-        raise DesignError("mount", "given twice", "give the mounts as [[mount]] or mounts, once")
+        raise ParameterError("mount", "given twice", "give the mounts as [[mount]] or mounts, once")
     kwargs: dict[str, Any] = {}
     for key, value in data.items():
-        if key in SCALARS:
-            kwargs[key] = _number(key, value, SCALARS[key])
-        elif key in TRIPLES:
-            kwargs[key] = _numbers(key, value, 3, TRIPLES[key])
-        elif key in LIMIT_SETS:
+        kind = "mounts" if key == "mount" else FIELDS[key].kind
+        if kind == "number":
+            kwargs[key] = _number(key, value, FIELDS[key].unit)
+        elif kind == "triple":
+            kwargs[key] = _numbers(key, value, FIELDS[key].items, FIELDS[key].unit)
+        elif kind == "limits":
             kwargs[key] = _limits(key, value)
-        elif key == "layout":
-            kwargs[key] = value  # HexapodDesign names the layouts it knows
-        else:
+        elif kind == "mounts":
             kwargs["mounts"] = _mounts(key, value)
+        else:
+            kwargs[key] = value  # HexapodDesign names the choices it knows
     return HexapodDesign(**kwargs)
 
 
@@ -200,9 +217,11 @@ def _radians(table: Mapping[str, Any], prefix: str) -> dict[str, Any]:
             continue
         base = key[: -len(DEGREES_SUFFIX)]
         if base not in ANGLES:
-            raise DesignError(prefix + key, value, "only angle keys take degrees (_deg)")
+            raise ParameterError(prefix + key, value, "only angle keys take degrees (_deg)")
         if base in table:
-            raise DesignError(prefix + key, value, f"give {base} in radians or degrees, not both")
+            raise ParameterError(
+                prefix + key, value, f"give {base} in radians or degrees, not both"
+            )
         if isinstance(value, list):
             out[base] = [_degrees(f"{prefix}{key}", v) for v in value]
         else:
@@ -211,43 +230,44 @@ def _radians(table: Mapping[str, Any], prefix: str) -> dict[str, Any]:
 
 
 def _degrees(key: str, value: Any) -> float:
-    return math.radians(_number(key, value, "[°]"))
+    return math.radians(require_finite(key, _number(key, value, "°")))
 
 
-def _number(key: str, value: Any, comment: str) -> float:
+def _number(key: str, value: Any, unit: str) -> int | float:
+    """A number of the file, as given: the design checks its range (and a huge int's)."""
     if isinstance(value, bool) or not isinstance(value, int | float):
-        unit = re.findall(r"\[([^\]]+)\]", comment)
-        raise DesignError(key, value, f"must be a number{f' [{unit[-1]}]' if unit else ''}")
-    return float(value)
+        raise ParameterError(key, value, f"must be a number{f' [{unit}]' if unit else ''}")
+    return value
 
 
-def _numbers(key: str, value: Any, count: int, comment: str) -> tuple[float, ...]:
-    if not isinstance(value, list) or len(value) != count:
-        raise DesignError(key, value, f"must be a list of {count} numbers ({comment})")
-    return tuple(_number(key, v, comment) for v in value)
+def _numbers(key: str, value: Any, items: tuple[str, ...], unit: str) -> tuple[int | float, ...]:
+    if not isinstance(value, list) or len(value) != len(items):
+        listed = f"{', '.join(items)} [{unit}]"
+        raise ParameterError(key, value, f"must be a list of {len(items)} numbers ({listed})")
+    return tuple(_number(key, v, unit) for v in value)
 
 
 def _limits(key: str, value: Any) -> JointLimits:
     default: JointLimits = getattr(_DEFAULT, key)
     if not isinstance(value, dict):
-        raise DesignError(key, value, "must be a table of theta1, theta2, theta3 [rad]")
+        raise ParameterError(key, value, "must be a table of theta1, theta2, theta3 [rad]")
     table = _radians(value, f"{key}.")
     known = ("theta1", "theta2", "theta3", "coupled_knee", "name")
     unknown = [k for k in table if k not in known]
     if unknown:
         raise _unknown(unknown[0], known, f"{key}.")
     bounds = {
-        joint: _numbers(f"{key}.{joint}", table[joint], 2, "lower, upper [rad]")
+        joint: _numbers(f"{key}.{joint}", table[joint], ("lower", "upper"), "rad")
         if joint in table
         else getattr(default, joint)
-        for joint in ("theta1", "theta2", "theta3")
+        for joint in JOINT_NAMES
     }
     coupled = table.get("coupled_knee", default.coupled_knee)
     if not isinstance(coupled, bool):
-        raise DesignError(f"{key}.coupled_knee", coupled, "must be true or false")
+        raise ParameterError(f"{key}.coupled_knee", coupled, "must be true or false")
     name = table.get("name", default.name)
     if not isinstance(name, str):
-        raise DesignError(f"{key}.name", name, "must be a string")
+        raise ParameterError(f"{key}.name", name, "must be a string")
     limits = JointLimits(
         cast(tuple[float, float], bounds["theta1"]),
         cast(tuple[float, float], bounds["theta2"]),
@@ -260,7 +280,7 @@ def _limits(key: str, value: Any) -> JointLimits:
 
 def _mounts(key: str, value: Any) -> tuple[LegMount, ...]:
     if not isinstance(value, list) or not all(isinstance(m, dict) for m in value):
-        raise DesignError(key, value, "must be six [[mount]] tables of name, x, y, z, yaw")
+        raise ParameterError(key, value, "must be six [[mount]] tables of name, x, y, z, yaw")
     mounts = []
     for i, raw in enumerate(value):
         table = _radians(raw, f"{key}[{i}].")
@@ -269,14 +289,14 @@ def _mounts(key: str, value: Any) -> tuple[LegMount, ...]:
             raise _unknown(unknown[0], tuple(MOUNT_KEYS), f"{key}[{i}].")
         missing = [k for k in MOUNT_KEYS if k not in table]
         if missing:
-            raise DesignError(f"{key}[{i}]", raw, f"needs {', '.join(missing)} as well")
-        numbers = {k: _number(f"{key}[{i}].{k}", table[k], MOUNT_KEYS[k]) for k in "xyz"}
-        yaw = _number(f"{key}[{i}].yaw", table["yaw"], MOUNT_KEYS["yaw"])
+            raise ParameterError(f"{key}[{i}]", raw, f"needs {', '.join(missing)} as well")
+        numbers = {k: _number(f"{key}[{i}].{k}", table[k], "m") for k in "xyz"}
+        yaw = _number(f"{key}[{i}].yaw", table["yaw"], "rad")
         mounts.append(LegMount(table["name"], yaw=yaw, **numbers))
     return tuple(mounts)
 
 
-def _unknown(key: str, known: tuple[str, ...], prefix: str) -> DesignError:
+def _unknown(key: str, known: tuple[str, ...], prefix: str) -> ParameterError:
     close = difflib.get_close_matches(key.removesuffix(DEGREES_SUFFIX), known, n=1)
     hint = f"did you mean {close[0]!r}?" if close else "known keys: " + ", ".join(known)
     return UnknownKeyError(prefix + key, hint)
@@ -316,21 +336,16 @@ def design_toml(design: HexapodDesign) -> str:
         "# Any angle key also takes degrees as <key>_deg, e.g. first_leg_angle_deg = 30.",
         "# Every command reads it with --design FILE; options given beside it override it.",
         "",
-        _line("layout", design.layout, '"rectangle", "hexagon" or "custom" (then six [[mount]])'),
     ]
-    for key, comment in SCALARS.items():
-        lines.append(_line(key, getattr(design, key), comment))
-    for key, comment in TRIPLES.items():
-        lines.append(_line(key, list(getattr(design, key)), comment))
-    for key, comment in LIMIT_SETS.items():
-        limits: JointLimits = getattr(design, key)
-        lines += ["", f"[{key}]  # {comment}"]
-        for joint, what in zip(
-            ("theta1", "theta2", "theta3"), ("root", "hip", "knee"), strict=True
-        ):
-            lines.append(_line(joint, list(getattr(limits, joint)), f"{what}: lower, upper [rad]"))
-        lines.append(_line("coupled_knee", limits.coupled_knee, "also θ3 ≥ −θ2 − π/2 (Table 4)"))
-        lines.append(_line("name", limits.name, "label in reports"))
+    for spec in DESIGN_FIELDS:  # keys first: TOML puts the tables after them
+        if spec.kind in ("number", "triple", "choice"):
+            value = getattr(design, spec.name)
+            lines.append(
+                _line(spec.key, list(value) if spec.kind == "triple" else value, spec.described)
+            )
+    for spec in DESIGN_FIELDS:
+        if spec.kind == "limits":
+            lines += _limits_table(spec, getattr(design, spec.name))
     if design.layout == "custom":
         for mount in design.legs:
             lines += ["", "[[mount]]"]
@@ -341,6 +356,15 @@ def design_toml(design: HexapodDesign) -> str:
             "# " + _line(k, getattr(design.legs[0], k), c) for k, c in MOUNT_KEYS.items()
         ]
     return "\n".join(lines) + "\n"
+
+
+def _limits_table(spec: FieldSpec, limits: JointLimits) -> list[str]:
+    lines = ["", f"[{spec.key}]  # {spec.described}"]
+    for joint, what in zip(JOINT_NAMES, LEG_JOINTS, strict=True):
+        lines.append(_line(joint, list(getattr(limits, joint)), f"{what}: lower, upper [rad]"))
+    lines.append(_line("coupled_knee", limits.coupled_knee, "also θ3 ≥ −θ2 − π/2 (Table 4)"))
+    lines.append(_line("name", limits.name, "label in reports"))
+    return lines
 
 
 def _line(key: str, value: Any, comment: str) -> str:

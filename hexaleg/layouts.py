@@ -20,19 +20,21 @@ from __future__ import annotations
 
 import math
 import re
+from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Literal
+from typing import Any, Literal, cast
 
 import numpy as np
 import numpy.typing as npt
 
 from hexaleg._checks import require_in_range
-from hexaleg.exceptions import DesignError
+from hexaleg._typing import choices, require_choice
+from hexaleg.exceptions import ParameterError
 
 Layout = Literal["rectangle", "hexagon", "custom"]
 """How the legs are placed on the body."""
 
-LAYOUTS: tuple[str, ...] = ("rectangle", "hexagon", "custom")
+LAYOUTS: tuple[str, ...] = choices(Layout)
 
 LEG_NAMES: tuple[str, ...] = ("lf", "lm", "lr", "rf", "rm", "rr")
 """Leg names of the built-in layouts: left/right × front/middle/rear."""
@@ -70,7 +72,7 @@ class LegMount:
 
     def __post_init__(self) -> None:
         if not isinstance(self.name, str) or not _NAME_PATTERN.match(self.name):
-            raise DesignError(
+            raise ParameterError(
                 "mount.name", self.name, "a lower-case identifier like 'lf' (letters, digits, _)"
             )
         for name in ("x", "y", "z", "yaw"):
@@ -113,6 +115,17 @@ def rectangle_mounts(
         LegMount("rm", 0.0, -wide, 0.0, -math.pi / 2),
         LegMount("rr", -hx, -hy, 0.0, -rear_yaw),
     )
+
+
+def default_mounts(body_length: float, body_width: float) -> tuple[LegMount, ...]:
+    """The paper's rectangle: legs at the corners and side mid-points, pointing outward.
+
+    Args:
+        body_length: Body extent along x [m].
+        body_width: Body extent along y [m].
+
+    """
+    return rectangle_mounts(body_length, body_width)
 
 
 def hexagon_mounts(
@@ -176,8 +189,58 @@ def require_apart(
     if gaps.min() >= distance:
         return
     i, j = sorted(np.unravel_index(int(np.argmin(gaps)), gaps.shape))
-    raise DesignError(
+    raise ParameterError(
         what,
         f"{names[i]} and {names[j]} {gaps[i, j]:.4g} m apart",
         f"legs must be at least {distance:.4g} m apart ({unit_note})",
     )
+
+
+def resolve_layout(layout: Any, mounts: Any) -> Layout:
+    """The layout a design names; ``None`` means custom with mounts, else the rectangle."""
+    if layout is None:
+        return "rectangle" if mounts is None else "custom"
+    return cast(Layout, require_choice("layout", layout, Layout))
+
+
+def checked_mounts(
+    layout: Layout, mounts: Any, placed: tuple[LegMount, ...] | None, link_radius: float
+) -> tuple[LegMount, ...]:
+    """The six mounts of a design, checked: those given, or those its layout placed.
+
+    Args:
+        layout: The design's layout.
+        mounts: The mounts given (``None``: placed by the layout).
+        placed: The mounts the layout places; ``None`` for a custom layout.
+        link_radius: Radius of the links [m]: two leg roots must be two radii apart.
+
+    """
+    if mounts is None:
+        if placed is None:
+            raise ParameterError("mounts", None, 'layout "custom" needs the six mounts')
+        mounts = placed
+    if not isinstance(mounts, Sequence) or not all(isinstance(m, LegMount) for m in mounts):
+        raise ParameterError("mounts", mounts, "a sequence of six LegMount")
+    mounts = tuple(mounts)
+    if placed is not None and not same_mounts(mounts, placed):
+        raise ParameterError(
+            "mounts",
+            "given",
+            f"the {layout} layout places the legs itself: drop the mounts, or set "
+            'layout = "custom" to place them by hand',
+        )
+    if len(mounts) != 6:
+        raise ParameterError("mounts", len(mounts), "exactly 6 legs (a hexapod)")
+    names = [m.name for m in mounts]
+    if len(set(names)) != len(names):
+        raise ParameterError("mounts", names, "leg names must be unique")
+    heights = {m.z for m in mounts}
+    if len(heights) != 1:
+        raise ParameterError(
+            "mounts[*].z",
+            sorted(heights),
+            "every leg root at the same height, so that all feet reach level ground [m]",
+        )
+    spacing = "two link radii, so that their coxas do not overlap"
+    require_apart("mounts", tuple(names), [(m.x, m.y) for m in mounts], 2 * link_radius, spacing)
+    return mounts

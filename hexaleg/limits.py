@@ -10,14 +10,22 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg.exceptions import DesignError
+from hexaleg._checks import require_finite, require_numbers
+from hexaleg.exceptions import ParameterError
 
 JOINT_NAMES: tuple[str, str, str] = ("theta1", "theta2", "theta3")
 """Joint-angle names in leg order: root (θ1), hip (θ2), knee (θ3)."""
+
+BOUNDS = ("lower", "upper")
+"""The two ends of a joint interval."""
+
+LEG_JOINTS: tuple[str, str, str] = ("root", "hip", "knee")
+"""Joint names of a leg, in the order of the paper's θ1, θ2, θ3."""
 
 
 @dataclass(frozen=True)
@@ -41,16 +49,27 @@ class JointLimits:
     name: str = "custom"
 
     def __post_init__(self) -> None:
+        if not isinstance(self.name, str):
+            raise ParameterError("JointLimits.name", self.name, "must be a string")
+        if not isinstance(self.coupled_knee, bool):
+            raise ParameterError(f"{self.name}.coupled_knee", self.coupled_knee, "true or false")
         for joint in JOINT_NAMES:
-            lower, upper = getattr(self, joint)
             field = f"{self.name}.{joint}"
-            if not (math.isfinite(lower) and math.isfinite(upper)):
-                raise DesignError(field, (lower, upper), "bounds must be finite [rad]")
+            bounds = require_numbers(field, getattr(self, joint), BOUNDS, "angles [rad]")
+            try:
+                lower, upper = (require_finite(field, bound) for bound in bounds)
+            except ParameterError:
+                raise ParameterError(field, bounds, "bounds must be finite [rad]") from None
             if not lower < upper:
-                raise DesignError(field, (lower, upper), "lower bound must be < upper bound [rad]")
+                raise ParameterError(field, bounds, "lower bound must be < upper bound [rad]")
             if not (-math.pi <= lower and upper <= math.pi):
-                raise DesignError(field, (lower, upper), "bounds must lie in [-π, π] [rad]")
-            object.__setattr__(self, joint, (float(lower), float(upper)))
+                raise ParameterError(field, bounds, "bounds must lie in [-π, π] [rad]")
+            object.__setattr__(self, joint, (lower, upper))
+
+    def as_dict(self) -> dict[str, Any]:
+        """The limits as plain JSON-ready values [rad]."""
+        bounds = {joint: list(getattr(self, joint)) for joint in JOINT_NAMES}
+        return {**bounds, "coupled_knee": self.coupled_knee, "name": self.name}
 
     @property
     def lower(self) -> npt.NDArray[np.float64]:

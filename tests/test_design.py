@@ -195,3 +195,31 @@ def test_joint_limit_sets_match_the_paper():
     assert improved.contains([0.0, 0.5, -0.5 - np.pi / 2 + 1e-9])
     assert not improved.contains([0.0, 0.5, -0.5 - np.pi / 2 - 1e-9])
     assert improved.contains([0.0, np.pi / 3, -5 * np.pi / 6 + 1e-9])
+
+
+def test_every_field_is_declared_once_and_each_reader_uses_the_declaration(capsys):
+    """Docstring, design-file comments and CLI help all come from DESIGN_FIELDS."""
+    import inspect
+    from dataclasses import fields
+
+    from hexaleg.cli import main
+    from hexaleg.design import DESIGN_FIELDS
+    from hexaleg.design_file import design_toml
+
+    assert [spec.name for spec in DESIGN_FIELDS] == [f.name for f in fields(HexapodDesign)]
+    doc = " ".join(inspect.getdoc(HexapodDesign).split())
+    toml = design_toml(HexapodDesign())
+    with pytest.raises(SystemExit):
+        main(["urdf", "--help"])
+    cli = " ".join(capsys.readouterr().out.split())
+    for spec in DESIGN_FIELDS:
+        described = " ".join(spec.described.split())
+        assert f"{spec.name}: {described[0].upper()}{described[1:]}." in doc
+        if spec.unit:
+            assert f"[{spec.unit}]" in described
+        if spec.kind in ("number", "triple", "choice"):
+            assert f"{spec.key} = " in toml and f"# {spec.described}" in toml
+        elif spec.kind == "limits":
+            assert f"[{spec.key}]  # {spec.described}" in toml
+        if spec.flag is not None:
+            assert f"{spec.flag} " in cli and described in cli

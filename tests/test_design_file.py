@@ -215,3 +215,13 @@ def test_a_study_of_a_design_file_sweeps_its_leg_length_and_body(tmp_path, capsy
     spec = json.loads((out / "study.json").read_text())["spec"]
     assert spec["total"] == pytest.approx(1.2)
     assert spec["base"]["layout"] == "hexagon"
+
+
+def test_an_unknown_key_error_survives_pickling():
+    """Errors cross process pools; the typo's hint must arrive intact."""
+    import pickle
+
+    with pytest.raises(DesignError) as info:
+        design_from_mapping({"body_radus": 0.3})
+    again = pickle.loads(pickle.dumps(info.value))
+    assert str(again) == str(info.value) == "unknown key 'body_radus': did you mean 'body_radius'?"

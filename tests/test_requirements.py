@@ -8,7 +8,7 @@ import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.design_file import DesignFileError, load_design, load_design_file
-from hexaleg.exceptions import DesignError
+from hexaleg.exceptions import ParameterError
 from hexaleg.study.requirements import BINDING_SHARE, KINDS, Requirements, check
 
 
@@ -37,7 +37,7 @@ def test_table_keys_are_the_fields_and_degrees_become_radians():
     ],
 )
 def test_a_bad_table_names_the_key_and_what_is_allowed(table, field, words):
-    with pytest.raises(DesignError) as caught:
+    with pytest.raises(ParameterError) as caught:
         Requirements.from_table(table, source="requirements")
     assert caught.value.field == field
     assert words in str(caught.value)

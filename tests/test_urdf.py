@@ -153,3 +153,54 @@ def test_urdf_joints_carry_the_rated_torques_and_speeds():
             assert (float(limit.get("effort")), float(limit.get("velocity"))) == expected[kind]
             seen += 1
     assert seen == 18
+
+
+def _solid_cylinder_about_its_centre(mass, radius, length):
+    """Oracle: a solid cylinder along x, principal moments about its centre [kg·m²]."""
+    side = mass * (3 * radius**2 + length**2) / 12
+    return np.diag([mass * radius**2 / 2, side, side])
+
+
+@pytest.mark.parametrize("design", [HexapodDesign(), *random_designs(2, seed=17)])
+def test_link_inertias_are_solid_cylinders_and_a_foot_sphere(design):
+    """Each leg's inertias in the model read from the URDF, against closed forms here."""
+    from hexaleg.design import FOOT_MASS
+
+    model = HexapodModel(design).model
+    r, rho = design.link_radius, design.link_linear_density
+    root, hip, knee = (model.getJointId(f"rf_{j}_joint") for j in ("root", "hip", "knee"))
+    for joint, length, radius in ((root, design.l1, r), (hip, design.l2, r)):
+        inertia = model.inertias[joint]
+        assert inertia.mass == pytest.approx(rho * length, rel=1e-14)
+        np.testing.assert_allclose(inertia.lever, [length / 2, 0, 0], atol=1e-15)
+        expected = _solid_cylinder_about_its_centre(rho * length, radius, length)
+        np.testing.assert_allclose(inertia.inertia, expected, rtol=1e-12, atol=1e-18)
+    # the tibia (radius 0.8 r) carries the foot: a sphere of FOOT_MASS and radius r at l3
+    l3, tibia_mass = design.l3, rho * design.l3
+    mass = tibia_mass + FOOT_MASS
+    com = (tibia_mass * l3 / 2 + FOOT_MASS * l3) / mass
+    about_com = _solid_cylinder_about_its_centre(tibia_mass, 0.8 * r, l3) + np.eye(3) * (
+        0.4 * FOOT_MASS * r**2
+    )
+    shift = np.diag([0.0, 1.0, 1.0])  # parallel axes: both centres lie on x
+    about_com += shift * (tibia_mass * (l3 / 2 - com) ** 2 + FOOT_MASS * (l3 - com) ** 2)
+    knee_inertia = model.inertias[knee]
+    assert knee_inertia.mass == pytest.approx(mass, rel=1e-14)
+    np.testing.assert_allclose(knee_inertia.lever, [com, 0, 0], rtol=1e-13)
+    np.testing.assert_allclose(knee_inertia.inertia, about_com, rtol=1e-10, atol=1e-18)
+
+
+@pytest.mark.parametrize("layout", ["rectangle", "hexagon"])
+def test_body_inertia_is_a_solid_box_or_cylinder(layout):
+    design = HexapodDesign(layout=layout, body_mass=42.0, body_height=0.12)
+    body = HexapodModel(design).model.inertias[1]  # the free flyer carries base_link
+    m, h = 42.0, 0.12
+    if layout == "rectangle":
+        a, b = design.body_length, design.body_width
+        expected = np.diag([b**2 + h**2, a**2 + h**2, a**2 + b**2]) * m / 12
+    else:
+        r = design.body_radius
+        expected = np.diag([(3 * r**2 + h**2) / 12, (3 * r**2 + h**2) / 12, r**2 / 2]) * m
+    assert body.mass == pytest.approx(m)
+    np.testing.assert_allclose(body.lever, 0.0, atol=1e-15)
+    np.testing.assert_allclose(body.inertia, expected, rtol=1e-12)

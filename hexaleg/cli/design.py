@@ -95,6 +95,7 @@ def show(design: HexapodDesign) -> None:
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
             ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg)"),
             ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
+            ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
         ],
     )
     print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")

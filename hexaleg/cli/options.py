@@ -5,11 +5,13 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import Any
+from typing import Any, cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
-from hexaleg.design import MAX_L3_POINTS, HexapodDesign
+from hexaleg.design import DESIGN_FIELDS, MAX_L3_POINTS, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.field_spec import FieldSpec
+from hexaleg.layouts import Layout
 from hexaleg.paper import L3_RATIO_POINTS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
 from hexaleg.study.sweep import MAX_L1_RATIOS
@@ -49,15 +51,18 @@ def add_design_options(
 ) -> None:
     """Add the design options a command uses, and only those.
 
+    Each design field that a group offers becomes ``--<field>`` with its help, unit and
+    default from the field's declaration (:data:`~hexaleg.design.DESIGN_FIELDS`).
+
     Args:
         parser: The command's parser.
         lengths: Segment lengths (``--l1 --l2 --l3`` or ``--ratios``); without them,
             ``--total`` is the swept designs' leg length.
-        body: Body size (``--body-length`` ...): what the stance and the robot depend on.
+        body: Body size and layout (``--body-length`` ...): what the stance and the
+            robot depend on.
         posture: The nominal joint angles (``--nominal-angles``).
 
     """
-    default = HexapodDesign()
     group = parser.add_argument_group(DESIGN_GROUP)
     group.add_argument(
         "--design",
@@ -65,14 +70,17 @@ def add_design_options(
         help="read the design from a TOML design file (hexaleg design init) or a .json "
         "design printed by hexaleg; the options below override its values",
     )
+    offered = {"lengths": lengths, "body": body, "posture": posture}
+    for spec in DESIGN_FIELDS:
+        if spec.option is not None and offered[spec.option]:
+            _add_field_option(group, spec)
+        if spec.name == SEGMENTS[-1]:
+            _add_total_options(group, lengths)
+
+
+def _add_total_options(group: argparse._ArgumentGroup, lengths: bool) -> None:
+    """``--ratios`` (with the lengths) and ``--total``: segments as fractions of a total."""
     if lengths:
-        for name, what in (("l1", "coxa"), ("l2", "femur"), ("l3", "tibia")):
-            group.add_argument(
-                f"--{name}",
-                type=float,
-                metavar="M",
-                help=f"{what} length [m] (default {getattr(default, name):g})",
-            )
         group.add_argument(
             "--ratios",
             type=float,
@@ -80,74 +88,50 @@ def add_design_options(
             metavar=("L1", "L3"),
             help="coxa and tibia as fractions of --total, instead of --l1/--l2/--l3 [-]",
         )
+    what = "for --ratios" if lengths else "of every swept design"
     group.add_argument(
         "--total",
         type=float,
         metavar="M",
-        help=(
-            f"total leg length l1+l2+l3 for --ratios [m] (default: the --design file's, "
-            f"else {DEFAULT_TOTAL:g})"
-            if lengths
-            else f"total leg length l1+l2+l3 of every swept design [m] (default: the --design "
-            f"file's, else {DEFAULT_TOTAL:g})"
-        ),
+        help=f"total leg length l1+l2+l3 {what} [m] (default: the --design file's, "
+        f"else {DEFAULT_TOTAL:g})",
     )
-    if body:
-        _add_body_options(group, default)
-    if posture:
+
+
+METAVARS = {"m": "M", "rad": "RAD"}
+"""Option metavars by unit; others take ``X``."""
+
+
+def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
+    """``--<field>`` of one design field, as its declaration describes it."""
+    flag = cast(str, spec.flag)
+    if spec.kind == "choice":  # custom mounts are given in a --design file
+        layouts = tuple(c for c in choices(Layout) if c != "custom")
+        help = f"{spec.described} (default {layouts[0]}; custom needs a --design file)"
+        group.add_argument(flag, choices=layouts, help=help)
+        return
+    if spec.kind == "triple":
+        default = " ".join(f"{v:.4g}" for v in spec.default)
         group.add_argument(
-            "--nominal-angles",
+            flag,
             type=float,
-            nargs=3,
-            metavar=("T1", "T2", "T3"),
-            help="standing joint angles θ1 θ2 θ3 of every leg [rad] (default "
-            + " ".join(f"{a:.4g}" for a in default.nominal_angles)
-            + ")",
+            nargs=len(spec.items),
+            metavar=tuple(item.upper() for item in spec.items),
+            help=f"{spec.described} (default {default})",
         )
-
-
-LAYOUT_OPTIONS: tuple[tuple[str, str], ...] = (
-    ("body_radius", "hexagon: leg roots' radius and the round body's [m]"),
-    ("first_leg_angle", "hexagon: left front leg's direction from straight ahead, 0..π/3 [rad]"),
-    ("middle_leg_offset", "rectangle: middle legs this much wider than the body [m]"),
-    ("front_yaw", "rectangle: left front coxa direction, the right one mirrored [rad]"),
-    ("rear_yaw", "rectangle: left rear coxa direction, the right one mirrored [rad]"),
-)
-"""The layout's number-valued options: design field and help."""
-
-
-def _add_body_options(group: argparse._ArgumentGroup, default: HexapodDesign) -> None:
-    for axis, name in (("x", "body_length"), ("y", "body_width"), ("z", "body_height")):
-        group.add_argument(
-            f"--{name.replace('_', '-')}",
-            type=float,
-            metavar="M",
-            help=f"body extent along {axis} [m] (default {getattr(default, name):g})",
-        )
+        return
     group.add_argument(
-        "--layout",
-        choices=("rectangle", "hexagon"),
-        help="legs on a rectangular body's corners and sides (default), or every 60° "
-        "around a round one (custom mounts: in a --design file)",
+        flag,
+        type=float,
+        metavar=METAVARS.get(spec.unit, "X"),
+        help=f"{spec.described} (default {spec.default:.4g})",
     )
-    for name, what in LAYOUT_OPTIONS:
-        unit = "RAD" if "[rad]" in what else "M"
-        group.add_argument(
-            f"--{name.replace('_', '-')}",
-            type=float,
-            metavar=unit,
-            help=f"{what} (default {getattr(default, name):.4g})",
-        )
 
 
-DESIGN_FLAGS: tuple[str, ...] = (
-    "body_length",
-    "body_width",
-    "body_height",
-    "layout",
-    *(name for name, _ in LAYOUT_OPTIONS),
+DESIGN_FLAGS: tuple[str, ...] = tuple(
+    spec.name for spec in DESIGN_FIELDS if spec.option is not None and spec.name not in SEGMENTS
 )
-"""Design fields set by an option of the same name."""
+"""Design fields set by an option of the same name (the segments also take --ratios)."""
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
@@ -161,12 +145,12 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     path = getattr(args, "design", None)
     base = HexapodDesign() if path is None else load_design(path)
     changes: dict[str, Any] = {
-        name: getattr(args, name) for name in DESIGN_FLAGS if getattr(args, name, None) is not None
+        name: _value(getattr(args, name))
+        for name in DESIGN_FLAGS
+        if getattr(args, name, None) is not None
     }
-    if getattr(args, "nominal_angles", None) is not None:
-        changes["nominal_angles"] = tuple(args.nominal_angles)
     if getattr(args, "ratios", None) is not None:
-        given = [f"--{n}" for n in ("l1", "l2", "l3") if getattr(args, n) is not None]
+        given = [f"--{n}" for n in SEGMENTS if getattr(args, n) is not None]
         if given:
             raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
         total = study_total(args, base)
@@ -176,10 +160,15 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
         return design
     if args.total is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
-    for name in ("l1", "l2", "l3"):
+    for name in SEGMENTS:
         if getattr(args, name, None) is not None:
             changes[name] = getattr(args, name)
     return base.replace(**changes) if changes else base
+
+
+def _value(given: Any) -> Any:
+    """An option's value as the design takes it: a list of numbers becomes a tuple."""
+    return tuple(given) if isinstance(given, list) else given
 
 
 def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:

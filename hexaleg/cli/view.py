@@ -7,7 +7,6 @@ import ipaddress
 import sys
 
 from hexaleg.cli.options import (
-    UsageError,
     add_design_options,
     add_stance_option,
     bounded_int,
@@ -15,6 +14,7 @@ from hexaleg.cli.options import (
     note,
 )
 from hexaleg.cli.output import report_files
+from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer import (
     LoopbackServer,
     build_scene,
@@ -52,8 +52,8 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     model = HexapodModel(design)
     if args.workspace is not None and args.workspace not in model.leg_names:
-        raise UsageError(
-            f"--workspace = {args.workspace!r} is not valid: legs are {', '.join(model.leg_names)}"
+        raise ParameterError(
+            "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
         )
     result = axis_locked_flexibility(design, args.stance, model)
     loads = loads_at_extremes(model, result)

@@ -12,10 +12,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files, vector
 from hexaleg.output.figures import write_workspace_figures
-from hexaleg.swing.workspace import MAX_SAMPLES, analyze_workspace
-
-MAX_SEED = 2**32 - 1
-"""Largest seed accepted (NumPy takes any non-negative integer; 32 bits is plenty)."""
+from hexaleg.swing.workspace import MAX_SAMPLES, MAX_SEED, analyze_workspace
 
 DESCRIPTION = (
     "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "

@@ -16,12 +16,11 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
-from hexaleg.design import FOOT_MASS, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.inertia import LinkInertial, leg_inertials
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
-
-LEG_JOINTS: tuple[str, str, str] = ("root", "hip", "knee")
-"""Joint names of a leg, in the order of the paper's θ1, θ2, θ3."""
 
 
 def joint_name(leg: str, joint: str) -> str:
@@ -166,10 +165,11 @@ class HexapodModel:
         """The model of ``design``, whose segments, ratings or posture differ, without Xacro.
 
         The fast path of sweeps: joint placements, the foot frames, the links' inertias
-        (rods of the design's density, the tibia carrying its foot) and the effort limits
-        are set as the URDF would set them (the nominal posture is not in the URDF); the
-        tests prove the result equal to ``HexapodModel(design)``. Every other field must
-        be this model's design's.
+        (:func:`~hexaleg.robot.inertia.leg_inertials`, as the URDF receives them; the tibia
+        carries its foot, as Pinocchio merges a fixed joint's child) and the effort and
+        velocity limits are set as the URDF sets them (the nominal posture is not in the
+        URDF); the tests prove the result equal to ``HexapodModel(design)``. Every other
+        field must be this model's design's.
         """
         changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles")
         if any(
@@ -179,22 +179,16 @@ class HexapodModel:
         ):
             raise ModelError("with_design changes only segment lengths, ratings and posture")
         model = pin.Model(self.model)
-        radius, density = design.link_radius, design.link_linear_density
-        hip_placement = pin.SE3(np.eye(3), np.array([design.l1, 0.0, 0.0]))
-        knee_placement = pin.SE3(np.eye(3), np.array([design.l2, 0.0, 0.0]))
-        foot_placement = pin.SE3(np.eye(3), np.array([design.l3, 0.0, 0.0]))
-        foot = pin.Inertia(
-            FOOT_MASS, np.array([design.l3, 0.0, 0.0]), 0.4 * FOOT_MASS * radius**2 * np.eye(3)
-        )
+        links = leg_inertials(design)
         inertias = (
-            _rod(design.l1, radius, density),
-            _rod(design.l2, radius, density),
-            _rod(design.l3, 0.8 * radius, density) + foot,
+            _pinocchio(links["coxa"]),
+            _pinocchio(links["femur"]),
+            _pinocchio(links["tibia"]) + _pinocchio(links["foot"], offset=design.l3),
         )
+        hip, knee, foot = (pin.SE3(np.eye(3), np.array([x, 0.0, 0.0])) for x in design.lengths)
         for index in self._legs.values():
-            _, hip, knee = index.joints
-            model.jointPlacements[hip] = hip_placement
-            model.jointPlacements[knee] = knee_placement
+            model.jointPlacements[index.joints[1]] = hip
+            model.jointPlacements[index.joints[2]] = knee
             for joint, inertia, effort, speed in zip(
                 index.joints, inertias, design.rated_torques, design.rated_speeds, strict=True
             ):
@@ -203,7 +197,7 @@ class HexapodModel:
                 model.velocityLimit[model.idx_vs[joint]] = speed
             for frame_id in (index.foot_joint_frame, index.foot_frame):
                 frame = model.frames[frame_id]
-                frame.placement = foot_placement
+                frame.placement = foot
                 model.frames[frame_id] = frame
         return HexapodModel(design, _model=model, _legs=self._legs)  # same joints and frames
 
@@ -320,9 +314,7 @@ def _frame_id(model: pin.Model, name: str) -> int:
     return int(model.getFrameId(name))
 
 
-def _rod(length: float, radius: float, density: float) -> pin.Inertia:
-    """A solid cylinder along +x from the joint, as the Xacro templates write it [kg, m]."""
-    mass = density * length
-    side = mass * (3 * radius**2 + length**2) / 12
-    rotational = np.diag([mass * radius**2 / 2, side, side])
-    return pin.Inertia(mass, np.array([length / 2, 0.0, 0.0]), rotational)
+def _pinocchio(inertial: LinkInertial, offset: float = 0.0) -> pin.Inertia:
+    """``inertial`` as Pinocchio's, its link frame ``offset`` [m] along x of the joint's."""
+    com = np.array([offset + inertial.com_x, 0.0, 0.0])
+    return pin.Inertia(inertial.mass, com, np.diag(inertial.moments))

@@ -17,8 +17,10 @@ from pathlib import Path
 
 from hexaleg._io import atomic_write_text
 from hexaleg._version import __version__
-from hexaleg.design import FOOT_MASS, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
+from hexaleg.limits import JOINT_NAMES, LEG_JOINTS
+from hexaleg.robot.inertia import TIBIA_RADIUS_RATIO, body_inertial, leg_inertials
 
 HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
 LEG_TEMPLATE = "leg.urdf.xacro"
@@ -44,14 +46,15 @@ def template_dir() -> Path:
 def render_hexapod(design: HexapodDesign, validate: bool = True) -> str:
     """URDF of the whole hexapod (root link ``base_link``) for ``design``."""
     mappings = _common_arguments(design)
-    mappings |= {
-        "body_shape": design.body_shape,  # a validated literal: "box" or "cylinder"
-        "body_length": _number(design.body_length),
-        "body_width": _number(design.body_width),
-        "body_radius": _number(design.body_radius),
-        "body_height": _number(design.body_height),
-        "body_mass": _number(design.body_mass),
+    body = {
+        "body_length": design.body_length,
+        "body_width": design.body_width,
+        "body_radius": design.body_radius,
+        "body_height": design.body_height,
+        **body_inertial(design).xacro_arguments("body"),
     }
+    mappings |= {name: _number(value) for name, value in body.items()}
+    mappings["body_shape"] = design.body_shape  # a validated literal: "box" or "cylinder"
     for i, mount in enumerate(design.legs, start=1):
         mappings[f"leg{i}_name"] = mount.name  # validated identifier, see LegMount
         for axis in ("x", "y", "z", "yaw"):
@@ -92,27 +95,24 @@ def validate_urdf(xml: str) -> None:
 
 
 def _common_arguments(design: HexapodDesign) -> dict[str, str]:
+    """The leg's arguments, the same for every leg: lengths, limits, ratings, inertials."""
     limits = design.joint_range
-    return {
-        "l1": _number(design.l1),
-        "l2": _number(design.l2),
-        "l3": _number(design.l3),
-        "link_radius": _number(design.link_radius),
-        "link_linear_density": _number(design.link_linear_density),
-        "foot_mass": _number(FOOT_MASS),
-        "theta1_lower": _number(limits.theta1[0]),
-        "theta1_upper": _number(limits.theta1[1]),
-        "theta2_lower": _number(limits.theta2[0]),
-        "theta2_upper": _number(limits.theta2[1]),
-        "theta3_lower": _number(limits.theta3[0]),
-        "theta3_upper": _number(limits.theta3[1]),
-        "root_effort": _number(design.rated_torques[0]),
-        "hip_effort": _number(design.rated_torques[1]),
-        "knee_effort": _number(design.rated_torques[2]),
-        "root_velocity": _number(design.rated_speeds[0]),
-        "hip_velocity": _number(design.rated_speeds[1]),
-        "knee_velocity": _number(design.rated_speeds[2]),
+    numbers = {
+        "l1": design.l1,
+        "l2": design.l2,
+        "l3": design.l3,
+        "link_radius": design.link_radius,
+        "tibia_radius": TIBIA_RADIUS_RATIO * design.link_radius,
     }
+    for joint in JOINT_NAMES:
+        numbers[f"{joint}_lower"], numbers[f"{joint}_upper"] = getattr(limits, joint)
+    for joint, effort, speed in zip(
+        LEG_JOINTS, design.rated_torques, design.rated_speeds, strict=True
+    ):
+        numbers[f"{joint}_effort"], numbers[f"{joint}_velocity"] = effort, speed
+    for link, inertial in leg_inertials(design).items():
+        numbers |= inertial.xacro_arguments(link)
+    return {name: _number(value) for name, value in numbers.items()}
 
 
 def _number(value: float) -> str:

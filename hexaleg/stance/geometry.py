@@ -20,7 +20,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF, StanceSet, require_choice
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError, ModelError
+from hexaleg.exceptions import HexalegError, ModelError, ParameterError
 from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics
 from hexaleg.layouts import first_tripod
 from hexaleg.limits import JointLimits
@@ -40,9 +40,8 @@ def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple
         legs = tuple(stance)
     unknown = [leg for leg in legs if leg not in model.leg_names]
     if unknown or len(set(legs)) != len(legs) or len(legs) < 3:
-        raise HexalegError(
-            f"stance legs {list(legs)} are not valid: at least 3 distinct legs of "
-            f"{', '.join(model.leg_names)}"
+        raise ParameterError(
+            "stance legs", list(legs), f"at least 3 distinct legs of {', '.join(model.leg_names)}"
         )
     return tuple(legs)
 

@@ -19,7 +19,6 @@ gravity line through c meets the ground to the nearest edge of the support polyg
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -28,8 +27,9 @@ import numpy.typing as npt
 import pinocchio as pin
 import qpsolvers
 
+from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import LEG_JOINTS, HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
@@ -58,18 +58,14 @@ class Payload:
     position: tuple[float, float, float] | None = None
 
     def __post_init__(self) -> None:
-        if not (math.isfinite(self.mass) and 0 <= self.mass <= PAYLOAD_SEARCH_LIMIT):
-            raise HexalegError(
-                f"payload mass = {self.mass:g} is not valid: must lie in "
-                f"[0, {PAYLOAD_SEARCH_LIMIT:g}] [kg]"
-            )
+        mass = require_in_range("payload mass", self.mass, 0.0, PAYLOAD_SEARCH_LIMIT, "kg")
+        object.__setattr__(self, "mass", mass)
         if self.position is not None:
-            position = tuple(float(v) for v in self.position)
-            if len(position) != 3 or not all(math.isfinite(v) and abs(v) <= 100 for v in position):
-                raise HexalegError(
-                    f"payload position = {self.position} is not valid: three coordinates "
-                    "in [-100, 100] [m], body frame"
-                )
+            given = require_numbers("payload position", self.position, "xyz", "body-frame [m]")
+            position = tuple(
+                require_in_range(f"payload position.{axis}", v, -100.0, 100.0, "m")
+                for axis, v in zip("xyz", given, strict=True)
+            )
             object.__setattr__(self, "position", position)
 
     def point(self, model: HexapodModel) -> ArrayF:
@@ -135,8 +131,8 @@ class Statics:
         payload: Payload | None = None,
         friction: float = DEFAULT_FRICTION,
     ) -> None:
-        if not (math.isfinite(friction) and 0 < friction <= 10):
-            raise HexalegError(f"friction = {friction:g} is not valid: must lie in (0, 10] [-]")
+        if not 0 < require_in_range("friction", friction, 0.0, 10.0, "-"):
+            raise ParameterError("friction", friction, "must lie in (0, 10] [-]")
         self.model = model
         self.legs = tuple(legs)
         self.payload = payload or Payload()

@@ -18,6 +18,7 @@ from contextlib import contextmanager
 
 from threadpoolctl import threadpool_limits
 
+from hexaleg._checks import require_int
 from hexaleg.exceptions import HexalegError
 
 DASK_CONNECT_TIMEOUT = "10s"
@@ -46,11 +47,7 @@ def local_pool(workers: int | None = None) -> Iterator[Executor]:
 
     """
     count = workers or os.cpu_count() or 1
-    if not 1 <= count <= max_workers():
-        raise HexalegError(
-            f"workers = {count} is not valid: must lie in 1..{max_workers()} "
-            f"({WORKERS_PER_CPU} per CPU)"
-        )
+    require_int("workers", count, 1, max_workers())  # WORKERS_PER_CPU per CPU
     pool = ProcessPoolExecutor(max_workers=count, initializer=init_worker, initargs=(os.getpid(),))
     try:
         yield pool

@@ -240,7 +240,7 @@ class _Evaluator:
         return [found[x] for x in keys]
 
 
-class _Problem(Problem):  # type: ignore[misc]  # pymoo ships no type information
+class _Problem(Problem):  # type: ignore[misc,unused-ignore]  # pymoo ships no types
     """The search as pymoo sees it: each design's cost and scaled constraints, in batches."""
 
     def __init__(self, space: SearchSpace, goal: Goal, evaluate: _Evaluator) -> None:

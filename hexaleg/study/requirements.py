@@ -34,7 +34,7 @@ from typing import Any, Literal
 
 from hexaleg._checks import require_finite, require_in_range
 from hexaleg.design import SEGMENT_RANGE, HexapodDesign
-from hexaleg.exceptions import DesignError
+from hexaleg.exceptions import ParameterError
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT
 
 Sense = Literal["at least", "at most"]
@@ -136,14 +136,14 @@ class Requirements:
             if value is not None:
                 checked = require_in_range(name, value, *kind.bounds, kind.unit)
                 if checked <= 0 and name not in ("payload", "slope"):
-                    raise DesignError(name, value, f"must be positive [{kind.unit}]")
+                    raise ParameterError(name, value, f"must be positive [{kind.unit}]")
                 object.__setattr__(self, name, checked)
         if self.slope is not None and self.slope >= math.pi / 2:
-            raise DesignError("slope", self.slope, "must be less than π/2 [rad]")
+            raise ParameterError("slope", self.slope, "must be less than π/2 [rad]")
         if self.payload_at is not None:
             object.__setattr__(self, "payload_at", _position(self.payload_at))
         if self.payload_at is not None and self.payload is None:
-            raise DesignError(POSITION_KEY, self.payload_at, "needs a payload [kg] to place")
+            raise ParameterError(POSITION_KEY, self.payload_at, "needs a payload [kg] to place")
 
     # -- construction -------------------------------------------------------------------
 
@@ -156,12 +156,12 @@ class Requirements:
             source: Where the table comes from, for error messages.
 
         Raises:
-            DesignError: an unknown key, or a value of the wrong type or out of its range,
+            ParameterError: an unknown key, or a value of the wrong type or out of its range,
                 its field named ``<source>.<key>``.
 
         """
         if not isinstance(table, Mapping):
-            raise DesignError(source, table, "must be a table of requirement keys")
+            raise ParameterError(source, table, "must be a table of requirement keys")
         known = (*KINDS, POSITION_KEY, *DEGREE_KEYS)
         values: dict[str, Any] = {}
         for key, raw in table.items():
@@ -169,19 +169,21 @@ class Requirements:
             if key not in known:
                 close = difflib.get_close_matches(key, known, n=1)
                 hint = f"did you mean {close[0]!r}?" if close else "known: " + ", ".join(known)
-                raise DesignError(field, raw, f"unknown requirement; {hint}")
+                raise ParameterError(field, raw, f"unknown requirement; {hint}")
             if key == POSITION_KEY:
                 values[key] = _position(raw, field)
             elif key in DEGREE_KEYS:
                 if DEGREE_KEYS[key] in table:
-                    raise DesignError(field, raw, "give the slope in radians or degrees, not both")
+                    raise ParameterError(
+                        field, raw, "give the slope in radians or degrees, not both"
+                    )
                 values[DEGREE_KEYS[key]] = math.radians(require_in_range(field, raw, 0, 90, "°"))
             else:
                 values[key] = require_finite(field, raw)
         try:
             return cls(**values)
-        except DesignError as err:
-            raise DesignError(f"{source}.{err.field}", err.value, err.allowed) from None
+        except ParameterError as err:
+            raise ParameterError(f"{source}.{err.field}", err.value, err.allowed) from None
 
     def replace(self, **changes: Any) -> Requirements:
         """Copy with some requirements changed (validated again)."""
@@ -284,6 +286,6 @@ def check(requirements: Requirements, values: Mapping[str, float],
 
 def _position(value: Any, field: str = POSITION_KEY) -> tuple[float, float, float]:
     if isinstance(value, str) or not hasattr(value, "__len__") or len(value) != 3:
-        raise DesignError(field, value, "must be three coordinates x, y, z, body frame [m]")
+        raise ParameterError(field, value, "must be three coordinates x, y, z, body frame [m]")
     x, y, z = (require_in_range(field, v, -100.0, 100.0, "m") for v in value)
     return (x, y, z)

@@ -21,7 +21,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import FIELD_RANGES, SEGMENTS, HexapodDesign
-from hexaleg.exceptions import DesignError
+from hexaleg.exceptions import ParameterError
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -51,17 +51,17 @@ class FreeVariable:
 
     def __post_init__(self) -> None:
         if self.name not in FREEABLE:
-            raise DesignError("--free", self.name, "a field among " + ", ".join(FREEABLE))
+            raise ParameterError("--free", self.name, "a field among " + ", ".join(FREEABLE))
         if not (math.isfinite(self.lower) and math.isfinite(self.upper)):
-            raise DesignError(f"--free {self.name}", (self.lower, self.upper), "finite bounds")
+            raise ParameterError(f"--free {self.name}", (self.lower, self.upper), "finite bounds")
         if not self.lower < self.upper:
-            raise DesignError(
+            raise ParameterError(
                 f"--free {self.name}", (self.lower, self.upper), "LOWER must be below UPPER"
             )
         if self.name in FIELD_RANGES:
             low, high, unit = FIELD_RANGES[self.name]
             if self.lower < low or self.upper > high:
-                raise DesignError(
+                raise ParameterError(
                     f"--free {self.name}",
                     (self.lower, self.upper),
                     f"bounds within [{low:g}, {high:g}] [{unit}]",
@@ -72,11 +72,11 @@ class FreeVariable:
         """``FIELD=LOWER:UPPER``, e.g. ``body_width=0.4:0.8``."""
         match = re.fullmatch(r"\s*([a-z_0-9]+)\s*=\s*([^:]+):([^:]+)\s*", text)
         if match is None:
-            raise DesignError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
+            raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
         try:
             lower, upper = float(match[2]), float(match[3])
         except ValueError:
-            raise DesignError("--free", text, "LOWER and UPPER numbers") from None
+            raise ParameterError("--free", text, "LOWER and UPPER numbers") from None
         return cls(match[1], lower, upper)
 
 
@@ -175,7 +175,9 @@ def search_space(
     }
     if min_coxa is not None:
         if min_coxa >= leg_length:
-            raise DesignError("min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)")
+            raise ParameterError(
+                "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
+            )
         chosen["l1"] = FreeVariable("l1", max(floor, min_coxa), leg_length)
     if free_posture:
         limits = base.stance_limits
@@ -184,7 +186,7 @@ def search_space(
     for variable in free:
         if variable.name in chosen and variable.name in SEGMENTS and min_coxa is not None:
             if variable.name == "l1" and variable.lower < min_coxa:
-                raise DesignError(
+                raise ParameterError(
                     "--free l1", variable.lower, f"at least min_coxa ({min_coxa:g} m)"
                 )
         chosen[variable.name] = variable

@@ -18,6 +18,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from hexaleg._checks import require_in_range
 from hexaleg._typing import StanceSet
 from hexaleg.design import FIELD_RANGES, HexapodDesign
 from hexaleg.exceptions import DesignError, HexalegError
@@ -64,13 +65,9 @@ class FieldSweep:
             raise DesignError("--sweep", self.field, "a field among " + ", ".join(SWEEPABLE))
         lower, upper, unit = FIELD_RANGES[self.field]
         for name in ("start", "stop"):
-            value = getattr(self, name)
-            if not (math.isfinite(value) and lower <= value <= upper):
-                raise DesignError(
-                    f"--sweep {self.field} {name}",
-                    value,
-                    f"must lie in [{lower:g}, {upper:g}] [{unit}]",
-                )
+            require_in_range(
+                f"--sweep {self.field} {name}", getattr(self, name), lower, upper, unit
+            )
         if not 2 <= self.count <= MAX_SWEEP_POINTS:
             raise DesignError(
                 f"--sweep {self.field} count", self.count, f"from 2 to {MAX_SWEEP_POINTS} values"

@@ -35,7 +35,8 @@ from hexaleg.design import (
     require_in_range,
     require_ratio,
 )
-from hexaleg.exceptions import DesignError, HexalegError
+from hexaleg.exceptions import HexalegError
+from hexaleg.ratios import require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult
@@ -93,15 +94,8 @@ class StudySpec:
             require_ratio("l1_ratios", r1)
         for r3 in self.l3_ratios:
             require_ratio("l3_ratios", r3)
-        crowded = [r1 for r1 in self.l1_ratios if not r1 + min(self.l3_ratios) < 1]
-        if crowded:
-            raise DesignError(
-                "l1_ratios",
-                crowded[0],
-                f"must leave room for femur and tibia: l1 ratio + smallest l3 ratio "
-                f"({min(self.l3_ratios):.3g}) < 1",
-            )
         require_in_range("total", self.total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
+        require_ratio_grid(self.l1_ratios, self.l3_ratios, self.total)  # no design fails
 
     def keys(self) -> list[tuple[float, float]]:
         """(l1 ratio, l3 ratio) of every design, in table order."""

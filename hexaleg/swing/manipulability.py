@@ -14,8 +14,9 @@ import numpy as np
 import numpy.typing as npt
 from scipy import optimize
 
+from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.design import HexapodDesign
+from hexaleg.design import HexapodDesign, require_design
 from hexaleg.kinematics import manipulability
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LegModel
@@ -320,7 +321,8 @@ def analyze_manipulability(
     design: HexapodDesign, leg: LegModel | None = None
 ) -> ManipulabilityAnalysis:
     """Optimum pose, indices there (Pinocchio) and w_A on both domains."""
-    leg = LegModel(design) if leg is None else leg
+    design = require_design(design)
+    leg = LegModel(design) if leg is None else require_instance("leg", leg, LegModel, "a LegModel")
     limits = design.manipulability_limits
     optimum = optimum_pose(design.lengths, limits)
     rect, improved = rectangular_and_improved(limits)

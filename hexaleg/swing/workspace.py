@@ -19,8 +19,9 @@ import numpy as np
 import numpy.typing as npt
 from scipy import integrate
 
+from hexaleg._checks import require_instance, require_int
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.design import HexapodDesign
+from hexaleg.design import HexapodDesign, require_design
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position, planar_foot_position
 from hexaleg.limits import JointLimits
@@ -29,6 +30,9 @@ Length = TypeVar("Length", float, ArrayF)
 
 MAX_SAMPLES = 5_000_000
 """Most Monte Carlo samples: about 1 GB of arrays at the peak, well within 24 GiB."""
+
+MAX_SEED = 2**32 - 1
+"""Largest seed accepted (NumPy takes any non-negative integer; 32 bits is plenty)."""
 
 
 @dataclass(frozen=True)
@@ -74,9 +78,11 @@ def monte_carlo_workspace(
         limits: Joint limits to sample; the design's Table 2 ``workspace_limits`` by default.
 
     """
-    if not 1 <= samples <= MAX_SAMPLES:
-        raise HexalegError(f"samples = {samples} is not valid: must lie in 1..{MAX_SAMPLES:,}")
+    design = require_design(design)
+    samples = require_int("samples", samples, 1, MAX_SAMPLES)
+    seed = require_int("seed", seed, 0, MAX_SEED)
     limits = design.workspace_limits if limits is None else limits
+    require_instance("limits", limits, JointLimits, "a JointLimits or None")
     rng = np.random.default_rng(seed)
     theta = rng.uniform(limits.lower, limits.upper, size=(samples, 3))
     if limits.coupled_knee:  # resample the knee within its coupled bound
@@ -285,6 +291,7 @@ def analyze_workspace(
     design: HexapodDesign, samples: int = 20_000, seed: int = 0
 ) -> WorkspaceAnalysis:
     """Monte Carlo cloud, planar and improved workspaces of ``design``'s leg."""
+    design = require_design(design)
     return WorkspaceAnalysis(
         design=design,
         monte_carlo=monte_carlo_workspace(design, samples, seed),

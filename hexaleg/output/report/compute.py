@@ -17,6 +17,7 @@ import numpy as np
 import pandas as pd
 from tqdm import tqdm
 
+from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg._version import __version__
 from hexaleg.design import MAX_L3_POINTS, HexapodDesign, l3_ratio_grid, require_ratio
@@ -104,9 +105,8 @@ class ReportOptions:
             "monte_carlo_samples": (1, MAX_SAMPLES),
             "workers": (1, max_workers()),
         }.items():
-            value = getattr(self, name)
-            if value is not None and not lower <= value <= upper:
-                raise HexalegError(f"{name} = {value} is not valid: must lie in {lower}..{upper}")
+            if getattr(self, name) is not None:
+                require_int(name, getattr(self, name), lower, upper)
         if self.l3_points < MIN_L3_POINTS:
             raise HexalegError(
                 f"l3_points = {self.l3_points} is too coarse to locate the peaks: "

@@ -21,7 +21,7 @@ import pinocchio as pin
 
 from hexaleg._io import atomic_write_text
 from hexaleg.cause import Cause
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.constraints import displacement_poses
@@ -177,9 +177,7 @@ def _add_ground(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
 
 def _add_workspace(viewer: Any, mg: Any, model: HexapodModel, leg: str, samples: int) -> None:
     if leg not in model.leg_names:
-        raise HexalegError(
-            f"--workspace {leg!r} is not valid: legs are {', '.join(model.leg_names)}"
-        )
+        raise ParameterError("--workspace", leg, f"legs are {', '.join(model.leg_names)}")
     cloud = monte_carlo_workspace(model.design, samples=samples, seed=0)
     root = model.nominal_base_pose() * model.root_placements()[leg]
     points = cloud.points @ root.rotation.T + root.translation
