@@ -78,3 +78,11 @@ def test_a_bad_requirement_in_a_file_names_the_file_and_line(tmp_path):
     path.write_text("l1 = 0.15\nrequirements = 3\n")
     with pytest.raises(DesignFileError, match=r"line 2: requirements = 3 .* table"):
         load_design_file(path, Requirements.from_table)
+
+
+def test_the_step_height_is_a_condition_of_the_speed():
+    requirements = Requirements.from_table({"speed": 0.3, "step_height": 0.1})
+    assert requirements.given == ("speed",) and requirements.step_height == 0.1
+    assert Requirements.from_table(requirements.to_dict()) == requirements
+    with pytest.raises(ParameterError, match="needs a speed"):
+        Requirements(step_height=0.1)

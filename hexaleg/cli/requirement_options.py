@@ -22,7 +22,6 @@ HELP: dict[str, tuple[str, str]] = {
     "leg_length": ("M", "largest total leg length l1+l2+l3 [m] (default: the design's)"),
     "min_coxa": ("M", "least coxa length l1, for the root actuator's packaging [m]"),
     "speed": ("M/S", "tripod gait speed within the rated torques and speeds [m/s]"),
-    "step_height": ("M", "step height of that gait [m]"),
 }
 """Each requirement option's metavar and help."""
 
@@ -46,6 +45,10 @@ def add_requirement_options(parser: argparse.ArgumentParser) -> None:
             )
             continue
         group.add_argument(option, type=float, metavar=metavar, help=text)
+        if name == "speed":
+            group.add_argument(
+                "--step-height", type=float, metavar="M", help="step height of that gait [m]"
+            )
         if name == "payload":
             group.add_argument(
                 "--payload-at",
@@ -68,4 +71,6 @@ def requirements_from_args(args: argparse.Namespace) -> Requirements:
         changes["slope"] = math.radians(require_in_range("slope_deg", args.slope_deg, 0, 90, "°"))
     if getattr(args, "payload_at", None) is not None:
         changes["payload_at"] = tuple(args.payload_at)
+    if getattr(args, "step_height", None) is not None:
+        changes["step_height"] = args.step_height
     return base.replace(**changes) if changes else base

@@ -48,7 +48,6 @@ SHORT_NAMES = {
     "leg_length": "leg length",
     "min_coxa": "coxa",
     "speed": "speed",
-    "step_height": "step height",
 }
 
 

@@ -54,13 +54,12 @@ METRIC_UNITS: dict[str, str] = {
     "coxa": "m",
     "mass": "kg",
     "speed": "m/s",
-    "step_height": "m",
     "peak_torque": "N·m",
     "cost_of_transport": "1",
 }
 """Every metric a decision can use, with its unit."""
 
-GAIT_METRICS = ("speed", "step_height", "peak_torque", "cost_of_transport")
+GAIT_METRICS = ("speed", "peak_torque", "cost_of_transport")
 """Metrics of a tripod gait (:mod:`hexaleg.gait`)."""
 
 STATICS_METRICS = ("payload", "slope", *GAIT_METRICS)

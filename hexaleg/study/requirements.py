@@ -15,8 +15,9 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
 - ``min_fb`` [-]: the axis-locked body flexibility FB (eq 29) at least this;
 - ``leg_length`` [m]: l1 + l2 + l3 at most this (default: the design's own);
 - ``min_coxa`` [m]: l1 at least this (what the root actuator's packaging needs);
-- ``speed`` [m/s] and ``step_height`` [m]: a tripod gait at that speed and step height
-  whose peak torques and joint speeds stay within the ratings (:mod:`hexaleg.gait`).
+- ``speed`` [m/s]: a tripod gait at that speed, lifting its feet ``step_height`` [m] (a
+  condition of it, like ``payload_at`` of the payload), carrying the payload, whose peak
+  torques and joint speeds stay within the ratings (:mod:`hexaleg.gait`).
 
 The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requirement's
 *margin* is how far its value is on the good side of the required one, in its own unit
@@ -90,8 +91,6 @@ KINDS: dict[str, RequirementKind] = {
         RequirementKind("min_coxa", "coxa", "at least", "m", SEGMENT_RANGE, "coxa length l1"),
         RequirementKind("speed", "speed", "at least", "m/s", (0.0, 100.0),
                         "tripod gait speed within the ratings"),
-        RequirementKind("step_height", "step_height", "at least", "m", (0.0, 100.0),
-                        "tripod gait step height within the ratings"),
     )
 }  # fmt: skip
 """Every requirement, in the order the answer lists them."""
@@ -101,6 +100,12 @@ DEGREE_KEYS = {"slope_deg": "slope"}
 
 POSITION_KEY = "payload_at"
 """Where the payload sits, body frame (x, y, z) [m]: a condition, not a requirement."""
+
+STEP_KEY = "step_height"
+"""How high the gait of the ``speed`` requirement lifts its feet [m]: a condition of it."""
+
+STEP_BOUNDS = (0.0, 10.0)
+"""Plausible step heights [m]."""
 
 
 @dataclass(frozen=True)
@@ -116,7 +121,7 @@ class Requirements:
         leg_length: Largest l1 + l2 + l3 [m]; ``None``: the design's own (:meth:`resolved`).
         min_coxa: Least coxa length l1 [m].
         speed: Tripod gait speed within the ratings [m/s].
-        step_height: Step height of that gait [m].
+        step_height: Step height of that gait [m] (the gait's default if omitted).
 
     """
 
@@ -144,6 +149,11 @@ class Requirements:
             object.__setattr__(self, "payload_at", _position(self.payload_at))
         if self.payload_at is not None and self.payload is None:
             raise ParameterError(POSITION_KEY, self.payload_at, "needs a payload [kg] to place")
+        if self.step_height is not None:
+            height = require_in_range(STEP_KEY, self.step_height, *STEP_BOUNDS, "m")
+            if height <= 0 or self.speed is None:
+                raise ParameterError(STEP_KEY, height, "needs a speed [m/s] to walk at; > 0 [m]")
+            object.__setattr__(self, STEP_KEY, height)
 
     # -- construction -------------------------------------------------------------------
 
@@ -162,7 +172,7 @@ class Requirements:
         """
         if not isinstance(table, Mapping):
             raise ParameterError(source, table, "must be a table of requirement keys")
-        known = (*KINDS, POSITION_KEY, *DEGREE_KEYS)
+        known = (*KINDS, POSITION_KEY, STEP_KEY, *DEGREE_KEYS)
         values: dict[str, Any] = {}
         for key, raw in table.items():
             field = f"{source}.{key}"
@@ -210,13 +220,15 @@ class Requirements:
     @property
     def needs_gait(self) -> bool:
         """Whether a walking requirement is set."""
-        return self.speed is not None or self.step_height is not None
+        return self.speed is not None
 
     def to_dict(self) -> dict[str, Any]:
         """The requirements set, JSON-ready (SI units, radians)."""
         out = {name: getattr(self, name) for name in self.given}
         if self.payload_at is not None:
             out[POSITION_KEY] = list(self.payload_at)
+        if self.step_height is not None:
+            out[STEP_KEY] = self.step_height
         return out
 
     def describe(self, name: str) -> str:
