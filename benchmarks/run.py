@@ -28,7 +28,7 @@ WORKLOADS = {
     "optimum_pose": lambda quick, r: bench_optimum_pose(r),
     "flexibility": lambda quick, r: bench_flexibility(4 if quick else 80, r),
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
-    "decide": lambda quick, r: bench_decide(96 if quick else None),
+    "decide": lambda quick, r: bench_decide(48 if quick else None),
 }
 
 
