@@ -68,7 +68,7 @@ _EXPORTS: dict[str, str] = {
     "Requirements": "hexaleg.study.requirements",
     "SearchSettings": "hexaleg.study.optimize",
     "decide": "hexaleg.study.decide",
-    "ReportOptions": "hexaleg.output.report.compute",
+    "ReportOptions": "hexaleg.output.report.options",
     "build_report": "hexaleg.output.report",
 }
 
@@ -165,7 +165,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         JointLimits,
     )
     from hexaleg.output.report import build_report
-    from hexaleg.output.report.compute import ReportOptions
+    from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning

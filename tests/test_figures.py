@@ -100,10 +100,8 @@ def test_monte_carlo_has_a_colour_bar_and_names_its_limits_as_the_paper(default_
 
 def test_the_manipulability_surface_names_its_lengths(default_design, tmp_path):
     from hexaleg.output.figures import manipulability_surface_figure
+    from hexaleg.swing.manipulability import manipulability_surface
 
-    fig = manipulability_surface_figure(
-        [default_design.lengths],
-        default_design.manipulability_limits,
-        ["this design, l = (0.2, 0.4, 0.4) m"],
-    )
+    surface = manipulability_surface(default_design.lengths, default_design.manipulability_limits)
+    fig = manipulability_surface_figure([surface], ["this design, l = (0.2, 0.4, 0.4) m"])
     assert "0.2, 0.4, 0.4" in fig.axes[0].get_title()

@@ -173,3 +173,15 @@ def test_analysis_summary_has_the_documented_keys(default_design, leg_model):
     assert set(summary["optimum"]) >= {"theta2", "theta3", "w"}
     assert set(summary["average"]) == {"rectangular", "improved"}
     assert summary["average"]["improved"] > summary["average"]["rectangular"]
+
+
+def test_manipulability_surface_is_the_closed_form_on_the_one_degree_grid(default_design):
+    from hexaleg.swing.manipulability import manipulability_surface
+
+    l1, l2, l3 = default_design.lengths
+    surface = manipulability_surface(default_design.lengths, default_design.manipulability_limits)
+    assert surface.w.shape == (121, 121)  # eq 26: 120° of hip and of knee, one value a degree
+    t2, t3 = np.meshgrid(surface.theta2, surface.theta3, indexing="ij")
+    # |det J| of the 3-DOF leg, by hand: l2·l3·|sin θ3|·|l1 + l2 cos θ2 + l3 cos(θ2 + θ3)|
+    expected = l2 * l3 * np.abs(np.sin(t3)) * np.abs(l1 + l2 * np.cos(t2) + l3 * np.cos(t2 + t3))
+    np.testing.assert_allclose(surface.w, expected, rtol=1e-12, atol=1e-15)

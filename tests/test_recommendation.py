@@ -51,3 +51,19 @@ def test_refinement_finds_the_peak_between_grid_points():
         r for r in R3 if combined_score(exact(0.1, r), refined.maxima) >= BAND * refined.score
     ]
     assert (lo, hi) == (min(inside), max(inside))
+
+
+def test_candidate_mask_allows_the_practical_or_the_given_coxa_ratios():
+    from hexaleg.study.recommendation import candidate_mask
+
+    assert candidate_mask(R1, None).tolist() == [False, True, True, True]  # ≥ 0.10
+    assert candidate_mask(R1, [0.15]).tolist() == [False, False, True, False]
+    assert candidate_mask([0.05, 0.05, 0.15], [0.05]).tolist() == [True, True, False]
+    assert candidate_mask([0.02, 0.05], None).tolist() == [True, True]  # none practical: all
+
+
+def test_decision_options_say_which_coxa_ratios_compete():
+    from hexaleg.study.decision import DecisionOptions
+
+    assert "≥ 0.10" in DecisionOptions().describe_candidates()
+    assert "(0.125)" in DecisionOptions(l1_ratios=(0.125,)).describe_candidates()

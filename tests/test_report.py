@@ -11,7 +11,9 @@ from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report import ReportOptions, build_report
 
-REDUCED = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False)
+REDUCED = ReportOptions(
+    l3_points=10, sensitivity_points=4, workers=1, progress=False, vector_figures=False
+)
 SECTIONS = [
     "## Decision",
     "## Design",
@@ -99,6 +101,7 @@ def test_report_json_equals_what_was_returned(report):
     assert sum(rec["lengths_m"]) == pytest.approx(1.0)
 
 
+@pytest.mark.slow
 def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     out = tmp_path / "again"
     first = build_report(out, options=REDUCED)
@@ -109,11 +112,12 @@ def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     assert [p.name for p in tmp_path.iterdir()] == ["again"]  # no staging folders left
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize(
     ("module", "name"),
     [
-        ("hexaleg.output.report.compute", "sensitivity_table"),  # while computing
-        ("hexaleg.output.report.render", "write_static_html"),  # half-way through writing
+        ("hexaleg.output.report.sensitivity", "sensitivity_table"),  # while computing
+        ("hexaleg.output.report.viewer", "write_static_html"),  # half-way through writing
     ],
 )
 def test_failed_run_leaves_the_previous_report(tmp_path, monkeypatch, module, name):
@@ -142,6 +146,7 @@ def test_refuses_a_folder_that_is_not_a_report(tmp_path, capsys):
     assert [p.name for p in tmp_path.iterdir()] == ["mine.txt"]
 
 
+@pytest.mark.slow
 def test_report_for_another_design(tmp_path):
     design = HexapodDesign.from_ratios(0.1, 0.45)
     data = build_report(tmp_path / "r", design, REDUCED)
@@ -149,6 +154,7 @@ def test_report_for_another_design(tmp_path):
     assert "0.1, 0.45, 0.45" in (tmp_path / "r" / "report.md").read_text()
 
 
+@pytest.mark.slow
 def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
     from hexaleg.cli import main
     from hexaleg.design_file import design_toml
@@ -168,6 +174,7 @@ def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
     assert "cylinder of radius 0.35 m" in text and "body_radius from 0.3 to 0.4" in text
 
 
+@pytest.mark.slow
 def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     """kill -9 mid-report leaves its staging folder; the next run removes it."""
     import os
@@ -232,6 +239,7 @@ def test_the_decision_comes_first_and_scores_the_users_design(report):
     assert "Counting payload capacity too" in text.split("## Design")[0]
 
 
+@pytest.mark.slow
 def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
     design = HexapodDesign(l1=0.15, l2=0.6, l3=0.45, body_length=1.4, body_width=0.8)
     free = build_report(tmp_path / "free", design, REDUCED)["recommendation"]
@@ -240,6 +248,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
         sensitivity_points=REDUCED.sensitivity_points,
         workers=1,
         progress=False,
+        vector_figures=False,
         l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
     )
     fixed = build_report(tmp_path / "fixed", design, options)["recommendation"]

@@ -259,7 +259,7 @@ def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_des
         build_scene(client(server), hexapod_model, result, loads=loads)
         time.sleep(0.2)
         tree = server._bridge.tree
-        assert _node(tree, "meshcat/hexaleg/legend").object is not None
+        assert "legend" not in _node(tree, "meshcat/hexaleg")  # beside the scene, not in it
         visuals = _node(tree, "meshcat/hexaleg/nominal/visuals")
         rated = np.array(default_design.rated_torques)
         for leg, torques in zip(loads.nominal.legs, loads.nominal.joint_torques, strict=True):
@@ -273,6 +273,29 @@ def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_des
         hip = umsgpack.unpackb(visuals["lf_femur_0"].object)["object"]["materials"][0]["color"]
         knee = umsgpack.unpackb(visuals["lf_tibia_0"].object)["object"]["materials"][0]["color"]
         assert hip != knee  # the nominal hip works, the vertical tibia's knee hardly
+
+
+def test_the_torque_legend_is_html_beside_the_scene(tmp_path, empty_scene, hexapod_model):
+    from hexaleg.output.viewer.legend import torque_legend_html
+    from hexaleg.output.viewer.scene import write_static_html
+    from hexaleg.statics.loads import loads_at_extremes
+
+    legend = torque_legend_html()
+    # viridis runs from yellow #fde725 (at the rating) down to purple #440154 (idle)
+    assert "linear-gradient(to bottom, rgb(253,231,37) 0%" in legend
+    assert "rgb(68,1,84) 100%" in legend
+    result = axis_locked_flexibility(hexapod_model.design, "all", hexapod_model)
+    page = write_static_html(
+        hexapod_model, result, tmp_path / "v.html", loads=loads_at_extremes(hexapod_model, result)
+    )
+    assert page.read_text().count("id='hexaleg-legend'") == 1
+    image = _screenshot(page.as_uri(), tmp_path / "v.png")
+    column = image[:, :200]  # the legend's 13rem column at the left
+    assert (np.abs(column - 244).sum(axis=-1) < 6).mean() > 0.7  # mostly its plain background
+    assert (np.abs(column[100:300, 16:40] - [253, 231, 37]).sum(axis=-1) < 60).any()  # its bar
+    scene = image[:, 220:]
+    assert (np.abs(scene - 244).sum(axis=-1) < 6).mean() < 0.2  # the 3-D scene, not the legend
+    assert _drawn_share(image[:, 220:], empty_scene[:, :-220]) > 0.05
 
 
 def test_hexagonal_robot_is_drawn_with_a_round_body(tmp_path, empty_scene):

@@ -113,3 +113,16 @@ def test_analysis_summary_has_the_documented_keys():
     assert set(summary["area"]) == {"improved", "improved_closed_form", "rectangular"}
     assert summary["monte_carlo"]["samples"] == 100
     assert summary["design"]["l1"] == 0.2
+
+
+def test_coxa_series_areas_follow_eq16_and_peak_at_equal_femur_and_tibia(default_design):
+    from hexaleg.swing.workspace import coxa_series
+
+    series = coxa_series(default_design, (0.05, 0.2))
+    for ratio, ws in zip(series.l1_ratios, series.workspaces, strict=True):
+        half = (1 - ratio) * default_design.leg_length / 2
+        assert ws.area == pytest.approx(2 * np.pi * half * half / 3, rel=1e-6)  # eq 16
+    l2 = (1 - series.fixed_l1_ratio - series.l3_ratios) * default_design.leg_length
+    np.testing.assert_allclose(
+        series.areas, 2 * np.pi * l2 * series.l3_ratios * default_design.leg_length / 3, rtol=1e-6
+    )

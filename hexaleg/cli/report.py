@@ -16,13 +16,14 @@ from hexaleg.cli.options import (
     design_from_args,
     field_sweep_from_args,
 )
-from hexaleg.output.report import REPORT_HTML, REPORT_MD, ReportOptions, build_report
-from hexaleg.output.report.compute import MAX_SENSITIVITY_POINTS
+from hexaleg.output.report import REPORT_HTML, REPORT_MD, REPORT_PDF, ReportOptions, build_report
+from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
     "built-in default unless design options say otherwise) and the paper's sweeps, and "
-    "write DIR/report.md, DIR/report.html, the figures (PNG), tables and raw data "
+    "write DIR/report.md, DIR/report.html (and DIR/report.pdf with --pdf), the figures (PNG "
+    "and SVG), tables and raw data "
     "(CSV/JSON), the URDF and a static 3-D viewer. The folder is replaced only when the "
     "new report is complete."
 )
@@ -46,6 +47,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         f"(default {ReportOptions.sensitivity_points})",
     )
     add_field_sweep_option(parser, "sensitivity table over one body field instead of the variants")
+    parser.add_argument(
+        "--pdf",
+        action="store_true",
+        help="also write DIR/report.pdf: the same report as one PDF with vector figures "
+        "(needs the [pdf] extra: WeasyPrint)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -59,11 +66,13 @@ def run(args: argparse.Namespace) -> int:
         l1_ratios=None if args.l1_ratios is None else tuple(args.l1_ratios),
         collisions=args.collisions,
         sweep=sweep,
+        pdf=args.pdf,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)
     rec = data["recommendation"]
-    print(f"wrote {out / REPORT_MD} and {out / REPORT_HTML}")
+    written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if args.pdf else [])
+    print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
     print(
         f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.3f} : {rec['l2_ratio']:.3f} : "
         f"{rec['l3_ratio']:.3f} (tibia ratio band "

@@ -20,7 +20,12 @@ L3_RATIO_POINTS = 80
 """Number of tibia ratios per coxa ratio in the paper's design study (§6.2)."""
 
 CLAIMED_L3_RATIO_PEAK: tuple[float, float] = (0.40, 0.45)
-"""The paper's claimed best tibia ratio range for w_A (§5.4) and FB (§6.3) [-]."""
+"""The paper's best tibia ratios for the workspace (§4.3, coxa ratio 0.1–0.2) and where FB
+peaks (§6.3: "approximately between 0.4 and 0.45") [-]."""
+
+CLAIMED_W_A_PEAK = 0.45
+"""Where the paper says w_A peaks (§5.4: "when the ratio of the tibia length l3 is
+approximately 0.45") [-]: one value, not the 0.40–0.45 band of §4.3 and §6.3."""
 
 
 class Table5Row(NamedTuple):

@@ -94,8 +94,8 @@ def recommend(
     maxima = {name: float(np.nanmax(values[name])) for name in METRICS}
     normalized = {name: values[name] / maxima[name] for name in METRICS}
     score = np.mean([normalized[name] for name in METRICS], axis=0)
-    chosen = _candidate_rows(r1, candidates)
-    row_best = np.array([np.nanmax(score[i]) if i in chosen else -np.inf for i in range(len(r1))])
+    chosen = candidate_mask(r1, candidates)
+    row_best = np.array([np.nanmax(score[i]) if chosen[i] else -np.inf for i in range(len(r1))])
     i = int(np.argmax(row_best))
     j = int(np.nanargmax(score[i]))
     best = float(score[i, j])
@@ -115,12 +115,25 @@ def recommend(
     )
 
 
-def _candidate_rows(r1: ArrayF, candidates: Sequence[float] | None) -> set[int]:
+def candidate_mask(
+    l1_ratios: npt.ArrayLike, candidates: Sequence[float] | None
+) -> npt.NDArray[np.bool_]:
+    """Which coxa ratios the recommendation may take.
+
+    Args:
+        l1_ratios: Coxa ratios (N,) [-], e.g. of a grid or of a study's rows.
+        candidates: The allowed coxa ratios; by default those ≥ :data:`PRACTICAL_L1_RATIO`.
+
+    Returns:
+        A mask (N,); all true if no ratio is allowed (the whole grid competes).
+
+    """
+    r1 = np.asarray(l1_ratios, dtype=float)
     if candidates is not None:
-        rows = {i for i, ratio in enumerate(r1) if np.isclose(candidates, ratio).any()}
+        mask = np.isclose(r1[:, None], np.asarray(candidates, dtype=float)[None, :]).any(axis=1)
     else:
-        rows = {i for i, ratio in enumerate(r1) if ratio >= PRACTICAL_L1_RATIO - 1e-12}
-    return rows or set(range(len(r1)))
+        mask = r1 >= PRACTICAL_L1_RATIO - 1e-12
+    return mask if mask.any() else np.ones_like(mask)
 
 
 def _refine(

@@ -151,6 +151,31 @@ def joint_grid(limits: JointLimits, step: float = GRID_STEP) -> tuple[ArrayF, Ar
     return _grid_axis(limits.theta2, step), _grid_axis(limits.theta3, step)
 
 
+@dataclass(frozen=True)
+class ManipulabilitySurface:
+    """w over the joint grid of one leg (Fig 10).
+
+    Attributes:
+        lengths: Segment lengths (l1, l2, l3) [m].
+        theta2: Hip angles (M,) [rad].
+        theta3: Knee angles (N,) [rad].
+        w: |det J| at each (θ2, θ3) (M, N) [m³].
+
+    """
+
+    lengths: Lengths
+    theta2: ArrayF
+    theta3: ArrayF
+    w: ArrayF
+
+
+def manipulability_surface(lengths: Lengths, limits: JointLimits) -> ManipulabilitySurface:
+    """Manipulability w on eq 27's grid of ``limits`` (one per degree), leg ``lengths`` [m]."""
+    hip, knee = joint_grid(limits)
+    t2, t3 = np.meshgrid(hip, knee, indexing="ij")
+    return ManipulabilitySurface(lengths, hip, knee, manipulability(lengths, t2, t3))
+
+
 def _grid_axis(bounds: tuple[float, float], step: float) -> ArrayF:
     lower, upper = bounds
     count = round((upper - lower) / step) + 1

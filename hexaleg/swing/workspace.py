@@ -21,7 +21,7 @@ from scipy import integrate
 
 from hexaleg._checks import require_instance, require_int
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.design import HexapodDesign, require_design
+from hexaleg.design import HexapodDesign, l3_ratio_grid, require_design
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position, planar_foot_position
 from hexaleg.limits import JointLimits
@@ -246,6 +246,52 @@ def improved_area_by_l3_ratio(
             planar_workspace((l1, total - l1 - r3 * total, r3 * total), limits).area
             for r3 in np.asarray(l3_ratios, dtype=float)
         ]
+    )
+
+
+@dataclass(frozen=True)
+class CoxaSeries:
+    """Fig 8: the improved workspace per coxa ratio, and its area against tibia ratio.
+
+    Attributes:
+        l1_ratios: Coxa ratios of the series [-] (each with l2 = l3).
+        workspaces: The improved planar workspace at each of them.
+        fixed_l1_ratio: The design's own coxa ratio [-].
+        l3_ratios: Tibia ratios at that coxa ratio (R3,) [-].
+        areas: Numerical improved area at each (R3,) [m²].
+
+    """
+
+    l1_ratios: tuple[float, ...]
+    workspaces: tuple[PlanarWorkspace, ...]
+    fixed_l1_ratio: float
+    l3_ratios: ArrayF
+    areas: ArrayF
+
+
+def coxa_series(design: HexapodDesign, l1_ratios: tuple[float, ...]) -> CoxaSeries:
+    """Fig 8's data at ``design``'s leg length and improved limits.
+
+    Args:
+        design: The design (its leg length, coxa ratio and improved limits).
+        l1_ratios: Coxa ratios of the series, each with equal femur and tibia [-].
+
+    """
+    total = design.leg_length
+    fixed = design.l1 / total
+    l3_ratios = l3_ratio_grid()
+    l3_ratios = l3_ratios[l3_ratios < 1 - fixed - 0.02]
+    return CoxaSeries(
+        l1_ratios=l1_ratios,
+        workspaces=tuple(
+            planar_workspace(
+                (r * total, (1 - r) * total / 2, (1 - r) * total / 2), design.improved_limits
+            )
+            for r in l1_ratios
+        ),
+        fixed_l1_ratio=fixed,
+        l3_ratios=l3_ratios,
+        areas=improved_area_by_l3_ratio(fixed, l3_ratios, total, design.improved_limits),
     )
 
 

@@ -1,9 +1,34 @@
 """``hexaleg report``: everything hexaleg can tell a leg designer, in one folder.
 
-Data first, then presentation: :func:`compute_report` runs every analysis into a
-frozen :class:`ReportData`; :mod:`~hexaleg.output.report.sections` turns it into
-markdown; :func:`render_report` writes md, html, json, csv, figures, the URDF and
-a static viewer, and swaps the folder in only when complete.
+Data first, then presentation, in three steps:
+
+1. :func:`compute_report` ``(design, options) -> ReportData``: runs every part's
+   ``compute`` once, each after the parts it needs, into frozen records;
+2. each part's ``section(data) -> Section``: pure text, tables and figure references;
+3. one renderer (:mod:`.content`, :mod:`.document`) writes each part's files, then
+   ``report.md``, ``report.html`` and ``report.json``; :func:`render_report` builds them
+   in a staging folder and swaps it in only when complete.
+
+Adding a section
+----------------
+Write one module here, e.g. ``walking.py``, holding:
+
+- a frozen record, ``@dataclass(frozen=True) class WalkingRecord``;
+- ``compute(data: ReportData) -> WalkingRecord``: read the design (``data.design``),
+  the options, the model and the records of the parts you need (``data[StaticsRecord]``);
+- ``section(data: ReportData) -> Section``: the title and blocks — markdown text, tables
+  made with :func:`~.document.table`, and :class:`~.document.Figure` ``(name, caption)``
+  for a figure your ``files`` writes as ``<name>.png`` and ``<name>.svg``
+  (``save(figure, out / "<name>.png", svg=data.options.svg)``);
+- optionally ``write_files(data, out)`` (figures, CSV) and ``to_json(record) -> dict``
+  (your top-level keys of ``report.json``, SI units);
+- ``PART = Part(WalkingRecord, compute, section, needs=(StaticsRecord,), step="walking",
+  files=write_files, json=to_json)``.
+
+Then add ``walking.PART`` to :data:`~.registry.PARTS` where the section should appear.
+``compute`` sees only the records listed in ``needs`` (a missing one fails with its
+name); ``section`` sees them all. Nothing else changes: numbering, the HTML and PDF
+layout, the links to each figure's PNG and SVG all follow.
 """
 
 from __future__ import annotations
@@ -13,7 +38,11 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg.design import HexapodDesign
-from hexaleg.output.report.compute import ReportData, ReportOptions, compute_report
+from hexaleg.output.report.document import Figure, Section, report_json
+from hexaleg.output.report.options import ReportOptions
+from hexaleg.output.report.part import Part, ReportData, compute_order, compute_parts
+from hexaleg.output.report.pdf import REPORT_PDF, require_pdf_engine
+from hexaleg.output.report.registry import PARTS
 from hexaleg.output.report.render import (
     REPORT_HTML,
     REPORT_JSON,
@@ -23,15 +52,25 @@ from hexaleg.output.report.render import (
 )
 
 __all__ = [
+    "PARTS",
     "REPORT_HTML",
     "REPORT_JSON",
     "REPORT_MD",
+    "REPORT_PDF",
+    "Figure",
+    "Part",
     "ReportData",
     "ReportOptions",
+    "Section",
     "build_report",
     "compute_report",
     "render_report",
 ]
+
+
+def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
+    """Run every part of the report on ``design``, with a progress bar on a terminal."""
+    return compute_parts(design, options, PARTS)
 
 
 def build_report(
@@ -39,8 +78,14 @@ def build_report(
     design: HexapodDesign | None = None,
     options: ReportOptions | None = None,
 ) -> dict[str, Any]:
-    """Run every analysis and write the report folder; return the report's numbers."""
+    """Run every analysis and write the report folder; return the report's numbers.
+
+    With ``options.pdf``, the folder also holds ``report.pdf`` (the ``[pdf]`` extra).
+    """
+    options = options or ReportOptions()
     check_target(Path(out_dir))  # before the minutes of computing, not after
-    data = compute_report(design or HexapodDesign(), options or ReportOptions())
+    if options.pdf:
+        require_pdf_engine()
+    data = compute_report(design or HexapodDesign(), options)
     render_report(data, out_dir)
-    return data.to_json()
+    return report_json(data, compute_order(PARTS))

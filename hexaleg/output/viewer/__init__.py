@@ -1,7 +1,7 @@
-"""3-D view in meshcat: the scene (:mod:`.scene`), served on loopback (:mod:`.server`)."""
+"""3-D view in meshcat: the scene, its legend beside it, served on loopback."""
 
+from hexaleg.output.viewer.legend import HIGHLIGHT, torque_colour, with_legend
 from hexaleg.output.viewer.scene import (
-    HIGHLIGHT,
     build_scene,
     extreme_name,
     static_html,
@@ -17,5 +17,7 @@ __all__ = [
     "extreme_name",
     "serve_until_stopped",
     "static_html",
+    "torque_colour",
+    "with_legend",
     "write_static_html",
 ]

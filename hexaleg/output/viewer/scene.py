@@ -10,7 +10,6 @@ workspace is drawn as a point cloud.
 
 from __future__ import annotations
 
-import math
 import os
 from collections.abc import Sequence
 from pathlib import Path
@@ -22,6 +21,7 @@ import pinocchio as pin
 from hexaleg._io import atomic_write_text
 from hexaleg.cause import Cause
 from hexaleg.exceptions import ParameterError
+from hexaleg.output.viewer.legend import HIGHLIGHT, torque_colour, with_legend
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.constraints import displacement_poses
@@ -32,7 +32,6 @@ from hexaleg.statics.loads import LoadsAnalysis
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 ROOT = "hexaleg"
-HIGHLIGHT = (0.9, 0.1, 0.1, 1.0)
 ANIMATION_FPS = 30
 FRAMES_PER_LEG_OF_TRIP = 20  # nominal → extreme; the way back takes as many
 
@@ -59,68 +58,81 @@ def build_scene(
         workspace_leg: If given, draw this leg's Monte Carlo workspace as a point cloud.
         workspace_samples: Points in that cloud.
         loads: If given, each stance leg's coxa, femur and tibia is coloured by its
-            joint's |τ| / rated at each pose shown (legend in the scene).
+            joint's |τ| / rated at each pose shown (legend: :func:`.legend.with_legend`,
+            beside the scene in the page).
 
     """
-    import meshcat.geometry as mg
-    from meshcat.animation import Animation
-    from pinocchio.visualize import MeshcatVisualizer
-
     geometry = StanceGeometry.from_model(model, result.legs)
     visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
     viewer.delete()
     viewer["/Grid"].set_property("visible", False)
-    _add_ground(viewer, mg, geometry)
-    for leg, foothold in zip(geometry.legs, geometry.footholds, strict=True):
-        node = viewer[f"{ROOT}/footholds/{leg}"]
-        node.set_object(mg.Sphere(0.03), mg.MeshLambertMaterial(color=0xD62728))
-        node.set_transform(_translation(foothold))
-
-    nominal = MeshcatVisualizer(model.model, None, visual)
-    nominal.initViewer(viewer=viewer)
-    nominal.loadViewerModel(rootNodeName=f"{ROOT}/nominal")
+    _add_ground(viewer, geometry)
+    _add_footholds(viewer, geometry)
+    nominal = _robot(viewer, model, visual, f"{ROOT}/nominal")
     if loads is not None:
         _colour_by_torque(nominal, visual, loads.nominal, model.design.rated_torques)
-        _add_torque_legend(viewer, mg, geometry)
-    q_nominal = model.nominal_configuration()
-    nominal.display(q_nominal)
+    nominal.display(model.nominal_configuration())
+    _add_extremes(viewer, model, geometry, visual, nominal, result, loads)
+    if workspace_leg is not None:
+        _add_workspace(viewer, model, workspace_leg, workspace_samples)
+    _place_camera(viewer, geometry)
+
+
+def _robot(viewer: Any, model: HexapodModel, visual: Any, root: str) -> Any:
+    """A copy of the robot's visuals under ``root`` in the scene tree."""
+    from pinocchio.visualize import MeshcatVisualizer
+
+    robot = MeshcatVisualizer(model.model, None, visual)
+    robot.initViewer(viewer=viewer)
+    robot.loadViewerModel(rootNodeName=root)
+    return robot
+
+
+def _add_extremes(
+    viewer: Any,
+    model: HexapodModel,
+    geometry: StanceGeometry,
+    visual: Any,
+    nominal: Any,
+    result: FlexibilityResult,
+    loads: LoadsAnalysis | None,
+) -> None:
+    """Each extreme as a hidden robot (its limiting links red), and the animation to each."""
+    from meshcat.animation import Animation
 
     animation = Animation(default_framerate=ANIMATION_FPS)
     frame = 0
     for k, extreme in enumerate(result.extremes):
-        q_extreme = _extreme_configuration(model, geometry, extreme)
-        copy = MeshcatVisualizer(model.model, None, visual)
-        copy.initViewer(viewer=viewer)
-        copy.loadViewerModel(rootNodeName=f"{ROOT}/extremes/{extreme_name(extreme)}")
+        path = f"{ROOT}/extremes/{extreme_name(extreme)}"
+        copy = _robot(viewer, model, visual, path)
         if loads is not None:
             state = loads.extremes[k].state
             _colour_by_torque(copy, visual, state, model.design.rated_torques)
         for obj in _limiting_objects(visual, extreme):
             copy.loadViewerGeometryObject(obj, pin.GeometryType.VISUAL, list(HIGHLIGHT))
-        copy.display(q_extreme)
-        viewer[f"{ROOT}/extremes/{extreme_name(extreme)}"].set_property("visible", False)
+        copy.display(_extreme_configuration(model, geometry, extreme))
+        viewer[path].set_property("visible", False)
         frame = _animate_trip(animation, viewer, nominal, model, geometry, extreme, frame)
     viewer.set_animation(animation, play=False, repetitions=1)
 
-    if workspace_leg is not None:
-        _add_workspace(viewer, mg, model, workspace_leg, workspace_samples)
+
+def _add_footholds(viewer: Any, geometry: StanceGeometry) -> None:
+    import meshcat.geometry as mg
+
+    for leg, foothold in zip(geometry.legs, geometry.footholds, strict=True):
+        node = viewer[f"{ROOT}/footholds/{leg}"]
+        node.set_object(mg.Sphere(0.03), mg.MeshLambertMaterial(color=0xD62728))
+        node.set_transform(_translation(foothold))
+
+
+def _place_camera(viewer: Any, geometry: StanceGeometry) -> None:
+    """The default camera at the front right, above, far enough to see every foothold."""
     viewer["/Cameras/default"].set_transform(np.eye(4))
     reach = float(np.abs(geometry.footholds[:, :2]).max())
     viewer["/Cameras/default/rotated/<object>"].set_property(
         "position",
         [1.6 * reach, 1.1 * reach, 1.6 * reach],  # three.js axes: y up
     )
-
-
-def torque_colour(ratio: float) -> tuple[float, float, float, float]:
-    """The colour of a link whose joint works at ``ratio`` = |τ| / rated.
-
-    Viridis, from dark blue (idle) to yellow (at its rating): never the highlight red.
-    """
-    from matplotlib import colormaps
-
-    red, green, blue, alpha = colormaps["viridis"](float(np.clip(ratio, 0.0, 1.0)))
-    return (red, green, blue, alpha)
 
 
 def _colour_by_torque(robot: Any, visual: Any, state: StaticState, rated: Sequence[float]) -> None:
@@ -136,46 +148,18 @@ def _colour_by_torque(robot: Any, visual: Any, state: StaticState, rated: Sequen
                     )
 
 
-def _add_torque_legend(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
-    """A colour bar of |τ| / rated, drawn on a thin board behind the robot, facing the camera."""
-    import io
+def _add_ground(viewer: Any, geometry: StanceGeometry) -> None:
+    import meshcat.geometry as mg
 
-    from matplotlib.colorbar import ColorbarBase
-    from matplotlib.colors import Normalize
-    from matplotlib.figure import Figure
-
-    figure = Figure(figsize=(6.0, 1.2), dpi=160, layout="constrained")
-    axis = figure.add_subplot()
-    ColorbarBase(axis, cmap="viridis", norm=Normalize(0, 1), orientation="horizontal")
-    axis.set_xlabel("leg link colour: its joint's |τ| / rated torque", fontsize=13)
-    axis.tick_params(labelsize=12)
-    buffer = io.BytesIO()
-    figure.savefig(buffer, format="png")
-    texture = mg.ImageTexture(image=mg.PngImage(buffer.getvalue()))
-    node = viewer[f"{ROOT}/legend"]
-    reach = float(np.abs(geometry.footholds[:, :2]).max())
-    # A box face maps the image's width along the box's z: build the board tall, then turn
-    # it on its side (about x) and toward the default camera (front right, about z).
-    node.set_object(mg.Box([0.002, 0.24 * reach, 1.2 * reach]), mg.MeshBasicMaterial(map=texture))
-    turn = -math.pi / 4
-    about_z = np.array(
-        [[math.cos(turn), -math.sin(turn), 0.0], [math.sin(turn), math.cos(turn), 0.0], [0, 0, 1]]
-    )
-    on_side = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])
-    transform = np.eye(4)
-    transform[:3, :3] = about_z @ on_side
-    transform[:3, 3] = [-0.7 * reach, 0.7 * reach, 0.6 * reach]
-    node.set_transform(transform)
-
-
-def _add_ground(viewer: Any, mg: Any, geometry: StanceGeometry) -> None:
     span = 2.5 * (np.abs(geometry.footholds[:, :2]).max() + 0.2)
     node = viewer[f"{ROOT}/ground"]
     node.set_object(mg.Box([span, span, 0.01]), mg.MeshLambertMaterial(color=0xC8C8C8, opacity=0.9))
     node.set_transform(_translation([0.0, 0.0, -0.005]))
 
 
-def _add_workspace(viewer: Any, mg: Any, model: HexapodModel, leg: str, samples: int) -> None:
+def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> None:
+    import meshcat.geometry as mg
+
     if leg not in model.leg_names:
         raise ParameterError("--workspace", leg, f"legs are {', '.join(model.leg_names)}")
     cloud = monte_carlo_workspace(model.design, samples=samples, seed=0)
@@ -270,6 +254,8 @@ def static_html(
         viewer = client(server)
         build_scene(viewer, model, result, workspace_leg, loads=loads)
         html = viewer.static_html()
+        if loads is not None:
+            html = with_legend(html)
         viewer.window.zmq_socket.close(linger=0)
     return html
 

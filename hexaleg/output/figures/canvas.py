@@ -1,0 +1,173 @@
+"""What every figure shares: page size, type sizes, palette, the paper's claims, saving.
+
+Figures are drawn for the page they are shown on: at most :data:`FULL_WIDTH` inches wide
+at :data:`DPI`, so the report shows each PNG at its natural pixel size on a 1400 px screen
+and the PDF prints each SVG at the size it was drawn, its text at the sizes of
+:data:`STYLE` (none below 7.5 pt). Panels that do not fit side by side in that width go
+one under another.
+"""
+
+from __future__ import annotations
+
+import functools
+import io
+import os
+import zlib
+from collections.abc import Callable, Sequence
+from pathlib import Path
+from typing import TYPE_CHECKING, Any, ParamSpec
+
+import numpy as np
+
+from hexaleg._io import atomic_write_bytes
+from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, CLAIMED_W_A_PEAK
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+P = ParamSpec("P")
+
+DPI = 150
+"""Pixels per inch of the PNG files."""
+
+FULL_WIDTH = 7.2
+"""Width of a full-width figure [in]: 1080 px at :data:`DPI`, 183 mm on an A4 page."""
+
+STYLE: dict[Any, Any] = {
+    "font.size": 9.0,
+    "axes.titlesize": 10.0,
+    "axes.labelsize": 9.0,
+    "xtick.labelsize": 8.0,
+    "ytick.labelsize": 8.0,
+    "legend.fontsize": 8.0,
+    "figure.titlesize": 10.5,
+    "svg.fonttype": "path",
+}
+"""Type sizes [pt] of every figure; the smallest text is 7.5 pt (bar annotations)."""
+
+SMALLEST_TEXT_KEY = "hexaleg:smallest-text-px"
+"""PNG text chunk giving the height of the figure's smallest text [px at natural size]."""
+
+COLORS = ("#1b6ca8", "#e07b00", "#2f9e44", "#c92a2a", "#7048e8", "#495057")
+"""The palette, one colour per coxa ratio or series."""
+
+LIMIT_SET_TITLES = {
+    "workspace_limits": "Table 2 limits",
+    "improved_limits": "Table 4 limits",
+    "manipulability_limits": "eq 26 limits",
+    "stance_limits": "stance limits",
+}
+"""How a figure names each of the design's joint-limit sets."""
+
+
+def drawn(draw: Callable[P, Figure]) -> Callable[P, Figure]:
+    """Draw the decorated figure with the type sizes of :data:`STYLE`."""
+
+    @functools.wraps(draw)
+    def styled(*args: P.args, **kwargs: P.kwargs) -> Figure:
+        import matplotlib
+
+        with matplotlib.rc_context(STYLE):
+            return draw(*args, **kwargs)
+
+    return styled
+
+
+def new_figure(height: float, width: float = FULL_WIDTH) -> Figure:
+    """A figure of ``width`` × ``height`` [in] on the Agg canvas (no pyplot)."""
+    from matplotlib.figure import Figure
+
+    return Figure(figsize=(width, height), dpi=DPI, layout="constrained")
+
+
+def shade_paper_band(ax: Axes, what: str) -> None:
+    """Shade the tibia ratios 0.40–0.45 the paper names for ``what`` (§4.3, §6.3)."""
+    lo, hi = CLAIMED_L3_RATIO_PEAK
+    ax.axvspan(lo, hi, color="k", alpha=0.08, label=f"paper: {what} at {lo:.2f}–{hi:.2f}")
+
+
+def mark_paper_w_a_peak(ax: Axes) -> None:
+    """Mark the tibia ratio ≈ 0.45 where the paper says w_A peaks (§5.4)."""
+    ax.axvline(
+        CLAIMED_W_A_PEAK,
+        color="k",
+        ls="--",
+        lw=1.2,
+        label=f"paper (§5.4): peak at ≈ {CLAIMED_W_A_PEAK}",
+    )
+
+
+def log_scale(ax: Axes, which: str) -> None:
+    """A logarithmic ``"x"`` or ``"y"`` axis ticked 1, 2, 5 per decade in plain numbers."""
+    from matplotlib.ticker import LogLocator, NullFormatter, ScalarFormatter
+
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    (ax.set_xscale if which == "x" else ax.set_yscale)("log")
+    axis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+    formatter = ScalarFormatter()
+    formatter.set_scientific(False)
+    axis.set_major_formatter(formatter)
+    axis.set_minor_formatter(NullFormatter())
+
+
+def name_largest(
+    ax: Axes, x: Sequence[float], y: Sequence[float], labels: Sequence[str], by: str = "y"
+) -> None:
+    """Name the point of largest ``by`` (``"x"`` or ``"y"``) beside it, at its left.
+
+    The outlier that stretches an axis over decades, named so the reader knows what it is.
+    """
+    k = int(np.nanargmax(np.asarray(x if by == "x" else y, dtype=float)))
+    ax.annotate(
+        labels[k],
+        (x[k], y[k]),
+        xytext=(-6, 0),
+        textcoords="offset points",
+        ha="right",
+        va="center",
+        fontsize=8,
+        arrowprops={"arrowstyle": "-", "lw": 0.6},
+    )
+
+
+def smallest_text_px(figure: Figure) -> float:
+    """Height of the smallest visible text of ``figure`` [px at :data:`DPI`]."""
+    from matplotlib.text import Text
+
+    sizes = [
+        text.get_fontsize()
+        for text in figure.findobj(Text)
+        if isinstance(text, Text) and text.get_visible() and text.get_text().strip()
+    ]
+    return float(min(sizes)) * DPI / 72.0
+
+
+def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Path:
+    """Render ``figure`` to PNG (and, if ``svg``, to SVG beside it), atomically.
+
+    The PNG records its smallest text height under :data:`SMALLEST_TEXT_KEY`. Returns the
+    PNG's path.
+    """
+    import matplotlib
+
+    with matplotlib.rc_context(STYLE):  # ticks made while drawing take the same sizes
+        buffer = io.BytesIO()
+        figure.savefig(buffer, format="png", dpi=DPI)  # lays out, so every text exists
+        smallest = f"{smallest_text_px(figure):.2f}"
+        written = atomic_write_bytes(
+            path, _with_text(buffer.getvalue(), SMALLEST_TEXT_KEY, smallest)
+        )
+        if svg:
+            vector = io.BytesIO()
+            figure.savefig(vector, format="svg", metadata={"Date": None})
+            atomic_write_bytes(Path(path).with_suffix(".svg"), vector.getvalue())
+    return written
+
+
+def _with_text(png: bytes, key: str, value: str) -> bytes:
+    """``png`` with a ``tEXt`` chunk ``key`` = ``value`` after its header chunk."""
+    header_end = 8 + 4 + 4 + 13 + 4  # signature, then IHDR: length, type, 13 bytes, CRC
+    body = b"tEXt" + key.encode("latin-1") + b"\0" + value.encode("latin-1")
+    chunk = (len(body) - 4).to_bytes(4, "big") + body + zlib.crc32(body).to_bytes(4, "big")
+    return png[:header_end] + chunk + png[header_end:]

@@ -1,0 +1,138 @@
+"""Statics figures: torques against ratings, slopes, payload capacity."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
+from hexaleg.statics.loads import LoadsAnalysis
+
+if TYPE_CHECKING:
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+
+SLOPE_CAUSES = {"slide": "sliding: tan(slope) reaches μ", "tip": "tipping over"}
+"""What stops the robot on a slope, in words."""
+
+DISTRIBUTION_WORDS = {
+    "min-norm": "least Σ|f|² (min-norm)",
+    "min-torque": "least torque relative to the ratings (min-torque)",
+}
+"""How a figure names each way of sharing the load between the standing feet."""
+
+SLOPE_TOLERANCE = np.radians(0.05)
+"""Steepest slopes closer than this count as equal across headings [rad]."""
+
+
+def slopes_differ(analysis: LoadsAnalysis) -> bool:
+    """Whether the steepest slope or its cause differs between uphill headings."""
+    angles = [s.max_slope for s in analysis.slopes]
+    causes = {str(s.limited_by) for s in analysis.slopes}
+    return len(causes) > 1 or float(np.ptp(angles)) > SLOPE_TOLERANCE
+
+
+@drawn
+def loads_figure(analysis: LoadsAnalysis) -> Figure:
+    """Peak |τ| per joint type against its rating, and the steepest slope per heading.
+
+    The slope panel is drawn only where the headings differ; else the report states the
+    one slope in a table.
+    """
+    with_slopes = slopes_differ(analysis)
+    fig = new_figure(4.2)
+    torques, *rest = fig.subplots(1, 2 if with_slopes else 1, squeeze=False)[0]
+    _torque_bars(torques, analysis)
+    if rest:
+        _slope_bars(rest[0], analysis)
+    l1, l2, l3 = analysis.design.lengths
+    capacity = analysis.capacity
+    fig.suptitle(
+        f"Joint torques of this design (l1, l2, l3 = {l1:.3g}, {l2:.3g}, {l3:.3g} m) against "
+        f"their ratings\npayload capacity {capacity.mass:.1f} kg, limited by {capacity.limited_by}"
+    )
+    return fig
+
+
+def _torque_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
+    nominal = analysis.nominal.peak_torques()
+    joints = list(nominal)
+    x = np.arange(len(joints))
+    ax.bar(x - 0.2, [nominal[j] for j in joints], 0.4, color=COLORS[0], label="nominal stance")
+    mode = "axis-locked" if analysis.mode == "axis" else "free-coupled"
+    ax.bar(
+        x + 0.2,
+        [analysis.peak_torques[j] for j in joints],
+        0.4,
+        color=COLORS[1],
+        label=f"peak over the 12 {mode} extremes",
+    )
+    for k, rated in enumerate(analysis.design.rated_torques):
+        ax.hlines(rated, k - 0.45, k + 0.45, colors="k", linestyles="--", lw=1.5)
+    ax.plot([], [], "k--", label="rated torque")
+    ax.set_xticks(x, [f"{joint} joints" for joint in joints])
+    ax.set_ylabel("largest |τ| over the standing legs [N·m]")
+    ax.set_title(f"Foot forces shared by {DISTRIBUTION_WORDS.get(analysis.distribution, '?')}")
+    top = max(max(analysis.design.rated_torques), max(analysis.peak_torques.values()))
+    ax.set_ylim(0, 1.45 * top)
+    ax.legend(loc="upper left", ncols=2)
+    ax.grid(True, axis="y", alpha=0.3)
+
+
+def _slope_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
+    labels = [f"{np.degrees(s.heading):+.0f}°" for s in analysis.slopes]
+    ax.bar(
+        labels,
+        [np.degrees(s.max_slope) for s in analysis.slopes],
+        color=[COLORS[2] if s.limited_by == "slide" else COLORS[3] for s in analysis.slopes],
+    )
+    for k, s in enumerate(analysis.slopes):
+        ax.annotate(
+            str(s.limited_by), (k, np.degrees(s.max_slope)), ha="center", va="bottom", fontsize=8
+        )
+    ax.set_xlabel("uphill heading in the body frame (0° = forward)")
+    ax.set_ylabel("steepest slope it stands on [°]")
+    ax.set_title(f"Steepest slope by heading (μ = {analysis.friction:g})")
+    ax.grid(True, axis="y", alpha=0.3)
+
+
+@drawn
+def statics_study_figure(table: pd.DataFrame) -> Figure:
+    """Peak hip and knee torque and payload capacity against tibia ratio, per coxa ratio.
+
+    One panel under another, sharing the tibia-ratio axis; payload capacity spans decades
+    over a sweep (a short femur lifts tonnes), so its axis is logarithmic and the largest
+    is named.
+    """
+    fig = new_figure(8.0)
+    panels = fig.subplots(3, 1, sharex=True)
+    columns = (
+        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| over the axis-locked extremes"),
+        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| over the axis-locked extremes"),
+        ("payload_capacity", "payload [kg], log scale", "Payload capacity at the nominal stance"),
+    )
+    for ax, (column, label, title) in zip(panels, columns, strict=True):
+        for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
+            ax.plot(group["l3_ratio"], group[column], color=color, label=f"coxa ratio {r1:.2f}")
+        ax.set_ylabel(label)
+        ax.set_title(title)
+        ax.grid(True, which="both", alpha=0.3)
+    payload = panels[2]
+    log_scale(payload, "y")
+    name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
+    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5))
+    panels[2].set_xlabel("tibia ratio l3 / L [-]")
+    fig.suptitle("What each design of the sweep costs (foot forces shared by least Σ|f|²)")
+    return fig
+
+
+def design_names(table: pd.DataFrame) -> list[str]:
+    """Each design of a study table named by its payload capacity and its lengths."""
+    return [
+        f"{row['payload_capacity']:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "
+        f"tibia {row['l3']:.2f} m"
+        for row in table.to_dict(orient="records")
+    ]

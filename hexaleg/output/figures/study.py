@@ -1,0 +1,142 @@
+"""Design-study figures: FB and the six ranges against tibia ratio (Fig 14–15), Pareto."""
+
+from __future__ import annotations
+
+import os
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+import numpy as np
+import pandas as pd
+
+from hexaleg.output.figures.canvas import (
+    COLORS,
+    drawn,
+    log_scale,
+    name_largest,
+    new_figure,
+    save,
+    shade_paper_band,
+)
+from hexaleg.output.figures.statics import design_names
+from hexaleg.study.sweep import peak_table
+
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
+
+@drawn
+def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
+    """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks marked."""
+    fig = new_figure(4.8)
+    ax = fig.add_subplot()
+    for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
+        ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"coxa ratio {r1:.2f}")
+        peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
+        ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
+        ax.annotate(
+            f"{peak['peak_l3_ratio']:.3f}",
+            (peak["peak_l3_ratio"], peak["peak_fb"]),
+            xytext=(0, 6),
+            textcoords="offset points",
+            ha="center",
+            fontsize=8,
+            color=color,
+        )
+    shade_paper_band(ax, "FB peaks")
+    ax.set_xlabel("tibia ratio l3 / L [-]")
+    ax.set_ylabel("body flexibility FB [-] (eq 29)")
+    ax.set_title("Body flexibility against tibia ratio, for each coxa ratio (peaks marked)")
+    ax.grid(True, alpha=0.3)
+    ax.legend()
+    return fig
+
+
+@drawn
+def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
+    """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio."""
+    fig = new_figure(3.6)
+    left, right = fig.subplots(1, 2)
+    group = table[np.isclose(table["l1_ratio"], l1_ratio)]
+    for k, axis in enumerate(("x", "y", "z")):
+        left.plot(
+            group["l3_ratio"],
+            group[f"range_{axis}"],
+            color=COLORS[k],
+            label=f"S_{axis} along {axis}",
+        )
+    for k, (axis, about) in enumerate((("roll", "x"), ("pitch", "y"), ("yaw", "z"))):
+        right.plot(
+            group["l3_ratio"],
+            np.degrees(group[f"range_{axis}"]),
+            color=COLORS[k],
+            label=f"φ_{about} ({axis})",
+        )
+    left.set_ylabel("translation range [m]")
+    right.set_ylabel("rotation range [°]")
+    for ax in (left, right):
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+        ax.grid(True, alpha=0.3)
+        ax.legend()
+    fig.suptitle(
+        f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
+    )
+    return fig
+
+
+def write_study_figures(
+    table: pd.DataFrame, out_dir: str | os.PathLike[str], svg: bool = False
+) -> list[Path]:
+    """Fig 15 (FB curves) and Fig 14 (ranges, for the smallest coxa ratio); the PNGs.
+
+    ``svg`` writes an SVG beside each PNG.
+    """
+    out = Path(out_dir)
+    valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
+    if valid.empty:
+        return []
+    return [
+        save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png", svg),
+        save(
+            ranges_figure(valid, float(valid["l1_ratio"].min())),
+            out / "flexibility_ranges.png",
+            svg,
+        ),
+    ]
+
+
+@drawn
+def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
+    """FB against payload capacity for every design; the Pareto front and its best marked.
+
+    Payload capacity spans decades over a sweep (a 5 cm femur lifts tonnes), so its axis
+    is logarithmic and the largest is named.
+    """
+    fig = new_figure(5.2)
+    ax = fig.add_subplot()
+    ax.scatter(table["payload_capacity"], table["fb"], s=8, color="#bbbbbb", label="every design")
+    for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
+        ax.scatter(
+            group["payload_capacity"],
+            group["flexibility"],
+            s=24,
+            color=color,
+            label=f"on the front, coxa ratio {r1:.2f}",
+        )
+    best = front.iloc[0]
+    ax.scatter(
+        [best["payload_capacity"]],
+        [best["flexibility"]],
+        s=220,
+        marker="*",
+        color="k",
+        label=f"recommended: coxa ratio {best['l1_ratio']:.2f}, tibia ratio {best['l3_ratio']:.3f}",
+    )
+    log_scale(ax, "x")
+    name_largest(ax, table["payload_capacity"], table["fb"], design_names(table), by="x")
+    ax.set_xlabel("payload capacity [kg], log scale")
+    ax.set_ylabel("body flexibility FB [-] (eq 29)")
+    ax.set_title("Designs no other beats in workspace, manipulability, FB and payload at once")
+    ax.grid(True, which="both", alpha=0.3)
+    fig.legend(loc="outside lower center", ncols=2)
+    return fig

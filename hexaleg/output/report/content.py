@@ -1,0 +1,38 @@
+"""Step 3 of the report, its content: every part's files, then markdown, HTML and JSON.
+
+:func:`write_content` fills a folder; :mod:`~hexaleg.output.report.render` decides which
+folder (a staging folder swapped in when complete).
+"""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Sequence
+from pathlib import Path
+from typing import Any
+
+from hexaleg._io import atomic_write_text
+from hexaleg.output.report.document import report_html, report_json, report_markdown, sections
+from hexaleg.output.report.part import Part, ReportData, compute_order
+from hexaleg.output.report.pdf import write_pdf
+from hexaleg.output.report.registry import PARTS
+
+REPORT_MD = "report.md"
+REPORT_HTML = "report.html"
+REPORT_JSON = "report.json"
+
+
+def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS) -> None:
+    """Write every part's files, then ``report.md``, ``report.html`` and ``report.json``.
+
+    With the ``pdf`` option, also ``report.pdf``: the same sections with vector figures.
+    """
+    for part in parts:
+        part.files(data, out)
+    report = sections(data, parts)
+    atomic_write_text(out / REPORT_MD, report_markdown(report, out))
+    atomic_write_text(out / REPORT_HTML, report_html(report, out))
+    numbers = report_json(data, compute_order(parts))
+    atomic_write_text(out / REPORT_JSON, json.dumps(numbers, indent=1, allow_nan=True))
+    if data.options.pdf:
+        write_pdf(report, out)

@@ -1,0 +1,107 @@
+"""Report part: the Pareto front with payload capacity, and the design chosen on it."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from hexaleg.output.figures import pareto_figure, save
+from hexaleg.output.report.document import Figure, Section, table, write_csv
+from hexaleg.output.report.manipulability import ManipulabilityRecord
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.study import StudyRecord
+from hexaleg.study.decision import pareto_front
+
+
+@dataclass(frozen=True)
+class ParetoRecord:
+    """The designs of the grid no other beats in area, w_A, FB and payload capacity.
+
+    Attributes:
+        front: One row per front design, best score first (the first is recommended).
+
+    """
+
+    front: pd.DataFrame
+
+
+def compute(data: ReportData) -> ParetoRecord:
+    """The front among the study's designs at the allowed coxa ratios."""
+    return ParetoRecord(
+        pareto_front(
+            data[ManipulabilityRecord].average_map, data[StudyRecord].table, data.options.decision
+        )
+    )
+
+
+def section(data: ReportData) -> Section:
+    """The Pareto front with payload capacity, and the design chosen on it."""
+    front = data[ParetoRecord].front
+    best = front.iloc[0]
+    total = data.design.leg_length
+    rows = [
+        (
+            f"{r['l1_ratio']:.2f}",
+            f"{r['l3_ratio']:.3f}",
+            f"{r['improved_area']:.4f}",
+            f"{r['average_manipulability']:.4f}",
+            f"{r['flexibility']:.4f}",
+            f"{r['payload_capacity']:.1f}",
+            f"{r['score']:.4f}",
+        )
+        for r in front.head(12).to_dict(orient="records")
+    ]
+    return Section(
+        "5.1 Pareto front: workspace, manipulability, flexibility and payload",
+        (
+            f"Among the sweep's designs at the allowed coxa ratios (as in section 5), "
+            f"{len(front)} are beaten by no other in improved area, w_A, FB and payload "
+            "capacity at once. The grid is dense and "
+            "every metric on it exact, so the front is read off it directly (no evolutionary "
+            "search could be more exact). Rule: on the front, the design with the best "
+            "equal-weight score, each metric divided by its best value on the grid.",
+            f"**Pareto recommendation: l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
+            f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}** (for a "
+            f"{total:g} m leg: {best['l1']:.3f}, {best['l2']:.3f}, {best['l3']:.3f} m; payload "
+            f"capacity {best['payload_capacity']:.1f} kg, FB {best['flexibility']:.4f}).",
+            table(
+                ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
+                rows,
+            ),
+            Figure(
+                "pareto_front",
+                "Body flexibility against payload capacity (log scale) for every design of the "
+                "sweep; the front and its best marked, the largest capacity named",
+            ),
+        ),
+    )
+
+
+def write_files(data: ReportData, out: Path) -> None:
+    """The front figure and ``pareto_front.csv``."""
+    front = data[ParetoRecord].front
+    save(
+        pareto_figure(data[StudyRecord].table, front),
+        out / "pareto_front.png",
+        svg=data.options.svg,
+    )
+    write_csv(out / "pareto_front.csv", front.to_dict(orient="records"))
+
+
+def to_json(record: ParetoRecord) -> dict[str, Any]:
+    """``pareto_front``."""
+    return {"pareto_front": record.front.to_dict(orient="records")}
+
+
+PART = Part(
+    ParetoRecord,
+    compute,
+    section,
+    needs=(ManipulabilityRecord, StudyRecord),
+    step="Pareto front",
+    files=write_files,
+    json=to_json,
+)

@@ -1,0 +1,145 @@
+"""Report part: statics, what the design costs (torques, stability, slopes, payload)."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from hexaleg.output.figures import loads_figure, save, statics_study_figure
+from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
+from hexaleg.output.report.document import Figure, Section, table
+from hexaleg.output.report.flexibility import FlexibilityRecord
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.study import StudyRecord
+from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+
+
+@dataclass(frozen=True)
+class StaticsRecord:
+    """Statics at the nominal stance and at each mode's extremes.
+
+    Attributes:
+        axis: At the nominal stance and the axis-locked extremes (slopes, capacity).
+        free: At the free-coupled extremes.
+
+    """
+
+    axis: LoadsAnalysis
+    free: LoadsAnalysis
+
+
+def compute(data: ReportData) -> StaticsRecord:
+    """Statics at the extremes of both modes."""
+    flexibility = data[FlexibilityRecord]
+    return StaticsRecord(
+        loads_at_extremes(data.model, flexibility.axis),
+        loads_at_extremes(data.model, flexibility.free),
+    )
+
+
+def section(data: ReportData) -> Section:
+    """What the design costs: torques against ratings, stability, slopes, payload."""
+    loads = data[StaticsRecord].axis
+    differ = slopes_differ(loads)
+    return Section(
+        "3.3 Statics: what the design costs",
+        (
+            f"The robot weighs {loads.nominal.mass * 9.81:.0f} N ({loads.nominal.mass:.2f} kg). "
+            "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
+            "Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over the stance legs, in N·m:",
+            _torque_table(data),
+            f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
+            f"Payload capacity at the centre of the body's top face: "
+            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}. "
+            f"Steepest slope the robot stands on, body level with the ground (μ = "
+            f"{loads.friction:g}):",
+            _slope_table(loads, differ),
+            Figure(
+                "loads",
+                "This design's largest joint torques against their ratings"
+                + (", and the steepest slope by uphill heading" if differ else ""),
+            ),
+            Figure(
+                "study_statics",
+                "Every design of the sweep: largest hip and knee torque, and payload capacity "
+                "(log scale), against tibia ratio for each coxa ratio",
+            ),
+        ),
+    )
+
+
+def _torque_table(data: ReportData) -> str:
+    record = data[StaticsRecord]
+    nominal = record.axis.nominal.peak_torques()
+    rows = [
+        (
+            joint,
+            f"{rated:g}",
+            f"{nominal[joint]:.1f}",
+            f"{record.axis.peak_torques[joint]:.1f}",
+            f"{record.free.peak_torques[joint]:.1f}",
+        )
+        for joint, rated in zip(nominal, data.design.rated_torques, strict=True)
+    ]
+    header = ["joint", "rated", "nominal stance", "over the axis-locked extremes"]
+    return table([*header, "over the free-coupled extremes"], rows)
+
+
+def _slope_table(loads: LoadsAnalysis, differ: bool) -> str:
+    """One line when every uphill heading gives the same slope and cause, else one a heading."""
+    header = ["uphill heading (body frame, 0° = forward)", "steepest slope [°]", "stopped by"]
+    headings = [f"{math.degrees(s.heading):+.0f}°" for s in loads.slopes]
+    if not differ:
+        first = loads.slopes[0]
+        row = (
+            f"every heading ({', '.join(headings)})",
+            f"{math.degrees(first.max_slope):.1f}",
+            SLOPE_CAUSES.get(str(first.limited_by), str(first.limited_by)),
+        )
+        return table(header, [row])
+    rows = [
+        (
+            heading,
+            f"{math.degrees(s.max_slope):.1f}",
+            SLOPE_CAUSES.get(str(s.limited_by), str(s.limited_by)),
+        )
+        for heading, s in zip(headings, loads.slopes, strict=True)
+    ]
+    return table(header, rows)
+
+
+def write_files(data: ReportData, out: Path) -> None:
+    """The study's torques and payload against tibia ratio, and this design's loads."""
+    save(
+        statics_study_figure(data[StudyRecord].table),
+        out / "study_statics.png",
+        svg=data.options.svg,
+    )
+    save(loads_figure(data[StaticsRecord].axis), out / "loads.png", svg=data.options.svg)
+
+
+def to_json(record: StaticsRecord) -> dict[str, Any]:
+    """``loads``: both modes, without the design (the report states it once)."""
+    return {
+        "loads": {
+            "axis": _without_design(record.axis.to_dict()),
+            "free": _without_design(record.free.to_dict()),
+        }
+    }
+
+
+def _without_design(data: dict[str, Any]) -> dict[str, Any]:
+    return {key: value for key, value in data.items() if key != "design"}
+
+
+PART = Part(
+    StaticsRecord,
+    compute,
+    section,
+    needs=(FlexibilityRecord,),
+    step="statics",
+    files=write_files,
+    json=to_json,
+)

@@ -1,0 +1,79 @@
+"""The torque colour scale, and its legend beside the 3-D scene in the page.
+
+Leg links are coloured by their joint's |τ| / rated torque (:func:`torque_colour`).
+The legend is HTML beside the meshcat canvas (:func:`with_legend`), not geometry in the
+scene, so it never hides the robot and keeps its size whatever the camera does.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+LEGEND_WIDTH = "13rem"
+"""Width of the legend's column at the left of the page; the scene takes the rest."""
+
+STOPS = 11
+"""Colours sampled along the legend's bar."""
+
+HIGHLIGHT = (0.9, 0.1, 0.1, 1.0)
+"""RGBA of the links whose joint stops an extreme (never a torque colour)."""
+
+
+def torque_colour(ratio: float) -> tuple[float, float, float, float]:
+    """The colour of a link whose joint works at ``ratio`` = |τ| / rated.
+
+    Viridis, from dark blue (idle) to yellow (at its rating): never the highlight red.
+    """
+    from matplotlib import colormaps
+
+    red, green, blue, alpha = colormaps["viridis"](float(np.clip(ratio, 0.0, 1.0)))
+    return (red, green, blue, alpha)
+
+
+def _css(colour: tuple[float, ...]) -> str:
+    red, green, blue = (round(255 * c) for c in colour[:3])
+    return f"rgb({red},{green},{blue})"
+
+
+def torque_legend_html() -> str:
+    """The legend: a vertical colour bar of |τ| / rated from 0 to 1, and what red means."""
+    stops = ", ".join(
+        f"{_css(torque_colour(ratio))} {100 * k / (STOPS - 1):.0f}%"
+        for k, ratio in enumerate(np.linspace(1, 0, STOPS))
+    )
+    ticks = "".join(
+        f"<span style='top:{100 * (1 - v):.0f}%'>{v:g}</span>" for v in (0, 0.25, 0.5, 0.75, 1)
+    )
+    return (
+        "<aside id='hexaleg-legend'><h2>Leg link colour</h2>"
+        "<p>its joint's |τ| / rated torque, at the pose shown</p>"
+        f"<div class='bar' style='background:linear-gradient(to bottom, {stops})'></div>"
+        f"<div class='ticks'>{ticks}</div>"
+        "<p><span class='swatch'></span> red: the link whose joint stops an extreme</p>"
+        "</aside>"
+    )
+
+
+LEGEND_STYLE = f"""
+#hexaleg-legend {{position: fixed; left: 0; top: 0; bottom: 0; width: {LEGEND_WIDTH};
+  box-sizing: border-box; padding: 1rem; font: 14px/1.35 sans-serif; color: #222;
+  background: #f4f4f4; border-right: 1px solid #ccc; overflow: auto}}
+#hexaleg-legend h2 {{font-size: 16px; margin: 0 0 .4rem}}
+#hexaleg-legend .bar {{display: inline-block; width: 1.6rem; height: 14rem;
+  border: 1px solid #555; vertical-align: top}}
+#hexaleg-legend .ticks {{display: inline-block; position: relative; height: 14rem;
+  width: 3rem; margin-left: .3rem}}
+#hexaleg-legend .ticks span {{position: absolute; transform: translateY(-50%)}}
+#hexaleg-legend .swatch {{display: inline-block; width: .9rem; height: .9rem;
+  background: {_css(HIGHLIGHT)}; vertical-align: middle}}
+#meshcat-pane {{margin-left: {LEGEND_WIDTH}; width: calc(100vw - {LEGEND_WIDTH}) !important}}
+"""
+"""The legend's column, and the scene moved to its right."""
+
+
+def with_legend(page: str) -> str:
+    """Meshcat's static page with the torque legend in a column beside the scene."""
+    closing = page.rindex("</body>")
+    return (
+        page[:closing] + f"<style>{LEGEND_STYLE}</style>{torque_legend_html()}\n" + page[closing:]
+    )

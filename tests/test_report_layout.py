@@ -1,0 +1,196 @@
+"""The report as a reader sees it: figures legible in a 1400 px browser window, and one PDF
+with the same sections and figures, no table or figure cut across pages.
+
+Slow: one reduced report with its PDF (~1 min), then Chromium and WeasyPrint layouts.
+"""
+
+from __future__ import annotations
+
+import html
+import json
+import os
+import re
+import shutil
+import subprocess
+import tempfile
+from pathlib import Path
+
+import pytest
+
+from hexaleg import HexapodDesign
+from hexaleg.output.figures.canvas import SMALLEST_TEXT_KEY
+from hexaleg.output.report import PARTS, ReportOptions, compute_report, render_report
+from hexaleg.output.report.document import report_html, sections
+
+pytestmark = pytest.mark.slow
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+WINDOW_WIDTH = 1400
+SMALLEST_SHOWN_SHARE = 0.60  # of a figure's natural pixel width
+SMALLEST_TEXT_PX = 9.0  # on screen, in the page and inside every figure
+OPTIONS = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False, pdf=True)
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    out = tmp_path_factory.mktemp("layout") / "r"
+    data = compute_report(HexapodDesign(), OPTIONS)
+    render_report(data, out)
+    return out, data
+
+
+def _figures_in_html(out: Path) -> list[str]:
+    return re.findall(r"<figure><a href='([^']+\.png)'>", (out / "report.html").read_text())
+
+
+# -- the page in a browser ------------------------------------------------------------------
+
+MEASURE = """<script>
+window.addEventListener('load', () => {
+  const figures = [...document.querySelectorAll('figure img')].map(img => ({
+    src: img.getAttribute('src'), natural: img.naturalWidth,
+    shown: img.getBoundingClientRect().width}));
+  const text = [...document.querySelectorAll('p, td, th, figcaption, li, h1, h2, h3')].map(
+    e => parseFloat(getComputedStyle(e).fontSize));
+  const pre = document.createElement('pre');
+  pre.id = 'hexaleg-measure';
+  pre.textContent = JSON.stringify({figures, smallest_text: Math.min(...text),
+                                    width: window.innerWidth});
+  document.body.appendChild(pre);
+});
+</script>"""
+
+
+def _measure_in_chromium(out: Path) -> dict:
+    """Load report.html at 1400 px in headless Chromium; sizes as the page lays them out."""
+    probe = out / ".measure.html"
+    probe.write_text((out / "report.html").read_text().replace("</body>", MEASURE + "</body>"))
+    try:
+        with tempfile.TemporaryDirectory() as profile:
+            dom = subprocess.run(
+                [
+                    CHROMIUM,
+                    "--headless",
+                    "--no-sandbox",
+                    "--disable-gpu",
+                    "--disable-background-networking",
+                    "--no-first-run",
+                    f"--user-data-dir={profile}",
+                    f"--window-size={WINDOW_WIDTH},1000",
+                    "--virtual-time-budget=10000",
+                    "--dump-dom",
+                    probe.as_uri(),
+                ],
+                capture_output=True,
+                text=True,
+                timeout=180,
+                check=True,
+            ).stdout
+    finally:
+        probe.unlink()
+    found = re.search(r'<pre id="hexaleg-measure">(.*?)</pre>', dom, re.S)
+    assert found, "the page never finished loading"
+    return json.loads(html.unescape(found.group(1)))
+
+
+def test_every_figure_is_legible_at_1400_px(report):
+    from PIL import Image
+
+    if CHROMIUM is None:
+        if os.environ.get("CI"):
+            pytest.fail("chromium is not installed: .ci/run must install it")
+        pytest.skip("chromium is not installed: cannot lay the page out")
+    out, _ = report
+    measured = _measure_in_chromium(out)
+    assert measured["width"] == WINDOW_WIDTH
+    figures = {f["src"]: f for f in measured["figures"]}
+    assert (
+        sorted(figures)
+        == sorted(_figures_in_html(out))
+        == sorted(p.name for p in out.glob("*.png"))
+    )  # every figure written is shown, once
+    for name, figure in figures.items():
+        with Image.open(out / name) as image:
+            natural = image.width
+            smallest = float(image.text[SMALLEST_TEXT_KEY])
+        assert figure["natural"] == natural
+        share = figure["shown"] / natural
+        assert share >= SMALLEST_SHOWN_SHARE, f"{name} shown at {share:.0%} of its width"
+        assert smallest * min(share, 1.0) >= SMALLEST_TEXT_PX, (
+            f"{name}: its smallest text is {smallest * share:.1f} px on screen"
+        )
+    assert measured["smallest_text"] >= SMALLEST_TEXT_PX
+
+
+def test_each_figure_links_to_its_png_and_svg(report):
+    out, _ = report
+    page = (out / "report.html").read_text()
+    for png in _figures_in_html(out):
+        svg = png.replace(".png", ".svg")
+        assert f"<a href='{png}'>PNG</a>" in page and f"<a href='{svg}'>SVG</a>" in page
+        assert (out / svg).read_text().lstrip().startswith("<?xml")
+
+
+# -- the PDF ---------------------------------------------------------------------------------
+
+
+def _outline_titles(reader) -> list[tuple[str, int]]:
+    titles = []
+
+    def walk(items):
+        for item in items:
+            if isinstance(item, list):
+                walk(item)
+            else:
+                titles.append((item.title, reader.get_destination_page_number(item)))
+
+    walk(reader.outline)
+    return titles
+
+
+def test_the_pdf_holds_every_section_and_figure_of_the_html(report):
+    from pypdf import PdfReader
+
+    out, _ = report
+    reader = PdfReader(out / "report.pdf")
+    page_text = [page.extract_text() for page in reader.pages]
+    headings = re.findall(r"<h2>(.*?)</h2>", (out / "report.html").read_text())
+    outline = _outline_titles(reader)
+    assert [title for title, _ in outline] == ["hexaleg report", *map(html.unescape, headings)]
+    first_pages = [page for _, page in outline[1:]]
+    assert first_pages == sorted(first_pages)  # in reading order
+    assert headings[0] == "Decision" and first_pages[0] == 0  # the answer on the first page
+    figures = _figures_in_html(out)
+    for number in range(1, len(figures) + 1):
+        pages = [k for k, text in enumerate(page_text) if f"Figure {number}:" in text]
+        assert len(pages) == 1, f"Figure {number} is on pages {pages}"
+    assert not any(f"Figure {len(figures) + 1}:" in text for text in page_text)
+    # vector figures: no page embeds a whole figure as an image (only rasterized clouds)
+    for page in reader.pages:
+        for image in page.images:
+            assert image.image.width < 1000, f"a {image.image.width} px image in the PDF"
+
+
+def test_the_pdf_cuts_no_table_or_figure_across_pages(report):
+    import weasyprint
+    from pypdf import PdfReader
+
+    out, data = report
+    page = report_html(sections(data, PARTS), out, medium="print")
+    document = weasyprint.HTML(string=page, base_url=str(out)).render()
+    assert len(document.pages) == len(PdfReader(out / "report.pdf").pages)
+    pages_of: dict[int, set[int]] = {}
+    for number, laid_out in enumerate(document.pages):
+        for box in _boxes(laid_out._page_box):
+            if getattr(box, "element_tag", None) in ("table", "figure"):
+                pages_of.setdefault(id(box.element), set()).add(number)
+    tables = page.count("<table>")
+    figures = page.count("<figure>")
+    assert len(pages_of) == tables + figures  # every one laid out
+    assert all(len(pages) == 1 for pages in pages_of.values())
+
+
+def _boxes(box):
+    yield box
+    for child in getattr(box, "children", None) or []:
+        yield from _boxes(child)
