@@ -20,7 +20,7 @@ from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.evaluation import MaximizeObjective, MinimizeObjective, Objective
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import KINDS, RequirementCheck, format_value
+from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.search_space import FREEABLE, FreeVariable
 
 DESCRIPTION = (
@@ -117,10 +117,9 @@ def run(args: argparse.Namespace) -> int:
 
 def render(result: DecideResult) -> str:
     """The answer as text: the best design, yours, and the conflict if any."""
-    objective = result.objective
     free = ", ".join(f"{v.name} {v.lower:.4g}..{v.upper:.4g}" for v in result.variables)
     lines = [
-        f"Decision: {objective} over {free}",
+        f"Decision: {result.objective.sense} {result.objective.label} over {free}",
         f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
         "",
     ]
@@ -128,21 +127,20 @@ def render(result: DecideResult) -> str:
     lines += _design_block("Best design", result.best, result, verdict, binding=True)
     lines += _design_block("Your design", result.yours, result, "", binding=False)
     if result.conflict is not None:
-        lines += ["", f"No design meets every requirement: {result.conflict.description}."]
-    return "\n".join(lines)
+        lines += [f"No design meets every requirement: {result.conflict.description}."]
+    return "\n".join(lines).rstrip()
 
 
 def _design_block(
     title: str, checked: CheckedDesign, result: DecideResult, verdict: str, binding: bool
 ) -> list[str]:
-    design = checked.design
-    lengths = ", ".join(f"{v:.4g}" for v in design.lengths)
+    lengths = ", ".join(f"{v:.4g}" for v in checked.design.lengths)
     head = f"{title}: l = ({lengths}) m"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
     value = checked.evaluation.values[result.objective.name]
-    head += f", {result.objective.name} = {value:.6g}" + (f" ({verdict})" if verdict else "")
-    rows = [_row(check, binding) for check in checked.checks]
+    head += f", {result.objective.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
+    rows = [_row(result, check, binding) for check in checked.checks]
     width = [max((len(r[k]) for r in rows), default=0) for k in range(3)]
     lines = [head]
     for row in rows:
@@ -151,15 +149,15 @@ def _design_block(
     return [*lines, ""]
 
 
-def _row(check: RequirementCheck, binding: bool) -> tuple[str, str, str, str]:
-    sign = "≥" if KINDS[check.name].sense == "at least" else "≤"
-    required = f"{check.name} {sign} {format_value(check.name, check.required)}"
-    shown = 0.0 if abs(check.margin) < 1e-9 * max(abs(check.required), 1.0) else check.margin
-    unit = KINDS[check.name].unit
-    margin = f"margin {shown:+.4g}" + ("" if unit == "1" else f" {unit}")
+def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
     if binding:
         state = "binds" if check.binds else ("" if check.met else "NOT MET")
     else:
         state = "pass" if check.met else "FAIL"
     limited = f" (limited by {check.limited_by})" if check.limited_by else ""
-    return required, format_value(check.name, check.value), margin, state + limited
+    return (
+        result.requirements.describe(check.name),
+        format_value(check.name, check.value),
+        "margin " + format_margin(check),
+        state + limited,
+    )

@@ -59,6 +59,16 @@ METRIC_UNITS: dict[str, str] = {
 }
 """Every metric a decision can use, with its unit."""
 
+METRIC_NAMES: dict[str, str] = {
+    "fb": "FB",
+    "area": "improved area",
+    "leg_length": "leg length",
+    "ground_clearance": "ground clearance",
+    "peak_torque": "peak torque",
+    "cost_of_transport": "cost of transport",
+}
+"""A metric's name in sentences, where it differs from its key."""
+
 GAIT_METRICS = ("speed", "peak_torque", "cost_of_transport")
 """Metrics of a tripod gait (:mod:`hexaleg.gait`)."""
 
@@ -94,6 +104,11 @@ class Objective:
 
     def __str__(self) -> str:
         return f"{self.sense} {self.name}"
+
+    @property
+    def label(self) -> str:
+        """The metric's name in a sentence (``FB``, ``improved area``)."""
+        return METRIC_NAMES.get(self.name, self.name)
 
 
 @dataclass(frozen=True)

@@ -232,9 +232,16 @@ class Requirements:
         return out
 
     def describe(self, name: str) -> str:
-        """``name``'s requirement in words with its unit, e.g. ``payload ≥ 30 kg``."""
+        """``name``'s requirement in words, with its condition: ``payload ≥ 30 kg (on 15°)``."""
         sign = "≥" if KINDS[name].sense == "at least" else "≤"
-        return f"{name} {sign} {format_value(name, getattr(self, name))}"
+        text = f"{name} {sign} {format_value(name, getattr(self, name))}"
+        if name == "payload" and self.slope is not None:
+            text += f" (on every slope up to {math.degrees(self.slope):.3g}°)"
+        elif name == "slope" and self.payload is not None:
+            text += f" (carrying {self.payload:g} kg)"
+        elif name == "speed" and self.step_height is not None:
+            text += f" (step height {self.step_height:g} m)"
+        return text
 
 
 def format_value(name: str, value: float) -> str:
@@ -245,6 +252,14 @@ def format_value(name: str, value: float) -> str:
     if kind.unit == "1":
         return f"{value:.4g}"
     return f"{value:.4g} {kind.unit}"
+
+
+def format_margin(check: RequirementCheck) -> str:
+    """A check's margin, signed, with its unit; round-off (< 10⁻⁹ of the value) shows as 0."""
+    kind = KINDS[check.name]
+    tiny = abs(check.margin) < 1e-9 * max(abs(check.required), 1.0)
+    text = f"{0.0 if tiny else check.margin:+.4g}"
+    return text if kind.unit == "1" else f"{text} {kind.unit}"
 
 
 @dataclass(frozen=True)
