@@ -255,10 +255,10 @@ def format_value(name: str, value: float) -> str:
 
 
 def format_margin(check: RequirementCheck) -> str:
-    """A check's margin, signed, with its unit; round-off (< 10⁻⁹ of the value) shows as 0."""
+    """A check's margin, signed, with its unit; below 10⁻⁴ of the required value, ``±0``."""
     kind = KINDS[check.name]
-    tiny = abs(check.margin) < 1e-9 * max(abs(check.required), 1.0)
-    text = f"{0.0 if tiny else check.margin:+.4g}"
+    tiny = abs(check.margin) < 1e-4 * max(abs(check.required), 1e-9)
+    text = ("−0" if check.margin < 0 else "+0") if tiny else f"{check.margin:+.4g}"
     return text if kind.unit == "1" else f"{text} {kind.unit}"
 
 
