@@ -19,7 +19,7 @@ from hexaleg.cli.requirement_options import add_requirement_options, requirement
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.evaluation import MaximizeObjective, MinimizeObjective, Objective
 from hexaleg.study.executors import dask_executor, local_pool
-from hexaleg.study.optimize import SearchSettings
+from hexaleg.study.optimize import MAX_EVALUATIONS, MIN_POPULATION, SearchSettings
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.search_space import FREEABLE, FreeVariable
 
@@ -65,7 +65,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     search.add_argument("--seed", type=bounded_int(0, 2**32 - 1), default=0, help="default 0")
     search.add_argument(
         "--evaluations",
-        type=bounded_int(48),
+        type=bounded_int(2 * MIN_POPULATION, MAX_EVALUATIONS),
         metavar="N",
         help="designs to evaluate per search (default: 60 generations of 10 per free variable)",
     )

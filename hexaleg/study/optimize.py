@@ -7,8 +7,9 @@ the tests' problems it reaches optima where three constraints meet to 10⁻⁶, 
 - constraints are first-class: every requirement is an inequality g ≤ 0 and the
   survival is feasibility-first (a feasible design beats any infeasible one; among
   infeasible ones the smaller violation wins), so the search also returns the least
-  infeasible design, which the conflict analysis starts from; Optuna's constraint
-  handling is an add-on of its samplers (``constraints_func``, deprecated in 5.0);
+  infeasible design, which the conflict analysis starts from; in Optuna constraints are
+  an add-on of some samplers, being reworked in 5.0 (``constraints_func`` deprecated for
+  ``Trial.set_constraint``);
 - the problem is a few continuous variables with a cheap, deterministic, piecewise-smooth
   objective, where a population method converges to the optimum's neighbourhood (the
   tests hold it within 0.5 % of a dense grid); Optuna's TPE models noisy, expensive
@@ -46,6 +47,7 @@ from pymoo.core.problem import Problem
 from scipy.stats import qmc
 from tqdm import tqdm
 
+from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
@@ -65,6 +67,10 @@ POPULATION_PER_VARIABLE = 10
 """Designs per generation for each free variable (at least :data:`MIN_POPULATION`)."""
 
 MIN_POPULATION = 24
+"""Fewest designs per generation."""
+
+MAX_EVALUATIONS = 1_000_000
+"""Most designs one search evaluates (about two hours on 2 cores)."""
 
 VARIANT = "DE/best/1/bin"
 """Mutation from the best design of the generation, one difference, binomial crossover."""
@@ -97,12 +103,9 @@ class SearchSettings:
     evaluations: int | None = None
 
     def __post_init__(self) -> None:
-        if not 0 <= self.seed < 2**32:
-            raise HexalegError(f"seed = {self.seed} is not valid: must lie in 0..2**32-1")
-        if self.evaluations is not None and self.evaluations < 2 * MIN_POPULATION:
-            raise HexalegError(
-                f"evaluations = {self.evaluations} is not valid: at least {2 * MIN_POPULATION}"
-            )
+        require_int("seed", self.seed, 0, 2**32 - 1)
+        if self.evaluations is not None:
+            require_int("evaluations", self.evaluations, 2 * MIN_POPULATION, MAX_EVALUATIONS)
 
     def population(self, variables: int) -> int:
         """Designs per generation."""
@@ -113,10 +116,6 @@ class SearchSettings:
         if self.evaluations is None:
             return GENERATIONS
         return max(2, self.evaluations // self.population(variables))
-
-    def budget(self, variables: int) -> int:
-        """Designs evaluated in all."""
-        return self.population(variables) * self.generations(variables)
 
 
 @dataclass(frozen=True)
