@@ -69,11 +69,17 @@ _EXPORTS: dict[str, str] = {
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
+    "DecideResult": "hexaleg.study.decide",
+    "Objective": "hexaleg.study.evaluation",
+    "Requirements": "hexaleg.study.requirements",
+    "SearchSettings": "hexaleg.study.optimize",
+    "decide": "hexaleg.study.decide",
     "ReportOptions": "hexaleg.output.report.options",
     "build_report": "hexaleg.output.report",
 }
 
 __all__ = [
+    "DecideResult",
     "DesignError",
     "FlexibilityResult",
     "FlexibilityWarning",
@@ -91,10 +97,13 @@ __all__ = [
     "MANIPULABILITY_LIMITS",
     "ManipulabilityAnalysis",
     "ModelError",
+    "Objective",
     "ParameterError",
     "Payload",
     "ReportOptions",
+    "Requirements",
     "STANCE_LIMITS",
+    "SearchSettings",
     "StanceGeometry",
     "StudySpec",
     "TRIPODS",
@@ -107,6 +116,7 @@ __all__ = [
     "analyze_manipulability",
     "analyze_workspace",
     "build_report",
+    "decide",
     "default_mounts",
     "design_toml",
     "flexibility",
@@ -176,6 +186,10 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.stance.geometry import StanceGeometry
     from hexaleg.statics.forces import Payload
     from hexaleg.statics.loads import analyze_loads
+    from hexaleg.study.decide import DecideResult, decide
+    from hexaleg.study.evaluation import Objective
+    from hexaleg.study.optimize import SearchSettings
+    from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

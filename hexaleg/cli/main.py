@@ -65,6 +65,11 @@ COMMANDS: tuple[Command, ...] = (
         "walking: torques, joint speeds, power and energy of a gait period; max stride and speed",
     ),
     Command(
+        "decide",
+        "hexaleg.cli.decide",
+        "requirements in, design out: the best leg meeting payload, slope, clearance, ...",
+    ),
+    Command(
         "study",
         "hexaleg.cli.study",
         "design study: FB over coxa x tibia ratios (Fig 14-15), resumable",
