@@ -14,7 +14,9 @@ import json
 import platform
 import sys
 
+from bench_decide import bench_decide
 from bench_flexibility import bench_dask, bench_flexibility
+from bench_gait import bench_gait
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
 from harness import Row, seconds
@@ -27,6 +29,8 @@ WORKLOADS = {
     "optimum_pose": lambda quick, r: bench_optimum_pose(r),
     "flexibility": lambda quick, r: bench_flexibility(4 if quick else 80, r),
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
+    "gait": lambda quick, r: bench_gait(4 if quick else 80, r),
+    "decide": lambda quick, r: bench_decide(48 if quick else None),
 }
 
 

@@ -60,17 +60,31 @@ _EXPORTS: dict[str, str] = {
     "FlexibilityResult": "hexaleg.stance.extremes",
     "FlexibilityWarning": "hexaleg.stance.extremes",
     "flexibility": "hexaleg.stance.flexibility",
+    # statics and walking
+    "Payload": "hexaleg.statics.forces",
+    "analyze_loads": "hexaleg.statics.loads",
+    "Gait": "hexaleg.gait.spec",
+    "GaitAnalysis": "hexaleg.gait.analysis",
+    "analyze_gait": "hexaleg.gait.analysis",
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
+    "DecideResult": "hexaleg.study.decide",
+    "Objective": "hexaleg.study.evaluation",
+    "Requirements": "hexaleg.study.requirements",
+    "SearchSettings": "hexaleg.study.optimize",
+    "decide": "hexaleg.study.decide",
     "ReportOptions": "hexaleg.output.report.options",
     "build_report": "hexaleg.output.report",
 }
 
 __all__ = [
+    "DecideResult",
     "DesignError",
     "FlexibilityResult",
     "FlexibilityWarning",
+    "Gait",
+    "GaitAnalysis",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
@@ -83,9 +97,13 @@ __all__ = [
     "MANIPULABILITY_LIMITS",
     "ManipulabilityAnalysis",
     "ModelError",
+    "Objective",
     "ParameterError",
+    "Payload",
     "ReportOptions",
+    "Requirements",
     "STANCE_LIMITS",
+    "SearchSettings",
     "StanceGeometry",
     "StudySpec",
     "TRIPODS",
@@ -93,9 +111,12 @@ __all__ = [
     "WORKSPACE_LIMITS",
     "WorkspaceAnalysis",
     "__version__",
+    "analyze_gait",
+    "analyze_loads",
     "analyze_manipulability",
     "analyze_workspace",
     "build_report",
+    "decide",
     "default_mounts",
     "design_toml",
     "flexibility",
@@ -138,6 +159,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         ParameterError,
         TemplateError,
     )
+    from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+    from hexaleg.gait.spec import Gait
     from hexaleg.kinematics import (
         InverseKinematics,
         foot_jacobian,
@@ -161,6 +184,12 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry
+    from hexaleg.statics.forces import Payload
+    from hexaleg.statics.loads import analyze_loads
+    from hexaleg.study.decide import DecideResult, decide
+    from hexaleg.study.evaluation import Objective
+    from hexaleg.study.optimize import SearchSettings
+    from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

@@ -29,9 +29,26 @@ Distribution = Literal["min-norm", "min-torque"]
 """How the stance feet share the load: least squares of the forces, or of the torques
 relative to their ratings under friction and unilateral contact."""
 
-CauseKind = Literal["joint", "reach", "ground", "collision", "range"]
-"""What stops the body: a joint limit, a foothold out of reach, the ground, two of the
-robot's own parts touching, or nothing within the searched range."""
+CauseKind = Literal[
+    "joint",
+    "reach",
+    "ground",
+    "collision",
+    "range",
+    "torque",
+    "speed",
+    "tip",
+    "slide",
+    "stability",
+    "search limit",
+]
+"""What binds: a joint limit, a foothold out of reach, the ground, two of the robot's own
+parts touching, nothing within the searched range (extremes, gaits); a joint's torque or
+speed at its rating (payload capacity, gait speed); tipping over or sliding (slopes); the
+centre of mass leaving the support polygon (payload capacity); the search's own limit."""
+
+GaitPattern = Literal["tripod", "tetrapod", "wave"]
+"""Which legs swing together: three (duty factor 1/2), two (2/3) or one at a time (5/6)."""
 
 
 def choices(literal: Any) -> tuple[str, ...]:

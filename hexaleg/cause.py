@@ -15,15 +15,20 @@ from hexaleg._typing import CauseKind
 
 @dataclass(frozen=True)
 class Cause:
-    """The constraint that stops the body.
+    """The constraint that binds.
 
     Attributes:
         kind: ``"joint"`` (a joint limit), ``"reach"`` (foothold out of the leg's
-            reach), ``"ground"`` (the body touches the ground), ``"collision"`` (two of
-            the robot's own parts touch) or ``"range"`` (nothing broke within the
-            searched range).
-        leg: Leg name, for joint and reach causes.
-        joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint causes.
+            reach), ``"ground"`` (the body touches the ground, or with ``leg`` that
+            leg's knee does), ``"collision"`` (two of the robot's own parts touch),
+            ``"range"`` (nothing broke within the searched range), ``"torque"`` or
+            ``"speed"`` (a joint at its rated torque or speed), ``"tip"`` (the gravity
+            line leaves the support polygon on a slope), ``"slide"`` (the slope's
+            tangent reaches the friction coefficient), ``"stability"`` (the centre of
+            mass leaves the support polygon) or ``"search limit"`` (nothing binds below
+            the search's own bound).
+        leg: Leg name, for joint, reach, torque, speed and a leg's ground causes.
+        joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque and speed causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
         links: The two links that touch, for collision causes.
 
@@ -42,9 +47,13 @@ class Cause:
             edge = "too far" if self.bound == "outer" else "too close"
             return f"{self.leg} foothold out of reach ({edge})"
         if self.kind == "ground":
-            return "body touches the ground"
+            return f"{self.leg} knee touches the ground" if self.leg else "body touches the ground"
         if self.kind == "collision" and self.links:
             return f"{self.links[0]} touches {self.links[1]}"
+        if self.kind in ("torque", "speed"):
+            return f"{self.leg} {self.joint} {self.kind} at its rating"
+        if self.kind in ("tip", "slide", "stability", "search limit"):
+            return self.kind
         return "end of the searched range"
 
     def same_constraint_as(self, other: Cause) -> bool:
@@ -53,11 +62,12 @@ class Cause:
         return same and self.kind != "collision"
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form."""
+        """JSON-ready form, with its one-line ``description``."""
         return {
             "kind": self.kind,
             "leg": self.leg,
             "joint": self.joint,
             "bound": self.bound,
             "links": list(self.links) if self.links else None,
+            "description": str(self),
         }

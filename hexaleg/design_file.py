@@ -20,9 +20,9 @@ import os
 import re
 import stat
 import sys
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from pathlib import Path
-from typing import Any, cast
+from typing import Any, TypeVar, cast
 
 import tomli_w
 
@@ -36,6 +36,8 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover - Python 3.10
     import tomli as tomllib
+
+T = TypeVar("T")
 
 SUFFIXES = (".toml", ".json")
 """Extensions of design files: TOML written by hand, JSON printed by hexaleg."""
@@ -71,8 +73,13 @@ MOUNT_KEYS: dict[str, str] = {
 ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 """Keys that are angles [rad]: each also accepted in degrees as ``<key>_deg``."""
 
-TOP_KEYS = (*FIELDS, "mount")
-"""Keys of a design file: every field's, and ``mount`` for the ``[[mount]]`` tables."""
+REQUIREMENTS = "requirements"
+"""The table of what the robot must do: handed over as it is, read by
+:meth:`hexaleg.study.requirements.Requirements.from_table`."""
+
+TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS)
+"""Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, and the
+``[requirements]`` table."""
 
 
 class DesignFileError(HexalegError):
@@ -103,6 +110,24 @@ def load_design(path: str | os.PathLike[str]) -> HexapodDesign:
         DesignFileError: naming the file, the line where it can be found and the key.
 
     """
+    return load_design_file(path, lambda table: None)[0]
+
+
+def load_design_file(
+    path: str | os.PathLike[str], read_requirements: Callable[[Mapping[str, Any]], T]
+) -> tuple[HexapodDesign, T]:
+    """The design a design file describes, and its ``[requirements]`` table as read.
+
+    Args:
+        path: The TOML or JSON design file.
+        read_requirements: Reads the table (empty if the file has none); a
+            :class:`~hexaleg.exceptions.ParameterError` it raises is reported with the file
+            and line like the design's own.
+
+    Raises:
+        DesignFileError: naming the file, the line where it can be found and the key.
+
+    """
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
@@ -123,7 +148,10 @@ def load_design(path: str | os.PathLike[str]) -> HexapodDesign:
     if not isinstance(data, dict):
         raise DesignFileError(f"{path}: expected a table of design keys, got {type(data).__name__}")
     try:
-        return design_from_mapping(data)
+        design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
+        if not isinstance(table, dict):
+            raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
+        return design, read_requirements(table)
     except ParameterError as err:
         line = _line_of(text, err.field, json_file)
         where = f"{path}, line {line}" if line else str(path)
@@ -158,7 +186,7 @@ def _first_sentence(err: Exception) -> str:
 
 def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
     """The design of a mapping of design keys (a parsed TOML file or a JSON ``design``)."""
-    data = _radians(data, "")
+    data = _radians({k: v for k, v in data.items() if k != REQUIREMENTS}, "")
     unknown = [key for key in data if key not in TOP_KEYS]
     if unknown:
         raise _unknown(unknown[0], TOP_KEYS, "")

@@ -121,7 +121,22 @@ def quick_backends():
         def __init__(self, host, port):
             self.host = host
 
+    from concurrent.futures import ThreadPoolExecutor
+
+    from hexaleg import HexapodDesign, Objective, Requirements, SearchSettings, decide
+
+    with ThreadPoolExecutor(1) as here:  # a real answer, from a tiny search
+        decided = decide(
+            HexapodDesign(),
+            Requirements(ground_clearance=0.3),
+            Objective("area"),
+            settings=SearchSettings(evaluations=48),
+            executor=here,
+            progress=False,
+        )
+
     patches = {
+        "hexaleg.cli.decide.decide": lambda *args, **kwargs: decided,
         "hexaleg.cli.report.build_report": fake_report,
         "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
@@ -130,6 +145,8 @@ def quick_backends():
         "hexaleg.cli.view.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
         "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.build_gait_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
     }

@@ -59,6 +59,7 @@ def test_adjacent_legs_of_a_short_body_collide_under_yaw(short_body):
             assert at[collision.pairs.index(tuple(cause.links))] <= at.min() + 1e-6
 
 
+@pytest.mark.slow
 def test_free_extremes_with_collisions_are_collision_free(short_body):
     import warnings
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import warnings
 
 import pytest
@@ -27,6 +28,7 @@ def test_free_coupled_is_never_smaller_than_axis_locked(design, stance):
     assert free.extreme("x", 1).value > locked.extreme("x", 1).value
 
 
+@pytest.mark.slow
 def test_causes_do_not_depend_on_the_blas_thread_count():
     """Mirror-image legs bind together; which one is named must not follow round-off."""
     import json
@@ -54,43 +56,164 @@ def test_causes_do_not_depend_on_the_blas_thread_count():
     assert any(len(e["binding"]) > 1 for e in one)  # ties exist, and all tied legs are named
 
 
-BRUTE_DESIGNS = [
-    ((0.2, 0.4, 0.4), "all", "rectangle"),
-    ((0.1, 0.45, 0.45), "all", "rectangle"),
-    ((0.15, 0.5, 0.35), "all", "rectangle"),
-    ((0.05, 0.8, 0.15), "all", "rectangle"),  # a level body on the ground: z− and more
-    ((0.15, 0.25, 0.6), "tripod", "rectangle"),  # roll− once 11 % short
-    ((0.2, 0.4, 0.4), "all", "hexagon"),
-    ((0.3, 0.15, 0.55), "all", "rectangle"),  # roll± once 4 % short
-    ((0.1, 0.5, 0.4), "tripod", "rectangle"),  # roll− once 7 % short
-    ((0.05, 0.5, 0.45), "all", "rectangle"),  # z−: five local optima within 12 %
-    ((0.178, 0.183, 0.639), "tripod", "rectangle"),  # roll− once 19 % short
-    # two random Fig 15-style tripods that unscaled starts got wrong: roll+ 0.2328 rad
-    # (0.4535 found), and roll− 0.1523 and yaw± 0.3713 rad (0.2082, 0.3818 found)
-    ((0.25760963626455174, 0.4420870017419507, 0.3003033619934976), "tripod", "rectangle"),
-    ((0.18986180759758675, 0.15155430580598717, 0.6585838865964261), "tripod", "rectangle"),
+ISSUE_ROWS = [
+    # (design fields, stance, direction, a better pose's value found by an independent search)
+    ({"l1": 0.255, "l2": 0.152, "l3": 0.593}, "tripod", "roll+", 0.243015),
+    ({"l1": 0.06, "l2": 0.35, "l3": 0.59}, "all", "z-", 0.196896),
+    (
+        {"l1": 0.18986180759758675, "l2": 0.15155430580598717, "l3": 0.6585838865964261},
+        "tripod",
+        "roll-",
+        0.20821,  # short on another machine's floating-point path
+    ),
 ]
-"""(lengths, stance, layout): the issue's designs, sweep designs once short, and the
-two ways a search can lean on symmetry (mirror images are taken, not solved)."""
+"""Issue 22's rows without self-collision: hexaleg reported less, and "converged"."""
+NOT_REACHED = pytest.mark.xfail(
+    strict=True,
+    reason="not done: with self-collision the local solves (SLSQP on coal's pair distances) "
+    "miss this optimum; the search says so (the next test)",
+)
+COLLISION_ROWS = [
+    ({"body_length": 0.12, "body_width": 0.45}, "roll+", 0.329050),
+    pytest.param({"body_length": 0.12, "body_width": 0.45}, "roll-", 0.329050, marks=NOT_REACHED),
+    pytest.param({"body_length": 0.1, "body_width": 0.4}, "pitch+", 0.486713, marks=NOT_REACHED),
+    pytest.param({"body_length": 0.1, "body_width": 0.4}, "pitch-", 0.486713, marks=NOT_REACHED),
+    pytest.param({"body_length": 0.1, "body_width": 0.4}, "x+", 0.370127, marks=NOT_REACHED),
+    ({"body_length": 0.1, "body_width": 0.4}, "roll+", 0.317882),
+    pytest.param({"body_length": 0.1, "body_width": 0.4}, "yaw+", 0.416732, marks=NOT_REACHED),
+]
+"""Issue 22's rows with self-collision on short bodies (default legs)."""
 
 
-def _brute_force(geometry, locked, axis, sign, starts=24):
+@pytest.mark.parametrize(("fields", "stance", "name", "better"), ISSUE_ROWS, ids=str)
+def test_the_issue_rows_reach_the_better_pose(fields, stance, name, better):
+    """Fast, and able to catch a short extreme: a tripod's roll+ basin few starts reach."""
+    from hexaleg import HexapodDesign
+
+    result = free_flexibility(HexapodDesign(**fields), stance)
+    extreme = next(e for e in result.extremes if e.name == name)
+    assert extreme.sign * extreme.value >= better - 1e-6
+    assert extreme.evidence.reachable and extreme.evidence.converged
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("fields", "name", "better"), COLLISION_ROWS, ids=str)
+def test_the_issue_collision_rows_reach_the_better_pose(fields, name, better, collision_results):
+    result = collision_results(tuple(sorted(fields.items())))
+    extreme = next(e for e in result.extremes if e.name == name)
+    assert extreme.sign * extreme.value >= better - 1e-6
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("fields", "name", "better"),
+    [row.values if hasattr(row, "values") else row for row in COLLISION_ROWS],
+    ids=str,
+)
+def test_a_collision_extreme_short_of_a_known_pose_is_not_reported_converged(
+    fields, name, better, collision_results
+):
+    result = collision_results(tuple(sorted(fields.items())))
+    extreme = next(e for e in result.extremes if e.name == name)
+    if extreme.sign * extreme.value < better - 1e-6:
+        assert not extreme.evidence.converged and not result.converged
+        assert any(doubt.startswith(f"{name}: ") for doubt in result.doubts)
+
+
+@pytest.fixture(scope="module")
+def collision_results():
+    from functools import cache
+
+    from hexaleg import HexapodDesign
+
+    @cache
+    def run(fields):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", FlexibilityWarning)
+            return free_flexibility(HexapodDesign(**dict(fields)), collisions=True)
+
+    return run
+
+
+@pytest.mark.parametrize(
+    ("fields", "stance"),
+    [({"l1": 0.255, "l2": 0.152, "l3": 0.593}, "tripod"), ({}, "all")],
+    ids=["tripod", "all legs"],
+)
+def test_every_free_extreme_is_reached_from_nominal_by_a_feasible_path(fields, stance):
+    """The path hexaleg finds, checked independently: NumPy margins every ≤ 1 mm, 1 mrad."""
+    import numpy as np
+
+    from hexaleg import HexapodDesign
+    from hexaleg.stance import StanceGeometry
+    from hexaleg.stance.constraints import displacement_poses, stance_margins
+    from hexaleg.stance.free_coupled import search_box
+    from hexaleg.stance.margin_kernel import kernel_geometry
+    from hexaleg.stance.paths import retreat
+
+    design = HexapodDesign(**fields)
+    geometry = StanceGeometry.from_model(HexapodModel(design), stance)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FlexibilityWarning)
+        result = free_flexibility(design, stance)
+    box = search_box(flexibility(design, "axis", stance).extremes)
+    smooth, exact = kernel_geometry([geometry], True), kernel_geometry([geometry], False)
+    for extreme in result.extremes:
+        assert extreme.evidence.reachable
+        reached, path = retreat(smooth, exact, np.array(extreme.pose), box)
+        assert reached
+        np.testing.assert_array_equal(path[0], extreme.pose)
+        assert not path[-1].any()  # ends at the nominal stance
+        points = [path[0]]
+        for a, b in itertools.pairwise(path):
+            steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
+            points += list(a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None])
+        margins = stance_margins(geometry, *displacement_poses(geometry, np.array(points)))
+        assert margins.min() >= -1e-9, extreme.name
+
+
+def _random_designs(count, seed):
+    """Fig 15-style designs (leg length 1 m) at random; every fourth stands on a tripod."""
+    import numpy as np
+
+    from hexaleg import HexapodDesign
+
+    rng = np.random.default_rng(seed)
+    designs = []
+    for i in range(count):
+        r1 = rng.uniform(0.03, 0.3)
+        r3 = rng.uniform(0.15, 0.85 - r1)
+        designs.append((HexapodDesign.from_ratios(r1, r3), "tripod" if i % 4 == 0 else "all"))
+    return designs
+
+
+BRUTE_SEED = 2027
+"""Not the seed of the designs the search was tuned on."""
+RANDOM_DESIGNS = _random_designs(12, BRUTE_SEED)
+
+
+def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
     """An independent multi-start: uniform random starts (not hexaleg's Sobol set) over a
-    wider box, plain SLSQP on the same constraints, the best exactly feasible answer."""
+    wider box, plain SLSQP on the NumPy margins (and coal's clearance), the best exactly
+    feasible answer and its pose."""
     import numpy as np
     from scipy import optimize
 
     from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins, stance_margins
 
     value = {(e.axis, e.sign): e.value for e in locked}
-    half = np.array([1.5 * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
+    half = np.array([2.5 * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
     k = AXES.index(axis)
 
-    def constraints(d):
-        return smooth_stance_margins(geometry, *displacement_poses(geometry, d))
+    def clearance(d):
+        return collision.clearances(*displacement_poses(geometry, d))[0]
 
-    rng = np.random.default_rng(2024)
-    best = -np.inf
+    def constraints(d):
+        margins = smooth_stance_margins(geometry, *displacement_poses(geometry, d))
+        return margins if collision is None else np.append(margins, clearance(d))
+
+    rng = np.random.default_rng(BRUTE_SEED + k)
+    best, pose = -np.inf, None
     bounds = [(None, None)] * 3 + [(-np.pi, np.pi), (-np.pi / 2, np.pi / 2), (-np.pi, np.pi)]
     for start in rng.uniform(-1, 1, size=(starts, 6)) * half:
         result = optimize.minimize(
@@ -101,29 +224,82 @@ def _brute_force(geometry, locked, axis, sign, starts=24):
             constraints={"type": "ineq", "fun": constraints},
             options={"maxiter": 150, "ftol": 1e-12},
         )
-        if stance_margins(geometry, *displacement_poses(geometry, result.x)).min() >= -1e-9:
-            best = max(best, sign * result.x[k])
-    return best
+        margins = stance_margins(geometry, *displacement_poses(geometry, result.x))
+        feasible = margins.min() >= -1e-9 and (collision is None or clearance(result.x) >= -1e-7)
+        if feasible and sign * result.x[k] > best:
+            best, pose = sign * result.x[k], result.x
+    return best, pose
+
+
+def _reachable(geometry, pose, box):
+    """Whether a path to ``pose`` from nominal can be shown (hexaleg's retreat, its every
+    1 mm / 1 mrad checked here on the NumPy margins)."""
+    import numpy as np
+
+    from hexaleg.stance.constraints import displacement_poses, stance_margins
+    from hexaleg.stance.margin_kernel import kernel_geometry
+    from hexaleg.stance.paths import retreat
+
+    smooth, exact = kernel_geometry([geometry], True), kernel_geometry([geometry], False)
+    reached, path = retreat(smooth, exact, np.asarray(pose, dtype=float), box)
+    if not reached:
+        return False
+    for a, b in itertools.pairwise(path):
+        steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
+        points = a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None]
+        if stance_margins(geometry, *displacement_poses(geometry, points)).min() < -1e-9:
+            return False
+    return True
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("lengths", "stance", "layout"), BRUTE_DESIGNS, ids=str)
-def test_free_extremes_are_never_short_of_a_brute_force_multistart(lengths, stance, layout):
-    import warnings
-
-    from hexaleg import HexapodDesign
+@pytest.mark.parametrize(
+    ("design", "stance"), RANDOM_DESIGNS, ids=lambda v: str(getattr(v, "lengths", v))
+)
+def test_free_extremes_are_never_short_of_a_brute_force_multistart(design, stance):
+    """On designs drawn at random here: a better pose the brute force finds must be one
+    no path from nominal can be shown to reach, and a converged extreme has none."""
     from hexaleg.stance import StanceGeometry, axis_locked_extremes
+    from hexaleg.stance.free_coupled import search_box
 
-    design = HexapodDesign(l1=lengths[0], l2=lengths[1], l3=lengths[2], layout=layout)
     model = HexapodModel(design)
     geometry = StanceGeometry.from_model(model, stance)
     locked = axis_locked_extremes(geometry)
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
+        warnings.simplefilter("ignore", FlexibilityWarning)
         free = free_flexibility(design, stance, model)
     for extreme in free.extremes:
-        brute = _brute_force(geometry, locked, extreme.axis, extreme.sign)
-        assert extreme.sign * extreme.value >= brute - 1e-4, (extreme.axis, extreme.sign, brute)
+        brute, pose = _brute_force(geometry, locked, extreme.axis, extreme.sign)
+        if brute > extreme.sign * extreme.value + 1e-6:
+            assert not _reachable(geometry, pose, search_box(locked)), (extreme.name, brute)
+
+
+SHORT_BODIES = [
+    {"body_length": 0.11, "body_width": 0.42, "l1": 0.18, "l2": 0.42, "l3": 0.4},
+    {"body_length": 0.14, "body_width": 0.5, "l1": 0.22, "l2": 0.36, "l3": 0.42},
+]
+"""Short bodies whose adjacent legs collide, not the issue's."""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("fields", SHORT_BODIES, ids=str)
+def test_free_extremes_with_collisions_against_a_brute_force(fields):
+    from hexaleg import HexapodDesign
+    from hexaleg.stance import StanceGeometry
+    from hexaleg.stance.axis_locked import axis_locked_extremes
+    from hexaleg.stance.collisions import SelfCollision, collision_limited
+
+    design = HexapodDesign(**fields)
+    model = HexapodModel(design)
+    geometry = StanceGeometry.from_model(model)
+    collision = SelfCollision(model, geometry)
+    locked = collision_limited(geometry, collision, axis_locked_extremes(geometry))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", FlexibilityWarning)
+        free = free_flexibility(design, model=model, collisions=True)
+    for extreme in free.extremes[::2]:  # the + directions: the robots are symmetric
+        brute, _ = _brute_force(geometry, locked, extreme.axis, extreme.sign, collision, 16)
+        assert extreme.sign * extreme.value >= brute - 1e-6 or not extreme.evidence.converged
 
 
 @pytest.mark.parametrize("mode", ["axis", "free"])
@@ -163,10 +339,13 @@ def test_a_search_whose_starts_disagree_is_flagged(monkeypatch):
     from hexaleg import HexapodDesign
     from hexaleg.stance import FlexibilityWarning, free_coupled
 
-    monkeypatch.setattr(free_coupled, "BOX_STARTS", 0)  # the axis-locked start alone
+    monkeypatch.setattr(free_coupled, "CLIMBS", 0)  # the climb from the axis-locked extreme alone
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         result = free_flexibility(HexapodDesign())
     assert not result.converged
     messages = [str(w.message) for w in caught if issubclass(w.category, FlexibilityWarning)]
-    assert len(messages) == 1 and "z-" in messages[0] and "yaw+" in messages[0]
+    assert len(messages) == 1 and "z-: reached by 1 of" in messages[0]
+    flagged = [e for e in result.extremes if not e.evidence.converged]
+    assert flagged and all(f"{e.name}: " in messages[0] for e in flagged)
+    assert result.to_dict()["warnings"] == list(result.doubts)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hexaleg.numerics.multistart import box_starts, maximize_coordinate
+from hexaleg.numerics.multistart import CoordinateProblem, Start, box_starts, maximize_coordinate
 
 # Feasible set: two disks, radius 1 at the origin and radius 0.5 at (2.2, 0): the
 # largest x is 2.7 in the small disk; starts near the origin find only 1.0.
@@ -29,6 +29,21 @@ def _feasible(x):
     return bool(_constraints(x)[0] >= -1e-9)
 
 
+def _maximize(k, sign, constraints, jacobian, points, accept, enough=None, guided=0, scales=None):
+    """The driver on plain points: the first ``guided`` of them do not vote."""
+    problem = CoordinateProblem(k, sign, constraints, jacobian, accept)
+    scales = scales or [None] * len(points)
+    starts = [
+        Start(
+            np.asarray(p, dtype=float),
+            None if s is None else np.asarray(s, dtype=float),
+            i >= guided,
+        )
+        for i, (p, s) in enumerate(zip(points, scales, strict=True))
+    ]
+    return maximize_coordinate(problem, starts, enough=enough)
+
+
 def test_the_best_local_optimum_wins_and_agreement_is_counted():
     starts = [
         np.array([0.1, 0.0]),
@@ -36,19 +51,19 @@ def test_the_best_local_optimum_wins_and_agreement_is_counted():
         np.array([2.1, 0.1]),
         np.array([2.3, -0.1]),
     ]
-    result = maximize_coordinate(0, 1, _constraints, _jacobian, starts, _feasible)
+    result = _maximize(0, 1, _constraints, _jacobian, starts, _feasible)
     assert result.value == pytest.approx(2.7, abs=1e-7)
     assert result.agreed  # two starts in the small disk reached 2.7
     assert sorted(np.round(result.values, 6)) == [1.0, 1.0, 2.7, 2.7]
-    lone = maximize_coordinate(0, 1, _constraints, _jacobian, starts[:3], _feasible)
+    lone = _maximize(0, 1, _constraints, _jacobian, starts[:3], _feasible)
     assert lone.value == pytest.approx(2.7, abs=1e-7) and not lone.agreed
 
 
 def test_minimizing_and_rejected_answers():
     starts = [np.array([0.0, 0.5]), np.array([0.2, -0.4])]
-    result = maximize_coordinate(1, -1, _constraints, _jacobian, starts, _feasible)
+    result = _maximize(1, -1, _constraints, _jacobian, starts, _feasible)
     assert result.value == pytest.approx(1.0, abs=1e-7)  # min y = -1
-    assert maximize_coordinate(1, -1, _constraints, _jacobian, starts, lambda x: False) is None
+    assert _maximize(1, -1, _constraints, _jacobian, starts, lambda x: False) is None
 
 
 def test_early_stop_once_enough_starts_agree():
@@ -59,9 +74,9 @@ def test_early_stop_once_enough_starts_agree():
         return np.array([[-2 * x[0], -2 * x[1]]])
 
     starts = [np.array([0.1 * k - 0.3, 0.1]) for k in range(8)]
-    result = maximize_coordinate(0, 1, disk, disk_jacobian, starts, _feasible, enough=(3, 3))
+    result = _maximize(0, 1, disk, disk_jacobian, starts, _feasible, enough=(3, 3))
     assert len(result.values) == 3 and result.value == pytest.approx(1.0, abs=1e-7)
-    everything = maximize_coordinate(0, 1, disk, disk_jacobian, starts, _feasible)
+    everything = _maximize(0, 1, disk, disk_jacobian, starts, _feasible)
     assert len(everything.values) == 8
 
 
@@ -82,11 +97,9 @@ def test_guided_starts_that_agree_on_a_local_optimum_do_not_stop_the_search():
         np.array([2.1, 0.1]),
         np.array([2.3, -0.1]),
     ]
-    fooled = maximize_coordinate(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 3))
+    fooled = _maximize(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 3))
     assert fooled.value == pytest.approx(1.0, abs=1e-7) and len(fooled.values) == 3
-    guided = maximize_coordinate(
-        0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 2), guided=3
-    )
+    guided = _maximize(0, 1, _constraints, _jacobian, starts, _feasible, enough=(3, 2), guided=3)
     assert guided.value == pytest.approx(2.7, abs=1e-7)
     assert len(guided.values) == 5 and guided.agreed  # two unguided starts agree on 2.7
 
@@ -103,8 +116,8 @@ def test_scaled_starts_answer_in_the_callers_coordinates():
         return bool(ellipse(x)[0] >= -1e-9)
 
     starts = [np.array([10.0, 0.5]), np.array([-30.0, -0.2])]
-    plain = maximize_coordinate(0, 1, ellipse, ellipse_jacobian, starts, inside)
-    scaled = maximize_coordinate(
+    plain = _maximize(0, 1, ellipse, ellipse_jacobian, starts, inside)
+    scaled = _maximize(
         0, 1, ellipse, ellipse_jacobian, starts, inside, scales=[None, np.array([100.0, 1.0])]
     )
     for result in (plain, scaled):
@@ -112,9 +125,9 @@ def test_scaled_starts_answer_in_the_callers_coordinates():
         np.testing.assert_allclose(result.x, [100.0, 0.0], atol=1e-3)
         assert result.agreed
     # one point run twice, scaled and not, agrees only with itself
-    twice = maximize_coordinate(
+    twice = _maximize(
         0, 1, ellipse, ellipse_jacobian, starts[:1] * 2, inside, scales=[None, [100.0, 1.0]]
     )
     assert twice.value == pytest.approx(100.0, rel=1e-7) and not twice.agreed
-    with pytest.raises(ValueError, match="1 scales for 2 starts"):
-        maximize_coordinate(0, 1, ellipse, ellipse_jacobian, starts, inside, scales=[None])
+    with pytest.raises(ValueError, match="scale must be positive"):
+        _maximize(0, 1, ellipse, ellipse_jacobian, starts[:1], inside, scales=[[0.0, 1.0]])

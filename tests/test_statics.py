@@ -147,11 +147,11 @@ def test_slope_limits_tip_or_slide_as_geometry_says():
     feet = np.array([[1.0, 0.5], [-1.0, 0.5], [-1.0, -0.5], [1.0, -0.5]])
     com = np.array([0.0, 0.0, 0.5])
     ahead, left, behind, right = slope_limits(feet, com, friction=10.0)
-    assert ahead.max_slope == pytest.approx(math.atan2(1.0, 0.5)) and ahead.limited_by == "tip"
-    assert left.max_slope == pytest.approx(math.atan2(0.5, 0.5)) and left.limited_by == "tip"
+    assert ahead.max_slope == pytest.approx(math.atan2(1.0, 0.5)) and ahead.limited_by.kind == "tip"
+    assert left.max_slope == pytest.approx(math.atan2(0.5, 0.5)) and left.limited_by.kind == "tip"
     assert (behind.max_slope, right.max_slope) == pytest.approx((ahead.max_slope, left.max_slope))
     slide = slope_limits(feet, com, friction=0.3)[0]
-    assert slide.max_slope == pytest.approx(math.atan(0.3)) and slide.limited_by == "slide"
+    assert slide.max_slope == pytest.approx(math.atan(0.3)) and slide.limited_by.kind == "slide"
     gravity = slope_gravity(0.3, 0.0)
     assert np.linalg.norm(gravity) == pytest.approx(9.81) and gravity[0] < 0
 
@@ -225,6 +225,11 @@ def test_payload_capacity_grows_with_the_rated_torques():
         assert state.torque_ratios(np.array(design.rated_torques)).max() == pytest.approx(
             1.0, abs=1e-5
         )
+        # and the cause names that joint, by the same Cause type as the extremes
+        cause = capacity.limited_by
+        ratios = state.torque_ratios(np.array(design.rated_torques))
+        leg, joint = state.legs.index(cause.leg), ("root", "hip", "knee").index(cause.joint)
+        assert cause.kind == "torque" and ratios[leg, joint] == pytest.approx(1.0, abs=1e-5)
     assert capacities[0] < capacities[1] < capacities[2]
 
 
@@ -273,7 +278,7 @@ def test_loads_json_has_every_documented_field(capsys):
     assert [s["heading"] for s in data["slopes"]] == pytest.approx(
         [0, math.pi / 2, math.pi, -math.pi / 2]
     )
-    assert {s["limited_by"] for s in data["slopes"]} <= {"tip", "slide"}
+    assert {s["limited_by"]["kind"] for s in data["slopes"]} <= {"tip", "slide"}
     assert set(data["payload_capacity"]) == {"mass", "limited_by"}
     total = sum(np.array(f) for f in data["nominal"]["foot_forces"].values())
     np.testing.assert_allclose(total, [0, 0, data["mass"] * 9.81], atol=1e-5)

@@ -11,8 +11,10 @@ from hexaleg import HexapodDesign, HexapodModel, JointLimits
 from hexaleg.limits import STANCE_LIMITS
 from hexaleg.stance import StanceGeometry
 from hexaleg.stance.axis_locked import axis_locked_extremes
-from hexaleg.stance.free_coupled import _FreeProblem
-from hexaleg.stance.symmetry import MIRRORS, keeping, mirror_flips
+from hexaleg.stance.constraints import AXES, DIRECTIONS
+from hexaleg.stance.free_coupled import _Search
+from hexaleg.stance.free_problem import FreeProblem
+from hexaleg.stance.symmetry import MIRRORS, keeping, mirror_flips, mirror_sources
 
 LEFT_RIGHT, FRONT_BACK = (tuple(flip) for _, flip in MIRRORS.values())
 
@@ -46,19 +48,33 @@ def test_a_mirrored_free_extreme_equals_solving_it_directly():
     design = HexapodDesign(l1=0.15, l2=0.5, l3=0.35)
     geometry = StanceGeometry.from_model(HexapodModel(design))
     locked = axis_locked_extremes(geometry)
-    problem = _FreeProblem(geometry, None)
+    problem = FreeProblem(geometry, None)
+    search = _Search(problem, locked)
+    left_right = MIRRORS["left-right"][1]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         for axis in ("y", "roll", "yaw"):
             plus, minus = (
                 next(e for e in locked if (e.axis, e.sign) == (axis, s)) for s in (1, -1)
             )
-            solved = {(axis, 1): problem.solve(plus, locked)}
-            mirrored = problem.mirrored(minus, solved)
-            direct = problem.solve(minus, locked)
+            mirrored = search.mirrored(minus, search.solve(plus, *search.basins(plus)), left_right)
+            direct = search.solve(minus, *search.basins(minus))
             assert mirrored is not None
-            assert mirrored.extreme.value == pytest.approx(direct.extreme.value, abs=1e-6)
-            assert problem.feasible(np.asarray(mirrored.extreme.pose))
+            assert mirrored.value == pytest.approx(direct.value, abs=1e-6)
+            assert problem.feasible(np.asarray(mirrored.pose))
+
+
+def test_each_mirrored_direction_comes_from_its_opposite_solved_first():
+    left_right, front_back = (flip for _, flip in MIRRORS.values())
+    sources = mirror_sources(DIRECTIONS, [left_right, front_back])
+    taken = {
+        DIRECTIONS[i]: (DIRECTIONS[source], tuple(flip)) for i, (source, flip) in sources.items()
+    }
+    # y, roll reverse under left-right; x, pitch under front-back; yaw under either (the first)
+    assert set(taken) == {("x", -1), ("y", -1), ("roll", -1), ("pitch", -1), ("yaw", -1)}
+    for (axis, _), (source, flip) in taken.items():
+        assert source == (axis, 1) and flip[AXES.index(axis)] == -1
+    assert mirror_sources(DIRECTIONS, []) == {}
 
 
 def test_the_symmetries_that_keep_a_coordinate():
@@ -73,7 +89,7 @@ def test_the_symmetries_that_keep_a_coordinate():
 
 def test_mirror_image_optima_are_reported_as_one_pose():
     geometry = StanceGeometry.from_model(HexapodModel(HexapodDesign()), "all")
-    problem = _FreeProblem(geometry, None)
+    problem = FreeProblem(geometry, None)
     assert len(problem.flips) == 2
     z = 2  # z−'s optimum of the default design (as found): yaw and a sideways shift
     pose = np.array(

@@ -3,7 +3,7 @@
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
 
-    foundation  exceptions, _checks, _typing, _version, _io, _folders
+    foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled
     design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
@@ -27,7 +27,10 @@ from pathlib import Path
 PACKAGE = Path(__file__).resolve().parents[1] / "hexaleg"
 
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
-    ("foundation", ("exceptions", "_checks", "_typing", "_version", "_io", "_folders")),
+    (
+        "foundation",
+        ("exceptions", "_checks", "_typing", "_version", "_io", "_folders", "_compiled"),
+    ),
     (
         "design",
         (

@@ -46,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         check_output_folder(args.plot)  # before computing
     with warnings.catch_warnings():
-        warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
+        warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
         result = flexibility(design, args.mode, args.stance, collisions=args.collisions)
     if args.plot is not None:
         report_files([save(extremes_figure(result), Path(args.plot) / "flexibility_extremes.png")])
@@ -72,13 +72,21 @@ def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:
     for extreme in result.extremes:
         unit = "m" if extreme.axis in TRANSLATIONS else "rad"
         rows.append(
-            (
-                f"{extreme.axis} {'+' if extreme.sign > 0 else '-'}",
-                f"{extreme.value:+.6f} {unit}  limited by {extreme.description}",
-            )
+            (extreme.name, f"{extreme.value:+.6f} {unit}  limited by {extreme.description}")
         )
-    if not result.converged:
-        rows.append(
-            ("warning", "the optimizer did not converge everywhere; values are lower bounds")
-        )
+    if result.mode == "free":
+        rows.append(("evidence", _evidence(result)))
+    rows += [("warning", f"not shown to be the maximum: {doubt}") for doubt in result.doubts]
     return rows
+
+
+def _evidence(result: FlexibilityResult) -> str:
+    """One line on what supports the free extremes (per direction in the JSON)."""
+    evidence = [e.evidence for e in result.extremes if e.evidence is not None]
+    reachable = sum(e.reachable for e in evidence)
+    agreeing = min((e.starts_agreeing for e in evidence), default=0)
+    searches = max((e.searches for e in evidence), default=0)
+    return (
+        f"{reachable} of {len(evidence)} extremes reached from nominal by a feasible path; "
+        f"each reached by at least {agreeing} of {searches} local searches"
+    )

@@ -16,8 +16,8 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures import loads_figure, save
-from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
 
@@ -32,6 +32,14 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
+    add_payload_options(parser)
+    add_stance_option(parser)
+    add_mode_option(parser)
+    add_output_options(parser)
+
+
+def add_payload_options(parser: argparse.ArgumentParser) -> None:
+    """``--payload``, ``--payload-at``, ``--friction`` and ``--distribution`` (loads, gait)."""
     parser.add_argument(
         "--payload", type=float, default=0.0, metavar="KG", help="payload mass [kg] (default 0)"
     )
@@ -49,15 +57,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="MU",
         help=f"friction coefficient between feet and ground [-] (default {DEFAULT_FRICTION})",
     )
-    add_stance_option(parser)
     parser.add_argument(
         "--distribution",
         choices=choices(Distribution),
         default="min-norm",
         help="how the feet share the load: least forces (default) or least torque/rating",
     )
-    add_mode_option(parser)
-    add_output_options(parser)
+
+
+def payload_from_args(args: argparse.Namespace) -> Payload:
+    """The payload ``--payload`` and ``--payload-at`` describe (validated)."""
+    return Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
 
 
 def run(args: argparse.Namespace) -> int:
@@ -65,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     if args.plot is not None:
         check_output_folder(args.plot)  # before computing
-    payload = Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
+    payload = payload_from_args(args)
     analysis = analyze_loads(
         design, payload, args.friction, args.stance, args.distribution, args.mode
     )
@@ -90,7 +100,8 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                f"(rated {rated[joint]:g} N·m)",
+                f"(rated {rated[joint]:g} N·m)"
+                + (", OVER RATING" if analysis.peak_torques[joint] > rated[joint] else ""),
             )
         )
     for slope in analysis.slopes:
@@ -103,4 +114,5 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         )
     capacity = analysis.capacity
     rows.append(("payload capacity", f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"))
+    rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
     return rows

@@ -60,6 +60,16 @@ COMMANDS: tuple[Command, ...] = (
         "statics: foot forces, joint torques, stability, slopes and payload capacity",
     ),
     Command(
+        "gait",
+        "hexaleg.cli.gait",
+        "walking: torques, joint speeds, power and energy of a gait period; max stride and speed",
+    ),
+    Command(
+        "decide",
+        "hexaleg.cli.decide",
+        "requirements in, design out: the best leg meeting payload, slope, clearance, ...",
+    ),
+    Command(
         "study",
         "hexaleg.cli.study",
         "design study: FB over coxa x tibia ratios (Fig 14-15), resumable",

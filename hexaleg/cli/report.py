@@ -16,6 +16,7 @@ from hexaleg.cli.options import (
     design_from_args,
     field_sweep_from_args,
 )
+from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, REPORT_PDF, ReportOptions, build_report
 from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS
 
@@ -47,6 +48,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         f"(default {ReportOptions.sensitivity_points})",
     )
     add_field_sweep_option(parser, "sensitivity table over one body field instead of the variants")
+    add_requirement_options(parser)
     parser.add_argument(
         "--pdf",
         action="store_true",
@@ -65,6 +67,7 @@ def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
     design = design_from_args(args)  # a bad design is refused before any note is printed
     sweep = field_sweep_from_args(args)
+    requirements = requirements_from_args(args)
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
@@ -73,6 +76,7 @@ def run(args: argparse.Namespace) -> int:
         collisions=args.collisions,
         sweep=sweep,
         pdf=args.pdf,
+        requirements=requirements if requirements.given else None,
         simulate=args.simulate,
     )
     data = build_report(args.output, design, options)
@@ -86,4 +90,9 @@ def run(args: argparse.Namespace) -> int:
         f"{rec['l3_band'][0]:.3f}-{rec['l3_band'][1]:.3f}); "
         f"this design: FB = {data['flexibility']['axis']['fb']:.4f}"
     )
+    answer = data.get("requirements_decision")
+    if answer is not None:
+        lengths = ", ".join(f"{answer['best']['design'][k]:.3f}" for k in ("l1", "l2", "l3"))
+        verdict = "meets" if answer["feasible"] else "comes closest to meeting"
+        print(f"l = ({lengths}) m {verdict} your requirements")
     return 0

@@ -15,6 +15,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import report_files
 from hexaleg.exceptions import ParameterError
+from hexaleg.gait import analyze_gait
 from hexaleg.output.viewer import (
     LoopbackServer,
     build_scene,
@@ -22,6 +23,7 @@ from hexaleg.output.viewer import (
     serve_until_stopped,
     write_static_html,
 )
+from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.server import is_loopback
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
@@ -51,6 +53,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     parser.add_argument("--html", metavar="FILE", help="write a static HTML snapshot and exit")
     parser.add_argument("--workspace", metavar="LEG", help="also draw this leg's workspace cloud")
+    parser.add_argument(
+        "--gait",
+        action="store_true",
+        help="animate one period of the default tripod gait instead (hexaleg gait --html "
+        "for other gaits), legs coloured by |τ|/rated",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -63,6 +71,8 @@ def run(args: argparse.Namespace) -> int:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
         )
+    if args.gait:
+        return _view_gait(model, args)
     result = axis_locked_flexibility(design, args.stance, model)
     loads = loads_at_extremes(model, result)
     if args.html is not None:
@@ -86,4 +96,21 @@ def run(args: argparse.Namespace) -> int:
     print("serving until Ctrl-C", file=sys.stderr, flush=True)
     serve_until_stopped(server)
     print("hexaleg viewer: stopped", file=sys.stderr)
+    return 0
+
+
+def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
+    """``--gait``: the default gait's animation, written or served."""
+    analysis = analyze_gait(model.design, model=model, limits=False)
+    if args.html is not None:
+        report_files([write_gait_html(model, analysis, args.html)])
+        return 0
+    server = LoopbackServer(args.host, args.port)
+    try:
+        build_gait_scene(client(server), model, analysis)
+    except BaseException:
+        server.stop()
+        raise
+    print(f"hexaleg viewer: open {server.web_url}", flush=True)
+    serve_until_stopped(server)
     return 0

@@ -83,11 +83,31 @@ def first_crossings(
 
     """
     t_max = np.asarray(t_max, dtype=float)
+    lo, hi, broken = _first_failures(
+        margins if scan is None else scan, t_max, steps // chunks, chunks, check_start
+    )
+    which = np.full(len(t_max), -1)
+    binding: list[tuple[int, ...]] = [()] * len(t_max)
+    index = np.flatnonzero(broken)
+    if index.size:
+        _solve_brackets(margins, index, lo, hi, tolerance, which, binding)
+    return Crossings(np.where(broken, lo, t_max), which, tuple(binding))
+
+
+def _first_failures(
+    scan: Callable[[IndexArray, ArrayF], ArrayF],
+    t_max: ArrayF,
+    per_chunk: int,
+    chunks: int,
+    check_start: bool,
+) -> tuple[ArrayF, ArrayF, npt.NDArray[np.bool_]]:
+    """Brackets [lo, hi] of each direction's first failure, and which directions fail.
+
+    The scan runs chunk by chunk along (0, t_max], dropping the directions that failed.
+    """
     count = len(t_max)
     lo, hi = np.zeros(count), t_max.copy()
     broken = np.zeros(count, dtype=bool)
-    per_chunk = steps // chunks
-    scan = margins if scan is None else scan
     for chunk in range(chunks):
         active = np.flatnonzero(~broken)
         if active.size == 0:
@@ -108,27 +128,37 @@ def first_crossings(
             lo[d] = t[k, first[k] - 1] if first[k] > 0 else start[k]
             hi[d] = t[k, first[k]]
         broken[active[hit]] = True
-    which = np.full(count, -1)
-    binding: list[tuple[int, ...]] = [()] * count
-    index = np.flatnonzero(broken)
-    if index.size:
-        # Solve every constraint that broke inside its bracket on its own smooth margin,
-        # then keep, per direction, the one that breaks first.
-        at_hi = margins(index, hi[index])
-        pair_row, pair_constraint = np.nonzero(at_hi < 0)
-        directions = index[pair_row]
+    return lo, hi, broken
 
-        def pair_margin(t: ArrayF, pairs: IndexArray) -> ArrayF:
-            return margins(directions[pairs], t)[np.arange(len(t)), pair_constraint[pairs]]
 
-        root = anderson_bjorck(pair_margin, lo[directions], hi[directions], tolerance)
-        for d in index:
-            mine = np.flatnonzero(directions == d)  # in constraint order
-            earliest = root[mine].min()
-            tied = mine[root[mine] <= earliest + TIE_TOLERANCE * max(1.0, abs(earliest))]
-            lo[d], which[d] = earliest, pair_constraint[tied[0]]
-            binding[d] = tuple(int(c) for c in pair_constraint[tied])
-    return Crossings(np.where(broken, lo, t_max), which, tuple(binding))
+def _solve_brackets(
+    margins: Callable[[IndexArray, ArrayF], ArrayF],
+    index: IndexArray,
+    lo: ArrayF,
+    hi: ArrayF,
+    tolerance: float,
+    which: npt.NDArray[np.int_],
+    binding: list[tuple[int, ...]],
+) -> None:
+    """Solve every constraint that broke in its direction's bracket; keep the earliest.
+
+    Writes, per direction of ``index``, the crossing into ``lo``, the breaking
+    constraint into ``which`` and the tied ones into ``binding``.
+    """
+    at_hi = margins(index, hi[index])
+    pair_row, pair_constraint = np.nonzero(at_hi < 0)
+    directions = index[pair_row]
+
+    def pair_margin(t: ArrayF, pairs: IndexArray) -> ArrayF:
+        return margins(directions[pairs], t)[np.arange(len(t)), pair_constraint[pairs]]
+
+    root = anderson_bjorck(pair_margin, lo[directions], hi[directions], tolerance)
+    for d in index:
+        mine = np.flatnonzero(directions == d)  # in constraint order
+        earliest = root[mine].min()
+        tied = mine[root[mine] <= earliest + TIE_TOLERANCE * max(1.0, abs(earliest))]
+        lo[d], which[d] = earliest, pair_constraint[tied[0]]
+        binding[d] = tuple(int(c) for c in pair_constraint[tied])
 
 
 def anderson_bjorck(

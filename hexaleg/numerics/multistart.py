@@ -1,11 +1,9 @@
 """A multi-start driver for "push one coordinate as far as the constraints allow".
 
 Pure numerics, independent of the robot: :func:`maximize_coordinate` runs SLSQP on
-max ±x_k subject to g(x) ≥ 0 from every start, keeps the answers a caller's exact
-check accepts, and says whether the best was reached by more than one start. Each
-start may run in scaled coordinates u = x / scale: SLSQP's quasi-Newton Hessian begins
-as the identity, so the scale shapes its first steps, and the same start scaled
-differently can end in another local optimum.
+max ±x_k subject to g(x) ≥ 0 (a :class:`CoordinateProblem`) from every :class:`Start`,
+keeps the answers a caller's exact check accepts, and says whether the best was reached
+from more than one start point.
 :func:`box_starts` spreads deterministic starts (a scrambled Sobol sequence with a
 fixed seed) over a box.
 """
@@ -23,10 +21,53 @@ from scipy.stats import qmc
 from hexaleg._typing import ArrayF
 
 FTOL = 1e-9
-"""SLSQP's stopping tolerance on the objective [m or rad]; 1e-12 took 7–14 % more
-iterations and moved no extreme by more than 1e-6."""
+"""SLSQP's stopping tolerance on the objective [m or rad]."""
 AGREEMENT = 1e-6
 """Starts whose optima differ by less than this (relative, at least 1 unit) agree."""
+
+
+@dataclass(frozen=True)
+class CoordinateProblem:
+    """max sign·x_k subject to g(x) ≥ 0: what every start of a multi-start solves.
+
+    Attributes:
+        k: The coordinate to push.
+        sign: +1 to maximize it, −1 to minimize it.
+        constraints: g(x), every component to be ≥ 0.
+        jacobian: dg/dx.
+        accept: The exact check an answer must pass to count.
+        bounds: Bounds on x, if any.
+        max_iterations: SLSQP iterations per start.
+
+    """
+
+    k: int
+    sign: int
+    constraints: Callable[[ArrayF], ArrayF]
+    jacobian: Callable[[ArrayF], ArrayF]
+    accept: Callable[[ArrayF], bool]
+    bounds: Sequence[tuple[float | None, float | None]] | None = None
+    max_iterations: int = 60
+
+
+@dataclass(frozen=True)
+class Start:
+    """Where one SLSQP run begins.
+
+    Attributes:
+        point: The start x.
+        scale: Positive per-coordinate units the run works in (u = x / scale), or None
+            to run in x: SLSQP's quasi-Newton Hessian begins as the identity, so the
+            scale shapes its first steps and can lead the same start to another optimum.
+        votes: Whether reaching the best value counts toward stopping early. A start
+            chosen for promise (an extreme, a scan's best) may win without voting,
+            since such starts tend to share one optimum.
+
+    """
+
+    point: ArrayF
+    scale: ArrayF | None = None
+    votes: bool = True
 
 
 @dataclass(frozen=True)
@@ -52,104 +93,86 @@ class MultiStartResult:
     iterations: int
 
 
+@dataclass(frozen=True)
+class _Answer:
+    value: float
+    x: ArrayF
+    success: bool
+    origin: int  # the first run from the same start point
+    votes: bool
+
+
 def maximize_coordinate(
-    k: int,
-    sign: int,
-    constraints: Callable[[ArrayF], ArrayF],
-    jacobian: Callable[[ArrayF], ArrayF],
-    starts: Sequence[ArrayF],
-    accept: Callable[[ArrayF], bool],
-    bounds: Sequence[tuple[float | None, float | None]] | None = None,
-    max_iterations: int = 60,
+    problem: CoordinateProblem,
+    starts: Sequence[Start],
     enough: tuple[int, int] | None = None,
-    guided: int = 0,
-    scales: Sequence[ArrayF | None] | None = None,
 ) -> MultiStartResult | None:
-    """Maximize sign·x_k subject to constraints(x) ≥ 0 from the starts, in order.
+    """Maximize sign·x_k subject to g(x) ≥ 0 from the starts, in order.
 
     Args:
-        k: The coordinate to push.
-        sign: +1 to maximize it, −1 to minimize it.
-        constraints: g(x), every component to be ≥ 0.
-        jacobian: dg/dx.
+        problem: The program every start solves.
         starts: Where SLSQP starts (feasible or not).
-        accept: The exact check an answer must pass to count.
-        bounds: Bounds on x, if any.
-        max_iterations: SLSQP iterations per start.
         enough: (runs, agreeing): stop once at least ``runs`` starts have run and
-            ``agreeing`` of them reached the best value; every start runs if None.
-        guided: The first this many starts were chosen for promise (an extreme, a
-            scan's best): they may win, but only the others' agreement stops the search,
-            since guided starts tend to share one optimum.
-        scales: Per start, the positive scale of the coordinates it runs in
-            (u = x / scale), or None to run it in x; every start runs in x if omitted.
+            ``agreeing`` voting starts reached the best value; every start runs if None.
 
     Returns:
         The best accepted answer, or None if no start gave one.
 
     """
-    gradient = np.zeros(len(starts[0]))
-    gradient[k] = -sign
-    # accepted answers: value, x, success, and the first run from the same start point
-    accepted: list[tuple[float, ArrayF, bool, int]] = []
-    independent: list[float] = []  # values of accepted starts that are not guided
+    answers: list[_Answer] = []
     iterations = 0
-    if scales is not None and len(scales) != len(starts):
-        raise ValueError(f"{len(scales)} scales for {len(starts)} starts")
     first_run_from: dict[bytes, int] = {}  # start point → the first run from it
     for run, start in enumerate(starts, start=1):
-        origin = first_run_from.setdefault(np.asarray(start, dtype=float).tobytes(), run)
-        scale = None if scales is None else scales[run - 1]
-        x, nit, success = _run_slsqp(
-            gradient,
-            constraints,
-            jacobian,
-            np.asarray(start, dtype=float),
-            bounds,
-            scale,
-            max_iterations,
-        )
+        point = np.asarray(start.point, dtype=float)
+        origin = first_run_from.setdefault(point.tobytes(), run)
+        x, nit, success = _run_slsqp(problem, point, start.scale)
         iterations += nit
-        if accept(x):
-            accepted.append((float(sign * x[k]), x, success, origin))
-            if run > guided:
-                independent.append(accepted[-1][0])
-        if (
-            enough is not None
-            and run >= enough[0]
-            and accepted
-            and _agreeing(independent, max(item[0] for item in accepted)) >= enough[1]
-        ):
+        if problem.accept(x):
+            answers.append(
+                _Answer(float(problem.sign * x[problem.k]), x, success, origin, start.votes)
+            )
+        if enough is not None and run >= enough[0] and _enough_agree(answers, enough[1]):
             break
-    if not accepted:
+    if not answers:
         return None
-    best = max(item[0] for item in accepted)
-    tolerance = AGREEMENT * max(1.0, abs(best))
+    best = max(a.value for a in answers)
+    agreeing = [a for a in answers if a.value >= best - _tolerance(best)]
     # Among answers that agree with the best, the earliest start's wins (which of several
     # equal optima that is can follow round-off: callers with symmetries pick one).
-    value, x, success, _ = next(item for item in accepted if item[0] >= best - tolerance)
-    values = tuple(sorted((item[0] for item in accepted), reverse=True))
+    winner = agreeing[0]
+    values = tuple(sorted((a.value for a in answers), reverse=True))
     # A start point run twice (scaled and not) agrees with itself: count points, not runs.
-    agreed = len({item[3] for item in accepted if item[0] >= best - tolerance}) >= 2
-    return MultiStartResult(x, value, success, agreed, values, iterations)
+    agreed = len({a.origin for a in agreeing}) >= 2
+    return MultiStartResult(winner.x, winner.value, winner.success, agreed, values, iterations)
+
+
+def _tolerance(best: float) -> float:
+    return AGREEMENT * max(1.0, abs(best))
+
+
+def _enough_agree(answers: Sequence[_Answer], agreeing: int) -> bool:
+    """Whether ``agreeing`` voting answers reach the best of all answers."""
+    if not answers:
+        return False
+    best = max(a.value for a in answers)
+    return sum(a.votes and a.value >= best - _tolerance(best) for a in answers) >= agreeing
 
 
 def _run_slsqp(
-    gradient: ArrayF,
-    constraints: Callable[[ArrayF], ArrayF],
-    jacobian: Callable[[ArrayF], ArrayF],
-    start: ArrayF,
-    bounds: Sequence[tuple[float | None, float | None]] | None,
-    scale: ArrayF | None,
-    max_iterations: int,
+    problem: CoordinateProblem, start: ArrayF, scale: ArrayF | None
 ) -> tuple[ArrayF, int, bool]:
-    """One SLSQP run of min gradient·u from ``start``, in u = x / scale if scaled.
+    """One SLSQP run of ``problem`` from ``start``, in u = x / scale if scaled.
 
     The objective is ∓u_k, the pushed coordinate in its own scaled unit: a positive
     multiple of ∓x_k, so the same optimum. Returns the answer in x, the iterations
     and SLSQP's success flag.
     """
     s = np.ones_like(start) if scale is None else np.asarray(scale, dtype=float)
+    if np.any(s <= 0):
+        raise ValueError("a start's scale must be positive")
+    gradient = np.zeros(len(start))
+    gradient[problem.k] = -problem.sign
+    bounds = problem.bounds
     if bounds is not None:
         bounds = [
             (None if lo is None else lo / si, None if hi is None else hi / si)
@@ -165,22 +188,18 @@ def _run_slsqp(
             bounds=bounds,
             constraints={
                 "type": "ineq",
-                "fun": lambda u: constraints(u * s),
-                "jac": lambda u: jacobian(u * s) * s,
+                "fun": lambda u: problem.constraints(u * s),
+                "jac": lambda u: problem.jacobian(u * s) * s,
             },
-            options={"maxiter": max_iterations, "ftol": FTOL},
+            options={"maxiter": problem.max_iterations, "ftol": FTOL},
         )
     return result.x * s, int(result.nit), bool(result.success)
-
-
-def _agreeing(values: Sequence[float], best: float) -> int:
-    """How many of ``values`` reach ``best`` (within :data:`AGREEMENT`)."""
-    tolerance = AGREEMENT * max(1.0, abs(best))
-    return sum(value >= best - tolerance for value in values)
 
 
 def box_starts(half_widths: ArrayF, count: int, seed: int = 0) -> list[ArrayF]:
     """``count`` deterministic starts spread over the box ±half_widths (scrambled Sobol)."""
     half_widths = np.asarray(half_widths, dtype=float)
-    points = qmc.Sobol(len(half_widths), scramble=True, seed=seed).random(count) * 2 - 1
+    balanced = 1 << max(0, count - 1).bit_length()  # Sobol points come in powers of 2
+    sobol = qmc.Sobol(len(half_widths), scramble=True, seed=seed)
+    points = sobol.random(balanced)[:count] * 2 - 1
     return list(points * half_widths)

@@ -162,21 +162,22 @@ class HexapodModel:
         return self._collision.copy()
 
     def with_design(self, design: HexapodDesign) -> HexapodModel:
-        """The model of ``design``, whose segments and ratings differ, without Xacro.
+        """The model of ``design``, whose segments, ratings or posture differ, without Xacro.
 
         The fast path of sweeps: joint placements, the foot frames, the links' inertias
         (:func:`~hexaleg.robot.inertia.leg_inertials`, as the URDF receives them; the tibia
         carries its foot, as Pinocchio merges a fixed joint's child) and the effort and
-        velocity limits are set as the URDF sets them; the tests prove the result equal to
-        ``HexapodModel(design)``. Every other field must be this model's design's.
+        velocity limits are set as the URDF sets them (the nominal posture is not in the
+        URDF); the tests prove the result equal to ``HexapodModel(design)``. Every other
+        field must be this model's design's.
         """
-        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds")
+        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles")
         if any(
             getattr(self.design, f.name) != getattr(design, f.name)
             for f in fields(design)
             if f.name not in changed
         ):
-            raise ModelError("with_design changes only segment lengths and ratings")
+            raise ModelError("with_design changes only segment lengths, ratings and posture")
         model = pin.Model(self.model)
         links = leg_inertials(design)
         inertias = (

@@ -1,8 +1,10 @@
 """Stance phase: the body on planted feet — closed-chain kinematics and body flexibility (§6).
 
 :mod:`.geometry` reads the stance from the model and solves the closed chain;
-:mod:`.constraints` gives every constraint's margin; :mod:`.axis_locked` and
-:mod:`.free_coupled` find the twelve extremes; :mod:`.flexibility` is the front door.
+:mod:`.constraints` gives every constraint's margin (NumPy, the reference) and
+:mod:`.margin_kernel` the same compiled; :mod:`.axis_locked` and :mod:`.free_coupled`
+(with :mod:`.climb`, :mod:`.paths`, :mod:`.free_problem`) find the twelve extremes;
+:mod:`.flexibility` is the front door.
 """
 
 from hexaleg.cause import Cause
@@ -12,6 +14,7 @@ from hexaleg.stance.extremes import (
     Extreme,
     FlexibilityResult,
     FlexibilityWarning,
+    SearchEvidence,
     flexibility_index,
 )
 from hexaleg.stance.flexibility import flexibility
@@ -33,6 +36,7 @@ __all__ = [
     "Extreme",
     "FlexibilityResult",
     "FlexibilityWarning",
+    "SearchEvidence",
     "StanceGeometry",
     "axis_locked_extremes",
     "axis_locked_flexibility",

@@ -4,19 +4,17 @@ The body moves along one of x, y, z, roll, pitch, yaw from the nominal stance, t
 other five held, until the first constraint breaks: a foot out of reach, a joint
 past its stance limit, or the body touching the ground. All twelve directions are
 searched at once by :func:`~hexaleg.numerics.bracketing.first_crossings` on the
-vectorized margins of :mod:`hexaleg.stance.constraints`.
+exact margins of the compiled kernel (:mod:`hexaleg.stance.margin_kernel`).
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import replace
-from typing import cast
 
 import numpy as np
 
-from hexaleg._typing import ArrayF, Lengths, StanceSet
+from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.numerics.bracketing import IndexArray, first_crossings
 from hexaleg.robot.model import HexapodModel
@@ -27,11 +25,10 @@ from hexaleg.stance.constraints import (
     TRANSLATIONS,
     Cause,
     constraint_labels,
-    direction_poses,
-    stance_margins,
 )
 from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extremes
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.margin_kernel import kernel_geometry, margins_of
 
 
 def search_ranges(geometry: StanceGeometry) -> ArrayF:
@@ -57,29 +54,19 @@ def axis_locked_extremes_many(
     One geometry alone is :func:`axis_locked_extremes`.
     """
     count = len(DIRECTIONS)
-    template = geometries[0]
-    lengths = np.array([g.lengths for g in geometries])  # (D, 3)
-    footholds = np.array([g.footholds for g in geometries])  # (D, N, 3)
-    heights = np.array([g.nominal_height for g in geometries])  # (D,)
+    kernel = kernel_geometry(geometries, smooth=False)
     design_of = np.repeat(np.arange(len(geometries)), count)
     axis_of = np.tile([AXES.index(a) for a, _ in DIRECTIONS], len(geometries))
     sign_of = np.tile([float(s) for _, s in DIRECTIONS], len(geometries))
 
     def margins(direction: IndexArray, t: ArrayF) -> ArrayF:
-        which = design_of[direction]
-        # per-direction arrays where the kernels take numbers: they broadcast alike
-        rows = replace(
-            template,
-            lengths=cast(Lengths, tuple(lengths[which, j, None] for j in range(3))),
-            footholds=footholds[which],
-            nominal_height=cast(float, heights[which]),
-        )
-        rotation, translation = direction_poses(rows, axis_of[direction], sign_of[direction] * t)
-        return stance_margins(rows, rotation, translation)
+        displacements = np.zeros((len(direction), len(AXES)))
+        displacements[np.arange(len(direction)), axis_of[direction]] = sign_of[direction] * t
+        return margins_of(kernel, displacements, design_of[direction])
 
     t_max = np.concatenate([search_ranges(g) for g in geometries])
     crossings = first_crossings(margins, t_max)
-    labels = constraint_labels(template.legs)
+    labels = constraint_labels(geometries[0].legs)
     results = []
     for i, geometry in enumerate(geometries):
         mine = range(i * count, (i + 1) * count)

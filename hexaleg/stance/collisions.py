@@ -18,13 +18,13 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
-from hexaleg.kinematics import inverse_kinematics
 from hexaleg.numerics.bracketing import IndexArray, first_crossings
 from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.configurations import posed_configurations
 from hexaleg.stance.constraints import AXES, direction_poses, displacement_poses
 from hexaleg.stance.extremes import Extreme, pose_extreme
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.symmetry import mirror_flips, reversing
+from hexaleg.stance.symmetry import mirror_sources, search_flips
 
 COLLISION_SCAN_STEPS = 16
 """Resolution of the collision scan along each direction, up to its other extreme."""
@@ -69,8 +69,6 @@ class SelfCollision:
         self.geometry_data = pin.GeometryData(self.geometry_model)
         for request in self.geometry_data.collisionRequests:  # "touching" for coal's yes/no
             request.security_margin = CONTACT_DISTANCE
-        self._q_template = model.nominal_configuration()
-        self._q_stance = np.concatenate([model.leg_q_indices(leg) for leg in geometry.legs])
         names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
         self.pairs: tuple[tuple[str, str], ...] = tuple(
             (names[p.first], names[p.second]) for p in self.geometry_model.collisionPairs
@@ -80,24 +78,21 @@ class SelfCollision:
             raise HexalegError(f"at the nominal stance, {nominal[1]}: the design collides")
 
     def configurations(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
-        """Configurations (P, nq) for body poses (P, 3, 3), (P, 3).
-
-        Stance legs by the closed-form IK (one vectorized call), swing legs nominal.
-        """
-        rotation = np.asarray(rotation, dtype=float).reshape(-1, 3, 3)
-        translation = np.asarray(translation, dtype=float).reshape(-1, 3)
-        targets = self.geometry.feet_in_roots(rotation, translation)
-        theta = inverse_kinematics(self.geometry.lengths, targets).theta
-        q = np.repeat(self._q_template[None], len(rotation), axis=0)
-        q[:, self._q_stance] = theta.reshape(len(rotation), -1)
-        q[:, :3] = translation
-        q[:, 3:7] = [pin.Quaternion(r).coeffs() for r in rotation]  # x, y, z, w
-        return q
+        """Configurations (P, nq) for body poses (P, 3, 3), (P, 3), stance legs by the IK."""
+        return posed_configurations(self.model, self.geometry, rotation, translation)
 
     def distances(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
         """Distance of every pair [m] at one body pose (feet on their footholds)."""
         self._compute(self.configurations(rotation, translation)[0])
         return np.array([r.min_distance for r in self.geometry_data.distanceResults])
+
+    def pair_clearances(self, rotation: ArrayF, translation: ArrayF) -> ArrayF:
+        """Every pair's distance less :data:`CONTACT_DISTANCE` at each body pose (P, pairs) [m]."""
+        rows = []
+        for q in self.configurations(rotation, translation):
+            self._compute(q)
+            rows.append([r.min_distance for r in self.geometry_data.distanceResults])
+        return np.array(rows) - CONTACT_DISTANCE
 
     def clearances(self, rotation: ArrayF, translation: ArrayF) -> tuple[ArrayF, list[int]]:
         """The clearance at each body pose (P,) [m], and the closest pair's index.
@@ -155,19 +150,31 @@ def collision_limited(
     steps); where the clearance turns negative, the crossing is solved on the clearance.
     A robot standing on all its legs that is its own mirror image scans one of each
     mirrored pair of directions and takes the other from the mirror
-    (:mod:`~hexaleg.stance.symmetry`), its touching pairs found at the mirrored pose.
+    (:func:`~hexaleg.stance.symmetry.mirror_sources`), its touching pairs found at the
+    mirrored pose.
     """
-    flips = mirror_flips(geometry) if len(geometry.legs) == len(collision.model.leg_names) else []
-    index = {(e.axis, e.sign): k for k, e in enumerate(extremes)}
-    mirrored: dict[int, tuple[int, ArrayF]] = {}  # direction → (its mirror image's, flip)
-    for k, extreme in enumerate(extremes):
-        source = index.get((extreme.axis, -extreme.sign))
-        reverse = reversing(AXES.index(extreme.axis), flips)
-        if reverse and source is not None and source < k and source not in mirrored:
-            mirrored[k] = (source, reverse[0])
-    scanned = [k for k in range(len(extremes)) if k not in mirrored]
-    axis_of = np.array([AXES.index(extremes[k].axis) for k in scanned])
-    sign_of = np.array([extremes[k].sign for k in scanned], dtype=float)
+    every_leg_stands = len(geometry.legs) == len(collision.model.leg_names)
+    directions = [(e.axis, e.sign) for e in extremes]
+    sources = mirror_sources(directions, search_flips(geometry, every_leg_stands))
+    scanned = [k for k in range(len(extremes)) if k not in sources]
+    limited = dict(
+        zip(scanned, _scanned(geometry, collision, [extremes[k] for k in scanned]), strict=True)
+    )
+    for k, (source, flip) in sources.items():
+        if limited[source] is extremes[source]:  # nothing touches: nor in the mirror
+            limited[k] = extremes[k]
+        else:
+            displacement = flip * np.asarray(limited[source].pose)
+            limited[k] = _touching(geometry, collision, extremes[k], displacement)
+    return tuple(limited[k] for k in range(len(extremes)))
+
+
+def _scanned(
+    geometry: StanceGeometry, collision: SelfCollision, extremes: Sequence[Extreme]
+) -> list[Extreme]:
+    """Each of ``extremes`` scanned for contact from nominal, cut short where parts touch."""
+    axis_of = np.array([AXES.index(e.axis) for e in extremes])
+    sign_of = np.array([e.sign for e in extremes], dtype=float)
 
     def poses(direction: IndexArray, t: ArrayF) -> tuple[ArrayF, ArrayF]:
         return direction_poses(geometry, axis_of[direction], sign_of[direction] * t)
@@ -178,32 +185,24 @@ def collision_limited(
     def touching(direction: IndexArray, t: ArrayF) -> ArrayF:
         return collision.scan_clearances(*poses(direction, t))[:, None]
 
-    reach = np.array([abs(extremes[k].value) for k in scanned])
     crossings = first_crossings(  # the nominal stance's clearance is checked on construction
         clearance,
-        reach,
+        np.array([abs(e.value) for e in extremes]),
         steps=COLLISION_SCAN_STEPS,
         chunks=COLLISION_SCAN_CHUNKS,
         tolerance=COLLISION_TOLERANCE,
         check_start=False,
         scan=touching,
     )
-    limited: dict[int, Extreme] = {}
-    for i, k in enumerate(scanned):
-        extreme = extremes[k]
+    limited = []
+    for i, extreme in enumerate(extremes):
         if crossings.which[i] < 0:
-            limited[k] = extreme
+            limited.append(extreme)
             continue
         displacement = np.zeros(len(AXES))
         displacement[axis_of[i]] = sign_of[i] * crossings.t[i]
-        limited[k] = _touching(geometry, collision, extreme, displacement)
-    for k, (source, flip) in mirrored.items():
-        if limited[source] is extremes[source]:  # nothing touches: nor in the mirror
-            limited[k] = extremes[k]
-        else:
-            displacement = flip * np.asarray(limited[source].pose)
-            limited[k] = _touching(geometry, collision, extremes[k], displacement)
-    return tuple(limited[k] for k in range(len(extremes)))
+        limited.append(_touching(geometry, collision, extreme, displacement))
+    return limited
 
 
 def _touching(

@@ -18,9 +18,9 @@ import numpy.typing as npt
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.kinematics import leg_plane, plane_solution
-from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.margin_kernel import knee_on_cosine, rotations_of
 
 AXES: tuple[str, ...] = ("x", "y", "z", "roll", "pitch", "yaw")
 """Body coordinates, translations [m] then rotations about the world axes [rad]."""
@@ -29,26 +29,20 @@ DIRECTIONS: tuple[tuple[str, int], ...] = tuple((a, s) for a in AXES for s in (1
 """The twelve (axis, sign) directions of the flexibility study."""
 
 
+def direction_label(axis: str, sign: int) -> str:
+    """A direction's label: ``x+``, ``yaw-``."""
+    return f"{axis}{'+' if sign > 0 else '-'}"
+
+
 def rpy_rotation(rpy: npt.ArrayLike) -> ArrayF:
     """Rotations (..., 3, 3) from roll, pitch, yaw (..., 3) [rad], as Pinocchio's ``rpy``.
 
-    R = Rz(yaw)·Ry(pitch)·Rx(roll): roll, pitch and yaw about the world x, y, z axes.
+    R = Rz(yaw)·Ry(pitch)·Rx(roll): roll, pitch and yaw about the world x, y, z axes;
+    computed by the compiled kernel's :func:`~.margin_kernel.rpy_matrix`.
     """
     rpy = np.asarray(rpy, dtype=float)
-    cos, sin = np.cos(rpy), np.sin(rpy)
-    cr, cp, cy = cos[..., 0], cos[..., 1], cos[..., 2]
-    sr, sp, sy = sin[..., 0], sin[..., 1], sin[..., 2]
-    rotation = np.empty((*rpy.shape[:-1], 3, 3))
-    rotation[..., 0, 0] = cy * cp
-    rotation[..., 0, 1] = cy * sp * sr - sy * cr
-    rotation[..., 0, 2] = cy * sp * cr + sy * sr
-    rotation[..., 1, 0] = sy * cp
-    rotation[..., 1, 1] = sy * sp * sr + cy * cr
-    rotation[..., 1, 2] = sy * sp * cr - cy * sr
-    rotation[..., 2, 0] = -sp
-    rotation[..., 2, 1] = cp * sr
-    rotation[..., 2, 2] = cp * cr
-    return rotation
+    flat = np.ascontiguousarray(rpy.reshape(-1, 3))
+    return np.asarray(rotations_of(flat)).reshape(*rpy.shape[:-1], 3, 3)
 
 
 def displacement_poses(
@@ -94,15 +88,6 @@ def constraint_labels(legs: Sequence[str]) -> list[Cause]:
         for joint in LEG_JOINTS:
             labels += [Cause("joint", leg, joint, "lower"), Cause("joint", leg, joint, "upper")]
     return [*labels, Cause("ground")]
-
-
-def knee_on_cosine(limits: JointLimits) -> bool:
-    """Whether the smooth margins bound the knee on cos θ3 rather than on θ3.
-
-    So they do for fixed knee limits within [−π, 0], where cos θ3 is monotonic; a coupled
-    knee bound keeps the θ3 form.
-    """
-    return not limits.coupled_knee and -math.pi <= limits.theta3[0] < limits.theta3[1] <= 0
 
 
 def stance_margins(geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF) -> ArrayF:

@@ -14,12 +14,76 @@ from hexaleg._typing import FlexibilityMode
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.kinematics import leg_solution
-from hexaleg.stance.constraints import AXES, TRANSLATIONS, displacement_poses
+from hexaleg.stance.constraints import AXES, TRANSLATIONS, direction_label, displacement_poses
 from hexaleg.stance.geometry import StanceGeometry
 
 
 class FlexibilityWarning(UserWarning):
-    """An optimizer did not converge; the result keeps the best feasible value found."""
+    """A free-coupled extreme lacks the evidence of a maximum; the best value found is kept."""
+
+
+@dataclass(frozen=True)
+class SearchEvidence:
+    """What supports a free-coupled extreme being the maximum over the reachable poses.
+
+    Attributes:
+        searches: Local searches run for the direction, from starts spread over a box.
+        basins: Distinct optima (by value) those searches ended in, feasible ones only.
+        starts_agreeing: Searches that ended at the reported value.
+        reachable: A feasible path (steps of 1 mm and 1 mrad) joins the reported pose
+            to the nominal stance.
+        polished: The final local solve at the reported pose converged.
+        unreachable_value: The best value found at a pose that could not be shown
+            reachable, where it beats the reported one [m or rad]; None otherwise.
+
+    """
+
+    searches: int
+    basins: int
+    starts_agreeing: int
+    reachable: bool
+    polished: bool = True
+    unreachable_value: float | None = None
+
+    @property
+    def converged(self) -> bool:
+        """Whether the evidence supports a maximum.
+
+        A converged, reachable optimum that two searches from different starts reached,
+        and no better pose left unexplained.
+        """
+        return (
+            self.polished
+            and self.reachable
+            and self.starts_agreeing >= 2
+            and self.unreachable_value is None
+        )
+
+    @property
+    def doubt(self) -> str:
+        """Why the evidence falls short (empty if it does not)."""
+        reasons = []
+        if self.starts_agreeing < 2:
+            reasons.append(f"reached by {self.starts_agreeing} of {self.searches} searches")
+        if not self.reachable:
+            reasons.append("no feasible path from the nominal stance was found")
+        if not self.polished:
+            reasons.append("the final local solve did not converge")
+        if self.unreachable_value is not None:
+            reasons.append(f"{self.unreachable_value:.6g} found at a pose not shown reachable")
+        return "; ".join(reasons)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form."""
+        return {
+            "converged": self.converged,
+            "searches": self.searches,
+            "basins": self.basins,
+            "starts_agreeing": self.starts_agreeing,
+            "reachable": self.reachable,
+            "polished": self.polished,
+            "unreachable_value": self.unreachable_value,
+        }
 
 
 @dataclass(frozen=True)
@@ -36,6 +100,8 @@ class Extreme:
         pose: The body's displacement from the nominal stance there: x, y, z [m], roll,
             pitch, yaw [rad] (world frame, Pinocchio's ``rpy``).
         joint_angles: Each stance leg's (θ1, θ2, θ3) there [rad].
+        evidence: For a free-coupled extreme, what supports it being the maximum
+            (None for an axis-locked one, which is exact).
 
     """
 
@@ -46,10 +112,16 @@ class Extreme:
     binding: tuple[Cause, ...] = ()
     pose: tuple[float, ...] = ()
     joint_angles: dict[str, tuple[float, float, float]] = field(default_factory=dict)
+    evidence: SearchEvidence | None = None
 
     def __post_init__(self) -> None:
         if not self.binding:
             object.__setattr__(self, "binding", (self.limited_by,))
+
+    @property
+    def name(self) -> str:
+        """The direction's label, e.g. ``x+`` or ``yaw-``."""
+        return direction_label(self.axis, self.sign)
 
     @property
     def description(self) -> str:
@@ -83,6 +155,7 @@ class Extreme:
             "binding": [cause.to_dict() for cause in self.binding],
             "pose": list(self.pose),
             "joint_angles": {leg: list(angles) for leg, angles in self.joint_angles.items()},
+            "evidence": None if self.evidence is None else self.evidence.to_dict(),
         }
 
 
@@ -95,7 +168,8 @@ class FlexibilityResult:
         legs: Stance legs.
         mode: ``"axis"`` (axis-locked) or ``"free"`` (free-coupled).
         extremes: One per direction of :data:`DIRECTIONS`.
-        converged: False if an optimizer (free mode) failed somewhere.
+        converged: False if a free-coupled extreme lacks the evidence of a maximum
+            (see :attr:`doubts`).
         iterations: Optimizer iterations summed over the twelve directions (0 for axis mode).
         collisions: Whether the robot's own parts touching stopped the body too.
 
@@ -114,6 +188,15 @@ class FlexibilityResult:
         return next(e for e in self.extremes if e.axis == axis and e.sign == sign)
 
     @property
+    def doubts(self) -> tuple[str, ...]:
+        """For each extreme whose evidence falls short, its direction and why."""
+        return tuple(
+            f"{e.name}: {e.evidence.doubt}"
+            for e in self.extremes
+            if e.evidence is not None and not e.evidence.converged
+        )
+
+    @property
     def ranges(self) -> dict[str, float]:
         """S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [rad] (eq 28), keyed x y z roll pitch yaw."""
         return {a: self.extreme(a, 1).value - self.extreme(a, -1).value for a in AXES}
@@ -130,6 +213,7 @@ class FlexibilityResult:
             "mode": self.mode,
             "stance": list(self.legs),
             "converged": self.converged,
+            "warnings": list(self.doubts),
             "collisions": self.collisions,
             "ranges": self.ranges,
             "extremes": [e.to_dict() for e in self.extremes],

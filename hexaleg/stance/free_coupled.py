@@ -3,89 +3,113 @@
 The other five body coordinates are free to help. The body pose is the variable,
 d = (x, y, z, roll, pitch, yaw) displaced from the nominal stance (world frame,
 Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-down
-IK (eq 8–9), whose solution Pinocchio's model reproduces (tested). Each direction
-is a small smooth nonlinear program, max ±d_k subject to every margin of
-:func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0, solved by SLSQP from
-several deterministic starts (:mod:`~hexaleg.numerics.multistart`): the axis-locked extreme, the
-feasible pose of a vectorized scan of the coupled coordinates that reaches furthest (these
-two run both in metres and radians and scaled to the search box), and low-discrepancy
-points of a box around the nominal stance (scaled). The best
-feasible answer wins after an exact feasibility check, so the range is never
-smaller than the axis-locked one; the result is flagged converged only where the
-optimizer converged and at least two starts agreed on the optimum.
+IK (eq 8–9). Each direction is a small nonlinear program, max ±d_k with every margin of
+:func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0 (:class:`.FreeProblem`),
+whose feasible set is thin and has many local optima. The search for direction k:
+
+1. **Climbs** (:mod:`.climb`, compiled): a local search from each of :data:`CLIMBS`
+   scrambled-Sobol starts spread over a box around the nominal stance, from the
+   axis-locked extreme, and then from the best point every other direction reached
+   (the far tips of the feasible set, where the optima of neighbouring directions
+   often lie) and from the direction's own best point made mirror-symmetric. Where
+   each ends is a local optimum; equal values form a basin.
+2. **Polish**: SLSQP from the best basin's point gives the optimum to full precision and
+   the constraints that bind there; the next basins are polished in turn while they
+   could still beat it.
+3. **Reachability** (:mod:`.paths`): the answer must be joined to the nominal stance by
+   a feasible path; an answer that cannot be is set aside for the next basin's.
+
+The best reachable answer wins; it is never short of the axis-locked extreme, which is
+reachable along its axis. Each extreme carries its :class:`~.extremes.SearchEvidence`
+(climbs, basins, climbs agreeing, reachability), and only that evidence makes it
+"converged". With self-collision the climbs see the stance margins only; the polish,
+with the clearance as one more margin, runs from the best basins and the axis-locked
+extreme. A robot that is its own mirror image solves one of each mirrored pair of
+directions and takes the other from the mirror (:mod:`.symmetry`), re-checked.
 """
 
 from __future__ import annotations
 
-import math
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.numerics.multistart import box_starts, maximize_coordinate
+from hexaleg.numerics.multistart import (
+    AGREEMENT,
+    CoordinateProblem,
+    MultiStartResult,
+    Start,
+    box_starts,
+    maximize_coordinate,
+)
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_extremes
+from hexaleg.stance.climb import climb_all
 from hexaleg.stance.collisions import SelfCollision, collision_limited
-from hexaleg.stance.constraints import (
-    AXES,
-    Cause,
-    constraint_labels,
-    displacement_poses,
-)
+from hexaleg.stance.constraints import AXES
 from hexaleg.stance.extremes import (
     Extreme,
     FlexibilityResult,
     FlexibilityWarning,
+    SearchEvidence,
     pose_extreme,
 )
+from hexaleg.stance.free_problem import LOWER, UPPER, FreeProblem
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import compiled_margins
-from hexaleg.stance.symmetry import keeping, mirror_flips, reversing
+from hexaleg.stance.symmetry import keeping, mirror_sources
 
-FEASIBILITY_TOLERANCE = 1e-9
-"""Largest constraint violation [m or rad] an answer may have (exact margins)."""
-MARGIN_FLOOR = 1e-11
-"""The NLP asks every smooth margin to exceed this, so answers land inside the boundary."""
-STEP = 1e-7
-"""Finite-difference step of the margins' Jacobian [m or rad]."""
-ACTIVE_TOLERANCE = 1e-8
-"""Margins this close to the smallest [m or rad] bind together at a free extreme."""
-BOX_STARTS = 16
-"""Starts per direction spread over the search box (scrambled Sobol, seeded by direction)."""
-BOX_SCALE = 1.3
-"""The search box reaches this multiple of each coordinate's larger axis-locked extreme."""
-ENOUGH = (5, 4)
-"""Stop a direction's search once 5 starts have run and 4 box starts reached the best value.
-The guided starts (axis-locked and scanned, each run unscaled and scaled) may win but do
-not vote: with them voting, three starts agreed on a local optimum of z− of a
-0.05/0.5/0.45 m robot (0.4 % short) and of yaw± of a 0.19/0.15/0.66 m tripod (3 % short).
-Three box starts were not enough either: z− of that 0.05/0.5/0.45 m robot has five local
-optima within 12 %, and three scaled box starts reached the second best (0.2844 m)
-before one reached the best (0.2855 m). Four cost a fifth more iterations."""
-MAX_ITERATIONS = 40
-"""SLSQP iterations per start: converging starts need 5–40 (a tripod's the most)."""
-ROTATION_BOUNDS = ((-math.pi, math.pi), (-math.pi / 2, math.pi / 2), (-math.pi, math.pi))
-"""Roll, pitch, yaw stay in Pinocchio's rpy ranges, so each pose has one name [rad]."""
+CLIMBS = 48
+"""Climbs per direction from the search box (besides the one from the axis-locked extreme)."""
+BOX_SCALE = 1.5
+"""The search box reaches this multiple of each coordinate's larger axis-locked extreme:
+the climbs' unit lengths."""
+SPREAD = 2.0
+"""The climbs' starts fill the search box scaled by this: starts far from the nominal
+stance, infeasible at first, end in more different basins."""
+CLIMB_TOLERANCE = 1e-6
+"""A climb that ends with an exact margin below −this [m or rad] found no optimum."""
+BASIN_TOLERANCE = 1e-4
+"""Climbs ending within this (relative, at least 1 unit) of each other share a basin:
+a climb stops some 1e-5 short of an optimum where it has to creep along the boundary."""
+COLLISION_BASINS = 8
+"""With self-collision, the best basins polished with the clearance."""
+
+
+POLISH_TRIES = 3
+"""Members of a basin polished, most feasible first, until one gives an answer."""
 
 
 @dataclass(frozen=True)
-class DirectionSolution:
-    """The free-coupled answer for one direction.
+class Basin:
+    """Climbs that ended at one value.
 
     Attributes:
-        extreme: The extreme, with its pose and binding constraints.
-        converged: The winning start's optimizer converged and another start agreed.
-        iterations: SLSQP iterations over every start.
+        value: The best value among them [m or rad].
+        points: Where they ended, the deepest inside the constraints first.
+        margins: The smallest exact margin at each point.
 
     """
 
-    extreme: Extreme
-    converged: bool
-    iterations: int
+    value: float
+    points: tuple[ArrayF, ...]
+    margins: tuple[float, ...]
+
+    @property
+    def climbs(self) -> int:
+        """How many climbs ended here."""
+        return len(self.points)
+
+    def with_member(self, point: ArrayF, margin: float) -> Basin:
+        """The basin with one more climb, kept in order of depth."""
+        members = sorted(
+            [*zip(self.margins, self.points, strict=True), (margin, point)],
+            key=lambda member: -member[0],
+        )
+        return Basin(self.value, tuple(p for _, p in members), tuple(m for m, _ in members))
 
 
 def free_flexibility(
@@ -113,54 +137,41 @@ def free_flexibility(
     locked = axis_locked_extremes(geometry)
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
-    problem = _FreeProblem(geometry, collision)
-    solved: dict[tuple[str, int], DirectionSolution] = {}
-    for extreme in locked:
-        mirrored = problem.mirrored(extreme, solved)
-        solved[(extreme.axis, extreme.sign)] = mirrored or problem.solve(extreme, locked)
-    solutions = [solved[(e.axis, e.sign)] for e in locked]
-    doubtful = [_name(s.extreme) for s in solutions if not s.converged]
-    if doubtful:
-        warnings.warn(
-            "free-coupled flexibility: the optimizer did not converge, or its starts did "
-            f"not agree, for {', '.join(doubtful)}; the best feasible values found are kept",
-            FlexibilityWarning,
-            stacklevel=2,
-        )
-    return FlexibilityResult(
+    search = _Search(FreeProblem(geometry, collision), locked)
+    result = FlexibilityResult(
         design,
         geometry.legs,
         "free",
-        tuple(s.extreme for s in solutions),
-        converged=not doubtful,
-        iterations=sum(s.iterations for s in solutions),
+        search.extremes(),
+        iterations=search.iterations,
         collisions=collisions,
     )
-
-
-def _rounded(pose: ArrayF) -> tuple[float, ...]:
-    return tuple(float(v) for v in np.round(pose, 6))
-
-
-def _name(extreme: Extreme) -> str:
-    return f"{extreme.axis}{'+' if extreme.sign > 0 else '-'}"
+    result = replace(result, converged=not result.doubts)
+    if result.doubts:
+        warnings.warn(
+            "free-coupled flexibility: the evidence falls short of a maximum for "
+            f"{'; '.join(result.doubts)}; the best values found are kept",
+            FlexibilityWarning,
+            stacklevel=2,
+        )
+    return result
 
 
 def search_box(locked: Sequence[Extreme]) -> ArrayF:
-    """Half widths (6,) of the box the starts spread over [m, rad].
+    """Half widths (6,) of the box the climbs start in [m, rad]: their unit lengths too.
 
     :data:`BOX_SCALE` times each coordinate's larger axis-locked extreme.
     """
     value = {(e.axis, e.sign): e.value for e in locked}
     half = np.array([BOX_SCALE * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
-    return np.maximum(half, 1e-3)
+    box: ArrayF = np.maximum(half, 1e-3)
+    return box
 
 
-def axis_locked_start(k: int, sign: int, locked: Sequence[Extreme]) -> ArrayF:
-    """The axis-locked extreme of direction (k, sign), pulled back by a hair: the first start."""
+def axis_locked_start(extreme: Extreme) -> ArrayF:
+    """The axis-locked extreme pulled back by a hair: a feasible start on the axis."""
     start = np.zeros(len(AXES))
-    start[k] = next(e.value for e in locked if (e.axis, e.sign) == (AXES[k], sign))
-    start[k] -= sign * 1e-9
+    start[AXES.index(extreme.axis)] = extreme.value - extreme.sign * 1e-9
     return start
 
 
@@ -168,157 +179,217 @@ def _seed(k: int, sign: int) -> int:
     return 2 * k + (sign > 0)
 
 
-SCAN_SAMPLES = 1024
-"""Poses of the search box whose exact margins are checked at once, before any start:
-the feasible one reaching furthest starts right after the axis-locked extreme (more
-scanned starts crowd out the box starts, and agreeing starts then share one optimum)."""
+def _grouped(members: Sequence[tuple[float, ArrayF, float]]) -> list[Basin]:
+    """Climb ends (value, point, smallest exact margin) grouped into basins, best first."""
+    basins: list[Basin] = []
+    for value, point, margin in sorted(members, key=lambda member: -member[0]):
+        if basins and basins[-1].value - value <= BASIN_TOLERANCE * max(1.0, abs(value)):
+            basins[-1] = basins[-1].with_member(point, margin)
+        else:
+            basins.append(Basin(value, (point,), (margin,)))
+    return basins
 
 
-class _FreeProblem:
-    """max ±d_k over body displacements d (6,) with every stance margin ≥ 0."""
+class _Search:
+    """The twelve free extremes of one stance (see the module's description)."""
 
-    def __init__(self, geometry: StanceGeometry, collision: SelfCollision | None) -> None:
-        self.geometry = geometry
-        self.collision = collision
-        self.labels = constraint_labels(geometry.legs)
-        self._smooth_margins = compiled_margins(geometry)
-        self._exact_margins = compiled_margins(geometry, smooth=False)
-        self.flips = mirror_flips(geometry)
-        self.basis = np.vstack([np.zeros(len(AXES)), STEP * np.eye(len(AXES))])
-        self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins
-        self._values = np.zeros(0)
+    def __init__(self, problem: FreeProblem, locked: Sequence[Extreme]) -> None:
+        self.problem = problem
+        self.locked = tuple(locked)
+        self.box = search_box(locked)
+        self.iterations = 0
 
-    def margins(self, d: ArrayF) -> ArrayF:
-        """Smooth margins at d (6,), less the floor: the NLP's inequality constraints."""
-        return self._around(d)[0] - MARGIN_FLOOR
+    def extremes(self) -> tuple[Extreme, ...]:
+        """Every direction: solved, or taken from its mirror image where that holds."""
+        directions = [(e.axis, e.sign) for e in self.locked]
+        sources = mirror_sources(directions, self.problem.flips)
+        basins = {i: self.basins(e) for i, e in enumerate(self.locked) if i not in sources}
+        tips = {i: found[0].points[0] for i, (found, _) in basins.items() if found}
+        solved = {}
+        for i, found in basins.items():
+            starts = [tip for j, tip in tips.items() if j != i] + self.symmetric(i, tips)
+            solved[i] = self.solve(
+                self.locked[i], *self.with_climbs_from(self.locked[i], starts, *found)
+            )
+        for i, (source, flip) in sources.items():
+            mirrored = self.mirrored(self.locked[i], solved[source], flip)
+            if mirrored is None:
+                mirrored = self.solve(self.locked[i], *self.basins(self.locked[i]))
+            solved[i] = mirrored
+        return tuple(solved[i] for i in range(len(self.locked)))
 
-    def jacobian(self, d: ArrayF) -> ArrayF:
-        """Forward differences of :meth:`margins`, all seven poses in one vectorized call."""
-        values = self._around(d)
-        return (values[1:] - values[0]).T / STEP
+    def symmetric(self, i: int, tips: dict[int, ArrayF]) -> list[ArrayF]:
+        """Direction i's best point made symmetric under each mirror that keeps its coordinate.
 
-    def _around(self, d: ArrayF) -> ArrayF:
-        """Smooth margins at d and its six forward steps (7, C), kept for the next call.
-
-        SLSQP asks for the Jacobian where it last asked for the margins; one vectorized
-        evaluation serves both, and costs about what one pose alone does.
+        The mean of the point and its image: optima on a plane of symmetry draw few
+        climbs from starts off it.
         """
-        if self._at is None or not (self._at == d).all():
-            self._values = self._smooth(d + self.basis)
-            self._at = np.array(d, dtype=float)
-        return self._values
-
-    def _smooth(self, displacements: ArrayF) -> ArrayF:
-        margins = self._smooth_margins(displacements)
-        if self.collision is None:
-            return margins
-        clearance = self.collision.clearances(*displacement_poses(self.geometry, displacements))[0]
-        return np.concatenate([margins, clearance[..., None]], axis=-1)
-
-    def exact(self, d: ArrayF) -> ArrayF:
-        """Exact margins at d (6,) [m or rad], the collision clearance last if checked."""
-        margins = self._exact_margins(d)
-        if self.collision is None:
-            return margins
-        clearance = self.collision.clearances(*displacement_poses(self.geometry, d))[0]
-        return np.append(margins, clearance)
-
-    def binding(self, d: ArrayF) -> list[Cause]:
-        """The constraints that bind at d, in constraint order; touching pairs last."""
-        margins = self.exact(d)
-        active = np.flatnonzero(margins <= margins.min() + ACTIVE_TOLERANCE)
-        causes = [self.labels[i] for i in active if i < len(self.labels)]
-        if self.collision is not None and len(self.labels) in active:
-            causes += self.collision.closest_pairs(*displacement_poses(self.geometry, d))
-        return causes
-
-    def feasible(self, d: ArrayF) -> bool:
-        """The exact check every answer must pass."""
-        return bool(self.exact(d).min() >= -FEASIBILITY_TOLERANCE)
-
-    def mirrored(
-        self,
-        extreme: Extreme,
-        solved: dict[tuple[str, int], DirectionSolution],
-    ) -> DirectionSolution | None:
-        """``extreme``'s direction as the mirror image of the opposite one, if solved.
-
-        The reflected pose must pass the exact feasibility check and reach at least the
-        axis-locked extreme; its binding constraints are found at the pose as for any
-        answer. None when no symmetry gives it.
-        """
-        k = AXES.index(extreme.axis)
-        opposite = solved.get((extreme.axis, -extreme.sign))
-        if opposite is None:
-            return None
-        for flip in reversing(k, self.flips):
-            d = flip * np.asarray(opposite.extreme.pose)
-            if not self.feasible(d) or extreme.sign * d[k] < extreme.sign * extreme.value:
-                continue
-            binding = self.binding(d)
-            solved_extreme = pose_extreme(self.geometry, extreme.axis, extreme.sign, d, binding)
-            return DirectionSolution(solved_extreme, opposite.converged, 0)
-        return None
-
-    def scanned(self, k: int, sign: int, samples: ArrayF) -> list[ArrayF]:
-        """The feasible sample reaching furthest in direction (k, sign), if any.
-
-        A list of at most one start. The scan checks the stance margins only: checking
-        collisions at every sample would cost more than the start saves.
-        """
-        feasible = np.flatnonzero(self._exact_margins(samples).min(-1) >= 0)
-        if feasible.size == 0:
+        if i not in tips:
             return []
-        return [samples[feasible[np.argmax(sign * samples[feasible, k])]]]
+        k = AXES.index(self.locked[i].axis)
+        return [(tips[i] + flip * tips[i]) / 2 for flip in keeping(k, self.problem.flips)]
 
-    def solve(self, extreme: Extreme, locked: Sequence[Extreme]) -> DirectionSolution:
-        """The free extreme of ``extreme``'s direction, never short of ``extreme`` itself."""
-        k = AXES.index(extreme.axis)
-        box = search_box(locked)
-        # The starts: the axis-locked extreme and the furthest feasible pose of a scan of
-        # the search box (guided), then the scan's first BOX_STARTS points: the better
-        # optima couple coordinates (z− with yaw and a sideways shift, say), which no start
-        # on the axis finds. The scan is the box starts' own Sobol sequence, continued.
-        samples = np.asarray(box_starts(box, SCAN_SAMPLES, seed=_seed(k, extreme.sign)))
-        guided = [
-            axis_locked_start(k, extreme.sign, locked),
-            *self.scanned(k, extreme.sign, samples),
-        ]
-        # SLSQP runs in coordinates scaled to the search box (u = d / box), whose first
-        # steps then span the box, except that the guided starts also run unscaled: on 27
-        # chosen, 16 random and the 320 Fig 15 designs, the scaled runs found tripod
-        # optima the unscaled ones missed by up to 0.22 rad, and the unscaled guided runs
-        # z− optima of all-leg robots that every scaled run missed by up to 1 cm.
-        result = maximize_coordinate(
-            k,
-            extreme.sign,
-            self.margins,
-            self.jacobian,
-            [*guided, *guided, *samples[:BOX_STARTS]],
-            self.feasible,
-            bounds=[(None, None)] * 3 + list(ROTATION_BOUNDS),
-            max_iterations=MAX_ITERATIONS,
-            enough=ENOUGH,
-            guided=2 * len(guided),
-            scales=[None] * len(guided) + [box] * (len(guided) + BOX_STARTS),
-        )
-        if result is None:
-            return DirectionSolution(extreme, False, 0)
-        converged = result.success and result.agreed
-        if result.value <= extreme.sign * extreme.value:  # axis-locked is feasible: keep it
-            return DirectionSolution(extreme, converged, result.iterations)
-        pose = self.canonical(result.x, k)
-        binding = self.binding(pose)
-        solved = pose_extreme(self.geometry, extreme.axis, extreme.sign, pose, binding)
-        return DirectionSolution(solved, converged, result.iterations)
+    def mirrored(self, locked: Extreme, source: Extreme, flip: ArrayF) -> Extreme | None:
+        """``locked``'s direction as the mirror image of ``source``, if that holds.
 
-    def canonical(self, d: ArrayF, k: int) -> ArrayF:
-        """Of d and its feasible mirror images that keep coordinate k, the largest.
-
-        A symmetric robot's optima come in mirror-image sets of equal value, and which
-        one a start reaches first can follow round-off (a BLAS thread count, say). The
-        largest pose in lexicographic order, compared at 1e-6, is the same whichever it is.
+        The mirrored pose must pass the exact check and reach the axis-locked extreme;
+        its binding constraints are found there.
         """
-        images: list[ArrayF] = [d, *(flip * d for flip in keeping(k, self.flips))]
-        feasible = [image for image in images if self.feasible(image)]
-        return max(feasible, key=_rounded)
+        d = flip * np.asarray(source.pose)
+        k = AXES.index(locked.axis)
+        if not self.problem.feasible(d) or locked.sign * d[k] < locked.sign * locked.value:
+            return None
+        extreme = pose_extreme(
+            self.problem.geometry, locked.axis, locked.sign, d, self.problem.binding(d)
+        )
+        return replace(extreme, evidence=source.evidence)
+
+    def solve(self, locked: Extreme, basins: list[Basin], climbs: int) -> Extreme:
+        """The free extreme of ``locked``'s direction from its climbs' basins.
+
+        Never short of ``locked`` itself.
+        """
+        k, sign = AXES.index(locked.axis), locked.sign
+        if self.problem.collision is None:
+            starts = [basin.points[:POLISH_TRIES] for basin in basins]
+        else:
+            starts = [(axis_locked_start(locked),)]
+            for basin in basins[:COLLISION_BASINS]:
+                clear = self.problem.clear_on_the_way_back(basin.points[0], self.box)
+                tries = basin.points[:POLISH_TRIES]
+                starts.append(tries if clear is None else (clear, *tries))
+        answer, evidence = self.best_reachable(k, sign, locked, starts, basins, climbs)
+        if answer is None:
+            return replace(locked, evidence=evidence)
+        pose = self.problem.canonical(answer, k)
+        extreme = pose_extreme(
+            self.problem.geometry, locked.axis, sign, pose, self.problem.binding(pose)
+        )
+        return replace(extreme, evidence=evidence)
+
+    def basins(self, locked: Extreme) -> tuple[list[Basin], int]:
+        """Basins of the first climbs, best first, and how many climbs ran.
+
+        From the axis-locked extreme and from :data:`CLIMBS` spread starts.
+        """
+        k, sign = AXES.index(locked.axis), locked.sign
+        spread = box_starts(SPREAD * self.box, CLIMBS, seed=_seed(k, sign))
+        return self.with_climbs_from(locked, [axis_locked_start(locked), *spread], [], 0)
+
+    def with_climbs_from(
+        self, locked: Extreme, starts: Sequence[ArrayF], basins: list[Basin], climbs: int
+    ) -> tuple[list[Basin], int]:
+        """``basins`` and ``climbs`` with those of climbs from ``starts`` added."""
+        k, sign = AXES.index(locked.axis), locked.sign
+        if not starts:
+            return basins, climbs
+        ends, iterations = climb_all(
+            self.problem.smooth_kernel, np.array(starts), self.box, k, float(sign), LOWER, UPPER
+        )
+        self.iterations += int(iterations.sum())
+        margins = self.problem.exact_margins(ends).min(axis=-1)
+        members = [
+            (float(sign * end[k]), end, float(margin))
+            for end, margin in zip(ends, margins, strict=True)
+            if margin >= -CLIMB_TOLERANCE
+        ]
+        for basin in basins:
+            members += [
+                (basin.value, p, m) for p, m in zip(basin.points, basin.margins, strict=True)
+            ]
+        return _grouped(members), climbs + len(starts)
+
+    def best_reachable(
+        self,
+        k: int,
+        sign: int,
+        locked: Extreme,
+        starts: Sequence[Sequence[ArrayF]],
+        basins: Sequence[Basin],
+        climbs: int,
+    ) -> tuple[ArrayF | None, SearchEvidence]:
+        """The best polished answer from ``starts`` that is reachable (None: keep ``locked``).
+
+        Each entry of ``starts`` is polished (its points in turn until one gives an
+        answer) while it could still beat the best reachable answer so far: a climb's
+        value is a lower bound on its polished one.
+        """
+        floor = sign * locked.value
+        problem = self.problem.coordinate_problem(k, sign)
+        best: MultiStartResult | None = None
+        unreachable: float | None = None
+        answers: list[float] = []
+        for i, start in enumerate(starts):
+            bound = basins[i].value if self.problem.collision is None else np.inf
+            if best is not None and bound <= best.value + BASIN_TOLERANCE:
+                break
+            result = self.polished(problem, start, -np.inf if np.isinf(bound) else bound)
+            if result is None:
+                continue
+            answers.append(result.value)
+            if result.value <= floor or (best is not None and result.value <= best.value):
+                continue
+            if self.problem.reachable(result.x, self.box):
+                best = result
+            elif unreachable is None or result.value > unreachable:
+                unreachable = result.value
+        evidence = self.evidence(best, floor, unreachable, basins, climbs, answers)
+        return (None if best is None else best.x), evidence
+
+    def polished(
+        self, problem: CoordinateProblem, points: Sequence[ArrayF], value: float
+    ) -> MultiStartResult | None:
+        """The best SLSQP answer from ``points`` in turn, stopping at one that reaches ``value``.
+
+        A basin's climbs reached ``value``: a polish that ends lower went astray, and
+        one where SLSQP does not report convergence is tried again from the next point.
+        """
+        best: MultiStartResult | None = None
+        for point in points:
+            result = maximize_coordinate(problem, [Start(point, self.box)])
+            if result is None:
+                result = self.unpolished(problem, point)
+            if result is None:
+                continue
+            self.iterations += result.iterations
+            tolerance = AGREEMENT * max(1.0, abs(result.value))
+            if best is None or result.value > best.value + tolerance:
+                best = result
+            elif result.value >= best.value - tolerance and result.success and not best.success:
+                best = result  # the same optimum, where SLSQP also says it converged
+            if best.success and best.value >= value - AGREEMENT * max(1.0, abs(value)):
+                break
+        return best
+
+    def unpolished(self, problem: CoordinateProblem, point: ArrayF) -> MultiStartResult | None:
+        """A climb's end as the answer where SLSQP gave none (flagged: not polished)."""
+        x = self.problem.feasible_nearby(point)
+        if x is None:
+            return None
+        value = float(problem.sign * x[problem.k])
+        return MultiStartResult(x, value, False, False, (value,), 0)
+
+    def evidence(
+        self,
+        best: MultiStartResult | None,
+        floor: float,
+        unreachable: float | None,
+        basins: Sequence[Basin],
+        climbs: int,
+        answers: Sequence[float],
+    ) -> SearchEvidence:
+        """What supports the direction's answer (``best``, or the axis-locked ``floor``)."""
+        value = floor if best is None else best.value
+        if unreachable is not None and unreachable <= value:
+            unreachable = None
+        tolerance = BASIN_TOLERANCE * max(1.0, abs(value))
+        if self.problem.collision is None:
+            agreeing = sum(b.climbs for b in basins if abs(b.value - value) <= tolerance)
+            return SearchEvidence(
+                climbs, len(basins), agreeing, True, best is None or best.success, unreachable
+            )
+        distinct = len({round(a / tolerance) for a in answers})
+        agreeing = sum(abs(a - value) <= tolerance for a in answers)
+        return SearchEvidence(
+            len(answers), distinct, agreeing, True, best is None or best.success, unreachable
+        )

@@ -9,9 +9,12 @@ from the mirror, re-checked like any answer.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from hexaleg._typing import ArrayF
+from hexaleg.stance.constraints import AXES
 from hexaleg.stance.geometry import StanceGeometry
 
 MIRRORS: dict[str, tuple[ArrayF, ArrayF]] = {
@@ -52,6 +55,33 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
         if matched:
             flips.append(flip)
     return flips
+
+
+def search_flips(geometry: StanceGeometry, every_leg_stands: bool = True) -> list[ArrayF]:
+    """The flips a search may use.
+
+    :func:`mirror_flips`, or none where parts other than the stance legs matter
+    (self-collision) and some legs swing.
+    """
+    return mirror_flips(geometry) if every_leg_stands else []
+
+
+def mirror_sources(
+    directions: Sequence[tuple[str, int]], flips: list[ArrayF]
+) -> dict[int, tuple[int, ArrayF]]:
+    """Which directions to take from a mirror image: index → (its source's index, flip).
+
+    Of each pair (axis, +) and (axis, −) that a flip maps onto each other, the one listed
+    first is solved and the other taken from it; every direction not named is solved.
+    """
+    index = {direction: i for i, direction in enumerate(directions)}
+    sources: dict[int, tuple[int, ArrayF]] = {}
+    for i, (axis, sign) in enumerate(directions):
+        source = index.get((axis, -sign))
+        reverse = reversing(AXES.index(axis), flips)
+        if reverse and source is not None and source < i and source not in sources:
+            sources[i] = (source, reverse[0])
+    return sources
 
 
 def reversing(k: int, flips: list[ArrayF]) -> list[ArrayF]:

@@ -9,8 +9,9 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Distribution
+from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics, StaticState
 from hexaleg.statics.support import SupportPolygon
 
@@ -21,13 +22,19 @@ class PayloadCapacity:
 
     Attributes:
         mass: The payload [kg].
-        limited_by: ``"<leg> <joint>"`` whose torque reaches its rating, ``"stability"``,
-            or ``"search limit"`` if nothing binds below :data:`PAYLOAD_SEARCH_LIMIT`.
+        limited_by: What binds: a joint's torque at its rating (kind ``"torque"``, with
+            its leg and joint), ``"stability"`` (the centre of mass leaves the support
+            polygon), or ``"search limit"`` if nothing binds below
+            :data:`PAYLOAD_SEARCH_LIMIT`.
 
     """
 
     mass: float
-    limited_by: str
+    limited_by: Cause
+
+
+STABILITY = Cause("stability")
+SEARCH_LIMIT = Cause("search limit")
 
 
 def payload_capacity(
@@ -53,25 +60,24 @@ def payload_capacity(
     if distribution == "min-norm":
         return _affine_capacity(statics, q, at)
 
-    def check(mass: float) -> tuple[bool, str]:
+    def check(mass: float) -> tuple[bool, Cause]:
         try:
             state = statics.state(q, distribution, payload=statics.payload.with_mass(mass))
         except HexalegError:
-            return False, "stability"
+            return False, STABILITY
         ratios = state.torque_ratios(statics.rated)
         if ratios.max() > 1.0:
-            leg, joint = _first_tied(ratios)
-            return False, f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+            return False, _torque_cause(statics, *_first_tied(ratios))
         if state.stability_margin <= 0:
-            return False, "stability"
-        return True, ""
+            return False, STABILITY
+        return True, SEARCH_LIMIT
 
     ok, cause = check(0.0)
     if not ok:
         return PayloadCapacity(0.0, cause)
     ok, cause = check(PAYLOAD_SEARCH_LIMIT)
     if ok:
-        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, "search limit")
+        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, SEARCH_LIMIT)
     lo, hi = 0.0, PAYLOAD_SEARCH_LIMIT
     while hi - lo > 1e-6 * max(hi, 1.0):
         mid = 0.5 * (lo + hi)
@@ -103,20 +109,24 @@ def _affine_capacity(statics: Statics, q: npt.ArrayLike, at: StaticState | None)
     support = statics.support
     if np.any(np.abs(base) > rated) or support.signed_distance(robot_com) <= 0:
         ratios = np.abs(base) / rated
-        leg, joint = _first_tied(ratios)
-        cause = "stability" if ratios.max() <= 1 else f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+        cause = STABILITY if ratios.max() <= 1 else _torque_cause(statics, *_first_tied(ratios))
         return PayloadCapacity(0.0, cause)
     with np.errstate(divide="ignore", invalid="ignore"):  # slope 0: that joint never binds
         limit = np.where(slope > 0, (rated - base) / slope, (-rated - base) / slope)
     limit = np.where(np.abs(slope) > 0, limit, np.inf)
     leg, joint = _first_tied(-limit)
-    mass, cause = float(limit[leg, joint]), f"{statics.legs[leg]} {LEG_JOINTS[joint]}"
+    mass, cause = float(limit[leg, joint]), _torque_cause(statics, leg, joint)
     tipping = _tipping_payload(support, robot_com, robot_mass, point)
     if tipping < mass:
-        mass, cause = tipping, "stability"
+        mass, cause = tipping, STABILITY
     if mass >= PAYLOAD_SEARCH_LIMIT:
-        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, "search limit")
+        return PayloadCapacity(PAYLOAD_SEARCH_LIMIT, SEARCH_LIMIT)
     return PayloadCapacity(mass, cause)
+
+
+def _torque_cause(statics: Statics, leg: int, joint: int) -> Cause:
+    """Stance leg ``leg``'s joint ``joint`` (indices) at its rated torque."""
+    return Cause("torque", statics.legs[leg], LEG_JOINTS[joint])
 
 
 def _tipping_payload(

@@ -29,8 +29,10 @@ import qpsolvers
 
 from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
 GRAVITY = 9.81
@@ -70,9 +72,13 @@ class Payload:
 
     def point(self, model: HexapodModel) -> ArrayF:
         """The payload's position in the body frame [m]."""
+        return np.array(self.position_on(model.design))
+
+    def position_on(self, design: HexapodDesign) -> list[float]:
+        """Where the payload sits on ``design``'s body [m], body frame (default: top centre)."""
         if self.position is not None:
-            return np.array(self.position)
-        return np.array([0.0, 0.0, model.design.body_height / 2])
+            return list(self.position)
+        return [0.0, 0.0, design.body_height / 2]
 
     def with_mass(self, mass: float) -> Payload:
         """The same point with another mass [kg]."""
@@ -202,10 +208,8 @@ class Statics:
                 np.asarray(q, dtype=float), gravity, payload, jacobians[k], feet[k]
             )
         mass = self._robot_mass + payload.mass
-        if distribution == "min-norm":  # f = Aᵀ(AAᵀ)⁻¹b: A has full row rank for ≥ 3 feet
-            a, b = equilibrium(feet, com, mass, gravity)
-            multipliers = np.linalg.solve(a @ a.swapaxes(1, 2), b[..., None])
-            forces = (a.swapaxes(1, 2) @ multipliers)[..., 0]
+        if distribution == "min-norm":
+            forces = min_norm_forces(*equilibrium(feet, com, mass, gravity))
         else:
             forces = np.array(
                 [self._min_torque(*terms, mass, gravity) for terms in zip(
@@ -278,24 +282,50 @@ class Statics:
         """Forces f (3N,) minimizing Σ (τ_j/rated_j)², τ = h − Jᵀf on the stance joints (a QP)."""
         a, b = equilibrium(feet, com, mass, gravity)
         columns = self._v.ravel()
-        weights = np.tile(1.0 / self.rated, len(self.legs)) ** 2
-        jt = jacobian[:, columns].T  # (3N joints, 3N forces)
-        h = generalized[columns]
-        hessian = jt.T @ (weights[:, None] * jt) + 1e-12 * np.eye(jt.shape[1])
-        linear = -jt.T @ (weights * h)
-        solution = qpsolvers.solve_qp(
-            hessian,
-            linear,
-            *friction_pyramid(len(self.legs), self.friction),
-            a,
-            b,
-            solver=QP_SOLVER,
+        return min_torque_forces(
+            a, b, jacobian[:, columns], generalized[columns], self.rated, self.friction
         )
-        if solution is None:
-            raise HexalegError(
-                "no foot forces hold this pose within the friction cone (min-torque)"
-            )
-        return np.asarray(solution)
+
+
+def min_norm_forces(a: ArrayF, b: ArrayF) -> ArrayF:
+    """The least Σ|f_i|² with A f = b: f = Aᵀ(AAᵀ)⁻¹b, batched over leading axes.
+
+    A (..., 6, 3N) has full row rank for three or more feet not on one line.
+    ``b`` may carry a trailing axis of right-hand sides (..., 6, K) for f (..., 3N, K).
+    """
+    stacked = b.ndim == a.ndim
+    rhs = b if stacked else b[..., None]
+    multipliers = np.linalg.solve(a @ a.swapaxes(-1, -2), rhs)
+    forces = a.swapaxes(-1, -2) @ multipliers
+    return forces if stacked else forces[..., 0]
+
+
+def min_torque_forces(
+    a: ArrayF, b: ArrayF, joint_jacobian: ArrayF, bias: ArrayF, rated: ArrayF, friction: float
+) -> ArrayF:
+    """The forces f (3N,) with A f = b and friction minimizing Σ (τ_j/rated_j)² (a QP).
+
+    Args:
+        a: Equilibrium rows (6, 3N) of :func:`equilibrium`.
+        b: Their right-hand side (6,).
+        joint_jacobian: The stance feet's positions' derivatives by the stance joints
+            (3N forces, 3N joints), ground frame [m/rad].
+        bias: The stance joints' torques before the feet push, τ = bias − Jᵀf (3N,) [N·m].
+        rated: Rated torques (root, hip, knee) (3,) [N·m].
+        friction: Friction coefficient μ [-] of the pyramid |f_x|, |f_y| ≤ μ·f_z, f_z ≥ 0.
+
+    """
+    legs = a.shape[-1] // 3
+    weights = np.tile(1.0 / np.asarray(rated, dtype=float), legs) ** 2
+    jt = joint_jacobian.T  # (3N joints, 3N forces)
+    hessian = jt.T @ (weights[:, None] * jt) + 1e-12 * np.eye(jt.shape[1])
+    linear = -jt.T @ (weights * bias)
+    solution = qpsolvers.solve_qp(
+        hessian, linear, *friction_pyramid(legs, friction), a, b, solver=QP_SOLVER
+    )
+    if solution is None:
+        raise HexalegError("no foot forces hold this pose within the friction cone (min-torque)")
+    return np.asarray(solution)
 
 
 def equilibrium(feet: ArrayF, com: ArrayF, mass: float, gravity: ArrayF) -> tuple[ArrayF, ArrayF]:

@@ -13,16 +13,18 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
-from hexaleg._typing import ArrayF, Distribution, FlexibilityMode, StanceSet
+from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
 from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics, StaticState
+from hexaleg.statics.ratings import OverRating, over_rating
 from hexaleg.statics.slopes import SlopeLimit, slope_limits
 
 
@@ -90,8 +92,20 @@ class LoadsAnalysis:
             "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
             "payload_capacity": self.capacity.mass,
-            "payload_limited_by": self.capacity.limited_by,
+            "payload_limited_by": str(self.capacity.limited_by),
         }
+
+    @property
+    def over_rating(self) -> tuple[OverRating, ...]:
+        """Each stance joint whose |τ| exceeds its rating at the nominal stance or an extreme."""
+        states = [self.nominal, *(e.state for e in self.extremes)]
+        places = ["nominal", *(e.extreme.name for e in self.extremes)]
+        return over_rating(
+            self.nominal.legs,
+            [s.joint_torques for s in states],
+            self.design.rated_torques,
+            places,
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI units: N, N·m, m, kg, rad)."""
@@ -100,7 +114,7 @@ class LoadsAnalysis:
             "design": self.design.as_dict(),
             "payload": {
                 "mass": self.payload.mass,
-                "position": list(self.payload.position or (0.0, 0.0, self.design.body_height / 2)),
+                "position": self.payload.position_on(self.design),
             },
             "friction": self.friction,
             "distribution": self.distribution,
@@ -122,13 +136,18 @@ class LoadsAnalysis:
             ],
             "peak_torque": self.peak_torques,
             "slopes": [
-                {"heading": s.heading, "max_slope": s.max_slope, "limited_by": s.limited_by}
+                {
+                    "heading": s.heading,
+                    "max_slope": s.max_slope,
+                    "limited_by": s.limited_by.to_dict(),
+                }
                 for s in self.slopes
             ],
             "payload_capacity": {
                 "mass": self.capacity.mass,
-                "limited_by": self.capacity.limited_by,
+                "limited_by": self.capacity.limited_by.to_dict(),
             },
+            "over_rating": [o.to_dict() for o in self.over_rating],
             "units": {
                 "force": "N, ground frame",
                 "torque": "N·m",
@@ -156,23 +175,6 @@ def _state_dict(state: StaticState) -> dict[str, Any]:
         "peak_torque": state.peak_torques(),
         "stability_margin": state.stability_margin,
     }
-
-
-def extreme_configurations(model: HexapodModel, extremes: Sequence[Extreme]) -> ArrayF:
-    """The configurations (K, nq) at extremes, from their reported poses and joint angles.
-
-    Swing legs (not in an extreme's joint angles) keep their nominal angles, as in
-    the viewer.
-    """
-    poses = np.array([e.pose for e in extremes], dtype=float).reshape(-1, 6)
-    q = np.tile(model.nominal_configuration(), (len(poses), 1))
-    q[:, :3] += poses[:, :3]
-    # Pinocchio's rpy is R = Rz(yaw)·Ry(pitch)·Rx(roll): extrinsic x, y, z; quaternions
-    # are (x, y, z, w) in both
-    q[:, 3:7] = Rotation.from_euler("xyz", poses[:, 3:]).as_quat()
-    for leg in extremes[0].joint_angles if extremes else ():
-        q[:, model.leg_q_indices(leg)] = [e.joint_angles[leg] for e in extremes]
-    return q
 
 
 def analyze_loads(

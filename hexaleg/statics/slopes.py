@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF
+from hexaleg.cause import Cause
 from hexaleg.statics.forces import GRAVITY
 from hexaleg.statics.support import SupportPolygon
 
@@ -23,14 +24,14 @@ class SlopeLimit:
     Attributes:
         heading: Uphill direction in the body frame [rad] (0: straight ahead).
         max_slope: The slope angle α [rad].
-        limited_by: ``"tip"`` (the gravity line leaves the support polygon) or
+        limited_by: Kind ``"tip"`` (the gravity line leaves the support polygon) or
             ``"slide"`` (tan α would exceed μ).
 
     """
 
     heading: float
     max_slope: float
-    limited_by: str
+    limited_by: Cause
 
 
 def slope_limits(
@@ -51,7 +52,7 @@ def slope_limits(
     downhill = -np.column_stack([np.cos(headings), np.sin(headings)])
     tips = np.arctan2(polygon.exit_distances(com[:2], downhill), com[2])
     return tuple(
-        SlopeLimit(heading, min(float(tip), slide), "tip" if tip < slide else "slide")
+        SlopeLimit(heading, min(float(tip), slide), Cause("tip" if tip < slide else "slide"))
         for heading, tip in zip(headings, tips, strict=True)
     )
 

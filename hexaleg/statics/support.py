@@ -6,7 +6,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import numpy.typing as npt
-from scipy.spatial import ConvexHull
 
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import HexalegError
@@ -37,24 +36,27 @@ class SupportPolygon:
     def of_feet(cls, feet_xy: npt.ArrayLike) -> SupportPolygon:
         """The support polygon of the feet (x, y) (N, 2) [m]."""
         feet_xy = np.asarray(feet_xy, dtype=float)
-        try:
-            hull = ConvexHull(feet_xy)
-        except Exception as err:  # qhull raises its own error type on degenerate input
-            raise HexalegError(f"the stance feet span no support polygon: {err}") from err
-        vertices = feet_xy[hull.vertices]
+        vertices = feet_xy[_hull(feet_xy)]
+        if len(vertices) < 3:
+            raise HexalegError(
+                f"the stance feet span no support polygon: {len(feet_xy)} feet on one line"
+            )
         edges = np.roll(vertices, -1, axis=0) - vertices
         return cls(vertices, edges, np.hypot(edges[:, 0], edges[:, 1]))
 
     def signed_distance(self, point: npt.ArrayLike) -> float:
         """Signed distance [m] from ``point`` (x, y) to the boundary: > 0 inside."""
-        relative = np.asarray(point, dtype=float)[:2] - self.vertices
+        return float(self.signed_distances(np.asarray(point, dtype=float)[None, :2])[0])
+
+    def signed_distances(self, points: npt.ArrayLike) -> ArrayF:
+        """:meth:`signed_distance` of each of ``points`` (P, 2) (P,) [m]."""
+        relative = np.asarray(points, dtype=float)[:, None, :2] - self.vertices  # (P, K, 2)
         edges = self.edges
-        inward = (edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]) / self.lengths
-        if inward.min() >= 0:
-            return float(inward.min())
-        along = (relative[:, 0] * edges[:, 0] + relative[:, 1] * edges[:, 1]) / self.lengths**2
-        gap = relative - np.clip(along, 0.0, 1.0)[:, None] * edges
-        return -float(np.hypot(gap[:, 0], gap[:, 1]).min())
+        inward = (edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]) / self.lengths
+        along = (relative[..., 0] * edges[:, 0] + relative[..., 1] * edges[:, 1]) / self.lengths**2
+        gap = relative - np.clip(along, 0.0, 1.0)[..., None] * edges
+        inside = inward.min(axis=1)
+        return np.where(inside >= 0, inside, -np.hypot(gap[..., 0], gap[..., 1]).min(axis=1))
 
     def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
         """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""
@@ -75,6 +77,32 @@ class SupportPolygon:
         s = cross(offset, d) / denominator  # along the edge
         hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
         return np.where(hit, t, np.inf).min(axis=1)
+
+
+def _hull(points: ArrayF) -> list[int]:
+    """Indices of the convex hull's vertices, counter-clockwise (Andrew's monotone chain).
+
+    A handful of feet: plain Python beats qhull's setup tenfold. Collinear points on an
+    edge are left out; all points on one line give fewer than three.
+    """
+    order = sorted(range(len(points)), key=lambda k: (points[k, 0], points[k, 1]))
+
+    def turn(o: int, a: int, b: int) -> float:
+        return float(
+            (points[a, 0] - points[o, 0]) * (points[b, 1] - points[o, 1])
+            - (points[a, 1] - points[o, 1]) * (points[b, 0] - points[o, 0])
+        )
+
+    def chain(indices: list[int]) -> list[int]:
+        kept: list[int] = []
+        for k in indices:
+            while len(kept) >= 2 and turn(kept[-2], kept[-1], k) <= 0:
+                kept.pop()
+            kept.append(k)
+        return kept
+
+    lower, upper = chain(order), chain(order[::-1])
+    return lower[:-1] + upper[:-1]
 
 
 def stability_margin(feet_xy: ArrayF, point: ArrayF) -> float:

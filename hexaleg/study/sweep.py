@@ -37,6 +37,7 @@ from hexaleg.design import (
     require_ratio,
 )
 from hexaleg.exceptions import HexalegError
+from hexaleg.gait.analysis import gait_study_columns
 from hexaleg.ratios import require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
@@ -75,6 +76,7 @@ class StudySpec:
         base: Every other field of the designs (body, mounts, posture, limits).
         collisions: The robot's own parts touching also stop the body.
         statics: Also compute each design's torques, stability, slopes and payload.
+        gait: Also compute each design's walking columns (the default tripod gait).
 
     """
 
@@ -86,6 +88,7 @@ class StudySpec:
     base: HexapodDesign = field(default_factory=HexapodDesign)
     collisions: bool = False
     statics: bool = True
+    gait: bool = True
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
@@ -120,6 +123,7 @@ class StudySpec:
             "stance": self.stance,
             "collisions": self.collisions,
             "statics": self.statics,
+            "gait": self.gait,
             "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
         }
 
@@ -193,6 +197,7 @@ def _row(
     row: Row = {"l1_ratio": key[0], "l3_ratio": key[1]}
     row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
     row |= loads_at_extremes(model, result).study_columns() if spec.statics else {}
+    row |= gait_study_columns(design, model) if spec.gait else {}
     row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
     for extreme in result.extremes:
         name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"

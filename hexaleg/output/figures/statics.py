@@ -87,7 +87,7 @@ def _slope_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
     ax.bar(
         labels,
         [np.degrees(s.max_slope) for s in analysis.slopes],
-        color=[COLORS[2] if s.limited_by == "slide" else COLORS[3] for s in analysis.slopes],
+        color=[COLORS[2] if str(s.limited_by) == "slide" else COLORS[3] for s in analysis.slopes],
     )
     for k, s in enumerate(analysis.slopes):
         ax.annotate(

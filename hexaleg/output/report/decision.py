@@ -9,9 +9,13 @@ from hexaleg.output.report.document import Section, change, table
 from hexaleg.output.report.pareto import ParetoRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
+from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.output.report.statics import StaticsRecord
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.study.decide import DecideResult
+from hexaleg.study.decide import decide as decide_from_requirements
 from hexaleg.study.decision import RANKING_RULE, Decision, decide
+from hexaleg.study.executors import local_pool
 from hexaleg.study.recommendation import BAND
 
 
@@ -21,10 +25,13 @@ class DecisionRecord:
 
     Attributes:
         decision: Both designs' metrics, scores and payload capacities.
+        requirements: The best design meeting the user's requirements, and the user's
+            checked against them; ``None`` when none were given.
 
     """
 
     decision: Decision
+    requirements: DecideResult | None = None
 
 
 def compute(data: ReportData) -> DecisionRecord:
@@ -37,8 +44,18 @@ def compute(data: ReportData) -> DecisionRecord:
             data[RecommendationRecord].recommendation,
             data[StaticsRecord].axis.capacity.mass,
             data.options.decision,
-        )
+        ),
+        _requirements(data),
     )
+
+
+def _requirements(data: ReportData) -> DecideResult | None:
+    """The decision from the user's requirements, on the report's workers (none: ``None``)."""
+    requirements = data.options.requirements
+    if requirements is None:
+        return None
+    with local_pool(data.options.workers) as pool:
+        return decide_from_requirements(data.design, requirements, executor=pool, progress=False)
 
 
 METRIC_LABELS = {
@@ -57,9 +74,12 @@ def section(data: ReportData) -> Section:
     lengths = ", ".join(f"{r * total:.3f}" for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio))
     yours = ", ".join(f"{length:.3f}" for length in design.lengths)
     best = data[ParetoRecord].front.iloc[0]
+    answer = data[DecisionRecord].requirements
+    first = () if answer is None else (*requirement_blocks(answer), _WITHOUT_REQUIREMENTS)
     return Section(
         "Decision",
         (
+            *first,
             f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
             f"{rec.l3_ratio:.3f}**, for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
             f"chosen among {data.options.decision.describe_candidates()}; any tibia ratio in "
@@ -108,9 +128,18 @@ def _rows(decision: Decision) -> list[tuple[str, str, str, str]]:
     return rows
 
 
+_WITHOUT_REQUIREMENTS = (
+    "*Without your requirements*, ranking the paper's grid of segment ratios by workspace, "
+    "manipulability and flexibility alone:"
+)
+
+
 def to_json(record: DecisionRecord) -> dict[str, Any]:
-    """``decision``."""
-    return {"decision": record.decision.to_json()}
+    """``decision``, and ``requirements_decision`` when requirements were given."""
+    out = {"decision": record.decision.to_json()}
+    if record.requirements is not None:
+        out["requirements_decision"] = record.requirements.to_dict()
+    return out
 
 
 PART = Part(

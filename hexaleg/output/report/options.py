@@ -10,6 +10,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.study.decision import DecisionOptions
 from hexaleg.study.executors import max_workers
+from hexaleg.study.requirements import Requirements
 from hexaleg.study.sensitivity import FieldSweep
 from hexaleg.study.sweep import MAX_L1_RATIOS
 from hexaleg.swing.workspace import MAX_SAMPLES
@@ -41,6 +42,8 @@ class ReportOptions:
         vector_figures: Write an SVG beside each PNG, linked from the report for print
             (always with ``pdf``, which is made of them); off, the figures take half the
             time.
+        requirements: What the robot must do: the Decision section then shows first the
+            best design that meets it (:func:`hexaleg.study.decide.decide`).
         simulate: Also walk the default gait in MuJoCo (the ``[sim]`` extra) for the
             "Simulated walk" section.
 
@@ -56,6 +59,7 @@ class ReportOptions:
     sweep: FieldSweep | None = None
     pdf: bool = False
     vector_figures: bool = True
+    requirements: Requirements | None = None
     simulate: bool = False
 
     def __post_init__(self) -> None:

@@ -16,6 +16,7 @@ from hexaleg.output.report import (
     statics,
     study,
     viewer,
+    walking,
     workspace,
 )
 from hexaleg.output.report.options import ReportOptions
@@ -30,6 +31,7 @@ PARTS: tuple[Part[Any], ...] = (
     study.PART,
     sensitivity.PART,
     statics.PART,
+    walking.PART,
     viewer.PART,
     recommendation.PART,
     pareto.PART,
@@ -38,8 +40,8 @@ PARTS: tuple[Part[Any], ...] = (
 
 
 def parts_for(options: ReportOptions) -> tuple[Part[Any], ...]:
-    """:data:`PARTS`, with the simulated walk after the statics when ``options.simulate``."""
+    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``."""
     if not options.simulate:
         return PARTS
-    after = PARTS.index(statics.PART) + 1
+    after = PARTS.index(walking.PART) + 1
     return (*PARTS[:after], simulation.PART, *PARTS[after:])

@@ -24,9 +24,9 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import HIGHLIGHT, torque_colour, with_legend
 from hexaleg.output.viewer.server import LoopbackServer, client
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.constraints import displacement_poses
+from hexaleg.stance.configurations import stance_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
-from hexaleg.stance.geometry import StanceGeometry, stance_configuration
+from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import StaticState
 from hexaleg.statics.loads import LoadsAnalysis
 from hexaleg.swing.workspace import monte_carlo_workspace
@@ -38,7 +38,7 @@ FRAMES_PER_LEG_OF_TRIP = 20  # nominal → extreme; the way back takes as many
 
 def extreme_name(extreme: Extreme) -> str:
     """Scene-tree name of an extreme, e.g. ``x+`` or ``yaw-``."""
-    return f"{extreme.axis}{'+' if extreme.sign > 0 else '-'}"
+    return extreme.name
 
 
 def build_scene(
@@ -180,9 +180,7 @@ def _extreme_configuration(
     model: HexapodModel, geometry: StanceGeometry, extreme: Extreme, share: float = 1.0
 ) -> np.ndarray:
     """The robot at ``share`` of the way from nominal to the extreme's pose (free or not)."""
-    rotation, translation = displacement_poses(geometry, share * np.asarray(extreme.pose))
-    q, _ = stance_configuration(model, geometry, pin.SE3(rotation, translation))
-    return q
+    return stance_configurations(model, geometry, share * np.asarray(extreme.pose))[0]
 
 
 def _limiting_objects(visual: Any, extreme: Extreme) -> list[Any]:

@@ -1,0 +1,55 @@
+"""Workload on decide: a three-variable search with payload and slope requirements."""
+
+from __future__ import annotations
+
+import math
+import time
+from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
+
+from harness import Row, check_agree
+
+from hexaleg import HexapodDesign
+from hexaleg.study.decide import decide
+from hexaleg.study.optimize import SearchSettings
+from hexaleg.study.requirements import Requirements
+
+
+def bench_decide(evaluations: int | None) -> list[Row]:
+    """l1, l2, l3 free, 60 kg on 20° in every heading, FB maximized: 2 processes vs 1."""
+    design = HexapodDesign()
+    requirements = Requirements(payload=60.0, slope=math.radians(20))
+    settings = SearchSettings(seed=0, evaluations=evaluations)
+
+    def run(executor):
+        start = time.perf_counter()
+        result = decide(design, requirements, settings=settings, executor=executor, progress=False)
+        return time.perf_counter() - start, result
+
+    with ProcessPoolExecutor(2) as pool:
+        pool.submit(int).result()  # workers started before timing, as a long-lived pool is
+        t_pool, found = run(pool)
+    with ThreadPoolExecutor(1) as here:
+        t_here, alone = run(here)
+    best = [found.best.evaluation.values["fb"], *found.best.design.lengths]
+    difference = check_agree(
+        "decide 2 processes / 1",
+        best,
+        [alone.best.evaluation.values["fb"], *alone.best.design.lengths],
+        0.0,
+    )
+    name = f"decide, 3 free lengths, payload + slope, {found.evaluations} designs"
+    note = (
+        f"FB {found.best.evaluation.values['fb']:.5f} at l = "
+        f"({', '.join(f'{v:.4f}' for v in found.best.design.lengths)}) m, feasible {found.feasible}"
+    )
+    return [
+        Row(name, "hexaleg decide, 2 processes", t_pool, None, None, "≤ 60 s", note=note),
+        Row(
+            name,
+            "hexaleg decide, this process",
+            t_here,
+            t_here / t_pool,
+            difference,
+            note="ratio: 1-process time / 2-process time",
+        ),
+    ]

@@ -1,0 +1,117 @@
+"""Numba compilation with an on-disk cache that works for any user, and stays fresh.
+
+:func:`compiled` is ``numba.njit`` with caching in a directory hexaleg chooses, so that:
+
+- a user whose home and site-packages are not writable (a container, a CI runner,
+  ``runuser -u nobody``) still runs hexaleg: the cache falls back to a private folder
+  in the temporary directory, or is switched off when nothing is writable (every
+  process then compiles anew, a few seconds);
+- an edit to any module holding compiled code makes a fresh cache. Numba checks only
+  the source file of the function it loads, so a kernel inlined into a caller in another
+  module would otherwise be loaded stale; the folder's name carries a hash of every
+  module listed in :data:`COMPILED_MODULES`, and :func:`compiled` refuses functions of
+  modules not listed.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import stat
+import sys
+import tempfile
+from collections.abc import Callable
+from functools import cache
+from pathlib import Path
+from typing import Any, TypeVar, cast
+
+import numba
+
+F = TypeVar("F", bound=Callable[..., Any])
+
+PACKAGE = Path(__file__).resolve().parent
+COMPILED_MODULES = (
+    "numerics/lp.py",
+    "stance/margin_kernel.py",
+    "stance/climb.py",
+    "stance/paths.py",
+)
+"""The modules (relative to the package) that define compiled functions."""
+
+
+def compiled(function: F) -> F:
+    """``numba.njit(cache=True)`` with the cache in :func:`cache_directory` (off if None)."""
+    source = Path(function.__code__.co_filename).resolve()
+    listed = source.is_relative_to(PACKAGE) and (
+        source.relative_to(PACKAGE).as_posix() in COMPILED_MODULES
+    )
+    if not listed:
+        raise RuntimeError(f"{source} defines compiled code but is not in COMPILED_MODULES")
+    directory = cache_directory()
+    if directory is None:
+        return cast(F, numba.njit(cache=False)(function))
+    config: Any = numba.config
+    previous = config.CACHE_DIR
+    config.CACHE_DIR = str(directory)  # numba fixes a function's cache path here
+    try:
+        return cast(F, numba.njit(cache=True)(function))
+    finally:
+        config.CACHE_DIR = previous
+
+
+@cache
+def cache_directory() -> Path | None:
+    """The first usable cache folder of :func:`cache_candidates`, or None if none is."""
+    name = f"numba-{source_fingerprint()}"
+    for base in cache_candidates():
+        if _private_and_writable(base) and _private_and_writable(base / name):
+            return base / name
+    return None
+
+
+def cache_candidates() -> list[Path]:
+    """Where the cache may go, in order.
+
+    ``$NUMBA_CACHE_DIR/hexaleg`` if that is set, the user's cache folder, and a
+    per-user folder in the temporary directory.
+    """
+    candidates = []
+    if os.environ.get("NUMBA_CACHE_DIR"):
+        candidates.append(Path(os.environ["NUMBA_CACHE_DIR"]) / "hexaleg")
+    if sys.platform == "win32" and os.environ.get("LOCALAPPDATA"):
+        candidates.append(Path(os.environ["LOCALAPPDATA"]) / "hexaleg")
+    elif os.environ.get("XDG_CACHE_HOME"):
+        candidates.append(Path(os.environ["XDG_CACHE_HOME"]) / "hexaleg")
+    else:
+        candidates.append(Path.home() / ".cache" / "hexaleg")
+    user = os.getuid() if hasattr(os, "getuid") else os.getlogin()
+    candidates.append(Path(tempfile.gettempdir()) / f".hexaleg-cache-{user}")
+    return candidates
+
+
+def source_fingerprint() -> str:
+    """A short hash of every compiled module's source (and of the Python version)."""
+    digest = hashlib.sha256(sys.version.encode())
+    for module in COMPILED_MODULES:
+        digest.update((PACKAGE / module).read_bytes())
+    return digest.hexdigest()[:16]
+
+
+def _private_and_writable(directory: Path) -> bool:
+    """Create ``directory`` (mode 700) if needed; True if it is ours, writable by us alone.
+
+    Numba's cache holds pickles it loads: a folder that another user can write to (a
+    shared temporary directory) must not be used.
+    """
+    try:
+        directory.mkdir(mode=0o700, parents=True, exist_ok=True)
+        info = directory.stat()
+        if hasattr(os, "getuid") and info.st_uid != os.getuid():
+            return False
+        if info.st_mode & (stat.S_IWGRP | stat.S_IWOTH):
+            return False
+        with tempfile.TemporaryFile(dir=directory):
+            pass
+    except OSError:
+        return False
+    return True

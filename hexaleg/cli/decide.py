@@ -1,0 +1,163 @@
+"""``hexaleg decide``: requirements in, design out — the best leg that meets them, and yours."""
+
+from __future__ import annotations
+
+import argparse
+from concurrent.futures import Executor
+from contextlib import AbstractContextManager
+
+from hexaleg._typing import choices
+from hexaleg.cli.options import (
+    UsageError,
+    add_design_options,
+    bounded_int,
+    capped_workers,
+    design_from_args,
+)
+from hexaleg.cli.output import print_json
+from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
+from hexaleg.study.decide import CheckedDesign, DecideResult, decide
+from hexaleg.study.evaluation import MaximizeObjective, MinimizeObjective, Objective
+from hexaleg.study.executors import dask_executor, local_pool
+from hexaleg.study.optimize import MAX_EVALUATIONS, MIN_POPULATION, SearchSettings
+from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
+from hexaleg.study.search_space import FREEABLE, FreeVariable
+
+DESCRIPTION = (
+    "Find the best leg for what the robot must do: of the designs meeting every requirement "
+    "(payload at a point, a slope in every heading with that payload, ground clearance, "
+    "least FB, leg length, least coxa), the one with the best objective (default: the "
+    "largest axis-locked FB), by pymoo's differential evolution over l1, l2, l3 (and the "
+    "posture or body fields if freed), on a local process pool or a Dask cluster. The "
+    "winner is measured again from its own URDF before it is printed, with each "
+    "requirement's value, margin and whether it binds; the --design is checked against "
+    "each requirement. If nothing meets them all, it names the requirements that conflict "
+    "and the nearest value of each that the others allow."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    add_requirement_options(parser)
+    search = parser.add_argument_group("search")
+    objective = search.add_mutually_exclusive_group()
+    objective.add_argument(
+        "--maximize", choices=choices(MaximizeObjective), help="what to make largest (default fb)"
+    )
+    objective.add_argument(
+        "--minimize", choices=choices(MinimizeObjective), help="what to make smallest"
+    )
+    search.add_argument(
+        "--free-posture",
+        action="store_true",
+        help="also free the nominal hip and knee angles (theta2, theta3) within the stance limits",
+    )
+    search.add_argument(
+        "--free",
+        action="append",
+        default=[],
+        metavar="FIELD=LOWER:UPPER",
+        help="free one more field (repeatable), or bound l1/l2/l3: FIELD is one of "
+        + ", ".join(FREEABLE)
+        + " [m or rad]; a body field renders each design's URDF (~0.4 s a design)",
+    )
+    search.add_argument("--seed", type=bounded_int(0, 2**32 - 1), default=0, help="default 0")
+    search.add_argument(
+        "--evaluations",
+        type=bounded_int(2 * MIN_POPULATION, MAX_EVALUATIONS),
+        metavar="N",
+        help="designs to evaluate per search (default: 60 generations of 10 per free variable)",
+    )
+    search.add_argument(
+        "--workers", type=bounded_int(1), metavar="N", help="local worker processes"
+    )
+    search.add_argument("--scheduler", metavar="ADDRESS", help="run on a Dask cluster")
+    search.add_argument(
+        "--journal", metavar="FILE", help="keep every evaluated design in FILE (JSON lines)"
+    )
+    search.add_argument("--resume", action="store_true", help="continue the --journal FILE")
+    parser.add_argument("--json", action="store_true", help="print one JSON object")
+
+
+def run(args: argparse.Namespace) -> int:
+    """Decide; print the answer as a table or JSON."""
+    design = design_from_args(args)
+    requirements = requirements_from_args(args)
+    objective = (
+        Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
+    )
+    free = [FreeVariable.parse(text) for text in args.free]
+    settings = SearchSettings(args.seed, args.evaluations)
+    if args.resume and args.journal is None:
+        raise UsageError("--resume continues a --journal FILE: give it")
+    executor: AbstractContextManager[Executor] = (
+        local_pool(capped_workers(args.workers))
+        if args.scheduler is None
+        else dask_executor(args.scheduler)
+    )
+    with executor as pool:
+        result = decide(
+            design,
+            requirements,
+            objective,
+            free_posture=args.free_posture,
+            free=free,
+            settings=settings,
+            executor=pool,
+            journal=args.journal,
+            resume=args.resume,
+        )
+    if args.json:
+        print_json(result.to_dict())
+    else:
+        print(render(result))
+    return 0
+
+
+def render(result: DecideResult) -> str:
+    """The answer as text: the best design, yours, and the conflict if any."""
+    free = ", ".join(f"{v.name} {v.lower:.4g}..{v.upper:.4g}" for v in result.variables)
+    lines = [
+        f"Decision: {result.objective.sense} {result.objective.label} over {free}",
+        f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
+        "",
+    ]
+    verdict = "meets every requirement" if result.feasible else "LEAST INFEASIBLE: meets not all"
+    lines += _design_block("Best design", result.best, result, verdict, binding=True)
+    lines += _design_block("Your design", result.yours, result, "", binding=False)
+    if result.conflict is not None:
+        lines += [f"No design meets every requirement: {result.conflict.description}."]
+    return "\n".join(lines).rstrip()
+
+
+def _design_block(
+    title: str, checked: CheckedDesign, result: DecideResult, verdict: str, binding: bool
+) -> list[str]:
+    lengths = ", ".join(f"{v:.4g}" for v in checked.design.lengths)
+    head = f"{title}: l = ({lengths}) m"
+    if checked.evaluation.error:
+        return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
+    value = checked.evaluation.values[result.objective.name]
+    head += f", {result.objective.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
+    rows = [_row(result, check, binding) for check in checked.checks]
+    width = [max((len(r[k]) for r in rows), default=0) for k in range(3)]
+    lines = [head]
+    for row in rows:
+        cells = "  ".join(cell.ljust(w) for cell, w in zip(row, width, strict=False))
+        lines.append(f"  {cells}  {row[3]}".rstrip())
+    return [*lines, ""]
+
+
+def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
+    if binding:
+        state = "binds" if check.binds else ("" if check.met else "NOT MET")
+    else:
+        state = "pass" if check.met else "FAIL"
+    limited = f" (limited by {check.limited_by})" if check.limited_by else ""
+    return (
+        result.requirements.describe(check.name),
+        format_value(check.name, check.value),
+        "margin " + format_margin(check),
+        state + limited,
+    )

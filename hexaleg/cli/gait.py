@@ -1,0 +1,191 @@
+"""``hexaleg gait``: one gait period of the design: torques, speeds, power, energy, limits."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+from hexaleg._io import atomic_write_text, check_output_file, check_output_folder
+from hexaleg._typing import GaitPattern, choices
+from hexaleg.cli.loads import add_payload_options, payload_from_args
+from hexaleg.cli.options import (
+    UsageError,
+    add_design_options,
+    add_output_options,
+    bounded_int,
+    design_from_args,
+)
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.spec import SAMPLES_RANGE, Gait
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
+
+DEFAULT = Gait()
+DESCRIPTION = (
+    "One gait period of the design (SI units: s, m, kg, N·m, rad/s, W, J): the body walks "
+    "at constant velocity, level, at its nominal height; standing feet stay put, swinging "
+    "feet follow a smooth lift-and-place path. Joint motion from the closed-form IK, "
+    "torques from Pinocchio's inverse dynamics on the free-flyer model with the standing "
+    "feet's forces split as in `loads`. Prints the peak and RMS torques, peak joint speeds "
+    "and power, the positive work and cost of transport per period, the ZMP margin, "
+    "whether the period is feasible, the max stride and the max speed within the ratings; "
+    "flags every joint over its rating."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    group = parser.add_argument_group("gait (defaults chosen for the default robot)")
+    group.add_argument(
+        "--pattern",
+        choices=choices(GaitPattern),
+        default=DEFAULT.pattern,
+        help="which legs swing together: three, two or one at a time (default tripod)",
+    )
+    for flag, metavar, what in (
+        ("--period", "S", "period T [s]"),
+        ("--stride", "M", "stride S, how far a standing foot moves relative to the body [m]"),
+        ("--step-height", "M", "step height H, the swinging foot's top above the ground [m]"),
+        ("--heading", "RAD", "direction of travel ψ in the body frame [rad] (0: ahead)"),
+    ):
+        name = flag[2:].replace("-", "_")
+        group.add_argument(
+            flag, type=float, metavar=metavar, help=f"{what} (default {getattr(DEFAULT, name):g})"
+        )
+    group.add_argument(
+        "--speed",
+        type=float,
+        metavar="M/S",
+        help="body speed v [m/s]: sets the period from the stride, T = S/(β·v)",
+    )
+    group.add_argument(
+        "--samples",
+        type=bounded_int(*SAMPLES_RANGE),
+        default=DEFAULT.samples,
+        metavar="N",
+        help=f"samples per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]} "
+        f"(default {DEFAULT.samples})",
+    )
+    add_payload_options(parser)
+    add_output_options(parser)
+    parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
+    parser.add_argument(
+        "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
+    )
+
+
+def gait_from_args(args: argparse.Namespace) -> Gait:
+    """The gait the options describe (validated)."""
+    if args.speed is not None and args.period is not None:
+        raise UsageError("--speed sets the period: give --speed or --period, not both")
+    changes = {
+        name: getattr(args, name)
+        for name in ("period", "stride", "step_height", "heading")
+        if getattr(args, name) is not None
+    }
+    gait = Gait(pattern=args.pattern, samples=args.samples, **changes)
+    return gait if args.speed is None else gait.with_speed(args.speed)
+
+
+def run(args: argparse.Namespace) -> int:
+    """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
+    design = design_from_args(args)
+    gait = gait_from_args(args)
+    payload = payload_from_args(args)
+    for path in (args.csv, args.html):  # refused before computing, not after
+        if path is not None:
+            check_output_file(path)
+    if args.plot is not None:
+        check_output_folder(args.plot)
+    model = HexapodModel(design)
+    analysis = analyze_gait(
+        design, gait, payload, distribution=args.distribution, friction=args.friction, model=model
+    )
+    written = []
+    if args.csv is not None:
+        written.append(_write_csv(analysis, Path(args.csv)))
+    if args.plot is not None:
+        written += _write_figures(analysis, Path(args.plot))
+    if args.html is not None:
+        from hexaleg.output.viewer.gait import write_gait_html
+
+        written.append(write_gait_html(model, analysis, args.html))
+    report_files(written)
+    if args.json:
+        print_json(analysis.to_dict())
+        return 0
+    print_table(lengths_title("Walking", design.lengths), rows(analysis))
+    return 0
+
+
+def _write_csv(analysis: GaitAnalysis, path: Path) -> Path:
+    import pandas as pd
+
+    table = pd.DataFrame(analysis.time_series())
+    return atomic_write_text(path, table.to_csv(index=False))
+
+
+def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:
+    from hexaleg.output.figures.gait import write_gait_figures
+    from hexaleg.swing.workspace import monte_carlo_workspace
+
+    design = analysis.design
+    cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
+    in_body = analysis.frames.points_in_body(cloud.points)
+    reach = dict(zip(analysis.legs, in_body, strict=True))
+    return write_gait_figures(analysis, out, reach)
+
+
+def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
+    """The text table's rows."""
+    gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
+    rows = [
+        (
+            "gait",
+            f"{gait.pattern} (β = {gait.duty_factor:.3g}), T = {gait.period:.4g} s, "
+            f"S = {gait.stride:.4g} m, H = {gait.step_height:.4g} m, "
+            f"ψ = {gait.heading:.4g} rad, {gait.samples} samples",
+        ),
+        ("body speed", f"{gait.speed:.4g} m/s"),
+        ("total mass", f"{analysis.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
+    ]
+    for j, joint in enumerate(LEG_JOINTS):
+        torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
+        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rows.append(
+            (
+                f"{joint}: peak / RMS torque",
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
+                + (", OVER RATING" if torque > rated_torque else ""),
+            )
+        )
+        rows.append(
+            (
+                f"{joint}: peak speed / power",
+                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{metrics.peak_power[joint]:.1f} W"
+                + (", OVER RATING" if speed > rated_speed else ""),
+            )
+        )
+    rows += [
+        ("positive work per period", f"{metrics.positive_work:.2f} J"),
+        ("cost of transport", f"{metrics.cost_of_transport:.4f}"),
+        ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m"),
+        ("feasible", "yes" if analysis.feasible else f"no: {analysis.violations[0]}"),
+    ]
+    if analysis.max_stride is not None:
+        stride = analysis.max_stride
+        rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_speed is not None:
+        limit = analysis.max_speed
+        at = (
+            ""
+            if math.isinf(limit.period)
+            else f" (T = {limit.period:.4g} s, S = {limit.stride:.4g} m)"
+        )
+        rows.append(("max speed", f"{limit.value:.4f} m/s{at}, limited by {limit.limited_by}"))
+    rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
+    return rows

@@ -1,0 +1,289 @@
+"""The front door of walking: :func:`analyze_gait` gives one design's gait period, measured.
+
+It walks the gait (:class:`~hexaleg.gait.walk.Walker`): foot paths and joint motion
+(:mod:`.trajectory`), constraints (:mod:`.feasibility`), inverse dynamics and the feet's
+forces (:mod:`.dynamics`), the ZMP (:mod:`.stability`) and the metrics (:mod:`.metrics`),
+then the max stride and max speed (:mod:`.limits`). The result keeps every time series a
+simulator or an optimizer needs: the joint trajectories (q, q̇, q̈), the planned
+torques and the feet's forces at each sample.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF, Distribution
+from hexaleg.design import HexapodDesign
+from hexaleg.gait.feasibility import Violation
+from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
+from hexaleg.gait.metrics import GaitMetrics, gait_metrics
+from hexaleg.gait.spec import Gait
+from hexaleg.gait.stability import zero_moment_points, zmp_margins
+from hexaleg.gait.trajectory import LegFrames
+from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.ratings import OverRating, over_rating
+
+
+@dataclass(frozen=True)
+class GaitAnalysis:
+    """One design walking one gait period: time series, metrics, feasibility and limits.
+
+    Arrays are per sample (N, at t_k = k·T/N) and per leg (6, ``legs`` order).
+
+    Attributes:
+        design: The design.
+        gait: The gait.
+        payload: The payload carried.
+        distribution: How the standing feet share the load.
+        mass: Total mass, payload included [kg].
+        legs: Leg names.
+        frames: The legs' roots and nominal footholds in the body frame (from the model).
+        times: t_k (N,) [s].
+        stance: Whether each foot stands (N, 6).
+        joint_angles: q (N, 6, 3) [rad], (root, hip, knee) per leg.
+        joint_velocities: q̇ (N, 6, 3) [rad/s].
+        joint_accelerations: q̈ (N, 6, 3) [rad/s²].
+        configurations: Pinocchio's q of the free-flyer model (N, nq) [m, -, rad]: the
+            body's position (world frame, the ground at z = 0), its orientation
+            (identity: it never rotates) and the joints.
+        generalized_velocities: Pinocchio's v (N, nv) [m/s, rad/s] (the body's in its
+            own frame, which stays level).
+        generalized_accelerations: Pinocchio's a (N, nv) [m/s², rad/s²].
+        base_velocity: The body's constant velocity v·u, world frame (3,) [m/s].
+        joint_torques: τ (N, 6, 3) [N·m].
+        foot_forces: Each foot's force from the ground (N, 6, 3), ground frame [N]
+            (zero while it swings).
+        feet: Foot positions (N, 6, 3) in the body frame [m].
+        zmp: The zero-moment point (N, 2) [m], ground frame (its margin:
+            :attr:`zmp_margin`, computed on first use).
+        metrics: Peaks, RMS, positive work, cost of transport.
+        violations: Every constraint the period breaks, earliest first (none: feasible).
+        max_stride: The largest feasible stride (None if not computed).
+        max_speed: The fastest walk within the ratings (None if not computed).
+
+    """
+
+    design: HexapodDesign
+    gait: Gait
+    payload: Payload
+    distribution: Distribution
+    mass: float
+    legs: tuple[str, ...]
+    frames: LegFrames
+    times: ArrayF
+    stance: npt.NDArray[np.bool_]
+    joint_angles: ArrayF
+    joint_velocities: ArrayF
+    joint_accelerations: ArrayF
+    configurations: ArrayF
+    generalized_velocities: ArrayF
+    generalized_accelerations: ArrayF
+    base_velocity: ArrayF
+    joint_torques: ArrayF
+    foot_forces: ArrayF
+    feet: ArrayF
+    zmp: ArrayF
+    metrics: GaitMetrics
+    violations: tuple[Violation, ...]
+    max_stride: StrideLimit | None
+    max_speed: SpeedLimit | None
+
+    @cached_property
+    def zmp_margin(self) -> ArrayF:
+        """The ZMP's signed distance inside the standing feet's polygon (N,) [m]."""
+        body = self.configurations[:, None, :3] - np.array([0.0, 0.0, self.frames.height])
+        return zmp_margins(self.zmp, self.feet + body, self.stance)
+
+    @property
+    def min_zmp_margin(self) -> float:
+        """The smallest ZMP margin over the period [m] (positive: inside throughout)."""
+        return float(self.zmp_margin.min())
+
+    @property
+    def feasible(self) -> bool:
+        """Whether the period breaks no constraint."""
+        return not self.violations
+
+    @property
+    def over_rating(self) -> tuple[OverRating, ...]:
+        """Each joint whose peak |τ| or |q̇| exceeds its rating, with when it peaks."""
+        places = [f"t = {t:.3f} s" for t in self.times]
+        design = self.design
+        return over_rating(
+            self.legs, self.joint_torques, design.rated_torques, places
+        ) + over_rating(self.legs, self.joint_velocities, design.rated_speeds, places, "speed")
+
+    def time_series(self) -> dict[str, ArrayF]:
+        """The time series as named columns (N,) each.
+
+        ``t`` [s]; per leg and joint ``<leg>_<joint>_q`` [rad], ``_qd`` [rad/s], ``_qdd``
+        [rad/s²], ``_tau`` [N·m]; per leg ``<leg>_stance`` (1 standing, 0 swinging) and
+        its foot's force ``<leg>_fx``, ``_fy``, ``_fz`` [N], ground frame.
+        """
+        columns = {"t": self.times}
+        for i, leg in enumerate(self.legs):
+            for j, joint in enumerate(LEG_JOINTS):
+                for suffix, values in (
+                    ("q", self.joint_angles),
+                    ("qd", self.joint_velocities),
+                    ("qdd", self.joint_accelerations),
+                    ("tau", self.joint_torques),
+                ):
+                    columns[f"{leg}_{joint}_{suffix}"] = values[:, i, j]
+            columns[f"{leg}_stance"] = self.stance[:, i].astype(float)
+            for axis, k in (("x", 0), ("y", 1), ("z", 2)):
+                columns[f"{leg}_f{axis}"] = self.foot_forces[:, i, k]
+        return columns
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready summary (SI: s, m, kg, N·m, rad/s, W, J); the time series are left out."""
+        return {
+            "design": self.design.as_dict(),
+            "gait": self.gait.to_dict(),
+            "payload": {
+                "mass": self.payload.mass,
+                "position": self.payload.position_on(self.design),
+            },
+            "distribution": self.distribution,
+            "mass": self.mass,
+            **self.metrics.to_dict(),
+            "min_zmp_margin": self.min_zmp_margin,
+            "feasible": self.feasible,
+            "violations": [v.to_dict() for v in self.violations],
+            "max_stride": None if self.max_stride is None else self.max_stride.value,
+            "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
+            "over_rating": [o.to_dict() for o in self.over_rating],
+            "units": {
+                "period, time": "s",
+                "stride, step_height, max_stride, min_zmp_margin, position": "m",
+                "heading": "rad",
+                "speed, max_speed": "m/s",
+                "mass": "kg",
+                "peak_torque, rms_torque": "N·m",
+                "peak_speed": "rad/s",
+                "peak_power": "W",
+                "positive_work": "J",
+                "cost_of_transport, duty_factor": "1",
+            },
+        }
+
+
+def analyze_gait(
+    design: HexapodDesign,
+    gait: Gait | None = None,
+    payload: Payload | None = None,
+    *,
+    distribution: Distribution = "min-norm",
+    friction: float = DEFAULT_FRICTION,
+    model: HexapodModel | None = None,
+    limits: bool = True,
+    speed: bool = False,
+    gravity: float = GRAVITY,
+) -> GaitAnalysis:
+    """One gait period of ``design``: time series, metrics, feasibility, max stride and speed.
+
+    Args:
+        design: The design.
+        gait: The gait (:class:`~hexaleg.gait.spec.Gait`'s defaults if omitted).
+        payload: A point mass on the body (none by default).
+        distribution: ``"min-norm"`` (default) or ``"min-torque"`` forces.
+        friction: Friction coefficient μ [-] (min-torque forces).
+        model: The design's Pinocchio model, if already built.
+        limits: Also compute the max stride and max speed (the slower part).
+        speed: Without ``limits``, still compute the max speed, at the gait's stride only
+            (zero if it is infeasible): with min-norm forces that needs no search and no
+            more inverse dynamics.
+        gravity: Gravitational acceleration g [m/s²].
+
+    """
+    gait = Gait() if gait is None else gait
+    model = HexapodModel(design) if model is None else model
+    walker = Walker(model, gait, payload, distribution, friction, gravity)
+    walk = walker.stride(gait.stride)
+    loads = walker.loads(gait.stride, walk, gait.period)
+    known = (walk, loads) if distribution == "min-norm" else None
+    stride_limit = max_stride(walker) if limits else None
+    speed_limit = (
+        max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
+    )
+    return _analysis(walker, walk, loads, stride_limit, speed_limit)
+
+
+def _analysis(
+    walker: Walker,
+    walk: Stride,
+    loads: Loads,
+    stride_limit: StrideLimit | None,
+    speed_limit: SpeedLimit | None,
+) -> GaitAnalysis:
+    """The result of a walk: its time series at the gait's period, metrics and limits."""
+    gait, period = walker.gait, walker.gait.period
+    torques, velocities = loads.split.torques(period), walk.motion.velocity / period
+    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
+    travel = loads.rnea.configurations[:, :2]  # the body's origin over the ground
+    weight_travel = walker.robot.mass * walker.gravity * gait.stride / walker.phases.duty_factor
+    return GaitAnalysis(
+        design=walker.model.design,
+        gait=gait,
+        payload=walker.payload,
+        distribution=walker.distribution,
+        mass=walker.robot.mass,
+        legs=walker.frames.legs,
+        frames=walker.frames,
+        times=walker.times(period),
+        stance=walker.phases.stance,
+        joint_angles=walk.motion.angles,
+        joint_velocities=velocities,
+        joint_accelerations=walk.motion.acceleration / period**2,
+        configurations=loads.rnea.configurations,
+        generalized_velocities=loads.rnea.velocities / period,
+        generalized_accelerations=loads.rnea.accelerations / period**2,
+        base_velocity=gait.speed * walker.heading,
+        joint_torques=torques,
+        foot_forces=loads.split.forces(period),
+        feet=walk.paths.position,
+        zmp=zero_moment_points(wrench, walker.frames.height) + travel,
+        metrics=gait_metrics(torques, velocities, period, weight_travel),
+        violations=walk.violations,
+        max_stride=stride_limit,
+        max_speed=speed_limit,
+    )
+
+
+STUDY_GAIT = Gait()
+"""The gait every design of a study walks: :class:`Gait`'s defaults."""
+
+
+def gait_study_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, float | str]:
+    """A study row's walking columns: ``design`` walking :data:`STUDY_GAIT`, no payload.
+
+    Peak torques per joint and over all three (``gait_peak_torque``) [N·m], positive work
+    [J] and cost of transport [-] are NaN when the period is infeasible (``gait_feasible``
+    false); the max speed [m/s] is given either way, at the gait's stride (zero if it is
+    infeasible), with what limits it. The max stride is left out: its search would cost
+    more than the rest of the row.
+    """
+    walked = analyze_gait(design, STUDY_GAIT, model=model, limits=False, speed=True)
+    assert walked.max_speed is not None
+    metrics, ok = walked.metrics, walked.feasible
+    columns: dict[str, float | str] = {
+        f"gait_peak_{joint}_torque": value if ok else math.nan
+        for joint, value in metrics.peak_torque.items()
+    }
+    return columns | {
+        "gait_peak_torque": max(metrics.peak_torque.values()) if ok else math.nan,
+        "gait_positive_work": metrics.positive_work if ok else math.nan,
+        "gait_cost_of_transport": metrics.cost_of_transport if ok else math.nan,
+        "gait_feasible": ok,
+        "gait_max_speed": walked.max_speed.value,
+        "gait_max_speed_limited_by": str(walked.max_speed.limited_by),
+    }

@@ -1,0 +1,218 @@
+"""Inverse dynamics of a gait period on the free-flyer model, and the standing feet's forces.
+
+At each sample, Pinocchio's RNEA on the free-flyer model (the design's URDF, the payload a
+point mass fixed to the body) gives the generalized forces of the motion: base velocity
+v·u, base acceleration 0, the legs' joint motion. The standing feet's forces f_i (ground
+frame, at the foot frame's origin) balance its six base rows,
+Σ J_i,baseᵀ f_i = RNEA[0:6], and the joint torques are τ = RNEA[6:] − Σ J_i,jointsᵀ f_i;
+swinging legs carry their own inertia and gravity. The split is the minimum-norm one
+(:func:`~hexaleg.statics.forces.min_norm_forces`) or the min-torque QP with friction of
+the statics (:func:`~hexaleg.statics.forces.min_torque_forces`), on the equilibrium rows
+of :func:`~hexaleg.statics.forces.equilibrium` written about the body's origin.
+
+Every joint velocity is (1/T)·(a derivative by the phase) and every acceleration (1/T²)·(…),
+so RNEA = g(q) + (M(q)·q'' + C(q, q')·q')/T² exactly: a static part and an inertial part
+over T². Both are computed once (Pinocchio's generalized gravity, and RNEA without
+gravity on the phase derivatives); the minimum-norm forces and the torques are linear in
+them, so one evaluation serves every period of the same stride.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg._typing import ArrayF
+from hexaleg.gait.jacobian import transpose_times
+from hexaleg.gait.pattern import GaitPhases
+from hexaleg.gait.trajectory import JointMotion, LegFrames
+from hexaleg.kinematics import foot_jacobian
+from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.forces import Payload, equilibrium, min_norm_forces, min_torque_forces
+
+
+@dataclass(frozen=True)
+class GeneralizedForces:
+    """RNEA along the period, split as static + inertial/T² (N, nv).
+
+    Attributes:
+        configurations: q at each sample (N, nq), Pinocchio's layout [m, -, rad].
+        velocities: dq/dφ (N, nv) [m, rad]: divide by T for v.
+        accelerations: d²q/dφ² (N, nv) [m, rad]: divide by T² for a.
+        static: g(q): what holds each pose against gravity [N, N·m].
+        inertial: M(q)·q'' + C(q, q')·q' with the phase derivatives [N·s², N·m·s²].
+
+    """
+
+    configurations: ArrayF
+    velocities: ArrayF
+    accelerations: ArrayF
+    static: ArrayF
+    inertial: ArrayF
+
+
+class LoadedRobot:
+    """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
+
+    The payload is a point mass added to the body's inertia (its weight and, were the body
+    to accelerate, its inertia); gravity g [m/s²] points along −z. Without a payload, at
+    the model's own gravity, the model itself serves (a study's designs are not copied).
+
+    Args:
+        model: The robot.
+        payload: A point mass on the body.
+        gravity: Gravitational acceleration g [m/s²].
+
+    """
+
+    def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
+        self.gravity = np.array([0.0, 0.0, -gravity])
+        own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
+        self.model = model.model if own else pin.Model(model.model)
+        if payload.mass > 0:
+            base = int(self.model.getJointId("root_joint"))
+            point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
+            self.model.inertias[base] = self.model.inertias[base] + point
+        self.model.gravity.linear = self.gravity
+        self.data = model.data if own else self.model.createData()
+        self.mass = float(pin.computeTotalMass(self.model))
+        self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
+        self.v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
+        self.height = float(model.nominal_base_pose().translation[2])
+
+    def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
+        """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
+
+        Args:
+            motion: Joint angles and their phase derivatives (N, 6, 3), ``leg_names`` order.
+            base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
+
+        """
+        count, model, data = len(motion.angles), self.model, self.data
+        q = np.zeros((count, model.nq))
+        q[:, :3] = np.arange(count)[:, None] / count * base_travel
+        q[:, 2] += self.height
+        q[:, 6] = 1.0  # level: the identity quaternion (x, y, z, w)
+        q[:, self.q_index] = motion.angles
+        velocity = np.zeros((count, model.nv))
+        velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
+        velocity[:, self.v_index] = motion.velocity
+        acceleration = np.zeros((count, model.nv))
+        acceleration[:, self.v_index] = motion.acceleration
+        static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
+        for k in range(count):
+            static[k] = pin.computeGeneralizedGravity(model, data, q[k])
+        model.gravity.linear = np.zeros(3)
+        try:
+            for k in range(count):
+                inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
+        finally:
+            model.gravity.linear = self.gravity
+        return GeneralizedForces(q, velocity, acceleration, static, inertial)
+
+
+@dataclass(frozen=True)
+class ForceSplit:
+    """Foot forces and joint torques along the period, as static + inertial/T².
+
+    Attributes:
+        static_forces: Each foot's force from the ground (N, 6, 3) [N], ground frame
+            (zero while it swings).
+        inertial_forces: Their inertial parts (N, 6, 3) [N·s²].
+        static_torques: Each joint's torque (N, 6, 3) [N·m].
+        inertial_torques: Their inertial parts (N, 6, 3) [N·m·s²].
+
+    """
+
+    static_forces: ArrayF
+    inertial_forces: ArrayF
+    static_torques: ArrayF
+    inertial_torques: ArrayF
+
+    def forces(self, period: float) -> ArrayF:
+        """Foot forces (N, 6, 3) at period T [s] [N]."""
+        return self.static_forces + self.inertial_forces / period**2
+
+    def torques(self, period: float) -> ArrayF:
+        """Joint torques (N, 6, 3) at period T [s] [N·m]."""
+        return self.static_torques + self.inertial_torques / period**2
+
+
+def stance_indices(phases: GaitPhases) -> npt.NDArray[np.intp]:
+    """The standing legs' indices at each sample (N, 6β), in leg order."""
+    stance = phases.stance
+    return np.nonzero(stance)[1].reshape(len(stance), -1)
+
+
+def leg_rows(model: HexapodModel, rows: ArrayF) -> ArrayF:
+    """The legs' joint rows (N, 6, 3) of generalized forces (N, nv), ``leg_names`` order."""
+    v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
+    return rows[:, v_index]
+
+
+def min_norm_split(
+    model: HexapodModel,
+    frames: LegFrames,
+    phases: GaitPhases,
+    feet: ArrayF,
+    motion: JointMotion,
+    rnea: GeneralizedForces,
+) -> ForceSplit:
+    """The minimum-norm foot forces balancing the base rows, and the torques that follow.
+
+    Args:
+        model: The robot.
+        frames: The legs.
+        phases: Who stands when.
+        feet: Foot positions (N, 6, 3) in the body frame [m].
+        motion: Joint angles (N, 6, 3).
+        rnea: The generalized forces.
+
+    """
+    count = len(feet)
+    standing = stance_indices(phases)
+    rows = np.arange(count)[:, None]
+    a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
+    both = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]), axis=-1)  # (N, 6, 2)
+    split = min_norm_forces(a, both).reshape(count, -1, 3, 2)
+    forces = np.zeros((count, 6, 3, 2))
+    forces[rows, standing] = split
+    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (2, N, 6, 3)
+    pushed = transpose_times(motion.partials, in_roots)  # Jᵀf per leg
+    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
+    torques = joints - pushed
+    return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+
+
+def min_torque_split(
+    model: HexapodModel,
+    frames: LegFrames,
+    phases: GaitPhases,
+    feet: ArrayF,
+    motion: JointMotion,
+    rnea: GeneralizedForces,
+    period: float,
+    friction: float,
+) -> ForceSplit:
+    """The statics' min-torque QP at each sample, at period T [s] (no inertial part)."""
+    count, rated = len(feet), np.array(model.design.rated_torques)
+    generalized = rnea.static + rnea.inertial / period**2
+    joints = leg_rows(model, generalized)
+    in_roots = foot_jacobian(frames.lengths, motion.angles)
+    jacobian = np.einsum("lij,nljk->nlik", frames.root_rotations, in_roots)  # body frame
+    forces = np.zeros((count, 6, 3))
+    for k, legs in enumerate(stance_indices(phases)):
+        a, _ = equilibrium(feet[k, legs], np.zeros(3), 0.0, np.zeros(3))
+        blocks = np.zeros((3 * len(legs), 3 * len(legs)))
+        for i, leg in enumerate(legs):
+            blocks[3 * i : 3 * i + 3, 3 * i : 3 * i + 3] = jacobian[k, leg]
+        solved = min_torque_forces(
+            a, generalized[k, :6], blocks, joints[k, legs].ravel(), rated, friction
+        )
+        forces[k, legs] = solved.reshape(-1, 3)
+    pushed = np.einsum("nlij,nli->nlj", jacobian, forces)
+    zero = np.zeros_like(forces)
+    return ForceSplit(forces, zero, joints - pushed, zero)

@@ -1,0 +1,239 @@
+"""How far and how fast a design can walk a gait: its max stride and its max speed.
+
+- Max stride: the largest S (at the gait's step height, pattern, heading and the design's
+  posture) for which the period is feasible (:mod:`hexaleg.gait.feasibility`). Joint
+  angles depend on the phase only, not on the period, so neither does the max stride. It
+  is the first crossing from S = 0 (:func:`~hexaleg.numerics.bracketing.first_crossings`):
+  strides are scanned up to one no foot reaches (:func:`_out_of_reach`), and each
+  constraint that breaks in the first broken bracket is solved on its own worst sample's
+  margin to :data:`STRIDE_TOLERANCE`.
+- Max speed: the largest v = S/(β·T) at which every joint's peak |τ| and |q̇| stays within
+  its rating and the period is feasible: a shorter period at the gait's stride S, or, if
+  that stride is infeasible, at the max stride. (Not the faster of the two: at a max
+  stride bound by reach a leg straightens, its joint speeds are unbounded and the speed
+  there is zero; the search would cost more than the walk.) With minimum-norm forces every
+  torque is τ_s + τ_i/T² and every speed θ'/T exactly, so the shortest period is solved
+  joint by joint in closed form; min-torque forces are bisected on 1/T² to
+  :data:`SPEED_TOLERANCE`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF
+from hexaleg.cause import Cause
+from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
+from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.kinematics import leg_solution
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.numerics.bracketing import TIE_TOLERANCE, IndexArray, first_crossings
+
+STRIDE_TOLERANCE = 1e-9
+"""Width of the max stride's final bracket [m]: the value is feasible, value + this is not."""
+SPEED_TOLERANCE = 1e-6
+"""Relative width of the final bracket of a min-torque max speed, on 1/T² [-]."""
+SCAN_STEPS = 32
+"""Strides scanned up to where no foot reaches (10 cm apart for a 1 m leg) before refining."""
+SCAN_CHUNKS = 4
+"""The scan runs in this many rounds of strides tried at once, stopping at the first break."""
+
+
+@dataclass(frozen=True)
+class StrideLimit:
+    """The largest feasible stride.
+
+    Attributes:
+        value: S_max [m] (0 if even a stride of :data:`STRIDE_TOLERANCE` breaks a constraint).
+        limited_by: The constraint that breaks just beyond it.
+
+    """
+
+    value: float
+    limited_by: Cause
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: ``value`` [m] and what limits it."""
+        return {"value": self.value, "limited_by": self.limited_by.to_dict()}
+
+
+@dataclass(frozen=True)
+class SpeedLimit:
+    """The fastest the design walks the gait's pattern within its ratings.
+
+    Attributes:
+        value: v_max [m/s] (0 if no period works).
+        stride: The stride it is reached at [m].
+        period: The period it is reached at [s] (infinite if v_max = 0).
+        limited_by: What binds there: a joint's torque or speed at its rating, or the
+            constraint that makes the period infeasible.
+
+    """
+
+    value: float
+    stride: float
+    period: float
+    limited_by: Cause
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: ``value`` [m/s] and what limits it."""
+        return {"value": self.value, "limited_by": self.limited_by.to_dict()}
+
+
+def max_stride(walker: Walker) -> StrideLimit:
+    """The largest feasible stride of ``walker``'s gait (see the module docstring)."""
+    if not feasible(_margins(walker, np.array([0.0]))).all():
+        return StrideLimit(0.0, _first_cause(walker, 0.0))
+
+    def worst(_: IndexArray, strides: ArrayF) -> ArrayF:  # broken below −TOLERANCE
+        every = _margins(walker, strides) + TOLERANCE
+        smallest: ArrayF = every.reshape(len(strides), -1).min(axis=1, keepdims=True)
+        return smallest
+
+    reach = _out_of_reach(walker)
+    found = first_crossings(
+        worst, np.array([reach]), SCAN_STEPS, SCAN_CHUNKS, STRIDE_TOLERANCE / reach, False
+    )
+    if found.which[0] < 0:
+        return StrideLimit(reach, Cause("range"))
+    value = float(found.t[0])
+    return StrideLimit(value, _first_cause(walker, value + STRIDE_TOLERANCE))
+
+
+def _out_of_reach(walker: Walker) -> float:
+    """A stride [m] no gait reaches.
+
+    A standing foot ends S/2 from its nominal foothold, at least S/2 − d from its leg's
+    root (d the foothold's distance from the root), which must stay within l1 + l2 + l3:
+    the leg nearest its foothold bounds S by 2·(d + l).
+    """
+    frames = walker.frames
+    offsets = np.linalg.norm(frames.footholds - frames.root_positions, axis=1)
+    return float(2.0 * (offsets.min() + sum(frames.lengths)))
+
+
+def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
+    """Every constraint's margin (M, N, 6, 9) at each stride, the joint angles of all at once."""
+    shapes, frames = walker.shapes, walker.frames
+    along = strides[:, None, None, None] * shapes.along[None, ..., None] * walker.heading
+    lift = walker.gait.step_height * shapes.lift[..., None] * np.array([0.0, 0.0, 1.0])
+    angles, reach = leg_solution(frames.lengths, frames.to_roots(frames.footholds + along + lift))
+    return walker.margins(angles, reach)
+
+
+def _feasible(walker: Walker, strides: ArrayF) -> npt.NDArray[np.bool_]:
+    """Whether each stride's period is feasible (M,)."""
+    return feasible(_margins(walker, strides))
+
+
+def _first_cause(walker: Walker, stride: float) -> Cause:
+    """The first constraint, in leg and constraint order, that stride S [m] breaks anywhere."""
+    margins = _margins(walker, np.array([stride]))[0]  # (N, 6, 9)
+    broken = (margins < -TOLERANCE).any(axis=0).ravel()
+    if not broken.any():
+        return Cause("range")
+    causes = [cause for leg in walker.frames.legs for cause in leg_causes(leg)]
+    return causes[int(np.argmax(broken))]
+
+
+def max_speed(
+    walker: Walker,
+    stride_limit: StrideLimit | None = None,
+    at_gait_stride: tuple[Stride, Loads] | None = None,
+    fallback: bool = True,
+) -> SpeedLimit:
+    """The fastest walk within the ratings, at the gait's stride or at the max stride.
+
+    The max stride only if the gait's own stride is infeasible (see the module docstring).
+
+    Args:
+        walker: The robot and its gait.
+        stride_limit: The gait's max stride, if already known (needed only when the
+            gait's own stride is infeasible).
+        at_gait_stride: The motion and min-norm loads at the gait's stride, if already known.
+        fallback: Walk the max stride when the gait's stride is infeasible; if false, the
+            speed is then zero, limited by the stride's first violation.
+
+    """
+    stride = walker.gait.stride
+    walk = walker.stride(stride) if at_gait_stride is None else at_gait_stride[0]
+    found = walk.violations
+    if found and not fallback:
+        return SpeedLimit(0.0, stride, math.inf, found[0].cause)
+    if found:
+        stride_limit = max_stride(walker) if stride_limit is None else stride_limit
+        if stride_limit.value == 0:
+            return SpeedLimit(0.0, stride, math.inf, found[0].cause)
+        stride, walk, at_gait_stride = stride_limit.value, walker.stride(stride_limit.value), None
+        found = walk.violations
+        if found:  # the max stride is feasible by construction; kept for round-off
+            return SpeedLimit(0.0, stride, math.inf, found[0].cause)
+    speed_room = _speed_room(walker, walk)
+    if walker.distribution != "min-norm":
+        return _bisected_speed(walker, stride, walk, speed_room)
+    loads = walker.loads(stride, walk, 1.0) if at_gait_stride is None else at_gait_stride[1]
+    return _closed_form_speed(walker, stride, loads, speed_room)
+
+
+def _speed_room(walker: Walker, walk: Stride) -> ArrayF:
+    """Each joint's largest w = 1/T² with |θ'|·√w ≤ q̇_rated (N, 6, 3) [1/s²]."""
+    _, rated_speed = walker.rated()
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return (rated_speed / np.abs(walk.motion.velocity)) ** 2
+
+
+def _closed_form_speed(
+    walker: Walker, stride: float, loads: Loads, speed_room: ArrayF
+) -> SpeedLimit:
+    """Largest w = 1/T² with |τ_s + w·τ_i| ≤ τ_rated and |θ'|·√w ≤ q̇_rated, joint by joint."""
+    rated_torque, _ = walker.rated()
+    static, inertial = loads.split.static_torques, loads.split.inertial_torques
+    with np.errstate(divide="ignore", invalid="ignore"):
+        room = np.where(
+            inertial > 0, (rated_torque - static) / inertial, (rated_torque + static) / -inertial
+        )
+    room = np.where(inertial != 0, room, np.inf)
+    room = np.where(np.abs(static) > rated_torque, 0.0, room)
+    return _limit(walker, stride, room, speed_room)
+
+
+def _limit(walker: Walker, stride: float, torque_room: ArrayF, speed_room: ArrayF) -> SpeedLimit:
+    """The speed limit from each joint's largest w = 1/T² (N, 6, 3) by torque and by speed."""
+    rooms = np.nan_to_num(np.stack((torque_room, speed_room)), nan=0.0)  # (2, N, 6, 3)
+    rooms = np.moveaxis(rooms, 1, -1)  # (kind, leg, joint, sample): ties go in leg order
+    least = float(rooms.min())
+    tied = rooms <= least + TIE_TOLERANCE * max(abs(least), 1e-300)  # mirror legs tie
+    kind, leg, joint, _ = np.unravel_index(int(np.argmax(tied)), rooms.shape)
+    w = max(least, 0.0)
+    cause = Cause(("torque", "speed")[kind], walker.frames.legs[leg], LEG_JOINTS[joint])
+    period = float("inf") if w == 0 else float(1.0 / np.sqrt(w))
+    return SpeedLimit(float(stride * np.sqrt(w) / walker.phases.duty_factor), stride, period, cause)
+
+
+def _bisected_speed(walker: Walker, stride: float, walk: Stride, speed_room: ArrayF) -> SpeedLimit:
+    """Min-torque forces: bisect w = 1/T² between 0 and the speed ratings' bound."""
+    rated_torque, _ = walker.rated()
+    bound = float(np.nan_to_num(np.min(speed_room), nan=0.0))
+    rnea = walker.generalized_forces(stride, walk)  # the same at every period
+
+    def ratios(w: float) -> ArrayF:
+        period = math.inf if w == 0 else 1.0 / math.sqrt(w)
+        torques = walker.loads(stride, walk, period, rnea).split.torques(period)
+        return np.abs(torques) / rated_torque
+
+    if ratios(bound).max() <= 1:
+        return _limit(walker, stride, np.full_like(speed_room, np.inf), speed_room)
+    low, high = 0.0, bound
+    if ratios(low).max() > 1:
+        high = 0.0
+    while high - low > SPEED_TOLERANCE * bound:
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if ratios(middle).max() <= 1 else (low, middle)
+    beyond = ratios(high)
+    room = np.where(beyond >= beyond.max(), low, np.inf)  # the joint that breaks first
+    return _limit(walker, stride, room, np.full_like(speed_room, np.inf))

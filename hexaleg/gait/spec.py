@@ -1,0 +1,122 @@
+"""What a gait is: the pattern, period, stride, step height, heading and sampling of one period.
+
+The body moves at constant velocity v = S / (β·T) along the heading ψ (body frame),
+level, at its nominal height, never rotating; S is how far a foot moves relative to the
+body while it stands, β the pattern's duty factor (:mod:`hexaleg.gait.pattern`).
+
+Defaults, chosen for the default robot (the paper's 0.2/0.4/0.4 m leg on the 1.0 × 0.6 m,
+60 kg body, 84 kg in all, rated 60/150/120 N·m and 3 rad/s): a tripod, period T = 2 s,
+stride S = 0.3 m, step height H = 0.1 m, straight ahead, 200 samples. The stride is about
+half that robot's max stride (0.62 m at H = 0.1 m, where a front foot runs out of reach),
+so every leg keeps inside its stance limits with room to spare; the period makes
+v = 0.3 m/s, a construction robot's walking pace, at which the fastest joint (a knee, in
+swing) turns at 2.1 of its 3 rad/s. The hips set the limit: a tripod's lone middle leg holds
+nearly half the robot's weight, 146 of the hips' 150 N·m, so this robot walks the tripod at
+up to 0.41 m/s and without payload (30 kg take the hips to 201 N·m; the tetrapod holds them
+to 125 N·m). A step height of 0.1 m clears rubble of a brick's height. 200 samples resolve
+the swing's fastest change (the tripod's swing lasts 100 of them).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+from typing import Any
+
+from hexaleg._checks import require_in_range
+from hexaleg._typing import GaitPattern, require_choice
+from hexaleg.exceptions import DesignError
+from hexaleg.gait.pattern import duty_factor
+
+PERIOD_RANGE = (0.05, 1000.0)
+"""Allowed gait period T [s]."""
+STRIDE_RANGE = (1e-4, 100.0)
+"""Allowed stride S [m]."""
+STEP_HEIGHT_RANGE = (0.0, 100.0)
+"""Allowed step height H [m]."""
+SPEED_RANGE = (1e-4, 100.0)
+"""Allowed body speed v [m/s] (``--speed``)."""
+SAMPLES_RANGE = (12, 100_000)
+"""Allowed samples N per period."""
+
+
+@dataclass(frozen=True)
+class Gait:
+    """One gait period, as walked by every design it is applied to.
+
+    Attributes:
+        pattern: ``"tripod"``, ``"tetrapod"`` or ``"wave"`` (:mod:`hexaleg.gait.pattern`).
+        period: Period T [s].
+        stride: Stride S [m]: how far a standing foot moves relative to the body.
+        step_height: Step height H [m]: the swing foot's highest point above the ground.
+        heading: Direction of travel ψ in the body frame [rad] (0: straight ahead, x).
+        samples: Samples N per period, at t_k = k·T/N, k = 0 … N−1.
+
+    """
+
+    pattern: GaitPattern = "tripod"
+    period: float = 2.0
+    stride: float = 0.3
+    step_height: float = 0.1
+    heading: float = 0.0
+    samples: int = 200
+
+    def __post_init__(self) -> None:
+        require_choice("pattern", self.pattern, GaitPattern)
+        for name, (lower, upper, unit) in {
+            "period": (*PERIOD_RANGE, "s"),
+            "stride": (*STRIDE_RANGE, "m"),
+            "step_height": (*STEP_HEIGHT_RANGE, "m"),
+            "heading": (-math.pi, math.pi, "rad"),
+        }.items():
+            object.__setattr__(
+                self, name, require_in_range(name, getattr(self, name), lower, upper, unit)
+            )
+        samples = self.samples
+        if isinstance(samples, bool) or not isinstance(samples, int):
+            raise DesignError("samples", samples, "must be an integer")
+        if not SAMPLES_RANGE[0] <= samples <= SAMPLES_RANGE[1]:
+            raise DesignError(
+                "samples", samples, f"must lie in [{SAMPLES_RANGE[0]}, {SAMPLES_RANGE[1]}]"
+            )
+
+    @property
+    def duty_factor(self) -> float:
+        """β: the fraction of the period each foot stands [-]."""
+        return duty_factor(self.pattern)
+
+    @property
+    def speed(self) -> float:
+        """Body speed v = S / (β·T) [m/s]."""
+        return self.stride / (self.duty_factor * self.period)
+
+    def with_speed(self, speed: float) -> Gait:
+        """The same stride at body speed ``speed`` [m/s]: period T = S / (β·v)."""
+        speed = require_in_range("speed", speed, *SPEED_RANGE, "m/s")
+        period = self.stride / (self.duty_factor * speed)
+        if not PERIOD_RANGE[0] <= period <= PERIOD_RANGE[1]:
+            low = self.stride / (self.duty_factor * PERIOD_RANGE[1])
+            high = self.stride / (self.duty_factor * PERIOD_RANGE[0])
+            raise DesignError(
+                "speed",
+                speed,
+                f"must lie in [{low:.4g}, {high:.4g}] [m/s] at stride {self.stride:g} m",
+            )
+        return replace(self, period=period)
+
+    def replace(self, **changes: Any) -> Gait:
+        """Copy with some fields changed (validated again)."""
+        return replace(self, **changes)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form, with the duty factor and speed it implies (s, m, rad, m/s)."""
+        return {
+            "pattern": self.pattern,
+            "duty_factor": self.duty_factor,
+            "period": self.period,
+            "stride": self.stride,
+            "step_height": self.step_height,
+            "heading": self.heading,
+            "speed": self.speed,
+            "samples": self.samples,
+        }

@@ -1,0 +1,231 @@
+"""Foot paths of a gait period and the joint motion that follows them (closed-form IK).
+
+Body frame: x forward, y left, z up, at the body's centre, level at its nominal height;
+u = (cos ψ, sin ψ, 0) is the heading. Each leg's nominal foothold P (its foot at the
+nominal stance) anchors its path. With φ = t/T the phase of the period:
+
+- standing, at stance phase σ ∈ [0, 1): p = P + S·(1/2 − σ)·u, fixed in the world while
+  the body moves at v = S/(β·T) (it goes from P + (S/2)·u to P − (S/2)·u);
+- swinging, at swing phase s ∈ [0, 1): in the world, from its lift-off point p0 to its
+  touchdown point p1 = p0 + v·T·u, horizontally p0 + (p1 − p0)·h(s) with
+  h(s) = 10s³ − 15s⁴ + 6s⁵, at height H·64·s³(1 − s)³ above the ground. In the body
+  frame that is p = P + S·(−1/2 + h(s)/β − (1 − β)·s/β)·u + H·64·s³(1 − s)³·z.
+
+Both are affine in S and H, so paths are built from phase-only shapes. Lift-off and
+touchdown join the stance with equal velocity (−v·u) and zero acceleration: the paths are
+twice continuously differentiable. Derivatives are taken by φ (d/dt = (1/T)·d/dφ), so one
+motion serves every period. Joint angles come from the knee-down closed-form IK (eq 8–9)
+in each leg-root frame; joint velocities and accelerations are exact:
+θ' = J⁻¹·p' and θ'' = J⁻¹·(p'' − J'·θ'), J the foot Jacobian of eq 22 in closed form
+(:mod:`hexaleg.gait.jacobian`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from functools import lru_cache
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg._typing import ArrayF, Lengths
+from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
+from hexaleg.gait.pattern import GaitPhases
+from hexaleg.kinematics import foot_position, leg_solution
+from hexaleg.robot.model import HexapodModel, joint_name
+
+
+@dataclass(frozen=True)
+class LegFrames:
+    """Where the legs sit, read from the Pinocchio model (body frame).
+
+    Attributes:
+        legs: Leg names, the model's ``leg_names`` order.
+        lengths: Segment lengths (l1, l2, l3) [m].
+        root_rotations: Leg-root frame orientations (6, 3, 3).
+        root_positions: Leg-root frame origins (6, 3) [m].
+        footholds: Nominal foot positions P (6, 3) [m].
+        height: Body frame's height above the ground [m] (the nominal one).
+
+    """
+
+    legs: tuple[str, ...]
+    lengths: Lengths
+    root_rotations: ArrayF
+    root_positions: ArrayF
+    footholds: ArrayF
+    height: float
+
+    @classmethod
+    def from_model(cls, model: HexapodModel) -> LegFrames:
+        """The legs of ``model`` at its nominal stance."""
+        design = model.design
+        roots = _root_placements(model)
+        rotations = np.array([roots[leg].rotation for leg in model.leg_names])
+        positions = np.array([roots[leg].translation for leg in model.leg_names])
+        foot = foot_position(design.lengths, design.nominal_angles)
+        return cls(
+            legs=model.leg_names,
+            lengths=design.lengths,
+            root_rotations=rotations,
+            root_positions=positions,
+            footholds=positions + rotations @ foot,
+            height=float(model.nominal_base_pose().translation[2]),
+        )
+
+    def to_roots(self, vectors: ArrayF, points: bool = True) -> ArrayF:
+        """Body-frame points (``points=False``: directions) (..., 6, 3) in the leg-root frames."""
+        relative = vectors - self.root_positions if points else vectors
+        return _rotate(relative, self.root_rotations, transpose=True)
+
+    def points_in_body(self, points: ArrayF) -> ArrayF:
+        """Points (K, 3) given in a leg-root frame, seen from each leg's: (6, K, 3), body frame."""
+        turned: ArrayF = np.einsum("nij,kj->nki", self.root_rotations, points)
+        return self.root_positions[:, None, :] + turned
+
+    def to_body(self, vectors: ArrayF) -> ArrayF:
+        """Leg-root-frame directions (..., 6, 3) in the body frame."""
+        return _rotate(vectors, self.root_rotations, transpose=False)
+
+
+def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
+    """Each leg-root frame in the body frame: the root joints' placements on the free flyer.
+
+    Read without kinematics when the roots hang on the free-flyer joint, as the templates
+    build them (a study's designs then need no Pinocchio data); otherwise from the model's
+    forward kinematics.
+    """
+    pinocchio = model.model
+    base = pinocchio.getJointId("root_joint")
+    ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
+    if any(pinocchio.parents[i] != base for i in ids.values()):
+        return model.root_placements()
+    return {leg: pinocchio.jointPlacements[i] for leg, i in ids.items()}
+
+
+def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
+    """R·v (or Rᵀ·v) per leg for vectors (..., 6, 3) and rotations (6, 3, 3).
+
+    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is ten
+    times slower on the many small blocks of a stride scan.
+    """
+    columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
+    return (
+        vectors[..., 0:1] * columns[:, 0, :]
+        + vectors[..., 1:2] * columns[:, 1, :]
+        + vectors[..., 2:3] * columns[:, 2, :]
+    )
+
+
+@dataclass(frozen=True)
+class PathShapes:
+    """The feet's paths per unit stride and step height, and their φ-derivatives (N, 6) [-].
+
+    p = P + S·along·u + H·lift·z; ``*_d`` = d/dφ, ``*_dd`` = d²/dφ².
+    """
+
+    along: ArrayF
+    along_d: ArrayF
+    along_dd: ArrayF
+    lift: ArrayF
+    lift_d: ArrayF
+    lift_dd: ArrayF
+
+
+@lru_cache(maxsize=32)
+def path_shapes(phases: GaitPhases) -> PathShapes:
+    """The shapes of every foot's path at every sample (shared, read-only, per phases)."""
+    beta, s, swing = phases.duty_factor, phases.phase, phases.swing
+    rate = 1.0 / (1.0 - beta)  # ds/dφ
+    h = s**3 * (10 - 15 * s + 6 * s**2)
+    h_d = 30 * s**2 * (1 - s) ** 2
+    h_dd = 60 * s * (1 - s) * (1 - 2 * s)
+    lift = 64 * s**3 * (1 - s) ** 3
+    lift_d = 192 * s**2 * (1 - s) ** 2 * (1 - 2 * s)
+    lift_dd = 384 * s * (1 - s) * (1 - 5 * s + 5 * s**2)
+    zero = np.zeros_like(s)
+    shapes = PathShapes(
+        along=np.where(swing, -0.5 + h / beta - (1 - beta) * s / beta, 0.5 - s),
+        along_d=np.where(swing, h_d * rate / beta - 1 / beta, -1 / beta),
+        along_dd=np.where(swing, h_dd * rate**2 / beta, zero),
+        lift=np.where(swing, lift, zero),
+        lift_d=np.where(swing, lift_d * rate, zero),
+        lift_dd=np.where(swing, lift_dd * rate**2, zero),
+    )
+    for array in vars(shapes).values():
+        array.flags.writeable = False
+    return shapes
+
+
+@dataclass(frozen=True)
+class FootPaths:
+    """Every foot's position and its φ-derivatives at every sample, body frame (N, 6, 3) [m]."""
+
+    position: ArrayF
+    velocity: ArrayF
+    acceleration: ArrayF
+
+
+def foot_paths(
+    frames: LegFrames, shapes: PathShapes, stride: float, step_height: float, heading: float
+) -> FootPaths:
+    """The feet's paths for stride S [m], step height H [m] and heading ψ [rad]."""
+    u = np.array([np.cos(heading), np.sin(heading), 0.0])
+    z = np.array([0.0, 0.0, 1.0])
+
+    def combine(along: ArrayF, lift: ArrayF) -> ArrayF:
+        combined: ArrayF = stride * along[..., None] * u + step_height * lift[..., None] * z
+        return combined
+
+    return FootPaths(
+        position=frames.footholds + combine(shapes.along, shapes.lift),
+        velocity=combine(shapes.along_d, shapes.lift_d),
+        acceleration=combine(shapes.along_dd, shapes.lift_dd),
+    )
+
+
+@dataclass(frozen=True)
+class JointMotion:
+    """Every leg's joint angles and their φ-derivatives at every sample (N, 6, 3).
+
+    Attributes:
+        angles: θ [rad] (knee-down IK; the nearest pose where out of reach).
+        velocity: dθ/dφ [rad]; divide by T for q̇ [rad/s].
+        acceleration: d²θ/dφ² [rad]; divide by T² for q̈ [rad/s²].
+        reach: Hip-to-foot distance r (N, 6) [m].
+        partials: The foot Jacobian's terms at these angles (for J⁻¹, Jᵀ and J̇).
+
+    """
+
+    angles: ArrayF
+    velocity: ArrayF
+    acceleration: ArrayF
+    reach: ArrayF
+    partials: LegPartials
+
+
+def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
+    """The joint motion that puts every foot on its path (exact first and second derivatives)."""
+    targets = frames.to_roots(paths.position)
+    velocity = frames.to_roots(paths.velocity, points=False)
+    acceleration = frames.to_roots(paths.acceleration, points=False)
+    angles, reach = leg_solution(frames.lengths, targets)
+    leg = leg_partials(frames.lengths, angles)
+    rates = inverse_times(leg, velocity)
+    with np.errstate(invalid="ignore"):  # a straight leg: unbounded rates
+        accelerations = inverse_times(leg, acceleration - rate_times(leg, rates))
+    return JointMotion(angles, rates, accelerations, reach, leg)
+
+
+def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:
+    """Each knee's height above the ground (..., 6) [m], body level at its nominal height.
+
+    The knee is the femur's tip, eq 7 without the tibia; only its height is needed, so
+    only the leg-root frames' z rows turn it into the body frame.
+    """
+    l1, l2, _ = frames.lengths
+    t1, t2 = angles[..., 0], angles[..., 1]
+    out = l1 + l2 * np.cos(t2)
+    up = frames.root_rotations[:, 2, :]  # (6, 3)
+    rise = up[:, 0] * np.cos(t1) * out + up[:, 1] * np.sin(t1) * out + up[:, 2] * l2 * np.sin(t2)
+    return frames.height + frames.root_positions[:, 2] + rise

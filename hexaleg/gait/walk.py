@@ -1,0 +1,163 @@
+"""One robot walking one gait: the steps from the gait to the torques, shared by every front door.
+
+:class:`Walker` holds what does not change with the stride or the period (the legs'
+frames, their limits, who stands when and the paths' shapes); :meth:`Walker.motion`
+gives the joint motion of a stride, :meth:`Walker.margins` its constraints and
+:meth:`Walker.dynamics` its forces and torques. :func:`~hexaleg.gait.analysis.analyze_gait`,
+the limits of :mod:`hexaleg.gait.limits` and the study's columns all walk through it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from hexaleg._typing import ArrayF, Distribution, require_choice
+from hexaleg.gait.dynamics import (
+    ForceSplit,
+    GeneralizedForces,
+    LoadedRobot,
+    min_norm_split,
+    min_torque_split,
+)
+from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
+from hexaleg.gait.pattern import GaitPhases, gait_phases
+from hexaleg.gait.spec import Gait
+from hexaleg.gait.trajectory import (
+    FootPaths,
+    JointMotion,
+    LegFrames,
+    PathShapes,
+    foot_paths,
+    joint_motion,
+    path_shapes,
+)
+from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+
+
+@dataclass(frozen=True)
+class Stride:
+    """The feet's paths, the joints' motion and the broken constraints of one stride."""
+
+    paths: FootPaths
+    motion: JointMotion
+    violations: tuple[Violation, ...]
+
+
+@dataclass(frozen=True)
+class Loads:
+    """The generalized forces of a stride and their split among the standing feet."""
+
+    rnea: GeneralizedForces
+    split: ForceSplit
+
+
+class Walker:
+    """A robot set up to walk a gait's pattern, at any stride and period.
+
+    Args:
+        model: The robot's Pinocchio model.
+        gait: The gait (its pattern, samples, step height and heading are used).
+        payload: A point mass on the body.
+        distribution: How the standing feet share the load.
+        friction: Friction coefficient μ [-] (min-torque distribution).
+        gravity: Gravitational acceleration g [m/s²].
+
+    """
+
+    def __init__(
+        self,
+        model: HexapodModel,
+        gait: Gait,
+        payload: Payload | None = None,
+        distribution: Distribution = "min-norm",
+        friction: float = DEFAULT_FRICTION,
+        gravity: float = GRAVITY,
+    ) -> None:
+        require_choice("distribution", distribution, Distribution)
+        self.model = model
+        self.gait = gait
+        self.payload = payload or Payload()
+        self.distribution = distribution
+        self.friction = friction
+        self.gravity = gravity
+        self.frames = LegFrames.from_model(model)
+        self.bounds = JointBounds.from_model(model)
+        self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
+        self.shapes: PathShapes = path_shapes(self.phases)
+        self._robot: LoadedRobot | None = None
+
+    @property
+    def robot(self) -> LoadedRobot:
+        """The Pinocchio model with the payload (built on first use)."""
+        if self._robot is None:
+            self._robot = LoadedRobot(self.model, self.payload, self.gravity)
+        return self._robot
+
+    @property
+    def heading(self) -> ArrayF:
+        """U = (cos ψ, sin ψ, 0), body frame."""
+        return np.array([np.cos(self.gait.heading), np.sin(self.gait.heading), 0.0])
+
+    def stride(self, stride: float) -> Stride:
+        """The paths, joint motion and violations of stride S [m]."""
+        paths = foot_paths(
+            self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
+        )
+        motion = joint_motion(self.frames, paths)
+        margins = self.margins(motion.angles, motion.reach)
+        found = violations(margins, self.frames.legs, self.times(self.gait.period))
+        return Stride(paths, motion, found)
+
+    def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
+        """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
+
+        Args:
+            theta: Joint angles (..., N, 6, 3) [rad].
+            reach: Hip-to-foot distances (..., N, 6) [m].
+
+        """
+        return gait_margins(self.frames, self.bounds, self.phases.stance, theta, reach)
+
+    def times(self, period: float) -> ArrayF:
+        """The sample times t_k = k·T/N (N,) [s]."""
+        return np.arange(self.gait.samples) * period / self.gait.samples
+
+    def loads(
+        self, stride: float, walk: Stride, period: float, rnea: GeneralizedForces | None = None
+    ) -> Loads:
+        """RNEA along the period and the feet's forces (min-torque: at period T [s]).
+
+        ``rnea``, the stride's generalized forces if already computed (they do not depend
+        on the period), saves the inverse dynamics.
+        """
+        rnea = self.generalized_forces(stride, walk) if rnea is None else rnea
+        position = walk.paths.position
+        if self.distribution == "min-norm":
+            split = min_norm_split(
+                self.model, self.frames, self.phases, position, walk.motion, rnea
+            )
+        else:
+            split = min_torque_split(
+                self.model,
+                self.frames,
+                self.phases,
+                position,
+                walk.motion,
+                rnea,
+                period,
+                self.friction,
+            )
+        return Loads(rnea, split)
+
+    def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
+        """RNEA along the period of stride S [m], as static + inertial/T² (any period)."""
+        travel = stride / self.phases.duty_factor * self.heading
+        return self.robot.generalized_forces(walk.motion, travel)
+
+    def rated(self) -> tuple[ArrayF, ArrayF]:
+        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee)."""
+        design = self.model.design
+        return np.array(design.rated_torques), np.array(design.rated_speeds)

@@ -1,0 +1,62 @@
+"""The answer to the user's requirements, as the Decision section shows it first.
+
+Pure presentation of a :class:`~hexaleg.study.decide.DecideResult`: the best design that
+meets every requirement (or the least infeasible one and what conflicts), each
+requirement's value, margin and whether it binds, and the user's design checked against
+each. The decision itself is :func:`hexaleg.study.decide.decide`.
+"""
+
+from __future__ import annotations
+
+from hexaleg.output.report.document import table
+from hexaleg.study.decide import CheckedDesign, DecideResult
+from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
+
+
+def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
+    """Markdown blocks: the verdict, the requirements table, the search in one line."""
+    best, yours, objective = result.best, result.yours, result.objective
+    lengths = ", ".join(f"{v:.3f}" for v in best.design.lengths)
+    if result.feasible:
+        extreme = "largest" if objective.sense == "maximize" else "smallest"
+        verdict = (
+            f"**The best leg meeting your requirements: l = ({lengths}) m**, the {extreme} "
+            f"{objective.label} of those that do: {_objective(best, objective.name)}"
+        )
+    else:
+        reason = result.conflict.description if result.conflict else "nothing meets them all"
+        verdict = (
+            f"**No leg within the bounds meets every requirement:** {reason}. The leg closest "
+            f"to meeting them is l = ({lengths}) m, {objective.label} "
+            f"{_objective(best, objective.name)}"
+        )
+    rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
+    free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
+    return (
+        f"{verdict}; your design: {objective.label} {_objective(yours, objective.name)}.",
+        table(
+            ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
+            rows,
+        ),
+        f"*How it was found.* {result.evaluations} designs searched over {free} by "
+        f"{result.method}, seed {result.seed}; the best was measured again from its own URDF. "
+        "A requirement binds where the best design meets it within 1 % of the required value: "
+        "relaxing it would buy a better design.",
+    )
+
+
+def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) -> tuple[str, ...]:
+    limited = f" (limited by {best.limited_by})" if best.limited_by else ""
+    return (
+        result.requirements.describe(best.name),
+        format_value(best.name, best.value) + limited,
+        format_margin(best),
+        "yes" if best.binds else ("" if best.met else "NOT MET"),
+        format_value(yours.name, yours.value),
+        "yes" if yours.met else f"no ({format_margin(yours)})",
+    )
+
+
+def _objective(checked: CheckedDesign, name: str) -> str:
+    value = checked.evaluation.values.get(name)
+    return "—" if value is None else f"{value:.4g}"

@@ -1,0 +1,160 @@
+"""Report part: walking, the grid walking the default gait against the sequel's claim.
+
+Presentation only: the numbers come from the study's ``gait_*`` columns and from
+:func:`hexaleg.study.walking.walking_comparison` (the grid's least-torque and least-energy
+legs against the paper's 0.2/0.4/0.4 leg, pure data).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from hexaleg.output.figures.canvas import save
+from hexaleg.output.figures.gait import walking_study_figure
+from hexaleg.output.report.document import Figure, Section, table
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.study import StudyRecord
+from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
+
+FIGURE = "study_walking"
+
+
+@dataclass(frozen=True)
+class WalkingRecord:
+    """The grid's best walking legs against the paper's (None: no design walks the gait).
+
+    Attributes:
+        comparison: The comparison, or None.
+
+    """
+
+    comparison: WalkingComparison | None
+
+
+def compute(data: ReportData) -> WalkingRecord:
+    """Compare the study's walking columns with the paper's leg on this design's body."""
+    study = data[StudyRecord]
+    return WalkingRecord(walking_or_none(study.table, study.spec))
+
+
+def section(data: ReportData) -> Section:
+    """The gait, the best walking legs against the paper's, the claim, and the figure."""
+    comparison = data[WalkingRecord].comparison
+    title = "3.4 Walking: what a gait period costs"
+    if comparison is None:
+        return Section(title, ("No design of the grid walks the default gait.",))
+    gait = comparison.gait
+    rows = [
+        _row("the paper's leg", comparison.reference),
+        _row("least peak torque", comparison.least_torque),
+        _row("least cost of transport", comparison.least_energy),
+    ]
+    return Section(
+        title,
+        (
+            f"Every design of the grid walks one period of the default gait: a "
+            f"{gait['pattern']} at {gait['speed']:.2g} m/s (period {gait['period']:g} s, stride "
+            f"{gait['stride']:g} m, step height {gait['step_height']:g} m), no payload; "
+            f"{comparison.walking} of the {comparison.designs} designs can (the others break "
+            "a stance limit or reach on the way). Torques from Pinocchio's inverse dynamics on "
+            "the whole robot, the standing feet sharing the load by least forces; `hexaleg "
+            "gait` walks any gait with any payload.",
+            table(
+                [
+                    "leg",
+                    "l1/L",
+                    "l3/L",
+                    "peak torque [N·m]",
+                    "cost of transport",
+                    "max speed [m/s]",
+                ],
+                rows,
+            ),
+            _claim(comparison),
+            Figure(
+                FIGURE,
+                "Walking the default gait: peak joint torque and cost of transport against the "
+                "tibia ratio, for each coxa ratio (gaps: designs that cannot walk it)",
+            ),
+        ),
+    )
+
+
+def _row(name: str, row: dict[str, Any]) -> list[str]:
+    return [
+        name,
+        f"{row['l1_ratio']:.3g}",
+        f"{row['l3_ratio']:.3g}",
+        f"{row[TORQUE]:.1f}",
+        f"{row[ENERGY]:.4f}",
+        f"{row['gait_max_speed']:.3f}",
+    ]
+
+
+def _claim(comparison: WalkingComparison) -> str:
+    """The sequel's claim, and what the grid shows, whatever it is."""
+    torque, energy = comparison.torque_saving, comparison.energy_saving
+    if math.isnan(torque) or math.isnan(energy):
+        return (
+            "The paper's 0.2/0.4/0.4 leg cannot walk this gait, so the sequel's claim (an "
+            "optimized leg cutting peak joint torque and energy by over 20 %) has no "
+            "reference here."
+        )
+    energy_of_torque, torque_of_energy = comparison.cross_savings
+    verdict = (
+        "both exceed the sequel's 20 %"
+        if min(torque, energy) > 0.2
+        else "the torque saving exceeds the sequel's 20 %, the energy saving does not"
+        if torque > 0.2
+        else "neither reaches the sequel's 20 %"
+    )
+    return (
+        "The sequel (Liu et al., *Dynamic Modeling and Dimensional Optimization of Legged "
+        "Mechanisms for Construction Robots*) reports that optimizing the segment lengths "
+        "cuts peak joint torque and energy by over 20 %. On this grid, walking this gait, "
+        f"the least-torque leg saves {100 * torque:.0f} % of the paper's leg's peak torque "
+        f"(and {100 * energy_of_torque:.0f} % of its energy), the least-energy leg "
+        f"{100 * energy:.0f} % of its cost of transport (and {100 * torque_of_energy:.0f} % "
+        f"of its peak torque): {verdict}. {_why(comparison)}"
+    )
+
+
+def _why(comparison: WalkingComparison) -> str:
+    """Which joint carries the peak, how the best leg differs, and what it gives up."""
+    reference, best = comparison.reference, comparison.least_torque
+    joint = max(("root", "hip", "knee"), key=lambda j: reference[f"gait_peak_{j}_torque"])
+    femur = 1 - float(best["l1_ratio"]) - float(best["l3_ratio"])
+    paper_femur = 1 - float(reference["l1_ratio"]) - float(reference["l3_ratio"])
+    slower = float(best["gait_max_speed"]) < float(reference["gait_max_speed"])
+    return (
+        f"The paper's leg's peak is at its {joint}; the least-torque leg's femur is "
+        f"{femur:.2f} of the leg against {paper_femur:.2f}, and it walks "
+        + ("slower" if slower else "at least as fast")
+        + f" within its ratings ({float(best['gait_max_speed']):.2f} against "
+        f"{float(reference['gait_max_speed']):.2f} m/s, {best['gait_max_speed_limited_by']})."
+    )
+
+
+def write_files(data: ReportData, out: Path) -> None:
+    """The study's peak torque and cost of transport against tibia ratio."""
+    figure = walking_study_figure(data[StudyRecord].table)
+    save(figure, out / f"{FIGURE}.png", svg=data.options.svg)
+
+
+def to_json(record: WalkingRecord) -> dict[str, Any]:
+    """``walking``: the comparison (null when no design walks the gait)."""
+    return {"walking": None if record.comparison is None else record.comparison.to_dict()}
+
+
+PART = Part(
+    WalkingRecord,
+    compute,
+    section,
+    needs=(StudyRecord,),
+    step="walking",
+    files=write_files,
+    json=to_json,
+)

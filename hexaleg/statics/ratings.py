@@ -1,0 +1,95 @@
+"""Joints over their ratings: where a computed torque or speed exceeds what the motor is rated for.
+
+Every command that computes torques (``loads``, ``gait``) flags each joint whose peak
+|τ| [N·m] (or, in a gait, |q̇| [rad/s]) exceeds the design's ``rated_torques`` (or
+``rated_speeds``), naming the leg, the joint, the peak and where it occurs.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any, Literal
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg.limits import LEG_JOINTS
+
+Quantity = Literal["torque", "speed"]
+"""What is compared with its rating: joint torque [N·m] or joint speed [rad/s]."""
+
+UNITS: dict[str, str] = {"torque": "N·m", "speed": "rad/s"}
+
+
+@dataclass(frozen=True)
+class OverRating:
+    """One joint whose torque or speed exceeds its rating.
+
+    Attributes:
+        leg: Leg name.
+        joint: ``"root"``, ``"hip"`` or ``"knee"``.
+        quantity: ``"torque"`` [N·m] or ``"speed"`` [rad/s].
+        peak: The largest |τ| or |q̇| of that joint [N·m or rad/s].
+        rated: Its rating [N·m or rad/s].
+        at: Where the peak occurs: a pose (``"nominal"``, ``"x+"``) or a time (``"t = 0.42 s"``).
+
+    """
+
+    leg: str
+    joint: str
+    quantity: Quantity
+    peak: float
+    rated: float
+    at: str
+
+    def __str__(self) -> str:
+        unit = UNITS[self.quantity]
+        return (
+            f"{self.leg} {self.joint} {self.quantity} {self.peak:.2f} {unit} over its rating "
+            f"{self.rated:g} {unit} ({self.at})"
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form (N·m or rad/s)."""
+        return {
+            "leg": self.leg,
+            "joint": self.joint,
+            "quantity": self.quantity,
+            "peak": self.peak,
+            "rated": self.rated,
+            "at": self.at,
+            "description": str(self),
+        }
+
+
+def over_rating(
+    legs: Sequence[str],
+    values: npt.ArrayLike,
+    rated: npt.ArrayLike,
+    places: Sequence[str],
+    quantity: Quantity = "torque",
+) -> tuple[OverRating, ...]:
+    """Each (leg, joint) whose largest |value| over ``places`` exceeds its rating.
+
+    Args:
+        legs: Leg names (N,).
+        values: Torques or speeds (K, N, 3) at K places [N·m or rad/s].
+        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s].
+        places: What each of the K places is called (``"nominal"``, ``"t = 0.42 s"``).
+        quantity: ``"torque"`` or ``"speed"``.
+
+    Returns:
+        One entry per joint over its rating, in leg then joint order.
+
+    """
+    magnitude = np.abs(np.asarray(values, dtype=float))  # (K, N, 3)
+    rated = np.asarray(rated, dtype=float)
+    worst = magnitude.argmax(axis=0)  # (N, 3)
+    peaks = magnitude.max(axis=0)
+    return tuple(
+        OverRating(leg, joint, quantity, float(peaks[i, j]), float(rated[j]), places[worst[i, j]])
+        for i, leg in enumerate(legs)
+        for j, joint in enumerate(LEG_JOINTS)
+        if peaks[i, j] > rated[j]
+    )

@@ -1,0 +1,193 @@
+"""What a decision may change: the free variables, their bounds, and the design at a point.
+
+By default the three segment lengths l1, l2, l3 are free, each from
+:data:`SEGMENT_FLOOR` of the leg length up to the leg length (l1 from ``min_coxa`` if
+required); the leg-length requirement bounds their sum. ``--free-posture`` also frees
+the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limits, and
+``--free FIELD=LOWER:UPPER`` any body field of :data:`~hexaleg.study.sensitivity.SWEEPABLE`
+(or narrows a segment's or an angle's bounds).
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF
+from hexaleg.design import FIELD_RANGES, SEGMENTS, HexapodDesign
+from hexaleg.exceptions import ParameterError
+from hexaleg.study.sensitivity import SWEEPABLE
+
+SEGMENT_FLOOR = 0.02
+"""Smallest segment searched, as a share of the leg length [-] (2 cm on a 1 m leg)."""
+
+POSTURE = ("theta2", "theta3")
+"""The nominal hip and knee angles [rad] that ``--free-posture`` frees (θ1 stays)."""
+
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE)
+"""Every variable a search can free."""
+
+
+@dataclass(frozen=True)
+class FreeVariable:
+    """One free variable and its bounds.
+
+    Attributes:
+        name: A segment (``l1``), a nominal angle (``theta2``) or a body field.
+        lower: Its smallest value [m or rad].
+        upper: Its largest value [m or rad].
+
+    """
+
+    name: str
+    lower: float
+    upper: float
+
+    def __post_init__(self) -> None:
+        if self.name not in FREEABLE:
+            raise ParameterError("--free", self.name, "a field among " + ", ".join(FREEABLE))
+        if not (math.isfinite(self.lower) and math.isfinite(self.upper)):
+            raise ParameterError(f"--free {self.name}", (self.lower, self.upper), "finite bounds")
+        if not self.lower < self.upper:
+            raise ParameterError(
+                f"--free {self.name}", (self.lower, self.upper), "LOWER must be below UPPER"
+            )
+        if self.name in FIELD_RANGES:
+            low, high, unit = FIELD_RANGES[self.name]
+            if self.lower < low or self.upper > high:
+                raise ParameterError(
+                    f"--free {self.name}",
+                    (self.lower, self.upper),
+                    f"bounds within [{low:g}, {high:g}] [{unit}]",
+                )
+
+    @classmethod
+    def parse(cls, text: str) -> FreeVariable:
+        """``FIELD=LOWER:UPPER``, e.g. ``body_width=0.4:0.8``."""
+        match = re.fullmatch(r"\s*([a-z_0-9]+)\s*=\s*([^:]+):([^:]+)\s*", text)
+        if match is None:
+            raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
+        try:
+            lower, upper = float(match[2]), float(match[3])
+        except ValueError:
+            raise ParameterError("--free", text, "LOWER and UPPER numbers") from None
+        return cls(match[1], lower, upper)
+
+
+@dataclass(frozen=True)
+class SearchSpace:
+    """The designs a search may visit: a base design with some fields free.
+
+    Attributes:
+        base: Every field that is not free.
+        variables: The free variables, in the order of a point's coordinates.
+
+    """
+
+    base: HexapodDesign
+    variables: tuple[FreeVariable, ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """The free variables' names."""
+        return tuple(v.name for v in self.variables)
+
+    @property
+    def lower(self) -> ArrayF:
+        """Lower bounds (V,) [m or rad]."""
+        return np.array([v.lower for v in self.variables])
+
+    @property
+    def upper(self) -> ArrayF:
+        """Upper bounds (V,) [m or rad]."""
+        return np.array([v.upper for v in self.variables])
+
+    @property
+    def same_body(self) -> bool:
+        """Whether every design keeps the base's body and mounts (models derive in closed form)."""
+        return all(name in (*SEGMENTS, *POSTURE) for name in self.names)
+
+    def design(self, x: npt.ArrayLike) -> HexapodDesign:
+        """The design at point ``x`` (validated: raises if it cannot exist)."""
+        changes: dict[str, Any] = {}
+        angles = list(self.base.nominal_angles)
+        for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
+            if name in POSTURE:
+                angles[1 + POSTURE.index(name)] = float(value)
+            else:
+                changes[name] = float(value)
+        if tuple(angles) != self.base.nominal_angles:
+            changes["nominal_angles"] = tuple(angles)
+        return self.base.replace(**changes)
+
+    def point(self, design: HexapodDesign) -> ArrayF:
+        """``design``'s point, clipped into the bounds (V,)."""
+        values = [
+            design.nominal_angles[1 + POSTURE.index(name)]
+            if name in POSTURE
+            else getattr(design, name)
+            for name in self.names
+        ]
+        clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
+        return clipped
+
+    def widened(
+        self, name: str, lower: float | None = None, upper: float | None = None
+    ) -> SearchSpace:
+        """The same space with one variable's bounds moved (to search a relaxed requirement)."""
+        variables = tuple(
+            FreeVariable(
+                v.name, v.lower if lower is None else lower, v.upper if upper is None else upper
+            )
+            if v.name == name
+            else v
+            for v in self.variables
+        )
+        return SearchSpace(self.base, variables)
+
+
+def search_space(
+    base: HexapodDesign,
+    leg_length: float,
+    min_coxa: float | None = None,
+    free_posture: bool = False,
+    free: Sequence[FreeVariable] = (),
+) -> SearchSpace:
+    """The default free variables of a decision, with ``free`` added or overriding them.
+
+    Args:
+        base: The user's design: every field not freed.
+        leg_length: The largest l1 + l2 + l3 [m]: each segment's upper bound.
+        min_coxa: The smallest coxa [m]: l1's lower bound (if above the floor).
+        free_posture: Also free the nominal hip and knee angles, within the stance limits.
+        free: More free variables, or other bounds for the default ones.
+
+    """
+    floor = SEGMENT_FLOOR * leg_length
+    chosen: dict[str, FreeVariable] = {
+        name: FreeVariable(name, floor, leg_length) for name in SEGMENTS
+    }
+    if min_coxa is not None:
+        if min_coxa >= leg_length:
+            raise ParameterError(
+                "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
+            )
+        chosen["l1"] = FreeVariable("l1", max(floor, min_coxa), leg_length)
+    if free_posture:
+        limits = base.stance_limits
+        chosen["theta2"] = FreeVariable("theta2", *limits.theta2)
+        chosen["theta3"] = FreeVariable("theta3", *limits.theta3)
+    for variable in free:
+        if variable.name in chosen and variable.name in SEGMENTS and min_coxa is not None:
+            if variable.name == "l1" and variable.lower < min_coxa:
+                raise ParameterError(
+                    "--free l1", variable.lower, f"at least min_coxa ({min_coxa:g} m)"
+                )
+        chosen[variable.name] = variable
+    return SearchSpace(base, tuple(chosen.values()))

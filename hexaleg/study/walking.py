@@ -1,0 +1,121 @@
+"""Walking across a study: how much the grid's best leg saves against the paper's, walking.
+
+The sequel to the paper (Liu, Yang, Wang, Feng, *Dynamic Modeling and Dimensional
+Optimization of Legged Mechanisms for Construction Robots*) sizes the leg for walking and
+reports cutting peak joint torque and energy by over 20 %. :func:`walking_comparison`
+asks the same of a study's grid: among the designs that walk the study's gait
+(:data:`~hexaleg.gait.analysis.STUDY_GAIT`), the one with the least peak joint torque
+and the one with the least cost of transport, each against the paper's 0.2/0.4/0.4 leg
+(on the study's body, at its total leg length). Pure data; the report presents it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import pandas as pd
+
+from hexaleg.exceptions import HexalegError
+from hexaleg.gait.analysis import STUDY_GAIT, gait_study_columns
+from hexaleg.study.sweep import StudySpec, base_model
+
+PAPER_RATIOS = (0.2, 0.4)
+"""The paper's leg: coxa and tibia ratios l1/L, l3/L (0.2/0.4/0.4) [-]."""
+TORQUE = "gait_peak_torque"
+ENERGY = "gait_cost_of_transport"
+
+
+@dataclass(frozen=True)
+class WalkingComparison:
+    """The grid's best walking legs against the paper's.
+
+    Attributes:
+        reference: The paper's leg's walking columns (a study row's ``gait_*``).
+        least_torque: The row of the design with the least peak joint torque.
+        least_energy: The row of the design with the least cost of transport.
+        walking: How many of the grid's designs walk the gait (of ``designs``).
+        designs: How many designs the grid has.
+        gait: The gait walked (JSON-ready).
+
+    """
+
+    reference: dict[str, Any]
+    least_torque: dict[str, Any]
+    least_energy: dict[str, Any]
+    walking: int
+    designs: int
+    gait: dict[str, Any]
+
+    @property
+    def torque_saving(self) -> float:
+        """1 − (least peak torque)/(the paper's leg's) [-]; NaN if the paper's leg cannot walk."""
+        return _saving(self.least_torque[TORQUE], self.reference[TORQUE])
+
+    @property
+    def energy_saving(self) -> float:
+        """1 − (least cost of transport)/(the paper's leg's) [-]."""
+        return _saving(self.least_energy[ENERGY], self.reference[ENERGY])
+
+    @property
+    def cross_savings(self) -> tuple[float, float]:
+        """The energy the least-torque design saves, and the torque the least-energy one saves."""
+        return (
+            _saving(self.least_torque[ENERGY], self.reference[ENERGY]),
+            _saving(self.least_energy[TORQUE], self.reference[TORQUE]),
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form (savings as fractions, torques N·m, speeds m/s)."""
+        keep = ("l1_ratio", "l3_ratio", TORQUE, ENERGY, "gait_max_speed")
+        return {
+            "gait": self.gait,
+            "walking_designs": self.walking,
+            "designs": self.designs,
+            "paper_leg": {k: self.reference[k] for k in keep},
+            "least_peak_torque": {k: self.least_torque[k] for k in keep},
+            "least_cost_of_transport": {k: self.least_energy[k] for k in keep},
+            "peak_torque_saving": self.torque_saving,
+            "energy_saving": self.energy_saving,
+        }
+
+
+def _saving(value: float, reference: float) -> float:
+    return 1.0 - value / reference if reference > 0 and math.isfinite(reference) else math.nan
+
+
+def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison:
+    """Compare the study's best walking designs with the paper's leg on the same body.
+
+    Args:
+        table: The study's table, with its ``gait_*`` columns.
+        spec: The study (its base design and total leg length).
+
+    Raises:
+        HexalegError: The table has no gait columns, or no design walks the gait.
+
+    """
+    if TORQUE not in table:
+        raise HexalegError("the study has no walking columns (StudySpec.gait was off)")
+    walking = table[table["gait_feasible"].fillna(False).astype(bool)]
+    if walking.empty:
+        raise HexalegError("no design of the study walks the default gait")
+    paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
+    reference = gait_study_columns(paper, base_model(spec.base).with_design(paper))
+    return WalkingComparison(
+        reference=reference | {"l1_ratio": PAPER_RATIOS[0], "l3_ratio": PAPER_RATIOS[1]},
+        least_torque=walking.loc[walking[TORQUE].idxmin()].to_dict(),
+        least_energy=walking.loc[walking[ENERGY].idxmin()].to_dict(),
+        walking=len(walking),
+        designs=len(table),
+        gait=STUDY_GAIT.to_dict(),
+    )
+
+
+def walking_or_none(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison | None:
+    """:func:`walking_comparison`, or None when the study has no walking design to compare."""
+    try:
+        return walking_comparison(table, spec)
+    except HexalegError:
+        return None

@@ -1,0 +1,56 @@
+"""The report's Decision section shows the answer to the user's requirements first."""
+
+from __future__ import annotations
+
+import json
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import replace
+
+import pytest
+
+from hexaleg import HexapodDesign, Objective, Requirements, SearchSettings, decide
+from hexaleg.output.report import ReportOptions, build_report
+from hexaleg.output.report.requirements import requirement_blocks
+
+
+def _decide(requirements):
+    with ThreadPoolExecutor(1) as here:
+        return decide(HexapodDesign(), requirements, Objective("area"), executor=here,
+                      progress=False, settings=SearchSettings(evaluations=240))  # fmt: skip
+
+
+def test_the_blocks_give_the_verdict_and_one_row_per_requirement():
+    result = _decide(Requirements(ground_clearance=0.3, min_coxa=0.1))
+    verdict, rows, how = requirement_blocks(result)
+    lengths = ", ".join(f"{v:.3f}" for v in result.best.design.lengths)
+    assert verdict.startswith(f"**The best leg meeting your requirements: l = ({lengths}) m**")
+    body = rows.splitlines()[2:]
+    assert [line.split(" | ")[0].lstrip("| ") for line in body] == [
+        "ground_clearance ≥ 0.3 m", "leg_length ≤ 1 m", "min_coxa ≥ 0.1 m"]  # fmt: skip
+    assert [line.rstrip(" |").rsplit(" | ", 1)[1] for line in body] == ["yes", "yes", "yes"]
+    assert f"{result.evaluations} designs" in how
+
+
+def test_an_infeasible_answer_names_the_conflict():
+    result = _decide(Requirements(ground_clearance=0.6, min_coxa=0.5))
+    verdict = requirement_blocks(result)[0]
+    assert verdict.startswith("**No leg within the bounds meets every requirement:**")
+    assert result.conflict is not None and result.conflict.description in verdict
+
+
+@pytest.mark.slow
+def test_a_report_with_requirements_answers_them_first(tmp_path):
+    requirements = Requirements(ground_clearance=0.3, min_coxa=0.1)
+    options = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False,
+                            vector_figures=False, requirements=requirements)  # fmt: skip
+    data = build_report(tmp_path / "out", options=options)
+    text = (tmp_path / "out" / "report.md").read_text()
+    decision = text.split("## Decision")[1].split("## Design")[0]
+    assert decision.index("The best leg meeting your requirements") < decision.index(
+        "**Recommended:"
+    )
+    with ThreadPoolExecutor(1) as here:
+        direct = decide(HexapodDesign(), requirements, executor=here, progress=False)
+    assert data["requirements_decision"] == json.loads(json.dumps(direct.to_dict()))
+    plain = build_report(tmp_path / "plain", options=replace(options, requirements=None))
+    assert "requirements_decision" not in plain

@@ -1,0 +1,88 @@
+"""Requirements: their table, their checks and their bounds, and the design file's table."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from hexaleg import HexapodDesign
+from hexaleg.design_file import DesignFileError, load_design, load_design_file
+from hexaleg.exceptions import ParameterError
+from hexaleg.study.requirements import BINDING_SHARE, KINDS, Requirements, check
+
+
+def test_table_keys_are_the_fields_and_degrees_become_radians():
+    table = {"payload": 30, "payload_at": [0.1, 0.0, 0.05], "slope_deg": 15, "min_coxa": 0.08}
+    requirements = Requirements.from_table(table)
+    assert requirements.payload == 30.0
+    assert requirements.payload_at == (0.1, 0.0, 0.05)
+    assert requirements.slope == pytest.approx(math.radians(15))
+    assert requirements.given == ("payload", "slope", "min_coxa")
+    assert Requirements.from_table(requirements.to_dict()) == requirements
+
+
+@pytest.mark.parametrize(
+    ("table", "field", "words"),
+    [
+        ({"payload": -1}, "requirements.payload", "[0, 10000] [kg]"),
+        ({"slope": 2.0}, "requirements.slope", "[rad]"),
+        ({"slope_deg": 95}, "requirements.slope_deg", "[0, 90] [°]"),
+        ({"slope": 0.1, "slope_deg": 5}, "requirements.slope_deg", "not both"),
+        ({"ground_clearance": 0}, "requirements.ground_clearance", "positive"),
+        ({"payload_at": [0, 0, 0.1]}, "requirements.payload_at", "needs a payload"),
+        ({"payload": 3, "payload_at": [0, 0]}, "requirements.payload_at", "three coordinates"),
+        ({"payload": "heavy"}, "requirements.payload", "real number"),
+        ({"payliad": 3}, "requirements.payliad", "did you mean 'payload'"),
+    ],
+)
+def test_a_bad_table_names_the_key_and_what_is_allowed(table, field, words):
+    with pytest.raises(ParameterError) as caught:
+        Requirements.from_table(table, source="requirements")
+    assert caught.value.field == field
+    assert words in str(caught.value)
+
+
+def test_the_leg_length_defaults_to_the_design_own():
+    design = HexapodDesign(l1=0.1, l2=0.5, l3=0.45)
+    assert Requirements().resolved(design).leg_length == pytest.approx(1.05)
+    assert Requirements(leg_length=0.9).resolved(design).leg_length == 0.9
+
+
+def test_margins_point_to_the_good_side_and_binding_is_within_one_percent():
+    requirements = Requirements(payload=100.0, leg_length=1.0)
+    values = {"payload": 100.0 + 0.5 * BINDING_SHARE * 100, "leg_length": 0.8}
+    payload, leg = check(requirements, values, {})
+    assert payload.margin == pytest.approx(0.5) and payload.met and payload.binds
+    assert leg.margin == pytest.approx(0.2) and leg.met and not leg.binds
+    short = check(requirements, {"payload": 90.0, "leg_length": 1.1}, {})
+    assert [c.met for c in short] == [False, False]
+    assert [c.binds for c in short] == [False, False]
+    assert {k.sense for k in KINDS.values()} == {"at least", "at most"}
+
+
+def test_a_design_file_hands_over_its_requirements_table(tmp_path):
+    path = tmp_path / "robot.toml"
+    path.write_text("l1 = 0.15\n\n[requirements]\npayload = 30.0\nslope_deg = 10\n")
+    design, requirements = load_design_file(path, Requirements.from_table)
+    assert design.l1 == 0.15
+    assert requirements == Requirements(payload=30.0, slope=math.radians(10))
+    assert load_design(path) == design  # the design alone ignores the table
+
+
+def test_a_bad_requirement_in_a_file_names_the_file_and_line(tmp_path):
+    path = tmp_path / "robot.toml"
+    path.write_text("l1 = 0.15\n\n[requirements]\npayload = 30.0\nslope_deg = 100\n")
+    with pytest.raises(DesignFileError, match=r"robot.toml, line 5: requirements.slope_deg"):
+        load_design_file(path, Requirements.from_table)
+    path.write_text("l1 = 0.15\nrequirements = 3\n")
+    with pytest.raises(DesignFileError, match=r"line 2: requirements = 3 .* table"):
+        load_design_file(path, Requirements.from_table)
+
+
+def test_the_step_height_is_a_condition_of_the_speed():
+    requirements = Requirements.from_table({"speed": 0.3, "step_height": 0.1})
+    assert requirements.given == ("speed",) and requirements.step_height == 0.1
+    assert Requirements.from_table(requirements.to_dict()) == requirements
+    with pytest.raises(ParameterError, match="needs a speed"):
+        Requirements(step_height=0.1)
