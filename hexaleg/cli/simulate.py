@@ -6,12 +6,15 @@ import argparse
 import math
 from pathlib import Path
 
+import numpy as np
+
 from hexaleg._io import check_output_file
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import CYCLES_RANGE, DEFAULT_CYCLES, simulate_gait
 from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path
@@ -79,9 +82,7 @@ def run(args: argparse.Namespace) -> int:
     )
     written: list[Path] = []
     if args.html is not None:
-        from hexaleg.output.viewer.gait import write_motion_html
-
-        written.append(write_motion_html(result, args.html))
+        written.append(_animation(result, args.html))
     if args.video is not None:
         written += _video(result, args.video)
     report_files(written)
@@ -90,6 +91,15 @@ def run(args: argparse.Namespace) -> int:
         return 0
     print_table(lengths_title("Simulated walk (MuJoCo)", design.lengths), rows(result))
     return 0
+
+
+def _animation(result: SimulationResult, path: str) -> Path:
+    """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
+    from hexaleg.output.viewer.gait import write_motion_html
+
+    ratios = np.abs(result.frame_torques) / np.array(result.design.rated_torques)
+    model = HexapodModel(result.design)
+    return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
 
 
 def _video(result: SimulationResult, path: str) -> list[Path]:

@@ -26,7 +26,7 @@ import numpy.typing as npt
 from scipy.spatial.transform import Rotation
 
 from hexaleg._typing import ArrayF
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 
 FALL_TILT = math.radians(30.0)
 """A body rolled or pitched further than this has fallen [rad]."""

@@ -32,7 +32,8 @@ import pinocchio as pin
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel, foot_frame_name, joint_name
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel, foot_frame_name, joint_name
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 
@@ -51,6 +52,8 @@ PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
 ROOT_JOINT = "root_joint"
 """Name of the free joint (as Pinocchio names its free-flyer)."""
+FRICTION_RANGE = (1e-3, 10.0)
+"""Coefficients of friction μ [-] the floor may have (MuJoCo needs μ > 0)."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
 """Contact bits: robot geoms collide with the floor only, never with each other."""
 
@@ -168,7 +171,7 @@ def robot_spec(
 
     """
     mujoco = require_mujoco()
-    require_in_range("friction", friction, 1e-3, 10.0, "-")
+    require_in_range("friction", friction, *FRICTION_RANGE, "-")
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
     spec = mujoco.MjSpec.from_string(model.urdf)

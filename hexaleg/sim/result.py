@@ -30,6 +30,7 @@ class SimulationResult:
         planned_peak_torque: The gait's planned peak |τ| per joint type [N·m].
         standing: The tripod standing check.
         frames: The robot's Pinocchio configuration (F, nq) at ``frame_rate``, whole run.
+        frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
         frame_rate: Frames per second [1/s].
 
     """
@@ -44,6 +45,7 @@ class SimulationResult:
     planned_peak_torque: dict[str, float]
     standing: StandingCheck
     frames: ArrayF
+    frame_torques: ArrayF
     frame_rate: float
 
     @property

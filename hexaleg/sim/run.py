@@ -31,12 +31,14 @@ class Run:
     Attributes:
         trace: Every step's state, reference and torques.
         frames: Pinocchio configurations (F, nq) at ``frame_rate``.
+        frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
         frame_rate: Frames per second [1/s].
 
     """
 
     trace: Trace
     frames: ArrayF
+    frame_torques: ArrayF
     frame_rate: float
 
 
@@ -81,4 +83,4 @@ def run_plan(sim: SimModel, plan: Plan, duration: float, frame_rate: float = FRA
     )
     every = max(1, round(1.0 / (frame_rate * sim.timestep)))
     frames = np.array([sim.configuration_of(row) for row in qpos[::every]])
-    return Run(trace, frames, 1.0 / (every * sim.timestep))
+    return Run(trace, frames, applied[::every], 1.0 / (every * sim.timestep))

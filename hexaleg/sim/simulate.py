@@ -10,7 +10,7 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 
 from __future__ import annotations
 
-from hexaleg._checks import require_int
+from hexaleg._checks import require_in_range, require_int
 from hexaleg._typing import Distribution
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
@@ -21,7 +21,7 @@ from hexaleg.gait.walk import Walker
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.sim.measure import measure_walk
-from hexaleg.sim.model import ServoGains, SimModel
+from hexaleg.sim.model import FRICTION_RANGE, ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import FRAME_RATE, run_plan
@@ -97,6 +97,7 @@ def simulate_gait(
     """
     require_mujoco()
     cycles = require_int("cycles", cycles, *CYCLES_RANGE)
+    require_in_range("friction", friction, *FRICTION_RANGE, "-")
     model = HexapodModel(design) if model is None else model
     analysis = analyze_gait(
         design,
@@ -122,5 +123,6 @@ def simulate_gait(
         planned_peak_torque=dict(analysis.metrics.peak_torque),
         standing=standing_check(model, analysis.payload, friction, sim=sim),
         frames=run.frames,
+        frame_torques=run.frame_torques,
         frame_rate=run.frame_rate,
     )

@@ -19,10 +19,11 @@ import numpy as np
 import pinocchio as pin
 
 from hexaleg.gait.spec import Gait
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, FULL_WIDTH, drawn, new_figure, save
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData
-from hexaleg.robot.model import LEG_JOINTS, HexapodModel, joint_name
+from hexaleg.robot.model import HexapodModel, joint_name
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import DEFAULT_CYCLES, simulate_gait
 
