@@ -126,12 +126,13 @@ def write_files(data: ReportData, out: Path) -> None:
 
     result = data[SimulationRecord].result
     q = result.frames[result.mid_stride_frame]
+    title = f"Simulated in MuJoCo, t = {result.mid_stride_frame / result.frame_rate:.2f} s"
     with tempfile.TemporaryDirectory(prefix="hexaleg-still-") as tmp:
         outcome = write_still(result.sim_model(), q, Path(tmp) / "still.png")
         if outcome.path is not None:
-            figure = picture_figure(np.asarray(_read_png(outcome.path)))
+            figure = picture_figure(np.asarray(_read_png(outcome.path)), title)
         else:
-            figure = stick_figure(data.model, q)
+            figure = stick_figure(data.model, q, f"{title} (no offscreen OpenGL: links as lines)")
     save(figure, out / f"{STILL}.png", svg=data.options.svg)
 
 
@@ -143,18 +144,19 @@ def _read_png(path: Path) -> Any:
 
 
 @drawn
-def picture_figure(pixels: np.ndarray) -> PlotFigure:
-    """A rendered picture (H, W, 3), full width, without axes."""
+def picture_figure(pixels: np.ndarray, title: str) -> PlotFigure:
+    """A rendered picture (H, W, 3) under ``title``, without axes."""
     height, width = pixels.shape[:2]
     figure = new_figure(FULL_WIDTH * height / width * 0.75, FULL_WIDTH * 0.75)
     axes = figure.add_subplot()
     axes.imshow(pixels, interpolation="antialiased")
     axes.set_axis_off()
+    axes.set_title(title)
     return figure
 
 
 @drawn
-def stick_figure(model: HexapodModel, q: np.ndarray) -> PlotFigure:
+def stick_figure(model: HexapodModel, q: np.ndarray, title: str) -> PlotFigure:
     """The body's outline through the leg roots and every leg's links as lines, 3-D [m]."""
     pin.forwardKinematics(model.model, model.data, q)
     pin.updateFramePlacements(model.model, model.data)
@@ -171,6 +173,7 @@ def stick_figure(model: HexapodModel, q: np.ndarray) -> PlotFigure:
     axes.set_ylabel("y [m]")
     axes.set_zlabel("z [m]")
     axes.set_aspect("equal")
+    axes.set_title(title)
     return figure
 
 
