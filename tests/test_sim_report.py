@@ -41,7 +41,7 @@ def test_the_part_comes_after_walking_only_when_asked():
 def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):
     result = data[simulation.SimulationRecord].result
     section = simulation.section(data)
-    assert section.title == "Simulated walk"
+    assert section.title.startswith("3.5 Simulated walk")
     text = "\n".join(b for b in section.blocks if isinstance(b, str))
     assert f"{result.metrics.distance:.3f} ({100 * result.metrics.distance_ratio:.1f} %)" in text
     assert f"| {result.metrics.planned_distance:.3f} |" in text

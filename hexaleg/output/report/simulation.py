@@ -60,7 +60,7 @@ def section(data: ReportData) -> Section:
     stiffness = zip(LEG_JOINTS, result.gains.stiffness, strict=True)
     kp = ", ".join(f"{joint} {k:.0f}" for joint, k in stiffness)
     return Section(
-        "Simulated walk",
+        "3.5 Simulated walk: the plan in a physics engine",
         (
             f"The design walked the default gait ({gait.pattern}, T = {gait.period:g} s, "
             f"S = {gait.stride:g} m, H = {gait.step_height:g} m: v = {gait.speed:.3g} m/s) "
@@ -69,6 +69,10 @@ def section(data: ReportData) -> Section:
             "planned joint trajectory with its inverse-dynamics torques as feed-forward "
             f"(stiffness {kp} N·m/rad). Measured over the periods after the first:",
             table(["quantity", "simulated", "planned"], _walk_rows(result)),
+            "The plan shares each instant's load among the standing feet with the least "
+            "forces; feet planted in the simulation and held by stiff servos also push "
+            "against each other, so the simulated torques, the roots' most, carry forces "
+            "the plan does not.",
             "Standing 2 s on one tripod with the other feet lifted 2 cm, each standing "
             "foot's vertical force beside the statics' (`loads --stance tripod`):",
             table(
