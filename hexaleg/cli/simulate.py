@@ -26,7 +26,7 @@ DESCRIPTION = (
     "period's first pose. Measured over the periods after the first (SI units, radians): "
     "distance against the planned v·T per period, body tilt and lowest height, whether it "
     "fell, RMS joint tracking error, standing-foot slip, peak servo torques beside the "
-    "plan's. Then the robot stands 2 s on the tripod lf, rm, lr with the other feet lifted "
+    "plan's. Then the robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted "
     "2 cm: each standing foot's vertical force beside the statics' (`loads --stance "
     "tripod`). A stride beyond the design's max stride is refused before simulating."
 )

@@ -1,4 +1,4 @@
-"""Running a :class:`~hexaleg.sim.model.SimModel`: start state, stepping, what the feet feel."""
+"""Running a :class:`~hexaleg.sim.model.SimModel`: its start state, and what the feet feel."""
 
 from __future__ import annotations
 
@@ -42,22 +42,3 @@ def foot_forces(sim: SimModel, data: Any) -> ArrayF:
         forces[foot_of_geom[other]] += force if pair[0] == sim.floor else -force
     return forces
 
-
-def foot_positions(sim: SimModel, data: Any) -> ArrayF:
-    """Foot frame origins (legs, 3), world frame [m] (the contact spheres' centres)."""
-    return np.array(data.xpos[sim.feet])
-
-
-def joint_angles(sim: SimModel, data: Any) -> ArrayF:
-    """Leg joint angles (legs, 3) [rad]."""
-    return np.array(data.qpos[sim.qpos])
-
-
-def joint_torques(sim: SimModel, data: Any) -> ArrayF:
-    """Torque each leg joint's servo applies (legs, 3) [N·m]."""
-    return np.array(data.actuator_force[sim.actuators])
-
-
-def base_pose(data: Any) -> tuple[ArrayF, ArrayF]:
-    """Body position [m] and orientation quaternion (w, x, y, z), world frame."""
-    return np.array(data.qpos[:3]), np.array(data.qpos[3:7])
