@@ -41,4 +41,3 @@ def foot_forces(sim: SimModel, data: Any) -> ArrayF:
         force = contact.frame.reshape(3, 3).T @ wrench[:3]
         forces[foot_of_geom[other]] += force if pair[0] == sim.floor else -force
     return forces
-

@@ -32,6 +32,7 @@ import pinocchio as pin
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import ModelError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel, foot_frame_name, joint_name
 from hexaleg.sim._mujoco import require_mujoco
@@ -43,7 +44,7 @@ DEFAULT_BANDWIDTH = 2.0
 """Servo bandwidth f [Hz]: the natural frequency of a standing leg's joint (see
 :meth:`ServoGains.from_bandwidth`). Stiffer servos track more closely but, with three
 feet planted, push the feet against each other: at 2 Hz the default robot's measured
-hip and knee peaks stay within a few per cent of the plan's; at 8 Hz the knees' double."""
+hip and knee peaks stay within a few per cent of the plan's; at 8 Hz the knees' triple."""
 DEFAULT_DAMPING_RATIO = 1.0
 """Servo damping ratio ζ [-] (critically damped)."""
 FLOOR = "floor"
@@ -107,11 +108,11 @@ class ServoGains:
         """
         require_in_range("bandwidth", bandwidth, 1e-3, 100.0, "Hz")
         require_in_range("damping_ratio", damping_ratio, 0.0, 10.0, "-")
-        inertia = reflected_inertia(model)
         omega = 2 * math.pi * bandwidth
+        root, hip, knee = (float(i) for i in reflected_inertia(model))
+        stiff, damp = omega**2, 2 * damping_ratio * omega
         return cls(
-            stiffness=tuple(float(i * omega**2) for i in inertia),  # type: ignore[arg-type]
-            damping=tuple(float(2 * damping_ratio * i * omega) for i in inertia),  # type: ignore[arg-type]
+            (root * stiff, hip * stiff, knee * stiff), (root * damp, hip * damp, knee * damp)
         )
 
 
@@ -149,7 +150,7 @@ def foot_radius(urdf: str, leg: str) -> float:
     link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
     sphere = None if link is None else link.find("visual/geometry/sphere")
     if sphere is None:
-        raise ValueError(f"the URDF has no foot sphere for leg {leg!r}")
+        raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
     return float(sphere.attrib["radius"])
 
 
@@ -226,7 +227,7 @@ def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
 def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
     mujoco = require_mujoco()
     for joint in spec.joints:
-        joint.actfrclimited = 0  # mjLIMITED_FALSE: the rating does not clamp the servo
+        joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE  # the rating clamps nothing
     for leg in model.leg_names:
         for joint, kp, kd in zip(LEG_JOINTS, gains.stiffness, gains.damping, strict=True):
             name = joint_name(leg, joint)
