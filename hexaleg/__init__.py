@@ -66,6 +66,8 @@ _EXPORTS: dict[str, str] = {
     "Gait": "hexaleg.gait.spec",
     "GaitAnalysis": "hexaleg.gait.analysis",
     "analyze_gait": "hexaleg.gait.analysis",
+    "SimulationResult": "hexaleg.sim.result",
+    "simulate_gait": "hexaleg.sim.simulate",
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
@@ -104,6 +106,7 @@ __all__ = [
     "Requirements",
     "STANCE_LIMITS",
     "SearchSettings",
+    "SimulationResult",
     "StanceGeometry",
     "StudySpec",
     "TRIPODS",
@@ -131,6 +134,7 @@ __all__ = [
     "render_hexapod",
     "render_leg",
     "run_study",
+    "simulate_gait",
     "write_urdf",
 ]
 
@@ -181,6 +185,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
+    from hexaleg.sim.result import SimulationResult
+    from hexaleg.sim.simulate import simulate_gait
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry

@@ -1,9 +1,9 @@
 """Every subcommand, driven with arbitrary text and numbers: exit 0 or 2, never a traceback.
 
 On exit 2 the user sees at most one line on stderr and no file is written. The slow
-back-ends of ``report``, ``study`` and ``view`` (minutes of sweeps, a server that runs
-until Ctrl-C) are replaced by quick stand-ins: what is fuzzed is everything in front
-of them — parsing, validation and the design.
+back-ends of ``report``, ``study``, ``view`` and ``simulate`` (minutes of sweeps, a server
+that runs until Ctrl-C, seconds of physics) are replaced by quick stand-ins: what is
+fuzzed is everything in front of them — parsing, validation and the design.
 """
 
 from __future__ import annotations
@@ -135,7 +135,13 @@ def quick_backends():
             progress=False,
         )
 
+    from hexaleg.sim import simulate_gait
+
+    walked = simulate_gait(HexapodDesign(), cycles=2)  # a real answer, from a short walk
     patches = {
+        "hexaleg.cli.simulate.simulate_gait": lambda *args, **kwargs: walked,
+        "hexaleg.cli.simulate._animation": lambda result, path: Path(path),
+        "hexaleg.cli.simulate._video": lambda result, path: [],
         "hexaleg.cli.decide.decide": lambda *args, **kwargs: decided,
         "hexaleg.cli.report.build_report": fake_report,
         "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,

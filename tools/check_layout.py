@@ -7,7 +7,7 @@ layer and those below it, never one above::
     design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/
+    analysis    swing/, stance/, statics/, gait/, sim/
     study       study/, paper/
     output      output/
     cli         cli/, __main__
@@ -46,7 +46,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("cli", ("cli", "__main__")),

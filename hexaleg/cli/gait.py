@@ -38,6 +38,17 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
+    add_gait_options(parser)
+    add_payload_options(parser)
+    add_output_options(parser)
+    parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
+    parser.add_argument(
+        "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
+    )
+
+
+def add_gait_options(parser: argparse.ArgumentParser) -> None:
+    """The gait's options (gait, simulate): pattern, period, stride, step height, heading..."""
     group = parser.add_argument_group("gait (defaults chosen for the default robot)")
     group.add_argument(
         "--pattern",
@@ -68,12 +79,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help=f"samples per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]} "
         f"(default {DEFAULT.samples})",
-    )
-    add_payload_options(parser)
-    add_output_options(parser)
-    parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
-    parser.add_argument(
-        "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
     )
 
 

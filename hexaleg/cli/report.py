@@ -55,6 +55,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="also write DIR/report.pdf: the same report as one PDF with vector figures "
         "(needs the [pdf] extra: WeasyPrint)",
     )
+    parser.add_argument(
+        "--simulate",
+        action="store_true",
+        help='also walk the default gait in MuJoCo: the "Simulated walk" section (needs '
+        "the [sim] extra: MuJoCo)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -71,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
         sweep=sweep,
         pdf=args.pdf,
         requirements=requirements if requirements.given else None,
+        simulate=args.simulate,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)

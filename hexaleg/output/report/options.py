@@ -44,6 +44,8 @@ class ReportOptions:
             time.
         requirements: What the robot must do: the Decision section then shows first the
             best design that meets it (:func:`hexaleg.study.decide.decide`).
+        simulate: Also walk the default gait in MuJoCo (the ``[sim]`` extra) for the
+            "Simulated walk" section.
 
     """
 
@@ -58,6 +60,7 @@ class ReportOptions:
     pdf: bool = False
     vector_figures: bool = True
     requirements: Requirements | None = None
+    simulate: bool = False
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:

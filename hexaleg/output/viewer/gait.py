@@ -11,13 +11,15 @@ static page). Served by ``hexaleg view --gait`` or written as a static page by
 from __future__ import annotations
 
 import os
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pinocchio as pin
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
+from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.viewer.legend import torque_colour, with_legend
@@ -41,20 +43,40 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
         analysis: The gait period to play.
 
     """
+    build_motion_scene(
+        viewer,
+        model,
+        analysis.configurations,
+        analysis.gait.samples / analysis.gait.period,  # real time
+        np.abs(analysis.joint_torques) / np.array(analysis.design.rated_torques),
+    )
+
+
+def build_motion_scene(
+    viewer: Any, model: HexapodModel, configurations: ArrayF, frame_rate: float, ratios: ArrayF
+) -> None:
+    """Load the ground under the whole path, the robot and its animation into ``viewer``.
+
+    Args:
+        viewer: A ``meshcat.Visualizer``.
+        model: The hexapod's Pinocchio model (its URDF gives the geometry).
+        configurations: The robot's configuration in each frame (F, nq).
+        frame_rate: Frames per second [1/s].
+        ratios: Each leg joint's |τ|/rated in each frame (F, legs, 3), its link's colour.
+
+    """
     from meshcat.animation import Animation
 
     geometry = StanceGeometry.from_model(model, "all")
     visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
     viewer.delete()
     viewer["/Grid"].set_property("visible", False)
-    _add_ground(viewer, geometry)
+    span = _add_ground(viewer, geometry)
     robot = _robot(viewer, model, visual, NODE)
-    robot.display(analysis.configurations[0])
-    rate = analysis.gait.samples / analysis.gait.period  # real time
-    animation = Animation(default_framerate=max(1, round(rate)))
-    links = _leg_links(robot, visual, analysis.legs)
-    ratios = np.abs(analysis.joint_torques) / np.array(analysis.design.rated_torques)
-    for frame, q in enumerate(analysis.configurations):
+    robot.display(configurations[0])
+    animation = Animation(default_framerate=max(1, round(frame_rate)))
+    links = _leg_links(robot, visual, model.leg_names)
+    for frame, q in enumerate(configurations):
         pin.forwardKinematics(model.model, robot.data, q)
         pin.updateGeometryPlacements(model.model, robot.data, visual, robot.visual_data)
         with animation.at_frame(viewer, frame) as keyframe:
@@ -68,7 +90,23 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
                         "material.color", "color", [red, green, blue]
                     )
     _send_last(viewer, animation)
-    _place_camera(viewer, geometry)
+    path = np.asarray(configurations)[:, :2]
+    low, high = path.min(axis=0), path.max(axis=0)
+    _stretch_ground(viewer, span, low, high)
+    _place_camera(viewer, geometry, (low + high) / 2, float(np.linalg.norm(high - low)) / 2)
+
+
+def _stretch_ground(viewer: Any, span: float, low: ArrayF, high: ArrayF) -> None:
+    """Stretch the ground under the body's whole path, from ``low`` to ``high`` (x, y) [m].
+
+    The ground is a square of side ``span`` [m] around the footholds at the origin; it
+    grows by the path's extent, so every foothold of every frame stays on it.
+    """
+    stretch = np.eye(4)
+    stretch[:2, :2] = np.diag(1.0 + (high - low) / span)
+    stretch[:2, 3] = (low + high) / 2
+    stretch[2, 3] = -0.005
+    viewer[f"{ROOT}/ground"].set_transform(stretch)
 
 
 def _send_last(viewer: Any, animation: Any) -> None:
@@ -114,9 +152,34 @@ def _leg_links(
 
 def gait_html(model: HexapodModel, analysis: GaitAnalysis) -> str:
     """A self-contained HTML page of the animation (no server needed to view it)."""
+    return _static_page(lambda viewer: build_gait_scene(viewer, model, analysis))
+
+
+def motion_html(
+    model: HexapodModel, configurations: ArrayF, frame_rate: float, ratios: ArrayF
+) -> str:
+    """A self-contained HTML page of :func:`build_motion_scene` (no server needed)."""
+    return _static_page(
+        lambda viewer: build_motion_scene(viewer, model, configurations, frame_rate, ratios)
+    )
+
+
+def write_motion_html(
+    model: HexapodModel,
+    configurations: ArrayF,
+    frame_rate: float,
+    ratios: ArrayF,
+    path: str | os.PathLike[str],
+) -> Path:
+    """Write :func:`motion_html` to ``path`` atomically (a simulated walk, say)."""
+    return write_text(path, motion_html(model, configurations, frame_rate, ratios))
+
+
+def _static_page(build: Callable[[Any], None]) -> str:
+    """The static page of a scene ``build`` loads into a viewer, with the torque legend."""
     with LoopbackServer() as server:
         viewer = client(server)
-        build_gait_scene(viewer, model, analysis)
+        build(viewer)
         html: str = with_legend(viewer.static_html())
         viewer.window.zmq_socket.close(linger=0)
     return html
@@ -126,4 +189,4 @@ def write_gait_html(
     model: HexapodModel, analysis: GaitAnalysis, path: str | os.PathLike[str]
 ) -> Path:
     """Write :func:`gait_html` to ``path`` atomically."""
-    return atomic_write_text(path, gait_html(model, analysis))
+    return write_text(path, gait_html(model, analysis))

@@ -125,10 +125,17 @@ def _add_footholds(viewer: Any, geometry: StanceGeometry) -> None:
         node.set_transform(_translation(foothold))
 
 
-def _place_camera(viewer: Any, geometry: StanceGeometry) -> None:
-    """The default camera at the front right, above, far enough to see every foothold."""
-    viewer["/Cameras/default"].set_transform(np.eye(4))
-    reach = float(np.abs(geometry.footholds[:, :2]).max())
+def _place_camera(
+    viewer: Any, geometry: StanceGeometry, centre: Sequence[float] = (0.0, 0.0), spread: float = 0.0
+) -> None:
+    """The default camera at the front right, above, far enough to see every foothold.
+
+    For a robot that travels, ``centre`` (x, y) [m] is the middle of its path and
+    ``spread`` [m] how far from there the body goes: the camera looks at that middle from
+    far enough to see every foothold along the way.
+    """
+    viewer["/Cameras/default"].set_transform(_translation([*centre, 0.0]))
+    reach = float(np.abs(geometry.footholds[:, :2]).max()) + spread
     viewer["/Cameras/default/rotated/<object>"].set_property(
         "position",
         [1.6 * reach, 1.1 * reach, 1.6 * reach],  # three.js axes: y up
@@ -148,13 +155,15 @@ def _colour_by_torque(robot: Any, visual: Any, state: StaticState, rated: Sequen
                     )
 
 
-def _add_ground(viewer: Any, geometry: StanceGeometry) -> None:
+def _add_ground(viewer: Any, geometry: StanceGeometry) -> float:
+    """A square of ground around the footholds, 1 cm thick; return its side [m]."""
     import meshcat.geometry as mg
 
     span = 2.5 * (np.abs(geometry.footholds[:, :2]).max() + 0.2)
     node = viewer[f"{ROOT}/ground"]
     node.set_object(mg.Box([span, span, 0.01]), mg.MeshLambertMaterial(color=0xC8C8C8, opacity=0.9))
     node.set_transform(_translation([0.0, 0.0, -0.005]))
+    return float(span)
 
 
 def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> None:
