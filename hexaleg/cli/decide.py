@@ -121,8 +121,10 @@ def render(result: DecideResult) -> str:
     lines = [
         f"Decision: {result.objective.sense} {result.objective.label} over {free}",
         f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
-        "",
     ]
+    if result.walks:
+        lines.append(f"  walking: {result.walking_text()}")
+    lines.append("")
     verdict = "meets every requirement" if result.feasible else "LEAST INFEASIBLE: meets not all"
     lines += _design_block("Best design", result.best, result, verdict, binding=True)
     lines += _design_block("Your design", result.yours, result, "", binding=False)
@@ -146,7 +148,25 @@ def _design_block(
     for row in rows:
         cells = "  ".join(cell.ljust(w) for cell, w in zip(row, width, strict=False))
         lines.append(f"  {cells}  {row[3]}".rstrip())
-    return [*lines, ""]
+    return [*lines, *over_rating_lines(checked, result), ""]
+
+
+def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]:
+    """Each joint over its rating standing (and walking), or that none is."""
+    payload = result.requirements.payload_mass
+    carrying = f"carrying {payload:g} kg" if payload else "without payload"
+    groups = [(f"standing {carrying} (nominal stance and the 12 body extremes)",
+               checked.standing_over_rating)]  # fmt: skip
+    if result.walks:
+        groups.append((f"walking at {result.requirements.gait.speed:.4g} m/s",
+                       checked.walking_over_rating))  # fmt: skip
+    lines = []
+    for where, flagged in groups:
+        if not flagged:
+            lines.append(f"  over its rating {where}: no joint")
+        for flag in flagged:
+            lines.append(f"  OVER RATING {where}: {flag}")
+    return lines
 
 
 def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
@@ -154,7 +174,7 @@ def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[
         state = "binds" if check.binds else ("" if check.met else "NOT MET")
     else:
         state = "pass" if check.met else "FAIL"
-    limited = f" (limited by {check.limited_by})" if check.limited_by else ""
+    limited = f" (limited by {check.limited_by})"
     return (
         result.requirements.describe(check.name),
         format_value(check.name, check.value),

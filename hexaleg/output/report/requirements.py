@@ -14,7 +14,7 @@ from hexaleg.study.requirements import RequirementCheck, format_margin, format_v
 
 
 def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
-    """Markdown blocks: the verdict, the requirements table, the search in one line."""
+    """Markdown blocks: the verdict, the requirements table, joints over ratings, the search."""
     best, yours, objective = result.best, result.yours, result.objective
     lengths = ", ".join(f"{v:.3f}" for v in best.design.lengths)
     if result.feasible:
@@ -32,13 +32,15 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         )
     rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
+    walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
         f"{verdict}; your design: {objective.label} {_objective(yours, objective.name)}.",
         table(
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,
         ),
-        f"*How it was found.* {result.evaluations} designs searched over {free} by "
+        f"*Joints over their ratings.* {_over_rating(result)}",
+        f"*How it was found.*{walking} {result.evaluations} designs searched over {free} by "
         f"{result.method}, seed {result.seed}; the best was measured again from its own URDF. "
         "A requirement binds where the best design meets it within 1 % of the required value: "
         "relaxing it would buy a better design.",
@@ -46,7 +48,7 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
 
 
 def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) -> tuple[str, ...]:
-    limited = f" (limited by {best.limited_by})" if best.limited_by else ""
+    limited = f" (limited by {best.limited_by})"
     return (
         result.requirements.describe(best.name),
         format_value(best.name, best.value) + limited,
@@ -60,3 +62,21 @@ def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) 
 def _objective(checked: CheckedDesign, name: str) -> str:
     value = checked.evaluation.values.get(name)
     return "—" if value is None else f"{value:.4g}"
+
+
+def _over_rating(result: DecideResult) -> str:
+    """Each design's joints over their ratings standing (and walking), or that none is."""
+    payload = result.requirements.payload_mass
+    standing = f"standing with {payload:g} kg" if payload else "standing without payload"
+    parts = []
+    for title, checked in (("Best design", result.best), ("your design", result.yours)):
+        groups = [(standing, checked.standing_over_rating)]
+        if result.walks:
+            groups.append((f"walking at {result.requirements.gait.speed:.4g} m/s",
+                           checked.walking_over_rating))  # fmt: skip
+        said = [f"{where}: " + ("; ".join(map(str, flags)) or "none") for where, flags in groups]
+        parts.append(f"{title}, " + ", ".join(said))
+    return (
+        ". ".join(parts) + " (standing: at the nominal stance and the 12 axis-locked body "
+        "extremes)."
+    )
