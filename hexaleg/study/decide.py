@@ -84,6 +84,16 @@ class CheckedDesign:
             walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
         return cls(design, evaluation, evaluation.checks(requirements), standing, walking)
 
+    def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
+        """(where, flags furthest over first) standing with the payload, and walking if walked."""
+        payload = result.requirements.payload_mass
+        standing = f"standing with {payload:g} kg" if payload else "standing without payload"
+        groups = [(standing, furthest_first(self.standing_over_rating))]
+        if result.walks:
+            walking = f"walking at {result.requirements.gait.speed:.4g} m/s"
+            groups.append((walking, furthest_first(self.walking_over_rating)))
+        return groups
+
     def over_rating(self) -> list[dict[str, Any]]:
         """Every joint over its rating, JSON-ready, each saying ``while`` standing or walking."""
         return [o.to_dict() | {"while": "standing"} for o in self.standing_over_rating] + [
@@ -100,6 +110,11 @@ class CheckedDesign:
         value = self.evaluation.values.get(objective.name)
         return {"name": objective.name, "sense": objective.sense, "value": value,
                 "unit": METRIC_UNITS[objective.name]}  # fmt: skip
+
+
+def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
+    """Joints over their ratings, the furthest over (peak / rating) first."""
+    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 @dataclass(frozen=True)

@@ -9,6 +9,7 @@ each. The decision itself is :func:`hexaleg.study.decide.decide`.
 from __future__ import annotations
 
 from hexaleg.output.report.document import table
+from hexaleg.statics.ratings import OverRating
 from hexaleg.study.decide import CheckedDesign, DecideResult
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 
@@ -39,8 +40,9 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,
         ),
-        f"*Joints over their ratings.* {_over_rating(result)}",
-        f"*How it was found.*{walking} {result.evaluations} designs searched over {free} by "
+        over_rating_table(result),
+        f"*How it was found.* Standing: at the nominal stance and the 12 axis-locked body "
+        f"extremes.{walking} {result.evaluations} designs searched over {free} by "
         f"{result.method}, seed {result.seed}; the best was measured again from its own URDF. "
         "A requirement binds where the best design meets it within 1 % of the required value: "
         "relaxing it would buy a better design.",
@@ -64,19 +66,22 @@ def _objective(checked: CheckedDesign, name: str) -> str:
     return "—" if value is None else f"{value:.4g}"
 
 
-def _over_rating(result: DecideResult) -> str:
-    """Each design's joints over their ratings standing (and walking), or that none is."""
-    payload = result.requirements.payload_mass
-    standing = f"standing with {payload:g} kg" if payload else "standing without payload"
-    parts = []
-    for title, checked in (("Best design", result.best), ("your design", result.yours)):
-        groups = [(standing, checked.standing_over_rating)]
-        if result.walks:
-            groups.append((f"walking at {result.requirements.gait.speed:.4g} m/s",
-                           checked.walking_over_rating))  # fmt: skip
-        said = [f"{where}: " + ("; ".join(map(str, flags)) or "none") for where, flags in groups]
-        parts.append(f"{title}, " + ", ".join(said))
-    return (
-        ". ".join(parts) + " (standing: at the nominal stance and the 12 axis-locked body "
-        "extremes)."
-    )
+SHOWN_OVER_RATING = 4
+"""Joints over their ratings a cell lists, the furthest over first."""
+
+
+def over_rating_table(result: DecideResult) -> str:
+    """Each design's joints over their ratings, standing and walking, as a table."""
+    best = result.best.over_rating_groups(result)
+    yours = result.yours.over_rating_groups(result)
+    rows = [
+        (f"joints over their ratings {where}", _flags(flags), _flags(your_flags))
+        for (where, flags), (_, your_flags) in zip(best, yours, strict=True)
+    ]
+    return table(["", "best design", "your design"], rows)
+
+
+def _flags(flags: list[OverRating]) -> str:
+    shown = "; ".join(str(flag) for flag in flags[:SHOWN_OVER_RATING]) or "none"
+    more = len(flags) - SHOWN_OVER_RATING
+    return shown + (f"; and {more} more (report.json lists them)" if more > 0 else "")
