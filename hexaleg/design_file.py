@@ -60,7 +60,7 @@ TRIPLES: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind =
 """Keys holding three numbers."""
 
 LIMIT_SETS: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind == "limits"}
-"""Joint-limit tables: theta1, theta2, theta3 = [lower, upper] [rad], coupled_knee, name."""
+"""Joint-limit tables: theta1, theta2, theta3 (lower and upper bound [rad]), coupled_knee, name."""
 
 MOUNT_KEYS: dict[str, str] = {
     "name": "leg name: a lower-case identifier",
