@@ -75,10 +75,10 @@ def over_rating_table(result: DecideResult) -> str:
     best = result.best.over_rating_groups(result)
     yours = result.yours.over_rating_groups(result)
     rows = [
-        (f"joints over their ratings {where}", _flags(flags), _flags(your_flags))
+        (where, _flags(flags), _flags(your_flags))
         for (where, flags), (_, your_flags) in zip(best, yours, strict=True)
     ]
-    return table(["", "best design", "your design"], rows)
+    return table(["joints over their ratings", "best design", "your design"], rows)
 
 
 def _flags(flags: list[OverRating]) -> str:
