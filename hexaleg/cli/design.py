@@ -11,7 +11,8 @@ from hexaleg.cli.options import UsageError, add_design_options, design_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design_file
-from hexaleg.study.requirements import POSITION_KEY, Requirements, example_table
+from hexaleg.study.requirements import POSITION_KEY, Requirements
+from hexaleg.study.requirements_table import example_table
 
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "

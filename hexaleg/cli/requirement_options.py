@@ -12,7 +12,8 @@ from typing import Any
 
 from hexaleg._checks import require_in_range
 from hexaleg.design_file import load_design_file
-from hexaleg.study.requirements import DESCRIPTIONS, KINDS, Requirements
+from hexaleg.study.requirements import KINDS, Requirements
+from hexaleg.study.requirements_table import DESCRIPTIONS
 
 METAVARS: dict[str, str] = {
     "payload": "KG",
