@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign
@@ -206,43 +207,56 @@ def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     assert out.stat().st_mode & 0o777 == 0o777 & ~mask  # a normal folder, not mkdtemp's 0700
 
 
-def test_the_decision_comes_first_and_scores_the_users_design(report):
+def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(report):
     import math
 
     from hexaleg.stance import flexibility
+    from hexaleg.statics.loads import analyze_loads
+    from hexaleg.study.ranking import RANKING_RULE
     from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 
     out, data = report
     text = (out / "report.md").read_text()
     assert text.index("## Decision") < text.index("## Design") < text.index("## 5. Recommendation")
+    decision_text = text.split("## Design")[0]
+    assert decision_text.count("**Recommended:") == 1 and "Pareto recommendation" not in text
+    assert RANKING_RULE in decision_text
     design = HexapodDesign()
     yours = data["decision"]["yours"]["metrics"]
-    # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB
+    # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB,
+    # the payload capacity of the loads analysis on the design's own URDF
     assert yours["improved_area"] == pytest.approx(2 * math.pi * 0.4 * 0.4 / 3, rel=1e-12)
     improved = rectangular_and_improved(design.manipulability_limits)[1]
     assert yours["average_manipulability"] == pytest.approx(
         float(average_manipulability(design.lengths, improved)), rel=1e-12
     )
     assert yours["flexibility"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
-    maxima = data["recommendation"]["maxima"]
-    score = sum(yours[k] / maxima[k] for k in maxima) / 3
-    assert data["decision"]["yours"]["score"] == pytest.approx(score, rel=1e-12)
+    assert yours["payload_capacity"] == pytest.approx(analyze_loads(design).capacity.mass, rel=1e-9)
+    assert data["decision"]["yours"]["score"] == 1.0
     recommended = data["decision"]["recommended"]
-    assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-9)
-    assert recommended["score"] > data["decision"]["yours"]["score"]
-    assert f"{yours['flexibility']:.4g}" in text.split("## Design")[0]
-    # payload capacities, recomputed on models built from each design's own URDF
-    from hexaleg.statics.loads import analyze_loads
-
-    assert data["decision"]["yours"]["payload_capacity"] == pytest.approx(
-        analyze_loads(design).capacity.mass, rel=1e-9
-    )
     lengths = recommended["lengths_m"]
     theirs = HexapodDesign(l1=lengths[0], l2=lengths[1], l3=lengths[2])
-    assert recommended["payload_capacity"] == pytest.approx(
-        analyze_loads(theirs).capacity.mass, rel=1e-9
+    metrics = {
+        "improved_area": 2 * math.pi * lengths[1] * lengths[2] / 3,
+        "average_manipulability": float(average_manipulability(theirs.lengths, improved)),
+        "flexibility": flexibility(theirs, "axis").fb,
+        "payload_capacity": analyze_loads(theirs).capacity.mass,
+    }
+    assert recommended["metrics"] == pytest.approx(metrics, rel=1e-9)
+    by_hand = math.prod(metrics[k] / yours[k] for k in metrics) ** 0.25  # the stated rule
+    assert recommended["score"] == pytest.approx(by_hand, rel=1e-9)
+    assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-12)
+    assert recommended["score"] > 1.0
+    # the Pareto front is ranked by the same rule: its first is the recommendation's grid point
+    first = data["pareto_front"][0]
+    assert first["l1_ratio"] == pytest.approx(data["recommendation"]["l1_ratio"])
+    from hexaleg.design import l3_ratio_grid
+
+    step = float(np.diff(l3_ratio_grid(REDUCED.l3_points))[0])  # refined within one step
+    assert abs(first["l3_ratio"] - data["recommendation"]["l3_ratio"]) <= step
+    assert first["score"] == pytest.approx(
+        math.prod(first[k] / yours[k] for k in metrics) ** 0.25, rel=1e-12
     )
-    assert "Counting payload capacity too" in text.split("## Design")[0]
 
 
 @pytest.mark.slow

@@ -185,6 +185,9 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
         if cause.kind == "torque" and cause.joint is not None:
             rated = design.rated_torques[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} N·m"
+        elif cause.kind == "speed" and cause.joint is not None:
+            rated = design.rated_speeds[LEG_JOINTS.index(cause.joint)]
+            phrase = f"with {cause.joint} motors of {rated:g} rad/s"
         elif cause.kind in ("tip", "stability"):
             phrase = "without tipping"
         elif cause.kind == "slide":
