@@ -16,6 +16,7 @@ import sys
 import threading
 import time
 import urllib.request
+from pathlib import Path
 
 import psutil
 import pytest
@@ -106,6 +107,28 @@ def test_what_the_page_sends_never_reaches_the_command_socket():
         assert forwarded == []
 
 
+def test_the_page_is_meshcat_s_with_the_legend_beside_the_scene():
+    """The served page carries the legend the static one does; meshcat's scripts unchanged."""
+    from hexaleg.output.viewer.legend import GAIT_LEGEND, torque_legend_html, with_legend
+
+    def fetch(url: str) -> tuple[str, bytes]:
+        with urllib.request.urlopen(url, timeout=30) as answer:
+            return answer.headers["Cache-Control"], answer.read()
+
+    import meshcat
+
+    dist = Path(meshcat.__file__).parent / "viewer" / "dist"
+    plain = (dist / "index.html").read_text(encoding="utf-8")
+    with LoopbackServer(legend=GAIT_LEGEND) as server:
+        for page in (server.web_url, server.web_url + "index.html"):
+            cache, body = fetch(page)
+            assert body.decode() == with_legend(plain, GAIT_LEGEND)
+            assert torque_legend_html(GAIT_LEGEND) in body.decode() and "no-store" in cache
+        assert fetch(server.web_url + "main.min.js")[1] == (dist / "main.min.js").read_bytes()
+    with LoopbackServer() as server:  # no legend: meshcat's page as it is
+        assert fetch(server.web_url)[1].decode() == plain
+
+
 @pytest.mark.parametrize(
     ("host", "loopback"),
     [
@@ -146,17 +169,18 @@ def test_binding_beyond_loopback_says_what_is_exposed(monkeypatch, capsys):
     from conftest import run_cli
 
     from hexaleg.cli import view
+    from hexaleg.output.viewer import scene
 
     bound = []
 
     class Server:
         web_url = "http://127.0.0.1:7000/static/"
 
-        def __init__(self, host, port):
+        def __init__(self, host, port, legend):
             bound.append((host, port))
 
     monkeypatch.setattr(view, "LoopbackServer", Server)
-    monkeypatch.setattr(view, "build_scene", lambda *args, **kwargs: None)
+    monkeypatch.setattr(scene, "build_scene", lambda *args, **kwargs: None)
     monkeypatch.setattr(view, "client", lambda server: None)
     monkeypatch.setattr(view, "serve_until_stopped", lambda server: None)
     assert run_cli(["view", "--host", "0.0.0.0", "--port", "7010"]) == 0

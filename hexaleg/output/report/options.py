@@ -8,11 +8,11 @@ from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
+from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.decision import DecisionOptions
 from hexaleg.study.executors import max_workers
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.sensitivity import FieldSweep
-from hexaleg.study.sweep import MAX_L1_RATIOS
 from hexaleg.swing.workspace import MAX_SAMPLES
 
 MIN_L3_POINTS = 10
