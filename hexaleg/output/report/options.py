@@ -31,7 +31,8 @@ class ReportOptions:
         sensitivity_points: Tibia ratios per coxa ratio in the posture sensitivity table.
         monte_carlo_samples: Samples of the Monte Carlo workspace.
         workers: Local processes for the flexibility study (default: CPUs).
-        progress: Show a progress bar; by default only on a terminal.
+        progress: ``False`` shows no progress; by default a bar on a terminal, a line
+            every few seconds elsewhere (as a study: :class:`~hexaleg.study.progress.Progress`).
         l1_ratios: Coxa ratios to sweep and recommend from (a fixed coxa: one ratio);
             by default the paper's four, recommending among the practical ones (≥ 0.10).
         collisions: The robot's own parts touching also stop the body, in the design's
