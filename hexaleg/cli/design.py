@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import Any
 
 from hexaleg.cli.options import UsageError, add_design_options, design_from_args
@@ -47,7 +46,7 @@ def run(args: argparse.Namespace) -> int:
     """Write or show the design."""
     design = design_from_args(args)
     if args.action == "init":
-        return _init(Path(args.file), design, args.force)
+        return _init(args.file, design, args.force)
     if args.json:
         print_json({"design": design.as_dict(), "derived": derived(design)})
     else:
@@ -55,15 +54,15 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _init(path: Path, design: HexapodDesign, force: bool) -> int:
+def _init(file: str, design: HexapodDesign, force: bool) -> int:
     from hexaleg._io import check_output_file, write_text
     from hexaleg.design_file import design_toml
 
+    path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    check_output_file(path)
     report_files([write_text(path, design_toml(design))])
     return 0
 
