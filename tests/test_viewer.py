@@ -201,52 +201,6 @@ def test_view_rejects_bad_input_in_one_line(capsys, tmp_path):
     assert list(tmp_path.iterdir()) == []
 
 
-@pytest.mark.parametrize(
-    ("host", "loopback"),
-    [
-        ("127.0.0.1", True),
-        ("127.0.0.2", True),
-        ("::1", True),
-        ("localhost", True),
-        ("0.0.0.0", False),
-        ("192.168.1.5", False),
-        ("example.org", False),
-    ],
-)
-def test_is_loopback(host, loopback):
-    from hexaleg.cli.view import is_loopback
-
-    assert is_loopback(host) is loopback
-
-
-def test_binding_beyond_loopback_warns_once(monkeypatch, capsys):
-    """The warning is printed before serving; the server itself is a stand-in here."""
-    from hexaleg.cli import view
-    from hexaleg.cli.main import main
-    from hexaleg.output.viewer import scene
-
-    bound = []
-
-    class FakeServer:
-        web_url = "http://0.0.0.0:7000/static/"
-
-        def __init__(self, host, port, legend):
-            bound.append(host)
-
-    monkeypatch.setattr(view, "LoopbackServer", FakeServer)
-    monkeypatch.setattr(scene, "build_scene", lambda *args, **kwargs: None)
-    monkeypatch.setattr(view, "client", lambda server: None)
-    monkeypatch.setattr(view, "serve_until_stopped", lambda server: None)
-    assert main(["view", "--host", "0.0.0.0"]) == 0
-    assert bound == ["0.0.0.0"]
-    warnings = [line for line in capsys.readouterr().err.splitlines() if "note" in line]
-    assert (
-        len(warnings) == 1 and "--host 0.0.0.0" in warnings[0] and "authentication" in warnings[0]
-    )
-    assert main(["view"]) == 0
-    assert not [line for line in capsys.readouterr().err.splitlines() if "note" in line]
-
-
 def test_meshcat_chatter_is_not_shown_to_the_user(capfd):
     """A second server finds port 7000 taken: meshcat would print "Port: ... in use"."""
     with LoopbackServer() as first, LoopbackServer() as second:
