@@ -118,7 +118,7 @@ def quick_backends():
     class FakeServer:
         web_url = "http://127.0.0.1:7000/static/"
 
-        def __init__(self, host, port):
+        def __init__(self, host, port, legend):
             self.host = host
 
     from concurrent.futures import ThreadPoolExecutor
@@ -148,11 +148,11 @@ def quick_backends():
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
         "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_text": lambda path, text: Path(path),
-        "hexaleg.cli.view.write_static_html": fake_html,
+        "hexaleg.output.viewer.scene.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
-        "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
-        "hexaleg.cli.view.build_gait_scene": lambda *args, **kwargs: None,
-        "hexaleg.cli.view.write_gait_html": fake_html,
+        "hexaleg.output.viewer.scene.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.output.viewer.gait.build_gait_scene": lambda *args, **kwargs: None,
+        "hexaleg.output.viewer.gait.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
     }

@@ -187,6 +187,13 @@ def test_design_init_writes_a_file_that_reads_back(tmp_path, capsys):
     assert not (tmp_path / "robot.txt").exists()
 
 
+def test_design_init_refuses_an_empty_path_as_empty(tmp_path, capsys, monkeypatch):
+    """``design init ""`` names the empty path, not ``.`` (what ``Path("")`` reads as)."""
+    monkeypatch.chdir(tmp_path)
+    _one_line_exit_2(capsys, ["design", "init", ""], "an empty path")
+    assert list(tmp_path.iterdir()) == []
+
+
 @pytest.mark.parametrize("design", DESIGNS.values(), ids=DESIGNS.keys())
 def test_design_show_derives_height_mass_and_footholds(tmp_path, capsys, design):
     path = tmp_path / "robot.toml"

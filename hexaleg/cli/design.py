@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import Any
 
 from hexaleg.cli.options import UsageError, add_design_options, design_from_args
@@ -52,7 +51,7 @@ def run(args: argparse.Namespace) -> int:
     """Write or show the design."""
     design = design_from_args(args)
     if args.action == "init":
-        return _init(Path(args.file), design, args.force)
+        return _init(args.file, design, args.force)
     requirements = (
         Requirements()
         if args.design is None
@@ -70,15 +69,15 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _init(path: Path, design: HexapodDesign, force: bool) -> int:
+def _init(file: str, design: HexapodDesign, force: bool) -> int:
     from hexaleg._io import check_output_file, write_text
     from hexaleg.design_file import design_toml
 
+    path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    check_output_file(path)
     report_files([write_text(path, design_toml(design) + "\n" + example_table())])
     return 0
 

@@ -13,8 +13,8 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
 from hexaleg.layouts import Layout
 from hexaleg.paper import L3_RATIO_POINTS
+from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
-from hexaleg.study.sweep import MAX_L1_RATIOS
 
 DEFAULT_TOTAL = 1.0
 """Total leg length [m] of ``--ratios`` when ``--total`` is not given (the paper's 1000 mm)."""

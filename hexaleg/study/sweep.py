@@ -38,7 +38,7 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import gait_study_columns
-from hexaleg.ratios import require_ratio_grid
+from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult
@@ -55,9 +55,6 @@ from hexaleg.study.journal import (
     write_finished_journal,
 )
 from hexaleg.study.progress import Progress
-
-MAX_L1_RATIOS = 20
-"""Most coxa ratios in one study."""
 
 TABLE_CSV = "study.csv"
 TABLE_JSON = "study.json"

@@ -3,15 +3,15 @@
 The scene holds the ground and the robot (``/hexaleg/gait``); one animation plays the
 period in real time (one keyframe per sample): the body walking at its constant velocity,
 each leg's coxa, femur and tibia in the colour of its root, hip and knee's |τ|/rated
-torque at that instant (viridis, as the statics view; the legend beside the scene in the
-static page). Served by ``hexaleg view --gait`` or written as a static page by
-``hexaleg gait --html``.
+torque at that instant (viridis, as the statics view; no link is red: nothing stops a
+gait as a limit stops an extreme). The legend beside the scene, served by
+``hexaleg view --gait`` or in the static page ``hexaleg gait --html`` writes, says so
+(:data:`.legend.GAIT_LEGEND`).
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -22,11 +22,10 @@ from hexaleg._io import write_text
 from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.viewer.legend import torque_colour, with_legend
-from hexaleg.output.viewer.scene import JOINT_LINKS, ROOT, _add_ground, _place_camera, _robot
-from hexaleg.output.viewer.server import LoopbackServer, client
+from hexaleg.output.viewer.legend import GAIT_LEGEND, torque_colour
+from hexaleg.output.viewer.server import static_page
+from hexaleg.output.viewer.stage import JOINT_LINKS, ROOT, Stage
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.geometry import StanceGeometry
 
 NODE = f"{ROOT}/gait"
 """The walking robot's node in the scene tree."""
@@ -67,22 +66,14 @@ def build_motion_scene(
     """
     from meshcat.animation import Animation
 
-    geometry = StanceGeometry.from_model(model, "all")
-    visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
-    viewer.delete()
-    viewer["/Grid"].set_property("visible", False)
-    span = _add_ground(viewer, geometry)
-    robot = _robot(viewer, model, visual, NODE)
+    stage = Stage.set_up(viewer, model, "all")
+    robot = stage.robot(NODE)
     robot.display(configurations[0])
     animation = Animation(default_framerate=max(1, round(frame_rate)))
-    links = _leg_links(robot, visual, model.leg_names)
+    links = _leg_links(stage, robot, model.leg_names)
     for frame, q in enumerate(configurations):
-        pin.forwardKinematics(model.model, robot.data, q)
-        pin.updateGeometryPlacements(model.model, robot.data, visual, robot.visual_data)
         with animation.at_frame(viewer, frame) as keyframe:
-            for k, obj in enumerate(visual.geometryObjects):
-                name = robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
-                keyframe[name].set_transform(robot.visual_data.oMg[k].homogeneous)
+            stage.pose(keyframe, robot, q)
             for (leg, joint), names in links.items():
                 red, green, blue, _ = torque_colour(float(ratios[frame, leg, joint]))
                 for name in names:
@@ -92,21 +83,8 @@ def build_motion_scene(
     _send_last(viewer, animation)
     path = np.asarray(configurations)[:, :2]
     low, high = path.min(axis=0), path.max(axis=0)
-    _stretch_ground(viewer, span, low, high)
-    _place_camera(viewer, geometry, (low + high) / 2, float(np.linalg.norm(high - low)) / 2)
-
-
-def _stretch_ground(viewer: Any, span: float, low: ArrayF, high: ArrayF) -> None:
-    """Stretch the ground under the body's whole path, from ``low`` to ``high`` (x, y) [m].
-
-    The ground is a square of side ``span`` [m] around the footholds at the origin; it
-    grows by the path's extent, so every foothold of every frame stays on it.
-    """
-    stretch = np.eye(4)
-    stretch[:2, :2] = np.diag(1.0 + (high - low) / span)
-    stretch[:2, 3] = (low + high) / 2
-    stretch[2, 3] = -0.005
-    viewer[f"{ROOT}/ground"].set_transform(stretch)
+    stage.stretch_ground(low, high)
+    stage.place_camera((low + high) / 2, float(np.linalg.norm(high - low)) / 2)
 
 
 def _send_last(viewer: Any, animation: Any) -> None:
@@ -134,33 +112,30 @@ class _Lowered:
         return self.command
 
 
-def _leg_links(
-    robot: Any, visual: pin.GeometryModel, legs: tuple[str, ...]
-) -> dict[tuple[int, int], list[str]]:
+def _leg_links(stage: Stage, robot: Any, legs: tuple[str, ...]) -> dict[tuple[int, int], list[str]]:
     """Scene names of each (leg, joint)'s link geometry: the link each joint moves."""
-    links: dict[tuple[int, int], list[str]] = {}
-    for i, leg in enumerate(legs):
-        for j, joint in enumerate(LEG_JOINTS):
-            link = f"{leg}_{JOINT_LINKS[joint]}"
-            links[(i, j)] = [
-                robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
-                for obj in visual.geometryObjects
-                if obj.name.rsplit("_", 1)[0] == link
-            ]
-    return links
+    return {
+        (i, j): [
+            robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
+            for obj in stage.link_objects({f"{leg}_{JOINT_LINKS[joint]}"})
+        ]
+        for i, leg in enumerate(legs)
+        for j, joint in enumerate(LEG_JOINTS)
+    }
 
 
 def gait_html(model: HexapodModel, analysis: GaitAnalysis) -> str:
     """A self-contained HTML page of the animation (no server needed to view it)."""
-    return _static_page(lambda viewer: build_gait_scene(viewer, model, analysis))
+    return static_page(lambda viewer: build_gait_scene(viewer, model, analysis), GAIT_LEGEND)
 
 
 def motion_html(
     model: HexapodModel, configurations: ArrayF, frame_rate: float, ratios: ArrayF
 ) -> str:
     """A self-contained HTML page of :func:`build_motion_scene` (no server needed)."""
-    return _static_page(
-        lambda viewer: build_motion_scene(viewer, model, configurations, frame_rate, ratios)
+    return static_page(
+        lambda viewer: build_motion_scene(viewer, model, configurations, frame_rate, ratios),
+        GAIT_LEGEND,
     )
 
 
@@ -173,16 +148,6 @@ def write_motion_html(
 ) -> Path:
     """Write :func:`motion_html` to ``path`` atomically (a simulated walk, say)."""
     return write_text(path, motion_html(model, configurations, frame_rate, ratios))
-
-
-def _static_page(build: Callable[[Any], None]) -> str:
-    """The static page of a scene ``build`` loads into a viewer, with the torque legend."""
-    with LoopbackServer() as server:
-        viewer = client(server)
-        build(viewer)
-        html: str = with_legend(viewer.static_html())
-        viewer.window.zmq_socket.close(linger=0)
-    return html
 
 
 def write_gait_html(
