@@ -80,10 +80,18 @@ def test_a_study_off_a_terminal_prints_progress_lines(tmp_path, capsys, monkeypa
     assert lines[-1].startswith("hexaleg: 9/9 designs (100.0 %), ") and "left" not in lines[-1]
 
 
+# The CLI in a child process whose progress lines are due after every finished design
+# (INTERVAL 0): a fast machine finishes the grid before the usual 5 s and prints none.
+EVERY_DESIGN_A_LINE = (
+    "import sys; import hexaleg.study.progress as p; p.INTERVAL = 0.0; "
+    "from hexaleg.cli import main; sys.exit(main())"
+)
+
+
 @pytest.mark.slow  # a study run as the CLI, its stderr a file
 def test_the_cli_shows_lines_not_a_bar_when_stderr_is_a_file(tmp_path):
     log = tmp_path / "log"
-    argv = [sys.executable, "-m", "hexaleg", "study", "--l1-ratios", "0.1", "0.2"]
+    argv = [sys.executable, "-c", EVERY_DESIGN_A_LINE, "study", "--l1-ratios", "0.1", "0.2"]
     argv += ["--l3-points", "300", "--workers", "2", "-o", str(tmp_path / "s")]
     with log.open("w") as err:
         assert (
