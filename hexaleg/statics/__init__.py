@@ -16,7 +16,7 @@ _EXPORTS: dict[str, str] = {
     "analyze_loads": "hexaleg.statics.loads",
     "DEFAULT_FRICTION": "hexaleg.statics.forces",
     "equilibrium": "hexaleg.statics.forces",
-    "extreme_configurations": "hexaleg.statics.loads",
+    "extreme_configurations": "hexaleg.stance.configurations",
     "ExtremeLoads": "hexaleg.statics.loads",
     "friction_pyramid": "hexaleg.statics.forces",
     "GRAVITY": "hexaleg.statics.forces",
@@ -63,6 +63,7 @@ __all__ = [
 __getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+    from hexaleg.stance.configurations import extreme_configurations
     from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
     from hexaleg.statics.forces import (
         DEFAULT_FRICTION,
@@ -77,7 +78,6 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         ExtremeLoads,
         LoadsAnalysis,
         analyze_loads,
-        extreme_configurations,
         loads_at_extremes,
     )
     from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_gravity, slope_limits

@@ -24,7 +24,7 @@ from typing import Any
 
 from hexaleg.cause import Cause
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION
 from hexaleg.study.evaluation import Evaluation, Goal, Objective
 from hexaleg.study.optimize import SearchOutcome

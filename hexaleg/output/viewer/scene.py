@@ -135,7 +135,8 @@ def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> 
 def _extreme_configuration(stage: Stage, extreme: Extreme, share: float = 1.0) -> np.ndarray:
     """The robot at ``share`` of the way from nominal to the extreme's pose (free or not)."""
     pose = share * np.asarray(extreme.pose)
-    return stance_configurations(stage.model, stage.geometry, pose)[0]
+    configuration: np.ndarray = stance_configurations(stage.model, stage.geometry, pose)[0]
+    return configuration
 
 
 def _limiting_links(extreme: Extreme) -> set[str]:
