@@ -41,7 +41,7 @@ from hexaleg.gait.analysis import gait_study_columns
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
-from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.loads import loads_at_extremes
@@ -187,7 +187,7 @@ def _row(
         )
     elif result is None:
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
+            warnings.simplefilter("ignore", FlexibilityWarning)  # the row's "converged"
             result = free_flexibility(
                 design, spec.stance, model, collisions=spec.collisions, geometry=template
             )
