@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -109,6 +109,7 @@ def run(args: argparse.Namespace) -> int:
     analysis = analyze_gait(
         design, gait, payload, distribution=args.distribution, friction=args.friction, model=model
     )
+    require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []
     if args.csv is not None:
         written.append(_write_csv(analysis, Path(args.csv)))

@@ -13,11 +13,8 @@ from __future__ import annotations
 from hexaleg._checks import require_in_range, require_int
 from hexaleg._typing import Distribution
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
-from hexaleg.gait.limits import max_stride
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.walk import Walker
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.sim.measure import measure_walk
@@ -44,26 +41,6 @@ def plan_of(analysis: GaitAnalysis) -> Plan:
         standing=analysis.stance,
         velocity=analysis.base_velocity[:2],
     )
-
-
-def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
-    """Raise a one-line error if the planned period breaks a constraint.
-
-    A stride beyond the design's max stride is named as such; a gait no stride makes
-    walkable (too high a step, say) by its first violation.
-    """
-    if analysis.feasible:
-        return
-    gait = analysis.gait
-    limit = max_stride(Walker(model, gait, analysis.payload, analysis.distribution))
-    if 0 < limit.value < gait.stride:  # at 0 no stride at all is walkable: say why
-        raise ParameterError(
-            "stride",
-            gait.stride,
-            f"must be at most {limit.value:.4g} [m], this design's max stride at step height "
-            f"{gait.step_height:g} m (beyond it: {limit.limited_by})",
-        )
-    raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}")
 
 
 def simulate_gait(
