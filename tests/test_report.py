@@ -6,6 +6,7 @@ import json
 
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -148,9 +149,17 @@ def test_refuses_a_folder_that_is_not_a_report(tmp_path, capsys):
     (tmp_path / "mine.txt").write_text("user data")
     with pytest.raises(HexalegError, match="not a hexaleg report"):
         build_report(tmp_path, options=REDUCED)
-    assert main(["report", "-o", str(tmp_path), "--l3-points", "3"]) == 2
-    assert capsys.readouterr().err.count("\n") == 1
+    assert main(["report", "-o", str(tmp_path), "--l3-points", "10"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not a hexaleg report" in err
     assert [p.name for p in tmp_path.iterdir()] == ["mine.txt"]
+
+
+def test_the_help_gives_the_tibia_ratios_the_report_accepts(capsys):
+    assert run_cli(["report", "--l3-points", "9"]) == 2
+    assert "must be in 10..1000" in capsys.readouterr().err
+    assert run_cli(["report", "--help"]) == 0
+    assert "10..1000" in " ".join(capsys.readouterr().out.split())
 
 
 @pytest.mark.slow

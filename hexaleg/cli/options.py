@@ -178,17 +178,23 @@ def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:
     return design.leg_length if getattr(args, "design", None) else DEFAULT_TOTAL
 
 
-def add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
-    """Options of the commands that sweep designs: output folder, tibia ratios, workers."""
+def add_sweep_options(
+    parser: argparse.ArgumentParser, output: str, least_l3_points: int = 2
+) -> None:
+    """Options of the commands that sweep designs: output folder, tibia ratios, workers.
+
+    ``least_l3_points`` is the fewest tibia ratios the command accepts (the report needs
+    more than a study to bracket its peaks).
+    """
     parser.add_argument(
         "-o", "--output", metavar="DIR", default=output, help=f"output folder (default {output})"
     )
     parser.add_argument(
         "--l3-points",
-        type=bounded_int(2, MAX_L3_POINTS),
+        type=bounded_int(least_l3_points, MAX_L3_POINTS),
         default=L3_RATIO_POINTS,
         metavar="N",
-        help=f"tibia ratios per coxa ratio, 2..{MAX_L3_POINTS} "
+        help=f"tibia ratios per coxa ratio, {least_l3_points}..{MAX_L3_POINTS} "
         f"(default {L3_RATIO_POINTS}, as the paper)",
     )
     parser.add_argument(
