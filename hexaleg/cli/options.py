@@ -114,7 +114,7 @@ def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
         default = " ".join(f"{v:.4g}" for v in spec.default)
         group.add_argument(
             flag,
-            type=float,
+            type=_number_of(spec),
             nargs=len(spec.items),
             metavar=tuple(item.upper() for item in spec.items),
             help=f"{spec.described} (default {default})",
@@ -122,10 +122,29 @@ def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
         return
     group.add_argument(
         flag,
-        type=float,
+        type=_number_of(spec),
         metavar=METAVARS.get(spec.unit, "X"),
         help=f"{spec.described} (default {spec.default:.4g})",
     )
+
+
+def _number_of(spec: FieldSpec) -> Callable[[str], float]:
+    """Argparse type of a design field's number: text that is none names the valid range.
+
+    The range itself is checked with the design (one home: the field's declaration).
+    """
+    unit = f" [{spec.unit}]" if spec.unit else ""
+    allowed = "a number" if spec.bounds is None else "a number in [{:g}, {:g}]".format(*spec.bounds)
+
+    def parse(text: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not valid: must be {allowed}{unit}"
+            ) from None
+
+    return parse
 
 
 DESIGN_FLAGS: tuple[str, ...] = tuple(
