@@ -176,6 +176,10 @@ def test_payload_axes_are_logarithmic_and_name_the_largest():
     front = table.rename(columns={"fb": "flexibility"}).assign(score=1.0)
     pareto = pareto_figure(table, front).axes[0]
     assert pareto.get_xscale() == "log" and "1769 kg" in pareto.texts[0].get_text()
+    yours = {"payload_capacity": 130.0, "flexibility": 0.23}
+    marked = pareto_figure(table, front, yours).axes[0]
+    (mark,) = [c for c in marked.collections if c.get_label() == "your design"]
+    assert mark.get_offsets().tolist() == [[130.0, 0.23]]
 
 
 def test_the_paper_claims_read_the_same_in_figures_and_text(default_design):

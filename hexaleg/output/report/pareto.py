@@ -77,7 +77,8 @@ def section(data: ReportData) -> Section:
             Figure(
                 "pareto_front",
                 "Body flexibility against payload capacity (log scale) for every design of the "
-                "sweep; the front and its best marked, the largest capacity named",
+                "sweep; the front and its best marked, your design beside them, the largest "
+                "capacity named",
             ),
         ),
     )
@@ -87,7 +88,9 @@ def write_files(data: ReportData, out: Path) -> None:
     """The front figure and ``pareto_front.csv``."""
     front = data[ParetoRecord].front
     save(
-        pareto_figure(data[StudyRecord].table, front),
+        pareto_figure(
+            data[StudyRecord].table, front, data[RecommendationRecord].recommendation.reference
+        ),
         out / "pareto_front.png",
         svg=data.options.svg,
     )
