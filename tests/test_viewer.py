@@ -92,6 +92,17 @@ def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default
             binding = {f"{c.leg}_{links[c.joint]}_0" for c in extreme.binding}
             assert extreme.limited_by in extreme.binding
             assert {name for name, c in colours.items() if c == red} == binding
+        # nothing else is reddish: red means a limit (the footholds are black, the cloud grey)
+        foothold = umsgpack.unpackb(_node(tree, "meshcat/hexaleg/footholds/rm").object)
+        r, g, b = (foothold["object"]["materials"][0]["color"] >> k & 255 for k in (16, 8, 0))
+        assert r < 100 or r < 1.5 * max(g, b)
+        cloud = umsgpack.unpackb(_node(tree, "meshcat/hexaleg/workspace/lf").object)
+        rgb = np.frombuffer(
+            cloud["object"]["geometries"][0]["data"]["attributes"]["color"]["array"].data,
+            dtype=np.float32,
+        )
+        rgb = rgb.reshape(-1, 3)
+        assert np.allclose(rgb[:, 0], rgb[:, 1]) and np.allclose(rgb[:, 1], rgb[:, 2])
         animated = [node for node in (tree, tree["meshcat"]) if node.animation is not None]
         assert animated  # one animation: out to every extreme and back
 

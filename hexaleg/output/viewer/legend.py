@@ -47,16 +47,22 @@ class Legend:
     Attributes:
         shows: What a leg link's colour shows (the bar runs from 0 to 1 of it).
         highlight: What a red link means, or ``None`` where no link is red.
+        notes: What the scene's other marks are, one line each.
 
     """
 
     shows: str
     highlight: str | None = None
+    notes: tuple[str, ...] = ()
 
 
 STATICS_LEGEND = Legend(
     shows="its joint's |τ| / rated torque, at the pose shown",
     highlight="the link whose joint stops an extreme",
+    notes=(
+        "black balls: the nominal footholds",
+        "grey points (--workspace): one leg's reach, lighter higher up",
+    ),
 )
 """The body's extremes (``hexaleg view``): torques held at each pose, red where it stops."""
 
@@ -85,7 +91,9 @@ def torque_legend_html(legend: Legend) -> str:
         "<aside id='hexaleg-legend'><h2>Leg link colour</h2>"
         f"<p>{html.escape(legend.shows)}</p>"
         f"<div class='bar' style='background:linear-gradient(to bottom, {stops})'></div>"
-        f"<div class='ticks'>{ticks}</div>{red}</aside>"
+        f"<div class='ticks'>{ticks}</div>{red}"
+        + "".join(f"<p>{html.escape(note)}</p>" for note in legend.notes)
+        + "</aside>"
     )
 
 
