@@ -99,7 +99,7 @@ def _add_footholds(stage: Stage) -> None:
 
     for leg, foothold in zip(stage.geometry.legs, stage.geometry.footholds, strict=True):
         node = stage.viewer[f"{ROOT}/footholds/{leg}"]
-        node.set_object(mg.Sphere(0.03), mg.MeshLambertMaterial(color=0xD62728))
+        node.set_object(mg.Sphere(0.03), mg.MeshLambertMaterial(color=0x222222))  # red: limits
         node.set_transform(translation(foothold))
 
 
@@ -124,7 +124,7 @@ def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> 
     heights = (cloud.points[:, 2] - cloud.points[:, 2].min()) / max(
         np.ptp(cloud.points[:, 2]), 1e-9
     )
-    colors = np.stack([0.2 + 0.6 * heights, 0.4 * np.ones_like(heights), 1.0 - 0.6 * heights])
+    colors = np.tile(0.25 + 0.6 * heights, (3, 1))  # grey, lighter higher: red means a limit
     viewer[f"{ROOT}/workspace/{leg}"].set_object(
         mg.PointCloud(
             position=points.T.astype(np.float32), color=colors.astype(np.float32), size=0.01
