@@ -103,7 +103,8 @@ def test_video_without_offscreen_opengl_is_skipped_with_a_note(
 
 @pytest.mark.slow
 def test_the_animation_is_the_simulated_motion_drawn_in_a_browser(tmp_path, walked):
-    from test_viewer import CHROMIUM, _drawn_share, _node, _screenshot
+    from browser import require_chromium, screenshot
+    from test_viewer import _drawn_share, _node
 
     from hexaleg.cli.simulate import _animation
     from hexaleg.output.viewer import LoopbackServer, client
@@ -118,15 +119,12 @@ def test_the_animation_is_the_simulated_motion_drawn_in_a_browser(tmp_path, walk
         assert len(_node(tree, f"meshcat/{NODE}/visuals")) == 25  # body, 6 × 4 leg links
         assert _node(tree, ANIMATION_PATH.strip("/")).animation is not None
     page = _animation(walked, str(tmp_path / "walk.html"))
-    if CHROMIUM is None:
-        if os.environ.get("CI"):
-            pytest.fail("chromium is not installed: .ci/run must install it")
-        pytest.skip("chromium is not installed")
+    require_chromium()
     import meshcat
 
-    empty = _screenshot(
+    empty = screenshot(
         (meshcat.__file__.rsplit("/", 1)[0] + "/viewer/dist/index.html").join(["file://", ""]),
         tmp_path / "empty.png",
     )
-    image = _screenshot(page.as_uri(), tmp_path / "walk.png")
+    image = screenshot(page.as_uri(), tmp_path / "walk.png")
     assert _drawn_share(image, empty) > 0.05
