@@ -26,9 +26,10 @@ DESCRIPTION = (
     "period's first pose. Measured over the periods after the first (SI units, radians): "
     "distance against the planned v·T per period, body tilt and lowest height, whether it "
     "fell, RMS joint tracking error, standing-foot slip, peak servo torques beside the "
-    "plan's, each servo over its rated torque flagged (as in gait and loads). Then the robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted "
-    "2 cm: each standing foot's vertical force beside the statics' (`loads --stance "
-    "tripod`). A stride beyond the design's max stride is refused before simulating."
+    "plan's, each servo over its rated torque flagged (as in gait and loads). Then the "
+    "robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted 2 cm: "
+    "each standing foot's vertical force beside the statics' (`loads --stance tripod`). "
+    "A stride beyond the design's max stride is refused before simulating."
 )
 
 
