@@ -289,6 +289,15 @@ def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):
     assert words in err and len(err.strip().splitlines()) == 1
 
 
+def test_decide_help_gives_the_range_of_evaluations_its_error_names(capsys):
+    assert run_cli(["decide", "--evaluations", "3"]) == 2
+    allowed = capsys.readouterr().err.split("must be in ")[1].split()[0]
+    assert allowed == "48..1000000"
+    assert run_cli(["decide", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"--evaluations N designs to evaluate per search, {allowed} " in text
+
+
 # -- the dense grid ---------------------------------------------------------------------
 
 

@@ -72,7 +72,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--evaluations",
         type=bounded_int(2 * MIN_POPULATION, MAX_EVALUATIONS),
         metavar="N",
-        help="designs to evaluate per search (default: 60 generations of 10 per free variable)",
+        help=f"designs to evaluate per search, {2 * MIN_POPULATION}..{MAX_EVALUATIONS} "
+        "(default: 60 generations of 10 per free variable)",
     )
     search.add_argument(
         "--workers", type=bounded_int(1), metavar="N", help="local worker processes"
