@@ -61,6 +61,7 @@ def test_search_finds_the_closed_form_optimum_of_a_random_problem(seed):
     assert found == pytest.approx(best, rel=5e-3) and found <= best * (1 + 1e-9)
     binds = {c.name for c in result.best.checks if c.binds}
     assert binds >= {"leg_length", "min_coxa"}
+    assert result.bounds_binding == ()  # l1 at min_coxa: that requirement's row says it binds
     assert ("ground_clearance" in binds) == (clearance + 0.05 > (total - coxa) / 2)
 
 
@@ -99,6 +100,29 @@ def test_a_resumed_journal_ends_where_an_uninterrupted_search_does(tmp_path):
 
 
 # -- conflicts --------------------------------------------------------------------------
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_a_free_variable_pressed_against_its_search_bound_binds(seed):
+    """Largest improved area 2π·l2·l3/3 with only l1+l2+l3 ≤ L: the best puts l1 at the
+    search's floor (SEGMENT_FLOOR·L) and splits the rest evenly, so l1's bound binds."""
+    from hexaleg.cli.decide import render
+
+    total = np.random.default_rng(seed).uniform(0.6, 1.4)
+    design = HexapodDesign(l1=0.1 * total, l2=0.45 * total, l3=0.45 * total)
+    result = _decide(design, Requirements(leg_length=total), settings=SearchSettings(seed=seed))
+    floor = SEGMENT_FLOOR * total
+    assert result.best.design.l1 == pytest.approx(floor, abs=1e-3 * total)
+    assert [(at.variable.name, at.bound, at.value) for at in result.bounds_binding] == [
+        ("l1", "lower", pytest.approx(floor))
+    ]
+    text = render(result).split("Your design")[0]
+    row = next(line for line in text.splitlines() if "l1 searched in" in line)
+    assert f"{floor:.4g} m" in row and "its lower bound" in row and "binds" in row
+    assert "--min-coxa" in row
+    (entry,) = result.to_dict()["best"]["bounds_binding"]
+    assert entry["variable"] == "l1" and entry["bound"] == "lower" and entry["binds"] is True
+    assert entry["value"] == pytest.approx(floor) and entry["unit"] == "m"
 
 
 def test_an_infeasible_problem_names_the_conflict_and_the_nearest_relaxations():
@@ -199,7 +223,7 @@ def test_the_json_answer_has_exactly_the_documented_fields():
                      settings=SearchSettings(evaluations=96))  # fmt: skip
     out = result.to_dict()
     assert set(out) == {"requirements", "best", "yours", "feasible", "search"}
-    assert set(out["best"]) >= {"design", "objective"}
+    assert set(out["best"]) >= {"design", "objective", "bounds_binding"}
     assert set(out["best"]["objective"]) >= {"name", "value"}
     assert set(out["yours"]) >= {"design", "requirements"}
     assert set(out["search"]) >= {"method", "evaluations", "seed"}
@@ -263,6 +287,15 @@ def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):
     assert run_cli(["decide", *argv]) == 2
     err = capsys.readouterr().err
     assert words in err and len(err.strip().splitlines()) == 1
+
+
+def test_decide_help_gives_the_range_of_evaluations_its_error_names(capsys):
+    assert run_cli(["decide", "--evaluations", "3"]) == 2
+    allowed = capsys.readouterr().err.split("must be in ")[1].split()[0]
+    assert allowed == "48..1000000"
+    assert run_cli(["decide", "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert f"--evaluations N designs to evaluate per search, {allowed} " in text
 
 
 # -- the dense grid ---------------------------------------------------------------------

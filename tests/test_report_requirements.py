@@ -34,6 +34,19 @@ def test_the_blocks_give_the_verdict_and_one_row_per_requirement():
     assert "limited by geometry: the design's l1 + l2 + l3" in rows
 
 
+def test_a_free_variable_at_its_search_bound_is_a_row_that_binds():
+    # the largest area 2π·l2·l3/3 wants the shortest coxa: l1 goes to the floor, 0.02 m
+    result = _decide(Requirements(ground_clearance=0.3))
+    assert result.best.design.l1 == pytest.approx(0.02, abs=1e-3)
+    rows, how = requirement_blocks(result)[1], requirement_blocks(result)[3]
+    (row,) = [line for line in rows.splitlines() if line.startswith("| l1 within")]
+    cells = [cell.strip() for cell in row.strip("| ").split(" | ")]
+    assert cells[0] == "l1 within its searched 0.02–1 m"
+    assert cells[1].startswith("0.02 m (at its lower bound; --min-coxa")
+    assert cells[3] == "yes" and cells[4] == "0.2 m"
+    assert "a free variable at its search bound" in how
+
+
 def test_an_infeasible_answer_names_the_conflict():
     result = _decide(Requirements(ground_clearance=0.6, min_coxa=0.5))
     verdict = requirement_blocks(result)[0]

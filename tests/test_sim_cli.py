@@ -128,3 +128,40 @@ def test_the_animation_is_the_simulated_motion_drawn_in_a_browser(tmp_path, walk
     )
     image = screenshot(page.as_uri(), tmp_path / "walk.png")
     assert _drawn_share(image, empty) > 0.05
+
+
+@pytest.fixture(scope="module")
+def overloaded():
+    from hexaleg.statics import Payload
+
+    return simulate_gait(HexapodDesign(), payload=Payload(30.0), cycles=2)  # hips past 150 N·m
+
+
+def test_measured_peaks_over_their_ratings_are_flagged_in_text_and_json(
+    monkeypatch, capsys, overloaded
+):
+    metrics, design = overloaded.metrics, overloaded.design
+    rated = dict(zip(("root", "hip", "knee"), design.rated_torques, strict=True))
+    over = {joint for joint, peak in metrics.peak_torque.items() if peak > rated[joint]}
+    assert over  # the case this test is about: a measured peak beyond its rating
+    assert {flag.joint for flag in metrics.over_rating} == over
+    for joint in over:
+        flags = [flag for flag in metrics.over_rating if flag.joint == joint]
+        assert max(flag.peak for flag in flags) == metrics.peak_torque[joint]
+        assert all(flag.peak > flag.rated == rated[joint] for flag in flags)
+    period = overloaded.gait.period
+    for flag in metrics.over_rating:  # peaks in the measured periods, after the first
+        assert period <= float(flag.at.removeprefix("t = ").removesuffix(" s")) <= 2 * period
+    monkeypatch.setattr(command, "simulate_gait", lambda *args, **kwargs: overloaded)
+    assert run_cli(["simulate", "--payload", "30", "--cycles", "2"]) == 0
+    out = capsys.readouterr().out
+    for joint in over:
+        assert f"{joint}: peak |τ| simulated / planned" in out
+        line = next(row for row in out.splitlines() if f"{joint}: peak |τ|" in row)
+        assert line.endswith("OVER RATING")
+    assert [row.split(None, 2)[2] for row in out.splitlines() if "OVER RATING  " in row] == [
+        str(flag) for flag in metrics.over_rating
+    ]
+    assert run_cli(["simulate", "--payload", "30", "--cycles", "2", "--json"]) == 0
+    fields = json.loads(capsys.readouterr().out)
+    assert fields["over_rating"] == [flag.to_dict() for flag in metrics.over_rating]

@@ -18,6 +18,9 @@ from hexaleg.sim.measure import (
     roll_pitch,
 )
 
+LEGS = ("lf", "lm", "lr", "rf", "rm", "rr")
+RATED = (60.0, 150.0, 120.0)
+
 
 def _quaternion(roll: float, pitch: float, yaw: float) -> np.ndarray:
     q = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw))
@@ -70,7 +73,7 @@ def test_measure_walk_on_a_known_motion():
     period, cycles = 1.5, 4
     velocity = np.array([0.12, -0.05])
     trace = _trace(period, cycles, velocity, lambda t: 0.03 * np.sin(t) * (t >= 0), 0.4)
-    metrics = measure_walk(trace, period, cycles, velocity, nominal_height=0.4)
+    metrics = measure_walk(trace, period, cycles, velocity, 0.4, legs=LEGS, rated_torques=RATED)
     speed = math.hypot(*velocity)
     assert metrics.planned_distance == pytest.approx(speed * period * 3)
     assert metrics.distance == pytest.approx(speed * period * 3, rel=1e-9)
@@ -88,7 +91,7 @@ def test_measure_walk_on_a_known_motion():
 
 def test_a_walk_that_goes_sideways_covers_no_distance_along_its_heading():
     trace = _trace(1.0, 3, np.array([0.0, 0.2]), lambda t: 0 * t, 0.4)
-    metrics = measure_walk(trace, 1.0, 3, np.array([0.2, 0.0]), nominal_height=0.4)
+    metrics = measure_walk(trace, 1.0, 3, np.array([0.2, 0.0]), 0.4, legs=LEGS, rated_torques=RATED)
     assert metrics.distance == pytest.approx(0.0, abs=1e-12)
     assert metrics.distance_ratio == pytest.approx(0.0, abs=1e-12)
 
@@ -109,4 +112,31 @@ def test_fell_when_tilted_past_30_degrees_or_below_half_height(roll, height, exp
 
 def test_a_fall_in_the_first_cycle_counts():
     trace = _trace(1.0, 3, np.array([0.1, 0.0]), lambda t: 1.0 * (t < 0.5), 0.4)
-    assert measure_walk(trace, 1.0, 3, np.array([0.1, 0.0]), 0.4).fell
+    assert measure_walk(
+        trace, 1.0, 3, np.array([0.1, 0.0]), 0.4, legs=LEGS, rated_torques=RATED
+    ).fell
+
+
+def test_servos_over_their_rating_are_flagged_with_when_they_peak():
+    period, cycles = 1.0, 3
+    trace = _trace(period, cycles, np.array([0.1, 0.0]), lambda t: 0 * t, 0.4)
+    trace.joint_torques[5, 2, 0] = 500.0  # in the first period: not measured
+    trace.joint_torques[250, 4, 2] = -130.0  # rm's knee, once, at t = 2.5 s
+    legs, rated = LEGS, (60.0, 9.0, 120.0)
+    metrics = measure_walk(
+        trace, period, cycles, np.array([0.1, 0.0]), 0.4, legs=legs, rated_torques=rated
+    )
+    measured = trace.time[trace.time >= period]
+    hip_peak = 10.0 * np.abs(np.sin(measured)).max()  # every leg's hip: 10 sin t > 9
+    hip_time = measured[np.abs(np.sin(measured)).argmax()]
+    flagged = {(o.leg, o.joint): o for o in metrics.over_rating}
+    assert set(flagged) == {(leg, "hip") for leg in legs} | {("rm", "knee")}
+    for leg in legs:
+        hip = flagged[(leg, "hip")]
+        assert (hip.quantity, hip.rated) == ("torque", 9.0)
+        assert hip.peak == pytest.approx(hip_peak) and hip.at == f"t = {hip_time:.3f} s"
+    knee = flagged[("rm", "knee")]
+    assert (knee.peak, knee.rated, knee.at) == (130.0, 120.0, "t = 2.500 s")
+    calm = measure_walk(trace, period, cycles, np.array([0.1, 0.0]), 0.4, legs=legs,
+                        rated_torques=(60.0, 11.0, 131.0))  # fmt: skip
+    assert calm.over_rating == ()

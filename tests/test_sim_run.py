@@ -52,7 +52,16 @@ def test_a_plan_that_stands_still_keeps_the_robot_where_it_is(sim):
     assert run.trace.time.shape == (2000,)
     assert run.frames.shape == (20, model.model.nq)
     assert run.frame_rate == pytest.approx(10.0)
-    metrics = measure_walk(run.trace, 1.0, 2, plan.velocity, model.design.nominal_height)
+    design = model.design
+    metrics = measure_walk(
+        run.trace,
+        1.0,
+        2,
+        plan.velocity,
+        design.nominal_height,
+        legs=model.leg_names,
+        rated_torques=design.rated_torques,
+    )
     assert not metrics.fell
     assert abs(metrics.distance) < 1e-3
     assert metrics.max_tilt < 1e-3

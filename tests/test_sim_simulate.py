@@ -32,6 +32,7 @@ JSON_KEYS = {
     "tracking_rms",
     "slip",
     "peak_torque_measured",
+    "over_rating",
     "peak_torque_planned",
     "standing",
 }

@@ -279,7 +279,7 @@ def test_loads_json_has_every_documented_field(capsys):
         [0, math.pi / 2, math.pi, -math.pi / 2]
     )
     assert {s["limited_by"]["kind"] for s in data["slopes"]} <= {"tip", "slide"}
-    assert set(data["payload_capacity"]) == {"mass", "limited_by"}
+    assert set(data["payload_capacity"]) == {"mass", "limited_by", "tips_over"}
     total = sum(np.array(f) for f in data["nominal"]["foot_forces"].values())
     np.testing.assert_allclose(total, [0, 0, data["mass"] * 9.81], atol=1e-5)
 
@@ -314,3 +314,63 @@ def test_study_rows_carry_the_statics(tmp_path):
     single = analyze_loads(HexapodDesign.from_ratios(0.1, 0.45))
     assert row["payload_capacity"] == pytest.approx(single.capacity.mass, rel=1e-9)
     assert row["peak_hip_torque"] == pytest.approx(single.peak_torques["hip"], rel=1e-9)
+
+
+@pytest.mark.parametrize("com_xy", [(3.0, 0.0), (1.0, 0.5), (-2.0, 4.0)])
+def test_slope_limits_are_zero_when_the_centre_of_mass_is_outside_the_support(com_xy):
+    feet = np.array([[1.0, 0.5], [-1.0, 0.5], [-1.0, -0.5], [1.0, -0.5]])
+    for limit in slope_limits(feet, np.array([*com_xy, 0.5]), friction=0.6):
+        assert limit.max_slope == 0.0 and limit.limited_by.kind == "tip"
+
+
+def _tipping_loads(capsys, *extra):
+    from hexaleg.cli import main
+
+    assert main(["loads", "--payload", "30", "--payload-at", "10", "0", "0", *extra]) == 0
+    return capsys.readouterr().out
+
+
+def test_loads_says_a_payload_that_tips_the_robot_over_does(capsys):
+    import json
+
+    # by hand: 30 kg at x = 10 m puts the centre of mass near x = 300 / (M + 30) > 2 m,
+    # beyond every foot of the default design (the feet lie within 1.3 m of the centre)
+    data = json.loads(_tipping_loads(capsys, "--json"))
+    assert data["com"][0] > 2.0 and data["nominal"]["stability_margin"] < 0
+    assert [s["max_slope"] for s in data["slopes"]] == [0.0] * 4
+    assert {s["limited_by"]["kind"] for s in data["slopes"]} == {"tip"}
+    assert data["payload_capacity"]["tips_over"] is True
+    assert data["payload_capacity"]["mass"] < 30.0
+    text = _tipping_loads(capsys).lower()
+    assert text.count("tips over on level ground") >= 5  # the margin and each heading
+    assert "30 kg payload tips the robot over" in text
+    assert "limited by slide" not in text
+
+
+def test_loads_says_a_payload_inside_the_support_does_not_tip(capsys):
+    import json
+
+    from hexaleg.cli import main
+
+    assert main(["loads", "--payload", "30", "--json"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["payload_capacity"]["tips_over"] is False
+    assert all(s["max_slope"] > 0 for s in data["slopes"])
+
+
+@pytest.mark.parametrize("position", [["1000", "0", "0"], ["0", "-100.5", "0"], ["0", "0", "nan"]])
+def test_payload_at_out_of_range_is_one_line_naming_the_option(capsys, position):
+    from conftest import run_cli
+
+    assert run_cli(["loads", "--payload", "30", "--payload-at", *position]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "--payload-at" in err
+    assert "[-100, 100] [m]" in err or "finite" in err
+
+
+def test_payload_at_help_gives_its_range(capsys):
+    from conftest import run_cli
+
+    assert run_cli(["loads", "--help"]) == 0
+    help_text = " ".join(capsys.readouterr().out.split())
+    assert "each coordinate in [-100, 100]" in help_text

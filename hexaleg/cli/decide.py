@@ -21,7 +21,7 @@ from hexaleg.study.evaluation import MaximizeObjective, MinimizeObjective, Objec
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.optimize import MAX_EVALUATIONS, MIN_POPULATION, SearchSettings
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
-from hexaleg.study.search_space import FREEABLE, FreeVariable
+from hexaleg.study.search_space import FREEABLE, AtBound, FreeVariable
 
 DESCRIPTION = (
     "Find the best leg for what the robot must do: of the designs meeting every requirement "
@@ -72,7 +72,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--evaluations",
         type=bounded_int(2 * MIN_POPULATION, MAX_EVALUATIONS),
         metavar="N",
-        help="designs to evaluate per search (default: 60 generations of 10 per free variable)",
+        help=f"designs to evaluate per search, {2 * MIN_POPULATION}..{MAX_EVALUATIONS} "
+        "(default: 60 generations of 10 per free variable)",
     )
     search.add_argument(
         "--workers", type=bounded_int(1), metavar="N", help="local worker processes"
@@ -148,6 +149,8 @@ def _design_block(
     value = checked.evaluation.values[result.objective.name]
     head += f", {result.objective.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
     rows = [_row(result, check, binding) for check in checked.checks]
+    if binding:
+        rows += [_bound_row(at) for at in result.bounds_binding]
     width = [max((len(r[k]) for r in rows), default=0) for k in range(3)]
     lines = [head]
     for row in rows:
@@ -169,6 +172,13 @@ def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]
             more = len(flagged) - SHOWN_OVER_RATING
             lines.append(f"  OVER RATING {where}: and {more} more, the worst above (--json: all)")
     return lines
+
+
+def _bound_row(at: AtBound) -> tuple[str, ...]:
+    """A free variable at its search bound, as a row beside the requirements that bind."""
+    variable, unit = at.variable, at.variable.unit
+    searched = f"{variable.name} searched in {variable.lower:.4g}..{variable.upper:.4g} {unit}"
+    return searched, f"{at.value:.4g} {unit}", f"its {at.bound} bound", f"binds ({at.remedy})"
 
 
 def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:

@@ -7,6 +7,7 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from hexaleg._checks import require_in_range
 from hexaleg._io import check_output_folder
 from hexaleg._typing import Distribution, choices
 from hexaleg.cli.options import (
@@ -18,7 +19,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
     from hexaleg.statics.loads import LoadsAnalysis
@@ -50,7 +51,8 @@ def add_payload_options(parser: argparse.ArgumentParser) -> None:
         type=float,
         nargs=3,
         metavar=("X", "Y", "Z"),
-        help="payload position in the body frame [m] (default: the centre of the top face)",
+        help=f"payload position in the body frame, each coordinate in [-{PAYLOAD_REACH:g}, "
+        f"{PAYLOAD_REACH:g}] [m] (default: the centre of the top face)",
     )
     parser.add_argument(
         "--friction",
@@ -69,7 +71,16 @@ def add_payload_options(parser: argparse.ArgumentParser) -> None:
 
 def payload_from_args(args: argparse.Namespace) -> Payload:
     """The payload ``--payload`` and ``--payload-at`` describe (validated)."""
-    return Payload(args.payload, None if args.payload_at is None else tuple(args.payload_at))
+    if args.payload_at is None:
+        return Payload(args.payload)
+    return Payload(args.payload, payload_at_from_args(args.payload_at))
+
+
+def payload_at_from_args(values: list[float]) -> tuple[float, float, float]:
+    """``--payload-at X Y Z`` checked: each coordinate within ±:data:`PAYLOAD_REACH` [m]."""
+    reach = PAYLOAD_REACH
+    x, y, z = (require_in_range("--payload-at", v, -reach, reach, "m") for v in values)
+    return (x, y, z)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -93,12 +104,22 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
+TIPS_OVER = "TIPS OVER on level ground"
+"""What the table says of a robot whose nominal stability margin is not positive."""
+
+
 def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     rated = dict(zip(LEG_JOINTS, analysis.design.rated_torques, strict=True))
     nominal = analysis.nominal.peak_torques()
+    margin = f"{analysis.nominal.stability_margin:.4f} m"
+    if analysis.tips_over:
+        margin += (
+            f": {TIPS_OVER} (centre of mass outside the support polygon; "
+            "the torques below would need the feet fastened to the ground)"
+        )
     rows = [
         ("total mass", f"{analysis.nominal.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
-        ("stability margin, nominal", f"{analysis.nominal.stability_margin:.4f} m"),
+        ("stability margin, nominal", margin),
     ]
     for joint in LEG_JOINTS:
         rows.append(
@@ -110,14 +131,23 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
             )
         )
     for slope in analysis.slopes:
+        limit = (
+            "TIPS OVER on level ground" if analysis.tips_over else f"limited by {slope.limited_by}"
+        )
         rows.append(
             (
                 f"max slope, uphill at {math.degrees(slope.heading):+.0f}°",
-                f"{slope.max_slope:.4f} rad ({math.degrees(slope.max_slope):.1f}°), "
-                f"limited by {slope.limited_by}",
+                f"{slope.max_slope:.4f} rad ({math.degrees(slope.max_slope):.1f}°), {limit}",
             )
         )
-    capacity = analysis.capacity
-    rows.append(("payload capacity", f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"))
+    rows.append(("payload capacity", _capacity(analysis)))
     rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
     return rows
+
+
+def _capacity(analysis: LoadsAnalysis) -> str:
+    capacity = analysis.capacity
+    text = f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"
+    if analysis.tips_over:
+        text += f"; the {analysis.payload.mass:g} kg payload tips the robot over"
+    return text

@@ -11,6 +11,7 @@ import math
 from typing import Any
 
 from hexaleg._checks import require_in_range
+from hexaleg.cli.loads import payload_at_from_args
 from hexaleg.design_file import load_design_file
 from hexaleg.study.requirements import KINDS, Requirements
 from hexaleg.study.requirements_table import DESCRIPTIONS
@@ -70,7 +71,7 @@ def requirements_from_args(args: argparse.Namespace) -> Requirements:
     if getattr(args, "slope_deg", None) is not None:
         changes["slope"] = math.radians(require_in_range("slope_deg", args.slope_deg, 0, 90, "°"))
     if getattr(args, "payload_at", None) is not None:
-        changes["payload_at"] = tuple(args.payload_at)
+        changes["payload_at"] = payload_at_from_args(args.payload_at)
     if getattr(args, "step_height", None) is not None:
         changes["step_height"] = args.step_height
     return base.replace(**changes) if changes else base

@@ -26,9 +26,10 @@ DESCRIPTION = (
     "period's first pose. Measured over the periods after the first (SI units, radians): "
     "distance against the planned v·T per period, body tilt and lowest height, whether it "
     "fell, RMS joint tracking error, standing-foot slip, peak servo torques beside the "
-    "plan's. Then the robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted "
-    "2 cm: each standing foot's vertical force beside the statics' (`loads --stance "
-    "tripod`). A stride beyond the design's max stride is refused before simulating."
+    "plan's, each servo over its rated torque flagged (as in gait and loads). Then the "
+    "robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted 2 cm: "
+    "each standing foot's vertical force beside the statics' (`loads --stance tripod`). "
+    "A stride beyond the design's max stride is refused before simulating."
 )
 
 
@@ -147,9 +148,11 @@ def rows(result: SimulationResult) -> list[tuple[str, str]]:
             (
                 f"{joint}: peak |τ| simulated / planned",
                 f"{metrics.peak_torque[joint]:.2f} / {result.planned_peak_torque[joint]:.2f} "
-                f"N·m (rated {rated:g})",
+                f"N·m (rated {rated:g})"
+                + (", OVER RATING" if metrics.peak_torque[joint] > rated else ""),
             )
         )
+    rows += [("OVER RATING", str(over)) for over in metrics.over_rating]
     standing = result.standing
     for leg in standing.legs:
         simulated, statics = standing.foot_forces_z[leg], standing.statics_foot_forces_z[leg]

@@ -31,7 +31,7 @@ from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
-from hexaleg.statics.ratings import OverRating, over_rating
+from hexaleg.statics.ratings import OverRating, at_times, over_rating
 
 
 @dataclass(frozen=True)
@@ -117,7 +117,7 @@ class GaitAnalysis:
     @property
     def over_rating(self) -> tuple[OverRating, ...]:
         """Each joint whose peak |τ| or |q̇| exceeds its rating, with when it peaks."""
-        places = [f"t = {t:.3f} s" for t in self.times]
+        places = at_times(self.times)
         design = self.design
         return over_rating(
             self.legs, self.joint_torques, design.rated_torques, places

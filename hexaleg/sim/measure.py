@@ -13,12 +13,15 @@ rest does not count; a fall counts wherever it happens.
 - tracking RMS: root mean square of q_ref − q over every leg joint and step [rad];
 - slip: the largest horizontal distance a planned standing foot moves from where it
   stood when its stance began, over every stance interval [m];
-- peak torque: the largest |τ| any servo applies, per joint type [N·m].
+- peak torque: the largest |τ| any servo applies, per joint type [N·m];
+- over rating: each servo whose largest |τ| exceeds its rated torque, with when it peaks
+  (:mod:`hexaleg.statics.ratings`, as ``loads`` and ``gait`` flag them).
 """
 
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -27,6 +30,7 @@ from scipy.spatial.transform import Rotation
 
 from hexaleg._typing import ArrayF
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.statics.ratings import OverRating, at_times, over_rating
 
 FALL_TILT = math.radians(30.0)
 """A body rolled or pitched further than this has fallen [rad]."""
@@ -79,6 +83,8 @@ class WalkMetrics:
         tracking_rms: RMS joint tracking error [rad].
         slip: Largest standing-foot slip [m].
         peak_torque: Largest |τ| per joint type (root, hip, knee) [N·m].
+        over_rating: Each servo whose largest |τ| exceeds its rated torque, leg then
+            joint order, with the time of its peak.
 
     """
 
@@ -91,6 +97,7 @@ class WalkMetrics:
     tracking_rms: float
     slip: float
     peak_torque: dict[str, float]
+    over_rating: tuple[OverRating, ...]
 
     @property
     def max_tilt(self) -> float:
@@ -150,6 +157,9 @@ def measure_walk(
     cycles: int,
     velocity: npt.ArrayLike,
     nominal_height: float,
+    *,
+    legs: Sequence[str],
+    rated_torques: npt.ArrayLike,
 ) -> WalkMetrics:
     """The measures of a walk of ``cycles`` periods, over the cycles after the first.
 
@@ -159,6 +169,8 @@ def measure_walk(
         cycles: Periods simulated (at least 2).
         velocity: Planned body velocity (vx, vy), world frame [m/s].
         nominal_height: The body's nominal height above the ground [m].
+        legs: The legs' names, in the trace's leg order.
+        rated_torques: Rated torque of the root, hip and knee servos (3,) [N·m].
 
     """
     planned = np.asarray(velocity, dtype=float)[:2]
@@ -178,4 +190,7 @@ def measure_walk(
         tracking_rms=float(np.sqrt(np.mean(error**2))),
         slip=foot_slip(measured.foot_positions[..., :2], measured.standing),
         peak_torque=peak_torques(measured.joint_torques),
+        over_rating=over_rating(
+            legs, measured.joint_torques, rated_torques, at_times(measured.time)
+        ),
     )

@@ -78,5 +78,6 @@ class SimulationResult:
             "slip": metrics.slip,
             "peak_torque_measured": dict(metrics.peak_torque),
             "peak_torque_planned": dict(self.planned_peak_torque),
+            "over_rating": [o.to_dict() for o in metrics.over_rating],
             "standing": self.standing.to_dict(),
         }

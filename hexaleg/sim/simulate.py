@@ -17,11 +17,11 @@ from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
-from hexaleg.sim.measure import measure_walk
+from hexaleg.sim.measure import WalkMetrics, measure_walk
 from hexaleg.sim.model import FRICTION_RANGE, ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
-from hexaleg.sim.run import FRAME_RATE, run_plan
+from hexaleg.sim.run import FRAME_RATE, Run, run_plan
 from hexaleg.sim.standing import standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 
@@ -96,10 +96,24 @@ def simulate_gait(
         friction=friction,
         cycles=cycles,
         gains=sim.gains,
-        metrics=measure_walk(run.trace, plan.period, cycles, plan.velocity, design.nominal_height),
+        metrics=_measure(run, plan, cycles, model),
         planned_peak_torque=dict(analysis.metrics.peak_torque),
         standing=standing_check(model, analysis.payload, friction, sim=sim),
         frames=run.frames,
         frame_torques=run.frame_torques,
         frame_rate=run.frame_rate,
+    )
+
+
+def _measure(run: Run, plan: Plan, cycles: int, model: HexapodModel) -> WalkMetrics:
+    """The walk's measures, each servo's peak held against the design's rated torque."""
+    design = model.design
+    return measure_walk(
+        run.trace,
+        plan.period,
+        cycles,
+        plan.velocity,
+        design.nominal_height,
+        legs=model.leg_names,
+        rated_torques=design.rated_torques,
     )

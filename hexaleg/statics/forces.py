@@ -43,6 +43,8 @@ QP_SOLVER = "proxqp"
 """The qpsolvers backend of the min-torque distribution (ProxSuite, from Pinocchio's lab)."""
 PAYLOAD_SEARCH_LIMIT = 1e4
 """Largest payload the capacity search considers [kg]."""
+PAYLOAD_REACH = 100.0
+"""Largest |x|, |y|, |z| of a payload's position in the body frame [m] (as a design's lengths)."""
 
 
 @dataclass(frozen=True)
@@ -65,7 +67,7 @@ class Payload:
         if self.position is not None:
             given = require_numbers("payload position", self.position, "xyz", "body-frame [m]")
             position = tuple(
-                require_in_range(f"payload position.{axis}", v, -100.0, 100.0, "m")
+                require_in_range(f"payload position.{axis}", v, -PAYLOAD_REACH, PAYLOAD_REACH, "m")
                 for axis, v in zip("xyz", given, strict=True)
             )
             object.__setattr__(self, "position", position)

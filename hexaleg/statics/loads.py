@@ -77,6 +77,16 @@ class LoadsAnalysis:
         return {joint: float(peak) for joint, peak in zip(LEG_JOINTS, peaks, strict=True)}
 
     @property
+    def tips_over(self) -> bool:
+        """Whether the robot tips over on level ground with its payload.
+
+        The nominal stability margin is not positive: the centre of mass's footprint
+        lies outside the support polygon (or on its edge), every max slope is 0, and the
+        forces and torques hold the stance only with the feet fastened to the ground.
+        """
+        return self.nominal.stability_margin <= 0
+
+    @property
     def worst_slope(self) -> SlopeLimit:
         """The heading with the smallest max slope."""
         return min(self.slopes, key=lambda s: s.max_slope)
@@ -146,6 +156,7 @@ class LoadsAnalysis:
             "payload_capacity": {
                 "mass": self.capacity.mass,
                 "limited_by": self.capacity.limited_by.to_dict(),
+                "tips_over": self.tips_over,
             },
             "over_rating": [o.to_dict() for o in self.over_rating],
             "units": {

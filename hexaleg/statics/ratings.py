@@ -1,8 +1,9 @@
 """Joints over their ratings: where a computed torque or speed exceeds what the motor is rated for.
 
-Every command that computes torques (``loads``, ``gait``) flags each joint whose peak
-|τ| [N·m] (or, in a gait, |q̇| [rad/s]) exceeds the design's ``rated_torques`` (or
-``rated_speeds``), naming the leg, the joint, the peak and where it occurs.
+Every command that computes or measures torques (``loads``, ``gait``, ``simulate``) flags
+each joint whose peak |τ| [N·m] (or, in a gait, |q̇| [rad/s]) exceeds the design's
+``rated_torques`` (or ``rated_speeds``), naming the leg, the joint, the peak and where
+it occurs.
 """
 
 from __future__ import annotations
@@ -61,6 +62,11 @@ class OverRating:
             "at": self.at,
             "description": str(self),
         }
+
+
+def at_times(times: npt.ArrayLike) -> list[str]:
+    """Each time [s] as a place where a peak occurs: ``"t = 0.420 s"``."""
+    return [f"t = {t:.3f} s" for t in np.asarray(times, dtype=float)]
 
 
 def over_rating(

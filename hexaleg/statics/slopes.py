@@ -25,7 +25,8 @@ class SlopeLimit:
         heading: Uphill direction in the body frame [rad] (0: straight ahead).
         max_slope: The slope angle α [rad].
         limited_by: Kind ``"tip"`` (the gravity line leaves the support polygon) or
-            ``"slide"`` (tan α would exceed μ).
+            ``"slide"`` (tan α would exceed μ). A robot whose centre of mass already lies
+            outside the polygon (or on its edge) tips on level ground: ``max_slope`` 0, ``"tip"``.
 
     """
 
@@ -45,9 +46,12 @@ def slope_limits(
     On a slope α uphill toward ψ (body parallel to the ground), gravity in the robot's
     ground frame is g·(−sin α cos ψ, −sin α sin ψ, −cos α): the gravity line through
     c meets the ground c_z·tan α downhill of c's footprint, and the robot tips when
-    that point leaves the support polygon.
+    that point leaves the support polygon. A centre of mass whose footprint is not
+    inside the polygon tips the robot over on level ground: 0 in every heading.
     """
     polygon = feet_xy if isinstance(feet_xy, SupportPolygon) else SupportPolygon.of_feet(feet_xy)
+    if polygon.signed_distance(com) <= 0:
+        return tuple(SlopeLimit(heading, 0.0, Cause("tip")) for heading in headings)
     slide = math.atan(friction)
     downhill = -np.column_stack([np.cos(headings), np.sin(headings)])
     tips = np.arctan2(polygon.exit_distances(com[:2], downhill), com[2])

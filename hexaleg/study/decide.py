@@ -40,7 +40,13 @@ from hexaleg.study.executors import local_pool
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.search_journal import Journal
-from hexaleg.study.search_space import FreeVariable, SearchSpace, search_space
+from hexaleg.study.search_space import (
+    AtBound,
+    FreeVariable,
+    SearchSpace,
+    bounds_reached,
+    search_space,
+)
 
 
 @dataclass(frozen=True)
@@ -147,6 +153,19 @@ class DecideResult:
     seed: int
 
     @property
+    def bounds_binding(self) -> tuple[AtBound, ...]:
+        """Each free variable the best design holds at a search bound: that bound binds.
+
+        l1 at a ``min_coxa`` bound is left out: that requirement's check says it binds.
+        """
+        coxa = self.requirements.min_coxa
+        return tuple(
+            at
+            for at in bounds_reached(self.variables, self.best.design)
+            if not (at.variable.name == "l1" and at.bound == "lower" and at.value == coxa)
+        )
+
+    @property
     def walks(self) -> bool:
         """Whether the designs walk a gait (a walking requirement or objective)."""
         return Goal(self.requirements, self.objective).walks
@@ -167,6 +186,7 @@ class DecideResult:
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
                 "over_rating": self.best.over_rating(),
+                "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
             "yours": {
                 "design": self.yours.design.as_dict(),

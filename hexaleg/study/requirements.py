@@ -44,7 +44,7 @@ from hexaleg.cause import Cause
 from hexaleg.design import SEGMENT_RANGE, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.spec import Gait
-from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT
+from hexaleg.statics.forces import PAYLOAD_REACH, PAYLOAD_SEARCH_LIMIT
 
 Sense = Literal["at least", "at most"]
 """Which side of the required value meets a requirement."""
@@ -358,5 +358,5 @@ def check(requirements: Requirements, values: Mapping[str, float],
 def _position(value: Any, field: str = POSITION_KEY) -> tuple[float, float, float]:
     if isinstance(value, str) or not hasattr(value, "__len__") or len(value) != 3:
         raise ParameterError(field, value, "must be three coordinates x, y, z, body frame [m]")
-    x, y, z = (require_in_range(field, v, -100.0, 100.0, "m") for v in value)
+    x, y, z = (require_in_range(field, v, -PAYLOAD_REACH, PAYLOAD_REACH, "m") for v in value)
     return (x, y, z)

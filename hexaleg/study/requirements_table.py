@@ -10,12 +10,13 @@ from __future__ import annotations
 
 from hexaleg.design_file import REQUIREMENTS
 from hexaleg.gait.spec import Gait
+from hexaleg.statics.forces import PAYLOAD_REACH
 from hexaleg.study.requirements import DEGREE_KEYS
 
 DESCRIPTIONS: dict[str, str] = {
     "payload": "payload the robot must carry [kg]",
-    "payload_at": "where the payload sits, body frame x, y, z [m] (default: the centre of "
-    "the body's top face)",
+    "payload_at": f"where the payload sits, body frame x, y, z, each in [-{PAYLOAD_REACH:g}, "
+    f"{PAYLOAD_REACH:g}] [m] (default: the centre of the body's top face)",
     "slope": "slope it must stand on, uphill in every heading, with the payload [rad]",
     "slope_deg": "the same slope in degrees [°]",
     "ground_clearance": "body underside above the ground at the nominal stance [m]",

@@ -14,7 +14,7 @@ import math
 import re
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 import numpy.typing as npt
@@ -32,6 +32,9 @@ POSTURE = ("theta2", "theta3")
 
 FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE)
 """Every variable a search can free."""
+
+AT_BOUND_SHARE = 1e-3
+"""A free variable within this share of its range from a bound is at that bound [-]."""
 
 
 @dataclass(frozen=True)
@@ -66,6 +69,11 @@ class FreeVariable:
                     (self.lower, self.upper),
                     f"bounds within [{low:g}, {high:g}] [{unit}]",
                 )
+
+    @property
+    def unit(self) -> str:
+        """Its unit: ``"m"``, ``"rad"`` (or a body field's own)."""
+        return FIELD_RANGES[self.name][2] if self.name in FIELD_RANGES else "rad"
 
     @classmethod
     def parse(cls, text: str) -> FreeVariable:
@@ -128,12 +136,7 @@ class SearchSpace:
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
-        values = [
-            design.nominal_angles[1 + POSTURE.index(name)]
-            if name in POSTURE
-            else getattr(design, name)
-            for name in self.names
-        ]
+        values = [value_of(design, name) for name in self.names]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
         return clipped
 
@@ -150,6 +153,76 @@ class SearchSpace:
             for v in self.variables
         )
         return SearchSpace(self.base, variables)
+
+
+@dataclass(frozen=True)
+class AtBound:
+    """A free variable that a design holds at one of its search bounds: that bound binds.
+
+    Attributes:
+        variable: The free variable, with its bounds.
+        bound: ``"lower"`` or ``"upper"``.
+
+    """
+
+    variable: FreeVariable
+    bound: Literal["lower", "upper"]
+
+    @property
+    def value(self) -> float:
+        """The bound [m or rad]."""
+        return self.variable.lower if self.bound == "lower" else self.variable.upper
+
+    @property
+    def remedy(self) -> str:
+        """What moves the bound, in words (an option of ``decide``)."""
+        name = self.variable.name
+        moved = f"--free {name}=LOWER:UPPER moves it"
+        if name == "l1" and self.bound == "lower":
+            return f"--min-coxa sets the coxa you can build; {moved}"
+        return moved
+
+    def __str__(self) -> str:
+        return (
+            f"{self.variable.name} at its {self.bound} bound {self.value:.4g} {self.variable.unit}"
+        )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready (the variable's unit: m or rad)."""
+        return {
+            "variable": self.variable.name,
+            "bound": self.bound,
+            "value": self.value,
+            "unit": self.variable.unit,
+            "binds": True,
+            "description": f"{self} (binds: {self.remedy})",
+        }
+
+
+def value_of(design: HexapodDesign, name: str) -> float:
+    """The free variable ``name``'s value in ``design`` [m or rad]."""
+    if name in POSTURE:
+        return float(design.nominal_angles[1 + POSTURE.index(name)])
+    return float(getattr(design, name))
+
+
+def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> tuple[AtBound, ...]:
+    """Each free variable ``design`` holds at a bound (within :data:`AT_BOUND_SHARE` of its range).
+
+    A search's answer pressed against a bound is limited by that bound, as by a requirement
+    that binds: moving the bound would move the answer.
+    """
+    reached = []
+    for variable in variables:
+        value, near = (
+            value_of(design, variable.name),
+            AT_BOUND_SHARE * (variable.upper - variable.lower),
+        )
+        if value <= variable.lower + near:
+            reached.append(AtBound(variable, "lower"))
+        elif value >= variable.upper - near:
+            reached.append(AtBound(variable, "upper"))
+    return tuple(reached)
 
 
 def search_space(

@@ -12,6 +12,7 @@ from hexaleg.output.report.document import table
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.decide import CheckedDesign, DecideResult
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
+from hexaleg.study.search_space import AtBound, value_of
 
 
 def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
@@ -32,6 +33,7 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
             f"{_objective(best, objective.name)}"
         )
     rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
+    rows += [_bound_row(at, yours) for at in result.bounds_binding]
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
     walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
@@ -45,7 +47,7 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         f"extremes.{walking} {result.evaluations} designs searched over {free} by "
         f"{result.method}, seed {result.seed}; the best was measured again from its own URDF. "
         "A requirement binds where the best design meets it within 1 % of the required value: "
-        "relaxing it would buy a better design.",
+        "relaxing it would buy a better design; so does a free variable at its search bound.",
     )
 
 
@@ -58,6 +60,19 @@ def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) 
         "yes" if best.binds else ("" if best.met else "NOT MET"),
         format_value(yours.name, yours.value),
         "yes" if yours.met else f"no ({format_margin(yours)})",
+    )
+
+
+def _bound_row(at: AtBound, yours: CheckedDesign) -> tuple[str, ...]:
+    """A free variable at its search bound: it binds as a requirement would."""
+    variable, unit = at.variable, at.variable.unit
+    return (
+        f"{variable.name} within its searched {variable.lower:.3g}–{variable.upper:.3g} {unit}",
+        f"{at.value:.4g} {unit} (at its {at.bound} bound; {at.remedy})",
+        "±0",
+        "yes",
+        f"{value_of(yours.design, variable.name):.4g} {unit}",
+        "—",
     )
 
 
