@@ -18,12 +18,17 @@ from hexaleg import _compiled
 
 PACKAGE_ROOT = Path(hexaleg.__file__).resolve().parent.parent
 BOOT = (
-    "import runpy, site, sys; "
+    "import runpy, site, sys; n = len(sys.path); "
     "[site.addsitedir(folder) for folder in sys.argv[1].split(':')]; "  # .pth files too
+    "sys.path[:] = sys.path[n:] + sys.path[:n]; "  # before the system's own dist-packages
     "sys.argv = ['hexaleg', *sys.argv[2:]]; "
     "runpy.run_module('hexaleg', run_name='__main__')"
 )
-"""Run hexaleg with this environment's site-packages (and their .pth files) added."""
+"""Run hexaleg with this environment's site-packages (and their .pth files) first.
+
+First: a system Python's dist-packages (Debian's python3-cffi-backend, say) must not
+shadow what the environment installed.
+"""
 
 
 def test_the_cache_folder_is_private_and_named_by_the_compiled_sources(tmp_path, monkeypatch):

@@ -76,7 +76,12 @@ def _interpreter() -> tuple[str, ...]:
     run_module = "import runpy; runpy.run_module('hexaleg', run_name='__main__', alter_sys=True)"
     version = f"python{sys.version_info.major}.{sys.version_info.minor}"
     packages = sysconfig.get_paths()["purelib"]
-    given_packages = f"import site; site.addsitedir({packages!r}); "
+    # the venv's packages (and its .pth files) first: a system Python's own dist-packages
+    # (Debian's python3-cffi-backend, say) must not shadow what the venv installed
+    given_packages = (
+        f"import site, sys; n = len(sys.path); site.addsitedir({packages!r}); "
+        "sys.path[:] = sys.path[n:] + sys.path[:n]; "
+    )
     candidates = [(sys.executable, "")]
     candidates += [(str(Path(folder, version)), given_packages) for folder in SYSTEM_BIN]
     for interpreter, setup in candidates:
