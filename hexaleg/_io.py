@@ -27,6 +27,7 @@ import re
 import stat
 import sys
 import tempfile
+from collections.abc import Iterable
 from pathlib import Path
 
 from hexaleg.exceptions import HexalegError
@@ -105,6 +106,23 @@ def check_output_file(path: str | os.PathLike[str]) -> Path:
     if existing is None or stat.S_ISREG(existing.st_mode):
         _refuse_unwritable_file(text, target, existing)
     return Path(text)
+
+
+def check_outputs(
+    files: Iterable[str | os.PathLike[str] | None],
+    folders: Iterable[str | os.PathLike[str] | None] = (),
+) -> None:
+    """Refuse, before computing, any of the output files and folders asked for.
+
+    ``None`` is an output not asked for; the others are checked as
+    :func:`check_output_file` and :func:`check_output_folder` do.
+    """
+    for file in files:
+        if file is not None:
+            check_output_file(file)
+    for folder in folders:
+        if folder is not None:
+            check_output_folder(folder)
 
 
 def check_output_folder(path: str | os.PathLike[str]) -> Path:

@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text, check_output_file, check_output_folder
+from hexaleg._io import atomic_write_text, check_outputs
 from hexaleg._typing import GaitPattern, choices
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import (
@@ -100,11 +100,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     gait = gait_from_args(args)
     payload = payload_from_args(args)
-    for path in (args.csv, args.html):  # refused before computing, not after
-        if path is not None:
-            check_output_file(path)
-    if args.plot is not None:
-        check_output_folder(args.plot)
+    check_outputs((args.csv, args.html), (args.plot,))  # refused before computing, not after
     model = HexapodModel(design)
     analysis = analyze_gait(
         design, gait, payload, distribution=args.distribution, friction=args.friction, model=model

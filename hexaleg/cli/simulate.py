@@ -8,7 +8,7 @@ from pathlib import Path
 
 import numpy as np
 
-from hexaleg._io import check_output_file
+from hexaleg._io import check_outputs
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
@@ -68,9 +68,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     gait = gait_from_args(args)
     payload = payload_from_args(args)
-    for path in (args.html, args.video):  # refused before simulating, not after
-        if path is not None:
-            check_output_file(path)
+    check_outputs((args.html, args.video))  # refused before simulating, not after
     if args.video is not None:
         check_video_path(args.video)
     result = simulate_gait(
