@@ -14,11 +14,12 @@ import json
 import platform
 import sys
 
-from bench_decide import bench_decide
+from bench_decide import bench_decide, bench_decide_walking
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
+from bench_simulate import bench_simulate
 from harness import Row, seconds
 
 WORKLOADS = {
@@ -31,6 +32,8 @@ WORKLOADS = {
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
     "gait": lambda quick, r: bench_gait(4 if quick else 80, r),
     "decide": lambda quick, r: bench_decide(48 if quick else None),
+    "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
+    "decide_walking": lambda quick, r: bench_decide_walking(48 if quick else None),
 }
 
 

@@ -19,10 +19,7 @@ def main() -> None:
     for extreme in result.extremes:
         value = extreme.value if extreme.axis in ("x", "y", "z") else math.degrees(extreme.value)
         unit = "m" if extreme.axis in ("x", "y", "z") else "°"
-        sign = "+" if extreme.sign > 0 else "-"
-        print(
-            f"  {extreme.axis:>5} {sign}: {value:+8.4f} {unit:<2} stopped by {extreme.limited_by}"
-        )
+        print(f"  {extreme.name:>6}: {value:+8.4f} {unit:<2} stopped by {extreme.limited_by}")
     free = flexibility(design, mode="free", stance="all")
     print(f"free-coupled (the other five coordinates help): FB = {free.fb:.4f}")
 

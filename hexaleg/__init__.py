@@ -10,9 +10,9 @@ use (PEP 562), so ``import hexaleg`` and ``hexaleg --help`` stay instant.
 
 from __future__ import annotations
 
-import importlib
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
+from hexaleg._lazy import lazy_exports
 from hexaleg._version import __version__
 
 _EXPORTS: dict[str, str] = {
@@ -66,6 +66,8 @@ _EXPORTS: dict[str, str] = {
     "Gait": "hexaleg.gait.spec",
     "GaitAnalysis": "hexaleg.gait.analysis",
     "analyze_gait": "hexaleg.gait.analysis",
+    "SimulationResult": "hexaleg.sim.result",
+    "simulate_gait": "hexaleg.sim.simulate",
     # studies and output
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
@@ -104,6 +106,7 @@ __all__ = [
     "Requirements",
     "STANCE_LIMITS",
     "SearchSettings",
+    "SimulationResult",
     "StanceGeometry",
     "StudySpec",
     "TRIPODS",
@@ -131,23 +134,12 @@ __all__ = [
     "render_hexapod",
     "render_leg",
     "run_study",
+    "simulate_gait",
     "write_urdf",
 ]
 
 
-def __getattr__(name: str) -> Any:
-    """Import a public name from its module on first use."""
-    module = _EXPORTS.get(name)
-    if module is None:
-        raise AttributeError(f"module 'hexaleg' has no attribute {name!r}")
-    value = getattr(importlib.import_module(module), name)
-    globals()[name] = value
-    return value
-
-
-def __dir__() -> list[str]:
-    return sorted([*globals(), *_EXPORTS])
-
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
 
 if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.design import HexapodDesign, default_mounts
@@ -181,6 +173,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
+    from hexaleg.sim.result import SimulationResult
+    from hexaleg.sim.simulate import simulate_gait
     from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry

@@ -121,6 +121,8 @@ def check_output_folder(path: str | os.PathLike[str]) -> Path:
         check_creatable(text, target)
     elif not os.access(target, os.W_OK | os.X_OK):
         raise HexalegError(f"cannot write in {shown(text)}: {os.strerror(errno.EACCES)}")
+    else:
+        probe_folder(target)
     return Path(text)
 
 
@@ -145,6 +147,21 @@ def check_creatable(text: str, target: Path) -> None:
             )
     if not os.access(ancestor, os.W_OK | os.X_OK):
         raise HexalegError(f"cannot write in {shown(ancestor)}: {os.strerror(errno.EACCES)}")
+    probe_folder(ancestor)
+
+
+def probe_folder(folder: Path) -> None:
+    """Refuse a folder no file can be created in, by creating (and removing) one.
+
+    Permissions do not tell: root may write anywhere by mode, yet not in ``/proc`` or on a
+    read-only mount; the write that would fail after the computing fails here instead.
+    """
+    try:
+        fd, name = tempfile.mkstemp(prefix=".hexaleg-probe-", dir=folder)
+    except OSError as err:
+        raise HexalegError(f"cannot write in {shown(folder)}: {os_reason(err)}") from None
+    os.close(fd)
+    os.unlink(name)
 
 
 def shown(path: str | os.PathLike[str]) -> str:

@@ -60,7 +60,7 @@ TRIPLES: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind =
 """Keys holding three numbers."""
 
 LIMIT_SETS: dict[str, str] = {k: s.described for k, s in FIELDS.items() if s.kind == "limits"}
-"""Joint-limit tables: theta1, theta2, theta3 = [lower, upper] [rad], coupled_knee, name."""
+"""Joint-limit tables: theta1, theta2, theta3 (lower and upper bound [rad]), coupled_knee, name."""
 
 MOUNT_KEYS: dict[str, str] = {
     "name": "leg name: a lower-case identifier",
@@ -143,8 +143,8 @@ def load_design_file(
         raise DesignFileError(f"{path}: values nested too deeply to be a design") from None
     except ValueError as err:  # an integer of thousands of digits
         raise DesignFileError(f"{path}: {_first_sentence(err)}") from None
-    if json_file and isinstance(data, dict) and isinstance(data.get("design"), dict):
-        data = data["design"]  # a whole hexaleg JSON output
+    if json_file:
+        data = _printed_design(data)
     if not isinstance(data, dict):
         raise DesignFileError(f"{path}: expected a table of design keys, got {type(data).__name__}")
     try:
@@ -156,6 +156,17 @@ def load_design_file(
         line = _line_of(text, err.field, json_file)
         where = f"{path}, line {line}" if line else str(path)
         raise DesignFileError(f"{where}: {err}") from None
+
+
+def _printed_design(data: object) -> object:
+    """The design a hexaleg JSON output holds: its ``design``, or ``decide``'s ``best`` one."""
+    if isinstance(data, dict):
+        if isinstance(data.get("design"), dict):
+            return data["design"]  # a whole hexaleg JSON output
+        best = data.get("best")
+        if isinstance(best, dict) and isinstance(best.get("design"), dict):
+            return best["design"]  # decide's answer
+    return data
 
 
 def _read_text(path: Path) -> str:

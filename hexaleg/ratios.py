@@ -15,6 +15,9 @@ from hexaleg._checks import require_distinct
 from hexaleg.design import SEGMENT_RANGE
 from hexaleg.exceptions import ParameterError
 
+MAX_L1_RATIOS = 20
+"""Most coxa ratios in one study's grid."""
+
 
 def require_ratio_grid(
     l1_ratios: Sequence[float], l3_ratios: Sequence[float], total: float

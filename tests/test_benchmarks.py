@@ -12,6 +12,7 @@ import pytest
 RUN = Path(__file__).resolve().parent.parent / "benchmarks" / "run.py"
 
 
+@pytest.mark.slow  # every workload, a minute on 2 cores
 @pytest.mark.skipif(not RUN.is_file(), reason="benchmarks/ not shipped in this install")
 def test_benchmarks_run_quick_and_agree():
     result = subprocess.run(

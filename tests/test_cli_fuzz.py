@@ -1,9 +1,9 @@
 """Every subcommand, driven with arbitrary text and numbers: exit 0 or 2, never a traceback.
 
 On exit 2 the user sees at most one line on stderr and no file is written. The slow
-back-ends of ``report``, ``study`` and ``view`` (minutes of sweeps, a server that runs
-until Ctrl-C) are replaced by quick stand-ins: what is fuzzed is everything in front
-of them — parsing, validation and the design.
+back-ends of ``report``, ``study``, ``view`` and ``simulate`` (minutes of sweeps, a server
+that runs until Ctrl-C, seconds of physics) are replaced by quick stand-ins: what is
+fuzzed is everything in front of them — parsing, validation and the design.
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ def quick_backends():
     class FakeServer:
         web_url = "http://127.0.0.1:7000/static/"
 
-        def __init__(self, host, port):
+        def __init__(self, host, port, legend):
             self.host = host
 
     from concurrent.futures import ThreadPoolExecutor
@@ -135,18 +135,24 @@ def quick_backends():
             progress=False,
         )
 
+    from hexaleg.sim import simulate_gait
+
+    walked = simulate_gait(HexapodDesign(), cycles=2)  # a real answer, from a short walk
     patches = {
+        "hexaleg.cli.simulate.simulate_gait": lambda *args, **kwargs: walked,
+        "hexaleg.cli.simulate._animation": lambda result, path: Path(path),
+        "hexaleg.cli.simulate._video": lambda result, path: [],
         "hexaleg.cli.decide.decide": lambda *args, **kwargs: decided,
         "hexaleg.cli.report.build_report": fake_report,
         "hexaleg.cli.study.run_study": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
         "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_text": lambda path, text: Path(path),
-        "hexaleg.cli.view.write_static_html": fake_html,
+        "hexaleg.output.viewer.scene.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
-        "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
-        "hexaleg.cli.view.build_gait_scene": lambda *args, **kwargs: None,
-        "hexaleg.cli.view.write_gait_html": fake_html,
+        "hexaleg.output.viewer.scene.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.output.viewer.gait.build_gait_scene": lambda *args, **kwargs: None,
+        "hexaleg.output.viewer.gait.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
     }

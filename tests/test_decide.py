@@ -210,6 +210,29 @@ def test_the_json_answer_has_exactly_the_documented_fields():
     json.dumps(out, allow_nan=False)
 
 
+def test_every_requirement_says_what_limits_it_and_joints_over_ratings_are_flagged():
+    """The user's design, carrying more than its capacity: its flags are the loads
+    analysis's (nominal stance and the 12 extremes) with that payload."""
+    design = HexapodDesign()
+    payload = 1.2 * analyze_loads(design).capacity.mass
+    requirements = Requirements(payload=payload, ground_clearance=0.2, min_fb=0.1, min_coxa=0.1)
+    result = _decide(design, requirements, settings=SearchSettings(evaluations=48))
+    out = result.to_dict()
+    for block in (out["requirements"], out["yours"]["requirements"]):
+        for entry in block.values():
+            assert entry["limited_by"]["description"]
+    assert out["yours"]["requirements"]["payload"]["limited_by"]["kind"] == "torque"
+    loads = analyze_loads(design, Payload(payload))
+    assert loads.over_rating  # more than its capacity: some joint is over its rating
+    assert result.yours.standing_over_rating == loads.over_rating
+    assert [f["description"] for f in out["yours"]["over_rating"]] == [
+        str(f) for f in loads.over_rating
+    ]
+    assert {f["while"] for f in out["yours"]["over_rating"]} == {"standing"}
+    best_loads = analyze_loads(result.best.design, Payload(payload))
+    assert result.best.standing_over_rating == best_loads.over_rating
+
+
 def test_decide_command_prints_json_and_reads_the_design_file_table(tmp_path, capsys):
     path = tmp_path / "robot.toml"
     path.write_text("l1 = 0.15\n\n[requirements]\nground_clearance = 0.3\nmin_coxa = 0.1\n")
@@ -232,7 +255,8 @@ def test_decide_command_prints_json_and_reads_the_design_file_table(tmp_path, ca
         (["--resume"], "--resume continues a --journal"),
         (["--free", "body_width=0.8:0.4"], "LOWER must be below UPPER"),
         (["--free", "wheels=1:2"], "a field among"),
-        (["--maximize", "speed"], "gait analysis"),
+        (["--speed", "50"], "speed = 50 is not valid"),
+        (["--step-height", "0.1"], "needs a speed"),
     ],
 )
 def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):

@@ -156,6 +156,19 @@ def test_a_json_design_reproduces_the_result_exactly(tmp_path, capsys, argv, _, 
     assert capsys.readouterr().out == printed
 
 
+def test_decides_json_reads_as_its_best_design(tmp_path):
+    yours, best = HexapodDesign(), HexapodDesign(l1=0.08, l2=0.45, l3=0.47)
+    printed = {  # the shape of `hexaleg decide --json` (study.decide.DecideResult.to_dict)
+        "requirements": {"payload": {"required": 30.0, "value": 41.2}},
+        "best": {"design": best.as_dict(), "objective": {"name": "fb", "value": 0.25}},
+        "yours": {"design": yours.as_dict(), "requirements": {}},
+        "feasible": True,
+    }
+    path = tmp_path / "decision.json"
+    path.write_text(json.dumps(printed))
+    assert load_design(path) == best
+
+
 def test_options_override_the_file(tmp_path, capsys):
     path = tmp_path / "robot.toml"
     path.write_text(design_toml(DESIGNS["hexagon"]))
@@ -185,6 +198,13 @@ def test_design_init_writes_a_file_that_reads_back(tmp_path, capsys):
     capsys.readouterr()
     _one_line_exit_2(capsys, ["design", "init", str(tmp_path / "robot.txt")], ".toml")
     assert not (tmp_path / "robot.txt").exists()
+
+
+def test_design_init_refuses_an_empty_path_as_empty(tmp_path, capsys, monkeypatch):
+    """``design init ""`` names the empty path, not ``.`` (what ``Path("")`` reads as)."""
+    monkeypatch.chdir(tmp_path)
+    _one_line_exit_2(capsys, ["design", "init", ""], "an empty path")
+    assert list(tmp_path.iterdir()) == []
 
 
 @pytest.mark.parametrize("design", DESIGNS.values(), ids=DESIGNS.keys())

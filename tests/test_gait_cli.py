@@ -97,6 +97,8 @@ def test_gait_writes_its_figures(tmp_path):
         (["--pattern", "gallop"], "invalid choice: 'gallop'"),
         (["--samples", "3"], "3 is not valid: must be in 12..100000"),
         (["--payload", "-1"], "payload mass = -1 is not valid"),
+        (["--stride", "0.9", "--json"], "stride = 0.9 is not valid: must be at most 0.61"),
+        (["--step-height", "2"], "this design cannot walk the gait: t = "),
     ],
 )
 def test_bad_gait_options_are_one_line_and_write_nothing(tmp_path, capsys, argv, message):
@@ -107,10 +109,10 @@ def test_bad_gait_options_are_one_line_and_write_nothing(tmp_path, capsys, argv,
     assert not csv.exists()
 
 
-def test_an_infeasible_gait_says_what_breaks_first(capsys):
-    assert run_cli(["gait", "--samples", "24", "--stride", "0.9"]) == 0
-    text = capsys.readouterr().out
-    assert "feasible                  no: t = " in text and "max speed" in text
+def test_an_infeasible_gait_says_what_breaks_first(hexapod_model):
+    analysis = analyze_gait(hexapod_model.design, Gait(stride=0.9, samples=24), model=hexapod_model)
+    assert not analysis.feasible and str(analysis.violations[0]).startswith("t = ")
+    assert analysis.max_stride is not None and analysis.max_stride.value < 0.9
 
 
 def test_gait_help_lists_the_options(capsys):

@@ -132,3 +132,19 @@ def test_study_columns_match_on_a_free_flyer_built_from_the_urdf():
     design = HexapodDesign.from_ratios(0.1, 0.5)
     columns = gait_study_columns(design, HexapodModel(design))
     assert columns["gait_feasible"] and not math.isnan(columns["gait_cost_of_transport"])
+
+
+def test_the_animation_s_legend_says_what_a_gait_s_colours_mean(hexapod_model):
+    """No link is red in a gait: its legend says what the colours mean there, nothing else."""
+    from hexaleg.output.viewer.gait import gait_html
+    from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, torque_legend_html
+
+    walked = analyze_gait(hexapod_model.design, Gait(samples=12), model=hexapod_model,
+                          limits=False)  # fmt: skip
+    page = gait_html(hexapod_model, walked)
+    assert page.count("id='hexaleg-legend'") == 1
+    assert torque_legend_html(GAIT_LEGEND) in page
+    legend = torque_legend_html(GAIT_LEGEND)
+    assert "gait period" in legend and "rated torque" in legend
+    assert "red" not in legend and "extreme" not in legend and "swatch" not in legend
+    assert "stops an extreme" in torque_legend_html(STATICS_LEGEND)

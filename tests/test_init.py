@@ -60,3 +60,29 @@ def test_public_names_come_from_their_modules():
 
     with pytest.raises(AttributeError):
         hexaleg.no_such_name  # noqa: B018
+
+
+HEAVY = ("matplotlib", "pandas", "pymoo", "mujoco", "meshcat", "numba", "distributed")
+"""Libraries a command imports only when it computes or draws, never to parse its options."""
+
+LIGHT_COMMANDS = ("", "design", "urdf", "workspace", "manipulability", "flexibility", "loads",
+                  "gait", "view")  # fmt: skip
+"""``hexaleg --help`` (``""``) and the commands whose parser stays light. The sweeping
+commands (study, report, decide) read their options' limits from the study layer."""
+
+
+def test_building_the_parser_imports_no_heavy_library():
+    """``hexaleg --help``, ``hexaleg urdf`` ... start without pandas, Numba, pymoo, meshcat."""
+    import subprocess
+    import sys
+
+    code = (
+        "import importlib, sys\n"
+        "main = importlib.import_module('hexaleg.cli.main')\n"
+        f"for command in {LIGHT_COMMANDS!r}:\n"
+        "    main.build_parser(command)\n"
+        f"print(sorted({{m.split('.')[0] for m in sys.modules}} & {set(HEAVY)!r}))\n"
+    )
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "[]"

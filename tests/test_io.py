@@ -167,6 +167,15 @@ def test_unwritable_paths_are_refused_before_computing(
     assert _entries(tmp_path) == before
 
 
+@pytest.mark.skipif(not Path("/proc/self").exists(), reason="needs Linux's /proc")
+@pytest.mark.parametrize("command", [["report", "-o"], ["flexibility", "--plot"]])
+def test_a_folder_nothing_can_be_created_in_is_refused_before_computing(capsys, command):
+    # /proc refuses new files whatever the permissions say (root may "write" anywhere)
+    assert run_cli([*command, "/proc/hexaleg-report"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "cannot write in /proc" in err and "staging" not in err, err
+
+
 def test_the_api_refuses_the_same_paths_without_leaving_anything(tmp_path):
     (tmp_path / "folder").mkdir()
     for bad in ("", str(tmp_path / "folder"), str(tmp_path / TOO_LONG)):

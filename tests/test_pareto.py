@@ -1,4 +1,4 @@
-"""The Pareto front: non-dominated designs, NaN designs excluded, scored on the grid's best."""
+"""The Pareto front: non-dominated designs, NaN designs excluded, ranked by the one rule."""
 
 from __future__ import annotations
 
@@ -7,6 +7,7 @@ import pandas as pd
 import pytest
 
 from hexaleg.study.pareto import non_dominated, pareto_table
+from hexaleg.study.ranking import RANKED_METRICS
 
 
 def test_non_dominated_on_hand_made_points():
@@ -23,12 +24,36 @@ def test_non_dominated_on_hand_made_points():
     assert non_dominated(points).tolist() == [True, True, False, True, True, False]
 
 
-def test_pareto_table_scores_against_the_grids_best():
-    grid = pd.DataFrame(
-        {"a": [1.0, 2.0, 2.0, 4.0], "b": [4.0, 2.0, 1.0, 1.0], "name": ["p", "q", "r", "s"]}
+def _grid(values, names):
+    grid = pd.DataFrame(values, columns=RANKED_METRICS)
+    grid["name"] = names
+    return grid
+
+
+def test_the_front_is_ranked_by_the_geometric_mean_relative_to_yours():
+    grid = _grid(
+        [[1.0, 1.0, 1.0, 4.0], [2.0, 1.5, 1.0, 1.0], [2.0, 1.0, 1.0, 1.0], [4.0, 1.0, 1.0, 2.0]],
+        ["p", "q", "r", "s"],
     )
-    front = pareto_table(grid, ["a", "b"])
-    assert set(front["name"]) == {"p", "q", "s"}
+    yours = dict(zip(RANKED_METRICS, [1.0, 1.0, 1.0, 2.0], strict=True))
+    front = pareto_table(grid, yours)
+    assert set(front["name"]) == {"p", "q", "s"}  # r is beaten by q
     scores = dict(zip(front["name"], front["score"], strict=True))
-    assert scores == pytest.approx({"p": (0.25 + 1) / 2, "q": (0.5 + 0.5) / 2, "s": (1 + 0.25) / 2})
-    assert front["score"].is_monotonic_decreasing
+    # by hand: the fourth roots of the products of the ratios to yours
+    assert scores == pytest.approx({"p": 2**0.25, "q": 1.5**0.25, "s": 4**0.25})
+    assert list(front["name"]) == ["s", "p", "q"]
+
+
+def test_adding_designs_never_changes_a_score_on_the_front():
+    rng = np.random.default_rng(7)
+    grid = _grid(rng.uniform(0.1, 1.0, (40, 4)), range(40))
+    yours = dict(zip(RANKED_METRICS, rng.uniform(0.1, 1.0, 4), strict=True))
+    before = pareto_table(grid, yours).set_index("name")["score"]
+    more = pd.concat([grid, _grid(rng.uniform(0.1, 1.2, (40, 4)), range(40, 80))])
+    after = pareto_table(more, yours).set_index("name")["score"]
+    kept = before.index.intersection(after.index)
+    assert len(kept) > 0
+    np.testing.assert_array_equal(after[kept].to_numpy(), before[kept].to_numpy())
+    products = [np.prod([r[m] / yours[m] for m in RANKED_METRICS]) for r in grid.to_dict("records")]
+    best = grid.iloc[int(np.argmax(products))]
+    assert pareto_table(grid, yours).iloc[0]["name"] == best["name"]  # the grid's best is first

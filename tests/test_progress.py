@@ -80,10 +80,18 @@ def test_a_study_off_a_terminal_prints_progress_lines(tmp_path, capsys, monkeypa
     assert lines[-1].startswith("hexaleg: 9/9 designs (100.0 %), ") and "left" not in lines[-1]
 
 
+# The CLI in a child process whose progress lines are due after every finished design
+# (INTERVAL 0): a fast machine finishes the grid before the usual 5 s and prints none.
+EVERY_DESIGN_A_LINE = (
+    "import sys; import hexaleg.study.progress as p; p.INTERVAL = 0.0; "
+    "from hexaleg.cli import main; sys.exit(main())"
+)
+
+
 @pytest.mark.slow  # a study run as the CLI, its stderr a file
 def test_the_cli_shows_lines_not_a_bar_when_stderr_is_a_file(tmp_path):
     log = tmp_path / "log"
-    argv = [sys.executable, "-m", "hexaleg", "study", "--l1-ratios", "0.1", "0.2"]
+    argv = [sys.executable, "-c", EVERY_DESIGN_A_LINE, "study", "--l1-ratios", "0.1", "0.2"]
     argv += ["--l3-points", "300", "--workers", "2", "-o", str(tmp_path / "s")]
     with log.open("w") as err:
         assert (
@@ -92,3 +100,43 @@ def test_the_cli_shows_lines_not_a_bar_when_stderr_is_a_file(tmp_path):
     lines = [line for line in log.read_text().splitlines() if "designs (" in line]
     assert lines and lines[-1].startswith("hexaleg: 600/600 designs (100.0 %)")
     assert "\r" not in log.read_text()
+
+
+def test_the_report_shows_progress_as_a_study_naming_the_step(capsys, monkeypatch):
+    """Off a terminal the report prints the study's lines (not nothing), with its step."""
+    from dataclasses import dataclass
+
+    from hexaleg import HexapodDesign
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.output.report.part import Part, compute_parts
+
+    @dataclass(frozen=True)
+    class First:
+        value: int
+
+    @dataclass(frozen=True)
+    class Second:
+        value: int
+
+    monkeypatch.setattr(progress_module, "INTERVAL", 0.0)  # every step finished: a line
+    parts = [
+        Part(First, lambda data: First(1), lambda data: None, step="first step"),
+        Part(Second, lambda data: Second(2), lambda data: None, needs=(First,), step="second"),
+    ]
+    data = compute_parts(HexapodDesign(), ReportOptions(), parts)
+    assert data[Second].value == 2
+    lines = capsys.readouterr().err.splitlines()
+    assert [line.split(",")[0] for line in lines] == [
+        "hexaleg: 0/3 steps (0.0 %)",
+        "hexaleg: 1/3 steps (33.3 %)",
+        "hexaleg: 2/3 steps (66.7 %)",
+        "hexaleg: 3/3 steps (100.0 %)",
+    ]
+    assert [line.rsplit("now: ", 1)[-1] for line in lines[:3]] == [
+        "model and URDF",
+        "first step",
+        "second",
+    ]
+    assert "now:" not in lines[3]
+    compute_parts(HexapodDesign(), ReportOptions(progress=False), parts)
+    assert capsys.readouterr().err == ""

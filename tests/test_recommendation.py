@@ -1,56 +1,98 @@
-"""The recommendation: scores compare across coxa ratios, the coxa can be fixed, peaks refined."""
+"""The recommendation: one rule, scores that stay put, the coxa can be fixed, peaks refined."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
 
-from hexaleg.study.recommendation import BAND, METRICS, combined_score, recommend
+from hexaleg.study.ranking import RANKED_METRICS
+from hexaleg.study.recommendation import BAND, recommend
 
 R1 = np.array([0.05, 0.10, 0.15, 0.20])
 R3 = np.linspace(0.2, 0.6, 9)
+YOURS = dict(zip(RANKED_METRICS, [0.3, 0.08, 0.2, 150.0], strict=True))
 
 
-def _maps(peak: float = 0.43) -> dict[str, np.ndarray]:
-    """Smooth metrics peaking at l3 = peak, all falling as the coxa grows."""
-    shape = 1 - (R3[None, :] - peak) ** 2
-    fall = 1 - R1[:, None]
-    return {name: (k + 1) * shape * fall for k, name in enumerate(METRICS)}
+def _metric(k: int, l1_ratio, l3_ratio, peak: float):
+    """Smooth metrics peaking at l3 = peak; the kinematic ones fall as the coxa grows,
+    the payload rises with it."""
+    shape = 1 - (l3_ratio - peak) ** 2
+    if RANKED_METRICS[k] == "payload_capacity":
+        return 100.0 * shape * (1 + l1_ratio)
+    return (k + 1) * shape * (1 - l1_ratio)
 
 
-def test_scores_compare_across_coxa_ratios():
-    rec = recommend(R1, R3, _maps())
-    best = rec.peaks["combined_best_score"].to_numpy()
-    np.testing.assert_allclose(best, (1 - R1) / (1 - R1[0]) * best[0], rtol=1e-12)
-    assert best[0] == pytest.approx(1.0) and best[-1] < 0.9  # discriminates
+def _maps(peak: float = 0.43, r1=R1) -> dict[str, np.ndarray]:
+    return {
+        name: _metric(k, r1[:, None], R3[None, :], peak) for k, name in enumerate(RANKED_METRICS)
+    }
+
+
+def _by_hand(l1_ratio, l3_ratio, peak=0.43):
+    """The rule, written out: the fourth root of the product of the ratios to yours."""
+    product = 1.0
+    for k, name in enumerate(RANKED_METRICS):
+        product *= _metric(k, l1_ratio, l3_ratio, peak) / YOURS[name]
+    return product**0.25
+
+
+def test_the_score_is_the_rule_and_compares_across_coxa_ratios():
+    rec = recommend(R1, R3, _maps(), YOURS)
+    table = rec.scores
+    expected = [_by_hand(a, b) for a, b in zip(table["l1_ratio"], table["l3_ratio"], strict=True)]
+    np.testing.assert_allclose(table["score"], expected, rtol=1e-12)
+    best = rec.peaks["best_score"].to_numpy()
+    np.testing.assert_allclose(best, [_by_hand(a, 0.45) for a in R1], rtol=1e-12)
+
+
+def test_adding_unrelated_grid_rows_changes_no_score():
+    """The old rule divided by the grid's best: one more coxa ratio changed every score."""
+    narrow = recommend(R1[1:], R3, _maps(r1=R1[1:]), YOURS)
+    wide = recommend(R1, R3, _maps(), YOURS)
+    np.testing.assert_array_equal(
+        wide.scores["score"].to_numpy()[len(R3) :], narrow.scores["score"].to_numpy()
+    )
+    np.testing.assert_array_equal(
+        wide.peaks["best_score"].to_numpy()[1:], narrow.peaks["best_score"].to_numpy()
+    )
+    assert (wide.l1_ratio, wide.l3_ratio, wide.score) == (narrow.l1_ratio, narrow.l3_ratio,
+                                                          narrow.score)  # fmt: skip
 
 
 def test_default_recommends_at_the_practical_coxa_ratio_and_the_user_can_fix_it():
-    assert recommend(R1, R3, _maps()).l1_ratio == pytest.approx(0.10)
-    assert recommend(R1, R3, _maps(), candidates=[0.15]).l1_ratio == pytest.approx(0.15)
-    assert recommend(R1, R3, _maps(), candidates=[0.05, 0.2]).l1_ratio == pytest.approx(0.05)
+    assert recommend(R1, R3, _maps(), YOURS).l1_ratio == pytest.approx(0.10)
+    assert recommend(R1, R3, _maps(), YOURS, candidates=[0.15]).l1_ratio == pytest.approx(0.15)
+    both = recommend(R1, R3, _maps(), YOURS, candidates=[0.05, 0.2])
+    assert both.l1_ratio == pytest.approx(0.05)
 
 
 def test_refinement_finds_the_peak_between_grid_points():
     peak = 0.4321
 
     def exact(l1_ratio: float, l3_ratio: float) -> dict[str, float]:
-        value = (1 - (l3_ratio - peak) ** 2) * (1 - l1_ratio)
-        return {name: (k + 1) * value for k, name in enumerate(METRICS)}
+        return {name: _metric(k, l1_ratio, l3_ratio, peak) for k, name in enumerate(RANKED_METRICS)}
 
     maps = _maps(peak)
-    coarse = recommend(R1, R3, maps)
-    refined = recommend(R1, R3, maps, evaluate=exact)
+    coarse = recommend(R1, R3, maps, YOURS)
+    refined = recommend(R1, R3, maps, YOURS, evaluate=exact)
     assert coarse.l3_ratio == pytest.approx(0.45)  # the nearest grid point
     assert refined.l3_ratio == pytest.approx(peak, abs=1e-4)
     assert refined.score >= coarse.score
-    assert refined.score == pytest.approx(combined_score(exact(0.1, peak), refined.maxima))
+    assert refined.score == pytest.approx(_by_hand(0.1, refined.l3_ratio, peak), rel=1e-12)
+    assert refined.metrics == pytest.approx(exact(0.1, refined.l3_ratio), rel=1e-12)
     lo, hi = refined.l3_band
     assert lo <= refined.l3_ratio <= hi
-    inside = [
-        r for r in R3 if combined_score(exact(0.1, r), refined.maxima) >= BAND * refined.score
-    ]
+    inside = [r for r in R3 if _by_hand(0.1, r, peak) >= BAND * refined.score]
     assert (lo, hi) == (min(inside), max(inside))
+
+
+def test_nothing_to_recommend_when_no_allowed_design_stands():
+    from hexaleg.exceptions import HexalegError
+
+    maps = _maps()
+    maps["flexibility"] = np.full_like(maps["flexibility"], np.nan)
+    with pytest.raises(HexalegError, match="nothing to recommend"):
+        recommend(R1, R3, maps, YOURS)
 
 
 def test_candidate_mask_allows_the_practical_or_the_given_coxa_ratios():

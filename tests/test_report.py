@@ -4,7 +4,9 @@ from __future__ import annotations
 
 import json
 
+import numpy as np
 import pytest
+from conftest import run_cli
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -147,9 +149,15 @@ def test_refuses_a_folder_that_is_not_a_report(tmp_path, capsys):
     (tmp_path / "mine.txt").write_text("user data")
     with pytest.raises(HexalegError, match="not a hexaleg report"):
         build_report(tmp_path, options=REDUCED)
-    assert main(["report", "-o", str(tmp_path), "--l3-points", "3"]) == 2
-    assert capsys.readouterr().err.count("\n") == 1
+    assert main(["report", "-o", str(tmp_path), "--l3-points", "10"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "not a hexaleg report" in err
     assert [p.name for p in tmp_path.iterdir()] == ["mine.txt"]
+
+
+def test_the_help_gives_the_tibia_ratios_the_report_accepts(capsys):
+    assert run_cli(["report", "--help"]) == 0
+    assert "10..1000" in " ".join(capsys.readouterr().out.split())
 
 
 @pytest.mark.slow
@@ -206,43 +214,56 @@ def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     assert out.stat().st_mode & 0o777 == 0o777 & ~mask  # a normal folder, not mkdtemp's 0700
 
 
-def test_the_decision_comes_first_and_scores_the_users_design(report):
+def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(report):
     import math
 
     from hexaleg.stance import flexibility
+    from hexaleg.statics.loads import analyze_loads
+    from hexaleg.study.ranking import RANKING_RULE
     from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 
     out, data = report
     text = (out / "report.md").read_text()
     assert text.index("## Decision") < text.index("## Design") < text.index("## 5. Recommendation")
+    decision_text = text.split("## Design")[0]
+    assert decision_text.count("**Recommended:") == 1 and "Pareto recommendation" not in text
+    assert RANKING_RULE in decision_text
     design = HexapodDesign()
     yours = data["decision"]["yours"]["metrics"]
-    # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB
+    # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB,
+    # the payload capacity of the loads analysis on the design's own URDF
     assert yours["improved_area"] == pytest.approx(2 * math.pi * 0.4 * 0.4 / 3, rel=1e-12)
     improved = rectangular_and_improved(design.manipulability_limits)[1]
     assert yours["average_manipulability"] == pytest.approx(
         float(average_manipulability(design.lengths, improved)), rel=1e-12
     )
     assert yours["flexibility"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
-    maxima = data["recommendation"]["maxima"]
-    score = sum(yours[k] / maxima[k] for k in maxima) / 3
-    assert data["decision"]["yours"]["score"] == pytest.approx(score, rel=1e-12)
+    assert yours["payload_capacity"] == pytest.approx(analyze_loads(design).capacity.mass, rel=1e-9)
+    assert data["decision"]["yours"]["score"] == 1.0
     recommended = data["decision"]["recommended"]
-    assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-9)
-    assert recommended["score"] > data["decision"]["yours"]["score"]
-    assert f"{yours['flexibility']:.4g}" in text.split("## Design")[0]
-    # payload capacities, recomputed on models built from each design's own URDF
-    from hexaleg.statics.loads import analyze_loads
-
-    assert data["decision"]["yours"]["payload_capacity"] == pytest.approx(
-        analyze_loads(design).capacity.mass, rel=1e-9
-    )
     lengths = recommended["lengths_m"]
     theirs = HexapodDesign(l1=lengths[0], l2=lengths[1], l3=lengths[2])
-    assert recommended["payload_capacity"] == pytest.approx(
-        analyze_loads(theirs).capacity.mass, rel=1e-9
+    metrics = {
+        "improved_area": 2 * math.pi * lengths[1] * lengths[2] / 3,
+        "average_manipulability": float(average_manipulability(theirs.lengths, improved)),
+        "flexibility": flexibility(theirs, "axis").fb,
+        "payload_capacity": analyze_loads(theirs).capacity.mass,
+    }
+    assert recommended["metrics"] == pytest.approx(metrics, rel=1e-9)
+    by_hand = math.prod(metrics[k] / yours[k] for k in metrics) ** 0.25  # the stated rule
+    assert recommended["score"] == pytest.approx(by_hand, rel=1e-9)
+    assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-12)
+    assert recommended["score"] > 1.0
+    # the Pareto front is ranked by the same rule: its first is the recommendation's grid point
+    first = data["pareto_front"][0]
+    assert first["l1_ratio"] == pytest.approx(data["recommendation"]["l1_ratio"])
+    from hexaleg.design import l3_ratio_grid
+
+    step = float(np.diff(l3_ratio_grid(REDUCED.l3_points))[0])  # refined within one step
+    assert abs(first["l3_ratio"] - data["recommendation"]["l3_ratio"]) <= step
+    assert first["score"] == pytest.approx(
+        math.prod(first[k] / yours[k] for k in metrics) ** 0.25, rel=1e-12
     )
-    assert "Counting payload capacity too" in text.split("## Design")[0]
 
 
 @pytest.mark.slow
@@ -276,7 +297,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
 def test_grids_too_coarse_to_locate_the_peaks_are_refused(tmp_path, capsys, points):
     with pytest.raises(HexalegError, match="too coarse"):
         ReportOptions(l3_points=points)
-    assert main(["report", "--l3-points", str(points), "-o", str(tmp_path / "r")]) == 2
-    err = capsys.readouterr().err
-    assert err.count("\n") == 1 and "too coarse to locate the peaks" in err
+    assert run_cli(["report", "--l3-points", str(points), "-o", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err  # the option's range, as --help gives it
+    assert err.count("\n") == 1 and f"{points} is not valid: must be in 10..1000" in err
     assert list(tmp_path.iterdir()) == []

@@ -176,6 +176,10 @@ def test_payload_axes_are_logarithmic_and_name_the_largest():
     front = table.rename(columns={"fb": "flexibility"}).assign(score=1.0)
     pareto = pareto_figure(table, front).axes[0]
     assert pareto.get_xscale() == "log" and "1769 kg" in pareto.texts[0].get_text()
+    yours = {"payload_capacity": 130.0, "flexibility": 0.23}
+    marked = pareto_figure(table, front, yours).axes[0]
+    (mark,) = [c for c in marked.collections if c.get_label() == "your design"]
+    assert mark.get_offsets().tolist() == [[130.0, 0.23]]
 
 
 def test_the_paper_claims_read_the_same_in_figures_and_text(default_design):
@@ -197,3 +201,20 @@ def test_the_paper_claims_read_the_same_in_figures_and_text(default_design):
     (band,) = ax.patches
     x0, x1 = ax.transData.inverted().transform(band.get_window_extent())[:, 0]
     assert (x0, x1) == pytest.approx(CLAIMED_L3_RATIO_PEAK) == (0.40, 0.45)
+
+
+def test_the_flexibility_table_names_directions_as_everywhere_else(default_design, hexapod_model):
+    """The section's rows and ``extremes.csv`` use the one label of a direction: ``x+``."""
+    from hexaleg.output.report.flexibility import FlexibilityRecord, extremes_rows, section
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.output.report.part import ReportData
+    from hexaleg.stance import AXES, axis_locked_flexibility
+
+    axis = axis_locked_flexibility(default_design, "all", hexapod_model)
+    record = FlexibilityRecord(axis, axis)
+    data = ReportData(default_design, ReportOptions(), hexapod_model).with_record(record)
+    text = next(block for block in section(data).blocks if str(block).startswith("| direction"))
+    labels = [line.split(" | ")[0].removeprefix("| ") for line in text.splitlines()[2:]]
+    expected = [f"{a}{s}" for a in AXES for s in "+-"]  # written out: x+, x-, ... yaw-
+    assert sorted(labels) == sorted(expected)
+    assert [row["direction"] for row in extremes_rows(record)] == labels

@@ -21,7 +21,7 @@ def _decide(requirements):
 
 def test_the_blocks_give_the_verdict_and_one_row_per_requirement():
     result = _decide(Requirements(ground_clearance=0.3, min_coxa=0.1))
-    verdict, rows, how = requirement_blocks(result)
+    verdict, rows, flags, how = requirement_blocks(result)
     lengths = ", ".join(f"{v:.3f}" for v in result.best.design.lengths)
     assert verdict.startswith(f"**The best leg meeting your requirements: l = ({lengths}) m**")
     body = rows.splitlines()[2:]
@@ -29,6 +29,9 @@ def test_the_blocks_give_the_verdict_and_one_row_per_requirement():
         "ground_clearance ≥ 0.3 m", "leg_length ≤ 1 m", "min_coxa ≥ 0.1 m"]  # fmt: skip
     assert [line.rstrip(" |").rsplit(" | ", 1)[1] for line in body] == ["yes", "yes", "yes"]
     assert f"{result.evaluations} designs" in how
+    assert flags.startswith("| joints over their ratings | best design | your design |")
+    assert "| standing without payload | none | none |" in flags
+    assert "limited by geometry: the design's l1 + l2 + l3" in rows
 
 
 def test_an_infeasible_answer_names_the_conflict():

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import re
 
 import pytest
 
@@ -86,3 +87,46 @@ def test_the_step_height_is_a_condition_of_the_speed():
     assert Requirements.from_table(requirements.to_dict()) == requirements
     with pytest.raises(ParameterError, match="needs a speed"):
         Requirements(step_height=0.1)
+
+
+def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_path):
+    from conftest import run_cli
+
+    from hexaleg.design_file import load_design_file
+
+    path = tmp_path / "robot.toml"
+    assert run_cli(["design", "init", str(path)]) == 0
+    text = path.read_text()
+    assert load_design_file(path, Requirements.from_table)[1] == Requirements()  # all comments
+    block = text[text.index("# [requirements]") :].splitlines()
+    assert all(line.startswith("# ") for line in block)
+    keys = [line[2:].split(" = ")[0] for line in block[1:]]
+    assert set(keys) == {*KINDS, "payload_at", "step_height", "slope_deg"} - {"slope"}
+    assert all(re.search(r"\[(kg|m|°|-|m/s)\]", line) for line in block[1:])  # units
+    uncommented = text[: text.index("# [requirements]")] + "\n".join(line[2:] for line in block)
+    path.write_text(uncommented)
+    _, requirements = load_design_file(path, Requirements.from_table)
+    assert requirements == Requirements(
+        payload=30.0, payload_at=(0.0, 0.0, 0.05), slope=math.radians(15), ground_clearance=0.25,
+        min_fb=0.2, leg_length=1.0, min_coxa=0.08, speed=0.3, step_height=0.1,
+    )  # fmt: skip
+
+
+def test_design_show_prints_the_files_requirements(tmp_path, capsys):
+    import json
+
+    from conftest import run_cli
+
+    path = tmp_path / "robot.toml"
+    path.write_text("l1 = 0.15\n\n[requirements]\npayload = 30.0\nslope_deg = 10\nspeed = 0.2\n")
+    assert run_cli(["design", "show", "--design", str(path)]) == 0
+    out = capsys.readouterr().out
+    assert "Requirements (the file's [requirements] table)" in out
+    assert "payload ≥ 30 kg (on every slope up to 10°)" in out
+    assert "speed ≥ 0.2 m/s (tripod, stride 0.3 m, step height 0.1 m, carrying 30 kg)" in out
+    assert run_cli(["design", "show", "--design", str(path), "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    assert shown["requirements"] == {"payload": 30.0, "slope": math.radians(10), "speed": 0.2}
+    path.write_text("l1 = 0.15\n")
+    assert run_cli(["design", "show", "--design", str(path), "--json"]) == 0
+    assert "requirements" not in json.loads(capsys.readouterr().out)

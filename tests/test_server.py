@@ -16,10 +16,12 @@ import sys
 import threading
 import time
 import urllib.request
+from pathlib import Path
 
 import psutil
 import pytest
 
+from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND
 from hexaleg.output.viewer.server import LoopbackServer, browser_url, is_loopback
 
 START_TIMEOUT = 180
@@ -106,6 +108,28 @@ def test_what_the_page_sends_never_reaches_the_command_socket():
         assert forwarded == []
 
 
+def test_the_page_is_meshcat_s_with_the_legend_beside_the_scene():
+    """The served page carries the legend the static one does; meshcat's scripts unchanged."""
+    from hexaleg.output.viewer.legend import torque_legend_html, with_legend
+
+    def fetch(url: str) -> tuple[str, bytes]:
+        with urllib.request.urlopen(url, timeout=30) as answer:
+            return answer.headers["Cache-Control"], answer.read()
+
+    import meshcat
+
+    dist = Path(meshcat.__file__).parent / "viewer" / "dist"
+    plain = (dist / "index.html").read_text(encoding="utf-8")
+    with LoopbackServer(legend=GAIT_LEGEND) as server:
+        for page in (server.web_url, server.web_url + "index.html"):
+            cache, body = fetch(page)
+            assert body.decode() == with_legend(plain, GAIT_LEGEND)
+            assert torque_legend_html(GAIT_LEGEND) in body.decode() and "no-store" in cache
+        assert fetch(server.web_url + "main.min.js")[1] == (dist / "main.min.js").read_bytes()
+    with LoopbackServer() as server:  # no legend: meshcat's page as it is
+        assert fetch(server.web_url)[1].decode() == plain
+
+
 @pytest.mark.parametrize(
     ("host", "loopback"),
     [
@@ -119,6 +143,7 @@ def test_what_the_page_sends_never_reaches_the_command_socket():
         ("192.168.1.5", False),
         ("", False),
         ("not a host", False),
+        ("example.org", False),
     ],
 )
 def test_is_loopback(host, loopback):
@@ -141,30 +166,40 @@ def test_the_url_is_one_a_browser_opens(host, url):
 
 
 def test_binding_beyond_loopback_says_what_is_exposed(monkeypatch, capsys):
-    """The warning, printed before serving; the server itself is a stand-in (no test binds
-    beyond loopback)."""
+    """The warning, printed before serving, for the extremes and for a gait; never on
+    loopback. The server itself is a stand-in (no test binds beyond loopback)."""
     from conftest import run_cli
 
     from hexaleg.cli import view
+    from hexaleg.output.viewer import gait, scene
 
     bound = []
 
     class Server:
         web_url = "http://127.0.0.1:7000/static/"
 
-        def __init__(self, host, port):
-            bound.append((host, port))
+        def __init__(self, host, port, legend):
+            bound.append((host, port, legend))
 
     monkeypatch.setattr(view, "LoopbackServer", Server)
-    monkeypatch.setattr(view, "build_scene", lambda *args, **kwargs: None)
+    monkeypatch.setattr(scene, "build_scene", lambda *args, **kwargs: None)
+    monkeypatch.setattr(gait, "build_gait_scene", lambda *args, **kwargs: None)
     monkeypatch.setattr(view, "client", lambda server: None)
     monkeypatch.setattr(view, "serve_until_stopped", lambda server: None)
     assert run_cli(["view", "--host", "0.0.0.0", "--port", "7010"]) == 0
     assert run_cli(["view", "--host", "127.1"]) == 0
-    assert bound == [("0.0.0.0", 7010), ("127.1", None)]
+    assert run_cli(["view"]) == 0
+    assert run_cli(["view", "--gait", "--host", "::"]) == 0
+    assert [(host, port) for host, port, _ in bound] == [
+        ("0.0.0.0", 7010),
+        ("127.1", None),
+        ("127.0.0.1", None),
+        ("::", None),
+    ]
+    assert [legend for *_, legend in bound] == [STATICS_LEGEND] * 3 + [GAIT_LEGEND]
     captured = capsys.readouterr()
     notes = [line for line in captured.err.splitlines() if "note" in line]
-    assert len(notes) == 1
+    assert len(notes) == 2 and "--host ::" in notes[1]
     for said in ("--host 0.0.0.0", "port 7010", "without authentication", "not change them"):
         assert said in notes[0]
     assert "command socket stays on 127.0.0.1" in notes[0]

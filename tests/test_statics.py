@@ -191,7 +191,7 @@ def test_states_of_many_poses_equal_each_pose_alone(model, distribution):
 def test_extreme_configurations_put_the_body_at_each_pose_and_swing_legs_at_rest(model):
     """Against Pinocchio's own rpy module and the extremes' joint angles, leg by leg."""
     from hexaleg.stance import axis_locked_flexibility, free_flexibility
-    from hexaleg.statics.loads import extreme_configurations
+    from hexaleg.stance.configurations import extreme_configurations
 
     design = model.design
     for result in (

@@ -2,30 +2,29 @@
 
 from __future__ import annotations
 
+import contextlib
 import os
 import queue
-import shutil
 import signal
 import socket
 import subprocess
 import sys
-import tempfile
 import threading
 import time
+from collections.abc import Iterator
 from pathlib import Path
 
 import numpy as np
 import psutil
 import pytest
 import umsgpack
+from browser import LEGEND_LAYOUT, evaluate, require_chromium, screenshot
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.output.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
 from hexaleg.stance import axis_locked_flexibility
 
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
 SERVER_START_TIMEOUT = 120
-SCREENSHOT_TIMEOUT = 120
 
 
 def _listening(pid: int) -> list[str]:
@@ -97,55 +96,28 @@ def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default
         assert animated  # one animation: out to every extreme and back
 
 
-def _screenshot(url: str, path: Path) -> np.ndarray:
-    from PIL import Image
-
-    with tempfile.TemporaryDirectory() as profile:
-        subprocess.run(
-            [
-                CHROMIUM,
-                "--headless",
-                "--no-sandbox",
-                "--use-angle=swiftshader",
-                "--enable-unsafe-swiftshader",
-                "--disable-quic",
-                "--no-first-run",
-                "--disable-background-networking",
-                "--disable-component-update",
-                "--disable-sync",
-                f"--user-data-dir={profile}",
-                "--window-size=800,600",
-                "--virtual-time-budget=10000",
-                f"--screenshot={path}",
-                url,
-            ],
-            capture_output=True,
-            timeout=SCREENSHOT_TIMEOUT,
-            check=True,
-        )
-    return np.asarray(Image.open(path).convert("RGB"), dtype=int)
-
-
 @pytest.fixture(scope="module")
 def empty_scene(tmp_path_factory):
-    if CHROMIUM is None:
-        if os.environ.get("CI"):
-            pytest.fail("chromium is not installed: .ci/run must install it")
-        pytest.skip("chromium is not installed")
+    require_chromium()
     import meshcat
 
     page = Path(meshcat.__file__).parent / "viewer" / "dist" / "index.html"
-    return _screenshot(page.as_uri(), tmp_path_factory.mktemp("empty") / "empty.png")
+    return screenshot(page.as_uri(), tmp_path_factory.mktemp("empty") / "empty.png")
 
 
 def _drawn_share(image: np.ndarray, empty: np.ndarray) -> float:
     return float((np.abs(image - empty).sum(axis=-1) > 30).mean())
 
 
-def test_view_serves_the_robot_in_a_browser_and_stops_on_ctrl_c(tmp_path, empty_scene):
+@contextlib.contextmanager
+def _served(*options: str) -> Iterator[tuple[subprocess.Popen[str], str]]:
+    """``hexaleg view`` serving on a free loopback port: its process and its page's URL.
+
+    Killed by its pid on the way out if the test has not stopped it.
+    """
     port = _free_port()
     process = subprocess.Popen(
-        [sys.executable, "-m", "hexaleg", "view", "--port", str(port)],
+        [sys.executable, "-m", "hexaleg", "view", "--port", str(port), *options],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
@@ -157,22 +129,56 @@ def test_view_serves_the_robot_in_a_browser_and_stops_on_ctrl_c(tmp_path, empty_
             line = lines.get(timeout=SERVER_START_TIMEOUT)  # the first line is the URL
         except queue.Empty:
             pytest.fail(f"hexaleg view printed no URL within {SERVER_START_TIMEOUT} s")
-        assert f"open http://127.0.0.1:{port}/static/" in line
-        ips = _listening(process.pid)
-        assert ips and all(ip == "127.0.0.1" for ip in ips), ips
-        image = _screenshot(f"http://127.0.0.1:{port}/static/", tmp_path / "live.png")
-        assert _drawn_share(image, empty_scene) > 0.05
-        process.send_signal(signal.SIGINT)
-        assert process.wait(timeout=30) == 0
-        assert "stopped" in process.stderr.read()
+        url = f"http://127.0.0.1:{port}/static/"
+        assert f"open {url}" in line
+        yield process, url
     finally:
         if process.poll() is None:
             os.kill(process.pid, signal.SIGKILL)
             process.wait(timeout=30)
+
+
+def test_view_serves_the_robot_in_a_browser_and_stops_on_ctrl_c(tmp_path, empty_scene):
+    with _served() as (process, url):
+        ips = _listening(process.pid)
+        assert ips and all(ip == "127.0.0.1" for ip in ips), ips
+        image = screenshot(url, tmp_path / "live.png")
+        assert _drawn_share(image, empty_scene) > 0.05
+        process.send_signal(signal.SIGINT)
+        assert process.wait(timeout=30) == 0
+        assert "stopped" in process.stderr.read()
     assert (
         not psutil.pid_exists(process.pid)
         or psutil.Process(process.pid).status() == psutil.STATUS_ZOMBIE
     )
+
+
+def _assert_legend_beside_the_scene(layout: dict) -> None:
+    """The legend is on screen, seen (nothing covers it) and wholly left of the canvas."""
+    legend, canvas, window = layout["legend"], layout["canvas"], layout["window"]
+    assert legend is not None, "no legend on the page"
+    assert layout["shown"], layout
+    assert 0 <= legend["left"] and legend["right"] - legend["left"] > 100
+    assert legend["top"] >= 0 and legend["bottom"] <= window["height"]
+    assert canvas["left"] >= legend["right"] - 1, (legend, canvas)  # beside, not over it
+    assert canvas["right"] <= window["width"] + 1 and canvas["right"] - canvas["left"] > 400
+
+
+@pytest.mark.slow  # the viewer computes the extremes (or walks a period) before it serves
+def test_the_served_page_shows_the_legend_beside_the_scene(tmp_path, empty_scene):
+    with _served() as (_, url):
+        layout = evaluate(url, LEGEND_LAYOUT)
+        image = screenshot(url, tmp_path / "live.png")
+    _assert_legend_beside_the_scene(layout)
+    assert "|τ| / rated torque" in layout["text"]
+    assert "red: the link whose joint stops an extreme" in layout["text"]
+    width = round(layout["legend"]["right"])
+    assert _drawn_share(image[:, width:], empty_scene[:, :-width]) > 0.05  # the robot, beside
+    with _served("--gait") as (_, url):
+        layout = evaluate(url, LEGEND_LAYOUT)
+    _assert_legend_beside_the_scene(layout)
+    assert "gait period" in layout["text"]
+    assert "red" not in layout["text"] and "extreme" not in layout["text"]
 
 
 def test_static_html_draws_the_robot(tmp_path, empty_scene):
@@ -181,7 +187,7 @@ def test_static_html_draws_the_robot(tmp_path, empty_scene):
     page = tmp_path / "scene.html"
     assert main(["view", "--html", str(page), "--stance", "tripod"]) == 0
     assert "<html" in page.read_text()[:2000].lower()
-    image = _screenshot(page.as_uri(), tmp_path / "static.png")
+    image = screenshot(page.as_uri(), tmp_path / "static.png")
     assert _drawn_share(image, empty_scene) > 0.05
 
 
@@ -193,51 +199,6 @@ def test_view_rejects_bad_input_in_one_line(capsys, tmp_path):
     err = capsys.readouterr().err.splitlines()
     assert len(err) == 2 and "--workspace" in err[0] and "--port" in err[1]
     assert list(tmp_path.iterdir()) == []
-
-
-@pytest.mark.parametrize(
-    ("host", "loopback"),
-    [
-        ("127.0.0.1", True),
-        ("127.0.0.2", True),
-        ("::1", True),
-        ("localhost", True),
-        ("0.0.0.0", False),
-        ("192.168.1.5", False),
-        ("example.org", False),
-    ],
-)
-def test_is_loopback(host, loopback):
-    from hexaleg.cli.view import is_loopback
-
-    assert is_loopback(host) is loopback
-
-
-def test_binding_beyond_loopback_warns_once(monkeypatch, capsys):
-    """The warning is printed before serving; the server itself is a stand-in here."""
-    from hexaleg.cli import view
-    from hexaleg.cli.main import main
-
-    bound = []
-
-    class FakeServer:
-        web_url = "http://0.0.0.0:7000/static/"
-
-        def __init__(self, host, port):
-            bound.append(host)
-
-    monkeypatch.setattr(view, "LoopbackServer", FakeServer)
-    monkeypatch.setattr(view, "build_scene", lambda *args, **kwargs: None)
-    monkeypatch.setattr(view, "client", lambda server: None)
-    monkeypatch.setattr(view, "serve_until_stopped", lambda server: None)
-    assert main(["view", "--host", "0.0.0.0"]) == 0
-    assert bound == ["0.0.0.0"]
-    warnings = [line for line in capsys.readouterr().err.splitlines() if "note" in line]
-    assert (
-        len(warnings) == 1 and "--host 0.0.0.0" in warnings[0] and "authentication" in warnings[0]
-    )
-    assert main(["view"]) == 0
-    assert not [line for line in capsys.readouterr().err.splitlines() if "note" in line]
 
 
 def test_meshcat_chatter_is_not_shown_to_the_user(capfd):
@@ -276,11 +237,11 @@ def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_des
 
 
 def test_the_torque_legend_is_html_beside_the_scene(tmp_path, empty_scene, hexapod_model):
-    from hexaleg.output.viewer.legend import torque_legend_html
+    from hexaleg.output.viewer.legend import STATICS_LEGEND, torque_legend_html
     from hexaleg.output.viewer.scene import write_static_html
     from hexaleg.statics.loads import loads_at_extremes
 
-    legend = torque_legend_html()
+    legend = torque_legend_html(STATICS_LEGEND)
     # viridis runs from yellow #fde725 (at the rating) down to purple #440154 (idle)
     assert "linear-gradient(to bottom, rgb(253,231,37) 0%" in legend
     assert "rgb(68,1,84) 100%" in legend
@@ -289,7 +250,7 @@ def test_the_torque_legend_is_html_beside_the_scene(tmp_path, empty_scene, hexap
         hexapod_model, result, tmp_path / "v.html", loads=loads_at_extremes(hexapod_model, result)
     )
     assert page.read_text().count("id='hexaleg-legend'") == 1
-    image = _screenshot(page.as_uri(), tmp_path / "v.png")
+    image = screenshot(page.as_uri(), tmp_path / "v.png")
     column = image[:, :200]  # the legend's 13rem column at the left
     assert (np.abs(column - 244).sum(axis=-1) < 6).mean() > 0.7  # mostly its plain background
     assert (np.abs(column[100:300, 16:40] - [253, 231, 37]).sum(axis=-1) < 60).any()  # its bar
@@ -313,5 +274,5 @@ def test_hexagonal_robot_is_drawn_with_a_round_body(tmp_path, empty_scene):
         assert geometry["radiusTop"] == pytest.approx(design.body_radius)
     page = tmp_path / "hexagon.html"
     assert main(["view", "--layout", "hexagon", "--body-radius", "0.35", "--html", str(page)]) == 0
-    image = _screenshot(page.as_uri(), tmp_path / "hexagon.png")
+    image = screenshot(page.as_uri(), tmp_path / "hexagon.png")
     assert _drawn_share(image, empty_scene) > 0.05

@@ -3,11 +3,11 @@
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
 
-    foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled
+    foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled, _lazy
     design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/
+    analysis    swing/, stance/, statics/, gait/, sim/
     study       study/, paper/
     output      output/
     cli         cli/, __main__
@@ -29,7 +29,7 @@ PACKAGE = Path(__file__).resolve().parents[1] / "hexaleg"
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     (
         "foundation",
-        ("exceptions", "_checks", "_typing", "_version", "_io", "_folders", "_compiled"),
+        ("exceptions", "_checks", "_typing", "_version", "_io", "_folders", "_compiled", "_lazy"),
     ),
     (
         "design",
@@ -46,7 +46,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("cli", ("cli", "__main__")),

@@ -26,14 +26,19 @@ from hexaleg.study.search_space import FREEABLE, FreeVariable
 DESCRIPTION = (
     "Find the best leg for what the robot must do: of the designs meeting every requirement "
     "(payload at a point, a slope in every heading with that payload, ground clearance, "
-    "least FB, leg length, least coxa), the one with the best objective (default: the "
-    "largest axis-locked FB), by pymoo's differential evolution over l1, l2, l3 (and the "
-    "posture or body fields if freed), on a local process pool or a Dask cluster. The "
-    "winner is measured again from its own URDF before it is printed, with each "
-    "requirement's value, margin and whether it binds; the --design is checked against "
-    "each requirement. If nothing meets them all, it names the requirements that conflict "
-    "and the nearest value of each that the others allow."
+    "least FB, leg length, least coxa, a tripod gait's speed within the motor ratings), the "
+    "one with the best objective (default: the largest axis-locked FB), by pymoo's "
+    "differential evolution over l1, l2, l3 (and the posture or body fields if freed), on a "
+    "local process pool or a Dask cluster. The winner is measured again from its own URDF "
+    "before it is printed, with each requirement's value, margin, whether it binds and what "
+    "limits it, and every joint over its rating standing with the payload and walking; the "
+    "--design is checked the same way. If nothing meets them all, it names the requirements "
+    "that conflict and the nearest value of each that the others allow."
 )
+
+
+SHOWN_OVER_RATING = 4
+"""Joints over their ratings a design's text lists, the furthest over first."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -121,8 +126,10 @@ def render(result: DecideResult) -> str:
     lines = [
         f"Decision: {result.objective.sense} {result.objective.label} over {free}",
         f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
-        "",
     ]
+    if result.walks:
+        lines.append(f"  walking: {result.walking_text()}")
+    lines.append("")
     verdict = "meets every requirement" if result.feasible else "LEAST INFEASIBLE: meets not all"
     lines += _design_block("Best design", result.best, result, verdict, binding=True)
     lines += _design_block("Your design", result.yours, result, "", binding=False)
@@ -146,7 +153,22 @@ def _design_block(
     for row in rows:
         cells = "  ".join(cell.ljust(w) for cell, w in zip(row, width, strict=False))
         lines.append(f"  {cells}  {row[3]}".rstrip())
-    return [*lines, ""]
+    return [*lines, *over_rating_lines(checked, result), ""]
+
+
+def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]:
+    """Each joint over its rating standing (and walking), or that none is."""
+    lines = []
+    for where, flagged in checked.over_rating_groups(result):
+        where += " (nominal stance and the 12 body extremes)" if where.startswith("stand") else ""
+        if not flagged:
+            lines.append(f"  over its rating {where}: no joint")
+        for flag in flagged[:SHOWN_OVER_RATING]:
+            lines.append(f"  OVER RATING {where}: {flag}")
+        if len(flagged) > SHOWN_OVER_RATING:
+            more = len(flagged) - SHOWN_OVER_RATING
+            lines.append(f"  OVER RATING {where}: and {more} more, the worst above (--json: all)")
+    return lines
 
 
 def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
@@ -154,7 +176,7 @@ def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[
         state = "binds" if check.binds else ("" if check.met else "NOT MET")
     else:
         state = "pass" if check.met else "FAIL"
-    limited = f" (limited by {check.limited_by})" if check.limited_by else ""
+    limited = f" (limited by {check.limited_by})"
     return (
         result.requirements.describe(check.name),
         format_value(check.name, check.value),

@@ -4,16 +4,19 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import Any
 
 from hexaleg.cli.options import UsageError, add_design_options, design_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
 from hexaleg.design import HexapodDesign
+from hexaleg.design_file import load_design_file
+from hexaleg.study.requirements import POSITION_KEY, Requirements
+from hexaleg.study.requirements_table import example_table
 
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
-    "the values the options give (say --layout hexagon --body-radius 0.35)."
+    "the values the options give (say --layout hexagon --body-radius 0.35), and an example "
+    "[requirements] table for decide and report, commented out."
 )
 
 DESCRIPTION = (
@@ -37,7 +40,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "show",
         help="print the resolved design and its derived values",
         description="Print the design (defaults, --design file, then options) with its leg "
-        "length, nominal height, mass and leg mounts.",
+        "length, nominal height, mass and leg mounts, and the file's [requirements] if it has "
+        "them.",
     )
     add_design_options(show)
     show.add_argument("--json", action="store_true", help="print one JSON object")
@@ -47,24 +51,34 @@ def run(args: argparse.Namespace) -> int:
     """Write or show the design."""
     design = design_from_args(args)
     if args.action == "init":
-        return _init(Path(args.file), design, args.force)
+        return _init(args.file, design, args.force)
+    requirements = (
+        Requirements()
+        if args.design is None
+        else load_design_file(args.design, Requirements.from_table)[1]
+    )
     if args.json:
-        print_json({"design": design.as_dict(), "derived": derived(design)})
+        out = {"design": design.as_dict(), "derived": derived(design)}
+        if requirements.given:
+            out["requirements"] = requirements.to_dict()
+        print_json(out)
     else:
         show(design)
+        if requirements.given:
+            show_requirements(requirements)
     return 0
 
 
-def _init(path: Path, design: HexapodDesign, force: bool) -> int:
+def _init(file: str, design: HexapodDesign, force: bool) -> int:
     from hexaleg._io import check_output_file, write_text
     from hexaleg.design_file import design_toml
 
+    path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    check_output_file(path)
-    report_files([write_text(path, design_toml(design))])
+    report_files([write_text(path, design_toml(design) + "\n" + example_table())])
     return 0
 
 
@@ -106,3 +120,12 @@ def show(design: HexapodDesign) -> None:
             f"{mount.yaw:8.4f} ({math.degrees(mount.yaw):6.1f}°)  "
             + ", ".join(f"{v:.4f}" for v in foot)
         )
+
+
+def show_requirements(requirements: Requirements) -> None:
+    """The file's requirements, one a row, with their conditions."""
+    rows = [(name, requirements.describe(name)) for name in requirements.given]
+    if requirements.payload_at is not None:
+        position = ", ".join(f"{v:g}" for v in requirements.payload_at)
+        rows.append((POSITION_KEY, f"({position}) m, body frame"))
+    print_table("Requirements (the file's [requirements] table)", rows)

@@ -6,6 +6,7 @@ import argparse
 import math
 import warnings
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from hexaleg._io import check_output_folder
 from hexaleg.cli.options import (
@@ -17,10 +18,9 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
-from hexaleg.output.figures import extremes_figure, save
-from hexaleg.stance.constraints import TRANSLATIONS
-from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
-from hexaleg.stance.flexibility import flexibility
+
+if TYPE_CHECKING:
+    from hexaleg.stance.extremes import FlexibilityResult
 
 DESCRIPTION = (
     "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "
@@ -42,6 +42,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
+    from hexaleg.output.figures import extremes_figure, save
+    from hexaleg.stance.extremes import FlexibilityWarning
+    from hexaleg.stance.flexibility import flexibility
+
     design = design_from_args(args)
     if args.plot is not None:
         check_output_folder(args.plot)  # before computing
@@ -63,6 +67,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:
+    from hexaleg.stance.constraints import TRANSLATIONS
+
     rows = [("FB (eq 29)", f"{result.fb:.6f}")]
     for axis, value in result.ranges.items():
         if axis in TRANSLATIONS:

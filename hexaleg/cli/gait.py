@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -38,6 +38,17 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
+    add_gait_options(parser)
+    add_payload_options(parser)
+    add_output_options(parser)
+    parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
+    parser.add_argument(
+        "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
+    )
+
+
+def add_gait_options(parser: argparse.ArgumentParser) -> None:
+    """The gait's options (gait, simulate): pattern, period, stride, step height, heading..."""
     group = parser.add_argument_group("gait (defaults chosen for the default robot)")
     group.add_argument(
         "--pattern",
@@ -69,12 +80,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"samples per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]} "
         f"(default {DEFAULT.samples})",
     )
-    add_payload_options(parser)
-    add_output_options(parser)
-    parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
-    parser.add_argument(
-        "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
-    )
 
 
 def gait_from_args(args: argparse.Namespace) -> Gait:
@@ -104,6 +109,7 @@ def run(args: argparse.Namespace) -> int:
     analysis = analyze_gait(
         design, gait, payload, distribution=args.distribution, friction=args.friction, model=model
     )
+    require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []
     if args.csv is not None:
         written.append(_write_csv(analysis, Path(args.csv)))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from hexaleg._io import check_output_folder
 from hexaleg._typing import Distribution, choices
@@ -17,9 +18,10 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.figures import loads_figure, save
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
-from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
+
+if TYPE_CHECKING:
+    from hexaleg.statics.loads import LoadsAnalysis
 
 DESCRIPTION = (
     "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "
@@ -72,6 +74,9 @@ def payload_from_args(args: argparse.Namespace) -> Payload:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
+    from hexaleg.output.figures import loads_figure, save
+    from hexaleg.statics.loads import analyze_loads
+
     design = design_from_args(args)
     if args.plot is not None:
         check_output_folder(args.plot)  # before computing

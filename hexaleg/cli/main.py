@@ -65,6 +65,11 @@ COMMANDS: tuple[Command, ...] = (
         "walking: torques, joint speeds, power and energy of a gait period; max stride and speed",
     ),
     Command(
+        "simulate",
+        "hexaleg.cli.simulate",
+        "the planned gait walked in MuJoCo, and the tripod statics checked (the [sim] extra)",
+    ),
+    Command(
         "decide",
         "hexaleg.cli.decide",
         "requirements in, design out: the best leg meeting payload, slope, clearance, ...",

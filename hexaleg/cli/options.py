@@ -13,8 +13,8 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
 from hexaleg.layouts import Layout
 from hexaleg.paper import L3_RATIO_POINTS
+from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
-from hexaleg.study.sweep import MAX_L1_RATIOS
 
 DEFAULT_TOTAL = 1.0
 """Total leg length [m] of ``--ratios`` when ``--total`` is not given (the paper's 1000 mm)."""
@@ -114,7 +114,7 @@ def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
         default = " ".join(f"{v:.4g}" for v in spec.default)
         group.add_argument(
             flag,
-            type=float,
+            type=_number_of(spec),
             nargs=len(spec.items),
             metavar=tuple(item.upper() for item in spec.items),
             help=f"{spec.described} (default {default})",
@@ -122,10 +122,29 @@ def _add_field_option(group: argparse._ArgumentGroup, spec: FieldSpec) -> None:
         return
     group.add_argument(
         flag,
-        type=float,
+        type=_number_of(spec),
         metavar=METAVARS.get(spec.unit, "X"),
         help=f"{spec.described} (default {spec.default:.4g})",
     )
+
+
+def _number_of(spec: FieldSpec) -> Callable[[str], float]:
+    """Argparse type of a design field's number: text that is none names the valid range.
+
+    The range itself is checked with the design (one home: the field's declaration).
+    """
+    unit = f" [{spec.unit}]" if spec.unit else ""
+    allowed = "a number" if spec.bounds is None else "a number in [{:g}, {:g}]".format(*spec.bounds)
+
+    def parse(text: str) -> float:
+        try:
+            return float(text)
+        except ValueError:
+            raise argparse.ArgumentTypeError(
+                f"{text!r} is not valid: must be {allowed}{unit}"
+            ) from None
+
+    return parse
 
 
 DESIGN_FLAGS: tuple[str, ...] = tuple(
@@ -178,17 +197,23 @@ def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:
     return design.leg_length if getattr(args, "design", None) else DEFAULT_TOTAL
 
 
-def add_sweep_options(parser: argparse.ArgumentParser, output: str) -> None:
-    """Options of the commands that sweep designs: output folder, tibia ratios, workers."""
+def add_sweep_options(
+    parser: argparse.ArgumentParser, output: str, least_l3_points: int = 2
+) -> None:
+    """Options of the commands that sweep designs: output folder, tibia ratios, workers.
+
+    ``least_l3_points`` is the fewest tibia ratios the command accepts (the report needs
+    more than a study to bracket its peaks).
+    """
     parser.add_argument(
         "-o", "--output", metavar="DIR", default=output, help=f"output folder (default {output})"
     )
     parser.add_argument(
         "--l3-points",
-        type=bounded_int(2, MAX_L3_POINTS),
+        type=bounded_int(least_l3_points, MAX_L3_POINTS),
         default=L3_RATIO_POINTS,
         metavar="N",
-        help=f"tibia ratios per coxa ratio, 2..{MAX_L3_POINTS} "
+        help=f"tibia ratios per coxa ratio, {least_l3_points}..{MAX_L3_POINTS} "
         f"(default {L3_RATIO_POINTS}, as the paper)",
     )
     parser.add_argument(

@@ -18,7 +18,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, REPORT_PDF, ReportOptions, build_report
-from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS
+from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -33,7 +33,7 @@ DESCRIPTION = (
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
-    add_sweep_options(parser, "hexaleg-report")
+    add_sweep_options(parser, "hexaleg-report", least_l3_points=MIN_L3_POINTS)
     add_collisions_option(parser)
     add_l1_ratios_option(
         parser,
@@ -55,6 +55,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="also write DIR/report.pdf: the same report as one PDF with vector figures "
         "(needs the [pdf] extra: WeasyPrint)",
     )
+    parser.add_argument(
+        "--simulate",
+        action="store_true",
+        help='also walk the default gait in MuJoCo: the "Simulated walk" section (needs '
+        "the [sim] extra: MuJoCo)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -71,6 +77,7 @@ def run(args: argparse.Namespace) -> int:
         sweep=sweep,
         pdf=args.pdf,
         requirements=requirements if requirements.given else None,
+        simulate=args.simulate,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)

@@ -13,17 +13,18 @@ from typing import Any
 from hexaleg._checks import require_in_range
 from hexaleg.design_file import load_design_file
 from hexaleg.study.requirements import KINDS, Requirements
+from hexaleg.study.requirements_table import DESCRIPTIONS
 
-HELP: dict[str, tuple[str, str]] = {
-    "payload": ("KG", "payload the robot must carry [kg]"),
-    "slope": ("RAD", "slope it must stand on, uphill in every heading, with the payload [rad]"),
-    "ground_clearance": ("M", "body underside above the ground at the nominal stance [m]"),
-    "min_fb": ("F", "least axis-locked body flexibility FB (eq 29) [-]"),
-    "leg_length": ("M", "largest total leg length l1+l2+l3 [m] (default: the design's)"),
-    "min_coxa": ("M", "least coxa length l1, for the root actuator's packaging [m]"),
-    "speed": ("M/S", "tripod gait speed within the rated torques and speeds [m/s]"),
+METAVARS: dict[str, str] = {
+    "payload": "KG",
+    "slope": "RAD",
+    "ground_clearance": "M",
+    "min_fb": "F",
+    "leg_length": "M",
+    "min_coxa": "M",
+    "speed": "M/S",
 }
-"""Each requirement option's metavar and help."""
+"""Each requirement option's metavar (its help is the table key's description)."""
 
 GROUP = (
     "requirements (SI units, radians; each also a key of the design file's [requirements] "
@@ -35,19 +36,19 @@ def add_requirement_options(parser: argparse.ArgumentParser) -> None:
     """Add ``--payload``, ``--payload-at``, ``--slope``/``--slope-deg`` and the others."""
     group = parser.add_argument_group(GROUP)
     for name in KINDS:
-        metavar, text = HELP[name]
+        metavar, text = METAVARS[name], DESCRIPTIONS[name]
         option = "--" + name.replace("_", "-")
         if name == "slope":
             slope = group.add_mutually_exclusive_group()
             slope.add_argument(option, type=float, metavar=metavar, help=text)
             slope.add_argument(
-                "--slope-deg", type=float, metavar="DEG", help="the same slope in degrees [°]"
+                "--slope-deg", type=float, metavar="DEG", help=DESCRIPTIONS["slope_deg"]
             )
             continue
         group.add_argument(option, type=float, metavar=metavar, help=text)
         if name == "speed":
             group.add_argument(
-                "--step-height", type=float, metavar="M", help="step height of that gait [m]"
+                "--step-height", type=float, metavar="M", help=DESCRIPTIONS["step_height"]
             )
         if name == "payload":
             group.add_argument(
@@ -55,8 +56,7 @@ def add_requirement_options(parser: argparse.ArgumentParser) -> None:
                 type=float,
                 nargs=3,
                 metavar=("X", "Y", "Z"),
-                help="where the payload sits, body frame [m] (default: the centre of the "
-                "body's top face)",
+                help=DESCRIPTIONS["payload_at"],
             )
 
 

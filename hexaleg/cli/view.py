@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
 
 from hexaleg._io import check_output_file
 from hexaleg.cli.options import (
@@ -15,19 +17,16 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import report_files
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait import analyze_gait
-from hexaleg.output.viewer import (
+from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
+from hexaleg.output.viewer.server import (
     LoopbackServer,
-    build_scene,
     client,
+    is_loopback,
     serve_until_stopped,
-    write_static_html,
 )
-from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
-from hexaleg.output.viewer.server import is_loopback
-from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility
-from hexaleg.statics.loads import loads_at_extremes
+
+if TYPE_CHECKING:
+    from hexaleg.robot.model import HexapodModel
 
 DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
@@ -63,6 +62,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
+    from hexaleg.output.viewer.scene import build_scene, write_static_html
+    from hexaleg.robot.model import HexapodModel
+    from hexaleg.stance.axis_locked import axis_locked_flexibility
+    from hexaleg.statics.loads import loads_at_extremes
+
     design = design_from_args(args)
     if args.html is not None:
         check_output_file(args.html)
@@ -78,6 +82,27 @@ def run(args: argparse.Namespace) -> int:
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0
+    return _serve(
+        args,
+        lambda viewer: build_scene(viewer, model, result, args.workspace, loads=loads),
+        STATICS_LEGEND,
+    )
+
+
+def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
+    """``--gait``: the default gait's animation, written or served."""
+    from hexaleg.gait.analysis import analyze_gait
+    from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
+
+    analysis = analyze_gait(model.design, model=model, limits=False)
+    if args.html is not None:
+        report_files([write_gait_html(model, analysis, args.html)])
+        return 0
+    return _serve(args, lambda viewer: build_gait_scene(viewer, model, analysis), GAIT_LEGEND)
+
+
+def _serve(args: argparse.Namespace, build: Callable[[Any], None], legend: Legend) -> int:
+    """Serve the scene ``build`` draws, its legend beside it, until Ctrl-C or SIGTERM."""
     if not is_loopback(args.host):
         port = "chosen below" if args.port is None else args.port
         note(
@@ -86,9 +111,9 @@ def run(args: argparse.Namespace) -> int:
             "the robot and its extremes, not change them (the command socket stays on "
             "127.0.0.1)"
         )
-    server = LoopbackServer(args.host, args.port)
+    server = LoopbackServer(args.host, args.port, legend)
     try:
-        build_scene(client(server), model, result, args.workspace, loads=loads)
+        build(client(server))
     except BaseException:
         server.stop()
         raise
@@ -96,21 +121,4 @@ def run(args: argparse.Namespace) -> int:
     print("serving until Ctrl-C", file=sys.stderr, flush=True)
     serve_until_stopped(server)
     print("hexaleg viewer: stopped", file=sys.stderr)
-    return 0
-
-
-def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
-    """``--gait``: the default gait's animation, written or served."""
-    analysis = analyze_gait(model.design, model=model, limits=False)
-    if args.html is not None:
-        report_files([write_gait_html(model, analysis, args.html)])
-        return 0
-    server = LoopbackServer(args.host, args.port)
-    try:
-        build_gait_scene(client(server), model, analysis)
-    except BaseException:
-        server.stop()
-        raise
-    print(f"hexaleg viewer: open {server.web_url}", flush=True)
-    serve_until_stopped(server)
     return 0

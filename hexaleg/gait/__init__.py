@@ -8,13 +8,28 @@ and the feet's forces (:mod:`.dynamics`), the ZMP (:mod:`.stability`), the metri
 :func:`gait_study_columns` gives a study row's walking columns.
 """
 
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
-from hexaleg.gait.feasibility import Violation
-from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
-from hexaleg.gait.metrics import GaitMetrics
-from hexaleg.gait.pattern import GROUPS, duty_factor, gait_phases, legs_around
-from hexaleg.gait.spec import Gait
-from hexaleg.gait.walk import Walker
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from hexaleg._lazy import lazy_exports
+
+_EXPORTS: dict[str, str] = {
+    "analyze_gait": "hexaleg.gait.analysis",
+    "duty_factor": "hexaleg.gait.pattern",
+    "Gait": "hexaleg.gait.spec",
+    "gait_phases": "hexaleg.gait.pattern",
+    "GaitAnalysis": "hexaleg.gait.analysis",
+    "GaitMetrics": "hexaleg.gait.metrics",
+    "GROUPS": "hexaleg.gait.pattern",
+    "legs_around": "hexaleg.gait.pattern",
+    "max_speed": "hexaleg.gait.limits",
+    "max_stride": "hexaleg.gait.limits",
+    "SpeedLimit": "hexaleg.gait.limits",
+    "StrideLimit": "hexaleg.gait.limits",
+    "Violation": "hexaleg.gait.feasibility",
+    "Walker": "hexaleg.gait.walk",
+}
 
 __all__ = [
     "GROUPS",
@@ -32,3 +47,14 @@ __all__ = [
     "max_speed",
     "max_stride",
 ]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+    from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+    from hexaleg.gait.feasibility import Violation
+    from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
+    from hexaleg.gait.metrics import GaitMetrics
+    from hexaleg.gait.pattern import GROUPS, duty_factor, gait_phases, legs_around
+    from hexaleg.gait.spec import Gait
+    from hexaleg.gait.walk import Walker

@@ -20,6 +20,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.feasibility import Violation
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
@@ -257,6 +258,35 @@ def _analysis(
         max_stride=stride_limit,
         max_speed=speed_limit,
     )
+
+
+def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
+    """Raise a one-line error if the planned period breaks a constraint.
+
+    A stride beyond the design's max stride is named as such, with the max stride as the
+    valid range; a gait no stride makes walkable (too high a step, say) by its first
+    violation. ``gait`` refuses such a period before writing anything, ``simulate``
+    before simulating.
+
+    Raises:
+        ParameterError: ``stride`` beyond the design's max stride.
+        HexalegError: The period breaks a constraint at any stride.
+
+    """
+    if analysis.feasible:
+        return
+    gait = analysis.gait
+    limit = analysis.max_stride
+    if limit is None:
+        limit = max_stride(Walker(model, gait, analysis.payload, analysis.distribution))
+    if 0 < limit.value < gait.stride:  # at 0 no stride at all is walkable: say why
+        raise ParameterError(
+            "stride",
+            gait.stride,
+            f"must be at most {limit.value:.4g} [m], this design's max stride at step height "
+            f"{gait.step_height:g} m (beyond it: {limit.limited_by})",
+        )
+    raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}")
 
 
 STUDY_GAIT = Gait()

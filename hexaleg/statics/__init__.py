@@ -6,25 +6,35 @@ the steepest slope per heading; :mod:`.capacity` the largest payload; :mod:`.loa
 gathers them at the nominal stance and at each body extreme.
 """
 
-from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
-from hexaleg.statics.forces import (
-    DEFAULT_FRICTION,
-    GRAVITY,
-    Payload,
-    Statics,
-    StaticState,
-    equilibrium,
-    friction_pyramid,
-)
-from hexaleg.statics.loads import (
-    ExtremeLoads,
-    LoadsAnalysis,
-    analyze_loads,
-    extreme_configurations,
-    loads_at_extremes,
-)
-from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_gravity, slope_limits
-from hexaleg.statics.support import SupportPolygon, ground_point, stability_margin
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from hexaleg._lazy import lazy_exports
+
+_EXPORTS: dict[str, str] = {
+    "analyze_loads": "hexaleg.statics.loads",
+    "DEFAULT_FRICTION": "hexaleg.statics.forces",
+    "equilibrium": "hexaleg.statics.forces",
+    "extreme_configurations": "hexaleg.stance.configurations",
+    "ExtremeLoads": "hexaleg.statics.loads",
+    "friction_pyramid": "hexaleg.statics.forces",
+    "GRAVITY": "hexaleg.statics.forces",
+    "ground_point": "hexaleg.statics.support",
+    "loads_at_extremes": "hexaleg.statics.loads",
+    "LoadsAnalysis": "hexaleg.statics.loads",
+    "Payload": "hexaleg.statics.forces",
+    "payload_capacity": "hexaleg.statics.capacity",
+    "PayloadCapacity": "hexaleg.statics.capacity",
+    "slope_gravity": "hexaleg.statics.slopes",
+    "SLOPE_HEADINGS": "hexaleg.statics.slopes",
+    "slope_limits": "hexaleg.statics.slopes",
+    "SlopeLimit": "hexaleg.statics.slopes",
+    "stability_margin": "hexaleg.statics.support",
+    "Statics": "hexaleg.statics.forces",
+    "StaticState": "hexaleg.statics.forces",
+    "SupportPolygon": "hexaleg.statics.support",
+}
 
 __all__ = [
     "DEFAULT_FRICTION",
@@ -49,3 +59,26 @@ __all__ = [
     "slope_limits",
     "stability_margin",
 ]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+    from hexaleg.stance.configurations import extreme_configurations
+    from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
+    from hexaleg.statics.forces import (
+        DEFAULT_FRICTION,
+        GRAVITY,
+        Payload,
+        Statics,
+        StaticState,
+        equilibrium,
+        friction_pyramid,
+    )
+    from hexaleg.statics.loads import (
+        ExtremeLoads,
+        LoadsAnalysis,
+        analyze_loads,
+        loads_at_extremes,
+    )
+    from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_gravity, slope_limits
+    from hexaleg.statics.support import SupportPolygon, ground_point, stability_margin

@@ -297,7 +297,8 @@ def min_norm_forces(a: ArrayF, b: ArrayF) -> ArrayF:
     rhs = b if stacked else b[..., None]
     multipliers = np.linalg.solve(a @ a.swapaxes(-1, -2), rhs)
     forces = a.swapaxes(-1, -2) @ multipliers
-    return forces if stacked else forces[..., 0]
+    result: ArrayF = forces if stacked else forces[..., 0]
+    return result
 
 
 def min_torque_forces(

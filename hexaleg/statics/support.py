@@ -14,7 +14,8 @@ from hexaleg.exceptions import HexalegError
 def ground_point(com: ArrayF, gravity: ArrayF) -> ArrayF:
     """Where the gravity line through the centre of mass meets the ground z = 0 (x, y) [m]."""
     t = com[2] / -gravity[2]
-    return (com + t * gravity)[:2]
+    point: ArrayF = (com + t * gravity)[:2]
+    return point
 
 
 @dataclass(frozen=True)
@@ -56,7 +57,10 @@ class SupportPolygon:
         along = (relative[..., 0] * edges[:, 0] + relative[..., 1] * edges[:, 1]) / self.lengths**2
         gap = relative - np.clip(along, 0.0, 1.0)[..., None] * edges
         inside = inward.min(axis=1)
-        return np.where(inside >= 0, inside, -np.hypot(gap[..., 0], gap[..., 1]).min(axis=1))
+        margins: ArrayF = np.where(
+            inside >= 0, inside, -np.hypot(gap[..., 0], gap[..., 1]).min(axis=1)
+        )
+        return margins
 
     def exit_distance(self, point: ArrayF, direction: ArrayF) -> float:
         """How far from ``point`` (inside) along ``direction`` the boundary lies [m]."""
@@ -76,7 +80,8 @@ class SupportPolygon:
         t = cross(offset, self.edges) / denominator  # along the ray
         s = cross(offset, d) / denominator  # along the edge
         hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
-        return np.where(hit, t, np.inf).min(axis=1)
+        distances: ArrayF = np.where(hit, t, np.inf).min(axis=1)
+        return distances
 
 
 def _hull(points: ArrayF) -> list[int]:

@@ -1,9 +1,29 @@
-"""Design studies: many designs on any executor (:mod:`.sweep`), sensitivity, recommendation."""
+"""Design studies: many designs on any executor (:mod:`.sweep`), sensitivity, recommendation.
 
-from hexaleg.study.executors import dask_executor, local_pool
-from hexaleg.study.recommendation import Recommendation, recommend
-from hexaleg.study.sensitivity import relative_variants, sensitivity_table
-from hexaleg.study.sweep import StudySpec, peak_table, run_study, sweep, sweep_in_process
+A lazy front door (:mod:`hexaleg._lazy`): a name's module is imported on first use, so
+a command that only needs a study's limits does not load pandas, the analyses or pymoo.
+The sweep over an executor is ``hexaleg.study.sweep.sweep`` (its module's name: the
+package cannot offer both lazily).
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from hexaleg._lazy import lazy_exports
+
+_EXPORTS: dict[str, str] = {
+    "Recommendation": "hexaleg.study.recommendation",
+    "StudySpec": "hexaleg.study.sweep",
+    "dask_executor": "hexaleg.study.executors",
+    "local_pool": "hexaleg.study.executors",
+    "peak_table": "hexaleg.study.sweep",
+    "recommend": "hexaleg.study.recommendation",
+    "relative_variants": "hexaleg.study.sensitivity",
+    "run_study": "hexaleg.study.sweep",
+    "sensitivity_table": "hexaleg.study.sensitivity",
+    "sweep_in_process": "hexaleg.study.sweep",
+}
 
 __all__ = [
     "Recommendation",
@@ -15,6 +35,13 @@ __all__ = [
     "relative_variants",
     "run_study",
     "sensitivity_table",
-    "sweep",
     "sweep_in_process",
 ]
+
+__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+
+if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+    from hexaleg.study.executors import dask_executor, local_pool
+    from hexaleg.study.recommendation import Recommendation, recommend
+    from hexaleg.study.sensitivity import relative_variants, sensitivity_table
+    from hexaleg.study.sweep import StudySpec, peak_table, run_study, sweep_in_process

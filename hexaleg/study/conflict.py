@@ -24,7 +24,7 @@ from typing import Any
 
 from hexaleg.cause import Cause
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION
 from hexaleg.study.evaluation import Evaluation, Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
@@ -185,6 +185,9 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
         if cause.kind == "torque" and cause.joint is not None:
             rated = design.rated_torques[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} N·m"
+        elif cause.kind == "speed" and cause.joint is not None:
+            rated = design.rated_speeds[LEG_JOINTS.index(cause.joint)]
+            phrase = f"with {cause.joint} motors of {rated:g} rad/s"
         elif cause.kind in ("tip", "stability"):
             phrase = "without tipping"
         elif cause.kind == "slide":

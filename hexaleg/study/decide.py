@@ -4,10 +4,14 @@
 design with the best objective among those meeting every requirement
 (:mod:`hexaleg.study.optimize`), then measures the winner again with the exact
 single-design analyses (its own URDF and Pinocchio model, nothing derived) before
-reporting it: every requirement's value, margin and whether it binds. The user's design
-is measured the same way and checked against each requirement. When no design within
-the bounds meets them all, :mod:`hexaleg.study.conflict` names the requirements that
-conflict and the nearest relaxation of each.
+reporting it: every requirement's value, margin, whether it binds and what limits it,
+and every joint over its rating — standing with the payload at the nominal stance and the
+twelve axis-locked extremes (:attr:`~hexaleg.statics.loads.LoadsAnalysis.over_rating`),
+and walking the requirements' gait when one is walked
+(:attr:`~hexaleg.gait.analysis.GaitAnalysis.over_rating`). The user's design is measured
+the same way and checked against each requirement. When no design within the bounds
+meets them all, :mod:`hexaleg.study.conflict` names the requirements that conflict and
+the nearest relaxation of each.
 """
 
 from __future__ import annotations
@@ -24,15 +28,14 @@ import numpy.typing as npt
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.gait.analysis import analyze_gait
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.flexibility import flexibility
+from hexaleg.statics.forces import Payload
+from hexaleg.statics.loads import loads_at_extremes
+from hexaleg.statics.ratings import OverRating
 from hexaleg.study.conflict import Conflict, find_conflict
-from hexaleg.study.evaluation import (
-    GAIT_METRICS,
-    METRIC_UNITS,
-    Evaluation,
-    Goal,
-    Objective,
-    evaluate_design,
-)
+from hexaleg.study.evaluation import METRIC_UNITS, Evaluation, Goal, Objective, evaluate_design
 from hexaleg.study.executors import local_pool
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
@@ -48,19 +51,54 @@ class CheckedDesign:
         design: The design.
         evaluation: Its metrics (what the requirements and the objective need).
         checks: Each requirement checked on it.
+        standing_over_rating: Each joint over its rated torque carrying the required
+            payload, at the nominal stance or an axis-locked extreme.
+        walking_over_rating: Each joint over its rated torque or speed walking the
+            requirements' gait (none when no gait is walked).
 
     """
 
     design: HexapodDesign
     evaluation: Evaluation
     checks: tuple[RequirementCheck, ...]
+    standing_over_rating: tuple[OverRating, ...] = ()
+    walking_over_rating: tuple[OverRating, ...] = ()
 
     @classmethod
     def of(cls, design: HexapodDesign, goal: Goal) -> CheckedDesign:
-        """Measure ``design`` from its own URDF and model, and check it."""
-        evaluation = evaluate_design(design, goal)
-        checks = () if evaluation.error else evaluation.checks(goal.requirements)
-        return cls(design, evaluation, checks)
+        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings."""
+        requirements = goal.requirements
+        payload = Payload(requirements.payload_mass, requirements.payload_at)
+        try:
+            model = HexapodModel(design)
+            locked = flexibility(design, "axis", model=model)
+            standing = loads_at_extremes(model, locked, payload).over_rating
+        except HexalegError as err:
+            return cls(design, Evaluation(error=str(err)), ())
+        evaluation = evaluate_design(design, goal, model, flexibility=locked)
+        if evaluation.error:
+            return cls(design, evaluation, (), standing)
+        walking: tuple[OverRating, ...] = ()
+        if goal.walks:
+            gait = requirements.gait
+            walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
+        return cls(design, evaluation, evaluation.checks(requirements), standing, walking)
+
+    def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
+        """(where, flags furthest over first) standing with the payload, and walking if walked."""
+        payload = result.requirements.payload_mass
+        standing = f"standing with {payload:g} kg" if payload else "standing without payload"
+        groups = [(standing, furthest_first(self.standing_over_rating))]
+        if result.walks:
+            walking = f"walking at {result.requirements.gait.speed:.4g} m/s"
+            groups.append((walking, furthest_first(self.walking_over_rating)))
+        return groups
+
+    def over_rating(self) -> list[dict[str, Any]]:
+        """Every joint over its rating, JSON-ready, each saying ``while`` standing or walking."""
+        return [o.to_dict() | {"while": "standing"} for o in self.standing_over_rating] + [
+            o.to_dict() | {"while": "walking"} for o in self.walking_over_rating
+        ]
 
     @property
     def meets_all(self) -> bool:
@@ -72,6 +110,11 @@ class CheckedDesign:
         value = self.evaluation.values.get(objective.name)
         return {"name": objective.name, "sense": objective.sense, "value": value,
                 "unit": METRIC_UNITS[objective.name]}  # fmt: skip
+
+
+def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
+    """Joints over their ratings, the furthest over (peak / rating) first."""
+    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 @dataclass(frozen=True)
@@ -103,6 +146,19 @@ class DecideResult:
     evaluations: int
     seed: int
 
+    @property
+    def walks(self) -> bool:
+        """Whether the designs walk a gait (a walking requirement or objective)."""
+        return Goal(self.requirements, self.objective).walks
+
+    def walking_text(self) -> str:
+        """The gait the designs walk and what is measured on it, in words."""
+        speed = self.requirements.gait.speed
+        return (
+            f"{self.requirements.walking_conditions()}; speed: the fastest within the "
+            f"ratings at that stride; peak torque and cost of transport at {speed:.4g} m/s"
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (SI units, radians)."""
         out: dict[str, Any] = {
@@ -110,14 +166,20 @@ class DecideResult:
             "best": {
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
+                "over_rating": self.best.over_rating(),
             },
             "yours": {
                 "design": self.yours.design.as_dict(),
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},
+                "over_rating": self.yours.over_rating(),
             },
             "feasible": self.feasible,
         }
+        if self.walks:
+            out["gait"] = self.requirements.gait.to_dict() | {
+                "payload": self.requirements.payload_mass
+            }
         if self.conflict is not None:
             out["conflict"] = self.conflict.to_dict()
         out["search"] = {
@@ -164,7 +226,6 @@ def decide(
     objective = objective or Objective()
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective)
-    _require_available(goal)
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
     )
@@ -227,16 +288,6 @@ def _search_or_conflict(
         if outcome.feasible:
             return outcome, None
     return outcome, conflict
-
-
-def _require_available(goal: Goal) -> None:
-    """Refuse, in one line, the walking metrics until the gait analysis is there."""
-    unavailable = set(goal.metrics) & set(GAIT_METRICS)
-    if unavailable:
-        raise HexalegError(
-            f"{', '.join(sorted(unavailable))}: walking requirements and objectives need "
-            "hexaleg's gait analysis, not in this version"
-        )
 
 
 @contextmanager

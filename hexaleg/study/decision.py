@@ -1,59 +1,40 @@
-"""The decision: which segment ratios to build, and how the user's design compares.
+"""The grid decision: which segment ratios to build when no requirement is given.
 
-Three steps, each on results the analyses already produced (nothing here draws or
-writes):
+Two steps on results the analyses already produced (nothing here draws or writes),
+both ranking by the one rule of :mod:`hexaleg.study.ranking` (the geometric mean of
+improved area, w_A, FB and payload capacity, each relative to the user's design):
 
-1. :func:`grid_recommendation`: the three metrics (improved area, w_A, axis-locked FB)
-   on the study's (coxa, tibia) ratio grid, combined by :func:`~.recommendation.recommend`.
-2. :func:`decide`: the user's design beside the recommended one, metric by metric,
-   with the payload capacity of each (not in the score).
-3. :func:`pareto_front`: the grid's designs no other beats in area, w_A, FB and
-   payload capacity at once, best equal-weight score first.
+1. :func:`grid_recommendation`: the four metrics on the study's (coxa, tibia) ratio
+   grid, the best-scoring design among the allowed coxa ratios, its tibia ratio refined
+   (:func:`~.recommendation.recommend`), beside the user's design;
+2. :func:`pareto_front`: the grid's designs no other beats in all four metrics at once,
+   best score first — the first is the recommendation's grid point.
 
-Which designs may be recommended and how they are ranked is :class:`DecisionOptions`
-and :data:`RANKING_RULE`; requirements (payload, slope, speed, ratings) belong here too,
-as further fields of the options record that filter the candidates before ranking.
+Which designs may be recommended is :class:`DecisionOptions`. Requirements (payload,
+slope, speed, ratings) are the other decision, :func:`hexaleg.study.decide.decide`.
 """
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.study.metrics import design_metrics, ratio_metrics
 from hexaleg.study.pareto import pareto_table
+from hexaleg.study.ranking import Metrics
 from hexaleg.study.recommendation import (
-    BAND,
     PRACTICAL_L1_RATIO,
-    Metrics,
     Recommendation,
     candidate_mask,
-    combined_score,
     recommend,
 )
 from hexaleg.swing.manipulability import AverageManipulabilityMap
 from hexaleg.swing.workspace import improved_area_closed_form
-
-RANKING_RULE = (
-    "Each metric — improved workspace area (eq 16), average manipulability w_A on the "
-    "improved domain (eq 27) and axis-locked body flexibility FB (eq 29) — is divided by its "
-    "best value over the whole grid of designs, and the three are averaged with equal "
-    "weights; the recommended design has the highest such score among the allowed coxa "
-    f"ratios, its tibia ratio refined between grid points. The band keeps ≥ {BAND:.0%} of "
-    "that score. Payload capacity is not in the score; the Pareto front adds it as a fourth "
-    "metric, ranked the same way."
-)
-"""How designs are ranked, in words the report shows beside the decision."""
 
 
 @dataclass(frozen=True)
@@ -78,147 +59,84 @@ class DecisionOptions:
         return f"the paper's practical coxa ratios (≥ {PRACTICAL_L1_RATIO:.2f})"
 
 
-@dataclass(frozen=True)
-class Decision:
-    """The user's design beside the recommended one, on the recommendation's scale.
-
-    Attributes:
-        yours: The user's design's metrics (:data:`~hexaleg.study.recommendation.METRICS`).
-        your_score: Its combined score [-].
-        recommended: The recommended ratios at the user's leg length, body and posture;
-            ``None`` if that design cannot stand.
-        recommended_metrics: The recommended design's metrics (NaN if it cannot stand).
-        recommended_score: Its combined score [-].
-        your_payload: The user's design's payload capacity [kg] (not in the score).
-        recommended_payload: The recommended design's payload capacity [kg] (NaN if it
-            cannot stand).
-
-    """
-
-    yours: Metrics
-    your_score: float
-    recommended: HexapodDesign | None
-    recommended_metrics: Metrics
-    recommended_score: float
-    your_payload: float
-    recommended_payload: float
-
-    def to_json(self) -> dict[str, Any]:
-        """JSON-ready form (metrics in m², m³ and 1)."""
-        return {
-            "yours": {
-                "metrics": dict(self.yours),
-                "score": self.your_score,
-                "payload_capacity": self.your_payload,
-            },
-            "recommended": {
-                "lengths_m": list(self.recommended.lengths) if self.recommended else None,
-                "metrics": dict(self.recommended_metrics),
-                "score": self.recommended_score,
-                "payload_capacity": self.recommended_payload,
-            },
-        }
+def your_metrics(
+    design: HexapodDesign, model: HexapodModel, template: StanceGeometry, options: DecisionOptions
+) -> Metrics:
+    """The user's design's four ranked metrics: what every score is relative to."""
+    return design_metrics(design, model, template, options.collisions)
 
 
 def grid_recommendation(
     design: HexapodDesign,
+    model: HexapodModel,
     template: StanceGeometry,
     average_map: AverageManipulabilityMap,
     study: pd.DataFrame,
     options: DecisionOptions,
 ) -> Recommendation:
-    """Recommend ratios from the three metrics on the (coxa, tibia) ratio grid.
+    """Recommend ratios from the four metrics on the (coxa, tibia) ratio grid.
 
     Args:
         design: The user's design (its leg length, body and posture are kept).
+        model: Its Pinocchio model (the grid's designs' are derived from it).
         template: The stance geometry of its body and mounts.
         average_map: w_A on the grid (its ratios define the grid).
-        study: The FB study on the same grid (column ``fb``).
+        study: The study on the same grid (columns ``fb`` and ``payload_capacity``).
         options: The allowed coxa ratios and collision setting.
 
     """
     r1, r3 = average_map.l1_ratios, average_map.l3_ratios
     total = design.leg_length
     l2 = (1 - r1[:, None] - r3[None, :]) * total
-    area = np.where(l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan)
-    fb = np.full(area.shape, np.nan)
-    for i, ratio in enumerate(r1):
-        rows = study[np.isclose(study["l1_ratio"], ratio)]
-        fb[i] = rows["fb"].to_numpy(dtype=float) if "fb" in rows else np.nan
     maps = {
-        "improved_area": area,
+        "improved_area": np.where(
+            l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan
+        ),
         "average_manipulability": average_map.improved,
-        "flexibility": fb,
+        "flexibility": _study_map(study, "fb", r1, len(r3)),
+        "payload_capacity": _study_map(study, "payload_capacity", r1, len(r3)),
     }
     return recommend(
         r1,
         r3,
         maps,
+        your_metrics(design, model, template, options),
         candidates=options.l1_ratios,
-        evaluate=lambda a, b: ratio_metrics(design, a, b, template, options.collisions),
+        evaluate=lambda a, b: ratio_metrics(design, a, b, model, template, options.collisions),
     )
 
 
-def decide(
-    design: HexapodDesign,
-    model: HexapodModel,
-    template: StanceGeometry,
-    recommendation: Recommendation,
-    your_payload: float,
-    options: DecisionOptions,
-) -> Decision:
-    """The user's design beside the recommended one.
-
-    Args:
-        design: The user's design.
-        model: Its Pinocchio model (the recommended design's is derived from it).
-        template: The stance geometry of its body and mounts.
-        recommendation: The recommended ratios.
-        your_payload: The user's design's payload capacity [kg].
-        options: The collision setting.
-
-    """
-    rec, collisions = recommendation, options.collisions
-    yours = design_metrics(design, template, collisions)
-    recommended_metrics = ratio_metrics(design, rec.l1_ratio, rec.l3_ratio, template, collisions)
-    try:
-        recommended: HexapodDesign | None = design.with_ratios(rec.l1_ratio, rec.l3_ratio)
-    except HexalegError:
-        recommended = None
-    payload = math.nan
-    if recommended is not None:
-        their_model = model.with_design(recommended)
-        locked = axis_locked_flexibility(recommended, "all", their_model, collisions=collisions)
-        payload = loads_at_extremes(their_model, locked).capacity.mass
-    return Decision(
-        your_payload=your_payload,
-        recommended_payload=payload,
-        yours=yours,
-        your_score=combined_score(yours, rec.maxima),
-        recommended=recommended,
-        recommended_metrics=recommended_metrics,
-        recommended_score=combined_score(recommended_metrics, rec.maxima),
-    )
+def _study_map(study: pd.DataFrame, column: str, l1_ratios: np.ndarray, width: int) -> np.ndarray:
+    """A study column on the (coxa, tibia) grid: each coxa ratio's rows in tibia order."""
+    values = np.full((len(l1_ratios), width), np.nan)
+    if column in study:
+        for i, ratio in enumerate(l1_ratios):
+            values[i] = study.loc[np.isclose(study["l1_ratio"], ratio), column].to_numpy(float)
+    return values
 
 
 def pareto_front(
-    average_map: AverageManipulabilityMap, study: pd.DataFrame, options: DecisionOptions
+    average_map: AverageManipulabilityMap,
+    study: pd.DataFrame,
+    recommendation: Recommendation,
+    options: DecisionOptions,
 ) -> pd.DataFrame:
     """The Pareto front of the study's allowed designs (see :func:`.pareto.pareto_table`).
 
     Args:
         average_map: w_A on the study's grid.
         study: The study's table (columns ``fb`` and ``payload_capacity``).
+        recommendation: The recommendation (its reference: the user's design's metrics).
         options: The allowed coxa ratios.
 
     """
     grid = pareto_grid(average_map, study)
     allowed = candidate_mask(grid["l1_ratio"].to_numpy(dtype=float), options.l1_ratios)
-    return pareto_table(grid[allowed])
+    return pareto_table(grid[allowed], recommendation.reference)
 
 
 def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> pd.DataFrame:
-    """Every design of the study with the four metrics of the Pareto front."""
+    """Every design of the study with the four ranked metrics."""
     grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
     grid["improved_area"] = improved_area_closed_form(
         grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)

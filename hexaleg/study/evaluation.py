@@ -5,10 +5,13 @@ metrics (:mod:`hexaleg.study.requirements`), an :class:`Objective` ranks by one.
 :func:`evaluate_design` measures every metric a :class:`Goal` needs with the exact
 single-design analyses: the improved workspace area (eq 16), the average manipulability
 w_A (eq 27) and axis-locked flexibility FB (eq 29) as :mod:`hexaleg.study.metrics`
-combines them, the statics' payload capacity (:mod:`hexaleg.statics`), and the slope and
-payload limits of :mod:`hexaleg.study.standing`. Given a model and a stance template of
-the same body (the fast path of searches), it derives the design's own from them in
-closed form; the tests prove both paths equal.
+combines them, the statics' payload capacity (:mod:`hexaleg.statics`), the slope and
+payload limits of :mod:`hexaleg.study.standing`, and walking (:mod:`hexaleg.gait`): the
+requirements' gait (:attr:`~hexaleg.study.requirements.Requirements.gait`, carrying the
+required payload) walked once at its speed gives the max speed at its stride and the peak
+torque and cost of transport at that speed. Given a model and a stance template of the
+same body (the fast path of searches), it derives the design's own from them in closed
+form; the tests prove both paths equal.
 """
 
 from __future__ import annotations
@@ -23,6 +26,7 @@ from hexaleg._typing import choices
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.extremes import FlexibilityResult
@@ -132,6 +136,11 @@ class Goal:
         return tuple(name for name in self.requirements.given if name not in self.relaxed)
 
     @property
+    def walks(self) -> bool:
+        """Whether the designs walk the requirements' gait (a walking metric is needed)."""
+        return bool(set(self.metrics) & set(GAIT_METRICS))
+
+    @property
     def metrics(self) -> tuple[str, ...]:
         """The metrics to measure: the requirements' and the objective's."""
         needed = {KINDS[name].metric for name in self.requirements.given}
@@ -154,9 +163,8 @@ class Evaluation:
     error: str = ""
 
     def checks(self, requirements: Requirements) -> tuple[RequirementCheck, ...]:
-        """Each requirement checked on this design (its value and margin)."""
-        causes = {metric: str(cause) for metric, cause in self.causes.items()}
-        return check(requirements, self.values, causes)
+        """Each requirement checked on this design (its value, margin and what limits it)."""
+        return check(requirements, self.values, self.causes)
 
     def meets(self, goal: Goal) -> bool:
         """Whether the design was measured and meets every constraint of ``goal``."""
@@ -227,7 +235,33 @@ def _measure(
     if {"payload", "slope"} & set(wanted):
         model = HexapodModel(design) if model is None else model  # the exact path
         _standing_metrics(model, goal.requirements, values, causes)
+    if goal.walks:
+        model = HexapodModel(design) if model is None else model
+        _walking_metrics(model, goal, values, causes)
     return Evaluation({name: values[name] for name in wanted}, causes)
+
+
+def _walking_metrics(
+    model: HexapodModel, goal: Goal, values: dict[str, float], causes: dict[str, Cause]
+) -> None:
+    """Max speed [m/s] at the gait's stride; peak torque [N·m] and CoT [-] at its speed.
+
+    Raises:
+        HexalegError: the objective is a walking metric and the gait's stride cannot
+            be walked (the metric has no value).
+
+    """
+    requirements = goal.requirements
+    payload = Payload(requirements.payload_mass, requirements.payload_at)
+    walked = analyze_gait(
+        model.design, requirements.gait, payload, model=model, limits=False, speed=True
+    )
+    assert walked.max_speed is not None  # speed=True
+    values["speed"], causes["speed"] = walked.max_speed.value, walked.max_speed.limited_by
+    if goal.objective.name in ("peak_torque", "cost_of_transport") and not walked.feasible:
+        raise HexalegError(f"cannot walk the gait: {walked.violations[0]}")
+    values["peak_torque"] = max(walked.metrics.peak_torque.values())
+    values["cost_of_transport"] = walked.metrics.cost_of_transport
 
 
 def _standing_metrics(

@@ -1,23 +1,21 @@
 """The designs no other design beats in every metric at once (the Pareto front).
 
 On the study's grid of (coxa, tibia) ratios every design has its improved area,
-w_A, FB and payload capacity, all to be maximized. The grid is dense and every
-metric on it exact, so the front is read off the grid directly (no evolutionary
-search is needed, and none could be more exact). The recommendation on the front is
-its design with the best equal-weight score, each metric divided by its best value.
+w_A, FB and payload capacity (:data:`~hexaleg.study.ranking.RANKED_METRICS`), all to be
+maximized. The grid is dense and every metric on it exact, so the front is read off the
+grid directly (no evolutionary search is needed, and none could be more exact). The
+front is ordered by the one ranking rule (:mod:`hexaleg.study.ranking`): a design that
+beats another in every metric also scores higher, so the grid's best-scoring design is
+always on the front, first.
 """
 
 from __future__ import annotations
-
-from collections.abc import Sequence
 
 import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
-
-PARETO_METRICS = ("improved_area", "average_manipulability", "flexibility", "payload_capacity")
-"""The metrics of the front [m², m³, -, kg], every one to be maximized."""
+from hexaleg.study.ranking import RANKED_METRICS, Metrics, ranking_scores
 
 
 def non_dominated(values: ArrayF) -> np.ndarray:
@@ -35,13 +33,16 @@ def non_dominated(values: ArrayF) -> np.ndarray:
     return front
 
 
-def pareto_table(grid: pd.DataFrame, metrics: Sequence[str] = PARETO_METRICS) -> pd.DataFrame:
-    """The front of ``grid`` (one row per design, a column per metric), best first.
+def pareto_table(grid: pd.DataFrame, reference: Metrics) -> pd.DataFrame:
+    """The front of ``grid`` (one row per design, a column per ranked metric), best first.
 
-    Each front design's score is the mean of its metrics over their best values on the grid.
+    Args:
+        grid: One row per design, a column for each of
+            :data:`~hexaleg.study.ranking.RANKED_METRICS`.
+        reference: The user's design's metrics: each front design's ``score`` is
+            :func:`~hexaleg.study.ranking.ranking_scores` against them.
+
     """
-    values = grid[list(metrics)].to_numpy(dtype=float)
-    best = np.nanmax(values, axis=0)
-    front = grid[non_dominated(values)].copy()
-    front["score"] = (front[list(metrics)].to_numpy(dtype=float) / best).mean(axis=1)
+    front = grid[non_dominated(grid[list(RANKED_METRICS)].to_numpy(dtype=float))].copy()
+    front["score"] = ranking_scores(front, reference)
     return front.sort_values("score", ascending=False, kind="stable").reset_index(drop=True)

@@ -3,7 +3,8 @@
 A CI log, ``nohup`` or a redirect to a file cannot show a redrawn bar, so when stderr is
 not a terminal :class:`Progress` prints ``done/total``, the elapsed time and an estimate
 of the time left, at most once every :data:`INTERVAL` seconds (and a last line at the
-end, if it printed any): a short run stays quiet.
+end, if it printed any): a short run stays quiet. A run of named steps (the report's)
+says which one is running: on the bar, and at the end of each line (``now: statics``).
 """
 
 from __future__ import annotations
@@ -48,22 +49,30 @@ class Progress:
         self._start = self._last = clock()
         self._first = done
         self._printed: int | None = None  # how many were done at the last line
+        self.doing: str | None = None
         self._bar: tqdm[None] | None = None
         self._lines = show is not False and self._stream is not None
         if self._lines and _is_terminal(self._stream):
             self._bar = tqdm(total=total, initial=done, unit=unit[:-1], file=self._stream)
             self._lines = False
 
-    def update(self, count: int) -> None:
-        """``count`` more items finished."""
+    def update(self, count: int, doing: str | None = None) -> None:
+        """``count`` more items finished; ``doing`` names the one that starts, if any."""
         self.done += count
+        if doing is not None:
+            self.doing = doing
+            if self._bar is not None:
+                self._bar.set_description(doing, refresh=False)
         if self._bar is not None:
             self._bar.update(count)
         elif self._lines and self._clock() - self._last >= INTERVAL:
             self._print()
 
     def line(self) -> str:
-        """``120/1600 designs (7.5 %), 1 min 5 s so far, about 14 min left``."""
+        """``120/1600 designs (7.5 %), 1 min 5 s so far, about 14 min left``.
+
+        While a named step runs (and the run is not over), ``, now: <step>`` ends it.
+        """
         elapsed = self._clock() - self._start
         share = self.done / self.total if self.total else 1.0
         text = f"{self.done}/{self.total} {self.unit} ({100 * share:.1f} %), "
@@ -72,6 +81,8 @@ class Progress:
         if 0 < finished_here and self.done < self.total:
             left = (self.total - self.done) * elapsed / finished_here
             text += f", about {_duration(left)} left"
+        if self.doing is not None and self.done < self.total:
+            text += f", now: {self.doing}"
         return text
 
     def close(self) -> None:

@@ -1,11 +1,12 @@
-"""Combine workspace, manipulability and flexibility into recommended segment ratios.
+"""The recommended segment ratios: the best score on the (coxa, tibia) ratio grid, refined.
 
-Each metric is evaluated on the same grid of (coxa ratio, tibia ratio) at a fixed
-total leg length and divided by its best value over the **whole** grid, so scores
-compare across coxa ratios; the combined score is their equal-weight mean. The
-recommendation is the best-scoring design among the candidate coxa ratios (the
-paper's practical ones, ≥ 0.10, unless the user fixes the coxa), its tibia ratio
-refined between grid points; the band keeps ≥ 97 % of its score.
+Every design of a grid of (coxa ratio, tibia ratio) at a fixed total leg length has the
+four ranked metrics (:data:`~hexaleg.study.ranking.RANKED_METRICS`: improved area, w_A,
+FB, payload capacity) and its score by the one ranking rule (:mod:`hexaleg.study.ranking`):
+relative to the user's design, so a design's score never depends on which other designs
+the grid holds. The recommendation is the best-scoring design among the candidate coxa
+ratios (the paper's practical ones, ≥ 0.10, unless the user fixes the coxa), its tibia
+ratio refined between grid points; the band keeps ≥ 97 % of its score.
 """
 
 from __future__ import annotations
@@ -19,20 +20,16 @@ import pandas as pd
 from scipy import optimize
 
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import HexalegError
+from hexaleg.study.ranking import RANKED_METRICS, Metrics, relative_values, score, scores
 
 BAND = 0.97
-"""Share of the best combined score that defines the recommended band."""
+"""Share of the best score that defines the recommended band."""
 
 PRACTICAL_L1_RATIO = 0.10
 """Smallest coxa ratio the paper calls practical (§5.3: "between 0.1 and 0.2"); every
-metric improves as the coxa shrinks, so unless the user fixes the coxa, the
+kinematic metric improves as the coxa shrinks, so unless the user fixes the coxa, the
 recommendation is made among coxa ratios at least this large."""
-
-METRICS = ("improved_area", "average_manipulability", "flexibility")
-"""The combined metrics: improved area [m²] (eq 16), w_A [m³] (eq 27), FB [-] (eq 29)."""
-
-Metrics = Mapping[str, float]
-"""One design's value of each of :data:`METRICS`."""
 
 
 @dataclass(frozen=True)
@@ -42,18 +39,20 @@ class Recommendation:
     Attributes:
         l1_ratio: Recommended coxa ratio [-].
         l3_ratio: Recommended tibia ratio at that coxa ratio, refined between grid points [-].
-        l3_band: Tibia ratios keeping ≥ 97 % of the best combined score [-].
-        maxima: Best value of each metric over the grid: the normalization.
-        score: Combined score of the recommended design [-] (1 would be best in every metric).
+        l3_band: Tibia ratios of the grid keeping ≥ 97 % of its score [-].
+        reference: The user's design's metrics: what every score is relative to.
+        metrics: The recommended design's metrics [m², m³, -, kg].
+        score: Its score [-] (the user's design: 1).
         peaks: Per coxa ratio, the tibia ratio at which each metric and the score peak.
-        scores: Normalized metrics and combined score on the whole grid.
+        scores: Every grid design's metrics, each relative to the user's, and score.
 
     """
 
     l1_ratio: float
     l3_ratio: float
     l3_band: tuple[float, float]
-    maxima: dict[str, float]
+    reference: dict[str, float]
+    metrics: dict[str, float]
     score: float
     peaks: pd.DataFrame
     scores: pd.DataFrame
@@ -64,15 +63,11 @@ class Recommendation:
         return 1.0 - self.l1_ratio - self.l3_ratio
 
 
-def combined_score(metrics: Metrics, maxima: Metrics) -> float:
-    """Equal-weight mean of each metric over its grid maximum [-]."""
-    return float(np.mean([metrics[name] / maxima[name] for name in METRICS]))
-
-
 def recommend(
     l1_ratios: npt.ArrayLike,
     l3_ratios: npt.ArrayLike,
     maps: Mapping[str, npt.ArrayLike],
+    reference: Metrics,
     candidates: Sequence[float] | None = None,
     evaluate: Callable[[float, float], Metrics] | None = None,
 ) -> Recommendation:
@@ -81,37 +76,41 @@ def recommend(
     Args:
         l1_ratios: Coxa ratios (R1,) [-].
         l3_ratios: Tibia ratios (R3,) [-].
-        maps: Each of :data:`METRICS` on the grid (R1, R3); NaN where a design cannot stand.
+        maps: Each of :data:`~hexaleg.study.ranking.RANKED_METRICS` on the grid (R1, R3);
+            NaN where a design cannot stand.
+        reference: The user's design's metrics, which scores are relative to.
         candidates: Coxa ratios the recommendation may take; by default those
             ≥ :data:`PRACTICAL_L1_RATIO` (all of them if none is).
         evaluate: Metrics of the design (l1 ratio, l3 ratio); if given, the best tibia
             ratio is refined between its grid neighbours by a bounded scalar search.
 
+    Raises:
+        HexalegError: no allowed design of the grid has every metric.
+
     """
     r1 = np.asarray(l1_ratios, dtype=float)
     r3 = np.asarray(l3_ratios, dtype=float)
-    values = {name: np.asarray(maps[name], dtype=float) for name in METRICS}
-    maxima = {name: float(np.nanmax(values[name])) for name in METRICS}
-    normalized = {name: values[name] / maxima[name] for name in METRICS}
-    score = np.mean([normalized[name] for name in METRICS], axis=0)
-    chosen = candidate_mask(r1, candidates)
-    row_best = np.array([np.nanmax(score[i]) if chosen[i] else -np.inf for i in range(len(r1))])
-    i = int(np.argmax(row_best))
-    j = int(np.nanargmax(score[i]))
-    best = float(score[i, j])
-    l3_ratio = float(r3[j])
+    values = np.stack([np.asarray(maps[name], dtype=float) for name in RANKED_METRICS], axis=-1)
+    grid_scores = scores(values, reference)  # (R1, R3)
+    allowed = np.where(candidate_mask(r1, candidates)[:, None], grid_scores, np.nan)
+    if np.isnan(allowed).all():
+        raise HexalegError("no design of the grid has every metric: nothing to recommend")
+    i, j = (int(k) for k in np.unravel_index(int(np.nanargmax(allowed)), allowed.shape))
+    best, l3_ratio = float(grid_scores[i, j]), float(r3[j])
+    metrics = dict(zip(RANKED_METRICS, (float(v) for v in values[i, j]), strict=True))
     if evaluate is not None:
-        l3_ratio, best = _refine(r1[i], r3, j, best, maxima, evaluate)
-    inside = r3[score[i] >= BAND * best]
+        l3_ratio, best, metrics = _refine(r1[i], r3, j, (best, metrics), reference, evaluate)
+    inside = r3[grid_scores[i] >= BAND * best]
     band = (float(inside.min()), float(inside.max())) if inside.size else (l3_ratio, l3_ratio)
     return Recommendation(
         l1_ratio=float(r1[i]),
         l3_ratio=l3_ratio,
         l3_band=band,
-        maxima=maxima,
+        reference=dict(reference),
+        metrics=metrics,
         score=best,
-        peaks=_peaks(r1, r3, values, score),
-        scores=_scores(r1, r3, normalized, score),
+        peaks=_peaks(r1, r3, values, grid_scores),
+        scores=_scores(r1, r3, values, reference, grid_scores),
     )
 
 
@@ -140,47 +139,61 @@ def _refine(
     l1_ratio: float,
     r3: ArrayF,
     j: int,
-    grid_best: float,
-    maxima: Metrics,
+    grid_best: tuple[float, dict[str, float]],
+    reference: Metrics,
     evaluate: Callable[[float, float], Metrics],
-) -> tuple[float, float]:
-    """The tibia ratio of the best combined score between the grid neighbours of ``j``."""
+) -> tuple[float, float, dict[str, float]]:
+    """The best-scoring tibia ratio between the grid neighbours of ``j``.
+
+    Returns its ratio, score and metrics; the grid point's if none between scores higher.
+    """
     lo, hi = r3[max(j - 1, 0)], r3[min(j + 1, len(r3) - 1)]
+    seen: dict[float, Metrics] = {}
 
     def negative(l3_ratio: float) -> float:
-        value = combined_score(evaluate(l1_ratio, l3_ratio), maxima)
+        seen[l3_ratio] = evaluate(l1_ratio, l3_ratio)
+        value = score(seen[l3_ratio], reference)
         return -value if np.isfinite(value) else np.inf
 
     result = optimize.minimize_scalar(
         negative, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5}
     )
-    if np.isfinite(result.fun) and -result.fun > grid_best:
-        return float(result.x), float(-result.fun)
-    return float(r3[j]), grid_best
+    if np.isfinite(result.fun) and -result.fun > grid_best[0]:
+        metrics = seen[float(result.x)]
+        return float(result.x), float(-result.fun), {m: float(metrics[m]) for m in RANKED_METRICS}
+    return float(r3[j]), *grid_best
 
 
-def _peaks(r1: ArrayF, r3: ArrayF, values: Mapping[str, ArrayF], score: ArrayF) -> pd.DataFrame:
+def _peaks(r1: ArrayF, r3: ArrayF, values: ArrayF, grid_scores: ArrayF) -> pd.DataFrame:
+    """Per coxa ratio: where each metric and the score peak, and the best score."""
     rows = []
     for i, ratio in enumerate(r1):
         row: dict[str, float] = {"l1_ratio": float(ratio)}
-        for name in METRICS:
-            row[f"{name}_peak_l3_ratio"] = _peak(r3, values[name][i])
-        row["combined_peak_l3_ratio"] = _peak(r3, score[i])
-        row["combined_best_score"] = float(np.nanmax(score[i]))
+        for k, name in enumerate(RANKED_METRICS):
+            row[f"{name}_peak_l3_ratio"] = _peak(r3, values[i, :, k])
+        row["score_peak_l3_ratio"] = _peak(r3, grid_scores[i])
+        finite = grid_scores[i][np.isfinite(grid_scores[i])]
+        row["best_score"] = float(finite.max()) if finite.size else float("nan")
         rows.append(row)
     return pd.DataFrame(rows)
 
 
 def _scores(
-    r1: ArrayF, r3: ArrayF, normalized: Mapping[str, ArrayF], score: ArrayF
+    r1: ArrayF, r3: ArrayF, values: ArrayF, reference: Metrics, grid_scores: ArrayF
 ) -> pd.DataFrame:
+    """Every grid design: ratios, each metric, each metric relative to yours, the score."""
     grid1, grid3 = np.meshgrid(r1, r3, indexing="ij")
+    relative = relative_values(values, reference)
     return pd.DataFrame(
         {
             "l1_ratio": grid1.ravel(),
             "l3_ratio": grid3.ravel(),
-            **{f"{name}_normalized": normalized[name].ravel() for name in METRICS},
-            "combined_score": score.ravel(),
+            **{name: values[..., k].ravel() for k, name in enumerate(RANKED_METRICS)},
+            **{
+                f"{name}_relative": relative[..., k].ravel()
+                for k, name in enumerate(RANKED_METRICS)
+            },
+            "score": grid_scores.ravel(),
         }
     )
 

@@ -15,14 +15,20 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
 - ``min_fb`` [-]: the axis-locked body flexibility FB (eq 29) at least this;
 - ``leg_length`` [m]: l1 + l2 + l3 at most this (default: the design's own);
 - ``min_coxa`` [m]: l1 at least this (what the root actuator's packaging needs);
-- ``speed`` [m/s]: a tripod gait at that speed, lifting its feet ``step_height`` [m] (a
-  condition of it, like ``payload_at`` of the payload), carrying the payload, whose peak
-  torques and joint speeds stay within the ratings (:mod:`hexaleg.gait`).
+- ``speed`` [m/s]: the fastest a tripod gait of the default stride
+  (:class:`~hexaleg.gait.spec.Gait`), lifting its feet ``step_height`` [m] (a condition of
+  it, like ``payload_at`` of the payload) and carrying the payload when one is required,
+  walks with every peak joint torque and joint speed within its rating and every
+  constraint of the period kept (:func:`~hexaleg.gait.limits.max_speed`; zero if that
+  stride cannot be walked at all) — at least this. :attr:`Requirements.gait` is that
+  gait at the required speed.
 
 The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requirement's
 *margin* is how far its value is on the good side of the required one, in its own unit
 (negative: not met); it *binds* a design that meets it within :data:`BINDING_SHARE` of
-the required value.
+the required value. Every check says what limits its value: the constraint an analysis
+stops at (a :class:`~hexaleg.cause.Cause`: a joint at its rated torque, tipping, ...),
+or, for a value that is the design's own geometry, :attr:`RequirementKind.reason`.
 """
 
 from __future__ import annotations
@@ -34,8 +40,10 @@ from dataclasses import dataclass, replace
 from typing import Any, Literal
 
 from hexaleg._checks import require_finite, require_in_range
+from hexaleg.cause import Cause
 from hexaleg.design import SEGMENT_RANGE, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT
 
 Sense = Literal["at least", "at most"]
@@ -56,6 +64,8 @@ class RequirementKind:
         unit: Its unit.
         bounds: The plausible required values, inclusive [unit].
         text: What it asks, in a few words.
+        reason: What sets its value when no analysis stops at a constraint (the
+            design's own geometry).
 
     """
 
@@ -65,6 +75,7 @@ class RequirementKind:
     unit: str
     bounds: tuple[float, float]
     text: str
+    reason: str
 
     def margin(self, required: float, value: float) -> float:
         """How far ``value`` is on the good side of ``required`` [unit] (< 0: not met)."""
@@ -79,18 +90,22 @@ KINDS: dict[str, RequirementKind] = {
     kind.name: kind
     for kind in (
         RequirementKind("payload", "payload", "at least", "kg", (0.0, PAYLOAD_SEARCH_LIMIT),
-                        "payload carried at payload_at"),
+                        "payload carried at payload_at", "the statics"),
         RequirementKind("slope", "slope", "at least", "rad", (0.0, math.pi / 2),
-                        "slope stood on in every heading, with the payload"),
+                        "slope stood on in every heading, with the payload", "the statics"),
         RequirementKind("ground_clearance", "ground_clearance", "at least", "m", (0.0, 100.0),
-                        "body underside above the ground at the nominal stance"),
+                        "body underside above the ground at the nominal stance",
+                        "geometry: the tibia, femur and nominal posture"),
         RequirementKind("min_fb", "fb", "at least", "1", (0.0, 10.0),
-                        "axis-locked body flexibility FB (eq 29)"),
+                        "axis-locked body flexibility FB (eq 29)",
+                        "geometry: twelve extremes, each stopped by its own constraint"),
         RequirementKind("leg_length", "leg_length", "at most", "m",
-                        (3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1]), "l1 + l2 + l3"),
-        RequirementKind("min_coxa", "coxa", "at least", "m", SEGMENT_RANGE, "coxa length l1"),
+                        (3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1]), "l1 + l2 + l3",
+                        "geometry: the design's l1 + l2 + l3"),
+        RequirementKind("min_coxa", "coxa", "at least", "m", SEGMENT_RANGE, "coxa length l1",
+                        "geometry: the design's coxa length l1"),
         RequirementKind("speed", "speed", "at least", "m/s", (0.0, 100.0),
-                        "tripod gait speed within the ratings"),
+                        "tripod gait speed within the ratings", "the gait"),
     )
 }  # fmt: skip
 """Every requirement, in the order the answer lists them."""
@@ -154,6 +169,8 @@ class Requirements:
             if height <= 0 or self.speed is None:
                 raise ParameterError(STEP_KEY, height, "needs a speed [m/s] to walk at; > 0 [m]")
             object.__setattr__(self, STEP_KEY, height)
+        if self.speed is not None:
+            _ = self.gait  # its period must lie in the gait's range (ParameterError "speed")
 
     # -- construction -------------------------------------------------------------------
 
@@ -222,6 +239,25 @@ class Requirements:
         """Whether a walking requirement is set."""
         return self.speed is not None
 
+    @property
+    def gait(self) -> Gait:
+        """The gait every design walks: :class:`~hexaleg.gait.spec.Gait`'s tripod and stride.
+
+        It lifts ``step_height`` and walks at the required ``speed`` (the gait's own
+        speed without one).
+        """
+        gait = Gait() if self.step_height is None else Gait(step_height=self.step_height)
+        return gait if self.speed is None else gait.with_speed(self.speed)
+
+    def walking_conditions(self) -> str:
+        """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``."""
+        gait = self.gait
+        carrying = f"carrying {self.payload:g} kg" if self.payload else "no payload"
+        return (
+            f"{gait.pattern}, stride {gait.stride:g} m, step height {gait.step_height:g} m, "
+            f"{carrying}"
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """The requirements set, JSON-ready (SI units, radians)."""
         out = {name: getattr(self, name) for name in self.given}
@@ -239,8 +275,8 @@ class Requirements:
             text += f" (on every slope up to {math.degrees(self.slope):.3g}°)"
         elif name == "slope" and self.payload is not None:
             text += f" (carrying {self.payload:g} kg)"
-        elif name == "speed" and self.step_height is not None:
-            text += f" (step height {self.step_height:g} m)"
+        elif name == "speed":
+            text += f" ({self.walking_conditions()})"
         return text
 
 
@@ -271,7 +307,8 @@ class RequirementCheck:
         required: The required value [its unit].
         value: The design's value [its unit].
         margin: How far the value is on the good side [its unit] (< 0: not met).
-        limited_by: What limits the value (a joint, ``"tip"``, ...), where known.
+        limited_by: What limits the value: the constraint an analysis stopped at, or
+            the requirement's :attr:`~RequirementKind.reason`.
 
     """
 
@@ -279,7 +316,7 @@ class RequirementCheck:
     required: float
     value: float
     margin: float
-    limited_by: str = ""
+    limited_by: Cause | str
 
     @property
     def met(self) -> bool:
@@ -296,18 +333,25 @@ class RequirementCheck:
         out: dict[str, Any] = {"required": self.required, "value": self.value,
                                "margin": self.margin}  # fmt: skip
         out |= {"binds": self.binds} if binding else {"met": self.met}
-        return out | {"limited_by": self.limited_by}
+        return out | {"limited_by": limited_by_dict(self.limited_by)}
+
+
+def limited_by_dict(limited_by: Cause | str) -> dict[str, Any]:
+    """What limits a value, JSON-ready: a cause's fields, or a reason; ``description`` always."""
+    if isinstance(limited_by, Cause):
+        return limited_by.to_dict()
+    return {"kind": "design", "description": limited_by}
 
 
 def check(requirements: Requirements, values: Mapping[str, float],
-          causes: Mapping[str, str]) -> tuple[RequirementCheck, ...]:  # fmt: skip
+          causes: Mapping[str, Cause]) -> tuple[RequirementCheck, ...]:  # fmt: skip
     """Each given requirement against a design's metric ``values`` (and what limits them)."""
     checks = []
     for name in requirements.given:
         kind, required = KINDS[name], float(getattr(requirements, name))
         value = float(values[kind.metric])
         checks.append(RequirementCheck(name, required, value, kind.margin(required, value),
-                                       causes.get(kind.metric, "")))  # fmt: skip
+                                       causes.get(kind.metric, kind.reason)))  # fmt: skip
     return tuple(checks)
 
 

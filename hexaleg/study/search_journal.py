@@ -108,7 +108,7 @@ def _header(line: str) -> Any:
 
 def _to_json(evaluation: Evaluation) -> dict[str, Any]:
     causes = {
-        metric: {"kind": c.kind, "leg": c.leg, "joint": c.joint}
+        metric: {"kind": c.kind, "leg": c.leg, "joint": c.joint, "bound": c.bound}
         for metric, c in evaluation.causes.items()
     }
     return {"values": dict(evaluation.values), "causes": causes, "error": evaluation.error}

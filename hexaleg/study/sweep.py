@@ -38,10 +38,10 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import gait_study_columns
-from hexaleg.ratios import require_ratio_grid
+from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
-from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.loads import loads_at_extremes
@@ -55,9 +55,6 @@ from hexaleg.study.journal import (
     write_finished_journal,
 )
 from hexaleg.study.progress import Progress
-
-MAX_L1_RATIOS = 20
-"""Most coxa ratios in one study."""
 
 TABLE_CSV = "study.csv"
 TABLE_JSON = "study.json"
@@ -190,7 +187,7 @@ def _row(
         )
     elif result is None:
         with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
+            warnings.simplefilter("ignore", FlexibilityWarning)  # the row's "converged"
             result = free_flexibility(
                 design, spec.stance, model, collisions=spec.collisions, geometry=template
             )

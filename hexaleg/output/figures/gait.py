@@ -136,12 +136,12 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
     top.set_aspect("equal")
     top.set_xlabel("x, body frame [m]")
     top.set_ylabel("y [m]")
-    top.set_title("from above (x: nominal foothold, dots: standing, shade: reach on the ground)")
-    top.legend(ncols=6, loc="upper center")
+    top.set_title("from above (o: leg root, x: nominal foothold, thick: standing, shade: reach)")
+    top.legend(ncols=3, loc="center", title="leg (its root)")  # between the rows of feet
     side.axhline(ground, color="k", lw=1)
     side.set_xlabel("x, body frame [m]")
     side.set_ylabel("z, body frame [m]")
-    side.set_title("from the side (the line: the ground)")
+    side.set_title("from the side (each right leg behind its left twin; the line: the ground)")
     for ax in (top, side):
         ax.grid(True, alpha=0.3)
     fig.suptitle(_title(analysis))

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import os
+from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -106,11 +107,20 @@ def write_study_figures(
 
 
 @drawn
-def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
+def pareto_figure(
+    table: pd.DataFrame, front: pd.DataFrame, yours: Mapping[str, float] | None = None
+) -> Figure:
     """FB against payload capacity for every design; the Pareto front and its best marked.
 
     Payload capacity spans decades over a sweep (a 5 cm femur lifts tonnes), so its axis
     is logarithmic and the largest is named.
+
+    Args:
+        table: Every design of the sweep (``payload_capacity``, ``fb``).
+        front: The front's designs, best first (``payload_capacity``, ``flexibility``).
+        yours: The user's design's metrics (``payload_capacity`` [kg], ``flexibility``),
+            marked beside them.
+
     """
     fig = new_figure(5.2)
     ax = fig.add_subplot()
@@ -132,6 +142,17 @@ def pareto_figure(table: pd.DataFrame, front: pd.DataFrame) -> Figure:
         color="k",
         label=f"recommended: coxa ratio {best['l1_ratio']:.2f}, tibia ratio {best['l3_ratio']:.3f}",
     )
+    if yours is not None:
+        ax.scatter(
+            [yours["payload_capacity"]],
+            [yours["flexibility"]],
+            s=90,
+            marker="D",
+            facecolor="none",
+            edgecolor="#d62728",
+            linewidth=2,
+            label="your design",
+        )
     log_scale(ax, "x")
     name_largest(ax, table["payload_capacity"], table["fb"], design_names(table), by="x")
     ax.set_xlabel("payload capacity [kg], log scale")

@@ -102,7 +102,13 @@ def _draw_ground(ax: Axes, nominal_foot: tuple[float, float]) -> None:
         textcoords="offset points",
         fontsize=8,
         va="center",
-    )
+        bbox={
+            "boxstyle": "round,pad=0.2",
+            "facecolor": "white",
+            "edgecolor": "none",
+            "alpha": 0.85,
+        },
+    )  # on a white ground: the workspace's boundaries may pass behind it
     ax.plot([0, 0], [0, z_foot], color="#8a5a00", ls=":", lw=1)
 
 

@@ -41,7 +41,7 @@ from hexaleg.output.report.document import Figure, Section, report_json
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import Part, ReportData, compute_order, compute_parts
 from hexaleg.output.report.pdf import REPORT_PDF, require_pdf_engine
-from hexaleg.output.report.registry import PARTS
+from hexaleg.output.report.registry import PARTS, parts_for
 from hexaleg.output.report.render import (
     REPORT_HTML,
     REPORT_JSON,
@@ -69,7 +69,7 @@ __all__ = [
 
 def compute_report(design: HexapodDesign, options: ReportOptions) -> ReportData:
     """Run every part of the report on ``design``, with a progress bar on a terminal."""
-    return compute_parts(design, options, PARTS)
+    return compute_parts(design, options, parts_for(options))
 
 
 def build_report(
@@ -85,6 +85,10 @@ def build_report(
     check_target(out_dir)  # before the minutes of computing, not after
     if options.pdf:
         require_pdf_engine()
+    if options.simulate:
+        from hexaleg.sim._mujoco import require_mujoco
+
+        require_mujoco()
     data = compute_report(design or HexapodDesign(), options)
     render_report(data, out_dir)
-    return report_json(data, compute_order(PARTS))
+    return report_json(data, compute_order(parts_for(options)))

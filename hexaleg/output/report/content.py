@@ -15,18 +15,21 @@ from hexaleg._io import atomic_write_text
 from hexaleg.output.report.document import report_html, report_json, report_markdown, sections
 from hexaleg.output.report.part import Part, ReportData, compute_order
 from hexaleg.output.report.pdf import write_pdf
-from hexaleg.output.report.registry import PARTS
+from hexaleg.output.report.registry import parts_for
 
 REPORT_MD = "report.md"
 REPORT_HTML = "report.html"
 REPORT_JSON = "report.json"
 
 
-def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] = PARTS) -> None:
+def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] | None = None) -> None:
     """Write every part's files, then ``report.md``, ``report.html`` and ``report.json``.
+
+    ``parts`` are those the report's options ask for unless given.
 
     With the ``pdf`` option, also ``report.pdf``: the same sections with vector figures.
     """
+    parts = parts_for(data.options) if parts is None else parts
     for part in parts:
         part.files(data, out)
     report = sections(data, parts)

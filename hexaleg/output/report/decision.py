@@ -1,4 +1,11 @@
-"""Report part: the decision, first in the report — the recommended design beside the user's."""
+"""Report part: the decision, first in the report — what to build, beside the user's design.
+
+With requirements, the best design meeting them comes first
+(:func:`hexaleg.study.decide.decide`, presented by :mod:`.requirements`). Then, or
+alone without requirements, the one recommendation of the grid (section 5) beside the
+user's design, metric by metric, scored by the one ranking rule
+(:mod:`hexaleg.study.ranking`), and the rule itself.
+"""
 
 from __future__ import annotations
 
@@ -6,74 +13,60 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.output.report.document import Section, change, table
-from hexaleg.output.report.pareto import ParetoRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.requirements import requirement_blocks
-from hexaleg.output.report.statics import StaticsRecord
-from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.decide import DecideResult
-from hexaleg.study.decide import decide as decide_from_requirements
-from hexaleg.study.decision import RANKING_RULE, Decision, decide
+from hexaleg.study.decide import DecideResult, decide
 from hexaleg.study.executors import local_pool
-from hexaleg.study.recommendation import BAND
+from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, score
+from hexaleg.study.recommendation import BAND, Recommendation
 
 
 @dataclass(frozen=True)
 class DecisionRecord:
-    """The user's design beside the recommended one.
+    """The recommendation beside the user's design, and the answer to their requirements.
 
     Attributes:
-        decision: Both designs' metrics, scores and payload capacities.
+        recommendation: The grid's one recommendation (section 5), with the user's
+            design's metrics it is scored against.
+        leg_length: The user's leg length, at which the ratios are lengths [m].
         requirements: The best design meeting the user's requirements, and the user's
             checked against them; ``None`` when none were given.
 
     """
 
-    decision: Decision
+    recommendation: Recommendation
+    leg_length: float
     requirements: DecideResult | None = None
 
 
 def compute(data: ReportData) -> DecisionRecord:
-    """Score the user's design and the recommended one on the grid's scale."""
-    return DecisionRecord(
-        decide(
-            data.design,
-            data.model,
-            StanceGeometry.from_model(data.model, "all"),
-            data[RecommendationRecord].recommendation,
-            data[StaticsRecord].axis.capacity.mass,
-            data.options.decision,
-        ),
-        _requirements(data),
-    )
-
-
-def _requirements(data: ReportData) -> DecideResult | None:
-    """The decision from the user's requirements, on the report's workers (none: ``None``)."""
+    """Decide from the user's requirements, on the report's workers, if they gave some."""
+    grid = data[RecommendationRecord]
     requirements = data.options.requirements
     if requirements is None:
-        return None
+        return DecisionRecord(grid.recommendation, grid.leg_length)
     with local_pool(data.options.workers) as pool:
-        return decide_from_requirements(data.design, requirements, executor=pool, progress=False)
+        answer = decide(data.design, requirements, executor=pool, progress=False)
+    return DecisionRecord(grid.recommendation, grid.leg_length, answer)
 
 
 METRIC_LABELS = {
     "improved_area": "improved workspace area [m²] (eq 16)",
     "average_manipulability": "average manipulability w_A [m³] (eq 27, improved domain)",
     "flexibility": "body flexibility FB [-] (eq 29, axis-locked)",
+    "payload_capacity": "payload capacity [kg] (section 3.3, nominal stance)",
 }
-"""How the decision's table names each metric of the score."""
+"""How the decision's table names each ranked metric."""
 
 
 def section(data: ReportData) -> Section:
-    """The answer first: the recommended design beside the user's, metric by metric."""
-    rec = data[RecommendationRecord].recommendation
+    """The answer first: the requirements' if any, then the recommended design beside yours."""
+    rec = data[DecisionRecord].recommendation
     design = data.design
     total = design.leg_length
     lengths = ", ".join(f"{r * total:.3f}" for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio))
     yours = ", ".join(f"{length:.3f}" for length in design.lengths)
-    best = data[ParetoRecord].front.iloc[0]
     answer = data[DecisionRecord].requirements
     first = () if answer is None else (*requirement_blocks(answer), _WITHOUT_REQUIREMENTS)
     return Section(
@@ -84,45 +77,27 @@ def section(data: ReportData) -> Section:
             f"{rec.l3_ratio:.3f}**, for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
             f"chosen among {data.options.decision.describe_candidates()}; any tibia ratio in "
             f"{rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} keeps ≥ {BAND:.0%} of its score. Both "
-            "designs keep your body, mounts and posture; the score divides each metric by its "
-            "best value over the whole grid of section 5.",
-            table(
-                ["metric", "your design", "recommended", "recommended vs yours"],
-                _rows(data[DecisionRecord].decision),
-            ),
-            "Counting payload capacity too, the Pareto front of section 5.1 recommends "
-            f"l1 : l2 : l3 = {best['l1_ratio']:.3f} : {1 - best['l1_ratio'] - best['l3_ratio']:.3f}"
-            f" : {best['l3_ratio']:.3f} ({best['l1']:.3f}, {best['l2']:.3f}, {best['l3']:.3f} m; "
-            f"payload capacity {best['payload_capacity']:.1f} kg).",
-            f"*How designs are ranked.* {RANKING_RULE}",
+            "designs keep your body, mounts and posture.",
+            table(["metric", "your design", "recommended", "recommended vs yours"], _rows(rec)),
+            f"*How designs are ranked.* One rule for this section, the recommendation "
+            f"(section 5) and the Pareto front (section 5.1): {RANKING_RULE}.",
         ),
     )
 
 
-def _rows(decision: Decision) -> list[tuple[str, str, str, str]]:
+def _rows(rec: Recommendation) -> list[tuple[str, str, str, str]]:
+    yours, theirs = rec.reference, rec.metrics
     rows = [
-        (
-            label,
-            f"{decision.yours[name]:.4g}",
-            f"{decision.recommended_metrics[name]:.4g}",
-            change(decision.yours[name], decision.recommended_metrics[name]),
-        )
+        (label, f"{yours[name]:.4g}", f"{theirs[name]:.4g}", change(yours[name], theirs[name]))
         for name, label in METRIC_LABELS.items()
     ]
+    your_score = score(yours, yours)
     rows.append(
         (
-            "combined score [-] (1 = best of the grid in every metric)",
-            f"{decision.your_score:.4f}",
-            f"{decision.recommended_score:.4f}",
-            change(decision.your_score, decision.recommended_score),
-        )
-    )
-    rows.append(
-        (
-            "payload capacity [kg] (section 3.3; not in the score)",
-            f"{decision.your_payload:.1f}",
-            f"{decision.recommended_payload:.1f}",
-            change(decision.your_payload, decision.recommended_payload),
+            "score [-] (geometric mean of the four, each relative to yours)",
+            f"{your_score:.4f}",
+            f"{rec.score:.4f}",
+            change(your_score, rec.score),
         )
     )
     return rows
@@ -130,13 +105,25 @@ def _rows(decision: Decision) -> list[tuple[str, str, str, str]]:
 
 _WITHOUT_REQUIREMENTS = (
     "*Without your requirements*, ranking the paper's grid of segment ratios by workspace, "
-    "manipulability and flexibility alone:"
+    "manipulability, flexibility and payload capacity alike, one design is recommended:"
 )
 
 
 def to_json(record: DecisionRecord) -> dict[str, Any]:
-    """``decision``, and ``requirements_decision`` when requirements were given."""
-    out = {"decision": record.decision.to_json()}
+    """``decision`` (the rule, yours and the recommended), ``requirements_decision`` if any."""
+    rec, leg_length = record.recommendation, record.leg_length
+    out: dict[str, Any] = {
+        "decision": {
+            "rule": RANKING_RULE,
+            "yours": {"metrics": rec.reference, "score": score(rec.reference, rec.reference)},
+            "recommended": {
+                "lengths_m": [r * leg_length for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)],
+                "metrics": rec.metrics,
+                "score": rec.score,
+            },
+            "metrics": list(RANKED_METRICS),
+        }
+    }
     if record.requirements is not None:
         out["requirements_decision"] = record.requirements.to_dict()
     return out
@@ -146,7 +133,7 @@ PART = Part(
     DecisionRecord,
     compute,
     section,
-    needs=(RecommendationRecord, StaticsRecord, ParetoRecord),
+    needs=(RecommendationRecord,),
     step="decision",
     json=to_json,
 )

@@ -47,6 +47,7 @@ def extremes_rows(record: FlexibilityRecord) -> list[dict[str, Any]]:
     for e_axis, e_free in zip(record.axis.extremes, record.free.extremes, strict=True):
         rows.append(
             {
+                "direction": e_axis.name,
                 "axis": e_axis.axis,
                 "sign": e_axis.sign,
                 "unit": "m" if e_axis.axis in TRANSLATIONS else "rad",
@@ -74,7 +75,7 @@ def section(data: ReportData) -> Section:
                 ["direction", "axis-locked", "stopped by", "free-coupled", "stopped by"],
                 [
                     (
-                        f"{r['axis']} {'+' if r['sign'] > 0 else '−'}",
+                        r["direction"],
                         _displacement(r["axis_locked"], r["unit"]),
                         r["limited_by"],
                         _displacement(r["free_coupled"], r["unit"]),

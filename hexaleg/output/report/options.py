@@ -8,11 +8,11 @@ from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
+from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.decision import DecisionOptions
 from hexaleg.study.executors import max_workers
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.sensitivity import FieldSweep
-from hexaleg.study.sweep import MAX_L1_RATIOS
 from hexaleg.swing.workspace import MAX_SAMPLES
 
 MIN_L3_POINTS = 10
@@ -31,7 +31,8 @@ class ReportOptions:
         sensitivity_points: Tibia ratios per coxa ratio in the posture sensitivity table.
         monte_carlo_samples: Samples of the Monte Carlo workspace.
         workers: Local processes for the flexibility study (default: CPUs).
-        progress: Show a progress bar; by default only on a terminal.
+        progress: ``False`` shows no progress; by default a bar on a terminal, a line
+            every few seconds elsewhere (as a study: :class:`~hexaleg.study.progress.Progress`).
         l1_ratios: Coxa ratios to sweep and recommend from (a fixed coxa: one ratio);
             by default the paper's four, recommending among the practical ones (≥ 0.10).
         collisions: The robot's own parts touching also stop the body, in the design's
@@ -44,6 +45,8 @@ class ReportOptions:
             time.
         requirements: What the robot must do: the Decision section then shows first the
             best design that meets it (:func:`hexaleg.study.decide.decide`).
+        simulate: Also walk the default gait in MuJoCo (the ``[sim]`` extra) for the
+            "Simulated walk" section.
 
     """
 
@@ -58,6 +61,7 @@ class ReportOptions:
     pdf: bool = False
     vector_figures: bool = True
     requirements: Requirements | None = None
+    simulate: bool = False
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:

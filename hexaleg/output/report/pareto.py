@@ -1,4 +1,4 @@
-"""Report part: the Pareto front with payload capacity, and the design chosen on it."""
+"""Report part: the Pareto front with payload capacity, ranked by the one rule of section 5."""
 
 from __future__ import annotations
 
@@ -12,6 +12,7 @@ from hexaleg.output.figures import pareto_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.study.decision import pareto_front
 
@@ -21,7 +22,8 @@ class ParetoRecord:
     """The designs of the grid no other beats in area, w_A, FB and payload capacity.
 
     Attributes:
-        front: One row per front design, best score first (the first is recommended).
+        front: One row per front design, best score first (the first is the grid's best,
+            which the recommendation refines).
 
     """
 
@@ -29,19 +31,21 @@ class ParetoRecord:
 
 
 def compute(data: ReportData) -> ParetoRecord:
-    """The front among the study's designs at the allowed coxa ratios."""
+    """The front among the study's designs at the allowed coxa ratios, ranked by the rule."""
     return ParetoRecord(
         pareto_front(
-            data[ManipulabilityRecord].average_map, data[StudyRecord].table, data.options.decision
+            data[ManipulabilityRecord].average_map,
+            data[StudyRecord].table,
+            data[RecommendationRecord].recommendation,
+            data.options.decision,
         )
     )
 
 
 def section(data: ReportData) -> Section:
-    """The Pareto front with payload capacity, and the design chosen on it."""
+    """The Pareto front with payload capacity, ranked by the one rule."""
     front = data[ParetoRecord].front
     best = front.iloc[0]
-    total = data.design.leg_length
     rows = [
         (
             f"{r['l1_ratio']:.2f}",
@@ -59,14 +63,13 @@ def section(data: ReportData) -> Section:
         (
             f"Among the sweep's designs at the allowed coxa ratios (as in section 5), "
             f"{len(front)} are beaten by no other in improved area, w_A, FB and payload "
-            "capacity at once. The grid is dense and "
-            "every metric on it exact, so the front is read off it directly (no evolutionary "
-            "search could be more exact). Rule: on the front, the design with the best "
-            "equal-weight score, each metric divided by its best value on the grid.",
-            f"**Pareto recommendation: l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
-            f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}** (for a "
-            f"{total:g} m leg: {best['l1']:.3f}, {best['l2']:.3f}, {best['l3']:.3f} m; payload "
-            f"capacity {best['payload_capacity']:.1f} kg, FB {best['flexibility']:.4f}).",
+            "capacity at once. The grid is dense and every metric on it exact, so the front "
+            "is read off it directly (no evolutionary search could be more exact). The front "
+            "is ranked by the rule of section 5 (each score relative to your design's 1); a "
+            "design that beats another in every metric also scores higher, so its first, "
+            f"l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
+            f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}, is the "
+            "grid's best, the design section 5 refines into the one recommendation.",
             table(
                 ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
                 rows,
@@ -74,7 +77,8 @@ def section(data: ReportData) -> Section:
             Figure(
                 "pareto_front",
                 "Body flexibility against payload capacity (log scale) for every design of the "
-                "sweep; the front and its best marked, the largest capacity named",
+                "sweep; the front and its best marked, your design beside them, the largest "
+                "capacity named",
             ),
         ),
     )
@@ -84,7 +88,9 @@ def write_files(data: ReportData, out: Path) -> None:
     """The front figure and ``pareto_front.csv``."""
     front = data[ParetoRecord].front
     save(
-        pareto_figure(data[StudyRecord].table, front),
+        pareto_figure(
+            data[StudyRecord].table, front, data[RecommendationRecord].recommendation.reference
+        ),
         out / "pareto_front.png",
         svg=data.options.svg,
     )
@@ -100,7 +106,7 @@ PART = Part(
     ParetoRecord,
     compute,
     section,
-    needs=(ManipulabilityRecord, StudyRecord),
+    needs=(ManipulabilityRecord, StudyRecord, RecommendationRecord),
     step="Pareto front",
     files=write_files,
     json=to_json,

@@ -10,18 +10,16 @@ frozen :class:`ReportData`.
 
 from __future__ import annotations
 
-import sys
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any, Generic, TypeVar
-
-from tqdm import tqdm
 
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.robot.model import HexapodModel
+from hexaleg.study.progress import Progress
 
 if TYPE_CHECKING:
     from hexaleg.output.report.document import Section
@@ -128,20 +126,17 @@ def compute_order(parts: Sequence[Part[Any]]) -> list[Part[Any]]:
 def compute_parts(
     design: HexapodDesign, options: ReportOptions, parts: Sequence[Part[Any]]
 ) -> ReportData:
-    """Every part's record, each computed from only what it needs, with a progress bar."""
-    show = sys.stdout.isatty() if options.progress is None else options.progress
+    """Every part's record, each computed from only what it needs.
+
+    Progress is shown as a study's (:class:`~hexaleg.study.progress.Progress`): a bar on a
+    terminal, a line every few seconds elsewhere, naming the step that runs.
+    """
     ordered = compute_order(parts)
-    with tqdm(total=len(ordered) + 1, disable=not show, file=sys.stderr, unit="step") as bar:
-        bar.set_description("model and URDF")
+    with Progress(len(ordered) + 1, unit="steps", show=options.progress) as shown:
+        shown.update(0, "model and URDF")
         data = ReportData(design, options, HexapodModel(design))
-        for part in _progress(ordered, bar):
+        for part in ordered:
+            shown.update(1, part.step or part.record.__name__)
             data = data.with_record(part.compute(data.only(part.needs)))
+        shown.update(1)
     return data
-
-
-def _progress(parts: list[Part[Any]], bar: Any) -> Iterator[Part[Any]]:
-    for part in parts:
-        bar.update()
-        bar.set_description(part.step or part.record.__name__)
-        yield part
-    bar.update()

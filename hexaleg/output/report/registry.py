@@ -12,12 +12,14 @@ from hexaleg.output.report import (
     pareto,
     recommendation,
     sensitivity,
+    simulation,
     statics,
     study,
     viewer,
     walking,
     workspace,
 )
+from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import Part
 
 PARTS: tuple[Part[Any], ...] = (
@@ -35,3 +37,11 @@ PARTS: tuple[Part[Any], ...] = (
     pareto.PART,
 )
 """Every part of the report, in reading order; each is computed after the parts it needs."""
+
+
+def parts_for(options: ReportOptions) -> tuple[Part[Any], ...]:
+    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``."""
+    if not options.simulate:
+        return PARTS
+    after = PARTS.index(walking.PART) + 1
+    return (*PARTS[:after], simulation.PART, *PARTS[after:])

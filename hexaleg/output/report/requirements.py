@@ -9,12 +9,13 @@ each. The decision itself is :func:`hexaleg.study.decide.decide`.
 from __future__ import annotations
 
 from hexaleg.output.report.document import table
+from hexaleg.statics.ratings import OverRating
 from hexaleg.study.decide import CheckedDesign, DecideResult
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 
 
 def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
-    """Markdown blocks: the verdict, the requirements table, the search in one line."""
+    """Markdown blocks: the verdict, the requirements table, joints over ratings, the search."""
     best, yours, objective = result.best, result.yours, result.objective
     lengths = ", ".join(f"{v:.3f}" for v in best.design.lengths)
     if result.feasible:
@@ -32,13 +33,16 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         )
     rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
+    walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
         f"{verdict}; your design: {objective.label} {_objective(yours, objective.name)}.",
         table(
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,
         ),
-        f"*How it was found.* {result.evaluations} designs searched over {free} by "
+        over_rating_table(result),
+        f"*How it was found.* Standing: at the nominal stance and the 12 axis-locked body "
+        f"extremes.{walking} {result.evaluations} designs searched over {free} by "
         f"{result.method}, seed {result.seed}; the best was measured again from its own URDF. "
         "A requirement binds where the best design meets it within 1 % of the required value: "
         "relaxing it would buy a better design.",
@@ -46,7 +50,7 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
 
 
 def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) -> tuple[str, ...]:
-    limited = f" (limited by {best.limited_by})" if best.limited_by else ""
+    limited = f" (limited by {best.limited_by})"
     return (
         result.requirements.describe(best.name),
         format_value(best.name, best.value) + limited,
@@ -60,3 +64,24 @@ def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) 
 def _objective(checked: CheckedDesign, name: str) -> str:
     value = checked.evaluation.values.get(name)
     return "—" if value is None else f"{value:.4g}"
+
+
+SHOWN_OVER_RATING = 4
+"""Joints over their ratings a cell lists, the furthest over first."""
+
+
+def over_rating_table(result: DecideResult) -> str:
+    """Each design's joints over their ratings, standing and walking, as a table."""
+    best = result.best.over_rating_groups(result)
+    yours = result.yours.over_rating_groups(result)
+    rows = [
+        (where, _flags(flags), _flags(your_flags))
+        for (where, flags), (_, your_flags) in zip(best, yours, strict=True)
+    ]
+    return table(["joints over their ratings", "best design", "your design"], rows)
+
+
+def _flags(flags: list[OverRating]) -> str:
+    shown = "; ".join(str(flag) for flag in flags[:SHOWN_OVER_RATING]) or "none"
+    more = len(flags) - SHOWN_OVER_RATING
+    return shown + (f"; and {more} more (report.json lists them)" if more > 0 else "")

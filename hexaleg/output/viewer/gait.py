@@ -3,9 +3,10 @@
 The scene holds the ground and the robot (``/hexaleg/gait``); one animation plays the
 period in real time (one keyframe per sample): the body walking at its constant velocity,
 each leg's coxa, femur and tibia in the colour of its root, hip and knee's |τ|/rated
-torque at that instant (viridis, as the statics view; the legend beside the scene in the
-static page). Served by ``hexaleg view --gait`` or written as a static page by
-``hexaleg gait --html``.
+torque at that instant (viridis, as the statics view; no link is red: nothing stops a
+gait as a limit stops an extreme). The legend beside the scene, served by
+``hexaleg view --gait`` or in the static page ``hexaleg gait --html`` writes, says so
+(:data:`.legend.GAIT_LEGEND`).
 """
 
 from __future__ import annotations
@@ -17,14 +18,14 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
+from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.viewer.legend import torque_colour, with_legend
-from hexaleg.output.viewer.scene import JOINT_LINKS, ROOT, _add_ground, _place_camera, _robot
-from hexaleg.output.viewer.server import LoopbackServer, client
+from hexaleg.output.viewer.legend import GAIT_LEGEND, torque_colour
+from hexaleg.output.viewer.server import static_page
+from hexaleg.output.viewer.stage import JOINT_LINKS, ROOT, Stage
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.geometry import StanceGeometry
 
 NODE = f"{ROOT}/gait"
 """The walking robot's node in the scene tree."""
@@ -41,26 +42,38 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
         analysis: The gait period to play.
 
     """
+    build_motion_scene(
+        viewer,
+        model,
+        analysis.configurations,
+        analysis.gait.samples / analysis.gait.period,  # real time
+        np.abs(analysis.joint_torques) / np.array(analysis.design.rated_torques),
+    )
+
+
+def build_motion_scene(
+    viewer: Any, model: HexapodModel, configurations: ArrayF, frame_rate: float, ratios: ArrayF
+) -> None:
+    """Load the ground under the whole path, the robot and its animation into ``viewer``.
+
+    Args:
+        viewer: A ``meshcat.Visualizer``.
+        model: The hexapod's Pinocchio model (its URDF gives the geometry).
+        configurations: The robot's configuration in each frame (F, nq).
+        frame_rate: Frames per second [1/s].
+        ratios: Each leg joint's |τ|/rated in each frame (F, legs, 3), its link's colour.
+
+    """
     from meshcat.animation import Animation
 
-    geometry = StanceGeometry.from_model(model, "all")
-    visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
-    viewer.delete()
-    viewer["/Grid"].set_property("visible", False)
-    _add_ground(viewer, geometry)
-    robot = _robot(viewer, model, visual, NODE)
-    robot.display(analysis.configurations[0])
-    rate = analysis.gait.samples / analysis.gait.period  # real time
-    animation = Animation(default_framerate=max(1, round(rate)))
-    links = _leg_links(robot, visual, analysis.legs)
-    ratios = np.abs(analysis.joint_torques) / np.array(analysis.design.rated_torques)
-    for frame, q in enumerate(analysis.configurations):
-        pin.forwardKinematics(model.model, robot.data, q)
-        pin.updateGeometryPlacements(model.model, robot.data, visual, robot.visual_data)
+    stage = Stage.set_up(viewer, model, "all")
+    robot = stage.robot(NODE)
+    robot.display(configurations[0])
+    animation = Animation(default_framerate=max(1, round(frame_rate)))
+    links = _leg_links(stage, robot, model.leg_names)
+    for frame, q in enumerate(configurations):
         with animation.at_frame(viewer, frame) as keyframe:
-            for k, obj in enumerate(visual.geometryObjects):
-                name = robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
-                keyframe[name].set_transform(robot.visual_data.oMg[k].homogeneous)
+            stage.pose(keyframe, robot, q)
             for (leg, joint), names in links.items():
                 red, green, blue, _ = torque_colour(float(ratios[frame, leg, joint]))
                 for name in names:
@@ -68,7 +81,10 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
                         "material.color", "color", [red, green, blue]
                     )
     _send_last(viewer, animation)
-    _place_camera(viewer, geometry)
+    path = np.asarray(configurations)[:, :2]
+    low, high = path.min(axis=0), path.max(axis=0)
+    stage.stretch_ground(low, high)
+    stage.place_camera((low + high) / 2, float(np.linalg.norm(high - low)) / 2)
 
 
 def _send_last(viewer: Any, animation: Any) -> None:
@@ -96,34 +112,46 @@ class _Lowered:
         return self.command
 
 
-def _leg_links(
-    robot: Any, visual: pin.GeometryModel, legs: tuple[str, ...]
-) -> dict[tuple[int, int], list[str]]:
+def _leg_links(stage: Stage, robot: Any, legs: tuple[str, ...]) -> dict[tuple[int, int], list[str]]:
     """Scene names of each (leg, joint)'s link geometry: the link each joint moves."""
-    links: dict[tuple[int, int], list[str]] = {}
-    for i, leg in enumerate(legs):
-        for j, joint in enumerate(LEG_JOINTS):
-            link = f"{leg}_{JOINT_LINKS[joint]}"
-            links[(i, j)] = [
-                robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
-                for obj in visual.geometryObjects
-                if obj.name.rsplit("_", 1)[0] == link
-            ]
-    return links
+    return {
+        (i, j): [
+            robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
+            for obj in stage.link_objects({f"{leg}_{JOINT_LINKS[joint]}"})
+        ]
+        for i, leg in enumerate(legs)
+        for j, joint in enumerate(LEG_JOINTS)
+    }
 
 
 def gait_html(model: HexapodModel, analysis: GaitAnalysis) -> str:
     """A self-contained HTML page of the animation (no server needed to view it)."""
-    with LoopbackServer() as server:
-        viewer = client(server)
-        build_gait_scene(viewer, model, analysis)
-        html: str = with_legend(viewer.static_html())
-        viewer.window.zmq_socket.close(linger=0)
-    return html
+    return static_page(lambda viewer: build_gait_scene(viewer, model, analysis), GAIT_LEGEND)
+
+
+def motion_html(
+    model: HexapodModel, configurations: ArrayF, frame_rate: float, ratios: ArrayF
+) -> str:
+    """A self-contained HTML page of :func:`build_motion_scene` (no server needed)."""
+    return static_page(
+        lambda viewer: build_motion_scene(viewer, model, configurations, frame_rate, ratios),
+        GAIT_LEGEND,
+    )
+
+
+def write_motion_html(
+    model: HexapodModel,
+    configurations: ArrayF,
+    frame_rate: float,
+    ratios: ArrayF,
+    path: str | os.PathLike[str],
+) -> Path:
+    """Write :func:`motion_html` to ``path`` atomically (a simulated walk, say)."""
+    return write_text(path, motion_html(model, configurations, frame_rate, ratios))
 
 
 def write_gait_html(
     model: HexapodModel, analysis: GaitAnalysis, path: str | os.PathLike[str]
 ) -> Path:
     """Write :func:`gait_html` to ``path`` atomically."""
-    return atomic_write_text(path, gait_html(model, analysis))
+    return write_text(path, gait_html(model, analysis))

@@ -2,10 +2,15 @@
 
 Leg links are coloured by their joint's |τ| / rated torque (:func:`torque_colour`).
 The legend is HTML beside the meshcat canvas (:func:`with_legend`), not geometry in the
-scene, so it never hides the robot and keeps its size whatever the camera does.
+scene, so it never hides the robot and keeps its size whatever the camera does; the
+static page and the served one carry the same column. What the colours mean depends on
+the scene: :data:`STATICS_LEGEND` for the body's extremes, :data:`GAIT_LEGEND` for a gait.
 """
 
 from __future__ import annotations
+
+import html
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -35,7 +40,34 @@ def _css(colour: tuple[float, ...]) -> str:
     return f"rgb({red},{green},{blue})"
 
 
-def torque_legend_html() -> str:
+@dataclass(frozen=True)
+class Legend:
+    """What the colours of one scene mean.
+
+    Attributes:
+        shows: What a leg link's colour shows (the bar runs from 0 to 1 of it).
+        highlight: What a red link means, or ``None`` where no link is red.
+
+    """
+
+    shows: str
+    highlight: str | None = None
+
+
+STATICS_LEGEND = Legend(
+    shows="its joint's |τ| / rated torque, at the pose shown",
+    highlight="the link whose joint stops an extreme",
+)
+"""The body's extremes (``hexaleg view``): torques held at each pose, red where it stops."""
+
+GAIT_LEGEND = Legend(
+    shows="its joint's |τ| / rated torque at each instant of the gait period "
+    "(yellow: at or over its rating)",
+)
+"""A gait period (``hexaleg view --gait``, ``hexaleg gait --html``): no link is red."""
+
+
+def torque_legend_html(legend: Legend) -> str:
     """The legend: a vertical colour bar of |τ| / rated from 0 to 1, and what red means."""
     stops = ", ".join(
         f"{_css(torque_colour(ratio))} {100 * k / (STOPS - 1):.0f}%"
@@ -44,13 +76,16 @@ def torque_legend_html() -> str:
     ticks = "".join(
         f"<span style='top:{100 * (1 - v):.0f}%'>{v:g}</span>" for v in (0, 0.25, 0.5, 0.75, 1)
     )
+    red = (
+        ""
+        if legend.highlight is None
+        else f"<p><span class='swatch'></span> red: {html.escape(legend.highlight)}</p>"
+    )
     return (
         "<aside id='hexaleg-legend'><h2>Leg link colour</h2>"
-        "<p>its joint's |τ| / rated torque, at the pose shown</p>"
+        f"<p>{html.escape(legend.shows)}</p>"
         f"<div class='bar' style='background:linear-gradient(to bottom, {stops})'></div>"
-        f"<div class='ticks'>{ticks}</div>"
-        "<p><span class='swatch'></span> red: the link whose joint stops an extreme</p>"
-        "</aside>"
+        f"<div class='ticks'>{ticks}</div>{red}</aside>"
     )
 
 
@@ -71,9 +106,8 @@ LEGEND_STYLE = f"""
 """The legend's column, and the scene moved to its right."""
 
 
-def with_legend(page: str) -> str:
-    """Meshcat's static page with the torque legend in a column beside the scene."""
+def with_legend(page: str, legend: Legend) -> str:
+    """A meshcat page (static or served) with ``legend`` in a column beside the scene."""
     closing = page.rindex("</body>")
-    return (
-        page[:closing] + f"<style>{LEGEND_STYLE}</style>{torque_legend_html()}\n" + page[closing:]
-    )
+    column = f"<style>{LEGEND_STYLE}</style>{torque_legend_html(legend)}\n"
+    return page[:closing] + column + page[closing:]

@@ -6,6 +6,7 @@ its bridge in a thread of this process with tornado bound to the host given
 
 - the web page and its WebSocket, on ``host`` (``--host``, ``--port``): a browser
   watches the scene there, and cannot change it (messages from the page are dropped);
+  the page is meshcat's with the scene's colour legend beside it (:mod:`.legend`);
 - the ZMQ command socket that changes the scene, always on 127.0.0.1 at a port the
   system picks: never beyond this machine, and never on a port the user asked for.
 """
@@ -20,9 +21,12 @@ import signal
 import socket
 import threading
 import time
+from collections.abc import Callable
+from pathlib import Path
 from typing import Any
 
 from hexaleg.exceptions import HexalegError
+from hexaleg.output.viewer.legend import Legend, with_legend
 
 COMMAND_SOCKET = "tcp://127.0.0.1:*"
 """Where the ZMQ command socket binds: loopback, at a port the system picks."""
@@ -36,11 +40,16 @@ class LoopbackServer:
         zmq_url: Where a ``meshcat.Visualizer`` sends commands (always on 127.0.0.1).
         web_url: The page to open in a browser (on this machine, for a wildcard host).
         web_port: The web server's port.
+        legend: What the scene's colours mean, shown beside it on the page (``None``: no
+            legend, meshcat's page as it is).
 
     """
 
-    def __init__(self, host: str = "127.0.0.1", port: int | None = None) -> None:
+    def __init__(
+        self, host: str = "127.0.0.1", port: int | None = None, legend: Legend | None = None
+    ) -> None:
         self.host = host
+        self.legend = legend
         self._ready = threading.Event()
         self._error: BaseException | None = None
         self._bridge: Any = None
@@ -70,10 +79,11 @@ class LoopbackServer:
 
         host = self.host
         http_servers = self._http_servers
+        legend = self.legend
 
         class Bridge(ZMQWebSocketBridge):
             def make_app(self) -> Any:
-                app = _read_only_app(self)
+                app = _read_only_app(self, legend)
                 listen = app.listen
 
                 def listen_on_host(port: int, **kwargs: Any) -> Any:
@@ -147,8 +157,12 @@ def _quiet(*args: Any, **kwargs: Any) -> None:
     """Drop what meshcat's server module prints."""
 
 
-def _read_only_app(bridge: Any) -> Any:
-    """The meshcat web application, with a WebSocket that only sends the scene to the page."""
+def _read_only_app(bridge: Any, legend: Legend | None) -> Any:
+    """The meshcat web application, watch-only, its page showing ``legend``.
+
+    Its page (with the legend beside the scene, when one is given), its scripts, and a
+    WebSocket that only sends the scene to the page.
+    """
     import tornado.web
     from meshcat.servers.zmqserver import (
         VIEWER_HTML,
@@ -161,16 +175,34 @@ def _read_only_app(bridge: Any) -> Any:
         def on_message(self, message: Any) -> None:
             """Drop what a page sends (meshcat would forward it to the command socket)."""
 
-    return tornado.web.Application(
-        [
-            (
-                r"/static/(.*)",
-                StaticFileHandlerNoCache,
-                {"path": VIEWER_ROOT, "default_filename": VIEWER_HTML},
-            ),
-            (r"/", WatchOnly, {"bridge": bridge}),
-        ]
-    )
+    static = {"path": VIEWER_ROOT, "default_filename": VIEWER_HTML}
+    handlers: list[Any] = [
+        (r"/static/(.*)", StaticFileHandlerNoCache, static),
+        (r"/", WatchOnly, {"bridge": bridge}),
+    ]
+    if legend is not None:  # meshcat's page with the legend, matched before the plain files
+        page = (Path(VIEWER_ROOT) / VIEWER_HTML).read_text(encoding="utf-8")
+        handlers.insert(
+            0,
+            (rf"/static/(?:{VIEWER_HTML})?", _page_handler(), {"html": with_legend(page, legend)}),
+        )
+    return tornado.web.Application(handlers)
+
+
+def _page_handler() -> Any:
+    """A tornado handler serving one fixed HTML page, never cached (the scene changes)."""
+    import tornado.web
+
+    class Page(tornado.web.RequestHandler):
+        def initialize(self, html: str) -> None:
+            self.html = html
+
+        def get(self) -> None:
+            self.set_header("Content-Type", "text/html; charset=utf-8")
+            self.set_header("Cache-Control", "no-store, no-cache, must-revalidate, max-age=0")
+            self.finish(self.html)
+
+    return Page
 
 
 def is_loopback(host: str) -> bool:
@@ -203,3 +235,19 @@ def browser_url(host: str, port: int) -> str:
     address = ipaddress.ip_address(str(info[4][0]))
     text = f"[{address}]" if address.version == 6 else str(address)
     return f"http://{text}:{port}/static/"
+
+
+def static_page(build: Callable[[Any], None], legend: Legend | None) -> str:
+    """A self-contained HTML page (no server needed to view it) of one scene.
+
+    Args:
+        build: Draws the scene into the ``meshcat.Visualizer`` it is given.
+        legend: What the scene's colours mean, beside it on the page (``None``: none).
+
+    """
+    with LoopbackServer() as server:
+        viewer = client(server)
+        build(viewer)
+        html: str = viewer.static_html()
+        viewer.window.zmq_socket.close(linger=0)
+    return html if legend is None else with_legend(html, legend)

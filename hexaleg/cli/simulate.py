@@ -1,0 +1,163 @@
+"""``hexaleg simulate``: the planned gait walked in MuJoCo, and the tripod standing check."""
+
+from __future__ import annotations
+
+import argparse
+import math
+from pathlib import Path
+
+import numpy as np
+
+from hexaleg._io import check_output_file
+from hexaleg.cli.gait import add_gait_options, gait_from_args
+from hexaleg.cli.loads import add_payload_options, payload_from_args
+from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
+from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
+from hexaleg.sim.result import SimulationResult
+from hexaleg.sim.simulate import CYCLES_RANGE, DEFAULT_CYCLES, simulate_gait
+from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path
+
+DESCRIPTION = (
+    "Walk the design's planned gait in MuJoCo (pip install 'hexaleg[sim]'): hexaleg's URDF "
+    "on a free body, foot spheres on a floor with friction, joint servos fed the gait's "
+    "joint trajectory with its inverse-dynamics torques as feed-forward, from rest at the "
+    "period's first pose. Measured over the periods after the first (SI units, radians): "
+    "distance against the planned v·T per period, body tilt and lowest height, whether it "
+    "fell, RMS joint tracking error, standing-foot slip, peak servo torques beside the "
+    "plan's. Then the robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted "
+    "2 cm: each standing foot's vertical force beside the statics' (`loads --stance "
+    "tripod`). A stride beyond the design's max stride is refused before simulating."
+)
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Add this command's options."""
+    add_design_options(parser)
+    add_gait_options(parser)
+    add_payload_options(parser)
+    low, high = CYCLES_RANGE
+    parser.add_argument(
+        "--cycles",
+        type=bounded_int(low, high),
+        default=DEFAULT_CYCLES,
+        metavar="N",
+        help=f"gait periods to walk, {low}..{high}; the first is not measured "
+        f"(default {DEFAULT_CYCLES})",
+    )
+    parser.add_argument(
+        "--json", action="store_true", help="print one JSON object (SI units, radians)"
+    )
+    parser.add_argument(
+        "--html",
+        metavar="FILE",
+        help="write the simulated motion as a 3-D animation (meshcat, static HTML)",
+    )
+    parser.add_argument(
+        "--video",
+        metavar="FILE",
+        help=f"write the simulated motion as an animated image ({', '.join(VIDEO_SUFFIXES)}), "
+        "rendered offscreen by MuJoCo (EGL or OSMesa; skipped with a note where neither works)",
+    )
+
+
+def run(args: argparse.Namespace) -> int:
+    """Simulate; write the animation and video if asked; print a table or JSON."""
+    design = design_from_args(args)
+    gait = gait_from_args(args)
+    payload = payload_from_args(args)
+    for path in (args.html, args.video):  # refused before simulating, not after
+        if path is not None:
+            check_output_file(path)
+    if args.video is not None:
+        check_video_path(args.video)
+    result = simulate_gait(
+        design,
+        gait,
+        payload,
+        cycles=args.cycles,
+        friction=args.friction,
+        distribution=args.distribution,
+    )
+    written: list[Path] = []
+    if args.html is not None:
+        written.append(_animation(result, args.html))
+    if args.video is not None:
+        written += _video(result, args.video)
+    report_files(written)
+    if args.json:
+        print_json(result.to_dict())
+        return 0
+    print_table(lengths_title("Simulated walk (MuJoCo)", design.lengths), rows(result))
+    return 0
+
+
+def _animation(result: SimulationResult, path: str) -> Path:
+    """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
+    from hexaleg.output.viewer.gait import write_motion_html
+
+    ratios = np.abs(result.frame_torques) / np.array(result.design.rated_torques)
+    model = HexapodModel(result.design)
+    return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
+
+
+def _video(result: SimulationResult, path: str) -> list[Path]:
+    from hexaleg.sim.video import write_video
+
+    outcome = write_video(result.sim_model(), result.frames, result.frame_rate, path)
+    if outcome.path is None:
+        note(
+            f"--video skipped: no offscreen OpenGL works here (tried {'; '.join(outcome.tried)}); "
+            "install EGL (libegl1, Mesa) or OSMesa (libosmesa6)"
+        )
+        return []
+    return [outcome.path]
+
+
+def rows(result: SimulationResult) -> list[tuple[str, str]]:
+    """The text table's rows."""
+    metrics, gait, design = result.metrics, result.gait, result.design
+    rows = [
+        (
+            "gait",
+            f"{gait.pattern}, T = {gait.period:.4g} s, S = {gait.stride:.4g} m, "
+            f"H = {gait.step_height:.4g} m, v = {gait.speed:.4g} m/s; {result.cycles} periods",
+        ),
+        ("payload", f"{result.payload.mass:g} kg; friction μ = {result.friction:g}"),
+        (
+            "distance, periods 2..",
+            f"{metrics.distance:.4f} m of {metrics.planned_distance:.4f} m planned "
+            f"({100 * metrics.distance_ratio:.1f} %)",
+        ),
+        (
+            "max |roll|, |pitch|",
+            f"{math.degrees(metrics.max_roll):.2f}°, {math.degrees(metrics.max_pitch):.2f}°",
+        ),
+        (
+            "lowest body height",
+            f"{metrics.min_height:.4f} m (nominal {design.nominal_height:.4f} m)",
+        ),
+        ("fell", "YES" if metrics.fell else "no"),
+        ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),
+        ("standing-foot slip", f"{metrics.slip:.4f} m"),
+    ]
+    for joint, rated in zip(LEG_JOINTS, design.rated_torques, strict=True):
+        rows.append(
+            (
+                f"{joint}: peak |τ| simulated / planned",
+                f"{metrics.peak_torque[joint]:.2f} / {result.planned_peak_torque[joint]:.2f} "
+                f"N·m (rated {rated:g})",
+            )
+        )
+    standing = result.standing
+    for leg in standing.legs:
+        simulated, statics = standing.foot_forces_z[leg], standing.statics_foot_forces_z[leg]
+        rows.append(
+            (
+                f"standing on {', '.join(standing.legs)}: {leg} f_z",
+                f"{simulated:.2f} N, statics {statics:.2f} N "
+                f"({100 * (simulated - statics) / statics:+.2f} %)",
+            )
+        )
+    return rows

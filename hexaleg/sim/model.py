@@ -1,0 +1,333 @@
+"""hexaleg's URDF in MuJoCo: free-floating body, floor, contact feet, servo actuators, payload.
+
+:func:`robot_spec` loads the very URDF the Pinocchio model is built from through
+``mujoco.MjSpec`` (static links kept, so every URDF link is a MuJoCo body with the
+URDF's mass and inertia) and adds what a URDF does not say:
+
+- a free joint on ``base_link`` and a floor plane. Each foot gets a contact sphere of
+  the URDF foot's own radius, centred on the foot frame; the floor lies one radius
+  below z = 0, so a foot frame planned on the ground (z = 0) is a sphere resting on
+  the floor and every height matches the Pinocchio model's;
+- the payload (:class:`~hexaleg.statics.forces.Payload`) as a point mass welded to the
+  body at its point;
+- one servo per leg joint (:class:`ServoGains`), a MuJoCo position actuator fed so that
+  its torque is τ = τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇): the plan's
+  feed-forward torque plus a PD on the tracking error. The URDF's effort (the rated
+  torque) does not clamp it, so the measured torque is what the simulated robot needs.
+
+Only the feet touch the floor and the robot does not collide with itself: contacts
+between the leg links are the collision analysis' business (:mod:`hexaleg.stance.collisions`).
+"""
+
+from __future__ import annotations
+
+import math
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg._checks import require_in_range
+from hexaleg._typing import ArrayF
+from hexaleg.exceptions import ModelError
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel, foot_frame_name, joint_name
+from hexaleg.sim._mujoco import require_mujoco
+from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+
+TIMESTEP = 1e-3
+"""Simulation time step [s]."""
+DEFAULT_BANDWIDTH = 2.0
+"""Servo bandwidth f [Hz]: the natural frequency of a standing leg's joint (see
+:meth:`ServoGains.from_bandwidth`). Stiffer servos track more closely but, with three
+feet planted, push the feet against each other: at 2 Hz the default robot's measured
+hip and knee peaks stay within a few per cent of the plan's; at 8 Hz the knees' triple."""
+DEFAULT_DAMPING_RATIO = 1.0
+"""Servo damping ratio ζ [-] (critically damped)."""
+FLOOR = "floor"
+"""Name of the floor geom."""
+PAYLOAD_BODY = "payload"
+"""Name of the payload's body."""
+ROOT_JOINT = "root_joint"
+"""Name of the free joint (as Pinocchio names its free-flyer)."""
+FRICTION_RANGE = (1e-3, 10.0)
+"""Coefficients of friction μ [-] the floor may have (MuJoCo needs μ > 0)."""
+ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
+"""Contact bits: robot geoms collide with the floor only, never with each other."""
+
+
+def contact_geom_name(leg: str) -> str:
+    """Name of the contact sphere of ``leg``'s foot."""
+    return f"{leg}_foot_contact"
+
+
+@dataclass(frozen=True)
+class ServoGains:
+    """Stiffness and damping of the joint servos, per joint type (root, hip, knee).
+
+    Attributes:
+        stiffness: k_p per joint type [N·m/rad].
+        damping: k_d per joint type [N·m·s/rad].
+
+    """
+
+    stiffness: tuple[float, float, float]
+    damping: tuple[float, float, float]
+
+    def __post_init__(self) -> None:
+        for name, lower, unit in (("stiffness", 1e-6, "N·m/rad"), ("damping", 0.0, "N·m·s/rad")):
+            values = tuple(
+                require_in_range(f"{name}.{joint}", value, lower, 1e9, unit)
+                for joint, value in zip(LEG_JOINTS, getattr(self, name), strict=True)
+            )
+            object.__setattr__(self, name, values)
+
+    @classmethod
+    def from_bandwidth(
+        cls,
+        model: HexapodModel,
+        bandwidth: float = DEFAULT_BANDWIDTH,
+        damping_ratio: float = DEFAULT_DAMPING_RATIO,
+    ) -> ServoGains:
+        """Gains giving each joint of a standing leg the natural frequency f.
+
+        With I the joint's reflected inertia (:func:`reflected_inertia`: its own leg and
+        the third of the robot a tripod foot carries), ω = 2π f: k_p = I ω²,
+        k_d = 2 ζ I ω. A swinging leg, lighter, answers faster (the default robot's
+        knee at about 7 f, its hip at about 5 f); the feed-forward torque carries the load,
+        the servo corrects what the plan did not foresee.
+
+        Args:
+            model: The hexapod's Pinocchio model.
+            bandwidth: Natural frequency f [Hz], in (0, 100].
+            damping_ratio: Damping ratio ζ [-], in [0, 10].
+
+        """
+        require_in_range("bandwidth", bandwidth, 1e-3, 100.0, "Hz")
+        require_in_range("damping_ratio", damping_ratio, 0.0, 10.0, "-")
+        omega = 2 * math.pi * bandwidth
+        root, hip, knee = (float(i) for i in reflected_inertia(model))
+        stiff, damp = omega**2, 2 * damping_ratio * omega
+        return cls(
+            (root * stiff, hip * stiff, knee * stiff), (root * damp, hip * damp, knee * damp)
+        )
+
+
+def reflected_inertia(model: HexapodModel, carried: float | None = None) -> ArrayF:
+    """Each joint type's inertia about its axis at the nominal stance [kg·m²] (3,).
+
+    A standing leg moves its own links and the share of the robot it carries: with
+    the foot planted, turning joint j at θ̇_j moves that share at the foot's speed
+    |J_j|·θ̇_j (J_j the j-th column of the foot Jacobian). So
+    I_j = M_jj + m·|J_j|², M the joint-space inertia matrix (Pinocchio's CRBA), m the
+    carried mass; largest over the legs.
+
+    Args:
+        model: The hexapod's Pinocchio model.
+        carried: Mass a standing foot carries [kg]; a third of the robot's (a tripod)
+            if omitted.
+
+    """
+    q = model.nominal_configuration()
+    if carried is None:
+        carried = float(pin.computeTotalMass(model.model)) / 3
+    mass_matrix = np.diag(pin.crba(model.model, model.data, q))
+    inertia = np.array(
+        [
+            mass_matrix[model.leg_v_indices(leg)]
+            + carried * (model.leg_foot_jacobian(q, leg) ** 2).sum(axis=0)
+            for leg in model.leg_names
+        ]
+    )
+    return np.asarray(inertia.max(axis=0), dtype=float)
+
+
+def foot_radius(urdf: str, leg: str) -> float:
+    """Radius of the sphere the URDF draws as ``leg``'s foot [m]."""
+    link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
+    sphere = None if link is None else link.find("visual/geometry/sphere")
+    if sphere is None:
+        raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
+    return float(sphere.attrib["radius"])
+
+
+def robot_spec(
+    model: HexapodModel,
+    payload: Payload | None = None,
+    friction: float = DEFAULT_FRICTION,
+    gains: ServoGains | None = None,
+    timestep: float = TIMESTEP,
+) -> Any:
+    """The ``mujoco.MjSpec`` of the hexapod on its floor (see the module docstring).
+
+    Args:
+        model: The hexapod's Pinocchio model (its URDF is loaded).
+        payload: A point mass on the body.
+        friction: Coefficient of friction μ between feet and floor [-].
+        gains: Joint servo gains; :meth:`ServoGains.from_bandwidth` if omitted.
+        timestep: Integration step [s].
+
+    """
+    mujoco = require_mujoco()
+    require_in_range("friction", friction, *FRICTION_RANGE, "-")
+    require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
+    gains = ServoGains.from_bandwidth(model) if gains is None else gains
+    spec = mujoco.MjSpec.from_string(model.urdf)
+    spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
+    spec.option.timestep = timestep
+    spec.option.gravity = [0.0, 0.0, -GRAVITY]
+    spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
+    spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
+    base = spec.body("base_link")
+    base.add_freejoint(name=ROOT_JOINT)
+    for geom in spec.geoms:  # the URDF's collision shapes: touch the floor, not each other
+        geom.contype, geom.conaffinity = ROBOT_CONTACT, 0
+    radius = foot_radius(model.urdf, model.leg_names[0])
+    spec.worldbody.add_geom(
+        name=FLOOR,
+        type=mujoco.mjtGeom.mjGEOM_PLANE,
+        size=[0.0, 0.0, 1.0],
+        pos=[0.0, 0.0, -radius],
+        contype=0,
+        conaffinity=FLOOR_CONTACT | ROBOT_CONTACT,
+        rgba=[0.8, 0.8, 0.8, 1.0],
+    )
+    for leg in model.leg_names:
+        spec.body(foot_frame_name(leg)).add_geom(
+            name=contact_geom_name(leg),
+            type=mujoco.mjtGeom.mjGEOM_SPHERE,
+            size=[foot_radius(model.urdf, leg), 0.0, 0.0],
+            contype=ROBOT_CONTACT,
+            conaffinity=0,
+            condim=3,
+            friction=[friction, 0.0, 0.0],
+            mass=0.0,  # the URDF's foot inertial is the foot's mass
+            rgba=[0.1, 0.1, 0.1, 1.0],
+        )
+    _add_payload(spec, model, payload or Payload())
+    _add_servos(spec, model, gains)
+    return spec
+
+
+def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
+    if payload.mass > 0:
+        spec.body("base_link").add_body(
+            name=PAYLOAD_BODY,
+            pos=payload.point(model).tolist(),
+            mass=payload.mass,
+            ipos=[0.0, 0.0, 0.0],  # a point mass: its centre at the body's origin, no inertia
+            inertia=[0.0, 0.0, 0.0],
+            explicitinertial=True,
+        )
+
+
+def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
+    mujoco = require_mujoco()
+    for joint in spec.joints:
+        joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE  # the rating clamps nothing
+    for leg in model.leg_names:
+        for joint, kp, kd in zip(LEG_JOINTS, gains.stiffness, gains.damping, strict=True):
+            name = joint_name(leg, joint)
+            actuator = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
+            actuator.set_to_position(kp=kp, kv=kd)
+
+
+class SimModel:
+    """The compiled MuJoCo model of a hexapod and where each leg lives in it.
+
+    Args:
+        model: The hexapod's Pinocchio model.
+        payload: A point mass on the body.
+        friction: Coefficient of friction μ between feet and floor [-].
+        gains: Joint servo gains; :meth:`ServoGains.from_bandwidth` if omitted.
+        timestep: Integration step [s].
+
+    Attributes:
+        hexapod: The Pinocchio model it was built from.
+        payload: The payload carried.
+        gains: The joint servo gains.
+        spec: The ``mujoco.MjSpec`` it was compiled from.
+        mj: The compiled ``mujoco.MjModel``.
+        qpos: Address of each leg joint in ``qpos`` (legs, 3), Pinocchio's leg order.
+        dof: Address of each leg joint in ``qvel`` (legs, 3).
+        actuators: Actuator id of each leg joint (legs, 3).
+        feet: Body id of each foot (legs,).
+        contacts: Geom id of each foot's contact sphere (legs,).
+        floor: Geom id of the floor.
+        base: Body id of ``base_link``.
+
+    """
+
+    def __init__(
+        self,
+        model: HexapodModel,
+        payload: Payload | None = None,
+        friction: float = DEFAULT_FRICTION,
+        gains: ServoGains | None = None,
+        timestep: float = TIMESTEP,
+    ) -> None:
+        mujoco = require_mujoco()
+        self.hexapod = model
+        self.payload = payload or Payload()
+        self.gains = ServoGains.from_bandwidth(model) if gains is None else gains
+        self.spec = robot_spec(model, self.payload, friction, self.gains, timestep)
+        self.mj = self.spec.compile()
+
+        def ids(kind: Any, names: list[list[str]] | list[str]) -> npt.NDArray[np.int_]:
+            found = np.vectorize(lambda n: mujoco.mj_name2id(self.mj, kind, n))(names)
+            return np.asarray(found, dtype=int)
+
+        names = [[joint_name(leg, j) for j in LEG_JOINTS] for leg in model.leg_names]
+        joints = ids(mujoco.mjtObj.mjOBJ_JOINT, names)
+        self.qpos = self.mj.jnt_qposadr[joints]
+        self.dof = self.mj.jnt_dofadr[joints]
+        self.actuators = ids(mujoco.mjtObj.mjOBJ_ACTUATOR, names)
+        body = mujoco.mjtObj.mjOBJ_BODY
+        self.feet = ids(body, [foot_frame_name(leg) for leg in model.leg_names])
+        self.contacts = ids(
+            mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in model.leg_names]
+        )
+        self.floor = int(mujoco.mj_name2id(self.mj, mujoco.mjtObj.mjOBJ_GEOM, FLOOR))
+        self.base = int(mujoco.mj_name2id(self.mj, body, "base_link"))
+        self.stiffness = np.tile(self.gains.stiffness, (len(model.leg_names), 1))
+        self.damping = np.tile(self.gains.damping, (len(model.leg_names), 1))
+
+    @property
+    def timestep(self) -> float:
+        """Integration step [s]."""
+        return float(self.mj.opt.timestep)
+
+    def qpos_of(self, q: npt.ArrayLike) -> ArrayF:
+        """MuJoCo ``qpos`` of a Pinocchio configuration (quaternion w first in MuJoCo)."""
+        q = np.asarray(q, dtype=float)
+        qpos = np.zeros(self.mj.nq)
+        qpos[:3] = q[:3]
+        qpos[3], qpos[4:7] = q[6], q[3:6]
+        qpos[self.qpos] = self.hexapod.joint_angles(q)
+        return qpos
+
+    def configuration_of(self, qpos: npt.ArrayLike) -> ArrayF:
+        """Pinocchio configuration of a MuJoCo ``qpos`` (the inverse of :meth:`qpos_of`)."""
+        qpos = np.asarray(qpos, dtype=float)
+        base = np.concatenate((qpos[:3], qpos[4:7], qpos[3:4]))
+        base[3:] /= np.linalg.norm(base[3:])
+        return self.hexapod.configuration(pin.XYZQUATToSE3(base), qpos[self.qpos])
+
+    def command(self, q_ref: ArrayF, v_ref: ArrayF, torque: ArrayF) -> ArrayF:
+        """Actuator controls (legs·3,) giving τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇).
+
+        Args:
+            q_ref: Joint angles to track (..., legs, 3) [rad].
+            v_ref: Joint speeds to track (..., legs, 3) [rad/s].
+            torque: Feed-forward torques (..., legs, 3) [N·m].
+
+        """
+        # A position actuator gives k_p (u − q) − k_d q̇; shifting its set-point u by
+        # (k_d q̇_ref + τ_ff) / k_p adds the reference speed's damping and the feed-forward.
+        u = q_ref + (self.damping * v_ref + torque) / self.stiffness
+        out = np.empty((*u.shape[:-2], self.mj.nu))
+        out[..., self.actuators] = u
+        return out

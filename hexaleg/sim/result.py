@@ -1,0 +1,82 @@
+"""What a simulated walk found, as one frozen record and its JSON."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from hexaleg._typing import ArrayF
+from hexaleg.design import HexapodDesign
+from hexaleg.gait.spec import Gait
+from hexaleg.robot.model import HexapodModel
+from hexaleg.sim.measure import WalkMetrics
+from hexaleg.sim.model import ServoGains, SimModel
+from hexaleg.sim.standing import StandingCheck
+from hexaleg.statics.forces import Payload
+
+
+@dataclass(frozen=True)
+class SimulationResult:
+    """One design walking one gait in MuJoCo, and standing on a tripod.
+
+    Attributes:
+        design: The design.
+        gait: The gait walked.
+        payload: The payload carried.
+        friction: Coefficient of friction μ between feet and floor [-].
+        cycles: Gait periods simulated (the first one is not measured).
+        gains: The joint servos' gains.
+        metrics: The walk's measures over the cycles after the first.
+        planned_peak_torque: The gait's planned peak |τ| per joint type [N·m].
+        standing: The tripod standing check.
+        frames: The robot's Pinocchio configuration (F, nq) at ``frame_rate``, whole run.
+        frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
+        frame_rate: Frames per second [1/s].
+
+    """
+
+    design: HexapodDesign
+    gait: Gait
+    payload: Payload
+    friction: float
+    cycles: int
+    gains: ServoGains
+    metrics: WalkMetrics
+    planned_peak_torque: dict[str, float]
+    standing: StandingCheck
+    frames: ArrayF
+    frame_torques: ArrayF
+    frame_rate: float
+
+    @property
+    def mid_stride_frame(self) -> int:
+        """The frame half a period into the last cycle: one tripod up, mid-swing."""
+        time = (self.cycles - 0.75) * self.gait.period
+        return min(len(self.frames) - 1, round(time * self.frame_rate))
+
+    def sim_model(self) -> SimModel:
+        """The MuJoCo model the walk ran on, built again (for a video or a still)."""
+        return SimModel(HexapodModel(self.design), self.payload, self.friction, self.gains)
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready: the fields of the simulate issue (SI units: m, rad, N, N·m)."""
+        metrics = self.metrics
+        return {
+            "design": self.design.as_dict(),
+            "gait": self.gait.to_dict(),
+            "payload": {
+                "mass": self.payload.mass,
+                "position": self.payload.position_on(self.design),
+            },
+            "cycles": self.cycles,
+            "planned_distance": metrics.planned_distance,
+            "distance": metrics.distance,
+            "max_tilt": metrics.max_tilt,
+            "min_height": metrics.min_height,
+            "fell": metrics.fell,
+            "tracking_rms": metrics.tracking_rms,
+            "slip": metrics.slip,
+            "peak_torque_measured": dict(metrics.peak_torque),
+            "peak_torque_planned": dict(self.planned_peak_torque),
+            "standing": self.standing.to_dict(),
+        }

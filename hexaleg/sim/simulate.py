@@ -1,0 +1,105 @@
+"""The front door: plan a gait (:func:`~hexaleg.gait.analyze_gait`), walk it in MuJoCo, measure.
+
+:func:`simulate_gait` plans one period, refuses a gait the design cannot walk before
+simulating anything (a stride beyond its max stride, or any constraint the planned
+period breaks), then runs ``cycles`` periods from rest at the period's first pose
+(:mod:`.run`) with the planned joint trajectory and inverse-dynamics torques fed to
+the servos (:mod:`.model`), measures the cycles after the first (:mod:`.measure`) and
+stands the robot on a tripod beside the statics (:mod:`.standing`).
+"""
+
+from __future__ import annotations
+
+from hexaleg._checks import require_in_range, require_int
+from hexaleg._typing import Distribution
+from hexaleg.design import HexapodDesign
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
+from hexaleg.gait.spec import Gait
+from hexaleg.robot.model import HexapodModel
+from hexaleg.sim._mujoco import require_mujoco
+from hexaleg.sim.measure import measure_walk
+from hexaleg.sim.model import FRICTION_RANGE, ServoGains, SimModel
+from hexaleg.sim.plan import Plan
+from hexaleg.sim.result import SimulationResult
+from hexaleg.sim.run import FRAME_RATE, run_plan
+from hexaleg.sim.standing import standing_check
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+
+DEFAULT_CYCLES = 4
+"""Gait periods simulated by default."""
+CYCLES_RANGE = (2, 200)
+"""Allowed number of periods: the first is not measured, so at least two."""
+
+
+def plan_of(analysis: GaitAnalysis) -> Plan:
+    """The planned period as the simulation follows it."""
+    return Plan(
+        period=analysis.gait.period,
+        angles=analysis.joint_angles,
+        rates=analysis.joint_velocities,
+        torques=analysis.joint_torques,
+        standing=analysis.stance,
+        velocity=analysis.base_velocity[:2],
+    )
+
+
+def simulate_gait(
+    design: HexapodDesign,
+    gait: Gait | None = None,
+    payload: Payload | None = None,
+    *,
+    cycles: int = DEFAULT_CYCLES,
+    friction: float = DEFAULT_FRICTION,
+    distribution: Distribution = "min-norm",
+    gains: ServoGains | None = None,
+    model: HexapodModel | None = None,
+) -> SimulationResult:
+    """Walk ``gait`` with ``design`` in MuJoCo for ``cycles`` periods; stand on a tripod.
+
+    Args:
+        design: The design.
+        gait: The gait (:class:`~hexaleg.gait.spec.Gait`'s defaults if omitted).
+        payload: A point mass on the body (none by default).
+        cycles: Periods to simulate, 2 … 200; the first is not measured.
+        friction: Coefficient of friction μ between feet and floor [-].
+        distribution: How the plan shares the load among the standing feet
+            (``"min-norm"`` or ``"min-torque"``, as in ``loads``): its feed-forward torques.
+        gains: Joint servo gains (default: :meth:`ServoGains.from_bandwidth`).
+        model: The design's Pinocchio model, if already built.
+
+    Raises:
+        ParameterError: ``stride`` beyond the design's max stride, or bad ``cycles``.
+        HexalegError: The planned period breaks another constraint, or MuJoCo is missing.
+
+    """
+    require_mujoco()
+    cycles = require_int("cycles", cycles, *CYCLES_RANGE)
+    require_in_range("friction", friction, *FRICTION_RANGE, "-")
+    model = HexapodModel(design) if model is None else model
+    analysis = analyze_gait(
+        design,
+        gait,
+        payload,
+        distribution=distribution,
+        friction=friction,
+        model=model,
+        limits=False,
+    )
+    require_walkable(analysis, model)
+    sim = SimModel(model, analysis.payload, friction, gains)
+    plan = plan_of(analysis)
+    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE)
+    return SimulationResult(
+        design=design,
+        gait=analysis.gait,
+        payload=analysis.payload,
+        friction=friction,
+        cycles=cycles,
+        gains=sim.gains,
+        metrics=measure_walk(run.trace, plan.period, cycles, plan.velocity, design.nominal_height),
+        planned_peak_torque=dict(analysis.metrics.peak_torque),
+        standing=standing_check(model, analysis.payload, friction, sim=sim),
+        frames=run.frames,
+        frame_torques=run.frame_torques,
+        frame_rate=run.frame_rate,
+    )

@@ -1,0 +1,112 @@
+"""The walk's measures, on synthetic traces whose answers are known by construction."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from hexaleg.sim.measure import (
+    FALL_TILT,
+    Trace,
+    fell,
+    foot_slip,
+    measure_walk,
+    peak_torques,
+    roll_pitch,
+)
+
+
+def _quaternion(roll: float, pitch: float, yaw: float) -> np.ndarray:
+    q = pin.Quaternion(pin.rpy.rpyToMatrix(roll, pitch, yaw))
+    return np.array([q.w, q.x, q.y, q.z])
+
+
+def test_roll_pitch_are_pinocchios_rpy():
+    rng = np.random.default_rng(5)
+    angles = rng.uniform(-1.2, 1.2, size=(20, 3))
+    quats = np.array([_quaternion(*a) for a in angles])
+    np.testing.assert_allclose(roll_pitch(quats), angles[:, :2], atol=1e-12)
+
+
+def test_foot_slip_is_the_largest_move_within_one_stance():
+    xy = np.zeros((8, 2, 2))
+    standing = np.zeros((8, 2), dtype=bool)
+    standing[0:3, 0] = standing[5:8, 0] = True
+    xy[:, 0, 0] = [0.0, 0.01, 0.02, 0.5, 0.9, 1.0, 1.0, 1.03]  # swing moves 0.98 m: not slip
+    standing[:, 1] = True
+    xy[:, 1, 1] = [0.0, 0.004, -0.01, 0.0, 0.0, 0.0, 0.0, 0.0]
+    assert foot_slip(xy, standing) == pytest.approx(0.03)
+    assert foot_slip(xy[:, 1:], standing[:, 1:]) == pytest.approx(0.01)
+    assert foot_slip(xy, np.zeros_like(standing)) == 0.0
+
+
+def test_peak_torques_per_joint_type():
+    torques = np.zeros((4, 6, 3))
+    torques[2, 3] = [-5.0, 7.0, -9.0]
+    torques[1, 0] = [4.0, -8.0, 1.0]
+    assert peak_torques(torques) == {"root": 5.0, "hip": 8.0, "knee": 9.0}
+
+
+def _trace(period: float, cycles: int, velocity, roll, height: float, dt: float = 0.01) -> Trace:
+    time = np.arange(0.0, period * cycles + 1e-9, dt)
+    k = len(time)
+    base = np.zeros((k, 3))
+    base[:, :2] = np.outer(time, velocity)
+    base[:, 2] = height
+    quats = np.array([_quaternion(r, -0.5 * r, 0.3) for r in roll(time)])
+    angles = np.zeros((k, 6, 3))
+    reference = angles + 0.02  # every joint 0.02 rad behind
+    torques = np.zeros((k, 6, 3))
+    torques[:, :, 1] = 10.0 * np.sin(time)[:, None]
+    feet = np.zeros((k, 6, 3))
+    standing = np.ones((k, 6), dtype=bool)
+    return Trace(time, base, quats, angles, reference, torques, feet, standing)
+
+
+def test_measure_walk_on_a_known_motion():
+    period, cycles = 1.5, 4
+    velocity = np.array([0.12, -0.05])
+    trace = _trace(period, cycles, velocity, lambda t: 0.03 * np.sin(t) * (t >= 0), 0.4)
+    metrics = measure_walk(trace, period, cycles, velocity, nominal_height=0.4)
+    speed = math.hypot(*velocity)
+    assert metrics.planned_distance == pytest.approx(speed * period * 3)
+    assert metrics.distance == pytest.approx(speed * period * 3, rel=1e-9)
+    assert metrics.distance_ratio == pytest.approx(1.0)
+    measured = trace.time[trace.time >= period]
+    assert metrics.max_roll == pytest.approx(np.abs(0.03 * np.sin(measured)).max(), rel=1e-9)
+    assert metrics.max_pitch == pytest.approx(0.5 * metrics.max_roll, rel=1e-9)
+    assert metrics.max_tilt == metrics.max_roll
+    assert metrics.min_height == pytest.approx(0.4)
+    assert metrics.tracking_rms == pytest.approx(0.02)
+    assert metrics.slip == 0.0
+    assert metrics.peak_torque["hip"] == pytest.approx(10.0 * np.abs(np.sin(measured)).max())
+    assert not metrics.fell
+
+
+def test_a_walk_that_goes_sideways_covers_no_distance_along_its_heading():
+    trace = _trace(1.0, 3, np.array([0.0, 0.2]), lambda t: 0 * t, 0.4)
+    metrics = measure_walk(trace, 1.0, 3, np.array([0.2, 0.0]), nominal_height=0.4)
+    assert metrics.distance == pytest.approx(0.0, abs=1e-12)
+    assert metrics.distance_ratio == pytest.approx(0.0, abs=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("roll", "height", "expected"),
+    [
+        (FALL_TILT * 0.99, 0.4, False),
+        (FALL_TILT * 1.01, 0.4, True),
+        (0.0, 0.19, True),
+        (0.0, 0.21, False),
+    ],
+)
+def test_fell_when_tilted_past_30_degrees_or_below_half_height(roll, height, expected):
+    trace = _trace(1.0, 2, np.array([0.1, 0.0]), lambda t: roll * (t > 0.2), height)
+    assert fell(trace, nominal_height=0.4) is expected
+
+
+def test_a_fall_in_the_first_cycle_counts():
+    trace = _trace(1.0, 3, np.array([0.1, 0.0]), lambda t: 1.0 * (t < 0.5), 0.4)
+    assert measure_walk(trace, 1.0, 3, np.array([0.1, 0.0]), 0.4).fell

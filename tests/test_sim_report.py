@@ -1,0 +1,97 @@
+"""The report's "Simulated walk" part: only with --simulate, its table, still and JSON."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import numpy as np
+import pytest
+
+from hexaleg import HexapodModel
+from hexaleg.exceptions import HexalegError
+from hexaleg.output.report import PARTS, ReportData, ReportOptions, build_report
+from hexaleg.output.report.document import Figure
+from hexaleg.output.report.registry import parts_for
+
+if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
+    pytest.importorskip("mujoco")
+
+from test_sim_simulate import JSON_KEYS
+
+from hexaleg.output.report import simulation, walking
+from hexaleg.sim.video import RenderOutcome
+
+
+@pytest.fixture(scope="module")
+def data(default_design):
+    options = ReportOptions(simulate=True, vector_figures=True, progress=False)
+    base = ReportData(default_design, options, HexapodModel(default_design))
+    return base.with_record(simulation.compute(base))
+
+
+def test_the_part_comes_after_walking_only_when_asked():
+    assert parts_for(ReportOptions()) == PARTS
+    assert simulation.PART not in PARTS
+    asked = parts_for(ReportOptions(simulate=True))
+    assert len(asked) == len(PARTS) + 1
+    assert asked[asked.index(walking.PART) + 1] is simulation.PART
+
+
+def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):
+    result = data[simulation.SimulationRecord].result
+    section = simulation.section(data)
+    assert section.title.startswith("3.5 Simulated walk")
+    text = "\n".join(b for b in section.blocks if isinstance(b, str))
+    assert f"{result.metrics.distance:.3f} ({100 * result.metrics.distance_ratio:.1f} %)" in text
+    assert f"| {result.metrics.planned_distance:.3f} |" in text
+    for leg in ("lf", "rm", "lr"):
+        statics = result.standing.statics_foot_forces_z[leg]
+        assert f"| {leg} | {result.standing.foot_forces_z[leg]:.1f} | {statics:.1f} |" in text
+    for joint in ("root", "hip", "knee"):
+        assert f"{result.planned_peak_torque[joint]:.1f}" in text
+    figures = [b for b in section.blocks if isinstance(b, Figure)]
+    assert [f.name for f in figures] == [simulation.STILL]
+
+
+def test_json_is_the_simulate_commands_without_the_design(data):
+    fields = simulation.to_json(data[simulation.SimulationRecord])
+    assert set(fields) == {"simulation"}
+    assert set(fields["simulation"]) == JSON_KEYS - {"design"}
+
+
+def _picture(path) -> np.ndarray:
+    from PIL import Image
+
+    with Image.open(path) as image:
+        return np.asarray(image.convert("RGB"), dtype=float)
+
+
+@pytest.mark.slow
+def test_the_still_is_mujocos_picture_as_png_and_svg(data, tmp_path):
+    simulation.write_files(data, tmp_path)
+    png, svg = tmp_path / f"{simulation.STILL}.png", tmp_path / f"{simulation.STILL}.svg"
+    assert png.is_file() and svg.is_file()
+    assert _picture(png).std() > 10.0  # a picture, not a blank page
+    assert "<image" in svg.read_text()  # MuJoCo's render, embedded
+
+
+def test_without_offscreen_opengl_the_still_is_drawn_as_lines(data, tmp_path, monkeypatch):
+    from hexaleg.sim import video
+
+    monkeypatch.setattr(video, "write_still", lambda *args: RenderOutcome(None, None, ("egl",)))
+    simulation.write_files(data, tmp_path)
+    svg = (tmp_path / f"{simulation.STILL}.svg").read_text()
+    assert "<image" not in svg and "<path" in svg  # lines, not a picture
+    assert _picture(tmp_path / f"{simulation.STILL}.png").std() > 10.0
+
+
+def test_missing_mujoco_fails_before_any_work(tmp_path, monkeypatch, capsys):
+    from conftest import run_cli
+
+    monkeypatch.setitem(sys.modules, "mujoco", None)  # import mujoco fails
+    with pytest.raises(HexalegError, match=r"pip install 'hexaleg\[sim\]'"):
+        build_report(tmp_path / "r", options=ReportOptions(simulate=True))
+    assert run_cli(["report", "--simulate", "-o", str(tmp_path / "r")]) == 2
+    assert capsys.readouterr().err.count("\n") == 1
+    assert list(tmp_path.iterdir()) == []

@@ -1,0 +1,65 @@
+"""Following a plan in MuJoCo: a plan that stands still stands still; states convert both ways."""
+
+from __future__ import annotations
+
+import os
+
+import numpy as np
+import pinocchio as pin
+import pytest
+
+from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.statics.forces import Statics
+
+if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
+    pytest.importorskip("mujoco")
+
+from hexaleg.sim.measure import measure_walk
+from hexaleg.sim.model import SimModel
+from hexaleg.sim.plan import Plan
+from hexaleg.sim.run import run_plan
+
+
+@pytest.fixture(scope="module")
+def sim():
+    return SimModel(HexapodModel(HexapodDesign()))
+
+
+def test_qpos_and_configuration_convert_both_ways(sim):
+    model = sim.hexapod
+    rng = np.random.default_rng(4)
+    for _ in range(5):
+        base = pin.SE3(pin.rpy.rpyToMatrix(*rng.uniform(-1, 1, 3)), rng.uniform(-1, 1, 3))
+        q = model.configuration(base, rng.uniform(-1, 1, (6, 3)))
+        back = sim.configuration_of(sim.qpos_of(q))
+        np.testing.assert_allclose(back, q, atol=1e-12)
+
+
+def test_a_plan_that_stands_still_keeps_the_robot_where_it_is(sim):
+    model = sim.hexapod
+    q = model.nominal_configuration()
+    state = Statics(model, model.leg_names).state(q)
+    samples = 10
+    plan = Plan(
+        period=1.0,
+        angles=np.tile(model.joint_angles(q), (samples, 1, 1)),
+        rates=np.zeros((samples, 6, 3)),
+        torques=np.tile(state.joint_torques, (samples, 1, 1)),
+        standing=np.ones((samples, 6), dtype=bool),
+        velocity=np.zeros(2),
+    )
+    run = run_plan(sim, plan, duration=2.0, frame_rate=10.0)
+    assert run.trace.time.shape == (2000,)
+    assert run.frames.shape == (20, model.model.nq)
+    assert run.frame_rate == pytest.approx(10.0)
+    metrics = measure_walk(run.trace, 1.0, 2, plan.velocity, model.design.nominal_height)
+    assert not metrics.fell
+    assert abs(metrics.distance) < 1e-3
+    assert metrics.max_tilt < 1e-3
+    assert metrics.slip < 1e-3
+    assert metrics.tracking_rms < 1e-3
+    # the soft contact lets the feet sink a little, never more than a centimetre
+    assert model.design.nominal_height - 0.01 < metrics.min_height <= model.design.nominal_height
+    peaks = state.peak_torques()
+    for joint in ("hip", "knee"):
+        assert metrics.peak_torque[joint] == pytest.approx(peaks[joint], rel=0.05, abs=0.5)

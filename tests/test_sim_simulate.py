@@ -1,0 +1,142 @@
+"""The planned gait walked in MuJoCo: the default robot walks; impossible gaits are refused."""
+
+from __future__ import annotations
+
+import json
+import math
+import os
+
+import numpy as np
+import pytest
+
+from hexaleg import HexapodDesign
+from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.gait import Gait, analyze_gait
+from hexaleg.statics.forces import Payload
+
+if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
+    pytest.importorskip("mujoco")
+
+from hexaleg.sim import simulate, simulate_gait
+
+JSON_KEYS = {
+    "design",
+    "gait",
+    "payload",
+    "cycles",
+    "planned_distance",
+    "distance",
+    "max_tilt",
+    "min_height",
+    "fell",
+    "tracking_rms",
+    "slip",
+    "peak_torque_measured",
+    "peak_torque_planned",
+    "standing",
+}
+
+
+@pytest.fixture(scope="module")
+def default_walk():
+    return simulate_gait(HexapodDesign(), Gait(), cycles=4)
+
+
+def test_the_default_robot_walks_four_tripod_cycles(default_walk):
+    metrics = default_walk.metrics
+    gait = default_walk.gait
+    assert gait.pattern == "tripod" and default_walk.cycles == 4
+    assert not metrics.fell
+    assert metrics.planned_distance == pytest.approx(gait.speed * gait.period * 3)
+    assert metrics.distance >= 0.85 * metrics.planned_distance
+    assert metrics.distance <= 1.1 * metrics.planned_distance
+    assert metrics.max_tilt < math.radians(5.0)
+    assert metrics.min_height > 0.9 * HexapodDesign().nominal_height
+
+
+def test_measured_hip_and_knee_torques_are_near_the_plans(default_walk):
+    # Pinocchio's inverse dynamics with min-norm feet against MuJoCo's contacts and servos
+    planned, measured = default_walk.planned_peak_torque, default_walk.metrics.peak_torque
+    for joint in ("hip", "knee"):
+        assert measured[joint] == pytest.approx(planned[joint], rel=0.10)
+    planned_again = analyze_gait(HexapodDesign(), Gait(), limits=False).metrics.peak_torque
+    assert planned == planned_again
+
+
+def test_json_has_exactly_the_issues_fields(default_walk):
+    fields = json.loads(json.dumps(default_walk.to_dict()))
+    assert set(fields) == JSON_KEYS
+    assert set(fields["standing"]) == {"foot_forces_z", "statics_foot_forces_z"}
+    assert set(fields["standing"]["foot_forces_z"]) == {"lf", "rm", "lr"}
+    for key in ("peak_torque_measured", "peak_torque_planned"):
+        assert set(fields[key]) == {"root", "hip", "knee"}
+    assert fields["gait"]["pattern"] == "tripod"
+    assert fields["payload"] == {"mass": 0.0, "position": [0.0, 0.0, 0.05]}
+    assert fields["fell"] is False
+
+
+def test_frames_cover_the_run(default_walk):
+    frames = default_walk.frames
+    duration = default_walk.cycles * default_walk.gait.period
+    assert len(frames) == pytest.approx(duration * default_walk.frame_rate, abs=1)
+    travelled = frames[-1, 0] - frames[0, 0]
+    assert travelled == pytest.approx(default_walk.metrics.distance * 4 / 3, rel=0.15)
+    mid = frames[default_walk.mid_stride_frame]
+    assert np.isfinite(mid).all()
+
+
+def test_an_over_long_stride_is_refused_before_simulating(monkeypatch):
+    design = HexapodDesign()
+    gait = Gait(stride=0.9)  # the default robot's max stride is about 0.62 m at H = 0.1 m
+
+    def no_simulation(*args, **kwargs):
+        raise AssertionError("simulated an infeasible gait")
+
+    monkeypatch.setattr(simulate, "SimModel", no_simulation)
+    monkeypatch.setattr(simulate, "run_plan", no_simulation)
+    with pytest.raises(
+        ParameterError, match=r"stride = 0\.9 is not valid: must be at most 0\.6"
+    ) as e:
+        simulate_gait(design, gait)
+    assert "\n" not in str(e.value) and "max stride" in str(e.value)
+
+
+def test_a_step_too_high_is_refused_by_its_first_violation(monkeypatch):
+    monkeypatch.setattr(simulate, "run_plan", None)  # never reached
+    with pytest.raises(HexalegError, match="cannot walk the gait: t = "):
+        simulate_gait(HexapodDesign(), Gait(stride=0.2, step_height=0.5))
+
+
+@pytest.mark.parametrize("cycles", [1, 0, 201, 2.5, True])
+def test_cycles_out_of_range_are_refused(cycles):
+    with pytest.raises(ParameterError, match="cycles"):
+        simulate_gait(HexapodDesign(), cycles=cycles)
+
+
+@pytest.mark.slow
+def test_the_default_robot_walks_with_a_payload():
+    walk = simulate_gait(HexapodDesign(), Gait(), Payload(40.0), cycles=4)
+    metrics = walk.metrics
+    assert not metrics.fell
+    assert metrics.distance >= 0.85 * metrics.planned_distance
+    assert metrics.max_tilt < math.radians(5.0)
+    assert walk.standing.worst_relative_error < 0.03
+    assert walk.to_dict()["payload"]["mass"] == 40.0
+
+
+@pytest.mark.slow
+def test_random_designs_walk_half_their_max_stride():
+    from conftest import random_designs
+
+    walked = 0
+    for design in random_designs(8, seed=77):
+        stride = 0.5 * analyze_gait(design).max_stride.value
+        gait = Gait(stride=max(stride, 1e-3), step_height=min(0.1, 0.25 * design.nominal_height))
+        if stride < 0.02 or not analyze_gait(design, gait, limits=False).feasible:
+            continue  # postures that barely step, or a step too high for the legs
+        metrics = simulate_gait(design, gait).metrics
+        assert not metrics.fell, design
+        assert metrics.distance >= 0.85 * metrics.planned_distance, design
+        assert metrics.max_tilt < math.radians(5.0), design
+        walked += 1
+    assert walked >= 3
