@@ -1,15 +1,15 @@
 """Climbs, compiled: one body coordinate pushed as far as the stance margins allow.
 
 A climb is sequential linear programming with a trust region: at the current
-displacement it linearizes the smooth stance margins (:mod:`.margin_kernel`, forward
-differences), solves the elastic linear program "push d_k, keep every linearized margin
+displacement it linearizes the smooth stance margins (:mod:`.margin_jacobian`, closed
+form), solves the elastic linear program "push d_k, keep every linearized margin
 ≥ 0, move at most Δ" (:func:`~hexaleg.numerics.lp.elastic_lp`), and accepts the step if
 the merit ±d_k − penalty·(violation) improves as the model predicted, growing or
 shrinking Δ. A step that the margins' curvature spoils is corrected back onto the
 constraints it made tight (a second-order correction). From an infeasible start the
-relaxations first restore feasibility. Each iteration costs eight pose evaluations and
-a small linear program, some 10 µs, so a search can afford dozens of climbs per
-direction: :func:`climb_all` runs them and returns where each ended.
+relaxations first restore feasibility. Each iteration costs one pass for the margins
+and their Jacobian, the trial's margins and a small linear program, so a search can
+afford dozens of climbs per direction: :func:`climb_all` runs them and returns where each ended.
 
 Climbs work in coordinates scaled to the search box (u = d / scale), where the trust
 region is a cube.
