@@ -33,6 +33,7 @@ PACKAGE = Path(__file__).resolve().parent
 COMPILED_MODULES = (
     "numerics/lp.py",
     "stance/margin_kernel.py",
+    "stance/margin_jacobian.py",
     "stance/climb.py",
     "stance/paths.py",
 )

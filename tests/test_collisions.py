@@ -107,3 +107,15 @@ def _colliding_pairs(collision, rotation, translation):
     )
     results = collision.geometry_data.collisionResults
     return {collision.pairs[i] for i, r in enumerate(results) if r.isCollision()}
+
+
+def test_a_pose_distances_do_not_depend_on_the_queries_before_it(short_body):
+    # the free search differentiates them with steps of 1e-5 m: noise of 1e-6 m would swamp it
+    _, geometry, collision = short_body
+    rng = np.random.default_rng(22)
+    pose = np.array([[0.01, 0.02, -0.03, 0.25, 0.05, 0.1]])
+    first = collision.pair_clearances(*displacement_poses(geometry, pose))
+    for other in rng.uniform(-0.2, 0.2, size=(5, 1, 6)):
+        collision.pair_clearances(*displacement_poses(geometry, other))
+        again = collision.pair_clearances(*displacement_poses(geometry, pose))
+        np.testing.assert_allclose(again, first, rtol=0, atol=1e-8)

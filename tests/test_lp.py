@@ -52,3 +52,29 @@ def test_a_relaxation_is_used_only_where_no_step_can_satisfy_the_constraint():
         np.array([0.0]), np.array([-2.0]), np.array([[1.0]]), -np.ones(1), np.ones(1), 5.0
     )
     assert x[0] == pytest.approx(1.0) and t[0] == pytest.approx(1.0)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_degenerate_random_programs_reach_highs_optimum(seed):
+    # a climb's programs: mirror-image legs give equal rows, tight rows pass through x = 0,
+    # and a point on the search box's edge leaves a variable only one side (or none)
+    rng = np.random.default_rng(100 + seed)
+    for _ in range(50):
+        m, n = int(rng.integers(2, 30)), int(rng.integers(1, 7))
+        rows = rng.normal(size=(m, n))
+        rows /= np.linalg.norm(rows, axis=1)[:, None]
+        offsets = rng.normal(size=m) * rng.choice([0.01, 0.5])
+        offsets[rng.random(m) < 0.3] = 0.0
+        copies = rng.integers(0, m, size=m // 2)
+        rows[: len(copies)], offsets[: len(copies)] = rows[copies], offsets[copies]
+        lower, upper = -rng.uniform(0.0, 1, n), rng.uniform(0.0, 1, n)
+        lower[rng.random(n) < 0.2] = 0.0
+        upper[rng.random(n) < 0.2] = 0.0
+        objective = rng.normal(size=n)
+        x, t = elastic_lp(objective, offsets, rows, lower, upper, 100.0)
+        assert np.all(x >= lower - 1e-12) and np.all(x <= upper + 1e-12) and np.all(t >= 0)
+        assert np.all(offsets + rows @ x + t >= -1e-10)
+        value = objective @ x - 100.0 * t.sum()
+        assert value == pytest.approx(
+            _highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9
+        )

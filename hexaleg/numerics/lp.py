@@ -9,10 +9,24 @@ Pure numerics, independent of the robot. :func:`elastic_lp` solves
 for a handful of variables x: the linearized constraints of a trust-region step, where
 t relaxes the ones no step in the box can satisfy (an "elastic" program: it always
 has a solution, and with a penalty above the constraints' multipliers it is the
-ordinary one whenever that exists). The primal simplex method with bounded variables
-runs on a dense tableau from x = 0 (the current point of the search, usually close to
-the answer): x = x⁺ − x⁻ with 0 ≤ x⁺ ≤ upper and 0 ≤ x⁻ ≤ −lower, and each row's
-surplus s_i ≥ 0 turns it into the equation a_i·(x⁺ − x⁻) + t_i − s_i = −g_i.
+ordinary one whenever that exists). With t eliminated it is the concave
+piecewise-linear program max f(x) = c·x − penalty·Σ max(0, −g_i − a_i·x) over the box,
+solved by a primal simplex method on the n variables themselves (the active-set form):
+
+- a vertex is named by n active hyperplanes (a row's g_i + a_i·x = 0, a bound of x, or,
+  at the start x = 0, x_j = 0 itself), whose normals form an n × n matrix N;
+- the gradient h of f in the current cell, written in those normals (Nᵀy = h), tells
+  which hyperplane to leave: one whose multiplier y_w shows that moving off it along
+  the edge d (N d = ±e_w) raises f;
+- the ratio test walks along d past the rows' kinks (where a row turns violated or
+  satisfied, f's slope drops by penalty·|a_i·d|) up to the one where the slope stops
+  being positive, or a bound of x, which enters in w's place.
+
+Each pivot costs O(m·n), not the O(m²) of a tableau over the 2m columns of t and the
+surpluses: the programs here have n = 6 and up to some 60 rows. The offsets are
+lowered by distinct amounts of about :data:`PERTURBATION` so that no two hyperplanes meet
+a vertex together (mirror-image legs give equal rows), which keeps the method from
+cycling; the answer's relaxations are those of the unperturbed offsets.
 """
 
 from __future__ import annotations
@@ -23,7 +37,14 @@ from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
 
 PIVOT_TOLERANCE = 1e-12
-"""Tableau entries and reduced costs smaller than this count as zero."""
+"""Slopes, multipliers and rates of change smaller than this count as zero."""
+PERTURBATION = 1e-13
+"""Each row's offset is lowered by a distinct amount between this and twice this: no
+vertex where more than n planes meet, and an answer that satisfies a row does so strictly."""
+GOLDEN = 0.6180339887498949
+"""The fractional parts of i·this spread the rows' perturbations evenly."""
+FREE, LOWER, UPPER, ROW = 0, 1, 2, 3
+"""What an active hyperplane is: x_j = 0 at the start, a bound of x_j, or a row."""
 
 
 @compiled
@@ -47,129 +68,163 @@ def elastic_lp(
 
     """
     m, n = rows.shape
-    tableau, cost, bound, basis = _initial_tableau(objective, offsets, rows, lower, upper, penalty)
-    at_upper = np.zeros(cost.shape[0], np.bool_)
-    _simplex(tableau, cost, bound, basis, at_upper)
-    value = np.where(at_upper, bound, 0.0)
+    residual = offsets - PERTURBATION * (1.0 + (GOLDEN * np.arange(m)) % 1.0)  # at x = 0
+    x, gradient, direction = np.zeros(n), np.empty(n), np.empty(n)
+    rates, kinks, kinked = np.empty(m), np.empty(m), np.empty(m, np.int64)
+    kind, which = np.full(n, FREE, np.int64), np.arange(n)
+    active = np.zeros(m, np.bool_)  # rows among the active hyperplanes
+    edges = np.eye(n)  # row w: column w of N⁻¹, the edge off hyperplane w along its normal
+    for _ in range(50 * (m + n) + 50):
+        _cell_gradient(objective, rows, residual, active, penalty, gradient)
+        leaving, sense = _leaving(gradient, kind, which, edges, lower, upper, penalty)
+        if leaving < 0:
+            break
+        for j in range(n):
+            direction[j] = sense * edges[leaving, j]
+        for i in range(m):
+            rates[i] = _dot(rows[i], direction)
+        slope = _dot(gradient, direction) - (penalty if kind[leaving] == ROW and sense < 0 else 0)
+        step, entering_kind, entering = _ratio_test(
+            residual, rates, active, x, direction, slope, lower, upper, penalty, kinks, kinked
+        )
+        if entering_kind < 0:
+            break
+        x += step * direction
+        residual += step * rates
+        if kind[leaving] == ROW:
+            active[which[leaving]] = False
+        if entering_kind == ROW:
+            active[entering] = True
+        kind[leaving], which[leaving] = entering_kind, entering
+        pivot = sense * (rates[entering] if entering_kind == ROW else direction[entering])
+        _replace_row(
+            edges, leaving, rows[entering] if entering_kind == ROW else None, entering, pivot
+        )
+    x = np.minimum(np.maximum(x, lower), upper)
+    relaxation = np.empty(m)
     for i in range(m):
-        value[basis[i]] = tableau[i, -1]
-    relaxation = value[2 * n : 2 * n + m].copy()
-    return value[:n] - value[n : 2 * n], relaxation
+        relaxation[i] = max(0.0, -(offsets[i] + _dot(rows[i], x)))
+    return x, relaxation
 
 
 @compiled
-def _initial_tableau(
+def _replace_row(edges: ArrayF, leaving: int, normal: ArrayF | None, j: int, pivot: float) -> None:
+    """N⁻¹ (its columns as the rows of ``edges``) after N's row ``leaving`` becomes ``normal``.
+
+    ``normal`` is row j of the program, or the unit vector e_j if None; ``pivot`` is
+    normal·(column ``leaving`` of N⁻¹), not zero. A rank-one update (product form).
+    """
+    n = edges.shape[0]
+    for k in range(n):
+        edges[leaving, k] /= pivot
+    for w in range(n):
+        if w != leaving:
+            along = edges[w, j] if normal is None else _dot(normal, edges[w])
+            for k in range(n):
+                edges[w, k] -= along * edges[leaving, k]
+
+
+@compiled
+def _dot(a: ArrayF, b: ArrayF) -> float:  # pragma: no cover - compiled
+    """a·b of two short vectors (a loop: BLAS's call costs more at this size)."""
+    total = 0.0
+    for j in range(a.shape[0]):
+        total += a[j] * b[j]
+    return total
+
+
+@compiled
+def _cell_gradient(
     objective: ArrayF,
-    offsets: ArrayF,
     rows: ArrayF,
+    residual: ArrayF,
+    active: np.ndarray,
+    penalty: float,
+    gradient: ArrayF,
+) -> None:  # pragma: no cover - compiled
+    """Write the cell's gradient h of f: c plus penalty·a_i of each inactive violated row."""
+    gradient[:] = objective
+    for i in range(rows.shape[0]):
+        if residual[i] < 0.0 and not active[i]:
+            for j in range(gradient.shape[0]):
+                gradient[j] += penalty * rows[i, j]
+
+
+@compiled
+def _leaving(
+    gradient: ArrayF,
+    kind: np.ndarray,
+    which: np.ndarray,
+    edges: ArrayF,
     lower: ArrayF,
     upper: ArrayF,
     penalty: float,
-) -> tuple[ArrayF, ArrayF, ArrayF, np.ndarray]:  # pragma: no cover - compiled
-    """The tableau at x = 0, the costs, the upper bounds of the columns, and the basis.
-
-    Columns: x⁺ (n), x⁻ (n), t (m), s (m), then the basic variables' values. Row i is
-    the row of t_i (value −g_i) where g_i < 0, else the row of s_i (value g_i), signed
-    so that its basic variable has coefficient 1.
-    """
-    m, n = rows.shape
-    width = 2 * n + 2 * m
-    tableau = np.zeros((m, width + 1))
-    basis = np.empty(m, np.int64)
-    for i in range(m):
-        side = 1.0 if offsets[i] < 0 else -1.0  # t_i basic: +1; s_i basic: the row negated
-        tableau[i, :n] = side * rows[i]
-        tableau[i, n : 2 * n] = -side * rows[i]
-        tableau[i, 2 * n + i] = side
-        tableau[i, 2 * n + m + i] = -side
-        tableau[i, width] = -side * offsets[i]
-        basis[i] = 2 * n + i if offsets[i] < 0 else 2 * n + m + i
-    cost = np.zeros(width)
-    cost[:n], cost[n : 2 * n], cost[2 * n : 2 * n + m] = objective, -objective, -penalty
-    bound = np.full(width, np.inf)
-    bound[:n], bound[n : 2 * n] = upper, -lower
-    return tableau, cost, bound, basis
-
-
-@compiled
-def _simplex(
-    tableau: ArrayF, cost: ArrayF, bound: ArrayF, basis: np.ndarray, at_upper: np.ndarray
-) -> None:  # pragma: no cover - compiled
-    """Pivot to optimality in place (maximization, variables in [0, bound]).
-
-    A nonbasic variable sits at 0 or at its bound (``at_upper``). The most improving
-    column enters (Dantzig's rule); after a run of steps that do not move (degenerate
-    ones) the first improving column does (Bland's rule, which cannot cycle).
-    """
-    stalled = 0
-    for _ in range(50 * tableau.shape[1]):
-        entering, direction = _entering(tableau, cost, basis, at_upper, stalled > tableau.shape[0])
-        if entering < 0:
-            return
-        leaving, step = _ratio_test(tableau, bound, basis, entering, direction)
-        stalled = stalled + 1 if step == 0.0 else 0
-        tableau[:, -1] -= direction * step * tableau[:, entering]
-        if leaving < 0:  # the entering variable reaches its own bound first
-            at_upper[entering] = not at_upper[entering]
-            continue
-        leaving_variable = basis[leaving]
-        at_upper[leaving_variable] = direction * tableau[leaving, entering] < 0
-        value = (bound[entering] if at_upper[entering] else 0.0) + direction * step
-        at_upper[entering] = False
-        tableau[leaving, :-1] /= tableau[leaving, entering]
-        tableau[leaving, -1] = value
-        for i in range(tableau.shape[0]):
-            if i != leaving and tableau[i, entering] != 0.0:
-                factor = tableau[i, entering]
-                tableau[i, :-1] -= factor * tableau[leaving, :-1]
-        basis[leaving] = entering
-
-
-@compiled
-def _entering(
-    tableau: ArrayF, cost: ArrayF, basis: np.ndarray, at_upper: np.ndarray, bland: bool
 ) -> tuple[int, float]:  # pragma: no cover - compiled
-    """The entering column and its direction (+1 up from 0, −1 down from its bound).
+    """The active hyperplane to leave and the side (+1: along its normal), or (−1, 0).
 
-    Its reduced cost c_j − c_B·column_j must improve the objective in that direction;
-    the first (Bland) or the most (Dantzig) improving column; −1 if none.
+    The one whose edge raises f most per unit length: y = N⁻ᵀh are the multipliers of
+    the cell's gradient h, column w of N⁻¹ (row w of ``edges``) the edge that moves off
+    hyperplane w along its normal.
     """
-    entering, direction, best = -1, 0.0, PIVOT_TOLERANCE
-    is_basic = np.zeros(cost.shape[0], np.bool_)
-    is_basic[basis] = True
-    for j in range(cost.shape[0]):
-        if is_basic[j]:
-            continue
-        gain = cost[j]
-        for i in range(basis.shape[0]):
-            gain -= cost[basis[i]] * tableau[i, j]
-        sense = -1.0 if at_upper[j] else 1.0
-        if sense * gain > best:
-            entering, direction, best = j, sense, sense * gain
-            if bland:
-                break
-    return entering, direction
+    leaving, sense, best = -1, 0.0, PIVOT_TOLERANCE
+    for w in range(kind.shape[0]):
+        y = _dot(edges[w], gradient)
+        gain, side = 0.0, 0.0
+        if kind[w] == ROW:
+            gain, side = (y, 1.0) if y > 0 else (-y - penalty, -1.0)
+        elif kind[w] == LOWER:
+            gain, side = y, 1.0
+        elif kind[w] == UPPER:
+            gain, side = -y, -1.0
+        elif lower[which[w]] < upper[which[w]]:  # FREE, and not fixed at 0 by its bounds
+            gain, side = abs(y), 1.0 if y > 0 else -1.0
+        gain /= np.sqrt(_dot(edges[w], edges[w]))
+        if gain > best:
+            leaving, sense, best = w, side, gain
+    return leaving, sense
 
 
 @compiled
 def _ratio_test(
-    tableau: ArrayF, bound: ArrayF, basis: np.ndarray, entering: int, direction: float
-) -> tuple[int, float]:  # pragma: no cover - compiled
-    """The row whose basic variable stops the entering one first, and the step.
+    residual: ArrayF,
+    rates: ArrayF,
+    active: np.ndarray,
+    x: ArrayF,
+    direction: ArrayF,
+    slope: float,
+    lower: ArrayF,
+    upper: ArrayF,
+    penalty: float,
+    kinks: ArrayF,
+    kinked: np.ndarray,
+) -> tuple[float, int, int]:  # pragma: no cover - compiled
+    """How far to go along ``direction``, and the hyperplane that enters there.
 
-    −1 if the entering variable reaches its own bound first. Ties go to the smallest
-    basic index.
+    The first kink (row i's residual changing at ``rates[i]``) where the slope stops
+    being positive, or the first bound of x (kind −1 if neither: an unbounded edge).
+    ``kinks`` and ``kinked`` are work space (m,).
     """
-    leaving, step = -1, bound[entering]
-    for i in range(tableau.shape[0]):
-        rate = -direction * tableau[i, entering]  # d(basic_i) / d(step)
-        if rate < -PIVOT_TOLERANCE:
-            limit = tableau[i, -1] / -rate
-        elif rate > PIVOT_TOLERANCE and np.isfinite(bound[basis[i]]):
-            limit = (bound[basis[i]] - tableau[i, -1]) / rate
-        else:
+    step, entering_kind, entering = np.inf, -1, -1
+    for j in range(x.shape[0]):
+        if direction[j] > PIVOT_TOLERANCE and (upper[j] - x[j]) / direction[j] < step:
+            step, entering_kind, entering = max((upper[j] - x[j]) / direction[j], 0.0), UPPER, j
+        elif direction[j] < -PIVOT_TOLERANCE and (lower[j] - x[j]) / direction[j] < step:
+            step, entering_kind, entering = max((lower[j] - x[j]) / direction[j], 0.0), LOWER, j
+    count = 0
+    for i in range(residual.shape[0]):
+        rate = rates[i]
+        if active[i] or abs(rate) <= PIVOT_TOLERANCE:
             continue
-        limit = max(limit, 0.0)
-        if limit < step or (limit == step and leaving >= 0 and basis[i] < basis[leaving]):
-            leaving, step = i, limit
-    return leaving, step
+        if (residual[i] < 0.0) == (rate > 0.0):  # turns satisfied, or turns violated
+            at = max(-residual[i] / rate, 0.0)
+            if at < step:
+                kinks[count], kinked[count] = at, i
+                count += 1
+    for passed in range(count):  # the kinks in order (selection: few are passed)
+        c = passed + np.argmin(kinks[passed:count])
+        kinks[passed], kinks[c] = kinks[c], kinks[passed]
+        kinked[passed], kinked[c] = kinked[c], kinked[passed]
+        slope -= penalty * abs(rates[kinked[passed]])
+        if slope <= PIVOT_TOLERANCE:
+            return kinks[passed], ROW, kinked[passed]
+    return step, entering_kind, entering

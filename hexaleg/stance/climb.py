@@ -1,15 +1,15 @@
 """Climbs, compiled: one body coordinate pushed as far as the stance margins allow.
 
 A climb is sequential linear programming with a trust region: at the current
-displacement it linearizes the smooth stance margins (:mod:`.margin_kernel`, forward
-differences), solves the elastic linear program "push d_k, keep every linearized margin
+displacement it linearizes the smooth stance margins (:mod:`.margin_jacobian`, closed
+form), solves the elastic linear program "push d_k, keep every linearized margin
 ≥ 0, move at most Δ" (:func:`~hexaleg.numerics.lp.elastic_lp`), and accepts the step if
 the merit ±d_k − penalty·(violation) improves as the model predicted, growing or
 shrinking Δ. A step that the margins' curvature spoils is corrected back onto the
 constraints it made tight (a second-order correction). From an infeasible start the
-relaxations first restore feasibility. Each iteration costs eight pose evaluations and
-a small linear program, some 10 µs, so a search can afford dozens of climbs per
-direction: :func:`climb_all` runs them and returns where each ended.
+relaxations first restore feasibility. Each iteration costs one pass for the margins
+and their Jacobian, the trial's margins and a small linear program, so a search can
+afford dozens of climbs per direction: :func:`climb_all` runs them and returns where each ended.
 
 Climbs work in coordinates scaled to the search box (u = d / scale), where the trust
 region is a cube.
@@ -24,10 +24,9 @@ import numpy as np
 from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
 from hexaleg.numerics.lp import elastic_lp
+from hexaleg.stance.margin_jacobian import pose_margins_and_jacobian
 from hexaleg.stance.margin_kernel import KernelGeometry, column_count, pose_margins
 
-STEP = 1e-7
-"""Forward-difference step of the margins' Jacobian [m or rad]."""
 PENALTY = 100.0
 """Price of a unit of constraint violation (normalized margins, scaled units) in the merit."""
 FIRST_RADIUS = 0.2
@@ -127,15 +126,10 @@ def linearize(
 ) -> tuple[ArrayF, ArrayF]:  # pragma: no cover - compiled
     """Smooth margins at u (C,) and their Jacobian in scaled units (C, 6)."""
     columns = column_count(geometry)
-    values, shifted, rotation = np.empty(columns), np.empty(columns), np.empty((3, 3))
-    jacobian = np.empty((columns, 6))
-    d = u * scale
-    pose_margins(geometry, 0, d, rotation, values)
+    values, jacobian = np.empty(columns), np.empty((columns, 6))
+    pose_margins_and_jacobian(geometry, 0, u * scale, values, jacobian)
     for j in range(6):
-        d[j] += STEP
-        pose_margins(geometry, 0, d, rotation, shifted)
-        d[j] -= STEP
-        jacobian[:, j] = (shifted - values) / STEP * scale[j]
+        jacobian[:, j] *= scale[j]
     return values, jacobian
 
 
@@ -150,10 +144,12 @@ def trial_margins(geometry: KernelGeometry, u: ArrayF, scale: ArrayF) -> ArrayF:
 @compiled
 def row_norms(jacobian: ArrayF) -> ArrayF:  # pragma: no cover - compiled
     """Each margin's gradient length (1 where it is flat): margins / norms are distances."""
-    norms: ArrayF = np.sqrt((jacobian**2).sum(axis=1))
-    for i in range(norms.shape[0]):
-        if norms[i] < 1e-300:
-            norms[i] = 1.0
+    norms = np.empty(jacobian.shape[0])
+    for i in range(jacobian.shape[0]):
+        total = 0.0
+        for j in range(jacobian.shape[1]):
+            total += jacobian[i, j] ** 2
+        norms[i] = math.sqrt(total) if total > 0.0 else 1.0
     return norms
 
 
@@ -179,17 +175,46 @@ def linear_step(
     high: ArrayF,
 ) -> tuple[ArrayF, float, np.ndarray]:  # pragma: no cover - compiled
     """The linear program's step, its total relaxation, and the rows it made tight."""
-    rows = np.flatnonzero(values / norms <= REACHABLE_ROWS * radius)
-    offsets = values[rows] / norms[rows]
-    gradients = jacobian[rows] / norms[rows].reshape(-1, 1)
-    lower = np.maximum(-radius, low - u)
-    upper = np.minimum(radius, high - u)
-    objective = np.zeros(6)
+    rows, offsets, gradients = near_rows(values, jacobian, norms, REACHABLE_ROWS * radius)
+    lower, upper, objective = np.empty(6), np.empty(6), np.zeros(6)
+    for j in range(6):
+        lower[j] = max(-radius, low[j] - u[j])
+        upper[j] = min(radius, high[j] - u[j])
     objective[k] = sign
     step, relaxation = elastic_lp(objective, offsets, gradients, lower, upper, PENALTY)
-    residual = offsets + gradients @ step + relaxation
-    tight = rows[(np.abs(residual) < 1e-9) & (relaxation == 0.0)]
-    return step, relaxation.sum(), tight
+    tight = np.empty(rows.shape[0], np.int64)
+    count = 0
+    for i in range(rows.shape[0]):
+        residual = offsets[i] + relaxation[i]
+        for j in range(6):
+            residual += gradients[i, j] * step[j]
+        if abs(residual) < 1e-9 and relaxation[i] == 0.0:
+            tight[count] = rows[i]
+            count += 1
+    return step, relaxation.sum(), tight[:count]
+
+
+@compiled
+def near_rows(
+    values: ArrayF, jacobian: ArrayF, norms: ArrayF, reach: float
+) -> tuple[np.ndarray, ArrayF, ArrayF]:  # pragma: no cover - compiled
+    """The margins within ``reach`` of zero (as distances): their indices, values, gradients.
+
+    Each normalized by its gradient's length.
+    """
+    count = 0
+    for i in range(values.shape[0]):
+        count += values[i] / norms[i] <= reach
+    rows, offsets = np.empty(count, np.int64), np.empty(count)
+    gradients = np.empty((count, jacobian.shape[1]))
+    r = 0
+    for i in range(values.shape[0]):
+        if values[i] / norms[i] <= reach:
+            rows[r], offsets[r] = i, values[i] / norms[i]
+            for j in range(jacobian.shape[1]):
+                gradients[r, j] = jacobian[i, j] / norms[i]
+            r += 1
+    return rows, offsets, gradients
 
 
 @compiled
@@ -207,8 +232,15 @@ def correction(
     The least-norm shift that zeroes their linearized margins (``values`` at ``trial``,
     the Jacobian of the current point).
     """
-    gradients = np.ascontiguousarray(jacobian[tight] / norms[tight].reshape(-1, 1))
-    gram = gradients @ gradients.T + 1e-12 * np.eye(tight.shape[0])  # the least-norm shift
+    count = tight.shape[0]
+    gradients = np.empty((count, 6))
+    for i in range(count):
+        for j in range(6):
+            gradients[i, j] = jacobian[tight[i], j] / norms[tight[i]]
+    gram = np.empty((count, count))  # the least-norm shift: Gᵀ(GGᵀ)⁻¹(−g)
+    for a in range(count):
+        for b in range(count):
+            gram[a, b] = (gradients[a] * gradients[b]).sum() + (1e-12 if a == b else 0.0)
     shift = gradients.T @ np.linalg.solve(gram, -values[tight] / norms[tight])
     corrected: ArrayF = trial + shift
     if np.any(corrected < low) or np.any(corrected > high) or not math.isfinite(shift.sum()):

@@ -40,6 +40,9 @@ CONTACT_DISTANCE = 1e-5
 """Two parts touch when closer than this [m] (10 µm): coal resolves distances near
 contact only to a few 1e-7 m and reports intersecting cylinders at distance 0, so a
 pose reported collision-free is so with this margin to spare."""
+GJK_TOLERANCE = 1e-9
+"""coal's GJK stops within this [m] (its default, 1e-6, leaves a distance depending on the
+queries before it by up to 2e-6 m: SLSQP's differences of step 1e-5 then follow noise)."""
 
 
 class SelfCollision:
@@ -69,6 +72,8 @@ class SelfCollision:
         self.geometry_data = pin.GeometryData(self.geometry_model)
         for request in self.geometry_data.collisionRequests:  # "touching" for coal's yes/no
             request.security_margin = CONTACT_DISTANCE
+        for distance_request in self.geometry_data.distanceRequests:
+            distance_request.gjk_tolerance = GJK_TOLERANCE
         names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
         self.pairs: tuple[tuple[str, str], ...] = tuple(
             (names[p.first], names[p.second]) for p in self.geometry_model.collisionPairs

@@ -77,10 +77,8 @@ BASIN_TOLERANCE = 1e-4
 a climb stops some 1e-5 short of an optimum where it has to creep along the boundary."""
 COLLISION_BASINS = 8
 """With self-collision, the best basins polished with the clearance."""
-
-
 POLISH_TRIES = 3
-"""Members of a basin polished, most feasible first, until one gives an answer."""
+"""Members of a basin polished (:meth:`Basin.tries`) until one gives an answer."""
 
 
 @dataclass(frozen=True)
@@ -91,25 +89,28 @@ class Basin:
         value: The best value among them [m or rad].
         points: Where they ended, the deepest inside the constraints first.
         margins: The smallest exact margin at each point.
+        values: The value each reached [m or rad].
 
     """
 
     value: float
     points: tuple[ArrayF, ...]
     margins: tuple[float, ...]
+    values: tuple[float, ...]
 
     @property
     def climbs(self) -> int:
         """How many climbs ended here."""
         return len(self.points)
 
-    def with_member(self, point: ArrayF, margin: float) -> Basin:
-        """The basin with one more climb, kept in order of depth."""
-        members = sorted(
-            [*zip(self.margins, self.points, strict=True), (margin, point)],
-            key=lambda member: -member[0],
-        )
-        return Basin(self.value, tuple(p for _, p in members), tuple(m for m, _ in members))
+    def tries(self) -> tuple[ArrayF, ...]:
+        """The members to polish, in turn: the deepest, then the best-valued.
+
+        Climbs that end on a plane of symmetry (the deepest, often) can stop at a
+        saddle a hair below the optimum just off the plane, which others reach.
+        """
+        rest = sorted(range(1, self.climbs), key=lambda i: -self.values[i])
+        return tuple(self.points[i] for i in [0, *rest][:POLISH_TRIES])
 
 
 def free_flexibility(
@@ -181,12 +182,16 @@ def _seed(k: int, sign: int) -> int:
 
 def _grouped(members: Sequence[tuple[float, ArrayF, float]]) -> list[Basin]:
     """Climb ends (value, point, smallest exact margin) grouped into basins, best first."""
-    basins: list[Basin] = []
-    for value, point, margin in sorted(members, key=lambda member: -member[0]):
-        if basins and basins[-1].value - value <= BASIN_TOLERANCE * max(1.0, abs(value)):
-            basins[-1] = basins[-1].with_member(point, margin)
+    groups: list[list[tuple[float, ArrayF, float]]] = []
+    for member in sorted(members, key=lambda member: -member[0]):
+        if groups and groups[-1][0][0] - member[0] <= BASIN_TOLERANCE * max(1.0, abs(member[0])):
+            groups[-1].append(member)
         else:
-            basins.append(Basin(value, (point,), (margin,)))
+            groups.append([member])
+    basins = []
+    for group in groups:  # the deepest first
+        values, points, margins = zip(*sorted(group, key=lambda m: -m[2]), strict=True)
+        basins.append(Basin(max(values), points, margins, values))
     return basins
 
 
@@ -251,12 +256,12 @@ class _Search:
         """
         k, sign = AXES.index(locked.axis), locked.sign
         if self.problem.collision is None:
-            starts = [basin.points[:POLISH_TRIES] for basin in basins]
+            starts = [basin.tries() for basin in basins]
         else:
             starts = [(axis_locked_start(locked),)]
             for basin in basins[:COLLISION_BASINS]:
                 clear = self.problem.clear_on_the_way_back(basin.points[0], self.box)
-                tries = basin.points[:POLISH_TRIES]
+                tries = basin.tries()
                 starts.append(tries if clear is None else (clear, *tries))
         answer, evidence = self.best_reachable(k, sign, locked, starts, basins, climbs)
         if answer is None:
@@ -295,7 +300,7 @@ class _Search:
         ]
         for basin in basins:
             members += [
-                (basin.value, p, m) for p, m in zip(basin.points, basin.margins, strict=True)
+                (v, p, m) for v, p, m in zip(basin.values, basin.points, basin.margins, strict=True)
             ]
         return _grouped(members), climbs + len(starts)
 
@@ -314,8 +319,7 @@ class _Search:
         answer) while it could still beat the best reachable answer so far: a climb's
         value is a lower bound on its polished one.
         """
-        floor = sign * locked.value
-        problem = self.problem.coordinate_problem(k, sign)
+        floor, problem = sign * locked.value, self.problem.coordinate_problem(k, sign)
         best: MultiStartResult | None = None
         unreachable: float | None = None
         answers: list[float] = []
@@ -323,7 +327,7 @@ class _Search:
             bound = basins[i].value if self.problem.collision is None else np.inf
             if best is not None and bound <= best.value + BASIN_TOLERANCE:
                 break
-            result = self.polished(problem, start, -np.inf if np.isinf(bound) else bound)
+            result = self.polished(problem, start, bound)
             if result is None:
                 continue
             answers.append(result.value)
@@ -343,6 +347,7 @@ class _Search:
 
         A basin's climbs reached ``value``: a polish that ends lower went astray, and
         one where SLSQP does not report convergence is tried again from the next point.
+        With self-collision (``value`` inf) every point is: coal's distances jolt SLSQP.
         """
         best: MultiStartResult | None = None
         for point in points:
