@@ -77,6 +77,7 @@ def sdformat_checker(tmp_path_factory):
     return binary
 
 
+@pytest.mark.slow  # compiles and runs a C++ SDFormat checker
 @pytest.mark.parametrize("design", DESIGNS, ids=["default", "custom"])
 def test_gazebo_sdformat_keeps_all_eighteen_joints(tmp_path, sdformat_checker, design):
     urdf = write_urdf(design, tmp_path / "robot.urdf")

@@ -247,6 +247,7 @@ def test_leg_links_are_coloured_by_torque_over_rating(hexapod_model, default_des
         assert hip != knee  # the nominal hip works, the vertical tibia's knee hardly
 
 
+@pytest.mark.slow  # a browser screenshot of the legend
 def test_the_torque_legend_is_html_beside_the_scene(tmp_path, empty_scene, hexapod_model):
     from hexaleg.output.viewer.legend import STATICS_LEGEND, torque_legend_html
     from hexaleg.output.viewer.scene import write_static_html
@@ -270,6 +271,7 @@ def test_the_torque_legend_is_html_beside_the_scene(tmp_path, empty_scene, hexap
     assert _drawn_share(image[:, 220:], empty_scene[:, :-220]) > 0.05
 
 
+@pytest.mark.slow  # a browser draws a second robot (the default suite keeps one drawing)
 def test_hexagonal_robot_is_drawn_with_a_round_body(tmp_path, empty_scene):
     from hexaleg.cli import main
 

@@ -84,6 +84,7 @@ def test_boundary_polygon_is_consistent_with_the_area(default_design):
     assert np.linalg.norm(ws.boundary - corner, axis=1).min() < 1e-12  # a domain corner
 
 
+@pytest.mark.slow  # a sweep of improved workspaces
 def test_area_is_largest_at_equal_femur_and_tibia():
     for l1_ratio in (0.05, 0.1, 0.15, 0.2):
         l3_ratios = np.linspace(0.1, 0.85 - l1_ratio, 301)
