@@ -150,10 +150,7 @@ class GaitAnalysis:
         return {
             "design": self.design.as_dict(),
             "gait": self.gait.to_dict(),
-            "payload": {
-                "mass": self.payload.mass,
-                "position": self.payload.position_on(self.design),
-            },
+            "payload": self.payload.to_dict(self.design),
             "distribution": self.distribution,
             "mass": self.mass,
             **self.metrics.to_dict(),

@@ -64,10 +64,7 @@ class SimulationResult:
         return {
             "design": self.design.as_dict(),
             "gait": self.gait.to_dict(),
-            "payload": {
-                "mass": self.payload.mass,
-                "position": self.payload.position_on(self.design),
-            },
+            "payload": self.payload.to_dict(self.design),
             "cycles": self.cycles,
             "planned_distance": metrics.planned_distance,
             "distance": metrics.distance,

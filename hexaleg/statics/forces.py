@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -81,6 +82,10 @@ class Payload:
         if self.position is not None:
             return list(self.position)
         return [0.0, 0.0, design.body_height / 2]
+
+    def to_dict(self, design: HexapodDesign) -> dict[str, Any]:
+        """JSON-ready: the mass [kg] and where it sits on ``design``'s body [m]."""
+        return {"mass": self.mass, "position": self.position_on(design)}
 
     def with_mass(self, mass: float) -> Payload:
         """The same point with another mass [kg]."""

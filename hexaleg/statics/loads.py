@@ -122,10 +122,7 @@ class LoadsAnalysis:
         legs = self.nominal.legs
         return {
             "design": self.design.as_dict(),
-            "payload": {
-                "mass": self.payload.mass,
-                "position": self.payload.position_on(self.design),
-            },
+            "payload": self.payload.to_dict(self.design),
             "friction": self.friction,
             "distribution": self.distribution,
             "stance": list(legs),
