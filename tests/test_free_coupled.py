@@ -68,19 +68,14 @@ ISSUE_ROWS = [
     ),
 ]
 """Issue 22's rows without self-collision: hexaleg reported less, and "converged"."""
-NOT_REACHED = pytest.mark.xfail(
-    strict=True,
-    reason="not done: with self-collision the local solves (SLSQP on coal's pair distances) "
-    "miss this optimum; the search says so (the next test)",
-)
 COLLISION_ROWS = [
     ({"body_length": 0.12, "body_width": 0.45}, "roll+", 0.329050),
     ({"body_length": 0.12, "body_width": 0.45}, "roll-", 0.329050),
     ({"body_length": 0.1, "body_width": 0.4}, "pitch+", 0.486713),
     ({"body_length": 0.1, "body_width": 0.4}, "pitch-", 0.486713),
-    pytest.param({"body_length": 0.1, "body_width": 0.4}, "x+", 0.370127, marks=NOT_REACHED),
+    ({"body_length": 0.1, "body_width": 0.4}, "x+", 0.370127),
     ({"body_length": 0.1, "body_width": 0.4}, "roll+", 0.317882),
-    pytest.param({"body_length": 0.1, "body_width": 0.4}, "yaw+", 0.416732, marks=NOT_REACHED),
+    ({"body_length": 0.1, "body_width": 0.4}, "yaw+", 0.416732),
 ]
 """Issue 22's rows with self-collision on short bodies (default legs)."""
 
@@ -107,7 +102,7 @@ def test_the_issue_collision_rows_reach_the_better_pose(fields, name, better, co
 @pytest.mark.slow
 @pytest.mark.parametrize(
     ("fields", "name", "better"),
-    [row.values if hasattr(row, "values") else row for row in COLLISION_ROWS],
+    COLLISION_ROWS,
     ids=str,
 )
 def test_a_collision_extreme_short_of_a_known_pose_is_not_reported_converged(

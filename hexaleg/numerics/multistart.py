@@ -38,6 +38,9 @@ class CoordinateProblem:
         accept: The exact check an answer must pass to count.
         bounds: Bounds on x, if any.
         max_iterations: SLSQP iterations per start.
+        repair: A feasible point near an answer the exact check rejects, or None:
+            the answer then counts, flagged not converged (a run that stalled a hair
+            outside noisy constraints, say); without it such answers are dropped.
 
     """
 
@@ -48,6 +51,7 @@ class CoordinateProblem:
     accept: Callable[[ArrayF], bool]
     bounds: Sequence[tuple[float | None, float | None]] | None = None
     max_iterations: int = 60
+    repair: Callable[[ArrayF], ArrayF | None] | None = None
 
 
 @dataclass(frozen=True)
@@ -125,7 +129,7 @@ def maximize_coordinate(
     for run, start in enumerate(starts, start=1):
         point = np.asarray(start.point, dtype=float)
         origin = first_run_from.setdefault(point.tobytes(), run)
-        x, nit, success = _run_slsqp(problem, point, start.scale)
+        x, nit, success = _repaired(problem, *_run_slsqp(problem, point, start.scale))
         iterations += nit
         if problem.accept(x):
             answers.append(
@@ -144,6 +148,16 @@ def maximize_coordinate(
     # A start point run twice (scaled and not) agrees with itself: count points, not runs.
     agreed = len({a.origin for a in agreeing}) >= 2
     return MultiStartResult(winner.x, winner.value, winner.success, agreed, values, iterations)
+
+
+def _repaired(
+    problem: CoordinateProblem, x: ArrayF, nit: int, success: bool
+) -> tuple[ArrayF, int, bool]:
+    """A run's answer, or its repair (not converged) where the exact check rejects it."""
+    if problem.repair is None or problem.accept(x):
+        return x, nit, success
+    repaired = problem.repair(x)
+    return (x, nit, success) if repaired is None else (repaired, nit, False)
 
 
 def _tolerance(best: float) -> float:

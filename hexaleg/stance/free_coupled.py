@@ -23,8 +23,10 @@ The best reachable answer wins; it is never short of the axis-locked extreme, wh
 reachable along its axis. Each extreme carries its :class:`~.extremes.SearchEvidence`
 (climbs, basins, climbs agreeing, reachability), and only that evidence makes it
 "converged". With self-collision the climbs see the stance margins only; the polish,
-with the clearance as one more margin, runs from the best basins and the axis-locked
-extreme. A robot that is its own mirror image solves one of each mirrored pair of
+with the clearance as one more margin, runs from the best basins, the axis-locked
+extreme and clear draws over the search box pushed along the direction
+(:mod:`.collision_starts`); an answer SLSQP did not converge on is polished once more
+from where it stopped. A robot that is its own mirror image solves one of each mirrored pair of
 directions and takes the other from the mirror (:mod:`.symmetry`), re-checked.
 """
 
@@ -32,7 +34,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 
@@ -48,7 +50,9 @@ from hexaleg.numerics.multistart import (
 )
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_extremes
+from hexaleg.stance.basins import BASIN_TOLERANCE, Basin, grouped
 from hexaleg.stance.climb import climb_all
+from hexaleg.stance.collision_starts import spread_starts
 from hexaleg.stance.collisions import SelfCollision, collision_limited
 from hexaleg.stance.constraints import AXES
 from hexaleg.stance.extremes import (
@@ -72,45 +76,8 @@ SPREAD = 2.0
 stance, infeasible at first, end in more different basins."""
 CLIMB_TOLERANCE = 1e-6
 """A climb that ends with an exact margin below −this [m or rad] found no optimum."""
-BASIN_TOLERANCE = 1e-4
-"""Climbs ending within this (relative, at least 1 unit) of each other share a basin:
-a climb stops some 1e-5 short of an optimum where it has to creep along the boundary."""
 COLLISION_BASINS = 8
 """With self-collision, the best basins polished with the clearance."""
-POLISH_TRIES = 3
-"""Members of a basin polished (:meth:`Basin.tries`) until one gives an answer."""
-
-
-@dataclass(frozen=True)
-class Basin:
-    """Climbs that ended at one value.
-
-    Attributes:
-        value: The best value among them [m or rad].
-        points: Where they ended, the deepest inside the constraints first.
-        margins: The smallest exact margin at each point.
-        values: The value each reached [m or rad].
-
-    """
-
-    value: float
-    points: tuple[ArrayF, ...]
-    margins: tuple[float, ...]
-    values: tuple[float, ...]
-
-    @property
-    def climbs(self) -> int:
-        """How many climbs ended here."""
-        return len(self.points)
-
-    def tries(self) -> tuple[ArrayF, ...]:
-        """The members to polish, in turn: the deepest, then the best-valued.
-
-        Climbs that end on a plane of symmetry (the deepest, often) can stop at a
-        saddle a hair below the optimum just off the plane, which others reach.
-        """
-        rest = sorted(range(1, self.climbs), key=lambda i: -self.values[i])
-        return tuple(self.points[i] for i in [0, *rest][:POLISH_TRIES])
 
 
 def free_flexibility(
@@ -180,21 +147,6 @@ def _seed(k: int, sign: int) -> int:
     return 2 * k + (sign > 0)
 
 
-def _grouped(members: Sequence[tuple[float, ArrayF, float]]) -> list[Basin]:
-    """Climb ends (value, point, smallest exact margin) grouped into basins, best first."""
-    groups: list[list[tuple[float, ArrayF, float]]] = []
-    for member in sorted(members, key=lambda member: -member[0]):
-        if groups and groups[-1][0][0] - member[0] <= BASIN_TOLERANCE * max(1.0, abs(member[0])):
-            groups[-1].append(member)
-        else:
-            groups.append([member])
-    basins = []
-    for group in groups:  # the deepest first
-        values, points, margins = zip(*sorted(group, key=lambda m: -m[2]), strict=True)
-        basins.append(Basin(max(values), points, margins, values))
-    return basins
-
-
 class _Search:
     """The twelve free extremes of one stance (see the module's description)."""
 
@@ -240,9 +192,14 @@ class _Search:
         The mirrored pose must pass the exact check and reach the axis-locked extreme;
         its binding constraints are found there.
         """
-        d = flip * np.asarray(source.pose)
+        image = flip * np.asarray(source.pose)
+        d: ArrayF | None = image
         k = AXES.index(locked.axis)
-        if not self.problem.feasible(d) or locked.sign * d[k] < locked.sign * locked.value:
+        if self.problem.collision is not None:  # coal tells mirror images apart by 1e-7 m
+            d = self.problem.feasible_nearby(image)
+        if d is None or not self.problem.feasible(d):
+            return None
+        if locked.sign * d[k] < locked.sign * locked.value:
             return None
         extreme = pose_extreme(
             self.problem.geometry, locked.axis, locked.sign, d, self.problem.binding(d)
@@ -258,11 +215,7 @@ class _Search:
         if self.problem.collision is None:
             starts = [basin.tries() for basin in basins]
         else:
-            starts = [(axis_locked_start(locked),)]
-            for basin in basins[:COLLISION_BASINS]:
-                clear = self.problem.clear_on_the_way_back(basin.points[0], self.box)
-                tries = basin.tries()
-                starts.append(tries if clear is None else (clear, *tries))
+            starts = self.collision_starts(locked, basins)
         answer, evidence = self.best_reachable(k, sign, locked, starts, basins, climbs)
         if answer is None:
             return replace(locked, evidence=evidence)
@@ -271,6 +224,23 @@ class _Search:
             self.problem.geometry, locked.axis, sign, pose, self.problem.binding(pose)
         )
         return replace(extreme, evidence=evidence)
+
+    def collision_starts(self, locked: Extreme, basins: list[Basin]) -> list[tuple[ArrayF, ...]]:
+        """With self-collision, the polish's starts: each entry's points are tried in turn.
+
+        The axis-locked extreme; the best basins, each from its first pose clear of
+        collision on the way back; and, where the best basin's parts touch (else it
+        bounds the answer), clear draws pushed along the direction (:mod:`.collision_starts`).
+        """
+        k, sign = AXES.index(locked.axis), locked.sign
+        starts: list[tuple[ArrayF, ...]] = [(axis_locked_start(locked),)]
+        for basin in basins[:COLLISION_BASINS]:
+            clear = self.problem.clear_on_the_way_back(basin.points[0], self.box)
+            starts.append(basin.tries() if clear is None else (clear, *basin.tries()))
+        if not basins or self.problem.touching(basins[0].points[0]):
+            spread = spread_starts(self.problem, k, sign, self.box, _seed(k, sign))
+            starts += [(start,) for start in spread]
+        return starts
 
     def basins(self, locked: Extreme) -> tuple[list[Basin], int]:
         """Basins of the first climbs, best first, and how many climbs ran.
@@ -302,7 +272,7 @@ class _Search:
             members += [
                 (v, p, m) for v, p, m in zip(basin.values, basin.points, basin.margins, strict=True)
             ]
-        return _grouped(members), climbs + len(starts)
+        return grouped(members), climbs + len(starts)
 
     def best_reachable(
         self,
@@ -337,6 +307,11 @@ class _Search:
                 best = result
             elif unreachable is None or result.value > unreachable:
                 unreachable = result.value
+        if best is not None and not best.success and self.problem.collision is not None:
+            again = self.polished(problem, [best.x], np.inf)  # a fresh quasi-Newton model
+            if again is not None and again.value > best.value:
+                answers.append(again.value)
+                best = again if self.problem.reachable(again.x, self.box) else best
         evidence = self.evidence(best, floor, unreachable, basins, climbs, answers)
         return (None if best is None else best.x), evidence
 

@@ -62,10 +62,15 @@ class FreeProblem:
         self._steps = np.zeros(0)  # each margin's finite-difference step
 
     def coordinate_problem(self, k: int, sign: int) -> CoordinateProblem:
-        """The program of direction (k, sign), for SLSQP (:mod:`~hexaleg.numerics.multistart`)."""
+        """The program of direction (k, sign), for SLSQP (:mod:`~hexaleg.numerics.multistart`).
+
+        With self-collision an answer a hair inside two parts (coal's distances jolt
+        SLSQP, which can stall there) is pulled back until clear (:meth:`feasible_nearby`).
+        """
         bounds = [(None, None)] * 3 + list(ROTATION_BOUNDS)
+        repair = None if self.collision is None else self.feasible_nearby
         return CoordinateProblem(
-            k, sign, self.margins, self.jacobian, self.feasible, bounds, MAX_ITERATIONS
+            k, sign, self.margins, self.jacobian, self.feasible, bounds, MAX_ITERATIONS, repair
         )
 
     def margins(self, d: ArrayF) -> ArrayF:
@@ -117,6 +122,24 @@ class FreeProblem:
     def feasible(self, d: ArrayF) -> bool:
         """The exact check every answer must pass."""
         return bool(self.exact(d).min() >= -FEASIBILITY_TOLERANCE)
+
+    def clear(self, displacements: ArrayF) -> ArrayF:
+        """Whether each of displacements (P, 6) meets every exact margin (P,) [bool].
+
+        Self-collision by coal's yes/no check, asked only where the stance margins hold.
+        """
+        ok: ArrayF = self.exact_margins(displacements).min(axis=-1) >= 0
+        if self.collision is not None and ok.any():
+            poses = displacement_poses(self.geometry, displacements[ok])
+            ok[ok] = self.collision.scan_clearances(*poses) >= 0
+        return ok
+
+    def touching(self, d: ArrayF) -> bool:
+        """Whether two of the robot's own parts touch at d (6,) (False without self-collision)."""
+        if self.collision is None:
+            return False
+        poses = displacement_poses(self.geometry, np.asarray(d, dtype=float)[None])
+        return bool(self.collision.scan_clearances(*poses)[0] < 0)
 
     def feasible_nearby(self, d: ArrayF) -> ArrayF | None:
         """d, or d pulled toward nominal by a hair (at most 0.1 %), if that passes the check.
