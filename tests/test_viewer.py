@@ -149,6 +149,7 @@ def _served(*options: str) -> Iterator[tuple[subprocess.Popen[str], str]]:
             process.wait(timeout=30)
 
 
+@pytest.mark.slow  # starts the server, computes the extremes, drives a browser
 def test_view_serves_the_robot_in_a_browser_and_stops_on_ctrl_c(tmp_path, empty_scene):
     with _served() as (process, url):
         ips = _listening(process.pid)
