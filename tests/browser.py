@@ -10,6 +10,7 @@ Every wait is bounded, and the browser is stopped by its own pid.
 from __future__ import annotations
 
 import asyncio
+import contextlib
 import json
 import os
 import shutil
@@ -18,6 +19,7 @@ import subprocess
 import tempfile
 import time
 import urllib.request
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -54,48 +56,59 @@ def screenshot(url: str, path: Path) -> np.ndarray:
     """The page at ``url`` as RGB pixels (800 × 600), after 10 s of its virtual time."""
     from PIL import Image
 
-    with tempfile.TemporaryDirectory() as profile:
-        subprocess.run(
-            [
-                require_chromium(),
-                *FLAGS,
-                f"--user-data-dir={profile}",
-                "--virtual-time-budget=10000",
-                f"--screenshot={path}",
-                url,
-            ],
-            capture_output=True,
-            timeout=TIMEOUT,
-            check=True,
-        )
+    with _chromium("--virtual-time-budget=10000", f"--screenshot={path}", url) as (browser, _):
+        try:
+            status = browser.wait(timeout=TIMEOUT)
+        except subprocess.TimeoutExpired:
+            pytest.fail(f"chromium drew no screenshot within {TIMEOUT} s")
+        assert status == 0, f"chromium exited with status {status}"
     return np.asarray(Image.open(path).convert("RGB"), dtype=int)
 
 
 def evaluate(url: str, expression: str) -> Any:
     """The JSON value of ``expression`` (a promise is awaited) in the page at ``url``."""
-    with tempfile.TemporaryDirectory() as profile:
+    debugging = ("--remote-debugging-address=127.0.0.1", "--remote-debugging-port=0", url)
+    with _chromium(*debugging) as (_, profile):
+        socket_url = _page_socket(profile / "DevToolsActivePort", url)
+        return asyncio.run(asyncio.wait_for(_evaluate(socket_url, expression), TIMEOUT))
+
+
+@contextlib.contextmanager
+def _chromium(*arguments: str) -> Iterator[tuple[subprocess.Popen[bytes], Path]]:
+    """Chromium on a fresh profile, in its own process group, stopped (group and all) on exit.
+
+    Chromium's helpers (renderer, GPU, crash handler) outlive the browser's own pid by a
+    moment and keep writing into the profile: the whole group is stopped, and waited for,
+    before the profile is removed.
+    """
+    with tempfile.TemporaryDirectory() as folder:
+        profile = Path(folder)
         browser = subprocess.Popen(
-            [
-                require_chromium(),
-                *FLAGS,
-                f"--user-data-dir={profile}",
-                "--remote-debugging-address=127.0.0.1",
-                "--remote-debugging-port=0",
-                url,
-            ],
+            [require_chromium(), *FLAGS, f"--user-data-dir={profile}", *arguments],
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
+            start_new_session=True,
         )
         try:
-            socket_url = _page_socket(Path(profile) / "DevToolsActivePort", url)
-            return asyncio.run(asyncio.wait_for(_evaluate(socket_url, expression), TIMEOUT))
+            yield browser, profile
         finally:
-            browser.send_signal(signal.SIGTERM)
+            _stop_group(browser)
+
+
+def _stop_group(browser: subprocess.Popen[bytes]) -> None:
+    """SIGTERM the browser's process group, SIGKILL what is left after 30 s; reap it all."""
+    for sig in (signal.SIGTERM, signal.SIGKILL):
+        with contextlib.suppress(ProcessLookupError):
+            os.killpg(browser.pid, sig)
+        with contextlib.suppress(subprocess.TimeoutExpired):
+            browser.wait(timeout=30)
+        deadline = time.monotonic() + 30
+        while time.monotonic() < deadline:
             try:
-                browser.wait(timeout=30)
-            except subprocess.TimeoutExpired:
-                browser.kill()
-                browser.wait(timeout=30)
+                os.killpg(browser.pid, 0)  # anyone left in the group?
+            except ProcessLookupError:
+                return
+            time.sleep(0.1)
 
 
 def _page_socket(active_port: Path, url: str) -> str:
