@@ -131,3 +131,24 @@ def test_scaled_starts_answer_in_the_callers_coordinates():
     assert twice.value == pytest.approx(100.0, rel=1e-7) and not twice.agreed
     with pytest.raises(ValueError, match="scale must be positive"):
         _maximize(0, 1, ellipse, ellipse_jacobian, starts[:1], inside, scales=[[0.0, 1.0]])
+
+
+def test_a_rejected_answer_counts_through_its_repair_flagged_not_converged():
+    # The exact check is stricter than SLSQP's tolerance: only points 1e-3 inside the big
+    # disk pass. Without a repair the boundary answer (x = 1) is dropped; the repair pulls
+    # it back along the radius, and the answer counts, its success false.
+    def strict(x):
+        return bool(1.0 - np.hypot(*x) >= 1e-3 - 1e-12)
+
+    def pulled_in(x):
+        return x * (1.0 - 1e-3) / np.hypot(*x)
+
+    start = [Start(np.array([0.1, 0.0]))]
+    plain = CoordinateProblem(0, 1, _constraints, _jacobian, strict)
+    assert maximize_coordinate(plain, start) is None
+    repaired = CoordinateProblem(0, 1, _constraints, _jacobian, strict, repair=pulled_in)
+    result = maximize_coordinate(repaired, start)
+    assert result is not None and not result.success
+    assert result.value == pytest.approx(1.0 - 1e-3, abs=1e-7) and strict(result.x)
+    hopeless = CoordinateProblem(0, 1, _constraints, _jacobian, strict, repair=lambda x: None)
+    assert maximize_coordinate(hopeless, start) is None
