@@ -172,6 +172,7 @@ def _run(argv: list[str]) -> tuple[int, str]:
     return status, err.getvalue()
 
 
+@pytest.mark.slow  # hypothesis drives every command many times
 @pytest.mark.parametrize("command", COMMAND_LINES)
 def test_arbitrary_input_is_refused_cleanly_or_accepted(command, quick_backends):
     @settings(

@@ -29,8 +29,13 @@ EXPECTED = {
     ],
 }
 
-SLOW = {"03_body_flexibility.py", "04_design_study.py", "05_dask_study.py"}
-"""Examples that take more than a few seconds (a study, a cluster, the free mode)."""
+SLOW = {
+    "03_body_flexibility.py",
+    "04_design_study.py",
+    "05_dask_study.py",
+    "06_hexagonal_robot.py",
+}
+"""Examples that take more than a few seconds (a study, a cluster, the free mode, a body sweep)."""
 
 
 @pytest.mark.skipif(not EXAMPLES.is_dir(), reason="examples/ not shipped in this install")

@@ -66,6 +66,7 @@ def report(tmp_path_factory):
     return out, data
 
 
+@pytest.mark.slow  # the reduced report, computed once for these three
 def test_report_has_every_section_and_file(report):
     out, _ = report
     text = (out / "report.md").read_text()
@@ -80,6 +81,7 @@ def test_report_has_every_section_and_file(report):
     assert "**misprinted**" in text  # Table 6 row 1, flagged rather than matched
 
 
+@pytest.mark.slow  # the reduced report, computed once for these three
 def test_report_numbers_equal_the_cli_json(report, capsys):
     _, data = report
     assert main(["workspace", "--json"]) == 0
@@ -92,6 +94,7 @@ def test_report_numbers_equal_the_cli_json(report, capsys):
     assert json.loads(capsys.readouterr().out) == data["flexibility"]["free"]
 
 
+@pytest.mark.slow  # the reduced report, computed once for these three
 def test_report_json_equals_what_was_returned(report):
     out, data = report
     assert json.loads((out / "report.json").read_text())["recommendation"] == json.loads(
