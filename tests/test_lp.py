@@ -29,13 +29,7 @@ def test_random_programs_reach_highs_optimum(seed):
         offsets = rng.normal(size=m) * rng.choice([0.01, 0.5, 3.0])
         lower, upper = -rng.uniform(0.0, 1, n), rng.uniform(0.0, 1, n)
         objective = rng.normal(size=n)
-        x, t = elastic_lp(objective, offsets, rows, lower, upper, 100.0)
-        assert np.all(x >= lower - 1e-12) and np.all(x <= upper + 1e-12) and np.all(t >= 0)
-        assert np.all(offsets + rows @ x + t >= -1e-10)
-        value = objective @ x - 100.0 * t.sum()
-        assert value == pytest.approx(
-            _highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9
-        )
+        _assert_optimal(objective, offsets, rows, lower, upper)
 
 
 def test_degenerate_programs_terminate():
@@ -71,10 +65,13 @@ def test_degenerate_random_programs_reach_highs_optimum(seed):
         lower[rng.random(n) < 0.2] = 0.0
         upper[rng.random(n) < 0.2] = 0.0
         objective = rng.normal(size=n)
-        x, t = elastic_lp(objective, offsets, rows, lower, upper, 100.0)
-        assert np.all(x >= lower - 1e-12) and np.all(x <= upper + 1e-12) and np.all(t >= 0)
-        assert np.all(offsets + rows @ x + t >= -1e-10)
-        value = objective @ x - 100.0 * t.sum()
-        assert value == pytest.approx(
-            _highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9
-        )
+        _assert_optimal(objective, offsets, rows, lower, upper)
+
+
+def _assert_optimal(objective, offsets, rows, lower, upper):
+    """elastic_lp's answer is feasible and its value equals HiGHS's on the same program."""
+    x, t = elastic_lp(objective, offsets, rows, lower, upper, 100.0)
+    assert np.all(x >= lower - 1e-12) and np.all(x <= upper + 1e-12) and np.all(t >= 0)
+    assert np.all(offsets + rows @ x + t >= -1e-10)
+    value = objective @ x - 100.0 * t.sum()
+    assert value == pytest.approx(_highs(objective, offsets, rows, lower, upper, 100.0), abs=1e-9)
