@@ -14,6 +14,7 @@ import itertools
 import math
 
 import numpy as np
+import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
@@ -130,16 +131,20 @@ class FreeProblem:
         """
         ok: ArrayF = self.exact_margins(displacements).min(axis=-1) >= 0
         if self.collision is not None and ok.any():
-            poses = displacement_poses(self.geometry, displacements[ok])
-            ok[ok] = self.collision.scan_clearances(*poses) >= 0
+            ok[ok] = self._apart(displacements[ok])
         return ok
 
     def touching(self, d: ArrayF) -> bool:
         """Whether two of the robot's own parts touch at d (6,) (False without self-collision)."""
         if self.collision is None:
             return False
-        poses = displacement_poses(self.geometry, np.asarray(d, dtype=float)[None])
-        return bool(self.collision.scan_clearances(*poses)[0] < 0)
+        return not bool(self._apart(np.asarray(d, dtype=float)[None])[0])
+
+    def _apart(self, displacements: ArrayF) -> npt.NDArray[np.bool_]:
+        """Whether no two parts touch at each of displacements (P, 6) (P,) [bool]: coal's yes/no."""
+        assert self.collision is not None
+        poses = displacement_poses(self.geometry, displacements)
+        return np.asarray(self.collision.scan_clearances(*poses) >= 0, dtype=bool)
 
     def feasible_nearby(self, d: ArrayF) -> ArrayF | None:
         """d, or d pulled toward nominal by a hair (at most 0.1 %), if that passes the check.
