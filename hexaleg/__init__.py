@@ -72,7 +72,7 @@ _EXPORTS: dict[str, str] = {
     "StudySpec": "hexaleg.study.sweep",
     "run_study": "hexaleg.study.sweep",
     "DecideResult": "hexaleg.study.decide",
-    "Objective": "hexaleg.study.evaluation",
+    "Objective": "hexaleg.study.goal",
     "Requirements": "hexaleg.study.requirements",
     "SearchSettings": "hexaleg.study.optimize",
     "decide": "hexaleg.study.decide",
@@ -181,7 +181,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     from hexaleg.statics.forces import Payload
     from hexaleg.statics.loads import analyze_loads
     from hexaleg.study.decide import DecideResult, decide
-    from hexaleg.study.evaluation import Objective
+    from hexaleg.study.goal import Objective
     from hexaleg.study.optimize import SearchSettings
     from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study

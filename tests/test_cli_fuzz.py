@@ -129,7 +129,7 @@ def quick_backends():
         decided = decide(
             HexapodDesign(),
             Requirements(ground_clearance=0.3),
-            Objective("area"),
+            Objective("improved_area"),
             settings=SearchSettings(evaluations=48),
             executor=here,
             progress=False,

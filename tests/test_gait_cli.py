@@ -13,8 +13,9 @@ from conftest import run_cli
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.cause import Cause
 from hexaleg.gait import Gait, analyze_gait
-from hexaleg.gait.analysis import STUDY_GAIT, gait_study_columns
+from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.statics import Payload, analyze_loads
+from hexaleg.study.rows import design_walking_columns
 
 GAIT_FIELDS = {
     "design",
@@ -163,18 +164,20 @@ def test_causes_of_every_kind_read_as_one_line():
 def test_the_study_columns_are_the_single_design_numbers(hexapod_model):
     design = HexapodDesign.from_ratios(0.15, 0.45)
     model = hexapod_model.with_design(design)
-    columns = gait_study_columns(design, model)
+    columns = design_walking_columns(design, model)
     single = analyze_gait(design, STUDY_GAIT, model=HexapodModel(design))
     assert columns["gait_feasible"] is True
     assert columns["gait_peak_hip_torque"] == pytest.approx(single.metrics.peak_torque["hip"])
     assert columns["gait_peak_torque"] == pytest.approx(max(single.metrics.peak_torque.values()))
-    assert columns["gait_cost_of_transport"] == pytest.approx(single.metrics.cost_of_transport)
+    assert columns["mechanical_cost_of_transport"] == pytest.approx(
+        single.metrics.cost_of_transport
+    )
     assert single.max_speed is not None
-    assert columns["gait_max_speed"] == pytest.approx(single.max_speed.value)
+    assert columns["max_speed"] == pytest.approx(single.max_speed.value)
     infeasible = HexapodDesign.from_ratios(0.2, 0.75)
-    columns = gait_study_columns(infeasible, hexapod_model.with_design(infeasible))
-    assert columns["gait_feasible"] is False and math.isnan(columns["gait_cost_of_transport"])
-    assert columns["gait_max_speed"] == 0.0
+    columns = design_walking_columns(infeasible, hexapod_model.with_design(infeasible))
+    assert columns["gait_feasible"] is False and math.isnan(columns["mechanical_cost_of_transport"])
+    assert columns["max_speed"] == 0.0
 
 
 def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):

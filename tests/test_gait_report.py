@@ -8,10 +8,11 @@ import pytest
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.gait import Gait, analyze_gait
-from hexaleg.gait.analysis import STUDY_GAIT, gait_study_columns
+from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.walking import WalkingRecord, section
+from hexaleg.study.rows import StudyRow, design_walking_columns
 from hexaleg.study.sweep import StudySpec, sweep_in_process
 from hexaleg.study.walking import WalkingComparison, walking_comparison, walking_or_none
 
@@ -28,8 +29,8 @@ def test_the_comparison_picks_the_least_and_measures_the_paper_leg(small_study):
     walking = table[table["gait_feasible"]]
     assert comparison.walking == len(walking) < comparison.designs == 8  # 0.2 + 0.76 cannot
     assert comparison.least_torque["gait_peak_torque"] == walking["gait_peak_torque"].min()
-    assert comparison.least_energy["gait_cost_of_transport"] == (
-        walking["gait_cost_of_transport"].min()
+    assert comparison.least_energy["mechanical_cost_of_transport"] == (
+        walking["mechanical_cost_of_transport"].min()
     )
     paper = HexapodDesign()  # the 0.2/0.4/0.4 leg on the default body
     single = analyze_gait(paper, STUDY_GAIT, model=HexapodModel(paper))
@@ -52,18 +53,19 @@ def test_a_study_without_walking_columns_or_walkers_has_no_comparison(small_stud
 def _comparison(torque: float, energy: float) -> WalkingComparison:
     base = {
         "l1_ratio": 0.2, "l3_ratio": 0.4, "gait_peak_torque": 100.0,
-        "gait_cost_of_transport": 0.1, "gait_max_speed": 0.4,
+        "mechanical_cost_of_transport": 0.1, "max_speed": 0.4,
         "gait_peak_root_torque": 5.0, "gait_peak_hip_torque": 100.0,
-        "gait_peak_knee_torque": 20.0, "gait_max_speed_limited_by": "lm hip torque at its rating",
+        "gait_peak_knee_torque": 20.0, "max_speed_limited_by": "lm hip torque at its rating",
     }  # fmt: skip
     best = base | {
         "l3_ratio": 0.6,
         "gait_peak_torque": torque,
-        "gait_cost_of_transport": energy,
-        "gait_max_speed": 0.3,
-        "gait_max_speed_limited_by": "lf knee speed at its rating",
+        "mechanical_cost_of_transport": energy,
+        "max_speed": 0.3,
+        "max_speed_limited_by": "lf knee speed at its rating",
     }
-    return WalkingComparison(base, best, best, 5, 8, STUDY_GAIT.to_dict())
+    rows = StudyRow.from_dict(base), StudyRow.from_dict(best)
+    return WalkingComparison(rows[0], rows[1], rows[1], 5, 8, STUDY_GAIT.to_dict())
 
 
 @pytest.mark.parametrize(
@@ -130,8 +132,8 @@ def test_the_animation_comes_after_every_object_it_colours(hexapod_model):
 
 def test_study_columns_match_on_a_free_flyer_built_from_the_urdf():
     design = HexapodDesign.from_ratios(0.1, 0.5)
-    columns = gait_study_columns(design, HexapodModel(design))
-    assert columns["gait_feasible"] and not math.isnan(columns["gait_cost_of_transport"])
+    columns = design_walking_columns(design, HexapodModel(design))
+    assert columns["gait_feasible"] and not math.isnan(columns["mechanical_cost_of_transport"])
 
 
 def test_the_animation_s_legend_says_what_a_gait_s_colours_mean(hexapod_model):

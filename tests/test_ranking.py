@@ -50,7 +50,7 @@ def test_payload_counts_as_much_as_any_other_metric():
 
 def test_a_design_that_cannot_stand_has_no_score_and_one_that_carries_nothing_scores_zero():
     table = _grid(5, seed=4)
-    table.loc[2, "flexibility"] = np.nan
+    table.loc[2, "fb"] = np.nan
     table.loc[3, "payload_capacity"] = 0.0
     yours = dict.fromkeys(RANKED_METRICS, 1.0) | {"payload_capacity": 0.0}  # replaced by 1 kg
     scores = ranking_scores(table, yours)

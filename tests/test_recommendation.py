@@ -90,7 +90,7 @@ def test_nothing_to_recommend_when_no_allowed_design_stands():
     from hexaleg.exceptions import HexalegError
 
     maps = _maps()
-    maps["flexibility"] = np.full_like(maps["flexibility"], np.nan)
+    maps["fb"] = np.full_like(maps["fb"], np.nan)
     with pytest.raises(HexalegError, match="nothing to recommend"):
         recommend(R1, R3, maps, YOURS)
 
@@ -105,7 +105,7 @@ def test_candidate_mask_allows_the_practical_or_the_given_coxa_ratios():
 
 
 def test_decision_options_say_which_coxa_ratios_compete():
-    from hexaleg.study.decision import DecisionOptions
+    from hexaleg.study.recommendation import DecisionOptions
 
     assert "≥ 0.10" in DecisionOptions().describe_candidates()
     assert "(0.125)" in DecisionOptions(l1_ratios=(0.125,)).describe_candidates()

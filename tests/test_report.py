@@ -62,7 +62,7 @@ FILES = [
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
     out = tmp_path_factory.mktemp("report") / "out"
-    data = build_report(out, options=REDUCED)
+    data = build_report(out, options=REDUCED).to_dict()
     return out, data
 
 
@@ -109,7 +109,7 @@ def test_report_json_equals_what_was_returned(report):
 @pytest.mark.slow
 def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
     out = tmp_path / "again"
-    first = build_report(out, options=REDUCED)
+    first = build_report(out, options=REDUCED).to_dict()
     # a file an earlier hexaleg wrote (its marker lists it) that this one no longer writes;
     # a file of the user's own is refused instead, never deleted (tests/test_folders.py)
     marker = json.loads((out / ".hexaleg.json").read_text())
@@ -117,7 +117,7 @@ def test_second_run_replaces_and_reproduces_the_numbers(tmp_path):
         json.dumps({**marker, "files": [*marker["files"], "stale.txt"]})
     )
     (out / "stale.txt").write_text("left over")
-    second = build_report(out, options=REDUCED)
+    second = build_report(out, options=REDUCED).to_dict()
     assert json.dumps(first, sort_keys=True) == json.dumps(second, sort_keys=True)
     assert not (out / "stale.txt").exists()  # nothing stale survives
     assert [p.name for p in tmp_path.iterdir()] == ["again"]  # no staging folders left
@@ -166,7 +166,7 @@ def test_the_help_gives_the_tibia_ratios_the_report_accepts(capsys):
 @pytest.mark.slow
 def test_report_for_another_design(tmp_path):
     design = HexapodDesign.from_ratios(0.1, 0.45)
-    data = build_report(tmp_path / "r", design, REDUCED)
+    data = build_report(tmp_path / "r", design, REDUCED).to_dict()
     assert data["design"]["l3"] == pytest.approx(0.45)
     assert "0.1, 0.45, 0.45" in (tmp_path / "r" / "report.md").read_text()
 
@@ -240,7 +240,7 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
     assert yours["average_manipulability"] == pytest.approx(
         float(average_manipulability(design.lengths, improved)), rel=1e-12
     )
-    assert yours["flexibility"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
+    assert yours["fb"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
     assert yours["payload_capacity"] == pytest.approx(analyze_loads(design).capacity.mass, rel=1e-9)
     assert data["decision"]["yours"]["score"] == 1.0
     recommended = data["decision"]["recommended"]
@@ -249,7 +249,7 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
     metrics = {
         "improved_area": 2 * math.pi * lengths[1] * lengths[2] / 3,
         "average_manipulability": float(average_manipulability(theirs.lengths, improved)),
-        "flexibility": flexibility(theirs, "axis").fb,
+        "fb": flexibility(theirs, "axis").fb,
         "payload_capacity": analyze_loads(theirs).capacity.mass,
     }
     assert recommended["metrics"] == pytest.approx(metrics, rel=1e-9)
@@ -272,7 +272,7 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
 @pytest.mark.slow
 def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
     design = HexapodDesign(l1=0.15, l2=0.6, l3=0.45, body_length=1.4, body_width=0.8)
-    free = build_report(tmp_path / "free", design, REDUCED)["recommendation"]
+    free = build_report(tmp_path / "free", design, REDUCED).to_dict()["recommendation"]
     options = ReportOptions(
         l3_points=REDUCED.l3_points,
         sensitivity_points=REDUCED.sensitivity_points,
@@ -281,7 +281,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
         vector_figures=False,
         l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
     )
-    fixed = build_report(tmp_path / "fixed", design, options)["recommendation"]
+    fixed = build_report(tmp_path / "fixed", design, options).to_dict()["recommendation"]
     assert free["l1_ratio"] == pytest.approx(0.10)
     assert fixed["l1_ratio"] == pytest.approx(0.125)
     assert sum(fixed["lengths_m"]) == pytest.approx(1.2)

@@ -173,10 +173,10 @@ def test_payload_axes_are_logarithmic_and_name_the_largest():
     payload = figure.axes[2]
     assert payload.get_yscale() == "log"
     assert [t.get_text() for t in payload.texts] == ["1769 kg: coxa 0.20, femur 0.05, tibia 0.75 m"]
-    front = table.rename(columns={"fb": "flexibility"}).assign(score=1.0)
+    front = table.assign(score=1.0)
     pareto = pareto_figure(table, front).axes[0]
     assert pareto.get_xscale() == "log" and "1769 kg" in pareto.texts[0].get_text()
-    yours = {"payload_capacity": 130.0, "flexibility": 0.23}
+    yours = {"payload_capacity": 130.0, "fb": 0.23}
     marked = pareto_figure(table, front, yours).axes[0]
     (mark,) = [c for c in marked.collections if c.get_label() == "your design"]
     assert mark.get_offsets().tolist() == [[130.0, 0.23]]

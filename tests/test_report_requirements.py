@@ -15,7 +15,7 @@ from hexaleg.output.report.requirements import requirement_blocks
 
 def _decide(requirements):
     with ThreadPoolExecutor(1) as here:
-        return decide(HexapodDesign(), requirements, Objective("area"), executor=here,
+        return decide(HexapodDesign(), requirements, Objective("improved_area"), executor=here,
                       progress=False, settings=SearchSettings(evaluations=240))  # fmt: skip
 
 
@@ -59,7 +59,7 @@ def test_a_report_with_requirements_answers_them_first(tmp_path):
     requirements = Requirements(ground_clearance=0.3, min_coxa=0.1)
     options = ReportOptions(l3_points=10, sensitivity_points=4, workers=1, progress=False,
                             vector_figures=False, requirements=requirements)  # fmt: skip
-    data = build_report(tmp_path / "out", options=options)
+    data = build_report(tmp_path / "out", options=options).to_dict()
     text = (tmp_path / "out" / "report.md").read_text()
     decision = text.split("## Decision")[1].split("## Design")[0]
     assert decision.index("The best leg meeting your requirements") < decision.index(
@@ -68,5 +68,5 @@ def test_a_report_with_requirements_answers_them_first(tmp_path):
     with ThreadPoolExecutor(1) as here:
         direct = decide(HexapodDesign(), requirements, executor=here, progress=False)
     assert data["requirements_decision"] == json.loads(json.dumps(direct.to_dict()))
-    plain = build_report(tmp_path / "plain", options=replace(options, requirements=None))
+    plain = build_report(tmp_path / "plain", options=replace(options, requirements=None)).to_dict()
     assert "requirements_decision" not in plain

@@ -10,7 +10,8 @@ import pytest
 from hexaleg import HexapodDesign
 from hexaleg.design_file import DesignFileError, load_design, load_design_file
 from hexaleg.exceptions import ParameterError
-from hexaleg.study.requirements import BINDING_SHARE, KINDS, Requirements, check
+from hexaleg.study.requirement_specs import BINDING_SHARE, REQUIREMENTS
+from hexaleg.study.requirements import Requirements, check
 
 
 def test_table_keys_are_the_fields_and_degrees_become_radians():
@@ -52,14 +53,14 @@ def test_the_leg_length_defaults_to_the_design_own():
 
 def test_margins_point_to_the_good_side_and_binding_is_within_one_percent():
     requirements = Requirements(payload=100.0, leg_length=1.0)
-    values = {"payload": 100.0 + 0.5 * BINDING_SHARE * 100, "leg_length": 0.8}
+    values = {"payload_capacity": 100.0 + 0.5 * BINDING_SHARE * 100, "leg_length": 0.8}
     payload, leg = check(requirements, values, {})
     assert payload.margin == pytest.approx(0.5) and payload.met and payload.binds
     assert leg.margin == pytest.approx(0.2) and leg.met and not leg.binds
-    short = check(requirements, {"payload": 90.0, "leg_length": 1.1}, {})
+    short = check(requirements, {"payload_capacity": 90.0, "leg_length": 1.1}, {})
     assert [c.met for c in short] == [False, False]
     assert [c.binds for c in short] == [False, False]
-    assert {k.sense for k in KINDS.values()} == {"at least", "at most"}
+    assert {k.sense for k in REQUIREMENTS.values()} == {"at least", "at most"}
 
 
 def test_a_design_file_hands_over_its_requirements_table(tmp_path):
@@ -101,7 +102,7 @@ def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_pa
     block = text[text.index("# [requirements]") :].splitlines()
     assert all(line.startswith("# ") for line in block)
     keys = [line[2:].split(" = ")[0] for line in block[1:]]
-    assert set(keys) == {*KINDS, "payload_at", "step_height", "slope_deg"} - {"slope"}
+    assert set(keys) == {*REQUIREMENTS, "payload_at", "step_height", "slope_deg"} - {"slope"}
     assert all(re.search(r"\[(kg|m|°|-|m/s)\]", line) for line in block[1:])  # units
     uncommented = text[: text.index("# [requirements]")] + "\n".join(line[2:] for line in block)
     path.write_text(uncommented)

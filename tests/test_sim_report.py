@@ -12,6 +12,7 @@ from hexaleg import HexapodModel
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report import PARTS, ReportData, ReportOptions, build_report
 from hexaleg.output.report.document import Figure
+from hexaleg.output.report.part import numbered
 from hexaleg.output.report.registry import parts_for
 
 if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
@@ -26,7 +27,8 @@ from hexaleg.sim.video import RenderOutcome
 @pytest.fixture(scope="module")
 def data(default_design):
     options = ReportOptions(simulate=True, vector_figures=True, progress=False)
-    base = ReportData(default_design, options, HexapodModel(default_design))
+    parts = parts_for(options)
+    base = ReportData(default_design, options, HexapodModel(default_design), parts=parts)
     return base.with_record(simulation.compute(base))
 
 
@@ -40,7 +42,7 @@ def test_the_part_comes_after_walking_only_when_asked():
 
 def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):
     result = data[simulation.SimulationRecord].result
-    section = simulation.section(data)
+    section = numbered(data, simulation.PART)
     assert section.title.startswith("3.5 Simulated walk")
     text = "\n".join(b for b in section.blocks if isinstance(b, str))
     assert f"{result.metrics.distance:.3f} ({100 * result.metrics.distance_ratio:.1f} %)" in text

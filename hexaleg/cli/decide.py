@@ -6,19 +6,19 @@ import argparse
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
-from hexaleg._typing import choices
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
     bounded_int,
     capped_workers,
-    design_from_args,
+    inputs_from_args,
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
-from hexaleg.study.evaluation import MaximizeObjective, MinimizeObjective, Objective
 from hexaleg.study.executors import dask_executor, local_pool
+from hexaleg.study.goal import Objective
+from hexaleg.study.metrics import objectives
 from hexaleg.study.optimize import MAX_EVALUATIONS, MIN_POPULATION, SearchSettings
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.search_space import FREEABLE, AtBound, FreeVariable
@@ -48,10 +48,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     search = parser.add_argument_group("search")
     objective = search.add_mutually_exclusive_group()
     objective.add_argument(
-        "--maximize", choices=choices(MaximizeObjective), help="what to make largest (default fb)"
+        "--maximize", choices=objectives("maximize"), help="what to make largest (default fb)"
     )
     objective.add_argument(
-        "--minimize", choices=choices(MinimizeObjective), help="what to make smallest"
+        "--minimize", choices=objectives("minimize"), help="what to make smallest"
     )
     search.add_argument(
         "--free-posture",
@@ -88,8 +88,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
-    design = design_from_args(args)
-    requirements = requirements_from_args(args)
+    design, in_file = inputs_from_args(args)
+    requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
     )
@@ -125,7 +125,7 @@ def render(result: DecideResult) -> str:
     """The answer as text: the best design, yours, and the conflict if any."""
     free = ", ".join(f"{v.name} {v.lower:.4g}..{v.upper:.4g}" for v in result.variables)
     lines = [
-        f"Decision: {result.objective.sense} {result.objective.label} over {free}",
+        f"Decision: {result.objective.sense} {result.objective.spec.label} over {free}",
         f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
     ]
     if result.walks:
@@ -147,7 +147,7 @@ def _design_block(
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
     value = checked.evaluation.values[result.objective.name]
-    head += f", {result.objective.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
+    head += f", {result.objective.spec.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
     rows = [_row(result, check, binding) for check in checked.checks]
     if binding:
         rows += [_bound_row(at) for at in result.bounds_binding]

@@ -6,11 +6,10 @@ import argparse
 import math
 from typing import Any
 
-from hexaleg.cli.options import UsageError, add_design_options, design_from_args
+from hexaleg.cli.options import UsageError, add_design_options, inputs_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
 from hexaleg.design import HexapodDesign
-from hexaleg.design_file import load_design_file
-from hexaleg.study.requirements import POSITION_KEY, Requirements
+from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
 
 INIT_DESCRIPTION = (
@@ -49,14 +48,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write or show the design."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     if args.action == "init":
         return _init(args.file, design, args.force)
-    requirements = (
-        Requirements()
-        if args.design is None
-        else load_design_file(args.design, Requirements.from_table)[1]
-    )
     if args.json:
         out = {"design": design.as_dict(), "derived": derived(design)}
         if requirements.given:
@@ -127,5 +121,5 @@ def show_requirements(requirements: Requirements) -> None:
     rows = [(name, requirements.describe(name)) for name in requirements.given]
     if requirements.payload_at is not None:
         position = ", ".join(f"{v:g}" for v in requirements.payload_at)
-        rows.append((POSITION_KEY, f"({position}) m, body frame"))
+        rows.append(("payload_at", f"({position}) m, body frame"))
     print_table("Requirements (the file's [requirements] table)", rows)

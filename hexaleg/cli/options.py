@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any, cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
 from hexaleg.design import DESIGN_FIELDS, MAX_L3_POINTS, SEGMENTS, HexapodDesign
@@ -15,6 +15,9 @@ from hexaleg.layouts import Layout
 from hexaleg.paper import L3_RATIO_POINTS
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
+
+if TYPE_CHECKING:
+    from hexaleg.study.requirements import Requirements
 
 DEFAULT_TOTAL = 1.0
 """Total leg length [m] of ``--ratios`` when ``--total`` is not given (the paper's 1000 mm)."""
@@ -156,13 +159,27 @@ DESIGN_FLAGS: tuple[str, ...] = tuple(
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     """Build the design the shared options describe (validated).
 
-    A ``--design`` file gives the starting design (it must be valid on its own); the
-    options given beside it override its values.
+    A ``--design`` file gives the starting design (it must be valid on its own, its
+    ``[requirements]`` table included); the options given beside it override its values.
     """
-    from hexaleg.design_file import load_design  # reads TOML only when asked
+    return inputs_from_args(args)[0]
+
+
+def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
+    """The design the shared options describe, and the ``--design`` file's requirements.
+
+    The file is read once, and every command reads it the same way: a bad
+    ``[requirements]`` table is refused by a command that does not use it too.
+    """
+    from hexaleg.design_file import load_design_file  # reads TOML only when asked
+    from hexaleg.study.requirements import Requirements
 
     path = getattr(args, "design", None)
-    base = HexapodDesign() if path is None else load_design(path)
+    base, requirements = (
+        (HexapodDesign(), Requirements())
+        if path is None
+        else load_design_file(path, Requirements.from_table)
+    )
     changes: dict[str, Any] = {
         name: _value(getattr(args, name))
         for name in DESIGN_FLAGS
@@ -176,13 +193,13 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
         design = base.replace(**changes).with_ratios(args.ratios[0], args.ratios[1], total)
         if args.total is None and path is None:  # said once the design stands: errors stay 1 line
             note(f"--ratios without --total: total leg length {DEFAULT_TOTAL:g} m")
-        return design
+        return design, requirements
     if args.total is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
     for name in SEGMENTS:
         if getattr(args, name, None) is not None:
             changes[name] = getattr(args, name)
-    return base.replace(**changes) if changes else base
+    return (base.replace(**changes) if changes else base), requirements
 
 
 def _value(given: Any) -> Any:

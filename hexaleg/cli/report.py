@@ -13,12 +13,15 @@ from hexaleg.cli.options import (
     add_sweep_options,
     bounded_int,
     capped_workers,
-    design_from_args,
     field_sweep_from_args,
+    inputs_from_args,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.output.report import REPORT_HTML, REPORT_MD, REPORT_PDF, ReportOptions, build_report
+from hexaleg.output.report.decision import DecisionRecord
+from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
+from hexaleg.output.report.recommendation import RecommendationRecord
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -65,9 +68,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
-    design = design_from_args(args)  # a bad design is refused before any note is printed
+    design, in_file = inputs_from_args(args)  # a bad design is refused before any note
     sweep = field_sweep_from_args(args)
-    requirements = requirements_from_args(args)
+    requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
@@ -81,18 +84,17 @@ def run(args: argparse.Namespace) -> int:
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)
-    rec = data["recommendation"]
+    rec = data[RecommendationRecord].recommendation
     written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if args.pdf else [])
     print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
     print(
-        f"recommended l1 : l2 : l3 = {rec['l1_ratio']:.3f} : {rec['l2_ratio']:.3f} : "
-        f"{rec['l3_ratio']:.3f} (tibia ratio band "
-        f"{rec['l3_band'][0]:.3f}-{rec['l3_band'][1]:.3f}); "
-        f"this design: FB = {data['flexibility']['axis']['fb']:.4f}"
+        f"recommended l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
+        f"{rec.l3_ratio:.3f} (tibia ratio band {rec.l3_band[0]:.3f}-{rec.l3_band[1]:.3f}); "
+        f"this design: FB = {data[FlexibilityRecord].axis.fb:.4f}"
     )
-    answer = data.get("requirements_decision")
+    answer = data[DecisionRecord].requirements
     if answer is not None:
-        lengths = ", ".join(f"{answer['best']['design'][k]:.3f}" for k in ("l1", "l2", "l3"))
-        verdict = "meets" if answer["feasible"] else "comes closest to meeting"
+        lengths = ", ".join(f"{length:.3f}" for length in answer.best.design.lengths)
+        verdict = "meets" if answer.feasible else "comes closest to meeting"
         print(f"l = ({lengths}) m {verdict} your requirements")
     return 0

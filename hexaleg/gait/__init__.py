@@ -5,7 +5,6 @@
 joint motion (:mod:`.trajectory`), constraints (:mod:`.feasibility`), inverse dynamics
 and the feet's forces (:mod:`.dynamics`), the ZMP (:mod:`.stability`), the metrics
 (:mod:`.metrics`), and the max stride and max speed (:mod:`.limits`).
-:func:`gait_study_columns` gives a study row's walking columns.
 """
 
 from __future__ import annotations

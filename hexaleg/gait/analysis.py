@@ -10,7 +10,6 @@ torques and the feet's forces at each sample.
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -288,29 +287,3 @@ def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
 
 STUDY_GAIT = Gait()
 """The gait every design of a study walks: :class:`Gait`'s defaults."""
-
-
-def gait_study_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, float | str]:
-    """A study row's walking columns: ``design`` walking :data:`STUDY_GAIT`, no payload.
-
-    Peak torques per joint and over all three (``gait_peak_torque``) [N·m], positive work
-    [J] and cost of transport [-] are NaN when the period is infeasible (``gait_feasible``
-    false); the max speed [m/s] is given either way, at the gait's stride (zero if it is
-    infeasible), with what limits it. The max stride is left out: its search would cost
-    more than the rest of the row.
-    """
-    walked = analyze_gait(design, STUDY_GAIT, model=model, limits=False, speed=True)
-    assert walked.max_speed is not None
-    metrics, ok = walked.metrics, walked.feasible
-    columns: dict[str, float | str] = {
-        f"gait_peak_{joint}_torque": value if ok else math.nan
-        for joint, value in metrics.peak_torque.items()
-    }
-    return columns | {
-        "gait_peak_torque": max(metrics.peak_torque.values()) if ok else math.nan,
-        "gait_positive_work": metrics.positive_work if ok else math.nan,
-        "gait_cost_of_transport": metrics.cost_of_transport if ok else math.nan,
-        "gait_feasible": ok,
-        "gait_max_speed": walked.max_speed.value,
-        "gait_max_speed_limited_by": str(walked.max_speed.limited_by),
-    }

@@ -17,7 +17,6 @@ it (the leg up to :data:`LEG_RELAXATION` times as long).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -26,9 +25,11 @@ from hexaleg.cause import Cause
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION
-from hexaleg.study.evaluation import Evaluation, Goal, Objective
+from hexaleg.study.evaluation import Evaluation
+from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
-from hexaleg.study.requirements import KINDS, Requirements
+from hexaleg.study.requirement_specs import REQUIREMENTS
+from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SEGMENT_FLOOR, SearchSpace
 
 LEG_RELAXATION = 2.0
@@ -39,16 +40,6 @@ COUPLED = {"payload": "slope", "slope": "payload"}
 
 Search = Callable[[SearchSpace, Goal], SearchOutcome]
 """Runs one search (the decision's executor, journal and settings bound in)."""
-
-SHORT_NAMES = {
-    "payload": "payload",
-    "slope": "slope",
-    "ground_clearance": "ground clearance",
-    "min_fb": "FB",
-    "leg_length": "leg length",
-    "min_coxa": "coxa",
-    "speed": "speed",
-}
 
 
 @dataclass(frozen=True)
@@ -71,7 +62,7 @@ class Relaxation:
     @property
     def meets_original(self) -> bool:
         """Whether the relaxed value meets the original requirement after all."""
-        return KINDS[self.name].margin(self.required, self.relaxed) >= 0
+        return REQUIREMENTS[self.name].margin(self.required, self.relaxed) >= 0
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (SI units, radians)."""
@@ -112,7 +103,7 @@ def find_conflict(space: SearchSpace, goal: Goal, least: Evaluation, search: Sea
         search: Runs one search of a space for a goal.
 
     """
-    checks = least.checks(goal.requirements) if not least.error else ()
+    checks = goal.checks(least) if not least.error else ()
     suspects = [c.name for c in checks if not c.met or c.binds] or list(goal.requirements.given)
     relaxations = []
     for name in suspects:
@@ -120,7 +111,8 @@ def find_conflict(space: SearchSpace, goal: Goal, least: Evaluation, search: Sea
         if relaxation is not None:
             relaxations.append(relaxation)
     names = tuple(r.name for r in relaxations) or tuple(c.name for c in checks if not c.met)
-    causes = [least.causes[KINDS[n].metric] for n in names if KINDS[n].metric in least.causes]
+    metrics = [REQUIREMENTS[n].metric for n in names]
+    causes = [least.causes[m] for m in metrics if m in least.causes]
     text = describe(names, goal.requirements, causes, space.base, relaxations)
     return Conflict(names, tuple(relaxations), text)
 
@@ -129,8 +121,8 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     """The nearest value of requirement ``name`` that the others allow (None: they do not)."""
     requirements = goal.requirements
     required = float(getattr(requirements, name))
-    kind = KINDS[name]
-    objective = Objective(kind.metric, "maximize" if kind.sense == "at least" else "minimize")
+    spec = REQUIREMENTS[name]
+    objective = Objective(spec.metric, "maximize" if spec.sense == "at least" else "minimize")
     if name == "leg_length":
         longest = LEG_RELAXATION * required
         relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)
@@ -147,7 +139,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     outcome = search(widened, relaxed_goal)
     if not outcome.feasible:
         return None
-    value = float(outcome.evaluation.values[kind.metric])
+    value = float(outcome.evaluation.values[spec.metric])
     return Relaxation(name, required, value, tuple(float(v) for v in outcome.x))
 
 
@@ -163,7 +155,10 @@ def describe(
     For example "payload 30 kg and slope 20° cannot both hold with hip motors of
     150 N·m; 26 kg or 17° can".
     """
-    listed = [f"{SHORT_NAMES[n]} {short_value(n, float(getattr(requirements, n)))}" for n in names]
+    listed = [
+        f"{REQUIREMENTS[n].spec.label} {short_value(n, float(getattr(requirements, n)))}"
+        for n in names
+    ]
     joined = listed[0] if len(listed) == 1 else ", ".join(listed[:-1]) + " and " + listed[-1]
     verb = {1: "cannot hold", 2: "cannot both hold"}.get(len(listed), "cannot all hold")
     because = _because(causes, design)
@@ -201,7 +196,4 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
 
 def short_value(name: str, value: float) -> str:
     """A requirement's value in a sentence: slopes in degrees, three significant digits."""
-    unit = KINDS[name].unit
-    if unit == "rad":
-        return f"{math.degrees(value):.3g}°"
-    return f"{value:.3g}" if unit == "1" else f"{value:.3g} {unit}"
+    return REQUIREMENTS[name].spec.short(value)

@@ -35,8 +35,9 @@ from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.conflict import Conflict, find_conflict
-from hexaleg.study.evaluation import METRIC_UNITS, Evaluation, Goal, Objective, evaluate_design
+from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
+from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.search_journal import Journal
@@ -81,14 +82,14 @@ class CheckedDesign:
             standing = loads_at_extremes(model, locked, payload).over_rating
         except HexalegError as err:
             return cls(design, Evaluation(error=str(err)), ())
-        evaluation = evaluate_design(design, goal, model, flexibility=locked)
+        evaluation = goal.evaluate(design, model, flexibility=locked)
         if evaluation.error:
             return cls(design, evaluation, (), standing)
         walking: tuple[OverRating, ...] = ()
         if goal.walks:
             gait = requirements.gait
             walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
-        return cls(design, evaluation, evaluation.checks(requirements), standing, walking)
+        return cls(design, evaluation, goal.checks(evaluation), standing, walking)
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
         """(where, flags furthest over first) standing with the payload, and walking if walked."""
@@ -115,7 +116,7 @@ class CheckedDesign:
         """The objective's name, sense, value and unit, JSON-ready."""
         value = self.evaluation.values.get(objective.name)
         return {"name": objective.name, "sense": objective.sense, "value": value,
-                "unit": METRIC_UNITS[objective.name]}  # fmt: skip
+                "unit": objective.spec.unit}  # fmt: skip
 
 
 def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:

@@ -1,150 +1,78 @@
-"""One design measured for a decision: the metrics its requirements and objective need.
+"""One evaluation of a design: every metric anyone asks for, each analysis run at most once.
 
-A metric is a number a design has (FB, payload, slope, ...). Requirements bound
-metrics (:mod:`hexaleg.study.requirements`), an :class:`Objective` ranks by one.
-:func:`evaluate_design` measures every metric a :class:`Goal` needs with the exact
-single-design analyses: the improved workspace area (eq 16), the average manipulability
-w_A (eq 27) and axis-locked flexibility FB (eq 29) as :mod:`hexaleg.study.metrics`
-combines them, the statics' payload capacity (:mod:`hexaleg.statics`), the slope and
-payload limits of :mod:`hexaleg.study.standing`, and walking (:mod:`hexaleg.gait`): the
-requirements' gait (:attr:`~hexaleg.study.requirements.Requirements.gait`, carrying the
-required payload) walked once at its speed gives the max speed at its stride and the peak
-torque and cost of transport at that speed. Given a model and a stance template of the
-same body (the fast path of searches), it derives the design's own from them in closed
-form; the tests prove both paths equal.
+:func:`evaluate` measures the metrics of :data:`~hexaleg.study.metrics.METRICS` that a
+caller names — a study's row, a decision's candidate, the report's recommendation, the
+user's own design — under one set of :class:`Conditions` (payload, slope, gait, stance
+legs, collisions), into one frozen :class:`Evaluation`. Each metric's analysis runs once
+however many of its metrics are asked for: the improved workspace area in closed form
+(eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
+or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
+statics' payload capacity and steepest slope (:mod:`hexaleg.study.standing_limits`), and
+one gait period (:func:`~hexaleg.gait.analysis.analyze_gait`) for the max speed, peak
+torque and cost of transport.
+
+Given a model and a stance template of the same body (the fast path of sweeps and
+searches), a design's own are derived from them in closed form; without, they are built
+from its URDF. :func:`evaluate_many` evaluates designs of one body together, searching
+their axis-locked flexibility in one batch.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+import math
+import warnings
+from collections.abc import Collection, Mapping, Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from functools import cached_property
 
 import numpy as np
 
-from hexaleg._typing import choices
+from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import analyze_gait
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility
-from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
-from hexaleg.study.requirements import KINDS, RequirementCheck, Requirements, check
-from hexaleg.study.standing import Standing
+from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.study.metrics import METRICS, Analysis
+from hexaleg.study.standing_limits import Standing
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
 
-Sense = Literal["maximize", "minimize"]
-"""Which way an objective is better."""
-
-MaximizeObjective = Literal["fb", "w_A", "area", "payload", "speed"]
-"""What ``--maximize`` takes: FB [-], w_A [m³], improved area [m²], payload [kg], speed [m/s]."""
-
-MinimizeObjective = Literal["leg_length", "mass", "peak_torque", "cost_of_transport"]
-"""What ``--minimize`` takes: l1+l2+l3 [m], total mass [kg], gait peak torque [N·m], CoT [-]."""
-
-METRIC_UNITS: dict[str, str] = {
-    "fb": "1",
-    "w_A": "m³",
-    "area": "m²",
-    "payload": "kg",
-    "slope": "rad",
-    "ground_clearance": "m",
-    "leg_length": "m",
-    "coxa": "m",
-    "mass": "kg",
-    "speed": "m/s",
-    "peak_torque": "N·m",
-    "cost_of_transport": "1",
-}
-"""Every metric a decision can use, with its unit."""
-
-METRIC_NAMES: dict[str, str] = {
-    "fb": "FB",
-    "area": "improved area",
-    "leg_length": "leg length",
-    "ground_clearance": "ground clearance",
-    "peak_torque": "peak torque",
-    "cost_of_transport": "cost of transport",
-}
-"""A metric's name in sentences, where it differs from its key."""
-
-GAIT_METRICS = ("speed", "peak_torque", "cost_of_transport")
-"""Metrics of a tripod gait (:mod:`hexaleg.gait`)."""
-
-STATICS_METRICS = ("payload", "slope", *GAIT_METRICS)
-"""Metrics that need the design's Pinocchio model."""
+__all__ = ["Conditions", "Evaluation", "evaluate", "evaluate_many"]
 
 
 @dataclass(frozen=True)
-class Objective:
-    """What the decision makes best.
+class Conditions:
+    """What a design is measured under.
 
     Attributes:
-        name: The metric: any of :data:`METRIC_UNITS` (the command line offers
-            :data:`MaximizeObjective` and :data:`MinimizeObjective`).
-        sense: ``"maximize"`` or ``"minimize"``.
+        payload: The payload carried, standing and walking.
+        slope: The slope the payload capacity holds on, in every heading [rad]
+            (``None``: level ground).
+        gait: The gait walked for the walking metrics.
+        stance: The stance legs of the flexibility.
+        mode: Axis-locked or free-coupled flexibility.
+        collisions: The robot's own parts touching also stop the body (FB).
+        keep: Keep the flexibility, the statics at its extremes and the gait period in
+            the evaluation (a study's row shows them).
 
     """
 
-    name: str = "fb"
-    sense: Sense = "maximize"
-
-    def __post_init__(self) -> None:
-        if self.sense not in ("maximize", "minimize") or self.name not in METRIC_UNITS:
-            raise HexalegError(
-                f"{self.sense} {self.name!r} is not valid: --maximize takes "
-                f"{', '.join(choices(MaximizeObjective))}; --minimize takes "
-                f"{', '.join(choices(MinimizeObjective))}"
-            )
-
-    def cost(self, value: float) -> float:
-        """The value as a cost to minimize (its negative when maximizing)."""
-        return -value if self.sense == "maximize" else value
-
-    def __str__(self) -> str:
-        return f"{self.sense} {self.name}"
-
-    @property
-    def label(self) -> str:
-        """The metric's name in a sentence (``FB``, ``improved area``)."""
-        return METRIC_NAMES.get(self.name, self.name)
-
-
-@dataclass(frozen=True)
-class Goal:
-    """What every design of a decision is measured for.
-
-    Attributes:
-        requirements: The requirements, resolved (the leg length set).
-        objective: What to make best.
-        relaxed: Requirements left out of the constraints (their metrics still measured).
-
-    """
-
-    requirements: Requirements
-    objective: Objective = field(default_factory=Objective)
-    relaxed: tuple[str, ...] = ()
-
-    @property
-    def constraints(self) -> tuple[str, ...]:
-        """The requirements every design must meet."""
-        return tuple(name for name in self.requirements.given if name not in self.relaxed)
-
-    @property
-    def walks(self) -> bool:
-        """Whether the designs walk the requirements' gait (a walking metric is needed)."""
-        return bool(set(self.metrics) & set(GAIT_METRICS))
-
-    @property
-    def metrics(self) -> tuple[str, ...]:
-        """The metrics to measure: the requirements' and the objective's."""
-        needed = {KINDS[name].metric for name in self.requirements.given}
-        return tuple(name for name in METRIC_UNITS if name in needed | {self.objective.name})
+    payload: Payload = field(default_factory=Payload)
+    slope: float | None = None
+    gait: Gait = field(default_factory=Gait)
+    stance: StanceSet = "all"
+    mode: FlexibilityMode = "axis"
+    collisions: bool = False
+    keep: bool = False
 
 
 @dataclass(frozen=True)
@@ -152,131 +80,239 @@ class Evaluation:
     """One design's metrics, or why it could not be measured.
 
     Attributes:
-        values: Each metric's value [its unit].
+        values: Each metric asked for [its unit] (NaN where :attr:`unmeasured` says why).
         causes: What limits a metric, where something does (payload, slope, speed).
         error: Why the design cannot exist or stand; empty if it was measured.
+        unmeasured: Metrics without a value, and why (a gait it cannot walk).
+        flexibility: Its flexibility, when kept (:attr:`Conditions.keep`).
+        loads: The statics at the nominal stance and at the extremes, when kept.
+        gait: The gait period walked, when kept.
 
     """
 
     values: Mapping[str, float] = field(default_factory=dict)
     causes: Mapping[str, Cause] = field(default_factory=dict)
     error: str = ""
+    unmeasured: Mapping[str, str] = field(default_factory=dict)
+    flexibility: FlexibilityResult | None = None
+    loads: LoadsAnalysis | None = None
+    gait: GaitAnalysis | None = None
 
-    def checks(self, requirements: Requirements) -> tuple[RequirementCheck, ...]:
-        """Each requirement checked on this design (its value, margin and what limits it)."""
-        return check(requirements, self.values, self.causes)
-
-    def meets(self, goal: Goal) -> bool:
-        """Whether the design was measured and meets every constraint of ``goal``."""
-        if self.error:
-            return False
-        return all(c.met for c in self.checks(goal.requirements) if c.name in goal.constraints)
+    def __getitem__(self, name: str) -> float:
+        """The value of metric ``name``."""
+        return self.values[name]
 
 
-def evaluate_design(
+def evaluate(
     design: HexapodDesign,
-    goal: Goal,
+    metrics: Collection[str],
+    conditions: Conditions | None = None,
+    *,
     model: HexapodModel | None = None,
     template: StanceGeometry | None = None,
     flexibility: FlexibilityResult | None = None,
 ) -> Evaluation:
-    """Measure every metric ``goal`` needs on ``design``.
+    """Measure ``metrics`` of ``design`` under ``conditions``.
 
     Args:
         design: The design.
-        goal: What to measure it for.
-        model: The design's Pinocchio model; built from its URDF if omitted.
-        template: A stance geometry of the same body and mounts (fast path); read from
-            the model if omitted.
-        flexibility: The design's axis-locked flexibility, if already computed (a
-            search computes a batch of designs' at once).
+        metrics: Names of :data:`~hexaleg.study.metrics.METRICS` to measure.
+        conditions: What it is measured under (level ground, no payload, the default gait).
+        model: The design's Pinocchio model (one derived from a model of the same body by
+            :meth:`~hexaleg.robot.model.HexapodModel.with_design` is exact); built from
+            its URDF when an analysis needs it and it is omitted.
+        template: A stance geometry of the same body and mounts (fast path); the
+            design's own is read from the model if omitted.
+        flexibility: The design's flexibility, if already computed (a batch's).
 
     A design whose analyses fail (its nominal stance cannot stand) is returned with
     ``error`` set and no values.
 
     """
+    unknown = [name for name in metrics if name not in METRICS]
+    if unknown:
+        raise HexalegError(f"unknown metric {unknown[0]!r}: known are {', '.join(METRICS)}")
+    measuring = _Measuring(design, conditions or Conditions(), model, template, flexibility)
     try:
-        return _measure(design, goal, model, template, flexibility)
+        return measuring.evaluation(metrics)
     except HexalegError as err:
         return Evaluation(error=str(err))
 
 
-def _measure(
-    design: HexapodDesign,
-    goal: Goal,
-    model: HexapodModel | None,
-    template: StanceGeometry | None,
-    flexibility: FlexibilityResult | None,
-) -> Evaluation:
-    wanted = goal.metrics
-    values: dict[str, float] = {
-        "leg_length": design.leg_length,
-        "coxa": design.l1,
-        "mass": design.total_mass,
-    }
-    causes: dict[str, Cause] = {}
-    if template is None and {"fb", "ground_clearance"} & set(wanted):
-        model = HexapodModel(design) if model is None else model
-        template = StanceGeometry.from_model(model)  # the design's own: exact
-    if "fb" in wanted:
-        if flexibility is None:
-            flexibility = axis_locked_flexibility(design, "all", geometry=template)
-        values["fb"] = flexibility.fb
-    if "area" in wanted:
-        values["area"] = improved_area_closed_form(design.l2, design.l3)
-    if "w_A" in wanted:
-        _, improved = rectangular_and_improved(design.manipulability_limits)
-        values["w_A"] = float(average_manipulability(design.lengths, improved))
-    if "ground_clearance" in wanted and template is not None:
-        geometry = template.with_design(design)
-        values["ground_clearance"] = float(
-            geometry.lowest_body_height(np.eye(3), [0.0, 0.0, geometry.nominal_height])
-        )
-    if {"payload", "slope"} & set(wanted):
-        model = HexapodModel(design) if model is None else model  # the exact path
-        _standing_metrics(model, goal.requirements, values, causes)
-    if goal.walks:
-        model = HexapodModel(design) if model is None else model
-        _walking_metrics(model, goal, values, causes)
-    return Evaluation({name: values[name] for name in wanted}, causes)
+def evaluate_many(
+    designs: Sequence[HexapodDesign],
+    metrics: Collection[str],
+    conditions: Conditions,
+    base: HexapodModel,
+    template: StanceGeometry,
+) -> list[Evaluation]:
+    """:func:`evaluate` of designs of one body (``base``'s), their flexibility searched together.
 
-
-def _walking_metrics(
-    model: HexapodModel, goal: Goal, values: dict[str, float], causes: dict[str, Cause]
-) -> None:
-    """Max speed [m/s] at the gait's stride; peak torque [N·m] and CoT [-] at its speed.
-
-    Raises:
-        HexalegError: the objective is a walking metric and the gait's stride cannot
-            be walked (the metric has no value).
+    Args:
+        designs: Designs differing from ``base``'s only in their legs, ratings and posture.
+        metrics: What to measure.
+        conditions: What they are measured under.
+        base: A model of that body: each design's is derived from it.
+        template: The body's stance geometry (``conditions.stance``'s legs).
 
     """
-    requirements = goal.requirements
-    payload = Payload(requirements.payload_mass, requirements.payload_at)
-    walked = analyze_gait(
-        model.design, requirements.gait, payload, model=model, limits=False, speed=True
-    )
-    assert walked.max_speed is not None  # speed=True
-    values["speed"], causes["speed"] = walked.max_speed.value, walked.max_speed.limited_by
-    if goal.objective.name in ("peak_torque", "cost_of_transport") and not walked.feasible:
-        raise HexalegError(f"cannot walk the gait: {walked.violations[0]}")
-    values["peak_torque"] = max(walked.metrics.peak_torque.values())
-    values["cost_of_transport"] = walked.metrics.cost_of_transport
+    models = [base.with_design(design) for design in designs]
+    found: Sequence[FlexibilityResult | None] = [None] * len(designs)
+    if "fb" in metrics and conditions.mode == "axis" and designs:
+        try:
+            found = axis_locked_flexibility_many(
+                designs, template, models, collisions=conditions.collisions
+            )
+        except HexalegError:
+            pass  # one design spoils the batch: each is searched on its own below
+    return [
+        evaluate(design, metrics, conditions, model=model, template=template, flexibility=result)
+        for design, model, result in zip(designs, models, found, strict=True)
+    ]
 
 
-def _standing_metrics(
-    model: HexapodModel,
-    requirements: Requirements,
-    values: dict[str, float],
-    causes: dict[str, Cause],
-) -> None:
-    """Payload [kg] on the required slope and slope [rad] with the required payload."""
-    payload = Payload(requirements.payload_mass, requirements.payload_at)
-    statics = Statics(model, model.leg_names, payload)
-    standing = Standing.of(statics)
-    if requirements.slope is None:  # level ground: the statics' own payload capacity
-        capacity = payload_capacity(statics, model.nominal_configuration())
-        values["payload"], causes["payload"] = capacity.mass, capacity.limited_by
-    else:
-        values["payload"], causes["payload"] = standing.max_payload(requirements.slope)
-    values["slope"], causes["slope"] = standing.max_slope(requirements.payload_mass)
+ANALYSES: tuple[Analysis, ...] = (
+    "geometry", "workspace", "manipulability", "flexibility", "clearance", "standing", "walking",
+)  # fmt: skip
+"""The analyses, in the order an evaluation runs them."""
+
+
+class _Measuring:
+    """One design's evaluation under way: each analysis and model made once, on demand."""
+
+    def __init__(
+        self,
+        design: HexapodDesign,
+        conditions: Conditions,
+        model: HexapodModel | None,
+        template: StanceGeometry | None,
+        flexibility: FlexibilityResult | None,
+    ) -> None:
+        self.design, self.conditions = design, conditions
+        self._model, self._template, self._flexibility = model, template, flexibility
+        self.metrics: set[str] = set()
+        self.values: dict[str, float] = {}
+        self.causes: dict[str, Cause] = {}
+        self.unmeasured: dict[str, str] = {}
+        self.loads: LoadsAnalysis | None = None
+        self.walked: GaitAnalysis | None = None
+
+    def evaluation(self, metrics: Collection[str]) -> Evaluation:
+        self.metrics = set(metrics)
+        wanted = {METRICS[name].analysis for name in metrics}
+        for analysis in ANALYSES:
+            if analysis in wanted:
+                getattr(self, f"_measure_{analysis}")()
+        kept = self.conditions.keep
+        return Evaluation(
+            values={name: self.values[name] for name in METRICS if name in metrics},
+            causes={name: cause for name, cause in self.causes.items() if name in metrics},
+            unmeasured={k: v for k, v in self.unmeasured.items() if k in metrics},
+            flexibility=self.flexibility if kept and "flexibility" in wanted else None,
+            loads=self.loads if kept else None,
+            gait=self.walked if kept else None,
+        )
+
+    # -- what the analyses share -----------------------------------------------------------
+
+    @property
+    def model(self) -> HexapodModel:
+        if self._model is None:
+            self._model = HexapodModel(self.design)
+        return self._model
+
+    @cached_property
+    def geometry(self) -> StanceGeometry:
+        """The design's stance geometry: from the template in closed form, else its model."""
+        if self._template is not None:
+            return self._template.with_design(self.design)
+        return StanceGeometry.from_model(self.model, self.conditions.stance)
+
+    @property
+    def flexibility(self) -> FlexibilityResult:
+        if self._flexibility is None:
+            self._flexibility = self._search_flexibility()
+        return self._flexibility
+
+    def _search_flexibility(self) -> FlexibilityResult:
+        conditions, design = self.conditions, self.design
+        if conditions.mode == "axis":
+            return axis_locked_flexibility(
+                design,
+                conditions.stance,
+                self._model,
+                geometry=self.geometry,
+                collisions=conditions.collisions,
+            )
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", FlexibilityWarning)  # the result's "converged"
+            return free_flexibility(
+                design,
+                conditions.stance,
+                self.model,
+                geometry=self.geometry,
+                collisions=conditions.collisions,
+            )
+
+    # -- the analyses ------------------------------------------------------------------
+
+    def _measure_geometry(self) -> None:
+        design = self.design
+        self.values |= {"leg_length": design.leg_length, "coxa_length": design.l1,
+                        "robot_mass": design.total_mass}  # fmt: skip
+
+    def _measure_workspace(self) -> None:
+        self.values["improved_area"] = improved_area_closed_form(self.design.l2, self.design.l3)
+
+    def _measure_manipulability(self) -> None:
+        _, improved = rectangular_and_improved(self.design.manipulability_limits)
+        value = average_manipulability(self.design.lengths, improved)
+        self.values["average_manipulability"] = float(value)
+
+    def _measure_flexibility(self) -> None:
+        self.values["fb"] = self.flexibility.fb
+
+    def _measure_clearance(self) -> None:
+        geometry = self.geometry
+        lowest = geometry.lowest_body_height(np.eye(3), [0.0, 0.0, geometry.nominal_height])
+        self.values["ground_clearance"] = float(lowest)
+
+    def _measure_standing(self) -> None:
+        conditions, model = self.conditions, self.model
+        if conditions.keep:
+            self.loads = loads_at_extremes(model, self.flexibility, conditions.payload)
+        statics = Statics(model, model.leg_names, conditions.payload)
+        if conditions.slope is None:  # level ground: the statics' own payload capacity
+            capacity = (
+                self.loads.capacity
+                if self.loads is not None
+                else payload_capacity(statics, model.nominal_configuration())
+            )
+            self.values["payload_capacity"] = capacity.mass
+            self.causes["payload_capacity"] = capacity.limited_by
+        if conditions.slope is None and "max_slope" not in self.metrics:
+            return
+        standing = Standing.of(statics)
+        if conditions.slope is not None:
+            found = standing.max_payload(conditions.slope)
+            self.values["payload_capacity"], self.causes["payload_capacity"] = found
+        found = standing.max_slope(conditions.payload.mass)
+        self.values["max_slope"], self.causes["max_slope"] = found
+
+    def _measure_walking(self) -> None:
+        conditions = self.conditions
+        walked = analyze_gait(
+            self.design, conditions.gait, conditions.payload, model=self.model, limits=False,
+            speed=True,
+        )  # fmt: skip
+        self.walked = walked
+        assert walked.max_speed is not None  # speed=True
+        self.values["max_speed"] = walked.max_speed.value
+        self.causes["max_speed"] = walked.max_speed.limited_by
+        if walked.feasible:
+            self.values["gait_peak_torque"] = max(walked.metrics.peak_torque.values())
+            self.values["mechanical_cost_of_transport"] = walked.metrics.cost_of_transport
+            return
+        why = f"cannot walk the gait: {walked.violations[0]}"
+        for name in ("gait_peak_torque", "mechanical_cost_of_transport"):
+            self.values[name], self.unmeasured[name] = math.nan, why

@@ -1,68 +1,119 @@
-"""The four metrics the ranking rule combines, for any one design.
+"""Every metric a design has, declared once: its name, unit, label and which way is better.
 
-Improved workspace area (eq 16) [m²], average manipulability on the improved
-domain (eq 27) [m³], axis-locked body flexibility FB (eq 29) [-] and the payload
-capacity at the nominal stance [kg] (:func:`~hexaleg.statics.capacity.payload_capacity`,
-the payload at the centre of the body's top face): the same kernels as the grid sweeps,
-so a single design is measured as the grid's designs are.
+A metric is one number measured on one design (its FB, its payload capacity, its max
+speed). Each is a :class:`MetricSpec` in :data:`METRICS`, and that one declaration is what
+every reader takes its name, unit and words from: the evaluation that measures it
+(:mod:`hexaleg.study.evaluation`), the study's ranking rule, ``decide``'s objectives and
+requirements, the conflict messages, the report's decision and the study's columns.
+Adding a metric is adding its declaration here and its measuring step in the evaluation.
 """
 
 from __future__ import annotations
 
-from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
-from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility
-from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.statics.capacity import payload_capacity
-from hexaleg.statics.forces import Statics
-from hexaleg.study.ranking import RANKED_METRICS, Metrics
-from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
-from hexaleg.swing.workspace import improved_area_closed_form
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Literal
+
+from hexaleg.exceptions import ParameterError
+
+Better = Literal["maximize", "minimize"]
+"""Which way a metric is better."""
+
+Analysis = Literal[
+    "geometry", "workspace", "manipulability", "flexibility", "clearance", "standing", "walking"
+]
+"""The analysis that measures a metric (the evaluation runs each one at most once)."""
 
 
-def design_metrics(
-    design: HexapodDesign,
-    model: HexapodModel,
-    template: StanceGeometry | None = None,
-    collisions: bool = False,
-) -> Metrics:
-    """Improved area [m²], w_A [m³], axis-locked FB [-] and payload capacity [kg] of ``design``.
+@dataclass(frozen=True)
+class MetricSpec:
+    """Everything said about one metric, once.
 
-    Args:
-        design: The design.
-        model: Its Pinocchio model (one derived from a model of the same body is exact).
-        template: A stance geometry of the same body and mounts (the fast path of sweeps);
-            read from the model if omitted.
-        collisions: The robot's own parts touching also stop the body (FB).
+    Attributes:
+        name: Its key in every record, table column, JSON object and option.
+        unit: Its SI unit as written in brackets (``"1"`` for a pure number).
+        label: Its name in a sentence or a table cell: ``"FB"``, ``"improved area"``.
+        text: What it is, with its source: ``"body flexibility FB (eq 29, axis-locked)"``.
+        better: Whether larger or smaller is better.
+        analysis: What measures it.
+        objective: Whether ``decide`` offers it as an objective (in its better direction).
 
     """
-    _, improved = rectangular_and_improved(design.manipulability_limits)
-    locked = axis_locked_flexibility(design, "all", model, template, collisions)
-    statics = Statics(model, locked.legs)
-    return {
-        "improved_area": improved_area_closed_form(design.l2, design.l3),
-        "average_manipulability": float(average_manipulability(design.lengths, improved)),
-        "flexibility": locked.fb,
-        "payload_capacity": payload_capacity(statics, model.nominal_configuration()).mass,
-    }
+
+    name: str
+    unit: str
+    label: str
+    text: str
+    better: Better
+    analysis: Analysis
+    objective: bool = False
+
+    @property
+    def described(self) -> str:
+        """What it is with its unit: ``"body flexibility FB [-] (eq 29, axis-locked)"``."""
+        unit = "-" if self.unit == "1" else self.unit
+        head, _, source = self.text.partition(" (")
+        return f"{head} [{unit}]" + (f" ({source}" if source else "")
+
+    def format(self, value: float) -> str:
+        """The value with its unit, four significant digits; angles also in degrees."""
+        if self.unit == "rad":
+            return f"{value:.4g} rad ({math.degrees(value):.3g}°)"
+        return f"{value:.4g}" if self.unit == "1" else f"{value:.4g} {self.unit}"
+
+    def short(self, value: float) -> str:
+        """The value in a sentence: three significant digits, angles in degrees."""
+        if self.unit == "rad":
+            return f"{math.degrees(value):.3g}°"
+        return f"{value:.3g}" if self.unit == "1" else f"{value:.3g} {self.unit}"
 
 
-def ratio_metrics(
-    base: HexapodDesign,
-    l1_ratio: float,
-    l3_ratio: float,
-    model: HexapodModel,
-    template: StanceGeometry,
-    collisions: bool = False,
-) -> Metrics:
-    """:func:`design_metrics` of ``base`` with segments at these ratios of its leg length.
+METRICS: Mapping[str, MetricSpec] = {
+    spec.name: spec
+    for spec in (
+        MetricSpec("improved_area", "m²", "improved area", "improved workspace area (eq 16)",
+                   "maximize", "workspace", objective=True),
+        MetricSpec("average_manipulability", "m³", "w_A",
+                   "average manipulability w_A (eq 27, improved domain)", "maximize",
+                   "manipulability", objective=True),
+        MetricSpec("fb", "1", "FB", "body flexibility FB (eq 29, axis-locked)", "maximize",
+                   "flexibility", objective=True),
+        MetricSpec("payload_capacity", "kg", "payload",
+                   "payload capacity (nominal stance, on the required slope if one is)",
+                   "maximize", "standing", objective=True),
+        MetricSpec("max_slope", "rad", "slope",
+                   "steepest slope stood on in every heading, with the payload", "maximize",
+                   "standing"),
+        MetricSpec("ground_clearance", "m", "ground clearance",
+                   "body underside above the ground (nominal stance)", "maximize", "clearance"),
+        MetricSpec("leg_length", "m", "leg length", "total leg length l1 + l2 + l3",
+                   "minimize", "geometry", objective=True),
+        MetricSpec("coxa_length", "m", "coxa", "coxa length l1", "maximize", "geometry"),
+        MetricSpec("robot_mass", "kg", "robot mass", "the whole robot's mass", "minimize",
+                   "geometry", objective=True),
+        MetricSpec("max_speed", "m/s", "speed",
+                   "fastest walk of the gait's stride within the ratings", "maximize", "walking",
+                   objective=True),
+        MetricSpec("gait_peak_torque", "N·m", "peak torque",
+                   "largest joint torque over a gait period", "minimize", "walking",
+                   objective=True),
+        MetricSpec("mechanical_cost_of_transport", "1", "mechanical cost of transport",
+                   "positive mechanical work per weight and distance walked", "minimize",
+                   "walking", objective=True),
+    )
+}  # fmt: skip
+"""Every metric, in the order answers list them."""
 
-    ``model`` is ``base``'s (the design's is derived from it). A design that cannot exist
-    or stand scores NaN in every metric.
-    """
+
+def metric(name: str) -> MetricSpec:
+    """The declaration of metric ``name``; a ParameterError naming the known ones otherwise."""
     try:
-        design = base.with_ratios(l1_ratio, l3_ratio)
-        return design_metrics(design, model.with_design(design), template, collisions)
-    except HexalegError:
-        return dict.fromkeys(RANKED_METRICS, float("nan"))
+        return METRICS[name]
+    except KeyError:
+        raise ParameterError("metric", name, "one of " + ", ".join(METRICS)) from None
+
+
+def objectives(better: Better) -> tuple[str, ...]:
+    """The metrics ``decide`` offers to make best in direction ``better``."""
+    return tuple(m.name for m in METRICS.values() if m.objective and m.better == better)

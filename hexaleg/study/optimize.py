@@ -51,11 +51,9 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility_many
-from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import STATICS_METRICS, Evaluation, Goal, evaluate_design
+from hexaleg.study.evaluation import Evaluation
+from hexaleg.study.goal import Goal
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
@@ -70,7 +68,7 @@ MIN_POPULATION = 24
 """Fewest designs per generation."""
 
 MAX_EVALUATIONS = 1_000_000
-"""Most designs one search evaluates (about two hours on 2 cores)."""
+"""Most designs one search evaluates."""
 
 VARIANT = "DE/best/1/bin"
 """Mutation from the best design of the generation, one difference, binomial crossover."""
@@ -166,32 +164,12 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
         except HexalegError as err:
             out[k] = Evaluation(error=str(err))
     if not space.same_body:
-        out |= {k: evaluate_design(design, goal) for k, design in designs.items()}
-        return [out[k] for k in range(len(task.points))]
-    base, template = base_model(space.base), _template(space.base)
-    statics = bool(set(goal.metrics) & set(STATICS_METRICS))
-    found = _flexibilities(list(designs.values()), template, base) if "fb" in goal.metrics else {}
-    for k, design in designs.items():
-        model = base.with_design(design) if statics else None
-        out[k] = evaluate_design(design, goal, model, template, found.get(id(design)))
+        out |= {k: goal.evaluate(design) for k, design in designs.items()}
+    else:
+        base, template = base_model(space.base), _template(space.base)
+        found = goal.evaluate_many(list(designs.values()), base, template)
+        out |= dict(zip(designs, found, strict=True))
     return [out[k] for k in range(len(task.points))]
-
-
-def _flexibilities(
-    designs: list[HexapodDesign], template: StanceGeometry, base: HexapodModel
-) -> dict[int, FlexibilityResult]:
-    """Axis-locked flexibility of designs of one body, searched together (by ``id``).
-
-    A design that spoils the batch (its stance cannot be solved) leaves it empty: each
-    is then searched on its own, and fails on its own.
-    """
-    if not designs:
-        return {}
-    try:
-        found = axis_locked_flexibility_many(designs, template, [base] * len(designs))
-    except HexalegError:
-        return {}
-    return {id(design): result for design, result in zip(designs, found, strict=True)}
 
 
 # -- the search ---------------------------------------------------------------------------
@@ -260,7 +238,7 @@ def objective_and_constraints(goal: Goal, evaluation: Evaluation) -> tuple[float
     count = max(1, len(goal.constraints))
     if evaluation.error:
         return INVALID, np.full(count, INVALID)
-    checks = {c.name: c for c in evaluation.checks(goal.requirements)}
+    checks = {c.name: c for c in goal.checks(evaluation)}
     g = [-checks[name].margin / max(abs(checks[name].required), 1e-9) for name in goal.constraints]
     cost = goal.objective.cost(float(evaluation.values[goal.objective.name]))
     return cost, np.array(g or [0.0])
@@ -313,7 +291,7 @@ def run_search(
     return SearchOutcome(
         x=x,
         evaluation=evaluation,
-        feasible=evaluation.meets(goal),
+        feasible=goal.meets(evaluation),
         evaluations=population * generations,
         method=method_text(population, generations),
     )

@@ -16,6 +16,9 @@ import pandas as pd
 
 from hexaleg._typing import ArrayF
 from hexaleg.study.ranking import RANKED_METRICS, Metrics, ranking_scores
+from hexaleg.study.recommendation import DecisionOptions, Recommendation, candidate_mask
+from hexaleg.swing.manipulability import AverageManipulabilityMap
+from hexaleg.swing.workspace import improved_area_closed_form
 
 
 def non_dominated(values: ArrayF) -> np.ndarray:
@@ -46,3 +49,42 @@ def pareto_table(grid: pd.DataFrame, reference: Metrics) -> pd.DataFrame:
     front = grid[non_dominated(grid[list(RANKED_METRICS)].to_numpy(dtype=float))].copy()
     front["score"] = ranking_scores(front, reference)
     return front.sort_values("score", ascending=False, kind="stable").reset_index(drop=True)
+
+
+def pareto_front(
+    average_map: AverageManipulabilityMap,
+    study: pd.DataFrame,
+    recommendation: Recommendation,
+    options: DecisionOptions,
+) -> pd.DataFrame:
+    """The Pareto front of the study's allowed designs (see :func:`.pareto.pareto_table`).
+
+    Args:
+        average_map: w_A on the study's grid.
+        study: The study's table (columns ``fb`` and ``payload_capacity``).
+        recommendation: The recommendation (its reference: the user's design's metrics).
+        options: The allowed coxa ratios.
+
+    """
+    grid = pareto_grid(average_map, study)
+    allowed = candidate_mask(grid["l1_ratio"].to_numpy(dtype=float), options.l1_ratios)
+    return pareto_table(grid[allowed], recommendation.reference)
+
+
+def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> pd.DataFrame:
+    """Every design of the study with the four ranked metrics."""
+    grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
+    grid["improved_area"] = improved_area_closed_form(
+        grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)
+    )
+    w_a = {
+        (r1, r3): value
+        for i, r1 in enumerate(average_map.l1_ratios)
+        for r3, value in zip(average_map.l3_ratios, average_map.improved[i], strict=True)
+    }
+    grid["average_manipulability"] = [
+        w_a.get((r1, r3), np.nan) for r1, r3 in zip(grid["l1_ratio"], grid["l3_ratio"], strict=True)
+    ]
+    grid["fb"] = study["fb"] if "fb" in study else np.nan
+    grid["payload_capacity"] = study["payload_capacity"] if "payload_capacity" in study else np.nan
+    return grid

@@ -24,8 +24,9 @@ import pandas as pd
 
 from hexaleg._typing import ArrayF
 
-RANKED_METRICS = ("improved_area", "average_manipulability", "flexibility", "payload_capacity")
-"""The metrics a score combines [m², m³, -, kg], every one larger-is-better."""
+RANKED_METRICS = ("improved_area", "average_manipulability", "fb", "payload_capacity")
+"""The metrics a score combines [m², m³, -, kg] (:data:`~.metrics.METRICS`), every one
+larger-is-better."""
 
 Metrics = Mapping[str, float]
 """One design's value of each of :data:`RANKED_METRICS`."""

@@ -20,8 +20,14 @@ import pandas as pd
 from scipy import optimize
 
 from hexaleg._typing import ArrayF
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.study.evaluation import Conditions, evaluate
 from hexaleg.study.ranking import RANKED_METRICS, Metrics, relative_values, score, scores
+from hexaleg.swing.manipulability import AverageManipulabilityMap
+from hexaleg.swing.workspace import improved_area_closed_form
 
 BAND = 0.97
 """Share of the best score that defines the recommended band."""
@@ -61,6 +67,116 @@ class Recommendation:
     def l2_ratio(self) -> float:
         """Femur ratio 1 − l1 − l3 [-]."""
         return 1.0 - self.l1_ratio - self.l3_ratio
+
+
+@dataclass(frozen=True)
+class DecisionOptions:
+    """What the decision may choose from.
+
+    Attributes:
+        l1_ratios: Coxa ratios the recommendation may take; ``None``: the swept ones at
+            least :data:`~.recommendation.PRACTICAL_L1_RATIO` (all of them if none is).
+        collisions: The robot's own parts touching also stop the body (FB).
+
+    """
+
+    l1_ratios: tuple[float, ...] | None = None
+    collisions: bool = False
+
+    @property
+    def conditions(self) -> Conditions:
+        """What the ranked metrics are measured under: level ground, no payload."""
+        return Conditions(collisions=self.collisions)
+
+    def describe_candidates(self) -> str:
+        """The allowed coxa ratios, in words."""
+        if self.l1_ratios:
+            listed = ", ".join(f"{r:.3g}" for r in self.l1_ratios)
+            return f"the coxa ratios you allowed ({listed})"
+        return f"the paper's practical coxa ratios (≥ {PRACTICAL_L1_RATIO:.2f})"
+
+
+def your_metrics(
+    design: HexapodDesign, model: HexapodModel, template: StanceGeometry, options: DecisionOptions
+) -> Metrics:
+    """The user's design's four ranked metrics: what every score is relative to."""
+    found = evaluate(design, RANKED_METRICS, options.conditions, model=model, template=template)
+    if found.error:
+        raise HexalegError(f"your design cannot be ranked: {found.error}")
+    return dict(found.values)
+
+
+def ratio_metrics(
+    base: HexapodDesign,
+    l1_ratio: float,
+    l3_ratio: float,
+    model: HexapodModel,
+    template: StanceGeometry,
+    options: DecisionOptions,
+) -> Metrics:
+    """The ranked metrics of ``base`` with segments at these ratios of its leg length.
+
+    ``model`` is ``base``'s (the design's is derived from it). A design that cannot exist
+    or stand scores NaN in every metric.
+    """
+    try:
+        design = base.with_ratios(l1_ratio, l3_ratio)
+    except HexalegError:
+        return dict.fromkeys(RANKED_METRICS, float("nan"))
+    found = evaluate(
+        design, RANKED_METRICS, options.conditions, model=model.with_design(design),
+        template=template,
+    )  # fmt: skip
+    return dict.fromkeys(RANKED_METRICS, float("nan")) if found.error else dict(found.values)
+
+
+def grid_recommendation(
+    design: HexapodDesign,
+    model: HexapodModel,
+    template: StanceGeometry,
+    average_map: AverageManipulabilityMap,
+    study: pd.DataFrame,
+    options: DecisionOptions,
+) -> Recommendation:
+    """Recommend ratios from the four metrics on the (coxa, tibia) ratio grid.
+
+    Args:
+        design: The user's design (its leg length, body and posture are kept).
+        model: Its Pinocchio model (the grid's designs' are derived from it).
+        template: The stance geometry of its body and mounts.
+        average_map: w_A on the grid (its ratios define the grid).
+        study: The study on the same grid (columns ``fb`` and ``payload_capacity``).
+        options: The allowed coxa ratios and collision setting.
+
+    """
+    r1, r3 = average_map.l1_ratios, average_map.l3_ratios
+    total = design.leg_length
+    l2 = (1 - r1[:, None] - r3[None, :]) * total
+    maps = {
+        "improved_area": np.where(
+            l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan
+        ),
+        "average_manipulability": average_map.improved,
+        "fb": _study_map(study, "fb", r1, len(r3)),
+        "payload_capacity": _study_map(study, "payload_capacity", r1, len(r3)),
+    }
+    return recommend(
+        r1,
+        r3,
+        maps,
+        your_metrics(design, model, template, options),
+        candidates=options.l1_ratios,
+        evaluate=lambda a, b: ratio_metrics(design, a, b, model, template, options),
+    )
+
+
+def _study_map(study: pd.DataFrame, column: str, l1_ratios: np.ndarray, width: int) -> np.ndarray:
+    """A study column on the (coxa, tibia) grid: each coxa ratio's rows in tibia order."""
+    values = np.full((len(l1_ratios), width), np.nan)
+    if column in study:
+        for i, ratio in enumerate(l1_ratios):
+            values[i] = study.loc[np.isclose(study["l1_ratio"], ratio), column].to_numpy(float)
+    return values
 
 
 def recommend(

@@ -10,7 +10,7 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
 - ``slope`` [rad] (``slope_deg`` [°] in files and ``--slope-deg``): the steepest slope the
   robot stands on, uphill in every heading, carrying ``payload`` — the first slope where
   it tips, slides (tan α > μ) or a joint torque reaches its rating
-  (:mod:`hexaleg.study.standing`);
+  (:mod:`hexaleg.study.standing_limits`);
 - ``ground_clearance`` [m]: the body's underside above the ground at the nominal stance;
 - ``min_fb`` [-]: the axis-locked body flexibility FB (eq 29) at least this;
 - ``leg_length`` [m]: l1 + l2 + l3 at most this (default: the design's own);
@@ -28,7 +28,8 @@ The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requireme
 (negative: not met); it *binds* a design that meets it within :data:`BINDING_SHARE` of
 the required value. Every check says what limits its value: the constraint an analysis
 stops at (a :class:`~hexaleg.cause.Cause`: a joint at its rated torque, tipping, ...),
-or, for a value that is the design's own geometry, :attr:`RequirementKind.reason`.
+or, for a value that is the design's own geometry,
+:attr:`~.requirement_specs.RequirementSpec.reason`.
 """
 
 from __future__ import annotations
@@ -37,90 +38,14 @@ import difflib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Any, Literal
+from typing import Any
 
 from hexaleg._checks import require_finite, require_in_range
 from hexaleg.cause import Cause
-from hexaleg.design import SEGMENT_RANGE, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.spec import Gait
-from hexaleg.statics.forces import PAYLOAD_REACH, PAYLOAD_SEARCH_LIMIT
-
-Sense = Literal["at least", "at most"]
-"""Which side of the required value meets a requirement."""
-
-BINDING_SHARE = 0.01
-"""A met requirement binds when its margin is within this share of the required value."""
-
-
-@dataclass(frozen=True)
-class RequirementKind:
-    """One kind of requirement: what it limits and how.
-
-    Attributes:
-        name: Its key in files, JSON and (with dashes) on the command line.
-        metric: The design metric it limits (:mod:`hexaleg.study.evaluation`).
-        sense: ``"at least"`` or ``"at most"``.
-        unit: Its unit.
-        bounds: The plausible required values, inclusive [unit].
-        text: What it asks, in a few words.
-        reason: What sets its value when no analysis stops at a constraint (the
-            design's own geometry).
-
-    """
-
-    name: str
-    metric: str
-    sense: Sense
-    unit: str
-    bounds: tuple[float, float]
-    text: str
-    reason: str
-
-    def margin(self, required: float, value: float) -> float:
-        """How far ``value`` is on the good side of ``required`` [unit] (< 0: not met)."""
-        return value - required if self.sense == "at least" else required - value
-
-    def binds(self, required: float, margin: float) -> bool:
-        """Whether a design meeting it with ``margin`` sits on it."""
-        return 0 <= margin <= BINDING_SHARE * max(abs(required), 1e-12)
-
-
-KINDS: dict[str, RequirementKind] = {
-    kind.name: kind
-    for kind in (
-        RequirementKind("payload", "payload", "at least", "kg", (0.0, PAYLOAD_SEARCH_LIMIT),
-                        "payload carried at payload_at", "the statics"),
-        RequirementKind("slope", "slope", "at least", "rad", (0.0, math.pi / 2),
-                        "slope stood on in every heading, with the payload", "the statics"),
-        RequirementKind("ground_clearance", "ground_clearance", "at least", "m", (0.0, 100.0),
-                        "body underside above the ground at the nominal stance",
-                        "geometry: the tibia, femur and nominal posture"),
-        RequirementKind("min_fb", "fb", "at least", "1", (0.0, 10.0),
-                        "axis-locked body flexibility FB (eq 29)",
-                        "geometry: twelve extremes, each stopped by its own constraint"),
-        RequirementKind("leg_length", "leg_length", "at most", "m",
-                        (3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1]), "l1 + l2 + l3",
-                        "geometry: the design's l1 + l2 + l3"),
-        RequirementKind("min_coxa", "coxa", "at least", "m", SEGMENT_RANGE, "coxa length l1",
-                        "geometry: the design's coxa length l1"),
-        RequirementKind("speed", "speed", "at least", "m/s", (0.0, 100.0),
-                        "tripod gait speed within the ratings", "the gait"),
-    )
-}  # fmt: skip
-"""Every requirement, in the order the answer lists them."""
-
-DEGREE_KEYS = {"slope_deg": "slope"}
-"""Keys that give a requirement in degrees instead of radians."""
-
-POSITION_KEY = "payload_at"
-"""Where the payload sits, body frame (x, y, z) [m]: a condition, not a requirement."""
-
-STEP_KEY = "step_height"
-"""How high the gait of the ``speed`` requirement lifts its feet [m]: a condition of it."""
-
-STEP_BOUNDS = (0.0, 10.0)
-"""Plausible step heights [m]."""
+from hexaleg.study.requirement_specs import CONDITIONS, REQUIREMENTS, degree_keys, table_keys
 
 
 @dataclass(frozen=True)
@@ -151,24 +76,23 @@ class Requirements:
     step_height: float | None = None
 
     def __post_init__(self) -> None:
-        for name, kind in KINDS.items():
+        for name, spec in REQUIREMENTS.items():
             value = getattr(self, name)
             if value is not None:
-                checked = require_in_range(name, value, *kind.bounds, kind.unit)
-                if checked <= 0 and name not in ("payload", "slope"):
-                    raise ParameterError(name, value, f"must be positive [{kind.unit}]")
+                checked = require_in_range(name, value, *spec.bounds, spec.unit)
+                if checked <= 0 and not spec.zero:
+                    raise ParameterError(name, value, f"must be positive [{spec.unit}]")
                 object.__setattr__(self, name, checked)
         if self.slope is not None and self.slope >= math.pi / 2:
             raise ParameterError("slope", self.slope, "must be less than π/2 [rad]")
-        if self.payload_at is not None:
-            object.__setattr__(self, "payload_at", _position(self.payload_at))
-        if self.payload_at is not None and self.payload is None:
-            raise ParameterError(POSITION_KEY, self.payload_at, "needs a payload [kg] to place")
-        if self.step_height is not None:
-            height = require_in_range(STEP_KEY, self.step_height, *STEP_BOUNDS, "m")
-            if height <= 0 or self.speed is None:
-                raise ParameterError(STEP_KEY, height, "needs a speed [m/s] to walk at; > 0 [m]")
-            object.__setattr__(self, STEP_KEY, height)
+        for condition in CONDITIONS.values():
+            value = getattr(self, condition.name, None)
+            if value is None or not condition.needs:
+                continue
+            value = condition_value(condition.name, value)
+            if getattr(self, condition.of) is None or (condition.kind == "number" and value <= 0):
+                raise ParameterError(condition.name, value, condition.needs)
+            object.__setattr__(self, condition.name, value)
         if self.speed is not None:
             _ = self.gait  # its period must lie in the gait's range (ParameterError "speed")
 
@@ -189,22 +113,23 @@ class Requirements:
         """
         if not isinstance(table, Mapping):
             raise ParameterError(source, table, "must be a table of requirement keys")
-        known = (*KINDS, POSITION_KEY, STEP_KEY, *DEGREE_KEYS)
+        known = tuple(spec.name for spec in table_keys())
+        degrees = degree_keys()
         values: dict[str, Any] = {}
         for key, raw in table.items():
             field = f"{source}.{key}"
             if key not in known:
-                close = difflib.get_close_matches(key, known, n=1)
+                close = difflib.get_close_matches(str(key), known, n=1)
                 hint = f"did you mean {close[0]!r}?" if close else "known: " + ", ".join(known)
                 raise ParameterError(field, raw, f"unknown requirement; {hint}")
-            if key == POSITION_KEY:
-                values[key] = _position(raw, field)
-            elif key in DEGREE_KEYS:
-                if DEGREE_KEYS[key] in table:
+            if key in degrees:
+                if degrees[key] in table:
                     raise ParameterError(
-                        field, raw, "give the slope in radians or degrees, not both"
+                        field, raw, f"give the {degrees[key]} in radians or degrees, not both"
                     )
-                values[DEGREE_KEYS[key]] = math.radians(require_in_range(field, raw, 0, 90, "°"))
+                values[degrees[key]] = math.radians(condition_value(key, raw, field))
+            elif key in CONDITIONS:
+                values[key] = condition_value(key, raw, field)
             else:
                 values[key] = require_finite(field, raw)
         try:
@@ -226,8 +151,8 @@ class Requirements:
 
     @property
     def given(self) -> tuple[str, ...]:
-        """Names of the requirements set, in :data:`KINDS` order."""
-        return tuple(name for name in KINDS if getattr(self, name) is not None)
+        """Names of the requirements set, in :data:`REQUIREMENTS` order."""
+        return tuple(name for name in REQUIREMENTS if getattr(self, name) is not None)
 
     @property
     def payload_mass(self) -> float:
@@ -261,15 +186,15 @@ class Requirements:
     def to_dict(self) -> dict[str, Any]:
         """The requirements set, JSON-ready (SI units, radians)."""
         out = {name: getattr(self, name) for name in self.given}
-        if self.payload_at is not None:
-            out[POSITION_KEY] = list(self.payload_at)
-        if self.step_height is not None:
-            out[STEP_KEY] = self.step_height
+        for name in CONDITIONS:
+            value = getattr(self, name, None)
+            if value is not None:
+                out[name] = list(value) if isinstance(value, tuple) else value
         return out
 
     def describe(self, name: str) -> str:
         """``name``'s requirement in words, with its condition: ``payload ≥ 30 kg (on 15°)``."""
-        sign = "≥" if KINDS[name].sense == "at least" else "≤"
+        sign = "≥" if REQUIREMENTS[name].sense == "at least" else "≤"
         text = f"{name} {sign} {format_value(name, getattr(self, name))}"
         if name == "payload" and self.slope is not None:
             text += f" (on every slope up to {math.degrees(self.slope):.3g}°)"
@@ -282,20 +207,15 @@ class Requirements:
 
 def format_value(name: str, value: float) -> str:
     """A requirement's value with its unit; slopes also in degrees."""
-    kind = KINDS[name]
-    if kind.unit == "rad":
-        return f"{value:.4g} rad ({math.degrees(value):.3g}°)"
-    if kind.unit == "1":
-        return f"{value:.4g}"
-    return f"{value:.4g} {kind.unit}"
+    return REQUIREMENTS[name].spec.format(value)
 
 
 def format_margin(check: RequirementCheck) -> str:
     """A check's margin, signed, with its unit; below 10⁻⁴ of the required value, ``±0``."""
-    kind = KINDS[check.name]
+    unit = REQUIREMENTS[check.name].unit
     tiny = abs(check.margin) < 1e-4 * max(abs(check.required), 1e-9)
     text = ("−0" if check.margin < 0 else "+0") if tiny else f"{check.margin:+.4g}"
-    return text if kind.unit == "1" else f"{text} {kind.unit}"
+    return text if unit == "1" else f"{text} {unit}"
 
 
 @dataclass(frozen=True)
@@ -308,7 +228,7 @@ class RequirementCheck:
         value: The design's value [its unit].
         margin: How far the value is on the good side [its unit] (< 0: not met).
         limited_by: What limits the value: the constraint an analysis stopped at, or
-            the requirement's :attr:`~RequirementKind.reason`.
+            the requirement's :attr:`~.requirement_specs.RequirementSpec.reason`.
 
     """
 
@@ -326,7 +246,7 @@ class RequirementCheck:
     @property
     def binds(self) -> bool:
         """Whether the design meets it with almost no margin to spare."""
-        return KINDS[self.name].binds(self.required, self.margin)
+        return REQUIREMENTS[self.name].binds(self.required, self.margin)
 
     def to_dict(self, binding: bool) -> dict[str, Any]:
         """JSON-ready: ``binds`` for the best design, ``met`` for the user's."""
@@ -348,15 +268,19 @@ def check(requirements: Requirements, values: Mapping[str, float],
     """Each given requirement against a design's metric ``values`` (and what limits them)."""
     checks = []
     for name in requirements.given:
-        kind, required = KINDS[name], float(getattr(requirements, name))
-        value = float(values[kind.metric])
-        checks.append(RequirementCheck(name, required, value, kind.margin(required, value),
-                                       causes.get(kind.metric, kind.reason)))  # fmt: skip
+        spec, required = REQUIREMENTS[name], float(getattr(requirements, name))
+        value = float(values[spec.metric])
+        checks.append(RequirementCheck(name, required, value, spec.margin(required, value),
+                                       causes.get(spec.metric, spec.reason)))  # fmt: skip
     return tuple(checks)
 
 
-def _position(value: Any, field: str = POSITION_KEY) -> tuple[float, float, float]:
+def condition_value(name: str, value: Any, field: str | None = None) -> Any:
+    """A condition's value checked against its declaration (a tuple for a position)."""
+    spec, field = CONDITIONS[name], field or name
+    if spec.kind != "position":
+        return require_in_range(field, value, *spec.bounds, spec.unit)
     if isinstance(value, str) or not hasattr(value, "__len__") or len(value) != 3:
         raise ParameterError(field, value, "must be three coordinates x, y, z, body frame [m]")
-    x, y, z = (require_in_range(field, v, -PAYLOAD_REACH, PAYLOAD_REACH, "m") for v in value)
+    x, y, z = (require_in_range(field, v, *spec.bounds, spec.unit) for v in value)
     return (x, y, z)

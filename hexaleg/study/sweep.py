@@ -15,8 +15,7 @@ from __future__ import annotations
 import json
 import math
 import os
-import warnings
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Iterable, Mapping
 from concurrent.futures import Executor, as_completed
 from dataclasses import dataclass, field
 from functools import lru_cache
@@ -37,14 +36,11 @@ from hexaleg.design import (
     require_ratio,
 )
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import gait_study_columns
+from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
-from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
-from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.statics.loads import loads_at_extremes
+from hexaleg.study.evaluation import Conditions, evaluate_many
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
     FOLDER_KIND,
@@ -55,6 +51,7 @@ from hexaleg.study.journal import (
     write_finished_journal,
 )
 from hexaleg.study.progress import Progress
+from hexaleg.study.rows import WALKING_METRICS, Key, StudyRow, study_row
 
 TABLE_CSV = "study.csv"
 TABLE_JSON = "study.json"
@@ -106,7 +103,19 @@ class StudySpec:
         require_in_range("total", self.total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
         require_ratio_grid(self.l1_ratios, self.l3_ratios, self.total)  # no design fails
 
-    def keys(self) -> list[tuple[float, float]]:
+    @property
+    def metrics(self) -> tuple[str, ...]:
+        """What each design is measured for: FB, and the statics' and the gait's if asked."""
+        standing = ("payload_capacity",) if self.statics else ()
+        return ("fb", *standing, *(WALKING_METRICS if self.gait else ()))
+
+    @property
+    def conditions(self) -> Conditions:
+        """What each design is measured under: level, no payload, :data:`STUDY_GAIT`."""
+        return Conditions(gait=STUDY_GAIT, stance=self.stance, mode=self.mode,
+                          collisions=self.collisions, keep=True)  # fmt: skip
+
+    def keys(self) -> list[Key]:
         """(l1 ratio, l3 ratio) of every design, in table order."""
         return [(r1, r3) for r1 in self.l1_ratios for r3 in self.l3_ratios]
 
@@ -132,95 +141,42 @@ design than one by one), and two workers still share 320 designs evenly."""
 
 @dataclass(frozen=True)
 class _Task:
-    keys: tuple[tuple[float, float], ...]  # (l1 ratio, l3 ratio) of each design
+    keys: tuple[Key, ...]  # (l1 ratio, l3 ratio) of each design
     spec: StudySpec
     template: StanceGeometry  # the study's body and mounts, read once
 
 
-Row = dict[str, Any]
-"""One design's results: ratios, lengths [m], FB, ranges and extremes [m, rad], causes."""
-
-
-def evaluate(task: _Task) -> list[Row]:
+def evaluate(task: _Task) -> list[StudyRow]:
     """The rows of a task's designs; a design's error becomes its row's ``error``."""
     spec = task.spec
-    designs: dict[tuple[float, float], tuple[HexapodDesign, HexapodModel]] = {}
-    rows: dict[tuple[float, float], Row] = {}
+    designs: dict[Key, HexapodDesign] = {}
+    rows: dict[Key, StudyRow] = {}
     for key in task.keys:
         try:
-            design = spec.base.with_ratios(key[0], key[1], spec.total)
-            designs[key] = (design, base_model(spec.base).with_design(design))
+            designs[key] = spec.base.with_ratios(key[0], key[1], spec.total)
         except HexalegError as err:
-            rows[key] = _error_row(key, err)
-    results: dict[tuple[float, float], FlexibilityResult] = {}
-    if spec.mode == "axis" and designs:
-        try:
-            found = axis_locked_flexibility_many(
-                [design for design, _ in designs.values()],
-                task.template,
-                [model for _, model in designs.values()],
-                spec.collisions,
-            )
-            results = dict(zip(designs, found, strict=True))
-        except HexalegError:
-            results = {}  # one design spoils the batch: each is tried on its own below
-    for key, (design, model) in designs.items():
-        try:
-            rows[key] = _row(key, design, model, spec, task.template, results.get(key))
-        except HexalegError as err:
-            rows[key] = _error_row(key, err)
+            rows[key] = StudyRow(*key, error=str(err))
+    found = evaluate_many(
+        list(designs.values()), spec.metrics, spec.conditions, base_model(spec.base), task.template
+    )
+    for (key, design), evaluation in zip(designs.items(), found, strict=True):
+        rows[key] = study_row(key, design, evaluation)
     return [rows[key] for key in task.keys]
-
-
-def _row(
-    key: tuple[float, float],
-    design: HexapodDesign,
-    model: HexapodModel,
-    spec: StudySpec,
-    template: StanceGeometry,
-    result: FlexibilityResult | None,
-) -> Row:
-    """One design's row: its flexibility (computed here unless given) and statics."""
-    if result is None and spec.mode == "axis":
-        result = axis_locked_flexibility(
-            design, spec.stance, model, geometry=template, collisions=spec.collisions
-        )
-    elif result is None:
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", FlexibilityWarning)  # the row's "converged"
-            result = free_flexibility(
-                design, spec.stance, model, collisions=spec.collisions, geometry=template
-            )
-    row: Row = {"l1_ratio": key[0], "l3_ratio": key[1]}
-    row |= {"l1": design.l1, "l2": design.l2, "l3": design.l3, "fb": result.fb}
-    row |= loads_at_extremes(model, result).study_columns() if spec.statics else {}
-    row |= gait_study_columns(design, model) if spec.gait else {}
-    row |= {f"range_{axis}": value for axis, value in result.ranges.items()}
-    for extreme in result.extremes:
-        name = f"{extreme.axis}_{'max' if extreme.sign > 0 else 'min'}"
-        row[name] = extreme.value
-        row[f"{name}_limited_by"] = extreme.description
-    return row | {"converged": result.converged, "error": ""}
-
-
-def _error_row(key: tuple[float, float], err: HexalegError) -> Row:
-    return {"l1_ratio": key[0], "l3_ratio": key[1], "l1": math.nan, "l2": math.nan,
-            "l3": math.nan, "error": str(err)}  # fmt: skip
 
 
 def sweep(
     spec: StudySpec,
     executor: Executor,
-    skip: Iterable[tuple[float, float]] = (),
-    on_rows: Callable[[list[Row]], None] | None = None,
-) -> dict[tuple[float, float], Row]:
+    skip: Iterable[Key] = (),
+    on_rows: Callable[[list[StudyRow]], None] | None = None,
+) -> dict[Key, StudyRow]:
     """Evaluate every design of ``spec`` not in ``skip`` on ``executor``; rows by ratio pair.
 
     ``on_rows`` sees each task's rows as they arrive (the journal and the progress bar
     use it).
     """
     done = set(skip)
-    rows: dict[tuple[float, float], Row] = {}
+    rows: dict[Key, StudyRow] = {}
     with worker_failures():
         futures = [
             executor.submit(evaluate, task)
@@ -228,8 +184,7 @@ def sweep(
         ]
         for future in as_completed(futures):
             finished = future.result()
-            for row in finished:
-                rows[(row["l1_ratio"], row["l3_ratio"])] = row
+            rows |= {row.key: row for row in finished}
             if on_rows is not None:
                 on_rows(finished)
     return rows
@@ -263,7 +218,7 @@ def _template_geometry(spec: StudySpec) -> StanceGeometry:
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
     """The whole study evaluated in this process, as a table (for small, fast studies)."""
     rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate(task)]
-    return study_table(spec, {(row["l1_ratio"], row["l3_ratio"]): row for row in rows})
+    return study_table(spec, {row.key: row for row in rows})
 
 
 def run_study(
@@ -294,11 +249,12 @@ def run_study(
     adopt_unmarked_study(out_dir)
     out = claim_folder(out_dir, FOLDER_KIND)
     with lock_folder(out, "study"):
-        done = start_journal(out, spec.fingerprint(), spec.keys(), resume)
+        kept = start_journal(out, spec.fingerprint(), spec.keys(), resume)
+        done = {key: StudyRow.from_dict(record) for key, record in kept.items()}
         with Progress(len(spec.keys()), len(done), "designs", progress) as shown:
 
-            def record(rows: list[Row]) -> None:
-                append_rows(out / JOURNAL, rows)
+            def record(rows: list[StudyRow]) -> None:
+                append_rows(out / JOURNAL, [row.to_dict() for row in rows])
                 shown.update(len(rows))
 
             if executor is None:
@@ -309,9 +265,9 @@ def run_study(
         return write_table(spec, study_table(spec, done), out)
 
 
-def study_table(spec: StudySpec, rows: dict[tuple[float, float], Row]) -> pd.DataFrame:
+def study_table(spec: StudySpec, rows: Mapping[Key, StudyRow]) -> pd.DataFrame:
     """The rows of a finished sweep as a table, in (coxa, tibia) ratio order."""
-    table = pd.DataFrame([rows[key] for key in spec.keys()])
+    table = pd.DataFrame([rows[key].to_dict() for key in spec.keys()])
     return table.sort_values(["l1_ratio", "l3_ratio"], kind="stable").reset_index(drop=True)
 
 

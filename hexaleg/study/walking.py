@@ -18,13 +18,14 @@ from typing import Any
 import pandas as pd
 
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import STUDY_GAIT, gait_study_columns
+from hexaleg.gait.analysis import STUDY_GAIT
+from hexaleg.study.rows import Cell, StudyRow, design_walking_columns
 from hexaleg.study.sweep import StudySpec, base_model
 
 PAPER_RATIOS = (0.2, 0.4)
 """The paper's leg: coxa and tibia ratios l1/L, l3/L (0.2/0.4/0.4) [-]."""
 TORQUE = "gait_peak_torque"
-ENERGY = "gait_cost_of_transport"
+ENERGY = "mechanical_cost_of_transport"
 
 
 @dataclass(frozen=True)
@@ -32,18 +33,18 @@ class WalkingComparison:
     """The grid's best walking legs against the paper's.
 
     Attributes:
-        reference: The paper's leg's walking columns (a study row's ``gait_*``).
+        reference: The paper's leg's row (its walking columns).
         least_torque: The row of the design with the least peak joint torque.
-        least_energy: The row of the design with the least cost of transport.
+        least_energy: The row of the design with the least mechanical cost of transport.
         walking: How many of the grid's designs walk the gait (of ``designs``).
         designs: How many designs the grid has.
         gait: The gait walked (JSON-ready).
 
     """
 
-    reference: dict[str, Any]
-    least_torque: dict[str, Any]
-    least_energy: dict[str, Any]
+    reference: StudyRow
+    least_torque: StudyRow
+    least_energy: StudyRow
     walking: int
     designs: int
     gait: dict[str, Any]
@@ -68,7 +69,7 @@ class WalkingComparison:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (savings as fractions, torques N·m, speeds m/s)."""
-        keep = ("l1_ratio", "l3_ratio", TORQUE, ENERGY, "gait_max_speed")
+        keep = ("l1_ratio", "l3_ratio", TORQUE, ENERGY, "max_speed")
         return {
             "gait": self.gait,
             "walking_designs": self.walking,
@@ -81,7 +82,8 @@ class WalkingComparison:
         }
 
 
-def _saving(value: float, reference: float) -> float:
+def _saving(value: Cell, reference: Cell) -> float:
+    value, reference = float(value), float(reference)
     return 1.0 - value / reference if reference > 0 and math.isfinite(reference) else math.nan
 
 
@@ -102,11 +104,12 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     if walking.empty:
         raise HexalegError("no design of the study walks the default gait")
     paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
-    reference = gait_study_columns(paper, base_model(spec.base).with_design(paper))
+    columns = design_walking_columns(paper, base_model(spec.base).with_design(paper))
+    reference = StudyRow(*PAPER_RATIOS, paper.lengths, columns)
     return WalkingComparison(
-        reference=reference | {"l1_ratio": PAPER_RATIOS[0], "l3_ratio": PAPER_RATIOS[1]},
-        least_torque=walking.loc[walking[TORQUE].idxmin()].to_dict(),
-        least_energy=walking.loc[walking[ENERGY].idxmin()].to_dict(),
+        reference=reference,
+        least_torque=StudyRow.from_dict(walking.loc[walking[TORQUE].idxmin()].to_dict()),
+        least_energy=StudyRow.from_dict(walking.loc[walking[ENERGY].idxmin()].to_dict()),
         walking=len(walking),
         designs=len(table),
         gait=STUDY_GAIT.to_dict(),

@@ -155,7 +155,7 @@ def walking_study_figure(table: pd.DataFrame) -> Figure:
     panels = fig.subplots(2, 1, sharex=True)
     columns = (
         ("gait_peak_torque", "peak |τ|, any joint [N·m]"),
-        ("gait_cost_of_transport", "cost of transport [-]"),
+        ("mechanical_cost_of_transport", "mechanical cost of transport [-]"),
     )
     for ax, (column, label) in zip(panels, columns, strict=True):
         for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):

@@ -128,7 +128,7 @@ def pareto_figure(
     for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
         ax.scatter(
             group["payload_capacity"],
-            group["flexibility"],
+            group["fb"],
             s=24,
             color=color,
             label=f"on the front, coxa ratio {r1:.2f}",
@@ -136,7 +136,7 @@ def pareto_figure(
     best = front.iloc[0]
     ax.scatter(
         [best["payload_capacity"]],
-        [best["flexibility"]],
+        [best["fb"]],
         s=220,
         marker="*",
         color="k",
@@ -145,7 +145,7 @@ def pareto_figure(
     if yours is not None:
         ax.scatter(
             [yours["payload_capacity"]],
-            [yours["flexibility"]],
+            [yours["fb"]],
             s=90,
             marker="D",
             facecolor="none",

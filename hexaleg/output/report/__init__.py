@@ -16,14 +16,17 @@ Write one module here, e.g. ``walking.py``, holding:
 - a frozen record, ``@dataclass(frozen=True) class WalkingRecord``;
 - ``compute(data: ReportData) -> WalkingRecord``: read the design (``data.design``),
   the options, the model and the records of the parts you need (``data[StaticsRecord]``);
-- ``section(data: ReportData) -> Section``: the title and blocks — markdown text, tables
-  made with :func:`~.document.table`, and :class:`~.document.Figure` ``(name, caption)``
+- ``section(data: ReportData) -> Section``: the title (without its number) and blocks —
+  markdown text, tables made with :func:`~.document.table`, and
+  :class:`~.section.Figure` ``(name, caption)``
   for a figure your ``files`` writes as ``<name>.png`` and ``<name>.svg``
   (``save(figure, out / "<name>.png", svg=data.options.svg)``);
 - optionally ``write_files(data, out)`` (figures, CSV) and ``to_json(record) -> dict``
   (your top-level keys of ``report.json``, SI units);
 - ``PART = Part(WalkingRecord, compute, section, needs=(StaticsRecord,), step="walking",
-  files=write_files, json=to_json)``.
+  files=write_files, json=to_json, level=2)``: level 1 is a numbered section, 2 a
+  subsection of the one before, 0 unnumbered; refer to another section by its number,
+  ``data.number(StaticsRecord)``, never by a typed one.
 
 Then add ``walking.PART`` to :data:`~.registry.PARTS` where the section should appear.
 ``compute`` sees only the records listed in ``needs`` (a missing one fails with its
@@ -34,12 +37,10 @@ layout, the links to each figure's PNG and SVG all follow.
 from __future__ import annotations
 
 import os
-from typing import Any
 
 from hexaleg.design import HexapodDesign
-from hexaleg.output.report.document import Figure, Section, report_json
 from hexaleg.output.report.options import ReportOptions
-from hexaleg.output.report.part import Part, ReportData, compute_order, compute_parts
+from hexaleg.output.report.part import Part, ReportData, compute_parts
 from hexaleg.output.report.pdf import REPORT_PDF, require_pdf_engine
 from hexaleg.output.report.registry import PARTS, parts_for
 from hexaleg.output.report.render import (
@@ -49,6 +50,7 @@ from hexaleg.output.report.render import (
     check_target,
     render_report,
 )
+from hexaleg.output.report.section import Figure, Section
 
 __all__ = [
     "PARTS",
@@ -76,10 +78,11 @@ def build_report(
     out_dir: str | os.PathLike[str],
     design: HexapodDesign | None = None,
     options: ReportOptions | None = None,
-) -> dict[str, Any]:
-    """Run every analysis and write the report folder; return the report's numbers.
+) -> ReportData:
+    """Run every analysis and write the report folder; return what it computed.
 
-    With ``options.pdf``, the folder also holds ``report.pdf`` (the ``[pdf]`` extra).
+    The returned record's :meth:`~ReportData.to_dict` is ``report.json``. With
+    ``options.pdf``, the folder also holds ``report.pdf`` (the ``[pdf]`` extra).
     """
     options = options or ReportOptions()
     check_target(out_dir)  # before the minutes of computing, not after
@@ -91,4 +94,4 @@ def build_report(
         require_mujoco()
     data = compute_report(design or HexapodDesign(), options)
     render_report(data, out_dir)
-    return report_json(data, compute_order(parts_for(options)))
+    return data

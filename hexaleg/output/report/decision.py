@@ -2,7 +2,7 @@
 
 With requirements, the best design meeting them comes first
 (:func:`hexaleg.study.decide.decide`, presented by :mod:`.requirements`). Then, or
-alone without requirements, the one recommendation of the grid (section 5) beside the
+alone without requirements, the one recommendation of the grid (its own section) beside the
 user's design, metric by metric, scored by the one ranking rule
 (:mod:`hexaleg.study.ranking`), and the rule itself.
 """
@@ -13,11 +13,13 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.output.report.document import Section, change, table
+from hexaleg.output.report.pareto import ParetoRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.study.decide import DecideResult, decide
 from hexaleg.study.executors import local_pool
+from hexaleg.study.metrics import METRICS
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, score
 from hexaleg.study.recommendation import BAND, Recommendation
 
@@ -27,7 +29,7 @@ class DecisionRecord:
     """The recommendation beside the user's design, and the answer to their requirements.
 
     Attributes:
-        recommendation: The grid's one recommendation (section 5), with the user's
+        recommendation: The grid's one recommendation, with the user's
             design's metrics it is scored against.
         leg_length: The user's leg length, at which the ratios are lengths [m].
         requirements: The best design meeting the user's requirements, and the user's
@@ -51,15 +53,6 @@ def compute(data: ReportData) -> DecisionRecord:
     return DecisionRecord(grid.recommendation, grid.leg_length, answer)
 
 
-METRIC_LABELS = {
-    "improved_area": "improved workspace area [m²] (eq 16)",
-    "average_manipulability": "average manipulability w_A [m³] (eq 27, improved domain)",
-    "flexibility": "body flexibility FB [-] (eq 29, axis-locked)",
-    "payload_capacity": "payload capacity [kg] (section 3.3, nominal stance)",
-}
-"""How the decision's table names each ranked metric."""
-
-
 def section(data: ReportData) -> Section:
     """The answer first: the requirements' if any, then the recommended design beside yours."""
     rec = data[DecisionRecord].recommendation
@@ -80,7 +73,8 @@ def section(data: ReportData) -> Section:
             "designs keep your body, mounts and posture.",
             table(["metric", "your design", "recommended", "recommended vs yours"], _rows(rec)),
             f"*How designs are ranked.* One rule for this section, the recommendation "
-            f"(section 5) and the Pareto front (section 5.1): {RANKING_RULE}.",
+            f"(section {data.number(RecommendationRecord)}) and the Pareto front (section "
+            f"{data.number(ParetoRecord)}): {RANKING_RULE}.",
         ),
     )
 
@@ -88,8 +82,13 @@ def section(data: ReportData) -> Section:
 def _rows(rec: Recommendation) -> list[tuple[str, str, str, str]]:
     yours, theirs = rec.reference, rec.metrics
     rows = [
-        (label, f"{yours[name]:.4g}", f"{theirs[name]:.4g}", change(yours[name], theirs[name]))
-        for name, label in METRIC_LABELS.items()
+        (
+            METRICS[name].described,
+            f"{yours[name]:.4g}",
+            f"{theirs[name]:.4g}",
+            change(yours[name], theirs[name]),
+        )
+        for name in RANKED_METRICS
     ]
     your_score = score(yours, yours)
     rows.append(
@@ -136,4 +135,5 @@ PART = Part(
     needs=(RecommendationRecord,),
     step="decision",
     json=to_json,
+    level=0,
 )

@@ -59,4 +59,4 @@ def write_files(data: ReportData, out: Path) -> None:
     atomic_write_text(out / URDF, data[DesignRecord].urdf)
 
 
-PART = Part(DesignRecord, compute, section, step="URDF", files=write_files)
+PART = Part(DesignRecord, compute, section, step="URDF", files=write_files, level=0)

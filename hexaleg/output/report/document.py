@@ -12,47 +12,20 @@ from __future__ import annotations
 import html
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Literal
 
 import markdown
-import numpy as np
 import pandas as pd
 
 from hexaleg._io import atomic_write_text
 from hexaleg._version import __version__
 from hexaleg.output.figures.canvas import DPI
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, numbered
+from hexaleg.output.report.section import Figure, Section
 
 Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
-
-
-@dataclass(frozen=True)
-class Figure:
-    """A figure block: ``<name>.png`` and ``<name>.svg`` in the report folder.
-
-    Attributes:
-        name: The file name without extension.
-        caption: What the figure shows, in plain words.
-
-    """
-
-    name: str
-    caption: str
-
-
-Block = str | Figure
-"""A markdown block (text or a table) or a figure."""
-
-
-@dataclass(frozen=True)
-class Section:
-    """One ``##`` section of the report: a title and its blocks."""
-
-    title: str
-    blocks: tuple[Block, ...]
 
 
 def table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
@@ -81,9 +54,9 @@ def preamble(folder: Path, medium: Medium = "screen") -> str:
     )
 
 
-def sections(data: ReportData, parts: Sequence[Part[Any]]) -> list[Section]:
-    """Every part's section, in the order of ``parts``."""
-    return [part.section(data) for part in parts]
+def sections(data: ReportData, parts: Sequence[Part[Any]] | None = None) -> list[Section]:
+    """Every part's section, numbered, in the order of ``parts`` (the report's by default)."""
+    return [numbered(data, part) for part in (data.parts if parts is None else parts)]
 
 
 def figure_numbers(report: Sequence[Section]) -> dict[str, int]:
@@ -185,31 +158,6 @@ def png_size(path: Path) -> tuple[int, int]:
     """Width and height of a PNG file [px], from its header."""
     header = path.read_bytes()[16:24]
     return int.from_bytes(header[:4], "big"), int.from_bytes(header[4:], "big")
-
-
-def report_json(data: ReportData, parts: Sequence[Part[Any]]) -> dict[str, Any]:
-    """The report's numbers as ``report.json`` holds them (SI units, radians)."""
-    content: dict[str, Any] = {
-        "hexaleg_version": __version__,
-        "design": data.design.as_dict(),
-    }
-    for part in parts:
-        content.update(part.json(data[part.record]))
-    numbers: dict[str, Any] = plain(content)
-    return numbers
-
-
-def plain(value: Any) -> Any:
-    """NumPy scalars and arrays to plain Python for JSON."""
-    if isinstance(value, dict):
-        return {str(k): plain(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [plain(v) for v in value]
-    if isinstance(value, np.ndarray):
-        return plain(value.tolist())
-    if isinstance(value, np.generic):
-        return value.item()
-    return value
 
 
 def change(yours: float, other: float) -> str:

@@ -64,7 +64,7 @@ def section(data: ReportData) -> Section:
     """Body flexibility of the design in both modes (§6)."""
     record = data[FlexibilityRecord]
     return Section(
-        "3. Body flexibility with the feet planted (paper §6)",
+        "Body flexibility with the feet planted (paper §6)",
         (
             "All six feet on their nominal footholds. Axis-locked (the paper's ADAMS study: one "
             f"coordinate moves, the other five held) **FB = {record.axis.fb:.4f}**; free-coupled "

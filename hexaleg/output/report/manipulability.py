@@ -64,7 +64,7 @@ def section(data: ReportData) -> Section:
     analysis, w_map = record.analysis, record.average_map
     o = analysis.optimum
     return Section(
-        "2. Manipulability (paper §5)",
+        "Manipulability (paper §5)",
         (
             f"Optimum pose of this leg within eq 26: θ2 = {math.degrees(o.theta2):.4f}°, "
             f"θ3 = {math.degrees(o.theta3):.4f}°, w = {o.w:.5g} m³ (condition number "

@@ -1,4 +1,4 @@
-"""Report part: the Pareto front with payload capacity, ranked by the one rule of section 5."""
+"""Report part: the Pareto front with payload capacity, ranked by the recommendation's rule."""
 
 from __future__ import annotations
 
@@ -14,7 +14,7 @@ from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
-from hexaleg.study.decision import pareto_front
+from hexaleg.study.pareto import pareto_front
 
 
 @dataclass(frozen=True)
@@ -46,30 +46,32 @@ def section(data: ReportData) -> Section:
     """The Pareto front with payload capacity, ranked by the one rule."""
     front = data[ParetoRecord].front
     best = front.iloc[0]
+    recommended = data.number(RecommendationRecord)
     rows = [
         (
             f"{r['l1_ratio']:.2f}",
             f"{r['l3_ratio']:.3f}",
             f"{r['improved_area']:.4f}",
             f"{r['average_manipulability']:.4f}",
-            f"{r['flexibility']:.4f}",
+            f"{r['fb']:.4f}",
             f"{r['payload_capacity']:.1f}",
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")
     ]
     return Section(
-        "5.1 Pareto front: workspace, manipulability, flexibility and payload",
+        "Pareto front: workspace, manipulability, flexibility and payload",
         (
-            f"Among the sweep's designs at the allowed coxa ratios (as in section 5), "
+            f"Among the sweep's designs at the allowed coxa ratios (as in section {recommended}), "
             f"{len(front)} are beaten by no other in improved area, w_A, FB and payload "
             "capacity at once. The grid is dense and every metric on it exact, so the front "
             "is read off it directly (no evolutionary search could be more exact). The front "
-            "is ranked by the rule of section 5 (each score relative to your design's 1); a "
+            f"is ranked by the rule of section {recommended} (each score relative to your "
+            "design's 1); a "
             "design that beats another in every metric also scores higher, so its first, "
             f"l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
             f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}, is the "
-            "grid's best, the design section 5 refines into the one recommendation.",
+            f"grid's best, the design section {recommended} refines into the one recommendation.",
             table(
                 ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
                 rows,
@@ -110,4 +112,5 @@ PART = Part(
     step="Pareto front",
     files=write_files,
     json=to_json,
+    level=2,
 )

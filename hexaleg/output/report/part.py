@@ -11,20 +11,24 @@ frozen :class:`ReportData`.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
-from typing import TYPE_CHECKING, Any, Generic, TypeVar
+from typing import Any, Generic, Literal, TypeVar
 
+import numpy as np
+
+from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report.options import ReportOptions
+from hexaleg.output.report.section import Section
 from hexaleg.robot.model import HexapodModel
 from hexaleg.study.progress import Progress
 
-if TYPE_CHECKING:
-    from hexaleg.output.report.document import Section
-
 R = TypeVar("R")
+
+Level = Literal[0, 1, 2]
+"""A part's heading level: unnumbered, a section, a subsection."""
 
 
 @dataclass(frozen=True)
@@ -36,6 +40,7 @@ class ReportData:
         options: The sweep sizes and choices used.
         model: The design's Pinocchio model (its URDF is ``model.urdf``).
         records: Each part's record, keyed by the record's type; read with ``data[Type]``.
+        parts: The report's parts, in reading order.
 
     """
 
@@ -43,6 +48,7 @@ class ReportData:
     options: ReportOptions
     model: HexapodModel
     records: Mapping[type, Any] = field(default_factory=dict)
+    parts: tuple[Part[Any], ...] = ()
 
     def __getitem__(self, kind: type[R]) -> R:
         """The record of type ``kind``; fails if no part computed it (yet)."""
@@ -57,13 +63,42 @@ class ReportData:
 
     def with_record(self, record: object) -> ReportData:
         """A copy holding ``record`` too."""
-        records = {**self.records, type(record): record}
-        return ReportData(self.design, self.options, self.model, records)
+        return replace(self, records={**self.records, type(record): record})
 
     def only(self, kinds: Sequence[type]) -> ReportData:
         """A copy holding only the records of ``kinds`` (what a part declared it needs)."""
-        records: dict[type, Any] = {kind: self[kind] for kind in kinds}
-        return ReportData(self.design, self.options, self.model, records)
+        return replace(self, records={kind: self[kind] for kind in kinds})
+
+    def number(self, kind: type) -> str:
+        """The section number of the part whose record is ``kind``: ``"3.3"``.
+
+        Numbers follow the parts' reading order; an unnumbered part's is empty.
+        """
+        return section_numbers(self.parts).get(kind, "")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The report's numbers as ``report.json`` holds them (SI units, radians)."""
+        content: dict[str, Any] = {
+            "hexaleg_version": __version__,
+            "design": self.design.as_dict(),
+        }
+        for part in compute_order(self.parts):
+            content.update(part.json(self[part.record]))
+        numbers: dict[str, Any] = plain(content)
+        return numbers
+
+
+def plain(value: Any) -> Any:
+    """NumPy scalars and arrays to plain Python for JSON."""
+    if isinstance(value, dict):
+        return {str(k): plain(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [plain(v) for v in value]
+    if isinstance(value, np.ndarray):
+        return plain(value.tolist())
+    if isinstance(value, np.generic):
+        return value.item()
+    return value
 
 
 def _no_files(data: ReportData, out: Path) -> None:
@@ -87,6 +122,8 @@ class Part(Generic[R]):
         step: What the progress bar says while computing it.
         files: Writes the part's figures and tables into the report folder.
         json: The part's top-level keys of ``report.json`` (SI units, radians).
+        level: Its heading's level: 1 a numbered section, 2 a numbered subsection of the
+            section before it, 0 unnumbered.
 
     """
 
@@ -97,6 +134,31 @@ class Part(Generic[R]):
     step: str = ""
     files: Callable[[ReportData, Path], None] = _no_files
     json: Callable[[R], dict[str, Any]] = _no_json
+    level: Level = 1
+
+
+def section_numbers(parts: Sequence[Part[Any]]) -> dict[type, str]:
+    """Each numbered part's section number, in reading order: ``"3"``, then ``"3.1"``."""
+    numbers: dict[type, str] = {}
+    major = minor = 0
+    for part in parts:
+        if part.level == 1:
+            major, minor = major + 1, 0
+            numbers[part.record] = str(major)
+        elif part.level == 2:
+            minor += 1
+            numbers[part.record] = f"{major}.{minor}"
+    return numbers
+
+
+def numbered(data: ReportData, part: Part[Any]) -> Section:
+    """The part's section, its title numbered (``"3.3 Statics"``, ``"3. Body …"``)."""
+    section = part.section(data)
+    number = data.number(part.record)
+    if not number:
+        return section
+    prefix = f"{number}." if part.level == 1 else number
+    return replace(section, title=f"{prefix} {section.title}")
 
 
 def compute_order(parts: Sequence[Part[Any]]) -> list[Part[Any]]:
@@ -134,7 +196,7 @@ def compute_parts(
     ordered = compute_order(parts)
     with Progress(len(ordered) + 1, unit="steps", show=options.progress) as shown:
         shown.update(0, "model and URDF")
-        data = ReportData(design, options, HexapodModel(design))
+        data = ReportData(design, options, HexapodModel(design), parts=tuple(parts))
         for part in ordered:
             shown.update(1, part.step or part.record.__name__)
             data = data.with_record(part.compute(data.only(part.needs)))

@@ -1,7 +1,7 @@
 """Report part: the recommended ratios and the evidence behind them (paper §4–6 combined).
 
 One ranking rule (:mod:`hexaleg.study.ranking`) serves this section, the Pareto front
-(section 5.1) and the Decision section: the geometric mean of the four metrics, each
+and the Decision section: the geometric mean of the four metrics, each
 relative to the user's design.
 """
 
@@ -16,9 +16,8 @@ from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.decision import grid_recommendation
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE
-from hexaleg.study.recommendation import BAND, Recommendation
+from hexaleg.study.recommendation import BAND, Recommendation, grid_recommendation
 
 
 @dataclass(frozen=True)
@@ -56,7 +55,7 @@ def section(data: ReportData) -> Section:
     rec = data[RecommendationRecord].recommendation
     total = data.design.leg_length
     return Section(
-        "5. Recommendation",
+        "Recommendation",
         (
             f"Every design of the grid is ranked by one rule: {RANKING_RULE}. Where each "
             "metric and the score peak, and the best score each coxa ratio reaches:",
@@ -81,7 +80,8 @@ def section(data: ReportData) -> Section:
                 ],
             ),
             "Workspace, manipulability and flexibility grow as the coxa shrinks (Table 5, "
-            "sections 2 and 3.1); payload capacity peaks where its column says, and the "
+            f"sections {data.number(ManipulabilityRecord)} and {data.number(StudyRecord)}); "
+            "payload capacity peaks where its column says, and the "
             "score weighs all four alike. The recommendation takes the best score among the "
             "allowed coxa ratios, its tibia ratio refined between grid points with every "
             "metric computed exactly:",

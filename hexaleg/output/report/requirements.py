@@ -23,13 +23,13 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         extreme = "largest" if objective.sense == "maximize" else "smallest"
         verdict = (
             f"**The best leg meeting your requirements: l = ({lengths}) m**, the {extreme} "
-            f"{objective.label} of those that do: {_objective(best, objective.name)}"
+            f"{objective.spec.label} of those that do: {_objective(best, objective.name)}"
         )
     else:
         reason = result.conflict.description if result.conflict else "nothing meets them all"
         verdict = (
             f"**No leg within the bounds meets every requirement:** {reason}. The leg closest "
-            f"to meeting them is l = ({lengths}) m, {objective.label} "
+            f"to meeting them is l = ({lengths}) m, {objective.spec.label} "
             f"{_objective(best, objective.name)}"
         )
     rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
@@ -37,7 +37,7 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
     walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
-        f"{verdict}; your design: {objective.label} {_objective(yours, objective.name)}.",
+        f"{verdict}; your design: {objective.spec.label} {_objective(yours, objective.name)}.",
         table(
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,

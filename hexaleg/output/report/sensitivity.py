@@ -63,7 +63,7 @@ def section(data: ReportData) -> Section:
         f"({count} values, --sweep)"
     )
     return Section(
-        "3.2 Sensitivity to posture and body (not given by the paper)",
+        "Sensitivity to posture and body (not given by the paper)",
         (
             f"Axis-locked FB peak for {what}, {data.options.sensitivity_points} tibia ratios "
             "each. Each variant changes your design by the amount it names.",
@@ -101,4 +101,5 @@ PART = Part(
     step="posture sensitivity",
     files=write_files,
     json=to_json,
+    level=2,
 )

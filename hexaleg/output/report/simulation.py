@@ -60,7 +60,7 @@ def section(data: ReportData) -> Section:
     stiffness = zip(LEG_JOINTS, result.gains.stiffness, strict=True)
     kp = ", ".join(f"{joint} {k:.0f}" for joint, k in stiffness)
     return Section(
-        "3.5 Simulated walk: the plan in a physics engine",
+        "Simulated walk: the plan in a physics engine",
         (
             f"The design walked the default gait ({gait.pattern}, T = {gait.period:g} s, "
             f"S = {gait.stride:g} m, H = {gait.step_height:g} m: v = {gait.speed:.3g} m/s) "
@@ -201,4 +201,5 @@ PART = Part(
     step="simulated walk",
     files=write_files,
     json=to_json,
+    level=2,
 )

@@ -44,7 +44,7 @@ def section(data: ReportData) -> Section:
     loads = data[StaticsRecord].axis
     differ = slopes_differ(loads)
     return Section(
-        "3.3 Statics: what the design costs",
+        "Statics: what the design costs",
         (
             f"The robot weighs {loads.nominal.mass * 9.81:.0f} N ({loads.nominal.mass:.2f} kg). "
             "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
@@ -142,4 +142,5 @@ PART = Part(
     step="statics",
     files=write_files,
     json=to_json,
+    level=2,
 )

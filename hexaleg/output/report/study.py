@@ -62,7 +62,7 @@ def section(data: ReportData) -> Section:
     peaks = peak_table(study)
     failed = int((study["error"] != "").sum())
     return Section(
-        "3.1 Design study: FB against segment ratios (Fig 14–15)",
+        "Design study: FB against segment ratios (Fig 14–15)",
         (
             f"{len(study)} designs ({len(spec.l1_ratios)} coxa ratios × "
             f"{len(spec.l3_ratios)} tibia ratios, total {data.design.leg_length:g} m, "
@@ -107,4 +107,6 @@ def to_json(record: StudyRecord) -> dict[str, Any]:
     return {"study_peaks": peak_table(record.table).to_dict(orient="records")}
 
 
-PART = Part(StudyRecord, compute, section, step="design study", files=write_files, json=to_json)
+PART = Part(
+    StudyRecord, compute, section, step="design study", files=write_files, json=to_json, level=2
+)

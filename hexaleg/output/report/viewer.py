@@ -35,7 +35,7 @@ def section(data: ReportData) -> Section:
     """Where the 3-D view is and how to use it."""
     leg = data[ViewerRecord].workspace_leg
     return Section(
-        "4. 3-D view",
+        "3-D view",
         (
             f"[{PAGE}]({PAGE}) is a self-contained meshcat scene (no server needed): the "
             f"nominal stance, the footholds, the {leg} leg's workspace cloud, and the 12 "

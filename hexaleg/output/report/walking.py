@@ -17,6 +17,7 @@ from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.study.rows import StudyRow
 from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
 
 FIGURE = "study_walking"
@@ -43,7 +44,7 @@ def compute(data: ReportData) -> WalkingRecord:
 def section(data: ReportData) -> Section:
     """The gait, the best walking legs against the paper's, the claim, and the figure."""
     comparison = data[WalkingRecord].comparison
-    title = "3.4 Walking: what a gait period costs"
+    title = "Walking: what a gait period costs"
     if comparison is None:
         return Section(title, ("No design of the grid walks the default gait.",))
     gait = comparison.gait
@@ -83,14 +84,14 @@ def section(data: ReportData) -> Section:
     )
 
 
-def _row(name: str, row: dict[str, Any]) -> list[str]:
+def _row(name: str, row: StudyRow) -> list[str]:
     return [
         name,
         f"{row['l1_ratio']:.3g}",
         f"{row['l3_ratio']:.3g}",
         f"{row[TORQUE]:.1f}",
         f"{row[ENERGY]:.4f}",
-        f"{row['gait_max_speed']:.3f}",
+        f"{row['max_speed']:.3f}",
     ]
 
 
@@ -128,13 +129,13 @@ def _why(comparison: WalkingComparison) -> str:
     joint = max(("root", "hip", "knee"), key=lambda j: reference[f"gait_peak_{j}_torque"])
     femur = 1 - float(best["l1_ratio"]) - float(best["l3_ratio"])
     paper_femur = 1 - float(reference["l1_ratio"]) - float(reference["l3_ratio"])
-    slower = float(best["gait_max_speed"]) < float(reference["gait_max_speed"])
+    slower = float(best["max_speed"]) < float(reference["max_speed"])
     return (
         f"The paper's leg's peak is at its {joint}; the least-torque leg's femur is "
         f"{femur:.2f} of the leg against {paper_femur:.2f}, and it walks "
         + ("slower" if slower else "at least as fast")
-        + f" within its ratings ({float(best['gait_max_speed']):.2f} against "
-        f"{float(reference['gait_max_speed']):.2f} m/s, {best['gait_max_speed_limited_by']})."
+        + f" within its ratings ({float(best['max_speed']):.2f} against "
+        f"{float(reference['max_speed']):.2f} m/s, {best['max_speed_limited_by']})."
     )
 
 
@@ -157,4 +158,5 @@ PART = Part(
     step="walking",
     files=write_files,
     json=to_json,
+    level=2,
 )

@@ -47,7 +47,7 @@ def section(data: ReportData) -> Section:
     record = data[WorkspaceRecord]
     area = record.analysis.to_dict()["area"]
     return Section(
-        "1. Swing phase: workspace (paper §4)",
+        "Swing phase: workspace (paper §4)",
         (
             f"Planar workspace of this leg at θ1 = 0: **{area['rectangular']:.4f} m²** on the "
             f"rectangular domain (Table 3), **{area['improved']:.4f} m²** on the improved domain "

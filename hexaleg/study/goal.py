@@ -1,0 +1,140 @@
+"""What a decision measures every design for: its requirements and its objective.
+
+An :class:`Objective` makes one metric (:data:`~hexaleg.study.metrics.METRICS`) best; a
+:class:`Goal` pairs it with the requirements (:mod:`hexaleg.study.requirements`), names
+the metrics both need and the conditions they are measured under, and measures a design
+for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.study.evaluation.evaluate`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field, replace
+
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import HexalegError
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.statics.forces import Payload
+from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.study.metrics import METRICS, Better, MetricSpec, objectives
+from hexaleg.study.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
+
+
+@dataclass(frozen=True)
+class Objective:
+    """What the decision makes best.
+
+    Attributes:
+        name: The metric: any of :data:`~hexaleg.study.metrics.METRICS` (the command line
+            offers those declared as objectives, in their better direction).
+        sense: ``"maximize"`` or ``"minimize"``.
+
+    """
+
+    name: str = "fb"
+    sense: Better = "maximize"
+
+    def __post_init__(self) -> None:
+        if self.sense not in ("maximize", "minimize") or self.name not in METRICS:
+            raise HexalegError(
+                f"{self.sense} {self.name!r} is not valid: --maximize takes "
+                f"{', '.join(objectives('maximize'))}; --minimize takes "
+                f"{', '.join(objectives('minimize'))}"
+            )
+
+    def cost(self, value: float) -> float:
+        """The value as a cost to minimize (its negative when maximizing)."""
+        return -value if self.sense == "maximize" else value
+
+    def __str__(self) -> str:
+        return f"{self.sense} {self.name}"
+
+    @property
+    def spec(self) -> MetricSpec:
+        """The metric's declaration."""
+        return METRICS[self.name]
+
+
+@dataclass(frozen=True)
+class Goal:
+    """What every design of a decision is measured for.
+
+    Attributes:
+        requirements: The requirements, resolved (the leg length set).
+        objective: What to make best.
+        relaxed: Requirements left out of the constraints (their metrics still measured).
+
+    """
+
+    requirements: Requirements
+    objective: Objective = field(default_factory=Objective)
+    relaxed: tuple[str, ...] = ()
+
+    @property
+    def constraints(self) -> tuple[str, ...]:
+        """The requirements every design must meet."""
+        return tuple(name for name in self.requirements.given if name not in self.relaxed)
+
+    @property
+    def metrics(self) -> tuple[str, ...]:
+        """The metrics to measure: the requirements' and the objective's, in declared order."""
+        needed = {REQUIREMENTS[name].metric for name in self.requirements.given}
+        needed.add(self.objective.name)
+        return tuple(name for name in METRICS if name in needed)
+
+    @property
+    def walks(self) -> bool:
+        """Whether the designs walk the requirements' gait (a walking metric is needed)."""
+        return any(METRICS[name].analysis == "walking" for name in self.metrics)
+
+    @property
+    def conditions(self) -> Conditions:
+        """The conditions of the requirements: their payload, slope and gait."""
+        requirements = self.requirements
+        payload = Payload(requirements.payload_mass, requirements.payload_at)
+        return Conditions(payload, requirements.slope, requirements.gait)
+
+    def with_objective(self, objective: Objective, relaxed: tuple[str, ...] = ()) -> Goal:
+        """The same requirements for another objective, some of them relaxed."""
+        return replace(self, objective=objective, relaxed=relaxed)
+
+    def evaluate(
+        self,
+        design: HexapodDesign,
+        model: HexapodModel | None = None,
+        template: StanceGeometry | None = None,
+        flexibility: FlexibilityResult | None = None,
+    ) -> Evaluation:
+        """``design``'s metrics for this goal; an error if its objective has no value.
+
+        The arguments after ``design`` are :func:`~hexaleg.study.evaluation.evaluate`'s.
+        """
+        found = evaluate(
+            design, self.metrics, self.conditions, model=model, template=template,
+            flexibility=flexibility,
+        )  # fmt: skip
+        return self._measured(found)
+
+    def evaluate_many(
+        self, designs: Sequence[HexapodDesign], base: HexapodModel, template: StanceGeometry
+    ) -> list[Evaluation]:
+        """:meth:`evaluate` of designs of one body (see :func:`~.evaluation.evaluate_many`)."""
+        found = evaluate_many(designs, self.metrics, self.conditions, base, template)
+        return [self._measured(evaluation) for evaluation in found]
+
+    def _measured(self, evaluation: Evaluation) -> Evaluation:
+        """The evaluation, or an error when the objective could not be measured."""
+        why = evaluation.unmeasured.get(self.objective.name)
+        return Evaluation(error=why) if why else evaluation
+
+    def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
+        """Each requirement checked on an evaluation (its value, margin, what limits it)."""
+        return check(self.requirements, evaluation.values, evaluation.causes)
+
+    def meets(self, evaluation: Evaluation) -> bool:
+        """Whether the design was measured and meets every constraint."""
+        if evaluation.error:
+            return False
+        return all(c.met for c in self.checks(evaluation) if c.name in self.constraints)
