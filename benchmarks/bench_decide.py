@@ -10,7 +10,7 @@ from harness import Row, check_agree
 
 from hexaleg import HexapodDesign
 from hexaleg.study.decide import decide
-from hexaleg.study.evaluation import Objective
+from hexaleg.study.goal import Objective
 from hexaleg.study.optimize import SearchSettings
 from hexaleg.study.requirements import Requirements
 
@@ -64,7 +64,7 @@ def bench_decide_walking(evaluations: int | None) -> list[Row]:
     with ProcessPoolExecutor(2) as pool:
         pool.submit(int).result()
         start = time.perf_counter()
-        found = decide(design, requirements, Objective("area"), settings=settings,
+        found = decide(design, requirements, Objective("improved_area"), settings=settings,
                        executor=pool, progress=False)  # fmt: skip
         elapsed = time.perf_counter() - start
     best = found.best.evaluation.values
