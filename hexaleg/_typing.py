@@ -40,12 +40,14 @@ CauseKind = Literal[
     "tip",
     "slide",
     "stability",
+    "zmp",
     "search limit",
 ]
 """What binds: a joint limit, a foothold out of reach, the ground, two of the robot's own
 parts touching, nothing within the searched range (extremes, gaits); a joint's torque or
 speed at its rating (payload capacity, gait speed); tipping over or sliding (slopes); the
-centre of mass leaving the support polygon (payload capacity); the search's own limit."""
+centre of mass leaving the support polygon (payload capacity), or a gait's zero-moment point
+leaving it (walking payload capacity); the search's own limit."""
 
 GaitPattern = Literal["tripod", "tetrapod", "wave"]
 """Which legs swing together: three (duty factor 1/2), two (2/3) or one at a time (5/6)."""

@@ -25,8 +25,9 @@ class Cause:
             ``"speed"`` (a joint at its rated torque or speed), ``"tip"`` (the gravity
             line leaves the support polygon on a slope), ``"slide"`` (the slope's
             tangent reaches the friction coefficient), ``"stability"`` (the centre of
-            mass leaves the support polygon) or ``"search limit"`` (nothing binds below
-            the search's own bound).
+            mass leaves the support polygon), ``"zmp"`` (a gait's zero-moment point leaves
+            the standing feet's polygon) or ``"search limit"`` (nothing binds below the
+            search's own bound).
         leg: Leg name, for joint, reach, torque, speed and a leg's ground causes.
         joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque and speed causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
@@ -52,6 +53,8 @@ class Cause:
             return f"{self.links[0]} touches {self.links[1]}"
         if self.kind in ("torque", "speed"):
             return f"{self.leg} {self.joint} {self.kind} at its rating"
+        if self.kind == "zmp":
+            return "ZMP leaves the support polygon"
         if self.kind in ("tip", "slide", "stability", "search limit"):
             return self.kind
         return "end of the searched range"

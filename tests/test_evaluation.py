@@ -16,6 +16,7 @@ from hexaleg import (
     analyze_manipulability,
     flexibility,
 )
+from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import Payload
 from hexaleg.study.evaluation import ANALYSES, Conditions, evaluate, evaluate_many
@@ -49,6 +50,8 @@ def _oracle(design: HexapodDesign) -> dict[str, float]:
         "max_speed": walked.max_speed.value,
         "gait_peak_torque": float(np.abs(walked.joint_torques).max()),
         "mechanical_cost_of_transport": walked.metrics.cost_of_transport,
+        # its own module, held against a bisection on analyze_gait in test_gait_capacity
+        "walking_payload_capacity": walking_payload_capacity(HexapodModel(design)).mass,
     }
 
 

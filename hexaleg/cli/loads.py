@@ -18,10 +18,12 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
+    from hexaleg.gait.capacity import WalkingCapacity
     from hexaleg.statics.loads import LoadsAnalysis
 
 DESCRIPTION = (
@@ -85,22 +87,29 @@ def payload_at_from_args(values: list[float]) -> tuple[float, float, float]:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
+    from hexaleg.gait.capacity import walking_payload_capacity
     from hexaleg.output.figures import loads_figure, save
+    from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
     design = design_from_args(args)
     if args.plot is not None:
         check_output_folder(args.plot)  # before computing
     payload = payload_from_args(args)
+    model = HexapodModel(design)
     analysis = analyze_loads(
-        design, payload, args.friction, args.stance, args.distribution, args.mode
+        design, payload, args.friction, args.stance, args.distribution, args.mode, model=model
     )
+    walking = walking_payload_capacity(model, Gait(), payload.position)
     if args.plot is not None:
         report_files([save(loads_figure(analysis), Path(args.plot) / "loads.png")])
     if args.json:
-        print_json(analysis.to_dict())
+        print_json(analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
         return 0
-    print_table(lengths_title("Statics", design.lengths), _rows(analysis))
+    rows = _rows(analysis)
+    at = rows.index(("payload capacity", _capacity(analysis))) + 1
+    rows.insert(at, ("walking payload capacity", _walking(walking)))
+    print_table(lengths_title("Statics", design.lengths), rows)
     return 0
 
 
@@ -143,6 +152,14 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     rows.append(("payload capacity", _capacity(analysis)))
     rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
     return rows
+
+
+def _walking(walking: WalkingCapacity) -> str:
+    gait = Gait()
+    how = f"walking the default {gait.pattern} gait at {gait.speed:g} m/s"
+    if not walking.walks:
+        return f"none: cannot walk the default {gait.pattern} gait ({walking.limited_by})"
+    return f"{walking.mass:.2f} kg {how}, limited by {walking.limited_by}"
 
 
 def _capacity(analysis: LoadsAnalysis) -> str:

@@ -185,6 +185,8 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
             phrase = f"with {cause.joint} motors of {rated:g} rad/s"
         elif cause.kind in ("tip", "stability"):
             phrase = "without tipping"
+        elif cause.kind == "zmp":
+            phrase = "with the ZMP inside the standing feet"
         elif cause.kind == "slide":
             phrase = f"without sliding (friction μ = {DEFAULT_FRICTION:g})"
         else:

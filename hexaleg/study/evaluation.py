@@ -32,6 +32,7 @@ from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
@@ -171,6 +172,9 @@ def evaluate_many(
     ]
 
 
+PERIOD_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
+"""The metrics of one period of the gait (:func:`~hexaleg.gait.analysis.analyze_gait`)."""
+
 ANALYSES: tuple[Analysis, ...] = (
     "geometry", "workspace", "manipulability", "flexibility", "clearance", "standing", "walking",
 )  # fmt: skip
@@ -301,6 +305,14 @@ class _Measuring:
 
     def _measure_walking(self) -> None:
         conditions = self.conditions
+        if "walking_payload_capacity" in self.metrics:
+            found = walking_payload_capacity(
+                self.model, conditions.gait, conditions.payload.position
+            )
+            self.values["walking_payload_capacity"] = found.mass
+            self.causes["walking_payload_capacity"] = found.limited_by
+        if not (self.metrics & set(PERIOD_METRICS) or conditions.keep):
+            return
         walked = analyze_gait(
             self.design, conditions.gait, conditions.payload, model=self.model, limits=False,
             speed=True,

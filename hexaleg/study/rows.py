@@ -22,7 +22,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.evaluation import PERIOD_METRICS, Conditions, Evaluation, evaluate
 
 Key = tuple[float, float]
 """(coxa ratio, tibia ratio) of a design [-]."""
@@ -30,7 +30,7 @@ Key = tuple[float, float]
 Cell = float | str | bool
 """A table cell: a number [its column's unit], a description, or a flag."""
 
-WALKING_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
+WALKING_METRICS = (*PERIOD_METRICS, "walking_payload_capacity")
 """The metrics of a study's gait (:data:`~hexaleg.gait.analysis.STUDY_GAIT`)."""
 
 KEY_COLUMNS = ("l1_ratio", "l3_ratio", "l1", "l2", "l3")
@@ -103,7 +103,8 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
 
     Peak torques, positive work and cost of transport are NaN when the period is
     infeasible (``gait_feasible`` false); the max speed [m/s] is given either way, at the
-    gait's stride (zero if it is infeasible), with what limits it.
+    gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
+    with what limits it.
     """
     metrics, ok = walked.metrics, walked.feasible
     columns: dict[str, Cell] = {
@@ -117,6 +118,8 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
         "gait_feasible": ok,
         "max_speed": evaluation["max_speed"],
         "max_speed_limited_by": str(evaluation.causes["max_speed"]),
+        "walking_payload_capacity": evaluation["walking_payload_capacity"],
+        "walking_payload_limited_by": str(evaluation.causes["walking_payload_capacity"]),
     }
 
 
