@@ -14,6 +14,7 @@ import io
 import os
 import tempfile
 from pathlib import Path
+from types import SimpleNamespace
 
 import pandas as pd
 import pytest
@@ -102,14 +103,16 @@ def quick_backends():
         table[f"range_{axis}"] = 0.1
 
     def fake_report(out, design, options):
+        from hexaleg.output.report.decision import DecisionRecord
+        from hexaleg.output.report.flexibility import FlexibilityRecord
+        from hexaleg.output.report.recommendation import RecommendationRecord
+
+        recommendation = SimpleNamespace(l1_ratio=0.1, l2_ratio=0.5, l3_ratio=0.4,
+                                         l3_band=(0.3, 0.5))  # fmt: skip
         return {
-            "recommendation": {
-                "l1_ratio": 0.1,
-                "l2_ratio": 0.5,
-                "l3_ratio": 0.4,
-                "l3_band": [0.3, 0.5],
-            },
-            "flexibility": {"axis": {"fb": 0.2}},
+            RecommendationRecord: SimpleNamespace(recommendation=recommendation),
+            FlexibilityRecord: SimpleNamespace(axis=SimpleNamespace(fb=0.2)),
+            DecisionRecord: SimpleNamespace(requirements=None),
         }
 
     def fake_html(model, result, path, workspace_leg=None, loads=None):
