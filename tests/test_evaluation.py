@@ -52,6 +52,23 @@ def _oracle(design: HexapodDesign) -> dict[str, float]:
         "mechanical_cost_of_transport": walked.metrics.cost_of_transport,
         # its own module, held against a bisection on analyze_gait in test_gait_capacity
         "walking_payload_capacity": walking_payload_capacity(HexapodModel(design)).mass,
+        # positive work per period over the distance walked in it, J/m to Wh/km
+        "mechanical_energy_per_km": walked.metrics.positive_work
+        / (walked.gait.speed * walked.gait.period)
+        / 3.6,
+        "min_zmp_margin": walked.min_zmp_margin,
+        **{
+            f"gait_peak_{j}_torque": float(np.abs(walked.joint_torques[..., k]).max())
+            for k, j in enumerate(("root", "hip", "knee"))
+        },
+        **{
+            f"gait_rms_{j}_torque": float(
+                np.sqrt((walked.joint_torques[..., k] ** 2).mean(axis=0)).max()
+            )
+            for k, j in enumerate(("root", "hip", "knee"))
+        },
+        "nominal_height": float(HexapodModel(design).nominal_base_pose().translation[2]),
+        "stability_margin": loads.nominal.stability_margin,
     }
 
 
@@ -108,7 +125,7 @@ def test_every_metric_is_declared_once_and_measured_by_a_known_analysis():
     assert all(spec.name == name for name, spec in METRICS.items())
     assert {spec.analysis for spec in METRICS.values()} <= set(ANALYSES)
     assert {spec.unit for spec in METRICS.values()} <= {"m", "m²", "m³", "1", "kg", "rad",
-                                                       "m/s", "N·m"}  # fmt: skip
+                                                       "m/s", "N·m", "Wh/km"}  # fmt: skip
     assert set(objectives("maximize")) & set(objectives("minimize")) == set()
     assert metric("fb").label == "FB"
     with pytest.raises(Exception, match="one of improved_area"):

@@ -51,8 +51,10 @@ def test_payload_counts_as_much_as_any_other_metric():
 def test_a_design_that_cannot_stand_has_no_score_and_one_that_carries_nothing_scores_zero():
     table = _grid(5, seed=4)
     table.loc[2, "fb"] = np.nan
-    table.loc[3, "payload_capacity"] = 0.0
-    yours = dict.fromkeys(RANKED_METRICS, 1.0) | {"payload_capacity": 0.0}  # replaced by 1 kg
+    table.loc[3, "walking_payload_capacity"] = 0.0
+    yours = dict.fromkeys(RANKED_METRICS, 1.0) | {
+        "walking_payload_capacity": 0.0
+    }  # replaced by 1 kg
     scores = ranking_scores(table, yours)
     assert np.isnan(scores.iloc[2]) and scores.iloc[3] == 0.0
     row = table.iloc[0]

@@ -17,7 +17,7 @@ def _metric(k: int, l1_ratio, l3_ratio, peak: float):
     """Smooth metrics peaking at l3 = peak; the kinematic ones fall as the coxa grows,
     the payload rises with it."""
     shape = 1 - (l3_ratio - peak) ** 2
-    if RANKED_METRICS[k] == "payload_capacity":
+    if RANKED_METRICS[k] == "walking_payload_capacity":
         return 100.0 * shape * (1 + l1_ratio)
     return (k + 1) * shape * (1 - l1_ratio)
 

@@ -217,11 +217,18 @@ def test_a_killed_report_leaves_no_staging_folder_behind(tmp_path):
     assert out.stat().st_mode & 0o777 == 0o777 & ~mask  # a normal folder, not mkdtemp's 0700
 
 
+def _walking(design) -> float:
+    from hexaleg import HexapodModel
+    from hexaleg.gait.capacity import walking_payload_capacity
+
+    return walking_payload_capacity(HexapodModel(design)).mass
+
+
 def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(report):
     import math
 
+    from hexaleg import analyze_gait
     from hexaleg.stance import flexibility
-    from hexaleg.statics.loads import analyze_loads
     from hexaleg.study.ranking import RANKING_RULE
     from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 
@@ -234,14 +241,15 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
     design = HexapodDesign()
     yours = data["decision"]["yours"]["metrics"]
     # independent oracles: eq 16, the w_A kernel on the improved domain, axis-locked FB,
-    # the payload capacity of the loads analysis on the design's own URDF
+    # the walking payload capacity (held against a bisection on analyze_gait in
+    # test_gait_capacity), the gait itself walked at it
     assert yours["improved_area"] == pytest.approx(2 * math.pi * 0.4 * 0.4 / 3, rel=1e-12)
     improved = rectangular_and_improved(design.manipulability_limits)[1]
     assert yours["average_manipulability"] == pytest.approx(
         float(average_manipulability(design.lengths, improved)), rel=1e-12
     )
     assert yours["fb"] == pytest.approx(flexibility(design, "axis").fb, rel=1e-12)
-    assert yours["payload_capacity"] == pytest.approx(analyze_loads(design).capacity.mass, rel=1e-9)
+    assert yours["walking_payload_capacity"] == pytest.approx(_walking(design), rel=1e-9)
     assert data["decision"]["yours"]["score"] == 1.0
     recommended = data["decision"]["recommended"]
     lengths = recommended["lengths_m"]
@@ -250,9 +258,18 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
         "improved_area": 2 * math.pi * lengths[1] * lengths[2] / 3,
         "average_manipulability": float(average_manipulability(theirs.lengths, improved)),
         "fb": flexibility(theirs, "axis").fb,
-        "payload_capacity": analyze_loads(theirs).capacity.mass,
+        "walking_payload_capacity": _walking(theirs),
     }
     assert recommended["metrics"] == pytest.approx(metrics, rel=1e-9)
+    band = data["recommendation"]["l3_band"]
+    r1 = data["recommendation"]["l1_ratio"]
+    for leg in (
+        theirs,
+        HexapodDesign.from_ratios(r1, band[0]),
+        HexapodDesign.from_ratios(r1, band[1]),
+    ):
+        walked = analyze_gait(leg, limits=False)  # the recommended leg and the band's ends walk
+        assert walked.feasible and not walked.over_rating and walked.min_zmp_margin > 0
     by_hand = math.prod(metrics[k] / yours[k] for k in metrics) ** 0.25  # the stated rule
     assert recommended["score"] == pytest.approx(by_hand, rel=1e-9)
     assert recommended["score"] == pytest.approx(data["recommendation"]["score"], rel=1e-12)

@@ -110,6 +110,7 @@ def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_pa
     assert requirements == Requirements(
         payload=30.0, payload_at=(0.0, 0.0, 0.05), slope=math.radians(15), ground_clearance=0.25,
         min_fb=0.2, leg_length=1.0, min_coxa=0.08, speed=0.3, step_height=0.1,
+        walking_payload=10.0,
     )  # fmt: skip
 
 

@@ -30,7 +30,8 @@ class GaitMetrics:
 
     Attributes:
         peak_torque: Largest |τ| per joint type [N·m].
-        rms_torque: RMS τ per joint type [N·m].
+        rms_torque: RMS τ over the period per joint type, its worst leg's [N·m] (what heats
+            a motor).
         peak_speed: Largest |q̇| per joint type [rad/s].
         peak_power: Largest |τ·q̇| per joint type [W].
         positive_work: W⁺ per period [J].
@@ -81,7 +82,7 @@ def gait_metrics(
     work = positive_work(torques, speeds, period)
     return GaitMetrics(
         peak_torque=per_joint(np.abs(torques).max(axis=(0, 1))),
-        rms_torque=per_joint(np.sqrt((torques**2).mean(axis=(0, 1)))),
+        rms_torque=per_joint(np.sqrt((torques**2).mean(axis=0)).max(axis=0)),
         peak_speed=per_joint(np.abs(speeds).max(axis=(0, 1))),
         peak_power=per_joint(np.abs(power).max(axis=(0, 1))),
         positive_work=work,

@@ -34,6 +34,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
@@ -88,6 +89,8 @@ class Evaluation:
         flexibility: Its flexibility, when kept (:attr:`Conditions.keep`).
         loads: The statics at the nominal stance and at the extremes, when kept.
         gait: The gait period walked, when kept.
+        walks: Whether the design walks the gait unloaded within its ratings (``None``
+            unless the walking payload capacity was measured).
 
     """
 
@@ -98,6 +101,7 @@ class Evaluation:
     flexibility: FlexibilityResult | None = None
     loads: LoadsAnalysis | None = None
     gait: GaitAnalysis | None = None
+    walks: bool | None = None
 
     def __getitem__(self, name: str) -> float:
         """The value of metric ``name``."""
@@ -173,6 +177,11 @@ def evaluate_many(
 
 
 PERIOD_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
+PERIOD_DETAILS = (
+    "mechanical_energy_per_km",
+    "min_zmp_margin",
+    *(f"gait_{kind}_{joint}_torque" for joint in LEG_JOINTS for kind in ("peak", "rms")),
+)
 """The metrics of one period of the gait (:func:`~hexaleg.gait.analysis.analyze_gait`)."""
 
 ANALYSES: tuple[Analysis, ...] = (
@@ -200,6 +209,7 @@ class _Measuring:
         self.unmeasured: dict[str, str] = {}
         self.loads: LoadsAnalysis | None = None
         self.walked: GaitAnalysis | None = None
+        self.walks: bool | None = None
 
     def evaluation(self, metrics: Collection[str]) -> Evaluation:
         self.metrics = set(metrics)
@@ -215,6 +225,7 @@ class _Measuring:
             flexibility=self.flexibility if kept and "flexibility" in wanted else None,
             loads=self.loads if kept else None,
             gait=self.walked if kept else None,
+            walks=self.walks,
         )
 
     # -- what the analyses share -----------------------------------------------------------
@@ -263,7 +274,8 @@ class _Measuring:
     def _measure_geometry(self) -> None:
         design = self.design
         self.values |= {"leg_length": design.leg_length, "coxa_length": design.l1,
-                        "robot_mass": design.total_mass}  # fmt: skip
+                        "robot_mass": design.total_mass,
+                        "nominal_height": design.nominal_height}  # fmt: skip
 
     def _measure_workspace(self) -> None:
         self.values["improved_area"] = improved_area_closed_form(self.design.l2, self.design.l3)
@@ -286,6 +298,9 @@ class _Measuring:
         if conditions.keep:
             self.loads = loads_at_extremes(model, self.flexibility, conditions.payload)
         statics = Statics(model, model.leg_names, conditions.payload)
+        if "stability_margin" in self.metrics:
+            nominal = statics.state(model.nominal_configuration())
+            self.values["stability_margin"] = nominal.stability_margin
         if conditions.slope is None:  # level ground: the statics' own payload capacity
             capacity = (
                 self.loads.capacity
@@ -311,7 +326,8 @@ class _Measuring:
             )
             self.values["walking_payload_capacity"] = found.mass
             self.causes["walking_payload_capacity"] = found.limited_by
-        if not (self.metrics & set(PERIOD_METRICS) or conditions.keep):
+            self.walks = found.walks
+        if not (self.metrics & {*PERIOD_METRICS, *PERIOD_DETAILS} or conditions.keep):
             return
         walked = analyze_gait(
             self.design, conditions.gait, conditions.payload, model=self.model, limits=False,
@@ -322,9 +338,24 @@ class _Measuring:
         self.values["max_speed"] = walked.max_speed.value
         self.causes["max_speed"] = walked.max_speed.limited_by
         if walked.feasible:
-            self.values["gait_peak_torque"] = max(walked.metrics.peak_torque.values())
-            self.values["mechanical_cost_of_transport"] = walked.metrics.cost_of_transport
+            self.values |= _period_values(walked)
             return
         why = f"cannot walk the gait: {walked.violations[0]}"
-        for name in ("gait_peak_torque", "mechanical_cost_of_transport"):
+        for name in (*PERIOD_METRICS[1:], *PERIOD_DETAILS):
             self.values[name], self.unmeasured[name] = math.nan, why
+
+
+def _period_values(walked: GaitAnalysis) -> dict[str, float]:
+    """The metrics of a feasible gait period: peaks, RMS, cost, energy per km, ZMP margin."""
+    metrics = walked.metrics
+    distance = walked.gait.speed * walked.gait.period  # per period [m]
+    values = {
+        "gait_peak_torque": max(metrics.peak_torque.values()),
+        "mechanical_cost_of_transport": metrics.cost_of_transport,
+        "mechanical_energy_per_km": metrics.positive_work / distance * 1000 / 3600,
+        "min_zmp_margin": walked.min_zmp_margin,
+    }
+    for joint in LEG_JOINTS:
+        values[f"gait_peak_{joint}_torque"] = metrics.peak_torque[joint]
+        values[f"gait_rms_{joint}_torque"] = metrics.rms_torque[joint]
+    return values

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 from typing import Literal
 
 from hexaleg.exceptions import ParameterError
+from hexaleg.limits import LEG_JOINTS
 
 Better = Literal["maximize", "minimize"]
 """Which way a metric is better."""
@@ -62,6 +63,10 @@ class MetricSpec:
             return f"{value:.4g} rad ({math.degrees(value):.3g}°)"
         return f"{value:.4g}" if self.unit == "1" else f"{value:.4g} {self.unit}"
 
+    def cell(self, value: float) -> str:
+        """The value in a table cell whose header gives the unit: four significant digits."""
+        return f"{value:.4g}"
+
     def short(self, value: float) -> str:
         """The value in a sentence: three significant digits, angles in degrees."""
         if self.unit == "rad":
@@ -104,6 +109,23 @@ METRICS: Mapping[str, MetricSpec] = {
         MetricSpec("mechanical_cost_of_transport", "1", "mechanical cost of transport",
                    "positive mechanical work per weight and distance walked", "minimize",
                    "walking", objective=True),
+        MetricSpec("mechanical_energy_per_km", "Wh/km", "mechanical energy",
+                   "positive mechanical work per kilometre walked", "minimize", "walking"),
+        MetricSpec("min_zmp_margin", "m", "ZMP margin",
+                   "the gait's least ZMP distance inside the standing feet", "maximize",
+                   "walking"),
+        *(
+            MetricSpec(f"gait_{kind}_{joint}_torque", "N·m", f"{joint} {kind} torque",
+                       f"{kind.upper() if kind == 'rms' else kind} {joint} torque over a gait "
+                       "period (the worst leg)", "minimize", "walking")
+            for joint in LEG_JOINTS for kind in ("peak", "rms")
+        ),
+        MetricSpec("nominal_height", "m", "body height",
+                   "body frame's height above the ground at the nominal stance", "maximize",
+                   "geometry"),
+        MetricSpec("stability_margin", "m", "stability margin",
+                   "centre of mass's footprint inside the support polygon (nominal stance)",
+                   "maximize", "standing"),
     )
 }  # fmt: skip
 """Every metric, in the order answers list them."""

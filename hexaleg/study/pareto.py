@@ -61,7 +61,7 @@ def pareto_front(
 
     Args:
         average_map: w_A on the study's grid.
-        study: The study's table (columns ``fb`` and ``payload_capacity``).
+        study: The study's table (columns ``fb``, ``walking_payload_capacity``, ``walks``).
         recommendation: The recommendation (its reference: the user's design's metrics).
         options: The allowed coxa ratios.
 
@@ -86,5 +86,8 @@ def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> p
         w_a.get((r1, r3), np.nan) for r1, r3 in zip(grid["l1_ratio"], grid["l3_ratio"], strict=True)
     ]
     grid["fb"] = study["fb"] if "fb" in study else np.nan
-    grid["payload_capacity"] = study["payload_capacity"] if "payload_capacity" in study else np.nan
+    for column in ("walking_payload_capacity", "payload_capacity"):
+        grid[column] = study[column] if column in study else np.nan
+    if "walks" in study:  # a leg that cannot walk the gait has no score: off the front
+        grid.loc[~study["walks"].astype(bool), list(RANKED_METRICS)] = np.nan
     return grid

@@ -2,14 +2,16 @@
 
 The rule (:data:`RANKING_RULE`): a design's score is the geometric mean of its improved
 workspace area [m²] (eq 16), average manipulability w_A [m³] (eq 27), axis-locked FB [-]
-(eq 29) and payload capacity [kg], each divided by the user's design's own value. A score
-of 1.10 is 10 % better than the user's design on that (logarithmic) average, and every
-metric counts alike whatever its unit or its spread over a grid: doubling the payload
-raises a score as much as doubling FB. A score depends on that design and the user's
-design alone, so adding or removing other designs of a grid never changes it; and the
-order of the designs is the same whatever the reference (the reference only scales every
-score by one factor). A design missing a metric (it cannot stand) has no score; one that
-carries nothing scores 0.
+(eq 29) and walking payload capacity [kg] (:mod:`hexaleg.gait.capacity`: what the robot
+carries walking the default gait within its ratings, not only standing), each divided by
+the user's design's own value. A score of 1.10 is 10 % better than the user's design on
+that (logarithmic) average, and every metric counts alike whatever its unit or its spread
+over a grid: doubling the payload raises a score as much as doubling FB. A score depends
+on that design and the user's design alone, so adding or removing other designs of a grid
+never changes it; and the order of the designs is the same whatever the reference (the
+reference only scales every score by one factor). A design missing a metric (it cannot
+stand, or cannot walk the gait unloaded within its ratings) has no score; one that walks
+but carries nothing scores 0.
 
 The recommendation (:mod:`hexaleg.study.recommendation`), the Pareto front's order
 (:mod:`hexaleg.study.pareto`) and the report's Decision section all rank by this rule.
@@ -24,7 +26,9 @@ import pandas as pd
 
 from hexaleg._typing import ArrayF
 
-RANKED_METRICS = ("improved_area", "average_manipulability", "fb", "payload_capacity")
+RANKED_METRICS = (
+    "improved_area", "average_manipulability", "fb", "walking_payload_capacity",
+)  # fmt: skip
 """The metrics a score combines [m², m³, -, kg] (:data:`~.metrics.METRICS`), every one
 larger-is-better."""
 
@@ -34,10 +38,12 @@ Metrics = Mapping[str, float]
 RANKING_RULE = (
     "a design's score is the geometric mean of its improved workspace area (eq 16), "
     "average manipulability w_A (eq 27), axis-locked body flexibility FB (eq 29) and "
-    "payload capacity, each divided by your design's own value: your design scores 1, and "
-    "1.10 is 10 % better on that average, every metric counting alike whatever its unit. "
-    "A score depends on that design and yours alone, so adding or removing other designs "
-    "of the grid never changes it"
+    "walking payload capacity (the largest payload carried walking the default tripod gait "
+    "within every rating, in place of the standing capacity, which a leg that cannot walk "
+    "still has), each divided by your design's own value: your design scores 1, and 1.10 is "
+    "10 % better on that average, every metric counting alike whatever its unit. Only legs "
+    "that walk the gait unloaded within their ratings are ranked. A score depends on that "
+    "design and yours alone, so adding or removing other designs of the grid never changes it"
 )
 """The rule in one sentence, for reports."""
 

@@ -127,7 +127,9 @@ def ratio_metrics(
         design, RANKED_METRICS, options.conditions, model=model.with_design(design),
         template=template,
     )  # fmt: skip
-    return dict.fromkeys(RANKED_METRICS, float("nan")) if found.error else dict(found.values)
+    if found.error or not found.walks:  # a leg that cannot walk has no score
+        return dict.fromkeys(RANKED_METRICS, float("nan"))
+    return dict(found.values)
 
 
 def grid_recommendation(
@@ -145,7 +147,8 @@ def grid_recommendation(
         model: Its Pinocchio model (the grid's designs' are derived from it).
         template: The stance geometry of its body and mounts.
         average_map: w_A on the grid (its ratios define the grid).
-        study: The study on the same grid (columns ``fb`` and ``payload_capacity``).
+        study: The study on the same grid (columns ``fb``, ``walking_payload_capacity`` and
+            ``walks``: a leg that cannot walk the gait unloaded has no score).
         options: The allowed coxa ratios and collision setting.
 
     """
@@ -158,8 +161,10 @@ def grid_recommendation(
         ),
         "average_manipulability": average_map.improved,
         "fb": _study_map(study, "fb", r1, len(r3)),
-        "payload_capacity": _study_map(study, "payload_capacity", r1, len(r3)),
+        "walking_payload_capacity": _study_map(study, "walking_payload_capacity", r1, len(r3)),
     }
+    walks = _study_map(study, "walks", r1, len(r3)) == 1  # the others have no score
+    maps = {name: np.where(walks, values, np.nan) for name, values in maps.items()}
     return recommend(
         r1,
         r3,

@@ -102,6 +102,7 @@ class ConditionSpec:
         bounds: Its plausible values, inclusive (of each coordinate, for a position).
         needs: Why it is refused without its requirement (empty: a degrees key, which
             gives the requirement itself).
+        also: Other requirements it is a condition of too.
 
     """
 
@@ -114,6 +115,7 @@ class ConditionSpec:
     unit: str
     bounds: tuple[float, float]
     needs: str = ""
+    also: tuple[str, ...] = ()
 
     @property
     def option(self) -> str:
@@ -146,6 +148,11 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
         RequirementSpec("speed", "max_speed", "at least", (0.0, 100.0),
                         f"tripod gait speed ({Gait.stride:g} m stride) within the rated torques "
                         "and speeds, carrying the payload [m/s]", "M/S", 0.3, "the gait"),
+        RequirementSpec("walking_payload", "walking_payload_capacity", "at least",
+                        (0.0, PAYLOAD_SEARCH_LIMIT),
+                        "payload the robot must carry at payload_at walking that gait within "
+                        "every rating, the ZMP inside the standing feet [kg]", "KG", 10.0,
+                        "the gait", zero=True),
     )
 }  # fmt: skip
 """Every requirement, in the order answers list them."""
@@ -157,7 +164,7 @@ CONDITIONS: Mapping[str, ConditionSpec] = {
                       f"where the payload sits, body frame x, y, z, each in [-{PAYLOAD_REACH:g}, "
                       f"{PAYLOAD_REACH:g}] [m] (default: the centre of the body's top face)",
                       ("X", "Y", "Z"), (0.0, 0.0, 0.05), "m", (-PAYLOAD_REACH, PAYLOAD_REACH),
-                      "needs a payload [kg] to place"),
+                      "needs a payload [kg] to place", also=("walking_payload",)),
         ConditionSpec("slope_deg", "slope", "degrees", "the same slope in degrees [°]",
                       ("DEG",), 15.0, "°", (0.0, 90.0)),
         ConditionSpec("step_height", "speed", "number",

@@ -21,7 +21,10 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
   walks with every peak joint torque and joint speed within its rating and every
   constraint of the period kept (:func:`~hexaleg.gait.limits.max_speed`; zero if that
   stride cannot be walked at all) — at least this. :attr:`Requirements.gait` is that
-  gait at the required speed.
+  gait at the required speed;
+- ``walking_payload`` [kg]: the largest payload at ``payload_at`` carried walking that gait
+  with every joint within its ratings and the ZMP inside the standing feet
+  (:mod:`hexaleg.gait.capacity`) — at least this.
 
 The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requirement's
 *margin* is how far its value is on the good side of the required one, in its own unit
@@ -62,6 +65,8 @@ class Requirements:
         min_coxa: Least coxa length l1 [m].
         speed: Tripod gait speed within the ratings [m/s].
         step_height: Step height of that gait [m] (the gait's default if omitted).
+        walking_payload: Payload carried at ``payload_at`` walking that gait within every
+            rating [kg].
 
     """
 
@@ -74,6 +79,7 @@ class Requirements:
     min_coxa: float | None = None
     speed: float | None = None
     step_height: float | None = None
+    walking_payload: float | None = None
 
     def __post_init__(self) -> None:
         for name, spec in REQUIREMENTS.items():
@@ -90,7 +96,10 @@ class Requirements:
             if value is None or not condition.needs:
                 continue
             value = condition_value(condition.name, value)
-            if getattr(self, condition.of) is None or (condition.kind == "number" and value <= 0):
+            owners = (condition.of, *condition.also)
+            if all(getattr(self, name) is None for name in owners) or (
+                condition.kind == "number" and value <= 0
+            ):
                 raise ParameterError(condition.name, value, condition.needs)
             object.__setattr__(self, condition.name, value)
         if self.speed is not None:

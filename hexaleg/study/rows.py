@@ -104,7 +104,7 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
     Peak torques, positive work and cost of transport are NaN when the period is
     infeasible (``gait_feasible`` false); the max speed [m/s] is given either way, at the
     gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
-    with what limits it.
+    with what limits it; ``walks``: whether it walks the gait unloaded within its ratings.
     """
     metrics, ok = walked.metrics, walked.feasible
     columns: dict[str, Cell] = {
@@ -120,6 +120,7 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
         "max_speed_limited_by": str(evaluation.causes["max_speed"]),
         "walking_payload_capacity": evaluation["walking_payload_capacity"],
         "walking_payload_limited_by": str(evaluation.causes["walking_payload_capacity"]),
+        "walks": bool(evaluation.walks),
     }
 
 

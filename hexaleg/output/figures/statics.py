@@ -129,10 +129,10 @@ def statics_study_figure(table: pd.DataFrame) -> Figure:
     return fig
 
 
-def design_names(table: pd.DataFrame) -> list[str]:
-    """Each design of a study table named by its payload capacity and its lengths."""
+def design_names(table: pd.DataFrame, column: str = "payload_capacity") -> list[str]:
+    """Each design of a study table named by a capacity (a column [kg]) and its lengths."""
     return [
-        f"{row['payload_capacity']:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "
+        f"{row[column]:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "
         f"tibia {row['l3']:.2f} m"
         for row in table.to_dict(orient="records")
     ]

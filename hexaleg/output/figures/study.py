@@ -13,7 +13,6 @@ import pandas as pd
 from hexaleg.output.figures.canvas import (
     COLORS,
     drawn,
-    log_scale,
     name_largest,
     new_figure,
     save,
@@ -110,54 +109,38 @@ def write_study_figures(
 def pareto_figure(
     table: pd.DataFrame, front: pd.DataFrame, yours: Mapping[str, float] | None = None
 ) -> Figure:
-    """FB against payload capacity for every design; the Pareto front and its best marked.
-
-    Payload capacity spans decades over a sweep (a 5 cm femur lifts tonnes), so its axis
-    is logarithmic and the largest is named.
+    """FB against walking payload capacity for every design; the Pareto front and its best.
 
     Args:
-        table: Every design of the sweep (``payload_capacity``, ``fb``).
-        front: The front's designs, best first (``payload_capacity``, ``flexibility``).
-        yours: The user's design's metrics (``payload_capacity`` [kg], ``flexibility``),
-            marked beside them.
+        table: Every design of the sweep (``walking_payload_capacity``, ``fb``).
+        front: The front's designs, best first (the same columns).
+        yours: The user's design's metrics (the same keys), marked beside them.
 
     """
+    x = "walking_payload_capacity"
     fig = new_figure(5.2)
     ax = fig.add_subplot()
-    ax.scatter(table["payload_capacity"], table["fb"], s=8, color="#bbbbbb", label="every design")
+    ax.scatter(table[x], table["fb"], s=8, color="#bbbbbb", label="every design")
     for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
-        ax.scatter(
-            group["payload_capacity"],
-            group["fb"],
-            s=24,
-            color=color,
-            label=f"on the front, coxa ratio {r1:.2f}",
-        )
+        ax.scatter(group[x], group["fb"], s=24, color=color,
+                   label=f"on the front, coxa ratio {r1:.2f}")  # fmt: skip
     best = front.iloc[0]
     ax.scatter(
-        [best["payload_capacity"]],
+        [best[x]],
         [best["fb"]],
         s=220,
         marker="*",
         color="k",
-        label=f"recommended: coxa ratio {best['l1_ratio']:.2f}, tibia ratio {best['l3_ratio']:.3f}",
+        label=f"the front's best grid point: coxa ratio {best['l1_ratio']:.2f}, tibia ratio "
+        f"{best['l3_ratio']:.3f} (the recommendation refines it)",
     )
     if yours is not None:
-        ax.scatter(
-            [yours["payload_capacity"]],
-            [yours["fb"]],
-            s=90,
-            marker="D",
-            facecolor="none",
-            edgecolor="#d62728",
-            linewidth=2,
-            label="your design",
-        )
-    log_scale(ax, "x")
-    name_largest(ax, table["payload_capacity"], table["fb"], design_names(table), by="x")
-    ax.set_xlabel("payload capacity [kg], log scale")
+        ax.scatter([yours[x]], [yours["fb"]], s=90, marker="D", facecolor="none",
+                   edgecolor="#d62728", linewidth=2, label="your design")  # fmt: skip
+    name_largest(ax, table[x], table["fb"], design_names(table, x), by="x")
+    ax.set_xlabel("walking payload capacity [kg] (default tripod gait, every rating)")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
-    ax.set_title("Designs no other beats in workspace, manipulability, FB and payload at once")
+    ax.set_title("Designs no other beats in workspace, manipulability, FB and walking payload")
     ax.grid(True, which="both", alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2)
     return fig

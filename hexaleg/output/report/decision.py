@@ -9,19 +9,36 @@ user's design, metric by metric, scored by the one ranking rule
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.design import HexapodDesign
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Section, change, table
 from hexaleg.output.report.pareto import ParetoRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.requirements import requirement_blocks
+from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.study.decide import DecideResult, decide
+from hexaleg.study.evaluation import Evaluation, evaluate
 from hexaleg.study.executors import local_pool
 from hexaleg.study.metrics import METRICS
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, score
 from hexaleg.study.recommendation import BAND, Recommendation
+
+COSTS: tuple[str, ...] = (
+    "nominal_height",
+    "stability_margin",
+    "min_zmp_margin",
+    *(f"gait_{kind}_{joint}_torque" for joint in LEG_JOINTS for kind in ("peak", "rms")),
+    "max_speed",
+    "mechanical_energy_per_km",
+    "payload_capacity",
+)
+"""What the choice costs, beside the scored metrics: the body's height and stability, the
+default gait's ZMP margin, torques, speed and energy, and the standing payload capacity."""
 
 
 @dataclass(frozen=True)
@@ -32,6 +49,8 @@ class DecisionRecord:
         recommendation: The grid's one recommendation, with the user's
             design's metrics it is scored against.
         leg_length: The user's leg length, at which the ratios are lengths [m].
+        yours: The user's design's :data:`COSTS`.
+        recommended: The recommended design's :data:`COSTS`.
         requirements: The best design meeting the user's requirements, and the user's
             checked against them; ``None`` when none were given.
 
@@ -39,28 +58,34 @@ class DecisionRecord:
 
     recommendation: Recommendation
     leg_length: float
+    yours: Evaluation
+    recommended: Evaluation
     requirements: DecideResult | None = None
 
 
 def compute(data: ReportData) -> DecisionRecord:
-    """Decide from the user's requirements, on the report's workers, if they gave some."""
+    """What the choice costs; decide from the user's requirements, if they gave some."""
     grid = data[RecommendationRecord]
+    rec = grid.recommendation
+    theirs = data.design.with_ratios(rec.l1_ratio, rec.l3_ratio)
+    costs = [evaluate(design, COSTS) for design in (data.design, theirs)]
     requirements = data.options.requirements
-    if requirements is None:
-        return DecisionRecord(grid.recommendation, grid.leg_length)
-    with local_pool(data.options.workers) as pool:
-        answer = decide(data.design, requirements, executor=pool, progress=False)
-    return DecisionRecord(grid.recommendation, grid.leg_length, answer)
+    answer = None
+    if requirements is not None:
+        with local_pool(data.options.workers) as pool:
+            answer = decide(data.design, requirements, executor=pool, progress=False)
+    return DecisionRecord(rec, grid.leg_length, costs[0], costs[1], answer)
 
 
 def section(data: ReportData) -> Section:
     """The answer first: the requirements' if any, then the recommended design beside yours."""
-    rec = data[DecisionRecord].recommendation
+    record = data[DecisionRecord]
+    rec = record.recommendation
     design = data.design
     total = design.leg_length
     lengths = ", ".join(f"{r * total:.3f}" for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio))
     yours = ", ".join(f"{length:.3f}" for length in design.lengths)
-    answer = data[DecisionRecord].requirements
+    answer = record.requirements
     first = () if answer is None else (*requirement_blocks(answer), _WITHOUT_REQUIREMENTS)
     return Section(
         "Decision",
@@ -68,10 +93,14 @@ def section(data: ReportData) -> Section:
             *first,
             f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
             f"{rec.l3_ratio:.3f}**, for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
-            f"chosen among {data.options.decision.describe_candidates()}; any tibia ratio in "
-            f"{rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} keeps ≥ {BAND:.0%} of its score. Both "
-            "designs keep your body, mounts and posture.",
-            table(["metric", "your design", "recommended", "recommended vs yours"], _rows(rec)),
+            f"chosen among {data.options.decision.describe_candidates()}, every one walking the "
+            f"default gait; any tibia ratio in {rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} keeps "
+            f"≥ {BAND:.0%} of its score and walks. Both keep your body, mounts, posture and "
+            f"ratings; what changes is below. {departure(rec)}",
+            table(
+                ["metric", "your design", "recommended", "recommended vs yours"],
+                [*_rows(rec), *_cost_rows(record, design)],
+            ),
             f"*How designs are ranked.* One rule for this section, the recommendation "
             f"(section {data.number(RecommendationRecord)}) and the Pareto front (section "
             f"{data.number(ParetoRecord)}): {RANKING_RULE}.",
@@ -79,13 +108,36 @@ def section(data: ReportData) -> Section:
     )
 
 
-def _rows(rec: Recommendation) -> list[tuple[str, str, str, str]]:
+def departure(rec: Recommendation) -> str:
+    """One sentence: where the recommendation sits against the paper's chosen tibia band."""
+    low, high = CLAIMED_L3_RATIO_PEAK
+    band = f"the paper's chosen tibia ratios {low:.2f}–{high:.2f}"
+    if low <= rec.l3_ratio <= high:
+        return f"Its tibia ratio {rec.l3_ratio:.3f} lies within {band}."
+    side = "above" if rec.l3_ratio > high else "below"
+    changes = {
+        name: math.log(rec.metrics[name] / rec.reference[name])
+        for name in RANKED_METRICS
+        if rec.metrics[name] > 0 < rec.reference[name]
+    }
+    gain = max(changes, key=lambda name: changes[name])
+    lost = [METRICS[name].label for name, value in changes.items() if value < 0]
+    cost = f", giving up {' and '.join(lost)}" if lost else ""
+    return (
+        f"Its tibia ratio {rec.l3_ratio:.3f} lies {side} {band} (chosen there for FB): the "
+        f"score moves it because its {METRICS[gain].label} "
+        f"{change(rec.reference[gain], rec.metrics[gain])} outweighs the rest{cost}."
+    )
+
+
+def _rows(rec: Recommendation) -> list[tuple[str, ...]]:
+    """The scored metrics of both designs, and their scores."""
     yours, theirs = rec.reference, rec.metrics
-    rows = [
+    rows: list[tuple[str, ...]] = [
         (
             METRICS[name].described,
-            f"{yours[name]:.4g}",
-            f"{theirs[name]:.4g}",
+            METRICS[name].cell(yours[name]),
+            METRICS[name].cell(theirs[name]),
             change(yours[name], theirs[name]),
         )
         for name in RANKED_METRICS
@@ -99,6 +151,20 @@ def _rows(rec: Recommendation) -> list[tuple[str, str, str, str]]:
             change(your_score, rec.score),
         )
     )
+    return rows
+
+
+def _cost_rows(record: DecisionRecord, design: HexapodDesign) -> list[tuple[str, ...]]:
+    """The costs of the choice, a torque beside its rating, a speed beside what binds."""
+    rated = dict(zip(LEG_JOINTS, design.rated_torques, strict=True))
+    rows: list[tuple[str, ...]] = []
+    for name in COSTS:
+        spec, yours, theirs = METRICS[name], record.yours[name], record.recommended[name]
+        label = spec.described
+        joint = next((j for j in LEG_JOINTS if f"_{j}_" in name), None)
+        if joint is not None:
+            label += f", rated {rated[joint]:g} N·m"
+        rows.append((label, spec.cell(yours), spec.cell(theirs), change(yours, theirs)))
     return rows
 
 
@@ -121,6 +187,10 @@ def to_json(record: DecisionRecord) -> dict[str, Any]:
                 "score": rec.score,
             },
             "metrics": list(RANKED_METRICS),
+            "costs": {
+                "yours": dict(record.yours.values),
+                "recommended": dict(record.recommended.values),
+            },
         }
     }
     if record.requirements is not None:

@@ -54,33 +54,41 @@ def section(data: ReportData) -> Section:
             f"{r['improved_area']:.4f}",
             f"{r['average_manipulability']:.4f}",
             f"{r['fb']:.4f}",
-            f"{r['payload_capacity']:.1f}",
+            f"{r['walking_payload_capacity']:.1f}",
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")
     ]
     return Section(
-        "Pareto front: workspace, manipulability, flexibility and payload",
+        "Pareto front: workspace, manipulability, flexibility and walking payload",
         (
-            f"Among the sweep's designs at the allowed coxa ratios (as in section {recommended}), "
-            f"{len(front)} are beaten by no other in improved area, w_A, FB and payload "
-            "capacity at once. The grid is dense and every metric on it exact, so the front "
-            "is read off it directly (no evolutionary search could be more exact). The front "
-            f"is ranked by the rule of section {recommended} (each score relative to your "
-            "design's 1); a "
-            "design that beats another in every metric also scores higher, so its first, "
-            f"l1 : l2 : l3 = {best['l1_ratio']:.2f} : "
-            f"{1 - best['l1_ratio'] - best['l3_ratio']:.3f} : {best['l3_ratio']:.3f}, is the "
-            f"grid's best, the design section {recommended} refines into the one recommendation.",
+            f"Among the sweep's designs at the allowed coxa ratios (as in section "
+            f"{recommended}), {len(front)} walk the default gait and are beaten by no other in "
+            "improved area, w_A, FB and walking payload capacity at once. The grid is dense "
+            "and every metric on it exact, so the front is read off it directly (no "
+            "evolutionary search could be more exact). The front is ranked by the rule of "
+            f"section {recommended} (each score relative to your design's 1); a design that "
+            "beats another in every metric also scores higher, so its first, l1 : l2 : l3 = "
+            f"{best['l1_ratio']:.2f} : {1 - best['l1_ratio'] - best['l3_ratio']:.3f} : "
+            f"{best['l3_ratio']:.3f}, is the grid's best point, which section {recommended} "
+            "refines between grid points into the one recommendation.",
             table(
-                ["l1 ratio", "l3 ratio", "area [m²]", "w_A [m³]", "FB", "payload [kg]", "score"],
+                [
+                    "l1 ratio",
+                    "l3 ratio",
+                    "area [m²]",
+                    "w_A [m³]",
+                    "FB",
+                    "walking payload [kg]",
+                    "score",
+                ],
                 rows,
             ),
             Figure(
                 "pareto_front",
-                "Body flexibility against payload capacity (log scale) for every design of the "
-                "sweep; the front and its best marked, your design beside them, the largest "
-                "capacity named",
+                "Body flexibility against walking payload capacity for every design of the "
+                "sweep; the front and its best grid point marked, your design beside them, the "
+                "largest capacity named",
             ),
         ),
     )
