@@ -46,6 +46,23 @@ def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple
     return tuple(legs)
 
 
+def needed_model(
+    design: HexapodDesign,
+    model: HexapodModel | None,
+    template: StanceGeometry | None,
+    collisions: bool,
+) -> HexapodModel | None:
+    """``design``'s model, built here once if none is given and something will read it.
+
+    The stance geometry reads it unless a ``template`` gives it in closed form; the
+    self-collision check reads it whenever ``collisions`` is asked. Otherwise None: no
+    URDF is rendered.
+    """
+    if model is None and (template is None or collisions):
+        return HexapodModel(design)
+    return model
+
+
 CORNER_SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
 """The eight corners of a box, as signs of its half extents."""
 

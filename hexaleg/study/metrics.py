@@ -38,7 +38,7 @@ def design_metrics(
 
     """
     _, improved = rectangular_and_improved(design.manipulability_limits)
-    locked = axis_locked_flexibility(design, "all", model, template, collisions)
+    locked = axis_locked_flexibility(design, "all", model, geometry=template, collisions=collisions)
     statics = Statics(model, locked.legs)
     return {
         "improved_area": improved_area_closed_form(design.l2, design.l3),
