@@ -32,7 +32,7 @@ from hexaleg._typing import ArrayF, Lengths
 from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
-from hexaleg.robot.model import HexapodModel, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, joint_name
 
 
 @dataclass(frozen=True)
@@ -96,7 +96,7 @@ def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
     forward kinematics.
     """
     pinocchio = model.model
-    base = pinocchio.getJointId("root_joint")
+    base = pinocchio.getJointId(ROOT_JOINT)
     ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
     if any(pinocchio.parents[i] != base for i in ids.values()):
         return model.root_placements()

@@ -34,7 +34,7 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ModelError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.model import HexapodModel, foot_frame_name, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name, joint_name
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 
@@ -51,8 +51,6 @@ FLOOR = "floor"
 """Name of the floor geom."""
 PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
-ROOT_JOINT = "root_joint"
-"""Name of the free joint (as Pinocchio names its free-flyer)."""
 FRICTION_RANGE = (1e-3, 10.0)
 """Coefficients of friction μ [-] the floor may have (MuJoCo needs μ > 0)."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
