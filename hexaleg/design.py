@@ -54,9 +54,9 @@ BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
 
 DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: each hip
-holds about 46 N·m at the nominal stance; the rest is room for the body's extremes and
-a payload of a few times the body's mass."""
+"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: well above
+what the nominal stance asks of each joint (``hexaleg loads``), with room for the body's
+extremes and a payload."""
 
 TORQUE_RANGE = (1e-3, 1e6)
 """Plausible rated torque [N·m]."""

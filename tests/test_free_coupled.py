@@ -56,7 +56,7 @@ def test_causes_do_not_depend_on_the_blas_thread_count():
     assert any(len(e["binding"]) > 1 for e in one)  # ties exist, and all tied legs are named
 
 
-ISSUE_ROWS = [
+BETTER_POSES = [
     # (design fields, stance, direction, a better pose's value found by an independent search)
     ({"l1": 0.255, "l2": 0.152, "l3": 0.593}, "tripod", "roll+", 0.243015),
     ({"l1": 0.06, "l2": 0.35, "l3": 0.59}, "all", "z-", 0.196896),
@@ -67,7 +67,7 @@ ISSUE_ROWS = [
         0.20821,  # short on another machine's floating-point path
     ),
 ]
-"""Issue 22's rows without self-collision: hexaleg reported less, and "converged"."""
+"""Designs, directions and a better pose's value that a local search falls short of."""
 COLLISION_ROWS = [
     ({"body_length": 0.12, "body_width": 0.45}, "roll+", 0.329050),
     ({"body_length": 0.12, "body_width": 0.45}, "roll-", 0.329050),
@@ -77,11 +77,11 @@ COLLISION_ROWS = [
     ({"body_length": 0.1, "body_width": 0.4}, "roll+", 0.317882),
     ({"body_length": 0.1, "body_width": 0.4}, "yaw+", 0.416732),
 ]
-"""Issue 22's rows with self-collision on short bodies (default legs)."""
+"""As :data:`BETTER_POSES`, with self-collision on short bodies (default legs)."""
 
 
-@pytest.mark.parametrize(("fields", "stance", "name", "better"), ISSUE_ROWS, ids=str)
-def test_the_issue_rows_reach_the_better_pose(fields, stance, name, better):
+@pytest.mark.parametrize(("fields", "stance", "name", "better"), BETTER_POSES, ids=str)
+def test_the_better_poses_are_reached(fields, stance, name, better):
     """Fast, and able to catch a short extreme: a tripod's roll+ basin few starts reach."""
     from hexaleg import HexapodDesign
 
@@ -93,7 +93,7 @@ def test_the_issue_rows_reach_the_better_pose(fields, stance, name, better):
 
 @pytest.mark.slow
 @pytest.mark.parametrize(("fields", "name", "better"), COLLISION_ROWS, ids=str)
-def test_the_issue_collision_rows_reach_the_better_pose(fields, name, better, collision_results):
+def test_the_better_poses_with_collisions_are_reached(fields, name, better, collision_results):
     result = collision_results(tuple(sorted(fields.items())))
     extreme = next(e for e in result.extremes if e.name == name)
     assert extreme.sign * extreme.value >= better - 1e-6
@@ -273,7 +273,7 @@ SHORT_BODIES = [
     {"body_length": 0.11, "body_width": 0.42, "l1": 0.18, "l2": 0.42, "l3": 0.4},
     {"body_length": 0.14, "body_width": 0.5, "l1": 0.22, "l2": 0.36, "l3": 0.42},
 ]
-"""Short bodies whose adjacent legs collide, not the issue's."""
+"""Short bodies whose adjacent legs collide, other than :data:`COLLISION_ROWS`' own."""
 
 
 @pytest.mark.slow

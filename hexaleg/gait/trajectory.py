@@ -106,8 +106,8 @@ def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
     """R·v (or Rᵀ·v) per leg for vectors (..., 6, 3) and rotations (6, 3, 3).
 
-    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is ten
-    times slower on the many small blocks of a stride scan.
+    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is slower on
+    the many small blocks of a stride scan.
     """
     columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
     return (

@@ -43,8 +43,8 @@ TIMESTEP = 1e-3
 DEFAULT_BANDWIDTH = 2.0
 """Servo bandwidth f [Hz]: the natural frequency of a standing leg's joint (see
 :meth:`ServoGains.from_bandwidth`). Stiffer servos track more closely but, with three
-feet planted, push the feet against each other: at 2 Hz the default robot's measured
-hip and knee peaks stay within a few per cent of the plan's; at 8 Hz the knees' triple."""
+feet planted, push the feet against each other: the measured torque peaks then grow
+past the plan's."""
 DEFAULT_DAMPING_RATIO = 1.0
 """Servo damping ratio ζ [-] (critically damped)."""
 FLOOR = "floor"
@@ -94,9 +94,8 @@ class ServoGains:
 
         With I the joint's reflected inertia (:func:`reflected_inertia`: its own leg and
         the third of the robot a tripod foot carries), ω = 2π f: k_p = I ω²,
-        k_d = 2 ζ I ω. A swinging leg, lighter, answers faster (the default robot's
-        knee at about 7 f, its hip at about 5 f); the feed-forward torque carries the load,
-        the servo corrects what the plan did not foresee.
+        k_d = 2 ζ I ω. A swinging leg, lighter, answers faster; the feed-forward torque
+        carries the load, the servo corrects what the plan did not foresee.
 
         Args:
             model: The hexapod's Pinocchio model.

@@ -70,7 +70,7 @@ MIN_POPULATION = 24
 """Fewest designs per generation."""
 
 MAX_EVALUATIONS = 1_000_000
-"""Most designs one search evaluates (about two hours on 2 cores)."""
+"""Most designs one search evaluates."""
 
 VARIANT = "DE/best/1/bin"
 """Mutation from the best design of the generation, one difference, binomial crossover."""
