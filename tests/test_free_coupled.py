@@ -138,10 +138,10 @@ def collision_results():
 def test_every_free_extreme_is_reached_from_nominal_by_a_feasible_path(fields, stance):
     """The path hexaleg finds, checked independently: NumPy margins every ≤ 1 mm, 1 mrad."""
     import numpy as np
+    from margin_oracle import displaced
 
     from hexaleg import HexapodDesign
     from hexaleg.stance import StanceGeometry
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
     from hexaleg.stance.free_coupled import search_box
     from hexaleg.stance.margin_kernel import kernel_geometry
     from hexaleg.stance.paths import retreat
@@ -163,7 +163,7 @@ def test_every_free_extreme_is_reached_from_nominal_by_a_feasible_path(fields, s
         for a, b in itertools.pairwise(path):
             steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
             points += list(a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None])
-        margins = stance_margins(geometry, *displacement_poses(geometry, np.array(points)))
+        margins = displaced(geometry, np.array(points))
         assert margins.min() >= -1e-9, extreme.name
 
 
@@ -189,12 +189,13 @@ RANDOM_DESIGNS = _random_designs(12, BRUTE_SEED)
 
 def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
     """An independent multi-start: uniform random starts (not hexaleg's Sobol set) over a
-    wider box, plain SLSQP on the NumPy margins (and coal's clearance), the best exactly
-    feasible answer and its pose."""
+    wider box, plain SLSQP on the oracle's margins (:mod:`margin_oracle`, and coal's
+    clearance), the best exactly feasible answer and its pose."""
     import numpy as np
+    from margin_oracle import displaced
     from scipy import optimize
 
-    from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins, stance_margins
+    from hexaleg.stance.constraints import displacement_poses
 
     value = {(e.axis, e.sign): e.value for e in locked}
     half = np.array([2.5 * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
@@ -204,7 +205,7 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
         return collision.clearances(*displacement_poses(geometry, d))[0]
 
     def constraints(d):
-        margins = smooth_stance_margins(geometry, *displacement_poses(geometry, d))
+        margins = displaced(geometry, d, smooth=True)
         return margins if collision is None else np.append(margins, clearance(d))
 
     rng = np.random.default_rng(BRUTE_SEED + k)
@@ -219,7 +220,7 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
             constraints={"type": "ineq", "fun": constraints},
             options={"maxiter": 150, "ftol": 1e-12},
         )
-        margins = stance_margins(geometry, *displacement_poses(geometry, result.x))
+        margins = displaced(geometry, result.x)
         feasible = margins.min() >= -1e-9 and (collision is None or clearance(result.x) >= -1e-7)
         if feasible and sign * result.x[k] > best:
             best, pose = sign * result.x[k], result.x
@@ -228,10 +229,10 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
 
 def _reachable(geometry, pose, box):
     """Whether a path to ``pose`` from nominal can be shown (hexaleg's retreat, its every
-    1 mm / 1 mrad checked here on the NumPy margins)."""
+    1 mm / 1 mrad checked here on the oracle's margins)."""
     import numpy as np
+    from margin_oracle import displaced
 
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
     from hexaleg.stance.margin_kernel import kernel_geometry
     from hexaleg.stance.paths import retreat
 
@@ -242,7 +243,7 @@ def _reachable(geometry, pose, box):
     for a, b in itertools.pairwise(path):
         steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
         points = a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None]
-        if stance_margins(geometry, *displacement_poses(geometry, points)).min() < -1e-9:
+        if displaced(geometry, points).min() < -1e-9:
             return False
     return True
 
@@ -301,10 +302,10 @@ def test_free_extremes_with_collisions_against_a_brute_force(fields):
 def test_every_reported_pose_is_feasible_and_puts_the_feet_on_their_footholds(mode):
     import numpy as np
     import pinocchio as pin
+    from margin_oracle import displaced
 
     from hexaleg import HexapodDesign
     from hexaleg.stance import StanceGeometry
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
 
     design = HexapodDesign(l1=0.15, l2=0.5, l3=0.35)
     model = HexapodModel(design)
@@ -315,8 +316,7 @@ def test_every_reported_pose_is_feasible_and_puts_the_feet_on_their_footholds(mo
         assert pose[AXES.index(extreme.axis)] == pytest.approx(extreme.value, abs=1e-15)
         if mode == "axis":  # one coordinate moves, the other five held
             assert np.count_nonzero(pose) == 1
-        rotation, translation = displacement_poses(geometry, pose)
-        assert stance_margins(geometry, rotation, translation).min() >= -1e-9
+        assert displaced(geometry, pose).min() >= -1e-9
         # Pinocchio, from the reported pose and joint angles alone: feet on the footholds
         height = np.array([0.0, 0.0, design.nominal_height])
         base = pin.SE3(pin.rpy.rpyToMatrix(*pose[3:]), pose[:3] + height)

@@ -4,7 +4,7 @@ The other five body coordinates are free to help. The body pose is the variable,
 d = (x, y, z, roll, pitch, yaw) displaced from the nominal stance (world frame,
 Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-down
 IK (eq 8–9). Each direction is a small nonlinear program, max ±d_k with every margin of
-:func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0 (:class:`.FreeProblem`),
+:func:`~hexaleg.stance.constraints.stance_margins` (smooth) ≥ 0 (:class:`.FreeProblem`),
 whose feasible set is thin and has many local optima. The search for direction k:
 
 1. **Climbs** (:mod:`.climb`, compiled): a local search from each of :data:`CLIMBS`

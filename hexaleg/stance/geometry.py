@@ -203,25 +203,6 @@ class StanceGeometry:
             drop = np.abs(tilt) @ self.body_half_extents
         return np.asarray(translation)[..., 2] - drop
 
-    def smooth_ground_margins(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
-        """The body above the ground as smooth margins (..., K): all ≥ 0 iff it is [m, m²].
-
-        :meth:`lowest_body_height` is a minimum, kinked wherever two low points tie (a
-        level box's four bottom corners, a level cylinder's whole rim), where a gradient
-        search stalls. A box gives each corner's height instead; a cylinder gives
-        g = t_z − h·|R_zz| and g·|g| − r²(R_zx² + R_zy²), whose zero sets together are
-        the rim's lowest point touching the ground.
-        """
-        rotation = np.asarray(rotation, dtype=float)
-        tilt = rotation[..., 2, :]
-        height = np.asarray(translation)[..., 2]
-        if not self.body_round:
-            return height[..., None] + tilt @ self._corners.T
-        radius, _, half = self.body_half_extents
-        centre = height - half * np.abs(tilt[..., 2])
-        cone = centre * np.abs(centre) - radius**2 * (tilt[..., 0] ** 2 + tilt[..., 1] ** 2)
-        return np.stack([centre, cone], axis=-1)
-
     @cached_property
     def _corners(self) -> ArrayF:
         return CORNER_SIGNS * self.body_half_extents
