@@ -13,7 +13,8 @@ import warnings
 
 import numpy as np
 
-from hexaleg.stance import AXES, DIRECTIONS, StanceGeometry, direction_poses, stance_margins
+from hexaleg.kinematics import inverse_kinematics
+from hexaleg.stance import AXES, DIRECTIONS, StanceGeometry, direction_poses
 
 
 def optional(module: str):
@@ -42,9 +43,12 @@ def step_and_bisect_extremes(
 ):
     """The straightforward way: step each direction until infeasible, then bisect 50 times."""
 
-    def feasible(axis: int, value: float) -> bool:
+    def feasible(axis: int, value: float) -> bool:  # in NumPy: IK (eq 8-9), limits, the ground
         rotation, translation = direction_poses(geometry, axis, value)
-        return bool(stance_margins(geometry, rotation, translation).min() >= 0)
+        feet = geometry.feet_in_roots(rotation, translation)
+        legs = inverse_kinematics(geometry.lengths, feet, tol=0.0)
+        within = legs.reachable.all() and geometry.limits.contains(legs.theta).all()
+        return bool(within and geometry.lowest_body_height(rotation, translation) >= 0)
 
     values = []
     for axis_name, sign in DIRECTIONS:

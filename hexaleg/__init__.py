@@ -15,71 +15,6 @@ from typing import TYPE_CHECKING
 from hexaleg._lazy import lazy_exports
 from hexaleg._version import __version__
 
-_EXPORTS: dict[str, str] = {
-    # design and limits
-    "HexapodDesign": "hexaleg.design",
-    "LEG_NAMES": "hexaleg.layouts",
-    "LegMount": "hexaleg.layouts",
-    "TRIPODS": "hexaleg.layouts",
-    "default_mounts": "hexaleg.design",
-    "hexagon_mounts": "hexaleg.layouts",
-    "rectangle_mounts": "hexaleg.layouts",
-    "design_toml": "hexaleg.design_file",
-    "load_design": "hexaleg.design_file",
-    "IMPROVED_LIMITS": "hexaleg.limits",
-    "JointLimits": "hexaleg.limits",
-    "MANIPULABILITY_LIMITS": "hexaleg.limits",
-    "STANCE_LIMITS": "hexaleg.limits",
-    "WORKSPACE_LIMITS": "hexaleg.limits",
-    # errors
-    "DesignError": "hexaleg.exceptions",
-    "HexalegError": "hexaleg.exceptions",
-    "ParameterError": "hexaleg.exceptions",
-    "ModelError": "hexaleg.exceptions",
-    "TemplateError": "hexaleg.exceptions",
-    # closed forms (the oracle)
-    "InverseKinematics": "hexaleg.kinematics",
-    "foot_jacobian": "hexaleg.kinematics",
-    "foot_position": "hexaleg.kinematics",
-    "inverse_kinematics": "hexaleg.kinematics",
-    "manipulability": "hexaleg.kinematics",
-    "planar_foot_position": "hexaleg.kinematics",
-    # robot
-    "HexapodModel": "hexaleg.robot.model",
-    "LegModel": "hexaleg.robot.model",
-    "render_hexapod": "hexaleg.robot.urdf",
-    "render_leg": "hexaleg.robot.urdf",
-    "write_urdf": "hexaleg.robot.urdf",
-    # swing phase
-    "ManipulabilityAnalysis": "hexaleg.swing.manipulability",
-    "analyze_manipulability": "hexaleg.swing.manipulability",
-    "WorkspaceAnalysis": "hexaleg.swing.workspace",
-    "analyze_workspace": "hexaleg.swing.workspace",
-    # stance phase
-    "StanceGeometry": "hexaleg.stance.geometry",
-    "FlexibilityResult": "hexaleg.stance.extremes",
-    "FlexibilityWarning": "hexaleg.stance.extremes",
-    "flexibility": "hexaleg.stance.flexibility",
-    # statics and walking
-    "Payload": "hexaleg.statics.forces",
-    "analyze_loads": "hexaleg.statics.loads",
-    "Gait": "hexaleg.gait.spec",
-    "GaitAnalysis": "hexaleg.gait.analysis",
-    "analyze_gait": "hexaleg.gait.analysis",
-    "SimulationResult": "hexaleg.sim.result",
-    "simulate_gait": "hexaleg.sim.simulate",
-    # studies and output
-    "StudySpec": "hexaleg.study.sweep",
-    "run_study": "hexaleg.study.sweep",
-    "DecideResult": "hexaleg.study.decide",
-    "Objective": "hexaleg.study.goal",
-    "Requirements": "hexaleg.study.requirements",
-    "SearchSettings": "hexaleg.study.optimize",
-    "decide": "hexaleg.study.decide",
-    "ReportOptions": "hexaleg.output.report.options",
-    "build_report": "hexaleg.output.report",
-}
-
 __all__ = [
     "DecideResult",
     "DesignError",
@@ -139,9 +74,9 @@ __all__ = [
 ]
 
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import design_toml, load_design
     from hexaleg.exceptions import (

@@ -34,6 +34,7 @@ COMPILED_MODULES = (
     "numerics/lp.py",
     "stance/margin_kernel.py",
     "stance/margin_jacobian.py",
+    "stance/leg_kernel.py",
     "stance/climb.py",
     "stance/paths.py",
 )

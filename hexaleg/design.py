@@ -54,9 +54,9 @@ BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
 
 DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: each hip
-holds about 46 N·m at the nominal stance; the rest is room for the body's extremes and
-a payload of a few times the body's mass."""
+"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: well above
+what the nominal stance asks of each joint (``hexaleg loads``), with room for the body's
+extremes and a payload."""
 
 TORQUE_RANGE = (1e-3, 1e6)
 """Plausible rated torque [N·m]."""
@@ -70,6 +70,9 @@ SPEED_RANGE = (1e-3, 1e4)
 
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
+
+DEFAULT_LEG_LENGTH = 1.0
+"""Leg length l1 + l2 + l3 [m] of ratios given without one: the paper's 1000 mm."""
 
 FOOT_MASS = 1e-3
 """Mass of each foot link [kg]: negligible, but a valid inertial, so that every simulator
@@ -170,13 +173,11 @@ class HexapodDesign:
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
     rated_torques: tuple[float, float, float] = declare(
         DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort)", "N·m",
-        TORQUE_RANGE,
-        kind="triple", items=LEG_JOINTS,
+        TORQUE_RANGE, kind="triple", items=LEG_JOINTS,
     )
     rated_speeds: tuple[float, float, float] = declare(
         DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
-        SPEED_RANGE,
-        kind="triple", items=LEG_JOINTS,
+        SPEED_RANGE, kind="triple", items=LEG_JOINTS,
     )
 
     def __post_init__(self) -> None:
@@ -192,7 +193,7 @@ class HexapodDesign:
 
     @classmethod
     def from_ratios(
-        cls, l1_ratio: float, l3_ratio: float, total: float = 1.0, **fields: Any
+        cls, l1_ratio: float, l3_ratio: float, total: float = DEFAULT_LEG_LENGTH, **fields: Any
     ) -> HexapodDesign:
         """Design from segment ratios of a total leg length, as the paper sweeps them.
 
@@ -380,18 +381,19 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
 }
 """Each number field's plausible range (lower, upper, unit); values outside are refused."""
 
-
 L3_RATIO_RANGE: tuple[float, float] = (0.10, 0.75)
-"""Tibia-ratio range of hexaleg's design sweeps [-]. The paper gives only the
-count (80 per coxa ratio); this range leaves a femur of at least 5 % of the leg
-for every coxa ratio up to 0.20."""
+"""Tibia-ratio range of hexaleg's design sweeps [-]. The paper gives only the count
+(:data:`L3_RATIO_POINTS`); this range leaves a femur of at least 5 % of the leg for every
+coxa ratio up to 0.20."""
 
+L3_RATIO_POINTS = 80
+"""Tibia ratios per coxa ratio in the paper's design study (§6.2): the sweeps' default."""
 
 MAX_L3_POINTS = 1000
-"""Most tibia ratios per coxa ratio in a sweep: 1000 keeps a sweep to minutes on 2 cores."""
+"""Most tibia ratios per coxa ratio in a sweep."""
 
 
-def l3_ratio_grid(points: int = 80) -> npt.NDArray[np.float64]:
+def l3_ratio_grid(points: int = L3_RATIO_POINTS) -> npt.NDArray[np.float64]:
     """Evenly spaced tibia ratios over :data:`L3_RATIO_RANGE` [-]."""
     if not 2 <= points <= MAX_L3_POINTS:
         raise ParameterError("l3_points", points, f"from 2 to {MAX_L3_POINTS} tibia ratios")

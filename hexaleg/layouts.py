@@ -45,6 +45,9 @@ TRIPODS: tuple[tuple[str, str, str], tuple[str, str, str]] = (
 )
 """The two alternating tripods of the built-in layouts' leg names."""
 
+LEGS_AROUND: tuple[str, ...] = ("lf", "lm", "lr", "rr", "rm", "rf")
+"""The built-in layouts' legs counter-clockwise around the body from straight ahead."""
+
 MOUNT_RANGE = 100.0
 """Largest leg-root offset from the body centre along any axis [m]."""
 
@@ -141,9 +144,8 @@ def hexagon_mounts(
         first_leg_angle: Direction of the left front leg from the x axis [rad].
 
     """
-    around = ("lf", "lm", "lr", "rr", "rm", "rf")
     mounts = {}
-    for k, name in enumerate(around):
+    for k, name in enumerate(LEGS_AROUND):
         angle = first_leg_angle + k * math.pi / 3
         yaw = math.atan2(math.sin(angle), math.cos(angle))
         x, y = (_clean(body_radius * f(angle), body_radius) for f in (math.cos, math.sin))
@@ -156,16 +158,26 @@ def _clean(value: float, scale: float) -> float:
     return 0.0 if abs(value) < 1e-12 * scale else value
 
 
+def legs_around(mounts: tuple[LegMount, ...]) -> tuple[str, ...]:
+    """The legs counter-clockwise around the body, from straight ahead.
+
+    The built-in names give :data:`LEGS_AROUND`; custom legs are sorted by their root's
+    direction from the body centre.
+    """
+    if {m.name for m in mounts} == set(LEG_NAMES):
+        return LEGS_AROUND
+    return tuple(m.name for m in sorted(mounts, key=lambda m: math.atan2(m.y, m.x) % (2 * math.pi)))
+
+
 def first_tripod(mounts: tuple[LegMount, ...]) -> tuple[str, ...]:
     """The tripod (every other leg around the body) that holds the first leg.
 
-    The built-in layouts' names give :data:`TRIPODS` ``[0]``; custom legs are taken in
-    order of their direction from the body centre, counter-clockwise from straight ahead.
+    The built-in layouts' names give :data:`TRIPODS` ``[0]``; custom legs are every other
+    one of :func:`legs_around`.
     """
     if {m.name for m in mounts} == set(LEG_NAMES):
         return TRIPODS[0]
-    around = sorted(mounts, key=lambda m: math.atan2(m.y, m.x) % (2 * math.pi))
-    return tuple(m.name for m in around[0::2])
+    return legs_around(mounts)[0::2]
 
 
 def same_mounts(a: tuple[LegMount, ...], b: tuple[LegMount, ...], tol: float = 1e-9) -> bool:

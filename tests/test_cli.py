@@ -333,7 +333,7 @@ def test_each_command_offers_only_the_options_it_uses(capsys, command, absent, p
 
 @pytest.mark.parametrize("target", ["", "."])
 def test_writing_to_a_folder_or_nowhere_is_one_line(capsys, tmp_path, target):
-    """Found by the fuzz test: `urdf --output ''` used to end in a traceback."""
+    """`urdf --output ''` (or a folder) is refused in one line, never a traceback."""
     assert run_cli(["urdf", "--output", str(tmp_path) if target == "." else target]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err

@@ -74,6 +74,29 @@ def test_free_extremes_with_collisions_are_collision_free(short_body):
         assert extreme.sign * extreme.value >= extreme.sign * axis_locked.value - 1e-12
 
 
+@pytest.mark.parametrize("mode", ["axis", pytest.param("free", marks=pytest.mark.slow)])
+def test_a_design_without_a_model_is_rendered_once(mode, monkeypatch, short_body):
+    import warnings
+
+    import hexaleg.robot.model
+
+    renders = []
+    render = hexaleg.robot.model.render_hexapod
+
+    def counted(design):
+        renders.append(design)
+        return render(design)
+
+    monkeypatch.setattr(hexaleg.robot.model, "render_hexapod", counted)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        result = flexibility(SHORT_BODY, mode, collisions=True)
+    assert renders == [SHORT_BODY]
+    reference = flexibility(SHORT_BODY, "axis", model=short_body[0], collisions=True)
+    if mode == "axis":
+        assert result.extremes == reference.extremes
+
+
 def test_a_design_that_collides_standing_is_refused():
     # the left front coxa turned back across the middle one (legs 5 cm apart, feet apart)
     crossed = HexapodDesign(body_length=0.1, body_width=0.4, front_yaw=2.0)

@@ -100,7 +100,7 @@ def _interpreter_for(runuser: str, path: str) -> str | None:
 
 
 def _as_nobody(argv: list[str], timeout: float) -> subprocess.CompletedProcess[str]:
-    """``argv`` run as the user nobody, whose home does not exist (issue 21, item 10)."""
+    """``argv`` run as the user nobody, whose home does not exist."""
     runuser = shutil.which("runuser")
     if runuser is None or not hasattr(os, "geteuid") or os.geteuid() != 0:
         pytest.skip("needs runuser and root to run a command as the user nobody")

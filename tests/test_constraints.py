@@ -12,7 +12,6 @@ from hexaleg.stance.constraints import (
     direction_poses,
     displacement_poses,
     rpy_rotation,
-    smooth_stance_margins,
     stance_margins,
 )
 
@@ -42,7 +41,7 @@ def test_smooth_margins_have_the_same_feasible_set(hexapod_model, stance):
     displacements = rng.uniform(-1, 1, size=(20_000, 6)) * [0.25, 0.25, 0.2, 0.25, 0.25, 0.3]
     rotation, translation = displacement_poses(geometry, displacements)
     exact = stance_margins(geometry, rotation, translation)
-    smooth = smooth_stance_margins(geometry, rotation, translation)
+    smooth = stance_margins(geometry, rotation, translation, smooth=True)
     legs = exact.shape[1] - 1  # the legs' columns match one to one; the ground is last
     clear = np.abs(exact[:, :legs]) > 1e-9  # away from the boundary, where signs are defined
     np.testing.assert_array_equal(np.sign(exact[:, :legs][clear]), np.sign(smooth[:, :legs][clear]))

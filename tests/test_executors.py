@@ -111,7 +111,7 @@ def test_workers_that_cannot_set_up_are_one_line_before_any_task(monkeypatch):
 
 @pytest.mark.slow  # a few short studies as a plain user
 def test_a_low_limit_on_processes_is_one_line_never_a_hang_or_a_traceback():
-    """Issue 21, item 11: `ulimit -u` too low for the pool (root ignores it: a plain user)."""
+    """`ulimit -u` too low for the pool (root ignores it: a plain user)."""
     import shutil
 
     from unprivileged import plain_folder, run_plain

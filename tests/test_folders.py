@@ -46,7 +46,7 @@ def _write_report(target: Path, files: dict[str, str]) -> None:
 
 
 def test_report_never_deletes_a_folder_hexaleg_did_not_write(tmp_path, capsys, monkeypatch):
-    """Issue 21, item 1: the user's notes.txt and src/ beside a report.md of their own."""
+    """The user's notes.txt and src/ beside a report.md of their own."""
     from hexaleg.output import report
 
     docs = tmp_path / "docs"
@@ -150,7 +150,7 @@ def test_the_current_folder_its_parents_and_nothing_are_refused(tmp_path, monkey
 
 
 def test_an_interrupted_swap_puts_the_old_folder_back(tmp_path):
-    """Issue 21, item 5: killed between parking the old folder and renaming the new."""
+    """Killed between parking the old folder and renaming the new."""
     dead = _dead_pid()
     target = tmp_path / "r"
     parked = tmp_path / f".r.parked-{dead}.abc"

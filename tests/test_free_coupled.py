@@ -56,7 +56,7 @@ def test_causes_do_not_depend_on_the_blas_thread_count():
     assert any(len(e["binding"]) > 1 for e in one)  # ties exist, and all tied legs are named
 
 
-ISSUE_ROWS = [
+BETTER_POSES = [
     # (design fields, stance, direction, a better pose's value found by an independent search)
     ({"l1": 0.255, "l2": 0.152, "l3": 0.593}, "tripod", "roll+", 0.243015),
     ({"l1": 0.06, "l2": 0.35, "l3": 0.59}, "all", "z-", 0.196896),
@@ -67,7 +67,7 @@ ISSUE_ROWS = [
         0.20821,  # short on another machine's floating-point path
     ),
 ]
-"""Issue 22's rows without self-collision: hexaleg reported less, and "converged"."""
+"""Designs, directions and a better pose's value that a local search falls short of."""
 COLLISION_ROWS = [
     ({"body_length": 0.12, "body_width": 0.45}, "roll+", 0.329050),
     ({"body_length": 0.12, "body_width": 0.45}, "roll-", 0.329050),
@@ -77,11 +77,11 @@ COLLISION_ROWS = [
     ({"body_length": 0.1, "body_width": 0.4}, "roll+", 0.317882),
     ({"body_length": 0.1, "body_width": 0.4}, "yaw+", 0.416732),
 ]
-"""Issue 22's rows with self-collision on short bodies (default legs)."""
+"""As :data:`BETTER_POSES`, with self-collision on short bodies (default legs)."""
 
 
-@pytest.mark.parametrize(("fields", "stance", "name", "better"), ISSUE_ROWS, ids=str)
-def test_the_issue_rows_reach_the_better_pose(fields, stance, name, better):
+@pytest.mark.parametrize(("fields", "stance", "name", "better"), BETTER_POSES, ids=str)
+def test_the_better_poses_are_reached(fields, stance, name, better):
     """Fast, and able to catch a short extreme: a tripod's roll+ basin few starts reach."""
     from hexaleg import HexapodDesign
 
@@ -93,7 +93,7 @@ def test_the_issue_rows_reach_the_better_pose(fields, stance, name, better):
 
 @pytest.mark.slow
 @pytest.mark.parametrize(("fields", "name", "better"), COLLISION_ROWS, ids=str)
-def test_the_issue_collision_rows_reach_the_better_pose(fields, name, better, collision_results):
+def test_the_better_poses_with_collisions_are_reached(fields, name, better, collision_results):
     result = collision_results(tuple(sorted(fields.items())))
     extreme = next(e for e in result.extremes if e.name == name)
     assert extreme.sign * extreme.value >= better - 1e-6
@@ -138,10 +138,10 @@ def collision_results():
 def test_every_free_extreme_is_reached_from_nominal_by_a_feasible_path(fields, stance):
     """The path hexaleg finds, checked independently: NumPy margins every ≤ 1 mm, 1 mrad."""
     import numpy as np
+    from margin_oracle import displaced
 
     from hexaleg import HexapodDesign
     from hexaleg.stance import StanceGeometry
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
     from hexaleg.stance.free_coupled import search_box
     from hexaleg.stance.margin_kernel import kernel_geometry
     from hexaleg.stance.paths import retreat
@@ -163,7 +163,7 @@ def test_every_free_extreme_is_reached_from_nominal_by_a_feasible_path(fields, s
         for a, b in itertools.pairwise(path):
             steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
             points += list(a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None])
-        margins = stance_margins(geometry, *displacement_poses(geometry, np.array(points)))
+        margins = displaced(geometry, np.array(points))
         assert margins.min() >= -1e-9, extreme.name
 
 
@@ -189,12 +189,13 @@ RANDOM_DESIGNS = _random_designs(12, BRUTE_SEED)
 
 def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
     """An independent multi-start: uniform random starts (not hexaleg's Sobol set) over a
-    wider box, plain SLSQP on the NumPy margins (and coal's clearance), the best exactly
-    feasible answer and its pose."""
+    wider box, plain SLSQP on the oracle's margins (:mod:`margin_oracle`, and coal's
+    clearance), the best exactly feasible answer and its pose."""
     import numpy as np
+    from margin_oracle import displaced
     from scipy import optimize
 
-    from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins, stance_margins
+    from hexaleg.stance.constraints import displacement_poses
 
     value = {(e.axis, e.sign): e.value for e in locked}
     half = np.array([2.5 * max(abs(value[(a, 1)]), abs(value[(a, -1)])) for a in AXES])
@@ -204,7 +205,7 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
         return collision.clearances(*displacement_poses(geometry, d))[0]
 
     def constraints(d):
-        margins = smooth_stance_margins(geometry, *displacement_poses(geometry, d))
+        margins = displaced(geometry, d, smooth=True)
         return margins if collision is None else np.append(margins, clearance(d))
 
     rng = np.random.default_rng(BRUTE_SEED + k)
@@ -219,7 +220,7 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
             constraints={"type": "ineq", "fun": constraints},
             options={"maxiter": 150, "ftol": 1e-12},
         )
-        margins = stance_margins(geometry, *displacement_poses(geometry, result.x))
+        margins = displaced(geometry, result.x)
         feasible = margins.min() >= -1e-9 and (collision is None or clearance(result.x) >= -1e-7)
         if feasible and sign * result.x[k] > best:
             best, pose = sign * result.x[k], result.x
@@ -228,10 +229,10 @@ def _brute_force(geometry, locked, axis, sign, collision=None, starts=40):
 
 def _reachable(geometry, pose, box):
     """Whether a path to ``pose`` from nominal can be shown (hexaleg's retreat, its every
-    1 mm / 1 mrad checked here on the NumPy margins)."""
+    1 mm / 1 mrad checked here on the oracle's margins)."""
     import numpy as np
+    from margin_oracle import displaced
 
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
     from hexaleg.stance.margin_kernel import kernel_geometry
     from hexaleg.stance.paths import retreat
 
@@ -242,7 +243,7 @@ def _reachable(geometry, pose, box):
     for a, b in itertools.pairwise(path):
         steps = int(np.ceil(np.abs(b - a).max() / 1e-3))
         points = a + (b - a) * (np.arange(1, steps + 1) / steps)[:, None]
-        if stance_margins(geometry, *displacement_poses(geometry, points)).min() < -1e-9:
+        if displaced(geometry, points).min() < -1e-9:
             return False
     return True
 
@@ -273,7 +274,7 @@ SHORT_BODIES = [
     {"body_length": 0.11, "body_width": 0.42, "l1": 0.18, "l2": 0.42, "l3": 0.4},
     {"body_length": 0.14, "body_width": 0.5, "l1": 0.22, "l2": 0.36, "l3": 0.42},
 ]
-"""Short bodies whose adjacent legs collide, not the issue's."""
+"""Short bodies whose adjacent legs collide, other than :data:`COLLISION_ROWS`' own."""
 
 
 @pytest.mark.slow
@@ -301,10 +302,10 @@ def test_free_extremes_with_collisions_against_a_brute_force(fields):
 def test_every_reported_pose_is_feasible_and_puts_the_feet_on_their_footholds(mode):
     import numpy as np
     import pinocchio as pin
+    from margin_oracle import displaced
 
     from hexaleg import HexapodDesign
     from hexaleg.stance import StanceGeometry
-    from hexaleg.stance.constraints import displacement_poses, stance_margins
 
     design = HexapodDesign(l1=0.15, l2=0.5, l3=0.35)
     model = HexapodModel(design)
@@ -315,8 +316,7 @@ def test_every_reported_pose_is_feasible_and_puts_the_feet_on_their_footholds(mo
         assert pose[AXES.index(extreme.axis)] == pytest.approx(extreme.value, abs=1e-15)
         if mode == "axis":  # one coordinate moves, the other five held
             assert np.count_nonzero(pose) == 1
-        rotation, translation = displacement_poses(geometry, pose)
-        assert stance_margins(geometry, rotation, translation).min() >= -1e-9
+        assert displaced(geometry, pose).min() >= -1e-9
         # Pinocchio, from the reported pose and joint angles alone: feet on the footholds
         height = np.array([0.0, 0.0, design.nominal_height])
         base = pin.SE3(pin.rpy.rpyToMatrix(*pose[3:]), pose[:3] + height)

@@ -34,7 +34,7 @@ GAIT_FIELDS = {
     "max_stride",
     "max_speed",
 }
-"""The JSON fields issue 23 lists."""
+"""The JSON fields the gait command documents."""
 
 
 def test_gait_json_has_the_documented_fields(capsys):

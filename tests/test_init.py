@@ -5,6 +5,8 @@ from __future__ import annotations
 import re
 from pathlib import Path
 
+import pytest
+
 import hexaleg
 
 
@@ -86,3 +88,42 @@ def test_building_the_parser_imports_no_heavy_library():
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
     assert out.returncode == 0, out.stderr
     assert out.stdout.strip() == "[]"
+
+
+LAZY_PACKAGES = (
+    "hexaleg",
+    "hexaleg.gait",
+    "hexaleg.output.figures",
+    "hexaleg.output.viewer",
+    "hexaleg.robot",
+    "hexaleg.statics",
+    "hexaleg.study",
+    "hexaleg.swing",
+)
+"""Every package whose front door is :func:`hexaleg._lazy.lazy_exports`."""
+
+
+def test_the_lazy_packages_are_all_listed():
+    root = Path(hexaleg.__file__).parent
+    using = {
+        ".".join(("hexaleg", *init.parent.relative_to(root).parts))
+        for init in root.rglob("__init__.py")
+        if "lazy_exports(__name__)" in init.read_text()
+    }
+    assert using == set(LAZY_PACKAGES)
+
+
+@pytest.mark.parametrize("package", LAZY_PACKAGES)
+def test_all_is_what_the_type_checking_block_imports(package):
+    """``__all__`` and the TYPE_CHECKING imports declare the same names, each from its module."""
+    import importlib
+
+    from hexaleg._lazy import type_checking_imports
+
+    module = importlib.import_module(package)
+    declared = type_checking_imports(module)
+    assert sorted(declared) == sorted(set(module.__all__) - {"__version__"})
+    assert len(module.__all__) == len(set(module.__all__))
+    for name, source in declared.items():
+        assert getattr(module, name) is getattr(importlib.import_module(source), name), name
+        assert name in dir(module)

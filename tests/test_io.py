@@ -1,7 +1,7 @@
 """Writing output files: atomic where it can be, never breaking what is already there.
 
-Each case of issue 21 (items 2-4, 11) is run as the user would meet it: through the
-CLI where the CLI is what failed, on the API where the API is the mechanism.
+Each case is run as the user would meet it: through the CLI where the CLI is what the
+user runs, on the API where the API is the mechanism.
 """
 
 from __future__ import annotations

@@ -40,7 +40,7 @@ def _journal(folder: Path, *rows: dict | str) -> Path:
 
 
 def test_a_torn_last_line_is_cut_before_appending_so_a_second_resume_works(tmp_path):
-    """Issue 21, item 6: the first resume must not append after half a line."""
+    """The first resume must not append after half a line."""
     straight = run_study(SPEC, tmp_path / "straight", executor=ThreadPoolExecutor(1))
     whole = (tmp_path / "straight" / JOURNAL).read_text().splitlines()
     torn = _journal(tmp_path / "torn", *whole[1:2])
@@ -71,7 +71,7 @@ def test_a_torn_last_line_is_cut_before_appending_so_a_second_resume_works(tmp_p
     ],
 )
 def test_a_corrupt_line_is_named_and_refused(tmp_path, capsys, line):
-    """Issue 21, item 7: no KeyError or TypeError, "line N is corrupt" and exit 2."""
+    """No KeyError or TypeError, "line N is corrupt" and exit 2."""
     journal = _journal(tmp_path / "s", ROW, line, LAST)
     before = journal.read_bytes()
     with pytest.raises(HexalegError, match="line 3 is corrupt"):
@@ -156,7 +156,7 @@ with lock_folder(claim_folder(Path(sys.argv[1]), "study"), "study"):
 
 
 def test_a_second_resume_of_a_study_in_use_is_refused_naming_the_first(tmp_path, capsys):
-    """Issue 21, item 8: two `study --resume` at once would each compute every design."""
+    """Two `study --resume` at once must not each compute every design."""
     holder = subprocess.Popen(
         [sys.executable, "-c", LOCKED_STUDY, str(tmp_path / "s")], stdout=subprocess.PIPE, text=True
     )

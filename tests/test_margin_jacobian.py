@@ -1,12 +1,12 @@
-"""The closed-form Jacobian of the smooth margins equals central differences of NumPy margins."""
+"""The closed-form Jacobian of the smooth margins equals central differences of the oracle's."""
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
+from margin_oracle import displaced
 from test_margin_kernel import VARIANTS, _geometry
 
-from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins
 from hexaleg.stance.margin_jacobian import pose_margins_and_jacobian
 from hexaleg.stance.margin_kernel import column_count, kernel_geometry
 
@@ -19,7 +19,7 @@ SCALE = np.array([0.8, 0.8, 0.5, 1.2, 1.2, 2.5])
 
 
 def _numpy_margins(geometry, displacements: np.ndarray) -> np.ndarray:
-    return smooth_stance_margins(geometry, *displacement_poses(geometry, displacements))
+    return displaced(geometry, displacements, smooth=True)
 
 
 def _differences(geometry, d: np.ndarray) -> tuple[np.ndarray, np.ndarray]:

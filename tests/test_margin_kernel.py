@@ -1,4 +1,4 @@
-"""The compiled margins equal the NumPy reference, column for column, for every geometry."""
+"""The compiled margins equal the oracle's (tests/margin_oracle.py), column by column."""
 
 from __future__ import annotations
 
@@ -10,12 +10,13 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
+from margin_oracle import displaced, exact_margins, smooth_margins
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.limits import IMPROVED_LIMITS, STANCE_LIMITS, JointLimits
-from hexaleg.stance.constraints import displacement_poses, smooth_stance_margins, stance_margins
+from hexaleg.stance.constraints import displacement_poses, stance_margins
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import compiled_margins
+from hexaleg.stance.margin_kernel import kernel_geometry, margins_of
 
 # the knee's three smooth forms: cos θ3 (the stance limits), the hip-coupled bound, and
 # θ3 itself where the knee may straighten past 0 (cos θ3 is then not monotonic)
@@ -37,9 +38,10 @@ def _geometry(name: str) -> StanceGeometry:
     return StanceGeometry.from_model(HexapodModel(design), stance)
 
 
-def _reference(geometry: StanceGeometry, displacements: np.ndarray, smooth: bool) -> np.ndarray:
-    margins = smooth_stance_margins if smooth else stance_margins
-    return margins(geometry, *displacement_poses(geometry, displacements))
+def _compiled(geometry: StanceGeometry, displacements: np.ndarray, smooth: bool) -> np.ndarray:
+    """The kernel's margins of displacements (P, 6), as the searches ask for them."""
+    flat = np.ascontiguousarray(displacements, dtype=float)
+    return margins_of(kernel_geometry([geometry], smooth), flat, np.zeros(len(flat), np.int64))
 
 
 def test_the_variants_cover_each_knee_form_and_body():
@@ -63,20 +65,27 @@ DISPLACEMENTS = arrays(
 @pytest.mark.parametrize("name", list(VARIANTS))
 @settings(max_examples=40, deadline=None)
 @given(displacements=DISPLACEMENTS)
-def test_compiled_margins_equal_the_numpy_reference(name, smooth, displacements):
+def test_compiled_margins_equal_the_oracles(name, smooth, displacements):
     geometry = _geometry(name)
-    compiled = compiled_margins(geometry, smooth)(displacements)
-    reference = _reference(geometry, displacements, smooth)
+    compiled = _compiled(geometry, displacements, smooth)
+    reference = displaced(geometry, displacements, smooth)
     np.testing.assert_allclose(compiled, reference, rtol=1e-12, atol=1e-12)
 
 
-def test_any_batch_shape_and_a_single_displacement():
+@pytest.mark.parametrize("smooth", [True, False], ids=["smooth", "exact"])
+def test_stance_margins_of_poses_in_any_batch_shape(smooth):
     geometry = _geometry("box, all legs, cos θ3 knee")
-    margins = compiled_margins(geometry)
     rng = np.random.default_rng(3)
     batch = rng.uniform(-0.2, 0.2, size=(2, 3, 6))
-    reference = _reference(geometry, batch, smooth=True)
-    assert margins(batch).shape == reference.shape == (2, 3, 8 * 6 + 8)
-    np.testing.assert_allclose(margins(batch), reference, rtol=1e-12, atol=1e-12)
-    np.testing.assert_allclose(margins(batch[0, 0]), reference[0, 0], rtol=1e-12, atol=1e-12)
-    assert margins(np.zeros(6)).min() > 0  # the nominal stance is feasible
+    rotation, translation = displacement_poses(geometry, batch)
+    margins = stance_margins(geometry, rotation, translation, smooth=smooth)
+    oracle = smooth_margins if smooth else exact_margins
+    reference = oracle(geometry, rotation, translation)
+    assert margins.shape == reference.shape == (2, 3, 8 * 6 + (8 if smooth else 1))
+    np.testing.assert_allclose(margins, reference, rtol=1e-12, atol=1e-12)
+    one = stance_margins(geometry, rotation[0, 0], translation[0, 0], smooth=smooth)
+    np.testing.assert_allclose(one, reference[0, 0], rtol=1e-12, atol=1e-12)
+    level = stance_margins(geometry, np.eye(3), translation, smooth=smooth)  # broadcast
+    np.testing.assert_allclose(level, oracle(geometry, np.eye(3), translation), atol=1e-12)
+    nominal = stance_margins(geometry, np.eye(3), [0.0, 0.0, geometry.nominal_height])
+    assert nominal.min() > 0  # the nominal stance is feasible

@@ -71,8 +71,8 @@ def test_the_command_socket_is_on_loopback_whatever_the_page_binds():
 
 
 def test_the_users_port_is_the_page_s_never_the_command_socket_s():
-    """Issue 21, item 15: `view --port 6000` failed, hexaleg's ZMQ socket having taken 6000
-    (meshcat's took the first free port from 6000: the port asked for here)."""
+    """`view --port 6000` serves the page on 6000: the ZMQ socket must not take it
+    (meshcat's takes the first free port from 6000: the port asked for here)."""
     port = next(p for p in range(6000, 7000) if _free(p))
     with LoopbackServer(port=port) as server:
         assert server.web_port == port
@@ -208,7 +208,7 @@ def test_binding_beyond_loopback_says_what_is_exposed(monkeypatch, capsys):
 @pytest.mark.slow  # the viewer computes the extremes before it serves
 @pytest.mark.skipif(not _ipv6_loopback(), reason="no IPv6 loopback on this machine")
 def test_view_on_ipv6_loopback_and_a_port_of_the_users(tmp_path):
-    """Issue 21, item 15, as the user ran it: `view --host ::1 --port P`."""
+    """As a user runs it: `view --host ::1 --port P`."""
     port = next(p for p in range(6000, 6100) if _free(p, "::1") and _free(p))
     process = subprocess.Popen(
         [sys.executable, "-m", "hexaleg", "view", "--host", "::1", "--port", str(port)],

@@ -59,7 +59,7 @@ def test_bad_options_are_refused_before_simulating(monkeypatch, tmp_path, capsys
     assert list(tmp_path.iterdir()) == []
 
 
-def test_json_is_the_issues(monkeypatch, capsys, walked):
+def test_json_has_the_documented_fields(monkeypatch, capsys, walked):
     monkeypatch.setattr(command, "simulate_gait", lambda *args, **kwargs: walked)
     assert run_cli(["simulate", "--json", "--cycles", "2"]) == 0
     fields = json.loads(capsys.readouterr().out)

@@ -64,7 +64,7 @@ def test_measured_hip_and_knee_torques_are_near_the_plans(default_walk):
     assert planned == planned_again
 
 
-def test_json_has_exactly_the_issues_fields(default_walk):
+def test_json_has_exactly_the_documented_fields(default_walk):
     fields = json.loads(json.dumps(default_walk.to_dict()))
     assert set(fields) == JSON_KEYS
     assert set(fields["standing"]) == {"foot_forces_z", "statics_foot_forces_z"}

@@ -1,7 +1,7 @@
-"""Hostile and careless input (issue 21, items 9, 12, 13): one short line naming the field.
+"""Hostile and careless input: one short line naming the field.
 
-Every case here used to end in a traceback from deep inside (OverflowError, TypeError,
-RecursionError, MemoryError), a hang, or a study that ran and failed every design.
+None of these may end in a traceback from deep inside (OverflowError, TypeError,
+RecursionError, MemoryError), a hang, or a study that runs and fails every design.
 """
 
 from __future__ import annotations
@@ -40,7 +40,7 @@ def _refused_in_one_line(capsys, argv: list[str], *fragments: str) -> str:
     return err
 
 
-# -- item 9: a study grid that leaves a segment out of range is refused up front ----------
+# -- a study grid that leaves a segment out of range is refused up front ----------
 
 STUDY_GRIDS = {
     "tiny coxa ratio": (["--l1-ratios", "1e-300"], ["l1_ratios = 1e-300", "coxa", "[0.001, 100]"]),
@@ -62,19 +62,25 @@ def test_study_grids_that_cannot_be_built_are_refused_before_running(
     assert not out.exists()
 
 
-def test_the_grid_check_accepts_the_papers_grid():
-    from hexaleg.design import l3_ratio_grid
+def test_the_grid_check_accepts_the_papers_grid_and_every_design_on_it_builds():
+    from hexaleg.design import SEGMENT_RANGE, l3_ratio_grid
     from hexaleg.paper import L1_RATIOS
     from hexaleg.ratios import require_ratio_grid
 
-    require_ratio_grid(L1_RATIOS, tuple(l3_ratio_grid()), 1.0)  # raises nothing
-    # every design on it builds (the oracle: constructing each one)
+    assert require_ratio_grid(L1_RATIOS, tuple(l3_ratio_grid()), 1.0) is None
+    # the oracle: constructing each design at the grid's corners, every segment in range
+    lower, upper = SEGMENT_RANGE
     for r1 in L1_RATIOS:
         for r3 in l3_ratio_grid(5):
-            HexapodDesign.from_ratios(r1, r3, 1.0)
+            design = HexapodDesign.from_ratios(r1, r3, 1.0)
+            assert all(lower <= length <= upper for length in design.lengths)
+            assert design.leg_length == pytest.approx(1.0, abs=1e-12)
+    # and a grid whose largest ratios leave no femur is not accepted
+    with pytest.raises(ParameterError, match="femur"):
+        require_ratio_grid((*L1_RATIOS, 0.9), (0.1,), 1.0)
 
 
-# -- item 12: design files that are not files, too large, or absurd inside ----------------
+# -- design files that are not files, too large, or absurd inside ----------------
 
 
 def _design_show(path) -> list[str]:
@@ -88,7 +94,7 @@ def test_a_fifo_is_refused_without_waiting_for_a_writer(tmp_path):
         [sys.executable, "-m", "hexaleg", *_design_show(fifo)],
         capture_output=True,
         text=True,
-        timeout=120,  # it used to hang here forever
+        timeout=120,  # a wait for a writer would hang here
     )
     assert result.returncode == 2
     assert "not a regular file" in result.stderr and "Traceback" not in result.stderr
@@ -96,7 +102,7 @@ def test_a_fifo_is_refused_without_waiting_for_a_writer(tmp_path):
 
 def test_a_link_to_a_device_is_refused_without_reading_it(tmp_path, capsys):
     link = tmp_path / "robot.toml"
-    link.symlink_to("/dev/zero")  # used to read 2.3 GB and die of MemoryError
+    link.symlink_to("/dev/zero")  # endless: reading it would exhaust the memory
     _refused_in_one_line(capsys, _design_show(link), "not a regular file")
 
 
@@ -138,7 +144,7 @@ def test_absurd_numbers_and_nesting_in_a_file_give_one_short_line(
     _refused_in_one_line(capsys, _design_show(path), str(path), *fragments)
 
 
-# -- item 13: the API names the field at construction, never a Python error from deep inside
+# -- the API names the field at construction, never a Python error from deep inside
 
 
 API_CASES = {

@@ -70,8 +70,7 @@ def test_improved_area_equals_eq16_for_random_lengths():
     rng = np.random.default_rng(21)
     for l1, l2, l3 in rng.uniform(0.02, 1.0, size=(25, 3)):
         area = planar_workspace((l1, l2, l3), IMPROVED_LIMITS).area
-        assert area == pytest.approx(improved_area_closed_form(l2, l3), rel=1e-3)  # issue: 0.1 %
-        assert area == pytest.approx(improved_area_closed_form(l2, l3), rel=1e-10)  # achieved
+        assert area == pytest.approx(improved_area_closed_form(l2, l3), rel=1e-10)
 
 
 def test_boundary_polygon_is_consistent_with_the_area(default_design):

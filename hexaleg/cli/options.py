@@ -8,19 +8,22 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
-from hexaleg.design import DESIGN_FIELDS, MAX_L3_POINTS, SEGMENTS, HexapodDesign
+from hexaleg.design import (
+    DEFAULT_LEG_LENGTH,
+    DESIGN_FIELDS,
+    L3_RATIO_POINTS,
+    MAX_L3_POINTS,
+    SEGMENTS,
+    HexapodDesign,
+)
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
 from hexaleg.layouts import Layout
-from hexaleg.paper import L3_RATIO_POINTS
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
 
 if TYPE_CHECKING:
     from hexaleg.study.requirements import Requirements
-
-DEFAULT_TOTAL = 1.0
-"""Total leg length [m] of ``--ratios`` when ``--total`` is not given (the paper's 1000 mm)."""
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -97,7 +100,7 @@ def _add_total_options(group: argparse._ArgumentGroup, lengths: bool) -> None:
         type=float,
         metavar="M",
         help=f"total leg length l1+l2+l3 {what} [m] (default: the --design file's, "
-        f"else {DEFAULT_TOTAL:g})",
+        f"else {DEFAULT_LEG_LENGTH:g})",
     )
 
 
@@ -192,7 +195,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         total = study_total(args, base)
         design = base.replace(**changes).with_ratios(args.ratios[0], args.ratios[1], total)
         if args.total is None and path is None:  # said once the design stands: errors stay 1 line
-            note(f"--ratios without --total: total leg length {DEFAULT_TOTAL:g} m")
+            note(f"--ratios without --total: total leg length {DEFAULT_LEG_LENGTH:g} m")
         return design, requirements
     if args.total is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
@@ -211,7 +214,7 @@ def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:
     """Total leg length [m]: ``--total``, else the ``--design`` file's, else the default."""
     if args.total is not None:
         return float(args.total)
-    return design.leg_length if getattr(args, "design", None) else DEFAULT_TOTAL
+    return design.leg_length if getattr(args, "design", None) else DEFAULT_LEG_LENGTH
 
 
 def add_sweep_options(

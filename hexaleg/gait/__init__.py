@@ -13,23 +13,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "analyze_gait": "hexaleg.gait.analysis",
-    "duty_factor": "hexaleg.gait.pattern",
-    "Gait": "hexaleg.gait.spec",
-    "gait_phases": "hexaleg.gait.pattern",
-    "GaitAnalysis": "hexaleg.gait.analysis",
-    "GaitMetrics": "hexaleg.gait.metrics",
-    "GROUPS": "hexaleg.gait.pattern",
-    "legs_around": "hexaleg.gait.pattern",
-    "max_speed": "hexaleg.gait.limits",
-    "max_stride": "hexaleg.gait.limits",
-    "SpeedLimit": "hexaleg.gait.limits",
-    "StrideLimit": "hexaleg.gait.limits",
-    "Violation": "hexaleg.gait.feasibility",
-    "Walker": "hexaleg.gait.walk",
-}
-
 __all__ = [
     "GROUPS",
     "Gait",
@@ -47,9 +30,9 @@ __all__ = [
     "max_stride",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
     from hexaleg.gait.feasibility import Violation
     from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride

@@ -30,7 +30,7 @@ from hexaleg.gait.jacobian import transpose_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.statics.forces import Payload, equilibrium, min_norm_forces, min_torque_forces
 
 
@@ -73,7 +73,7 @@ class LoadedRobot:
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)
         if payload.mass > 0:
-            base = int(self.model.getJointId("root_joint"))
+            base = int(self.model.getJointId(ROOT_JOINT))
             point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
             self.model.inertias[base] = self.model.inertias[base] + point
         self.model.gravity.linear = self.gravity

@@ -24,7 +24,6 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
@@ -124,11 +123,6 @@ def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
     lift = walker.gait.step_height * shapes.lift[..., None] * np.array([0.0, 0.0, 1.0])
     angles, reach = leg_solution(frames.lengths, frames.to_roots(frames.footholds + along + lift))
     return walker.margins(angles, reach)
-
-
-def _feasible(walker: Walker, strides: ArrayF) -> npt.NDArray[np.bool_]:
-    """Whether each stride's period is feasible (M,)."""
-    return feasible(_margins(walker, strides))
 
 
 def _first_cause(walker: Walker, stride: float) -> Cause:

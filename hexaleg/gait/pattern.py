@@ -22,7 +22,6 @@ swings for t/T − φ_a ∈ [0, 1/n) (mod 1) and stands otherwise, so at every i
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -31,13 +30,10 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, GaitPattern, require_choice
 from hexaleg.design import HexapodDesign
-from hexaleg.layouts import LEG_NAMES
+from hexaleg.layouts import legs_around as layout_legs_around
 
 GROUPS: dict[str, int] = {"tripod": 2, "tetrapod": 3, "wave": 6}
 """How many groups of legs swing one after another, per pattern."""
-
-AROUND: tuple[str, ...] = ("lf", "lm", "lr", "rr", "rm", "rf")
-"""The built-in layouts' legs counter-clockwise around the body from straight ahead."""
 
 
 def duty_factor(pattern: GaitPattern) -> float:
@@ -49,13 +45,10 @@ def duty_factor(pattern: GaitPattern) -> float:
 def legs_around(design: HexapodDesign) -> tuple[str, ...]:
     """The design's legs counter-clockwise around the body, from straight ahead.
 
-    The built-in names give :data:`AROUND`; custom legs are sorted by their root's
-    direction from the body centre, as :func:`~hexaleg.layouts.first_tripod` sorts them.
+    As :func:`~hexaleg.layouts.legs_around` orders them (and ``--stance tripod`` picks
+    every other one).
     """
-    mounts = design.legs
-    if {m.name for m in mounts} == set(LEG_NAMES):
-        return AROUND
-    return tuple(m.name for m in sorted(mounts, key=lambda m: math.atan2(m.y, m.x) % (2 * math.pi)))
+    return layout_legs_around(design.legs)
 
 
 def swing_starts(design: HexapodDesign, pattern: GaitPattern) -> npt.NDArray[np.int_]:

@@ -4,17 +4,17 @@ The body moves at constant velocity v = S / (β·T) along the heading ψ (body f
 level, at its nominal height, never rotating; S is how far a foot moves relative to the
 body while it stands, β the pattern's duty factor (:mod:`hexaleg.gait.pattern`).
 
-Defaults, chosen for the default robot (the paper's 0.2/0.4/0.4 m leg on the 1.0 × 0.6 m,
-60 kg body, 84 kg in all, rated 60/150/120 N·m and 3 rad/s): a tripod, period T = 2 s,
-stride S = 0.3 m, step height H = 0.1 m, straight ahead, 200 samples. The stride is about
-half that robot's max stride (0.62 m at H = 0.1 m, where a front foot runs out of reach),
-so every leg keeps inside its stance limits with room to spare; the period makes
-v = 0.3 m/s, a construction robot's walking pace, at which the fastest joint (a knee, in
-swing) turns at 2.1 of its 3 rad/s. The hips set the limit: a tripod's lone middle leg holds
-nearly half the robot's weight, 146 of the hips' 150 N·m, so this robot walks the tripod at
-up to 0.41 m/s and without payload (30 kg take the hips to 201 N·m; the tetrapod holds them
-to 125 N·m). A step height of 0.1 m clears rubble of a brick's height. 200 samples resolve
-the swing's fastest change (the tripod's swing lasts 100 of them).
+Defaults, chosen for the default robot (the paper's leg on hexaleg's default body and
+actuators, :class:`~hexaleg.design.HexapodDesign`): a tripod, period T = 2 s, stride
+S = 0.3 m, step height H = 0.1 m, straight ahead, 200 samples. The stride stays well short
+of that robot's max stride (:func:`~hexaleg.gait.limits.max_stride`, where a front foot runs
+out of reach), so every leg keeps inside its stance limits with room to spare; the period
+makes v = S / (β·T) = 0.3 m/s, a construction robot's walking pace, within the rated joint
+speeds. The hips set the limit: a tripod's lone middle leg holds nearly half the robot's
+weight, so the hips' ratings bound the speed and the payload
+(:func:`~hexaleg.gait.limits.max_speed`; a tetrapod shares the weight among more legs). A
+step height of 0.1 m clears rubble of a brick's height. 200 samples resolve the swing's
+fastest change (a tripod's swing lasts half of them).
 """
 
 from __future__ import annotations

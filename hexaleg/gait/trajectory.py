@@ -32,7 +32,7 @@ from hexaleg._typing import ArrayF, Lengths
 from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
-from hexaleg.robot.model import HexapodModel, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, joint_name
 
 
 @dataclass(frozen=True)
@@ -96,7 +96,7 @@ def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
     forward kinematics.
     """
     pinocchio = model.model
-    base = pinocchio.getJointId("root_joint")
+    base = pinocchio.getJointId(ROOT_JOINT)
     ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
     if any(pinocchio.parents[i] != base for i in ids.values()):
         return model.root_placements()
@@ -106,8 +106,8 @@ def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
     """R·v (or Rᵀ·v) per leg for vectors (..., 6, 3) and rotations (6, 3, 3).
 
-    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is ten
-    times slower on the many small blocks of a stride scan.
+    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is slower on
+    the many small blocks of a stride scan.
     """
     columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
     return (

@@ -10,14 +10,10 @@ from __future__ import annotations
 
 from typing import NamedTuple
 
+from hexaleg.design import L3_RATIO_POINTS as L3_RATIO_POINTS  # the study's count, kept there
+
 L1_RATIOS: tuple[float, ...] = (0.05, 0.10, 0.15, 0.20)
 """Coxa ratios l1 / l of Table 5 and Fig 8, 10, 11, 15 [-]."""
-
-TOTAL_LEG_LENGTH = 1.0
-"""Total leg length l = l1 + l2 + l3 of the paper's sweeps [m] (1000 mm)."""
-
-L3_RATIO_POINTS = 80
-"""Number of tibia ratios per coxa ratio in the paper's design study (§6.2)."""
 
 CLAIMED_L3_RATIO_PEAK: tuple[float, float] = (0.40, 0.45)
 """The paper's best tibia ratios for the workspace (§4.3, coxa ratio 0.1–0.2) and where FB

@@ -6,19 +6,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "foot_frame_name": "hexaleg.robot.model",
-    "HexapodModel": "hexaleg.robot.model",
-    "joint_name": "hexaleg.robot.model",
-    "LEG_JOINTS": "hexaleg.robot.model",
-    "LegModel": "hexaleg.robot.model",
-    "render_hexapod": "hexaleg.robot.urdf",
-    "render_leg": "hexaleg.robot.urdf",
-    "root_frame_name": "hexaleg.robot.model",
-    "validate_urdf": "hexaleg.robot.urdf",
-    "write_urdf": "hexaleg.robot.urdf",
-}
-
 __all__ = [
     "LEG_JOINTS",
     "HexapodModel",
@@ -32,9 +19,9 @@ __all__ = [
     "write_urdf",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.robot.model import (
         LEG_JOINTS,
         HexapodModel,

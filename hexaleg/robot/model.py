@@ -1,6 +1,6 @@
 """Pinocchio models built from the rendered URDF.
 
-:class:`HexapodModel` is the free-flyer hexapod (root joint ``root_joint``,
+:class:`HexapodModel` is the free-flyer hexapod (root joint :data:`ROOT_JOINT`,
 configuration ``[x, y, z, qx, qy, qz, qw, legs…]``); :class:`LegModel` is one
 leg on a fixed base whose world frame is the leg-root frame of eq 7. Frames,
 joint axes and limits are read from the model, never re-typed here.
@@ -21,6 +21,9 @@ from hexaleg.exceptions import ModelError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.inertia import LinkInertial, leg_inertials
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
+
+ROOT_JOINT = "root_joint"
+"""Name of the free-flyer joint that carries the body (the simulators' free joint too)."""
 
 
 def joint_name(leg: str, joint: str) -> str:
@@ -129,7 +132,7 @@ class HexapodModel:
         self.design = design
         self._urdf = None if _model is not None else render_hexapod(design)
         self.model = (
-            pin.buildModelFromXML(self._urdf, pin.JointModelFreeFlyer())
+            pin.buildModelFromXML(self._urdf, pin.JointModelFreeFlyer(), ROOT_JOINT)
             if _model is None
             else _model
         )

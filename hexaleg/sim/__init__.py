@@ -3,7 +3,7 @@
 :func:`simulate_gait` is the front door (:mod:`.simulate`). Beneath it: the MuJoCo
 model of hexaleg's own URDF (:mod:`.model`), the planned period the servos follow
 (:mod:`.plan`), the run that records every step (:mod:`.run`), what a walk shows
-(:mod:`.measure`), the tripod standing check (:mod:`.standing`) and the offscreen video
+(:mod:`.measure`), the tripod standing check (:mod:`.standing_tripod`) and the offscreen video
 (:mod:`.video`). MuJoCo is the optional extra ``hexaleg[sim]``, imported only when a
 simulation runs.
 """
@@ -14,7 +14,7 @@ from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import Run, run_plan
 from hexaleg.sim.simulate import plan_of, simulate_gait
-from hexaleg.sim.standing import StandingCheck, standing_check
+from hexaleg.sim.standing_tripod import StandingCheck, standing_check
 from hexaleg.sim.video import RenderOutcome, write_still, write_video
 
 __all__ = [

@@ -34,7 +34,7 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ModelError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.model import HexapodModel, foot_frame_name, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name, joint_name
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
 
@@ -43,16 +43,14 @@ TIMESTEP = 1e-3
 DEFAULT_BANDWIDTH = 2.0
 """Servo bandwidth f [Hz]: the natural frequency of a standing leg's joint (see
 :meth:`ServoGains.from_bandwidth`). Stiffer servos track more closely but, with three
-feet planted, push the feet against each other: at 2 Hz the default robot's measured
-hip and knee peaks stay within a few per cent of the plan's; at 8 Hz the knees' triple."""
+feet planted, push the feet against each other: the measured torque peaks then grow
+past the plan's."""
 DEFAULT_DAMPING_RATIO = 1.0
 """Servo damping ratio ζ [-] (critically damped)."""
 FLOOR = "floor"
 """Name of the floor geom."""
 PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
-ROOT_JOINT = "root_joint"
-"""Name of the free joint (as Pinocchio names its free-flyer)."""
 FRICTION_RANGE = (1e-3, 10.0)
 """Coefficients of friction μ [-] the floor may have (MuJoCo needs μ > 0)."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
@@ -96,9 +94,8 @@ class ServoGains:
 
         With I the joint's reflected inertia (:func:`reflected_inertia`: its own leg and
         the third of the robot a tripod foot carries), ω = 2π f: k_p = I ω²,
-        k_d = 2 ζ I ω. A swinging leg, lighter, answers faster (the default robot's
-        knee at about 7 f, its hip at about 5 f); the feed-forward torque carries the load,
-        the servo corrects what the plan did not foresee.
+        k_d = 2 ζ I ω. A swinging leg, lighter, answers faster; the feed-forward torque
+        carries the load, the servo corrects what the plan did not foresee.
 
         Args:
             model: The hexapod's Pinocchio model.

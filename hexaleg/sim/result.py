@@ -11,7 +11,7 @@ from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.measure import WalkMetrics
 from hexaleg.sim.model import ServoGains, SimModel
-from hexaleg.sim.standing import StandingCheck
+from hexaleg.sim.standing_tripod import StandingCheck
 from hexaleg.statics.forces import Payload
 
 
@@ -59,7 +59,7 @@ class SimulationResult:
         return SimModel(HexapodModel(self.design), self.payload, self.friction, self.gains)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: the fields of the simulate issue (SI units: m, rad, N, N·m)."""
+        """JSON-ready: what ``hexaleg simulate --json`` prints (SI units: m, rad, N, N·m)."""
         metrics = self.metrics
         return {
             "design": self.design.as_dict(),

@@ -22,7 +22,7 @@ from hexaleg.sim.model import FRICTION_RANGE, ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import FRAME_RATE, Run, run_plan
-from hexaleg.sim.standing import standing_check
+from hexaleg.sim.standing_tripod import standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 
 DEFAULT_CYCLES = 4

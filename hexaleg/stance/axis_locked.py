@@ -27,7 +27,7 @@ from hexaleg.stance.constraints import (
     constraint_labels,
 )
 from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extremes
-from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.geometry import StanceGeometry, needed_model
 from hexaleg.stance.margin_kernel import kernel_geometry, margins_of
 
 
@@ -84,6 +84,7 @@ def axis_locked_flexibility(
     design: HexapodDesign,
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
+    *,
     geometry: StanceGeometry | None = None,
     collisions: bool = False,
 ) -> FlexibilityResult:
@@ -92,14 +93,16 @@ def axis_locked_flexibility(
     Args:
         design: The design.
         stance: ``"all"``, ``"tripod"`` or a list of stance legs.
-        model: Its Pinocchio model, if already built.
+        model: Its Pinocchio model, if already built (else built once, if needed).
         geometry: A template geometry of the same body and mounts (fast path for
             sweeps: the design's legs replace the template's by :meth:`StanceGeometry.with_design`).
         collisions: Also stop where two of the robot's own parts touch (coal).
 
     """
+    model = needed_model(design, model, geometry, collisions)
     geometry = StanceGeometry.of_design(design, stance, model, geometry)
-    return _result(design, geometry, axis_locked_extremes(geometry), model, collisions)
+    extremes = axis_locked_extremes(geometry)
+    return _result(design, geometry, extremes, model if collisions else None)
 
 
 def axis_locked_flexibility_many(
@@ -119,7 +122,7 @@ def axis_locked_flexibility_many(
     """
     geometries = [template.with_design(design) for design in designs]
     return [
-        _result(design, geometry, extremes, model, collisions)
+        _result(design, geometry, extremes, model if collisions else None)
         for design, geometry, extremes, model in zip(
             designs, geometries, axis_locked_extremes_many(geometries), models, strict=True
         )
@@ -130,11 +133,11 @@ def _result(
     design: HexapodDesign,
     geometry: StanceGeometry,
     extremes: tuple[Extreme, ...],
-    model: HexapodModel | None,
-    collisions: bool,
+    collision_model: HexapodModel | None,
 ) -> FlexibilityResult:
-    """The result of a design's axis-locked extremes, cut short by collisions if asked."""
-    if collisions:
-        model = HexapodModel(design) if model is None else model
-        extremes = collision_limited(geometry, SelfCollision(model, geometry), extremes)
+    """The result of a design's axis-locked extremes, cut short by collisions on a given model."""
+    collisions = collision_model is not None
+    if collision_model is not None:
+        collision = SelfCollision(collision_model, geometry)
+        extremes = collision_limited(geometry, collision, extremes)
     return FlexibilityResult(design, geometry.legs, "axis", extremes, collisions=collisions)

@@ -7,8 +7,8 @@ the clearance of two mirror-image pairs forms a corner that SLSQP does not leave
 Optima that go round the touching parts (a body pitched so that two coxae pass one
 above the other, say) lie off those planes. These starts are drawn over the search
 box instead: the draws free of every exact margin and of collision are each pushed
-along the direction until the first that is not (a screen costing a few
-milliseconds), and the furthest pushed are polished.
+along the direction until the first that is not (a cheap screen: no SLSQP), and the
+furthest pushed are polished.
 """
 
 from __future__ import annotations

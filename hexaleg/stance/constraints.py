@@ -9,7 +9,6 @@ names a constraint; :func:`direction_poses` moves the body along one coordinate.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 
 import numpy as np
@@ -17,10 +16,9 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
-from hexaleg.kinematics import leg_plane, plane_solution
 from hexaleg.robot.model import LEG_JOINTS
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.stance.margin_kernel import knee_on_cosine, rotations_of
+from hexaleg.stance.margin_kernel import kernel_geometry, margins_of_poses, rotations_of
 
 AXES: tuple[str, ...] = ("x", "y", "z", "roll", "pitch", "yaw")
 """Body coordinates, translations [m] then rotations about the world axes [rad]."""
@@ -90,57 +88,29 @@ def constraint_labels(legs: Sequence[str]) -> list[Cause]:
     return [*labels, Cause("ground")]
 
 
-def stance_margins(geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF) -> ArrayF:
-    """Every constraint's margin (..., 8N + 1) for body poses: ≥ 0 feasible, < 0 broken.
-
-    Columns (see :func:`constraint_labels`): per leg the outer and inner reach [m];
-    per leg and joint the lower and upper limit [rad]; last the body's lowest point's
-    height above the ground [m].
-    """
-    return _margins(geometry, rotation, translation, smooth=False)
-
-
-def smooth_stance_margins(
-    geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF
+def stance_margins(
+    geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF, smooth: bool = False
 ) -> ArrayF:
-    """:func:`stance_margins` in forms smooth up to the boundary, for gradient-based search.
+    """Every constraint's margin (..., C) for body poses: ≥ 0 feasible, < 0 broken.
 
-    The same feasible poses: the legs' columns as in :func:`stance_margins` with the same
-    zero sets, but reach as squared distances, (l2 + l3)² − r² and r² − (l2 − l3)² [m²],
-    and the knee's fixed limits on cos θ3 = (r² − l2² − l3²)/(2·l2·l3) [-] instead of θ3
-    through arccos, whose slope is infinite where the leg straightens (a coupled knee
-    bound keeps the θ3 form); the ground as several smooth columns instead of the
-    lowest point's kinked one (``StanceGeometry.smooth_ground_margins``).
+    Computed by the compiled kernel (:mod:`.margin_kernel`). Columns (see
+    :func:`constraint_labels`): per leg the outer and inner reach [m]; per leg and joint the
+    lower and upper limit [rad]; last the body's lowest point's height above the ground [m]
+    (C = 8N + 1).
+
+    With ``smooth``, the forms a gradient-based search needs, smooth up to the boundary,
+    with the same feasible poses: reach as squared distances, (l2 + l3)² − r² and
+    r² − (l2 − l3)² [m²]; the knee's fixed limits on cos θ3 = (r² − l2² − l3²)/(2·l2·l3) [-]
+    instead of θ3 through arccos, whose slope is infinite where the leg straightens (a
+    coupled knee bound, or a knee that may pass 0, keeps the θ3 form); the ground as
+    several smooth columns instead of the lowest point's kinked one: each corner's height
+    for a box [m], and for a cylinder g = t_z − h·|R_zz| [m] and g·|g| − r²(R_zx² + R_zy²)
+    [m²], whose zero sets together are the rim's lowest point touching the ground.
     """
-    return _margins(geometry, rotation, translation, smooth=True)
-
-
-def _margins(
-    geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF, smooth: bool
-) -> ArrayF:
-    lengths = geometry.lengths
-    _, l2, l3 = lengths
-    targets = geometry.feet_in_roots(rotation, translation)  # (..., N, 3)
-    theta1, planar_x, z, r = leg_plane(lengths[0], targets)
-    theta = plane_solution(lengths, theta1, planar_x, z, r)  # knee-down IK (..., N, 3)
-    limits = geometry.limits
-    joints = np.empty((*theta.shape, 2))  # (..., N, 3, 2): lower, upper margin per joint
-    joints[..., 0] = theta - limits.lower
-    joints[..., 1] = limits.upper - theta
-    if limits.coupled_knee:
-        joints[..., 2, 0] = theta[..., 2] - limits.knee_lower(theta[..., 1])
-    if smooth:
-        r2 = planar_x**2 + z**2
-        reach = np.stack([(l2 + l3) ** 2 - r2, r2 - (l2 - l3) ** 2], axis=-1)
-        if knee_on_cosine(limits):
-            cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
-            joints[..., 2, 0] = cos_knee - math.cos(limits.theta3[0])
-            joints[..., 2, 1] = math.cos(limits.theta3[1]) - cos_knee
-    else:
-        reach = np.stack([l2 + l3 - r, r - abs(l2 - l3)], axis=-1)  # (..., N, 2)
-    if smooth:
-        ground = geometry.smooth_ground_margins(rotation, translation)
-    else:
-        ground = geometry.lowest_body_height(rotation, translation)[..., None]
-    shape = theta.shape[:-2]
-    return np.concatenate([reach.reshape(*shape, -1), joints.reshape(*shape, -1), ground], axis=-1)
+    rotation = np.asarray(rotation, dtype=float)
+    translation = np.asarray(translation, dtype=float)
+    shape = np.broadcast_shapes(rotation.shape[:-2], translation.shape[:-1])
+    rotations = np.ascontiguousarray(np.broadcast_to(rotation, (*shape, 3, 3)).reshape(-1, 3, 3))
+    positions = np.ascontiguousarray(np.broadcast_to(translation, (*shape, 3)).reshape(-1, 3))
+    values = margins_of_poses(kernel_geometry([geometry], smooth), rotations, positions)
+    return values.reshape(*shape, values.shape[-1])

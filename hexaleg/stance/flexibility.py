@@ -21,6 +21,7 @@ def flexibility(
     mode: FlexibilityMode = "axis",
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
+    *,
     collisions: bool = False,
 ) -> FlexibilityResult:
     """Body flexibility of ``design``: ``mode`` is ``"axis"`` (axis-locked) or ``"free"``.

@@ -4,7 +4,7 @@ The other five body coordinates are free to help. The body pose is the variable,
 d = (x, y, z, roll, pitch, yaw) displaced from the nominal stance (world frame,
 Pinocchio's roll-pitch-yaw); every stance leg follows by the closed-form knee-down
 IK (eq 8–9). Each direction is a small nonlinear program, max ±d_k with every margin of
-:func:`~hexaleg.stance.constraints.smooth_stance_margins` ≥ 0 (:class:`.FreeProblem`),
+:func:`~hexaleg.stance.constraints.stance_margins` (smooth) ≥ 0 (:class:`.FreeProblem`),
 whose feasible set is thin and has many local optima. The search for direction k:
 
 1. **Climbs** (:mod:`.climb`, compiled): a local search from each of :data:`CLIMBS`
@@ -63,7 +63,7 @@ from hexaleg.stance.extremes import (
     pose_extreme,
 )
 from hexaleg.stance.free_problem import LOWER, UPPER, FreeProblem
-from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.geometry import StanceGeometry, needed_model
 from hexaleg.stance.symmetry import keeping, mirror_sources
 
 CLIMBS = 48
@@ -84,24 +84,24 @@ def free_flexibility(
     design: HexapodDesign,
     stance: StanceSet | Sequence[str] = "all",
     model: HexapodModel | None = None,
-    collisions: bool = False,
+    *,
     geometry: StanceGeometry | None = None,
+    collisions: bool = False,
 ) -> FlexibilityResult:
     """Free-coupled flexibility: each coordinate's extreme with the other five free.
 
     Args:
         design: The design.
         stance: ``"all"``, ``"tripod"`` or a list of stance legs.
-        model: Its Pinocchio model, if already built.
-        collisions: Also stop where two of the robot's own parts touch (coal).
+        model: Its Pinocchio model, if already built (else built once, if needed).
         geometry: A template geometry of the same body and mounts (fast path for
             sweeps: the design's legs replace the template's by :meth:`StanceGeometry.with_design`).
+        collisions: Also stop where two of the robot's own parts touch (coal).
 
     """
+    model = needed_model(design, model, geometry, collisions)
     geometry = StanceGeometry.of_design(design, stance, model, geometry)
-    collision = None
-    if collisions:
-        collision = SelfCollision(HexapodModel(design) if model is None else model, geometry)
+    collision = SelfCollision(model, geometry) if collisions and model is not None else None
     locked = axis_locked_extremes(geometry)
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)

@@ -46,6 +46,23 @@ def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple
     return tuple(legs)
 
 
+def needed_model(
+    design: HexapodDesign,
+    model: HexapodModel | None,
+    template: StanceGeometry | None,
+    collisions: bool,
+) -> HexapodModel | None:
+    """``design``'s model, built here once if none is given and something will read it.
+
+    The stance geometry reads it unless a ``template`` gives it in closed form; the
+    self-collision check reads it whenever ``collisions`` is asked. Otherwise None: no
+    URDF is rendered.
+    """
+    if model is None and (template is None or collisions):
+        return HexapodModel(design)
+    return model
+
+
 CORNER_SIGNS = np.array([[sx, sy, sz] for sx in (-1, 1) for sy in (-1, 1) for sz in (-1, 1)])
 """The eight corners of a box, as signs of its half extents."""
 
@@ -185,25 +202,6 @@ class StanceGeometry:
         else:
             drop = np.abs(tilt) @ self.body_half_extents
         return np.asarray(translation)[..., 2] - drop
-
-    def smooth_ground_margins(self, rotation: npt.ArrayLike, translation: npt.ArrayLike) -> ArrayF:
-        """The body above the ground as smooth margins (..., K): all ≥ 0 iff it is [m, m²].
-
-        :meth:`lowest_body_height` is a minimum, kinked wherever two low points tie (a
-        level box's four bottom corners, a level cylinder's whole rim), where a gradient
-        search stalls. A box gives each corner's height instead; a cylinder gives
-        g = t_z − h·|R_zz| and g·|g| − r²(R_zx² + R_zy²), whose zero sets together are
-        the rim's lowest point touching the ground.
-        """
-        rotation = np.asarray(rotation, dtype=float)
-        tilt = rotation[..., 2, :]
-        height = np.asarray(translation)[..., 2]
-        if not self.body_round:
-            return height[..., None] + tilt @ self._corners.T
-        radius, _, half = self.body_half_extents
-        centre = height - half * np.abs(tilt[..., 2])
-        cone = centre * np.abs(centre) - radius**2 * (tilt[..., 0] ** 2 + tilt[..., 1] ** 2)
-        return np.stack([centre, cone], axis=-1)
 
     @cached_property
     def _corners(self) -> ArrayF:

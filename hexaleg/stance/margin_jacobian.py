@@ -17,13 +17,13 @@ import numpy as np
 
 from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
+from hexaleg.stance.leg_kernel import LegSolution, leg_derivatives, leg_solution
 from hexaleg.stance.margin_kernel import (
     COSINE_FORM,
     COUPLED_FORM,
     KernelGeometry,
     foot_in_root,
     ground_margins,
-    knee_down_angles,
     leg_margins,
     rpy_matrix,
 )
@@ -42,11 +42,12 @@ def pose_margins_and_jacobian(
     rotation_derivatives(d[3], d[4], d[5], rotation, turned)
     tx, ty, tz = d[0], d[1], d[2] + geometry.heights[design]
     foot = np.empty((3, 6))
-    for leg in range(geometry.root_positions.shape[0]):
-        px, py, pz = foot_in_root(geometry, design, leg, rotation, tx, ty, tz)
-        leg_margins(geometry, design, leg, px, py, pz, values)
-        foot_jacobian(geometry, design, leg, rotation, turned, tx, ty, tz, foot)
-        leg_jacobian(geometry, design, leg, px, py, pz, foot, jacobian)
+    for index in range(geometry.root_positions.shape[0]):
+        px, py, pz = foot_in_root(geometry, design, index, rotation, tx, ty, tz)
+        leg = leg_solution(geometry.lengths[design], px, py, pz)
+        leg_margins(geometry, design, index, leg, values)
+        foot_jacobian(geometry, design, index, rotation, turned, tx, ty, tz, foot)
+        leg_jacobian(geometry, design, index, leg, (px, py, pz), foot, jacobian)
     ground_margins(geometry, tz, rotation, values)
     ground_jacobian(geometry, tz, rotation, turned, jacobian)
 
@@ -102,40 +103,27 @@ def foot_jacobian(
 def leg_jacobian(
     geometry: KernelGeometry,
     design: int,
-    leg: int,
-    px: float,
-    py: float,
-    pz: float,
+    index: int,
+    leg: LegSolution,
+    p: tuple[float, float, float],
     foot: ArrayF,
     out: ArrayF,
 ) -> None:  # pragma: no cover - compiled
-    """Write the rows of one leg's reach (2) and joint (6) margins, given ∂p/∂d (``foot``)."""
+    """Write the rows of one leg's reach (2) and joint (6) margins, given ∂p/∂d (``foot``).
+
+    ``leg`` is the IK of the foothold ``p`` (px, py, pz) in the leg-root frame [m].
+    """
     lengths = geometry.lengths[design]
-    l2, l3 = lengths[1], lengths[2]
-    theta1, theta2, _, r2, r = knee_down_angles(lengths, px, py, pz)
-    c1, s1 = math.cos(theta1), math.sin(theta1)
-    planar_x = px * c1 + py * s1 - lengths[0]
-    knee_cos = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
-    r_safe = r if r > 0 else 1.0
-    hip_cos = (r2 + l2**2 - l3**2) / (2 * l2 * r_safe)
-    flat = px**2 + py**2
-    j = 2 * geometry.root_positions.shape[0] + 6 * leg
+    j = 2 * geometry.root_positions.shape[0] + 6 * index
     for k in range(6):
-        dx, dy, dz = foot[0, k], foot[1, k], foot[2, k]
-        d_theta1 = (px * dy - py * dx) / flat if flat > 0 else 0.0
-        d_planar = c1 * dx + s1 * dy  # θ1 turns with the foot: its own term vanishes
-        d_r2 = 2 * (planar_x * d_planar + pz * dz)
-        d_knee_cos = d_r2 / (2 * l2 * l3)
-        d_theta3 = d_knee_cos / math.sqrt(1 - knee_cos**2) if abs(knee_cos) < 1 else 0.0
-        d_hip_cos = d_r2 / (2 * l2 * r_safe) - hip_cos * d_r2 / (2 * r_safe**2)
-        d_theta2 = (planar_x * dz - pz * d_planar) / r2 if r2 > 0 else 0.0
-        if abs(hip_cos) < 1:
-            d_theta2 -= d_hip_cos / math.sqrt(1 - hip_cos**2)
-        out[2 * leg, k], out[2 * leg + 1, k] = -d_r2, d_r2
+        d_theta1, d_theta2, d_theta3, d_r2, d_knee_cos = leg_derivatives(
+            lengths, leg, p[0], p[1], p[2], foot[0, k], foot[1, k], foot[2, k]
+        )
+        out[2 * index, k], out[2 * index + 1, k] = -d_r2, d_r2
         out[j, k], out[j + 1, k] = d_theta1, -d_theta1
         out[j + 2, k], out[j + 3, k] = d_theta2, -d_theta2
         out[j + 4, k], out[j + 5, k] = d_theta3, -d_theta3
-        if geometry.knee == COUPLED_FORM and -theta2 - math.pi / 2 > geometry.lower[2]:
+        if geometry.knee == COUPLED_FORM and -leg.theta2 - math.pi / 2 > geometry.lower[2]:
             out[j + 4, k] = d_theta3 + d_theta2
         elif geometry.knee == COSINE_FORM:
             out[j + 4, k], out[j + 5, k] = d_knee_cos, -d_knee_cos

@@ -1,21 +1,22 @@
-"""Stance margins of body displacements, compiled: the one implementation every search uses.
+"""Stance margins of body poses, compiled: the one implementation of the margins.
 
 A displacement d = (x, y, z [m], roll, pitch, yaw [rad]) moves the body from the nominal
-stance (world frame, Pinocchio's rpy). :func:`margins_of` gives, for many displacements
-at once, ``stance_margins`` (the exact check) or ``smooth_stance_margins`` (the forms a
-gradient-based search needs) of :mod:`hexaleg.stance.constraints`, column for column:
-the NumPy functions there are the readable reference the tests hold this kernel to
-(and the rotation of a roll, pitch and yaw, :func:`rpy_matrix`, is Pinocchio's).
-The axis-locked search asks for the poses of many designs of one body at once (a
-:class:`KernelGeometry` holds each design's lengths, footholds and height; each pose
-names its design); the free-coupled search (:mod:`.climb`) asks for one pose at a time
-through :func:`pose_margins`.
+stance (world frame, Pinocchio's rpy: :func:`rpy_matrix`). :func:`margins_of` gives, for
+many displacements at once, the exact margins or the smooth ones (the forms a
+gradient-based search needs), column for column as
+:func:`~hexaleg.stance.constraints.stance_margins` documents them; the foothold in each
+leg's root frame (:func:`foot_in_root`) goes to the leg's own kernel (:mod:`.leg_kernel`),
+the body's tilt to the ground's margins (:func:`ground_margins`). The axis-locked search
+asks for the poses of many designs of one body at once (a :class:`KernelGeometry` holds
+each design's lengths, footholds and height; each pose names its design); the
+free-coupled search (:mod:`.climb`) asks for one pose at a time through
+:func:`pose_margins`. The tests hold it to margins written from their definitions.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from typing import NamedTuple
 
 import numpy as np
@@ -25,10 +26,11 @@ from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
 from hexaleg.limits import JointLimits
 from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.leg_kernel import LegSolution, leg_solution, reach_margins
 
 THETA_FORM, COUPLED_FORM, COSINE_FORM = 0, 1, 2
-"""How the knee's lower and upper margins are written (see ``smooth_stance_margins``):
-on θ3, θ3 above the hip-coupled bound, or on cos θ3 (smooth margins only)."""
+"""How the knee's lower and upper margins are written (see ``stance_margins``): on θ3,
+θ3 above the hip-coupled bound, or on cos θ3 (smooth margins only)."""
 
 
 def knee_on_cosine(limits: JointLimits) -> bool:
@@ -96,27 +98,6 @@ def kernel_geometry(geometries: Sequence[StanceGeometry], smooth: bool) -> Kerne
     )
 
 
-def compiled_margins(
-    geometry: StanceGeometry, smooth: bool = True
-) -> Callable[[npt.ArrayLike], ArrayF]:
-    """Stance margins of displacements d (..., 6) from the nominal stance of one design.
-
-    The returned function equals ``smooth_stance_margins(geometry,
-    *displacement_poses(geometry, d))`` (..., 8N + K): reach [m²], joint margins [rad]
-    (the knee's on cos θ3 where that form applies [-]) and the ground [m or m²]; with
-    ``smooth=False``, ``stance_margins`` (..., 8N + 1) [m or rad].
-    """
-    kernel = kernel_geometry([geometry], smooth)
-
-    def margins(displacements: npt.ArrayLike) -> ArrayF:
-        d = np.asarray(displacements, dtype=float)
-        flat = np.ascontiguousarray(d.reshape(-1, 6))
-        values: ArrayF = margins_of(kernel, flat, np.zeros(len(flat), dtype=np.int64))
-        return values.reshape(*d.shape[:-1], values.shape[-1])
-
-    return margins
-
-
 @compiled
 def column_count(geometry: KernelGeometry) -> int:  # pragma: no cover - compiled
     """Margins per pose: 8 per stance leg, and the ground's (1 exact, 2 or 8 smooth)."""
@@ -156,11 +137,37 @@ def pose_margins(
 ) -> None:  # pragma: no cover - compiled
     """Write the margins of displacement d (6,) of one design into ``out`` (C,)."""
     rpy_matrix(d[3], d[4], d[5], rotation)
-    tx, ty, tz = d[0], d[1], d[2] + geometry.heights[design]
-    for leg in range(geometry.root_positions.shape[0]):
-        px, py, pz = foot_in_root(geometry, design, leg, rotation, tx, ty, tz)
-        leg_margins(geometry, design, leg, px, py, pz, out)
+    posed_margins(geometry, design, rotation, d[0], d[1], d[2] + geometry.heights[design], out)
+
+
+@compiled
+def posed_margins(
+    geometry: KernelGeometry,
+    design: int,
+    rotation: ArrayF,
+    tx: float,
+    ty: float,
+    tz: float,
+    out: ArrayF,
+) -> None:  # pragma: no cover - compiled
+    """Write the margins of the body at rotation R (3, 3) and position t [m] into ``out``."""
+    for index in range(geometry.root_positions.shape[0]):
+        px, py, pz = foot_in_root(geometry, design, index, rotation, tx, ty, tz)
+        leg = leg_solution(geometry.lengths[design], px, py, pz)
+        leg_margins(geometry, design, index, leg, out)
     ground_margins(geometry, tz, rotation, out)
+
+
+@compiled
+def margins_of_poses(
+    geometry: KernelGeometry, rotations: ArrayF, translations: ArrayF
+) -> ArrayF:  # pragma: no cover - compiled
+    """Margins (P, C) of body poses, rotations (P, 3, 3) and positions (P, 3) [m], of design 0."""
+    out = np.empty((rotations.shape[0], column_count(geometry)))
+    for p in range(rotations.shape[0]):
+        t = translations[p]
+        posed_margins(geometry, 0, rotations[p], t[0], t[1], t[2], out[p])
+    return out
 
 
 @compiled
@@ -204,63 +211,26 @@ def foot_in_root(
 
 
 @compiled
-def knee_down_angles(
-    lengths: ArrayF, px: float, py: float, pz: float
-) -> tuple[float, float, float, float, float]:  # pragma: no cover - compiled
-    """θ1, θ2, θ3 [rad] of the knee-down IK (eq 8–9), and r², r [m², m].
-
-    As ``kinematics.leg_plane`` and ``plane_solution``, clipped where out of reach.
-    """
-    l1, l2, l3 = lengths[0], lengths[1], lengths[2]
-    theta1 = math.atan2(py, px)
-    if theta1 > math.pi / 2:
-        theta1 -= math.pi
-    if theta1 <= -math.pi / 2:
-        theta1 += math.pi
-    planar_x = px * math.cos(theta1) + py * math.sin(theta1) - l1
-    r = math.hypot(planar_x, pz)
-    r_safe = r if r > 0 else 1.0
-    cos_hip = min(max((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0), 1.0)
-    hip = math.atan2(pz, planar_x) + math.acos(cos_hip)
-    theta2 = math.pi - (math.pi - hip) % (2 * math.pi)
-    theta3 = -math.acos(min(max((r**2 - l2**2 - l3**2) / (2 * l2 * l3), -1.0), 1.0))
-    return theta1, theta2, theta3, planar_x**2 + pz**2, r
-
-
-@compiled
 def leg_margins(
-    geometry: KernelGeometry,
-    design: int,
-    leg: int,
-    px: float,
-    py: float,
-    pz: float,
-    out: ArrayF,
+    geometry: KernelGeometry, design: int, index: int, leg: LegSolution, out: ArrayF
 ) -> None:  # pragma: no cover - compiled
-    """Write one leg's reach (2) and joint (6) margins for its foothold at (px, py, pz)."""
-    lengths = geometry.lengths[design]
-    l2, l3 = lengths[1], lengths[2]
-    theta1, theta2, theta3, r2, r = knee_down_angles(lengths, px, py, pz)
-    if geometry.smooth:
-        out[2 * leg] = (l2 + l3) ** 2 - r2
-        out[2 * leg + 1] = r2 - (l2 - l3) ** 2
-    else:
-        out[2 * leg] = l2 + l3 - r
-        out[2 * leg + 1] = r - abs(l2 - l3)
+    """Write one leg's reach (2) and joint (6) margins, given its IK (:func:`.leg_solution`)."""
+    out[2 * index], out[2 * index + 1] = reach_margins(
+        geometry.lengths[design], leg, geometry.smooth
+    )
     lower, upper = geometry.lower, geometry.upper
-    j = 2 * geometry.root_positions.shape[0] + 6 * leg
-    out[j] = theta1 - lower[0]
-    out[j + 1] = upper[0] - theta1
-    out[j + 2] = theta2 - lower[1]
-    out[j + 3] = upper[1] - theta2
-    out[j + 4] = theta3 - lower[2]
-    out[j + 5] = upper[2] - theta3
+    j = 2 * geometry.root_positions.shape[0] + 6 * index
+    out[j] = leg.theta1 - lower[0]
+    out[j + 1] = upper[0] - leg.theta1
+    out[j + 2] = leg.theta2 - lower[1]
+    out[j + 3] = upper[1] - leg.theta2
+    out[j + 4] = leg.theta3 - lower[2]
+    out[j + 5] = upper[2] - leg.theta3
     if geometry.knee == COUPLED_FORM:
-        out[j + 4] = theta3 - max(lower[2], -theta2 - math.pi / 2)
+        out[j + 4] = leg.theta3 - max(lower[2], -leg.theta2 - math.pi / 2)
     elif geometry.knee == COSINE_FORM:
-        cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
-        out[j + 4] = cos_knee - math.cos(lower[2])
-        out[j + 5] = math.cos(upper[2]) - cos_knee
+        out[j + 4] = leg.cos_knee - math.cos(lower[2])
+        out[j + 5] = math.cos(upper[2]) - leg.cos_knee
 
 
 @compiled
@@ -269,7 +239,8 @@ def ground_margins(
 ) -> None:  # pragma: no cover - compiled
     """Write the ground's margins after the legs' columns of ``out``.
 
-    As ``StanceGeometry.lowest_body_height`` (exact) or ``smooth_ground_margins``.
+    Exact: the body's lowest point's height (``StanceGeometry.lowest_body_height``) [m];
+    smooth: the forms ``stance_margins`` documents.
     """
     g = 8 * geometry.root_positions.shape[0]
     half = geometry.half_extents

@@ -12,30 +12,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "analyze_loads": "hexaleg.statics.loads",
-    "DEFAULT_FRICTION": "hexaleg.statics.forces",
-    "equilibrium": "hexaleg.statics.forces",
-    "extreme_configurations": "hexaleg.stance.configurations",
-    "ExtremeLoads": "hexaleg.statics.loads",
-    "friction_pyramid": "hexaleg.statics.forces",
-    "GRAVITY": "hexaleg.statics.forces",
-    "ground_point": "hexaleg.statics.support",
-    "loads_at_extremes": "hexaleg.statics.loads",
-    "LoadsAnalysis": "hexaleg.statics.loads",
-    "Payload": "hexaleg.statics.forces",
-    "payload_capacity": "hexaleg.statics.capacity",
-    "PayloadCapacity": "hexaleg.statics.capacity",
-    "slope_gravity": "hexaleg.statics.slopes",
-    "SLOPE_HEADINGS": "hexaleg.statics.slopes",
-    "slope_limits": "hexaleg.statics.slopes",
-    "SlopeLimit": "hexaleg.statics.slopes",
-    "stability_margin": "hexaleg.statics.support",
-    "Statics": "hexaleg.statics.forces",
-    "StaticState": "hexaleg.statics.forces",
-    "SupportPolygon": "hexaleg.statics.support",
-}
-
 __all__ = [
     "DEFAULT_FRICTION",
     "GRAVITY",
@@ -60,9 +36,9 @@ __all__ = [
     "stability_margin",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.stance.configurations import extreme_configurations
     from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
     from hexaleg.statics.forces import (

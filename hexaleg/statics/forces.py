@@ -116,6 +116,11 @@ class StaticState:
     stability_margin: float
     free_flyer_residual: float
 
+    @property
+    def weight(self) -> float:
+        """The weight of robot and payload, mass · :data:`GRAVITY` [N]."""
+        return self.mass * GRAVITY
+
     def torque_ratios(self, rated: ArrayF) -> ArrayF:
         """|τ| / rated per stance leg and joint (N, 3) [-]."""
         return np.abs(self.joint_torques) / rated

@@ -12,19 +12,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "Recommendation": "hexaleg.study.recommendation",
-    "StudySpec": "hexaleg.study.sweep",
-    "dask_executor": "hexaleg.study.executors",
-    "local_pool": "hexaleg.study.executors",
-    "peak_table": "hexaleg.study.sweep",
-    "recommend": "hexaleg.study.recommendation",
-    "relative_variants": "hexaleg.study.sensitivity",
-    "run_study": "hexaleg.study.sweep",
-    "sensitivity_table": "hexaleg.study.sensitivity",
-    "sweep_in_process": "hexaleg.study.sweep",
-}
-
 __all__ = [
     "Recommendation",
     "StudySpec",
@@ -38,9 +25,9 @@ __all__ = [
     "sweep_in_process",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.study.executors import dask_executor, local_pool
     from hexaleg.study.recommendation import Recommendation, recommend
     from hexaleg.study.sensitivity import relative_variants, sensitivity_table

@@ -20,7 +20,7 @@ import pandas as pd
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import StanceSet
-from hexaleg.design import FIELD_RANGES, HexapodDesign
+from hexaleg.design import DEFAULT_LEG_LENGTH, FIELD_RANGES, HexapodDesign
 from hexaleg.exceptions import DesignError, HexalegError
 from hexaleg.study.sweep import StudySpec, peak_table, sweep_in_process
 
@@ -135,7 +135,7 @@ def relative_variants(base: HexapodDesign) -> tuple[Variant, ...]:
 def sensitivity_table(
     l1_ratios: Sequence[float],
     l3_ratios: Sequence[float],
-    total: float = 1.0,
+    total: float = DEFAULT_LEG_LENGTH,
     stance: StanceSet = "all",
     base: HexapodDesign | None = None,
     variants: Sequence[Variant] | None = None,

@@ -28,6 +28,7 @@ from hexaleg._folders import claim_folder, lock_folder
 from hexaleg._io import write_text
 from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
 from hexaleg.design import (
+    DEFAULT_LEG_LENGTH,
     MAX_L3_POINTS,
     SEGMENT_RANGE,
     SEGMENTS,
@@ -76,7 +77,7 @@ class StudySpec:
 
     l1_ratios: tuple[float, ...]
     l3_ratios: tuple[float, ...]
-    total: float = 1.0
+    total: float = DEFAULT_LEG_LENGTH
     mode: FlexibilityMode = "axis"
     stance: StanceSet = "all"
     base: HexapodDesign = field(default_factory=HexapodDesign)

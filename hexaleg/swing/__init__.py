@@ -6,25 +6,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "analyze_manipulability": "hexaleg.swing.manipulability",
-    "analyze_workspace": "hexaleg.swing.workspace",
-    "average_manipulability": "hexaleg.swing.manipulability",
-    "average_manipulability_map": "hexaleg.swing.manipulability",
-    "AverageManipulabilityMap": "hexaleg.swing.manipulability",
-    "improved_area_closed_form": "hexaleg.swing.workspace",
-    "ManipulabilityAnalysis": "hexaleg.swing.manipulability",
-    "ManipulabilityIndices": "hexaleg.swing.manipulability",
-    "monte_carlo_workspace": "hexaleg.swing.workspace",
-    "MonteCarloWorkspace": "hexaleg.swing.workspace",
-    "optimum_pose": "hexaleg.swing.manipulability",
-    "OptimumPose": "hexaleg.swing.manipulability",
-    "planar_workspace": "hexaleg.swing.workspace",
-    "PlanarWorkspace": "hexaleg.swing.workspace",
-    "pose_indices": "hexaleg.swing.manipulability",
-    "WorkspaceAnalysis": "hexaleg.swing.workspace",
-}
-
 __all__ = [
     "AverageManipulabilityMap",
     "ManipulabilityAnalysis",
@@ -44,9 +25,9 @@ __all__ = [
     "pose_indices",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.swing.manipulability import (
         AverageManipulabilityMap,
         ManipulabilityAnalysis,

@@ -16,7 +16,7 @@ from scipy import optimize
 
 from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.design import HexapodDesign, require_design
+from hexaleg.design import DEFAULT_LEG_LENGTH, HexapodDesign, require_design
 from hexaleg.kinematics import manipulability
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LegModel
@@ -242,7 +242,7 @@ class AverageManipulabilityMap:
 def average_manipulability_map(
     l1_ratios: npt.ArrayLike,
     l3_ratios: npt.ArrayLike,
-    total: float = 1.0,
+    total: float = DEFAULT_LEG_LENGTH,
     limits: JointLimits | None = None,
 ) -> AverageManipulabilityMap:
     """w_A for every (l1 ratio, l3 ratio) pair, on both domains, with the peaks refined.

@@ -29,7 +29,7 @@ from hexaleg.limits import JointLimits
 Length = TypeVar("Length", float, ArrayF)
 
 MAX_SAMPLES = 5_000_000
-"""Most Monte Carlo samples: about 1 GB of arrays at the peak, well within 24 GiB."""
+"""Most Monte Carlo samples: it bounds the arrays held at the peak (about 1 GB)."""
 
 MAX_SEED = 2**32 - 1
 """Largest seed accepted (NumPy takes any non-negative integer; 32 bits is plenty)."""

@@ -12,27 +12,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "average_manipulability_figure": "hexaleg.output.figures.manipulability",
-    "DPI": "hexaleg.output.figures.canvas",
-    "extremes_figure": "hexaleg.output.figures.flexibility",
-    "fb_figure": "hexaleg.output.figures.study",
-    "l1_series_figure": "hexaleg.output.figures.workspace",
-    "LIMIT_SET_TITLES": "hexaleg.output.figures.canvas",
-    "loads_figure": "hexaleg.output.figures.statics",
-    "manipulability_surface_figure": "hexaleg.output.figures.manipulability",
-    "monte_carlo_figure": "hexaleg.output.figures.workspace",
-    "pareto_figure": "hexaleg.output.figures.study",
-    "planar_workspace_figure": "hexaleg.output.figures.workspace",
-    "ranges_figure": "hexaleg.output.figures.study",
-    "save": "hexaleg.output.figures.canvas",
-    "statics_study_figure": "hexaleg.output.figures.statics",
-    "table5_surfaces": "hexaleg.output.figures.manipulability",
-    "write_manipulability_figures": "hexaleg.output.figures.manipulability",
-    "write_study_figures": "hexaleg.output.figures.study",
-    "write_workspace_figures": "hexaleg.output.figures.workspace",
-}
-
 __all__ = [
     "DPI",
     "LIMIT_SET_TITLES",
@@ -54,9 +33,9 @@ __all__ = [
     "write_workspace_figures",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.output.figures.canvas import DPI, LIMIT_SET_TITLES, save
     from hexaleg.output.figures.flexibility import extremes_figure
     from hexaleg.output.figures.manipulability import (

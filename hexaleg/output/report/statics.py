@@ -46,7 +46,7 @@ def section(data: ReportData) -> Section:
     return Section(
         "Statics: what the design costs",
         (
-            f"The robot weighs {loads.nominal.mass * 9.81:.0f} N ({loads.nominal.mass:.2f} kg). "
+            f"The robot weighs {loads.nominal.weight:.0f} N ({loads.nominal.mass:.2f} kg). "
             "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
             "Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over the stance legs, in N·m:",
             _torque_table(data),

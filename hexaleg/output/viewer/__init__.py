@@ -12,26 +12,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "GAIT_LEGEND": "hexaleg.output.viewer.legend",
-    "HIGHLIGHT": "hexaleg.output.viewer.legend",
-    "Legend": "hexaleg.output.viewer.legend",
-    "LoopbackServer": "hexaleg.output.viewer.server",
-    "STATICS_LEGEND": "hexaleg.output.viewer.legend",
-    "Stage": "hexaleg.output.viewer.stage",
-    "build_gait_scene": "hexaleg.output.viewer.gait",
-    "build_scene": "hexaleg.output.viewer.scene",
-    "client": "hexaleg.output.viewer.server",
-    "extreme_name": "hexaleg.output.viewer.scene",
-    "serve_until_stopped": "hexaleg.output.viewer.server",
-    "static_html": "hexaleg.output.viewer.scene",
-    "static_page": "hexaleg.output.viewer.server",
-    "torque_colour": "hexaleg.output.viewer.legend",
-    "with_legend": "hexaleg.output.viewer.legend",
-    "write_gait_html": "hexaleg.output.viewer.gait",
-    "write_static_html": "hexaleg.output.viewer.scene",
-}
-
 __all__ = [
     "GAIT_LEGEND",
     "HIGHLIGHT",
@@ -52,9 +32,9 @@ __all__ = [
     "write_static_html",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
     from hexaleg.output.viewer.legend import (
         GAIT_LEGEND,

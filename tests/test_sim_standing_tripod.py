@@ -17,7 +17,7 @@ if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the si
 
 from conftest import random_designs
 
-from hexaleg.sim.standing import LIFT, lifted_configuration, standing_check
+from hexaleg.sim.standing_tripod import LIFT, lifted_configuration, standing_check
 
 CASES = [
     (HexapodDesign(), Payload(40.0)),
