@@ -59,7 +59,7 @@ def range_text(spec: FieldSpec) -> str:
 def key_line(spec: FieldSpec) -> str:
     """One line on a key: what it is, its unit and range, and its default if it has one."""
     default = "required" if spec.default is REQUIRED else f"default {spec.default!r}"
-    return f"{spec.described}; {range_text(spec)}; {default}"
+    return f"{spec.help}; {range_text(spec)}; {default}"
 
 
 def checked(spec: FieldSpec, value: Any, name: str | None = None) -> Any:

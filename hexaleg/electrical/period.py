@@ -22,7 +22,6 @@ from hexaleg._typing import ArrayF
 from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
 from hexaleg.electrical.equations import (
-    MotorSamples,
     motor_samples,
     require_actuators,
     require_samples,
@@ -30,7 +29,7 @@ from hexaleg.electrical.equations import (
 from hexaleg.electrical.ratings import RatingBinding, RatingLoads, rating_loads
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.ratings import OverRating, at_times
+from hexaleg.statics.ratings import OverRating
 
 JOULES_PER_WATT_HOUR = 3600.0
 """1 Wh = 3600 J."""
@@ -136,7 +135,7 @@ class ElectricalResult:
     @cached_property
     def over_rating(self) -> tuple[OverRating, ...]:
         """Each joint over its peak torque, continuous torque, voltage or speed rating."""
-        return self.ratings.over_rating(at_times(self.times))
+        return self.ratings.over_rating(self.times)
 
     @property
     def binding(self) -> RatingBinding:
@@ -214,6 +213,7 @@ def analyze_electrical(
     average = energy / period
     copper = float(motors.copper_loss.sum() * step)
     shaft = float((motors.motor_torque * motors.motor_speed).sum() * step)
+    ratings = rating_loads(tau, omega, actuators, names, motors.voltage)
     return ElectricalResult(
         period=period,
         speed=speed,
@@ -226,20 +226,19 @@ def analyze_electrical(
         average_power=average,
         cost_of_transport=energy / (weight * speed * period),
         energy_per_km=energy / (speed * period) * 1000.0 / JOULES_PER_WATT_HOUR,
-        per_joint=_per_joint(tau, motors, joint_energy),
+        per_joint=_per_joint(ratings, motors.current, joint_energy),
         current=motors.current,
         voltage=motors.voltage,
         electrical_power=motors.electrical_power,
         battery=None if battery is None else _battery_use(battery, average, speed),
-        ratings=rating_loads(tau, omega, actuators, names, motors.voltage),
+        ratings=ratings,
     )
 
 
-def _per_joint(tau: ArrayF, motors: MotorSamples, energy: ArrayF) -> dict[str, JointElectrical]:
+def _per_joint(ratings: RatingLoads, current: ArrayF, energy: ArrayF) -> dict[str, JointElectrical]:
     """Each joint type's worst-leg RMS torque, peak current and voltage, and energy (3,)."""
-    rms = np.sqrt(np.mean(tau**2, axis=0)).max(axis=0)  # worst leg (3,)
-    current = np.abs(motors.current).max(axis=(0, 1))
-    voltage = motors.voltage.max(axis=(0, 1))
+    rms, voltage = ratings.values[1].max(axis=0), ratings.values[2].max(axis=0)  # worst legs
+    current = np.abs(current).max(axis=(0, 1))
     return {
         joint: JointElectrical(
             float(rms[j]), float(current[j]), float(voltage[j]), float(energy[j])

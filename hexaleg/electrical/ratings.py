@@ -22,7 +22,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.actuators import Actuators
 from hexaleg.electrical.equations import motor_samples, require_actuators, require_samples
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.ratings import OverRating, Quantity
+from hexaleg.statics.ratings import OverRating, Quantity, at_times
 
 RATED: tuple[Quantity, ...] = ("peak_torque", "continuous_torque", "voltage", "speed")
 """The quantities held against the actuators' ratings, in the order of :class:`RatingLoads`."""
@@ -102,14 +102,16 @@ class RatingLoads:
             float(self.ratings[kind, joint]),
         )
 
-    def over_rating(self, places: Sequence[str]) -> tuple[OverRating, ...]:
+    def over_rating(self, times: ArrayF) -> tuple[OverRating, ...]:
         """Every (quantity, leg, joint) over its rating, quantity then leg then joint order.
 
         Args:
-            places: What each sample is called (``"t = 0.420 s"``).
+            times: Each sample's time (N,) [s], which says where a peak occurs.
 
         """
         found = np.argwhere(self.values > self.ratings[:, None, :])
+        samples = [int(self.peak_samples[kind, leg, joint]) for kind, leg, joint in found]
+        places = at_times(times[[max(k, 0) for k in samples]])
         return tuple(
             OverRating(
                 self.legs[leg],
@@ -117,11 +119,9 @@ class RatingLoads:
                 RATED[kind],
                 float(self.values[kind, leg, joint]),
                 float(self.ratings[kind, joint]),
-                places[self.peak_samples[kind, leg, joint]]
-                if self.peak_samples[kind, leg, joint] >= 0
-                else "RMS over the period",
+                place if sample >= 0 else "RMS over the period",
             )
-            for kind, leg, joint in found
+            for (kind, leg, joint), sample, place in zip(found, samples, places, strict=True)
         )
 
 
