@@ -15,6 +15,7 @@ import platform
 import sys
 
 from bench_decide import bench_decide, bench_decide_walking
+from bench_electrical import bench_electrical
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
@@ -31,6 +32,7 @@ WORKLOADS = {
     "flexibility": lambda quick, r: bench_flexibility(4 if quick else 80, r),
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
     "gait": lambda quick, r: bench_gait(4 if quick else 80, r),
+    "electrical": lambda quick, r: bench_electrical(r),
     "decide": lambda quick, r: bench_decide(48 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
     "decide_walking": lambda quick, r: bench_decide_walking(48 if quick else None),

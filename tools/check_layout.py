@@ -4,10 +4,11 @@ The layers follow DESIGN.md's data flow, lowest first; a module may import its o
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled, _lazy
-    design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause
+    design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause,
+                actuators, actuator_catalog, battery, table_records
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/, sim/
+    analysis    swing/, stance/, statics/, gait/, sim/, electrical
     study       study/, paper/
     output      output/
     cli         cli/, __main__
@@ -42,11 +43,15 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "limits",
             "kinematics",
             "cause",
+            "actuators",
+            "actuator_catalog",
+            "battery",
+            "table_records",
         ),
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait", "sim")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("cli", ("cli", "__main__")),

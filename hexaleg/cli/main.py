@@ -40,6 +40,9 @@ COMMANDS: tuple[Command, ...] = (
     ),
     Command("urdf", "hexaleg.cli.urdf", "write the hexapod's URDF for a design"),
     Command(
+        "actuators", "hexaleg.cli.actuators", "the actuator catalog: datasheet numbers, sources"
+    ),
+    Command(
         "workspace",
         "hexaleg.cli.workspace",
         "swing-phase workspace: Monte Carlo cloud, planar and improved areas",

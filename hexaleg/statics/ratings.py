@@ -17,10 +17,27 @@ import numpy.typing as npt
 
 from hexaleg.limits import LEG_JOINTS
 
-Quantity = Literal["torque", "speed"]
-"""What is compared with its rating: joint torque [N·m] or joint speed [rad/s]."""
+Quantity = Literal["torque", "speed", "peak_torque", "continuous_torque", "voltage"]
+"""What is compared with its rating: joint torque [N·m] or joint speed [rad/s]; with
+actuators (:mod:`hexaleg.electrical`) also the peak torque, the RMS torque against the
+continuous torque [N·m] and the voltage the motor needs against its supply [V]."""
 
-UNITS: dict[str, str] = {"torque": "N·m", "speed": "rad/s"}
+UNITS: dict[str, str] = {
+    "torque": "N·m",
+    "speed": "rad/s",
+    "peak_torque": "N·m",
+    "continuous_torque": "N·m",
+    "voltage": "V",
+}
+
+LABELS: dict[str, str] = {
+    "torque": "torque",
+    "speed": "speed",
+    "peak_torque": "peak torque",
+    "continuous_torque": "RMS torque",
+    "voltage": "voltage needed",
+}
+"""How each quantity is named in a sentence."""
 
 
 @dataclass(frozen=True)
@@ -30,9 +47,11 @@ class OverRating:
     Attributes:
         leg: Leg name.
         joint: ``"root"``, ``"hip"`` or ``"knee"``.
-        quantity: ``"torque"`` [N·m] or ``"speed"`` [rad/s].
-        peak: The largest |τ| or |q̇| of that joint [N·m or rad/s].
-        rated: Its rating [N·m or rad/s].
+        quantity: ``"torque"`` [N·m] or ``"speed"`` [rad/s]; with actuators also
+            ``"peak_torque"``, ``"continuous_torque"`` [N·m] or ``"voltage"`` [V].
+        peak: The largest |τ| or |q̇| of that joint [N·m or rad/s]; for
+            ``"continuous_torque"`` its RMS τ, for ``"voltage"`` the largest voltage needed.
+        rated: Its rating [N·m, rad/s or V].
         at: Where the peak occurs: a pose (``"nominal"``, ``"x+"``) or a time (``"t = 0.42 s"``).
 
     """
@@ -45,14 +64,14 @@ class OverRating:
     at: str
 
     def __str__(self) -> str:
-        unit = UNITS[self.quantity]
+        unit, label = UNITS[self.quantity], LABELS[self.quantity]
         return (
-            f"{self.leg} {self.joint} {self.quantity} {self.peak:.2f} {unit} over its rating "
+            f"{self.leg} {self.joint} {label} {self.peak:.2f} {unit} over its rating "
             f"{self.rated:g} {unit} ({self.at})"
         )
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready form (N·m or rad/s)."""
+        """JSON-ready form (N·m, rad/s or V)."""
         return {
             "leg": self.leg,
             "joint": self.joint,

@@ -1,0 +1,254 @@
+"""The actuator catalog: real actuators' datasheet numbers, each entry with its source.
+
+The catalog ships with hexaleg as ``hexaleg/data/actuators.toml``: one ``[[actuator]]``
+table per entry, holding
+
+- ``name``: how a design file's ``catalog = "NAME"`` refers to it (lower case, digits, ``_``);
+- the :class:`~hexaleg.actuators.Actuator` keys, in SI units (the required ones all given);
+- ``source``: the document the numbers come from (manufacturer, title, version or date);
+- optionally ``gear_ratio_range``: the lowest and highest ratio the product comes in;
+- optionally ``manufacturer``, ``model`` and ``notes`` (text: how a number was derived).
+
+``hexaleg actuators`` lists it. Every entry is checked as an actuator is, and the
+catalog as a whole refuses a name given twice.
+"""
+
+from __future__ import annotations
+
+import difflib
+import functools
+import math
+import re
+import sys
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from hexaleg.actuators import ACTUATOR_FIELDS, GEAR_RATIO_RANGE, Actuator
+from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.table_records import record_from_table, require_table
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+ENTRY_TABLE = "actuator"
+"""The catalog file's array of tables: ``[[actuator]]``."""
+
+TEXT_KEYS: dict[str, str] = {
+    "name": "how a design file's catalog = NAME refers to the entry",
+    "source": "the document the numbers come from: manufacturer, title, version or date",
+    "manufacturer": "who makes it",
+    "model": "the product's designation",
+    "notes": "how derived numbers were derived, and caveats",
+}
+"""The catalog's text keys beside the actuator's (``name`` and ``source`` required)."""
+
+NAME_PATTERN = re.compile(r"[a-z0-9][a-z0-9_]*")
+"""An entry's name: lower-case letters, digits and underscores."""
+
+
+class CatalogError(HexalegError):
+    """An actuator catalog file that cannot be read or holds an invalid entry."""
+
+
+@dataclass(frozen=True)
+class CatalogEntry:
+    """One actuator of the catalog.
+
+    Attributes:
+        name: How ``catalog = "NAME"`` refers to it.
+        values: Its :class:`~hexaleg.actuators.Actuator` keys as the catalog gives them
+            (SI units).
+        source: The document its numbers come from.
+        gear_ratio_range: The lowest and highest gear ratio the product comes in [-], if
+            the catalog says.
+        manufacturer: Who makes it.
+        model: The product's designation.
+        notes: How derived numbers were derived, and caveats.
+
+    """
+
+    name: str
+    values: Mapping[str, Any] = field(compare=False)
+    source: str
+    gear_ratio_range: tuple[float, float] | None = None
+    manufacturer: str = ""
+    model: str = ""
+    notes: str = ""
+
+    @functools.cached_property
+    def actuator(self) -> Actuator:
+        """The entry as an actuator (checked when the catalog is read)."""
+        return Actuator(**self.values, catalog=self.name)
+
+    def require_gear_ratio(self, ratio: float, name: str) -> None:
+        """Refuse a gear ratio [-] outside :attr:`gear_ratio_range`, naming ``name``."""
+        if self.gear_ratio_range is None:
+            return
+        low, high = self.gear_ratio_range
+        if not low <= ratio <= high:
+            raise ParameterError(
+                name, ratio, f"{self.name} comes with ratios in [{low:g}, {high:g}] [-]"
+            )
+
+    def to_dict(self) -> dict[str, Any]:
+        """JSON-ready form: every actuator number (``max_speed`` resolved) and the source."""
+        actuator = self.actuator
+        numbers = {s.name: getattr(actuator, s.name) for s in ACTUATOR_FIELDS if s.kind == "number"}
+        return {
+            "name": self.name,
+            "manufacturer": self.manufacturer,
+            "model": self.model,
+            **numbers,
+            "max_speed": actuator.rated_speed,
+            "max_speed_derived": actuator.max_speed is None,
+            "armature": actuator.armature,
+            "gear_ratio_range": None if self.gear_ratio_range is None else [*self.gear_ratio_range],
+            "source": self.source,
+            "notes": self.notes,
+        }
+
+
+@dataclass(frozen=True)
+class Catalog:
+    """Actuator catalog entries by name.
+
+    Attributes:
+        entries: The entries, in the catalog's order (each name once).
+
+    """
+
+    entries: tuple[CatalogEntry, ...]
+
+    def __post_init__(self) -> None:
+        seen: set[str] = set()
+        for entry in self.entries:
+            if entry.name in seen:
+                raise ParameterError(
+                    f"{ENTRY_TABLE}.name", entry.name, "each name once (it is given twice)"
+                )
+            seen.add(entry.name)
+
+    def __iter__(self) -> Iterator[CatalogEntry]:
+        return iter(self.entries)
+
+    def __len__(self) -> int:
+        return len(self.entries)
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Every entry's name, in order."""
+        return tuple(entry.name for entry in self.entries)
+
+    def entry(self, name: Any, field: str = "catalog") -> CatalogEntry:
+        """The entry called ``name``; else a ParameterError naming ``field`` and the nearest."""
+        for entry in self.entries:
+            if entry.name == name:
+                return entry
+        if not isinstance(name, str):
+            raise ParameterError(field, name, "must be the name of a catalog entry")
+        close = difflib.get_close_matches(name, self.names, n=1, cutoff=0.4)
+        hint = f"did you mean {close[0]!r}?" if close else "none is called so"
+        listed = "hexaleg actuators lists them"
+        raise ParameterError(field, name, f"no such actuator: {hint} ({listed})")
+
+
+def catalog_from_data(data: Mapping[str, Any]) -> Catalog:
+    """The catalog a parsed catalog file holds (``{"actuator": [{...}, ...]}``).
+
+    Raises:
+        ParameterError: One line naming ``actuator.<name>.<key>`` and what is allowed.
+
+    """
+    unknown = [key for key in data if key != ENTRY_TABLE]
+    if unknown:
+        allowed = f"a catalog holds [[{ENTRY_TABLE}]] tables only"
+        raise ParameterError(unknown[0], data[unknown[0]], allowed)
+    tables = data.get(ENTRY_TABLE, [])
+    if not isinstance(tables, list):
+        raise ParameterError(ENTRY_TABLE, tables, f"must be [[{ENTRY_TABLE}]] tables")
+    return Catalog(tuple(_entry(raw, index) for index, raw in enumerate(tables)))
+
+
+def _entry(raw: Any, index: int) -> CatalogEntry:
+    table = require_table(f"{ENTRY_TABLE}[{index}]", raw, "actuator keys")
+    name = table.get("name")
+    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
+        raise ParameterError(
+            f"{ENTRY_TABLE}[{index}].name", name, "lower-case letters, digits and '_'"
+        )
+    where = f"{ENTRY_TABLE}.{name}"
+    texts = {key: table[key] for key in TEXT_KEYS if key in table}
+    for key, value in texts.items():
+        if not isinstance(value, str) or not value.strip():
+            raise ParameterError(f"{where}.{key}", value, f"must be text: {TEXT_KEYS[key]}")
+    if "source" not in texts:
+        raise ParameterError(f"{where}.source", None, f"is required: {TEXT_KEYS['source']}")
+    values = {k: v for k, v in table.items() if k not in TEXT_KEYS and k != "gear_ratio_range"}
+    if "catalog" in values:
+        raise ParameterError(f"{where}.catalog", values["catalog"], "an entry names no catalog")
+    actuator = record_from_table(Actuator, ACTUATOR_FIELDS, values, where)
+    entry = CatalogEntry(
+        name=name,
+        values=values,
+        source=texts["source"],
+        gear_ratio_range=_ratio_range(f"{where}.gear_ratio_range", table.get("gear_ratio_range")),
+        manufacturer=texts.get("manufacturer", ""),
+        model=texts.get("model", ""),
+        notes=texts.get("notes", ""),
+    )
+    entry.require_gear_ratio(actuator.gear_ratio, f"{where}.gear_ratio")
+    return entry
+
+
+def _ratio_range(name: str, value: Any) -> tuple[float, float] | None:
+    if value is None:
+        return None
+    low, high = GEAR_RATIO_RANGE
+    allowed = f"must be [lowest, highest] gear ratio, each in [{low:g}, {high:g}] [-]"
+    if not isinstance(value, list) or len(value) != 2:
+        raise ParameterError(name, value, allowed)
+    for number in value:
+        if isinstance(number, bool) or not isinstance(number, int | float):
+            raise ParameterError(name, value, allowed)
+        if not (math.isfinite(number) and low <= number <= high):
+            raise ParameterError(name, value, allowed)
+    if value[0] > value[1]:
+        raise ParameterError(name, value, allowed + ", lowest first")
+    return (float(value[0]), float(value[1]))
+
+
+def load_catalog(path: str | Path) -> Catalog:
+    """The catalog a TOML catalog file holds.
+
+    Raises:
+        CatalogError: The file cannot be read, is not TOML, or holds an invalid entry;
+            one line naming the file and the key.
+
+    """
+    path = Path(path)
+    try:
+        data = tomllib.loads(path.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as err:
+        raise CatalogError(f"{path}: cannot read it ({err})") from None
+    except tomllib.TOMLDecodeError as err:
+        raise CatalogError(f"{path}: not valid TOML ({err})") from None
+    try:
+        return catalog_from_data(data)
+    except ParameterError as err:
+        raise CatalogError(f"{path}: {err}") from None
+
+
+def shipped_catalog_path() -> Path:
+    """Where hexaleg's own catalog file is installed."""
+    return Path(str(resources.files("hexaleg") / "data" / "actuators.toml"))
+
+
+@functools.cache
+def shipped_catalog() -> Catalog:
+    """The catalog hexaleg ships (``hexaleg/data/actuators.toml``), read once."""
+    return load_catalog(shipped_catalog_path())

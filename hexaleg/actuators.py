@@ -1,0 +1,231 @@
+"""The joints' actuators: a motor behind a gearbox, fed from a supply, one per joint type.
+
+A design file holds one table per joint type, ``[actuators.root]``, ``[actuators.hip]``
+and ``[actuators.knee]``; each key is declared once below (:class:`Actuator`), in SI
+units. Every key without a default is required unless ``catalog = "NAME"`` names an
+entry of the actuator catalog (:mod:`hexaleg.actuator_catalog`, listed by
+``hexaleg actuators``) that supplies it; keys given beside ``catalog`` override the
+entry's, each on its own (an overridden ``gear_ratio`` keeps the entry's output-side
+ratings, so give those as well).
+
+The model is a DC-equivalent motor: torque τ_m = k_t·i at the motor, terminal
+resistance R in the same convention (copper loss i²R), a gearbox of ratio N and
+efficiency η between motor and joint (:mod:`hexaleg.electrical` has the equations).
+Derived per joint: the no-load speed V/(k_t·N) [rad/s] (the speed rating when
+``max_speed`` is not given) and the reflected rotor inertia N²·J [kg·m²], the joint's
+armature.
+"""
+
+from __future__ import annotations
+
+import difflib
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, cast
+
+from hexaleg.exceptions import ParameterError
+from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.table_records import REQUIRED, check_record, record_from_table, require_table
+
+if TYPE_CHECKING:
+    from hexaleg.actuator_catalog import Catalog
+
+GEAR_RATIO_RANGE = (1.0, 1e4)
+"""Plausible gear ratio N [-]: direct drive to a harmonic drive's highest."""
+TORQUE_RANGE = (1e-3, 1e6)
+"""Plausible output torque rating [N·m] (the design's rated torques' range)."""
+SPEED_RANGE = (1e-3, 1e4)
+"""Plausible output speed rating [rad/s] (the design's rated speeds' range)."""
+
+TABLE = "actuators"
+"""The design file's table of actuators: one sub-table per joint type."""
+
+
+@dataclass(frozen=True)
+class Actuator:
+    """One joint type's actuator: motor constants, gearbox, ratings, mass and supply.
+
+    Torques and speeds are at the output (the joint) unless said "at the motor".
+
+    """
+
+    # fmt: off
+    gear_ratio: float = declare(
+        REQUIRED, "gear ratio N: motor turns per joint turn", "-", GEAR_RATIO_RANGE
+    )
+    torque_constant: float = declare(
+        REQUIRED, "torque constant k_t at the motor", "N·m/A", (1e-5, 100.0)
+    )
+    resistance: float = declare(
+        REQUIRED, "terminal resistance R, in k_t's convention (copper loss i²R)", "Ω",
+        (0.0, 1e4),
+    )
+    gearbox_efficiency: float = declare(
+        REQUIRED, "gearbox efficiency η, both directions", "-", (0.01, 1.0)
+    )
+    peak_torque: float = declare(REQUIRED, "peak torque at the output", "N·m", TORQUE_RANGE)
+    continuous_torque: float = declare(
+        REQUIRED, "continuous torque at the output, at most the peak (bounds the RMS)", "N·m",
+        TORQUE_RANGE,
+    )
+    mass: float = declare(REQUIRED, "mass of motor and gearbox", "kg", (0.0, 1e4))
+    voltage: float = declare(REQUIRED, "supply voltage V", "V", (0.1, 1e4))
+    rotor_inertia: float = declare(
+        0.0, "rotor inertia J at the motor (its armature at the joint: N²·J)", "kg·m²",
+        (0.0, 10.0),
+    )
+    max_speed: float | None = declare(
+        None, "largest speed at the output; unset: the no-load speed V/(k_t·N)", "rad/s",
+        SPEED_RANGE,
+    )
+    catalog: str | None = declare(
+        None, "the catalog entry supplying the keys not given", kind="choice"
+    )
+    # fmt: on
+
+    def __post_init__(self) -> None:
+        check_record(self, ACTUATOR_FIELDS)
+        if self.catalog is not None and not isinstance(self.catalog, str):
+            raise ParameterError("catalog", self.catalog, "must be an actuator's name")
+        if self.continuous_torque > self.peak_torque:
+            raise ParameterError(
+                "continuous_torque",
+                self.continuous_torque,
+                f"must be at most peak_torque = {self.peak_torque:g} [N·m]",
+            )
+
+    @property
+    def no_load_speed(self) -> float:
+        """V/(k_t·N): the output speed at which the back-EMF takes the whole supply [rad/s]."""
+        return self.voltage / (self.torque_constant * self.gear_ratio)
+
+    @property
+    def rated_speed(self) -> float:
+        """``max_speed``, or the no-load speed when it is not given [rad/s]."""
+        return self.no_load_speed if self.max_speed is None else self.max_speed
+
+    @property
+    def armature(self) -> float:
+        """The rotor's inertia reflected to the joint, N²·J [kg·m²]."""
+        return self.gear_ratio**2 * self.rotor_inertia
+
+    def as_dict(self) -> dict[str, Any]:
+        """Every key as given (``max_speed`` ``None`` when derived) and ``rated_speed``."""
+        out: dict[str, Any] = {spec.name: getattr(self, spec.name) for spec in ACTUATOR_FIELDS}
+        return out | {"rated_speed": self.rated_speed, "armature": self.armature}
+
+
+ACTUATOR_FIELDS: tuple[FieldSpec, ...] = field_specs(Actuator)
+"""Every actuator key's declaration, in order: validation, files, listing and docs read it."""
+
+ACTUATOR_NUMBERS: tuple[FieldSpec, ...] = tuple(s for s in ACTUATOR_FIELDS if s.kind == "number")
+"""The keys that are numbers (all but ``catalog``)."""
+
+Actuator.__doc__ = (
+    cast(str, Actuator.__doc__).rstrip() + "\n\n" + attributes_section(ACTUATOR_FIELDS)
+)
+
+
+@dataclass(frozen=True)
+class Actuators:
+    """The three joint types' actuators (every leg's joint of a type has the same).
+
+    Attributes:
+        root: The root (yaw) joints' actuator.
+        hip: The hip joints' actuator.
+        knee: The knee joints' actuator.
+
+    """
+
+    root: Actuator
+    hip: Actuator
+    knee: Actuator
+
+    def __post_init__(self) -> None:
+        for joint in LEG_JOINTS:
+            if not isinstance(getattr(self, joint), Actuator):
+                raise ParameterError(f"{TABLE}.{joint}", getattr(self, joint), "an Actuator")
+
+    @classmethod
+    def from_table(cls, table: Any, catalog: Catalog | None = None) -> Actuators:
+        """The actuators a design file's ``[actuators]`` table describes.
+
+        Args:
+            table: ``{"root": {...}, "hip": {...}, "knee": {...}}``, each a table of
+                :class:`Actuator` keys, or a ``catalog`` key and the keys it overrides.
+            catalog: The catalog ``catalog = "NAME"`` refers to; hexaleg's own
+                (:func:`~hexaleg.actuator_catalog.shipped_catalog`) if omitted.
+
+        Raises:
+            ParameterError: One line naming ``actuators.<joint>.<key>`` and its range, an
+                unknown key with the nearest known one, or an unknown catalog name with
+                the nearest entry.
+
+        """
+        table = require_table(TABLE, table, "root, hip and knee actuators")
+        for joint in table:
+            if joint not in LEG_JOINTS:
+                close = difflib.get_close_matches(joint, LEG_JOINTS, n=1)
+                hint = f"did you mean {close[0]!r}?" if close else "use root, hip and knee"
+                raise ParameterError(f"{TABLE}.{joint}", table[joint], f"no such joint: {hint}")
+        joints = {joint: _actuator(table, joint, catalog) for joint in LEG_JOINTS}
+        return cls(**joints)
+
+    @property
+    def joints(self) -> tuple[Actuator, Actuator, Actuator]:
+        """(root, hip, knee)."""
+        return (self.root, self.hip, self.knee)
+
+    def values(self, key: str) -> tuple[float, float, float]:
+        """One key of each joint type's actuator, (root, hip, knee)."""
+        root, hip, knee = (getattr(a, key) for a in self.joints)
+        return (root, hip, knee)
+
+    @property
+    def rated_torques(self) -> tuple[float, float, float]:
+        """Peak torques (root, hip, knee) [N·m]: what replaces a design's rated torques."""
+        return self.values("peak_torque")
+
+    @property
+    def continuous_torques(self) -> tuple[float, float, float]:
+        """Continuous torques (root, hip, knee) [N·m]: the RMS torque's ratings."""
+        return self.values("continuous_torque")
+
+    @property
+    def rated_speeds(self) -> tuple[float, float, float]:
+        """Speed ratings (root, hip, knee) [rad/s]: what replaces a design's rated speeds."""
+        return self.values("rated_speed")
+
+    @property
+    def armatures(self) -> tuple[float, float, float]:
+        """Reflected rotor inertias N²·J (root, hip, knee) [kg·m²]."""
+        return self.values("armature")
+
+    @property
+    def masses(self) -> tuple[float, float, float]:
+        """Actuator masses (root, hip, knee) [kg]."""
+        return self.values("mass")
+
+    def as_dict(self) -> dict[str, Any]:
+        """JSON-ready form: each joint type's keys (SI units)."""
+        return {joint: getattr(self, joint).as_dict() for joint in LEG_JOINTS}
+
+
+def _actuator(table: Mapping[str, Any], joint: str, catalog: Catalog | None) -> Actuator:
+    """``[actuators.<joint>]``: its own keys over its catalog entry's."""
+    name = f"{TABLE}.{joint}"
+    if joint not in table:
+        raise ParameterError(name, None, "is missing: give each of root, hip and knee a table")
+    given = require_table(name, table[joint], ", ".join(s.name for s in ACTUATOR_FIELDS))
+    if "catalog" not in given:
+        hint = ', or catalog = "NAME" (hexaleg actuators lists them)'
+        return record_from_table(Actuator, ACTUATOR_FIELDS, given, name, hint=hint)
+    if catalog is None:
+        from hexaleg.actuator_catalog import shipped_catalog
+
+        catalog = shipped_catalog()
+    entry = catalog.entry(given["catalog"], f"{name}.catalog")
+    actuator = record_from_table(Actuator, ACTUATOR_FIELDS, given, name, entry.values)
+    entry.require_gear_ratio(actuator.gear_ratio, f"{name}.gear_ratio")
+    return actuator

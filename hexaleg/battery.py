@@ -1,0 +1,78 @@
+"""The battery: its capacity, its mass, where it sits, and what it takes back.
+
+A design file's ``[battery]`` table holds the keys declared below (:class:`Battery`),
+in SI units except the battery's own: capacity in watt-hours [Wh] and specific energy in
+watt-hours per kilogram [Wh/kg], as datasheets give them. The battery's mass
+capacity / specific energy is a point mass at ``battery_at`` in the body frame. The
+share ``regeneration`` of the power the motors give back while braking returns to the
+battery; the electronics draw ``electronics_power`` all the time
+(:mod:`hexaleg.electrical` has the equations).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, cast
+
+from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
+from hexaleg.table_records import REQUIRED, check_record, record_from_table
+
+POSITION_RANGE = (-100.0, 100.0)
+"""Plausible coordinate of the battery's position in the body frame [m] (as a payload's)."""
+
+TABLE = "battery"
+"""The design file's table of the battery."""
+
+
+@dataclass(frozen=True)
+class Battery:
+    """The robot's battery: capacity, specific energy, position, regeneration, electronics."""
+
+    # fmt: off
+    capacity: float = declare(REQUIRED, "energy stored when full", "Wh", (1e-3, 1e7))
+    specific_energy: float = declare(
+        REQUIRED, "energy stored per kilogram of battery (its mass: capacity / this)", "Wh/kg",
+        (1.0, 1e4),
+    )
+    battery_at: tuple[float, float, float] = declare(
+        (0.0, 0.0, 0.0), "where the battery's mass sits, body frame", "m", POSITION_RANGE,
+        kind="triple", items=("x", "y", "z"),
+    )
+    regeneration: float = declare(
+        0.0, "share r of the braking motors' electrical power that recharges it", "-",
+        (0.0, 1.0),
+    )
+    electronics_power: float = declare(
+        0.0, "power P₀ the electronics draw all the time", "W", (0.0, 1e6)
+    )
+    # fmt: on
+
+    def __post_init__(self) -> None:
+        check_record(self, BATTERY_FIELDS)
+
+    @classmethod
+    def from_table(cls, table: Any) -> Battery:
+        """The battery a design file's ``[battery]`` table describes.
+
+        Raises:
+            ParameterError: One line naming ``battery.<key>`` and its range, or an unknown
+                key with the nearest known one.
+
+        """
+        return record_from_table(cls, BATTERY_FIELDS, table, TABLE)
+
+    @property
+    def mass(self) -> float:
+        """The battery's mass: capacity / specific energy [kg]."""
+        return self.capacity / self.specific_energy
+
+    def as_dict(self) -> dict[str, Any]:
+        """Every key (Wh, Wh/kg, m, W) and the mass [kg]."""
+        out: dict[str, Any] = {spec.name: getattr(self, spec.name) for spec in BATTERY_FIELDS}
+        return out | {"battery_at": list(self.battery_at), "mass": self.mass}
+
+
+BATTERY_FIELDS: tuple[FieldSpec, ...] = field_specs(Battery)
+"""Every battery key's declaration, in order."""
+
+Battery.__doc__ = cast(str, Battery.__doc__).rstrip() + "\n\n" + attributes_section(BATTERY_FIELDS)
