@@ -92,6 +92,7 @@ def test_building_the_parser_imports_no_heavy_library():
 
 LAZY_PACKAGES = (
     "hexaleg",
+    "hexaleg.electrical",
     "hexaleg.gait",
     "hexaleg.output.figures",
     "hexaleg.output.viewer",

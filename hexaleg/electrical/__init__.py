@@ -13,18 +13,6 @@ from typing import TYPE_CHECKING
 
 from hexaleg._lazy import lazy_exports
 
-_EXPORTS: dict[str, str] = {
-    "analyze_electrical": "hexaleg.electrical.period",
-    "binding_rating": "hexaleg.electrical.ratings",
-    "BatteryUse": "hexaleg.electrical.period",
-    "ElectricalResult": "hexaleg.electrical.period",
-    "JointElectrical": "hexaleg.electrical.period",
-    "motor_samples": "hexaleg.electrical.equations",
-    "MotorSamples": "hexaleg.electrical.equations",
-    "RatingBinding": "hexaleg.electrical.ratings",
-    "RatingLoads": "hexaleg.electrical.ratings",
-}
-
 __all__ = [
     "BatteryUse",
     "ElectricalResult",
@@ -37,9 +25,9 @@ __all__ = [
     "motor_samples",
 ]
 
-__getattr__, __dir__ = lazy_exports(__name__, _EXPORTS)
+__getattr__, __dir__ = lazy_exports(__name__)
 
-if TYPE_CHECKING:  # the same names, for type checkers and IDEs
+if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.electrical.equations import MotorSamples, motor_samples
     from hexaleg.electrical.period import (
         BatteryUse,
