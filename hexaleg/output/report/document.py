@@ -28,6 +28,10 @@ Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
 
 
+TABLE_RULE = "|---"
+"""What marks a markdown block holding a table (its header rule, as :func:`table` writes it)."""
+
+
 def table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     """A markdown table."""
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
@@ -92,13 +96,17 @@ def report_html(report: Sequence[Section], folder: Path, medium: Medium = "scree
     numbers = figure_numbers(report)
     body = [f"<h1>{TITLE}</h1>", _markdown(preamble(folder, medium))]
     for section in report:
-        body.append(f"<section>\n<h2>{html.escape(section.title)}</h2>")
+        body.append(f"<section>\n<div class='keep'><h2>{html.escape(section.title)}</h2>")
+        kept = True  # the heading stays on a page with what it introduces
         for block in section.blocks:
             if isinstance(block, Figure):
                 body.append(_figure_html(block, numbers[block.name], folder, medium))
             else:
                 body.append(_markdown(block))
-        body.append("</section>")
+            if kept and (isinstance(block, Figure) or TABLE_RULE in block):
+                body.append("</div>")
+                kept = False
+        body.append("</div></section>" if kept else "</section>")
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
@@ -121,12 +129,12 @@ PRINT_STYLE = (
     "@page{size:A4;margin:12mm;@bottom-center{content:counter(page) ' / ' counter(pages);"
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
-    "h2,h3{break-after:avoid}"
+    "h2,h3{break-after:avoid}.keep{break-inside:avoid}"
     "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
 """Print layout (the PDF): A4, numbered pages, no table or figure cut, no heading left alone
-at the foot of a page."""
+at the foot of a page: a heading is kept with its blocks up to its first table or figure."""
 
 
 def _markdown(text: str) -> str:
