@@ -12,6 +12,7 @@ import numpy as np
 from hexaleg.output.figures.canvas import COLORS, drawn, mark_paper_w_a_peak, new_figure, save
 from hexaleg.output.figures.marks import FLAT_LABEL, flat_top
 from hexaleg.paper import TABLE5
+from hexaleg.ratios import ratio_text
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
@@ -75,7 +76,7 @@ def average_manipulability_figure(result: AverageManipulabilityMap) -> Figure:
         for k, (r1, row, peak, color) in enumerate(curves):
             ax.plot(
                 result.l3_ratios, row, color=color,
-                label=f"coxa ratio {r1:.2f}: refined peak at {peak:.3f}",
+                label=f"coxa ratio {r1:.2f}: refined peak at {ratio_text(peak)}",
             )  # fmt: skip
             ax.axvline(peak, color=color, ls=":", lw=1)
             flat_top(ax, result.l3_ratios, row, color, FLAT_LABEL if k == 0 else None)

@@ -21,6 +21,8 @@ def stance_figure(model: HexapodModel) -> Figure:
 
     Read from the Pinocchio model (the URDF's geometry), as the 3-D view draws it.
     """
+    from matplotlib.ticker import MaxNLocator
+
     q = model.nominal_configuration()
     chains = model.leg_chains(q)
     fig = new_figure(4.8)
@@ -45,14 +47,15 @@ def stance_figure(model: HexapodModel) -> Figure:
     ground = np.array([[-reach, -reach], [reach, -reach], [reach, reach], [-reach, reach],
                        [-reach, -reach]])  # fmt: skip
     ax.plot(ground[:, 0], ground[:, 1], 0.0, color="0.6", lw=0.8)
-    ax.set_box_aspect((1.0, 1.0, max(0.45, (centre[2] + half[2]) / (2 * reach))))
+    ax.set_box_aspect((1.0, 1.0, max(0.3, (centre[2] + half[2]) / (2 * reach))))  # true scale
     ax.set_xlim(-reach, reach)
     ax.set_ylim(-reach, reach)
     ax.set_zlim(0.0, centre[2] + half[2])
+    ax.zaxis.set_major_locator(MaxNLocator(3))
     ax.set_xlabel("x [m]")
     ax.set_ylabel("y [m]")
     ax.set_zlabel("z [m]")
-    ax.view_init(elev=22, azim=-58)
+    ax.view_init(elev=30, azim=-58)
     ax.legend(loc="upper left", ncols=2, title="leg", fontsize=7.5)
     ax.set_title(f"The nominal stance, body {centre[2]:.3g} m above the ground (feet in black)")
     return fig

@@ -20,6 +20,7 @@ from hexaleg.output.figures.canvas import (
 )
 from hexaleg.output.figures.marks import FLAT_LABEL, Mark, draw_marks, flat_top
 from hexaleg.output.figures.statics import design_names
+from hexaleg.ratios import ratio_text
 from hexaleg.study.sweep import peak_table
 
 if TYPE_CHECKING:
@@ -39,7 +40,7 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
         peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
         ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
         ax.annotate(
-            f"{peak['peak_l3_ratio']:.3f}",
+            ratio_text(peak["peak_l3_ratio"]),
             (peak["peak_l3_ratio"], peak["peak_fb"]),
             xytext=(0, 6),
             textcoords="offset points",
@@ -146,7 +147,7 @@ def pareto_figure(
         marker="*",
         color="k",
         label=f"the front's best grid point: coxa {best['l1_ratio']:.2f}, tibia "
-        f"{best['l3_ratio']:.3f}\n(the recommendation refines it)",
+        f"{ratio_text(best['l3_ratio'])}\n(the recommendation refines it)",
     )
     if yours is not None:
         ax.scatter([yours[x]], [yours["fb"]], s=90, marker="D", facecolor="none",

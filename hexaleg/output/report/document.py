@@ -28,10 +28,6 @@ Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
 
 
-TABLE_RULE = "|---"
-"""What marks a markdown block holding a table (its header rule, as :func:`table` writes it)."""
-
-
 def table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     """A markdown table."""
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
@@ -97,16 +93,14 @@ def report_html(report: Sequence[Section], folder: Path, medium: Medium = "scree
     body = [f"<h1>{TITLE}</h1>", _markdown(preamble(folder, medium))]
     for section in report:
         body.append(f"<section>\n<div class='keep'><h2>{html.escape(section.title)}</h2>")
-        kept = True  # the heading stays on a page with what it introduces
-        for block in section.blocks:
+        for k, block in enumerate(section.blocks):  # the heading stays with its first block
             if isinstance(block, Figure):
                 body.append(_figure_html(block, numbers[block.name], folder, medium))
             else:
                 body.append(_markdown(block))
-            if kept and (isinstance(block, Figure) or TABLE_RULE in block):
+            if k == 0:
                 body.append("</div>")
-                kept = False
-        body.append("</div></section>" if kept else "</section>")
+        body.append("</section>" if section.blocks else "</div></section>")
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
@@ -134,7 +128,7 @@ PRINT_STYLE = (
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
 """Print layout (the PDF): A4, numbered pages, no table or figure cut, no heading left alone
-at the foot of a page: a heading is kept with its blocks up to its first table or figure."""
+at the foot of a page: a heading is kept on the page of the block it introduces."""
 
 
 def _markdown(text: str) -> str:

@@ -15,6 +15,7 @@ from hexaleg.output.report.document import Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE
 from hexaleg.study.recommendation import BAND, Recommendation, grid_recommendation
@@ -79,8 +80,8 @@ def section(data: ReportData) -> Section:
                 [
                     (
                         f"{r['l1_ratio']:.2f}",
-                        *(f"{r[f'{name}_peak_l3_ratio']:.3f}" for name in RANKED_METRICS),
-                        f"{r['score_peak_l3_ratio']:.3f}",
+                        *(ratio_text(r[f"{name}_peak_l3_ratio"]) for name in RANKED_METRICS),
+                        ratio_text(r["score_peak_l3_ratio"]),
                         f"{r['best_score']:.4f}",
                     )
                     for r in rec.peaks.to_dict(orient="records")
@@ -91,13 +92,13 @@ def section(data: ReportData) -> Section:
             "all four alike. The recommendation takes the best score among the allowed coxa "
             "ratios, its tibia ratio refined between grid points with every metric computed "
             "exactly (so it differs from the best grid point of the Pareto front):",
-            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
-            f"{rec.l3_ratio:.3f}** (score {rec.score:.4f} against your design's 1; for a "
+            f"**Recommended: {proportions_text(rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)}** "
+            f"(score {rec.score:.4f} against your design's 1; for a "
             f"{total:g} m leg: {rec.l1_ratio * total:.3f} m, {rec.l2_ratio * total:.3f} m, "
-            f"{rec.l3_ratio * total:.3f} m). Any tibia ratio in {rec.l3_band[0]:.3f}–"
-            f"{rec.l3_band[1]:.3f} keeps ≥ {BAND:.0%} of its score and walks; choose within it by "
-            "what these metrics leave out (ground clearance, speed, mass), or give those as "
-            "requirements (`hexaleg decide`, `report --payload …`).",
+            f"{rec.l3_ratio * total:.3f} m). Any tibia ratio in {ratio_text(rec.l3_band[0])}–"
+            f"{ratio_text(rec.l3_band[1])} keeps ≥ {BAND:.0%} of its score and walks; choose "
+            "within it by what these metrics leave out (ground clearance, speed, mass), or "
+            "give those as requirements (`hexaleg decide`, `report --payload …`).",
         ),
     )
 

@@ -50,8 +50,8 @@ def section(data: ReportData) -> Section:
             "view` serves the same scene live on 127.0.0.1. For print, a still of it:",
             Figure(
                 STILL,
-                f"The nominal stance, as [{PAGE}]({PAGE}) shows it in 3-D (open that page for "
-                "the extremes, the workspace and the torque colours)",
+                f"The nominal stance, as {PAGE} shows it in 3-D (open that page for the "
+                "extremes, the workspace and the torque colours)",
             ),
         ),
     )
