@@ -23,6 +23,7 @@ from hexaleg._version import __version__
 from hexaleg.output.figures.canvas import DPI
 from hexaleg.output.report.part import Part, ReportData, numbered
 from hexaleg.output.report.section import Figure, Section
+from hexaleg.study.metrics import significant
 
 Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
@@ -163,10 +164,14 @@ def png_size(path: Path) -> tuple[int, int]:
 
 
 def change(yours: float, other: float) -> str:
-    """``other`` relative to ``yours`` as a signed percentage, or a dash when undefined."""
+    """``other`` relative to ``yours`` as a signed percentage, or a dash when undefined.
+
+    Three significant digits at most, one decimal at most: ``+2230%``, ``-13.5%``, ``+0.4%``.
+    """
     if not (math.isfinite(yours) and math.isfinite(other)) or yours == 0:
         return "—"
-    return f"{other / yours - 1:+.1%}"
+    percent = round(100 * (other / yours - 1), 1)
+    return ("+" if percent >= 0 else "-") + significant(abs(percent)) + "%"
 
 
 def write_csv(path: Path, rows: Sequence[dict[str, Any]]) -> None:
