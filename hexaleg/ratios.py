@@ -58,3 +58,13 @@ def require_ratio_grid(
     widest = total * (1 - min(l1_ratios) - min(l3_ratios))
     if widest > upper:
         raise ParameterError("total", total, f"the femur would be {widest:.3g} m; {within}")
+
+
+def ratio_text(ratio: float) -> str:
+    """A segment ratio as every table, sentence and figure of hexaleg prints it: ``0.666``."""
+    return f"{ratio:.3f}"
+
+
+def proportions_text(l1_ratio: float, l2_ratio: float, l3_ratio: float) -> str:
+    """A leg's proportions as hexaleg prints them: ``l1 : l2 : l3 = 0.100 : 0.234 : 0.666``."""
+    return "l1 : l2 : l3 = " + " : ".join(map(ratio_text, (l1_ratio, l2_ratio, l3_ratio)))

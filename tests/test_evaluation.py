@@ -130,3 +130,15 @@ def test_every_metric_is_declared_once_and_measured_by_a_known_analysis():
     assert metric("fb").label == "FB"
     with pytest.raises(Exception, match="one of improved_area"):
         metric("flexibility")
+
+
+@pytest.mark.parametrize(
+    ("value", "text"),
+    [(2000.0, "2000"), (1234.5, "1230"), (0.012345, "0.0123"), (0.5, "0.5"), (368.2, "368"),
+     (1e6, "1000000"), (-0.000123, "-0.000123"), (0.0, "0")],
+)  # fmt: skip
+def test_numbers_in_sentences_read_as_an_engineer_writes_them(value, text):
+    from hexaleg.study.metrics import significant
+
+    assert significant(value) == text
+    assert metric("payload_capacity").short(value) == f"{text} kg"

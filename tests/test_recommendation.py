@@ -86,6 +86,23 @@ def test_refinement_finds_the_peak_between_grid_points():
     assert (lo, hi) == (min(inside), max(inside))
 
 
+def test_the_band_holds_the_refined_peak_beside_its_grid_point():
+    """Peak 0.4321 between grid points 0.40 and 0.45: only 0.45 keeps 97 % of the refined score,
+    so the band is the refined ratio up to 0.45, not 0.45 alone."""
+    peak = 0.4321
+
+    def gaussian(l1_ratio, l3_ratio):
+        shape = np.exp(-(((l3_ratio - peak) / 0.12) ** 2))
+        return {name: (k + 1) * shape * (1 - l1_ratio) for k, name in enumerate(RANKED_METRICS)}
+
+    refined = recommend(R1, R3, gaussian(R1[:, None], R3[None, :]), YOURS, evaluate=gaussian)
+    assert refined.l3_ratio == pytest.approx(peak, abs=1e-4)
+    grid = refined.scores[np.isclose(refined.scores["l1_ratio"], refined.l1_ratio)]
+    kept = grid.loc[grid["score"] >= BAND * refined.score, "l3_ratio"].tolist()
+    assert kept == pytest.approx([0.45])  # the grid alone would leave the recommendation out
+    assert refined.l3_band == pytest.approx((refined.l3_ratio, 0.45))
+
+
 def test_nothing_to_recommend_when_no_allowed_design_stands():
     from hexaleg.exceptions import HexalegError
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import re
 
 import numpy as np
 import pytest
@@ -56,6 +57,7 @@ FILES = [
     "loads.png",
     "pareto_front.png",
     "pareto_front.csv",
+    "viewer_still.png",
 ]
 
 
@@ -299,7 +301,7 @@ def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
         l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
     )
     fixed = build_report(tmp_path / "fixed", design, options).to_dict()["recommendation"]
-    assert free["l1_ratio"] == pytest.approx(0.10)
+    assert free["l1_ratio"] != pytest.approx(0.125)  # so the fixed coxa is a constraint
     assert fixed["l1_ratio"] == pytest.approx(0.125)
     assert sum(fixed["lengths_m"]) == pytest.approx(1.2)
     assert fixed["l3_ratio"] != pytest.approx(free["l3_ratio"], abs=1e-4)
@@ -321,3 +323,82 @@ def test_grids_too_coarse_to_locate_the_peaks_are_refused(tmp_path, capsys, poin
     err = capsys.readouterr().err  # the option's range, as --help gives it
     assert err.count("\n") == 1 and f"{points} is not valid: must be in 10..1000" in err
     assert list(tmp_path.iterdir()) == []
+
+
+def _figure_texts(path) -> list[str]:
+    from PIL import Image
+
+    from hexaleg.output.figures.canvas import TEXTS_KEY
+
+    with Image.open(path) as image:
+        return json.loads(image.text[TEXTS_KEY])
+
+
+def _numbers(text: str) -> list[float]:
+    return [float(n) for n in re.findall(r"-?\d+\.\d+|-?\d+", text)]
+
+
+def _table(text: str, header: str) -> dict[str, list[str]]:
+    """The markdown table whose header line starts with ``header``: its rows by first cell."""
+    lines = text[text.index(header) :].splitlines()[2:]
+    rows = [line.strip("|").split(" | ") for line in lines[: lines.index("")]]
+    return {row[0].strip(): [cell.strip() for cell in row[1:]] for row in rows}
+
+
+def _reads_as(printed: str, value: float) -> bool:
+    """``printed`` is ``value`` to the digits printed (rounded half either way)."""
+    decimals = len(printed.split(".")[1]) if "." in printed else 0
+    return abs(float(printed) - value) <= 0.5 * 10.0**-decimals * (1 + 1e-9)
+
+
+@pytest.mark.slow  # the reduced report, computed once for these tests
+def test_every_number_reads_the_same_in_the_report_its_json_and_its_figures(report):
+    """The peaks, the recommendation and the scored metrics: report.md, report.json and the
+    figures' own texts (the PNG records them) agree to the digits each prints."""
+    out, _ = report
+    text = (out / "report.md").read_text()
+    saved = json.loads((out / "report.json").read_text())
+    rec = saved["recommendation"]
+    # the recommendation: every sentence that states it, in the Decision and in section 5
+    stated = re.findall(r"Recommended: l1 : l2 : l3 = (\S+) : (\S+) : (\S+)\*\*", text)
+    assert len(stated) == 2
+    for ratios in stated:
+        for printed, value in zip(ratios, (rec[f"l{k}_ratio"] for k in (1, 2, 3)), strict=True):
+            assert _reads_as(printed, value), (printed, value)
+    bands = re.findall(r"any tibia ratio in (\d\.\d+)–(\d\.\d+)", text, re.I)
+    assert len(bands) == 2
+    for band in bands:
+        assert all(_reads_as(p, v) for p, v in zip(band, rec["l3_band"], strict=True))
+    # the scored metrics: the Decision table's yours and recommended columns
+    decision = saved["decision"]
+    rows = dict(re.findall(r"^\| ([^|]+?) \| (\S+ \| \S+) \|", text.split("## Design")[0], re.M))
+    from hexaleg.study.metrics import METRICS
+
+    for name in decision["metrics"]:
+        spec = METRICS[name]
+        yours, theirs = rows[spec.described].split(" | ")
+        assert _reads_as(yours, decision["yours"]["metrics"][name]), (name, yours)
+        assert _reads_as(theirs, decision["recommended"]["metrics"][name]), (name, theirs)
+        assert decision["recommended"]["metrics"][name] == pytest.approx(rec["metrics"][name])
+    # the w_A peaks: the table of section 2 and the figure's legend
+    legend = " ".join(_figure_texts(out / "manipulability_average_map.png"))
+    for peak in saved["average_manipulability_peaks"]:
+        r1 = f"{peak['l1_ratio']:.2f}"
+        row = _table(text, "| l1 ratio | w_A refined peak")[r1]
+        assert _reads_as(row[0], peak["rectangular_peak_l3_ratio"])
+        assert _reads_as(row[1], peak["improved_peak_l3_ratio"])
+        shown = re.findall(rf"coxa ratio {r1}: refined peak at (\d\.\d+)", legend)
+        assert sorted(shown) == sorted(row)  # one curve per domain, the table's two peaks
+    # the FB grid peaks: the table of section 3.1 and the figure's annotations
+    marked = _figure_texts(out / "flexibility_fb.png")
+    for peak in saved["study_peaks"]:
+        r1 = f"{peak['l1_ratio']:.2f}"
+        row = _table(text, "| l1 ratio | FB peak l3 ratio")[r1]
+        assert _reads_as(row[0], peak["peak_l3_ratio"]) and _reads_as(row[1], peak["peak_fb"])
+        assert row[0] in marked
+    # the Pareto front's first: its sentence, its table's first row and the star's label
+    first = saved["pareto_front"][0]
+    (sentence,) = re.findall(r"so its first, l1 : l2 : l3 = (\S+) : (\S+) : (\S+), is", text)
+    assert _reads_as(sentence[2], first["l3_ratio"])
+    star = [t for t in _figure_texts(out / "pareto_front.png") if "front's best grid point" in t]
+    assert len(star) == 1 and f"tibia {sentence[2]}" in star[0]

@@ -194,3 +194,82 @@ def _boxes(box):
     yield box
     for child in getattr(box, "children", None) or []:
         yield from _boxes(child)
+
+
+PAGE_MARGIN_PT = 12 / 25.4 * 72  # the print style's @page margin
+FOOTER_TOP_PT = 25.0  # the page number sits below this height
+CSS_PX_PT = 0.75  # WeasyPrint lays out in CSS px
+
+
+def _text_heights(page) -> list[float]:
+    """Heights above the page's foot [pt] of each run of text on a PDF page, but the footer."""
+    heights: list[float] = []
+
+    def visit(text, cm, tm, font, size):
+        y = cm[5] + tm[5] * cm[3]
+        if text.strip() and y > FOOTER_TOP_PT:
+            heights.append(y)
+
+    page.extract_text(visitor_text=visit)
+    return heights
+
+
+def test_no_heading_is_left_alone_at_the_foot_of_a_page(report):
+    from pypdf import PdfReader
+
+    out, _ = report
+    reader = PdfReader(out / "report.pdf")
+
+    def walk(items):
+        for item in items:
+            yield from walk(item) if isinstance(item, list) else [item]
+
+    headings = [item for item in walk(reader.outline)][1:]  # not the document's title
+    assert headings
+    for heading in headings:
+        page = reader.get_destination_page_number(heading)
+        below = [y for y in _text_heights(reader.pages[page]) if y < float(heading.top) - 30]
+        assert below, f"'{heading.title}' is the last thing on page {page + 1}"
+
+
+def test_no_page_is_half_blank_unless_a_taller_figure_follows(report):
+    import weasyprint
+    from pypdf import PdfReader
+
+    out, data = report
+    reader = PdfReader(out / "report.pdf")
+    page = report_html(sections(data, PARTS), out, medium="print")
+    laid_out = weasyprint.HTML(string=page, base_url=str(out)).render().pages
+    assert len(laid_out) == len(reader.pages)
+    usable = float(reader.pages[0].mediabox.height) - 2 * PAGE_MARGIN_PT
+    for number, pdf_page in enumerate(reader.pages[:-1]):
+        lowest = min(_text_heights(pdf_page))
+        left = lowest - PAGE_MARGIN_PT  # the blank height under the page's last line [pt]
+        if left <= usable / 2:
+            continue
+        figures = [
+            box
+            for box in _boxes(laid_out[number + 1]._page_box)
+            if getattr(box, "element_tag", None) == "figure"
+        ]
+        assert figures, f"page {number + 1} is {left / usable:.0%} blank and no figure follows"
+        first = min(figures, key=lambda box: box.position_y)
+        assert first.position_y * CSS_PX_PT <= PAGE_MARGIN_PT + 20, (
+            f"page {number + 1} is {left / usable:.0%} blank before text, not a figure"
+        )
+        assert first.margin_height() * CSS_PX_PT > left, (
+            f"page {number + 1} is {left / usable:.0%} blank, and the next figure would fit"
+        )
+
+
+def test_the_pdf_shows_a_still_of_the_3d_view_and_links_to_it(report):
+    from pypdf import PdfReader
+
+    out, _ = report
+    reader = PdfReader(out / "report.pdf")
+    (page,) = [p for p in reader.pages if "4. 3-D view" in p.extract_text()]
+    text = page.extract_text()
+    assert "viewer.html" in text
+    assert re.search(r"Figure \d+: The nominal stance", text.replace("\n", " "))
+    links = [a.get_object().get("/A", {}).get("/URI", "") for a in page.get("/Annots", [])]
+    assert any(str(uri).endswith("viewer.html") for uri in links)

@@ -219,3 +219,13 @@ def test_the_flexibility_table_names_directions_as_everywhere_else(default_desig
     expected = [f"{a}{s}" for a in AXES for s in "+-"]  # written out: x+, x-, ... yaw-
     assert sorted(labels) == sorted(expected)
     assert [row["direction"] for row in extremes_rows(record)] == labels
+
+
+def test_changes_read_as_an_engineer_writes_them():
+    from hexaleg.output.report.document import change
+
+    assert change(2.0, 46.6) == "+2230%"  # 22.3 times: three digits, not "+2230.0%"
+    assert change(1.0, 0.865) == "-13.5%"
+    assert change(1.0, 1.004) == "+0.4%"
+    assert change(1.0, 1.0) == "+0%"
+    assert change(0.0, 1.0) == "—" and change(1.0, float("nan")) == "—"

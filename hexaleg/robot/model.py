@@ -275,6 +275,19 @@ class HexapodModel:
             [self.data.oMf[self._legs[leg].foot_frame].translation for leg in self.leg_names]
         )
 
+    def leg_chains(self, q: npt.ArrayLike) -> ArrayF:
+        """Every leg's points (6, 4, 3), world frame [m]: its three joints' origins, its foot.
+
+        In ``leg_names`` order; what a drawing of the robot at ``q`` joins with lines.
+        """
+        pin.framesForwardKinematics(self.model, self.data, np.asarray(q, dtype=float))
+        chains = []
+        for leg in self.leg_names:
+            index = self._legs[leg]
+            joints = [self.data.oMi[j].translation for j in index.joints]
+            chains.append([*joints, self.data.oMf[index.foot_frame].translation])
+        return np.array(chains)
+
     def root_placements(self) -> dict[str, pin.SE3]:
         """Placement of every leg-root frame in the body frame, read from the model."""
         pin.framesForwardKinematics(self.model, self.data, pin.neutral(self.model))

@@ -60,18 +60,33 @@ class MetricSpec:
     def format(self, value: float) -> str:
         """The value with its unit, four significant digits; angles also in degrees."""
         if self.unit == "rad":
-            return f"{value:.4g} rad ({math.degrees(value):.3g}°)"
-        return f"{value:.4g}" if self.unit == "1" else f"{value:.4g} {self.unit}"
+            return f"{significant(value, 4)} rad ({significant(math.degrees(value))}°)"
+        text = significant(value, 4)
+        return text if self.unit == "1" else f"{text} {self.unit}"
 
     def cell(self, value: float) -> str:
         """The value in a table cell whose header gives the unit: four significant digits."""
-        return f"{value:.4g}"
+        return significant(value, 4)
 
     def short(self, value: float) -> str:
-        """The value in a sentence: three significant digits, angles in degrees."""
+        """The value in a sentence, as an engineer writes it: ``2000 kg``, ``0.0123 m``, ``17°``.
+
+        Three significant digits, never an exponent; angles in degrees.
+        """
         if self.unit == "rad":
-            return f"{math.degrees(value):.3g}°"
-        return f"{value:.3g}" if self.unit == "1" else f"{value:.3g} {self.unit}"
+            return f"{significant(math.degrees(value))}°"
+        text = significant(value)
+        return text if self.unit == "1" else f"{text} {self.unit}"
+
+
+def significant(value: float, digits: int = 3) -> str:
+    """``value`` rounded to ``digits`` significant digits, written without an exponent."""
+    if not math.isfinite(value) or value == 0:
+        return f"{value:g}"
+    rounded = float(f"{value:.{digits}g}")
+    decimals = max(0, digits - 1 - math.floor(math.log10(abs(rounded))))
+    text = f"{rounded:.{decimals}f}"
+    return text.rstrip("0").rstrip(".") if "." in text else text
 
 
 METRICS: Mapping[str, MetricSpec] = {

@@ -45,7 +45,7 @@ class Recommendation:
     Attributes:
         l1_ratio: Recommended coxa ratio [-].
         l3_ratio: Recommended tibia ratio at that coxa ratio, refined between grid points [-].
-        l3_band: Tibia ratios of the grid keeping ≥ 97 % of its score [-].
+        l3_band: The tibia ratios keeping ≥ 97 % of its score: of the grid, and the refined one [-].
         reference: The user's design's metrics: what every score is relative to.
         metrics: The recommended design's metrics [m², m³, -, kg].
         score: Its score [-] (the user's design: 1).
@@ -221,8 +221,8 @@ def recommend(
     metrics = dict(zip(RANKED_METRICS, (float(v) for v in values[i, j]), strict=True))
     if evaluate is not None:
         l3_ratio, best, metrics = _refine(r1[i], r3, j, (best, metrics), reference, evaluate)
-    inside = r3[grid_scores[i] >= BAND * best]
-    band = (float(inside.min()), float(inside.max())) if inside.size else (l3_ratio, l3_ratio)
+    inside = np.append(r3[grid_scores[i] >= BAND * best], l3_ratio)  # the refined ratio is in it
+    band = (float(inside.min()), float(inside.max()))
     return Recommendation(
         l1_ratio=float(r1[i]),
         l3_ratio=l3_ratio,

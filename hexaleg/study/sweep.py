@@ -41,7 +41,7 @@ from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate_many
+from hexaleg.study.evaluation import Conditions, evaluate, evaluate_many
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
     FOLDER_KIND,
@@ -116,6 +116,11 @@ class StudySpec:
         return Conditions(gait=STUDY_GAIT, stance=self.stance, mode=self.mode,
                           collisions=self.collisions, keep=True)  # fmt: skip
 
+    def row_of(self, design: HexapodDesign) -> StudyRow:
+        """``design``'s row, measured as the study measures its own, on its own model."""
+        key = (design.l1 / design.leg_length, design.l3 / design.leg_length)
+        return study_row(key, design, evaluate(design, self.metrics, self.conditions))
+
     def keys(self) -> list[Key]:
         """(l1 ratio, l3 ratio) of every design, in table order."""
         return [(r1, r3) for r1 in self.l1_ratios for r3 in self.l3_ratios]
@@ -147,7 +152,7 @@ class _Task:
     template: StanceGeometry  # the study's body and mounts, read once
 
 
-def evaluate(task: _Task) -> list[StudyRow]:
+def evaluate_task(task: _Task) -> list[StudyRow]:
     """The rows of a task's designs; a design's error becomes its row's ``error``."""
     spec = task.spec
     designs: dict[Key, HexapodDesign] = {}
@@ -180,7 +185,7 @@ def sweep(
     rows: dict[Key, StudyRow] = {}
     with worker_failures():
         futures = [
-            executor.submit(evaluate, task)
+            executor.submit(evaluate_task, task)
             for task in _tasks(spec, [key for key in spec.keys() if key not in done])
         ]
         for future in as_completed(futures):
@@ -218,7 +223,7 @@ def _template_geometry(spec: StudySpec) -> StanceGeometry:
 
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
     """The whole study evaluated in this process, as a table (for small, fast studies)."""
-    rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate(task)]
+    rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate_task(task)]
     return study_table(spec, {row.key: row for row in rows})
 
 

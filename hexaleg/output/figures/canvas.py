@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import io
+import json
 import os
 import zlib
 from collections.abc import Callable, Sequence
@@ -25,6 +26,7 @@ from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, CLAIMED_W_A_PEAK
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+    from matplotlib.text import Text
 
 P = ParamSpec("P")
 
@@ -47,6 +49,9 @@ STYLE: dict[Any, Any] = {
 """Type sizes [pt] of every figure; the smallest text is 7.5 pt (bar annotations)."""
 
 SMALLEST_TEXT_KEY = "hexaleg:smallest-text-px"
+TEXTS_KEY = "hexaleg:texts"
+"""PNG text key holding every visible text of the figure (titles, labels, legend, annotations),
+as a JSON list: what a reader sees, for checks that the figures agree with the report."""
 """PNG text chunk giving the height of the figure's smallest text [px at natural size]."""
 
 COLORS = ("#1b6ca8", "#e07b00", "#2f9e44", "#c92a2a", "#7048e8", "#495057")
@@ -131,23 +136,26 @@ def name_largest(
     )
 
 
-def smallest_text_px(figure: Figure) -> float:
-    """Height of the smallest visible text of ``figure`` [px at :data:`DPI`]."""
+def _visible_texts(figure: Figure) -> list[Text]:
     from matplotlib.text import Text
 
-    sizes = [
-        text.get_fontsize()
+    return [
+        text
         for text in figure.findobj(Text)
         if isinstance(text, Text) and text.get_visible() and text.get_text().strip()
     ]
-    return float(min(sizes)) * DPI / 72.0
+
+
+def smallest_text_px(figure: Figure) -> float:
+    """Height of the smallest visible text of ``figure`` [px at :data:`DPI`]."""
+    return float(min(text.get_fontsize() for text in _visible_texts(figure))) * DPI / 72.0
 
 
 def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Path:
     """Render ``figure`` to PNG (and, if ``svg``, to SVG beside it), atomically.
 
-    The PNG records its smallest text height under :data:`SMALLEST_TEXT_KEY`. Returns the
-    PNG's path.
+    The PNG records its smallest text height under :data:`SMALLEST_TEXT_KEY` and its texts
+    under :data:`TEXTS_KEY`. Returns the PNG's path.
     """
     import matplotlib
 
@@ -155,9 +163,9 @@ def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Pat
         buffer = io.BytesIO()
         figure.savefig(buffer, format="png", dpi=DPI)  # lays out, so every text exists
         smallest = f"{smallest_text_px(figure):.2f}"
-        written = atomic_write_bytes(
-            path, _with_text(buffer.getvalue(), SMALLEST_TEXT_KEY, smallest)
-        )
+        texts = json.dumps([text.get_text() for text in _visible_texts(figure)])  # ASCII
+        png = _with_text(buffer.getvalue(), SMALLEST_TEXT_KEY, smallest)
+        written = atomic_write_bytes(path, _with_text(png, TEXTS_KEY, texts))
         if svg:
             vector = io.BytesIO()
             figure.savefig(vector, format="svg", metadata={"Date": None})

@@ -10,7 +10,7 @@ transport against the tibia ratio per coxa ratio.
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -21,6 +21,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
+from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 
 if TYPE_CHECKING:
     from matplotlib.axes import Axes
@@ -149,22 +150,46 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
 
 
 @drawn
-def walking_study_figure(table: pd.DataFrame) -> Figure:
-    """The study's peak joint torque and cost of transport against tibia ratio, per coxa ratio."""
-    fig = new_figure(6.0)
-    panels = fig.subplots(2, 1, sharex=True)
+def walking_study_figure(
+    table: pd.DataFrame, rated: Mapping[str, float] | None = None, marks: Sequence[Mark] = ()
+) -> Figure:
+    """The study's walking against tibia ratio: hip and knee peaks, CoT, walking payload.
+
+    The hip's and knee's peak |τ| [N·m] beside their ratings, the mechanical cost of
+    transport [-] and the walking payload capacity [kg], one curve per coxa ratio.
+
+    Args:
+        table: The study's rows (its walking columns).
+        rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
+        marks: Designs marked on every panel (your design, the recommended one).
+
+    """
+    fig = new_figure(8.8)
+    panels = fig.subplots(4, 1, sharex=True)
     columns = (
-        ("gait_peak_torque", "peak |τ|, any joint [N·m]"),
-        ("mechanical_cost_of_transport", "mechanical cost of transport [-]"),
+        ("gait_peak_hip_torque", "peak hip |τ| [N·m]"),
+        ("gait_peak_knee_torque", "peak knee |τ| [N·m]"),
+        ("mechanical_cost_of_transport", "mechanical CoT [-]"),
+        ("walking_payload_capacity", "walking payload [kg]"),
     )
     for ax, (column, label) in zip(panels, columns, strict=True):
         for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
-            ax.plot(group["l3_ratio"], group[column], color=color, label=f"coxa ratio {r1:.2f}")
+            values = group[column]
+            if "walks" in group:  # a leg that cannot walk the gait: a gap, not a zero
+                values = values.where(group["walks"].astype(bool))
+            ax.plot(group["l3_ratio"], values, color=color, label=f"coxa ratio {r1:.2f}")
+        draw_marks(ax, marks, "l3_ratio", column)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    panels[1].set_xlabel("tibia ratio l3 / L [-]")
-    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5))
-    fig.suptitle("Walking the default tripod gait (gaps: a design that cannot walk it)")
+    for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
+        if rated is not None:
+            rating_line(ax, rated[joint], joint)
+    panels[-1].set_xlabel("tibia ratio l3 / L [-]")
+    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
+    fig.suptitle(
+        "Walking the default tripod gait (gaps: designs that cannot walk it unloaded "
+        "within their ratings)"
+    )
     return fig
 
 

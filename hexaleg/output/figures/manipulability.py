@@ -10,7 +10,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from hexaleg.output.figures.canvas import COLORS, drawn, mark_paper_w_a_peak, new_figure, save
+from hexaleg.output.figures.marks import FLAT_LABEL, flat_top
 from hexaleg.paper import TABLE5
+from hexaleg.ratios import ratio_text
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
@@ -70,11 +72,14 @@ def average_manipulability_figure(result: AverageManipulabilityMap) -> Figure:
         (result.improved, result.peak_improved, "on the improved domain (eq 26 and Table 4)"),
     )
     for ax, (values, peaks, where) in zip(axes, panels, strict=True):
-        for r1, row, peak, color in zip(result.l1_ratios, values, peaks, COLORS, strict=False):
+        curves = zip(result.l1_ratios, values, peaks, COLORS, strict=False)
+        for k, (r1, row, peak, color) in enumerate(curves):
             ax.plot(
-                result.l3_ratios, row, color=color, label=f"coxa ratio {r1:.2f}: peak at {peak:.3f}"
-            )
+                result.l3_ratios, row, color=color,
+                label=f"coxa ratio {r1:.2f}: refined peak at {ratio_text(peak)}",
+            )  # fmt: skip
             ax.axvline(peak, color=color, ls=":", lw=1)
+            flat_top(ax, result.l3_ratios, row, color, FLAT_LABEL if k == 0 else None)
         mark_paper_w_a_peak(ax)
         ax.set_title(f"Average manipulability {where}")
         ax.set_ylabel("average manipulability w_A [m³]")

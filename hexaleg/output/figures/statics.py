@@ -2,12 +2,14 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
 
 from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
+from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 from hexaleg.statics.loads import LoadsAnalysis
 
 if TYPE_CHECKING:
@@ -36,49 +38,59 @@ def slopes_differ(analysis: LoadsAnalysis) -> bool:
 
 
 @drawn
-def loads_figure(analysis: LoadsAnalysis) -> Figure:
-    """Peak |τ| per joint type against its rating, and the steepest slope per heading.
+def loads_figure(analysis: LoadsAnalysis, walking: Mapping[str, float] | None = None) -> Figure:
+    """Peak |τ| per joint type standing (and walking) against its rating; slopes per heading.
+
+    Args:
+        analysis: The statics.
+        walking: The peak |τ| per joint type [N·m] walking the default gait with the same
+            payload, drawn beside the standing peaks if given.
 
     The slope panel is drawn only where the headings differ; else the report states the
     one slope in a table.
+
     """
     with_slopes = slopes_differ(analysis)
     fig = new_figure(4.2)
     torques, *rest = fig.subplots(1, 2 if with_slopes else 1, squeeze=False)[0]
-    _torque_bars(torques, analysis)
+    _torque_bars(torques, analysis, walking)
     if rest:
         _slope_bars(rest[0], analysis)
     l1, l2, l3 = analysis.design.lengths
     capacity = analysis.capacity
+    what = "standing and walking" if walking is not None else "standing"
     fig.suptitle(
-        f"Joint torques of this design (l1, l2, l3 = {l1:.3g}, {l2:.3g}, {l3:.3g} m) against "
-        f"their ratings\npayload capacity {capacity.mass:.1f} kg, limited by {capacity.limited_by}"
+        f"Peak joint torques {what} (l1, l2, l3 = {l1:.3g}, {l2:.3g}, {l3:.3g} m) against "
+        f"their ratings\nstanding payload capacity {capacity.mass:.1f} kg, limited by "
+        f"{capacity.limited_by}"
     )
     return fig
 
 
-def _torque_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
+def _torque_bars(ax: Axes, analysis: LoadsAnalysis, walking: Mapping[str, float] | None) -> None:
     nominal = analysis.nominal.peak_torques()
     joints = list(nominal)
     x = np.arange(len(joints))
-    ax.bar(x - 0.2, [nominal[j] for j in joints], 0.4, color=COLORS[0], label="nominal stance")
     mode = "axis-locked" if analysis.mode == "axis" else "free-coupled"
-    ax.bar(
-        x + 0.2,
-        [analysis.peak_torques[j] for j in joints],
-        0.4,
-        color=COLORS[1],
-        label=f"peak over the 12 {mode} extremes",
-    )
+    series: list[tuple[str, Mapping[str, float]]] = [
+        ("standing, nominal stance", nominal),
+        (f"standing, peak over the 12 {mode} extremes", analysis.peak_torques),
+    ]
+    if walking is not None:
+        series.append(("walking the default gait, peak", walking))
+    width = 0.8 / len(series)
+    for k, (label, peaks) in enumerate(series):
+        offset = (k - (len(series) - 1) / 2) * width
+        ax.bar(x + offset, [peaks[j] for j in joints], width, color=COLORS[k], label=label)
     for k, rated in enumerate(analysis.design.rated_torques):
         ax.hlines(rated, k - 0.45, k + 0.45, colors="k", linestyles="--", lw=1.5)
     ax.plot([], [], "k--", label="rated torque")
     ax.set_xticks(x, [f"{joint} joints" for joint in joints])
-    ax.set_ylabel("largest |τ| over the standing legs [N·m]")
+    ax.set_ylabel("largest |τ| over the legs [N·m]")
     ax.set_title(f"Foot forces shared by {DISTRIBUTION_WORDS.get(analysis.distribution, '?')}")
-    top = max(max(analysis.design.rated_torques), max(analysis.peak_torques.values()))
-    ax.set_ylim(0, 1.45 * top)
-    ax.legend(loc="upper left", ncols=2)
+    tops = [max(peaks.values()) for _, peaks in series]
+    ax.set_ylim(0, 1.45 * max(*analysis.design.rated_torques, *tops))
+    ax.legend(loc="upper left", ncols=2, fontsize=7.5)
     ax.grid(True, axis="y", alpha=0.3)
 
 
@@ -100,30 +112,54 @@ def _slope_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
 
 
 @drawn
-def statics_study_figure(table: pd.DataFrame) -> Figure:
-    """Peak hip and knee torque and payload capacity against tibia ratio, per coxa ratio.
+def statics_study_figure(
+    table: pd.DataFrame, rated: Mapping[str, float] | None = None, marks: Sequence[Mark] = ()
+) -> Figure:
+    """Hip and knee torques over the extremes and the payload capacities, against tibia ratio.
 
-    One panel under another, sharing the tibia-ratio axis; payload capacity spans decades
-    over a sweep (a short femur lifts tonnes), so its axis is logarithmic and the largest
-    is named.
+    One panel under another, sharing the tibia-ratio axis, each joint's rating on its
+    torque panel; the standing payload capacity spans decades over a sweep (a short femur
+    lifts tonnes), so its axis is logarithmic, the largest named, and the walking payload
+    capacity (default gait, every rating) is drawn beside it, dashed, where the leg walks.
+
+    Args:
+        table: The study's rows.
+        rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
+        marks: Designs marked on every panel (your design, the recommended one).
+
     """
-    fig = new_figure(8.0)
+    fig = new_figure(8.4)
     panels = fig.subplots(3, 1, sharex=True)
     columns = (
-        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| over the axis-locked extremes"),
-        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| over the axis-locked extremes"),
-        ("payload_capacity", "payload [kg], log scale", "Payload capacity at the nominal stance"),
-    )
+        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing: nominal and 12 extremes"),
+        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing: nominal and 12 extremes"),
+        ("payload_capacity", "payload [kg], log scale",
+         "Payload capacity: standing (solid), walking the default gait (dashed)"),
+    )  # fmt: skip
+    groups = list(zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False))
     for ax, (column, label, title) in zip(panels, columns, strict=True):
-        for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
+        for (r1, group), color in groups:
             ax.plot(group["l3_ratio"], group[column], color=color, label=f"coxa ratio {r1:.2f}")
+        draw_marks(ax, marks, "l3_ratio", column)
         ax.set_ylabel(label)
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
+    for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
+        if rated is not None:
+            rating_line(ax, rated[joint], joint)
     payload = panels[2]
+    if "walking_payload_capacity" in table:
+        for (_, group), color in groups:
+            walking = group["walking_payload_capacity"].where(group["walking_payload_capacity"] > 0)
+            payload.plot(group["l3_ratio"], walking, color=color, ls="--")
+        draw_marks(payload, marks, "l3_ratio", "walking_payload_capacity")
     log_scale(payload, "y")
+    payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
     name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
-    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5))
+    handles, labels = panels[0].get_legend_handles_labels()
+    unique = dict(zip(labels, handles, strict=True))
+    panels[0].legend(unique.values(), unique.keys(), loc="center left",
+                     bbox_to_anchor=(1.01, 0.5), fontsize=7.5)  # fmt: skip
     panels[2].set_xlabel("tibia ratio l3 / L [-]")
     fig.suptitle("What each design of the sweep costs (foot forces shared by least Σ|f|²)")
     return fig

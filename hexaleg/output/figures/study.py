@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import os
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -18,7 +18,9 @@ from hexaleg.output.figures.canvas import (
     save,
     shade_paper_band,
 )
+from hexaleg.output.figures.marks import FLAT_LABEL, Mark, draw_marks, flat_top
 from hexaleg.output.figures.statics import design_names
+from hexaleg.ratios import ratio_text
 from hexaleg.study.sweep import peak_table
 
 if TYPE_CHECKING:
@@ -26,16 +28,19 @@ if TYPE_CHECKING:
 
 
 @drawn
-def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
-    """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks marked."""
+def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = ()) -> Figure:
+    """Fig 15: FB against tibia ratio, one curve per coxa ratio, peaks and flat tops marked."""
     fig = new_figure(4.8)
     ax = fig.add_subplot()
-    for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
+    for k, ((r1, group), color) in enumerate(
+        zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False)
+    ):
         ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"coxa ratio {r1:.2f}")
+        flat_top(ax, group["l3_ratio"], group["fb"], color, FLAT_LABEL if k == 0 else None)
         peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
         ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
         ax.annotate(
-            f"{peak['peak_l3_ratio']:.3f}",
+            ratio_text(peak["peak_l3_ratio"]),
             (peak["peak_l3_ratio"], peak["peak_fb"]),
             xytext=(0, 6),
             textcoords="offset points",
@@ -44,11 +49,12 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame) -> Figure:
             color=color,
         )
     shade_paper_band(ax, "FB peaks")
+    draw_marks(ax, marks, "l3_ratio", "fb")
     ax.set_xlabel("tibia ratio l3 / L [-]")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
-    ax.set_title("Body flexibility against tibia ratio, for each coxa ratio (peaks marked)")
+    ax.set_title("Body flexibility against tibia ratio, for each coxa ratio (grid peaks marked)")
     ax.grid(True, alpha=0.3)
-    ax.legend()
+    ax.legend(fontsize=7.5)
     return fig
 
 
@@ -85,18 +91,21 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
 
 
 def write_study_figures(
-    table: pd.DataFrame, out_dir: str | os.PathLike[str], svg: bool = False
+    table: pd.DataFrame,
+    out_dir: str | os.PathLike[str],
+    svg: bool = False,
+    marks: Sequence[Mark] = (),
 ) -> list[Path]:
     """Fig 15 (FB curves) and Fig 14 (ranges, for the smallest coxa ratio); the PNGs.
 
-    ``svg`` writes an SVG beside each PNG.
+    ``svg`` writes an SVG beside each PNG; ``marks`` are drawn on Fig 15.
     """
     out = Path(out_dir)
     valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
     if valid.empty:
         return []
     return [
-        save(fb_figure(valid, peak_table(valid)), out / "flexibility_fb.png", svg),
+        save(fb_figure(valid, peak_table(valid), marks), out / "flexibility_fb.png", svg),
         save(
             ranges_figure(valid, float(valid["l1_ratio"].min())),
             out / "flexibility_ranges.png",
@@ -118,9 +127,15 @@ def pareto_figure(
 
     """
     x = "walking_payload_capacity"
-    fig = new_figure(5.2)
+    fig = new_figure(5.6)
     ax = fig.add_subplot()
-    ax.scatter(table[x], table["fb"], s=8, color="#bbbbbb", label="every design")
+    walks = table["walks"].fillna(False).astype(bool) if "walks" in table else table[x] > 0
+    ax.scatter(table.loc[walks, x], table.loc[walks, "fb"], s=8, color="#bbbbbb",
+               label="every design that walks")  # fmt: skip
+    if (~walks).any():
+        ax.scatter(table.loc[~walks, x], table.loc[~walks, "fb"], s=8, marker="x",
+                   color="#dddddd", label=f"{int((~walks).sum())} that cannot walk the gait "
+                   "unloaded (not ranked)")  # fmt: skip
     for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
         ax.scatter(group[x], group["fb"], s=24, color=color,
                    label=f"on the front, coxa ratio {r1:.2f}")  # fmt: skip
@@ -131,8 +146,8 @@ def pareto_figure(
         s=220,
         marker="*",
         color="k",
-        label=f"the front's best grid point: coxa ratio {best['l1_ratio']:.2f}, tibia ratio "
-        f"{best['l3_ratio']:.3f} (the recommendation refines it)",
+        label=f"the front's best grid point: coxa {best['l1_ratio']:.2f}, tibia "
+        f"{ratio_text(best['l3_ratio'])}\n(the recommendation refines it)",
     )
     if yours is not None:
         ax.scatter([yours[x]], [yours["fb"]], s=90, marker="D", facecolor="none",
@@ -142,5 +157,5 @@ def pareto_figure(
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
     ax.set_title("Designs no other beats in workspace, manipulability, FB and walking payload")
     ax.grid(True, which="both", alpha=0.3)
-    fig.legend(loc="outside lower center", ncols=2)
+    fig.legend(loc="outside lower center", ncols=2, fontsize=7.5)
     return fig

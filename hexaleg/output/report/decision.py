@@ -21,6 +21,7 @@ from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
+from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.decide import DecideResult, decide
 from hexaleg.study.evaluation import Evaluation, evaluate
 from hexaleg.study.executors import local_pool
@@ -91,10 +92,11 @@ def section(data: ReportData) -> Section:
         "Decision",
         (
             *first,
-            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
-            f"{rec.l3_ratio:.3f}**, for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
+            f"**Recommended: {proportions_text(rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)}**, "
+            f"for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
             f"chosen among {data.options.decision.describe_candidates()}, every one walking the "
-            f"default gait; any tibia ratio in {rec.l3_band[0]:.3f}–{rec.l3_band[1]:.3f} keeps "
+            f"default gait; any tibia ratio in {ratio_text(rec.l3_band[0])}–"
+            f"{ratio_text(rec.l3_band[1])} keeps "
             f"≥ {BAND:.0%} of its score and walks. Both keep your body, mounts, posture and "
             f"ratings; what changes is below. {departure(rec)}",
             table(
@@ -113,7 +115,7 @@ def departure(rec: Recommendation) -> str:
     low, high = CLAIMED_L3_RATIO_PEAK
     band = f"the paper's chosen tibia ratios {low:.2f}–{high:.2f}"
     if low <= rec.l3_ratio <= high:
-        return f"Its tibia ratio {rec.l3_ratio:.3f} lies within {band}."
+        return f"Its tibia ratio {ratio_text(rec.l3_ratio)} lies within {band}."
     side = "above" if rec.l3_ratio > high else "below"
     changes = {
         name: math.log(rec.metrics[name] / rec.reference[name])
@@ -124,7 +126,7 @@ def departure(rec: Recommendation) -> str:
     lost = [METRICS[name].label for name, value in changes.items() if value < 0]
     cost = f", giving up {' and '.join(lost)}" if lost else ""
     return (
-        f"Its tibia ratio {rec.l3_ratio:.3f} lies {side} {band} (chosen there for FB): the "
+        f"Its tibia ratio {ratio_text(rec.l3_ratio)} lies {side} {band} (chosen there for FB): the "
         f"score moves it because its {METRICS[gain].label} "
         f"{change(rec.reference[gain], rec.metrics[gain])} outweighs the rest{cost}."
     )

@@ -23,6 +23,7 @@ from hexaleg._version import __version__
 from hexaleg.output.figures.canvas import DPI
 from hexaleg.output.report.part import Part, ReportData, numbered
 from hexaleg.output.report.section import Figure, Section
+from hexaleg.study.metrics import significant
 
 Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
@@ -92,13 +93,15 @@ def report_html(report: Sequence[Section], folder: Path, medium: Medium = "scree
     numbers = figure_numbers(report)
     body = [f"<h1>{TITLE}</h1>", _markdown(preamble(folder, medium))]
     for section in report:
-        body.append(f"<section>\n<h2>{html.escape(section.title)}</h2>")
-        for block in section.blocks:
+        body.append(f"<section>\n<div class='keep'><h2>{html.escape(section.title)}</h2>")
+        for k, block in enumerate(section.blocks):  # the heading stays with its first block
             if isinstance(block, Figure):
                 body.append(_figure_html(block, numbers[block.name], folder, medium))
             else:
                 body.append(_markdown(block))
-        body.append("</section>")
+            if k == 0:
+                body.append("</div>")
+        body.append("</section>" if section.blocks else "</div></section>")
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
@@ -121,12 +124,12 @@ PRINT_STYLE = (
     "@page{size:A4;margin:12mm;@bottom-center{content:counter(page) ' / ' counter(pages);"
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
-    "h2,h3{break-after:avoid}"
+    "h2,h3{break-after:avoid}.keep{break-inside:avoid}"
     "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
 """Print layout (the PDF): A4, numbered pages, no table or figure cut, no heading left alone
-at the foot of a page."""
+at the foot of a page: a heading is kept on the page of the block it introduces."""
 
 
 def _markdown(text: str) -> str:
@@ -161,10 +164,14 @@ def png_size(path: Path) -> tuple[int, int]:
 
 
 def change(yours: float, other: float) -> str:
-    """``other`` relative to ``yours`` as a signed percentage, or a dash when undefined."""
+    """``other`` relative to ``yours`` as a signed percentage, or a dash when undefined.
+
+    Three significant digits at most, one decimal at most: ``+2230%``, ``-13.5%``, ``+0.4%``.
+    """
     if not (math.isfinite(yours) and math.isfinite(other)) or yours == 0:
         return "—"
-    return f"{other / yours - 1:+.1%}"
+    percent = round(100 * (other / yours - 1), 1)
+    return ("+" if percent >= 0 else "-") + significant(abs(percent)) + "%"
 
 
 def write_csv(path: Path, rows: Sequence[dict[str, Any]]) -> None:

@@ -91,7 +91,11 @@ def section(data: ReportData) -> Section:
                 "joint domains; the dashed line is the paper's claim (the paper's Fig 11)",
             ),
             table(
-                ["l1 ratio", "w_A peak l3 ratio, rectangular", "w_A peak l3 ratio, improved"],
+                [
+                    "l1 ratio",
+                    "w_A refined peak l3 ratio, rectangular",
+                    "w_A refined peak l3 ratio, improved",
+                ],
                 [
                     (f"{r1:.2f}", f"{a:.3f}", f"{b:.3f}")
                     for r1, a, b in zip(

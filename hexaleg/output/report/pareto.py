@@ -14,7 +14,10 @@ from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.ratios import proportions_text, ratio_text
+from hexaleg.study.metrics import METRICS
 from hexaleg.study.pareto import pareto_front
+from hexaleg.study.ranking import RANKED_METRICS
 
 
 @dataclass(frozen=True)
@@ -46,15 +49,14 @@ def section(data: ReportData) -> Section:
     """The Pareto front with payload capacity, ranked by the one rule."""
     front = data[ParetoRecord].front
     best = front.iloc[0]
+    l2_ratio = 1 - best["l1_ratio"] - best["l3_ratio"]
+    proportions = proportions_text(best["l1_ratio"], l2_ratio, best["l3_ratio"])
     recommended = data.number(RecommendationRecord)
     rows = [
         (
             f"{r['l1_ratio']:.2f}",
-            f"{r['l3_ratio']:.3f}",
-            f"{r['improved_area']:.4f}",
-            f"{r['average_manipulability']:.4f}",
-            f"{r['fb']:.4f}",
-            f"{r['walking_payload_capacity']:.1f}",
+            ratio_text(r["l3_ratio"]),
+            *(METRICS[name].cell(r[name]) for name in RANKED_METRICS),
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")
@@ -68,9 +70,9 @@ def section(data: ReportData) -> Section:
             "and every metric on it exact, so the front is read off it directly (no "
             "evolutionary search could be more exact). The front is ranked by the rule of "
             f"section {recommended} (each score relative to your design's 1); a design that "
-            "beats another in every metric also scores higher, so its first, l1 : l2 : l3 = "
-            f"{best['l1_ratio']:.2f} : {1 - best['l1_ratio'] - best['l3_ratio']:.3f} : "
-            f"{best['l3_ratio']:.3f}, is the grid's best point, which section {recommended} "
+            "beats another in every metric also scores higher, so its first, "
+            f"{proportions}, "
+            f"is the grid's best point, which section {recommended} "
             "refines between grid points into the one recommendation.",
             table(
                 [

@@ -15,9 +15,11 @@ from hexaleg.output.report.document import Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE
 from hexaleg.study.recommendation import BAND, Recommendation, grid_recommendation
+from hexaleg.study.rows import StudyRow
 
 
 @dataclass(frozen=True)
@@ -27,27 +29,30 @@ class RecommendationRecord:
     Attributes:
         recommendation: Recommended ratios, the band, and the scores behind them.
         leg_length: The design's leg length, at which the ratios are lengths [m].
+        recommended: The recommended design measured as the study measures its own (it is
+            marked on the study's figures).
 
     """
 
     recommendation: Recommendation
     leg_length: float
+    recommended: StudyRow
 
 
 def compute(data: ReportData) -> RecommendationRecord:
-    """Recommend ratios from area, w_A, FB and payload capacity on the grid of the study."""
+    """Recommend ratios from the ranked metrics on the grid of the study."""
     template = StanceGeometry.from_model(data.model, "all")
-    return RecommendationRecord(
-        grid_recommendation(
-            data.design,
-            data.model,
-            template,
-            data[ManipulabilityRecord].average_map,
-            data[StudyRecord].table,
-            data.options.decision,
-        ),
-        data.design.leg_length,
+    study = data[StudyRecord]
+    rec = grid_recommendation(
+        data.design,
+        data.model,
+        template,
+        data[ManipulabilityRecord].average_map,
+        study.table,
+        data.options.decision,
     )
+    theirs = data.design.with_ratios(rec.l1_ratio, rec.l3_ratio)
+    return RecommendationRecord(rec, data.design.leg_length, study.spec.row_of(theirs))
 
 
 def section(data: ReportData) -> Section:
@@ -57,41 +62,43 @@ def section(data: ReportData) -> Section:
     return Section(
         "Recommendation",
         (
-            f"Every design of the grid is ranked by one rule: {RANKING_RULE}. Where each "
-            "metric and the score peak, and the best score each coxa ratio reaches:",
+            f"Every design of the grid is ranked by one rule: {RANKING_RULE}. Among the legs "
+            "that walk, where each metric and the score peak (the kinematic metrics peak "
+            "at shorter tibias than walking allows: their own peaks over every leg are in "
+            f"sections {data.number(ManipulabilityRecord)} and {data.number(StudyRecord)}), "
+            "and the best score each coxa ratio reaches:",
             table(
                 [
                     "l1 ratio",
-                    "area peak l3",
-                    "w_A peak l3",
-                    "FB peak l3",
-                    "payload peak l3",
+                    "area peak l3, walking legs",
+                    "w_A peak l3, walking legs",
+                    "FB peak l3, walking legs",
+                    "walking payload peak l3",
                     "score peak l3",
                     "best score",
                 ],
                 [
                     (
                         f"{r['l1_ratio']:.2f}",
-                        *(f"{r[f'{name}_peak_l3_ratio']:.3f}" for name in RANKED_METRICS),
-                        f"{r['score_peak_l3_ratio']:.3f}",
+                        *(ratio_text(r[f"{name}_peak_l3_ratio"]) for name in RANKED_METRICS),
+                        ratio_text(r["score_peak_l3_ratio"]),
                         f"{r['best_score']:.4f}",
                     )
                     for r in rec.peaks.to_dict(orient="records")
                 ],
             ),
-            "Workspace, manipulability and flexibility grow as the coxa shrinks (Table 5, "
-            f"sections {data.number(ManipulabilityRecord)} and {data.number(StudyRecord)}); "
-            "payload capacity peaks where its column says, and the "
-            "score weighs all four alike. The recommendation takes the best score among the "
-            "allowed coxa ratios, its tibia ratio refined between grid points with every "
-            "metric computed exactly:",
-            f"**Recommended: l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
-            f"{rec.l3_ratio:.3f}** (score {rec.score:.4f} against your design's 1; for a "
+            "Workspace, manipulability and flexibility grow as the coxa shrinks (Table 5); "
+            "the walking payload capacity peaks where its column says, and the score weighs "
+            "all four alike. The recommendation takes the best score among the allowed coxa "
+            "ratios, its tibia ratio refined between grid points with every metric computed "
+            "exactly (so it differs from the best grid point of the Pareto front):",
+            f"**Recommended: {proportions_text(rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)}** "
+            f"(score {rec.score:.4f} against your design's 1; for a "
             f"{total:g} m leg: {rec.l1_ratio * total:.3f} m, {rec.l2_ratio * total:.3f} m, "
-            f"{rec.l3_ratio * total:.3f} m). Any tibia ratio in {rec.l3_band[0]:.3f}–"
-            f"{rec.l3_band[1]:.3f} keeps ≥ {BAND:.0%} of its score; choose within it by what "
-            "these metrics leave out (ground clearance, walking, mass), or give those as "
-            "requirements (`hexaleg decide`, `report --payload …`).",
+            f"{rec.l3_ratio * total:.3f} m). Any tibia ratio in {ratio_text(rec.l3_band[0])}–"
+            f"{ratio_text(rec.l3_band[1])} keeps ≥ {BAND:.0%} of its score and walks; choose "
+            "within it by what these metrics leave out (ground clearance, speed, mass), or "
+            "give those as requirements (`hexaleg decide`, `report --payload …`).",
         ),
     )
 

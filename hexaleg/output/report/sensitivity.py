@@ -68,7 +68,13 @@ def section(data: ReportData) -> Section:
             f"Axis-locked FB peak for {what}, {data.options.sensitivity_points} tibia ratios "
             "each. Each variant changes your design by the amount it names.",
             table(
-                ["variant", "l1 ratio", "peak l3 ratio", "peak FB", "designs that cannot stand"],
+                [
+                    "variant",
+                    "l1 ratio",
+                    f"peak l3 ratio ({data.options.sensitivity_points}-point grid)",
+                    "peak FB",
+                    "designs that cannot stand",
+                ],
                 [
                     (
                         r["variant"],

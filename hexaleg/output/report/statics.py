@@ -7,10 +7,12 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures import loads_figure, save, statics_study_figure
 from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.flexibility import FlexibilityRecord
+from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
@@ -43,28 +45,36 @@ def section(data: ReportData) -> Section:
     """What the design costs: torques against ratings, stability, slopes, payload."""
     loads = data[StaticsRecord].axis
     differ = slopes_differ(loads)
+    yours, design = data[StudyRecord].yours, data.design
+    leg = (loads.nominal.mass - design.body_mass) / len(design.legs)
     return Section(
         "Statics: what the design costs",
         (
-            f"The robot weighs {loads.nominal.weight:.0f} N ({loads.nominal.mass:.2f} kg). "
-            "Foot forces balance gravity with the least Σ|f|² (min-norm); joint torques are "
-            "Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over the stance legs, in N·m:",
+            f"The robot weighs {loads.nominal.weight:.0f} N ({loads.nominal.mass:.2f} kg: the "
+            f"body {design.body_mass:g} kg, each leg {leg:.2f} kg at "
+            f"{design.link_linear_density:g} kg/m). Foot forces balance gravity with the least "
+            "Σ|f|² (min-norm); joint torques are Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over "
+            "the stance legs, in N·m, beside each joint's ratings:",
             _torque_table(data),
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
-            f"Payload capacity at the centre of the body's top face: "
-            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}. "
+            f"Payload capacity at the centre of the body's top face, standing: "
+            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}; "
+            f"walking the default gait: **{float(yours['walking_payload_capacity']):.1f} kg**, "
+            f"limited by {yours['walking_payload_limited_by']}. "
             f"Steepest slope the robot stands on, body level with the ground (μ = "
             f"{loads.friction:g}):",
             _slope_table(loads, differ),
             Figure(
                 "loads",
-                "This design's largest joint torques against their ratings"
+                "This design's largest joint torques, standing and walking the default gait, "
+                "against their ratings"
                 + (", and the steepest slope by uphill heading" if differ else ""),
             ),
             Figure(
                 "study_statics",
-                "Every design of the sweep: largest hip and knee torque, and payload capacity "
-                "(log scale), against tibia ratio for each coxa ratio",
+                "Every design of the sweep: largest hip and knee torque standing, beside their "
+                "ratings, and the standing and walking payload capacity (log scale), against "
+                "tibia ratio for each coxa ratio; your design and the recommended one marked",
             ),
         ),
     )
@@ -73,17 +83,22 @@ def section(data: ReportData) -> Section:
 def _torque_table(data: ReportData) -> str:
     record = data[StaticsRecord]
     nominal = record.axis.nominal.peak_torques()
+    design = data.design
     rows = [
         (
             joint,
             f"{rated:g}",
+            f"{speed:g}",
             f"{nominal[joint]:.1f}",
             f"{record.axis.peak_torques[joint]:.1f}",
             f"{record.free.peak_torques[joint]:.1f}",
         )
-        for joint, rated in zip(nominal, data.design.rated_torques, strict=True)
+        for joint, rated, speed in zip(
+            nominal, design.rated_torques, design.rated_speeds, strict=True
+        )
     ]
-    header = ["joint", "rated", "nominal stance", "over the axis-locked extremes"]
+    header = ["joint", "rated torque", "rated speed [rad/s]", "nominal stance",
+              "over the axis-locked extremes"]  # fmt: skip
     return table([*header, "over the free-coupled extremes"], rows)
 
 
@@ -113,11 +128,14 @@ def _slope_table(loads: LoadsAnalysis, differ: bool) -> str:
 def write_files(data: ReportData, out: Path) -> None:
     """The study's torques and payload against tibia ratio, and this design's loads."""
     save(
-        statics_study_figure(data[StudyRecord].table),
+        statics_study_figure(data[StudyRecord].table, rated_torques(data), study_marks(data)),
         out / "study_statics.png",
         svg=data.options.svg,
     )
-    save(loads_figure(data[StaticsRecord].axis), out / "loads.png", svg=data.options.svg)
+    yours = data[StudyRecord].yours
+    walking = {joint: float(yours[f"gait_peak_{joint}_torque"]) for joint in LEG_JOINTS}
+    figure = loads_figure(data[StaticsRecord].axis, walking)
+    save(figure, out / "loads.png", svg=data.options.svg)
 
 
 def to_json(record: StaticsRecord) -> dict[str, Any]:

@@ -11,9 +11,11 @@ import pandas as pd
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.output.report.document import Figure, Section, table
+from hexaleg.output.report.marks import study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.study.executors import local_pool
+from hexaleg.study.rows import StudyRow
 from hexaleg.study.sweep import (
     StudySpec,
     peak_table,
@@ -34,11 +36,14 @@ class StudyRecord:
     Attributes:
         spec: What was swept.
         table: One row per design: ranges, FB, torques, payload capacity, errors.
+        yours: Your design measured as the study measures its own (it is marked on the
+            study's figures).
 
     """
 
     spec: StudySpec
     table: pd.DataFrame
+    yours: StudyRow
 
 
 def compute(data: ReportData) -> StudyRecord:
@@ -52,7 +57,8 @@ def compute(data: ReportData) -> StudyRecord:
         collisions=options.collisions,
     )
     with local_pool(options.workers) as pool:
-        return StudyRecord(spec, study_table(spec, sweep(spec, pool)))
+        table = study_table(spec, sweep(spec, pool))
+    return StudyRecord(spec, table, spec.row_of(design))
 
 
 def section(data: ReportData) -> Section:
@@ -75,11 +81,12 @@ def section(data: ReportData) -> Section:
             ),
             Figure(
                 "flexibility_fb",
-                "Body flexibility FB against tibia ratio, for each coxa ratio, peaks marked; the "
-                "band is the paper's claim (the paper's Fig 15)",
+                "Body flexibility FB against tibia ratio, for each coxa ratio, its grid peaks "
+                "marked and its flat top (within 1 % of the peak) thickened; the band is the "
+                "paper's claim (the paper's Fig 15); your design and the recommended one marked",
             ),
             table(
-                ["l1 ratio", "FB peak l3 ratio", "peak FB"],
+                ["l1 ratio", f"FB peak l3 ratio ({data.options.l3_points}-point grid)", "peak FB"],
                 [
                     (f"{p['l1_ratio']:.2f}", f"{p['peak_l3_ratio']:.3f}", f"{p['peak_fb']:.4f}")
                     for p in peaks.to_dict(orient="records")
@@ -99,7 +106,7 @@ def write_files(data: ReportData, out: Path) -> None:
     record = data[StudyRecord]
     write_journal(out / FOLDER, record.spec, record.table)
     write_table(record.spec, record.table, out / FOLDER)
-    write_study_figures(record.table, out, svg=data.options.svg)
+    write_study_figures(record.table, out, svg=data.options.svg, marks=study_marks(data))
 
 
 def to_json(record: StudyRecord) -> dict[str, Any]:

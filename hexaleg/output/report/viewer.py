@@ -5,13 +5,17 @@ from __future__ import annotations
 from dataclasses import dataclass
 from pathlib import Path
 
-from hexaleg.output.report.document import Section
+from hexaleg.output.figures.canvas import save
+from hexaleg.output.figures.stance import stance_figure
+from hexaleg.output.report.document import Figure, Section
 from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.statics import StaticsRecord
 from hexaleg.output.viewer.scene import write_static_html
 
 PAGE = "viewer.html"
+STILL = "viewer_still"
+"""The still of the 3-D view (its PNG and SVG), for print."""
 
 
 @dataclass(frozen=True)
@@ -43,13 +47,19 @@ def section(data: ReportData) -> Section:
             "joint stops the body is red). Each leg link is coloured by its joint's |τ| / rated "
             "torque at the pose shown; the colour scale stands beside the scene. Open Controls "
             "→ Animations → play to see the body go out to each extreme and back. `hexaleg "
-            "view` serves the same scene live on 127.0.0.1.",
+            "view` serves the same scene live on 127.0.0.1. For print, a still of it:",
+            Figure(
+                STILL,
+                f"The nominal stance, as {PAGE} shows it in 3-D (open that page for the "
+                "extremes, the workspace and the torque colours)",
+            ),
         ),
     )
 
 
 def write_files(data: ReportData, out: Path) -> None:
-    """The static viewer page (torque colours from the statics)."""
+    """The static viewer page (torque colours from the statics), and its still for print."""
+    save(stance_figure(data.model), out / f"{STILL}.png", svg=data.options.svg)
     write_static_html(
         data.model,
         data[FlexibilityRecord].axis,

@@ -15,6 +15,7 @@ from typing import Any
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.document import Figure, Section, table
+from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.study.rows import StudyRow
@@ -77,8 +78,10 @@ def section(data: ReportData) -> Section:
             _claim(comparison),
             Figure(
                 FIGURE,
-                "Walking the default gait: peak joint torque and cost of transport against the "
-                "tibia ratio, for each coxa ratio (gaps: designs that cannot walk it)",
+                "Walking the default gait: peak hip and knee torque beside their ratings, "
+                "mechanical cost of transport and walking payload capacity against the tibia "
+                "ratio, for each coxa ratio (gaps: designs that cannot walk it unloaded); your "
+                "design and the recommended one marked",
             ),
         ),
     )
@@ -141,7 +144,7 @@ def _why(comparison: WalkingComparison) -> str:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The study's peak torque and cost of transport against tibia ratio."""
-    figure = walking_study_figure(data[StudyRecord].table)
+    figure = walking_study_figure(data[StudyRecord].table, rated_torques(data), study_marks(data))
     save(figure, out / f"{FIGURE}.png", svg=data.options.svg)
 
 

@@ -1,0 +1,25 @@
+"""The designs every study figure of the report marks: yours and the recommended one."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.output.figures.marks import Mark, your_and_recommended
+
+if TYPE_CHECKING:
+    from hexaleg.output.report.part import ReportData
+
+
+def study_marks(data: ReportData) -> list[Mark]:
+    """Your design and the recommended one, each as the study measures its own designs."""
+    from hexaleg.output.report.recommendation import RecommendationRecord
+    from hexaleg.output.report.study import StudyRecord
+
+    yours = data[StudyRecord].yours.to_dict()
+    return your_and_recommended(yours, data[RecommendationRecord].recommended.to_dict())
+
+
+def rated_torques(data: ReportData) -> dict[str, float]:
+    """The design's rated torque per joint type [N·m]."""
+    return dict(zip(LEG_JOINTS, data.design.rated_torques, strict=True))
