@@ -23,6 +23,7 @@ from hexaleg._folders import (
     lock_folder,
     recover_interrupted_swap,
     replace_folder,
+    write_marker,
 )
 from hexaleg._io import current_umask
 from hexaleg.exceptions import HexalegError
@@ -46,7 +47,7 @@ def _write_report(target: Path, files: dict[str, str]) -> None:
 
 
 def test_report_never_deletes_a_folder_hexaleg_did_not_write(tmp_path, capsys, monkeypatch):
-    """Issue 21, item 1: the user's notes.txt and src/ beside a report.md of their own."""
+    """The user's notes.txt and src/ beside a report.md of their own."""
     from hexaleg.output import report
 
     docs = tmp_path / "docs"
@@ -150,12 +151,13 @@ def test_the_current_folder_its_parents_and_nothing_are_refused(tmp_path, monkey
 
 
 def test_an_interrupted_swap_puts_the_old_folder_back(tmp_path):
-    """Issue 21, item 5: killed between parking the old folder and renaming the new."""
+    """Killed between parking the old folder and renaming the new."""
     dead = _dead_pid()
     target = tmp_path / "r"
     parked = tmp_path / f".r.parked-{dead}.abc"
     parked.mkdir()
     (parked / "report.md").write_text("the previous report")
+    write_marker(parked, "report", ["report.md"])  # a parked folder is a report hexaleg wrote
     staging = tmp_path / f".r.staging-{dead}.def"
     staging.mkdir()
     live = tmp_path / f".r.staging-{os.getpid()}.ghi"

@@ -4,11 +4,9 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
-from hexaleg._io import check_output_folder
 from hexaleg._typing import Distribution, choices
 from hexaleg.cli.options import (
     add_design_options,
@@ -17,7 +15,7 @@ from hexaleg.cli.options import (
     add_stance_option,
     design_from_args,
 )
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, PAYLOAD_REACH, Payload
 
@@ -89,14 +87,13 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.statics.loads import analyze_loads
 
     design = design_from_args(args)
-    if args.plot is not None:
-        check_output_folder(args.plot)  # before computing
+    check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
     analysis = analyze_loads(
         design, payload, args.friction, args.stance, args.distribution, args.mode
     )
     if args.plot is not None:
-        report_files([save(loads_figure(analysis), Path(args.plot) / "loads.png")])
+        write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
         print_json(analysis.to_dict())
         return 0

@@ -15,7 +15,7 @@ import os
 from importlib import resources
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
@@ -70,7 +70,7 @@ def render_leg(design: HexapodDesign, validate: bool = True) -> str:
 
 def write_urdf(design: HexapodDesign, path: str | os.PathLike[str]) -> Path:
     """Render the hexapod URDF and write it to ``path`` atomically."""
-    return atomic_write_text(path, render_hexapod(design))
+    return write_text(path, render_hexapod(design))
 
 
 def validate_urdf(xml: str) -> None:

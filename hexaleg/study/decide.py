@@ -250,7 +250,7 @@ def decide(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
     )
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
-    with _executor(executor, workers) as pool:
+    with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
     best = CheckedDesign.of(space.design(outcome.x), goal)

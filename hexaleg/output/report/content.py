@@ -11,7 +11,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg.output.report.document import report_html, report_json, report_markdown, sections
 from hexaleg.output.report.part import Part, ReportData, compute_order
 from hexaleg.output.report.pdf import write_pdf
@@ -33,9 +33,9 @@ def write_content(data: ReportData, out: Path, parts: Sequence[Part[Any]] | None
     for part in parts:
         part.files(data, out)
     report = sections(data, parts)
-    atomic_write_text(out / REPORT_MD, report_markdown(report, out))
-    atomic_write_text(out / REPORT_HTML, report_html(report, out))
+    write_text(out / REPORT_MD, report_markdown(report, out))
+    write_text(out / REPORT_HTML, report_html(report, out))
     numbers = report_json(data, compute_order(parts))
-    atomic_write_text(out / REPORT_JSON, json.dumps(numbers, indent=1, allow_nan=True))
+    write_text(out / REPORT_JSON, json.dumps(numbers, indent=1, allow_nan=True))
     if data.options.pdf:
         write_pdf(report, out)
