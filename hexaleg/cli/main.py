@@ -15,6 +15,7 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NamedTuple, NoReturn
 
+from hexaleg._compiled import use_private_matplotlib_cache
 from hexaleg._io import os_reason
 from hexaleg._version import __version__
 from hexaleg.exceptions import HexalegError
@@ -140,6 +141,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     command = _chosen_command(argv)
     args = build_parser(command or "").parse_args(argv)
+    use_private_matplotlib_cache()  # before any command imports Matplotlib
     try:
         status = int(args.run(args))
         _flush_stdout()
