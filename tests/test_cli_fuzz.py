@@ -130,7 +130,7 @@ def quick_backends():
             HexapodDesign(),
             Requirements(ground_clearance=0.3),
             Objective("area"),
-            settings=SearchSettings(evaluations=48),
+            settings=SearchSettings(evaluations=60),
             executor=here,
             progress=False,
         )

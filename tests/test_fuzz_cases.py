@@ -10,29 +10,42 @@ command that waits on a FIFO fails the test instead of hanging it.
 from __future__ import annotations
 
 import contextlib
+import errno
 import io
 import json
+import math
 import os
 import subprocess
 import sys
 import threading
 from collections.abc import Callable
+from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import pytest
 from conftest import run_cli
 
+import hexaleg
 from hexaleg._folders import MARKER, replace_folder
 from hexaleg._io import write_text
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.study import optimize
+from hexaleg.study import progress as progress_module
+from hexaleg.study.optimize import SearchSettings
+from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_journal import Journal
+from hexaleg.study.sensitivity import sensitivity_table
 
 FIFO = object()
 """A file's content in :attr:`Case.files` that makes it a FIFO instead."""
 HEADER = {"a": 1}
 """The fingerprint of the decide journals the API rows open."""
 DECIDE_HEADER = json.dumps({"decide": HEADER}) + "\n"
+STANCE = {"theta2": (-math.pi / 6, math.pi / 6), "theta3": (-3 * math.pi / 4, -math.pi / 12)}
+"""The paper's stance limits of the hip and knee [rad] (the ADAMS study)."""
+MISSPELLED = "l1 = 0.2\n[requirements]\npaylod = 3\n"
 FIGURES = {"up/gait_feet.png": "the user's own figure", "up/notes.txt": "notes"}
 PLOT_COMMANDS = [
     ["gait", "--samples", "12"],
@@ -101,6 +114,8 @@ CASES = [
     Case("study -o -", {}, ["study", "-o", "-"], "- is standard output, which cannot hold"),
     Case("--plot -", {}, ["workspace", "--plot", "-"], "- is standard output, which cannot"),
     Case("--journal -", {}, ["decide", "--journal", "-"], "it must be a file"),
+    *(Case(f"{' '.join(argv)}: '-' is standard output, no file named '-'", {}, argv, "")
+      for argv in (["gait", "--samples", "12", "--csv", "-"], ["urdf", "-o", "-"])),
     # hangs
     Case("a FIFO as --journal, --resume", {"j.jsonl": FIFO},
          ["decide", "--journal", "j.jsonl", "--resume"], "j.jsonl is not a regular file"),
@@ -132,6 +147,88 @@ CASES = [
          _decide_journal("new/deeper/j.jsonl", resume=False), "",
          {"new/deeper/j.jsonl": DECIDE_HEADER}),
     Case('--journal ""', {}, ["decide", "--journal", ""], "--journal is empty: name a file"),
+    # decide: bounds, budgets and the options the user typed
+    *(Case(f"decide --free {free}", {}, ["decide", "--free", free],
+           f"--free {free.split('=')[0]} = '{free.split('=')[1]}' is not valid: bounds within "
+           f"[{STANCE[free[:6]][0]:.4g}, {STANCE[free[:6]][1]:.4g}] [rad] (the design's stance")
+      for free in ("theta3=-0.2:-0.1", "theta3=0.5:1", "theta2=0.6:1", "theta2=-10:10")),
+    Case("decide --free l1 beyond --leg-length", {},
+         ["decide", "--free", "l1=0.5:0.9", "--leg-length", "0.3"],
+         "--free l1 = '0.5:0.9' is not valid: bounds within [0.001, 0.3] [m] (l1 + l2 + l3 at"),
+    Case("decide --free l1 beyond the design's leg length", {}, ["decide", "--free", "l1=50:100"],
+         "--free l1 = '50:100' is not valid: bounds within [0.001, 1] [m]"),
+    Case("decide --free l1 given twice", {},
+         ["decide", "--free", "l1=0.1:0.2", "--free", "l1=0.1:0.3"],
+         "--free = 'l1=0.1:0.3' is not valid: l1 is given twice"),
+    Case("decide --free body_height=50:100: no design can stand", {},
+         ["decide", "--free", "body_height=50:100", "--evaluations", "80", "--workers", "1"],
+         "no design within the search bounds (l1 0.02:1, l2 0.02:1, l3 0.02:1, body_height "
+         "50:100) can be measured: nominal_angles"),
+    Case("decide --evaluations 48 with four free variables", {},
+         ["decide", "--free", "body_width=0.4:0.8", "--evaluations", "48"],
+         "--evaluations = 48 is not valid: whole generations of 40 designs"),
+    Case("decide --evaluations 48 with three free lengths", {}, ["decide", "--evaluations", "48"],
+         "--evaluations = 48 is not valid: whole generations of 30 designs (10 a free variable, "
+         "at least 24) for 3 free variables, at least two, at most 100000: e.g. 60 or 90"),
+    Case("decide --evaluations 70 with the posture free", {},
+         ["decide", "--free-posture", "--evaluations", "70"],
+         "whole generations of 50 designs (10 a free variable, at least 24) for 5 free"),
+    Case("decide --evaluations 1000000", {}, ["decide", "--evaluations", "1000000"],
+         "argument --evaluations: 1000000 is not valid: must be in 48..100000"),
+    Case("decide --leg-length 200", {}, ["decide", "--leg-length", "200"],
+         "--leg-length = 200 is not valid: must lie in [0.003, 100] [m]"),
+    # friction, declared once
+    *(Case(f"{command} --friction {value}", {}, [command, "--friction", value, *more],
+           f"--friction = {shown} is not valid: {allowed}")
+      for command, more in (("gait", ["--csv", "g.csv"]), ("loads", ["--plot", "p"]))
+      for value, shown, allowed in (
+          ("nan", "nan", "must be finite"), ("inf", "inf", "must be finite"),
+          ("-1", "-1", "must lie in [0.001, 10] [-]"), ("0", "0", "must lie in [0.001, 10]"),
+          ("1e308", "1e+308", "must lie in [0.001, 10] [-]"))),
+    # a design file read the same way by every command
+    *(Case(f"{argv[0]} --design with a misspelled requirement", {"d.toml": MISSPELLED},
+           [*argv, "--design", "d.toml"],
+           "d.toml, line 3: requirements.paylod = 3 is not valid: unknown requirement; did you "
+           "mean 'payload'?")
+      for argv in (["gait", "--csv", "g.csv"], ["urdf", "-o", "r.urdf"], ["workspace", "--plot",
+                   "p"], ["decide"], ["design", "show"])),
+    Case("urdf --design with a requirement as text", {"d.toml": "[requirements]\npayload = 'x'\n"},
+         ["urdf", "--design", "d.toml", "-o", "r.urdf"],
+         "d.toml, line 2: requirements.payload = 'x' is not valid: must be a real number"),
+    # the API: hexaleg's own error, naming the argument
+    *(Case(f"{name}(None)", {}, lambda name=name: getattr(hexaleg, name)(None),
+           "design = None is not valid: must be a HexapodDesign")
+      for name in ("analyze_loads", "analyze_gait", "decide")),
+    *(Case(f"analyze_gait({name}={value})", {},
+           lambda name=name, value=value: hexaleg.analyze_gait(HexapodDesign(), **{name: value}),
+           f"{name} = {value:g} is not valid: {allowed}")
+      for name, value, allowed in (
+          ("gravity", 0.0, "must lie in [0.01, 1000] [m/s²]"),
+          ("gravity", math.nan, "must be finite"), ("gravity", -9.81, "must lie in [0.01, 1000]"),
+          ("friction", math.nan, "must be finite"),
+          ("friction", 0.0, "must lie in [0.001, 10] [-]"))),
+    Case("analyze_loads(friction=nan)", {},
+         lambda: hexaleg.analyze_loads(HexapodDesign(), friction=math.nan),
+         "friction = nan is not valid: must be finite"),
+    Case("Requirements.from_table({1: 2})", {}, lambda: Requirements.from_table({1: 2}),
+         "requirements.1 = 2 is not valid: keys must be requirement names (text)"),
+    Case("decide(resume=True) without a journal", {},
+         lambda: hexaleg.decide(HexapodDesign(), resume=True),
+         "resume = True is not valid: continues a journal: give journal=FILE"),
+]  # fmt: skip
+
+SIMULATE_CASES = [
+    Case("simulate --l1 100 --l2 100 --l3 100", {},
+         ["simulate", "--l1", "100", "--l2", "100", "--l3", "100", "--html", "s.html"],
+         "l1, l2, l3 = (100, 100, 100) is not valid: too large to simulate"),
+    Case("simulate --cycles 200 --period 1000", {},
+         ["simulate", "--cycles", "200", "--period", "1000", "--html", "s.html"],
+         "--cycles = 200 is not valid: cycles × period (1000 s, set by period or speed) must be "
+         "at most 3600 s simulated: at most 3 at this period"),
+    Case("simulate --friction 0", {}, ["simulate", "--friction", "0", "--html", "s.html"],
+         "--friction = 0 is not valid: must lie in [0.001, 10] [-]"),
+    Case("simulate_gait(None)", {}, lambda: hexaleg.simulate_gait(None),
+         "design = None is not valid: must be a HexapodDesign"),
 ]  # fmt: skip
 
 
@@ -195,6 +292,17 @@ def _run(case: Case) -> tuple[int, str]:
 
 @pytest.mark.parametrize("case", CASES, ids=[case.name for case in CASES])
 def test_a_fuzz_case_loses_nothing_and_ends_in_one_line(tmp_path, monkeypatch, case):
+    _check(case, tmp_path, monkeypatch)
+
+
+@pytest.mark.parametrize("case", SIMULATE_CASES, ids=[case.name for case in SIMULATE_CASES])
+def test_a_simulate_fuzz_case_ends_in_one_line(tmp_path, monkeypatch, case):
+    pytest.importorskip("mujoco")
+    _check(case, tmp_path, monkeypatch)
+
+
+def _check(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    """Run ``case`` in ``tmp_path``: its one-line error and nothing changed, or what it made."""
     monkeypatch.chdir(tmp_path)
     _lay_out(tmp_path, case.files)
     before = _snapshot(tmp_path)
@@ -245,3 +353,59 @@ def test_a_second_decision_on_a_journal_in_use_is_refused_naming_the_first(tmp_p
     assert journal.read_bytes() == before
     with Journal(journal, HEADER, resume=True):  # free once its holder is gone
         pass
+
+
+@pytest.mark.parametrize(
+    ("code", "reason"), [(errno.ENOSPC, "No space left on device"), (errno.EROFS, "Read-only")]
+)
+def test_a_refused_write_names_the_users_target_and_the_systems_reason(
+    tmp_path, monkeypatch, code, reason
+):
+    def refuse(fd: int) -> None:
+        raise OSError(code, os.strerror(code))
+
+    monkeypatch.setattr(os, "fsync", refuse)  # the data reaches no disk
+    (tmp_path / "kept").mkdir()
+    before = _snapshot(tmp_path)
+    with pytest.raises(HexalegError) as file_error:
+        write_text(tmp_path / "kept" / "out.txt", "text")
+    with pytest.raises(HexalegError) as folder_error:
+        _report(str(tmp_path / "conc"))
+    monkeypatch.undo()
+    assert str(file_error.value) == f"cannot write {tmp_path}/kept/out.txt: {os.strerror(code)}"
+    assert str(folder_error.value) == f"cannot write report to {tmp_path}/conc: {os.strerror(code)}"
+    assert reason in os.strerror(code)
+    assert _snapshot(tmp_path) == before  # no temporary file, no staging folder left
+
+
+def test_a_search_shows_its_progress_on_a_pipe_and_evaluates_what_is_asked(monkeypatch, capsys):
+    monkeypatch.setattr(progress_module, "INTERVAL", 0.0)  # a line at every update
+    asked: list[int] = []
+    evaluate = optimize._Evaluator.__call__
+
+    def counted(self, points):
+        asked.append(len(points))
+        return evaluate(self, points)
+
+    monkeypatch.setattr(optimize._Evaluator, "__call__", counted)
+    for free_posture, budget in ((False, 90), (True, 100)):
+        asked.clear()
+        with ThreadPoolExecutor(1) as here:
+            result = hexaleg.decide(HexapodDesign(), free_posture=free_posture, executor=here,
+                                    settings=SearchSettings(evaluations=budget))  # fmt: skip
+        assert result.feasible and result.evaluations == budget
+        assert sum(asked) == budget  # the designs the algorithm asked for, cached or not
+        lines = capsys.readouterr().err.splitlines()
+        assert len(lines) >= 2 and all(line.startswith("hexaleg: ") for line in lines)
+        assert lines[-1].startswith(f"hexaleg: {budget}/{budget} designs (100.0 %), ")
+
+
+def test_the_sensitivity_after_a_study_shows_its_own_progress_on_a_pipe(monkeypatch, capsys):
+    monkeypatch.setattr(progress_module, "INTERVAL", 0.0)
+    variants = [("narrow", {"body_width": 0.5}), ("wide", {"body_width": 0.7})]
+    table = sensitivity_table((0.1,), (0.3, 0.4, 0.5), variants=variants)
+    assert list(table["variant"]) == ["narrow", "wide"]
+    lines = capsys.readouterr().err.splitlines()
+    assert "hexaleg: 0/6 designs (0.0 %)" in lines[0] and "now: sensitivity, narrow" in lines[0]
+    assert any("3/6 designs" in line and "now: sensitivity, wide" in line for line in lines)
+    assert lines[-1].startswith("hexaleg: 6/6 designs (100.0 %)")

@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.forces import DEFAULT_FRICTION, PAYLOAD_REACH, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
     from hexaleg.statics.loads import LoadsAnalysis
@@ -57,7 +57,10 @@ def add_payload_options(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=DEFAULT_FRICTION,
         metavar="MU",
-        help=f"friction coefficient between feet and ground [-] (default {DEFAULT_FRICTION})",
+        help="friction coefficient between feet and ground, in [{:g}, {:g}] [-] ".format(
+            *FRICTION_RANGE
+        )
+        + f"(default {DEFAULT_FRICTION})",
     )
     parser.add_argument(
         "--distribution",

@@ -156,13 +156,12 @@ DESIGN_FLAGS: tuple[str, ...] = tuple(
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     """Build the design the shared options describe (validated).
 
-    A ``--design`` file gives the starting design (it must be valid on its own); the
-    options given beside it override its values.
+    A ``--design`` file gives the starting design (it must be valid on its own, its
+    ``[requirements]`` table too, whatever the command); the options given beside it
+    override its values.
     """
-    from hexaleg.design_file import load_design  # reads TOML only when asked
-
     path = getattr(args, "design", None)
-    base = HexapodDesign() if path is None else load_design(path)
+    base = HexapodDesign() if path is None else _design_file(path)
     changes: dict[str, Any] = {
         name: _value(getattr(args, name))
         for name in DESIGN_FLAGS
@@ -183,6 +182,14 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
         if getattr(args, name, None) is not None:
             changes[name] = getattr(args, name)
     return base.replace(**changes) if changes else base
+
+
+def _design_file(path: str) -> HexapodDesign:
+    """The design of the file at ``path``, read as every command reads it."""
+    from hexaleg.design_file import load_design_file  # reads TOML only when asked
+    from hexaleg.study.requirements import Requirements
+
+    return load_design_file(path, Requirements.from_table)[0]
 
 
 def _value(given: Any) -> Any:

@@ -15,6 +15,7 @@ import os
 from importlib import resources
 from pathlib import Path
 
+from hexaleg._checks import require_instance
 from hexaleg._io import write_text
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
@@ -96,6 +97,7 @@ def validate_urdf(xml: str) -> None:
 
 def _common_arguments(design: HexapodDesign) -> dict[str, str]:
     """The leg's arguments, the same for every leg: lengths, limits, ratings, inertials."""
+    require_instance("design", design, HexapodDesign, "a HexapodDesign")
     limits = design.joint_range
     numbers = {
         "l1": design.l1,

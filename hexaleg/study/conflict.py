@@ -132,7 +132,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     kind = KINDS[name]
     objective = Objective(kind.metric, "maximize" if kind.sense == "at least" else "minimize")
     if name == "leg_length":
-        longest = LEG_RELAXATION * required
+        longest = min(LEG_RELAXATION * required, KINDS[name].bounds[1])
         relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)
         widened = space
         for segment in SEGMENTS:

@@ -100,7 +100,7 @@ KINDS: dict[str, RequirementKind] = {
                         "axis-locked body flexibility FB (eq 29)",
                         "geometry: twelve extremes, each stopped by its own constraint"),
         RequirementKind("leg_length", "leg_length", "at most", "m",
-                        (3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1]), "l1 + l2 + l3",
+                        (3 * SEGMENT_RANGE[0], SEGMENT_RANGE[1]), "l1 + l2 + l3",
                         "geometry: the design's l1 + l2 + l3"),
         RequirementKind("min_coxa", "coxa", "at least", "m", SEGMENT_RANGE, "coxa length l1",
                         "geometry: the design's coxa length l1"),
@@ -193,6 +193,8 @@ class Requirements:
         values: dict[str, Any] = {}
         for key, raw in table.items():
             field = f"{source}.{key}"
+            if not isinstance(key, str):
+                raise ParameterError(field, raw, "keys must be requirement names (text)")
             if key not in known:
                 close = difflib.get_close_matches(key, known, n=1)
                 hint = f"did you mean {close[0]!r}?" if close else "known: " + ", ".join(known)
