@@ -409,3 +409,11 @@ def test_the_sensitivity_after_a_study_shows_its_own_progress_on_a_pipe(monkeypa
     assert "hexaleg: 0/6 designs (0.0 %)" in lines[0] and "now: sensitivity, narrow" in lines[0]
     assert any("3/6 designs" in line and "now: sensitivity, wide" in line for line in lines)
     assert lines[-1].startswith("hexaleg: 6/6 designs (100.0 %)")
+
+
+@pytest.mark.parametrize("command", ["loads", "gait", "simulate"])
+def test_every_command_states_the_one_friction_range(command, capsys):
+    assert run_cli([command, "--help"]) == 0
+    text = " ".join(capsys.readouterr().out.split())
+    assert text.count("friction coefficient between feet and ground, in [0.001, 10] [-]") == 1
+    assert "(0, 10]" not in text and "[0, 10]" not in text

@@ -29,7 +29,7 @@ from hexaleg.statics.forces import DEFAULT_FRICTION
 from hexaleg.study.evaluation import Evaluation, Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
 from hexaleg.study.requirements import KINDS, Requirements
-from hexaleg.study.search_space import SEGMENT_FLOOR, SearchSpace
+from hexaleg.study.search_space import SearchSpace, segment_floor
 
 LEG_RELAXATION = 2.0
 """How much longer than required a relaxed leg may grow [-]."""
@@ -139,7 +139,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
             widened = widened.widened(segment, upper=longest)
     elif name == "min_coxa":
         relaxed_goal = Goal(requirements.replace(min_coxa=None), objective)
-        floor = SEGMENT_FLOOR * float(requirements.leg_length or space.upper.max())
+        floor = segment_floor(float(requirements.leg_length or space.upper.max()))
         widened = space.widened("l1", lower=floor)
     else:
         relaxed = (name, COUPLED[name]) if COUPLED.get(name) in requirements.given else (name,)

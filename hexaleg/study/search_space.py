@@ -232,6 +232,15 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     return tuple(reached)
 
 
+def segment_floor(leg_length: float) -> float:
+    """A segment's default lower bound [m] for a leg of ``leg_length`` [m].
+
+    :data:`SEGMENT_FLOOR` of the leg length, or the shortest segment a design may have if
+    that is longer.
+    """
+    return max(SEGMENT_FLOOR * leg_length, SEGMENT_RANGE[0])
+
+
 def search_space(
     base: HexapodDesign,
     leg_length: float,
@@ -249,7 +258,7 @@ def search_space(
         free: More free variables, or other bounds for the default ones.
 
     """
-    floor = max(SEGMENT_FLOOR * leg_length, SEGMENT_RANGE[0])
+    floor = segment_floor(leg_length)
     chosen: dict[str, FreeVariable] = {
         name: FreeVariable(name, floor, leg_length) for name in SEGMENTS
     }
