@@ -33,9 +33,9 @@ WORKLOADS = {
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
     "gait": lambda quick, r: bench_gait(4 if quick else 80, r),
     "electrical": lambda quick, r: bench_electrical(r),
-    "decide": lambda quick, r: bench_decide(48 if quick else None),
+    "decide": lambda quick, r: bench_decide(60 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
-    "decide_walking": lambda quick, r: bench_decide_walking(48 if quick else None),
+    "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
 }
 
 

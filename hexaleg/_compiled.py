@@ -5,7 +5,10 @@
 - a user whose home and site-packages are not writable (a container, a CI runner,
   ``runuser -u nobody``) still runs hexaleg: the cache falls back to a private folder
   in the temporary directory, or is switched off when nothing is writable (every
-  process then compiles anew, a few seconds);
+  process then compiles anew, a few seconds). Matplotlib's cache goes beside it
+  (``MPLCONFIGDIR``, unless the user set it) when Matplotlib's own folders are not
+  writable (:func:`use_private_matplotlib_cache`, called by the command line before
+  any command runs), so that figures come without warnings about them;
 - an edit to any module holding compiled code makes a fresh cache. Numba checks only
   the source file of the function it loads, so a kernel inlined into a caller in another
   module would otherwise be loaded stale; the folder's name carries a hash of every
@@ -24,8 +27,6 @@ from collections.abc import Callable
 from functools import cache
 from pathlib import Path
 from typing import Any, TypeVar, cast
-
-import numba
 
 F = TypeVar("F", bound=Callable[..., Any])
 
@@ -49,6 +50,8 @@ def compiled(function: F) -> F:
     )
     if not listed:
         raise RuntimeError(f"{source} defines compiled code but is not in COMPILED_MODULES")
+    import numba
+
     directory = cache_directory()
     if directory is None:
         return cast(F, numba.njit(cache=False)(function))
@@ -69,6 +72,38 @@ def cache_directory() -> Path | None:
         if _private_and_writable(base) and _private_and_writable(base / name):
             return base / name
     return None
+
+
+def use_private_matplotlib_cache() -> None:
+    """Point Matplotlib at ``matplotlib`` beside the compiled code's cache, if need be.
+
+    Sets ``MPLCONFIGDIR`` when Matplotlib's own folders are not writable (else it warns on
+    every import and caches nothing), only before Matplotlib is imported (it reads the
+    variable then), and never over a value the user set.
+    """
+    if os.environ.get("MPLCONFIGDIR") or "matplotlib" in sys.modules:
+        return
+    try:
+        home: Path | None = Path.home()
+    except (RuntimeError, KeyError):  # no home at all
+        home = None
+    bases = [
+        os.environ.get("XDG_CONFIG_HOME") or (home and home / ".config"),
+        os.environ.get("XDG_CACHE_HOME") or (home and home / ".cache"),
+    ]
+    if all(base and _writable(Path(base) / "matplotlib") for base in bases):
+        return
+    for base in cache_candidates():
+        if _private_and_writable(base) and _private_and_writable(base / "matplotlib"):
+            os.environ["MPLCONFIGDIR"] = str(base / "matplotlib")
+            return
+
+
+def _writable(directory: Path) -> bool:
+    """Whether ``directory`` is, or could be made, a folder this process writes in."""
+    while not directory.exists() and directory != directory.parent:
+        directory = directory.parent
+    return directory.is_dir() and os.access(directory, os.W_OK | os.X_OK)
 
 
 def cache_candidates() -> list[Path]:

@@ -1,19 +1,24 @@
-"""Folders hexaleg writes: replaced whole only when hexaleg wrote them, locked while in use.
+"""Folders hexaleg writes, and the files it reads back: never another's, held while in use.
 
 Every folder hexaleg creates holds a marker, :data:`MARKER`: a small JSON file saying
-which kind of output it is (``report``, ``study``), in which format, and — for a folder
-that is replaced whole — every file hexaleg put there. hexaleg replaces a folder only
-when the marker says it wrote it and the folder holds nothing else: a file the user
-added, or a folder hexaleg never wrote, is refused (never deleted).
+which kind of output it is (``report``, ``figures``, ``study``), in which format, and —
+for a folder of files — every file hexaleg put there. hexaleg writes into a folder only
+when it is new or empty, or when the marker says hexaleg wrote it and the folder holds
+nothing else: a file the user added, or a folder hexaleg never wrote, is refused.
 
-- :func:`replace_folder` builds the new folder beside its target (a *staging* folder
-  named after the process) and swaps it in when complete: the old folder is *parked*
-  under a name of its own, the new one renamed into place, the parked one removed. A
-  process killed between the two renames leaves the old folder parked; the next run
-  for the same target puts it back (or removes it, if the swap had completed).
-- :func:`claim_folder` marks a folder that grows in place (a study's journal);
-  :func:`lock_folder` keeps a second run out of it while the first works, and names
-  the first run's pid.
+- :func:`replace_folder` builds the files in a *staging* folder beside the target, marked
+  from its creation, and brings them in when complete: a report is swapped in whole (the
+  old folder *parked* under a name of its own, the new one renamed into place, the parked
+  one removed); figures are merged (the marker lists the new files first, then each is
+  renamed in), so that the figures of several commands share a folder. The next run for
+  the same target tidies up after a killed one: a parked folder goes back (or is removed,
+  if the swap had completed), a staging folder is removed — only entries hexaleg marked,
+  or empty ones: a folder of the user's that merely has such a name is left alone.
+- :func:`claim_folder` marks a folder that grows in place (a study's journal).
+- :func:`open_regular` opens what hexaleg reads back (a marker, a journal, a lock) only
+  if it is a regular file: a FIFO is refused at once, never waited on.
+- :func:`hold` and :func:`lock_folder` keep a second run out while the first works, and
+  name the first run's pid.
 """
 
 from __future__ import annotations
@@ -24,6 +29,8 @@ import json
 import os
 import shutil
 import stat
+import struct
+import sys
 import tempfile
 import threading
 from collections.abc import Iterator
@@ -32,10 +39,12 @@ from pathlib import Path
 from typing import Any
 
 from hexaleg._io import (
+    WriteError,
     check_creatable,
     check_output_folder,
     current_umask,
     fsync_folder,
+    make_parents,
     os_reason,
     shown,
     stale_entries,
@@ -50,16 +59,18 @@ MARKER = ".hexaleg.json"
 MARKER_FORMAT = 1
 """Format of :data:`MARKER` (and of the folders it marks) this hexaleg writes and reads."""
 LOCK = ".hexaleg.lock"
-"""The file a run holds locked (``flock``) while it uses its folder; it holds the pid."""
+"""The file a run holds locked while it uses its folder; it holds the pid."""
 _SHOWN = 3
 """Foreign names quoted in a refusal."""
+_FLOCK = "hhqqi" if sys.platform.startswith("linux") else "qqihh"
+"""``struct flock`` (type, whence, start, length, pid) as the system lays it out."""
 _HELD: set[tuple[int, int]] = set()
-"""(device, inode) of the lock files this process holds."""
+"""(device, inode) of the files this process holds with :func:`hold`."""
 _HELD_LOCK = threading.Lock()
 
 
-def check_replaceable_folder(path: str | os.PathLike[str], kind: str) -> Path:
-    """Refuse, before computing, a folder :func:`replace_folder` would not replace.
+def check_replaceable_folder(path: str | os.PathLike[str], kind: str, merge: bool = False) -> Path:
+    """Refuse, before computing, a folder :func:`replace_folder` would not write.
 
     Allowed: a folder that does not exist yet, an empty folder, or a ``kind`` folder
     hexaleg wrote that holds only its own files. Returns ``path`` resolved.
@@ -71,48 +82,53 @@ def check_replaceable_folder(path: str | os.PathLike[str], kind: str) -> Path:
     check_output_folder(path)
     text = os.fspath(path)
     target = Path(os.path.realpath(text))
-    if _holds_cwd(target):
+    if not merge and _holds_cwd(target):
         raise HexalegError(
             f"{shown(text)} is the folder you are in (or holds it): hexaleg replaces its {kind} "
             "folder whole, so name a new folder"
         )
     check_creatable(text, target)  # the staging folder is made beside it
-    if target.is_dir():
-        foreign = _foreign_entries(target, kind)
-        if foreign:
-            names = ", ".join(shown(name) for name in foreign[:_SHOWN])
-            names += ", …" if len(foreign) > _SHOWN else ""
-            raise HexalegError(
-                f"{shown(text)} is not a hexaleg {kind} folder, or holds files hexaleg did not "
-                f"write ({names}): hexaleg replaces only what it wrote; choose a new or "
-                "empty folder"
-            )
+    foreign = _foreign_entries(target, kind) if target.is_dir() else []
+    if foreign:
+        names = ", ".join(shown(name) for name in foreign[:_SHOWN])
+        names += ", …" if len(foreign) > _SHOWN else ""
+        raise HexalegError(
+            f"{shown(text)} is not a hexaleg {kind} folder, or holds files hexaleg did not "
+            f"write ({names}): hexaleg replaces only what it wrote; choose a new or "
+            "empty folder"
+        )
     return target
 
 
 @contextmanager
-def replace_folder(path: str | os.PathLike[str], kind: str) -> Iterator[Path]:
-    """Build the ``kind`` folder ``path`` in a staging folder (yielded), then swap it in.
+def replace_folder(path: str | os.PathLike[str], kind: str, merge: bool = False) -> Iterator[Path]:
+    """Build the ``kind`` folder ``path`` in a staging folder (yielded), then bring it in.
 
-    On leaving the block normally the marker is written, the target checked again (a
-    file may have appeared in it meanwhile) and the staging folder swapped in; on an
-    error or interrupt the staging folder is removed and the target left as it was.
+    On leaving the block normally the target is checked again (a file may have appeared
+    in it meanwhile), then the staging folder is swapped in whole, or with ``merge`` its
+    files moved in; on an error or interrupt the staging folder is removed and the target
+    left as it was. A write the system refuses names the target, not the staging folder.
     """
-    target = check_replaceable_folder(path, kind)
+    target = check_replaceable_folder(path, kind, merge)
+    text = os.fspath(path)
     try:
-        target.parent.mkdir(parents=True, exist_ok=True)
-    except OSError as err:
-        raise HexalegError(f"cannot create {shown(target.parent)}: {os_reason(err)}") from None
-    recover_interrupted_swap(target)
-    staging = Path(tempfile.mkdtemp(prefix=stale_prefix(target.name, "staging"), dir=target.parent))
+        make_parents(target)
+        recover_interrupted_swap(target)
+        prefix = stale_prefix(target.name, "staging")
+        staging = Path(tempfile.mkdtemp(prefix=prefix, dir=target.parent))
+    except (OSError, WriteError) as err:
+        raise _cannot_write(kind, text, err) from None
     try:
-        existing = target.stat() if target.is_dir() else None
-        mode = 0o777 & ~current_umask() if existing is None else stat.S_IMODE(existing.st_mode)
-        staging.chmod(mode)  # as mkdir would make it (not mkdtemp's 0700), or as it was
-        yield staging
-        write_marker(staging, kind, manifest=_entries(staging, files_only=True))
-        check_replaceable_folder(path, kind)
-        _swap_in(staging, target)
+        try:
+            existing = target.stat() if target.is_dir() else None
+            mode = 0o777 & ~current_umask() if existing is None else stat.S_IMODE(existing.st_mode)
+            staging.chmod(mode)  # as mkdir would make it (not mkdtemp's 0700), or as it was
+            write_marker(staging, kind)  # only a marked staging folder is ever removed
+            yield staging
+            check_replaceable_folder(path, kind, merge)
+            (_merge_in if merge and existing else _swap_in)(staging, target, kind)
+        except (OSError, WriteError) as err:
+            raise _cannot_write(kind, text, err) from None
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
@@ -140,52 +156,6 @@ def claim_folder(path: str | os.PathLike[str], kind: str) -> Path:
     return target
 
 
-@contextmanager
-def lock_folder(folder: Path, what: str) -> Iterator[None]:
-    """Hold ``folder`` for this run; another run that tries is refused, told our pid.
-
-    The lock is a POSIX record lock (``fcntl``/``lockf``) on :data:`LOCK`: the system
-    releases it when the process ends, however it ends, and — unlike ``flock`` — worker
-    processes forked meanwhile do not inherit it, so it never outlives its holder. Two
-    runs in one process are told apart here (record locks are per process).
-
-    Raises:
-        HexalegError: another run holds the folder.
-
-    """
-    try:
-        fd = os.open(folder / LOCK, os.O_RDWR | os.O_CREAT | os.O_CLOEXEC, 0o666)
-    except OSError as err:
-        raise HexalegError(f"cannot lock {shown(folder)}: {os_reason(err)}") from None
-    key = (os.fstat(fd).st_dev, os.fstat(fd).st_ino)
-    try:
-        with _HELD_LOCK:
-            if key in _HELD:
-                raise _in_use(folder, what, str(os.getpid()))
-            try:
-                fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
-            except OSError as err:
-                if err.errno not in (errno.EACCES, errno.EAGAIN):
-                    raise HexalegError(f"cannot lock {shown(folder)}: {os_reason(err)}") from None
-                holder = os.pread(fd, 32, 0).decode("ascii", errors="replace").strip()
-                raise _in_use(folder, what, holder or "unknown") from None
-            _HELD.add(key)
-        os.ftruncate(fd, 0)
-        os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
-        yield
-    finally:
-        with _HELD_LOCK:
-            _HELD.discard(key)
-        os.close(fd)  # releases the record lock
-
-
-def _in_use(folder: Path, what: str, holder: str) -> HexalegError:
-    return HexalegError(
-        f"{shown(folder)} is in use by another hexaleg {what} (pid {holder}): wait for it "
-        "to end, or stop it"
-    )
-
-
 def write_marker(folder: Path, kind: str, manifest: list[str] | None = None) -> Path:
     """Write :data:`MARKER` into ``folder``: hexaleg wrote it, as ``kind``, with ``manifest``."""
     record: dict[str, Any] = {"written_by": "hexaleg", "kind": kind, "format": MARKER_FORMAT}
@@ -196,18 +166,121 @@ def write_marker(folder: Path, kind: str, manifest: list[str] | None = None) -> 
 
 
 def recover_interrupted_swap(target: Path) -> None:
-    """Clean up after processes killed while writing ``target`` with :func:`replace_folder`.
-
-    Their staging folders are removed; a parked old folder goes back to ``target`` if the
-    swap never completed (``target`` missing), and is removed if it did.
-    """
+    """Tidy up after processes killed while writing ``target`` (see the module)."""
     for staging in stale_entries(target.parent, target.name, "staging"):
-        shutil.rmtree(staging, ignore_errors=True)
+        if _marked(staging):
+            shutil.rmtree(staging, ignore_errors=True)
     for parked in stale_entries(target.parent, target.name, "parked"):
-        if os.path.lexists(target):
+        if _marked(parked) and os.path.lexists(target):
             shutil.rmtree(parked, ignore_errors=True)
-        else:
+        elif _marked(parked):
             parked.rename(target)
+
+
+@contextmanager
+def lock_folder(folder: Path, what: str) -> Iterator[None]:
+    """Hold ``folder`` for this run (:func:`hold` on its :data:`LOCK`, which gets our pid)."""
+    fd = open_regular(folder / LOCK, os.O_RDWR | os.O_CREAT, shown(folder / LOCK))
+    try:
+        with hold(fd, shown(folder), what):
+            os.ftruncate(fd, 0)
+            os.pwrite(fd, f"{os.getpid()}\n".encode(), 0)
+            yield
+    finally:
+        os.close(fd)
+
+
+@contextmanager
+def hold(fd: int, shown_as: str, what: str) -> Iterator[None]:
+    """Hold the open file ``fd`` for this run; another run that tries is refused, told our pid.
+
+    The lock is a POSIX record lock (``lockf``): the system releases it when the process
+    ends, however it ends, and — unlike ``flock`` — worker processes forked meanwhile do
+    not inherit it, so it never outlives its holder. Two runs in one process are told
+    apart here (record locks are per process). Closing any descriptor of the file
+    releases it: keep ``fd`` the only one open.
+
+    Raises:
+        HexalegError: another run holds the file.
+
+    """
+    key = (os.fstat(fd).st_dev, os.fstat(fd).st_ino)
+    with _HELD_LOCK:
+        if key in _HELD:
+            raise _in_use(shown_as, what, str(os.getpid()))
+        try:
+            fcntl.lockf(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except OSError as err:
+            if err.errno not in (errno.EACCES, errno.EAGAIN):
+                raise HexalegError(f"cannot lock {shown_as}: {os_reason(err)}") from None
+            raise _in_use(shown_as, what, _holder(fd)) from None
+        _HELD.add(key)
+    try:
+        yield
+    finally:
+        with _HELD_LOCK:
+            _HELD.discard(key)
+        fcntl.lockf(fd, fcntl.LOCK_UN)
+
+
+def open_regular(path: Path, flags: int, shown_as: str) -> int:
+    """Open ``path`` with ``flags`` only if it is a regular file (never waiting on a FIFO).
+
+    Raises:
+        HexalegError: it is a FIFO, a device or a folder, or the system refuses.
+
+    """
+    try:
+        fd = os.open(path, flags | os.O_NONBLOCK | os.O_NOCTTY | os.O_CLOEXEC, 0o666)
+    except OSError as err:
+        if err.errno not in (errno.EISDIR, errno.ENXIO):  # ENXIO: a FIFO nobody reads
+            raise HexalegError(f"cannot open {shown_as}: {os_reason(err)}") from None
+        fd = -1
+    if fd < 0 or not stat.S_ISREG(os.fstat(fd).st_mode):
+        if fd >= 0:
+            os.close(fd)
+        raise HexalegError(
+            f"{shown_as} is not a regular file (a FIFO, a device or a folder): hexaleg "
+            "reads back only files it wrote; remove it, or choose another name"
+        )
+    os.set_blocking(fd, True)
+    return fd
+
+
+def read_regular(path: Path, shown_as: str) -> bytes:
+    """The content of the regular file ``path`` (see :func:`open_regular`)."""
+    with os.fdopen(open_regular(path, os.O_RDONLY, shown_as), "rb") as handle:
+        try:
+            return handle.read()
+        except OSError as err:
+            raise HexalegError(f"cannot read {shown_as}: {os_reason(err)}") from None
+
+
+def _holder(fd: int) -> str:
+    """The pid of the process whose record lock on ``fd`` conflicts with ours."""
+    try:
+        found = fcntl.fcntl(fd, fcntl.F_GETLK, struct.pack(_FLOCK, fcntl.F_WRLCK, 0, 0, 0, 0))
+    except OSError:
+        return "unknown"
+    pid = struct.unpack(_FLOCK, found)[4 if _FLOCK.startswith("h") else 2]
+    return str(pid) if pid > 0 else "unknown"
+
+
+def _in_use(shown_as: str, what: str, holder: str) -> HexalegError:
+    return HexalegError(
+        f"{shown_as} is in use by another hexaleg {what} (pid {holder}): wait for it "
+        "to end, or stop it"
+    )
+
+
+def _marked(folder: Path) -> bool:
+    """Whether ``folder`` is a real folder that is empty or holds hexaleg's marker."""
+    try:
+        if folder.is_symlink() or not folder.is_dir():
+            return False
+        return not any(folder.iterdir()) or _marker(folder) is not None
+    except (OSError, HexalegError):
+        return False
 
 
 def _holds_cwd(target: Path) -> bool:
@@ -218,7 +291,8 @@ def _holds_cwd(target: Path) -> bool:
     return target == here or target in here.parents
 
 
-def _swap_in(staging: Path, target: Path) -> None:
+def _swap_in(staging: Path, target: Path, kind: str) -> None:
+    write_marker(staging, kind, manifest=_files(staging))
     if not os.path.lexists(target):
         staging.rename(target)
     else:
@@ -235,15 +309,42 @@ def _swap_in(staging: Path, target: Path) -> None:
     fsync_folder(target.parent)
 
 
-def _read_marker(folder: Path, kind: str) -> dict[str, Any] | None:
-    """The marker of a ``kind`` folder hexaleg wrote, or None if it has none (or another)."""
+def _merge_in(staging: Path, target: Path, kind: str) -> None:
+    """Move the files of ``staging`` into ``target``, listed in its marker first."""
+    new = _files(staging)
+    old = (_read_marker(target, kind) or {}).get("files", [])
+    write_marker(target, kind, manifest=sorted(set(old) | set(new)))
+    for name in new:
+        (target / name).parent.mkdir(parents=True, exist_ok=True)
+        os.replace(staging / name, target / name)
+    shutil.rmtree(staging, ignore_errors=True)
+    fsync_folder(target)
+
+
+def _marker(folder: Path) -> dict[str, Any] | None:
+    """The marker hexaleg wrote in ``folder``, or None if it has none (or not hexaleg's)."""
+    marker = folder / MARKER
+    if not os.path.lexists(marker):
+        return None
     try:
-        record = json.loads((folder / MARKER).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
+        record = json.loads(read_regular(marker, shown(marker)))
+    except ValueError:
         return None
     if not isinstance(record, dict) or record.get("written_by") != "hexaleg":
         return None
-    if record.get("kind") != kind:
+    files = record.get("files", [])
+    if not isinstance(files, list) or not all(isinstance(name, str) for name in files):
+        raise HexalegError(
+            f'{shown(marker)} is corrupt (its "files" is not a list of names): remove the '
+            "folder, or choose another"
+        )
+    return record
+
+
+def _read_marker(folder: Path, kind: str) -> dict[str, Any] | None:
+    """The marker of a ``kind`` folder hexaleg wrote, or None if it has none (or another)."""
+    record = _marker(folder)
+    if record is None or record.get("kind") != kind:
         return None
     if not isinstance(record.get("format"), int) or record["format"] > MARKER_FORMAT:
         raise HexalegError(
@@ -256,11 +357,11 @@ def _read_marker(folder: Path, kind: str) -> dict[str, Any] | None:
 def _foreign_entries(folder: Path, kind: str) -> list[str]:
     """What in ``folder`` hexaleg did not write as a ``kind`` folder (all of it, unmarked)."""
     record = _read_marker(folder, kind)
-    ours = {MARKER, LOCK}
-    for name in (record or {}).get("files") or ():
-        ours |= {name, *(parent.as_posix() for parent in Path(name).parents)}
-    if record is None:
-        ours = set()
+    ours = set()
+    if record is not None:
+        ours = {MARKER, LOCK}
+        for name in record.get("files", []):
+            ours |= {name, *(parent.as_posix() for parent in Path(name).parents)}
     return [name for name in _entries(folder) if name not in ours]
 
 
@@ -280,3 +381,13 @@ def _entries(folder: Path, files_only: bool = False) -> list[str]:
             if not files_only or Path(root, name).is_symlink()
         ]
     return found
+
+
+def _files(folder: Path) -> list[str]:
+    """The files hexaleg put in ``folder`` (its marker aside)."""
+    return [name for name in _entries(folder, files_only=True) if name != MARKER]
+
+
+def _cannot_write(kind: str, text: str, err: OSError | WriteError) -> HexalegError:
+    reason = err.reason if isinstance(err, WriteError) else os_reason(err)
+    return HexalegError(f"cannot write {kind} to {shown(text)}: {reason}")

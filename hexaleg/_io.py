@@ -1,47 +1,54 @@
 """Writing hexaleg's output files: one mechanism for every command.
 
 - :func:`check_output_file` and :func:`check_output_folder` refuse, before any computing,
-  a path that cannot be written: empty, a folder where a file is meant (``nothere/``), a
-  name longer than the file system allows, a folder the user cannot write, a read-only file.
-- :func:`write_bytes` / :func:`write_text` write one file:
+  a path that cannot be written: empty, a folder where a file is meant (``nothere/``),
+  ``-`` where a folder is meant, a name longer than the file system allows, a folder
+  nothing can be created in, a read-only file. They find out by trying (a probe file, an
+  open for writing that changes nothing), so the reason is the system's own.
+- :func:`write_bytes` / :func:`write_text` write one file, creating missing folders on its
+  path as ``mkdir -p`` would: ``-``, ``/dev/stdout``, ``/dev/stderr`` and ``/dev/fd/N``
+  through the process's own stream (never replaced, never truncated); a regular file
+  atomically (a temporary file beside it, then a rename: a failed or interrupted write
+  leaves the old file or nothing), keeping its mode (and, where allowed, its owner);
+  through a symbolic link to its target; a file with other hard links, or in a folder the
+  user cannot write, in place (the same inode; the data is complete in memory before the
+  first byte is written, but that write is not atomic); device nodes and FIFOs directly.
 
-  - a regular file (new or existing) atomically: a temporary file beside it, then a
-    rename, so a failed or interrupted write leaves the old file or nothing; an existing
-    file keeps its mode (and, where allowed, its owner);
-  - through a symbolic link, to the link's target (atomically there): the link stays;
-  - a file with other hard links, or in a folder the user cannot write, in place (the
-    same inode, so every link sees the new content): the data is complete in memory
-    before the first byte is written, but that write is not atomic;
-  - device nodes and FIFOs directly, and ``/dev/stdout``, ``/dev/stderr``,
-    ``/dev/fd/N`` through the process's own stream (never replaced, never truncated).
-
-Folders hexaleg builds and swaps in whole (a report) are in :mod:`hexaleg._folders`.
-Every OS error becomes a one-line :class:`~hexaleg.exceptions.HexalegError`.
+Folders are in :mod:`hexaleg._folders`, journals in :mod:`hexaleg._journal`. Every OS
+error becomes a one-line :class:`~hexaleg.exceptions.HexalegError`.
 """
 
 from __future__ import annotations
 
+import contextlib
 import errno
 import os
 import re
 import stat
 import sys
 import tempfile
-from collections.abc import Iterable
 from pathlib import Path
 
 from hexaleg.exceptions import HexalegError
 
 STDOUT = "/dev/stdout"
-"""The path that means "standard output" to :func:`write_text` (as on Linux)."""
+"""The path that means "standard output" to :func:`write_text` (as on Linux), like ``-``."""
 
 _STREAM = re.compile(r"^/(?:dev/fd|proc/self/fd)/(\d+)$")
-_STREAMS = {"/dev/stdout": 1, "/dev/stderr": 2}
+_STREAMS = {"-": 1, "/dev/stdout": 1, "/dev/stderr": 2}
 _SHOWN_PATH = 120
 """Longest path quoted whole in a message [characters]."""
 _SHORT_NAME = 100
 """Bytes of a target's name kept in its temporary and staging names (the system's limit
 on a name, usually 255 bytes, must leave room for the suffixes)."""
+
+
+class WriteError(HexalegError):
+    """The system refused a write; ``reason`` is its own word for why (``No space left …``)."""
+
+    def __init__(self, message: str, reason: str) -> None:
+        super().__init__(message)
+        self.reason = reason
 
 
 def write_text(path: str | os.PathLike[str], text: str) -> Path:
@@ -54,46 +61,37 @@ def write_bytes(path: str | os.PathLike[str], data: bytes) -> Path:
 
     Raises:
         HexalegError: ``path`` is empty or a folder, the file is read-only, or the system
-            refuses the write (permission, name too long, disk full); one line, and no
-            temporary file is left behind.
+            refuses the write (a :class:`WriteError`: permission, name too long, disk
+            full); one line, and no temporary file is left behind.
 
     """
-    text = _text(path)
-    stream = _standard_stream(text)
+    text = STDOUT if os.fspath(path) == "-" else _text(path)
+    stream = standard_stream(text)
     try:
         if stream is not None:
             _write_stream(stream, data)
             return Path(text)
         target = Path(os.path.realpath(text))  # through symbolic links, to their target
         existing = _stat(target)
+        if existing is not None and stat.S_ISDIR(existing.st_mode):
+            raise HexalegError(f"{shown(text)} is a folder, not a file to write")
         if existing is None or stat.S_ISREG(existing.st_mode):
             _refuse_unwritable_file(text, target, existing)
-        if existing is None:
-            _write_atomically(target, data, None)
-        elif stat.S_ISDIR(existing.st_mode):
-            raise HexalegError(f"{shown(text)} is a folder, not a file to write")
-        elif not stat.S_ISREG(existing.st_mode):
+        if existing is not None and not stat.S_ISREG(existing.st_mode):
             _write_direct(target, data)  # a device node, a FIFO
-        elif _in_place(target, existing):
+        elif existing is not None and _in_place(target, existing):
             _write_direct(target, data, truncate=True)
         else:
             _write_atomically(target, data, existing)
     except OSError as err:
-        raise HexalegError(f"cannot write {shown(text)}: {os_reason(err)}") from None
+        raise WriteError(f"cannot write {shown(text)}: {os_reason(err)}", os_reason(err)) from None
     return Path(text)
 
 
 def check_output_file(path: str | os.PathLike[str]) -> Path:
-    """Refuse, before computing, a file path :func:`write_bytes` could not write.
-
-    Returns ``path`` as a :class:`Path`, unchanged.
-
-    Raises:
-        HexalegError: see :func:`write_bytes`, and a path ending in ``/``.
-
-    """
+    """Refuse, before computing, a file :func:`write_bytes` could not write; return ``path``."""
     text = _text(path)
-    if _standard_stream(text) is not None:
+    if standard_stream(text) is not None:
         return Path(text)
     if text.endswith(("/", os.sep)):
         raise HexalegError(
@@ -108,37 +106,19 @@ def check_output_file(path: str | os.PathLike[str]) -> Path:
     return Path(text)
 
 
-def check_outputs(
-    files: Iterable[str | os.PathLike[str] | None],
-    folders: Iterable[str | os.PathLike[str] | None] = (),
-) -> None:
-    """Refuse, before computing, any of the output files and folders asked for.
-
-    ``None`` is an output not asked for; the others are checked as
-    :func:`check_output_file` and :func:`check_output_folder` do.
-    """
-    for file in files:
-        if file is not None:
-            check_output_file(file)
-    for folder in folders:
-        if folder is not None:
-            check_output_folder(folder)
-
-
 def check_output_folder(path: str | os.PathLike[str]) -> Path:
-    """Refuse, before computing, a folder that files cannot be written into (or created as).
-
-    Returns ``path`` as a :class:`Path`, unchanged.
-    """
+    """Refuse, before computing, a folder files cannot be written into (or created as)."""
     text = _text(path)
+    if standard_stream(text) is not None:
+        raise HexalegError(
+            f"{shown(text)} is standard output, which cannot hold a folder: name a folder"
+        )
     target = Path(os.path.realpath(text))
     existing = _stat(target)
     if existing is not None and not stat.S_ISDIR(existing.st_mode):
         raise HexalegError(f"{shown(text)} is a file, not a folder")
     if existing is None:
         check_creatable(text, target)
-    elif not os.access(target, os.W_OK | os.X_OK):
-        raise HexalegError(f"cannot write in {shown(text)}: {os.strerror(errno.EACCES)}")
     else:
         probe_folder(target)
     return Path(text)
@@ -157,14 +137,11 @@ def check_creatable(text: str, target: Path) -> None:
     if not ancestor.is_dir():
         raise HexalegError(f"cannot write {shown(text)}: {shown(ancestor)} is not a folder")
     limit = _name_max(ancestor)
-    for name in missing:
-        if len(os.fsencode(name)) > limit:
-            raise HexalegError(
-                f"cannot write {shown(text)}: a name in it is longer than the "
-                f"{limit} bytes the file system allows"
-            )
-    if not os.access(ancestor, os.W_OK | os.X_OK):
-        raise HexalegError(f"cannot write in {shown(ancestor)}: {os.strerror(errno.EACCES)}")
+    if any(len(os.fsencode(name)) > limit for name in missing):
+        raise HexalegError(
+            f"cannot write {shown(text)}: a name in it is longer than the "
+            f"{limit} bytes the file system allows"
+        )
     probe_folder(ancestor)
 
 
@@ -172,7 +149,8 @@ def probe_folder(folder: Path) -> None:
     """Refuse a folder no file can be created in, by creating (and removing) one.
 
     Permissions do not tell: root may write anywhere by mode, yet not in ``/proc`` or on a
-    read-only mount; the write that would fail after the computing fails here instead.
+    read-only mount; the write that would fail after the computing fails here instead,
+    with the system's reason.
     """
     try:
         fd, name = tempfile.mkstemp(prefix=".hexaleg-probe-", dir=folder)
@@ -180,6 +158,15 @@ def probe_folder(folder: Path) -> None:
         raise HexalegError(f"cannot write in {shown(folder)}: {os_reason(err)}") from None
     os.close(fd)
     os.unlink(name)
+
+
+def make_parents(target: Path) -> None:
+    """Create the missing folders above ``target``, as ``mkdir -p`` would."""
+    try:
+        target.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as err:
+        message = f"cannot create {shown(target.parent)}: {os_reason(err)}"
+        raise WriteError(message, os_reason(err)) from None
 
 
 def shown(path: str | os.PathLike[str]) -> str:
@@ -195,27 +182,50 @@ def os_reason(err: OSError) -> str:
     return err.strerror or str(err)
 
 
-def short_name(name: str) -> str:
-    """``name`` cut to :data:`_SHORT_NAME` bytes, for the names derived from it."""
-    return os.fsencode(name)[:_SHORT_NAME].decode("utf-8", errors="ignore")
-
-
-def process_running(pid: int) -> bool:
-    """Whether a process ``pid`` exists (owned by anyone)."""
-    try:
-        os.kill(pid, 0)
-    except ProcessLookupError:
-        return False
-    except PermissionError:  # alive, owned by someone else
-        return True
-    return True
-
-
 def current_umask() -> int:
     """The process's umask (read without changing it for longer than a call)."""
     mask = os.umask(0)
     os.umask(mask)
     return mask
+
+
+def fsync_folder(folder: Path) -> None:
+    """Put a rename in ``folder`` on disk (best effort: not every file system allows it)."""
+    with contextlib.suppress(OSError):
+        fd = os.open(folder, os.O_RDONLY | os.O_CLOEXEC)
+        try:
+            os.fsync(fd)
+        finally:
+            os.close(fd)
+
+
+def stale_prefix(name: str, role: str) -> str:
+    """The name prefix of this process's ``role`` entry for the target ``name``.
+
+    ``role`` is ``tmp``, ``staging`` or ``parked``; the prefix ``.<name>.<role>-<pid>.``
+    names the owning process, so that the entries of ended processes can be found.
+    """
+    return f".{_short_name(name)}.{role}-{os.getpid()}."
+
+
+def stale_entries(folder: Path, name: str, role: str) -> list[Path]:
+    """``role`` entries for ``name`` in ``folder`` whose owning process has ended."""
+    pattern = re.compile(rf"^\.{re.escape(_short_name(name))}\.{role}-(\d+)\.")
+    try:
+        entries = sorted(folder.iterdir())
+    except OSError:
+        return []
+    return [e for e in entries if (m := pattern.match(e.name)) and not _running(int(m[1]))]
+
+
+def remove_stale(folder: Path, name: str, role: str) -> list[Path]:
+    """Remove the temporary files of ``name`` left by ended processes (a kill mid-write)."""
+    removed = []
+    for entry in stale_entries(folder, name, role):
+        if entry.is_file() and not entry.is_symlink():
+            entry.unlink(missing_ok=True)
+            removed.append(entry)
+    return removed
 
 
 def _text(path: str | os.PathLike[str]) -> str:
@@ -225,11 +235,23 @@ def _text(path: str | os.PathLike[str]) -> str:
     return text
 
 
+def _short_name(name: str) -> str:
+    return os.fsencode(name)[:_SHORT_NAME].decode("utf-8", errors="ignore")
+
+
+def _running(pid: int) -> bool:
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # alive, owned by someone else
+        pass
+    return True
+
+
 def _stat(path: Path) -> os.stat_result | None:
     try:
         return path.stat()
-    except FileNotFoundError:
-        return None
     except OSError as err:  # a name too long, a loop of links, a file in the path
         if err.errno in (errno.ENOENT, errno.ENOTDIR, errno.ENAMETOOLONG):
             return None  # nothing there (a name too long is refused by check_creatable)
@@ -246,12 +268,17 @@ def _name_max(folder: Path) -> int:
 def _refuse_unwritable_file(text: str, target: Path, existing: os.stat_result | None) -> None:
     if existing is None:
         check_creatable(text, target)
-    elif not os.access(target, os.W_OK):
+        return
+    try:  # opening for writing, without truncating, changes nothing
+        os.close(os.open(target, os.O_WRONLY | os.O_NONBLOCK | os.O_CLOEXEC))
+    except OSError as err:
+        if err.errno != errno.EACCES:
+            raise HexalegError(f"cannot write {shown(text)}: {os_reason(err)}") from None
         raise HexalegError(
             f"{shown(text)} is read-only (mode {stat.S_IMODE(existing.st_mode):04o}): "
             "make it writable, or choose another name"
-        )
-    elif not _in_place(target, existing):
+        ) from None
+    if not _in_place(target, existing):
         check_creatable(text, target)  # the rename needs to write its folder
 
 
@@ -260,7 +287,8 @@ def _in_place(target: Path, existing: os.stat_result) -> bool:
     return existing.st_nlink > 1 or not os.access(target.parent, os.W_OK | os.X_OK)
 
 
-def _standard_stream(text: str) -> int | None:
+def standard_stream(text: str) -> int | None:
+    """The descriptor ``text`` names (``-``, ``/dev/stdout``, ``/dev/fd/N``), or None."""
     match = _STREAM.match(text)
     return int(match.group(1)) if match else _STREAMS.get(text)
 
@@ -303,82 +331,22 @@ def _write_all(fd: int, data: bytes) -> None:
 
 def _write_atomically(target: Path, data: bytes, existing: os.stat_result | None) -> None:
     """A temporary file beside ``target``, renamed over it once complete and on disk."""
-    folder = target.parent
-    folder.mkdir(parents=True, exist_ok=True)
-    remove_stale(folder, target.name, "tmp")
-    fd, tmp = tempfile.mkstemp(prefix=stale_prefix(target.name, "tmp"), dir=folder)
+    make_parents(target)
+    remove_stale(target.parent, target.name, "tmp")
+    fd, tmp = tempfile.mkstemp(prefix=stale_prefix(target.name, "tmp"), dir=target.parent)
     try:
-        if existing is None:
-            os.fchmod(fd, 0o666 & ~current_umask())  # as open() would create it
-        else:
-            _keep_owner(fd, existing)
-            os.fchmod(fd, stat.S_IMODE(existing.st_mode))
         with os.fdopen(fd, "wb") as handle:
+            if existing is None:
+                os.fchmod(fd, 0o666 & ~current_umask())  # as open() would create it
+            else:
+                with contextlib.suppress(PermissionError):  # not root: ours, as an editor's
+                    os.fchown(fd, existing.st_uid, existing.st_gid)
+                os.fchmod(fd, stat.S_IMODE(existing.st_mode))
             handle.write(data)
             handle.flush()
-            os.fsync(handle.fileno())
+            os.fsync(fd)
         os.replace(tmp, target)
     except BaseException:
         Path(tmp).unlink(missing_ok=True)
         raise
-    fsync_folder(folder)
-
-
-def _keep_owner(fd: int, existing: os.stat_result) -> None:
-    try:
-        os.fchown(fd, existing.st_uid, existing.st_gid)
-    except PermissionError:  # not root: the file becomes ours, as any editor's save would
-        pass
-
-
-def fsync_folder(folder: Path) -> None:
-    """Put a rename in ``folder`` on disk (best effort: not every file system allows it)."""
-    try:
-        fd = os.open(folder, os.O_RDONLY | os.O_CLOEXEC)
-    except OSError:
-        return
-    try:
-        os.fsync(fd)
-    except OSError:
-        pass
-    finally:
-        os.close(fd)
-
-
-def stale_prefix(name: str, role: str) -> str:
-    """The name prefix of this process's ``role`` entry for the target ``name``.
-
-    ``role`` is ``tmp``, ``staging`` or ``parked``; the prefix ``.<name>.<role>-<pid>.``
-    names the owning process, so that the entries of ended processes can be found.
-    """
-    return f".{short_name(name)}.{role}-{os.getpid()}."
-
-
-def stale_entries(folder: Path, name: str, role: str) -> list[Path]:
-    """``role`` entries for ``name`` in ``folder`` whose owning process has ended."""
-    pattern = re.compile(rf"^\.{re.escape(short_name(name))}\.{role}-(\d+)\.")
-    try:
-        entries = list(folder.iterdir())
-    except OSError:
-        return []
-    return [
-        entry
-        for entry in sorted(entries)
-        if (match := pattern.match(entry.name)) and not process_running(int(match.group(1)))
-    ]
-
-
-def remove_stale(folder: Path, name: str, role: str) -> list[Path]:
-    """Remove the temporary files of ``name`` left by ended processes (a kill mid-write)."""
-    removed = []
-    for entry in stale_entries(folder, name, role):
-        if entry.is_file() and not entry.is_symlink():
-            entry.unlink(missing_ok=True)
-            removed.append(entry)
-    return removed
-
-
-atomic_write_text = write_text
-"""Former name of :func:`write_text`."""
-atomic_write_bytes = write_bytes
-"""Former name of :func:`write_bytes`."""
+    fsync_folder(target.parent)

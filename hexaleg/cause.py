@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from hexaleg._typing import CauseKind
+from hexaleg._typing import CauseKind, require_choice
 
 
 @dataclass(frozen=True)
@@ -74,3 +74,22 @@ class Cause:
             "links": list(self.links) if self.links else None,
             "description": str(self),
         }
+
+    @classmethod
+    def from_dict(cls, record: Any) -> Cause:
+        """The cause :meth:`to_dict` wrote (its ``description`` is derived, not read).
+
+        Raises:
+            ValueError: ``record`` is not such a dict, or a field has the wrong type.
+
+        """
+        if not isinstance(record, dict):
+            raise ValueError("a cause is a JSON object")
+        names = {key: record.get(key) for key in ("leg", "joint", "bound")}
+        links = record.get("links")
+        pair = links is None or (isinstance(links, list) and len(links) == 2)
+        texts = [*names.values(), *(links if isinstance(links, list) else [])]
+        if not pair or not all(text is None or isinstance(text, str) for text in texts):
+            raise ValueError("a cause names its leg, joint, bound and two links in text")
+        kind = require_choice("kind", record.get("kind"), CauseKind)
+        return cls(kind, **names, links=None if links is None else (links[0], links[1]))

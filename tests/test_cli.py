@@ -34,7 +34,7 @@ def test_urdf_from_ratios_to_file(tmp_path):
         (["--ratios", "0.6", "0.5"], "l1_ratio + l3_ratio"),
         (["--ratios", "0.1", "0.4", "--l2", "0.3"], "--ratios cannot be combined with --l2"),
         (["--total", "2"], "--total only applies together with --ratios"),
-        (["--body-height", "0"], "body_height = 0"),
+        (["--body-height", "0"], "--body-height = 0"),
         (["--nominal-angles", "0", "0", "0"], "nominal_angles.theta3"),
     ],
 )
@@ -220,7 +220,7 @@ BAD_VALUES = [
     (["urdf", "--l1=1e308"], "l1 = 1e+308 is not valid: must lie in [0.001, 100] [m]"),
     (
         ["urdf", "--body-length=1e-300"],
-        "body_length = 1e-300 is not valid: must lie in [0.01, 100]",
+        "--body-length = 1e-300 is not valid: must lie in [0.01, 100]",
     ),
     (["flexibility", "--l1", "1e-9"], "l1 = 1e-09 is not valid: must lie in [0.001, 100] [m]"),
     (["flexibility", "--l1=1e308"], "l1 = 1e+308 is not valid"),
@@ -240,13 +240,13 @@ BAD_VALUES = [
     (["report", "--sensitivity-points", "100000"], "--sensitivity-points: 100000 is not valid"),
     (
         ["study", "--l1-ratios", "-1"],
-        "l1_ratios = -1 is not valid: must lie in the open interval (0, 1)",
+        "--l1-ratios = -1 is not valid: must lie in the open interval (0, 1)",
     ),
-    (["study", "--l1-ratios", "0"], "l1_ratios = 0 is not valid"),
-    (["study", "--l1-ratios", "inf"], "l1_ratios = inf is not valid: must be finite"),
-    (["study", "--l1-ratios", "1e308"], "l1_ratios = 1e+308 is not valid"),
-    (["study", "--l1-ratios", "1e999"], "l1_ratios = inf is not valid"),
-    (["study", "--l1-ratios=nan"], "l1_ratios = nan is not valid"),
+    (["study", "--l1-ratios", "0"], "--l1-ratios = 0 is not valid"),
+    (["study", "--l1-ratios", "inf"], "--l1-ratios = inf is not valid: must be finite"),
+    (["study", "--l1-ratios", "1e308"], "--l1-ratios = 1e+308 is not valid"),
+    (["study", "--l1-ratios", "1e999"], "--l1-ratios = inf is not valid"),
+    (["study", "--l1-ratios=nan"], "--l1-ratios = nan is not valid"),
     (["study", "--l1-ratios", "0.9"], "must leave room for femur and tibia"),
     (["study", "--l1-ratios", *["0.1"] * 21], "at most 20 coxa ratios"),
 ]

@@ -133,7 +133,7 @@ def quick_backends():
             HexapodDesign(),
             Requirements(ground_clearance=0.3),
             Objective("improved_area"),
-            settings=SearchSettings(evaluations=48),
+            settings=SearchSettings(evaluations=60),
             executor=here,
             progress=False,
         )

@@ -135,3 +135,32 @@ def test_a_user_without_a_writable_home_gets_flexibility():
     result = _as_nobody(["flexibility", "--json"], timeout=900)
     assert result.returncode == 0, result.stderr
     assert '"fb"' in result.stdout and "Traceback" not in result.stderr
+
+
+MATPLOTLIB_IMPORT = (
+    "import os, sys; from hexaleg._compiled import use_private_matplotlib_cache; "
+    "sys.argv[1] == 'set' and use_private_matplotlib_cache(); "
+    "import matplotlib.pyplot; print(os.environ.get('MPLCONFIGDIR'))"
+)
+
+
+@pytest.mark.parametrize("call", ["set", "skip"])
+def test_matplotlib_caches_beside_the_compiled_code_when_home_is_not_writable(tmp_path, call):
+    home = tmp_path / "home"
+    home.write_text("a file, not a folder: nothing can be made under it")
+    env = {k: v for k, v in os.environ.items() if not k.startswith(("XDG_", "MPLCONFIGDIR"))}
+    env |= {"HOME": str(home), "TMPDIR": str(tmp_path)}
+    done = subprocess.run(
+        [sys.executable, "-c", MATPLOTLIB_IMPORT, call],
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=120,
+        check=True,
+    )
+    if call == "skip":  # what the command line spares the user
+        assert "Matplotlib created a temporary cache directory" in done.stderr
+        return
+    user = os.getuid()
+    assert done.stdout.strip() == str(tmp_path / f".hexaleg-cache-{user}" / "matplotlib")
+    assert done.stderr == ""

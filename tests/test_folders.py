@@ -23,6 +23,7 @@ from hexaleg._folders import (
     lock_folder,
     recover_interrupted_swap,
     replace_folder,
+    write_marker,
 )
 from hexaleg._io import current_umask
 from hexaleg.exceptions import HexalegError
@@ -156,6 +157,7 @@ def test_an_interrupted_swap_puts_the_old_folder_back(tmp_path):
     parked = tmp_path / f".r.parked-{dead}.abc"
     parked.mkdir()
     (parked / "report.md").write_text("the previous report")
+    write_marker(parked, "report", ["report.md"])  # a parked folder is a report hexaleg wrote
     staging = tmp_path / f".r.staging-{dead}.def"
     staging.mkdir()
     live = tmp_path / f".r.staging-{os.getpid()}.ghi"

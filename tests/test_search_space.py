@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign
-from hexaleg.study.search_space import AT_BOUND_SHARE, FreeVariable, bounds_reached
+from hexaleg.exceptions import ParameterError
+from hexaleg.study.search_space import AT_BOUND_SHARE, FreeVariable, bounds_reached, search_space
 
 
 def _names(reached):
@@ -52,3 +53,31 @@ def test_an_at_bound_says_what_binds_and_what_moves_it():
 @pytest.mark.parametrize(("name", "unit"), [("l2", "m"), ("theta3", "rad"), ("front_yaw", "rad")])
 def test_free_variables_know_their_unit(name, unit):
     assert FreeVariable(name, 0.1, 0.2).unit == unit
+
+
+def test_bounds_on_the_stance_limits_and_the_leg_length_themselves_are_taken():
+    free = [FreeVariable("theta2", -math.pi / 6, math.pi / 6),
+            FreeVariable("theta3", -3 * math.pi / 4, -math.pi / 12),
+            FreeVariable("l1", 0.001, 0.5)]  # fmt: skip
+    space = search_space(HexapodDesign(), 0.5, free=free)
+    bounds = dict(zip(space.names, zip(space.lower, space.upper, strict=True), strict=True))
+    assert bounds == {"l1": (0.001, 0.5), "l2": (0.01, 0.5), "l3": (0.01, 0.5),
+                      "theta2": (-math.pi / 6, math.pi / 6),
+                      "theta3": (-3 * math.pi / 4, -math.pi / 12)}  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("free", "min_coxa"),
+    [(FreeVariable("theta2", -math.pi / 6 - 1e-9, 0.0), None),
+     (FreeVariable("theta3", -1.0, -math.pi / 12 + 1e-9), None),
+     (FreeVariable("l2", 0.1, 0.5 + 1e-9), None),
+     (FreeVariable("l1", 0.09, 0.3), 0.1)],
+)  # fmt: skip
+def test_a_bound_just_beyond_its_range_is_refused(free, min_coxa):
+    with pytest.raises(ParameterError, match=f"--free {free.name} = .* bounds within"):
+        search_space(HexapodDesign(), 0.5, min_coxa, free=[free])
+
+
+def test_the_floor_of_a_tiny_leg_is_the_shortest_segment_a_design_may_have():
+    space = search_space(HexapodDesign(), 0.003)
+    assert list(space.lower) == [0.001] * 3 and list(space.upper) == [0.003] * 3

@@ -43,11 +43,14 @@ def _refused_in_one_line(capsys, argv: list[str], *fragments: str) -> str:
 # -- a study grid that leaves a segment out of range is refused up front ----------
 
 STUDY_GRIDS = {
-    "tiny coxa ratio": (["--l1-ratios", "1e-300"], ["l1_ratios = 1e-300", "coxa", "[0.001, 100]"]),
-    "coxa under a millimetre": (["--l1-ratios", "0.0005"], ["l1_ratios = 0.0005", "0.0005 m"]),
+    "tiny coxa ratio": (
+        ["--l1-ratios", "1e-300"],
+        ["--l1-ratios = 1e-300", "coxa", "[0.001, 100]"],
+    ),
+    "coxa under a millimetre": (["--l1-ratios", "0.0005"], ["--l1-ratios = 0.0005", "0.0005 m"]),
     "tiny total": (["--total", "0.003"], ["l1_ratios", "at total 0.003 m"]),
     "huge total": (["--total", "250"], ["l3_ratios = 0.75", "tibia would be 188 m"]),
-    "a ratio twice": (["--l1-ratios", "0.1", "0.1"], ["l1_ratios = 0.1", "given twice"]),
+    "a ratio twice": (["--l1-ratios", "0.1", "0.1"], ["--l1-ratios = 0.1", "given twice"]),
     "no room for the femur": (["--l1-ratios", "0.9"], ["must leave room for femur and tibia"]),
 }
 

@@ -3,7 +3,8 @@
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
 
-    foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled, _lazy
+    foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
+                _lazy
     design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause,
                 actuators, actuator_catalog, battery, table_records
     numerics    numerics/          (generic: below every analysis)
@@ -30,7 +31,17 @@ PACKAGE = Path(__file__).resolve().parents[1] / "hexaleg"
 LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     (
         "foundation",
-        ("exceptions", "_checks", "_typing", "_version", "_io", "_folders", "_compiled", "_lazy"),
+        (
+            "exceptions",
+            "_checks",
+            "_typing",
+            "_version",
+            "_io",
+            "_folders",
+            "_journal",
+            "_compiled",
+            "_lazy",
+        ),
     ),
     (
         "design",

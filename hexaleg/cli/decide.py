@@ -19,7 +19,13 @@ from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.goal import Objective
 from hexaleg.study.metrics import objectives
-from hexaleg.study.optimize import MAX_EVALUATIONS, MIN_POPULATION, SearchSettings
+from hexaleg.study.optimize import (
+    GENERATIONS,
+    MAX_EVALUATIONS,
+    MIN_POPULATION,
+    POPULATION_PER_VARIABLE,
+    SearchSettings,
+)
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.search_space import FREEABLE, AtBound, FreeVariable
 
@@ -72,8 +78,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--evaluations",
         type=bounded_int(2 * MIN_POPULATION, MAX_EVALUATIONS),
         metavar="N",
-        help=f"designs to evaluate per search, {2 * MIN_POPULATION}..{MAX_EVALUATIONS} "
-        "(default: 60 generations of 10 per free variable)",
+        help="designs to evaluate per search: whole generations (at least two) of "
+        f"{POPULATION_PER_VARIABLE} designs a free variable (at least {MIN_POPULATION}), "
+        f"at most {MAX_EVALUATIONS} (default: {GENERATIONS} generations)",
     )
     search.add_argument(
         "--workers", type=bounded_int(1), metavar="N", help="local worker processes"

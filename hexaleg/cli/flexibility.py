@@ -5,10 +5,8 @@ from __future__ import annotations
 import argparse
 import math
 import warnings
-from pathlib import Path
 from typing import TYPE_CHECKING
 
-from hexaleg._io import check_output_folder
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -17,7 +15,7 @@ from hexaleg.cli.options import (
     add_stance_option,
     design_from_args,
 )
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 
 if TYPE_CHECKING:
     from hexaleg.stance.extremes import FlexibilityResult
@@ -47,13 +45,14 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.stance.flexibility import flexibility
 
     design = design_from_args(args)
-    if args.plot is not None:
-        check_output_folder(args.plot)  # before computing
+    check_outputs({}, {"--plot": args.plot})  # before computing
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
         result = flexibility(design, args.mode, args.stance, collisions=args.collisions)
     if args.plot is not None:
-        report_files([save(extremes_figure(result), Path(args.plot) / "flexibility_extremes.png")])
+        write_plots(
+            args.plot, lambda out: [save(extremes_figure(result), out / "flexibility_extremes.png")]
+        )
     if args.json:
         print_json(result.to_dict())
         return 0

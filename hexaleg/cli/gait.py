@@ -6,7 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text, check_outputs
+from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import (
@@ -16,7 +16,15 @@ from hexaleg.cli.options import (
     bounded_int,
     design_from_args,
 )
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import (
+    check_outputs,
+    lengths_title,
+    print_json,
+    print_table,
+    report_files,
+    summary_stream,
+    write_plots,
+)
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
@@ -100,7 +108,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     gait = gait_from_args(args)
     payload = payload_from_args(args)
-    check_outputs((args.csv, args.html), (args.plot,))  # refused before computing, not after
+    check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     model = HexapodModel(design)
     analysis = analyze_gait(
         design, gait, payload, distribution=args.distribution, friction=args.friction, model=model
@@ -110,16 +118,17 @@ def run(args: argparse.Namespace) -> int:
     if args.csv is not None:
         written.append(_write_csv(analysis, Path(args.csv)))
     if args.plot is not None:
-        written += _write_figures(analysis, Path(args.plot))
+        write_plots(args.plot, lambda out: _write_figures(analysis, out))
     if args.html is not None:
         from hexaleg.output.viewer.gait import write_gait_html
 
         written.append(write_gait_html(model, analysis, args.html))
     report_files(written)
+    summary = summary_stream(args.csv, args.html)
     if args.json:
-        print_json(analysis.to_dict())
+        print_json(analysis.to_dict(), summary)
         return 0
-    print_table(lengths_title("Walking", design.lengths), rows(analysis))
+    print_table(lengths_title("Walking", design.lengths), rows(analysis), summary)
     return 0
 
 
@@ -127,7 +136,7 @@ def _write_csv(analysis: GaitAnalysis, path: Path) -> Path:
     import pandas as pd
 
     table = pd.DataFrame(analysis.time_series())
-    return atomic_write_text(path, table.to_csv(index=False))
+    return write_text(path, table.to_csv(index=False))
 
 
 def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:

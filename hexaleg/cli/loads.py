@@ -4,11 +4,9 @@ from __future__ import annotations
 
 import argparse
 import math
-from pathlib import Path
 from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
-from hexaleg._io import check_output_folder
 from hexaleg._typing import Distribution, choices
 from hexaleg.cli.options import (
     add_design_options,
@@ -17,10 +15,10 @@ from hexaleg.cli.options import (
     add_stance_option,
     design_from_args,
 )
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.forces import DEFAULT_FRICTION, PAYLOAD_REACH, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
     from hexaleg.gait.capacity import WalkingCapacity
@@ -61,7 +59,10 @@ def add_payload_options(parser: argparse.ArgumentParser) -> None:
         type=float,
         default=DEFAULT_FRICTION,
         metavar="MU",
-        help=f"friction coefficient between feet and ground [-] (default {DEFAULT_FRICTION})",
+        help="friction coefficient between feet and ground, in [{:g}, {:g}] [-] ".format(
+            *FRICTION_RANGE
+        )
+        + f"(default {DEFAULT_FRICTION})",
     )
     parser.add_argument(
         "--distribution",
@@ -93,8 +94,7 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.statics.loads import analyze_loads
 
     design = design_from_args(args)
-    if args.plot is not None:
-        check_output_folder(args.plot)  # before computing
+    check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
     model = HexapodModel(design)
     analysis = analyze_loads(
@@ -102,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
     )
     walking = walking_payload_capacity(model, Gait(), payload.position)
     if args.plot is not None:
-        report_files([save(loads_figure(analysis), Path(args.plot) / "loads.png")])
+        write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
         print_json(analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
         return 0

@@ -15,9 +15,10 @@ import sys
 from collections.abc import Sequence
 from typing import Any, NamedTuple, NoReturn
 
+from hexaleg._compiled import use_private_matplotlib_cache
 from hexaleg._io import os_reason
 from hexaleg._version import __version__
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 
 EXIT_USAGE = 2
 """Exit status of a user mistake (argparse's own convention)."""
@@ -143,12 +144,13 @@ def main(argv: Sequence[str] | None = None) -> int:
     argv = list(sys.argv[1:] if argv is None else argv)
     command = _chosen_command(argv)
     args = build_parser(command or "").parse_args(argv)
+    use_private_matplotlib_cache()  # before any command imports Matplotlib
     try:
         status = int(args.run(args))
         _flush_stdout()
         return status
     except HexalegError as err:
-        return _fail(args.command, str(err))
+        return _fail(args.command, _as_typed(err, argv))
     except KeyboardInterrupt:
         print(f"hexaleg {args.command}: interrupted", file=sys.stderr)
         return EXIT_INTERRUPTED
@@ -158,6 +160,15 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as err:  # the system refused: a full disk, a closed stream, a lost mount
         where = f" ({err.filename})" if err.filename else ""
         return _fail(args.command, f"{os_reason(err)}{where}")
+
+
+def _as_typed(err: HexalegError, argv: Sequence[str]) -> str:
+    """The error's line, naming the option the user typed (``--leg-length``) for its field."""
+    if isinstance(err, ParameterError):
+        option = "--" + err.field.replace("_", "-")
+        if any(arg == option or arg.startswith(option + "=") for arg in argv):
+            return str(ParameterError(option, err.value, err.allowed))
+    return str(err)
 
 
 def _fail(command: str, message: str) -> int:

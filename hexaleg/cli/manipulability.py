@@ -5,9 +5,8 @@ from __future__ import annotations
 import argparse
 import math
 
-from hexaleg._io import check_output_folder
 from hexaleg.cli.options import add_design_options, add_output_options, design_from_args
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_manipulability_figures
 from hexaleg.paper import L1_RATIOS
@@ -29,14 +28,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse manipulability; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
-    if args.plot is not None:
-        check_output_folder(args.plot)  # before computing
+    check_outputs({}, {"--plot": args.plot})  # before computing
     analysis = analyze_manipulability(design)
     if args.plot is not None:
         average_map = average_manipulability_map(
             L1_RATIOS, l3_ratio_grid(), design.leg_length, design.manipulability_limits
         )
-        report_files(write_manipulability_figures(analysis, average_map, args.plot))
+        write_plots(args.plot, lambda out: write_manipulability_figures(analysis, average_map, out))
     summary = analysis.to_dict()
     if args.json:
         print_json(summary)

@@ -1,29 +1,42 @@
-"""How commands print: JSON, aligned name/value tables, and the files they wrote."""
+"""How commands print and write: JSON, aligned tables, output paths and the files written.
+
+Every output path a command takes (``--csv``, ``--html``, ``--video``, ``-o``, ``--plot``) is
+checked before computing by :func:`check_outputs`, with one rule for each: a file as
+:mod:`hexaleg._io` writes it (``-`` is standard output), a plot folder as a report folder
+(:mod:`hexaleg._folders`: hexaleg's marker, a folder holding anything else refused), and
+no two outputs on one path.
+"""
 
 from __future__ import annotations
 
 import json
+import os
 import sys
-from collections.abc import Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
-from typing import Any
+from typing import Any, TextIO
 
+from hexaleg._folders import check_replaceable_folder, replace_folder
+from hexaleg._io import check_output_file, shown, standard_stream
 from hexaleg.exceptions import HexalegError
 
+PLOT_KIND = "figures"
+"""What a plot folder's marker says it is (the figures of every command may share one)."""
 
-def print_json(data: dict[str, Any]) -> None:
-    """One JSON object on stdout; NaN and infinity are refused, never printed."""
+
+def print_json(data: dict[str, Any], file: TextIO | None = None) -> None:
+    """One JSON object on ``file`` (stdout); NaN and infinity are refused, never printed."""
     require_stdout()
-    print(json.dumps(data, indent=2, allow_nan=False))
+    print(json.dumps(data, indent=2, allow_nan=False), file=file)
 
 
-def print_table(title: str, rows: Sequence[tuple[str, str]]) -> None:
-    """A title and aligned ``name  value`` rows on stdout."""
+def print_table(title: str, rows: Sequence[tuple[str, str]], file: TextIO | None = None) -> None:
+    """A title and aligned ``name  value`` rows on ``file`` (stdout)."""
     require_stdout()
     width = max(len(name) for name, _ in rows)
-    print(title)
+    print(title, file=file)
     for name, value in rows:
-        print(f"  {name:<{width}}  {value}")
+        print(f"  {name:<{width}}  {value}", file=file)
 
 
 def vector(values: Sequence[float], unit: str) -> str:
@@ -43,6 +56,60 @@ def require_stdout() -> None:
 
 
 def report_files(paths: Sequence[Path]) -> None:
-    """Say on stderr which files were written."""
+    """Say on stderr which files were written (not standard output: it shows itself)."""
     for path in paths:
-        print(f"wrote {path}", file=sys.stderr)
+        if standard_stream(os.fspath(path)) is None:
+            print(f"wrote {path}", file=sys.stderr)
+
+
+def check_outputs(
+    files: Mapping[str, str | None], folders: Mapping[str, str | None] | None = None
+) -> None:
+    """Refuse, before computing, the output files and plot folders asked for.
+
+    Args:
+        files: Each file option and its path (``None``: not asked for).
+        folders: Each plot-folder option and its path (``None``: not asked for).
+
+    Raises:
+        HexalegError: a path that cannot be written, a plot folder holding what hexaleg
+            did not write, two outputs on one path, or a file inside an output folder.
+
+    """
+    paths = {flag: path for flag, path in files.items() if path is not None}
+    plots = {flag: path for flag, path in (folders or {}).items() if path is not None}
+    for path in paths.values():
+        check_output_file(path)
+    for path in plots.values():
+        check_replaceable_folder(path, PLOT_KIND, merge=True)
+    seen: dict[str, tuple[str, bool]] = {}  # option → where it writes, and if a folder
+    for flag, path in [*plots.items(), *paths.items()]:
+        where = _where(path)
+        for other, (there, folder) in seen.items():
+            if where == there or (folder and Path(where).is_relative_to(there)):
+                raise HexalegError(
+                    f"{other} and {flag} both write to {shown(path)}: give each output its own path"
+                )
+        seen[flag] = (where, flag in plots)
+
+
+def summary_stream(*files: str | None) -> TextIO | None:
+    """Where a command prints its result: stderr when one of ``files`` is stdout (``-``)."""
+    on_stdout = any(f is not None and standard_stream(f) == 1 for f in files)
+    return sys.stderr if on_stdout else None
+
+
+def write_plots(folder: str, write: Callable[[Path], Sequence[Path]]) -> None:
+    """Write figures (``write`` into the folder it is given) into the plot folder ``folder``.
+
+    The folder follows the rules of report folders (:func:`check_outputs`); the figures
+    are brought in when all are drawn, and named on stderr.
+    """
+    with replace_folder(folder, PLOT_KIND, merge=True) as staging:
+        written = write(staging)
+    report_files([Path(folder) / path.relative_to(staging) for path in written])
+
+
+def _where(path: str) -> str:
+    stream = standard_stream(path)
+    return f"/dev/fd/{stream}" if stream is not None else os.path.realpath(path)

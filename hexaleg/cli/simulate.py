@@ -8,11 +8,17 @@ from pathlib import Path
 
 import numpy as np
 
-from hexaleg._io import check_outputs
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files
+from hexaleg.cli.output import (
+    check_outputs,
+    lengths_title,
+    print_json,
+    print_table,
+    report_files,
+    summary_stream,
+)
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
@@ -68,7 +74,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     gait = gait_from_args(args)
     payload = payload_from_args(args)
-    check_outputs((args.html, args.video))  # refused before simulating, not after
+    check_outputs({"--html": args.html, "--video": args.video})  # before simulating
     if args.video is not None:
         check_video_path(args.video)
     result = simulate_gait(
@@ -85,10 +91,12 @@ def run(args: argparse.Namespace) -> int:
     if args.video is not None:
         written += _video(result, args.video)
     report_files(written)
+    summary = summary_stream(args.html, args.video)
     if args.json:
-        print_json(result.to_dict())
+        print_json(result.to_dict(), summary)
         return 0
-    print_table(lengths_title("Simulated walk (MuJoCo)", design.lengths), rows(result))
+    title = lengths_title("Simulated walk (MuJoCo)", design.lengths)
+    print_table(title, rows(result), summary)
     return 0
 
 

@@ -4,9 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from hexaleg._io import STDOUT, check_output_file
 from hexaleg.cli.options import add_design_options, design_from_args
-from hexaleg.cli.output import report_files
+from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.robot.urdf import write_urdf
 
 DESCRIPTION = (
@@ -22,15 +21,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "-o",
         "--output",
         metavar="FILE",
-        help="write here instead of stdout (a file is replaced atomically, keeping its mode)",
+        help="write here instead of stdout (a file is replaced atomically, keeping its mode; "
+        "- is stdout)",
     )
 
 
 def run(args: argparse.Namespace) -> int:
     """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
     design = design_from_args(args)
-    target = check_output_file(STDOUT if args.output in (None, "-") else args.output)
-    written = write_urdf(design, target)
-    if args.output not in (None, "-"):
-        report_files([written])
+    target = "-" if args.output is None else args.output
+    check_outputs({"--output": target})
+    report_files([write_urdf(design, target)])
     return 0

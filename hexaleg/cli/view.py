@@ -7,7 +7,6 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from hexaleg._io import check_output_file
 from hexaleg.cli.options import (
     add_design_options,
     add_stance_option,
@@ -15,7 +14,7 @@ from hexaleg.cli.options import (
     design_from_args,
     note,
 )
-from hexaleg.cli.output import report_files
+from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.server import (
@@ -68,8 +67,7 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.statics.loads import loads_at_extremes
 
     design = design_from_args(args)
-    if args.html is not None:
-        check_output_file(args.html)
+    check_outputs({"--html": args.html})
     model = HexapodModel(design)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(

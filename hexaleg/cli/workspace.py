@@ -4,14 +4,20 @@ from __future__ import annotations
 
 import argparse
 
-from hexaleg._io import check_output_folder
 from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
     bounded_int,
     design_from_args,
 )
-from hexaleg.cli.output import lengths_title, print_json, print_table, report_files, vector
+from hexaleg.cli.output import (
+    check_outputs,
+    lengths_title,
+    print_json,
+    print_table,
+    vector,
+    write_plots,
+)
 from hexaleg.output.figures import write_workspace_figures
 from hexaleg.swing.workspace import MAX_SAMPLES, MAX_SEED, analyze_workspace
 
@@ -43,11 +49,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Analyse the workspace; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
-    if args.plot is not None:
-        check_output_folder(args.plot)  # before computing
+    check_outputs({}, {"--plot": args.plot})  # before computing
     analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
     if args.plot is not None:
-        report_files(write_workspace_figures(analysis, args.plot))
+        write_plots(args.plot, lambda out: write_workspace_figures(analysis, out))
     summary = analysis.to_dict()
     if args.json:
         print_json(summary)

@@ -34,7 +34,13 @@ from hexaleg.gait.trajectory import (
     path_shapes,
 )
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.forces import (
+    DEFAULT_FRICTION,
+    GRAVITY,
+    Payload,
+    check_friction,
+    check_gravity,
+)
 
 
 @dataclass(frozen=True)
@@ -81,8 +87,8 @@ class Walker:
         self.gait = gait
         self.payload = payload or Payload()
         self.distribution = distribution
-        self.friction = friction
-        self.gravity = gravity
+        self.friction = check_friction(friction)
+        self.gravity = check_gravity(gravity)
         self.frames = LegFrames.from_model(model)
         self.bounds = JointBounds.from_model(model)
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)

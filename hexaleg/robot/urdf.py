@@ -15,7 +15,8 @@ import os
 from importlib import resources
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text
+from hexaleg._checks import require_instance
+from hexaleg._io import write_text
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
@@ -70,7 +71,7 @@ def render_leg(design: HexapodDesign, validate: bool = True) -> str:
 
 def write_urdf(design: HexapodDesign, path: str | os.PathLike[str]) -> Path:
     """Render the hexapod URDF and write it to ``path`` atomically."""
-    return atomic_write_text(path, render_hexapod(design))
+    return write_text(path, render_hexapod(design))
 
 
 def validate_urdf(xml: str) -> None:
@@ -96,6 +97,7 @@ def validate_urdf(xml: str) -> None:
 
 def _common_arguments(design: HexapodDesign) -> dict[str, str]:
     """The leg's arguments, the same for every leg: lengths, limits, ratings, inertials."""
+    require_instance("design", design, HexapodDesign, "a HexapodDesign")
     limits = design.joint_range
     numbers = {
         "l1": design.l1,

@@ -32,11 +32,11 @@ import pinocchio as pin
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import ModelError
+from hexaleg.exceptions import ModelError, ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name, joint_name
 from hexaleg.sim._mujoco import require_mujoco
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
 
 TIMESTEP = 1e-3
 """Simulation time step [s]."""
@@ -51,10 +51,13 @@ FLOOR = "floor"
 """Name of the floor geom."""
 PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
-FRICTION_RANGE = (1e-3, 10.0)
-"""Coefficients of friction μ [-] the floor may have (MuJoCo needs μ > 0)."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
 """Contact bits: robot geoms collide with the floor only, never with each other."""
+
+
+MAX_GAIN = 1e9
+"""Largest servo stiffness [N·m/rad] and damping [N·m·s/rad]: stiffer servos make MuJoCo's
+position actuators stiff beyond what its step resolves."""
 
 
 def contact_geom_name(leg: str) -> str:
@@ -78,7 +81,7 @@ class ServoGains:
     def __post_init__(self) -> None:
         for name, lower, unit in (("stiffness", 1e-6, "N·m/rad"), ("damping", 0.0, "N·m·s/rad")):
             values = tuple(
-                require_in_range(f"{name}.{joint}", value, lower, 1e9, unit)
+                require_in_range(f"{name}.{joint}", value, lower, MAX_GAIN, unit)
                 for joint, value in zip(LEG_JOINTS, getattr(self, name), strict=True)
             )
             object.__setattr__(self, name, values)
@@ -108,6 +111,13 @@ class ServoGains:
         omega = 2 * math.pi * bandwidth
         root, hip, knee = (float(i) for i in reflected_inertia(model))
         stiff, damp = omega**2, 2 * damping_ratio * omega
+        if max(root, hip, knee) * stiff > MAX_GAIN:  # the design, not the gains, is at fault
+            raise ParameterError(
+                "l1, l2, l3",
+                model.design.lengths,
+                f"too large to simulate: a {bandwidth:g} Hz servo on legs this heavy needs a "
+                f"stiffness of {max(root, hip, knee) * stiff:.3g} N·m/rad, beyond {MAX_GAIN:g}",
+            )
         return cls(
             (root * stiff, hip * stiff, knee * stiff), (root * damp, hip * damp, knee * damp)
         )
@@ -169,7 +179,7 @@ def robot_spec(
 
     """
     mujoco = require_mujoco()
-    require_in_range("friction", friction, *FRICTION_RANGE, "-")
+    check_friction(friction)
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
     spec = mujoco.MjSpec.from_string(model.urdf)

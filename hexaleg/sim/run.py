@@ -42,18 +42,22 @@ class Run:
     frame_rate: float
 
 
+MAX_DURATION = 3600.0
+"""Longest simulated time [s]: an hour of walking."""
+
+
 def run_plan(sim: SimModel, plan: Plan, duration: float, frame_rate: float = FRAME_RATE) -> Run:
     """Follow ``plan`` for ``duration`` [s] from rest at its first pose.
 
     Args:
         sim: The MuJoCo model.
         plan: The motion to follow (repeated every period).
-        duration: Simulated time [s], in (0, 3600].
+        duration: Simulated time [s], in (0, :data:`MAX_DURATION`].
         frame_rate: Animation frames per second [1/s], in (0, 1000].
 
     """
     mujoco = require_mujoco()
-    require_in_range("duration", duration, 1e-6, 3600.0, "s")
+    require_in_range("duration", duration, 1e-6, MAX_DURATION, "s")
     require_in_range("frame_rate", frame_rate, 1e-3, 1000.0, "1/s")
     model = sim.hexapod
     steps = round(duration / sim.timestep)

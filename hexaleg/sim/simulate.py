@@ -10,20 +10,21 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 
 from __future__ import annotations
 
-from hexaleg._checks import require_in_range, require_int
+from hexaleg._checks import require_int
 from hexaleg._typing import Distribution
 from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.sim.measure import WalkMetrics, measure_walk
-from hexaleg.sim.model import FRICTION_RANGE, ServoGains, SimModel
+from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
-from hexaleg.sim.run import FRAME_RATE, Run, run_plan
+from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, Run, run_plan
 from hexaleg.sim.standing_tripod import standing_check
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 
 DEFAULT_CYCLES = 4
 """Gait periods simulated by default."""
@@ -73,8 +74,8 @@ def simulate_gait(
 
     """
     require_mujoco()
-    cycles = require_int("cycles", cycles, *CYCLES_RANGE)
-    require_in_range("friction", friction, *FRICTION_RANGE, "-")
+    gait = Gait() if gait is None else gait
+    cycles = _checked_cycles(cycles, gait.period, friction)
     model = HexapodModel(design) if model is None else model
     analysis = analyze_gait(
         design,
@@ -103,6 +104,25 @@ def simulate_gait(
         frame_torques=run.frame_torques,
         frame_rate=run.frame_rate,
     )
+
+
+def _checked_cycles(cycles: int, period: float, friction: float) -> int:
+    """``cycles`` checked (no more periods than the longest simulation holds), ``friction`` too.
+
+    The refusal names both the cycles and the period: either can be what is too long.
+    """
+    cycles = require_int("cycles", cycles, *CYCLES_RANGE)
+    check_friction(friction)
+    if cycles * period > MAX_DURATION:
+        most = int(MAX_DURATION // period)
+        fits = f"at most {most} at this period" if most >= CYCLES_RANGE[0] else "none fits"
+        raise ParameterError(
+            "cycles",
+            cycles,
+            f"cycles × period ({period:g} s, set by period or speed) must be at most "
+            f"{MAX_DURATION:g} s simulated: {fits}",
+        )
+    return cycles
 
 
 def _measure(run: Run, plan: Plan, cycles: int, model: HexapodModel) -> WalkMetrics:

@@ -31,7 +31,7 @@ import qpsolvers
 from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
@@ -40,6 +40,24 @@ GRAVITY = 9.81
 """Gravitational acceleration [m/s²]."""
 DEFAULT_FRICTION = 0.6
 """Default friction coefficient μ between feet and ground [-]."""
+FRICTION_RANGE = (1e-3, 10.0)
+"""Friction coefficients μ [-] every analysis takes: positive (a foot on ice still pushes
+sideways a little, and MuJoCo needs μ > 0), at most 10 (beyond any real pair of surfaces)."""
+GRAVITY_RANGE = (0.01, 1000.0)
+"""Gravitational accelerations g [m/s²] the dynamics take: from a small asteroid's to a
+hundred Earths' (a gait's forces divide by g, so none is zero)."""
+
+
+def check_friction(friction: float) -> float:
+    """``friction`` as a float, if it lies in :data:`FRICTION_RANGE`; else a ParameterError."""
+    return require_in_range("friction", friction, *FRICTION_RANGE, "-")
+
+
+def check_gravity(gravity: float) -> float:
+    """``gravity`` as a float, if it lies in :data:`GRAVITY_RANGE`; else a ParameterError."""
+    return require_in_range("gravity", gravity, *GRAVITY_RANGE, "m/s²")
+
+
 QP_SOLVER = "proxqp"
 """The qpsolvers backend of the min-torque distribution (ProxSuite, from Pinocchio's lab)."""
 PAYLOAD_SEARCH_LIMIT = 1e4
@@ -149,8 +167,7 @@ class Statics:
         payload: Payload | None = None,
         friction: float = DEFAULT_FRICTION,
     ) -> None:
-        if not 0 < require_in_range("friction", friction, 0.0, 10.0, "-"):
-            raise ParameterError("friction", friction, "must lie in (0, 10] [-]")
+        friction = check_friction(friction)
         self.model = model
         self.legs = tuple(legs)
         self.payload = payload or Payload()

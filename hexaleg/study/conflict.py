@@ -30,7 +30,7 @@ from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
 from hexaleg.study.requirement_specs import REQUIREMENTS
 from hexaleg.study.requirements import Requirements
-from hexaleg.study.search_space import SEGMENT_FLOOR, SearchSpace
+from hexaleg.study.search_space import SearchSpace, segment_floor
 
 LEG_RELAXATION = 2.0
 """How much longer than required a relaxed leg may grow [-]."""
@@ -124,14 +124,14 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     spec = REQUIREMENTS[name]
     objective = Objective(spec.metric, "maximize" if spec.sense == "at least" else "minimize")
     if name == "leg_length":
-        longest = LEG_RELAXATION * required
+        longest = min(LEG_RELAXATION * required, spec.bounds[1])
         relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)
         widened = space
         for segment in SEGMENTS:
             widened = widened.widened(segment, upper=longest)
     elif name == "min_coxa":
         relaxed_goal = Goal(requirements.replace(min_coxa=None), objective)
-        floor = SEGMENT_FLOOR * float(requirements.leg_length or space.upper.max())
+        floor = segment_floor(float(requirements.leg_length or space.upper.max()))
         widened = space.widened("l1", lower=floor)
     else:
         relaxed = (name, COUPLED[name]) if COUPLED.get(name) in requirements.given else (name,)

@@ -25,9 +25,10 @@ from typing import Any
 
 import numpy.typing as npt
 
+from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.flexibility import flexibility
@@ -240,24 +241,29 @@ def decide(
         workers: Size of that pool (default: the number of CPUs).
         journal: A file keeping every evaluated design (JSON lines), to resume from.
         resume: Continue ``journal`` instead of refusing to overwrite it.
-        progress: Show a progress bar on stderr; by default only on a terminal.
+        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
+            else a line every few seconds.
+
+    Raises:
+        ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
 
     """
+    _check_arguments(design, journal, resume)
     requirements = (requirements or Requirements()).resolved(design)
-    objective = objective or Objective()
     settings = settings or SearchSettings()
-    goal = Goal(requirements, objective)
+    goal = Goal(requirements, objective or Objective())
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
     )
+    settings.generations(len(space.variables))  # refuses a budget of partial generations
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
-    with _executor(executor, workers) as pool:
+    with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
     best = CheckedDesign.of(space.design(outcome.x), goal)
     return DecideResult(
         requirements=requirements,
-        objective=objective,
+        objective=goal.objective,
         variables=space.variables,
         best=best,
         yours=CheckedDesign.of(design, goal),
@@ -267,6 +273,14 @@ def decide(
         evaluations=sum(found.evaluations for found in search.done),
         seed=settings.seed,
     )
+
+
+def _check_arguments(
+    design: HexapodDesign, journal: str | os.PathLike[str] | None, resume: bool
+) -> None:
+    require_instance("design", design, HexapodDesign, "a HexapodDesign")
+    if resume and journal is None:
+        raise ParameterError("resume", resume, "continues a journal: give journal=FILE")
 
 
 class _Searches:
@@ -301,6 +315,12 @@ def _search_or_conflict(
     outcome = search(space, goal)
     if outcome.feasible:
         return outcome, None
+    if outcome.evaluation.error:  # the least infeasible design cannot even be measured
+        bounds = ", ".join(f"{v.name} {v.typed}" for v in space.variables)
+        raise HexalegError(
+            f"no design within the search bounds ({bounds}) can be measured: "
+            f"{outcome.evaluation.error}"
+        )
     least = outcome
     conflict = find_conflict(space, goal, least.evaluation, lambda s, g: search(s, g, least.x))
     missed = [r.point for r in conflict.relaxations if r.meets_original]

@@ -1,36 +1,30 @@
 """A study's journal: one JSON line per finished design, appended as each task finishes.
 
 The journal (``rows.jsonl`` in the study folder) starts with the study's fingerprint,
-``{"spec": {...}}``, written with the file; each further line is one design's row. It is
-read strictly, so that a resumed study never mixes in rows it cannot trust:
-
-- a last line without its newline is a *torn* write (a kill, a full disk): it is cut
-  off before anything is appended, and its design computed again;
-- any other line that is not a row of this study (not JSON, not an object, no ratios,
-  ratios outside the grid, a second header) is corrupt: "line N is corrupt", refused;
-- a journal without its fingerprint, or with another study's, is refused.
-
-An append that fails (a full disk) is undone to the last whole line and reported in
-one line; the rows before it stay, and ``--resume`` continues from them.
+``{"spec": {...}}``; each further line is one design's row. It follows the rules of
+every hexaleg journal (:mod:`hexaleg._journal`: torn last lines cut, corrupt lines named,
+a full disk told in one line, the rows before kept for ``--resume``). A row is corrupt
+when it has no ratios, ratios outside the grid, or no error column.
 """
 
 from __future__ import annotations
 
-import contextlib
 import json
 import math
 import os
-import stat
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
-from hexaleg._folders import MARKER, write_marker
-from hexaleg._io import os_reason, write_text
+from hexaleg._folders import MARKER, read_regular, write_marker
+from hexaleg._io import os_reason, shown, write_text
+from hexaleg._journal import Journal, JournalKind, append_records, header_key, read_records
 from hexaleg.exceptions import HexalegError
 
 JOURNAL = "rows.jsonl"
 FOLDER_KIND = "study"
 """What a study folder's marker says it is."""
+KIND = JournalKind("spec", "study", "-o")
 
 Key = tuple[float, float]
 """(coxa ratio, tibia ratio) of a design [-]."""
@@ -44,55 +38,24 @@ def start_journal(
 
     A new journal is written with its fingerprint; an existing one is read (with
     ``resume`` only), checked against ``fingerprint`` and ``keys``, and its torn last
-    line cut off.
+    line cut off. The caller holds the folder (:func:`~hexaleg._folders.lock_folder`).
 
     Raises:
         HexalegError: the journal exists without ``resume``, is corrupt, or belongs
             to a study with other options.
 
     """
-    journal = folder / JOURNAL
-    if not os.path.lexists(journal):
-        write_text(journal, _lines([{"spec": fingerprint}]))
-        return {}
-    if not resume:
-        raise HexalegError(
-            f"{folder} already holds a study: pass --resume to continue it, or choose another -o"
-        )
-    rows, intact = read_journal(journal, fingerprint, keys)
-    if intact < journal.stat().st_size:
-        try:
-            os.truncate(journal, intact)
-        except OSError as err:
-            raise HexalegError(f"cannot cut the torn line of {journal}: {os_reason(err)}") from None
-    return rows
+    with Journal(folder / JOURNAL, KIND, fingerprint, _reader(keys), resume) as journal:
+        return dict(journal.records)
 
 
 def read_journal(
     journal: Path, fingerprint: dict[str, Any], keys: list[Key]
 ) -> tuple[dict[Key, Record], int]:
     """The rows of ``journal`` by ratio pair, and the length [bytes] of its whole lines."""
-    data = _read_regular(journal)
-    intact = data.rfind(b"\n") + 1  # what follows the last newline is a torn write
-    lines = data[:intact].split(b"\n")[:-1]
-    if not lines:
-        raise HexalegError(
-            f"{journal} holds no study fingerprint (the study stopped before it began): "
-            "remove the folder, or choose another -o"
-        )
-    if _parse(journal, 1, lines[0]) != {"spec": json.loads(json.dumps(fingerprint))}:
-        raise HexalegError(
-            f"{journal.parent} holds a study with other options; resume it with the same ones"
-        )
-    grid = set(keys)
-    rows: dict[Key, Record] = {}
-    for number, line in enumerate(lines[1:], start=2):
-        row = _parse(journal, number, line)
-        key = _row_key(row)
-        if key is None or key not in grid or not isinstance(row.get("error"), str):
-            raise _corrupt(journal, number)
-        rows[key] = row
-    return rows, intact
+    data = read_regular(journal, shown(journal))
+    rows, intact = read_records(data, KIND, fingerprint, _reader(keys), shown(journal))
+    return dict(rows), intact
 
 
 def append_rows(journal: Path, rows: list[Record]) -> None:
@@ -103,32 +66,20 @@ def append_rows(journal: Path, rows: list[Record]) -> None:
             last whole line.
 
     """
-    data = _lines(rows).encode("utf-8")
     try:
         fd = os.open(journal, os.O_WRONLY | os.O_APPEND | os.O_CLOEXEC)
-        try:
-            size = os.fstat(fd).st_size
-            try:
-                view = memoryview(data)
-                while view:
-                    view = view[os.write(fd, view) :]
-                os.fsync(fd)
-            except OSError:
-                with contextlib.suppress(OSError):  # no half line left, if the system lets us
-                    os.ftruncate(fd, size)
-                raise
-        finally:
-            os.close(fd)
     except OSError as err:
-        raise HexalegError(
-            f"cannot write {journal}: {os_reason(err)}; the rows before are kept, "
-            "continue with --resume"
-        ) from None
+        raise HexalegError(f"cannot write {shown(journal)}: {os_reason(err)}") from None
+    try:
+        append_records(fd, rows, shown(journal))
+    finally:
+        os.close(fd)
 
 
 def write_finished_journal(folder: Path, fingerprint: dict[str, Any], rows: list[Record]) -> Path:
     """Write a finished study's journal in one go, atomically."""
-    return write_text(folder / JOURNAL, _lines([{"spec": fingerprint}, *rows]))
+    records = [{KIND.key: fingerprint}, *rows]
+    return write_text(folder / JOURNAL, "".join(json.dumps(r) + "\n" for r in records))
 
 
 def adopt_unmarked_study(path: str | os.PathLike[str]) -> None:
@@ -136,56 +87,24 @@ def adopt_unmarked_study(path: str | os.PathLike[str]) -> None:
     if not os.fspath(path):
         return
     folder = Path(path)
-    journal = folder / JOURNAL
-    if os.path.lexists(folder / MARKER) or not journal.is_file():
+    if os.path.lexists(folder / MARKER) or not (folder / JOURNAL).is_file():
         return
-    with journal.open("rb") as handle:
-        first = handle.readline(1 << 20)
-    try:
-        header = json.loads(first)
-    except ValueError:
-        return
-    if isinstance(header, dict) and set(header) == {"spec"}:
+    if header_key(folder / JOURNAL) == KIND.key:
         write_marker(folder, FOLDER_KIND)
 
 
-def _lines(records: list[Record]) -> str:
-    return "".join(json.dumps(record, allow_nan=True) + "\n" for record in records)
+def _reader(keys: list[Key]) -> Callable[[Record], tuple[Key, Record]]:
+    grid = set(keys)
 
+    def read(row: Record) -> tuple[Key, Record]:
+        l1_ratio, l3_ratio = row.get("l1_ratio"), row.get("l3_ratio")
+        if not isinstance(l1_ratio, float) or not isinstance(l3_ratio, float):
+            raise ValueError("no ratios")
+        key = (l1_ratio, l3_ratio)
+        if not math.isfinite(l1_ratio + l3_ratio) or key not in grid:
+            raise ValueError("ratios outside the grid")
+        if not isinstance(row.get("error"), str):
+            raise ValueError("no error column")
+        return key, row
 
-def _read_regular(journal: Path) -> bytes:
-    try:
-        fd = os.open(journal, os.O_RDONLY | os.O_NONBLOCK | os.O_CLOEXEC)  # a FIFO: no wait
-    except OSError as err:
-        raise HexalegError(f"cannot read {journal}: {os_reason(err)}") from None
-    with os.fdopen(fd, "rb") as handle:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise HexalegError(f"{journal} is not a regular file")
-        try:
-            return handle.read()
-        except OSError as err:
-            raise HexalegError(f"cannot read {journal}: {os_reason(err)}") from None
-
-
-def _parse(journal: Path, number: int, line: bytes) -> Record:
-    try:
-        record = json.loads(line)
-    except (ValueError, RecursionError):
-        raise _corrupt(journal, number) from None
-    if not isinstance(record, dict):
-        raise _corrupt(journal, number)
-    return record
-
-
-def _row_key(row: Record) -> Key | None:
-    l1_ratio, l3_ratio = row.get("l1_ratio"), row.get("l3_ratio")
-    if isinstance(l1_ratio, float) and isinstance(l3_ratio, float):
-        return (l1_ratio, l3_ratio) if math.isfinite(l1_ratio + l3_ratio) else None
-    return None
-
-
-def _corrupt(journal: Path, number: int) -> HexalegError:
-    return HexalegError(
-        f"{journal}: line {number} is corrupt (not a row of this study): repair or remove "
-        "that line, or choose another -o"
-    )
+    return read

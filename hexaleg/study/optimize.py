@@ -32,7 +32,6 @@ search ends exactly where an uninterrupted one would.
 from __future__ import annotations
 
 import json
-import sys
 from collections.abc import Sequence
 from concurrent.futures import Executor
 from dataclasses import dataclass
@@ -45,15 +44,15 @@ import pymoo
 from pymoo.algorithms.soo.nonconvex.de import DE
 from pymoo.core.problem import Problem
 from scipy.stats import qmc
-from tqdm import tqdm
 
 from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.goal import Goal
+from hexaleg.study.progress import Progress
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
@@ -67,8 +66,9 @@ POPULATION_PER_VARIABLE = 10
 MIN_POPULATION = 24
 """Fewest designs per generation."""
 
-MAX_EVALUATIONS = 1_000_000
-"""Most designs one search evaluates."""
+MAX_EVALUATIONS = 100_000
+"""Most designs one search evaluates: about an hour on 2 cores when only the segments and
+the posture are free, far longer when a body field is (each design renders its URDF)."""
 
 VARIANT = "DE/best/1/bin"
 """Mutation from the best design of the generation, one difference, binomial crossover."""
@@ -92,8 +92,9 @@ class SearchSettings:
 
     Attributes:
         seed: Seed of the initial designs and the algorithm's generator.
-        evaluations: Designs to evaluate, at most; by default :data:`GENERATIONS`
-            generations of the population.
+        evaluations: Designs each search evaluates: whole generations of the population
+            (:meth:`population`), at least two, at most :data:`MAX_EVALUATIONS`; by default
+            :data:`GENERATIONS` generations.
 
     """
 
@@ -110,10 +111,28 @@ class SearchSettings:
         return max(MIN_POPULATION, POPULATION_PER_VARIABLE * variables)
 
     def generations(self, variables: int) -> int:
-        """Generations, the first being the initial population."""
+        """Generations, the first being the initial population: exactly :attr:`evaluations`.
+
+        Raises:
+            ParameterError: ``evaluations`` is no multiple of the population, at least two
+                generations and at most :data:`MAX_EVALUATIONS`.
+
+        """
         if self.evaluations is None:
             return GENERATIONS
-        return max(2, self.evaluations // self.population(variables))
+        population = self.population(variables)
+        generations, rest = divmod(self.evaluations, population)
+        if rest or not 2 <= generations or self.evaluations > MAX_EVALUATIONS:
+            below = max(2, generations) * population
+            offer = sorted({n for n in (below, below + population) if n <= MAX_EVALUATIONS})
+            raise ParameterError(
+                "evaluations",
+                self.evaluations,
+                f"whole generations of {population} designs ({POPULATION_PER_VARIABLE} a free "
+                f"variable, at least {MIN_POPULATION}) for {variables} free variables, at least "
+                f"two, at most {MAX_EVALUATIONS}: e.g. " + " or ".join(map(str, offer)),
+            )
+        return generations
 
 
 @dataclass(frozen=True)
@@ -185,7 +204,7 @@ class _Evaluator:
         executor: Executor | None,
         journal: Journal | None,
         key: str,
-        bar: tqdm[Any],
+        bar: Progress,
     ) -> None:
         self.space, self.goal, self.executor = space, goal, executor
         self.journal, self.key, self.bar = journal, key, bar
@@ -261,17 +280,15 @@ def run_search(
         settings: Seed and budget.
         executor: Where designs are evaluated; this process if omitted.
         journal: Where evaluated designs are kept (and read back on resume).
-        progress: Show a progress bar on stderr; by default only on a terminal.
+        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
+            else a line every few seconds (:class:`~hexaleg.study.progress.Progress`).
         starts: Points put into the initial population (e.g. the user's design).
 
     """
     variables = len(space.variables)
     population, generations = settings.population(variables), settings.generations(variables)
-    show = sys.stderr.isatty() if progress is None else progress
     key = json.dumps({"goal": _goal_key(goal), "space": _space_key(space)}, sort_keys=True)
-    with tqdm(
-        total=population * generations, disable=not show, unit="design", file=sys.stderr
-    ) as bar:
+    with Progress(population * generations, unit="designs", show=progress) as bar:
         evaluate = _Evaluator(space, goal, executor, journal, key, bar)
         algorithm = DE(
             pop_size=population,

@@ -139,7 +139,7 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
                         "least axis-locked body flexibility FB (eq 29) [-]", "F", 0.2,
                         "geometry: twelve extremes, each stopped by its own constraint"),
         RequirementSpec("leg_length", "leg_length", "at most",
-                        (3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1]),
+                        (3 * SEGMENT_RANGE[0], SEGMENT_RANGE[1]),
                         "largest total leg length l1+l2+l3 [m] (default: the design's)", "M",
                         1.0, "geometry: the design's l1 + l2 + l3"),
         RequirementSpec("min_coxa", "coxa_length", "at least", SEGMENT_RANGE,

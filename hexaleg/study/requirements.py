@@ -127,6 +127,8 @@ class Requirements:
         values: dict[str, Any] = {}
         for key, raw in table.items():
             field = f"{source}.{key}"
+            if not isinstance(key, str):
+                raise ParameterError(field, raw, "keys must be requirement names (text)")
             if key not in known:
                 close = difflib.get_close_matches(str(key), known, n=1)
                 hint = f"did you mean {close[0]!r}?" if close else "known: " + ", ".join(known)

@@ -2,22 +2,27 @@
 
 A resumed search replays the same seeded algorithm and reads the designs it has already
 evaluated from here instead of evaluating them again (:mod:`hexaleg.study.optimize`).
-The first line holds what determines the results, checked on resume; a last line cut
-short when the process was stopped is dropped before new lines are appended.
+The first line, ``{"decide": {...}}``, holds what determines the results, checked on
+resume; the file follows the rules of every hexaleg journal (:mod:`hexaleg._journal`),
+and one decision at a time holds it.
 """
 
 from __future__ import annotations
 
-import json
+import math
 import os
-from collections.abc import Sequence
-from pathlib import Path
+from collections.abc import Iterable, Sequence
 from typing import Any
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import shown
+from hexaleg._journal import Journal as JournalFile
+from hexaleg._journal import JournalKind, Record
 from hexaleg.cause import Cause
-from hexaleg.exceptions import HexalegError
 from hexaleg.study.evaluation import Evaluation
+
+KIND = JournalKind("decide", "decision", "--journal")
+Point = tuple[str, tuple[float, ...]]
+"""A search's key and a point of it."""
 
 
 class Journal:
@@ -31,19 +36,12 @@ class Journal:
     """
 
     def __init__(self, path: str | os.PathLike[str] | None, header: dict[str, Any], resume: bool):
-        self.path = None if path is None else Path(path)
-        self._rows: dict[tuple[str, tuple[float, ...]], Evaluation] = {}
-        if self.path is None:
-            return
-        header = json.loads(json.dumps(header))
-        if self.path.exists() and not resume:
-            raise HexalegError(
-                f"--journal {self.path} exists: pass --resume to continue it, or choose another"
-            )
-        if resume and self.path.exists():
-            self._read(header)
-        else:
-            self._append([{"decide": header}])
+        self._file: JournalFile[tuple[Point, Evaluation]] | None = None
+        self._rows: dict[Point, Evaluation] = {}
+        if path is not None:
+            name = f"--journal {shown(path)}"
+            self._file = JournalFile(path, KIND, header, _read, resume, "decide", name)
+            self._rows = dict(self._file.records)
 
     def lookup(self, key: str, x: tuple[float, ...]) -> Evaluation | None:
         """The evaluation of point ``x`` in search ``key``, if journalled."""
@@ -55,65 +53,40 @@ class Journal:
         """Keep these evaluations (on disk before returning)."""
         for x, evaluation in zip(points, found, strict=True):
             self._rows[(key, x)] = evaluation
-        self._append(
-            [
-                {"search": key, "x": list(x), **_to_json(e)}
-                for x, e in zip(points, found, strict=True)
-            ]
-        )
+        if self._file is not None:
+            self._file.append([_record(key, x, e) for x, e in zip(points, found, strict=True)])
 
-    def _append(self, records: list[dict[str, Any]]) -> None:
-        if self.path is None:
-            return
-        try:
-            with self.path.open("a", encoding="utf-8") as handle:
-                handle.write("".join(json.dumps(r) + "\n" for r in records))
-                handle.flush()
-                os.fsync(handle.fileno())
-        except OSError as err:
-            raise HexalegError(f"--journal {self.path}: cannot write it ({err.strerror})") from None
+    def close(self) -> None:
+        """Release the journal file (another decision may then resume it)."""
+        if self._file is not None:
+            self._file.close()
 
-    def _read(self, header: dict[str, Any]) -> None:
-        assert self.path is not None
-        try:
-            text = self.path.read_text(encoding="utf-8")
-        except (OSError, UnicodeDecodeError) as err:
-            raise HexalegError(f"--journal {self.path}: cannot read it ({err})") from None
-        if text and not text.endswith("\n"):  # the line being written when it was stopped
-            text = text[: text.rfind("\n") + 1]
-            atomic_write_text(self.path, text)
-        lines = text.splitlines()
-        if not lines or _header(lines[0]) != header:
-            raise HexalegError(
-                f"--journal {self.path} holds no decision with these options; resume it with "
-                "the same ones"
-            )
-        for number, line in enumerate(lines[1:], start=2):
-            try:
-                record = json.loads(line)
-                x = tuple(float(v) for v in record["x"])
-                self._rows[(record["search"], x)] = _from_json(record)
-            except (json.JSONDecodeError, KeyError, TypeError, ValueError):
-                raise HexalegError(f"{self.path}: line {number} is corrupt") from None
+    def __enter__(self) -> Journal:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
 
 
-def _header(line: str) -> Any:
-    """What a journal's first line says determines its results (None: not a journal)."""
-    try:
-        record = json.loads(line)
-    except json.JSONDecodeError:
-        return None
-    return record.get("decide") if isinstance(record, dict) else None
+def _record(key: str, x: tuple[float, ...], evaluation: Evaluation) -> Record:
+    causes = {metric: cause.to_dict() for metric, cause in evaluation.causes.items()}
+    return {"search": key, "x": list(x), "values": dict(evaluation.values), "causes": causes,
+            "error": evaluation.error}  # fmt: skip
 
 
-def _to_json(evaluation: Evaluation) -> dict[str, Any]:
-    causes = {
-        metric: {"kind": c.kind, "leg": c.leg, "joint": c.joint, "bound": c.bound}
-        for metric, c in evaluation.causes.items()
-    }
-    return {"values": dict(evaluation.values), "causes": causes, "error": evaluation.error}
+def _read(record: Record) -> tuple[Point, Evaluation]:
+    """A journal line back as its point and evaluation; ValueError if it is not one."""
+    key, x, values, causes, error = (
+        record[name] for name in ("search", "x", "values", "causes", "error")
+    )
+    typed = isinstance(key, str) and isinstance(error, str) and isinstance(causes, dict)
+    if not (typed and isinstance(x, list) and _numbers(x) and isinstance(values, dict)):
+        raise ValueError("not an evaluated point of a search")
+    if not _numbers(values.values()) or not all(math.isfinite(v) for v in x):
+        raise ValueError("not an evaluated point of a search")
+    found = {metric: Cause.from_dict(cause) for metric, cause in causes.items()}
+    return (key, tuple(float(v) for v in x)), Evaluation(dict(values), found, error)
 
 
-def _from_json(record: dict[str, Any]) -> Evaluation:
-    causes = {metric: Cause(**cause) for metric, cause in record["causes"].items()}
-    return Evaluation(record["values"], causes, record["error"])
+def _numbers(values: Iterable[Any]) -> bool:
+    return all(isinstance(v, int | float) and not isinstance(v, bool) for v in values)

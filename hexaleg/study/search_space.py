@@ -20,7 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
-from hexaleg.design import FIELD_RANGES, SEGMENTS, HexapodDesign
+from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.sensitivity import SWEEPABLE
 
@@ -32,6 +32,10 @@ POSTURE = ("theta2", "theta3")
 
 FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE)
 """Every variable a search can free."""
+
+LEG_CAP = "l1 + l2 + l3 at most the leg length"
+STANCE_CAP = "the design's stance limits"
+"""Why a segment's and a nominal angle's bounds are what they are, in words."""
 
 AT_BOUND_SHARE = 1e-3
 """A free variable within this share of its range from a bound is at that bound [-]."""
@@ -56,19 +60,22 @@ class FreeVariable:
         if self.name not in FREEABLE:
             raise ParameterError("--free", self.name, "a field among " + ", ".join(FREEABLE))
         if not (math.isfinite(self.lower) and math.isfinite(self.upper)):
-            raise ParameterError(f"--free {self.name}", (self.lower, self.upper), "finite bounds")
+            raise ParameterError(f"--free {self.name}", self.typed, "finite bounds")
         if not self.lower < self.upper:
-            raise ParameterError(
-                f"--free {self.name}", (self.lower, self.upper), "LOWER must be below UPPER"
-            )
+            raise ParameterError(f"--free {self.name}", self.typed, "LOWER must be below UPPER")
         if self.name in FIELD_RANGES:
             low, high, unit = FIELD_RANGES[self.name]
             if self.lower < low or self.upper > high:
                 raise ParameterError(
                     f"--free {self.name}",
-                    (self.lower, self.upper),
+                    self.typed,
                     f"bounds within [{low:g}, {high:g}] [{unit}]",
                 )
+
+    @property
+    def typed(self) -> str:
+        """Its bounds as ``--free`` takes them: ``0.1:0.5``."""
+        return f"{self.lower:g}:{self.upper:g}"
 
     @property
     def unit(self) -> str:
@@ -225,6 +232,15 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     return tuple(reached)
 
 
+def segment_floor(leg_length: float) -> float:
+    """A segment's default lower bound [m] for a leg of ``leg_length`` [m].
+
+    :data:`SEGMENT_FLOOR` of the leg length, or the shortest segment a design may have if
+    that is longer.
+    """
+    return max(SEGMENT_FLOOR * leg_length, SEGMENT_RANGE[0])
+
+
 def search_space(
     base: HexapodDesign,
     leg_length: float,
@@ -242,7 +258,7 @@ def search_space(
         free: More free variables, or other bounds for the default ones.
 
     """
-    floor = SEGMENT_FLOOR * leg_length
+    floor = segment_floor(leg_length)
     chosen: dict[str, FreeVariable] = {
         name: FreeVariable(name, floor, leg_length) for name in SEGMENTS
     }
@@ -252,15 +268,38 @@ def search_space(
                 "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
             )
         chosen["l1"] = FreeVariable("l1", max(floor, min_coxa), leg_length)
+    limits = base.stance_limits
     if free_posture:
-        limits = base.stance_limits
         chosen["theta2"] = FreeVariable("theta2", *limits.theta2)
         chosen["theta3"] = FreeVariable("theta3", *limits.theta3)
+    allowed = {name: (SEGMENT_RANGE[0], leg_length, LEG_CAP) for name in SEGMENTS}
+    if min_coxa is not None:
+        allowed["l1"] = (min_coxa, leg_length, LEG_CAP + ", l1 at least min_coxa")
+    allowed |= {name: (*getattr(limits, name), STANCE_CAP) for name in POSTURE}
+    given: set[str] = set()
     for variable in free:
-        if variable.name in chosen and variable.name in SEGMENTS and min_coxa is not None:
-            if variable.name == "l1" and variable.lower < min_coxa:
-                raise ParameterError(
-                    "--free l1", variable.lower, f"at least min_coxa ({min_coxa:g} m)"
-                )
+        if variable.name in given:
+            raise ParameterError(
+                "--free", f"{variable.name}={variable.typed}", f"{variable.name} is given twice"
+            )
+        given.add(variable.name)
+        if variable.name in allowed:
+            _check_within(variable, *allowed[variable.name])
         chosen[variable.name] = variable
     return SearchSpace(base, tuple(chosen.values()))
+
+
+def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:
+    """Refuse a segment's bounds beyond the leg length, an angle's beyond the stance limits.
+
+    A segment searched beyond the leg length (or below ``min_coxa``) would return a leg
+    breaking the very requirement that set the bound; a nominal angle beyond the stance
+    limits, only designs that cannot stand.
+    """
+    if variable.lower >= low and variable.upper <= high:
+        return
+    raise ParameterError(
+        f"--free {variable.name}",
+        variable.typed,
+        f"bounds within [{low:.4g}, {high:.4g}] [{variable.unit}] ({why})",
+    )

@@ -22,6 +22,7 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import StanceSet
 from hexaleg.design import DEFAULT_LEG_LENGTH, FIELD_RANGES, HexapodDesign
 from hexaleg.exceptions import DesignError, HexalegError
+from hexaleg.study.progress import Progress
 from hexaleg.study.sweep import StudySpec, peak_table, sweep_in_process
 
 Variant = tuple[str, dict[str, Any]]
@@ -139,6 +140,7 @@ def sensitivity_table(
     stance: StanceSet = "all",
     base: HexapodDesign | None = None,
     variants: Sequence[Variant] | None = None,
+    progress: bool | None = None,
 ) -> pd.DataFrame:
     """Peak tibia ratio and FB per coxa ratio for each posture/body variant (axis-locked).
 
@@ -152,31 +154,48 @@ def sensitivity_table(
         stance: Stance legs.
         base: The design the variants change (default: hexaleg's default design).
         variants: Names and changes; by default :func:`relative_variants` of ``base``.
+        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
+            else a line every few seconds, naming the variant being swept.
 
     """
     base = HexapodDesign() if base is None else base
-    rows = []
-    for name, changes in relative_variants(base) if variants is None else variants:
-        try:
-            variant = base.replace(**changes)
-        except HexalegError as err:
-            for r1 in l1_ratios:
-                rows.append(
-                    {
-                        "variant": name,
-                        "l1_ratio": r1,
-                        "peak_l3_ratio": math.nan,
-                        "peak_fb": math.nan,
-                        "failed_designs": len(l3_ratios),
-                        "note": str(err),
-                    }
-                )
-            continue
-        spec = StudySpec(
-            tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, variant, statics=False
-        )
-        table = sweep_in_process(spec)
-        for peak in peak_table(table).to_dict(orient="records"):
-            failed = int(((table["l1_ratio"] == peak["l1_ratio"]) & (table["error"] != "")).sum())
-            rows.append({"variant": name, **peak, "failed_designs": failed, "note": ""})
+    chosen = list(relative_variants(base) if variants is None else variants)
+    total_designs = len(chosen) * len(l1_ratios) * len(l3_ratios)
+    rows: list[dict[str, object]] = []
+    with Progress(total_designs, unit="designs", show=progress) as shown:
+        for variant in chosen:
+            rows += _variant_rows(variant, l1_ratios, l3_ratios, total, stance, base, shown)
     return pd.DataFrame(rows)
+
+
+def _variant_rows(
+    variant: Variant,
+    l1_ratios: Sequence[float],
+    l3_ratios: Sequence[float],
+    total: float,
+    stance: StanceSet,
+    base: HexapodDesign,
+    shown: Progress,
+) -> list[dict[str, object]]:
+    """The sensitivity table's rows of one variant: its peak per coxa ratio."""
+    name, changes = variant
+    shown.update(0, doing=f"sensitivity, {name}")
+    try:
+        changed = base.replace(**changes)
+    except HexalegError as err:
+        shown.update(len(l1_ratios) * len(l3_ratios))
+        return [
+            {"variant": name, "l1_ratio": r1, "peak_l3_ratio": math.nan, "peak_fb": math.nan,
+             "failed_designs": len(l3_ratios), "note": str(err)}
+            for r1 in l1_ratios
+        ]  # fmt: skip
+    spec = StudySpec(
+        tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, changed, statics=False
+    )
+    table = sweep_in_process(spec)
+    shown.update(len(l1_ratios) * len(l3_ratios))
+    rows: list[dict[str, object]] = []
+    for peak in peak_table(table).to_dict(orient="records"):
+        failed = int(((table["l1_ratio"] == peak["l1_ratio"]) & (table["error"] != "")).sum())
+        rows.append({"variant": name, **peak, "failed_designs": failed, "note": ""})
+    return rows

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any, ParamSpec
 
 import numpy as np
 
-from hexaleg._io import atomic_write_bytes
+from hexaleg._io import write_bytes
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, CLAIMED_W_A_PEAK
 
 if TYPE_CHECKING:
@@ -165,11 +165,11 @@ def save(figure: Figure, path: str | os.PathLike[str], svg: bool = False) -> Pat
         smallest = f"{smallest_text_px(figure):.2f}"
         texts = json.dumps([text.get_text() for text in _visible_texts(figure)])  # ASCII
         png = _with_text(buffer.getvalue(), SMALLEST_TEXT_KEY, smallest)
-        written = atomic_write_bytes(path, _with_text(png, TEXTS_KEY, texts))
+        written = write_bytes(path, _with_text(png, TEXTS_KEY, texts))
         if svg:
             vector = io.BytesIO()
             figure.savefig(vector, format="svg", metadata={"Date": None})
-            atomic_write_bytes(Path(path).with_suffix(".svg"), vector.getvalue())
+            write_bytes(Path(path).with_suffix(".svg"), vector.getvalue())
     return written
 
 

@@ -9,7 +9,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg.output.report.document import report_html, report_markdown, sections
 from hexaleg.output.report.part import ReportData
 from hexaleg.output.report.pdf import write_pdf
@@ -27,9 +27,9 @@ def write_content(data: ReportData, out: Path) -> None:
     for part in data.parts:
         part.files(data, out)
     report = sections(data)
-    atomic_write_text(out / REPORT_MD, report_markdown(report, out))
-    atomic_write_text(out / REPORT_HTML, report_html(report, out))
+    write_text(out / REPORT_MD, report_markdown(report, out))
+    write_text(out / REPORT_HTML, report_html(report, out))
     numbers = json.dumps(data.to_dict(), indent=1, allow_nan=True)
-    atomic_write_text(out / REPORT_JSON, numbers)
+    write_text(out / REPORT_JSON, numbers)
     if data.options.pdf:
         write_pdf(report, out)

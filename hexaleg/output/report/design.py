@@ -6,7 +6,7 @@ import math
 from dataclasses import dataclass
 from pathlib import Path
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg.output.report.document import Section, table
 from hexaleg.output.report.part import Part, ReportData
 
@@ -56,7 +56,7 @@ def section(data: ReportData) -> Section:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The URDF."""
-    atomic_write_text(out / URDF, data[DesignRecord].urdf)
+    write_text(out / URDF, data[DesignRecord].urdf)
 
 
 PART = Part(DesignRecord, compute, section, step="URDF", files=write_files, level=0)

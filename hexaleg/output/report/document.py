@@ -18,7 +18,7 @@ from typing import Any, Literal
 import markdown
 import pandas as pd
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg._version import __version__
 from hexaleg.output.figures.canvas import DPI
 from hexaleg.output.report.part import Part, ReportData, numbered
@@ -176,4 +176,4 @@ def change(yours: float, other: float) -> str:
 
 def write_csv(path: Path, rows: Sequence[dict[str, Any]]) -> None:
     """Write ``rows`` (one dict a row) as a CSV file, atomically."""
-    atomic_write_text(path, pd.DataFrame(list(rows)).to_csv(index=False))
+    write_text(path, pd.DataFrame(list(rows)).to_csv(index=False))

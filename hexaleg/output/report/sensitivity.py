@@ -9,7 +9,7 @@ from typing import Any
 
 import pandas as pd
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.report.document import Section, table
 from hexaleg.output.report.part import Part, ReportData
@@ -92,7 +92,7 @@ def section(data: ReportData) -> Section:
 
 def write_files(data: ReportData, out: Path) -> None:
     """``sensitivity.csv``."""
-    atomic_write_text(out / "sensitivity.csv", data[SensitivityRecord].table.to_csv(index=False))
+    write_text(out / "sensitivity.csv", data[SensitivityRecord].table.to_csv(index=False))
 
 
 def to_json(record: SensitivityRecord) -> dict[str, Any]:

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg._io import atomic_write_text
+from hexaleg._io import write_text
 from hexaleg.cause import Cause
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
@@ -196,4 +196,4 @@ def write_static_html(
     loads: LoadsAnalysis | None = None,
 ) -> Path:
     """Write :func:`static_html` to ``path`` atomically."""
-    return atomic_write_text(path, static_html(model, result, workspace_leg, loads))
+    return write_text(path, static_html(model, result, workspace_leg, loads))
