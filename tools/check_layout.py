@@ -4,7 +4,8 @@ The layers follow DESIGN.md's data flow, lowest first; a module may import its o
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled, _lazy
-    design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause
+    design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
+                kinematics, leg_frames, cause
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/
@@ -40,7 +41,9 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "ratios",
             "layouts",
             "limits",
+            "leg_geometry",
             "kinematics",
+            "leg_frames",
             "cause",
         ),
     ),
