@@ -105,7 +105,11 @@ class LegGeometry:
         given = self.link_placements
         given = list(given) if isinstance(given, np.ndarray) else given
         links = require_numbers("link_placements", given, SEGMENT_NAMES, "placements")
-        set_(self, "link_placements", tuple(_rigid(n, p) for n, p in zip(SEGMENT_NAMES, links)))
+        set_(
+            self,
+            "link_placements",
+            tuple(_rigid(n, p) for n, p in zip(SEGMENT_NAMES, links, strict=True)),
+        )
 
     @classmethod
     def from_lengths(cls, lengths: Lengths) -> LegGeometry:
@@ -136,8 +140,12 @@ class LegGeometry:
         Offsets (h, e), bends (the joint maps' offsets) and link placements are kept: the
         joint or foot beyond a changed segment moves along that segment.
         """
-        changes = {"coxa": coxa, "femur": femur, "tibia": tibia}
-        return replace(self, **{k: v for k, v in changes.items() if v is not None})
+        return replace(
+            self,
+            coxa=self.coxa if coxa is None else coxa,
+            femur=self.femur if femur is None else femur,
+            tibia=self.tibia if tibia is None else tibia,
+        )
 
     def link_placement(self, segment: int) -> ArrayF:
         """4×4 placement of segment ``segment``'s link frame (0 coxa, 1 femur, 2 tibia)."""
@@ -207,7 +215,7 @@ class JointMap:
 
     @property
     def sign_array(self) -> ArrayF:
-        """s as a float array (3,)."""
+        """The signs s as a float array (3,)."""
         return np.asarray(self.signs, dtype=float)
 
     def to_file(self, theta: npt.ArrayLike) -> ArrayF:

@@ -77,18 +77,20 @@ def find_chains(description: RobotDescription, lock: Sequence[str] = ()) -> Chai
             accessories += [j.name for j in joints]
             continue
         _check_leg(joints)
-        legs.append(LegChain((joints[0], joints[1], joints[2]), (segments[0], segments[1], segments[2])))
+        legs.append(
+            LegChain((joints[0], joints[1], joints[2]), (segments[0], segments[1], segments[2]))
+        )
     if len(legs) != LEG_COUNT:
-        firsts = ", ".join(leg.joints[0].name for leg in legs[:8]) + (", ..." if len(legs) > 8 else "")
+        firsts = ", ".join(leg.joints[0].name for leg in legs[:8]) + (
+            ", ..." if len(legs) > 8 else ""
+        )
         found = f"found {len(legs)} legs of 3 revolute joints"
         raise RobotImportError(
             f"{found}{f' (from joints {firsts})' if legs else ''}; a hexapod has {LEG_COUNT}"
         )
     locked |= set(accessories)
     body = _group(description, description.root, locked)
-    return Chains(
-        tuple(legs), body, tuple(asked) + tuple(accessories), tuple(accessories)
-    )
+    return Chains(tuple(legs), body, tuple(asked) + tuple(accessories), tuple(accessories))
 
 
 def _locked(description: RobotDescription, patterns: Sequence[str]) -> list[str]:
@@ -120,9 +122,7 @@ def _group(description: RobotDescription, link: str, locked: set[str]) -> tuple[
 def _chain_starts(description: RobotDescription, locked: set[str]) -> list[Joint]:
     """The movable joints whose parent is on the body, in the file's order."""
     body = set(_group(description, description.root, locked))
-    return [
-        j for j in description.joints.values() if j.parent in body and _moves(j, locked)
-    ]
+    return [j for j in description.joints.values() if j.parent in body and _moves(j, locked)]
 
 
 def _follow(
@@ -152,8 +152,7 @@ def _check_leg(joints: list[Joint]) -> None:
     if other:
         j = other[0]
         raise RobotImportError(
-            f"leg from joint {start} has a {j.kind} joint {j.name} "
-            f"(lock it to treat it as fixed)"
+            f"leg from joint {start} has a {j.kind} joint {j.name} (lock it to treat it as fixed)"
         )
     if len(joints) > LEG_JOINT_COUNT:
         names = ", ".join(j.name for j in joints)

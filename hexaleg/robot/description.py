@@ -276,7 +276,9 @@ def _joint(element: ET.Element) -> Joint:
     where = f"joint {name!r}"
     kind = element.get("type", "")
     if kind not in JOINT_TYPES:
-        raise RobotImportError(f"{where} has type {kind!r}; URDF types are {', '.join(JOINT_TYPES)}")
+        raise RobotImportError(
+            f"{where} has type {kind!r}; URDF types are {', '.join(JOINT_TYPES)}"
+        )
     parent, child = element.find("parent"), element.find("child")
     if parent is None or not parent.get("link") or child is None or not child.get("link"):
         raise RobotImportError(f"{where} lacks a parent or child link")

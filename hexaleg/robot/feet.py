@@ -34,7 +34,12 @@ from hexaleg.robot.source import Packages, resolve_resource
 FootRule = Literal["foot_offset", "frame", "sphere", "box", "cylinder", "mesh"]
 """How a leg's foot point was found."""
 
-_RULES: dict[str, FootRule] = {"sphere": "sphere", "box": "box", "cylinder": "cylinder", "capsule": "cylinder"}
+_RULES: dict[str, FootRule] = {
+    "sphere": "sphere",
+    "box": "box",
+    "cylinder": "cylinder",
+    "capsule": "cylinder",
+}
 
 MIN_FOOT_DISTANCE = 1e-6
 """A foot link closer than this to the knee axis is no foot [m]."""
@@ -91,7 +96,9 @@ def find_foot(
         return _named_frame(chain, local, search.frame)
     found = _fixed_link(chain, local, axis)
     if found is None:
-        shapes = [(name, c) for name in chain.segments[2] for c in description.links[name].collisions]
+        shapes = [
+            (name, c) for name in chain.segments[2] for c in description.links[name].collisions
+        ]
         found = _primitive(shapes, local, axis)
         if found is None:
             found, missing = _mesh(shapes, local, axis, search)
@@ -202,7 +209,7 @@ def _vertices(reference: str, search: FootSearch) -> ArrayF | None:
 
     try:
         mesh = trimesh.load(str(path), force="mesh")
-        vertices = np.asarray(mesh.vertices, dtype=float)
+        vertices: ArrayF = np.asarray(getattr(mesh, "vertices", ()), dtype=np.float64)
     except Exception:  # trimesh raises many kinds on a file it cannot read
         return None
     return vertices if vertices.ndim == 2 and len(vertices) else None
