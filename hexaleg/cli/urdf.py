@@ -7,12 +7,17 @@ import argparse
 from hexaleg._io import STDOUT, check_output_file
 from hexaleg.cli.options import add_design_options, design_from_args
 from hexaleg.cli.output import report_files
+from hexaleg.cli.robot_options import add_robot_options, refuse_unsupported, robot_from_args
 from hexaleg.robot.urdf import write_urdf
 
 DESCRIPTION = (
     "Render the hexapod URDF from the Xacro templates for the given design. Joint "
-    "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres."
+    "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres. With "
+    "--urdf, your robot's own URDF (its joints, zeros, signs, masses and meshes) with a link "
+    "<leg>_foot at each foot point hexaleg found."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -24,13 +29,22 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="FILE",
         help="write here instead of stdout (a file is replaced atomically, keeping its mode)",
     )
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
     design = design_from_args(args)
     target = check_output_file(STDOUT if args.output in (None, "-") else args.output)
-    written = write_urdf(design, target)
+    robot = robot_from_args(args)
+    if robot is None:
+        written = write_urdf(design, target)
+    else:
+        from hexaleg._io import write_text
+        from hexaleg.robot.imported import urdf_with_feet
+
+        refuse_unsupported(args)
+        written = write_text(target, urdf_with_feet(robot))
     if args.output not in (None, "-"):
         report_files([written])
     return 0

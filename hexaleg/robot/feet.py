@@ -221,5 +221,5 @@ def _no_foot(chain: LegChain, missing: list[str]) -> str:
     return (
         f"leg from joint {chain.joints[0].name}: no foot found on link {last} (no link fixed "
         f"beyond joint {chain.joints[2].name}, no collision sphere, box or cylinder{unread}); "
-        f"give foot_offset X Y Z, the foot in {last}'s frame [m]"
+        f"give foot_offset X Y Z (--foot-offset), the foot in {last}'s frame [m]"
     )

@@ -10,6 +10,7 @@ it) are lumped into one rigid body in the segment's link frame.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -17,6 +18,7 @@ from pathlib import Path
 import numpy as np
 
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.robot.chains import LegChain, find_chains
 from hexaleg.robot.description import RobotDescription, parse_urdf
@@ -150,6 +152,7 @@ def robot_from_text(
     ]
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
     body = lumped_mass(description, chains.body, frames, np.eye(4))
+    _warn_implausible_inertias(description)
     return ImportedRobot(source, text, description, tuple(legs), chains.body, body)
 
 
@@ -177,6 +180,31 @@ def lumped_mass(
     return SegmentMass(mass, com, about_com)
 
 
+def implausible_inertias(description: RobotDescription) -> list[str]:
+    """The links whose principal moments break the triangle inequality (or are negative)."""
+    bad = []
+    for name, link in description.links.items():
+        if link.inertial is None or link.inertial.mass == 0.0:
+            continue
+        moments = np.linalg.eigvalsh(link.inertial.inertia)
+        slack = 1e-9 * max(float(np.abs(moments).max()), 1e-300)
+        if moments[0] < -slack or moments[2] > moments[0] + moments[1] + slack:
+            bad.append(name)
+    return bad
+
+
+def _warn_implausible_inertias(description: RobotDescription) -> None:
+    bad = implausible_inertias(description)
+    if bad:
+        listed = ", ".join(bad[:4]) + (f" and {len(bad) - 4} more" if len(bad) > 4 else "")
+        warnings.warn(
+            f"links {listed} have inertias no rigid body has (a principal moment exceeds the "
+            f"sum of the other two): used as given, check them",
+            RobotImportWarning,
+            stacklevel=3,
+        )
+
+
 def _segment_masses(
     description: RobotDescription, chain: LegChain, frames: Mapping[str, ArrayF]
 ) -> tuple[SegmentMass, SegmentMass, SegmentMass]:
@@ -194,3 +222,36 @@ def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
         for position, i in zip("fmr", sorted(members, key=lambda i: -roots[i][0]), strict=True):
             names[i] = side + position
     return names
+
+
+def urdf_with_feet(robot: ImportedRobot) -> str:
+    """The robot's own URDF text with a link ``<leg>_foot`` fixed at each leg's foot point.
+
+    Everything else — joint names, zeros and signs, masses, inertias, mesh references — is
+    the file's, so the result moves and weighs like the original, joint for joint.
+
+    Raises:
+        RobotImportError: The file already has a link or joint of one of those names.
+
+    """
+    added = []
+    for leg in robot.legs:
+        link, joint = f"{leg.name}_foot", f"{leg.name}_foot_joint"
+        for name, kind in ((link, "link"), (joint, "joint")):
+            if name in robot.description.links or name in robot.description.joints:
+                raise RobotImportError(
+                    f"the file already has a {kind} named {name!r}: hexaleg's foot links "
+                    f"are <leg>_foot"
+                )
+        xyz = " ".join(repr(float(v)) for v in leg.reading.foot.point)
+        added.append(
+            f'  <link name="{link}"/>\n'
+            f'  <joint name="{joint}" type="fixed">\n'
+            f'    <parent link="{leg.chain.segments[2][0]}"/>\n'
+            f'    <child link="{link}"/>\n'
+            f'    <origin xyz="{xyz}" rpy="0 0 0"/>\n'
+            f"  </joint>\n"
+        )
+    end = robot.text.rindex("</robot>")
+    feet = "  <!-- hexaleg: each leg's foot point -->\n" + "".join(added)
+    return robot.text[:end] + feet + robot.text[end:]
