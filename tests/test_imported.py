@@ -11,7 +11,7 @@ import pytest
 from robot_files import draw_hexapod
 
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
-from hexaleg.kinematics import foot_position
+from hexaleg.kinematics import foot_jacobian, foot_position
 from hexaleg.robot.chains import find_chains
 from hexaleg.robot.description import parse_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
@@ -84,22 +84,6 @@ def test_humarobotics_phantomx_by_hand():
         assert leg.ratings == ((2.8,) * 3, (5.6548668,) * 3)
     # the file's "lf" legs sit at y < 0 (REP 103's right): hexaleg names legs by position
     assert robot.legs[robot.leg_names.index("rf")].joint_names[0] == "j_c1_lf"
-
-
-def test_kraby_fk_equals_pinocchio():
-    robot = import_robot(KRABY)
-    model = pin.buildModelFromXML(robot.text)
-    data = model.createData()
-    rng = np.random.default_rng(5)
-    q = rng.uniform(-1.5, 1.5, model.nq)
-    pin.framesForwardKinematics(model, data, q)
-    for leg in robot.legs:
-        angles = np.array([q[model.joints[model.getJointId(n)].idx_q] for n in leg.joint_names])
-        theta = leg.reading.joint_map.from_file(angles)
-        foot = leg.reading.mount[:3, :3] @ foot_position(leg.reading.geometry, theta)
-        foot += leg.reading.mount[:3, 3]
-        link = leg.reading.foot.source.removeprefix("link ")
-        np.testing.assert_allclose(foot, data.oMf[model.getFrameId(link)].translation, atol=1e-12)
 
 
 def _without(text: str, start: str, end: str) -> str:
@@ -191,3 +175,57 @@ def test_inertia_breaking_the_triangle_inequality_is_warned(recwarn):
     head = text[: text.index("<inertia ", start)] + "<inertia " + bad
     with pytest.warns(RobotImportWarning, match=r"^links leg2_femur have inertias"):
         robot_from_text(head + text[end:])
+
+
+@pytest.mark.parametrize("layout", ["rectangle", "hexagon"])
+def test_the_template_imported_back_equals_its_design(layout):
+    from hexaleg import HexapodDesign
+    from hexaleg.robot.robot_design import robot_design
+    from hexaleg.robot.urdf import render_hexapod
+
+    design = HexapodDesign(l1=0.15, l2=0.35, l3=0.45, layout=layout)
+    robot = robot_from_text(render_hexapod(design))
+    assert robot.leg_names == design.leg_names
+    for leg, mount in zip(robot.legs, design.legs, strict=True):
+        g = leg.reading.geometry
+        np.testing.assert_allclose(_dimensions(leg), (0.15, 0, 0.35, 0.45, 0), atol=1e-12)
+        assert leg.reading.joint_map.signs == (1, 1, 1)
+        np.testing.assert_allclose(leg.reading.joint_map.offsets, 0, atol=1e-12)
+        np.testing.assert_allclose(
+            leg.reading.mount[:3, 3], (mount.x, mount.y, mount.z), atol=1e-12
+        )
+        assert leg.reading.mount_yaw == pytest.approx(mount.yaw, abs=1e-12)
+        assert leg.reading.foot.rule == "frame"
+        assert g.lengths == pytest.approx(design.lengths, abs=1e-12)
+    back = robot_design(robot, design)
+    assert back.lengths == pytest.approx(design.lengths, abs=1e-12)
+
+
+@pytest.mark.parametrize(("path", "offset"), [(KRABY, None), (OCHS, (0.0, 0.133, 0.0))])
+def test_real_robot_fk_and_jacobian_equal_pinocchio(path, offset):
+    robot = import_robot(path, foot=FootSearch(offset=offset))
+    model = pin.buildModelFromXML(robot.text)
+    data = model.createData()
+    rng = np.random.default_rng(6)
+    for _ in range(5):
+        q = rng.uniform(-1.5, 1.5, model.nq)
+        pin.computeJointJacobians(model, data, q)
+        pin.updateFramePlacements(model, data)
+        for leg in robot.legs:
+            joints = [model.joints[model.getJointId(n)] for n in leg.joint_names]
+            theta = leg.reading.joint_map.from_file([q[j.idx_q] for j in joints])
+            rotation, origin = leg.reading.mount[:3, :3], leg.reading.mount[:3, 3]
+            knee = model.getJointId(leg.joint_names[2])
+            placement = pin.SE3(np.eye(3), np.asarray(leg.reading.foot.point))
+            body = model.frames[model.getFrameId(leg.chain.segments[2][0])].placement
+            foot = data.oMi[knee] * body * placement
+            expected = rotation @ foot_position(leg.reading.geometry, theta) + origin
+            np.testing.assert_allclose(expected, foot.translation, atol=1e-12)
+            jac = pin.getJointJacobian(model, data, knee, pin.LOCAL_WORLD_ALIGNED)
+            arm = foot.translation - data.oMi[knee].translation
+            linear = jac[:3] - pin.skew(arm) @ jac[3:]  # the foot point's velocity
+            columns = linear[:, [j.idx_v for j in joints]]
+            closed = rotation @ foot_jacobian(leg.reading.geometry, theta)
+            np.testing.assert_allclose(
+                closed * leg.reading.joint_map.sign_array, columns, atol=1e-12
+            )

@@ -42,6 +42,7 @@ def test_design_show_lists_the_legs(capsys):
     assert out["design"]["l2"] == pytest.approx(0.0602)
 
 
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 def test_workspace_per_leg_against_eq16_and_reach(capsys):
     out = _json(capsys, ["workspace", *HUMA_ARGS, "--urdf", HUMA, "--foot-offset", "0", "-0.1", "0",
                          "--samples", "3000", "--json"])  # fmt: skip
