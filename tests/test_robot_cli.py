@@ -159,3 +159,14 @@ def test_urdf_of_an_imported_robot_moves_and_weighs_like_it(tmp_path, capsys):
             list(before.reading.geometry.as_dict().values()),
             atol=1e-12,
         )
+
+
+def test_nominal_posture_in_both_conventions(capsys):
+    argv = ["design", "show", "--urdf", KRABY, "--json", "--nominal-angles", "0", "0.5", "-2.356"]
+    for leg in _json(capsys, argv)["design"]["legs"]:
+        nominal = leg["nominal"]
+        # the file's knee turns θ3 = 0 into q = π/4 and allows q ≥ −1.57: θ3 ≥ −1.57 − π/4
+        assert nominal["joint_angles"] == pytest.approx([0, 0.5, -1.57 - math.pi / 4])
+        assert nominal["moved_into_limits"] == ["knee"]
+        # q = θ + (0, π/4, π/4) on every Kraby joint (signs +1)
+        assert nominal["urdf_joint_angles"] == pytest.approx([0, 0.5 + math.pi / 4, -1.57])

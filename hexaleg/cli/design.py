@@ -108,7 +108,7 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
 
     refuse_unsupported(args)
     design = robot_design(robot, design)
-    record = robot_record(robot)
+    record = robot_record(robot, design.nominal_angles)
     if args.json:
         print_json(
             {
@@ -127,6 +127,9 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
             f"{leg['hip_height']:.4g}, lateral {leg['foot_lateral']:.4g} m; foot by "
             f"{leg['foot']['rule']} ({leg['foot']['source']})"
         )
+        moved = leg["nominal"]["moved_into_limits"]
+        if moved:
+            print(f"      nominal {', '.join(moved)} angle moved inside the file's limits")
     return 0
 
 

@@ -22,6 +22,7 @@ import numpy as np
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.layouts import LegMount
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.imported import ImportedLeg, ImportedRobot
 
 MIN_BODY_MASS = 1e-3
@@ -86,14 +87,41 @@ def _mm(lengths: tuple[float, ...]) -> str:
     return "(" + ", ".join(f"{1000 * v:.2f}" for v in lengths) + ") mm"
 
 
-def robot_record(robot: ImportedRobot) -> dict[str, Any]:
-    """What was read from the robot file, JSON-ready (SI units, radians)."""
+def nominal_posture(leg: ImportedLeg, nominal: tuple[float, float, float]) -> dict[str, Any]:
+    """The design's nominal angles on ``leg``, moved inside the file's limits where they are not.
+
+    Returns ``joint_angles`` (hexaleg's θ [rad]), ``urdf_joint_angles`` (the file's q [rad])
+    and ``moved``, the joints whose nominal angle lay outside the file's limits.
+    """
+    lower, upper = leg.theta_limits
+    wanted = np.asarray(nominal, dtype=float)
+    theta = np.clip(wanted, lower, upper)
+    moved = [LEG_JOINTS[i] for i in range(3) if theta[i] != wanted[i]]
+    return {
+        "joint_angles": _list(theta),
+        "urdf_joint_angles": _list(leg.reading.joint_map.to_file(theta)),
+        "moved_into_limits": moved,
+    }
+
+
+def robot_record(
+    robot: ImportedRobot, nominal: tuple[float, float, float] | None = None
+) -> dict[str, Any]:
+    """What was read from the robot file, JSON-ready (SI units, radians).
+
+    With the design's ``nominal`` angles, each leg also gives its nominal posture in
+    hexaleg's angles and in the file's (:func:`nominal_posture`).
+    """
+    legs = [leg_record(leg) for leg in robot.legs]
+    if nominal is not None:
+        for record, leg in zip(legs, robot.legs, strict=True):
+            record["nominal"] = nominal_posture(leg, nominal)
     return {
         "source": None if robot.source is None else str(robot.source),
         "name": robot.description.name,
         "body_links": list(robot.body),
         "body_mass": robot.body_mass.mass,
-        "legs": [leg_record(leg) for leg in robot.legs],
+        "legs": legs,
         "units": {"lengths": "m", "angles": "rad", "mass": "kg", "effort": "N·m"},
     }
 
