@@ -37,6 +37,8 @@ _EXPORTS: dict[str, str] = {
     "ParameterError": "hexaleg.exceptions",
     "ModelError": "hexaleg.exceptions",
     "TemplateError": "hexaleg.exceptions",
+    "RobotImportError": "hexaleg.exceptions",
+    "RobotImportWarning": "hexaleg.exceptions",
     # closed forms (the oracle)
     "InverseKinematics": "hexaleg.kinematics",
     "foot_jacobian": "hexaleg.kinematics",
@@ -44,12 +46,16 @@ _EXPORTS: dict[str, str] = {
     "inverse_kinematics": "hexaleg.kinematics",
     "manipulability": "hexaleg.kinematics",
     "planar_foot_position": "hexaleg.kinematics",
+    "LegGeometry": "hexaleg.leg_geometry",
     # robot
     "HexapodModel": "hexaleg.robot.model",
     "LegModel": "hexaleg.robot.model",
     "render_hexapod": "hexaleg.robot.urdf",
     "render_leg": "hexaleg.robot.urdf",
     "write_urdf": "hexaleg.robot.urdf",
+    "FootSearch": "hexaleg.robot.feet",
+    "ImportedRobot": "hexaleg.robot.imported",
+    "import_robot": "hexaleg.robot.imported",
     # swing phase
     "ManipulabilityAnalysis": "hexaleg.swing.manipulability",
     "analyze_manipulability": "hexaleg.swing.manipulability",
@@ -85,15 +91,18 @@ __all__ = [
     "DesignError",
     "FlexibilityResult",
     "FlexibilityWarning",
+    "FootSearch",
     "Gait",
     "GaitAnalysis",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
     "IMPROVED_LIMITS",
+    "ImportedRobot",
     "InverseKinematics",
     "JointLimits",
     "LEG_NAMES",
+    "LegGeometry",
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
@@ -104,6 +113,8 @@ __all__ = [
     "Payload",
     "ReportOptions",
     "Requirements",
+    "RobotImportError",
+    "RobotImportWarning",
     "STANCE_LIMITS",
     "SearchSettings",
     "SimulationResult",
@@ -126,6 +137,7 @@ __all__ = [
     "foot_jacobian",
     "foot_position",
     "hexagon_mounts",
+    "import_robot",
     "inverse_kinematics",
     "load_design",
     "manipulability",
@@ -149,6 +161,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         HexalegError,
         ModelError,
         ParameterError,
+        RobotImportError,
+        RobotImportWarning,
         TemplateError,
     )
     from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
@@ -162,6 +176,7 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
         planar_foot_position,
     )
     from hexaleg.layouts import LEG_NAMES, TRIPODS, LegMount, hexagon_mounts, rectangle_mounts
+    from hexaleg.leg_geometry import LegGeometry
     from hexaleg.limits import (
         IMPROVED_LIMITS,
         MANIPULABILITY_LIMITS,
@@ -171,6 +186,8 @@ if TYPE_CHECKING:  # the same names, for type checkers and IDEs
     )
     from hexaleg.output.report import build_report
     from hexaleg.output.report.options import ReportOptions
+    from hexaleg.robot.feet import FootSearch
+    from hexaleg.robot.imported import ImportedRobot, import_robot
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.sim.result import SimulationResult
