@@ -101,7 +101,11 @@ def test_design_import_round_trip(tmp_path, capsys):
         (["report", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["design", "init", "x.toml", "--urdf", KRABY], "--urdf does not run"),
         (["workspace", "--foot-offset", "0", "0", "0"], "--foot-offset only applies together"),
-        (["workspace", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (
+            ["workspace", "--urdf", KRABY, "--ratios", "0.2", "0.4", "--total", "0.2"],
+            "--ratios with --urdf: give --l1 --l2 --l3",
+        ),
+        (["urdf", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
         (["workspace", "--urdf", OCHS], "give foot_offset X Y Z (--foot-offset)"),
         (["manipulability", "--urdf", "missing.urdf"], "no such file"),
         (["workspace", "--urdf", HUMA], "$(find phantomx_description)"),
@@ -170,3 +174,39 @@ def test_nominal_posture_in_both_conventions(capsys):
         assert nominal["moved_into_limits"] == ["knee"]
         # q = θ + (0, π/4, π/4) on every Kraby joint (signs +1)
         assert nominal["urdf_joint_angles"] == pytest.approx([0, 0.5 + math.pi / 4, -1.57])
+
+
+def test_what_if_a_longer_femur_equals_the_file_drawn_so(tmp_path, capsys):
+    # Kraby's knee sits 0.0495 + 0.0107 from the hip along servomotor_1's −y; drawing the fixed
+    # joint between them at 0.0693 makes the femur 0.08 m, bend and offsets unchanged
+    drawn = (
+        Path(KRABY)
+        .read_text()
+        .replace(
+            'origin xyz="0 -0.0495 0" rpy="0 0 3.141592653589793"',
+            'origin xyz="0 -0.0693 0" rpy="0 0 3.141592653589793"',
+        )
+    )
+    longer = tmp_path / "kraby_long_femur.urdf"
+    longer.write_text(drawn)
+    common = ["--samples", "400", "--json"]
+    asked = _json(capsys, ["workspace", "--urdf", KRABY, "--l2", "0.08", *common])["legs"]
+    built = _json(capsys, ["workspace", "--urdf", str(longer), *common])["legs"]
+    for name, leg in built.items():
+        np.testing.assert_allclose(
+            asked[name]["monte_carlo"]["lower_bound"], leg["monte_carlo"]["lower_bound"], atol=1e-12
+        )
+        np.testing.assert_allclose(
+            asked[name]["monte_carlo"]["upper_bound"], leg["monte_carlo"]["upper_bound"], atol=1e-12
+        )
+        assert asked[name]["area"]["improved"] == pytest.approx(2 * math.pi * 0.08 * 0.088 / 3)
+    # and its general legs are the same legs in closed form
+    theta = np.random.default_rng(3).uniform(-1, 1, (20, 3))
+    original, redrawn = import_robot(KRABY), import_robot(longer)
+    for a, b in zip(original.legs, redrawn.legs, strict=True):
+        changed = a.reading.geometry.with_lengths(femur=0.08)
+        np.testing.assert_allclose(
+            foot_position(changed, theta), foot_position(b.reading.geometry, theta), atol=1e-12
+        )
+        assert a.reading.joint_map.signs == b.reading.joint_map.signs
+        np.testing.assert_allclose(a.reading.joint_map.offsets, b.reading.joint_map.offsets)

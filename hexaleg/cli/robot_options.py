@@ -153,13 +153,20 @@ SEGMENT_FLAGS = ("l1", "l2", "l3", "ratios")
 """Options that would change the segments: not yet applied to an imported robot."""
 
 
-def refuse_unsupported(args: argparse.Namespace) -> None:
-    """Refuse, with ``--urdf``, the options not yet applied to an imported robot."""
-    given = [f for f in SEGMENT_FLAGS if getattr(args, f, None) is not None]
+def refuse_unsupported(args: argparse.Namespace, segments: bool = False) -> None:
+    """Refuse, with ``--urdf``, the options not yet applied to an imported robot.
+
+    With ``segments``, ``--l1 --l2 --l3`` are applied by the caller (only ``--ratios`` is
+    refused).
+    """
+    flags = ("ratios",) if segments else SEGMENT_FLAGS
+    given = [f for f in flags if getattr(args, f, None) is not None]
+    if given and segments:
+        raise UsageError("--ratios with --urdf: give --l1 --l2 --l3 to change the segments")
     if given:
         raise UsageError(
-            f"--{given[0]} with --urdf: changing an imported robot's segments is not supported "
-            f"yet; the analyses use the file's"
+            f"--{given[0]} with --urdf: this command does not change an imported robot's "
+            f"segments yet (workspace and manipulability do)"
         )
     if getattr(args, "plot", None) is not None:
         raise UsageError("--plot with --urdf is not supported yet: use --json")
@@ -169,10 +176,14 @@ def robot_legs(args: argparse.Namespace, design: Any) -> tuple[str, dict[str, An
     """The robot file and each leg's general leg by hexaleg's name; ``None`` without a robot.
 
     ``design`` (the options' design) only gives the joint-limit sets: the paper's, on
-    hexaleg's angles.
+    hexaleg's angles. ``--l1 --l2 --l3`` change every leg's coxa, femur and tibia along
+    their own lines, keeping offsets and bends (:meth:`LegGeometry.with_lengths`).
     """
     robot = robot_from_args(args)
     if robot is None:
         return None
-    refuse_unsupported(args)
-    return str(robot.source), {leg.name: leg.reading.geometry for leg in robot.legs}
+    refuse_unsupported(args, segments=True)
+    lengths = {"coxa": args.l1, "femur": args.l2, "tibia": args.l3}
+    return str(robot.source), {
+        leg.name: leg.reading.geometry.with_lengths(**lengths) for leg in robot.legs
+    }
