@@ -18,6 +18,7 @@ from bench_decide import bench_decide, bench_decide_walking
 from bench_electrical import bench_electrical
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
+from bench_import import bench_import
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
 from bench_simulate import bench_simulate
@@ -36,6 +37,7 @@ WORKLOADS = {
     "decide": lambda quick, r: bench_decide(60 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
     "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
+    "import": lambda quick, r: bench_import(r),
 }
 
 

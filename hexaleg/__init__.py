@@ -20,15 +20,18 @@ __all__ = [
     "DesignError",
     "FlexibilityResult",
     "FlexibilityWarning",
+    "FootSearch",
     "Gait",
     "GaitAnalysis",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
     "IMPROVED_LIMITS",
+    "ImportedRobot",
     "InverseKinematics",
     "JointLimits",
     "LEG_NAMES",
+    "LegGeometry",
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
@@ -39,6 +42,8 @@ __all__ = [
     "Payload",
     "ReportOptions",
     "Requirements",
+    "RobotImportError",
+    "RobotImportWarning",
     "STANCE_LIMITS",
     "SearchSettings",
     "SimulationResult",
@@ -61,6 +66,7 @@ __all__ = [
     "foot_jacobian",
     "foot_position",
     "hexagon_mounts",
+    "import_robot",
     "inverse_kinematics",
     "load_design",
     "manipulability",
@@ -84,6 +90,8 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         HexalegError,
         ModelError,
         ParameterError,
+        RobotImportError,
+        RobotImportWarning,
         TemplateError,
     )
     from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
@@ -97,6 +105,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         planar_foot_position,
     )
     from hexaleg.layouts import LEG_NAMES, TRIPODS, LegMount, hexagon_mounts, rectangle_mounts
+    from hexaleg.leg_geometry import LegGeometry
     from hexaleg.limits import (
         IMPROVED_LIMITS,
         MANIPULABILITY_LIMITS,
@@ -106,6 +115,8 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     )
     from hexaleg.output.report import build_report
     from hexaleg.output.report.options import ReportOptions
+    from hexaleg.robot.feet import FootSearch
+    from hexaleg.robot.imported import ImportedRobot, import_robot
     from hexaleg.robot.model import HexapodModel, LegModel
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.sim.result import SimulationResult

@@ -77,9 +77,12 @@ REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by
 :meth:`hexaleg.study.requirements.Requirements.from_table`."""
 
-TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS)
-"""Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, and the
-``[requirements]`` table."""
+ROBOT = "robot"
+"""An imported robot's table (``hexaleg design import``), read by the commands that take one."""
+
+TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS, ROBOT)
+"""Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, the
+``[requirements]`` and the ``[robot]`` tables."""
 
 
 class DesignFileError(HexalegError):
@@ -131,7 +134,7 @@ def load_design_file(
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
-    text = _read_text(path)
+    text = read_design_text(path)
     json_file = path.suffix.lower() == ".json"
     try:
         data = json.loads(text) if json_file else tomllib.loads(text)
@@ -169,7 +172,7 @@ def _printed_design(data: object) -> object:
     return data
 
 
-def _read_text(path: Path) -> str:
+def read_design_text(path: Path) -> str:
     """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never blocks on a FIFO."""
     try:
         fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
@@ -197,7 +200,7 @@ def _first_sentence(err: Exception) -> str:
 
 def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
     """The design of a mapping of design keys (a parsed TOML file or a JSON ``design``)."""
-    data = _radians({k: v for k, v in data.items() if k != REQUIREMENTS}, "")
+    data = _radians({k: v for k, v in data.items() if k not in (REQUIREMENTS, ROBOT)}, "")
     unknown = [key for key in data if key not in TOP_KEYS]
     if unknown:
         raise _unknown(unknown[0], TOP_KEYS, "")

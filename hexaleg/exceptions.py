@@ -50,6 +50,18 @@ class ModelError(HexalegError):
     """The Pinocchio model lacks a frame or joint hexaleg expects."""
 
 
+class RobotImportError(HexalegError):
+    """A robot file (URDF or Xacro) could not be read, or its legs are not hexaleg's kind.
+
+    The message is one line naming what was found: the file's problem, or the legs,
+    joints and axes that do not make six yaw–pitch–pitch legs.
+    """
+
+
+class RobotImportWarning(UserWarning):
+    """A robot file was imported, but something in it deserves a look (an inertia, an axis)."""
+
+
 MAX_VALUE_CHARS = 80
 """Longest text of a value in a message: a million-element list still gives one short line."""
 

@@ -33,6 +33,7 @@ def test_benchmarks_run_quick_and_agree():
         "axis-locked FB",
         "free-coupled FB",
         "Fig 15 sweep",
+        "import a hexapod URDF",
     }
     for row in rows:
         if "not installed" in row["note"]:

@@ -50,6 +50,7 @@ COMMAND_LINES = [
     *(c.name for c in COMMANDS if c.name != "design"),
     "design init",
     "design show",
+    "design import",
 ]
 """Every command, and each action of the commands that have actions."""
 

@@ -5,8 +5,9 @@ layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
                 _lazy
-    design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause,
-                actuators, actuator_catalog, battery, table_records
+    design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
+                kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
+                table_records
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical
@@ -52,7 +53,9 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "ratios",
             "layouts",
             "limits",
+            "leg_geometry",
             "kinematics",
+            "leg_frames",
             "cause",
             "actuators",
             "actuator_catalog",

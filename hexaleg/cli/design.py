@@ -8,6 +8,12 @@ from typing import Any
 
 from hexaleg.cli.options import UsageError, add_design_options, inputs_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
+from hexaleg.cli.robot_options import (
+    add_refused_robot_option,
+    add_robot_options,
+    refuse_unsupported,
+    robot_from_args,
+)
 from hexaleg.design import HexapodDesign
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
@@ -25,6 +31,16 @@ DESCRIPTION = (
 )
 
 
+ROBOT_OPTIONS = True
+
+IMPORT_DESCRIPTION = (
+    "Read your hexapod's URDF or Xacro FILE (six yaw-pitch-pitch legs) and write a design "
+    "file: the segments, mounts, body mass and ratings hexaleg read, and a [robot] table "
+    "that names FILE and records each leg (joints, dimensions, offsets, foot, limits), to "
+    "edit and version. Commands that run on an imported robot take it with --design."
+)
+
+
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add the ``init`` and ``show`` actions and their options."""
     actions = parser.add_subparsers(dest="action", metavar="ACTION", parser_class=type(parser))
@@ -35,6 +51,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     init.add_argument("file", metavar="FILE", help="the .toml file to write")
     init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
     add_design_options(init)
+    add_refused_robot_option(init)
     show = actions.add_parser(
         "show",
         help="print the resolved design and its derived values",
@@ -43,14 +60,30 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "them.",
     )
     add_design_options(show)
+    add_robot_options(show)
     show.add_argument("--json", action="store_true", help="print one JSON object")
+    imported = actions.add_parser(
+        "import",
+        help="read a robot's URDF or Xacro into a design file",
+        description=IMPORT_DESCRIPTION,
+    )
+    add_robot_options(imported, required=True)
+    imported.add_argument(
+        "-o", "--output", required=True, metavar="FILE", help="the .toml to write"
+    )
+    imported.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
 
 
 def run(args: argparse.Namespace) -> int:
-    """Write or show the design."""
+    """Write, import or show the design."""
+    if args.action == "import":
+        return _import(args)
     design, requirements = inputs_from_args(args)
     if args.action == "init":
         return _init(args.file, design, args.force)
+    robot = robot_from_args(args)
+    if robot is not None:
+        return _show_robot(args, robot, design)
     if args.json:
         out = {"design": design.as_dict(), "derived": derived(design)}
         if requirements.given:
@@ -61,6 +94,89 @@ def run(args: argparse.Namespace) -> int:
         if requirements.given:
             show_requirements(requirements)
     return 0
+
+
+def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> int:
+    """The imported robot's design and what was read, per leg."""
+    from hexaleg.robot.robot_design import robot_design, robot_record
+
+    refuse_unsupported(args)
+    design = robot_design(robot, design)
+    record = robot_record(robot, design.nominal_angles)
+    if args.json:
+        print_json(
+            {
+                "design": {**design.as_dict(), "legs": record["legs"]},
+                "derived": derived(design),
+                "robot": {k: v for k, v in record.items() if k != "legs"},
+            }
+        )
+        return 0
+    show(design)
+    print("  legs read from " + str(record["source"]))
+    for leg in record["legs"]:
+        print(
+            f"    {leg['name']}: joints {', '.join(leg['joints'])}; coxa {leg['coxa']:.4g}, "
+            f"femur {leg['femur']:.4g}, tibia {leg['tibia']:.4g}, hip height "
+            f"{leg['hip_height']:.4g}, lateral {leg['foot_lateral']:.4g} m; foot by "
+            f"{leg['foot']['rule']} ({leg['foot']['source']})"
+        )
+        moved = leg["nominal"]["moved_into_limits"]
+        if moved:
+            print(f"      nominal {', '.join(moved)} angle moved inside the file's limits")
+    return 0
+
+
+def _import(args: argparse.Namespace) -> int:
+    """Write the design file of the robot file ``args.urdf``."""
+    from hexaleg._io import check_output_file, write_text
+    from hexaleg.design_file import design_toml
+    from hexaleg.robot.robot_design import robot_design, robot_record
+
+    path = check_output_file(args.output)
+    if path.suffix.lower() != ".toml":
+        raise UsageError(f"design import -o {path}: the file must end in .toml")
+    if path.exists() and not args.force:
+        raise UsageError(f"design import -o {path}: the file exists (pass --force to overwrite it)")
+    robot = robot_from_args(args)
+    if robot is None:  # unreachable: FILE is required
+        raise UsageError("design import needs the robot's FILE")
+    design = robot_design(robot)
+    table = _robot_table(args, path, robot_record(robot))
+    report_files([write_text(path, design_toml(design) + "\n" + table)])
+    return 0
+
+
+def _robot_table(args: argparse.Namespace, output: Any, record: dict[str, Any]) -> str:
+    """The ``[robot]`` table: the file (relative to the design file), its options, the record."""
+    import os
+
+    import tomli_w
+
+    folder = output.resolve().parent
+    table: dict[str, Any] = {"urdf": os.path.relpath(os.path.abspath(args.urdf), folder)}
+    table["xacro_args"] = dict(a.split(":=", 1) for a in args.xacro_arg)
+    table["packages"] = {
+        name: os.path.relpath(os.path.abspath(folder_), folder)
+        for name, folder_ in (p.split("=", 1) for p in args.package)
+    }
+    if args.foot_frame is not None:
+        table["foot_frame"] = args.foot_frame
+    if args.foot_offset is not None:
+        table["foot_offset"] = list(args.foot_offset)
+    table["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
+    comment = "# [robot]: the robot file this design was read from (hexaleg design import);\n"
+    comment += "# [robot.read] records what was read, for reference: editing it changes nothing.\n"
+    return comment + tomli_w.dumps({"robot": table})
+
+
+def _toml_ready(value: Any) -> Any:
+    """``value`` with every ``None`` (an unbounded limit, a rating not given) as "none"."""
+    if isinstance(value, dict):
+        return {k: _toml_ready(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_toml_ready(v) for v in value]
+    return "none" if value is None else value
 
 
 def _init(file: str, design: HexapodDesign, force: bool) -> int:

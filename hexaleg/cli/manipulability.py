@@ -7,6 +7,7 @@ import math
 
 from hexaleg.cli.options import add_design_options, add_output_options, design_from_args
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.cli.robot_options import add_robot_options, robot_legs
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_manipulability_figures
 from hexaleg.paper import L1_RATIOS
@@ -15,19 +16,36 @@ from hexaleg.swing.manipulability import analyze_manipulability, average_manipul
 DESCRIPTION = (
     "Manipulability w = |det J| of one leg (paper §5): optimum pose within eq 26's limits, "
     "condition number and smallest singular value there, and the average w_A on the "
-    "rectangular and improved domains. Angles in rad, w in m³."
+    "rectangular and improved domains. Angles in rad, w in m³. With --urdf, each leg of "
+    "your robot (indices from its general leg's Jacobian)."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser, body=False, posture=False)  # one leg: no body, no stance
     add_output_options(parser)
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse manipulability; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
+    robot = robot_legs(args, design)
+    if robot is not None:
+        source, legs = robot
+        summaries = {
+            name: analyze_manipulability(design, general=leg).to_dict(design=False)
+            for name, leg in legs.items()
+        }
+        if args.json:
+            print_json({"robot": source, "legs": summaries})
+            return 0
+        for name, leg in legs.items():
+            _print(summaries[name], f"Manipulability of leg {name}", leg.lengths)
+        return 0
     check_outputs({}, {"--plot": args.plot})  # before computing
     analysis = analyze_manipulability(design)
     if args.plot is not None:
@@ -39,9 +57,14 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
         return 0
+    _print(summary, "Manipulability", design.lengths)
+    return 0
+
+
+def _print(summary: dict, title: str, lengths: tuple[float, float, float]) -> None:
     optimum, average = summary["optimum"], summary["average"]
     print_table(
-        lengths_title("Manipulability", design.lengths),
+        lengths_title(title, lengths),
         [
             ("optimum θ2, θ3 (eq 25–26)", f"{optimum['theta2']:.6f}, {optimum['theta3']:.6f} rad"),
             (
@@ -55,4 +78,3 @@ def run(args: argparse.Namespace) -> int:
             ("average w_A, improved domain", f"{average['improved']:.6g} m³"),
         ],
     )
-    return 0

@@ -6,12 +6,17 @@ import argparse
 
 from hexaleg.cli.options import add_design_options, design_from_args
 from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.cli.robot_options import add_robot_options, refuse_unsupported, robot_from_args
 from hexaleg.robot.urdf import write_urdf
 
 DESCRIPTION = (
     "Render the hexapod URDF from the Xacro templates for the given design. Joint "
-    "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres."
+    "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres. With "
+    "--urdf, your robot's own URDF (its joints, zeros, signs, masses and meshes) with a link "
+    "<leg>_foot at each foot point hexaleg found."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -24,6 +29,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="write here instead of stdout (a file is replaced atomically, keeping its mode; "
         "- is stdout)",
     )
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -31,5 +37,14 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
-    report_files([write_urdf(design, target)])
+    robot = robot_from_args(args)
+    if robot is None:
+        written = write_urdf(design, target)
+    else:
+        from hexaleg._io import write_text
+        from hexaleg.robot.imported import urdf_with_feet
+
+        refuse_unsupported(args)
+        written = write_text(target, urdf_with_feet(robot))
+    report_files([written])
     return 0

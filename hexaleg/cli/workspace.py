@@ -18,14 +18,18 @@ from hexaleg.cli.output import (
     vector,
     write_plots,
 )
+from hexaleg.cli.robot_options import add_robot_options, robot_legs
 from hexaleg.output.figures import write_workspace_figures
 from hexaleg.swing.workspace import MAX_SAMPLES, MAX_SEED, analyze_workspace
 
 DESCRIPTION = (
     "Workspace of one leg (paper §4): Monte Carlo cloud in the Table 2 limits, planar "
     "workspace areas on the rectangular (Table 3) and improved (Table 4) domains, and "
-    "eq 16's closed form. Areas in m², positions in m (leg-root frame)."
+    "eq 16's closed form. Areas in m², positions in m (leg-root frame). With --urdf, each "
+    "leg of your robot (its general leg: offsets, bends and all)."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -44,11 +48,25 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"random seed, 0..{MAX_SEED} (default 0)",
     )
     add_output_options(parser)
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the workspace; print a table or JSON, and write figures if asked."""
     design = design_from_args(args)
+    robot = robot_legs(args, design)
+    if robot is not None:
+        source, legs = robot
+        summaries = {
+            name: analyze_workspace(design, args.samples, args.seed, leg=leg).to_dict(design=False)
+            for name, leg in legs.items()
+        }
+        if args.json:
+            print_json({"robot": source, "legs": summaries})
+        for name, leg in legs.items():
+            if not args.json:
+                _print(summaries[name], f"leg {name}", leg.lengths)
+        return 0
     check_outputs({}, {"--plot": args.plot})  # before computing
     analysis = analyze_workspace(design, samples=args.samples, seed=args.seed)
     if args.plot is not None:
@@ -57,10 +75,16 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print_json(summary)
         return 0
+    _print(summary, "", design.lengths)
+    return 0
+
+
+def _print(summary: dict, leg: str, lengths: tuple[float, float, float]) -> None:
     area = summary["area"]
     mc = summary["monte_carlo"]
+    title = "Swing-phase workspace" + (f" of {leg}" if leg else "")
     print_table(
-        lengths_title("Swing-phase workspace", design.lengths),
+        lengths_title(title, lengths),
         [
             ("planar area, rectangular domain (Table 3)", f"{area['rectangular']:.6f} m²"),
             ("planar area, improved domain (Table 4)", f"{area['improved']:.6f} m²"),
@@ -72,4 +96,3 @@ def run(args: argparse.Namespace) -> int:
             ("Monte Carlo box max", vector(mc["upper_bound"], "m")),
         ],
     )
-    return 0

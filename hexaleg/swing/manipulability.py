@@ -17,7 +17,8 @@ from scipy import optimize
 from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF, Lengths
 from hexaleg.design import DEFAULT_LEG_LENGTH, HexapodDesign, require_design
-from hexaleg.kinematics import manipulability
+from hexaleg.kinematics import foot_jacobian, manipulability
+from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import LegModel
 
@@ -322,9 +323,9 @@ class ManipulabilityAnalysis:
     average_rectangular: float
     average_improved: float
 
-    def to_dict(self) -> dict:
-        """JSON-ready summary (SI units: rad, m³)."""
-        return {
+    def to_dict(self, design: bool = True) -> dict:
+        """JSON-ready summary (SI units: rad, m³); the design's fields unless ``design`` is off."""
+        out = {
             "optimum": {
                 "theta2": self.optimum.theta2,
                 "theta3": self.optimum.theta3,
@@ -338,25 +339,40 @@ class ManipulabilityAnalysis:
                 "improved": self.average_improved,
             },
             "units": {"angle": "rad", "w": "m^3", "min_singular_value": "m/rad"},
-            "design": self.design.as_dict(),
         }
+        return {**out, "design": self.design.as_dict()} if design else out
 
 
 def analyze_manipulability(
-    design: HexapodDesign, leg: LegModel | None = None
+    design: HexapodDesign, leg: LegModel | None = None, general: LegGeometry | None = None
 ) -> ManipulabilityAnalysis:
-    """Optimum pose, indices there (Pinocchio) and w_A on both domains."""
+    """Optimum pose, indices there and w_A on both domains.
+
+    The indices come from the Pinocchio model of ``design``'s leg, or, for a ``general``
+    leg (an imported robot's), from its closed-form Jacobian (proven equal to Pinocchio's
+    on the robot's file). w = |det J| depends on (a1, l2, l3) alone, not on the offsets.
+    """
     design = require_design(design)
-    leg = LegModel(design) if leg is None else require_instance("leg", leg, LegModel, "a LegModel")
     limits = design.manipulability_limits
-    optimum = optimum_pose(design.lengths, limits)
+    lengths = design.lengths if general is None else general.lengths
+    optimum = optimum_pose(lengths, limits)
+    pose = [0.0, optimum.theta2, optimum.theta3]
+    if general is None:
+        model = (
+            LegModel(design)
+            if leg is None
+            else require_instance("leg", leg, LegModel, "a LegModel")
+        )
+        indices = pose_indices(model, pose)
+    else:
+        indices = indices_from_jacobian(foot_jacobian(general, pose))
     rect, improved = rectangular_and_improved(limits)
     return ManipulabilityAnalysis(
         design=design,
         optimum=optimum,
-        optimum_indices=pose_indices(leg, [0.0, optimum.theta2, optimum.theta3]),
-        average_rectangular=float(average_manipulability(design.lengths, rect)),
-        average_improved=float(average_manipulability(design.lengths, improved)),
+        optimum_indices=indices,
+        average_rectangular=float(average_manipulability(lengths, rect)),
+        average_improved=float(average_manipulability(lengths, improved)),
     )
 
 

@@ -24,6 +24,7 @@ from hexaleg._typing import ArrayF, Lengths
 from hexaleg.design import HexapodDesign, l3_ratio_grid, require_design
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position, planar_foot_position
+from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import JointLimits
 
 Length = TypeVar("Length", float, ArrayF)
@@ -68,6 +69,7 @@ def monte_carlo_workspace(
     samples: int = 20_000,
     seed: int = 0,
     limits: JointLimits | None = None,
+    leg: LegGeometry | None = None,
 ) -> MonteCarloWorkspace:
     """Sample joint angles uniformly within limits and map them to foot positions (eq 7).
 
@@ -76,6 +78,7 @@ def monte_carlo_workspace(
         samples: Number of random configurations N.
         seed: Seed of NumPy's default generator, for reproducible clouds.
         limits: Joint limits to sample; the design's Table 2 ``workspace_limits`` by default.
+        leg: A general leg (an imported robot's) to map them with; the design's by default.
 
     """
     design = require_design(design)
@@ -88,7 +91,8 @@ def monte_carlo_workspace(
     if limits.coupled_knee:  # resample the knee within its coupled bound
         knee_lower = limits.knee_lower(theta[:, 1])
         theta[:, 2] = knee_lower + rng.random(samples) * (limits.theta3[1] - knee_lower)
-    return MonteCarloWorkspace(theta, foot_position(design.lengths, theta), seed, limits)
+    shape = design.lengths if leg is None else leg
+    return MonteCarloWorkspace(theta, foot_position(shape, theta), seed, limits)
 
 
 @dataclass(frozen=True)
@@ -314,9 +318,9 @@ class WorkspaceAnalysis:
     improved: PlanarWorkspace
     improved_closed_form: float
 
-    def to_dict(self) -> dict:
-        """JSON-ready summary (SI units: m, m², rad)."""
-        return {
+    def to_dict(self, design: bool = True) -> dict:
+        """JSON-ready summary (SI units: m, m², rad), with the design unless ``design`` is off."""
+        out = {
             "area": {
                 "improved": self.improved.area,
                 "improved_closed_form": self.improved_closed_form,
@@ -329,19 +333,25 @@ class WorkspaceAnalysis:
                 "upper_bound": self.monte_carlo.upper_bound.tolist(),
             },
             "units": {"area": "m^2", "bound": "m, leg-root frame"},
-            "design": self.design.as_dict(),
         }
+        return {**out, "design": self.design.as_dict()} if design else out
 
 
 def analyze_workspace(
-    design: HexapodDesign, samples: int = 20_000, seed: int = 0
+    design: HexapodDesign, samples: int = 20_000, seed: int = 0, leg: LegGeometry | None = None
 ) -> WorkspaceAnalysis:
-    """Monte Carlo cloud, planar and improved workspaces of ``design``'s leg."""
+    """Monte Carlo cloud, planar and improved workspaces of ``design``'s leg.
+
+    A general ``leg`` (an imported robot's) gives the cloud and the segments; its planar
+    workspace is the paper leg's of its (a1, l2, l3) lifted by the hip height h (the
+    lateral offset e lies off that plane), so the areas are those of (a1, l2, l3).
+    """
     design = require_design(design)
+    lengths = design.lengths if leg is None else leg.lengths
     return WorkspaceAnalysis(
         design=design,
-        monte_carlo=monte_carlo_workspace(design, samples, seed),
-        rectangular=planar_workspace(design.lengths, design.workspace_limits),
-        improved=planar_workspace(design.lengths, design.improved_limits),
-        improved_closed_form=improved_area_closed_form(design.l2, design.l3),
+        monte_carlo=monte_carlo_workspace(design, samples, seed, leg=leg),
+        rectangular=planar_workspace(lengths, design.workspace_limits),
+        improved=planar_workspace(lengths, design.improved_limits),
+        improved_closed_form=improved_area_closed_form(lengths[1], lengths[2]),
     )

@@ -1,0 +1,257 @@
+"""A user's hexapod read from its URDF or Xacro: six general legs, masses, limits, ratings.
+
+:func:`import_robot` reads the file (:mod:`.source`), its tree (:mod:`.description`),
+its six legs (:mod:`.chains`), each leg's foot (:mod:`.feet`) and general leg
+(:mod:`.legs`), and names the legs as hexaleg does (``lf lm lr rf rm rr``: the three
+legs mounted farthest left are the left ones, each side ordered front to rear).
+Masses are the file's: each segment's links (the joint's child and every link fixed to
+it) are lumped into one rigid body in the segment's link frame.
+"""
+
+from __future__ import annotations
+
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from hexaleg._typing import ArrayF
+from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.layouts import LEG_NAMES
+from hexaleg.robot.chains import LegChain, find_chains
+from hexaleg.robot.description import RobotDescription, parse_urdf
+from hexaleg.robot.feet import FootSearch, find_foot
+from hexaleg.robot.legs import LegReading, read_leg
+from hexaleg.robot.source import Packages, read_robot_text
+
+
+@dataclass(frozen=True, eq=False)
+class SegmentMass:
+    """A segment's links lumped into one rigid body, in the segment's link frame.
+
+    Attributes:
+        mass: Mass [kg].
+        com: Centre of mass (3,) [m].
+        inertia: Rotational inertia (3, 3) about the centre of mass [kg·m²].
+
+    """
+
+    mass: float
+    com: ArrayF
+    inertia: ArrayF
+
+
+@dataclass(frozen=True, eq=False)
+class ImportedLeg:
+    """One leg of an imported robot.
+
+    Attributes:
+        name: hexaleg's name for it (``lf`` … ``rr``).
+        chain: Its joints and links as the file draws them.
+        reading: Its general leg, mount, joint map and foot.
+        masses: Each segment's lumped mass (coxa, femur, tibia).
+
+    """
+
+    name: str
+    chain: LegChain
+    reading: LegReading
+    masses: tuple[SegmentMass, SegmentMass, SegmentMass]
+
+    @property
+    def joint_names(self) -> tuple[str, str, str]:
+        """The file's three joint names, from the body out."""
+        a, b, c = (j.name for j in self.chain.joints)
+        return (a, b, c)
+
+    @property
+    def file_limits(self) -> tuple[ArrayF, ArrayF]:
+        """The file's joint limits (lower (3,), upper (3,)) [rad], ±inf if continuous."""
+        joints = self.chain.joints
+        return np.array([j.lower for j in joints]), np.array([j.upper for j in joints])
+
+    @property
+    def theta_limits(self) -> tuple[ArrayF, ArrayF]:
+        """The file's joint limits as limits on hexaleg's angles θ (lower, upper) [rad]."""
+        return self.reading.joint_map.theta_bounds(*self.file_limits)
+
+    @property
+    def ratings(self) -> tuple[tuple[float | None, ...], tuple[float | None, ...]]:
+        """The file's ``effort`` [N·m] and ``velocity`` [rad/s] per joint (``None``: not given)."""
+        joints = self.chain.joints
+        return tuple(j.effort for j in joints), tuple(j.velocity for j in joints)
+
+
+@dataclass(frozen=True, eq=False)
+class ImportedRobot:
+    """A hexapod read from a robot file.
+
+    Attributes:
+        source: The file it was read from (``None`` for text).
+        text: Its URDF text (Xacro expanded).
+        description: Its tree.
+        legs: The six legs, in hexaleg's order ``lf lm lr rf rm rr``.
+        body: The body's links (root and every link fixed or locked to it).
+        body_mass: The body's links lumped, in the root link's frame.
+
+    """
+
+    source: Path | None
+    text: str
+    description: RobotDescription
+    legs: tuple[ImportedLeg, ...]
+    body: tuple[str, ...]
+    body_mass: SegmentMass
+
+    @property
+    def leg_names(self) -> tuple[str, ...]:
+        """The legs' names (hexaleg's), in order."""
+        return tuple(leg.name for leg in self.legs)
+
+
+def import_robot(
+    path: str | Path,
+    xacro_args: Mapping[str, str] | None = None,
+    packages: Packages | None = None,
+    foot: FootSearch | None = None,
+    lock: Sequence[str] = (),
+) -> ImportedRobot:
+    """The hexapod of the URDF or Xacro file at ``path``.
+
+    Raises:
+        RobotImportError: The file cannot be read, is no URDF tree, or its legs are not six
+            yaw–pitch–pitch legs with a foot each; the message says what was found.
+
+    """
+    path = Path(path)
+    text = read_robot_text(path, xacro_args, packages)
+    search = foot or FootSearch()
+    if search.base_dir is None:
+        search = FootSearch(search.offset, search.frame, path.parent, packages or search.packages)
+    return robot_from_text(text, search, lock, source=path)
+
+
+def robot_from_text(
+    text: str,
+    foot: FootSearch | None = None,
+    lock: Sequence[str] = (),
+    source: Path | None = None,
+) -> ImportedRobot:
+    """The hexapod of URDF ``text`` (see :func:`import_robot`)."""
+    description = parse_urdf(text, str(source) if source else "<string>")
+    chains = find_chains(description, lock)
+    frames = description.frames_at_zero()
+    search = foot or FootSearch()
+    readings = [read_leg(c, frames, find_foot(description, c, frames, search)) for c in chains.legs]
+    names = _leg_names([r.mount[:3, 3] for r in readings])
+    legs = [
+        ImportedLeg(name, chain, reading, _segment_masses(description, chain, frames))
+        for name, chain, reading in zip(names, chains.legs, readings, strict=True)
+    ]
+    legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
+    body = lumped_mass(description, chains.body, frames, np.eye(4))
+    _warn_implausible_inertias(description)
+    return ImportedRobot(source, text, description, tuple(legs), chains.body, body)
+
+
+def lumped_mass(
+    description: RobotDescription,
+    links: Sequence[str],
+    frames: Mapping[str, ArrayF],
+    reference: ArrayF,
+) -> SegmentMass:
+    """The links' inertials as one rigid body in the frame ``reference`` (4, 4) [kg, m]."""
+    inverse = np.linalg.inv(reference)
+    mass, first, second = 0.0, np.zeros(3), np.zeros((3, 3))
+    for name in links:
+        inertial = description.links[name].inertial
+        if inertial is None or inertial.mass == 0.0:
+            continue
+        local = inverse @ frames[name]
+        com = local[:3, :3] @ inertial.com + local[:3, 3]
+        inertia = local[:3, :3] @ inertial.inertia @ local[:3, :3].T
+        mass += inertial.mass
+        first += inertial.mass * com
+        second += inertia + inertial.mass * (com @ com * np.eye(3) - np.outer(com, com))
+    com = first / mass if mass > 0 else np.zeros(3)
+    about_com = second - mass * (com @ com * np.eye(3) - np.outer(com, com))
+    return SegmentMass(mass, com, about_com)
+
+
+def implausible_inertias(description: RobotDescription) -> list[str]:
+    """The links whose principal moments break the triangle inequality (or are negative)."""
+    bad = []
+    for name, link in description.links.items():
+        if link.inertial is None or link.inertial.mass == 0.0:
+            continue
+        moments = np.linalg.eigvalsh(link.inertial.inertia)
+        slack = 1e-9 * max(float(np.abs(moments).max()), 1e-300)
+        if moments[0] < -slack or moments[2] > moments[0] + moments[1] + slack:
+            bad.append(name)
+    return bad
+
+
+def _warn_implausible_inertias(description: RobotDescription) -> None:
+    bad = implausible_inertias(description)
+    if bad:
+        listed = ", ".join(bad[:4]) + (f" and {len(bad) - 4} more" if len(bad) > 4 else "")
+        warnings.warn(
+            f"links {listed} have inertias no rigid body has (a principal moment exceeds the "
+            f"sum of the other two): used as given, check them",
+            RobotImportWarning,
+            stacklevel=3,
+        )
+
+
+def _segment_masses(
+    description: RobotDescription, chain: LegChain, frames: Mapping[str, ArrayF]
+) -> tuple[SegmentMass, SegmentMass, SegmentMass]:
+    a, b, c = (
+        lumped_mass(description, links, frames, frames[links[0]]) for links in chain.segments
+    )
+    return (a, b, c)
+
+
+def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
+    """Hexaleg's names of legs rooted at ``roots`` (body frame): the 3 leftmost are left."""
+    order = sorted(range(len(roots)), key=lambda i: (-roots[i][1], -roots[i][0]))
+    names = [""] * len(roots)
+    for side, members in (("l", order[:3]), ("r", order[3:])):
+        for position, i in zip("fmr", sorted(members, key=lambda i: -roots[i][0]), strict=True):
+            names[i] = side + position
+    return names
+
+
+def urdf_with_feet(robot: ImportedRobot) -> str:
+    """The robot's own URDF text with a link ``<leg>_foot`` fixed at each leg's foot point.
+
+    Everything else — joint names, zeros and signs, masses, inertias, mesh references — is
+    the file's, so the result moves and weighs like the original, joint for joint.
+
+    Raises:
+        RobotImportError: The file already has a link or joint of one of those names.
+
+    """
+    added = []
+    for leg in robot.legs:
+        link, joint = f"{leg.name}_foot", f"{leg.name}_foot_joint"
+        for name, kind in ((link, "link"), (joint, "joint")):
+            if name in robot.description.links or name in robot.description.joints:
+                raise RobotImportError(
+                    f"the file already has a {kind} named {name!r}: hexaleg's foot links "
+                    f"are <leg>_foot"
+                )
+        xyz = " ".join(repr(float(v)) for v in leg.reading.foot.point)
+        added.append(
+            f'  <link name="{link}"/>\n'
+            f'  <joint name="{joint}" type="fixed">\n'
+            f'    <parent link="{leg.chain.segments[2][0]}"/>\n'
+            f'    <child link="{link}"/>\n'
+            f'    <origin xyz="{xyz}" rpy="0 0 0"/>\n'
+            f"  </joint>\n"
+        )
+    end = robot.text.rindex("</robot>")
+    feet = "  <!-- hexaleg: each leg's foot point -->\n" + "".join(added)
+    return robot.text[:end] + feet + robot.text[end:]
