@@ -16,6 +16,7 @@ import sys
 
 from bench_decide import bench_decide, bench_decide_walking
 from bench_electrical import bench_electrical
+from bench_explore import bench_explore
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
@@ -36,6 +37,7 @@ WORKLOADS = {
     "decide": lambda quick, r: bench_decide(48 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
     "decide_walking": lambda quick, r: bench_decide_walking(48 if quick else None),
+    "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
 }
 
 
