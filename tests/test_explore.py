@@ -87,6 +87,19 @@ def test_the_endpoint_s_numbers_are_the_command_line_s(explorer, capsys, query):
     assert got["limited_by"]["max_speed"]["description"] == str(
         gait["max_speed"]["limited_by"]["description"]
     )
+    extremes = [(x["name"], x["limited_by"]) for x in got["extremes"]]
+    printed = [
+        (x["axis"] + ("+" if x["sign"] > 0 else "-"), x["description"])
+        for x in flexibility["extremes"]
+    ]
+    assert extremes == printed
+    for shown, printed in zip(got["extremes"], flexibility["extremes"], strict=True):
+        assert shown["value"] == pytest.approx(printed["value"], rel=RTOL, abs=1e-12)
+    rated = gait["design"]["rated_torques"]
+    worst = max(
+        gait["peak_torque"][j] / r for j, r in zip(("root", "hip", "knee"), rated, strict=True)
+    )
+    assert max(got["stance"]["utilisation"]) == pytest.approx(worst, rel=RTOL)
 
 
 def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer, capsys):

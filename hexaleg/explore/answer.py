@@ -16,6 +16,8 @@ from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
+import numpy as np
+
 from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -65,8 +67,8 @@ def answer(
     goal = Goal(requirements.resolved(design)) if requirements.given else None
     shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
     metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
-    found = evaluate(design, metrics, conditions, model=model)
-    out = _numbers(found) | {"stance": _stance(model)}
+    found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
+    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(found)}
     if goal is not None:
         checked = found if shared else goal.evaluate(design, model=model)
         out["requirements"] = _checks(goal, checked)
@@ -91,15 +93,33 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
     return out
 
 
-def _stance(model: HexapodModel) -> dict[str, Any]:
-    """The nominal stance's points, world frame [m]: each leg's three joints and its foot."""
+def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
+    """The nominal stance's points, world frame [m], and each leg's use of its ratings.
+
+    ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
+    peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
+    """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
+    utilisation: list[float | None] = [None] * len(model.leg_names)
+    if found.gait is not None:
+        peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
+        used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
+        utilisation = [float(used[leg].max()) if leg in used else None for leg in model.leg_names]
     return {
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
+        "utilisation": utilisation,
         "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
     }
+
+
+def _extremes(found: Evaluation) -> list[dict[str, Any]]:
+    """FB's 12 extremes: direction, value [m or rad] and what stops the body there."""
+    if found.flexibility is None:
+        return []
+    return [{"name": x.name, "value": x.value, "limited_by": x.description}
+            for x in found.flexibility.extremes]  # fmt: skip
 
 
 def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:

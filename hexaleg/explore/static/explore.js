@@ -121,6 +121,7 @@ async function evaluate() {
 function draw(answer) {
   drawNumbers(answer);
   drawRequirements(answer.requirements);
+  drawExtremes(answer.extremes);
   drawScene(answer);
   drawChart();
 }
@@ -170,10 +171,9 @@ function project(p, view, scale, centre) {
   return [centre[0] + scale * x, centre[1] - scale * (cp * p[2] - sp * y)];
 }
 
-function utilisation(answer) {
-  const rated = answer.stance.rated_torques;
-  const ratios = Object.keys(rated).map((j) => (answer.peak_torque[j] ?? 0) / rated[j]);
-  return Math.max(...ratios);
+function legColour(u) {
+  if (u === null || u === undefined) return "#999";
+  return u > 1 ? "#d03030" : u > 0.8 ? "#e0a000" : "#2e8b57";
 }
 
 function drawScene(answer) {
@@ -199,19 +199,34 @@ function drawScene(answer) {
   ctx.beginPath();
   roots.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
   ctx.closePath(); ctx.fill(); ctx.stroke();
-  const u = utilisation(answer);
-  ctx.strokeStyle = u > 1 ? "#d03030" : u > 0.8 ? "#e0a000" : "#2e8b57";
+  const used = answer.stance.utilisation;
   ctx.lineWidth = 4;
-  for (const chain of chains) {
+  chains.forEach((chain, leg) => {
+    ctx.strokeStyle = legColour(used[leg]);
     ctx.beginPath();
     chain.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
     ctx.stroke();
     const foot = at(chain[chain.length - 1]);
     ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(foot[0], foot[1], 3, 0, 2 * Math.PI); ctx.fill();
-  }
+    ctx.fillText(answer.stance.legs[leg] + (used[leg] === null ? "" :
+      " " + (100 * used[leg]).toFixed(0) + " %"), foot[0] + 5, foot[1] + 12);
+  });
   ctx.lineWidth = 1;
-  ctx.fillStyle = "#333";
-  ctx.fillText("worst joint at " + (100 * u).toFixed(0) + " % of its rating (gait peak)", 8, 16);
+}
+
+function drawExtremes(extremes) {
+  const body = document.querySelector("#extremes tbody");
+  body.replaceChildren();
+  for (const x of extremes) {
+    const tr = document.createElement("tr");
+    const unit = "xyz".includes(x.name[0]) && x.name.length === 2 ? " m" : " rad";
+    for (const text of [x.name, x.value.toFixed(4) + unit, x.limited_by]) {
+      const td = document.createElement("td");
+      td.textContent = text;
+      tr.append(td);
+    }
+    body.append(tr);
+  }
 }
 
 function drawChart() {
