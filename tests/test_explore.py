@@ -211,3 +211,9 @@ def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
     assert gait.stride == Conditions().gait.stride  # the stride kept, the period set
     with pytest.raises(ParameterError, match=r"nominal_angles\.theta2"):
         parse_query({"nominal_angles": "0,x,-1"}, base, Conditions())
+
+
+def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
+    assert main(["explore", "--save", "design.json"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "design.json" in err and ".toml" in err

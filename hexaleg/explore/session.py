@@ -66,7 +66,7 @@ class Session:
         """The session of a loaded design; its cloud starts measuring."""
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
-            raise HexalegError(f"explore: the design is saved as TOML: {path} must end in .toml")
+            raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
         conditions = (
             Goal(requirements.resolved(design)).conditions if requirements.given else Conditions()
         )
