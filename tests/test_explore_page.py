@@ -13,6 +13,8 @@ import pytest
 from browser import evaluate, require_chromium
 from explorer import running
 
+from hexaleg.design_file import load_design
+
 pytestmark = pytest.mark.slow
 
 MOVE_SLIDER = """
@@ -39,7 +41,14 @@ MOVE_SLIDER = """
     moves.push({query: query, numbers: shown(), scene: scene(), endpoint: endpoint});
   }
   const redraws = performance.getEntriesByName('redraw').map(m => m.duration);
+  document.getElementById('save').click();
+  while (document.getElementById('saved').textContent === '') await sleep(20);
+  document.getElementById('reset').click();
+  await sleep(0);
+  await idle();
   return {before: before, moves: moves, redraws: redraws,
+          saved: document.getElementById('saved').textContent,
+          reset: {numbers: shown(), query: e.query()},
           status: document.getElementById('status').textContent};
 })()
 """
@@ -52,9 +61,10 @@ def _endpoint_value(answer: dict, key: str) -> float | None:
     return value
 
 
-def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s():
+def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(tmp_path):
     require_chromium()
-    with running() as server:
+    saved = tmp_path / "saved.toml"
+    with running("--save", str(saved)) as server:
         got = evaluate(server.url, MOVE_SLIDER)
     before, moves = got["before"], got["moves"]
     assert "l3=0.4&" in before["query"] + "&"
@@ -68,4 +78,7 @@ def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s():
             assert value == pytest.approx(_endpoint_value(endpoint, key), rel=1e-12), key
     assert moves[0]["scene"] != moves[1]["scene"]
     assert len(got["redraws"]) == 3 and all(d > 0 for d in got["redraws"])
+    assert got["saved"] == f"wrote {saved}"
+    assert load_design(saved).l3 == pytest.approx(0.48)  # the last slider position
+    assert got["reset"] == {"numbers": before["numbers"], "query": before["query"]}
     print(f"redraw after a slider move [ms]: {', '.join(f'{d:.0f}' for d in got['redraws'])}")
