@@ -16,6 +16,7 @@ import sys
 
 from bench_decide import bench_decide, bench_decide_walking
 from bench_electrical import bench_electrical
+from bench_explore import bench_explore
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
 from bench_import import bench_import
@@ -38,6 +39,7 @@ WORKLOADS = {
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
     "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
     "import": lambda quick, r: bench_import(r),
+    "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
 }
 
 

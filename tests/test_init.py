@@ -93,6 +93,7 @@ def test_building_the_parser_imports_no_heavy_library():
 LAZY_PACKAGES = (
     "hexaleg",
     "hexaleg.electrical",
+    "hexaleg.explore",
     "hexaleg.gait",
     "hexaleg.output.figures",
     "hexaleg.output.viewer",

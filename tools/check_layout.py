@@ -68,6 +68,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
+    ("explore", ("explore",)),
     ("cli", ("cli", "__main__")),
 )
 """Each layer's name and the top-level modules or packages of ``hexaleg`` in it."""

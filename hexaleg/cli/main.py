@@ -89,6 +89,11 @@ COMMANDS: tuple[Command, ...] = (
         "3-D viewer of the nominal stance and the 12 body extremes (meshcat)",
     ),
     Command(
+        "explore",
+        "hexaleg.cli.explore",
+        "live design explorer: sliders re-measure the design in the browser (loopback)",
+    ),
+    Command(
         "report",
         "hexaleg.cli.report",
         "the main job: every analysis, figure and table, and a recommendation",

@@ -12,6 +12,8 @@ __all__ = [
     "LegModel",
     "foot_frame_name",
     "joint_name",
+    "model_of",
+    "per_body",
     "render_hexapod",
     "render_leg",
     "root_frame_name",
@@ -30,4 +32,5 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         joint_name,
         root_frame_name,
     )
+    from hexaleg.robot.model_cache import model_of, per_body
     from hexaleg.robot.urdf import render_hexapod, render_leg, validate_urdf, write_urdf

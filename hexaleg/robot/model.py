@@ -111,6 +111,10 @@ class LegModel:
         return np.array([self.foot_position(t) for t in thetas])
 
 
+DERIVED_FIELDS = frozenset(("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles"))
+"""The design fields :meth:`HexapodModel.with_design` sets on a copy of a model."""
+
+
 class HexapodModel:
     """The whole hexapod on a free-flyer root joint, as Pinocchio sees it.
 
@@ -174,11 +178,10 @@ class HexapodModel:
         URDF); the tests prove the result equal to ``HexapodModel(design)``. Every other
         field must be this model's design's.
         """
-        changed = ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles")
         if any(
             getattr(self.design, f.name) != getattr(design, f.name)
             for f in fields(design)
-            if f.name not in changed
+            if f.name not in DERIVED_FIELDS
         ):
             raise ModelError("with_design changes only segment lengths, ratings and posture")
         model = pin.Model(self.model)

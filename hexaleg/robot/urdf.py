@@ -12,6 +12,7 @@ from __future__ import annotations
 import io
 import logging
 import os
+import threading
 from importlib import resources
 from pathlib import Path
 
@@ -122,12 +123,18 @@ def _number(value: float) -> str:
     return repr(float(value))
 
 
+_XACRO = threading.Lock()
+"""xacro keeps the substitution arguments of the file it processes in module globals:
+one rendering at a time, whichever thread asks (the explorer answers in several)."""
+
+
 def _render(template: str, mappings: dict[str, str], validate: bool) -> str:
     import xacro
 
     path = template_dir() / template
     try:
-        document = xacro.process_file(str(path), mappings=mappings)
+        with _XACRO:
+            document = xacro.process_file(str(path), mappings=mappings)
     except Exception as err:  # xacro raises XacroException and plain errors alike
         raise TemplateError(f"xacro failed on {path.name}: {err}") from err
     for node in list(document.childNodes):  # xacro's banner names this machine's paths

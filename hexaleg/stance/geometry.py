@@ -25,6 +25,7 @@ from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinemat
 from hexaleg.layouts import first_tripod
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model_cache import per_body
 
 
 def stance_legs(model: HexapodModel, stance: StanceSet | Sequence[str]) -> tuple[str, ...]:
@@ -212,7 +213,16 @@ def body_collision_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
     """``base_link``'s collision shape read from the URDF: half extents [m] and roundness.
 
     A box gives its half sizes; a cylinder (radius r, length 2h, about z) gives (r, r, h).
+    The body's alone determines it: it is read once per body
+    (:func:`~hexaleg.robot.model_cache.per_body`).
     """
+    half_extents, round_body = per_body(
+        "body collision shape", model.design, lambda: _read_body_shape(model)
+    )
+    return half_extents.copy(), round_body
+
+
+def _read_body_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
     for obj in model.collision_model().geometryObjects:
         if obj.parentFrame != model.base_frame:
             continue

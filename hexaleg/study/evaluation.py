@@ -36,6 +36,7 @@ from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
@@ -124,8 +125,9 @@ def evaluate(
         metrics: Names of :data:`~hexaleg.study.metrics.METRICS` to measure.
         conditions: What it is measured under (level ground, no payload, the default gait).
         model: The design's Pinocchio model (one derived from a model of the same body by
-            :meth:`~hexaleg.robot.model.HexapodModel.with_design` is exact); built from
-            its URDF when an analysis needs it and it is omitted.
+            :meth:`~hexaleg.robot.model.HexapodModel.with_design` is exact); when an
+            analysis needs it and it is omitted, :func:`~hexaleg.robot.model_cache.model_of`
+            derives it from a model of its body built before, or builds it from its URDF.
         template: A stance geometry of the same body and mounts (fast path); the
             design's own is read from the model if omitted.
         flexibility: The design's flexibility, if already computed (a batch's).
@@ -233,7 +235,7 @@ class _Measuring:
     @property
     def model(self) -> HexapodModel:
         if self._model is None:
-            self._model = HexapodModel(self.design)
+            self._model = model_of(self.design)
         return self._model
 
     @cached_property

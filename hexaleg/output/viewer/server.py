@@ -219,8 +219,8 @@ def is_loopback(host: str) -> bool:
     )
 
 
-def browser_url(host: str, port: int) -> str:
-    """The page's URL as a browser opens it.
+def browser_url(host: str, port: int, path: str = "/static/") -> str:
+    """The page at ``path`` as a browser opens it (meshcat's page by default).
 
     A wildcard host (``0.0.0.0``, ``::``) becomes this machine's loopback, an IPv6
     address gets its brackets, a numeric shorthand (``127.1``) its full form; a name
@@ -231,10 +231,10 @@ def browser_url(host: str, port: int) -> str:
     try:
         info = socket.getaddrinfo(shown, None, flags=socket.AI_NUMERICHOST)[0]
     except (OSError, UnicodeError, ValueError):  # a name: shown as given
-        return f"http://{shown}:{port}/static/"
+        return f"http://{shown}:{port}{path}"
     address = ipaddress.ip_address(str(info[4][0]))
     text = f"[{address}]" if address.version == 6 else str(address)
-    return f"http://{text}:{port}/static/"
+    return f"http://{text}:{port}{path}"
 
 
 def static_page(build: Callable[[Any], None], legend: Legend | None) -> str:

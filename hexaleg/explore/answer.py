@@ -1,0 +1,160 @@
+"""The explorer's answer about one design: every number the page shows, JSON-ready.
+
+One :func:`~hexaleg.study.evaluation.evaluate` measures the metrics of
+:data:`EXPLORED` under the query's conditions; the answer names them as the command
+line's ``--json`` does (``fb``, ``payload_capacity``, ``peak_torque`` per joint type,
+``max_speed`` ...) with what limits each, the nominal stance's points for the drawing,
+and, when the design file has ``[requirements]``, each one checked under the
+requirements' own conditions (the same evaluation when they are the sliders' too).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from hexaleg.design import HexapodDesign
+from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.model_cache import model_of
+from hexaleg.statics.forces import Payload
+from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.goal import Goal
+from hexaleg.study.metrics import METRICS
+from hexaleg.study.requirements import Requirements, limited_by_dict
+
+__all__ = ["EXPLORED", "answer"]
+
+SCALARS = (
+    "fb",
+    "improved_area",
+    "average_manipulability",
+    "payload_capacity",
+    "walking_payload_capacity",
+    "max_speed",
+    "mechanical_energy_per_km",
+    "mechanical_cost_of_transport",
+    "ground_clearance",
+    "robot_mass",
+)
+"""Metrics answered under their own names."""
+
+EXPLORED: tuple[str, ...] = (
+    *SCALARS,
+    *(f"gait_{kind}_{joint}_torque" for kind in ("peak", "rms") for joint in LEG_JOINTS),
+)
+"""Every metric the explorer measures for a design."""
+
+
+def answer(
+    design: HexapodDesign, conditions: Conditions, requirements: Requirements
+) -> dict[str, Any]:
+    """The page's numbers for ``design`` under ``conditions``, checked against ``requirements``.
+
+    Args:
+        design: The design.
+        conditions: What it is measured under (the sliders' payload and gait).
+        requirements: The design file's requirements (none given: nothing checked).
+
+    """
+    start = time.perf_counter()
+    model = model_of(design)
+    goal = Goal(requirements.resolved(design)) if requirements.given else None
+    shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
+    metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
+    found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
+    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(found)}
+    if goal is not None:
+        checked = found if shared else goal.evaluate(design, model=model)
+        out["requirements"] = _checks(goal, checked)
+    out["evaluate_ms"] = 1000 * (time.perf_counter() - start)
+    return out
+
+
+def _numbers(found: Evaluation) -> dict[str, Any]:
+    """The metrics as the command line names them, with what limits each."""
+    values = found.values
+    out: dict[str, Any] = {"error": found.error}
+    out |= {name: _finite(values.get(name, math.nan)) for name in SCALARS}
+    for kind in ("peak", "rms"):
+        out[f"{kind}_torque"] = {
+            joint: _finite(values.get(f"gait_{kind}_{joint}_torque", math.nan))
+            for joint in LEG_JOINTS
+        }
+    out["limited_by"] = {name: limited_by_dict(cause) for name, cause in found.causes.items()}
+    out["unmeasured"] = dict(found.unmeasured)
+    out["walks"] = found.walks
+    out["units"] = {name: METRICS[name].unit for name in SCALARS} | {"torque": "N·m"}
+    return out
+
+
+def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
+    """The nominal stance's points, world frame [m], and each leg's use of its ratings.
+
+    ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
+    peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
+    """
+    design = model.design
+    chains = model.leg_chains(model.nominal_configuration())
+    utilisation: list[float | None] = [None] * len(model.leg_names)
+    if found.gait is not None:
+        peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
+        used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
+        utilisation = [float(used[leg].max()) if leg in used else None for leg in model.leg_names]
+    return {
+        "legs": list(model.leg_names),
+        "chains": chains.round(6).tolist(),
+        "utilisation": utilisation,
+        "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
+    }
+
+
+def _extremes(found: Evaluation) -> list[dict[str, Any]]:
+    """FB's 12 extremes: direction, value [m or rad] and what stops the body there."""
+    if found.flexibility is None:
+        return []
+    return [{"name": x.name, "value": x.value, "limited_by": x.description}
+            for x in found.flexibility.extremes]  # fmt: skip
+
+
+def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:
+    """Each requirement checked: required, value, margin, met, what limits it, in words."""
+    if found.error:
+        return [{"name": name, "met": False, "text": goal.requirements.describe(name),
+                 "error": found.error} for name in goal.requirements.given]  # fmt: skip
+    checks = []
+    for check in goal.checks(found):
+        out = check.to_dict(binding=False) | {"name": check.name}
+        out |= {key: _finite(out[key]) for key in ("required", "value", "margin")}
+        checks.append(out | {"text": goal.requirements.describe(check.name)})
+    return checks
+
+
+def _placed(conditions: Conditions, design: HexapodDesign) -> Conditions:
+    """The conditions with the payload's position spelled out (its default made explicit)."""
+    payload = conditions.payload
+    x, y, z = payload.position_on(design)
+    return replace(conditions, payload=Payload(payload.mass, (x, y, z)))
+
+
+def _finite(value: float) -> float | None:
+    """A metric's value for JSON: ``None`` where it is not a finite number."""
+    return value if math.isfinite(value) else None
+
+
+def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str, Any]:
+    """What the sliders start at: the loaded design's and conditions' values."""
+    payload = conditions.payload
+    return {
+        **{key: getattr(design, key) for key in ("l1", "l2", "l3", "body_length", "body_width")},
+        "nominal_angles": list(design.nominal_angles),
+        "payload": payload.mass,
+        "payload_at": payload.position_on(design),
+        "speed": conditions.gait.speed,
+        "step_height": conditions.gait.step_height,
+    }

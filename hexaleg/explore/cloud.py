@@ -1,0 +1,94 @@
+"""The study's cloud of designs that the page places the current design on.
+
+Designs of the loaded body and leg length at the paper's coxa ratios and the loaded
+design's own, over a grid of tibia ratios, each measured for FB and the walking payload
+capacity under the loaded conditions (one batch, :func:`~hexaleg.study.evaluation.evaluate_many`).
+It is measured once, in a background thread, while the page already answers.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from typing import Any
+
+from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.exceptions import HexalegError
+from hexaleg.paper import L1_RATIOS
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.study.evaluation import Conditions, evaluate_many
+
+__all__ = ["CLOUD_METRICS", "Cloud"]
+
+CLOUD_METRICS = ("fb", "walking_payload_capacity")
+"""What each design of the cloud is measured for."""
+
+TIBIA_POINTS = 12
+"""Tibia ratios per coxa ratio."""
+
+
+class Cloud:
+    """The cloud, measured in a background thread; :meth:`to_dict` answers what is there."""
+
+    def __init__(self, design: HexapodDesign, conditions: Conditions) -> None:
+        self._design, self._conditions = design, conditions
+        self._points: list[dict[str, float | None]] = []
+        self._error = ""
+        self._done = threading.Event()
+        self._thread = threading.Thread(target=self._measure, daemon=True, name="cloud")
+
+    def start(self) -> Cloud:
+        """Start measuring; return the cloud."""
+        self._thread.start()
+        return self
+
+    def wait(self, timeout: float) -> bool:
+        """Wait at most ``timeout`` [s] for the cloud; whether it is complete."""
+        return self._done.wait(timeout)
+
+    def to_dict(self) -> dict[str, Any]:
+        """``ready``, ``points`` (l1_ratio, l3_ratio and the metrics of each) and ``error``."""
+        return {"ready": self._done.is_set(), "points": list(self._points), "error": self._error}
+
+    def _measure(self) -> None:
+        try:
+            for l1_ratio in coxa_ratios(self._design):
+                self._points += self._row(l1_ratio)
+        except HexalegError as err:  # the loaded body cannot stand at these ratios
+            self._error = str(err)
+        finally:
+            self._done.set()
+
+    def _row(self, l1_ratio: float) -> list[dict[str, float | None]]:
+        """One coxa ratio's designs, measured together."""
+        designs = []
+        for l3_ratio in l3_ratio_grid(TIBIA_POINTS):
+            try:
+                designs.append(self._design.with_ratios(l1_ratio, float(l3_ratio)))
+            except HexalegError:
+                continue  # this leg cannot stand on the loaded body
+        if not designs:
+            return []
+        base = HexapodModel(designs[0])
+        template = StanceGeometry.from_model(base, self._conditions.stance)
+        found = evaluate_many(designs, CLOUD_METRICS, self._conditions, base, template)
+        points = []
+        for design, evaluation in zip(designs, found, strict=True):
+            if evaluation.error:
+                continue
+            point: dict[str, float | None] = {
+                "l1_ratio": l1_ratio,
+                "l3_ratio": design.l3 / design.leg_length,
+            }
+            for name in CLOUD_METRICS:
+                value = evaluation.values.get(name, math.nan)
+                point[name] = value if math.isfinite(value) else None
+            points.append(point)
+        return points
+
+
+def coxa_ratios(design: HexapodDesign) -> list[float]:
+    """The paper's coxa ratios and the design's own, in increasing order."""
+    own = round(design.l1 / design.leg_length, 6)
+    return sorted({*L1_RATIOS, own})

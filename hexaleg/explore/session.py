@@ -1,0 +1,108 @@
+"""What an explorer serves: the loaded design, its conditions and requirements, where it saves.
+
+The session is what the page resets to and what every query starts from; it answers
+:func:`~hexaleg.explore.answer.answer` for a query, and writes a design file through
+hexaleg's output mechanism (:func:`hexaleg._io.write_text`: atomically, a temporary file
+beside it, then a rename), the loaded ``[requirements]`` kept.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import tomli_w
+
+from hexaleg._io import check_output_file, write_text
+from hexaleg.design import DESIGN_FIELDS, HexapodDesign
+from hexaleg.design_file import design_toml
+from hexaleg.exceptions import HexalegError
+from hexaleg.explore.answer import answer, loaded_values
+from hexaleg.explore.cloud import Cloud
+from hexaleg.explore.query import Query, parse_query
+from hexaleg.study.evaluation import Conditions
+from hexaleg.study.goal import Goal
+from hexaleg.study.requirements import Requirements
+
+__all__ = ["Session"]
+
+SLIDERS: tuple[tuple[str, str, float, float], ...] = (
+    ("l1", "coxa l1 [m]", 0.25, 2.0),
+    ("l2", "femur l2 [m]", 0.25, 2.0),
+    ("l3", "tibia l3 [m]", 0.25, 2.0),
+    ("body_length", "body length [m]", 0.5, 1.5),
+    ("body_width", "body width [m]", 0.5, 1.5),
+)
+"""Length sliders: key, label, and their range as fractions of the loaded value."""
+
+
+@dataclass(frozen=True)
+class Session:
+    """One explorer's loaded inputs.
+
+    Attributes:
+        design: The loaded design (what reset returns to).
+        conditions: The loaded conditions: the requirements' payload, slope and gait when
+            the file has them, else level ground, no payload and the default gait.
+        requirements: The design file's requirements, as written (none given: nothing is
+            checked); a leg length not required is the loaded design's.
+        save_to: The design file "save design" writes (.toml).
+        cloud: The study's cloud around the loaded design, measured in the background.
+
+    """
+
+    design: HexapodDesign
+    conditions: Conditions
+    requirements: Requirements
+    save_to: Path
+    cloud: Cloud = field(compare=False)
+
+    @classmethod
+    def start(
+        cls, design: HexapodDesign, requirements: Requirements, save_to: str | Path
+    ) -> Session:
+        """The session of a loaded design; its cloud starts measuring."""
+        path = check_output_file(save_to)
+        if path.suffix.lower() != ".toml":
+            raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
+        conditions = (
+            Goal(requirements.resolved(design)).conditions if requirements.given else Conditions()
+        )
+        return cls(design, conditions, requirements, path, Cloud(design, conditions).start())
+
+    def query(self, params: Mapping[str, str]) -> Query:
+        """The design and conditions a query asks for (a ParameterError names a bad key)."""
+        return parse_query(params, self.design, self.conditions)
+
+    def evaluate(self, params: Mapping[str, str]) -> dict[str, Any]:
+        """The page's numbers for the design a query asks for."""
+        asked = self.query(params)
+        required = self.requirements
+        if required.given:  # the leg length the loaded design has, unless the file says
+            required = required.resolved(self.design)
+        return answer(asked.design, asked.conditions, required)
+
+    def loaded(self) -> dict[str, Any]:
+        """What the page starts at and resets to: values, slider ranges, requirements."""
+        values = loaded_values(self.design, self.conditions)
+        ranges = {
+            key: [low * values[key], high * values[key], label] for key, label, low, high in SLIDERS
+        }
+        bounds = {spec.key: spec.bounds for spec in DESIGN_FIELDS if spec.bounds is not None}
+        return {
+            "values": values,
+            "sliders": ranges,
+            "bounds": bounds,
+            "requirements": self.requirements.to_dict(),
+            "save_to": str(self.save_to),
+        }
+
+    def save(self, params: Mapping[str, str]) -> Path:
+        """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
+        design = self.query(params).design
+        text = design_toml(design)
+        if self.requirements.given:
+            text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
+        return write_text(self.save_to, text)

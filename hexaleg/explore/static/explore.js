@@ -1,0 +1,319 @@
+// hexaleg explore: sliders -> GET /api/evaluate -> numbers, requirements, chart, stance.
+// Plain JavaScript, no library. Each redraw is timed with performance marks: "redraw"
+// measures run from the slider's input event to the page drawn with its answer.
+"use strict";
+
+const explorer = {loaded: null, answer: null, cloud: null, redraws: 0, pending: false,
+                  inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
+window.explorer = explorer;
+
+const ROWS = [
+  ["fb", "FB (eq 29, axis-locked)", 4, ""],
+  ["improved_area", "improved workspace area (eq 16)", 4, "m²"],
+  ["average_manipulability", "average manipulability w_A", 4, "m³"],
+  ["payload_capacity", "payload capacity, standing", 4, "kg"],
+  ["walking_payload_capacity", "walking payload capacity", 4, "kg"],
+  ["max_speed", "max speed", 4, "m/s"],
+  ["peak_torque.root", "peak torque, root", 4, "N·m"],
+  ["peak_torque.hip", "peak torque, hip", 4, "N·m"],
+  ["peak_torque.knee", "peak torque, knee", 4, "N·m"],
+  ["rms_torque.root", "RMS torque, root", 4, "N·m"],
+  ["rms_torque.hip", "RMS torque, hip", 4, "N·m"],
+  ["rms_torque.knee", "RMS torque, knee", 4, "N·m"],
+  ["mechanical_energy_per_km", "mechanical energy per km", 4, "Wh/km"],
+  ["ground_clearance", "ground clearance", 4, "m"],
+  ["robot_mass", "robot mass", 4, "kg"],
+];
+
+function value(answer, key) {
+  return key.split(".").reduce((o, k) => (o === null || o === undefined ? o : o[k]), answer);
+}
+
+function slider(parent, key, label, low, high, start, step) {
+  const row = document.createElement("label");
+  const input = document.createElement("input");
+  Object.assign(input, {type: "range", min: low, max: high, step: step, value: start, id: key});
+  const out = document.createElement("output");
+  row.append(label, input, out);
+  parent.append(row);
+  const show = () => { out.textContent = Number(input.value).toPrecision(3); };
+  input.addEventListener("input", () => { show(); changed(); });
+  show();
+  return input;
+}
+
+function heading(parent, text) {
+  const h = document.createElement("h2");
+  h.textContent = text;
+  parent.append(h);
+}
+
+function buildControls(loaded) {
+  const c = document.getElementById("controls");
+  const v = loaded.values;
+  const s = loaded.sliders;
+  heading(c, "legs [m]");
+  for (const key of ["l1", "l2", "l3"]) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
+  heading(c, "nominal posture [rad]");
+  slider(c, "theta2", "hip θ2", -0.5236, 0.5236, v.nominal_angles[1], "any");
+  slider(c, "theta3", "knee θ3", -2.356, -0.2618, v.nominal_angles[2], "any");
+  heading(c, "body [m]");
+  for (const key of ["body_length", "body_width"]) {
+    slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
+  }
+  heading(c, "payload");
+  slider(c, "payload", "mass [kg]", 0, Math.max(50, 2 * v.payload), v.payload, "any");
+  slider(c, "payload_x", "at x [m]", -v.body_length / 2, v.body_length / 2, v.payload_at[0], "any");
+  slider(c, "payload_y", "at y [m]", -v.body_width / 2, v.body_width / 2, v.payload_at[1], "any");
+  heading(c, "gait (tripod)");
+  slider(c, "speed", "speed [m/s]", 0.02, Math.max(1, 2 * v.speed), v.speed, "any");
+  slider(c, "step_height", "step height [m]", 0.01, Math.max(0.3, 2 * v.step_height),
+         v.step_height, "any");
+}
+
+function query() {
+  const get = (id) => document.getElementById(id).value;
+  const v = explorer.loaded.values;
+  const params = new URLSearchParams();
+  for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "speed",
+                     "step_height"]) params.set(key, get(key));
+  params.set("nominal_angles", [v.nominal_angles[0], get("theta2"), get("theta3")].join(","));
+  params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
+  return params.toString();
+}
+explorer.query = query;
+
+function changed() {
+  performance.mark("input-" + (explorer.redraws + 1));
+  if (explorer.inFlight) { explorer.pending = true; return; }
+  evaluate();
+}
+
+async function evaluate() {
+  explorer.inFlight = true;
+  explorer.pending = false;
+  const number = ++explorer.redraws;
+  const start = performance.getEntriesByName("input-" + number).length ? "input-" + number : null;
+  const status = document.getElementById("status");
+  try {
+    const answer = await fetch("api/evaluate?" + query()).then((r) => r.json().then(
+      (body) => ({ok: r.ok, body: body})));
+    if (!answer.ok) {
+      status.textContent = answer.body.error;
+      status.className = "error";
+    } else {
+      explorer.answer = answer.body;
+      draw(answer.body);
+      status.textContent = answer.body.error || ("measured in " +
+        answer.body.evaluate_ms.toFixed(0) + " ms");
+      status.className = answer.body.error ? "error" : "";
+    }
+  } catch (err) {
+    status.textContent = "the explorer does not answer: " + err;
+    status.className = "error";
+  }
+  performance.mark("drawn-" + number);
+  if (start) performance.measure("redraw", start, "drawn-" + number);
+  explorer.inFlight = false;
+  if (explorer.pending) evaluate();
+}
+
+function draw(answer) {
+  drawNumbers(answer);
+  drawRequirements(answer.requirements);
+  drawExtremes(answer.extremes);
+  drawScene(answer);
+  drawChart();
+}
+
+function drawNumbers(answer) {
+  const body = document.querySelector("#numbers tbody");
+  body.replaceChildren();
+  for (const [key, label, digits, unit] of ROWS) {
+    const x = value(answer, key);
+    const tr = document.createElement("tr");
+    tr.dataset.key = key;
+    tr.dataset.value = x === null || x === undefined ? "" : String(x);
+    const why = answer.limited_by[key] ? answer.limited_by[key].description
+      : (answer.unmeasured[key] || "");
+    const shown = x === null || x === undefined ? "—" : Number(x).toPrecision(digits);
+    for (const [text, cls] of [[label, ""], [shown + " " + unit, "value"], [why, "why"]]) {
+      const td = document.createElement("td");
+      td.textContent = text;
+      if (cls) td.className = cls;
+      tr.append(td);
+    }
+    body.append(tr);
+  }
+}
+
+function drawRequirements(checks) {
+  const box = document.getElementById("requirements");
+  box.hidden = !checks;
+  if (!checks) return;
+  const list = box.querySelector("ul");
+  list.replaceChildren();
+  for (const c of checks) {
+    const li = document.createElement("li");
+    li.className = c.met ? "met" : "failed";
+    li.dataset.name = c.name;
+    const got = c.value === null || c.value === undefined ? "" : " — " + Number(c.value).toPrecision(4);
+    li.textContent = (c.met ? "✓ " : "✗ ") + c.text + got;
+    list.append(li);
+  }
+}
+
+function project(p, view, scale, centre) {
+  const cy = Math.cos(view.yaw), sy = Math.sin(view.yaw);
+  const cp = Math.cos(view.pitch), sp = Math.sin(view.pitch);
+  const x = cy * p[0] - sy * p[1];
+  const y = sy * p[0] + cy * p[1];
+  return [centre[0] + scale * x, centre[1] - scale * (cp * p[2] - sp * y)];
+}
+
+function legColour(u) {
+  if (u === null || u === undefined) return "#999";
+  return u > 1 ? "#d03030" : u > 0.8 ? "#e0a000" : "#2e8b57";
+}
+
+function drawScene(answer) {
+  const canvas = document.getElementById("scene");
+  const ctx = canvas.getContext("2d");
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const chains = answer.stance.chains;
+  const span = Math.max(...chains.flat().map((p) => Math.hypot(p[0], p[1], p[2])));
+  const scale = 0.42 * Math.min(canvas.width, canvas.height) / span;
+  const centre = [canvas.width / 2, canvas.height * 0.62];
+  const at = (p) => project(p, explorer.view, scale, centre);
+  ctx.strokeStyle = "#dde";
+  for (let i = -4; i <= 4; i++) {  // ground grid, z = 0
+    const d = span * i / 4;
+    for (const [a, b] of [[[d, -span, 0], [d, span, 0]], [[-span, d, 0], [span, d, 0]]]) {
+      ctx.beginPath(); ctx.moveTo(...at(a)); ctx.lineTo(...at(b)); ctx.stroke();
+    }
+  }
+  const roots = chains.map((c) => c[0]);
+  const mid = roots.reduce((m, p) => [m[0] + p[0] / 6, m[1] + p[1] / 6, m[2] + p[2] / 6], [0, 0, 0]);
+  roots.sort((a, b) => Math.atan2(a[1] - mid[1], a[0] - mid[0]) - Math.atan2(b[1] - mid[1], b[0] - mid[0]));
+  ctx.fillStyle = "rgba(90,110,140,0.35)"; ctx.strokeStyle = "#567";
+  ctx.beginPath();
+  roots.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
+  ctx.closePath(); ctx.fill(); ctx.stroke();
+  const used = answer.stance.utilisation;
+  ctx.lineWidth = 4;
+  chains.forEach((chain, leg) => {
+    ctx.strokeStyle = legColour(used[leg]);
+    ctx.beginPath();
+    chain.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
+    ctx.stroke();
+    const foot = at(chain[chain.length - 1]);
+    ctx.fillStyle = "#333"; ctx.beginPath(); ctx.arc(foot[0], foot[1], 3, 0, 2 * Math.PI); ctx.fill();
+    ctx.fillText(answer.stance.legs[leg] + (used[leg] === null ? "" :
+      " " + (100 * used[leg]).toFixed(0) + " %"), foot[0] + 5, foot[1] + 12);
+  });
+  ctx.lineWidth = 1;
+}
+
+function drawExtremes(extremes) {
+  const body = document.querySelector("#extremes tbody");
+  body.replaceChildren();
+  for (const x of extremes) {
+    const tr = document.createElement("tr");
+    const unit = "xyz".includes(x.name[0]) && x.name.length === 2 ? " m" : " rad";
+    for (const text of [x.name, x.value.toFixed(4) + unit, x.limited_by]) {
+      const td = document.createElement("td");
+      td.textContent = text;
+      tr.append(td);
+    }
+    body.append(tr);
+  }
+}
+
+function drawChart() {
+  const canvas = document.getElementById("chart");
+  const ctx = canvas.getContext("2d");
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const answer = explorer.answer;
+  const points = explorer.cloud ? explorer.cloud.points : [];
+  const v = answer ? {l3_ratio: Number(document.getElementById("l3").value) /
+    ["l1", "l2", "l3"].reduce((s, k) => s + Number(document.getElementById(k).value), 0),
+    fb: answer.fb, walking_payload_capacity: answer.walking_payload_capacity} : null;
+  const panels = [["fb", "FB"], ["walking_payload_capacity", "walking payload [kg]"]];
+  panels.forEach(([key, label], i) => {
+    const x0 = 40 + i * canvas.width / 2, w = canvas.width / 2 - 55, y0 = 15, h = canvas.height - 45;
+    const values = points.map((p) => p[key]).concat(v ? [v[key]] : []).filter((x) => x !== null);
+    const top = Math.max(1e-9, ...values) * 1.1;
+    const xs = (r) => x0 + w * (r - 0.1) / 0.65, ys = (y) => y0 + h - h * y / top;
+    ctx.strokeStyle = "#889"; ctx.strokeRect(x0, y0, w, h);
+    ctx.fillStyle = "#333";
+    ctx.fillText(label, x0 + 4, y0 + 12);
+    ctx.fillText("l3/L 0.1", x0, y0 + h + 14); ctx.fillText("0.75", x0 + w - 20, y0 + h + 14);
+    ctx.fillText(String(Number(top.toPrecision(2))), x0 - 36, y0 + 10); ctx.fillText("0", x0 - 12, y0 + h);
+    for (const p of points) {
+      if (p[key] === null) continue;
+      ctx.fillStyle = `hsl(${210 + 120 * p.l1_ratio}, 30%, ${40 + 150 * p.l1_ratio}%)`;
+      ctx.fillRect(xs(p.l3_ratio) - 2, ys(p[key]) - 2, 4, 4);
+    }
+    if (v && v[key] !== null) {
+      ctx.fillStyle = "#d00";
+      ctx.beginPath(); ctx.arc(xs(v.l3_ratio), ys(v[key]), 5, 0, 2 * Math.PI); ctx.fill();
+    }
+  });
+}
+
+async function pollCloud() {
+  const cloud = await fetch("api/cloud").then((r) => r.json());
+  explorer.cloud = cloud;
+  drawChart();
+  const caption = document.getElementById("chart-caption");
+  if (!cloud.ready) { setTimeout(pollCloud, 1000); return; }
+  caption.textContent = "the study's designs (" + cloud.points.length + ", at coxa ratios " +
+    [...new Set(cloud.points.map((p) => p.l1_ratio))].join(", ") +
+    "; lighter: longer coxa) and this one (red): tibia ratio l3/L against FB and against " +
+    "the walking payload capacity" + (cloud.error ? " — " + cloud.error : "");
+}
+
+function reset() {
+  const v = explorer.loaded.values;
+  const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
+    body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
+    payload: v.payload, payload_x: v.payload_at[0], payload_y: v.payload_at[1],
+    speed: v.speed, step_height: v.step_height};
+  for (const [id, x] of Object.entries(start)) {
+    const input = document.getElementById(id);
+    input.value = x;
+    input.nextElementSibling.textContent = Number(x).toPrecision(3);
+  }
+  changed();
+}
+
+async function save() {
+  const out = document.getElementById("saved");
+  const r = await fetch("api/save?" + query(), {method: "POST"});
+  const body = await r.json();
+  out.textContent = r.ok ? "wrote " + body.wrote : body.error;
+}
+
+function turnable(canvas) {
+  let last = null;
+  canvas.addEventListener("pointerdown", (e) => { last = [e.clientX, e.clientY]; });
+  window.addEventListener("pointerup", () => { last = null; });
+  canvas.addEventListener("pointermove", (e) => {
+    if (!last || !explorer.answer) return;
+    explorer.view.yaw += (e.clientX - last[0]) * 0.01;
+    explorer.view.pitch = Math.min(1.5, Math.max(0, explorer.view.pitch + (e.clientY - last[1]) * 0.01));
+    last = [e.clientX, e.clientY];
+    drawScene(explorer.answer);
+  });
+}
+
+async function start() {
+  explorer.loaded = await fetch("api/loaded").then((r) => r.json());
+  buildControls(explorer.loaded);
+  document.getElementById("reset").addEventListener("click", reset);
+  document.getElementById("save").addEventListener("click", save);
+  turnable(document.getElementById("scene"));
+  pollCloud();
+  await evaluate();
+}
+explorer.started = start();

@@ -1,0 +1,219 @@
+"""``hexaleg explore``: the endpoint's numbers are the command line's, bad values answer 400.
+
+Each server is a subprocess on 127.0.0.1, port 0, stopped by its pid (:mod:`explorer`).
+The command line is the oracle: its ``--json`` of flexibility, workspace,
+manipulability, loads and gait, run in-process for the same design and conditions.
+"""
+
+from __future__ import annotations
+
+import json
+import signal
+import urllib.parse
+
+import numpy as np
+import psutil
+import pytest
+from explorer import Explorer, running
+
+from hexaleg.cli import main
+from hexaleg.design import HexapodDesign
+from hexaleg.design_file import load_design_file
+from hexaleg.exceptions import ParameterError
+from hexaleg.explore.query import parse_query
+from hexaleg.study.evaluation import Conditions
+from hexaleg.study.requirements import Requirements
+
+RTOL = 1e-9
+"""Endpoint against command line: the same computation, summed in another order at most."""
+
+
+@pytest.fixture(scope="module")
+def explorer() -> Explorer:
+    with running() as server:
+        yield server
+
+
+def _cli(capsys: pytest.CaptureFixture[str], *argv: str) -> dict:
+    capsys.readouterr()
+    assert main([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def _random_designs(count: int) -> list[dict[str, float]]:
+    """Seeded designs around the default robot that stand and walk the default gait."""
+    rng = np.random.default_rng(20261203)
+    return [
+        {
+            "l1": round(float(rng.uniform(0.1, 0.3)), 4),
+            "l2": round(float(rng.uniform(0.35, 0.5)), 4),
+            "l3": round(float(rng.uniform(0.35, 0.5)), 4),
+            "body_width": round(float(rng.uniform(0.5, 0.7)), 4),
+            "payload": round(float(rng.uniform(0.0, 20.0)), 3),
+        }
+        for _ in range(count)
+    ]
+
+
+def _options(query: dict[str, float]) -> list[str]:
+    design = [f"--{k.replace('_', '-')}" for k in query if k != "payload"]
+    return [part for flag in design for part in (flag, str(query[flag[2:].replace("-", "_")]))]
+
+
+@pytest.mark.parametrize("query", _random_designs(3))
+def test_the_endpoint_s_numbers_are_the_command_line_s(explorer, capsys, query):
+    status, got = explorer.get("api/evaluate?" + urllib.parse.urlencode(query))
+    assert status == 200 and got["error"] == "", got
+    design = _options(query)
+    payload = ["--payload", str(query["payload"])]
+    flexibility = _cli(capsys, "flexibility", *design)
+    leg = design[:6]  # one leg's commands take the lengths only
+    workspace = _cli(capsys, "workspace", *leg, "--samples", "1")
+    manipulability = _cli(capsys, "manipulability", *leg)
+    loads = _cli(capsys, "loads", *design, *payload)
+    gait = _cli(capsys, "gait", *design, *payload)
+    expected = {
+        "fb": flexibility["fb"],
+        "improved_area": workspace["area"]["improved_closed_form"],
+        "average_manipulability": manipulability["average"]["improved"],
+        "payload_capacity": loads["payload_capacity"]["mass"],
+        "walking_payload_capacity": loads["walking_payload_capacity"]["mass"],
+        "max_speed": gait["max_speed"]["value"],
+    }
+    for name, value in expected.items():
+        assert got[name] == pytest.approx(value, rel=RTOL), name
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    assert got["limited_by"]["max_speed"]["description"] == str(
+        gait["max_speed"]["limited_by"]["description"]
+    )
+    extremes = [(x["name"], x["limited_by"]) for x in got["extremes"]]
+    printed = [
+        (x["axis"] + ("+" if x["sign"] > 0 else "-"), x["description"])
+        for x in flexibility["extremes"]
+    ]
+    assert extremes == printed
+    for shown, printed in zip(got["extremes"], flexibility["extremes"], strict=True):
+        assert shown["value"] == pytest.approx(printed["value"], rel=RTOL, abs=1e-12)
+    rated = gait["design"]["rated_torques"]
+    worst = max(
+        gait["peak_torque"][j] / r for j, r in zip(("root", "hip", "knee"), rated, strict=True)
+    )
+    assert max(got["stance"]["utilisation"]) == pytest.approx(worst, rel=RTOL)
+
+
+def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer, capsys):
+    query = {"l3": 0.45, "speed": 0.2, "step_height": 0.07}
+    status, got = explorer.get("api/evaluate?" + urllib.parse.urlencode(query))
+    assert status == 200
+    gait = _cli(capsys, "gait", "--l3", "0.45", "--speed", "0.2", "--step-height", "0.07")
+    assert gait["gait"]["speed"] == pytest.approx(0.2)
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    assert got["max_speed"] == pytest.approx(gait["max_speed"]["value"], rel=RTOL)
+
+
+@pytest.mark.parametrize(
+    ("query", "field"),
+    [
+        ("l1=abc", "l1"),
+        ("l2=-0.4", "l2"),
+        ("l3=nan", "l3"),
+        ("body_width=1e9", "body_width"),
+        ("payload=-3", "payload"),
+        ("payload_at=0,0", "payload_at"),
+        ("payload_at=0,0,500", "payload_at.z"),
+        ("nominal_angles=0,0", "nominal_angles"),
+        ("speed=1000", "speed"),
+        ("step_height=x", "step_height"),
+        ("colour=red", "colour"),
+    ],
+)
+def test_a_bad_value_answers_400_naming_its_field_and_the_server_keeps_serving(
+    explorer, query, field
+):
+    status, got = explorer.get("api/evaluate?" + query)
+    assert status == 400
+    assert got["field"] == field and got["allowed"] and field in got["error"]
+    status, good = explorer.get("api/evaluate?l1=0.2")
+    assert status == 200 and good["fb"] > 0
+
+
+def test_it_binds_loopback_as_told_and_stops_on_sigterm_by_its_pid():
+    with running("--host", "127.0.0.1") as server:
+        listening = {
+            (c.laddr.ip, c.laddr.port)
+            for c in psutil.Process(server.process.pid).net_connections("inet")
+            if c.status == psutil.CONN_LISTEN
+        }
+        port = int(server.url.rsplit(":", 1)[1].strip("/"))
+        assert server.url == f"http://127.0.0.1:{port}/"
+        assert listening == {("127.0.0.1", port)}
+        status, err = server.stop(signal.SIGTERM)
+    assert status == 0 and "stopped" in err and "Traceback" not in err
+
+
+def test_ctrl_c_stops_it_cleanly():
+    with running() as server:
+        assert server.get("api/loaded")[0] == 200
+        status, err = server.stop(signal.SIGINT)
+    assert status == 0 and "stopped" in err and "Traceback" not in err
+
+
+def test_a_host_beyond_loopback_is_served_only_when_asked_and_warned_about():
+    with running("--host", "0.0.0.0") as server:
+        listening = {
+            c.laddr.ip
+            for c in psutil.Process(server.process.pid).net_connections("inet")
+            if c.status == psutil.CONN_LISTEN
+        }
+        status, err = server.stop()
+    assert listening == {"0.0.0.0"}
+    assert "beyond this machine" in err and status == 0
+
+
+def test_save_writes_the_design_file_with_its_requirements(tmp_path):
+    source = tmp_path / "robot.toml"
+    assert main(["design", "init", str(source), "--l1", "0.18"]) == 0
+    source.write_text(source.read_text() + "\n[requirements]\nmin_fb = 0.2\npayload = 10\n")
+    loaded_design, before = load_design_file(source, Requirements.from_table)
+    with running("--design", str(source)) as server:
+        status, loaded = server.get("api/loaded")
+        assert status == 200 and loaded["values"]["l1"] == pytest.approx(0.18)
+        status, got = server.get("api/evaluate?l3=0.42")
+        resolved = before.resolved(loaded_design)  # the loaded leg length, not the asked one
+        assert [c["name"] for c in got["requirements"]] == list(resolved.given)
+        leg_length = next(c for c in got["requirements"] if c["name"] == "leg_length")
+        assert leg_length["required"] == pytest.approx(loaded_design.leg_length)
+        assert all(c["met"] == (c["margin"] >= 0) for c in got["requirements"])
+        status, wrote = server.post("api/save?l3=0.42&l2=0.39")
+        assert status == 200 and wrote["wrote"] == str(source)
+        assert server.post("api/save?l3=-1")[0] == 400
+    design, requirements = load_design_file(source, Requirements.from_table)
+    assert (design.l1, design.l2, design.l3) == pytest.approx((0.18, 0.39, 0.42))
+    assert requirements == before
+    assert [p.name for p in tmp_path.iterdir()] == ["robot.toml"]  # no temporary file left
+
+
+def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
+    base = HexapodDesign()
+    asked = parse_query(
+        {"l1": "0.25", "nominal_angles": "0,0.1,-1.4", "payload": "5", "payload_at": "0.1,0,0.05",
+         "speed": "0.25", "step_height": "0.05"},
+        base,
+        Conditions(),
+    )  # fmt: skip
+    assert asked.design == base.replace(l1=0.25, nominal_angles=(0.0, 0.1, -1.4))
+    payload = asked.conditions.payload
+    assert payload.mass == 5 and payload.position == (0.1, 0, 0.05)
+    gait = asked.conditions.gait
+    assert gait.speed == pytest.approx(0.25) and gait.step_height == 0.05
+    assert gait.stride == Conditions().gait.stride  # the stride kept, the period set
+    with pytest.raises(ParameterError, match=r"nominal_angles\.theta2"):
+        parse_query({"nominal_angles": "0,x,-1"}, base, Conditions())
+
+
+def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
+    assert main(["explore", "--save", "design.json"]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "design.json" in err and ".toml" in err

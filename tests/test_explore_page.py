@@ -1,0 +1,84 @@
+"""The explorer's page in headless Chromium: a slider moved, the numbers and the stance redrawn.
+
+The page is driven through the DevTools protocol (:mod:`browser`); the server is a
+subprocess on 127.0.0.1 stopped by its pid (:mod:`explorer`). What the page shows is
+checked against the endpoint asked the same query; the page's ``redraw`` performance
+measures (slider input to page drawn) are read and reported, not held to a time here
+(the target is the benchmark's business).
+"""
+
+from __future__ import annotations
+
+import pytest
+from browser import evaluate, require_chromium
+from explorer import running
+
+from hexaleg.design_file import load_design
+
+pytestmark = pytest.mark.slow
+
+MOVE_SLIDER = """
+(async () => {
+  const sleep = (ms) => new Promise(r => setTimeout(r, ms));
+  while (!window.explorer) await sleep(20);  // the script not loaded yet
+  await window.explorer.started;
+  const e = window.explorer;
+  const idle = async () => { while (e.inFlight || e.pending) await sleep(20); };
+  await idle();
+  while (!(e.cloud && e.cloud.ready)) await sleep(100);  // redraws timed without it measuring
+  const shown = () => Object.fromEntries([...document.querySelectorAll('#numbers tr')]
+    .map(tr => [tr.dataset.key, tr.dataset.value === '' ? null : Number(tr.dataset.value)]));
+  const scene = () => document.getElementById('scene').toDataURL();
+  const before = {numbers: shown(), scene: scene(), query: e.query()};
+  const moves = [];
+  for (const value of [0.46, 0.44, 0.48]) {
+    const l3 = document.getElementById('l3');
+    l3.value = value;
+    l3.dispatchEvent(new Event('input', {bubbles: true}));
+    await idle();
+    const query = e.query();
+    const endpoint = await fetch('api/evaluate?' + query).then(r => r.json());
+    moves.push({query: query, numbers: shown(), scene: scene(), endpoint: endpoint});
+  }
+  const redraws = performance.getEntriesByName('redraw').map(m => m.duration);
+  document.getElementById('save').click();
+  while (document.getElementById('saved').textContent === '') await sleep(20);
+  document.getElementById('reset').click();
+  await sleep(0);
+  await idle();
+  return {before: before, moves: moves, redraws: redraws,
+          saved: document.getElementById('saved').textContent,
+          reset: {numbers: shown(), query: e.query()},
+          status: document.getElementById('status').textContent};
+})()
+"""
+
+
+def _endpoint_value(answer: dict, key: str) -> float | None:
+    value = answer
+    for part in key.split("."):
+        value = value[part]
+    return value
+
+
+def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(tmp_path):
+    require_chromium()
+    saved = tmp_path / "saved.toml"
+    with running("--save", str(saved)) as server:
+        got = evaluate(server.url, MOVE_SLIDER)
+    before, moves = got["before"], got["moves"]
+    assert "l3=0.4&" in before["query"] + "&"
+    for move, l3 in zip(moves, ("0.46", "0.44", "0.48"), strict=True):
+        assert f"l3={l3}&" in move["query"] + "&"
+        numbers, endpoint = move["numbers"], move["endpoint"]
+        assert numbers["fb"] != before["numbers"]["fb"]
+        assert move["scene"] != before["scene"]
+        assert set(numbers) >= {"fb", "payload_capacity", "peak_torque.hip", "max_speed"}
+        for key, value in numbers.items():
+            assert value == pytest.approx(_endpoint_value(endpoint, key), rel=1e-12), key
+    assert moves[0]["scene"] != moves[1]["scene"]
+    assert len(got["redraws"]) == 3 and all(d > 0 for d in got["redraws"])
+    assert got["saved"] == f"wrote {saved}"
+    assert load_design(saved).l3 == pytest.approx(0.48)  # the last slider position
+    assert got["reset"] == {"numbers": before["numbers"], "query": before["query"]}
+    print(f"redraw after a slider move [ms]: {', '.join(f'{d:.0f}' for d in got['redraws'])}")
