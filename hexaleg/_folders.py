@@ -274,11 +274,18 @@ def _in_use(shown_as: str, what: str, holder: str) -> HexalegError:
 
 
 def _marked(folder: Path) -> bool:
-    """Whether ``folder`` is a real folder that is empty or holds hexaleg's marker."""
+    """Whether ``folder`` is a real folder that is empty or holds hexaleg's marker.
+
+    A folder holding nothing but the marker's own temporary files, left by a process killed
+    while writing the marker (the first thing it writes), counts as marked.
+    """
     try:
         if folder.is_symlink() or not folder.is_dir():
             return False
-        return not any(folder.iterdir()) or _marker(folder) is not None
+        entries = set(folder.iterdir())
+        if not entries or _marker(folder) is not None:
+            return True
+        return entries <= set(stale_entries(folder, MARKER, "tmp"))
     except (OSError, HexalegError):
         return False
 

@@ -167,6 +167,23 @@ def test_an_interrupted_swap_puts_the_old_folder_back(tmp_path):
     assert _entries(tmp_path) == sorted(["r", live.name])
 
 
+def test_a_staging_folder_killed_while_writing_its_marker_is_removed(tmp_path):
+    """The marker is the first file a staging folder gets: a kill during its write leaves only
+    the marker's temporary file, which is hexaleg's; beside a user's file it is not."""
+    dead = _dead_pid()
+    torn = f".{MARKER}.tmp-{dead}.xyz"  # as hexaleg names a temporary file of the marker
+    staging = tmp_path / f".r.staging-{dead}.abc"
+    staging.mkdir()
+    (staging / torn).write_text('{"written_by"')
+    mine = tmp_path / f".r.staging-{dead}.mine"
+    mine.mkdir()
+    (mine / torn).write_text("")
+    (mine / "data.txt").write_text("the user's")
+    recover_interrupted_swap(tmp_path / "r")
+    assert _entries(tmp_path) == [mine.name]
+    assert (mine / "data.txt").read_text() == "the user's"
+
+
 def test_a_parked_folder_is_removed_once_its_swap_has_completed(tmp_path):
     parked = tmp_path / f".r.parked-{_dead_pid()}.abc"
     parked.mkdir()
