@@ -117,7 +117,7 @@ class Journal(Generic[T]):
     def __enter__(self) -> Journal[T]:
         return self
 
-    def __exit__(self, *exc: object) -> None:
+    def __exit__(self, *_: object) -> None:
         self.close()
 
     def _open(
