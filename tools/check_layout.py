@@ -5,7 +5,8 @@ layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _compiled, _lazy
     design      design, design_file, field_spec, ratios, layouts, limits, kinematics, cause,
-                actuators, actuator_catalog, battery, table_records
+                actuators, actuator_catalog, battery, table_records, grids,
+                design_text
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical
@@ -47,6 +48,8 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "actuator_catalog",
             "battery",
             "table_records",
+            "grids",
+            "design_text",
         ),
     ),
     ("numerics", ("numerics",)),

@@ -65,7 +65,7 @@ def run(args: argparse.Namespace) -> int:
 
 def _init(file: str, design: HexapodDesign, force: bool) -> int:
     from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_file import design_toml
+    from hexaleg.design_text import design_toml
 
     path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
@@ -102,7 +102,7 @@ def show(design: HexapodDesign) -> None:
             ("leg length", f"{design.leg_length:.4g} m"),
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg)"),
+            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"),
             ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
             ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
         ],
@@ -123,3 +123,9 @@ def show_requirements(requirements: Requirements) -> None:
         position = ", ".join(f"{v:g}" for v in requirements.payload_at)
         rows.append(("payload_at", f"({position}) m, body frame"))
     print_table("Requirements (the file's [requirements] table)", rows)
+
+
+def _drive(design: HexapodDesign) -> str:
+    """``, actuators … kg, battery … kg`` for those the design has."""
+    text = "" if design.actuators is None else f", actuators {design.actuators.total_mass:.4g} kg"
+    return text + ("" if design.battery is None else f", battery {design.battery.mass:.4g} kg")
