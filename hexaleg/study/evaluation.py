@@ -337,7 +337,7 @@ class _Measuring:
         assert walked.max_speed is not None  # speed=True
         self.values["max_speed"] = walked.max_speed.value
         self.causes["max_speed"] = walked.max_speed.limited_by
-        if walked.feasible:
+        if walked.walkable:
             self.values |= _period_values(walked)
             return
         why = f"cannot walk the gait: {walked.violations[0]}"

@@ -106,7 +106,7 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
     gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
     with what limits it; ``walks``: whether it walks the gait unloaded within its ratings.
     """
-    metrics, ok = walked.metrics, walked.feasible
+    metrics, ok = walked.metrics, walked.walkable
     columns: dict[str, Cell] = {
         f"gait_peak_{joint}_torque": value if ok else math.nan
         for joint, value in metrics.peak_torque.items()
