@@ -14,7 +14,7 @@ import json
 import platform
 import sys
 
-from bench_decide import bench_decide, bench_decide_walking
+from bench_decide import bench_decide, bench_decide_actuators, bench_decide_walking
 from bench_electrical import bench_electrical
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
@@ -36,6 +36,7 @@ WORKLOADS = {
     "decide": lambda quick, r: bench_decide(48 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),
     "decide_walking": lambda quick, r: bench_decide_walking(48 if quick else None),
+    "decide_actuators": lambda quick, r: bench_decide_actuators(48 if quick else None),
 }
 
 

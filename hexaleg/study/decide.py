@@ -26,6 +26,7 @@ from typing import Any
 import numpy.typing as npt
 
 from hexaleg._version import __version__
+from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import analyze_gait
@@ -219,6 +220,7 @@ def decide(
     *,
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
+    actuators: Sequence[Actuator] = (),
     settings: SearchSettings | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
@@ -235,6 +237,8 @@ def decide(
         objective: What to make best (default: maximize FB).
         free_posture: Also free the nominal hip and knee angles.
         free: More free variables (body fields), or other bounds for l1, l2, l3.
+        actuators: A catalog's actuators: each joint type's is chosen among them (a
+            categorical variable each); none, the design's own are kept.
         settings: Seed and budget of the search.
         executor: Where designs are evaluated; a local process pool if omitted.
         workers: Size of that pool (default: the number of CPUs).
@@ -248,8 +252,9 @@ def decide(
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective)
     space = search_space(
-        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
-    )
+        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
+        actuators,
+    )  # fmt: skip
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
@@ -330,6 +335,7 @@ def _fingerprint(
         "requirements": goal.requirements.to_dict(),
         "objective": str(goal.objective),
         "free": [[v.name, v.lower, v.upper] for v in space.variables],
+        "actuators": [a.to_table() for a in space.entries],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
     }

@@ -5,7 +5,10 @@ By default the three segment lengths l1, l2, l3 are free, each from
 required); the leg-length requirement bounds their sum. ``--free-posture`` also frees
 the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limits, and
 ``--free FIELD=LOWER:UPPER`` any body field of :data:`~hexaleg.study.sensitivity.SWEEPABLE`
-(or narrows a segment's or an angle's bounds).
+(or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
+categorical variable per joint type (``actuator_root``, ``actuator_hip``,
+``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
+actuators.
 """
 
 from __future__ import annotations
@@ -20,8 +23,10 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.actuators import Actuator, Actuators
 from hexaleg.design import FIELD_RANGES, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -30,7 +35,10 @@ SEGMENT_FLOOR = 0.02
 POSTURE = ("theta2", "theta3")
 """The nominal hip and knee angles [rad] that ``--free-posture`` frees (θ1 stays)."""
 
-FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE)
+CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
+"""The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
+
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES)
 """Every variable a search can free."""
 
 AT_BOUND_SHARE = 1e-3
@@ -72,7 +80,9 @@ class FreeVariable:
 
     @property
     def unit(self) -> str:
-        """Its unit: ``"m"``, ``"rad"`` (or a body field's own)."""
+        """Its unit: ``"m"``, ``"rad"`` (or a body field's own; ``"-"`` for a choice)."""
+        if self.name in CHOICES:
+            return "-"
         return FIELD_RANGES[self.name][2] if self.name in FIELD_RANGES else "rad"
 
     @classmethod
@@ -81,6 +91,8 @@ class FreeVariable:
         match = re.fullmatch(r"\s*([a-z_0-9]+)\s*=\s*([^:]+):([^:]+)\s*", text)
         if match is None:
             raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
+        if match[1] in CHOICES:
+            raise ParameterError("--free", text, "--choose-actuators frees the actuators")
         try:
             lower, upper = float(match[2]), float(match[3])
         except ValueError:
@@ -95,11 +107,13 @@ class SearchSpace:
     Attributes:
         base: Every field that is not free.
         variables: The free variables, in the order of a point's coordinates.
+        entries: The actuators a choice variable picks from, in the catalog's order.
 
     """
 
     base: HexapodDesign
     variables: tuple[FreeVariable, ...]
+    entries: tuple[Actuator, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -119,26 +133,43 @@ class SearchSpace:
     @property
     def same_body(self) -> bool:
         """Whether every design keeps the base's body and mounts (models derive in closed form)."""
-        return all(name in (*SEGMENTS, *POSTURE) for name in self.names)
+        return all(name in (*SEGMENTS, *POSTURE, *CHOICES) for name in self.names)
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
+        chosen: dict[str, Actuator] = {}
         for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
-            if name in POSTURE:
+            if name in CHOICES:
+                pick = int(np.clip(np.floor(value), 0, len(self.entries) - 1))
+                chosen[name.removeprefix("actuator_")] = self.entries[pick]
+            elif name in POSTURE:
                 angles[1 + POSTURE.index(name)] = float(value)
             else:
                 changes[name] = float(value)
         if tuple(angles) != self.base.nominal_angles:
             changes["nominal_angles"] = tuple(angles)
+        if chosen:
+            given = self.base.actuators
+            kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
+            changes["actuators"] = Actuators(**(kept | chosen))
         return self.base.replace(**changes)
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
-        values = [value_of(design, name) for name in self.names]
+        values = [
+            self._choice_of(design, name) if name in CHOICES else value_of(design, name)
+            for name in self.names
+        ]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
         return clipped
+
+    def _choice_of(self, design: HexapodDesign, name: str) -> float:
+        """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
+        given = design.actuators
+        actuator = None if given is None else getattr(given, name.removeprefix("actuator_"))
+        return self.entries.index(actuator) + 0.5 if actuator in self.entries else 0.5
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
@@ -152,7 +183,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables)
+        return SearchSpace(self.base, variables, self.entries)
 
 
 @dataclass(frozen=True)
@@ -214,6 +245,8 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     """
     reached = []
     for variable in variables:
+        if variable.name in CHOICES:
+            continue  # a catalog entry has no bound to press against
         value, near = (
             value_of(design, variable.name),
             AT_BOUND_SHARE * (variable.upper - variable.lower),
@@ -231,6 +264,7 @@ def search_space(
     min_coxa: float | None = None,
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
+    actuators: Sequence[Actuator] = (),
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -240,6 +274,8 @@ def search_space(
         min_coxa: The smallest coxa [m]: l1's lower bound (if above the floor).
         free_posture: Also free the nominal hip and knee angles, within the stance limits.
         free: More free variables, or other bounds for the default ones.
+        actuators: The catalog's actuators, to pick one per joint type from (none: the
+            design's own are kept).
 
     """
     floor = SEGMENT_FLOOR * leg_length
@@ -263,4 +299,6 @@ def search_space(
                     "--free l1", variable.lower, f"at least min_coxa ({min_coxa:g} m)"
                 )
         chosen[variable.name] = variable
-    return SearchSpace(base, tuple(chosen.values()))
+    for name in CHOICES if actuators else ():
+        chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators))
