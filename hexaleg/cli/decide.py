@@ -167,6 +167,8 @@ def _design_block(
     if motors is not None:
         names = (a.catalog or "given" for a in motors.joints)
         head += " with " + ", ".join(f"{j} {n}" for j, n in zip(LEG_JOINTS, names, strict=True))
+    if checked.design.battery is not None:
+        head += f", battery {checked.design.battery.capacity:.4g} Wh"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
     value = checked.evaluation.values[result.objective.name]

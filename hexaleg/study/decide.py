@@ -253,7 +253,7 @@ def decide(
     goal = Goal(requirements, objective)
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators,
+        actuators, requirements.range_km is not None,
     )  # fmt: skip
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with _executor(executor, workers) as pool:

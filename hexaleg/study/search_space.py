@@ -8,11 +8,13 @@ the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limit
 (or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
 categorical variable per joint type (``actuator_root``, ``actuator_hip``,
 ``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
-actuators.
+actuators. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
+[Wh], from :data:`CAPACITY_BOUNDS`) of a design that has a ``[battery]``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Sequence
@@ -24,6 +26,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.actuators import Actuator, Actuators
+from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
@@ -38,7 +41,12 @@ POSTURE = ("theta2", "theta3")
 CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
 """The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
 
-FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES)
+BATTERY = "battery_capacity"
+"""The battery's capacity [Wh], free when a range is required."""
+CAPACITY_BOUNDS = (1.0, 5e4)
+"""The capacities a required range searches [Wh]: a watt-hour to 50 kWh."""
+
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, BATTERY)
 """Every variable a search can free."""
 
 AT_BOUND_SHARE = 1e-3
@@ -83,6 +91,8 @@ class FreeVariable:
         """Its unit: ``"m"``, ``"rad"`` (or a body field's own; ``"-"`` for a choice)."""
         if self.name in CHOICES:
             return "-"
+        if self.name == BATTERY:
+            return "Wh"
         return FIELD_RANGES[self.name][2] if self.name in FIELD_RANGES else "rad"
 
     @classmethod
@@ -133,7 +143,7 @@ class SearchSpace:
     @property
     def same_body(self) -> bool:
         """Whether every design keeps the base's body and mounts (models derive in closed form)."""
-        return all(name in (*SEGMENTS, *POSTURE, *CHOICES) for name in self.names)
+        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, BATTERY) for name in self.names)
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
@@ -144,6 +154,8 @@ class SearchSpace:
             if name in CHOICES:
                 pick = int(np.clip(np.floor(value), 0, len(self.entries) - 1))
                 chosen[name.removeprefix("actuator_")] = self.entries[pick]
+            elif name == BATTERY:
+                changes["battery"] = dataclasses.replace(self._battery, capacity=float(value))
             elif name in POSTURE:
                 angles[1 + POSTURE.index(name)] = float(value)
             else:
@@ -164,6 +176,12 @@ class SearchSpace:
         ]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
         return clipped
+
+    @property
+    def _battery(self) -> Battery:
+        if self.base.battery is None:
+            raise ParameterError(BATTERY, None, "needs a [battery] in the design to size")
+        return self.base.battery
 
     def _choice_of(self, design: HexapodDesign, name: str) -> float:
         """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
@@ -234,6 +252,8 @@ def value_of(design: HexapodDesign, name: str) -> float:
     """The free variable ``name``'s value in ``design`` [m or rad]."""
     if name in POSTURE:
         return float(design.nominal_angles[1 + POSTURE.index(name)])
+    if name == BATTERY:
+        return math.nan if design.battery is None else design.battery.capacity
     return float(getattr(design, name))
 
 
@@ -265,6 +285,7 @@ def search_space(
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
     actuators: Sequence[Actuator] = (),
+    battery: bool = False,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -276,6 +297,7 @@ def search_space(
         free: More free variables, or other bounds for the default ones.
         actuators: The catalog's actuators, to pick one per joint type from (none: the
             design's own are kept).
+        battery: Free the battery's capacity (a range is required), if the design has one.
 
     """
     floor = SEGMENT_FLOOR * leg_length
@@ -299,6 +321,10 @@ def search_space(
                     "--free l1", variable.lower, f"at least min_coxa ({min_coxa:g} m)"
                 )
         chosen[variable.name] = variable
+    if BATTERY in chosen and base.battery is None:
+        raise ParameterError(f"--free {BATTERY}", None, "needs a [battery] in the design")
+    if battery and base.battery is not None and BATTERY not in chosen:
+        chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
     for name in CHOICES if actuators else ():
         chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
     return SearchSpace(base, tuple(chosen.values()), tuple(actuators))
