@@ -64,7 +64,7 @@ def power_split_figure(analysis: GaitAnalysis) -> Figure:
         ax.axhline(0.0, color="k", lw=0.5)
         drawn_power = np.maximum(mechanical + copper, 0.0).sum()  # what the supply gives
         share = 100 * copper.sum() / max(drawn_power, 1e-300)
-        ax.set_title(f"{joint}: copper loss {share:.0f} % of the power drawn")
+        ax.set_title(f"{joint}\ncopper loss {share:.0f} % of P_e > 0")
         ax.set_xlabel("phase t/T [-]")
         ax.set_xlim(0, 1)
         ax.grid(True, alpha=0.3)

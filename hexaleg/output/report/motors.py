@@ -138,8 +138,8 @@ def _energy(walked: GaitAnalysis, electrical: ElectricalResult) -> str:
         f"Power: {significant(electrical.average_power)} W from the battery on average, of "
         f"which the shafts give {significant(mechanical)} W net and the windings lose "
         f"{significant(copper)} W as heat (copper loss i²R, "
-        f"{100 * copper / max(electrical.average_power, 1e-300):.0f} % of what is drawn); "
-        f"{significant(electrical.energy_per_km)} Wh/km, "
+        f"{100 * copper / max(electrical.average_power, 1e-300):.0f} % of what is drawn)"
+        f"{_unreturned(electrical)}; {significant(electrical.energy_per_km)} Wh/km, "
         f"an electrical cost of transport of {significant(electrical.cost_of_transport)} "
         f"against a mechanical one of {significant(walked.metrics.cost_of_transport)}."
     )
@@ -153,6 +153,18 @@ def _energy(walked: GaitAnalysis, electrical: ElectricalResult) -> str:
     if limit is not None:
         text += f" Max speed within every rating: {limit.value:.3g} m/s ({limit.limited_by})."
     return text
+
+
+def _unreturned(electrical: ElectricalResult) -> str:
+    """What the battery gives beyond the net shaft power, copper loss and electronics."""
+    rest = electrical.average_power - electrical.mechanical_power - electrical.copper_power
+    rest -= electrical.electronics_power
+    if rest <= 1e-9 * max(electrical.average_power, 1e-300):
+        return ""
+    return (
+        f"; {significant(rest)} W more is what braking joints give back that the battery does "
+        "not take (regeneration below 1)"
+    )
 
 
 def write_files(data: ReportData, out: Path) -> None:
