@@ -75,3 +75,31 @@ def bench_decide_walking(evaluations: int | None) -> list[Row]:
     )
     name = f"decide, 3 free lengths, speed + payload, {found.evaluations} designs"
     return [Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 60 s", note=note)]
+
+
+def bench_decide_actuators(evaluations: int | None) -> list[Row]:
+    """l1, l2, l3 free and each joint type's actuator from the catalog, lightest robot."""
+    from hexaleg.actuator_catalog import shipped_catalog
+
+    design = HexapodDesign()
+    requirements = Requirements(continuous_margin=1.0)
+    settings = SearchSettings(seed=0, evaluations=evaluations)
+    entries = [entry.actuator for entry in shipped_catalog()]
+    with ProcessPoolExecutor(2) as pool:
+        pool.submit(int).result()
+        start = time.perf_counter()
+        found = decide(design, requirements, Objective("robot_mass", "minimize"),
+                       actuators=entries, settings=settings, executor=pool,
+                       progress=False)  # fmt: skip
+        elapsed = time.perf_counter() - start
+    best = found.best.design
+    chosen = (
+        ", ".join(a.catalog or "given" for a in best.actuators.joints) if best.actuators else ""
+    )
+    note = (
+        f"{found.best.evaluation.values['robot_mass']:.2f} kg at l = "
+        f"({', '.join(f'{v:.4f}' for v in best.lengths)}) m with {chosen}, "
+        f"feasible {found.feasible}"
+    )
+    name = f"decide --choose-actuators, 3 free lengths, {found.evaluations} designs"
+    return [Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 90 s", note=note)]

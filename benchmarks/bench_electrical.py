@@ -1,4 +1,4 @@
-"""Workload on the motor equations: one gait period's electrical figures beside the period."""
+"""Workload on the motor equations: a gait period through its motors beside one without."""
 
 from __future__ import annotations
 
@@ -8,48 +8,36 @@ from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
-from hexaleg.electrical import analyze_electrical
 from hexaleg.gait import Gait, analyze_gait
 
-GRAVITY = 9.81
 CATALOG_ENTRIES = ("hd_cha_17a_e_100", "hd_cha_25a_100", "hd_cha_20a_100")
-"""Root, hip and knee actuators of the workload: catalog entries that hold the default gait."""
+"""Root, hip and knee actuators of the workload (catalog entries)."""
 
 
 def bench_electrical(repeats: int) -> list[Row]:
-    """The default design's period with and without its electrical figures (≤ 1.2×)."""
-    design = HexapodDesign()
-    model = HexapodModel(design)
-    gait = Gait()
+    """The default design's period, and the same with actuators and a battery (≤ 1.2×)."""
     catalog = shipped_catalog()
     actuators = Actuators(*(catalog.entry(name).actuator for name in CATALOG_ENTRIES))
     battery = Battery(capacity=500.0, specific_energy=200.0, regeneration=0.3)
+    bare = HexapodDesign()
+    motors = bare.replace(actuators=actuators, battery=battery)
+    models = HexapodModel(bare), HexapodModel(motors)
+    gait = Gait()
 
     def period():
-        return analyze_gait(design, gait, model=model, limits=False)
+        return analyze_gait(bare, gait, model=models[0], limits=False).over_rating
 
     def period_and_electrical():
-        walked = period()
-        result = analyze_electrical(
-            walked.joint_torques,
-            walked.joint_velocities,
-            gait.period,
-            gait.speed,
-            walked.mass,
-            GRAVITY,
-            actuators,
-            battery,
-            walked.legs,
-        )
-        return result.over_rating  # the records too, as a command would print them
+        walked = analyze_gait(motors, gait, model=models[1], limits=False)
+        return walked.over_rating  # the records too, as a command would print them
 
     t_without, t_with = median_times([period, period_and_electrical], repeats, min_time=0.0)
     name = f"gait period + motor equations ({gait.samples} samples, six legs)"
     return [
-        Row(name, "hexaleg analyze_gait(limits=False)", t_without, None, None),
+        Row(name, "hexaleg analyze_gait, no actuators", t_without, None, None),
         Row(
             name,
-            "hexaleg analyze_gait + analyze_electrical",
+            "hexaleg analyze_gait, actuators and battery",
             t_with,
             t_with / t_without,
             None,

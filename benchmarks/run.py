@@ -14,7 +14,7 @@ import json
 import platform
 import sys
 
-from bench_decide import bench_decide, bench_decide_walking
+from bench_decide import bench_decide, bench_decide_actuators, bench_decide_walking
 from bench_electrical import bench_electrical
 from bench_explore import bench_explore
 from bench_flexibility import bench_dask, bench_flexibility
@@ -40,6 +40,7 @@ WORKLOADS = {
     "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
     "import": lambda quick, r: bench_import(r),
     "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
+    "decide_actuators": lambda quick, r: bench_decide_actuators(60 if quick else None),
 }
 
 

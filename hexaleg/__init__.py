@@ -84,7 +84,8 @@ __getattr__, __dir__ = lazy_exports(__name__)
 
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.design import HexapodDesign, default_mounts
-    from hexaleg.design_file import design_toml, load_design
+    from hexaleg.design_file import load_design
+    from hexaleg.design_text import design_toml
     from hexaleg.exceptions import (
         DesignError,
         HexalegError,

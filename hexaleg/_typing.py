@@ -37,6 +37,8 @@ CauseKind = Literal[
     "range",
     "torque",
     "speed",
+    "continuous_torque",
+    "voltage",
     "tip",
     "slide",
     "stability",

@@ -115,6 +115,11 @@ class Actuator:
         out: dict[str, Any] = {spec.name: getattr(self, spec.name) for spec in ACTUATOR_FIELDS}
         return out | {"rated_speed": self.rated_speed, "armature": self.armature}
 
+    def to_table(self) -> dict[str, Any]:
+        """The design file's ``[actuators.<joint>]`` table: every key that is set."""
+        values = {spec.name: getattr(self, spec.name) for spec in ACTUATOR_FIELDS}
+        return {key: value for key, value in values.items() if value is not None}
+
 
 ACTUATOR_FIELDS: tuple[FieldSpec, ...] = field_specs(Actuator)
 """Every actuator key's declaration, in order: validation, files, listing and docs read it."""
@@ -208,8 +213,20 @@ class Actuators:
         return self.values("mass")
 
     def as_dict(self) -> dict[str, Any]:
-        """JSON-ready form: each joint type's keys (SI units)."""
-        return {joint: getattr(self, joint).as_dict() for joint in LEG_JOINTS}
+        """JSON-ready form: each joint type's keys (SI units), as a design file's table.
+
+        :meth:`from_table` reads it back; :meth:`Actuator.as_dict` adds the derived numbers.
+        """
+        return self.to_table()
+
+    def to_table(self) -> dict[str, Any]:
+        """The design file's ``[actuators]`` table: each joint type's keys that are set."""
+        return {joint: getattr(self, joint).to_table() for joint in LEG_JOINTS}
+
+    @property
+    def total_mass(self) -> float:
+        """The six legs' actuators: 6·(root + hip + knee) [kg]."""
+        return 6 * sum(self.masses)
 
 
 def _actuator(table: Mapping[str, Any], joint: str, catalog: Catalog | None) -> Actuator:

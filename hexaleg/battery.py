@@ -68,8 +68,12 @@ class Battery:
 
     def as_dict(self) -> dict[str, Any]:
         """Every key (Wh, Wh/kg, m, W) and the mass [kg]."""
+        return self.to_table() | {"mass": self.mass}
+
+    def to_table(self) -> dict[str, Any]:
+        """The design file's ``[battery]`` table: every key (:meth:`from_table` reads it)."""
         out: dict[str, Any] = {spec.name: getattr(self, spec.name) for spec in BATTERY_FIELDS}
-        return out | {"battery_at": list(self.battery_at), "mass": self.mass}
+        return out | {"battery_at": list(self.battery_at)}
 
 
 BATTERY_FIELDS: tuple[FieldSpec, ...] = field_specs(Battery)

@@ -22,14 +22,16 @@ class Cause:
             reach), ``"ground"`` (the body touches the ground, or with ``leg`` that
             leg's knee does), ``"collision"`` (two of the robot's own parts touch),
             ``"range"`` (nothing broke within the searched range), ``"torque"`` or
-            ``"speed"`` (a joint at its rated torque or speed), ``"tip"`` (the gravity
+            ``"speed"`` (a joint at its rated torque or speed), ``"continuous_torque"``
+            (a joint's RMS torque at its actuator's continuous torque), ``"voltage"`` (the
+            voltage its motor needs at the supply's), ``"tip"`` (the gravity
             line leaves the support polygon on a slope), ``"slide"`` (the slope's
             tangent reaches the friction coefficient), ``"stability"`` (the centre of
             mass leaves the support polygon), ``"zmp"`` (a gait's zero-moment point leaves
             the standing feet's polygon) or ``"search limit"`` (nothing binds below the
             search's own bound).
-        leg: Leg name, for joint, reach, torque, speed and a leg's ground causes.
-        joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque and speed causes.
+        leg: Leg name, for joint, reach, torque, speed, voltage and a leg's ground causes.
+        joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque, speed and voltage causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
         links: The two links that touch, for collision causes.
 
@@ -51,8 +53,10 @@ class Cause:
             return f"{self.leg} knee touches the ground" if self.leg else "body touches the ground"
         if self.kind == "collision" and self.links:
             return f"{self.links[0]} touches {self.links[1]}"
-        if self.kind in ("torque", "speed"):
-            return f"{self.leg} {self.joint} {self.kind} at its rating"
+        if self.kind in ("torque", "speed", "continuous_torque"):
+            return f"{self.leg} {self.joint} {self.kind.replace('_', ' ')} at its rating"
+        if self.kind == "voltage":
+            return f"{self.leg} {self.joint} motor's voltage at the supply's"
         if self.kind == "zmp":
             return "ZMP leaves the support polygon"
         if self.kind in ("tip", "slide", "stability", "search limit"):

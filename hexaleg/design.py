@@ -23,8 +23,11 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._checks import require_in_range, require_instance, require_ratio
+from hexaleg.actuators import Actuators
+from hexaleg.battery import Battery
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
+from hexaleg.grids import L3_RATIO_POINTS, L3_RATIO_RANGE, MAX_L3_POINTS, l3_ratio_grid  # noqa: F401
 from hexaleg.kinematics import foot_position
 from hexaleg.layouts import (
     LEG_NAMES,
@@ -179,10 +182,21 @@ class HexapodDesign:
         DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
         SPEED_RANGE, kind="triple", items=LEG_JOINTS,
     )
+    actuators: Actuators | None = declare(
+        None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
+        "torques and speed ratings are the rated ones", kind="record",
+    )
+    battery: Battery | None = declare(None, "the battery, [battery]", kind="record")
 
     def __post_init__(self) -> None:
         for spec in DESIGN_FIELDS:  # each value on its own first, then how they fit together
             object.__setattr__(self, spec.name, spec.check(getattr(self, spec.name)))
+        if self.actuators is not None:
+            require_instance("actuators", self.actuators, Actuators, "an Actuators or None")
+            object.__setattr__(self, "rated_torques", self.actuators.rated_torques)
+            object.__setattr__(self, "rated_speeds", self.actuators.rated_speeds)
+        if self.battery is not None:
+            require_instance("battery", self.battery, Battery, "a Battery or None")
         layout = resolve_layout(self.layout, self.mounts)
         object.__setattr__(self, "layout", layout)
         mounts = checked_mounts(layout, self.mounts, self.layout_mounts(), self.link_radius)
@@ -257,9 +271,10 @@ class HexapodDesign:
 
     @property
     def total_mass(self) -> float:
-        """Mass of the whole robot [kg]: body, six legs' links, six feet."""
+        """Mass of the whole robot [kg]: body, six legs' links, feet, actuators, battery."""
         legs = 6 * (self.link_linear_density * self.leg_length + FOOT_MASS)
-        return self.body_mass + legs
+        motors = 0.0 if self.actuators is None else self.actuators.total_mass
+        return self.body_mass + legs + motors + (0.0 if self.battery is None else self.battery.mass)
 
     @property
     def legs(self) -> tuple[LegMount, ...]:
@@ -318,6 +333,8 @@ class HexapodDesign:
                 value = [vars(m).copy() for m in value]
             elif isinstance(value, JointLimits):
                 value = value.as_dict()
+            elif isinstance(value, Actuators | Battery):
+                value = value.to_table()
             elif isinstance(value, tuple):
                 value = list(value)
             out[f.name] = value
@@ -380,21 +397,3 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
     if spec.kind == "number" and spec.bounds is not None
 }
 """Each number field's plausible range (lower, upper, unit); values outside are refused."""
-
-L3_RATIO_RANGE: tuple[float, float] = (0.10, 0.75)
-"""Tibia-ratio range of hexaleg's design sweeps [-]. The paper gives only the count
-(:data:`L3_RATIO_POINTS`); this range leaves a femur of at least 5 % of the leg for every
-coxa ratio up to 0.20."""
-
-L3_RATIO_POINTS = 80
-"""Tibia ratios per coxa ratio in the paper's design study (§6.2): the sweeps' default."""
-
-MAX_L3_POINTS = 1000
-"""Most tibia ratios per coxa ratio in a sweep."""
-
-
-def l3_ratio_grid(points: int = L3_RATIO_POINTS) -> npt.NDArray[np.float64]:
-    """Evenly spaced tibia ratios over :data:`L3_RATIO_RANGE` [-]."""
-    if not 2 <= points <= MAX_L3_POINTS:
-        raise ParameterError("l3_points", points, f"from 2 to {MAX_L3_POINTS} tibia ratios")
-    return np.linspace(*L3_RATIO_RANGE, points)

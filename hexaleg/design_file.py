@@ -24,13 +24,13 @@ from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TypeVar, cast
 
-import tomli_w
-
 from hexaleg._checks import require_finite
+from hexaleg.actuators import Actuators
+from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.field_spec import FieldSpec
-from hexaleg.limits import JOINT_NAMES, LEG_JOINTS, JointLimits
+from hexaleg.limits import JOINT_NAMES, JointLimits
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -72,6 +72,12 @@ MOUNT_KEYS: dict[str, str] = {
 
 ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 """Keys that are angles [rad]: each also accepted in degrees as ``<key>_deg``."""
+
+RECORDS: dict[str, Callable[[Any], Any]] = {
+    "actuators": Actuators.from_table,
+    "battery": Battery.from_table,
+}
+"""How each table of its own keys is read (``[actuators.root]``, ``[battery]``)."""
 
 REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by
@@ -217,9 +223,16 @@ def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
             kwargs[key] = _limits(key, value)
         elif kind == "mounts":
             kwargs["mounts"] = _mounts(key, value)
+        elif kind == "record":
+            kwargs[key] = None if value is None else RECORDS[key](value)  # JSON's null: none
         else:
             kwargs[key] = value  # HexapodDesign names the choices it knows
-    return HexapodDesign(**kwargs)
+    design = HexapodDesign(**kwargs)
+    for key in ("rated_torques", "rated_speeds") if design.actuators is not None else ():
+        given, derived = kwargs.get(key, getattr(design, key)), getattr(design, key)
+        if not all(math.isclose(a, b, rel_tol=1e-9) for a, b in zip(given, derived, strict=True)):
+            raise ParameterError(key, list(given), "comes from [actuators] when they are given")
+    return design
 
 
 def _radians(table: Mapping[str, Any], prefix: str) -> dict[str, Any]:
@@ -338,54 +351,3 @@ def _line_of(text: str, field: str, json_file: bool) -> int | None:
 
 def _reason(err: Exception) -> str:
     return err.strerror if isinstance(err, OSError) and err.strerror else str(err)
-
-
-# -- writing ------------------------------------------------------------------------------
-
-
-def design_toml(design: HexapodDesign) -> str:
-    """The design as a commented TOML design file (every field; mounts when custom)."""
-    lines = [
-        "# hexaleg design file: SI units (m, kg, N·m) and radians.",
-        "# Any angle key also takes degrees as <key>_deg, e.g. first_leg_angle_deg = 30.",
-        "# Every command reads it with --design FILE; options given beside it override it.",
-        "",
-    ]
-    for spec in DESIGN_FIELDS:  # keys first: TOML puts the tables after them
-        if spec.kind in ("number", "triple", "choice"):
-            value = getattr(design, spec.name)
-            lines.append(
-                _line(spec.key, list(value) if spec.kind == "triple" else value, spec.described)
-            )
-    for spec in DESIGN_FIELDS:
-        if spec.kind == "limits":
-            lines += _limits_table(spec, getattr(design, spec.name))
-    if design.layout == "custom":
-        for mount in design.legs:
-            lines += ["", "[[mount]]"]
-            lines += [_line(k, getattr(mount, k), c) for k, c in MOUNT_KEYS.items()]
-    else:
-        lines += ["", '# layout = "custom" places each leg by hand, with six tables like:']
-        lines += ["# [[mount]]"] + [
-            "# " + _line(k, getattr(design.legs[0], k), c) for k, c in MOUNT_KEYS.items()
-        ]
-    return "\n".join(lines) + "\n"
-
-
-def _limits_table(spec: FieldSpec, limits: JointLimits) -> list[str]:
-    lines = ["", f"[{spec.key}]  # {spec.described}"]
-    for joint, what in zip(JOINT_NAMES, LEG_JOINTS, strict=True):
-        lines.append(_line(joint, list(getattr(limits, joint)), f"{what}: lower, upper [rad]"))
-    lines.append(_line("coupled_knee", limits.coupled_knee, "also θ3 ≥ −θ2 − π/2 (Table 4)"))
-    lines.append(_line("name", limits.name, "label in reports"))
-    return lines
-
-
-def _line(key: str, value: Any, comment: str) -> str:
-    """``key = value  # comment`` on one line; angles also shown in degrees."""
-    items = value if isinstance(value, list) else [value]
-    texts = [tomli_w.dumps({"v": item}).strip().removeprefix("v = ") for item in items]
-    text = f"[{', '.join(texts)}]" if isinstance(value, list) else texts[0]
-    if key in ANGLES:
-        comment += " (" + ", ".join(f"{math.degrees(v):.6g}°" for v in items) + ")"
-    return f"{key} = {text}  # {comment}"

@@ -18,8 +18,9 @@ from typing import Any, Literal
 from hexaleg._checks import require_finite, require_in_range, require_instance, require_numbers
 from hexaleg.limits import JointLimits
 
-FieldKind = Literal["number", "triple", "limits", "choice", "mounts"]
-"""A field's shape: one number, three numbers, a joint-limit set, a named choice, leg mounts."""
+FieldKind = Literal["number", "triple", "limits", "choice", "mounts", "record"]
+"""A field's shape: one number, three numbers, a joint-limit set, a named choice, leg mounts,
+or a record of its own keys read from a table (the actuators, the battery)."""
 
 OptionGroup = Literal["lengths", "body", "posture"]
 """The command-line groups of design options (a command offers only those it uses)."""

@@ -204,7 +204,7 @@ def test_every_field_is_declared_once_and_each_reader_uses_the_declaration(capsy
 
     from hexaleg.cli import main
     from hexaleg.design import DESIGN_FIELDS
-    from hexaleg.design_file import design_toml
+    from hexaleg.design_text import design_toml
 
     assert [spec.name for spec in DESIGN_FIELDS] == [f.name for f in fields(HexapodDesign)]
     doc = " ".join(inspect.getdoc(HexapodDesign).split())

@@ -10,11 +10,8 @@ import pytest
 from conftest import run_cli
 
 from hexaleg import HexapodDesign, HexapodModel, LegMount
-from hexaleg.design_file import (
-    design_from_mapping,
-    design_toml,
-    load_design,
-)
+from hexaleg.design_file import design_from_mapping, load_design
+from hexaleg.design_text import design_toml
 from hexaleg.exceptions import DesignError
 from hexaleg.kinematics import foot_position
 from hexaleg.limits import STANCE_LIMITS

@@ -176,7 +176,7 @@ def test_report_for_another_design(tmp_path):
 @pytest.mark.slow
 def test_report_on_a_hexagonal_design_file_with_a_body_sweep(tmp_path):
     from hexaleg.cli import main
-    from hexaleg.design_file import design_toml
+    from hexaleg.design_text import design_toml
     from hexaleg.stance import flexibility
 
     design = HexapodDesign(layout="hexagon", body_radius=0.35, l1=0.12, l2=0.45, l3=0.43)

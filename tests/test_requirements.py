@@ -103,14 +103,14 @@ def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_pa
     assert all(line.startswith("# ") for line in block)
     keys = [line[2:].split(" = ")[0] for line in block[1:]]
     assert set(keys) == {*REQUIREMENTS, "payload_at", "step_height", "slope_deg"} - {"slope"}
-    assert all(re.search(r"\[(kg|m|°|-|m/s)\]", line) for line in block[1:])  # units
+    assert all(re.search(r"\[(kg|m|°|-|m/s|km)\]", line) for line in block[1:])  # units
     uncommented = text[: text.index("# [requirements]")] + "\n".join(line[2:] for line in block)
     path.write_text(uncommented)
     _, requirements = load_design_file(path, Requirements.from_table)
     assert requirements == Requirements(
         payload=30.0, payload_at=(0.0, 0.0, 0.05), slope=math.radians(15), ground_clearance=0.25,
         min_fb=0.2, leg_length=1.0, min_coxa=0.08, speed=0.3, step_height=0.1,
-        walking_payload=10.0,
+        walking_payload=10.0, range_km=5.0, continuous_margin=0.8,
     )  # fmt: skip
 
 

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import argparse
+import math
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
+from hexaleg.actuators import Actuator
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
@@ -15,6 +17,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.goal import Objective
@@ -73,6 +76,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         + ", ".join(FREEABLE)
         + " [m or rad]; a body field renders each design's URDF (~0.4 s a design)",
     )
+    search.add_argument(
+        "--choose-actuators",
+        action="store_true",
+        help="also choose each joint type's actuator from the catalog (hexaleg actuators), "
+        "one categorical variable per joint type",
+    )
     search.add_argument("--seed", type=bounded_int(0, 2**32 - 1), default=0, help="default 0")
     search.add_argument(
         "--evaluations",
@@ -116,6 +125,7 @@ def run(args: argparse.Namespace) -> int:
             objective,
             free_posture=args.free_posture,
             free=free,
+            actuators=_catalog_actuators(args.choose_actuators),
             settings=settings,
             executor=pool,
             journal=args.journal,
@@ -126,6 +136,15 @@ def run(args: argparse.Namespace) -> int:
     else:
         print(render(result))
     return 0
+
+
+def _catalog_actuators(choose: bool) -> list[Actuator]:
+    """The shipped catalog's actuators when ``--choose-actuators`` is given."""
+    if not choose:
+        return []
+    from hexaleg.actuator_catalog import shipped_catalog
+
+    return [entry.actuator for entry in shipped_catalog()]
 
 
 def render(result: DecideResult) -> str:
@@ -151,6 +170,12 @@ def _design_block(
 ) -> list[str]:
     lengths = ", ".join(f"{v:.4g}" for v in checked.design.lengths)
     head = f"{title}: l = ({lengths}) m"
+    motors = checked.design.actuators
+    if motors is not None:
+        names = (a.catalog or "given" for a in motors.joints)
+        head += " with " + ", ".join(f"{j} {n}" for j, n in zip(LEG_JOINTS, names, strict=True))
+    if checked.design.battery is not None:
+        head += f", battery {checked.design.battery.capacity:.4g} Wh"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
     value = checked.evaluation.values[result.objective.name]
@@ -194,6 +219,8 @@ def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[
     else:
         state = "pass" if check.met else "FAIL"
     limited = f" (limited by {check.limited_by})"
+    if math.isnan(check.value):  # nothing to measure it on: no actuators, no battery
+        return (result.requirements.describe(check.name), "-", "", state + " (not measured)")
     return (
         result.requirements.describe(check.name),
         format_value(check.name, check.value),

@@ -130,7 +130,7 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
 def _import(args: argparse.Namespace) -> int:
     """Write the design file of the robot file ``args.urdf``."""
     from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_file import design_toml
+    from hexaleg.design_text import design_toml
     from hexaleg.robot.robot_design import robot_design, robot_record
 
     path = check_output_file(args.output)
@@ -181,7 +181,7 @@ def _toml_ready(value: Any) -> Any:
 
 def _init(file: str, design: HexapodDesign, force: bool) -> int:
     from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_file import design_toml
+    from hexaleg.design_text import design_toml
 
     path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
@@ -218,7 +218,7 @@ def show(design: HexapodDesign) -> None:
             ("leg length", f"{design.leg_length:.4g} m"),
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg)"),
+            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"),
             ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
             ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
         ],
@@ -239,3 +239,9 @@ def show_requirements(requirements: Requirements) -> None:
         position = ", ".join(f"{v:g}" for v in requirements.payload_at)
         rows.append(("payload_at", f"({position}) m, body frame"))
     print_table("Requirements (the file's [requirements] table)", rows)
+
+
+def _drive(design: HexapodDesign) -> str:
+    """``, actuators … kg, battery … kg`` for those the design has."""
+    text = "" if design.actuators is None else f", actuators {design.actuators.total_mass:.4g} kg"
+    return text + ("" if design.battery is None else f", battery {design.battery.mass:.4g} kg")

@@ -39,7 +39,9 @@ DESCRIPTION = (
     "feet's forces split as in `loads`. Prints the peak and RMS torques, peak joint speeds "
     "and power, the positive work and cost of transport per period, the ZMP margin, "
     "whether the period is feasible, the max stride and the max speed within the ratings; "
-    "flags every joint over its rating."
+    "flags every joint over its rating. A design with [actuators] also gets each motor's "
+    "current, voltage and copper loss, the electrical energy, cost of transport and Wh/km, "
+    "the battery's runtime and range, and checks continuous torque and voltage."
 )
 
 
@@ -147,7 +149,56 @@ def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:
     cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
     in_body = analysis.frames.points_in_body(cloud.points)
     reach = dict(zip(analysis.legs, in_body, strict=True))
-    return write_gait_figures(analysis, out, reach)
+    written = write_gait_figures(analysis, out, reach)
+    if analysis.electrical is not None:
+        from hexaleg.output.figures.motors import write_motor_figures
+
+        written += write_motor_figures(analysis, out)
+    return written
+
+
+def _feasible(analysis: GaitAnalysis) -> str:
+    if not analysis.walkable:
+        return f"no: {analysis.violations[0]}"
+    return "yes" if analysis.feasible else "no: over its actuators' ratings (below)"
+
+
+def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
+    """The motors' rows: energy, power, cost, each joint type's loads, the battery."""
+    electrical, actuators = analysis.electrical, analysis.design.actuators
+    if electrical is None or actuators is None:
+        return []
+    share = electrical.copper_loss_per_period / max(electrical.energy_per_period, 1e-300)
+    rows = [
+        (
+            "electrical energy per period",
+            f"{electrical.energy_per_period:.4g} J (copper loss "
+            f"{electrical.copper_loss_per_period:.4g} J, {100 * share:.0f} %)",
+        ),
+        ("average electrical power", f"{electrical.average_power:.4g} W"),
+        ("electrical cost of transport", f"{electrical.cost_of_transport:.4f}"),
+        ("energy per km", f"{electrical.energy_per_km:.4g} Wh/km"),
+    ]
+    for joint, actuator in zip(LEG_JOINTS, actuators.joints, strict=True):
+        figures = electrical.per_joint[joint]
+        rows.append(
+            (
+                f"{joint}: RMS torque, current, voltage",
+                f"{figures.rms_torque:.2f} N·m (continuous {actuator.continuous_torque:g}), "
+                f"peak {figures.peak_current:.3g} A, {figures.peak_voltage:.3g} V "
+                f"(supply {actuator.voltage:g})",
+            )
+        )
+    if electrical.battery is not None:
+        use = electrical.battery
+        rows.append(
+            (
+                "battery",
+                f"{use.capacity:.4g} Wh, {use.mass:.3g} kg: runtime {use.runtime:.3g} h, "
+                f"range {use.range:.3g} km",
+            )
+        )
+    return rows
 
 
 def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
@@ -183,9 +234,10 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
         )
     rows += [
         ("positive work per period", f"{metrics.positive_work:.2f} J"),
-        ("cost of transport", f"{metrics.cost_of_transport:.4f}"),
+        ("mechanical cost of transport", f"{metrics.cost_of_transport:.4f}"),
+        *electrical_rows(analysis),
         ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m"),
-        ("feasible", "yes" if analysis.feasible else f"no: {analysis.violations[0]}"),
+        ("feasible", _feasible(analysis)),
     ]
     if analysis.max_stride is not None:
         stride = analysis.max_stride

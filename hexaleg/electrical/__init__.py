@@ -22,6 +22,7 @@ __all__ = [
     "RatingLoads",
     "analyze_electrical",
     "binding_rating",
+    "motor_loads",
     "motor_samples",
 ]
 
@@ -35,4 +36,4 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         JointElectrical,
         analyze_electrical,
     )
-    from hexaleg.electrical.ratings import RatingBinding, RatingLoads, binding_rating
+    from hexaleg.electrical.ratings import RatingBinding, RatingLoads, binding_rating, motor_loads

@@ -165,7 +165,17 @@ def binding_rating(
         when every joint is within its ratings.
 
     """
+    return motor_loads(torques, speeds, actuators, legs).binding()
+
+
+def motor_loads(
+    torques: npt.ArrayLike,
+    speeds: npt.ArrayLike,
+    actuators: Actuators,
+    legs: Sequence[str] | None = None,
+) -> RatingLoads:
+    """One period's (N, L, 3) τ [N·m] and ω [rad/s] against every rating (see the module)."""
     tau, omega, names = require_samples(torques, speeds, legs)
     actuators = require_actuators(actuators)
     voltage = motor_samples(tau, omega, actuators).voltage
-    return rating_loads(tau, omega, actuators, names, voltage).binding()
+    return rating_loads(tau, omega, actuators, names, voltage)

@@ -17,7 +17,7 @@ import tomli_w
 
 from hexaleg._io import check_output_file, write_text
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
-from hexaleg.design_file import design_toml
+from hexaleg.design_text import design_toml
 from hexaleg.exceptions import HexalegError
 from hexaleg.explore.answer import answer, loaded_values
 from hexaleg.explore.cloud import Cloud

@@ -19,6 +19,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
+from hexaleg.electrical.period import ElectricalResult, analyze_electrical
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.feasibility import Violation
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
@@ -69,6 +70,8 @@ class GaitAnalysis:
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
         max_speed: The fastest walk within the ratings (None if not computed).
+        electrical: The period's currents, voltages, energy and battery use, and each
+            joint against its actuator's ratings (None for a design without actuators).
 
     """
 
@@ -96,6 +99,7 @@ class GaitAnalysis:
     violations: tuple[Violation, ...]
     max_stride: StrideLimit | None
     max_speed: SpeedLimit | None
+    electrical: ElectricalResult | None
 
     @cached_property
     def zmp_margin(self) -> ArrayF:
@@ -109,13 +113,25 @@ class GaitAnalysis:
         return float(self.zmp_margin.min())
 
     @property
-    def feasible(self) -> bool:
-        """Whether the period breaks no constraint."""
+    def walkable(self) -> bool:
+        """Whether the period breaks no constraint of its motion (joint limits, reach…)."""
         return not self.violations
 
     @property
+    def feasible(self) -> bool:
+        """Whether the period is walkable and, with actuators, within their every rating."""
+        motors = self.electrical is not None and bool(self.electrical.over_rating)
+        return self.walkable and not motors
+
+    @property
     def over_rating(self) -> tuple[OverRating, ...]:
-        """Each joint whose peak |τ| or |q̇| exceeds its rating, with when it peaks."""
+        """Each joint over a rating, with when it peaks.
+
+        With actuators: peak torque, continuous (RMS) torque, voltage and speed; without,
+        the peak |τ| and |q̇| against the rated torque and speed.
+        """
+        if self.electrical is not None:
+            return self.electrical.over_rating
         places = at_times(self.times)
         design = self.design
         return over_rating(
@@ -127,7 +143,8 @@ class GaitAnalysis:
 
         ``t`` [s]; per leg and joint ``<leg>_<joint>_q`` [rad], ``_qd`` [rad/s], ``_qdd``
         [rad/s²], ``_tau`` [N·m]; per leg ``<leg>_stance`` (1 standing, 0 swinging) and
-        its foot's force ``<leg>_fx``, ``_fy``, ``_fz`` [N], ground frame.
+        its foot's force ``<leg>_fx``, ``_fy``, ``_fz`` [N], ground frame; with actuators,
+        per leg and joint ``_current`` [A], ``_voltage`` (needed) [V] and ``_power`` (P_e) [W].
         """
         columns = {"t": self.times}
         for i, leg in enumerate(self.legs):
@@ -142,7 +159,7 @@ class GaitAnalysis:
             columns[f"{leg}_stance"] = self.stance[:, i].astype(float)
             for axis, k in (("x", 0), ("y", 1), ("z", 2)):
                 columns[f"{leg}_f{axis}"] = self.foot_forces[:, i, k]
-        return columns
+        return columns | ({} if self.electrical is None else self.electrical.time_series())
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI: s, m, kg, N·m, rad/s, W, J); the time series are left out."""
@@ -159,6 +176,7 @@ class GaitAnalysis:
             "max_stride": None if self.max_stride is None else self.max_stride.value,
             "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
             "over_rating": [o.to_dict() for o in self.over_rating],
+            **_electrical_dict(self.electrical),
             "units": {
                 "period, time": "s",
                 "stride, step_height, max_stride, min_zmp_margin, position": "m",
@@ -169,9 +187,18 @@ class GaitAnalysis:
                 "peak_speed": "rad/s",
                 "peak_power": "W",
                 "positive_work": "J",
-                "cost_of_transport, duty_factor": "1",
+                "mechanical_cost_of_transport, duty_factor": "1",
+                "electrical": "J, W, Wh/km; per joint N·m, A, V, J; cost_of_transport 1",
+                "battery": "kg, Wh, h, km",
             },
         }
+
+
+def _electrical_dict(electrical: ElectricalResult | None) -> dict[str, Any]:
+    """``electrical`` and ``battery`` of the JSON (``None`` each without actuators)."""
+    if electrical is None:
+        return {"electrical": None, "battery": None}
+    return electrical.to_dict()
 
 
 def analyze_gait(
@@ -253,6 +280,25 @@ def _analysis(
         violations=walk.violations,
         max_stride=stride_limit,
         max_speed=speed_limit,
+        electrical=_electrical(walker, torques, velocities),
+    )
+
+
+def _electrical(walker: Walker, torques: ArrayF, velocities: ArrayF) -> ElectricalResult | None:
+    """The period through the design's motors (:mod:`hexaleg.electrical`), if it has them."""
+    design, gait = walker.model.design, walker.gait
+    if design.actuators is None:
+        return None
+    return analyze_electrical(
+        torques,
+        velocities,
+        gait.period,
+        gait.speed,
+        walker.robot.mass,
+        walker.gravity,
+        design.actuators,
+        design.battery,
+        walker.frames.legs,
     )
 
 
@@ -269,7 +315,7 @@ def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
         HexalegError: The period breaks a constraint at any stride.
 
     """
-    if analysis.feasible:
+    if analysis.walkable:
         return
     gait = analysis.gait
     limit = analysis.max_stride

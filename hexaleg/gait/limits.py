@@ -14,7 +14,10 @@
   there is zero; the search would cost more than the walk.) With minimum-norm forces every
   torque is τ_s + τ_i/T² and every speed θ'/T exactly, so the shortest period is solved
   joint by joint in closed form; min-torque forces are bisected on 1/T² to
-  :data:`SPEED_TOLERANCE`.
+  :data:`SPEED_TOLERANCE`. A design with actuators also keeps every joint's RMS torque
+  within its continuous torque and the voltage its motor needs within the supply
+  (:mod:`hexaleg.electrical`): below the speed the peaks allow, 1/T² is bisected on the
+  larger of those two ratios.
 """
 
 from __future__ import annotations
@@ -27,6 +30,7 @@ import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
+from hexaleg.electrical.ratings import RATED, motor_loads
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
@@ -169,9 +173,10 @@ def max_speed(
             return SpeedLimit(0.0, stride, math.inf, found[0].cause)
     speed_room = _speed_room(walker, walk)
     if walker.distribution != "min-norm":
-        return _bisected_speed(walker, stride, walk, speed_room)
+        return _within_motors(walker, walk, _bisected_speed(walker, stride, walk, speed_room))
     loads = walker.loads(stride, walk, 1.0) if at_gait_stride is None else at_gait_stride[1]
-    return _closed_form_speed(walker, stride, loads, speed_room)
+    limit = _closed_form_speed(walker, stride, loads, speed_room)
+    return _within_motors(walker, walk, limit, loads)
 
 
 def _speed_room(walker: Walker, walk: Stride) -> ArrayF:
@@ -231,3 +236,50 @@ def _bisected_speed(walker: Walker, stride: float, walk: Stride, speed_room: Arr
     beyond = ratios(high)
     room = np.where(beyond >= beyond.max(), low, np.inf)  # the joint that breaks first
     return _limit(walker, stride, room, np.full_like(speed_room, np.inf))
+
+
+def _within_motors(
+    walker: Walker, walk: Stride, limit: SpeedLimit, loads: Loads | None = None
+) -> SpeedLimit:
+    """``limit``, or a slower one that keeps RMS torques and voltages within the actuators'.
+
+    Args:
+        walker: The robot and its gait (its design's actuators, if any, are checked).
+        walk: The motion at ``limit.stride``.
+        limit: The speed limit of the peak torques and speeds.
+        loads: The min-norm loads at that stride (τ = τ_s + τ_i/T²); min-torque forces
+            are solved again at each period tried.
+
+    """
+    actuators = walker.model.design.actuators
+    if actuators is None or limit.value == 0:
+        return limit
+    rnea = walker.generalized_forces(limit.stride, walk) if loads is None else None
+    legs = walker.frames.legs
+
+    def ratios(w: float) -> ArrayF:  # (continuous, voltage) ratios (2, L, 3) at w = 1/T²
+        if loads is not None:
+            torques = loads.split.static_torques + w * loads.split.inertial_torques
+        else:
+            period = math.inf if w == 0 else 1.0 / math.sqrt(w)
+            torques = walker.loads(limit.stride, walk, period, rnea).split.torques(period)
+        found: ArrayF = motor_loads(
+            torques, walk.motion.velocity * math.sqrt(w), actuators, legs
+        ).ratios
+        return found[1:3]
+
+    high = 1.0 / limit.period**2
+    if ratios(high).max() <= 1:
+        return limit
+    low = 0.0
+    if ratios(low).max() > 1:
+        high = 0.0
+    while high - low > SPEED_TOLERANCE * high:
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if ratios(middle).max() <= 1 else (low, middle)
+    beyond = ratios(high if high > 0 else 0.0)
+    kind, leg, joint = np.unravel_index(int(np.argmax(beyond)), beyond.shape)
+    cause = Cause(RATED[1 + kind], legs[leg], LEG_JOINTS[joint])
+    period = math.inf if low == 0 else 1.0 / math.sqrt(low)
+    value = limit.stride * math.sqrt(low) / walker.phases.duty_factor
+    return SpeedLimit(float(value), limit.stride, period, cause)

@@ -54,7 +54,7 @@ class GaitMetrics:
             "peak_speed": self.peak_speed,
             "peak_power": self.peak_power,
             "positive_work": self.positive_work,
-            "cost_of_transport": self.cost_of_transport,
+            "mechanical_cost_of_transport": self.cost_of_transport,
         }
 
 

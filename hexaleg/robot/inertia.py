@@ -5,12 +5,21 @@ The Xacro templates receive these numbers and only place them; the sweeps' fast 
 from the same ones. Links are solids of uniform density: the coxa, femur and tibia are
 cylinders along +x of their link frame (the tibia thinner, :data:`TIBIA_RADIUS_RATIO`),
 the foot a small sphere at the tibia tip, the body a box or a cylinder about z.
+
+The design's actuators and battery are point masses on the links that carry them
+(:func:`with_points`): each joint's actuator at that joint's origin, on the link before
+the joint (the root motors on the body at the leg mounts, the hip motor at the coxa's
+end, the knee motor at the femur's end), the battery on the body at ``battery_at``.
 """
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
+from hexaleg._typing import ArrayF
 from hexaleg.design import FOOT_MASS, HexapodDesign
 
 TIBIA_RADIUS_RATIO = 0.8
@@ -22,29 +31,72 @@ LEG_LINKS: tuple[str, str, str, str] = ("coxa", "femur", "tibia", "foot")
 
 @dataclass(frozen=True)
 class LinkInertial:
-    """A link's inertial, in its own link frame, principal axes along the frame's.
+    """A link's inertial, in its own link frame.
 
     Attributes:
         mass: Mass [kg].
-        com_x: Centre of mass along the link frame's x axis [m] (y = z = 0).
+        com_x: Centre of mass along the link frame's x axis [m].
         moments: Moments of inertia (ixx, iyy, izz) about the centre of mass [kg·m²].
+        com_yz: Centre of mass along y and z [m] (zero for a leg's link).
+        products: Products of inertia (ixy, ixz, iyz) about the centre of mass, the
+            inertia tensor's off-diagonal entries as a URDF writes them [kg·m²].
 
     """
 
     mass: float
     com_x: float
     moments: tuple[float, float, float]
+    com_yz: tuple[float, float] = (0.0, 0.0)
+    products: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+    @property
+    def com(self) -> ArrayF:
+        """Centre of mass (3,) in the link frame [m]."""
+        return np.array([self.com_x, *self.com_yz])
+
+    @property
+    def tensor(self) -> ArrayF:
+        """The inertia tensor about the centre of mass (3, 3) [kg·m²]."""
+        (ixx, iyy, izz), (ixy, ixz, iyz) = self.moments, self.products
+        return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
 
     def xacro_arguments(self, link: str) -> dict[str, float]:
-        """``<link>_mass``, ``<link>_com_x`` and ``<link>_ixx`` .. ``_izz``, as numbers."""
-        ixx, iyy, izz = self.moments
-        return {
-            f"{link}_mass": self.mass,
-            f"{link}_com_x": self.com_x,
-            f"{link}_ixx": ixx,
-            f"{link}_iyy": iyy,
-            f"{link}_izz": izz,
-        }
+        """``<link>_mass``, ``<link>_com_x`` .. ``_com_z`` and ``_ixx`` .. ``_iyz``."""
+        (ixx, iyy, izz), (ixy, ixz, iyz) = self.moments, self.products
+        com_y, com_z = self.com_yz
+        values = (self.mass, self.com_x, com_y, com_z, ixx, iyy, izz, ixy, ixz, iyz)
+        keys = ("mass", "com_x", "com_y", "com_z", "ixx", "iyy", "izz", "ixy", "ixz", "iyz")
+        return {f"{link}_{key}": value for key, value in zip(keys, values, strict=True)}
+
+
+def with_points(
+    inertial: LinkInertial, points: Sequence[tuple[float, Sequence[float]]]
+) -> LinkInertial:
+    """``inertial`` with point masses added: the whole's mass, centre and tensor.
+
+    Args:
+        inertial: The link's own inertial.
+        points: (mass [kg], position (3,) in the link frame [m]) of each point mass.
+
+    """
+    points = [(float(m), p) for m, p in points if m > 0]
+    if not points:
+        return inertial
+    masses = np.array([inertial.mass] + [m for m, _ in points])
+    places = np.array([inertial.com] + [np.asarray(p, dtype=float) for _, p in points])
+    total = float(masses.sum())
+    com = masses @ places / total
+    offsets = places - com
+    tensor = inertial.tensor + sum(
+        m * (d @ d * np.eye(3) - np.outer(d, d)) for m, d in zip(masses, offsets, strict=True)
+    )
+    return LinkInertial(
+        total,
+        float(com[0]),
+        (float(tensor[0, 0]), float(tensor[1, 1]), float(tensor[2, 2])),
+        (float(com[1]), float(com[2])),
+        (float(tensor[0, 1]), float(tensor[0, 2]), float(tensor[1, 2])),
+    )
 
 
 def rod(length: float, radius: float, density: float) -> LinkInertial:
@@ -68,18 +120,32 @@ def sphere(mass: float, radius: float) -> LinkInertial:
 
 
 def leg_inertials(design: HexapodDesign) -> dict[str, LinkInertial]:
-    """The inertial of each of a leg's :data:`LEG_LINKS` (every leg is the same)."""
+    """The inertial of each of a leg's :data:`LEG_LINKS` (every leg is the same).
+
+    The coxa carries the hip's actuator at its end, the femur the knee's.
+    """
     radius, density = design.link_radius, design.link_linear_density
+    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
     return {
-        "coxa": rod(design.l1, radius, density),
-        "femur": rod(design.l2, radius, density),
+        "coxa": with_points(rod(design.l1, radius, density), [(hip, (design.l1, 0.0, 0.0))]),
+        "femur": with_points(rod(design.l2, radius, density), [(knee, (design.l2, 0.0, 0.0))]),
         "tibia": rod(design.l3, TIBIA_RADIUS_RATIO * radius, density),
         "foot": sphere(FOOT_MASS, radius),
     }
 
 
 def body_inertial(design: HexapodDesign) -> LinkInertial:
-    """The body's inertial: a box, or for the hexagon layout a cylinder about z."""
+    """The body's inertial: its solid, the root joints' actuators and the battery."""
+    points: list[tuple[float, Sequence[float]]] = []
+    if design.actuators is not None:
+        points += [(design.actuators.root.mass, (m.x, m.y, m.z)) for m in design.legs]
+    if design.battery is not None:
+        points.append((design.battery.mass, design.battery.battery_at))
+    return with_points(body_solid(design), points)
+
+
+def body_solid(design: HexapodDesign) -> LinkInertial:
+    """The body's solid alone: a box, or for the hexagon layout a cylinder about z."""
     mass, height = design.body_mass, design.body_height
     if design.body_shape == "cylinder":
         radius = design.body_radius

@@ -8,7 +8,7 @@ joint axes and limits are read from the model, never re-typed here.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from dataclasses import fields
 
 import numpy as np
@@ -19,7 +19,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.inertia import LinkInertial, leg_inertials
+from hexaleg.robot.inertia import LinkInertial, body_inertial, leg_inertials
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
 
 ROOT_JOINT = "root_joint"
@@ -76,8 +76,9 @@ class LegModel:
         self.design = design
         self.urdf = render_leg(design)
         self.model = pin.buildModelFromXML(self.urdf)
-        self.data = self.model.createData()
         self._leg = _LegIndex(self.model, SINGLE_LEG_NAME)
+        set_armature(self.model, [self._leg], design)
+        self.data = self.model.createData()
         if self.model.nq != 3 or list(self._leg.q) != [0, 1, 2]:
             raise ModelError(f"single-leg model has nq = {self.model.nq}, expected 3 in leg order")
 
@@ -111,7 +112,9 @@ class LegModel:
         return np.array([self.foot_position(t) for t in thetas])
 
 
-DERIVED_FIELDS = frozenset(("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles"))
+DERIVED_FIELDS = frozenset(
+    ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles", "actuators", "battery")
+)
 """The design fields :meth:`HexapodModel.with_design` sets on a copy of a model."""
 
 
@@ -143,6 +146,8 @@ class HexapodModel:
         self._data: pin.Data | None = None
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
+        if _model is None:
+            set_armature(self.model, self._legs.values(), design)
         self.base_frame = _frame_id(self.model, "base_link")
         self._collision: pin.GeometryModel | None = None
 
@@ -183,8 +188,12 @@ class HexapodModel:
             for f in fields(design)
             if f.name not in DERIVED_FIELDS
         ):
-            raise ModelError("with_design changes only segment lengths, ratings and posture")
+            raise ModelError(
+                "with_design changes only segment lengths, ratings, posture, actuators, battery"
+            )
         model = pin.Model(self.model)
+        model.inertias[model.getJointId(ROOT_JOINT)] = _pinocchio(body_inertial(design))
+        set_armature(model, self._legs.values(), design)
         links = leg_inertials(design)
         inertias = (
             _pinocchio(links["coxa"]),
@@ -321,6 +330,17 @@ class HexapodModel:
             ) from None
 
 
+def set_armature(model: pin.Model, legs: Iterable[_LegIndex], design: HexapodDesign) -> None:
+    """Each leg joint's armature: its actuator's reflected rotor inertia N²·J [kg·m²].
+
+    Pinocchio's dynamics (RNEA, CRBA, ABA) add armature·q̈ to each joint's torque; a
+    design without actuators has none.
+    """
+    armatures = (0.0, 0.0, 0.0) if design.actuators is None else design.actuators.armatures
+    for index in legs:
+        model.armature[index.v] = armatures
+
+
 def _joint_id(model: pin.Model, name: str) -> int:
     if not model.existJointName(name):
         raise ModelError(f"the model has no joint named {name!r}")
@@ -335,5 +355,5 @@ def _frame_id(model: pin.Model, name: str) -> int:
 
 def _pinocchio(inertial: LinkInertial, offset: float = 0.0) -> pin.Inertia:
     """``inertial`` as Pinocchio's, its link frame ``offset`` [m] along x of the joint's."""
-    com = np.array([offset + inertial.com_x, 0.0, 0.0])
-    return pin.Inertia(inertial.mass, com, np.diag(inertial.moments))
+    com = inertial.com + np.array([offset, 0.0, 0.0])
+    return pin.Inertia(inertial.mass, com, inertial.tensor)

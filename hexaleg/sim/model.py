@@ -13,7 +13,9 @@ URDF's mass and inertia) and adds what a URDF does not say:
 - one servo per leg joint (:class:`ServoGains`), a MuJoCo position actuator fed so that
   its torque is τ = τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇): the plan's
   feed-forward torque plus a PD on the tracking error. The URDF's effort (the rated
-  torque) does not clamp it, so the measured torque is what the simulated robot needs.
+  torque) does not clamp it, so the measured torque is what the simulated robot needs;
+  each joint's ``armature`` is its actuator's reflected rotor inertia N²·J, as in the
+  Pinocchio model.
 
 Only the feet touch the floor and the robot does not collide with itself: contacts
 between the leg links are the collision analysis' business (:mod:`hexaleg.stance.collisions`).
@@ -235,9 +237,13 @@ def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
     mujoco = require_mujoco()
     for joint in spec.joints:
         joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE  # the rating clamps nothing
+    armatures = model.design.actuators.armatures if model.design.actuators else (0.0, 0.0, 0.0)
     for leg in model.leg_names:
-        for joint, kp, kd in zip(LEG_JOINTS, gains.stiffness, gains.damping, strict=True):
+        for joint, kp, kd, armature in zip(
+            LEG_JOINTS, gains.stiffness, gains.damping, armatures, strict=True
+        ):
             name = joint_name(leg, joint)
+            spec.joint(name).armature = armature  # the rotor's N²·J, as Pinocchio's
             actuator = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
             actuator.set_to_position(kp=kp, kv=kd)
 

@@ -27,6 +27,7 @@ import numpy.typing as npt
 
 from hexaleg._checks import require_instance
 from hexaleg._version import __version__
+from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
@@ -220,6 +221,7 @@ def decide(
     *,
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
+    actuators: Sequence[Actuator] = (),
     settings: SearchSettings | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
@@ -236,6 +238,8 @@ def decide(
         objective: What to make best (default: maximize FB).
         free_posture: Also free the nominal hip and knee angles.
         free: More free variables (body fields), or other bounds for l1, l2, l3.
+        actuators: A catalog's actuators: each joint type's is chosen among them (a
+            categorical variable each); none, the design's own are kept.
         settings: Seed and budget of the search.
         executor: Where designs are evaluated; a local process pool if omitted.
         workers: Size of that pool (default: the number of CPUs).
@@ -252,10 +256,7 @@ def decide(
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective or Objective())
-    space = search_space(
-        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free
-    )
-    settings.generations(len(space.variables))  # refuses a budget of partial generations
+    space = _space(design, requirements, free_posture, free, actuators, settings)
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
@@ -273,6 +274,23 @@ def decide(
         evaluations=sum(found.evaluations for found in search.done),
         seed=settings.seed,
     )
+
+
+def _space(
+    design: HexapodDesign,
+    requirements: Requirements,
+    free_posture: bool,
+    free: Sequence[FreeVariable],
+    actuators: Sequence[Actuator],
+    settings: SearchSettings,
+) -> SearchSpace:
+    """What the search varies; a budget of partial generations is refused before any work."""
+    space = search_space(
+        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
+        actuators, requirements.range_km is not None,
+    )  # fmt: skip
+    settings.generations(len(space.variables))
+    return space
 
 
 def _check_arguments(
@@ -350,6 +368,7 @@ def _fingerprint(
         "requirements": goal.requirements.to_dict(),
         "objective": str(goal.objective),
         "free": [[v.name, v.lower, v.upper] for v in space.variables],
+        "actuators": [a.to_table() for a in space.entries],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
     }

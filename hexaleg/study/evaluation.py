@@ -179,7 +179,12 @@ def evaluate_many(
 
 
 PERIOD_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
+ELECTRICAL_METRICS = (
+    "energy_per_km", "electrical_cost_of_transport", "continuous_load", "battery_range",
+)  # fmt: skip
+"""The metrics of the period through the design's motors (:mod:`hexaleg.electrical`)."""
 PERIOD_DETAILS = (
+    *ELECTRICAL_METRICS,
     "mechanical_energy_per_km",
     "min_zmp_margin",
     *(f"gait_{kind}_{joint}_torque" for joint in LEG_JOINTS for kind in ("peak", "rms")),
@@ -339,12 +344,37 @@ class _Measuring:
         assert walked.max_speed is not None  # speed=True
         self.values["max_speed"] = walked.max_speed.value
         self.causes["max_speed"] = walked.max_speed.limited_by
-        if walked.feasible:
+        if walked.walkable:
             self.values |= _period_values(walked)
+            self.unmeasured |= _unmeasured_electrical(walked)
             return
         why = f"cannot walk the gait: {walked.violations[0]}"
         for name in (*PERIOD_METRICS[1:], *PERIOD_DETAILS):
             self.values[name], self.unmeasured[name] = math.nan, why
+
+
+def _electrical_values(walked: GaitAnalysis) -> dict[str, float]:
+    """The period's metrics through the motors: energy, cost, continuous load, range."""
+    electrical = walked.electrical
+    if electrical is None:
+        return dict.fromkeys(ELECTRICAL_METRICS, math.nan)
+    ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
+    battery = electrical.battery
+    return {
+        "energy_per_km": electrical.energy_per_km,
+        "electrical_cost_of_transport": electrical.cost_of_transport,
+        "continuous_load": float(ratios.max()),
+        "battery_range": math.nan if battery is None else battery.range,
+    }
+
+
+def _unmeasured_electrical(walked: GaitAnalysis) -> dict[str, str]:
+    """Why a metric through the motors has no value: no actuators, or no battery."""
+    if walked.design.actuators is None:
+        return dict.fromkeys(ELECTRICAL_METRICS, "the design has no [actuators]")
+    if walked.design.battery is None:
+        return {"battery_range": "the design has no [battery]"}
+    return {}
 
 
 def _period_values(walked: GaitAnalysis) -> dict[str, float]:
@@ -356,6 +386,7 @@ def _period_values(walked: GaitAnalysis) -> dict[str, float]:
         "mechanical_cost_of_transport": metrics.cost_of_transport,
         "mechanical_energy_per_km": metrics.positive_work / distance * 1000 / 3600,
         "min_zmp_margin": walked.min_zmp_margin,
+        **_electrical_values(walked),
     }
     for joint in LEG_JOINTS:
         values[f"gait_peak_{joint}_torque"] = metrics.peak_torque[joint]

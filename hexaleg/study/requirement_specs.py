@@ -153,6 +153,12 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
                         "payload the robot must carry at payload_at walking that gait within "
                         "every rating, the ZMP inside the standing feet [kg]", "KG", 10.0,
                         "the gait", zero=True),
+        RequirementSpec("range_km", "battery_range", "at least", (0.0, 1e5),
+                        "distance it must walk that gait on one charge of its battery [km]",
+                        "KM", 5.0, "the gait and the battery"),
+        RequirementSpec("continuous_margin", "continuous_load", "at most", (0.01, 1.0),
+                        "largest share of its continuous torque any joint's RMS torque may be "
+                        "walking that gait [-]", "SHARE", 0.8, "the gait and the actuators"),
     )
 }  # fmt: skip
 """Every requirement, in the order answers list them."""

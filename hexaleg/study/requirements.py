@@ -24,7 +24,11 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
   gait at the required speed;
 - ``walking_payload`` [kg]: the largest payload at ``payload_at`` carried walking that gait
   with every joint within its ratings and the ZMP inside the standing feet
-  (:mod:`hexaleg.gait.capacity`) — at least this.
+  (:mod:`hexaleg.gait.capacity`) — at least this;
+- ``range_km`` [km]: the distance that gait walks on one charge of the design's
+  ``[battery]``, through its ``[actuators]`` (:mod:`hexaleg.electrical`) — at least this;
+- ``continuous_margin`` [-]: every joint's RMS torque over that gait period as a share of
+  its actuator's continuous torque — at most this.
 
 The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requirement's
 *margin* is how far its value is on the good side of the required one, in its own unit
@@ -67,6 +71,9 @@ class Requirements:
         step_height: Step height of that gait [m] (the gait's default if omitted).
         walking_payload: Payload carried at ``payload_at`` walking that gait within every
             rating [kg].
+        range_km: Distance walked on one charge of the design's battery [km].
+        continuous_margin: Largest share of its continuous torque any joint's RMS torque
+            may be walking the gait [-].
 
     """
 
@@ -80,6 +87,8 @@ class Requirements:
     speed: float | None = None
     step_height: float | None = None
     walking_payload: float | None = None
+    range_km: float | None = None
+    continuous_margin: float | None = None
 
     def __post_init__(self) -> None:
         for name, spec in REQUIREMENTS.items():

@@ -22,7 +22,13 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.study.evaluation import PERIOD_METRICS, Conditions, Evaluation, evaluate
+from hexaleg.study.evaluation import (
+    ELECTRICAL_METRICS,
+    PERIOD_METRICS,
+    Conditions,
+    Evaluation,
+    evaluate,
+)
 
 Key = tuple[float, float]
 """(coxa ratio, tibia ratio) of a design [-]."""
@@ -30,7 +36,7 @@ Key = tuple[float, float]
 Cell = float | str | bool
 """A table cell: a number [its column's unit], a description, or a flag."""
 
-WALKING_METRICS = (*PERIOD_METRICS, "walking_payload_capacity")
+WALKING_METRICS = (*PERIOD_METRICS, *ELECTRICAL_METRICS, "walking_payload_capacity")
 """The metrics of a study's gait (:data:`~hexaleg.gait.analysis.STUDY_GAIT`)."""
 
 KEY_COLUMNS = ("l1_ratio", "l3_ratio", "l1", "l2", "l3")
@@ -106,7 +112,7 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
     gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
     with what limits it; ``walks``: whether it walks the gait unloaded within its ratings.
     """
-    metrics, ok = walked.metrics, walked.feasible
+    metrics, ok = walked.metrics, walked.walkable
     columns: dict[str, Cell] = {
         f"gait_peak_{joint}_torque": value if ok else math.nan
         for joint, value in metrics.peak_torque.items()
@@ -121,7 +127,15 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
         "walking_payload_capacity": evaluation["walking_payload_capacity"],
         "walking_payload_limited_by": str(evaluation.causes["walking_payload_capacity"]),
         "walks": bool(evaluation.walks),
+        **_electrical_columns(walked, evaluation),
     }
+
+
+def _electrical_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, Cell]:
+    """The columns through the motors (energy per km, cost, continuous load, range), if any."""
+    if walked.electrical is None:
+        return {}
+    return {name: evaluation[name] for name in ELECTRICAL_METRICS}
 
 
 def design_walking_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, Cell]:

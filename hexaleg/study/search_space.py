@@ -5,11 +5,16 @@ By default the three segment lengths l1, l2, l3 are free, each from
 required); the leg-length requirement bounds their sum. ``--free-posture`` also frees
 the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limits, and
 ``--free FIELD=LOWER:UPPER`` any body field of :data:`~hexaleg.study.sensitivity.SWEEPABLE`
-(or narrows a segment's or an angle's bounds).
+(or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
+categorical variable per joint type (``actuator_root``, ``actuator_hip``,
+``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
+actuators. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
+[Wh], from :data:`CAPACITY_BOUNDS`) of a design that has a ``[battery]``.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import math
 import re
 from collections.abc import Sequence
@@ -20,8 +25,11 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.actuators import Actuator, Actuators
+from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -30,7 +38,15 @@ SEGMENT_FLOOR = 0.02
 POSTURE = ("theta2", "theta3")
 """The nominal hip and knee angles [rad] that ``--free-posture`` frees (θ1 stays)."""
 
-FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE)
+CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
+"""The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
+
+BATTERY = "battery_capacity"
+"""The battery's capacity [Wh], free when a range is required."""
+CAPACITY_BOUNDS = (1.0, 5e4)
+"""The capacities a required range searches [Wh]: a watt-hour to 50 kWh."""
+
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, BATTERY)
 """Every variable a search can free."""
 
 LEG_CAP = "l1 + l2 + l3 at most the leg length"
@@ -79,7 +95,11 @@ class FreeVariable:
 
     @property
     def unit(self) -> str:
-        """Its unit: ``"m"``, ``"rad"`` (or a body field's own)."""
+        """Its unit: ``"m"``, ``"rad"`` (or a body field's own; ``"-"`` for a choice)."""
+        if self.name in CHOICES:
+            return "-"
+        if self.name == BATTERY:
+            return "Wh"
         return FIELD_RANGES[self.name][2] if self.name in FIELD_RANGES else "rad"
 
     @classmethod
@@ -88,6 +108,8 @@ class FreeVariable:
         match = re.fullmatch(r"\s*([a-z_0-9]+)\s*=\s*([^:]+):([^:]+)\s*", text)
         if match is None:
             raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
+        if match[1] in CHOICES:
+            raise ParameterError("--free", text, "--choose-actuators frees the actuators")
         try:
             lower, upper = float(match[2]), float(match[3])
         except ValueError:
@@ -102,11 +124,13 @@ class SearchSpace:
     Attributes:
         base: Every field that is not free.
         variables: The free variables, in the order of a point's coordinates.
+        entries: The actuators a choice variable picks from, in the catalog's order.
 
     """
 
     base: HexapodDesign
     variables: tuple[FreeVariable, ...]
+    entries: tuple[Actuator, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -126,26 +150,51 @@ class SearchSpace:
     @property
     def same_body(self) -> bool:
         """Whether every design keeps the base's body and mounts (models derive in closed form)."""
-        return all(name in (*SEGMENTS, *POSTURE) for name in self.names)
+        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, BATTERY) for name in self.names)
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
+        chosen: dict[str, Actuator] = {}
         for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
-            if name in POSTURE:
+            if name in CHOICES:
+                pick = int(np.clip(np.floor(value), 0, len(self.entries) - 1))
+                chosen[name.removeprefix("actuator_")] = self.entries[pick]
+            elif name == BATTERY:
+                changes["battery"] = dataclasses.replace(self._battery, capacity=float(value))
+            elif name in POSTURE:
                 angles[1 + POSTURE.index(name)] = float(value)
             else:
                 changes[name] = float(value)
         if tuple(angles) != self.base.nominal_angles:
             changes["nominal_angles"] = tuple(angles)
+        if chosen:
+            given = self.base.actuators
+            kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
+            changes["actuators"] = Actuators(**(kept | chosen))
         return self.base.replace(**changes)
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
-        values = [value_of(design, name) for name in self.names]
+        values = [
+            self._choice_of(design, name) if name in CHOICES else value_of(design, name)
+            for name in self.names
+        ]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
         return clipped
+
+    @property
+    def _battery(self) -> Battery:
+        if self.base.battery is None:
+            raise ParameterError(BATTERY, None, "needs a [battery] in the design to size")
+        return self.base.battery
+
+    def _choice_of(self, design: HexapodDesign, name: str) -> float:
+        """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
+        given = design.actuators
+        actuator = None if given is None else getattr(given, name.removeprefix("actuator_"))
+        return self.entries.index(actuator) + 0.5 if actuator in self.entries else 0.5
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
@@ -159,7 +208,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables)
+        return SearchSpace(self.base, variables, self.entries)
 
 
 @dataclass(frozen=True)
@@ -210,6 +259,8 @@ def value_of(design: HexapodDesign, name: str) -> float:
     """The free variable ``name``'s value in ``design`` [m or rad]."""
     if name in POSTURE:
         return float(design.nominal_angles[1 + POSTURE.index(name)])
+    if name == BATTERY:
+        return math.nan if design.battery is None else design.battery.capacity
     return float(getattr(design, name))
 
 
@@ -221,6 +272,8 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     """
     reached = []
     for variable in variables:
+        if variable.name in CHOICES:
+            continue  # a catalog entry has no bound to press against
         value, near = (
             value_of(design, variable.name),
             AT_BOUND_SHARE * (variable.upper - variable.lower),
@@ -247,6 +300,8 @@ def search_space(
     min_coxa: float | None = None,
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
+    actuators: Sequence[Actuator] = (),
+    battery: bool = False,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -256,6 +311,9 @@ def search_space(
         min_coxa: The smallest coxa [m]: l1's lower bound (if above the floor).
         free_posture: Also free the nominal hip and knee angles, within the stance limits.
         free: More free variables, or other bounds for the default ones.
+        actuators: The catalog's actuators, to pick one per joint type from (none: the
+            design's own are kept).
+        battery: Free the battery's capacity (a range is required), if the design has one.
 
     """
     floor = segment_floor(leg_length)
@@ -286,7 +344,13 @@ def search_space(
         if variable.name in allowed:
             _check_within(variable, *allowed[variable.name])
         chosen[variable.name] = variable
-    return SearchSpace(base, tuple(chosen.values()))
+    if BATTERY in chosen and base.battery is None:
+        raise ParameterError(f"--free {BATTERY}", None, "needs a [battery] in the design")
+    if battery and base.battery is not None and BATTERY not in chosen:
+        chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
+    for name in CHOICES if actuators else ():
+        chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators))
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:

@@ -46,14 +46,18 @@ def section(data: ReportData) -> Section:
     loads = data[StaticsRecord].axis
     differ = slopes_differ(loads)
     yours, design = data[StudyRecord].yours, data.design
-    leg = (loads.nominal.mass - design.body_mass) / len(design.legs)
+    motors = 0.0 if design.actuators is None else design.actuators.total_mass
+    battery = 0.0 if design.battery is None else design.battery.mass
+    leg = (loads.nominal.mass - design.body_mass - motors - battery) / len(design.legs)
+    extra = f", the actuators {motors:.2f} kg" if motors else ""
+    extra += f", the battery {battery:.2f} kg" if battery else ""
     return Section(
         "Statics: what the design costs",
         (
             f"The robot weighs {loads.nominal.weight:.0f} N ({loads.nominal.mass:.2f} kg: the "
-            f"body {design.body_mass:g} kg, each leg {leg:.2f} kg at "
-            f"{design.link_linear_density:g} kg/m). Foot forces balance gravity with the least "
-            "Σ|f|² (min-norm); joint torques are Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over "
+            f"body {design.body_mass:g} kg, each leg's links {leg:.2f} kg at "
+            f"{design.link_linear_density:g} kg/m{extra}). Foot forces balance gravity with the "
+            "least Σ|f|² (min-norm); joint torques are Pinocchio's τ = g(q) − Σ Jᵀf. Peak |τ| over "
             "the stance legs, in N·m, beside each joint's ratings:",
             _torque_table(data),
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "

@@ -16,6 +16,7 @@ from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import rated_torques, study_marks
+from hexaleg.output.report.motors import MotorsRecord, summary
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.study.rows import StudyRow
@@ -76,6 +77,7 @@ def section(data: ReportData) -> Section:
                 rows,
             ),
             _claim(comparison),
+            *_motors(data),
             Figure(
                 FIGURE,
                 "Walking the default gait: peak hip and knee torque beside their ratings, "
@@ -85,6 +87,12 @@ def section(data: ReportData) -> Section:
             ),
         ),
     )
+
+
+def _motors(data: ReportData) -> tuple[str, ...]:
+    """The user's design through its motors, in one sentence (none without actuators)."""
+    line = summary(data[MotorsRecord])
+    return (line + " The next section has every margin to the motors' ratings.",) if line else ()
 
 
 def _row(name: str, row: StudyRow) -> list[str]:
@@ -157,7 +165,7 @@ PART = Part(
     WalkingRecord,
     compute,
     section,
-    needs=(StudyRecord,),
+    needs=(StudyRecord, MotorsRecord),
     step="walking",
     files=write_files,
     json=to_json,
