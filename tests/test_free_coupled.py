@@ -115,6 +115,50 @@ def test_a_collision_extreme_short_of_a_known_pose_is_not_reported_converged(
         assert any(doubt.startswith(f"{name}: ") for doubt in result.doubts)
 
 
+ROUNDING_CASES = [
+    # (body length and width factors, BLAS threads, starts reversed)
+    ((1 + 1e-12, 1 - 1e-12), 1, False),
+    ((1 + 1e-12, 1 + 1e-12), 2, True),
+]
+"""Rounding-level changes of the inputs and of the floating-point path."""
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("factors", "threads", "reversed_starts"), ROUNDING_CASES, ids=str)
+def test_a_collision_extreme_does_not_follow_round_off(
+    factors, threads, reversed_starts, collision_results, monkeypatch
+):
+    """The body's sizes by 1e-12, SLSQP's BLAS on another thread count (its steps then
+    differ in the last bits) and the starts asked in reverse: the same yaw+ maximum, to
+    1e-6 rad, and never short of the independent search's pose."""
+    from threadpoolctl import threadpool_limits
+
+    from hexaleg import HexapodDesign
+    from hexaleg.numerics import multistart
+    from hexaleg.stance import collision_starts, free_coupled
+
+    fields = {"body_length": 0.1, "body_width": 0.4}
+    reference = collision_results(tuple(sorted(fields.items()))).extreme("yaw", 1)
+    if reversed_starts:
+
+        def backwards(*args, **kwargs):
+            return multistart.box_starts(*args, **kwargs)[::-1]
+
+        monkeypatch.setattr(free_coupled, "box_starts", backwards)
+        monkeypatch.setattr(collision_starts, "box_starts", backwards)
+    design = HexapodDesign(
+        body_length=fields["body_length"] * factors[0],
+        body_width=fields["body_width"] * factors[1],
+    )
+    with threadpool_limits(threads), warnings.catch_warnings():
+        warnings.simplefilter("ignore", FlexibilityWarning)
+        extreme = free_flexibility(design, collisions=True).extreme("yaw", 1)
+    assert extreme.value == pytest.approx(reference.value, abs=1e-6)
+    better = next(b for f, name, b in COLLISION_ROWS if f == fields and name == "yaw+")
+    assert extreme.value >= better - 1e-6
+    assert extreme.evidence.converged and reference.evidence.converged
+
+
 @pytest.fixture(scope="module")
 def collision_results():
     from functools import cache

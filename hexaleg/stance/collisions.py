@@ -10,6 +10,7 @@ margin like the others: ≥ 0 holds.
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Sequence
 
 import numpy as np
@@ -74,6 +75,7 @@ class SelfCollision:
             request.security_margin = CONTACT_DISTANCE
         for distance_request in self.geometry_data.distanceRequests:
             distance_request.gjk_tolerance = GJK_TOLERANCE
+        _without_warm_starts(self.geometry_data)
         names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
         self.pairs: tuple[tuple[str, str], ...] = tuple(
             (names[p.first], names[p.second]) for p in self.geometry_model.collisionPairs
@@ -217,6 +219,21 @@ def _touching(
     rotation, translation = displacement_poses(geometry, displacement)
     binding = collision.closest_pairs(rotation, translation)
     return pose_extreme(geometry, extreme.axis, extreme.sign, displacement, binding)
+
+
+def _without_warm_starts(data: pin.GeometryData) -> None:
+    """Every query of ``data`` starts coal's GJK from its default guess, not the last answer.
+
+    Pinocchio's requests warm-start each pair's GJK from its previous query, so that a
+    distance near contact follows the queries before it (by up to 1e-7 m): SLSQP's steps
+    then follow that history, and round-off anywhere (the BLAS that SLSQP's own linear
+    algebra runs on, its thread count) sends the search to other poses and other optima.
+    Without the warm start a distance is a function of the pose alone.
+    """
+    with warnings.catch_warnings():  # deprecated in coal 3 (for gjk_initial_guess), still read
+        warnings.simplefilter("ignore", DeprecationWarning)
+        for request in [*data.collisionRequests, *data.distanceRequests]:
+            request.enable_cached_gjk_guess = False
 
 
 def _link_name(geometry_name: str) -> str:

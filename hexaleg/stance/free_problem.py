@@ -206,8 +206,7 @@ class FreeProblem:
         A symmetric robot's optima come in mirror-image sets of equal value, and which
         one a search reaches first can follow round-off (a BLAS thread count, say). The
         largest pose in lexicographic order, compared at 1e-6, is the same whichever it is.
-        d itself has passed the exact check (coal's distances near contact can follow
-        its previous query by a few 1e-7 m: d is not checked again).
+        d itself has passed the exact check and is not checked again.
         """
         images = [flip * d for flip in keeping(k, self.flips)]
         return max([d, *(image for image in images if self.feasible(image))], key=_rounded)
