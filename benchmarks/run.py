@@ -40,7 +40,7 @@ WORKLOADS = {
     "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
     "import": lambda quick, r: bench_import(r),
     "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
-    "decide_actuators": lambda quick, r: bench_decide_actuators(60 if quick else None),
+    "decide_actuators": lambda quick, r: bench_decide_actuators(120 if quick else None),
 }
 
 

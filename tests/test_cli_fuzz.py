@@ -1,8 +1,8 @@
 """Every subcommand, driven with arbitrary text and numbers: exit 0 or 2, never a traceback.
 
 On exit 2 the user sees at most one line on stderr and no file is written. The slow
-back-ends of ``report``, ``study``, ``view`` and ``simulate`` (minutes of sweeps, a server
-that runs until Ctrl-C, seconds of physics) are replaced by quick stand-ins: what is
+back-ends of ``report``, ``study``, ``view``, ``explore`` and ``simulate`` (minutes of
+sweeps, servers that run until Ctrl-C, seconds of physics) are replaced by quick stand-ins: what is
 fuzzed is everything in front of them — parsing, validation and the design.
 """
 
@@ -125,6 +125,18 @@ def quick_backends():
         def __init__(self, host, port, legend):
             self.host = host
 
+    class FakeExplorer:  # the explorer's page, served until Ctrl-C: returns at once here
+        port = 7000
+
+        def __init__(self, session, host, port):
+            self.host = host
+
+        def serve_forever(self, poll_interval):
+            return None
+
+        def server_close(self):
+            return None
+
     from concurrent.futures import ThreadPoolExecutor
 
     from hexaleg import HexapodDesign, Objective, Requirements, SearchSettings, decide
@@ -159,6 +171,7 @@ def quick_backends():
         "hexaleg.output.viewer.gait.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
+        "hexaleg.explore.server.ExplorerServer": FakeExplorer,
     }
     with pytest.MonkeyPatch.context() as monkeypatch:
         for target, value in patches.items():
