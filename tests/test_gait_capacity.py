@@ -1,14 +1,28 @@
-"""The walking payload capacity against a bisection on the gait analysis itself."""
+"""The walking payload capacity against a bisection on the gait analysis itself.
+
+With actuators, the bisection runs on the full :func:`analyze_gait` (its electrical
+``over_rating``: peak and continuous torque, voltage, speed), never on the capacity's own
+algebra.
+"""
 
 from __future__ import annotations
 
+import dataclasses
+import json
+
 import numpy as np
 import pytest
+from conftest import run_cli
 
 from hexaleg import HexapodDesign, HexapodModel, analyze_gait
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.actuators import Actuator, Actuators
+from hexaleg.design_file import load_design
+from hexaleg.electrical.ratings import motor_loads
+from hexaleg.gait.capacity import _voltage_bound, walking_payload_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import Payload
+from hexaleg.study.evaluation import evaluate
 
 
 def _walks(design, model, gait, mass, position) -> bool:
@@ -67,3 +81,171 @@ def test_a_design_that_cannot_walk_unloaded_carries_nothing_and_says_why():
     assert not found.walks and found.mass == 0.0
     assert str(found.limited_by).endswith("hip torque at its rating")
     assert not _walks(weak, HexapodModel(weak), Gait(), 0.0, None)
+
+
+# With actuators: the continuous torque (RMS over the period) and the motor's voltage bind too.
+
+SMALL_LEG = dict(l1=0.1, l2=0.25, l3=0.3, body_mass=20.0)
+"""A leg short and a body light enough for the shipped harmonic drives to walk the gait."""
+
+QUANTITY = {"torque": "peak_torque", "continuous_torque": "continuous_torque", "voltage": "voltage"}
+"""A cause's kind as the gait analysis's over_rating names the quantity."""
+
+
+def _first_over(design, model, gait, mass, position) -> set[tuple[str, str, str]]:
+    """(leg, joint, quantity) of every rating analyze_gait finds broken at ``mass``."""
+    walked = analyze_gait(design, gait, Payload(mass, position), model=model, limits=False)
+    return {(o.leg, o.joint, o.quantity) for o in walked.over_rating}
+
+
+def _check_against_bisection(design, gait, position, kind):
+    model = HexapodModel(design)
+    found = walking_payload_capacity(model, gait, position)
+    assert found.walks and found.limited_by.kind == kind, found
+    oracle = _bisect(design, model, gait, position, 2 * found.mass + 1)
+    assert found.mass == pytest.approx(oracle, rel=1e-6)
+    # just past it, the gait analysis itself reports the named joint over the named rating
+    over = _first_over(design, model, gait, oracle * (1 + 1e-5) + 1e-6, position)
+    cause = found.limited_by
+    assert (cause.leg, cause.joint, QUANTITY[kind]) in over
+    assert not _first_over(design, model, gait, oracle * (1 - 1e-5), position)
+    return found
+
+
+@pytest.mark.parametrize(
+    ("knee", "kind", "text"),
+    [
+        ("hd_cha_17a_e_100", "continuous_torque", "hip continuous torque at its rating"),
+        ("hd_cha_20a_100", "torque", "hip torque at its rating"),
+    ],
+)
+def test_catalog_actuators_bind_on_the_rating_the_gait_analysis_breaks_first(knee, kind, text):
+    catalog = {"root": "hd_cha_17a_e_100", "hip": "hd_cha_25a_100", "knee": knee}
+    actuators = Actuators.from_table({j: {"catalog": name} for j, name in catalog.items()})
+    design = HexapodDesign(actuators=actuators, **SMALL_LEG)
+    found = _check_against_bisection(design, Gait(stride=0.2), None, kind)
+    assert str(found.limited_by).endswith(text)
+
+
+def _random_actuator(rng, **keys) -> Actuator:
+    """A plausible geared motor with generous ratings unless ``keys`` lower them."""
+    values = dict(
+        gear_ratio=rng.uniform(50, 150),
+        torque_constant=rng.uniform(0.05, 0.3),
+        resistance=rng.uniform(0.2, 3.0),
+        gearbox_efficiency=rng.uniform(0.6, 0.95),
+        peak_torque=1e4,
+        continuous_torque=1e4,
+        mass=rng.uniform(0.3, 1.5),
+        voltage=1e4,
+        rotor_inertia=rng.uniform(0, 5e-5),
+        max_speed=100.0,
+    )
+    return Actuator(**(values | keys))
+
+
+def _random_motor_case(seed: int):
+    rng = np.random.default_rng(seed)
+    actuators = Actuators(*(_random_actuator(rng) for _ in LEG_JOINTS))
+    design = HexapodDesign.from_ratios(
+        rng.uniform(0.08, 0.2), rng.uniform(0.35, 0.6), actuators=actuators,
+        body_mass=rng.uniform(30, 60),
+    )  # fmt: skip
+    position = tuple(rng.uniform([-0.2, -0.1, 0.0], [0.2, 0.1, 0.1]))
+    gait = Gait(period=rng.uniform(1.5, 3.0), stride=rng.uniform(0.15, 0.3))
+    return rng, design, position, gait
+
+
+def _lowered(design, joint: str, **keys) -> HexapodDesign:
+    actuators = dataclasses.replace(
+        design.actuators, **{joint: dataclasses.replace(getattr(design.actuators, joint), **keys)}
+    )
+    return dataclasses.replace(design, actuators=actuators)
+
+
+@pytest.mark.parametrize("seed", [3, 4])
+def test_a_lower_continuous_torque_binds_exactly(seed):
+    rng, design, position, gait = _random_motor_case(seed)
+    unloaded = analyze_gait(design, gait, Payload(0.0, position), limits=False)
+    joint = LEG_JOINTS[int(rng.integers(1, 3))]  # hip or knee
+    rms = unloaded.electrical.per_joint[joint].rms_torque  # its worst leg's, unloaded
+    design = _lowered(design, joint, continuous_torque=rms * rng.uniform(1.1, 1.4))
+    found = _check_against_bisection(design, gait, position, "continuous_torque")
+    assert found.limited_by.joint == joint
+
+
+@pytest.mark.parametrize("seed", [5, 6])
+def test_a_lower_supply_binds_exactly_on_the_voltage(seed):
+    rng, design, position, gait = _random_motor_case(seed)
+    unloaded = analyze_gait(design, gait, Payload(0.0, position), limits=False)
+    joint = LEG_JOINTS[int(rng.integers(1, 3))]
+    volts = unloaded.electrical.per_joint[joint].peak_voltage
+    design = _lowered(design, joint, voltage=volts * rng.uniform(1.1, 1.4))
+    found = _check_against_bisection(design, gait, position, "voltage")
+    assert found.limited_by.joint == joint
+
+
+@pytest.mark.parametrize("turning", [1.0, -1.0])
+def test_the_voltage_bound_is_exact_where_the_torque_changes_sign(turning):
+    """τ(m) = a + m·b crosses zero at every sample before the supply binds: motoring turns
+    to braking (ω > 0) or braking to motoring (ω < 0), so a bound kept on the unloaded
+    branch, or on one branch for both signs, is wrong. The oracle bisects on motor_loads."""
+    rng = np.random.default_rng(7)
+    actuators = Actuators(*(_random_actuator(rng, voltage=30.0) for _ in LEG_JOINTS))
+    shape = (40, 6, 3)
+    speeds = turning * rng.uniform(0.05, 0.5, shape)  # back-EMF well within the supply
+    base = rng.uniform(1, 10, shape)  # τ₀ > 0 ...
+    slope = -rng.uniform(1.0, 2.0, shape)  # ... falling through zero by m = 10
+    legs = tuple(f"leg{i}" for i in range(6))
+    mass, cause = _voltage_bound(legs, base, slope, speeds, actuators)
+
+    def within(m: float) -> bool:
+        return bool((motor_loads(base + m * slope, speeds, actuators, legs).ratios[2] <= 1).all())
+
+    low, high = 0.0, 1e6
+    assert within(low) and not within(high)
+    while high - low > 1e-10 * high:
+        middle = (low + high) / 2
+        low, high = (middle, high) if within(middle) else (low, middle)
+    assert mass == pytest.approx(low, rel=1e-8)
+    assert (base + mass * slope < 0).all()  # every torque changed sign on the way
+    assert cause.kind == "voltage"
+    broke = motor_loads(base + high * (1 + 1e-6) * slope, speeds, actuators, legs).ratios[2] > 1
+    assert broke[legs.index(cause.leg), LEG_JOINTS.index(cause.joint)]
+
+
+def test_without_actuators_neither_continuous_torque_nor_voltage_bounds():
+    design = HexapodDesign.from_ratios(0.1, 0.45)
+    found = walking_payload_capacity(HexapodModel(design))
+    assert found.limited_by.kind in ("torque", "zmp")
+
+
+MOTOR_FILE = """l1 = 0.1
+l2 = 0.25
+l3 = 0.3
+body_mass = 20.0
+[actuators.root]
+catalog = "hd_cha_17a_e_100"
+[actuators.hip]
+catalog = "hd_cha_25a_100"
+continuous_torque = 80.0
+[actuators.knee]
+catalog = "hd_cha_17a_e_100"
+"""
+"""A design whose hips' continuous torque, lowered below the catalog's, binds walking."""
+
+
+def test_loads_json_and_the_study_see_the_continuous_torque_bind(tmp_path, capsys):
+    path = tmp_path / "robot.toml"
+    path.write_text(MOTOR_FILE)
+    design = load_design(path)
+    model = HexapodModel(design)
+    oracle = _bisect(design, model, Gait(), None, 100.0)
+    assert run_cli(["loads", "--design", str(path), "--json"]) == 0
+    printed = json.loads(capsys.readouterr().out)["walking_payload_capacity"]
+    assert printed["mass"] == pytest.approx(oracle, rel=1e-6)
+    assert printed["limited_by"]["kind"] == "continuous_torque"
+    assert printed["limited_by"]["joint"] == "hip"
+    measured = evaluate(design, ["walking_payload_capacity"], model=model)  # studies, decide
+    assert measured["walking_payload_capacity"] == pytest.approx(oracle, rel=1e-6)
+    assert measured.causes["walking_payload_capacity"].kind == "continuous_torque"

@@ -11,13 +11,28 @@ wrench's two parts, and every constraint becomes a bound on m:
 
 - each joint at each sample: |τ₀ + m·Δτ| ≤ its rated torque;
 - each edge of the support polygon at each sample: the ZMP on its inner side;
+- with actuators (:mod:`hexaleg.actuators`), each leg's joint over the period: its RMS
+  torque within the continuous torque C. The mean square over the samples is a quadratic
+  in m, mean(τ₀²) + 2m·mean(τ₀·Δτ) + m²·mean(Δτ²) ≤ C², whose larger root is the bound;
+- with actuators, each joint at each sample: the voltage its motor needs within the
+  supply V (:mod:`hexaleg.electrical.equations`). At a sample's speed ω the voltage needed
+  is the back-EMF |k_t·N·ω| plus R/k_t·|τ_m|, and τ_m is τ/(N·η) on the side of τ = 0
+  where τ·ω ≥ 0 and τ·η/N on the other: piecewise affine in τ, one slope on each side of
+  zero, so V bounds τ to a window [τ₋, τ₊] around zero, each end from its own branch, and
+  τ₋ ≤ τ₀ + m·Δτ ≤ τ₊ bounds m exactly wherever τ changes sign along the way. The slopes
+  are read off :func:`~hexaleg.electrical.equations.motor_samples` itself at ±the rated
+  torque, so the capacity and the gait's electrical ratings share one set of equations;
 - the joint speeds and the gait's own constraints (reach, joint limits, the ground) do not
   depend on m: broken unloaded, the design cannot walk the gait at all (capacity 0).
 
-The capacity is the smallest of those bounds (at most
-:data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`), and the constraint that gives it is
-what binds. No search and no bisection: the tests hold it against a bisection on
-:func:`~hexaleg.gait.analysis.analyze_gait`.
+The actuators' masses and armatures are in the model both walks use, so they are in τ₀
+and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacity is the
+smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
+and the constraint that gives it is what binds; broken unloaded, the first broken in the
+order above (peak torque, ZMP, continuous torque, voltage) is what stops the walk. No search
+and no bisection: the tests hold it against a bisection on
+:func:`~hexaleg.gait.analysis.analyze_gait`, whose ``over_rating`` and ZMP margin first
+report a broken rating just past the capacity.
 """
 
 from __future__ import annotations
@@ -27,8 +42,10 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg._typing import ArrayF
+from hexaleg._typing import ArrayF, CauseKind
+from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
+from hexaleg.electrical.equations import motor_samples
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Loads, Walker
 from hexaleg.limits import LEG_JOINTS
@@ -47,8 +64,8 @@ class WalkingCapacity:
     Attributes:
         mass: The payload [kg]; 0 when the design cannot walk the gait unloaded.
         limited_by: What binds at that payload (a joint's torque, the ZMP leaving the
-            support polygon), or what stops the unloaded walk (a joint's speed, a gait
-            constraint).
+            support polygon; with actuators, a joint's continuous torque or its motor's
+            voltage), or what stops the unloaded walk (a joint's speed, a gait constraint).
         walks: Whether the design walks the gait unloaded within its ratings.
 
     """
@@ -84,20 +101,30 @@ def walking_payload_capacity(
     if walk.violations:
         return WalkingCapacity(0.0, walk.violations[0].cause, False)
     rated_torques, rated_speeds = unloaded.rated()
-    speeds = np.abs(walk.motion.velocity) / gait.period
+    velocities = walk.motion.velocity / gait.period  # ω (N, 6, 3), whatever the payload
+    speeds = np.abs(velocities)
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
     loaded = Walker(model, gait, Payload(PROBE_MASS, position), gravity=gravity)
     loads = [w.loads(gait.stride, walk, gait.period) for w in (unloaded, loaded)]
+    base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
+    slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
+    legs = unloaded.frames.legs
     bounds = [
-        _torque_bound(unloaded, loads, gait.period, rated_torques),
+        _torque_bound(legs, base, slope, rated_torques),
         _zmp_bound(unloaded, loads, walk.paths.position, gait),
     ]
+    actuators = model.design.actuators
+    if actuators is not None:
+        bounds += [
+            _continuous_bound(legs, base, slope, actuators),
+            _voltage_bound(legs, base, slope, velocities, actuators),
+        ]
     found = [b for b in bounds if b is not None]
-    if any(mass < 0 for mass, _ in found):
-        mass, cause = min(found, key=lambda b: b[0])
-        return WalkingCapacity(0.0, cause, False)
+    broken = [b for b in found if b[0] < 0]
+    if broken:
+        return WalkingCapacity(0.0, broken[0][1], False)
     mass, cause = min(found, key=lambda b: b[0], default=(np.inf, Cause("search limit")))
     if mass > PAYLOAD_SEARCH_LIMIT:
         return WalkingCapacity(PAYLOAD_SEARCH_LIMIT, Cause("search limit"), True)
@@ -122,19 +149,95 @@ def _largest(offset: ArrayF, slope: ArrayF) -> tuple[float, int] | None:
     return float(limits[index]), index
 
 
-def _torque_bound(
-    walker: Walker, loads: list[Loads], period: float, rated: ArrayF
+def _joint_cause(
+    kind: CauseKind, legs: tuple[str, ...], index: int, shape: tuple[int, ...]
+) -> Cause:
+    """The cause of a bound on flat ``index`` into an array of ``shape`` (..., 6, 3)."""
+    *_, leg, joint = np.unravel_index(index, shape)
+    return Cause(kind, legs[leg], LEG_JOINTS[joint])
+
+
+def _window_bound(
+    kind: CauseKind, legs: tuple[str, ...], base: ArrayF, slope: ArrayF, low: ArrayF, high: ArrayF
 ) -> tuple[float, Cause] | None:
-    """Every joint within its rated torque: (−R ≤ τ₀ + m·Δτ ≤ R) at every sample."""
-    base = loads[0].split.torques(period)  # (N, 6, 3)
-    slope = (loads[1].split.torques(period) - base) / PROBE_MASS
-    offset = np.concatenate(((rated - base).ravel(), (rated + base).ravel()))
+    """Every joint at every sample with low ≤ τ₀ + m·Δτ ≤ high (each broadcast to (N, 6, 3))."""
+    low, high = np.broadcast_to(low, base.shape), np.broadcast_to(high, base.shape)
+    offset = np.concatenate(((high - base).ravel(), (base - low).ravel()))
     found = _largest(offset, np.concatenate(((-slope).ravel(), slope.ravel())))
     if found is None:
         return None
     mass, index = found
-    _, leg, joint = np.unravel_index(index % base.size, base.shape)
-    return mass, Cause("torque", walker.frames.legs[leg], LEG_JOINTS[joint])
+    return mass, _joint_cause(kind, legs, index % base.size, base.shape)
+
+
+def _torque_bound(
+    legs: tuple[str, ...], base: ArrayF, slope: ArrayF, rated: ArrayF
+) -> tuple[float, Cause] | None:
+    """Every joint within its rated torque: (−R ≤ τ₀ + m·Δτ ≤ R) at every sample."""
+    return _window_bound("torque", legs, base, slope, -rated, rated)
+
+
+def _continuous_bound(
+    legs: tuple[str, ...], base: ArrayF, slope: ArrayF, actuators: Actuators
+) -> tuple[float, Cause] | None:
+    """Each leg's joint's RMS torque within its continuous torque C: a quadratic in m.
+
+    mean((τ₀ + m·Δτ)²) ≤ C² is A·m² + 2B·m − D ≤ 0 with A = mean(Δτ²), B = mean(τ₀·Δτ)
+    and D = C² − mean(τ₀²), convex in m: the bound is its larger root (−B + √(B² + A·D))/A,
+    written D/(B + √(B² + A·D)) when B ≥ 0, lest it cancel. Negative D: broken unloaded.
+    """
+    quadratic, linear = np.mean(slope**2, axis=0), np.mean(base * slope, axis=0)  # (6, 3)
+    headroom = np.square(actuators.continuous_torques) - np.mean(base**2, axis=0)
+    if (headroom < 0).any():
+        index = int(np.argmin(headroom))
+        return float(headroom.flat[index]), _joint_cause(
+            "continuous_torque", legs, index, headroom.shape
+        )
+    grows = quadratic > 0  # else Δτ = 0 throughout: the RMS does not change with m
+    if not grows.any():
+        return None
+    root = np.sqrt(linear**2 + quadratic * headroom)
+    limits = np.full(headroom.shape, np.inf)
+    ahead = grows & (linear >= 0)
+    limits[ahead] = headroom[ahead] / (linear[ahead] + root[ahead])
+    behind = grows & (linear < 0)
+    limits[behind] = (root[behind] - linear[behind]) / quadratic[behind]
+    index = int(np.argmin(limits))
+    return float(limits.flat[index]), _joint_cause("continuous_torque", legs, index, limits.shape)
+
+
+def _voltage_bound(
+    legs: tuple[str, ...], base: ArrayF, slope: ArrayF, speeds: ArrayF, actuators: Actuators
+) -> tuple[float, Cause] | None:
+    """Each joint's motor at every sample within the supply: a torque window around zero.
+
+    The voltage needed at speed ω is e + s₊·τ for τ ≥ 0 and e − s₋·τ for τ < 0 (e the
+    back-EMF; s₊, s₋ ≥ 0 the two branches' volts per N·m), read off the motor equations at
+    τ = 0 and ±P (P the rated torque). V then bounds τ to [−(V − e)/s₋, (V − e)/s₊]; a
+    branch with no slope (R = 0) bounds nothing while e ≤ V and everything once e > V.
+    """
+    probe = np.broadcast_to(np.asarray(actuators.rated_torques), base.shape)
+    emf, up, down = (
+        motor_samples(torque, speeds, actuators).voltage
+        for torque in (np.zeros_like(probe), probe, -probe)
+    )
+    headroom = np.asarray(actuators.values("voltage")) - emf
+    return _window_bound(
+        "voltage",
+        legs,
+        base,
+        slope,
+        -_reach(headroom, (down - emf) / probe),
+        _reach(headroom, (up - emf) / probe),
+    )
+
+
+def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
+    """How far τ may go from zero on one branch: headroom / slope (±inf without a slope)."""
+    unbounded = np.where(headroom >= 0, np.inf, -np.inf)
+    sloped = volts_per_torque > 0
+    reach: ArrayF = np.where(sloped, headroom / np.where(sloped, volts_per_torque, 1.0), unbounded)
+    return reach
 
 
 def _zmp_bound(
