@@ -67,3 +67,17 @@ def test_a_design_that_cannot_walk_unloaded_carries_nothing_and_says_why():
     assert not found.walks and found.mass == 0.0
     assert str(found.limited_by).endswith("hip torque at its rating")
     assert not _walks(weak, HexapodModel(weak), Gait(), 0.0, None)
+
+
+def test_the_capacity_bound_by_the_zmp_is_where_the_gait_turns_infeasible():
+    """The capacity and ``feasible`` agree: just under it feasible, just over it tipping."""
+    design = HexapodDesign(rated_torques=(1e5, 1e5, 1e5))
+    model, gait, position = HexapodModel(design), Gait(samples=60), (1.0, 0.3, 0.05)
+    found = walking_payload_capacity(model, gait, position)
+    assert found.walks and found.limited_by.kind == "zmp" and found.mass > 0
+    below, above = (
+        analyze_gait(design, gait, Payload(found.mass * f, position), model=model, limits=False)
+        for f in (1 - 1e-6, 1 + 1e-6)
+    )
+    assert below.feasible and below.tipping is None
+    assert not above.feasible and above.walkable and above.tipping.cause == found.limited_by
