@@ -57,6 +57,16 @@ def test_the_max_stride_is_the_boundary_on_random_designs():
     assert checked >= 3
 
 
+def test_a_margin_leaving_zero_tangentially_names_its_constraint_not_the_range():
+    """A short leg whose hip sits at its limit (margin 0) up to its max stride: past it the
+    margin departs slowly, and the constraint is named, not "end of the searched range"."""
+    walker = Walker(HexapodModel(HexapodDesign(l1=0.05, l2=0.1, l3=0.1)), Gait(samples=100))
+    limit = max_stride(walker)
+    assert 0 < limit.value < 0.3 and not walker.stride(limit.value).violations
+    beyond = walker.stride(limit.value * 1.05).violations
+    assert limit.limited_by.kind != "range" and limit.limited_by in {v.cause for v in beyond}
+
+
 def _ratios(walked) -> tuple[np.ndarray, np.ndarray]:
     design = walked.design
     return (

@@ -137,13 +137,15 @@ def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
 
 
 def _first_cause(walker: Walker, stride: float) -> Cause:
-    """The first constraint, in leg and constraint order, that stride S [m] breaks anywhere."""
-    margins = _margins(walker, np.array([stride]))[0]  # (N, 6, 9)
-    broken = (margins < -TOLERANCE).any(axis=0).ravel()
-    if not broken.any():
-        return Cause("range")
+    """The first constraint, in leg and constraint order, that stride S [m] breaks anywhere.
+
+    None broken yet (a margin that leaves zero tangentially, a hair past the max stride):
+    the one nearest its bound.
+    """
+    margins = _margins(walker, np.array([stride]))[0].min(axis=0).ravel()  # (6·9,)
+    broken = margins < -TOLERANCE
     causes = [cause for leg in walker.frames.legs for cause in leg_causes(leg)]
-    return causes[int(np.argmax(broken))]
+    return causes[int(np.argmax(broken) if broken.any() else np.argmin(margins))]
 
 
 def max_speed(
