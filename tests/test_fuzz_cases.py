@@ -47,6 +47,11 @@ STANCE = {"theta2": (-math.pi / 6, math.pi / 6), "theta3": (-3 * math.pi / 4, -m
 """The paper's stance limits of the hip and knee [rad] (the ADAMS study)."""
 MISSPELLED = "l1 = 0.2\n[requirements]\npaylod = 3\n"
 FIGURES = {"up/gait_feet.png": "the user's own figure", "up/notes.txt": "notes"}
+DESIGN_FILE_COMMANDS = [
+    ["gait", "--csv", "g.csv"], ["urdf", "-o", "r.urdf"], ["workspace", "--plot", "p"],
+    ["decide"], ["design", "show"],
+]  # fmt: skip
+"""Commands that read a design file (each refuses a bad one before writing anything)."""
 UNWALKABLE = ["--l1", "0.1", "--l2", "0.15", "--l3", "0.4"]
 """A leg whose max stride (by its root's limit) is short of the default gait's 0.3 m."""
 PLOT_COMMANDS = [
@@ -194,11 +199,11 @@ CASES = [
            [*argv, "--design", "d.toml"],
            "d.toml, line 3: requirements.paylod = 3 is not valid: unknown requirement; did you "
            "mean 'payload'?")
-      for argv in (["gait", "--csv", "g.csv"], ["urdf", "-o", "r.urdf"], ["workspace", "--plot",
-                   "p"], ["decide"], ["design", "show"])),
-    Case("urdf --design with a requirement as text", {"d.toml": "[requirements]\npayload = 'x'\n"},
-         ["urdf", "--design", "d.toml", "-o", "r.urdf"],
-         "d.toml, line 2: requirements.payload = 'x' is not valid: must be a real number"),
+      for argv in DESIGN_FILE_COMMANDS),
+    *(Case(f"{argv[0]} --design with a requirement as text",
+           {"d.toml": "[requirements]\npayload = 'x'\n"}, [*argv, "--design", "d.toml"],
+           "d.toml, line 2: requirements.payload = 'x' is not valid: must be a real number")
+      for argv in DESIGN_FILE_COMMANDS),
     # wrong answers: a gait that tips over is not feasible; what gait refuses, view refuses
     Case("gait --payload 30 --payload-at 100 100 100: the ZMP leaves the feet", {},
          ["gait", "--samples", "24", "--payload", "30", "--payload-at", "100", "100", "100"], "",
