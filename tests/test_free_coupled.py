@@ -116,21 +116,28 @@ def test_a_collision_extreme_short_of_a_known_pose_is_not_reported_converged(
 
 
 ROUNDING_CASES = [
-    # (body length and width factors, BLAS threads, starts reversed)
-    ((1 + 1e-12, 1 - 1e-12), 1, False),
-    ((1 + 1e-12, 1 + 1e-12), 2, True),
+    # (body length and width factors, BLAS threads, starts reversed, every start pose shifted)
+    ((1 + 1e-12, 1 - 1e-12), 1, False, 0.0),
+    ((1 + 1e-12, 1 + 1e-12), 2, True, 0.0),
+    ((1 + 1e-15, 1 - 1e-15), 1, False, 0.0),
+    ((1 + 1e-15, 1 + 1e-15), 2, False, 1e-14),  # (0.1 m is the shortest body: not below)
+    ((1.0, 1.0), 1, False, -1e-14),
 ]
-"""Rounding-level changes of the inputs and of the floating-point path."""
+"""Rounding-level changes of the inputs and of the floating-point path (issue 34: one
+answer on every machine)."""
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize(("factors", "threads", "reversed_starts"), ROUNDING_CASES, ids=str)
+@pytest.mark.parametrize(
+    ("factors", "threads", "reversed_starts", "shift"), ROUNDING_CASES, ids=str
+)
 def test_a_collision_extreme_does_not_follow_round_off(
-    factors, threads, reversed_starts, collision_results, monkeypatch
+    factors, threads, reversed_starts, shift, collision_results, monkeypatch
 ):
-    """The body's sizes by 1e-12, SLSQP's BLAS on another thread count (its steps then
-    differ in the last bits) and the starts asked in reverse: the same yaw+ maximum, to
-    1e-6 rad, and never short of the independent search's pose."""
+    """The body's sizes by 1e-12 or 1e-15, every start pose (the axis-locked extreme's and
+    the spread ones) moved by 1e-14, SLSQP's BLAS on another thread count (its steps then
+    differ in the last bits) and the starts asked in reverse: the same yaw+ maximum as the
+    unperturbed search, to 1e-6 rad, and never short of the independent search's pose."""
     from threadpoolctl import threadpool_limits
 
     from hexaleg import HexapodDesign
@@ -139,13 +146,19 @@ def test_a_collision_extreme_does_not_follow_round_off(
 
     fields = {"body_length": 0.1, "body_width": 0.4}
     reference = collision_results(tuple(sorted(fields.items()))).extreme("yaw", 1)
-    if reversed_starts:
+    if reversed_starts or shift:
+        order = slice(None, None, -1 if reversed_starts else 1)
 
-        def backwards(*args, **kwargs):
-            return multistart.box_starts(*args, **kwargs)[::-1]
+        def moved(*args, **kwargs):
+            return [start + shift for start in multistart.box_starts(*args, **kwargs)[order]]
 
-        monkeypatch.setattr(free_coupled, "box_starts", backwards)
-        monkeypatch.setattr(collision_starts, "box_starts", backwards)
+        monkeypatch.setattr(free_coupled, "box_starts", moved)
+        monkeypatch.setattr(collision_starts, "box_starts", moved)
+    if shift:
+        locked_start = free_coupled.axis_locked_start
+        monkeypatch.setattr(
+            free_coupled, "axis_locked_start", lambda extreme: locked_start(extreme) + shift
+        )
     design = HexapodDesign(
         body_length=fields["body_length"] * factors[0],
         body_width=fields["body_width"] * factors[1],

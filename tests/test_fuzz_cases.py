@@ -47,6 +47,13 @@ STANCE = {"theta2": (-math.pi / 6, math.pi / 6), "theta3": (-3 * math.pi / 4, -m
 """The paper's stance limits of the hip and knee [rad] (the ADAMS study)."""
 MISSPELLED = "l1 = 0.2\n[requirements]\npaylod = 3\n"
 FIGURES = {"up/gait_feet.png": "the user's own figure", "up/notes.txt": "notes"}
+DESIGN_FILE_COMMANDS = [
+    ["gait", "--csv", "g.csv"], ["urdf", "-o", "r.urdf"], ["workspace", "--plot", "p"],
+    ["decide"], ["design", "show"],
+]  # fmt: skip
+"""Commands that read a design file (each refuses a bad one before writing anything)."""
+UNWALKABLE = ["--l1", "0.1", "--l2", "0.15", "--l3", "0.4"]
+"""A leg whose max stride (by its root's limit) is short of the default gait's 0.3 m."""
 PLOT_COMMANDS = [
     ["gait", "--samples", "12"],
     ["workspace", "--samples", "10"],
@@ -66,6 +73,7 @@ class Case:
         run: ``hexaleg`` arguments, or a call of the API (raising on refusal).
         message: What the one-line error says; empty when the command must succeed.
         made: Path → what it must then hold (the command's own output), checked exactly.
+        says: What its standard output must say, when it succeeds.
 
     """
 
@@ -74,6 +82,7 @@ class Case:
     run: list[str] | Callable[[], object]
     message: str
     made: dict[str, str] = field(default_factory=dict)
+    says: str = ""
 
 
 def _decide_journal(path: str, resume: bool) -> Callable[[], object]:
@@ -190,11 +199,19 @@ CASES = [
            [*argv, "--design", "d.toml"],
            "d.toml, line 3: requirements.paylod = 3 is not valid: unknown requirement; did you "
            "mean 'payload'?")
-      for argv in (["gait", "--csv", "g.csv"], ["urdf", "-o", "r.urdf"], ["workspace", "--plot",
-                   "p"], ["decide"], ["design", "show"])),
-    Case("urdf --design with a requirement as text", {"d.toml": "[requirements]\npayload = 'x'\n"},
-         ["urdf", "--design", "d.toml", "-o", "r.urdf"],
-         "d.toml, line 2: requirements.payload = 'x' is not valid: must be a real number"),
+      for argv in DESIGN_FILE_COMMANDS),
+    *(Case(f"{argv[0]} --design with a requirement as text",
+           {"d.toml": "[requirements]\npayload = 'x'\n"}, [*argv, "--design", "d.toml"],
+           "d.toml, line 2: requirements.payload = 'x' is not valid: must be a real number")
+      for argv in DESIGN_FILE_COMMANDS),
+    # wrong answers: a gait that tips over is not feasible; what gait refuses, view refuses
+    Case("gait --payload 30 --payload-at 100 100 100: the ZMP leaves the feet", {},
+         ["gait", "--samples", "24", "--payload", "30", "--payload-at", "100", "100", "100"], "",
+         says="no: t = 0.000 s: ZMP leaves the support polygon (min ZMP margin -"),
+    *(Case(f"{' '.join(argv)} of a design that cannot walk the default gait", {},
+           [*argv, *UNWALKABLE], "stride = 0.3 is not valid: must be at most ")
+      for argv in (["gait", "--html", "g.html"], ["view", "--gait", "--html", "v.html"],
+                   ["view", "--gait", "--port", "1"])),
     # the API: hexaleg's own error, naming the argument
     *(Case(f"{name}(None)", {}, lambda name=name: getattr(hexaleg, name)(None),
            "design = None is not valid: must be a HexapodDesign")
@@ -273,21 +290,22 @@ def _within_deadline(run: Callable[[], object], seconds: float = 120) -> object:
     return outcome[0]
 
 
-def _run(case: Case) -> tuple[int, str]:
+def _run(case: Case) -> tuple[int, str, str]:
+    """The exit status, standard error and standard output of ``case``."""
     if callable(case.run):
         call = case.run
         outcome = _within_deadline(call)
         if isinstance(outcome, HexalegError):
-            return 2, str(outcome) + "\n"
+            return 2, str(outcome) + "\n", ""
         if isinstance(outcome, BaseException):
             raise outcome
-        return 0, ""
+        return 0, "", ""
     argv = case.run
-    err = io.StringIO()
-    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(io.StringIO()):
+    err, out = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stderr(err), contextlib.redirect_stdout(out):
         status = _within_deadline(lambda: run_cli(argv))
     assert isinstance(status, int), status
-    return status, err.getvalue()
+    return status, err.getvalue(), out.getvalue()
 
 
 @pytest.mark.parametrize("case", CASES, ids=[case.name for case in CASES])
@@ -306,7 +324,7 @@ def _check(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     monkeypatch.chdir(tmp_path)
     _lay_out(tmp_path, case.files)
     before = _snapshot(tmp_path)
-    status, err = _run(case)
+    status, err, out = _run(case)
     after = _snapshot(tmp_path)
     if case.message:
         assert status == 2 and err.count("\n") == 1 and case.message in err, err
@@ -314,6 +332,7 @@ def _check(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         assert after == before
         return
     assert status == 0, err
+    assert case.says in out, out
     for name, content in case.made.items():
         assert after.pop(name) == content.encode()
     kept = {name: value for name, value in before.items() if name not in case.made}
@@ -417,3 +436,15 @@ def test_every_command_states_the_one_friction_range(command, capsys):
     text = " ".join(capsys.readouterr().out.split())
     assert text.count("friction coefficient between feet and ground, in [0.001, 10] [-]") == 1
     assert "(0, 10]" not in text and "[0, 10]" not in text
+
+
+def test_view_gait_refuses_what_gait_refuses_in_the_same_words(tmp_path, monkeypatch, capsys):
+    monkeypatch.chdir(tmp_path)
+    lines = {}
+    for argv in (["gait", "--html", "g.html"], ["view", "--gait", "--html", "v.html"]):
+        assert run_cli([*argv, *UNWALKABLE]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1
+        lines[argv[0]] = err.removeprefix(f"hexaleg {argv[0]}: error: ")
+    assert lines["gait"] == lines["view"] and "max stride" in lines["gait"]
+    assert list(tmp_path.iterdir()) == []

@@ -33,6 +33,7 @@ GAIT_FIELDS = {
     "min_zmp_margin",
     "feasible",
     "violations",
+    "tipping",
     "max_stride",
     "max_speed",
 }
@@ -53,6 +54,7 @@ def test_gait_json_has_the_documented_fields(capsys):
     assert set(data["max_speed"]) == {"value", "limited_by"}
     assert data["max_speed"]["limited_by"]["kind"] in ("torque", "speed")
     assert data["feasible"] is True and data["violations"] == [] and data["over_rating"] == []
+    assert data["tipping"] is None
     gait = data["gait"]
     assert gait["speed"] == pytest.approx(gait["stride"] / (gait["duty_factor"] * gait["period"]))
 
@@ -196,3 +198,18 @@ def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
     ratio = np.abs(walked.joint_torques[walked.stance]) / np.array((60.0, 150.0, 120.0))
     ratio_norm = np.abs(norm.joint_torques[norm.stance]) / np.array((60.0, 150.0, 120.0))
     assert (ratio**2).sum() <= (ratio_norm**2).sum() + 1e-9
+
+
+def test_a_study_row_whose_zmp_leaves_the_feet_is_not_gait_feasible(hexapod_model):
+    from hexaleg.study.evaluation import Conditions, evaluate
+    from hexaleg.study.rows import WALKING_METRICS, walking_columns
+
+    payload = Payload(30.0, (100.0, 100.0, 100.0))  # issue #34: "feasible yes", margin −37 m
+    conditions = Conditions(payload=payload, gait=STUDY_GAIT, keep=True)
+    found = evaluate(hexapod_model.design, WALKING_METRICS, conditions, model=hexapod_model)
+    assert found.gait is not None and found.gait.walkable and found.gait.min_zmp_margin < 0
+    columns = walking_columns(found.gait, found)
+    assert columns["gait_feasible"] is False  # ("walks": unloaded, it does)
+    assert columns["max_speed"] == 0.0 and columns["max_speed_limited_by"] == (
+        "ZMP leaves the support polygon"
+    )

@@ -57,6 +57,16 @@ def test_the_max_stride_is_the_boundary_on_random_designs():
     assert checked >= 3
 
 
+def test_a_margin_leaving_zero_tangentially_names_its_constraint_not_the_range():
+    """A short leg whose hip sits at its limit (margin 0) up to its max stride: past it the
+    margin departs slowly, and the constraint is named, not "end of the searched range"."""
+    walker = Walker(HexapodModel(HexapodDesign(l1=0.05, l2=0.1, l3=0.1)), Gait(samples=100))
+    limit = max_stride(walker)
+    assert 0 < limit.value < 0.3 and not walker.stride(limit.value).violations
+    beyond = walker.stride(limit.value * 1.05).violations
+    assert limit.limited_by.kind != "range" and limit.limited_by in {v.cause for v in beyond}
+
+
 def _ratios(walked) -> tuple[np.ndarray, np.ndarray]:
     design = walked.design
     return (
@@ -206,3 +216,62 @@ def test_positive_work_and_cost_of_transport_follow_their_definitions(hexapod_mo
         expected / (walked.mass * GRAVITY * distance), rel=1e-12
     )
     assert walked.mass == pytest.approx(84.006 + 20.0, abs=1e-9)
+
+
+# -- the ZMP: a gait that tips over is not feasible ----------------------------------------
+
+STRONG = HexapodDesign(rated_torques=(1e5, 1e5, 1e5), rated_speeds=(1e3, 1e3, 1e3))
+"""Ratings no walk reaches: only the ZMP can bound the speed."""
+
+
+def _upright(model: HexapodModel, gait: Gait, payload: Payload) -> bool:
+    """The oracle: the period's ZMP stays inside by the polygon's signed distances."""
+    walked = analyze_gait(model.design, gait, payload, model=model, limits=False)
+    return walked.min_zmp_margin >= 0
+
+
+@pytest.mark.parametrize(
+    ("pattern", "position"),
+    [("tripod", (0.0, 0.0, 0.05)), ("tripod", (0.25, -0.1, 0.3)), ("tetrapod", (0.1, 0.2, 0.1))],
+)
+def test_the_max_speed_stops_where_the_zmp_leaves_the_feet_as_a_bisection_finds(pattern, position):
+    model, gait, payload = (
+        HexapodModel(STRONG),
+        Gait(pattern=pattern, samples=60),
+        Payload(20.0, position),
+    )
+    limit = max_speed(Walker(model, gait, payload))
+    assert limit.limited_by.kind == "zmp" and limit.stride == gait.stride
+    low, high = 0.05, 50.0  # periods [s]: tips at the first, upright at the second
+    assert not _upright(model, gait.replace(period=low), payload)
+    assert _upright(model, gait.replace(period=high), payload)
+    while high - low > 1e-9 * high:
+        middle = (low + high) / 2
+        low, high = (low, middle) if _upright(model, gait.replace(period=middle), payload) else (
+            middle, high)  # fmt: skip
+    assert limit.period == pytest.approx(high, rel=1e-8)
+    assert limit.value == pytest.approx(gait.replace(period=high).speed, rel=1e-8)
+    walked = analyze_gait(STRONG, gait.replace(period=limit.period * (1 + JUST)), payload,
+                          model=model, limits=False)  # fmt: skip
+    assert walked.feasible and walked.tipping is None
+    faster = analyze_gait(STRONG, gait.replace(period=limit.period * (1 - JUST)), payload,
+                          model=model, limits=False)  # fmt: skip
+    assert not faster.feasible and faster.walkable and faster.tipping.cause.kind == "zmp"
+
+
+def test_a_gait_whose_zmp_leaves_the_feet_is_infeasible_and_names_the_zmp():
+    model, gait = HexapodModel(HexapodDesign()), Gait(samples=40)
+    payload = Payload(30.0, (100.0, 100.0, 100.0))  # issue #34's fuzz case, far off the body
+    walked = analyze_gait(model.design, gait, payload, model=model)
+    margins = walked.zmp_margin
+    assert walked.walkable and margins.min() < -1.0
+    assert not walked.feasible and walked.tipping is not None
+    assert walked.tipping.time == walked.times[np.flatnonzero(margins < 0)[0]]
+    assert str(walked.tipping.cause) == "ZMP leaves the support polygon"
+    assert walked.infeasible_because.startswith(f"{walked.tipping} (min ZMP margin ")
+    data = walked.to_dict()
+    assert data["feasible"] is False and data["tipping"]["kind"] == "zmp"
+    # even infinitely slowly it tips: no speed at all, and the ZMP is what binds
+    assert walked.max_speed.value == 0 and walked.max_speed.limited_by.kind == "zmp"
+    upright = analyze_gait(model.design, gait, model=model, limits=False)
+    assert upright.tipping is None and upright.to_dict()["tipping"] is None

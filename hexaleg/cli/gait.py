@@ -158,9 +158,8 @@ def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:
 
 
 def _feasible(analysis: GaitAnalysis) -> str:
-    if not analysis.walkable:
-        return f"no: {analysis.violations[0]}"
-    return "yes" if analysis.feasible else "no: over its actuators' ratings (below)"
+    why = analysis.infeasible_because
+    return "yes" if why is None else f"no: {why}"
 
 
 def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:

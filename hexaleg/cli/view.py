@@ -89,10 +89,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     """``--gait``: the default gait's animation, written or served."""
-    from hexaleg.gait.analysis import analyze_gait
+    from hexaleg.gait.analysis import analyze_gait, require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
     analysis = analyze_gait(model.design, model=model, limits=False)
+    require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])
         return 0

@@ -18,14 +18,15 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Distribution
+from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.electrical.period import ElectricalResult, analyze_electrical
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.gait.feasibility import Violation
+from hexaleg.gait.feasibility import TOLERANCE, Violation
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import zero_moment_points, zmp_margins
+from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.limits import LEG_JOINTS
@@ -104,8 +105,8 @@ class GaitAnalysis:
     @cached_property
     def zmp_margin(self) -> ArrayF:
         """The ZMP's signed distance inside the standing feet's polygon (N,) [m]."""
-        body = self.configurations[:, None, :3] - np.array([0.0, 0.0, self.frames.height])
-        return zmp_margins(self.zmp, self.feet + body, self.stance)
+        feet = feet_on_ground(self.feet, self.configurations, self.frames.height)
+        return zmp_margins(self.zmp, feet, self.stance)
 
     @property
     def min_zmp_margin(self) -> float:
@@ -117,11 +118,38 @@ class GaitAnalysis:
         """Whether the period breaks no constraint of its motion (joint limits, reach…)."""
         return not self.violations
 
+    @cached_property
+    def tipping(self) -> Violation | None:
+        """When the ZMP first leaves the standing feet's polygon (None: it never does).
+
+        Past it the feet would have to pull on the ground: the robot tips over.
+        """
+        outside = np.flatnonzero(self.zmp_margin < -TOLERANCE)
+        return None if not outside.size else Violation(float(self.times[outside[0]]), Cause("zmp"))
+
     @property
     def feasible(self) -> bool:
-        """Whether the period is walkable and, with actuators, within their every rating."""
+        """Whether the period is walkable, stays upright and is within its actuators' ratings.
+
+        Walkable: no constraint of its motion breaks (:attr:`violations`); upright: its
+        ZMP never leaves the standing feet's polygon (:attr:`tipping`); ratings: only for
+        a design with actuators.
+        """
         motors = self.electrical is not None and bool(self.electrical.over_rating)
-        return self.walkable and not motors
+        return self.walkable and self.tipping is None and not motors
+
+    @property
+    def infeasible_because(self) -> str | None:
+        """What makes the period infeasible, in one line (None: it is feasible).
+
+        The first broken constraint of the motion, else the ZMP leaving the polygon (with
+        the smallest margin), else the actuators' ratings.
+        """
+        if self.violations:
+            return str(self.violations[0])
+        if self.tipping is not None:
+            return f"{self.tipping} (min ZMP margin {self.min_zmp_margin:.4g} m)"
+        return None if self.feasible else "over its actuators' ratings (below)"
 
     @property
     def over_rating(self) -> tuple[OverRating, ...]:
@@ -173,6 +201,7 @@ class GaitAnalysis:
             "min_zmp_margin": self.min_zmp_margin,
             "feasible": self.feasible,
             "violations": [v.to_dict() for v in self.violations],
+            "tipping": None if self.tipping is None else self.tipping.to_dict(),
             "max_stride": None if self.max_stride is None else self.max_stride.value,
             "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
             "over_rating": [o.to_dict() for o in self.over_rating],

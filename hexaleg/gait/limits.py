@@ -1,14 +1,19 @@
 """How far and how fast a design can walk a gait: its max stride and its max speed.
 
 - Max stride: the largest S (at the gait's step height, pattern, heading and the design's
-  posture) for which the period is feasible (:mod:`hexaleg.gait.feasibility`). Joint
+  posture) for which the period's motion is feasible (:mod:`hexaleg.gait.feasibility`:
+  reach, joint limits, the ground; the ZMP, which depends on the period and the payload,
+  bounds the max speed and the walking payload capacity instead). Joint
   angles depend on the phase only, not on the period, so neither does the max stride. It
   is the first crossing from S = 0 (:func:`~hexaleg.numerics.bracketing.first_crossings`):
   strides are scanned up to one no foot reaches (:func:`_out_of_reach`), and each
   constraint that breaks in the first broken bracket is solved on its own worst sample's
   margin to :data:`STRIDE_TOLERANCE`.
 - Max speed: the largest v = S/(β·T) at which every joint's peak |τ| and |q̇| stays within
-  its rating and the period is feasible: a shorter period at the gait's stride S, or, if
+  its rating, the zero-moment point within the standing feet's polygon (each edge's side
+  is affine in 1/T², :func:`~hexaleg.gait.stability.zmp_sides`: solved in closed form,
+  ``"zmp"`` when it binds) and the period is feasible: a shorter period at the gait's
+  stride S, or, if
   that stride is infeasible, at the max stride. (Not the faster of the two: at a max
   stride bound by reach a leg straightens, its joint speeds are unbounded and the speed
   there is zero; the search would cost more than the walk.) With minimum-norm forces every
@@ -31,7 +36,9 @@ import numpy as np
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.electrical.ratings import RATED, motor_loads
+from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
+from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
 from hexaleg.limits import LEG_JOINTS
@@ -130,13 +137,15 @@ def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
 
 
 def _first_cause(walker: Walker, stride: float) -> Cause:
-    """The first constraint, in leg and constraint order, that stride S [m] breaks anywhere."""
-    margins = _margins(walker, np.array([stride]))[0]  # (N, 6, 9)
-    broken = (margins < -TOLERANCE).any(axis=0).ravel()
-    if not broken.any():
-        return Cause("range")
+    """The first constraint, in leg and constraint order, that stride S [m] breaks anywhere.
+
+    None broken yet (a margin that leaves zero tangentially, a hair past the max stride):
+    the one nearest its bound.
+    """
+    margins = _margins(walker, np.array([stride]))[0].min(axis=0).ravel()  # (6·9,)
+    broken = margins < -TOLERANCE
     causes = [cause for leg in walker.frames.legs for cause in leg_causes(leg)]
-    return causes[int(np.argmax(broken))]
+    return causes[int(np.argmax(broken) if broken.any() else np.argmin(margins))]
 
 
 def max_speed(
@@ -172,11 +181,44 @@ def max_speed(
         if found:  # the max stride is feasible by construction; kept for round-off
             return SpeedLimit(0.0, stride, math.inf, found[0].cause)
     speed_room = _speed_room(walker, walk)
+    known = None if at_gait_stride is None else at_gait_stride[1]
+    rnea = walker.generalized_forces(stride, walk) if known is None else known.rnea
+    upright = _zmp_room(walker, walk, rnea)
+    if upright < 0:  # the ZMP is outside even walking infinitely slowly
+        return SpeedLimit(0.0, stride, math.inf, Cause("zmp"))
     if walker.distribution != "min-norm":
-        return _within_motors(walker, walk, _bisected_speed(walker, stride, walk, speed_room))
-    loads = walker.loads(stride, walk, 1.0) if at_gait_stride is None else at_gait_stride[1]
+        limit = _bisected_speed(walker, stride, walk, speed_room, rnea, upright)
+        return _within_motors(walker, walk, _upright(walker, limit, upright))
+    loads = walker.loads(stride, walk, 1.0, rnea) if known is None else known
     limit = _closed_form_speed(walker, stride, loads, speed_room)
-    return _within_motors(walker, walk, limit, loads)
+    return _within_motors(walker, walk, _upright(walker, limit, upright), loads)
+
+
+def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
+    """The largest w = 1/T² keeping the ZMP inside the standing feet's polygon (< 0: none).
+
+    Each edge's F_z·cross(edge, ZMP − vertex) is affine in w
+    (:func:`~hexaleg.gait.stability.zmp_sides`): the largest w keeping all ≥ 0 is exact.
+    """
+    height, configurations = walker.frames.height, rnea.configurations
+    feet = feet_on_ground(walk.paths.position, configurations, height)
+    static, inertial = (
+        zmp_sides(part[:, :6], height, configurations[:, :2], feet, walker.phases.stance)
+        for part in (rnea.static, rnea.inertial)
+    )
+    if (static < 0).any():
+        return -1.0
+    shrinking = inertial < 0
+    return float((static[shrinking] / -inertial[shrinking]).min()) if shrinking.any() else math.inf
+
+
+def _upright(walker: Walker, limit: SpeedLimit, room: float) -> SpeedLimit:
+    """``limit``, or the slower one at w = ``room`` where the ZMP reaches the polygon's edge."""
+    if room >= 1.0 / limit.period**2:
+        return limit
+    value = limit.stride * math.sqrt(room) / walker.phases.duty_factor
+    period = math.inf if room == 0 else 1.0 / math.sqrt(room)
+    return SpeedLimit(float(value), limit.stride, period, Cause("zmp"))
 
 
 def _speed_room(walker: Walker, walk: Stride) -> ArrayF:
@@ -214,11 +256,20 @@ def _limit(walker: Walker, stride: float, torque_room: ArrayF, speed_room: Array
     return SpeedLimit(float(stride * np.sqrt(w) / walker.phases.duty_factor), stride, period, cause)
 
 
-def _bisected_speed(walker: Walker, stride: float, walk: Stride, speed_room: ArrayF) -> SpeedLimit:
-    """Min-torque forces: bisect w = 1/T² between 0 and the speed ratings' bound."""
+def _bisected_speed(
+    walker: Walker,
+    stride: float,
+    walk: Stride,
+    speed_room: ArrayF,
+    rnea: GeneralizedForces,
+    upright: float,
+) -> SpeedLimit:
+    """Min-torque forces: bisect w = 1/T² between 0 and the speed ratings' bound.
+
+    Never beyond ``upright``, the ZMP's bound on w: past it no foot forces hold the robot.
+    """
     rated_torque, _ = walker.rated()
-    bound = float(np.nan_to_num(np.min(speed_room), nan=0.0))
-    rnea = walker.generalized_forces(stride, walk)  # the same at every period
+    bound = min(float(np.nan_to_num(np.min(speed_room), nan=0.0)), upright)
 
     def ratios(w: float) -> ArrayF:
         period = math.inf if w == 0 else 1.0 / math.sqrt(w)

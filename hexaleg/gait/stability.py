@@ -11,7 +11,14 @@ ground, relative to the origin's footprint,
 standing still it is the centre of mass's footprint. (Pinocchio's
 ``computeCentroidalMomentumTimeVariation`` gives the same rate; the tests hold them equal.)
 The margin is its signed distance to the support polygon of the standing feet (positive
-inside, :class:`~hexaleg.statics.support.SupportPolygon`) [m].
+inside, :class:`~hexaleg.statics.support.SupportPolygon`) [m]. A gait whose ZMP leaves the
+polygon tips over: it is not feasible, and ``"zmp"`` is what binds
+(:attr:`~hexaleg.gait.analysis.GaitAnalysis.feasible`).
+
+Multiplied by F_z > 0, the ZMP's side of each polygon edge, F_z·cross(edge, ZMP − vertex),
+is linear in the wrench (:func:`zmp_sides`): with the wrench static + w·inertial
+(w = 1/T²) each side is affine in w, which bounds the max speed in closed form
+(:mod:`hexaleg.gait.limits`).
 """
 
 from __future__ import annotations
@@ -31,6 +38,20 @@ def zero_moment_points(wrench: ArrayF, height: float) -> ArrayF:
     return np.stack((x, y), axis=-1)
 
 
+def feet_on_ground(feet: ArrayF, configurations: ArrayF, height: float) -> ArrayF:
+    """The feet (N, 6, 3) in the ground frame [m], from the body frame's and the body's poses.
+
+    Args:
+        feet: Foot positions (N, 6, 3), body frame (level, never rotated) [m].
+        configurations: Pinocchio's q (N, nq): the body origin's position first [m].
+        height: The body origin's nominal height above the ground [m].
+
+    """
+    body = configurations[:, None, :3] - np.array([0.0, 0.0, height])
+    on_ground: ArrayF = feet + body
+    return on_ground
+
+
 def zmp_margins(zmp: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> ArrayF:
     """Signed distance (N,) of each ZMP to its standing feet's support polygon [m].
 
@@ -44,9 +65,43 @@ def zmp_margins(zmp: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> Arr
 
     """
     margins = np.empty(len(zmp))
-    change = np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1
-    for run in np.split(np.arange(len(zmp)), change):
+    for run in _runs(stance):
         first = run[0]
         polygon = SupportPolygon.of_feet(feet[first, stance[first], :2])
         margins[run] = polygon.signed_distances(zmp[run])
     return margins
+
+
+def zmp_sides(
+    wrench: ArrayF, height: float, travel: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]
+) -> ArrayF:
+    """F_z·cross(edge, ZMP − vertex) for every edge of every sample's polygon (flat) [N·m²].
+
+    All ≥ 0 (with F_z > 0): the ZMP is inside every sample's polygon. Linear in ``wrench``.
+
+    Args:
+        wrench: The base rows of the RNEA (N, 6), as in :func:`zero_moment_points`.
+        height: The body origin's height above the ground [m].
+        travel: The body origin's footprint (N, 2), ground frame [m].
+        feet: Foot positions (N, 6, ≥2), ground frame [m].
+        stance: Which feet stand (N, 6).
+
+    """
+    force, moment = wrench[:, :3], wrench[:, 3:]
+    numerator = np.stack(  # F_z·ZMP, relative to the body origin's footprint
+        (-(moment[:, 1] + height * force[:, 0]), moment[:, 0] - height * force[:, 1]), axis=-1
+    )
+    sides = []
+    for run in _runs(stance):
+        polygon = SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2])
+        corners = polygon.vertices - travel[run, None]  # from the body origin's footprint
+        relative = numerator[run, None] - corners * force[run, 2, None, None]
+        edges = polygon.edges
+        sides.append((edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]).ravel())
+    return np.concatenate(sides)
+
+
+def _runs(stance: npt.NDArray[np.bool_]) -> list[npt.NDArray[np.intp]]:
+    """The runs of samples with the same standing legs (their feet do not move)."""
+    change = np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1
+    return np.split(np.arange(len(stance)), change)

@@ -107,8 +107,10 @@ def study_row(key: Key, design: HexapodDesign, evaluation: Evaluation) -> StudyR
 def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, Cell]:
     """A row's walking columns: peaks per joint and overall [N·m], work [J], CoT [-], speed.
 
-    Peak torques, positive work and cost of transport are NaN when the period is
-    infeasible (``gait_feasible`` false); the max speed [m/s] is given either way, at the
+    Peak torques, positive work and cost of transport are NaN when the period cannot be
+    walked (a constraint of its motion breaks); ``gait_feasible`` is false then, and also
+    when its ZMP leaves the standing feet's polygon (the robot tips over, whatever its
+    torques); the max speed [m/s] is given either way, at the
     gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
     with what limits it; ``walks``: whether it walks the gait unloaded within its ratings.
     """
@@ -121,7 +123,7 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
         "gait_peak_torque": evaluation["gait_peak_torque"],
         "gait_positive_work": metrics.positive_work if ok else math.nan,
         "mechanical_cost_of_transport": evaluation["mechanical_cost_of_transport"],
-        "gait_feasible": ok,
+        "gait_feasible": ok and walked.tipping is None,
         "max_speed": evaluation["max_speed"],
         "max_speed_limited_by": str(evaluation.causes["max_speed"]),
         "walking_payload_capacity": evaluation["walking_payload_capacity"],
