@@ -18,11 +18,11 @@ from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
-from hexaleg.sim.measure import WalkMetrics, measure_walk
+from hexaleg.sim.measure import WalkMeter
 from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
-from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, Run, run_plan
+from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, run_plan
 from hexaleg.sim.standing_tripod import standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 
@@ -89,7 +89,8 @@ def simulate_gait(
     require_walkable(analysis, model)
     sim = SimModel(model, analysis.payload, friction, gains)
     plan = plan_of(analysis)
-    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE)
+    meter = _meter(plan, model)
+    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE, record=meter.add)
     return SimulationResult(
         design=design,
         gait=analysis.gait,
@@ -97,7 +98,7 @@ def simulate_gait(
         friction=friction,
         cycles=cycles,
         gains=sim.gains,
-        metrics=_measure(run, plan, cycles, model),
+        metrics=meter.metrics(cycles),
         planned_peak_torque=dict(analysis.metrics.peak_torque),
         standing=standing_check(model, analysis.payload, friction, sim=sim),
         frames=run.frames,
@@ -125,13 +126,11 @@ def _checked_cycles(cycles: int, period: float, friction: float) -> int:
     return cycles
 
 
-def _measure(run: Run, plan: Plan, cycles: int, model: HexapodModel) -> WalkMetrics:
-    """The walk's measures, each servo's peak held against the design's rated torque."""
+def _meter(plan: Plan, model: HexapodModel) -> WalkMeter:
+    """The walk's measures as it is simulated, each servo's peak held against its rating."""
     design = model.design
-    return measure_walk(
-        run.trace,
+    return WalkMeter(
         plan.period,
-        cycles,
         plan.velocity,
         design.nominal_height,
         legs=model.leg_names,
