@@ -87,7 +87,7 @@ def run_plan(
         trace, qpos = _steps(sim, data, plan, times)
         record(trace)
         frames += [sim.configuration_of(row) for row in qpos[::every]]
-        frame_torques.append(trace.joint_torques[::every])
+        frame_torques.append(trace.joint_torques[::every].copy())  # not a view of the part
     return Run(np.array(frames), np.concatenate(frame_torques), 1.0 / (every * sim.timestep))
 
 
