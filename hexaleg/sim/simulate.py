@@ -11,7 +11,7 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 from __future__ import annotations
 
 from hexaleg._checks import require_int
-from hexaleg._typing import Distribution
+from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
@@ -88,8 +88,7 @@ def simulate_gait(
     )
     require_walkable(analysis, model)
     sim = SimModel(model, analysis.payload, friction, gains)
-    plan = plan_of(analysis)
-    meter = _meter(plan, model)
+    plan, meter = plan_of(analysis), _meter(analysis.gait.period, analysis.base_velocity, model)
     run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE, record=meter.add)
     return SimulationResult(
         design=design,
@@ -126,12 +125,12 @@ def _checked_cycles(cycles: int, period: float, friction: float) -> int:
     return cycles
 
 
-def _meter(plan: Plan, model: HexapodModel) -> WalkMeter:
+def _meter(period: float, velocity: ArrayF, model: HexapodModel) -> WalkMeter:
     """The walk's measures as it is simulated, each servo's peak held against its rating."""
     design = model.design
     return WalkMeter(
-        plan.period,
-        plan.velocity,
+        period,
+        velocity,
         design.nominal_height,
         legs=model.leg_names,
         rated_torques=design.rated_torques,
