@@ -11,6 +11,7 @@ import pytest
 from hexaleg.sim.measure import (
     FALL_TILT,
     Trace,
+    WalkMeter,
     fell,
     foot_slip,
     measure_walk,
@@ -140,3 +141,47 @@ def test_servos_over_their_rating_are_flagged_with_when_they_peak():
     calm = measure_walk(trace, period, cycles, np.array([0.1, 0.0]), 0.4, legs=legs,
                         rated_torques=(60.0, 11.0, 131.0))  # fmt: skip
     assert calm.over_rating == ()
+
+
+def _slip_by_loops(xy, standing) -> float:
+    """Largest move from each stance's first position, stance by stance (the oracle)."""
+    worst = 0.0
+    for leg in range(standing.shape[1]):
+        begin = None
+        for k in range(len(standing)):
+            if standing[k, leg] and begin is None:
+                begin = k
+            if not standing[k, leg]:
+                begin = None
+            if begin is not None:
+                worst = max(worst, float(np.linalg.norm(xy[k, leg] - xy[begin, leg])))
+    return worst
+
+
+@pytest.mark.parametrize(
+    "cuts", [[], [1], [137, 138, 151], [50, 100, 149, 150, 299, 400], list(range(7, 401, 7))]
+)
+def test_a_run_measured_in_parts_measures_as_the_whole(cuts):
+    period, cycles = 1.0, 4
+    trace = _trace(period, cycles, np.array([0.1, 0.0]), lambda t: 0.05 * np.sin(3 * t), 0.4)
+    rng = np.random.default_rng(7)
+    k = len(trace.time)
+    trace.foot_positions[:] = np.cumsum(rng.normal(0.0, 1e-3, (k, 6, 3)), axis=0)
+    trace.standing[:] = np.sin(np.arange(k)[:, None] / 17.0 + np.arange(6)) > -0.3
+    trace.joint_torques[:] = rng.normal(0.0, 50.0, (k, 6, 3))
+    trace.joint_torques[320, 1, 2] = 400.0  # one peak over its rating, at t = 3.2 s
+    whole = measure_walk(trace, period, cycles, np.array([0.1, 0.0]), 0.4, legs=LEGS,
+                         rated_torques=RATED)  # fmt: skip
+    meter = WalkMeter(period, np.array([0.1, 0.0]), 0.4, legs=LEGS, rated_torques=RATED)
+    for start, stop in zip([0, *cuts], [*cuts, k], strict=True):
+        meter.add(trace.rows(slice(start, stop)))
+    parts = meter.metrics(cycles)
+    measured = trace.window(period)
+    slip = _slip_by_loops(measured.foot_positions[..., :2], measured.standing)
+    assert whole.slip == pytest.approx(slip, rel=1e-12) and slip > 0.01
+    assert parts.slip == pytest.approx(slip, rel=1e-12)
+    assert parts.tracking_rms == pytest.approx(whole.tracking_rms, rel=1e-12)
+    for name in ("distance", "max_roll", "max_pitch", "min_height", "fell", "peak_torque"):
+        assert getattr(parts, name) == getattr(whole, name), name
+    assert parts.over_rating == whole.over_rating
+    assert ("lm", "knee", "t = 3.200 s") in {(o.leg, o.joint, o.at) for o in parts.over_rating}

@@ -14,7 +14,7 @@ from hexaleg.statics.forces import Statics
 if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
     pytest.importorskip("mujoco")
 
-from hexaleg.sim.measure import measure_walk
+from hexaleg.sim.measure import Trace, measure_walk
 from hexaleg.sim.model import SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.run import run_plan
@@ -48,13 +48,18 @@ def test_a_plan_that_stands_still_keeps_the_robot_where_it_is(sim):
         standing=np.ones((samples, 6), dtype=bool),
         velocity=np.zeros(2),
     )
-    run = run_plan(sim, plan, duration=2.0, frame_rate=10.0)
-    assert run.trace.time.shape == (2000,)
+    parts: list[Trace] = []
+    run = run_plan(sim, plan, duration=2.0, frame_rate=10.0, record=parts.append)
+    trace = Trace(
+        *(np.concatenate([getattr(p, f) for p in parts]) for f in Trace.__dataclass_fields__)
+    )
+    assert trace.time.shape == (2000,)
+    np.testing.assert_allclose(trace.time, np.arange(2000) * 1e-3, atol=1e-12)
     assert run.frames.shape == (20, model.model.nq)
     assert run.frame_rate == pytest.approx(10.0)
     design = model.design
     metrics = measure_walk(
-        run.trace,
+        trace,
         1.0,
         2,
         plan.velocity,

@@ -52,6 +52,9 @@ SCAN_STEPS = 32
 """Strides scanned up to where no foot reaches (10 cm apart for a 1 m leg) before refining."""
 SCAN_CHUNKS = 4
 """The scan runs in this many rounds of strides tried at once, stopping at the first break."""
+SCAN_SAMPLES = 20_000
+"""Most stride-samples whose margins are held at once (strides × samples per period): the
+scan's memory stays bounded at any sampling, and is all at once at the default 200."""
 
 
 @dataclass(frozen=True)
@@ -101,9 +104,14 @@ def max_stride(walker: Walker) -> StrideLimit:
         return StrideLimit(0.0, _first_cause(walker, 0.0))
 
     def worst(_: IndexArray, strides: ArrayF) -> ArrayF:  # broken below −TOLERANCE
-        every = _margins(walker, strides) + TOLERANCE
-        smallest: ArrayF = every.reshape(len(strides), -1).min(axis=1, keepdims=True)
-        return smallest
+        # a few strides at a time: the margins of all of them at every sample at once would
+        # take memory in proportion to both
+        group = max(1, SCAN_SAMPLES // walker.gait.samples)
+        smallest = [
+            _margins(walker, part).reshape(len(part), -1).min(axis=1)
+            for part in np.split(strides, range(group, len(strides), group))
+        ]
+        return np.concatenate(smallest)[:, None] + TOLERANCE
 
     reach = _out_of_reach(walker)
     found = first_crossings(

@@ -2,13 +2,13 @@
 
 :func:`simulate_gait` is the front door (:mod:`.simulate`). Beneath it: the MuJoCo
 model of hexaleg's own URDF (:mod:`.model`), the planned period the servos follow
-(:mod:`.plan`), the run that records every step (:mod:`.run`), what a walk shows
+(:mod:`.plan`), the run that hands on every step as it goes (:mod:`.run`), what a walk shows
 (:mod:`.measure`), the tripod standing check (:mod:`.standing_tripod`) and the offscreen video
 (:mod:`.video`). MuJoCo is the optional extra ``hexaleg[sim]``, imported only when a
 simulation runs.
 """
 
-from hexaleg.sim.measure import Trace, WalkMetrics, measure_walk
+from hexaleg.sim.measure import Trace, WalkMeter, WalkMetrics, measure_walk
 from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
@@ -25,6 +25,7 @@ __all__ = [
     "SimulationResult",
     "StandingCheck",
     "Trace",
+    "WalkMeter",
     "RenderOutcome",
     "WalkMetrics",
     "measure_walk",

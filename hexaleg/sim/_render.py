@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Any
 
@@ -58,11 +59,28 @@ def _scene(xml: str, width: int, height: int) -> Any:
 
 
 def render(folder: Path) -> None:
-    """Render the job in ``folder`` (see the module docstring)."""
+    """Render the job in ``folder`` (see the module docstring).
+
+    Each frame goes to the encoder as soon as it is rendered: what is held is one frame
+    and the encoder's output, never every frame.
+    """
+    job = json.loads((folder / "job.json").read_text())
+    frames = np.load(folder / "frames.npy", mmap_mode="r")
+    pictures = _pictures(folder, job, frames)
+    output = Path(job["output"])
+    if len(frames) == 1:
+        next(pictures).save(output)
+    elif output.suffix.lower() == ".gif":
+        _write_gif(pictures, round(1000.0 / job["frame_rate"]), output)
+    else:
+        _write_webp(pictures, len(frames), round(1000.0 / job["frame_rate"]), output)
+
+
+def _pictures(folder: Path, job: dict[str, Any], frames: Any) -> Iterator[Any]:
+    """Each frame's picture (a Pillow image), rendered when asked for."""
     import mujoco
     from PIL import Image
 
-    job = json.loads((folder / "job.json").read_text())
     model = _scene((folder / "model.xml").read_text(), job["width"], job["height"])
     data = mujoco.MjData(model)
     camera = mujoco.MjvCamera()
@@ -72,24 +90,64 @@ def render(folder: Path) -> None:
         CAMERA_ELEVATION,
         job["distance"],
     )
-    images = []
     with mujoco.Renderer(model, job["height"], job["width"]) as renderer:
-        for qpos in np.load(folder / "frames.npy"):
+        for qpos in frames:
             data.qpos[:] = qpos
             mujoco.mj_forward(model, data)
             camera.lookat[:] = [qpos[0], qpos[1], 0.5 * qpos[2]]
             renderer.update_scene(data, camera)
-            images.append(Image.fromarray(renderer.render()))
-    if len(images) == 1:
-        images[0].save(job["output"])
-        return
-    images[0].save(
-        job["output"],
+            yield Image.fromarray(renderer.render())
+
+
+def _write_gif(pictures: Iterator[Any], duration: int, output: Path) -> None:
+    """An animated GIF written frame by frame, each with its own palette, looping forever.
+
+    Pillow's ``save_all`` keeps every frame until the end (to merge and crop them), so
+    the file is put together here from its header and frame blocks (Pillow's
+    ``getheader`` and ``getdata``, the GIF format's own pieces).
+    """
+    from PIL import GifImagePlugin, Image
+
+    with output.open("wb") as file:
+        for k, picture in enumerate(pictures):
+            frame = picture.convert("P", palette=Image.Palette.ADAPTIVE)
+            if k == 0:
+                header, _ = GifImagePlugin.getheader(frame, info={"loop": 0, "duration": duration})
+                file.write(b"".join(header))
+            for block in GifImagePlugin.getdata(frame, duration=duration, include_color_table=True):
+                file.write(block)
+        file.write(b";")  # the trailer
+
+
+def _write_webp(pictures: Iterator[Any], count: int, duration: int, output: Path) -> None:
+    """An animated WebP: libwebp's encoder takes the frames one at a time."""
+    first = next(pictures)
+    first.save(
+        output,
         save_all=True,
-        append_images=images[1:],
-        duration=round(1000.0 / job["frame_rate"]),
+        append_images=[_Sequence(first, pictures, count - 1)],
+        duration=duration,
         loop=0,
     )
+
+
+class _Sequence:
+    """``count`` frames as a multi-frame image that renders each when Pillow seeks it.
+
+    Pillow's WebP writer reads a multi-frame image in ``append_images`` by ``n_frames``
+    and ``seek``, one frame at a time, as it reads a file.
+    """
+
+    def __init__(self, first: Any, pictures: Iterator[Any], count: int) -> None:
+        self.n_frames, self._pictures, self._current = count, pictures, first
+        self.mode, self.size = first.mode, first.size
+        self.info: dict[str, Any] = {}
+
+    def seek(self, frame: int) -> None:
+        self._current = next(self._pictures)
+
+    def __getattr__(self, name: str) -> Any:
+        return getattr(self._current, name)
 
 
 if __name__ == "__main__":

@@ -29,8 +29,9 @@ import numpy.typing as npt
 from scipy.spatial.transform import Rotation
 
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.ratings import OverRating, at_times, over_rating
+from hexaleg.statics.ratings import OverRating, at_times, over_rating_at
 
 FALL_TILT = math.radians(30.0)
 """A body rolled or pitched further than this has fallen [rad]."""
@@ -65,8 +66,11 @@ class Trace:
 
     def window(self, start: float) -> Trace:
         """The rows from time ``start`` [s] on."""
-        rows = self.time >= start - 1e-9
-        return Trace(*(getattr(self, name)[rows] for name in self.__dataclass_fields__))
+        return self.rows(self.time >= start - 1e-9)
+
+    def rows(self, index: slice | npt.NDArray[np.bool_]) -> Trace:
+        """The rows ``index`` selects (a slice or a mask over the steps)."""
+        return Trace(*(getattr(self, name)[index] for name in self.__dataclass_fields__))
 
 
 @dataclass(frozen=True)
@@ -133,16 +137,37 @@ def foot_slip(foot_xy: npt.ArrayLike, standing: npt.ArrayLike) -> float:
         standing: Whether each foot stands (K, L); each run of True is one stance.
 
     """
-    xy = np.asarray(foot_xy, dtype=float)
     mask = np.asarray(standing, dtype=bool)
-    worst = 0.0
-    for leg in range(mask.shape[1]):
-        column = mask[:, leg].astype(np.int8)
-        edges = np.flatnonzero(np.diff(np.concatenate(([0], column, [0]))))
-        for begin, end in zip(edges[0::2], edges[1::2], strict=True):
-            moved = np.linalg.norm(xy[begin:end, leg] - xy[begin, leg], axis=1)
-            worst = max(worst, float(moved.max()))
+    worst, _ = _slip_part(
+        np.asarray(foot_xy, dtype=float), mask, np.full((mask.shape[1], 2), np.nan)
+    )
     return worst
+
+
+def _slip_part(xy: ArrayF, standing: npt.NDArray[np.bool_], anchor: ArrayF) -> tuple[float, ArrayF]:
+    """:func:`foot_slip` over one part of a run, the stances open before it carried in.
+
+    Args:
+        xy: Horizontal foot positions (K, L, 2) [m].
+        standing: Whether each foot stands (K, L).
+        anchor: Where each foot's stance open at the part's start began (L, 2) [m];
+            NaN for a foot not standing then.
+
+    Returns:
+        The largest slip in the part, and the anchors open at its end (NaN where none).
+
+    """
+    legs = standing.shape[1]
+    # row 0 stands for the part before: a stance still open began at its anchor
+    xy = np.concatenate((anchor[None], xy))
+    stands = np.concatenate((~np.isnan(anchor[None, :, 0]), standing))
+    begins = stands.copy()
+    begins[1:] &= ~stands[:-1]
+    rows = np.where(begins, np.arange(len(stands))[:, None], 0)
+    start = xy[np.maximum.accumulate(rows, axis=0), np.arange(legs)]  # each row's stance start
+    moved = np.where(stands, np.linalg.norm(xy - start, axis=-1), 0.0)
+    worst = float(moved.max(initial=0.0))
+    return worst, np.where(stands[-1][:, None], start[-1], np.nan)
 
 
 def peak_torques(torques: npt.ArrayLike) -> dict[str, float]:
@@ -173,24 +198,87 @@ def measure_walk(
         rated_torques: Rated torque of the root, hip and knee servos (3,) [N·m].
 
     """
-    planned = np.asarray(velocity, dtype=float)[:2]
-    speed = float(np.linalg.norm(planned))
-    heading = planned / speed if speed > 0 else np.array([1.0, 0.0])
-    measured = trace.window(period)
-    travel = measured.base_position[-1, :2] - measured.base_position[0, :2]
-    tilt = np.abs(roll_pitch(measured.base_quaternion))
-    error = measured.reference - measured.joint_angles
-    return WalkMetrics(
-        planned_distance=speed * period * (cycles - 1),
-        distance=float(travel @ heading),
-        max_roll=float(tilt[:, 0].max()),
-        max_pitch=float(tilt[:, 1].max()),
-        min_height=float(measured.base_position[:, 2].min()),
-        fell=fell(trace, nominal_height),
-        tracking_rms=float(np.sqrt(np.mean(error**2))),
-        slip=foot_slip(measured.foot_positions[..., :2], measured.standing),
-        peak_torque=peak_torques(measured.joint_torques),
-        over_rating=over_rating(
-            legs, measured.joint_torques, rated_torques, at_times(measured.time)
-        ),
-    )
+    meter = WalkMeter(period, velocity, nominal_height, legs=legs, rated_torques=rated_torques)
+    meter.add(trace)
+    return meter.metrics(cycles)
+
+
+class WalkMeter:
+    """:func:`measure_walk` fed a run part by part, in time order: memory bounded by a part.
+
+    A long run (an hour of walking is 3.6 million steps) is measured as it is simulated,
+    never held whole: each measure is a running extreme, sum or first/last value, and
+    a stance open at a part's end carries its start into the next. The measures equal
+    :func:`measure_walk`'s on the whole run.
+    """
+
+    def __init__(
+        self,
+        period: float,
+        velocity: npt.ArrayLike,
+        nominal_height: float,
+        *,
+        legs: Sequence[str],
+        rated_torques: npt.ArrayLike,
+    ) -> None:
+        planned = np.asarray(velocity, dtype=float)[:2]
+        self._speed = float(np.linalg.norm(planned))
+        self._heading = planned / self._speed if self._speed > 0 else np.array([1.0, 0.0])
+        self._period, self._nominal_height = period, nominal_height
+        self._legs, self._rated = tuple(legs), np.asarray(rated_torques, dtype=float)
+        self._first: ArrayF | None = None  # body position at the first measured step
+        self._last: ArrayF | None = None
+        self._tilt = np.zeros(2)
+        self._min_height = math.inf
+        self._fell = False
+        self._squares, self._count = 0.0, 0
+        self._slip = 0.0
+        self._anchor = np.full((len(self._legs), 2), np.nan)
+        self._peaks = np.full((len(self._legs), 3), -math.inf)
+        self._peak_times = np.zeros((len(self._legs), 3))
+
+    def add(self, part: Trace) -> None:
+        """Measure the next part of the run (its rows follow the previous part's)."""
+        self._fell = self._fell or fell(part, self._nominal_height)
+        measured = part.window(self._period)
+        if len(measured.time) == 0:
+            return
+        position = measured.base_position
+        if self._first is None:
+            self._first = position[0, :2].copy()
+        self._last = position[-1, :2].copy()
+        self._tilt = np.maximum(
+            self._tilt, np.abs(roll_pitch(measured.base_quaternion)).max(axis=0)
+        )
+        self._min_height = min(self._min_height, float(position[:, 2].min()))
+        error = measured.reference - measured.joint_angles
+        self._squares += float(np.sum(error**2))
+        self._count += error.size
+        slip, self._anchor = _slip_part(
+            measured.foot_positions[..., :2], measured.standing, self._anchor
+        )
+        self._slip = max(self._slip, slip)
+        magnitude = np.abs(measured.joint_torques)
+        worst = magnitude.argmax(axis=0)  # the first of equal peaks, as over one whole run
+        peaks = magnitude.max(axis=0)
+        higher = peaks > self._peaks
+        self._peaks = np.where(higher, peaks, self._peaks)
+        self._peak_times = np.where(higher, measured.time[worst], self._peak_times)
+
+    def metrics(self, cycles: int) -> WalkMetrics:
+        """The measures of the run added so far, ``cycles`` periods long."""
+        if self._first is None or self._last is None:
+            raise HexalegError("no step of the run was measured: it ends within the first period")
+        where = [at_times(row) for row in self._peak_times]
+        return WalkMetrics(
+            planned_distance=self._speed * self._period * (cycles - 1),
+            distance=float((self._last - self._first) @ self._heading),
+            max_roll=float(self._tilt[0]),
+            max_pitch=float(self._tilt[1]),
+            min_height=self._min_height,
+            fell=self._fell,
+            tracking_rms=math.sqrt(self._squares / self._count),
+            slip=self._slip,
+            peak_torque=peak_torques(self._peaks),
+            over_rating=over_rating_at(self._legs, self._peaks, self._rated, where),
+        )

@@ -1,4 +1,4 @@
-"""Running a plan in MuJoCo: the servos follow it from rest; every step is recorded.
+"""Running a plan in MuJoCo: the servos follow it from rest; every step is recorded as it goes.
 
 The robot starts at rest in the plan's first pose: body level at its nominal height
 above the world origin, axes on the world's, each foot where the plan has it at t = 0
@@ -8,7 +8,9 @@ reference at that step's time (:meth:`~hexaleg.sim.plan.Plan.reference`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -26,17 +28,15 @@ FRAME_RATE = 25.0
 
 @dataclass(frozen=True)
 class Run:
-    """A simulated run: every step, and the frames of its animation.
+    """A simulated run's animation frames (its steps went to the ``record`` of :func:`run_plan`).
 
     Attributes:
-        trace: Every step's state, reference and torques.
         frames: Pinocchio configurations (F, nq) at ``frame_rate``.
         frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
         frame_rate: Frames per second [1/s].
 
     """
 
-    trace: Trace
     frames: ArrayF
     frame_torques: ArrayF
     frame_rate: float
@@ -44,27 +44,59 @@ class Run:
 
 MAX_DURATION = 3600.0
 """Longest simulated time [s]: an hour of walking."""
+PART_DURATION = 10.0
+"""Simulated time [s] of each part of the trace handed to ``record`` at once: what a run
+holds of its steps, whatever its length (the frames, 25 a second, are all kept)."""
 
 
-def run_plan(sim: SimModel, plan: Plan, duration: float, frame_rate: float = FRAME_RATE) -> Run:
+def run_plan(
+    sim: SimModel,
+    plan: Plan,
+    duration: float,
+    frame_rate: float = FRAME_RATE,
+    *,
+    record: Callable[[Trace], object],
+) -> Run:
     """Follow ``plan`` for ``duration`` [s] from rest at its first pose.
+
+    Every step's state is handed to ``record`` as it is simulated, a :class:`Trace` of at
+    most :data:`PART_DURATION` at a time, in time order (a
+    :class:`~hexaleg.sim.measure.WalkMeter`'s ``add`` measures it): the run itself keeps
+    only the frames, so its memory does not grow with the steps.
 
     Args:
         sim: The MuJoCo model.
         plan: The motion to follow (repeated every period).
         duration: Simulated time [s], in (0, :data:`MAX_DURATION`].
         frame_rate: Animation frames per second [1/s], in (0, 1000].
+        record: Called with each part of the trace.
 
     """
-    mujoco = require_mujoco()
+    require_mujoco()
     require_in_range("duration", duration, 1e-6, MAX_DURATION, "s")
     require_in_range("frame_rate", frame_rate, 1e-3, 1000.0, "1/s")
     model = sim.hexapod
     steps = round(duration / sim.timestep)
-    times = np.arange(steps, dtype=float) * sim.timestep
+    every = max(1, round(1.0 / (frame_rate * sim.timestep)))
+    part = max(every, round(PART_DURATION / sim.timestep) // every * every)  # whole frames
+    data = start(sim, model.configuration(model.nominal_base_pose(), plan.angles[0]))
+    frames: list[ArrayF] = []
+    frame_torques: list[ArrayF] = []
+    for first in range(0, steps, part):
+        times = np.arange(first, min(first + part, steps), dtype=float) * sim.timestep
+        trace, qpos = _steps(sim, data, plan, times)
+        record(trace)
+        frames += [sim.configuration_of(row) for row in qpos[::every]]
+        frame_torques.append(trace.joint_torques[::every].copy())  # not a view of the part
+    return Run(np.array(frames), np.concatenate(frame_torques), 1.0 / (every * sim.timestep))
+
+
+def _steps(sim: SimModel, data: Any, plan: Plan, times: ArrayF) -> tuple[Trace, ArrayF]:
+    """Step ``data`` through ``times`` [s]: the trace of those steps, and their ``qpos``."""
+    mujoco = require_mujoco()
     reference, rates, torques, standing = plan.reference(times)
     controls = sim.command(reference, rates, torques)
-    data = start(sim, model.configuration(model.nominal_base_pose(), plan.angles[0]))
+    steps = len(times)
     qpos = np.empty((steps, sim.mj.nq))
     feet = np.empty((steps, *sim.feet.shape, 3))
     applied = np.empty((steps, *sim.actuators.shape))
@@ -85,6 +117,4 @@ def run_plan(sim: SimModel, plan: Plan, duration: float, frame_rate: float = FRA
         foot_positions=feet,
         standing=standing,
     )
-    every = max(1, round(1.0 / (frame_rate * sim.timestep)))
-    frames = np.array([sim.configuration_of(row) for row in qpos[::every]])
-    return Run(trace, frames, applied[::every], 1.0 / (every * sim.timestep))
+    return trace, qpos

@@ -11,18 +11,18 @@ stands the robot on a tripod beside the statics (:mod:`.standing`).
 from __future__ import annotations
 
 from hexaleg._checks import require_int
-from hexaleg._typing import Distribution
+from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
-from hexaleg.sim.measure import WalkMetrics, measure_walk
+from hexaleg.sim.measure import WalkMeter
 from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
-from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, Run, run_plan
+from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, run_plan
 from hexaleg.sim.standing_tripod import standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 
@@ -88,8 +88,8 @@ def simulate_gait(
     )
     require_walkable(analysis, model)
     sim = SimModel(model, analysis.payload, friction, gains)
-    plan = plan_of(analysis)
-    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE)
+    plan, meter = plan_of(analysis), _meter(analysis.gait.period, analysis.base_velocity, model)
+    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE, record=meter.add)
     return SimulationResult(
         design=design,
         gait=analysis.gait,
@@ -97,7 +97,7 @@ def simulate_gait(
         friction=friction,
         cycles=cycles,
         gains=sim.gains,
-        metrics=_measure(run, plan, cycles, model),
+        metrics=meter.metrics(cycles),
         planned_peak_torque=dict(analysis.metrics.peak_torque),
         standing=standing_check(model, analysis.payload, friction, sim=sim),
         frames=run.frames,
@@ -125,14 +125,12 @@ def _checked_cycles(cycles: int, period: float, friction: float) -> int:
     return cycles
 
 
-def _measure(run: Run, plan: Plan, cycles: int, model: HexapodModel) -> WalkMetrics:
-    """The walk's measures, each servo's peak held against the design's rated torque."""
+def _meter(period: float, velocity: ArrayF, model: HexapodModel) -> WalkMeter:
+    """The walk's measures as it is simulated, each servo's peak held against its rating."""
     design = model.design
-    return measure_walk(
-        run.trace,
-        plan.period,
-        cycles,
-        plan.velocity,
+    return WalkMeter(
+        period,
+        velocity,
         design.nominal_height,
         legs=model.leg_names,
         rated_torques=design.rated_torques,

@@ -5,13 +5,14 @@ driver where there is no GPU) or OSMesa (``libosmesa6``), chosen by ``MUJOCO_GL`
 it is first imported. Each backend is therefore tried in a child process
 (:mod:`hexaleg.sim._render`): the user's own ``MUJOCO_GL`` first, then EGL, then
 OSMesa. Where none works, :func:`write_video` writes nothing and says which it tried.
-Frames are encoded by Pillow as an animated GIF or WebP, chosen by the file's suffix;
-a still is a PNG.
+Frames are encoded by Pillow as an animated GIF or WebP, chosen by the file's suffix,
+each as soon as it is rendered (at most :data:`MAX_VIDEO_FRAMES`); a still is a PNG.
 """
 
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -34,6 +35,10 @@ VIDEO_SIZE = (640, 480)
 """Frame width and height [px]."""
 RENDER_TIMEOUT = 900.0
 """Longest a backend may take to render [s]."""
+MAX_VIDEO_FRAMES = 2500
+"""Most frames a video holds: software OpenGL renders a frame in about a tenth of a second,
+so these fit in :data:`RENDER_TIMEOUT`. A longer run is shown at a lower frame rate,
+still in real time (every second frame from 100 s of simulation at 25 frames a second)."""
 
 
 @dataclass(frozen=True)
@@ -69,6 +74,9 @@ def write_video(
 ) -> RenderOutcome:
     """Render Pinocchio configurations ``frames`` (F, nq) of ``sim`` into ``path``.
 
+    Frames are encoded as they are rendered, so memory does not grow with their number;
+    past :data:`MAX_VIDEO_FRAMES`, every k-th frame is kept, shown k times as long.
+
     Args:
         sim: The simulated model (its scene is rendered).
         frames: The robot's configuration in each frame (Pinocchio's layout).
@@ -76,7 +84,9 @@ def write_video(
         path: The file to write, ``.gif`` or ``.webp``; written atomically, or not at all.
 
     """
-    return _render_files(sim, frames, frame_rate, check_video_path(path))
+    target = check_video_path(path)
+    every = math.ceil(len(frames) / MAX_VIDEO_FRAMES)
+    return _render_files(sim, frames[::every], frame_rate / every, target)
 
 
 def write_still(sim: SimModel, q: ArrayF, path: str | os.PathLike[str]) -> RenderOutcome:

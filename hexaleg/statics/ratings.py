@@ -109,11 +109,32 @@ def over_rating(
 
     """
     magnitude = np.abs(np.asarray(values, dtype=float))  # (K, N, 3)
-    rated = np.asarray(rated, dtype=float)
     worst = magnitude.argmax(axis=0)  # (N, 3)
-    peaks = magnitude.max(axis=0)
+    where = [[places[k] for k in row] for row in worst]
+    return over_rating_at(legs, magnitude.max(axis=0), rated, where, quantity)
+
+
+def over_rating_at(
+    legs: Sequence[str],
+    peaks: npt.ArrayLike,
+    rated: npt.ArrayLike,
+    where: Sequence[Sequence[str]],
+    quantity: Quantity = "torque",
+) -> tuple[OverRating, ...]:
+    """Each (leg, joint) whose peak |value| exceeds its rating, the peaks already found.
+
+    Args:
+        legs: Leg names (N,).
+        peaks: Each joint's largest |value| (N, 3) [N·m or rad/s].
+        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s].
+        where: Where each joint's peak occurs (N lists of 3).
+        quantity: ``"torque"`` or ``"speed"``.
+
+    """
+    peaks = np.asarray(peaks, dtype=float)
+    rated = np.asarray(rated, dtype=float)
     return tuple(
-        OverRating(leg, joint, quantity, float(peaks[i, j]), float(rated[j]), places[worst[i, j]])
+        OverRating(leg, joint, quantity, float(peaks[i, j]), float(rated[j]), where[i][j])
         for i, leg in enumerate(legs)
         for j, joint in enumerate(LEG_JOINTS)
         if peaks[i, j] > rated[j]

@@ -1,7 +1,8 @@
 """The meshcat animation of one gait period, legs coloured by |τ|/rated at each instant.
 
 The scene holds the ground and the robot (``/hexaleg/gait``); one animation plays the
-period in real time (one keyframe per sample): the body walking at its constant velocity,
+period in real time (one keyframe per sample, at most :data:`MAX_ANIMATION_FRAMES`): the
+body walking at its constant velocity,
 each leg's coxa, femur and tibia in the colour of its root, hip and knee's |τ|/rated
 torque at that instant (viridis, as the statics view; no link is red: nothing stops a
 gait as a limit stops an extreme). The legend beside the scene, served by
@@ -11,6 +12,7 @@ gait as a limit stops an extreme). The legend beside the scene, served by
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -31,6 +33,10 @@ NODE = f"{ROOT}/gait"
 """The walking robot's node in the scene tree."""
 ANIMATION_PATH = "/zz_hexaleg_gait_animation"
 """Where the server keeps the animation: after every object of the scene (see _send_last)."""
+MAX_ANIMATION_FRAMES = 2000
+"""Most keyframes an animation holds, whatever the samples or the run's length: past it,
+every k-th frame is a keyframe, at its own time (the browser moves between keyframes
+smoothly, still in real time), so a page's size and the time to write it stay bounded."""
 
 
 def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -> None:
@@ -63,6 +69,8 @@ def build_motion_scene(
         frame_rate: Frames per second [1/s].
         ratios: Each leg joint's |τ|/rated in each frame (F, legs, 3), its link's colour.
 
+    At most :data:`MAX_ANIMATION_FRAMES` of the frames become keyframes.
+
     """
     from meshcat.animation import Animation
 
@@ -71,9 +79,10 @@ def build_motion_scene(
     robot.display(configurations[0])
     animation = Animation(default_framerate=max(1, round(frame_rate)))
     links = _leg_links(stage, robot, model.leg_names)
-    for frame, q in enumerate(configurations):
+    every = math.ceil(len(configurations) / MAX_ANIMATION_FRAMES)
+    for frame in range(0, len(configurations), every):  # each keyframe at its own time
         with animation.at_frame(viewer, frame) as keyframe:
-            stage.pose(keyframe, robot, q)
+            stage.pose(keyframe, robot, configurations[frame])
             for (leg, joint), names in links.items():
                 red, green, blue, _ = torque_colour(float(ratios[frame, leg, joint]))
                 for name in names:

@@ -9,8 +9,10 @@ the scene: :data:`STATICS_LEGEND` for the body's extremes, :data:`GAIT_LEGEND` f
 
 from __future__ import annotations
 
+import functools
 import html
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -29,10 +31,20 @@ def torque_colour(ratio: float) -> tuple[float, float, float, float]:
 
     Viridis, from dark blue (idle) to yellow (at its rating): never the highlight red.
     """
+    red, green, blue, alpha = _viridis()(float(np.clip(ratio, 0.0, 1.0)))
+    return (red, green, blue, alpha)
+
+
+@functools.cache
+def _viridis() -> Any:
+    """Matplotlib's viridis, built once.
+
+    Each look-up copies it, and a copy builds its table on first use: an animation asks
+    for a colour per link and frame.
+    """
     from matplotlib import colormaps
 
-    red, green, blue, alpha = colormaps["viridis"](float(np.clip(ratio, 0.0, 1.0)))
-    return (red, green, blue, alpha)
+    return colormaps["viridis"]
 
 
 def _css(colour: tuple[float, ...]) -> str:
