@@ -8,7 +8,12 @@ the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limit
 (or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
 categorical variable per joint type (``actuator_root``, ``actuator_hip``,
 ``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
-actuators. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
+actuators. ``--free-gear-ratio`` adds one more per joint type (``gear_ratio_root``,
+``gear_ratio_hip``, ``gear_ratio_knee``): a coordinate u ∈ [0, 1] that puts the chosen
+entry's gear ratio at N_low·(N_high/N_low)^u within its ``gear_ratio_range`` (a gear
+ratio is searched on a log scale; the ratings follow
+:meth:`~hexaleg.actuators.Actuator.with_gear_ratio`); an entry without a range keeps
+its ratio. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
 [Wh], from :data:`CAPACITY_BOUNDS`) of a design that has a ``[battery]``.
 """
 
@@ -41,12 +46,15 @@ POSTURE = ("theta2", "theta3")
 CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
 """The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
 
+GEARS = tuple(f"gear_ratio_{joint}" for joint in LEG_JOINTS)
+"""The gear ratios of ``--free-gear-ratio``: each joint type's within its entry's range."""
+
 BATTERY = "battery_capacity"
 """The battery's capacity [Wh], free when a range is required."""
 CAPACITY_BOUNDS = (1.0, 5e4)
 """The capacities a required range searches [Wh]: a watt-hour to 50 kWh."""
 
-FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, BATTERY)
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, *GEARS, BATTERY)
 """Every variable a search can free."""
 
 LEG_CAP = "l1 + l2 + l3 at most the leg length"
@@ -96,7 +104,7 @@ class FreeVariable:
     @property
     def unit(self) -> str:
         """Its unit: ``"m"``, ``"rad"`` (or a body field's own; ``"-"`` for a choice)."""
-        if self.name in CHOICES:
+        if self.name in (*CHOICES, *GEARS):
             return "-"
         if self.name == BATTERY:
             return "Wh"
@@ -110,6 +118,8 @@ class FreeVariable:
             raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
         if match[1] in CHOICES:
             raise ParameterError("--free", text, "--choose-actuators frees the actuators")
+        if match[1] in GEARS:
+            raise ParameterError("--free", text, "--free-gear-ratio frees the gear ratios")
         try:
             lower, upper = float(match[2]), float(match[3])
         except ValueError:
@@ -125,12 +135,15 @@ class SearchSpace:
         base: Every field that is not free.
         variables: The free variables, in the order of a point's coordinates.
         entries: The actuators a choice variable picks from, in the catalog's order.
+        ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
+            only), what a gear ratio variable spans; empty without such variables.
 
     """
 
     base: HexapodDesign
     variables: tuple[FreeVariable, ...]
     entries: tuple[Actuator, ...] = ()
+    ratio_ranges: tuple[tuple[float, float] | None, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -150,17 +163,21 @@ class SearchSpace:
     @property
     def same_body(self) -> bool:
         """Whether every design keeps the base's body and mounts (models derive in closed form)."""
-        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, BATTERY) for name in self.names)
+        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, *GEARS, BATTERY) for name in self.names)
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
         chosen: dict[str, Actuator] = {}
+        picks: dict[str, int] = {}
+        geared: dict[str, float] = {}
         for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
             if name in CHOICES:
                 pick = int(np.clip(np.floor(value), 0, len(self.entries) - 1))
-                chosen[name.removeprefix("actuator_")] = self.entries[pick]
+                picks[name.removeprefix("actuator_")] = pick
+            elif name in GEARS:
+                geared[name.removeprefix("gear_ratio_")] = float(value)
             elif name == BATTERY:
                 changes["battery"] = dataclasses.replace(self._battery, capacity=float(value))
             elif name in POSTURE:
@@ -169,6 +186,8 @@ class SearchSpace:
                 changes[name] = float(value)
         if tuple(angles) != self.base.nominal_angles:
             changes["nominal_angles"] = tuple(angles)
+        for joint, pick in picks.items():
+            chosen[joint] = self._geared(pick, geared.get(joint))
         if chosen:
             given = self.base.actuators
             kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
@@ -178,7 +197,11 @@ class SearchSpace:
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
         values = [
-            self._choice_of(design, name) if name in CHOICES else value_of(design, name)
+            self._choice_of(design, name)
+            if name in CHOICES
+            else self._gear_of(design, name)
+            if name in GEARS
+            else value_of(design, name)
             for name in self.names
         ]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
@@ -190,11 +213,46 @@ class SearchSpace:
             raise ParameterError(BATTERY, None, "needs a [battery] in the design to size")
         return self.base.battery
 
+    def _geared(self, pick: int, share: float | None) -> Actuator:
+        """Entry ``pick``, at the gear ratio ``share`` ∈ [0, 1] of its range puts it at."""
+        entry = self.entries[pick]
+        span = self.ratio_ranges[pick] if self.ratio_ranges else None
+        if span is None or share is None:
+            return entry
+        low, high = span
+        return entry.with_gear_ratio(low * (high / low) ** min(max(share, 0.0), 1.0))
+
+    def _entry_of(self, design: HexapodDesign, joint: str) -> int | None:
+        """The entry ``design``'s actuator of ``joint`` is, at any gear ratio (None: none)."""
+        given = design.actuators
+        if given is None:
+            return None
+        actuator = getattr(given, joint)
+        if actuator in self.entries:
+            return self.entries.index(actuator)
+        for index, entry in enumerate(self.entries):
+            span = self.ratio_ranges[index] if self.ratio_ranges else None
+            if span is None or entry.catalog is None or entry.catalog != actuator.catalog:
+                continue
+            if span[0] <= actuator.gear_ratio <= span[1]:
+                if entry.with_gear_ratio(actuator.gear_ratio) == actuator:
+                    return index
+        return None
+
     def _choice_of(self, design: HexapodDesign, name: str) -> float:
         """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
-        given = design.actuators
-        actuator = None if given is None else getattr(given, name.removeprefix("actuator_"))
-        return self.entries.index(actuator) + 0.5 if actuator in self.entries else 0.5
+        index = self._entry_of(design, name.removeprefix("actuator_"))
+        return 0.5 if index is None else index + 0.5
+
+    def _gear_of(self, design: HexapodDesign, name: str) -> float:
+        """The coordinate of ``design``'s gear ratio within its entry's range (0.5 if none)."""
+        joint = name.removeprefix("gear_ratio_")
+        index = self._entry_of(design, joint)
+        span = None if index is None else self.ratio_ranges[index]
+        if design.actuators is None or span is None or span[0] == span[1]:
+            return 0.5
+        ratio = getattr(design.actuators, joint).gear_ratio
+        return math.log(ratio / span[0]) / math.log(span[1] / span[0])
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
@@ -208,7 +266,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables, self.entries)
+        return SearchSpace(self.base, variables, self.entries, self.ratio_ranges)
 
 
 @dataclass(frozen=True)
@@ -272,8 +330,8 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     """
     reached = []
     for variable in variables:
-        if variable.name in CHOICES:
-            continue  # a catalog entry has no bound to press against
+        if variable.name in (*CHOICES, *GEARS):
+            continue  # a catalog entry has no bound to press against; its ratio range is its own
         value, near = (
             value_of(design, variable.name),
             AT_BOUND_SHARE * (variable.upper - variable.lower),
@@ -302,6 +360,7 @@ def search_space(
     free: Sequence[FreeVariable] = (),
     actuators: Sequence[Actuator] = (),
     battery: bool = False,
+    ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -314,6 +373,9 @@ def search_space(
         actuators: The catalog's actuators, to pick one per joint type from (none: the
             design's own are kept).
         battery: Free the battery's capacity (a range is required), if the design has one.
+        ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
+            ratio only): also free each joint type's gear ratio within its entry's range.
+            None: the entries' ratios are kept.
 
     """
     floor = segment_floor(leg_length)
@@ -350,7 +412,29 @@ def search_space(
         chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
     for name in CHOICES if actuators else ():
         chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
-    return SearchSpace(base, tuple(chosen.values()), tuple(actuators))
+    spans: tuple[tuple[float, float] | None, ...] = ()
+    if ratio_ranges is not None:
+        spans = _ratio_spans(actuators, ratio_ranges)
+        for name in GEARS if any(span is not None for span in spans) else ():
+            chosen[name] = FreeVariable(name, 0.0, 1.0)
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans)
+
+
+def _ratio_spans(
+    actuators: Sequence[Actuator], ranges: Sequence[tuple[float, float] | None]
+) -> tuple[tuple[float, float] | None, ...]:
+    """``ranges``, one per actuator, each holding its actuator's own ratio."""
+    if not actuators:
+        raise ParameterError("--free-gear-ratio", True, "frees the chosen actuators' ratios: "
+                             "give --choose-actuators")  # fmt: skip
+    if len(ranges) != len(actuators):
+        raise ParameterError("ratio_ranges", len(ranges), f"one per actuator ({len(actuators)})")
+    for actuator, span in zip(actuators, ranges, strict=True):
+        if span is not None and not span[0] <= actuator.gear_ratio <= span[1]:
+            raise ParameterError(
+                "ratio_ranges", span, f"must hold the actuator's ratio {actuator.gear_ratio:g}"
+            )
+    return tuple(ranges)
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:
