@@ -268,17 +268,11 @@ def decide(
         outcome, conflict = _search_or_conflict(space, goal, search)
     best = CheckedDesign.of(space.design(outcome.x), goal)
     return DecideResult(
-        requirements=requirements,
-        objective=goal.objective,
-        variables=space.variables,
-        best=best,
-        yours=CheckedDesign.of(design, goal),
-        feasible=best.meets_all,
-        conflict=conflict,
-        method=outcome.method,
+        requirements=requirements, objective=goal.objective, variables=space.variables,
+        best=best, yours=CheckedDesign.of(design, goal), feasible=best.meets_all,
+        conflict=conflict, method=outcome.method, seed=settings.seed,
         evaluations=sum(found.evaluations for found in search.done),
-        seed=settings.seed,
-    )
+    )  # fmt: skip
 
 
 def _space(

@@ -8,13 +8,10 @@ the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limit
 (or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
 categorical variable per joint type (``actuator_root``, ``actuator_hip``,
 ``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
-actuators. ``--free-gear-ratio`` adds one more per joint type (``gear_ratio_root``,
-``gear_ratio_hip``, ``gear_ratio_knee``): a coordinate u ∈ [0, 1] that puts the chosen
-entry's gear ratio at N_low·(N_high/N_low)^u within its ``gear_ratio_range`` (a gear
-ratio is searched on a log scale; the ratings follow
-:meth:`~hexaleg.actuators.Actuator.with_gear_ratio`); an entry without a range keeps
-its ratio. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
-[Wh], from :data:`CAPACITY_BOUNDS`) of a design that has a ``[battery]``.
+actuators, and ``--free-gear-ratio`` its gear ratio
+(:mod:`hexaleg.study.actuator_variables`). A ``range_km`` requirement frees the battery's
+capacity (``battery_capacity`` [Wh], from :data:`CAPACITY_BOUNDS`) of a design that has
+a ``[battery]``.
 """
 
 from __future__ import annotations
@@ -35,6 +32,14 @@ from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.study.actuator_variables import (
+    CHOICES,
+    GEARS,
+    actuator_bounds,
+    choice_coordinate,
+    gear_coordinate,
+    geared_entry,
+)
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -42,12 +47,6 @@ SEGMENT_FLOOR = 0.02
 
 POSTURE = ("theta2", "theta3")
 """The nominal hip and knee angles [rad] that ``--free-posture`` frees (θ1 stays)."""
-
-CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
-"""The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
-
-GEARS = tuple(f"gear_ratio_{joint}" for joint in LEG_JOINTS)
-"""The gear ratios of ``--free-gear-ratio``: each joint type's within its entry's range."""
 
 BATTERY = "battery_capacity"
 """The battery's capacity [Wh], free when a range is required."""
@@ -169,7 +168,6 @@ class SearchSpace:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
-        chosen: dict[str, Actuator] = {}
         picks: dict[str, int] = {}
         geared: dict[str, float] = {}
         for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
@@ -186,8 +184,8 @@ class SearchSpace:
                 changes[name] = float(value)
         if tuple(angles) != self.base.nominal_angles:
             changes["nominal_angles"] = tuple(angles)
-        for joint, pick in picks.items():
-            chosen[joint] = self._geared(pick, geared.get(joint))
+        chosen = {j: geared_entry(self.entries, self.ratio_ranges, pick, geared.get(j))
+                  for j, pick in picks.items()}  # fmt: skip
         if chosen:
             given = self.base.actuators
             kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
@@ -196,11 +194,12 @@ class SearchSpace:
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
+        coordinates = {name: choice_coordinate for name in CHOICES} | {
+            name: gear_coordinate for name in GEARS
+        }
         values = [
-            self._choice_of(design, name)
-            if name in CHOICES
-            else self._gear_of(design, name)
-            if name in GEARS
+            coordinates[name](self.entries, self.ratio_ranges, design, name)
+            if name in coordinates
             else value_of(design, name)
             for name in self.names
         ]
@@ -212,47 +211,6 @@ class SearchSpace:
         if self.base.battery is None:
             raise ParameterError(BATTERY, None, "needs a [battery] in the design to size")
         return self.base.battery
-
-    def _geared(self, pick: int, share: float | None) -> Actuator:
-        """Entry ``pick``, at the gear ratio ``share`` ∈ [0, 1] of its range puts it at."""
-        entry = self.entries[pick]
-        span = self.ratio_ranges[pick] if self.ratio_ranges else None
-        if span is None or share is None:
-            return entry
-        low, high = span
-        return entry.with_gear_ratio(low * (high / low) ** min(max(share, 0.0), 1.0))
-
-    def _entry_of(self, design: HexapodDesign, joint: str) -> int | None:
-        """The entry ``design``'s actuator of ``joint`` is, at any gear ratio (None: none)."""
-        given = design.actuators
-        if given is None:
-            return None
-        actuator = getattr(given, joint)
-        if actuator in self.entries:
-            return self.entries.index(actuator)
-        for index, entry in enumerate(self.entries):
-            span = self.ratio_ranges[index] if self.ratio_ranges else None
-            if span is None or entry.catalog is None or entry.catalog != actuator.catalog:
-                continue
-            if span[0] <= actuator.gear_ratio <= span[1]:
-                if entry.with_gear_ratio(actuator.gear_ratio) == actuator:
-                    return index
-        return None
-
-    def _choice_of(self, design: HexapodDesign, name: str) -> float:
-        """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
-        index = self._entry_of(design, name.removeprefix("actuator_"))
-        return 0.5 if index is None else index + 0.5
-
-    def _gear_of(self, design: HexapodDesign, name: str) -> float:
-        """The coordinate of ``design``'s gear ratio within its entry's range (0.5 if none)."""
-        joint = name.removeprefix("gear_ratio_")
-        index = self._entry_of(design, joint)
-        span = None if index is None else self.ratio_ranges[index]
-        if design.actuators is None or span is None or span[0] == span[1]:
-            return 0.5
-        ratio = getattr(design.actuators, joint).gear_ratio
-        return math.log(ratio / span[0]) / math.log(span[1] / span[0])
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
@@ -374,8 +332,7 @@ def search_space(
             design's own are kept).
         battery: Free the battery's capacity (a range is required), if the design has one.
         ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
-            ratio only): also free each joint type's gear ratio within its entry's range.
-            None: the entries' ratios are kept.
+            own only): free each joint type's within its entry's (None: ratios kept).
 
     """
     floor = segment_floor(leg_length)
@@ -410,31 +367,9 @@ def search_space(
         raise ParameterError(f"--free {BATTERY}", None, "needs a [battery] in the design")
     if battery and base.battery is not None and BATTERY not in chosen:
         chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
-    for name in CHOICES if actuators else ():
-        chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
-    spans: tuple[tuple[float, float] | None, ...] = ()
-    if ratio_ranges is not None:
-        spans = _ratio_spans(actuators, ratio_ranges)
-        for name in GEARS if any(span is not None for span in spans) else ():
-            chosen[name] = FreeVariable(name, 0.0, 1.0)
+    bounds, spans = actuator_bounds(actuators, ratio_ranges)
+    chosen |= {name: FreeVariable(name, *bound) for name, bound in bounds.items()}
     return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans)
-
-
-def _ratio_spans(
-    actuators: Sequence[Actuator], ranges: Sequence[tuple[float, float] | None]
-) -> tuple[tuple[float, float] | None, ...]:
-    """``ranges``, one per actuator, each holding its actuator's own ratio."""
-    if not actuators:
-        raise ParameterError("--free-gear-ratio", True, "frees the chosen actuators' ratios: "
-                             "give --choose-actuators")  # fmt: skip
-    if len(ranges) != len(actuators):
-        raise ParameterError("ratio_ranges", len(ranges), f"one per actuator ({len(actuators)})")
-    for actuator, span in zip(actuators, ranges, strict=True):
-        if span is not None and not span[0] <= actuator.gear_ratio <= span[1]:
-            raise ParameterError(
-                "ratio_ranges", span, f"must hold the actuator's ratio {actuator.gear_ratio:g}"
-            )
-    return tuple(ranges)
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:
