@@ -11,7 +11,7 @@ from harness import Row, check_agree
 from hexaleg import HexapodDesign
 from hexaleg.study.decide import decide
 from hexaleg.study.goal import Objective
-from hexaleg.study.optimize import SearchSettings
+from hexaleg.study.optimize import POPULATION_PER_VARIABLE, SearchSettings
 from hexaleg.study.requirements import Requirements
 
 
@@ -78,28 +78,71 @@ def bench_decide_walking(evaluations: int | None) -> list[Row]:
 
 
 def bench_decide_actuators(evaluations: int | None) -> list[Row]:
-    """l1, l2, l3 free and each joint type's actuator from the catalog, lightest robot."""
+    """l1, l2, l3 free and each joint type's actuator from the catalog, lightest robot.
+
+    Timed beside two baselines in the same pool: the lengths alone with the actuators
+    fixed (the catalog entries the search picks), and with the gear ratios free too.
+    Ratios are per design evaluated, since each search's budget grows with its variables.
+    """
     from hexaleg.actuator_catalog import shipped_catalog
+    from hexaleg.actuators import Actuators
 
     design = HexapodDesign()
     requirements = Requirements(continuous_margin=1.0)
+    objective = Objective("robot_mass", "minimize")
     settings = SearchSettings(seed=0, evaluations=evaluations)
-    entries = [entry.actuator for entry in shipped_catalog()]
+    catalog = list(shipped_catalog())
+    entries = [entry.actuator for entry in catalog]
+    ranges = [entry.gear_ratio_range for entry in catalog]
+
+    quick_geared = SearchSettings(seed=0, evaluations=2 * 9 * POPULATION_PER_VARIABLE)
+    geared_settings = settings if evaluations is None else quick_geared  # 2 generations
+
+    def run(pool, base, settings=settings, **options):
+        start = time.perf_counter()
+        found = decide(base, requirements, objective, settings=settings, executor=pool,
+                       progress=False, **options)  # fmt: skip
+        return time.perf_counter() - start, found
+
     with ProcessPoolExecutor(2) as pool:
         pool.submit(int).result()
-        start = time.perf_counter()
-        found = decide(design, requirements, Objective("robot_mass", "minimize"),
-                       actuators=entries, settings=settings, executor=pool,
-                       progress=False)  # fmt: skip
-        elapsed = time.perf_counter() - start
-    best = found.best.design
-    chosen = (
-        ", ".join(a.catalog or "given" for a in best.actuators.joints) if best.actuators else ""
-    )
-    note = (
-        f"{found.best.evaluation.values['robot_mass']:.2f} kg at l = "
-        f"({', '.join(f'{v:.4f}' for v in best.lengths)}) m with {chosen}, "
-        f"feasible {found.feasible}"
-    )
+        elapsed, found = run(pool, design, actuators=entries)
+        chosen_motors = found.best.design.actuators or Actuators(*entries[:3])
+        t_fixed, fixed = run(pool, design.replace(actuators=chosen_motors))
+        t_geared, geared = run(
+            pool, design, geared_settings, actuators=entries, ratio_ranges=ranges
+        )
+
+    def note(result) -> str:
+        best = result.best.design
+        motors = best.actuators.joints if best.actuators else ()
+        chosen = ", ".join(f"{a.catalog or 'given'} N={a.gear_ratio:.4g}" for a in motors)
+        return (
+            f"{result.best.evaluation.values['robot_mass']:.2f} kg at l = "
+            f"({', '.join(f'{v:.4f}' for v in best.lengths)}) m with {chosen}, "
+            f"feasible {result.feasible}"
+        )
+
+    def per_design(seconds: float, result) -> float:
+        return seconds / result.evaluations
+
     name = f"decide --choose-actuators, 3 free lengths, {found.evaluations} designs"
-    return [Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 90 s", note=note)]
+    return [
+        Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 90 s", note=note(found)),
+        Row(
+            name,
+            f"baseline: lengths only, those actuators fixed ({fixed.evaluations} designs)",
+            t_fixed,
+            per_design(elapsed, found) / per_design(t_fixed, fixed),
+            None,
+            note="ratio: time per design choosing / with the actuators fixed; " + note(fixed),
+        ),
+        Row(
+            name,
+            f"--free-gear-ratio too ({geared.evaluations} designs)",
+            t_geared,
+            per_design(t_geared, geared) / per_design(elapsed, found),
+            None,
+            note="ratio: time per design with free ratios / choosing only; " + note(geared),
+        ),
+    ]

@@ -14,10 +14,31 @@ efficiency η between motor and joint (:mod:`hexaleg.electrical` has the equatio
 Derived per joint: the no-load speed V/(k_t·N) [rad/s] (the speed rating when
 ``max_speed`` is not given) and the reflected rotor inertia N²·J [kg·m²], the joint's
 armature.
+
+Another gear ratio for the same motor (:meth:`Actuator.with_gear_ratio`, what
+``decide --free-gear-ratio`` searches within a catalog entry's ``gear_ratio_range``):
+N changes to N' = s·N and
+
+- the motor's k_t, R, J, the supply V, the mass and η stay (η is held at the entry's: a
+  datasheet gives one per ratio, within a few per cent of each other for the catalog's
+  units);
+- the speed rating scales as 1/s (a given ``max_speed``, the motor's top speed through
+  the new ratio; the no-load speed V/(k_t·N') follows by itself), the armature as s²;
+- the peak and continuous torques scale as min(s, 1): below the entry's ratio the motor
+  binds (its torque limit times N'·η), above it the rule credits no more than the
+  datasheet printed for the entry's ratio, since the gearbox it was rated with may
+  bind there. Against Harmonic Drive's CHA tables, which print every ratio
+  (``hexaleg/data/actuators_notes.md``), the rule is conservative except below the
+  entry's ratio where a smaller gearbox is rated less than proportionally (CHA-32A at
+  30: 100 N·m printed, 130 N·m by the rule; CHA-17A's continuous torque at 80: 27 N·m
+  printed, 31 N·m by the rule); above it, scaling by s would overstate (CHA-20A at 160:
+  92 N·m printed, 131 N·m by s). A product sells discrete ratios: the ratio found is a
+  continuous optimum to round to the nearest one sold.
 """
 
 from __future__ import annotations
 
+import dataclasses
 import difflib
 from collections.abc import Mapping
 from dataclasses import dataclass
@@ -109,6 +130,23 @@ class Actuator:
     def armature(self) -> float:
         """The rotor's inertia reflected to the joint, N²·J [kg·m²]."""
         return self.gear_ratio**2 * self.rotor_inertia
+
+    def with_gear_ratio(self, ratio: float) -> Actuator:
+        """The same motor behind a gearbox of ratio N' = ``ratio`` (the module's rule).
+
+        Raises:
+            ParameterError: ``gear_ratio`` out of range, or a scaled rating out of its own.
+
+        """
+        scale = ratio / self.gear_ratio
+        torque = min(scale, 1.0)
+        return dataclasses.replace(
+            self,
+            gear_ratio=ratio,
+            peak_torque=self.peak_torque * torque,
+            continuous_torque=self.continuous_torque * torque,
+            max_speed=None if self.max_speed is None else self.max_speed / scale,
+        )
 
     def as_dict(self) -> dict[str, Any]:
         """Every key as given (``max_speed`` ``None`` when derived) and ``rated_speed``."""

@@ -30,7 +30,7 @@ from hexaleg.study.optimize import (
     SearchSettings,
 )
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
-from hexaleg.study.search_space import FREEABLE, AtBound, FreeVariable
+from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
 DESCRIPTION = (
     "Find the best leg for what the robot must do: of the designs meeting every requirement "
@@ -82,6 +82,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="also choose each joint type's actuator from the catalog (hexaleg actuators), "
         "one categorical variable per joint type",
     )
+    search.add_argument(
+        "--free-gear-ratio",
+        action="store_true",
+        help="with --choose-actuators, also free each joint type's gear ratio within its "
+        "chosen entry's gear_ratio_range (a datasheet's ratios: the Harmonic Drive CHA "
+        "units); an entry without one keeps its ratio. The same motor at ratio N' = s·N: "
+        "speed rating /s, armature ·s², peak and continuous torque ·min(s, 1)",
+    )
     search.add_argument("--seed", type=bounded_int(0, 2**32 - 1), default=0, help="default 0")
     search.add_argument(
         "--evaluations",
@@ -118,6 +126,7 @@ def run(args: argparse.Namespace) -> int:
         if args.scheduler is None
         else dask_executor(args.scheduler)
     )
+    actuators, ranges = _catalog_actuators(args.choose_actuators, args.free_gear_ratio)
     with executor as pool:
         result = decide(
             design,
@@ -125,7 +134,8 @@ def run(args: argparse.Namespace) -> int:
             objective,
             free_posture=args.free_posture,
             free=free,
-            actuators=_catalog_actuators(args.choose_actuators),
+            actuators=actuators,
+            ratio_ranges=ranges,
             settings=settings,
             executor=pool,
             journal=args.journal,
@@ -138,13 +148,21 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _catalog_actuators(choose: bool) -> list[Actuator]:
-    """The shipped catalog's actuators when ``--choose-actuators`` is given."""
+def _catalog_actuators(
+    choose: bool, free_ratio: bool
+) -> tuple[list[Actuator], list[tuple[float, float] | None] | None]:
+    """The shipped catalog's actuators (``--choose-actuators``), and their ratio ranges."""
+    if free_ratio and not choose:
+        raise UsageError(
+            "--free-gear-ratio frees the chosen actuators' ratios: add --choose-actuators"
+        )
     if not choose:
-        return []
+        return [], None
     from hexaleg.actuator_catalog import shipped_catalog
 
-    return [entry.actuator for entry in shipped_catalog()]
+    entries = list(shipped_catalog())
+    ranges = [entry.gear_ratio_range for entry in entries] if free_ratio else None
+    return [entry.actuator for entry in entries], ranges
 
 
 def render(result: DecideResult) -> str:
@@ -172,7 +190,11 @@ def _design_block(
     head = f"{title}: l = ({lengths}) m"
     motors = checked.design.actuators
     if motors is not None:
-        names = (a.catalog or "given" for a in motors.joints)
+        geared = any(v.name in GEARS for v in result.variables)
+        names = (
+            (a.catalog or "given") + (f" at N = {a.gear_ratio:.4g}" if geared else "")
+            for a in motors.joints
+        )
         head += " with " + ", ".join(f"{j} {n}" for j, n in zip(LEG_JOINTS, names, strict=True))
     if checked.design.battery is not None:
         head += f", battery {checked.design.battery.capacity:.4g} Wh"

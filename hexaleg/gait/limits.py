@@ -8,7 +8,13 @@
   is the first crossing from S = 0 (:func:`~hexaleg.numerics.bracketing.first_crossings`):
   strides are scanned up to one no foot reaches (:func:`_out_of_reach`), and each
   constraint that breaks in the first broken bracket is solved on its own worst sample's
-  margin to :data:`STRIDE_TOLERANCE`.
+  margin to :data:`STRIDE_TOLERANCE`. A design with actuators also keeps every joint
+  within its actuator's every rating at the gait's period (peak and RMS torque, voltage,
+  speed: :mod:`hexaleg.electrical.ratings`, what makes its period feasible): below that
+  stride, the largest ratio of value to rating is scanned at :data:`SCAN_STEPS` strides
+  and its first crossing of 1 bisected to :data:`STRIDE_TOLERANCE`; the rating that
+  binds is named (e.g. "hip continuous torque"), unless it binds within
+  :data:`REACH_SHARE` of a stride where a foot runs out of reach (that reach is named).
 - Max speed: the largest v = S/(β·T) at which every joint's peak |τ| and |q̇| stays within
   its rating, the zero-moment point within the standing feet's polygon (each edge's side
   is affine in 1/T², :func:`~hexaleg.gait.stability.zmp_sides`: solved in closed form,
@@ -33,9 +39,9 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg._typing import ArrayF
+from hexaleg._typing import ArrayF, CauseKind
 from hexaleg.cause import Cause
-from hexaleg.electrical.ratings import RATED, motor_loads
+from hexaleg.electrical.ratings import RATED, RatingLoads, motor_loads
 from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
@@ -48,6 +54,10 @@ STRIDE_TOLERANCE = 1e-9
 """Width of the max stride's final bracket [m]: the value is feasible, value + this is not."""
 SPEED_TOLERANCE = 1e-6
 """Relative width of the final bracket of a min-torque max speed, on 1/T² [-]."""
+REACH_SHARE = 1e-4
+"""A rating first exceeded this close (a share of it) below a max stride bound by reach is
+the straightening leg's, whose joint speeds and torques grow without bound there: the
+stride is the rating's, its cause stays the reach [-]."""
 SCAN_STEPS = 32
 """Strides scanned up to where no foot reaches (10 cm apart for a 1 m leg) before refining."""
 SCAN_CHUNKS = 4
@@ -98,8 +108,22 @@ class SpeedLimit:
         return {"value": self.value, "limited_by": self.limited_by.to_dict()}
 
 
+RATING_CAUSES: dict[str, CauseKind] = {
+    "peak_torque": "torque",
+    "continuous_torque": "continuous_torque",
+    "voltage": "voltage",
+    "speed": "speed",
+}
+"""The cause kind of each actuator rating (:data:`~hexaleg.electrical.ratings.RATED`)."""
+
+
 def max_stride(walker: Walker) -> StrideLimit:
     """The largest feasible stride of ``walker``'s gait (see the module docstring)."""
+    return _stride_within_motors(walker, _walkable_stride(walker))
+
+
+def _walkable_stride(walker: Walker) -> StrideLimit:
+    """The largest stride that breaks no constraint of the motion (reach, limits, ground)."""
     if not feasible(_margins(walker, np.array([0.0]))).all():
         return StrideLimit(0.0, _first_cause(walker, 0.0))
 
@@ -121,6 +145,54 @@ def max_stride(walker: Walker) -> StrideLimit:
         return StrideLimit(reach, Cause("range"))
     value = float(found.t[0])
     return StrideLimit(value, _first_cause(walker, value + STRIDE_TOLERANCE))
+
+
+def _stride_within_motors(walker: Walker, limit: StrideLimit) -> StrideLimit:
+    """``limit``, or the first stride below it whose period exceeds an actuator's rating."""
+    actuators = walker.model.design.actuators
+    if actuators is None:
+        return limit
+    period, legs = walker.gait.period, walker.frames.legs
+
+    def loads(stride: float) -> RatingLoads | None:  # None: a joint's speed is unbounded
+        walk = walker.stride(stride)
+        torques = walker.loads(stride, walk, period).split.torques(period)
+        speeds = walk.motion.velocity / period
+        if not (np.isfinite(torques).all() and np.isfinite(speeds).all()):
+            return None  # a leg straight at the walkable max stride bound by reach
+        return motor_loads(torques, speeds, actuators, legs)
+
+    def over(stride: float) -> bool:
+        found = loads(stride)
+        return found is None or bool(found.ratios.max() > 1)
+
+    if over(0.0):
+        return StrideLimit(0.0, _rating_cause(loads(0.0), limit))
+    low, high = 0.0, math.nan
+    for stride in np.linspace(0.0, limit.value, SCAN_STEPS + 1)[1:]:
+        if over(float(stride)):
+            high = float(stride)
+            break
+        low = float(stride)
+    if math.isnan(high):
+        return limit
+    while high - low > STRIDE_TOLERANCE:
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if not over(middle) else (low, middle)
+    if limit.limited_by.kind == "reach" and limit.value - low <= REACH_SHARE * limit.value:
+        return StrideLimit(low, limit.limited_by)  # the straightening leg's torques and speeds
+    return StrideLimit(low, _rating_cause(loads(high), limit))
+
+
+def _rating_cause(loads: RatingLoads | None, limit: StrideLimit) -> Cause:
+    """The rating the period exceeds furthest, as a cause (e.g. a hip's continuous torque).
+
+    ``limit``'s own cause when the joint speeds are unbounded there (a leg straight).
+    """
+    if loads is None:
+        return limit.limited_by
+    binds = loads.binding()
+    return Cause(RATING_CAUSES[binds.quantity], binds.leg, binds.joint)
 
 
 def _out_of_reach(walker: Walker) -> float:

@@ -222,6 +222,7 @@ def decide(
     free_posture: bool = False,
     free: Sequence[FreeVariable] = (),
     actuators: Sequence[Actuator] = (),
+    ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
     settings: SearchSettings | None = None,
     executor: Executor | None = None,
     workers: int | None = None,
@@ -240,6 +241,10 @@ def decide(
         free: More free variables (body fields), or other bounds for l1, l2, l3.
         actuators: A catalog's actuators: each joint type's is chosen among them (a
             categorical variable each); none, the design's own are kept.
+        ratio_ranges: One per actuator, its lowest and highest gear ratio [-] (None: its
+            own ratio only), e.g. a catalog entry's ``gear_ratio_range``: also free each
+            joint type's gear ratio within its chosen entry's range
+            (:meth:`~hexaleg.actuators.Actuator.with_gear_ratio` scales the ratings).
         settings: Seed and budget of the search.
         executor: Where designs are evaluated; a local process pool if omitted.
         workers: Size of that pool (default: the number of CPUs).
@@ -256,24 +261,18 @@ def decide(
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective or Objective())
-    space = _space(design, requirements, free_posture, free, actuators, settings)
+    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings)
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
     best = CheckedDesign.of(space.design(outcome.x), goal)
     return DecideResult(
-        requirements=requirements,
-        objective=goal.objective,
-        variables=space.variables,
-        best=best,
-        yours=CheckedDesign.of(design, goal),
-        feasible=best.meets_all,
-        conflict=conflict,
-        method=outcome.method,
+        requirements=requirements, objective=goal.objective, variables=space.variables,
+        best=best, yours=CheckedDesign.of(design, goal), feasible=best.meets_all,
+        conflict=conflict, method=outcome.method, seed=settings.seed,
         evaluations=sum(found.evaluations for found in search.done),
-        seed=settings.seed,
-    )
+    )  # fmt: skip
 
 
 def _space(
@@ -282,12 +281,13 @@ def _space(
     free_posture: bool,
     free: Sequence[FreeVariable],
     actuators: Sequence[Actuator],
+    ratio_ranges: Sequence[tuple[float, float] | None] | None,
     settings: SearchSettings,
 ) -> SearchSpace:
     """What the search varies; a budget of partial generations is refused before any work."""
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators, requirements.range_km is not None,
+        actuators, requirements.range_km is not None, ratio_ranges,
     )  # fmt: skip
     settings.generations(len(space.variables))
     return space
@@ -369,6 +369,7 @@ def _fingerprint(
         "objective": str(goal.objective),
         "free": [[v.name, v.lower, v.upper] for v in space.variables],
         "actuators": [a.to_table() for a in space.entries],
+        "ratio_ranges": [None if r is None else [*r] for r in space.ratio_ranges],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
     }

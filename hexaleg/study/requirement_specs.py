@@ -146,8 +146,10 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
                         "least coxa length l1, for the root actuator's packaging [m]", "M", 0.08,
                         "geometry: the design's coxa length l1"),
         RequirementSpec("speed", "max_speed", "at least", (0.0, 100.0),
-                        f"tripod gait speed ({Gait.stride:g} m stride) within the rated torques "
-                        "and speeds, carrying the payload [m/s]", "M/S", 0.3, "the gait"),
+                        f"tripod gait speed ({Gait.stride:g} m stride) carrying the payload "
+                        "within the rated torques and speeds; with [actuators], within their "
+                        "electrical ratings: peak and continuous (RMS) torque, the supply "
+                        "voltage, max speed [m/s]", "M/S", 0.3, "the gait"),
         RequirementSpec("walking_payload", "walking_payload_capacity", "at least",
                         (0.0, PAYLOAD_SEARCH_LIMIT),
                         "payload the robot must carry at payload_at walking that gait within "

@@ -8,8 +8,10 @@ the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limit
 (or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
 categorical variable per joint type (``actuator_root``, ``actuator_hip``,
 ``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
-actuators. A ``range_km`` requirement frees the battery's capacity (``battery_capacity``
-[Wh], from :data:`CAPACITY_BOUNDS`) of a design that has a ``[battery]``.
+actuators, and ``--free-gear-ratio`` its gear ratio
+(:mod:`hexaleg.study.actuator_variables`). A ``range_km`` requirement frees the battery's
+capacity (``battery_capacity`` [Wh], from :data:`CAPACITY_BOUNDS`) of a design that has
+a ``[battery]``.
 """
 
 from __future__ import annotations
@@ -30,6 +32,14 @@ from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.study.actuator_variables import (
+    CHOICES,
+    GEARS,
+    actuator_bounds,
+    choice_coordinate,
+    gear_coordinate,
+    geared_entry,
+)
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -38,15 +48,12 @@ SEGMENT_FLOOR = 0.02
 POSTURE = ("theta2", "theta3")
 """The nominal hip and knee angles [rad] that ``--free-posture`` frees (θ1 stays)."""
 
-CHOICES = tuple(f"actuator_{joint}" for joint in LEG_JOINTS)
-"""The categorical variables of ``--choose-actuators``: each joint type's catalog entry."""
-
 BATTERY = "battery_capacity"
 """The battery's capacity [Wh], free when a range is required."""
 CAPACITY_BOUNDS = (1.0, 5e4)
 """The capacities a required range searches [Wh]: a watt-hour to 50 kWh."""
 
-FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, BATTERY)
+FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, *GEARS, BATTERY)
 """Every variable a search can free."""
 
 LEG_CAP = "l1 + l2 + l3 at most the leg length"
@@ -96,7 +103,7 @@ class FreeVariable:
     @property
     def unit(self) -> str:
         """Its unit: ``"m"``, ``"rad"`` (or a body field's own; ``"-"`` for a choice)."""
-        if self.name in CHOICES:
+        if self.name in (*CHOICES, *GEARS):
             return "-"
         if self.name == BATTERY:
             return "Wh"
@@ -110,6 +117,8 @@ class FreeVariable:
             raise ParameterError("--free", text, "FIELD=LOWER:UPPER, e.g. body_width=0.4:0.8")
         if match[1] in CHOICES:
             raise ParameterError("--free", text, "--choose-actuators frees the actuators")
+        if match[1] in GEARS:
+            raise ParameterError("--free", text, "--free-gear-ratio frees the gear ratios")
         try:
             lower, upper = float(match[2]), float(match[3])
         except ValueError:
@@ -125,12 +134,15 @@ class SearchSpace:
         base: Every field that is not free.
         variables: The free variables, in the order of a point's coordinates.
         entries: The actuators a choice variable picks from, in the catalog's order.
+        ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
+            only), what a gear ratio variable spans; empty without such variables.
 
     """
 
     base: HexapodDesign
     variables: tuple[FreeVariable, ...]
     entries: tuple[Actuator, ...] = ()
+    ratio_ranges: tuple[tuple[float, float] | None, ...] = ()
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -150,17 +162,20 @@ class SearchSpace:
     @property
     def same_body(self) -> bool:
         """Whether every design keeps the base's body and mounts (models derive in closed form)."""
-        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, BATTERY) for name in self.names)
+        return all(name in (*SEGMENTS, *POSTURE, *CHOICES, *GEARS, BATTERY) for name in self.names)
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
-        chosen: dict[str, Actuator] = {}
+        picks: dict[str, int] = {}
+        geared: dict[str, float] = {}
         for name, value in zip(self.names, np.asarray(x, dtype=float), strict=True):
             if name in CHOICES:
                 pick = int(np.clip(np.floor(value), 0, len(self.entries) - 1))
-                chosen[name.removeprefix("actuator_")] = self.entries[pick]
+                picks[name.removeprefix("actuator_")] = pick
+            elif name in GEARS:
+                geared[name.removeprefix("gear_ratio_")] = float(value)
             elif name == BATTERY:
                 changes["battery"] = dataclasses.replace(self._battery, capacity=float(value))
             elif name in POSTURE:
@@ -169,6 +184,8 @@ class SearchSpace:
                 changes[name] = float(value)
         if tuple(angles) != self.base.nominal_angles:
             changes["nominal_angles"] = tuple(angles)
+        chosen = {j: geared_entry(self.entries, self.ratio_ranges, pick, geared.get(j))
+                  for j, pick in picks.items()}  # fmt: skip
         if chosen:
             given = self.base.actuators
             kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
@@ -177,8 +194,13 @@ class SearchSpace:
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
+        coordinates = {name: choice_coordinate for name in CHOICES} | {
+            name: gear_coordinate for name in GEARS
+        }
         values = [
-            self._choice_of(design, name) if name in CHOICES else value_of(design, name)
+            coordinates[name](self.entries, self.ratio_ranges, design, name)
+            if name in coordinates
+            else value_of(design, name)
             for name in self.names
         ]
         clipped: ArrayF = np.clip(np.array(values, dtype=float), self.lower, self.upper)
@@ -189,12 +211,6 @@ class SearchSpace:
         if self.base.battery is None:
             raise ParameterError(BATTERY, None, "needs a [battery] in the design to size")
         return self.base.battery
-
-    def _choice_of(self, design: HexapodDesign, name: str) -> float:
-        """The coordinate that picks ``design``'s actuator (the first entry's if not one)."""
-        given = design.actuators
-        actuator = None if given is None else getattr(given, name.removeprefix("actuator_"))
-        return self.entries.index(actuator) + 0.5 if actuator in self.entries else 0.5
 
     def widened(
         self, name: str, lower: float | None = None, upper: float | None = None
@@ -208,7 +224,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables, self.entries)
+        return SearchSpace(self.base, variables, self.entries, self.ratio_ranges)
 
 
 @dataclass(frozen=True)
@@ -272,8 +288,8 @@ def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> 
     """
     reached = []
     for variable in variables:
-        if variable.name in CHOICES:
-            continue  # a catalog entry has no bound to press against
+        if variable.name in (*CHOICES, *GEARS):
+            continue  # a catalog entry has no bound to press against; its ratio range is its own
         value, near = (
             value_of(design, variable.name),
             AT_BOUND_SHARE * (variable.upper - variable.lower),
@@ -302,6 +318,7 @@ def search_space(
     free: Sequence[FreeVariable] = (),
     actuators: Sequence[Actuator] = (),
     battery: bool = False,
+    ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -314,6 +331,8 @@ def search_space(
         actuators: The catalog's actuators, to pick one per joint type from (none: the
             design's own are kept).
         battery: Free the battery's capacity (a range is required), if the design has one.
+        ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
+            own only): free each joint type's within its entry's (None: ratios kept).
 
     """
     floor = segment_floor(leg_length)
@@ -348,9 +367,9 @@ def search_space(
         raise ParameterError(f"--free {BATTERY}", None, "needs a [battery] in the design")
     if battery and base.battery is not None and BATTERY not in chosen:
         chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
-    for name in CHOICES if actuators else ():
-        chosen[name] = FreeVariable(name, 0.0, float(len(actuators)))
-    return SearchSpace(base, tuple(chosen.values()), tuple(actuators))
+    bounds, spans = actuator_bounds(actuators, ratio_ranges)
+    chosen |= {name: FreeVariable(name, *bound) for name, bound in bounds.items()}
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans)
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:
