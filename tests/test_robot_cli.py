@@ -96,7 +96,8 @@ def test_design_import_round_trip(tmp_path, capsys):
     ("argv", "expected"),
     [
         (["flexibility", "--urdf", KRABY], "--urdf does not run on this command yet"),
-        (["loads", "--urdf", KRABY], "--urdf does not run on this command yet"),
+        (["loads", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (["loads", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
         (["gait", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["report", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["design", "init", "x.toml", "--urdf", KRABY], "--urdf does not run"),

@@ -55,7 +55,7 @@ class LoadsAnalysis:
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
         capacity: The largest payload at the payload's point.
-        mode: Which flexibility extremes (axis-locked or free-coupled).
+        mode: Which flexibility extremes (axis-locked or free-coupled; None: none).
 
     """
 
@@ -67,7 +67,7 @@ class LoadsAnalysis:
     extremes: tuple[ExtremeLoads, ...]
     slopes: tuple[SlopeLimit, ...]
     capacity: PayloadCapacity
-    mode: FlexibilityMode
+    mode: FlexibilityMode | None
 
     @property
     def peak_torques(self) -> dict[str, float]:
@@ -219,22 +219,40 @@ def loads_at_extremes(
     distribution: Distribution = "min-norm",
 ) -> LoadsAnalysis:
     """The statics of a flexibility result's design, at its nominal stance and extremes."""
-    design, legs, mode = result.design, result.legs, result.mode
+    return stance_loads(
+        model, result.legs, payload, friction, distribution, result.extremes, result.mode,
+        result.design,
+    )  # fmt: skip
+
+
+def stance_loads(
+    model: HexapodModel,
+    legs: Sequence[str],
+    payload: Payload | None = None,
+    friction: float = DEFAULT_FRICTION,
+    distribution: Distribution = "min-norm",
+    extremes: Sequence[Extreme] = (),
+    mode: FlexibilityMode | None = None,
+    design: HexapodDesign | None = None,
+) -> LoadsAnalysis:
+    """The statics of ``model`` on ``legs`` at its nominal stance and at ``extremes``.
+
+    Without extremes (an imported robot, whose flexibility is not searched yet), the
+    peaks and ratings are the nominal stance's; ``mode`` names the extremes' search.
+    """
+    design = model.design if design is None else design
     statics = Statics(model, legs, payload, friction)
     q = model.nominal_configuration()
-    nominal, *at_extremes = statics.states(
-        [q, *extreme_configurations(model, result.extremes)], distribution
-    )
-    extremes = tuple(
-        ExtremeLoads(e, state) for e, state in zip(result.extremes, at_extremes, strict=True)
-    )
+    at = list(extreme_configurations(model, extremes)) if extremes else []
+    nominal, *at_extremes = statics.states([q, *at], distribution)
+    loads = tuple(ExtremeLoads(e, state) for e, state in zip(extremes, at_extremes, strict=True))
     return LoadsAnalysis(
         design=design,
         payload=statics.payload,
         friction=friction,
         distribution=distribution,
         nominal=nominal,
-        extremes=extremes,
+        extremes=loads,
         slopes=slope_limits(statics.support, nominal.com, friction),
         capacity=payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
