@@ -16,7 +16,7 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, robot_model
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -32,7 +32,7 @@ DESCRIPTION = (
     "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
-    "extremes and the walking capacity not yet)."
+    "extremes axis-locked within the file's limits; the walking capacity not yet)."
 )
 
 ROBOT_OPTIONS = True
@@ -124,12 +124,19 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
-    """The statics of an imported robot at its nominal stance (no extremes, no walking yet)."""
-    from hexaleg.stance.geometry import stance_legs
-    from hexaleg.statics.loads import stance_loads
+    """The statics of an imported robot: nominal stance and axis-locked extremes (no walking)."""
+    from hexaleg.statics.loads import analyze_loads
 
-    legs = stance_legs(model, args.stance)
-    analysis = stance_loads(model, legs, payload_from_args(args), args.friction, args.distribution)
+    refuse_free(args)
+    analysis = analyze_loads(
+        model.design,
+        payload_from_args(args),
+        args.friction,
+        args.stance,
+        args.distribution,
+        "axis",
+        model=model,
+    )
     source = str(model.robot.source)
     if args.json:
         nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
@@ -140,8 +147,7 @@ def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
             | {"joint_angles": nominal, "urdf_joint_angles": files}
         )
         return 0
-    rows = _rows(analysis)
-    print_table(lengths_title(f"Statics of {source}", model.design.lengths), rows)
+    print_table(lengths_title(f"Statics of {source}", model.design.lengths), _rows(analysis))
     return 0
 
 
@@ -163,15 +169,6 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         ("stability margin, nominal", margin),
     ]
     for joint in LEG_JOINTS:
-        if not analysis.extremes:
-            rows.append(
-                (
-                    f"peak |τ| {joint}: nominal",
-                    f"{nominal[joint]:.4g} N·m (rated {rated[joint]:g} N·m)"
-                    + (", OVER RATING" if nominal[joint] > rated[joint] else ""),
-                )
-            )
-            continue
         rows.append(
             (
                 f"peak |τ| {joint}: nominal / extremes",

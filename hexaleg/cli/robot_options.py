@@ -20,7 +20,15 @@ if TYPE_CHECKING:
 
 ROBOT_GROUP = "robot file (your hexapod's URDF or Xacro instead of hexaleg's template)"
 
-ROBOT_COMMANDS = ("design show", "design import", "workspace", "manipulability", "loads", "urdf")
+ROBOT_COMMANDS = (
+    "design show",
+    "design import",
+    "workspace",
+    "manipulability",
+    "flexibility",
+    "loads",
+    "urdf",
+)
 """The commands that run on an imported robot."""
 
 
@@ -205,3 +213,11 @@ def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexa
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
     return ImportedHexapodModel(robot, design)
+
+
+def refuse_free(args: argparse.Namespace) -> None:
+    """Refuse, with ``--urdf``, free-coupled flexibility and self-collisions (not yet)."""
+    if getattr(args, "mode", "axis") != "axis":
+        raise UsageError("--mode free with --urdf is not supported yet: use --mode axis")
+    if getattr(args, "collisions", False):
+        raise UsageError("--collisions with --urdf is not supported yet")

@@ -29,6 +29,7 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError, RobotImportError
+from hexaleg.leg_geometry import LegGeometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex, set_armature
 from hexaleg.robot.model import root_frame_name as _root
@@ -89,8 +90,8 @@ class ImportedHexapodModel(HexapodModel):
             if omitted.
 
     Raises:
-        RobotImportError: The legs differ in their segments (one design has one leg), or
-            the nominal posture does not put the feet level.
+        RobotImportError: The legs differ in their segments (one design has one leg), a
+            leg joint is continuous, or the nominal posture does not put the feet level.
 
     """
 
@@ -99,6 +100,13 @@ class ImportedHexapodModel(HexapodModel):
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
         model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        for leg in robot.legs:
+            for name in leg.joint_names:
+                if model.joints[model.getJointId(name)].nq != 1:
+                    raise RobotImportError(
+                        f"joint {name} is continuous: the analyses of the whole robot take "
+                        f"revolute leg joints only (give it limits)"
+                    )
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
         set_armature(model, legs.values(), design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
@@ -109,6 +117,14 @@ class ImportedHexapodModel(HexapodModel):
             for leg in robot.legs
         }
         self._height = self._standing_height()
+        self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
+        self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
+
+    general_legs = True
+
+    def leg_geometry(self, leg: str) -> LegGeometry:
+        """``leg``'s general leg, as read from the file."""
+        return self._geometry[self._leg(leg).name]
 
     @property
     def urdf(self) -> str:

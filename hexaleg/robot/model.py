@@ -18,6 +18,7 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
+from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.inertia import LinkInertial, body_inertial, leg_inertials
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
@@ -158,7 +159,16 @@ class HexapodModel:
         if _model is None:
             set_armature(self.model, self._legs.values(), design)
         self.base_frame = _frame_id(self.model, _base)
+        self.body_box: ArrayF | None = None  # None: the body's collision shape is the URDF's
         self._collision: pin.GeometryModel | None = None
+
+    general_legs = False
+    """Whether the legs are a robot file's general legs (:meth:`leg_geometry`)."""
+
+    def leg_geometry(self, leg: str) -> LegGeometry:
+        """``leg``'s general leg: the paper's leg of the design's lengths."""
+        self._leg(leg)
+        return LegGeometry.from_lengths(self.design.lengths)
 
     @property
     def data(self) -> pin.Data:

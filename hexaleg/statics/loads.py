@@ -55,7 +55,7 @@ class LoadsAnalysis:
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
         capacity: The largest payload at the payload's point.
-        mode: Which flexibility extremes (axis-locked or free-coupled; None: none).
+        mode: Which flexibility extremes (axis-locked or free-coupled).
 
     """
 
@@ -67,7 +67,7 @@ class LoadsAnalysis:
     extremes: tuple[ExtremeLoads, ...]
     slopes: tuple[SlopeLimit, ...]
     capacity: PayloadCapacity
-    mode: FlexibilityMode | None
+    mode: FlexibilityMode
 
     @property
     def peak_torques(self) -> dict[str, float]:
@@ -219,40 +219,22 @@ def loads_at_extremes(
     distribution: Distribution = "min-norm",
 ) -> LoadsAnalysis:
     """The statics of a flexibility result's design, at its nominal stance and extremes."""
-    return stance_loads(
-        model, result.legs, payload, friction, distribution, result.extremes, result.mode,
-        result.design,
-    )  # fmt: skip
-
-
-def stance_loads(
-    model: HexapodModel,
-    legs: Sequence[str],
-    payload: Payload | None = None,
-    friction: float = DEFAULT_FRICTION,
-    distribution: Distribution = "min-norm",
-    extremes: Sequence[Extreme] = (),
-    mode: FlexibilityMode | None = None,
-    design: HexapodDesign | None = None,
-) -> LoadsAnalysis:
-    """The statics of ``model`` on ``legs`` at its nominal stance and at ``extremes``.
-
-    Without extremes (an imported robot, whose flexibility is not searched yet), the
-    peaks and ratings are the nominal stance's; ``mode`` names the extremes' search.
-    """
-    design = model.design if design is None else design
+    design, legs, mode = result.design, result.legs, result.mode
     statics = Statics(model, legs, payload, friction)
     q = model.nominal_configuration()
-    at = list(extreme_configurations(model, extremes)) if extremes else []
-    nominal, *at_extremes = statics.states([q, *at], distribution)
-    loads = tuple(ExtremeLoads(e, state) for e, state in zip(extremes, at_extremes, strict=True))
+    nominal, *at_extremes = statics.states(
+        [q, *extreme_configurations(model, result.extremes)], distribution
+    )
+    extremes = tuple(
+        ExtremeLoads(e, state) for e, state in zip(result.extremes, at_extremes, strict=True)
+    )
     return LoadsAnalysis(
         design=design,
         payload=statics.payload,
         friction=friction,
         distribution=distribution,
         nominal=nominal,
-        extremes=loads,
+        extremes=extremes,
         slopes=slope_limits(statics.support, nominal.com, friction),
         capacity=payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
