@@ -162,8 +162,7 @@ class HexapodModel:
         self.body_box: ArrayF | None = None  # None: the body's collision shape is the URDF's
         self._collision: pin.GeometryModel | None = None
 
-    general_legs = False
-    """Whether the legs are a robot file's general legs (:meth:`leg_geometry`)."""
+    general_legs = False  # whether the legs are a robot file's (:meth:`leg_geometry`)
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
