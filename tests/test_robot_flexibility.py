@@ -29,6 +29,7 @@ from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
 from hexaleg.stance.flexibility import flexibility
+from hexaleg.statics.loads import loads_at_extremes
 
 ROBOTS = Path(__file__).parent / "data" / "robots"
 KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
@@ -193,6 +194,11 @@ def test_the_template_urdf_imported_back_has_the_designs_extremes(layout):
         assert mine.limited_by == theirs.limited_by
         for leg, angles in theirs.joint_angles.items():
             np.testing.assert_allclose(mine.joint_angles[leg], angles, atol=1e-9)
+    # and the statics there: the file's masses and joints hold each extreme as the design's
+    loads = loads_at_extremes(model, back), loads_at_extremes(HexapodModel(design), own)
+    for mine, theirs in zip(*(a.extremes for a in loads), strict=True):
+        np.testing.assert_allclose(mine.state.foot_forces, theirs.state.foot_forces, atol=1e-9)
+        np.testing.assert_allclose(mine.state.joint_torques, theirs.state.joint_torques, atol=1e-9)
 
 
 def test_free_mode_and_collisions_are_refused_in_one_line(capsys):
