@@ -72,6 +72,7 @@ class _Writer:
         self.rng = rng
         self.parts: list[str] = []
         self.frames: dict[str, np.ndarray] = {}
+        self.bound = 2.5  # every joint's |q| limit [rad]
 
     def link(self, name: str, frame: np.ndarray, extra: str = "") -> None:
         self.frames[name] = frame
@@ -80,7 +81,7 @@ class _Writer:
     def joint(
         self, name: str, kind: str, parent: str, child: str, frame: np.ndarray, axis: str = "0 0 1"
     ) -> None:
-        limit = '<limit lower="-2.5" upper="2.5" effort="3.1" velocity="5.2"/>'
+        limit = f'<limit lower="{-self.bound}" upper="{self.bound}" effort="3.1" velocity="5.2"/>'
         self.parts.append(
             f'<joint name="{name}" type="{kind}"><parent link="{parent}"/><child link="{child}"/>'
             f"{_origin(self.frames[parent], frame)}"
@@ -98,10 +99,19 @@ def _pitch_frame(rng: np.random.Generator, point) -> tuple[np.ndarray, str]:
     return _frame(turn, point), axis
 
 
-def draw_hexapod(seed: int, foot_link: bool = True) -> tuple[str, list[DrawnLeg]]:
-    """URDF text of a random hexapod and the dimensions each leg was drawn from."""
+def draw_hexapod(
+    seed: int, foot_link: bool = True, same_legs: bool = False
+) -> tuple[str, list[DrawnLeg]]:
+    """URDF text of a random hexapod and the dimensions each leg was drawn from.
+
+    With ``same_legs``, every leg has the first one's dimensions and bends, and every
+    mount lies in one plane (a robot that stands level), each still written in its own
+    frames (rpy turns, mirroring, fixed links drawn anew).
+    """
+    first = None
     rng = np.random.default_rng(seed)
     w = _Writer(rng)
+    w.bound = 6.28 if same_legs else 2.5  # same legs: the nominal posture inside on every leg
     w.parts.append('<robot name="drawn">')
     w.link("base", np.eye(4))
     drawn = []
@@ -118,6 +128,10 @@ def draw_hexapod(seed: int, foot_link: bool = True) -> tuple[str, list[DrawnLeg]
             [l2 * np.cos(femur_line), rng.uniform(-0.03, 0.03), l2 * np.sin(femur_line)]
         )
         lateral = rng.uniform(-0.03, 0.03)
+        if same_legs:
+            first = first or (a1, h, l2, l3, femur_line, tibia_line, hip, knee, lateral)
+            a1, h, l2, l3, femur_line, tibia_line, hip, knee, lateral = first
+            mount = _frame(_rz(yaw), [root[0], root[1], 0.0])
         foot = [knee[0] + l3 * np.cos(tibia_line), lateral, knee[2] + l3 * np.sin(tibia_line)]
         flip = _rx(np.pi) if left else np.eye(3)  # mirrored: the yaw axis points down
         yaw_axis = ("0 0 -1" if left else "0 0 1") if rng.random() < 0.5 else "0 0 1"
@@ -141,7 +155,8 @@ def draw_hexapod(seed: int, foot_link: bool = True) -> tuple[str, list[DrawnLeg]
             )
             parent = f"{leg}_bracket"
         frame, axis = _pitch_frame(rng, hip)
-        w.joint(f"{leg}_j2", "continuous", parent, f"{leg}_femur", mount @ frame, axis)
+        kind = "revolute" if same_legs else "continuous"  # Pinocchio: a continuous q is (cos, sin)
+        w.joint(f"{leg}_j2", kind, parent, f"{leg}_femur", mount @ frame, axis)
         frame, axis = _pitch_frame(rng, knee)
         w.joint(f"{leg}_j3", "revolute", f"{leg}_femur", f"{leg}_tibia", mount @ frame, axis)
         parent = f"{leg}_tibia"

@@ -95,8 +95,9 @@ def test_design_import_round_trip(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["flexibility", "--urdf", KRABY], "--urdf does not run on this command yet"),
-        (["loads", "--urdf", KRABY], "--urdf does not run on this command yet"),
+        (["flexibility", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (["loads", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (["loads", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
         (["gait", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["report", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["design", "init", "x.toml", "--urdf", KRABY], "--urdf does not run"),
@@ -124,7 +125,12 @@ def test_refusals_are_one_line(capsys, argv, expected):
 def test_imported_design_file_is_refused_by_other_commands(tmp_path, capsys):
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
-    assert run_cli(["flexibility", "--design", str(target)]) == 2
+    capsys.readouterr()
+    via_file = _json(capsys, ["flexibility", "--design", str(target), "--json"])
+    assert via_file == _json(capsys, ["flexibility", "--urdf", KRABY, "--json"]) | {
+        "robot": via_file["robot"]
+    }
+    assert run_cli(["gait", "--design", str(target)]) == 2
     assert "describes an imported robot" in capsys.readouterr().err
     # a failed import writes nothing
     bad = tmp_path / "ochs.toml"

@@ -16,8 +16,10 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
 
 if TYPE_CHECKING:
+    from hexaleg.robot.imported_model import ImportedHexapodModel
     from hexaleg.stance.extremes import FlexibilityResult
 
 DESCRIPTION = (
@@ -25,8 +27,11 @@ DESCRIPTION = (
     "[m] and rotates about them [rad], one coordinate at a time (--mode axis, the ADAMS "
     "semantics) or with the other five free (--mode free), until a foot leaves its "
     "reach, a joint hits its stance limit or the body touches the ground. Prints the "
-    "12 extremes with their causes, the ranges (eq 28) and FB (eq 29)."
+    "12 extremes with their causes, the ranges (eq 28) and FB (eq 29). With --urdf, your "
+    "robot (axis-locked): each leg its own general leg and the file's joint limits."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -36,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_stance_option(parser)
     add_collisions_option(parser)
     add_output_options(parser)
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -45,6 +51,9 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.stance.flexibility import flexibility
 
     design = design_from_args(args)
+    robot = robot_model(args, design)
+    if robot is not None:
+        return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
@@ -62,6 +71,27 @@ def run(args: argparse.Namespace) -> int:
         ),
         _rows(result),
     )
+    return 0
+
+
+def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
+    """Axis-locked flexibility of an imported robot, in hexaleg's angles and the file's."""
+    from hexaleg.stance.flexibility import flexibility
+
+    refuse_free(args)
+    result = flexibility(model.design, "axis", args.stance, model)
+    source = str(model.robot.source)
+    if args.json:
+        summary = result.to_dict()
+        for extreme, record in zip(result.extremes, summary["extremes"], strict=True):
+            record["urdf_joint_angles"] = {
+                leg: model.joint_values(leg, angles).tolist()
+                for leg, angles in extreme.joint_angles.items()
+            }
+        print_json({"robot": source} | summary)
+        return 0
+    title = f"Body flexibility of {source} (axis, stance {' '.join(result.legs)})"
+    print_table(lengths_title(title, model.design.lengths), _rows(result))
     return 0
 
 

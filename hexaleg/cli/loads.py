@@ -16,20 +16,26 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
     from hexaleg.gait.capacity import WalkingCapacity
+    from hexaleg.robot.imported_model import ImportedHexapodModel
     from hexaleg.statics.loads import LoadsAnalysis
 
 DESCRIPTION = (
     "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "
     "gravity and the joint torques holding the nominal stance and each of the 12 body "
     "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
-    "the largest payload the nominal stance holds within the rated torques."
+    "the largest payload the nominal stance holds within the rated torques. With --urdf, "
+    "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
+    "extremes axis-locked within the file's limits; the walking capacity not yet)."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -39,6 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
+    add_robot_options(parser)
 
 
 def add_payload_options(parser: argparse.ArgumentParser) -> None:
@@ -94,6 +101,9 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.statics.loads import analyze_loads
 
     design = design_from_args(args)
+    robot = robot_model(args, design)
+    if robot is not None:
+        return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
     model = HexapodModel(design)
@@ -110,6 +120,34 @@ def run(args: argparse.Namespace) -> int:
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
     rows.insert(at, ("walking payload capacity", _walking(walking)))
     print_table(lengths_title("Statics", design.lengths), rows)
+    return 0
+
+
+def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
+    """The statics of an imported robot: nominal stance and axis-locked extremes (no walking)."""
+    from hexaleg.statics.loads import analyze_loads
+
+    refuse_free(args)
+    analysis = analyze_loads(
+        model.design,
+        payload_from_args(args),
+        args.friction,
+        args.stance,
+        args.distribution,
+        "axis",
+        model=model,
+    )
+    source = str(model.robot.source)
+    if args.json:
+        nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
+        files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
+        print_json(
+            {"robot": source}
+            | analysis.to_dict()
+            | {"joint_angles": nominal, "urdf_joint_angles": files}
+        )
+        return 0
+    print_table(lengths_title(f"Statics of {source}", model.design.lengths), _rows(analysis))
     return 0
 
 

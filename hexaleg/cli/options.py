@@ -184,12 +184,13 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         else load_design_file(path, Requirements.from_table)
     )
     if path is not None and not getattr(args, "robot_options", False):
+        from hexaleg.cli.robot_options import ROBOT_COMMANDS
         from hexaleg.cli.robot_table import load_robot_table
 
         if load_robot_table(path) is not None:
             raise UsageError(
                 f"{path} describes an imported robot ([robot]); this command does not run "
-                f"on one yet (design show, workspace, manipulability and urdf do)"
+                f"on one yet ({', '.join(ROBOT_COMMANDS)} do)"
             )
     changes: dict[str, Any] = {
         name: _value(getattr(args, name))

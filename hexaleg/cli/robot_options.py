@@ -14,11 +14,21 @@ from typing import TYPE_CHECKING, Any, NoReturn
 from hexaleg.cli.options import UsageError
 
 if TYPE_CHECKING:
+    from hexaleg.design import HexapodDesign
     from hexaleg.robot.imported import ImportedRobot
+    from hexaleg.robot.imported_model import ImportedHexapodModel
 
 ROBOT_GROUP = "robot file (your hexapod's URDF or Xacro instead of hexaleg's template)"
 
-ROBOT_COMMANDS = ("design show", "design import", "workspace", "manipulability", "urdf")
+ROBOT_COMMANDS = (
+    "design show",
+    "design import",
+    "workspace",
+    "manipulability",
+    "flexibility",
+    "loads",
+    "urdf",
+)
 """The commands that run on an imported robot."""
 
 
@@ -187,3 +197,27 @@ def robot_legs(args: argparse.Namespace, design: Any) -> tuple[str, dict[str, An
     return str(robot.source), {
         leg.name: leg.reading.geometry.with_lengths(**lengths) for leg in robot.legs
     }
+
+
+def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexapodModel | None:
+    """The whole imported robot as a Pinocchio model over ``design``; ``None`` without one.
+
+    The path of every command that analyses the robot standing (its masses, its feet, its
+    nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`.
+    Options that would change the segments are refused (:func:`refuse_unsupported`).
+    """
+    robot = robot_from_args(args)
+    if robot is None:
+        return None
+    refuse_unsupported(args)
+    from hexaleg.robot.imported_model import ImportedHexapodModel
+
+    return ImportedHexapodModel(robot, design)
+
+
+def refuse_free(args: argparse.Namespace) -> None:
+    """Refuse, with ``--urdf``, free-coupled flexibility and self-collisions (not yet)."""
+    if getattr(args, "mode", "axis") != "axis":
+        raise UsageError("--mode free with --urdf is not supported yet: use --mode axis")
+    if getattr(args, "collisions", False):
+        raise UsageError("--collisions with --urdf is not supported yet")

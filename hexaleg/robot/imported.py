@@ -224,11 +224,12 @@ def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
     return names
 
 
-def urdf_with_feet(robot: ImportedRobot) -> str:
+def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
     """The robot's own URDF text with a link ``<leg>_foot`` fixed at each leg's foot point.
 
     Everything else — joint names, zeros and signs, masses, inertias, mesh references — is
     the file's, so the result moves and weighs like the original, joint for joint.
+    ``prefix`` goes before each added link's and joint's name.
 
     Raises:
         RobotImportError: The file already has a link or joint of one of those names.
@@ -236,7 +237,7 @@ def urdf_with_feet(robot: ImportedRobot) -> str:
     """
     added = []
     for leg in robot.legs:
-        link, joint = f"{leg.name}_foot", f"{leg.name}_foot_joint"
+        link, joint = f"{prefix}{leg.name}_foot", f"{prefix}{leg.name}_foot_joint"
         for name, kind in ((link, "link"), (joint, "joint")):
             if name in robot.description.links or name in robot.description.joints:
                 raise RobotImportError(

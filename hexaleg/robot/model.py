@@ -18,6 +18,7 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
+from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.inertia import LinkInertial, body_inertial, leg_inertials
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
@@ -48,17 +49,25 @@ def foot_frame_name(leg: str) -> str:
 class _LegIndex:
     """Where one leg lives in a Pinocchio model: its q/v indices and frame ids."""
 
-    def __init__(self, model: pin.Model, leg: str) -> None:
+    def __init__(
+        self, model: pin.Model, leg: str, joints: Iterable[str] | None = None, prefix: str = ""
+    ) -> None:
+        """``joints``: the leg's three joint names (hexaleg's if omitted); ``prefix``: frames'."""
         self.name = leg
-        ids = [_joint_id(model, joint_name(leg, j)) for j in LEG_JOINTS]
+        names = [joint_name(leg, j) for j in LEG_JOINTS] if joints is None else list(joints)
+        ids = [_joint_id(model, name) for name in names]
         self.joints = tuple(ids)
         self.q = np.array([model.idx_qs[i] for i in ids])
         self.v = np.array([model.idx_vs[i] for i in ids])
         self.lower = model.lowerPositionLimit[self.q].copy()
         self.upper = model.upperPositionLimit[self.q].copy()
-        self.root_frame = _frame_id(model, root_frame_name(leg))
-        self.foot_frame = _frame_id(model, foot_frame_name(leg))
-        self.foot_joint_frame = _frame_id(model, f"{leg}_foot_joint")
+        self.root_frame = _frame_id(model, prefix + root_frame_name(leg))
+        self.foot_frame = _frame_id(model, prefix + foot_frame_name(leg))
+        self.foot_joint_frame = _frame_id(model, f"{prefix}{leg}_foot_joint")
+
+
+BASE_FRAME = "base_link"
+"""The body's frame in hexaleg's URDF (the free flyer's)."""
 
 
 class LegModel:
@@ -135,6 +144,7 @@ class HexapodModel:
         design: HexapodDesign,
         _model: pin.Model | None = None,
         _legs: dict[str, _LegIndex] | None = None,
+        _base: str = BASE_FRAME,
     ) -> None:
         self.design = design
         self._urdf = None if _model is not None else render_hexapod(design)
@@ -148,8 +158,16 @@ class HexapodModel:
         self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         if _model is None:
             set_armature(self.model, self._legs.values(), design)
-        self.base_frame = _frame_id(self.model, "base_link")
+        self.base_frame = _frame_id(self.model, _base)
+        self.body_box: ArrayF | None = None  # None: the body's collision shape is the URDF's
         self._collision: pin.GeometryModel | None = None
+
+    general_legs = False  # whether the legs are a robot file's (:meth:`leg_geometry`)
+
+    def leg_geometry(self, leg: str) -> LegGeometry:
+        """``leg``'s general leg: the paper's leg of the design's lengths."""
+        self._leg(leg)
+        return LegGeometry.from_lengths(self.design.lengths)
 
     @property
     def data(self) -> pin.Data:
@@ -257,13 +275,31 @@ class HexapodModel:
         q = pin.neutral(self.model)
         q[:7] = pin.SE3ToXYZQUAT(base if base is not None else pin.SE3.Identity())
         if joint_angles is None:
-            joint_angles = {leg: self.design.nominal_angles for leg in self.leg_names}
+            joint_angles = {leg: self.nominal_angles(leg) for leg in self.leg_names}
         if not isinstance(joint_angles, Mapping):
             array = np.asarray(joint_angles, dtype=float).reshape(len(self.leg_names), 3)
             joint_angles = dict(zip(self.leg_names, array, strict=True))
         for leg, angles in joint_angles.items():
-            q[self._leg(leg).q] = np.asarray(angles, dtype=float)
+            q[self._leg(leg).q] = self.joint_values(leg, angles)
         return q
+
+    def nominal_angles(self, leg: str) -> tuple[float, float, float]:
+        """``leg``'s nominal angles (θ1, θ2, θ3) [rad]: the design's, the same on every leg."""
+        self._leg(leg)
+        return self.design.nominal_angles
+
+    def joint_values(self, leg: str, theta: npt.ArrayLike) -> ArrayF:
+        """The model's joint values (..., 3) of ``leg`` at hexaleg's angles θ (..., 3) [rad].
+
+        hexaleg's URDF turns its joints as θ does (q = θ); a robot file's may not.
+        """
+        self._leg(leg)
+        return np.asarray(theta, dtype=float)
+
+    def joint_signs(self, leg: str) -> ArrayF:
+        """dq/dθ (3,) of ``leg``'s joints: a model torque times it is the torque on θ."""
+        self._leg(leg)
+        return np.ones(3)
 
     def nominal_base_pose(self) -> pin.SE3:
         """Body pose of the nominal stance: level, at the nominal height above the origin."""
@@ -276,7 +312,12 @@ class HexapodModel:
     def joint_angles(self, q: npt.ArrayLike) -> ArrayF:
         """Leg joint angles (6, 3) [rad] from a configuration vector, in ``leg_names`` order."""
         q = np.asarray(q, dtype=float)
-        return np.array([q[self._legs[leg].q] for leg in self.leg_names])
+        return np.array([self.leg_angles(leg, q[self._legs[leg].q]) for leg in self.leg_names])
+
+    def leg_angles(self, leg: str, values: npt.ArrayLike) -> ArrayF:
+        """The angles θ (..., 3) [rad] of ``leg`` at the model's joint values (..., 3)."""
+        self._leg(leg)
+        return np.asarray(values, dtype=float)
 
     # -- kinematics ---------------------------------------------------------------------
 

@@ -44,7 +44,8 @@ def configurations(
     q[:, :3] = np.asarray(translation, dtype=float).reshape(-1, 3)
     q[:, 3:7] = [pin.Quaternion(r).coeffs() for r in rotation]  # x, y, z, w
     for leg, angles in joint_angles.items():
-        q[:, model.leg_q_indices(leg)] = np.asarray(angles, dtype=float).reshape(-1, 3)
+        theta = np.asarray(angles, dtype=float).reshape(-1, 3)
+        q[:, model.leg_q_indices(leg)] = model.joint_values(leg, theta)
     return q
 
 

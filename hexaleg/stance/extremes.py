@@ -13,7 +13,6 @@ import numpy.typing as npt
 from hexaleg._typing import FlexibilityMode
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
-from hexaleg.kinematics import leg_solution
 from hexaleg.stance.constraints import AXES, TRANSLATIONS, direction_label, displacement_poses
 from hexaleg.stance.geometry import StanceGeometry
 
@@ -267,7 +266,7 @@ def pose_extremes(
     """
     d = np.asarray(displacements, dtype=float).reshape(-1, len(AXES))
     rotation, translation = displacement_poses(geometry, d)
-    theta, _ = leg_solution(geometry.lengths, geometry.feet_in_roots(rotation, translation))
+    theta, _ = geometry.leg_solutions(geometry.feet_in_roots(rotation, translation))
     extremes = []
     for (axis, sign, binding), pose, angles in zip(directions, d, theta, strict=True):
         extremes.append(

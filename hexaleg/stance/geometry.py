@@ -21,8 +21,9 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF, StanceSet, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ModelError, ParameterError
-from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics
+from hexaleg.kinematics import InverseKinematics, foot_position, inverse_kinematics, leg_solution
 from hexaleg.layouts import first_tripod
+from hexaleg.leg_geometry import LegGeometry, leg_parameters
 from hexaleg.limits import JointLimits
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import per_body
@@ -83,6 +84,10 @@ class StanceGeometry:
             or (radius, radius, half height) of its cylinder.
         body_round: Whether the body's collision shape is a cylinder about z (else a box).
         limits: Joint limits that stop the body (the design's ``stance_limits``).
+        leg_geometries: Each stance leg's general leg, for a robot file's legs (empty:
+            the paper's leg of ``lengths`` on every leg).
+        leg_bounds: Each stance leg's joint limits (2, N, 3) [rad], lower then upper, for
+            a robot file's legs (None: ``limits`` on every leg).
 
     """
 
@@ -95,6 +100,8 @@ class StanceGeometry:
     body_half_extents: ArrayF
     body_round: bool
     limits: JointLimits
+    leg_geometries: tuple[LegGeometry, ...] = ()
+    leg_bounds: ArrayF | None = None
 
     @classmethod
     def from_model(
@@ -106,6 +113,7 @@ class StanceGeometry:
         roots = model.root_placements()
         feet = model.foot_positions(model.nominal_configuration())
         index = [model.leg_names.index(leg) for leg in legs]
+        general = model.general_legs
         return cls(
             legs=legs,
             lengths=model.design.lengths,
@@ -116,6 +124,8 @@ class StanceGeometry:
             body_half_extents=half_extents,
             body_round=round_body,
             limits=model.design.stance_limits,
+            leg_geometries=tuple(model.leg_geometry(leg) for leg in legs) if general else (),
+            leg_bounds=_file_bounds(model, legs) if general else None,
         )
 
     @classmethod
@@ -142,7 +152,10 @@ class StanceGeometry:
 
         Only valid when ``design`` has the mounts and body of the design this geometry
         was read from; the tests prove it equal to :meth:`from_model` of ``design``.
+        Not for a robot file's legs (their geometry is the file's).
         """
+        if self.leg_geometries:
+            raise HexalegError("an imported robot's stance is read from its model")
         height = design.nominal_height
         foot_in_root = foot_position(design.lengths, design.nominal_angles)
         footholds = self.root_positions + self.root_rotations @ foot_in_root
@@ -158,6 +171,38 @@ class StanceGeometry:
             body_round=self.body_round,
             limits=design.stance_limits,
         )
+
+    @property
+    def leg_parameters(self) -> ArrayF:
+        """Each stance leg's (a1, l2, l3, h, e) (N, 5) [m]: what the compiled kernels take."""
+        if self.leg_geometries:
+            return np.array([leg_parameters(g) for g in self.leg_geometries])
+        return np.tile([*self.lengths, 0.0, 0.0], (len(self.legs), 1))
+
+    @property
+    def joint_lower(self) -> ArrayF:
+        """Each stance leg's lower joint limits (N, 3) [rad]."""
+        if self.leg_bounds is not None:
+            return np.asarray(self.leg_bounds[0], dtype=float)
+        return np.tile(self.limits.lower, (len(self.legs), 1))
+
+    @property
+    def joint_upper(self) -> ArrayF:
+        """Each stance leg's upper joint limits (N, 3) [rad]."""
+        if self.leg_bounds is not None:
+            return np.asarray(self.leg_bounds[1], dtype=float)
+        return np.tile(self.limits.upper, (len(self.legs), 1))
+
+    def leg_solutions(self, targets: npt.ArrayLike) -> tuple[ArrayF, ArrayF]:
+        """Knee-down angles (..., N, 3) [rad] and reach r (..., N) [m] of foot targets (..., N, 3).
+
+        Each leg by its own geometry (:func:`~hexaleg.kinematics.leg_solution`).
+        """
+        targets = np.asarray(targets, dtype=float)
+        if not self.leg_geometries:
+            return leg_solution(self.lengths, targets)
+        solved = [leg_solution(g, targets[..., n, :]) for n, g in enumerate(self.leg_geometries)]
+        return np.stack([t for t, _ in solved], axis=-2), np.stack([r for _, r in solved], axis=-1)
 
     @property
     def nominal_pose(self) -> pin.SE3:
@@ -209,6 +254,16 @@ class StanceGeometry:
         return CORNER_SIGNS * self.body_half_extents
 
 
+FINITE_BOUND = 2 * np.pi
+"""A continuous joint's limits in the stance kernels: ±2π [rad] (θ never leaves (−π, π])."""
+
+
+def _file_bounds(model: HexapodModel, legs: Sequence[str]) -> ArrayF:
+    """The stance legs' joint limits (2, N, 3) on θ [rad], continuous joints at ±2π."""
+    bounds = np.array([model.joint_limits(leg) for leg in legs]).transpose(1, 0, 2)
+    return np.clip(bounds, -FINITE_BOUND, FINITE_BOUND)
+
+
 def body_collision_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
     """``base_link``'s collision shape read from the URDF: half extents [m] and roundness.
 
@@ -216,6 +271,8 @@ def body_collision_shape(model: HexapodModel) -> tuple[ArrayF, bool]:
     The body's alone determines it: it is read once per body
     (:func:`~hexaleg.robot.model_cache.per_body`).
     """
+    if model.body_box is not None:
+        return model.body_box.copy(), False
     half_extents, round_body = per_body(
         "body collision shape", model.design, lambda: _read_body_shape(model)
     )
@@ -281,7 +338,7 @@ def stance_configuration(
 ) -> tuple[ArrayF, InverseKinematics]:
     """Full configuration q for a body pose: stance legs by stance IK, swing legs nominal."""
     solution = stance_inverse_kinematics(geometry, body)
-    angles = {leg: model.design.nominal_angles for leg in model.leg_names}
+    angles = {leg: model.nominal_angles(leg) for leg in model.leg_names}
     angles.update(zip(geometry.legs, solution.theta, strict=True))
     return model.configuration(body, angles), solution
 

@@ -1,8 +1,9 @@
 """The leg in the compiled stance kernels: its knee-down IK (eq 8–9), its reach, their derivatives.
 
 Everything the stance kernels (:mod:`.margin_kernel`, :mod:`.margin_jacobian`) know of
-the leg's geometry is here; they pass each leg's parameters (``KernelGeometry.lengths``,
-the paper's l1, l2, l3 [m]) and its foothold p = (px, py, pz) in the leg-root frame [m]
+the leg's geometry is here; they pass each leg's parameters (``KernelGeometry.legs``: a1,
+l2, l3, and a general leg's hip height h and lateral offset e [m]) and its foothold
+p = (px, py, pz) in the leg-root frame [m]
 and read back angles, reach margins and derivatives. :func:`leg_solution` turns p toward
 the root angle θ1 and into the leg plane, then solves the hip and knee by the law of
 cosines; :func:`reach_margins` bounds the hip-to-foot distance r by the annulus
@@ -54,16 +55,22 @@ def leg_solution(
     """The knee-down IK (eq 8–9) of the foothold (px, py, pz) [m] in the leg-root frame.
 
     As ``kinematics.leg_plane`` and ``plane_solution``: the angles of the nearest
-    configuration where the foothold is out of reach.
+    configuration where the foothold is out of reach. ``lengths`` is (a1, l2, l3) or a
+    general leg's (a1, l2, l3, h, e), whose hip axis lies h above the root.
     """
     l1, l2, l3 = lengths[0], lengths[1], lengths[2]
-    theta1 = math.atan2(py, px)
-    if theta1 > math.pi / 2:
-        theta1 -= math.pi
-    if theta1 <= -math.pi / 2:
-        theta1 += math.pi
+    h, e = (lengths[3], lengths[4]) if lengths.shape[0] > 3 else (0.0, 0.0)
+    if e == 0.0:
+        theta1 = math.atan2(py, px)
+        if theta1 > math.pi / 2:
+            theta1 -= math.pi
+        if theta1 <= -math.pi / 2:
+            theta1 += math.pi
+    else:
+        theta1 = lateral_root_angle(e, px, py)
     c1, s1 = math.cos(theta1), math.sin(theta1)
     planar_x = px * c1 + py * s1 - l1
+    pz = pz - h
     r = math.hypot(planar_x, pz)
     r_safe = r if r > 0 else 1.0
     cos_hip = min(max((r**2 + l2**2 - l3**2) / (2 * l2 * r_safe), -1.0), 1.0)
@@ -73,6 +80,23 @@ def leg_solution(
     r2 = planar_x**2 + pz**2
     cos_knee = (r2 - l2**2 - l3**2) / (2 * l2 * l3)
     return LegSolution(theta1, theta2, theta3, c1, s1, planar_x, r2, r, cos_knee)
+
+
+@compiled
+def lateral_root_angle(e: float, px: float, py: float) -> float:  # pragma: no cover - compiled
+    """θ1 of a leg whose foot lies e [m] off its plane, as ``kinematics.leg_plane`` turns it."""
+    turn = math.atan2(e, math.sqrt(max(px * px + py * py - e * e, 0.0)))
+    theta1 = math.atan2(py, px) - turn
+    if theta1 > math.pi:
+        theta1 -= 2 * math.pi
+    if theta1 <= -math.pi:
+        theta1 += 2 * math.pi
+    other = theta1 + 2 * turn
+    other = other - math.pi if other > 0 else other + math.pi
+    front = -math.pi / 2 < theta1 <= math.pi / 2
+    if front or other <= -math.pi / 2 or other > math.pi / 2:
+        return theta1
+    return other
 
 
 @compiled

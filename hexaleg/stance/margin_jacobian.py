@@ -44,7 +44,7 @@ def pose_margins_and_jacobian(
     foot = np.empty((3, 6))
     for index in range(geometry.root_positions.shape[0]):
         px, py, pz = foot_in_root(geometry, design, index, rotation, tx, ty, tz)
-        leg = leg_solution(geometry.lengths[design], px, py, pz)
+        leg = leg_solution(geometry.legs[design, index], px, py, pz)
         leg_margins(geometry, design, index, leg, values)
         foot_jacobian(geometry, design, index, rotation, turned, tx, ty, tz, foot)
         leg_jacobian(geometry, design, index, leg, (px, py, pz), foot, jacobian)
@@ -113,7 +113,7 @@ def leg_jacobian(
 
     ``leg`` is the IK of the foothold ``p`` (px, py, pz) in the leg-root frame [m].
     """
-    lengths = geometry.lengths[design]
+    lengths = geometry.legs[design, index]
     j = 2 * geometry.root_positions.shape[0] + 6 * index
     for k in range(6):
         d_theta1, d_theta2, d_theta3, d_r2, d_knee_cos = leg_derivatives(
@@ -123,7 +123,7 @@ def leg_jacobian(
         out[j, k], out[j + 1, k] = d_theta1, -d_theta1
         out[j + 2, k], out[j + 3, k] = d_theta2, -d_theta2
         out[j + 4, k], out[j + 5, k] = d_theta3, -d_theta3
-        if geometry.knee == COUPLED_FORM and -leg.theta2 - math.pi / 2 > geometry.lower[2]:
+        if geometry.knee == COUPLED_FORM and -leg.theta2 - math.pi / 2 > geometry.lower[index, 2]:
             out[j + 4, k] = d_theta3 + d_theta2
         elif geometry.knee == COSINE_FORM:
             out[j + 4, k], out[j + 5, k] = d_knee_cos, -d_knee_cos

@@ -48,11 +48,12 @@ class KernelGeometry(NamedTuple):
     Attributes:
         heights: Nominal body heights (D,) [m].
         footholds: Footholds (D, N, 3), world frame [m].
-        lengths: Segment lengths (D, 3) [m].
+        legs: Each design's stance legs' parameters (D, N, 5): a1, l2, l3, h, e [m]
+            (:attr:`StanceGeometry.leg_parameters`).
         root_positions: Leg-root origins (N, 3), body frame [m].
         root_rotations: Leg-root orientations (N, 3, 3), body frame.
-        lower: Lower joint limits (3,) [rad].
-        upper: Upper joint limits (3,) [rad].
+        lower: Lower joint limits per stance leg (N, 3) [rad].
+        upper: Upper joint limits per stance leg (N, 3) [rad].
         knee: :data:`THETA_FORM`, :data:`COUPLED_FORM` or :data:`COSINE_FORM`.
         round_body: The body is a cylinder about z (else a box).
         half_extents: The body's half sizes (3,) [m] (radius, radius, half height if round).
@@ -62,7 +63,7 @@ class KernelGeometry(NamedTuple):
 
     heights: ArrayF
     footholds: ArrayF
-    lengths: ArrayF
+    legs: ArrayF
     root_positions: ArrayF
     root_rotations: ArrayF
     lower: ArrayF
@@ -77,7 +78,9 @@ def kernel_geometry(geometries: Sequence[StanceGeometry], smooth: bool) -> Kerne
     """The kernel's form of stances that differ only in their legs (a sweep's designs)."""
     template = geometries[0]
     limits = template.limits
-    if limits.coupled_knee:
+    if template.leg_bounds is not None:  # a robot file's limits, one box per leg
+        knee = COSINE_FORM if smooth and _cosine_knees(template) else THETA_FORM
+    elif limits.coupled_knee:
         knee = COUPLED_FORM
     elif smooth and knee_on_cosine(limits):
         knee = COSINE_FORM
@@ -86,16 +89,22 @@ def kernel_geometry(geometries: Sequence[StanceGeometry], smooth: bool) -> Kerne
     return KernelGeometry(
         heights=np.array([g.nominal_height for g in geometries], dtype=float),
         footholds=np.ascontiguousarray([g.footholds for g in geometries], dtype=float),
-        lengths=np.array([g.lengths for g in geometries], dtype=float),
+        legs=np.ascontiguousarray([g.leg_parameters for g in geometries], dtype=float),
         root_positions=np.ascontiguousarray(template.root_positions, dtype=float),
         root_rotations=np.ascontiguousarray(template.root_rotations, dtype=float),
-        lower=np.ascontiguousarray(limits.lower, dtype=float),
-        upper=np.ascontiguousarray(limits.upper, dtype=float),
+        lower=np.ascontiguousarray(template.joint_lower, dtype=float),
+        upper=np.ascontiguousarray(template.joint_upper, dtype=float),
         knee=knee,
         round_body=bool(template.body_round),
         half_extents=np.ascontiguousarray(template.body_half_extents, dtype=float),
         smooth=smooth,
     )
+
+
+def _cosine_knees(geometry: StanceGeometry) -> bool:
+    """Whether every leg's knee limits lie within [−π, 0] (cos θ3 monotonic there)."""
+    lower, upper = geometry.joint_lower[:, 2], geometry.joint_upper[:, 2]
+    return bool(np.all((-math.pi <= lower) & (lower < upper) & (upper <= 0)))
 
 
 @compiled
@@ -153,7 +162,7 @@ def posed_margins(
     """Write the margins of the body at rotation R (3, 3) and position t [m] into ``out``."""
     for index in range(geometry.root_positions.shape[0]):
         px, py, pz = foot_in_root(geometry, design, index, rotation, tx, ty, tz)
-        leg = leg_solution(geometry.lengths[design], px, py, pz)
+        leg = leg_solution(geometry.legs[design, index], px, py, pz)
         leg_margins(geometry, design, index, leg, out)
     ground_margins(geometry, tz, rotation, out)
 
@@ -216,9 +225,9 @@ def leg_margins(
 ) -> None:  # pragma: no cover - compiled
     """Write one leg's reach (2) and joint (6) margins, given its IK (:func:`.leg_solution`)."""
     out[2 * index], out[2 * index + 1] = reach_margins(
-        geometry.lengths[design], leg, geometry.smooth
+        geometry.legs[design, index], leg, geometry.smooth
     )
-    lower, upper = geometry.lower, geometry.upper
+    lower, upper = geometry.lower[index], geometry.upper[index]
     j = 2 * geometry.root_positions.shape[0] + 6 * index
     out[j] = leg.theta1 - lower[0]
     out[j + 1] = upper[0] - leg.theta1

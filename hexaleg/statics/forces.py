@@ -175,6 +175,7 @@ class Statics:
         self.rated = np.array(model.design.rated_torques)
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
+        self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ
         self._robot_mass = float(pin.computeTotalMass(model.model))
         self._support: SupportPolygon | None = None
         self._support_feet = np.zeros((len(self.legs), 2))
@@ -246,7 +247,7 @@ class Statics:
             )  # fmt: skip
         torques = generalized - np.einsum("kfv,kf->kv", jacobians, forces)
         residuals = np.abs(torques[:, :6]).max(axis=1)
-        joint_torques = torques[:, self._v]
+        joint_torques = torques[:, self._v] * self._signs
         return [
             StaticState(
                 legs=self.legs,

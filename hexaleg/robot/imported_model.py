@@ -1,0 +1,205 @@
+"""An imported robot as hexaleg's Pinocchio model: the file's masses, joints and feet.
+
+:class:`ImportedHexapodModel` is a :class:`~hexaleg.robot.model.HexapodModel` built from
+the robot file itself (:func:`~hexaleg.robot.imported.urdf_with_feet`: its joints, zeros,
+signs, masses and inertias, and a ``hexaleg_<leg>_foot`` frame at each foot), with three things
+added so that every analysis written for hexaleg's model reads it unchanged:
+
+- a massless link ``hexaleg_body`` carried by the free flyer, the design's body frame
+  (:func:`~hexaleg.robot.robot_design.robot_design`: the root link's axes, its origin
+  raised to the mounts' mean plane), to which the file's root link is fixed;
+- a fixed frame ``hexaleg_<leg>_root_joint`` per leg at its leg-root frame (z up along the yaw
+  axis, x toward the hip at θ1 = 0);
+- each leg's joint map ``q = s·θ + o``: configurations take hexaleg's angles θ, torques
+  are given on θ (the file's torque times s).
+
+Each leg stands at its own nominal posture: the design's nominal angles moved inside that
+leg's file limits (:func:`~hexaleg.robot.robot_design.nominal_posture`); the body stands
+level at the height that puts the feet, on average, on the ground.
+"""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
+
+from hexaleg._typing import ArrayF
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import ModelError, RobotImportError
+from hexaleg.leg_geometry import LegGeometry
+from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex, set_armature
+from hexaleg.robot.model import root_frame_name as _root
+from hexaleg.robot.robot_design import nominal_posture, robot_design
+
+PREFIX = "hexaleg_"
+"""Before the name of every link, joint and frame hexaleg adds to a robot file."""
+
+BODY_LINK = PREFIX + "body"
+"""The link added as the body frame of an imported robot's model."""
+
+LEVEL_FEET = 1e-3
+"""Largest spread of the feet's heights at the nominal posture, body level [m]."""
+
+
+def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
+    """The robot's URDF with its feet, a body link at ``design``'s body frame, leg-root frames.
+
+    Raises:
+        RobotImportError: The file already has a link or joint of one of the added names.
+
+    """
+    text = urdf_with_feet(robot, PREFIX)
+    plane = robot_plane(robot, design)
+    names = [BODY_LINK, f"{BODY_LINK}_joint"]
+    names += [PREFIX + n for leg in robot.legs for n in (f"{leg.name}_root", _root(leg.name))]
+    taken = [n for n in names if n in robot.description.links or n in robot.description.joints]
+    if taken:
+        raise RobotImportError(
+            f"the file already has a link or joint named {taken[0]!r}: hexaleg adds it"
+        )
+    added = [
+        f'  <link name="{BODY_LINK}"/>\n',
+        _fixed(f"{BODY_LINK}_joint", BODY_LINK, robot.description.root, _shift(-plane)),
+    ]
+    for leg in robot.legs:
+        link = f"{PREFIX}{leg.name}_root"
+        added.append(f'  <link name="{link}"/>\n')
+        mount = _shift(-plane) @ leg.reading.mount
+        added.append(_fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount))
+    end = text.rindex("</robot>")
+    note = "  <!-- hexaleg: body and leg-root frames -->\n"
+    return text[:end] + note + "".join(added) + text[end:]
+
+
+def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
+    """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
+    first = robot.legs[0]
+    return float(first.reading.mount[2, 3]) - design.legs[0].z
+
+
+class ImportedHexapodModel(HexapodModel):
+    """The hexapod of a robot file on a free flyer, in hexaleg's angles.
+
+    Args:
+        robot: The imported robot.
+        base: The design its numbers go over (:func:`robot_design`); the default design's
+            if omitted.
+
+    Raises:
+        RobotImportError: The legs differ in their segments (one design has one leg), a
+            leg joint is continuous, or the nominal posture does not put the feet level.
+
+    """
+
+    def __init__(self, robot: ImportedRobot, base: HexapodDesign | None = None) -> None:
+        design = _design(robot, base)
+        self.robot = robot
+        self._text = imported_model_urdf(robot, design)
+        model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        for leg in robot.legs:
+            for name in leg.joint_names:
+                if model.joints[model.getJointId(name)].nq != 1:
+                    raise RobotImportError(
+                        f"joint {name} is continuous: the analyses of the whole robot take "
+                        f"revolute leg joints only (give it limits)"
+                    )
+        legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
+        set_armature(model, legs.values(), design)
+        super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
+        self.leg_names = robot.leg_names
+        self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}
+        self._nominal = {
+            leg.name: nominal_posture(leg, design.nominal_angles)["joint_angles"]
+            for leg in robot.legs
+        }
+        self._height = self._standing_height()
+        self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
+        self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
+
+    general_legs = True
+
+    def leg_geometry(self, leg: str) -> LegGeometry:
+        """``leg``'s general leg, as read from the file."""
+        return self._geometry[self._leg(leg).name]
+
+    @property
+    def urdf(self) -> str:
+        """The URDF the model was built from (the file's, with feet, body and root frames)."""
+        return self._text
+
+    def with_design(self, design: HexapodDesign) -> HexapodModel:
+        """Not for an imported robot: its masses and joints are the file's."""
+        raise ModelError("an imported robot's model is built from its file, not a design")
+
+    def nominal_angles(self, leg: str) -> tuple[float, float, float]:
+        """``leg``'s nominal angles θ [rad]: the design's, moved inside the leg's file limits."""
+        a, b, c = (float(t) for t in self._nominal[self._leg(leg).name])
+        return (a, b, c)
+
+    def joint_values(self, leg: str, theta: npt.ArrayLike) -> ArrayF:
+        """The file's joint values q = s·θ + o (..., 3) [rad] of ``leg``."""
+        return self._maps[self._leg(leg).name].to_file(theta)
+
+    def leg_angles(self, leg: str, values: npt.ArrayLike) -> ArrayF:
+        """The angles θ = s·(q − o) (..., 3) [rad] of ``leg``."""
+        return self._maps[self._leg(leg).name].from_file(values)
+
+    def joint_signs(self, leg: str) -> ArrayF:
+        """The joint map's signs s (3,) of ``leg``."""
+        return self._maps[self._leg(leg).name].sign_array
+
+    def joint_limits(self, leg: str) -> tuple[ArrayF, ArrayF]:
+        """(lower, upper) limits on hexaleg's angles θ of ``leg`` [rad], from the file's."""
+        lower, upper = super().joint_limits(leg)
+        return self._maps[self._leg(leg).name].theta_bounds(lower, upper)
+
+    def nominal_base_pose(self) -> pin.SE3:
+        """The body level, at the height that puts the feet on the ground (their mean)."""
+        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self._height]))
+
+    def _standing_height(self) -> float:
+        feet = self.foot_positions(self.configuration(pin.SE3.Identity()))[:, 2]
+        if feet.max() - feet.min() > LEVEL_FEET:
+            raise RobotImportError(
+                f"the nominal posture puts the feet {1000 * (feet.max() - feet.min()):.1f} mm "
+                f"apart in height (at most {1000 * LEVEL_FEET:g} mm): the legs do not stand level"
+            )
+        return float(-feet.mean())
+
+
+def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
+    """:func:`robot_design`, saying that a placeholder body's mass is the file's here."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        design = robot_design(robot, base)
+    for warning in caught:
+        message = str(warning.message)
+        if message.startswith("the file's body weighs"):
+            message = (
+                f"the file's body weighs {robot.body_mass.mass:.3g} kg: the statics use the "
+                f"file's masses as given"
+            )
+        warnings.warn(message, warning.category, stacklevel=3)
+    return design
+
+
+def _shift(z: float) -> ArrayF:
+    matrix = np.eye(4)
+    matrix[2, 3] = z
+    return matrix
+
+
+def _fixed(name: str, parent: str, child: str, placement: ArrayF) -> str:
+    xyz = " ".join(repr(float(v)) for v in placement[:3, 3])
+    rpy = " ".join(repr(float(v)) for v in pin.rpy.matrixToRpy(placement[:3, :3]))
+    return (
+        f'  <joint name="{name}" type="fixed">\n'
+        f'    <parent link="{parent}"/>\n'
+        f'    <child link="{child}"/>\n'
+        f'    <origin xyz="{xyz}" rpy="{rpy}"/>\n'
+        f"  </joint>\n"
+    )
