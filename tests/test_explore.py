@@ -217,3 +217,81 @@ def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
     assert main(["explore", "--save", "design.json"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "design.json" in err and ".toml" in err
+
+
+MOTORS = {
+    "actuators.root": "hd_cha_20a_100",
+    "actuators.hip": "hd_cha_32a_50",
+    "actuators.knee": "hd_cha_25a_100",
+}
+"""A catalog motor per joint type, chosen on the page by name."""
+
+
+def _motors_file(folder, motors: dict[str, str]) -> str:
+    """A design file naming the same catalog motors, as a user writes it."""
+    path = folder / "motors.toml"
+    path.write_text("".join(f'[{key}]\ncatalog = "{name}"\n' for key, name in motors.items()))
+    return str(path)
+
+
+def test_motors_chosen_by_name_measure_as_the_design_file_s_catalog_motors(
+    explorer, capsys, tmp_path
+):
+    status, got = explorer.get("api/evaluate?" + urllib.parse.urlencode(MOTORS))
+    assert status == 200 and got["error"] == "", got
+    design = ["--design", _motors_file(tmp_path, MOTORS)]
+    gait = _cli(capsys, "gait", *design)
+    loads = _cli(capsys, "loads", *design)
+    electrical = gait["electrical"]
+    assert got["energy_per_km"] == pytest.approx(electrical["energy_per_km"], rel=RTOL)
+    assert got["electrical_cost_of_transport"] == pytest.approx(
+        electrical["cost_of_transport"], rel=RTOL
+    )
+    assert got["robot_mass"] == pytest.approx(loads["mass"], rel=RTOL)
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    status, plain = explorer.get("api/evaluate")  # the loaded design: no motors
+    assert plain["energy_per_km"] is None and "actuators" in plain["unmeasured"]["energy_per_km"]
+    assert plain["robot_mass"] < got["robot_mass"]  # the motors weigh
+
+
+def test_the_page_offers_the_shipped_catalog(explorer):
+    from hexaleg.actuator_catalog import shipped_catalog
+
+    assert explorer.get("api/loaded")[0] == 200
+    loaded = explorer.get("api/loaded")[1]
+    assert [m["name"] for m in loaded["catalog"]] == list(shipped_catalog().names)
+    assert loaded["values"]["actuators"] == {"root": None, "hip": None, "knee": None}
+    assert loaded["has_actuators"] is False
+
+
+def test_a_query_chooses_motors_by_catalog_name_or_takes_them_away(tmp_path):
+    file_design = load_design_file(_motors_file(tmp_path, MOTORS), Requirements.from_table)[0]
+    base = HexapodDesign()
+    chosen = parse_query(MOTORS, base, Conditions()).design
+    assert chosen.actuators == file_design.actuators
+    assert chosen.rated_torques == file_design.rated_torques
+    one = parse_query({"actuators.hip": "hd_cha_25a_100"}, chosen, Conditions()).design
+    assert one.actuators is not None and file_design.actuators is not None
+    assert (one.actuators.root, one.actuators.knee) == (
+        file_design.actuators.root, file_design.actuators.knee
+    )  # fmt: skip
+    assert one.actuators.hip.peak_torque == 157.0  # the catalog entry's (hexaleg actuators)
+    none = {key: "" for key in MOTORS}
+    assert parse_query(none, chosen, Conditions()).design.actuators is None
+    with pytest.raises(ParameterError, match=r"actuators\.hip.*hd_cha_25a_100"):
+        parse_query({"actuators.hip": "hd_cha_25a_10"}, base, Conditions())
+    with pytest.raises(ParameterError, match=r"actuators\.root.*every joint type"):
+        parse_query({"actuators.hip": "hd_cha_25a_100"}, base, Conditions())
+
+
+@pytest.mark.parametrize(
+    ("query", "field"),
+    [
+        ("actuators.root=hd_cha_20a_100&actuators.knee=hd_cha_25a_10", "actuators.knee"),
+        ("actuators.root=hd_cha_20a_100", "actuators.hip"),  # the others have none
+    ],
+)
+def test_a_bad_motor_answers_400_naming_its_key(explorer, query, field):
+    status, got = explorer.get("api/evaluate?" + query)
+    assert status == 400 and got["field"] == field, got

@@ -18,12 +18,14 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.actuator_catalog import shipped_catalog
+from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
 from hexaleg.study.goal import Goal
 from hexaleg.study.metrics import METRICS
 from hexaleg.study.requirements import Requirements, limited_by_dict
@@ -39,10 +41,12 @@ SCALARS = (
     "max_speed",
     "mechanical_energy_per_km",
     "mechanical_cost_of_transport",
+    *ELECTRICAL_METRICS,
     "ground_clearance",
     "robot_mass",
 )
-"""Metrics answered under their own names."""
+"""Metrics answered under their own names (those through the motors ``None`` without
+``[actuators]``, with the reason in ``unmeasured``)."""
 
 EXPLORED: tuple[str, ...] = (
     *SCALARS,
@@ -150,11 +154,27 @@ def _finite(value: float) -> float | None:
 def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str, Any]:
     """What the sliders start at: the loaded design's and conditions' values."""
     payload = conditions.payload
+    motors = design.actuators
     return {
         **{key: getattr(design, key) for key in ("l1", "l2", "l3", "body_length", "body_width")},
+        "actuators": {
+            joint: None if motors is None else _catalog_name(getattr(motors, joint))
+            for joint in LEG_JOINTS
+        },
         "nominal_angles": list(design.nominal_angles),
         "payload": payload.mass,
         "payload_at": payload.position_on(design),
         "speed": conditions.gait.speed,
         "step_height": conditions.gait.step_height,
     }
+
+
+def _catalog_name(actuator: Actuator) -> str | None:
+    """The catalog entry ``actuator`` is exactly (no key overridden), else ``None``."""
+    catalog = shipped_catalog()
+    if (
+        actuator.catalog not in catalog.names
+        or catalog.entry(actuator.catalog).actuator != actuator
+    ):
+        return None
+    return actuator.catalog
