@@ -295,3 +295,23 @@ def test_a_query_chooses_motors_by_catalog_name_or_takes_them_away(tmp_path):
 def test_a_bad_motor_answers_400_naming_its_key(explorer, query, field):
     status, got = explorer.get("api/evaluate?" + query)
     assert status == 400 and got["field"] == field, got
+
+
+def test_each_extreme_is_drawn_with_the_feet_where_the_nominal_stance_plants_them():
+    from hexaleg.explore.answer import answer
+
+    got = answer(HexapodDesign(), Conditions(), Requirements())
+    nominal = np.array(got["stance"]["chains"])  # (legs, 4 points, xyz)
+    assert len(got["extremes"]) == 12
+    for extreme in got["extremes"]:
+        chains = np.array(extreme["chains"])
+        # the closed chain: every stance foot stays on its foothold (all six stand)
+        assert np.abs(chains[:, -1] - nominal[:, -1]).max() < 1e-5, extreme["name"]
+        roots = chains[:, 0].mean(axis=0) - nominal[:, 0].mean(axis=0)
+        axis, sign = extreme["name"][:-1], extreme["name"][-1]
+        if axis in ("x", "y", "z"):  # a translation moves the body's centre by its value
+            k = "xyz".index(axis)
+            assert roots[k] == pytest.approx(extreme["value"], abs=1e-5)
+            assert np.sign(extreme["value"]) == (1 if sign == "+" else -1)
+        else:  # a rotation about the body's centre moves the roots' mean at most a little
+            assert np.abs(chains[:, 0] - nominal[:, 0]).max() > 1e-3

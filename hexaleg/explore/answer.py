@@ -24,6 +24,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
+from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
 from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
 from hexaleg.study.goal import Goal
@@ -72,7 +73,7 @@ def answer(
     shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
     metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
-    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(found)}
+    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
     if goal is not None:
         checked = found if shared else goal.evaluate(design, model=model)
         out["requirements"] = _checks(goal, checked)
@@ -118,12 +119,18 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     }
 
 
-def _extremes(found: Evaluation) -> list[dict[str, Any]]:
-    """FB's 12 extremes: direction, value [m or rad] and what stops the body there."""
+def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:
+    """FB's 12 extremes: direction, value [m or rad], what stops the body there.
+
+    ``chains``: the robot's points there, as the stance's (world frame [m]).
+    """
     if found.flexibility is None:
         return []
-    return [{"name": x.name, "value": x.value, "limited_by": x.description}
-            for x in found.flexibility.extremes]  # fmt: skip
+    extremes = found.flexibility.extremes
+    posed = extreme_configurations(model, extremes)
+    return [{"name": x.name, "value": x.value, "limited_by": x.description,
+             "chains": model.leg_chains(q).round(6).tolist()}
+            for x, q in zip(extremes, posed, strict=True)]  # fmt: skip
 
 
 def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:

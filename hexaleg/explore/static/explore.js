@@ -218,7 +218,10 @@ function drawScene(answer) {
   const canvas = document.getElementById("scene");
   const ctx = canvas.getContext("2d");
   ctx.clearRect(0, 0, canvas.width, canvas.height);
-  const chains = answer.stance.chains;
+  const shown = shownExtreme(answer);
+  const chains = shown ? shown.chains : answer.stance.chains;
+  document.getElementById("pose-note").textContent = shown ? shown.name + " " +
+    shown.value.toFixed(4) + unitOf(shown.name) + ", stopped by " + shown.limited_by : "";
   const span = Math.max(...chains.flat().map((p) => Math.hypot(p[0], p[1], p[2])));
   const scale = 0.42 * Math.min(canvas.width, canvas.height) / span;
   const centre = [canvas.width / 2, canvas.height * 0.62];
@@ -252,13 +255,30 @@ function drawScene(answer) {
   ctx.lineWidth = 1;
 }
 
+function unitOf(name) {
+  return "xyz".includes(name[0]) && name.length === 2 ? " m" : " rad";
+}
+
+function shownExtreme(answer) {
+  const name = document.getElementById("pose").value;
+  return name ? answer.extremes.find((x) => x.name === name) || null : null;
+}
+
 function drawExtremes(extremes) {
+  const pose = document.getElementById("pose");
+  if (pose.options.length === 1) {
+    for (const x of extremes) {
+      const o = document.createElement("option");
+      o.value = x.name; o.textContent = "the extreme " + x.name;
+      pose.append(o);
+    }
+  }
   const body = document.querySelector("#extremes tbody");
   body.replaceChildren();
   for (const x of extremes) {
     const tr = document.createElement("tr");
-    const unit = "xyz".includes(x.name[0]) && x.name.length === 2 ? " m" : " rad";
-    for (const text of [x.name, x.value.toFixed(4) + unit, x.limited_by]) {
+    tr.addEventListener("click", () => { pose.value = x.name; drawScene(explorer.answer); });
+    for (const text of [x.name, x.value.toFixed(4) + unitOf(x.name), x.limited_by]) {
       const td = document.createElement("td");
       td.textContent = text;
       tr.append(td);
@@ -395,6 +415,7 @@ async function start() {
   document.getElementById("reset").addEventListener("click", reset);
   document.getElementById("save").addEventListener("click", save);
   turnable(document.getElementById("scene"));
+  document.getElementById("pose").addEventListener("change", () => drawScene(explorer.answer));
   for (const box of document.querySelectorAll("#jobs .job")) {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
