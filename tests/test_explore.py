@@ -315,3 +315,25 @@ def test_each_extreme_is_drawn_with_the_feet_where_the_nominal_stance_plants_the
             assert np.sign(extreme["value"]) == (1 if sign == "+" else -1)
         else:  # a rotation about the body's centre moves the roots' mean at most a little
             assert np.abs(chains[:, 0] - nominal[:, 0]).max() > 1e-3
+
+
+def test_the_feet_s_reach_is_where_each_leg_can_put_its_foot_on_the_ground():
+    from hexaleg.explore.answer import REACH_SLICE, answer
+
+    design = HexapodDesign()
+    got = answer(design, Conditions(), Requirements())["stance"]
+    l1, l2, l3 = design.lengths
+    yaw_low, yaw_high = design.stance_limits.theta1
+    for leg, (chain, reach) in enumerate(zip(got["chains"], got["reach"], strict=True)):
+        root, coxa_end, foot = np.array(chain[0]), np.array(chain[1]), np.array(chain[-1])
+        points = np.array(reach)
+        assert len(points) > 50, leg
+        out = points - root[:2]
+        rho = np.hypot(out[:, 0], out[:, 1])  # from the yaw axis, on the ground
+        drop = abs(foot[2] - root[2])
+        # the femur and tibia span at most l2 + l3 from the coxa's end (the slice's slack)
+        assert np.all((rho - l1) ** 2 + max(0.0, drop - REACH_SLICE) ** 2 <= (l2 + l3) ** 2)
+        heading = np.arctan2(*(coxa_end - root)[1::-1])  # the leg's direction at θ1 = 0
+        yaw = np.angle(np.exp(1j * (np.arctan2(out[:, 1], out[:, 0]) - heading)))
+        assert np.all((yaw >= yaw_low - 1e-9) & (yaw <= yaw_high + 1e-9)), leg
+        assert np.min(np.hypot(*(points - foot[:2]).T)) < 0.05  # the nominal foot is in it

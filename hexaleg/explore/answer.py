@@ -30,6 +30,7 @@ from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation,
 from hexaleg.study.goal import Goal
 from hexaleg.study.metrics import METRICS
 from hexaleg.study.requirements import Requirements, limited_by_dict
+from hexaleg.swing.workspace import monte_carlo_workspace
 
 __all__ = ["EXPLORED", "answer"]
 
@@ -101,7 +102,8 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
 def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
-    ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
+    ``chains``: each leg's three joints and its foot; ``reach``: each foot's reach on the
+    ground (x, y) [m]; ``utilisation``: each leg's largest
     peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
     """
     design = model.design
@@ -114,9 +116,39 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     return {
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
+        "reach": _reach(model, chains[:, -1, 2]),
         "utilisation": utilisation,
         "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
     }
+
+
+REACH_SAMPLES = 10_000
+"""Joint-angle samples of each foot's reach (the gait figure's Monte Carlo cloud)."""
+REACH_SLICE = 0.02
+"""Half thickness of the ground's slice of the reach [m]."""
+REACH_POINTS = 400
+"""Most points of each leg's reach sent to the page."""
+
+
+def _reach(model: HexapodModel, ground: np.ndarray) -> list[list[list[float]]]:
+    """Each leg's foot reach on the ground, world frame [m], at the nominal body pose.
+
+    The Monte Carlo cloud of one leg within the stance limits (as ``gait --plot`` draws
+    it), placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's
+    nominal foot height, thinned to at most :data:`REACH_POINTS` points.
+    """
+    design = model.design
+    cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
+    base = model.nominal_base_pose()
+    roots = model.root_placements()
+    out = []
+    for leg, height in zip(model.leg_names, ground, strict=True):
+        placed = base * roots[leg]
+        world = cloud.points @ placed.rotation.T + placed.translation
+        near = world[np.abs(world[:, 2] - height) < REACH_SLICE]
+        step = max(1, math.ceil(len(near) / REACH_POINTS))
+        out.append(near[::step, :2].round(4).tolist())
+    return out
 
 
 def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:

@@ -240,6 +240,16 @@ function drawScene(answer) {
   ctx.beginPath();
   roots.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
   ctx.closePath(); ctx.fill(); ctx.stroke();
+  if (document.getElementById("reach").checked) {
+    ctx.fillStyle = "rgba(40,90,200,0.35)";
+    answer.stance.reach.forEach((points, leg) => {
+      const z = answer.stance.chains[leg][answer.stance.chains[leg].length - 1][2];
+      for (const [x, y] of points) {
+        const [u, v] = at([x, y, z]);
+        ctx.fillRect(u - 1, v - 1, 2, 2);
+      }
+    });
+  }
   const used = answer.stance.utilisation;
   ctx.lineWidth = 4;
   chains.forEach((chain, leg) => {
@@ -416,6 +426,7 @@ async function start() {
   document.getElementById("save").addEventListener("click", save);
   turnable(document.getElementById("scene"));
   document.getElementById("pose").addEventListener("change", () => drawScene(explorer.answer));
+  document.getElementById("reach").addEventListener("change", () => drawScene(explorer.answer));
   for (const box of document.querySelectorAll("#jobs .job")) {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
