@@ -217,3 +217,123 @@ def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
     assert main(["explore", "--save", "design.json"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "design.json" in err and ".toml" in err
+
+
+MOTORS = {
+    "actuators.root": "hd_cha_20a_100",
+    "actuators.hip": "hd_cha_32a_50",
+    "actuators.knee": "hd_cha_25a_100",
+}
+"""A catalog motor per joint type, chosen on the page by name."""
+
+
+def _motors_file(folder, motors: dict[str, str]) -> str:
+    """A design file naming the same catalog motors, as a user writes it."""
+    path = folder / "motors.toml"
+    path.write_text("".join(f'[{key}]\ncatalog = "{name}"\n' for key, name in motors.items()))
+    return str(path)
+
+
+def test_motors_chosen_by_name_measure_as_the_design_file_s_catalog_motors(
+    explorer, capsys, tmp_path
+):
+    status, got = explorer.get("api/evaluate?" + urllib.parse.urlencode(MOTORS))
+    assert status == 200 and got["error"] == "", got
+    design = ["--design", _motors_file(tmp_path, MOTORS)]
+    gait = _cli(capsys, "gait", *design)
+    loads = _cli(capsys, "loads", *design)
+    electrical = gait["electrical"]
+    assert got["energy_per_km"] == pytest.approx(electrical["energy_per_km"], rel=RTOL)
+    assert got["electrical_cost_of_transport"] == pytest.approx(
+        electrical["cost_of_transport"], rel=RTOL
+    )
+    assert got["robot_mass"] == pytest.approx(loads["mass"], rel=RTOL)
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    status, plain = explorer.get("api/evaluate")  # the loaded design: no motors
+    assert plain["energy_per_km"] is None and "actuators" in plain["unmeasured"]["energy_per_km"]
+    assert plain["robot_mass"] < got["robot_mass"]  # the motors weigh
+
+
+def test_the_page_offers_the_shipped_catalog(explorer):
+    from hexaleg.actuator_catalog import shipped_catalog
+
+    assert explorer.get("api/loaded")[0] == 200
+    loaded = explorer.get("api/loaded")[1]
+    assert [m["name"] for m in loaded["catalog"]] == list(shipped_catalog().names)
+    assert loaded["values"]["actuators"] == {"root": None, "hip": None, "knee": None}
+    assert loaded["has_actuators"] is False
+
+
+def test_a_query_chooses_motors_by_catalog_name_or_takes_them_away(tmp_path):
+    file_design = load_design_file(_motors_file(tmp_path, MOTORS), Requirements.from_table)[0]
+    base = HexapodDesign()
+    chosen = parse_query(MOTORS, base, Conditions()).design
+    assert chosen.actuators == file_design.actuators
+    assert chosen.rated_torques == file_design.rated_torques
+    one = parse_query({"actuators.hip": "hd_cha_25a_100"}, chosen, Conditions()).design
+    assert one.actuators is not None and file_design.actuators is not None
+    assert (one.actuators.root, one.actuators.knee) == (
+        file_design.actuators.root, file_design.actuators.knee
+    )  # fmt: skip
+    assert one.actuators.hip.peak_torque == 157.0  # the catalog entry's (hexaleg actuators)
+    none = {key: "" for key in MOTORS}
+    assert parse_query(none, chosen, Conditions()).design.actuators is None
+    with pytest.raises(ParameterError, match=r"actuators\.hip.*hd_cha_25a_100"):
+        parse_query({"actuators.hip": "hd_cha_25a_10"}, base, Conditions())
+    with pytest.raises(ParameterError, match=r"actuators\.root.*every joint type"):
+        parse_query({"actuators.hip": "hd_cha_25a_100"}, base, Conditions())
+
+
+@pytest.mark.parametrize(
+    ("query", "field"),
+    [
+        ("actuators.root=hd_cha_20a_100&actuators.knee=hd_cha_25a_10", "actuators.knee"),
+        ("actuators.root=hd_cha_20a_100", "actuators.hip"),  # the others have none
+    ],
+)
+def test_a_bad_motor_answers_400_naming_its_key(explorer, query, field):
+    status, got = explorer.get("api/evaluate?" + query)
+    assert status == 400 and got["field"] == field, got
+
+
+def test_each_extreme_is_drawn_with_the_feet_where_the_nominal_stance_plants_them():
+    from hexaleg.explore.answer import answer
+
+    got = answer(HexapodDesign(), Conditions(), Requirements())
+    nominal = np.array(got["stance"]["chains"])  # (legs, 4 points, xyz)
+    assert len(got["extremes"]) == 12
+    for extreme in got["extremes"]:
+        chains = np.array(extreme["chains"])
+        # the closed chain: every stance foot stays on its foothold (all six stand)
+        assert np.abs(chains[:, -1] - nominal[:, -1]).max() < 1e-5, extreme["name"]
+        roots = chains[:, 0].mean(axis=0) - nominal[:, 0].mean(axis=0)
+        axis, sign = extreme["name"][:-1], extreme["name"][-1]
+        if axis in ("x", "y", "z"):  # a translation moves the body's centre by its value
+            k = "xyz".index(axis)
+            assert roots[k] == pytest.approx(extreme["value"], abs=1e-5)
+            assert np.sign(extreme["value"]) == (1 if sign == "+" else -1)
+        else:  # a rotation about the body's centre moves the roots' mean at most a little
+            assert np.abs(chains[:, 0] - nominal[:, 0]).max() > 1e-3
+
+
+def test_the_feet_s_reach_is_where_each_leg_can_put_its_foot_on_the_ground():
+    from hexaleg.explore.answer import REACH_SLICE, answer
+
+    design = HexapodDesign()
+    got = answer(design, Conditions(), Requirements())["stance"]
+    l1, l2, l3 = design.lengths
+    yaw_low, yaw_high = design.stance_limits.theta1
+    for leg, (chain, reach) in enumerate(zip(got["chains"], got["reach"], strict=True)):
+        root, coxa_end, foot = np.array(chain[0]), np.array(chain[1]), np.array(chain[-1])
+        points = np.array(reach)
+        assert len(points) > 50, leg
+        out = points - root[:2]
+        rho = np.hypot(out[:, 0], out[:, 1])  # from the yaw axis, on the ground
+        drop = abs(foot[2] - root[2])
+        # the femur and tibia span at most l2 + l3 from the coxa's end (the slice's slack)
+        assert np.all((rho - l1) ** 2 + max(0.0, drop - REACH_SLICE) ** 2 <= (l2 + l3) ** 2)
+        heading = np.arctan2(*(coxa_end - root)[1::-1])  # the leg's direction at θ1 = 0
+        yaw = np.angle(np.exp(1j * (np.arctan2(out[:, 1], out[:, 0]) - heading)))
+        assert np.all((yaw >= yaw_low - 1e-9) & (yaw <= yaw_high + 1e-9)), leg
+        assert np.min(np.hypot(*(points - foot[:2]).T)) < 0.05  # the nominal foot is in it

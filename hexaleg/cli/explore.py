@@ -72,6 +72,7 @@ def run(args: argparse.Namespace) -> int:
         pass
     finally:
         server.server_close()
+        session.jobs.stop()
     print("hexaleg explore: stopped", file=sys.stderr)
     return 0
 

@@ -49,15 +49,18 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.output.figures import extremes_figure, save
     from hexaleg.stance.extremes import FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
+    from hexaleg.study.progress import progress_callback
 
     design = design_from_args(args)
     robot = robot_model(args, design)
     if robot is not None:
         return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing
-    with warnings.catch_warnings():
+    with warnings.catch_warnings(), progress_callback("search steps") as progress:
         warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
-        result = flexibility(design, args.mode, args.stance, collisions=args.collisions)
+        result = flexibility(
+            design, args.mode, args.stance, collisions=args.collisions, progress=progress
+        )
     if args.plot is not None:
         write_plots(
             args.plot, lambda out: [save(extremes_figure(result), out / "flexibility_extremes.png")]

@@ -18,15 +18,19 @@ from typing import Any
 
 import numpy as np
 
+from hexaleg.actuator_catalog import shipped_catalog
+from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
+from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
 from hexaleg.study.goal import Goal
 from hexaleg.study.metrics import METRICS
 from hexaleg.study.requirements import Requirements, limited_by_dict
+from hexaleg.swing.workspace import monte_carlo_workspace
 
 __all__ = ["EXPLORED", "answer"]
 
@@ -39,10 +43,12 @@ SCALARS = (
     "max_speed",
     "mechanical_energy_per_km",
     "mechanical_cost_of_transport",
+    *ELECTRICAL_METRICS,
     "ground_clearance",
     "robot_mass",
 )
-"""Metrics answered under their own names."""
+"""Metrics answered under their own names (those through the motors ``None`` without
+``[actuators]``, with the reason in ``unmeasured``)."""
 
 EXPLORED: tuple[str, ...] = (
     *SCALARS,
@@ -68,7 +74,7 @@ def answer(
     shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
     metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
-    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(found)}
+    out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
     if goal is not None:
         checked = found if shared else goal.evaluate(design, model=model)
         out["requirements"] = _checks(goal, checked)
@@ -96,7 +102,8 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
 def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
-    ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
+    ``chains``: each leg's three joints and its foot; ``reach``: each foot's reach on the
+    ground (x, y) [m]; ``utilisation``: each leg's largest
     peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
     """
     design = model.design
@@ -109,17 +116,53 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     return {
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
+        "reach": _reach(model, chains[:, -1, 2]),
         "utilisation": utilisation,
         "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
     }
 
 
-def _extremes(found: Evaluation) -> list[dict[str, Any]]:
-    """FB's 12 extremes: direction, value [m or rad] and what stops the body there."""
+REACH_SAMPLES = 10_000
+"""Joint-angle samples of each foot's reach (the gait figure's Monte Carlo cloud)."""
+REACH_SLICE = 0.02
+"""Half thickness of the ground's slice of the reach [m]."""
+REACH_POINTS = 400
+"""Most points of each leg's reach sent to the page."""
+
+
+def _reach(model: HexapodModel, ground: np.ndarray) -> list[list[list[float]]]:
+    """Each leg's foot reach on the ground, world frame [m], at the nominal body pose.
+
+    The Monte Carlo cloud of one leg within the stance limits (as ``gait --plot`` draws
+    it), placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's
+    nominal foot height, thinned to at most :data:`REACH_POINTS` points.
+    """
+    design = model.design
+    cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
+    base = model.nominal_base_pose()
+    roots = model.root_placements()
+    out = []
+    for leg, height in zip(model.leg_names, ground, strict=True):
+        placed = base * roots[leg]
+        world = cloud.points @ placed.rotation.T + placed.translation
+        near = world[np.abs(world[:, 2] - height) < REACH_SLICE]
+        step = max(1, math.ceil(len(near) / REACH_POINTS))
+        out.append(near[::step, :2].round(4).tolist())
+    return out
+
+
+def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:
+    """FB's 12 extremes: direction, value [m or rad], what stops the body there.
+
+    ``chains``: the robot's points there, as the stance's (world frame [m]).
+    """
     if found.flexibility is None:
         return []
-    return [{"name": x.name, "value": x.value, "limited_by": x.description}
-            for x in found.flexibility.extremes]  # fmt: skip
+    extremes = found.flexibility.extremes
+    posed = extreme_configurations(model, extremes)
+    return [{"name": x.name, "value": x.value, "limited_by": x.description,
+             "chains": model.leg_chains(q).round(6).tolist()}
+            for x, q in zip(extremes, posed, strict=True)]  # fmt: skip
 
 
 def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:
@@ -150,11 +193,27 @@ def _finite(value: float) -> float | None:
 def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str, Any]:
     """What the sliders start at: the loaded design's and conditions' values."""
     payload = conditions.payload
+    motors = design.actuators
     return {
         **{key: getattr(design, key) for key in ("l1", "l2", "l3", "body_length", "body_width")},
+        "actuators": {
+            joint: None if motors is None else _catalog_name(getattr(motors, joint))
+            for joint in LEG_JOINTS
+        },
         "nominal_angles": list(design.nominal_angles),
         "payload": payload.mass,
         "payload_at": payload.position_on(design),
         "speed": conditions.gait.speed,
         "step_height": conditions.gait.step_height,
     }
+
+
+def _catalog_name(actuator: Actuator) -> str | None:
+    """The catalog entry ``actuator`` is exactly (no key overridden), else ``None``."""
+    catalog = shipped_catalog()
+    if (
+        actuator.catalog not in catalog.names
+        or catalog.entry(actuator.catalog).actuator != actuator
+    ):
+        return None
+    return actuator.catalog

@@ -4,8 +4,12 @@ A query names any design field by its key in a design file (``l1=0.25``,
 ``body_width=0.7``, a triple as three comma-separated numbers:
 ``nominal_angles=0,0.1,-1.5``) and the conditions the sliders set: the payload
 (``payload`` [kg], ``payload_at`` = x,y,z in the body frame [m]) and the gait's
-``speed`` [m/s] and ``step_height`` [m]. Every value is checked by its declaration; a bad
-one is a :class:`~hexaleg.exceptions.ParameterError` naming the key and its range.
+``speed`` [m/s] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
+``actuators.knee`` choose each joint type's motor by its catalog name (``hexaleg
+actuators``), as ``catalog = "NAME"`` does in a design file; empty values take the
+motors away (the ratings they gave kept, no motor model); a joint type not named keeps
+the loaded design's motor. Every value is checked by its declaration; a bad one is a
+:class:`~hexaleg.exceptions.ParameterError` naming the key and its range.
 """
 
 from __future__ import annotations
@@ -14,12 +18,15 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
+from hexaleg.actuator_catalog import shipped_catalog
+from hexaleg.actuators import TABLE, Actuator, Actuators
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
 from hexaleg.study.evaluation import Conditions
 
-__all__ = ["CONDITION_KEYS", "DESIGN_KEYS", "Query", "parse_query"]
+__all__ = ["ACTUATOR_KEYS", "CONDITION_KEYS", "DESIGN_KEYS", "Query", "parse_query"]
 
 DESIGN_KEYS: dict[str, Any] = {
     spec.key: spec for spec in DESIGN_FIELDS if spec.kind in ("number", "triple", "choice")
@@ -33,6 +40,9 @@ CONDITION_KEYS: dict[str, str] = {
     "step_height": "gait step height [m]",
 }
 """The conditions a query may set, with what each is."""
+
+ACTUATOR_KEYS: dict[str, str] = {f"{TABLE}.{joint}": joint for joint in LEG_JOINTS}
+"""The keys choosing each joint type's motor from the catalog, with their joint type."""
 
 
 @dataclass(frozen=True)
@@ -61,11 +71,15 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
         ParameterError: An unknown key, or a value out of its field's range.
 
     """
-    unknown = [key for key in params if key not in DESIGN_KEYS and key not in CONDITION_KEYS]
+    known = (*DESIGN_KEYS, *CONDITION_KEYS, *ACTUATOR_KEYS)
+    unknown = [key for key in params if key not in known]
     if unknown:
-        known = ", ".join([*DESIGN_KEYS, *CONDITION_KEYS])
-        raise ParameterError(unknown[0], params[unknown[0]], f"unknown key: known are {known}")
+        raise ParameterError(
+            unknown[0], params[unknown[0]], f"unknown key: known are {', '.join(known)}"
+        )
     changes = {key: _field(key, text) for key, text in params.items() if key in DESIGN_KEYS}
+    if any(key in params for key in ACTUATOR_KEYS):
+        changes["actuators"] = _actuators(params, base.actuators)
     design = base.replace(**changes) if changes else base
     return Query(design, _conditions(params, conditions))
 
@@ -79,6 +93,28 @@ def _field(key: str, text: str) -> Any:
         return spec.check(tuple(_number(f"{key}.{item}", part, spec.unit)
                                 for item, part in _three(key, text, spec.items)))  # fmt: skip
     return spec.check(_number(key, text, spec.unit, spec.bounds))
+
+
+def _actuators(params: Mapping[str, str], loaded: Actuators | None) -> Actuators | None:
+    """The motors a query chooses: catalog names, empty for none, the loaded ones kept."""
+    chosen: dict[str, Actuator | None] = {}
+    for key, joint in ACTUATOR_KEYS.items():
+        if key not in params:
+            chosen[joint] = None if loaded is None else getattr(loaded, joint)
+        elif params[key].strip():
+            chosen[joint] = shipped_catalog().entry(params[key].strip(), key).actuator
+        else:
+            chosen[joint] = None
+    if all(actuator is None for actuator in chosen.values()):
+        return None
+    given = {joint: actuator for joint, actuator in chosen.items() if actuator is not None}
+    missing = [joint for joint in LEG_JOINTS if joint not in given]
+    if missing:
+        key = f"{TABLE}.{missing[0]}"
+        raise ParameterError(
+            key, params.get(key, ""), "choose a motor for every joint type, or none"
+        )
+    return Actuators(**given)
 
 
 def _conditions(params: Mapping[str, str], base: Conditions) -> Conditions:

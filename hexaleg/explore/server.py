@@ -8,7 +8,10 @@ given (127.0.0.1 unless the user asks; port 0 lets the system pick). Endpoints:
   value answers 400 with ``{"error", "field", "allowed"}`` and the server keeps serving;
 - ``GET /api/loaded``: what the page starts at and resets to;
 - ``GET /api/cloud``: the study's cloud (``ready`` false while it is measured);
-- ``POST /api/save?…``: writes the design the query describes to the session's file.
+- ``POST /api/save?…``: writes the design the query describes to the session's file;
+- ``POST /api/job?kind=free|decide&…``: starts a long job on the design the query
+  describes (:mod:`~.jobs`); ``GET /api/job?kind=…``: its state and progress;
+  ``POST /api/job/stop?kind=…``: stops it.
 """
 
 from __future__ import annotations
@@ -79,6 +82,7 @@ class _Handler(BaseHTTPRequestHandler):
             "/api/evaluate": lambda params: session.evaluate(params),
             "/api/loaded": lambda params: session.loaded(),
             "/api/cloud": lambda params: session.cloud.to_dict(),
+            "/api/job": lambda params: session.job(_kind(params)),
         }
         if url.path not in routes:
             self._json(HTTPStatus.NOT_FOUND, {"error": f"no such page: {url.path}"})
@@ -87,13 +91,18 @@ class _Handler(BaseHTTPRequestHandler):
 
     def do_POST(self) -> None:
         url = urlsplit(self.path)
-        if url.path != "/api/save":
-            self._json(HTTPStatus.NOT_FOUND, {"error": f"no such endpoint: {url.path}"})
-            return
+        session = self.server.session
+        routes = {
+            "/api/save": lambda params: {"wrote": str(session.save(params))},
+            "/api/job": lambda params: session.start_job(_kind(params), params),
+            "/api/job/stop": lambda params: _stopped(session, _kind(params)),
+        }
         length = int(self.headers.get("Content-Length") or 0)
         self.rfile.read(length)  # the query is in the URL; the body is read and dropped
-        session = self.server.session
-        self._answer(lambda: {"wrote": str(session.save(_params(url.query)))})
+        if url.path not in routes:
+            self._json(HTTPStatus.NOT_FOUND, {"error": f"no such endpoint: {url.path}"})
+            return
+        self._answer(lambda: routes[url.path](_params(url.query)))
 
     def _answer(self, compute: Any) -> None:
         """The endpoint's JSON, or a 400 naming what the user got wrong."""
@@ -122,6 +131,22 @@ class _Handler(BaseHTTPRequestHandler):
 
     def log_message(self, format: str, *args: Any) -> None:
         """Say nothing per request (the terminal shows the URL and errors only)."""
+
+
+def _kind(params: dict[str, str]) -> str:
+    """The job a request names (``kind``), taken out of the design's keys."""
+    from hexaleg.explore.jobs import JOB_KINDS
+
+    kind = params.pop("kind", "")
+    if kind not in JOB_KINDS:
+        raise ParameterError("kind", kind, f"must be one of {', '.join(JOB_KINDS)}")
+    return kind
+
+
+def _stopped(session: Session, kind: str) -> dict[str, Any]:
+    """Stop the job of ``kind``; its state after."""
+    session.jobs.stop(kind)
+    return session.job(kind)
 
 
 def _params(query: str) -> dict[str, str]:

@@ -16,11 +16,13 @@ from typing import Any
 import tomli_w
 
 from hexaleg._io import check_output_file, write_text
+from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import HexalegError
 from hexaleg.explore.answer import answer, loaded_values
 from hexaleg.explore.cloud import Cloud
+from hexaleg.explore.jobs import Jobs
 from hexaleg.explore.query import Query, parse_query
 from hexaleg.study.evaluation import Conditions
 from hexaleg.study.goal import Goal
@@ -37,6 +39,9 @@ SLIDERS: tuple[tuple[str, str, float, float], ...] = (
 )
 """Length sliders: key, label, and their range as fractions of the loaded value."""
 
+CATALOG_COLUMNS = ("name", "manufacturer", "model", "peak_torque", "continuous_torque", "mass")
+"""What the page's motor choices show of each catalog entry."""
+
 
 @dataclass(frozen=True)
 class Session:
@@ -50,6 +55,7 @@ class Session:
             checked); a leg length not required is the loaded design's.
         save_to: The design file "save design" writes (.toml).
         cloud: The study's cloud around the loaded design, measured in the background.
+        jobs: Its long jobs (free-coupled search, decide), each another process.
 
     """
 
@@ -58,6 +64,7 @@ class Session:
     requirements: Requirements
     save_to: Path
     cloud: Cloud = field(compare=False)
+    jobs: Jobs = field(default_factory=Jobs, compare=False)
 
     @classmethod
     def start(
@@ -85,24 +92,40 @@ class Session:
         return answer(asked.design, asked.conditions, required)
 
     def loaded(self) -> dict[str, Any]:
-        """What the page starts at and resets to: values, slider ranges, requirements."""
+        """What the page starts at and resets to: values, sliders, motors, requirements."""
         values = loaded_values(self.design, self.conditions)
         ranges = {
             key: [low * values[key], high * values[key], label] for key, label, low, high in SLIDERS
         }
         bounds = {spec.key: spec.bounds for spec in DESIGN_FIELDS if spec.bounds is not None}
+        motors = [{key: entry.to_dict()[key] for key in CATALOG_COLUMNS}
+                  for entry in shipped_catalog()]  # fmt: skip
         return {
             "values": values,
+            "catalog": motors,
+            "has_actuators": self.design.actuators is not None,
             "sliders": ranges,
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),
         }
 
-    def save(self, params: Mapping[str, str]) -> Path:
-        """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
-        design = self.query(params).design
-        text = design_toml(design)
+    def design_text(self, params: Mapping[str, str]) -> str:
+        """The design file (TOML) of the design a query asks for, the requirements kept."""
+        text = design_toml(self.query(params).design)
         if self.requirements.given:
             text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
-        return write_text(self.save_to, text)
+        return text
+
+    def save(self, params: Mapping[str, str]) -> Path:
+        """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
+        return write_text(self.save_to, self.design_text(params))
+
+    def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
+        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
+        return self.jobs.start(kind, self.design_text(params)).to_dict()
+
+    def job(self, kind: str) -> dict[str, Any]:
+        """The latest job of ``kind``: its state and progress (``state`` ``none``: never run)."""
+        found = self.jobs.get(kind)
+        return {"kind": kind, "state": "none"} if found is None else found.to_dict()

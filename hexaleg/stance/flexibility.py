@@ -6,7 +6,7 @@
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 
 from hexaleg._typing import FlexibilityMode, StanceSet, require_choice
 from hexaleg.design import HexapodDesign
@@ -23,11 +23,14 @@ def flexibility(
     model: HexapodModel | None = None,
     *,
     collisions: bool = False,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FlexibilityResult:
     """Body flexibility of ``design``: ``mode`` is ``"axis"`` (axis-locked) or ``"free"``.
 
     With ``collisions``, the body also stops where two of the robot's own parts touch.
+    ``progress`` is called ``(done, total)`` after each step of the free-coupled search
+    (the axis-locked one is over in milliseconds).
     """
     if require_choice("mode", mode, FlexibilityMode) == "axis":
         return axis_locked_flexibility(design, stance, model, collisions=collisions)
-    return free_flexibility(design, stance, model, collisions=collisions)
+    return free_flexibility(design, stance, model, collisions=collisions, progress=progress)

@@ -33,7 +33,7 @@ directions and takes the other from the mirror (:mod:`.symmetry`), re-checked.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import replace
 
 import numpy as np
@@ -87,6 +87,7 @@ def free_flexibility(
     *,
     geometry: StanceGeometry | None = None,
     collisions: bool = False,
+    progress: Callable[[int, int], None] | None = None,
 ) -> FlexibilityResult:
     """Free-coupled flexibility: each coordinate's extreme with the other five free.
 
@@ -97,6 +98,8 @@ def free_flexibility(
         geometry: A template geometry of the same body and mounts (fast path for
             sweeps: the design's legs replace the template's by :meth:`StanceGeometry.with_design`).
         collisions: Also stop where two of the robot's own parts touch (coal).
+        progress: Called ``(done, total)`` after each step of the search (a direction's
+            basins found, its extreme solved or mirrored).
 
     """
     model = needed_model(design, model, geometry, collisions)
@@ -105,7 +108,7 @@ def free_flexibility(
     locked = axis_locked_extremes(geometry)
     if collision is not None:
         locked = collision_limited(geometry, collision, locked)
-    search = _Search(FreeProblem(geometry, collision), locked)
+    search = _Search(FreeProblem(geometry, collision), locked, progress)
     result = FlexibilityResult(
         design,
         geometry.legs,
@@ -150,17 +153,35 @@ def _seed(k: int, sign: int) -> int:
 class _Search:
     """The twelve free extremes of one stance (see the module's description)."""
 
-    def __init__(self, problem: FreeProblem, locked: Sequence[Extreme]) -> None:
+    def __init__(
+        self,
+        problem: FreeProblem,
+        locked: Sequence[Extreme],
+        progress: Callable[[int, int], None] | None = None,
+    ) -> None:
         self.problem = problem
         self.locked = tuple(locked)
         self.box = search_box(locked)
         self.iterations = 0
+        self.progress = progress
 
     def extremes(self) -> tuple[Extreme, ...]:
         """Every direction: solved, or taken from its mirror image where that holds."""
         directions = [(e.axis, e.sign) for e in self.locked]
         sources = mirror_sources(directions, self.problem.flips)
-        basins = {i: self.basins(e) for i, e in enumerate(self.locked) if i not in sources}
+        own = len(self.locked) - len(sources)  # directions solved, not mirrored
+        total = 2 * own + len(sources)  # each own one's basins and solve, each mirror
+        done = iter(range(1, total + 1))
+
+        def step() -> None:
+            if self.progress is not None:
+                self.progress(next(done), total)
+
+        basins = {}
+        for i, e in enumerate(self.locked):
+            if i not in sources:
+                basins[i] = self.basins(e)
+                step()
         tips = {i: found[0].points[0] for i, (found, _) in basins.items() if found}
         solved = {}
         for i, found in basins.items():
@@ -168,11 +189,13 @@ class _Search:
             solved[i] = self.solve(
                 self.locked[i], *self.with_climbs_from(self.locked[i], starts, *found)
             )
+            step()
         for i, (source, flip) in sources.items():
             mirrored = self.mirrored(self.locked[i], solved[source], flip)
             if mirrored is None:
                 mirrored = self.solve(self.locked[i], *self.basins(self.locked[i]))
             solved[i] = mirrored
+            step()
         return tuple(solved[i] for i in range(len(self.locked)))
 
     def symmetric(self, i: int, tips: dict[int, ArrayF]) -> list[ArrayF]:

@@ -9,10 +9,11 @@ says which one is running: on the bar, and at the end of each line (``now: stati
 
 from __future__ import annotations
 
+import contextlib
 import math
 import sys
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from typing import TextIO
 
 from tqdm import tqdm
@@ -102,6 +103,24 @@ class Progress:
         print(f"hexaleg: {self.line()}", file=self._stream, flush=True)
         self._last = self._clock()
         self._printed = self.done
+
+
+@contextlib.contextmanager
+def progress_callback(unit: str, show: bool | None = None) -> Iterator[Callable[[int, int], None]]:
+    """A ``(done, total)`` callback shown as :class:`Progress` (``unit`` plural).
+
+    For code that learns its total only as it starts; the bar or the last line is closed
+    when the block ends.
+    """
+    with contextlib.ExitStack() as stack:
+        bars: list[Progress] = []
+
+        def report(done: int, total: int) -> None:
+            if not bars:
+                bars.append(stack.enter_context(Progress(total, unit=unit, show=show)))
+            bars[0].update(done - bars[0].done)
+
+        yield report
 
 
 def _is_terminal(stream: TextIO) -> bool:

@@ -21,6 +21,10 @@ const ROWS = [
   ["rms_torque.hip", "RMS torque, hip", 4, "N·m"],
   ["rms_torque.knee", "RMS torque, knee", 4, "N·m"],
   ["mechanical_energy_per_km", "mechanical energy per km", 4, "Wh/km"],
+  ["energy_per_km", "energy per km, through the motors", 4, "Wh/km"],
+  ["electrical_cost_of_transport", "electrical cost of transport", 4, ""],
+  ["continuous_load", "continuous load, RMS/continuous torque (worst joint)", 4, ""],
+  ["battery_range", "range on the battery", 4, "km"],
   ["ground_clearance", "ground clearance", 4, "m"],
   ["robot_mass", "robot mass", 4, "kg"],
 ];
@@ -40,6 +44,34 @@ function slider(parent, key, label, low, high, start, step) {
   input.addEventListener("input", () => { show(); changed(); });
   show();
   return input;
+}
+
+const LOADED_MOTOR = "__loaded__";  // the design file's own motor, not a catalog entry
+
+function motorChoice(parent, joint, loaded) {
+  const row = document.createElement("label");
+  const select = document.createElement("select");
+  select.id = "motor_" + joint;
+  const options = [["", "ratings only (no motor model)"]];
+  const mine = loaded.values.actuators[joint];
+  if (mine === null && loaded.has_actuators) options.push([LOADED_MOTOR, "the design file's motor"]);
+  for (const m of loaded.catalog) {
+    options.push([m.name, `${m.name} (${m.peak_torque} / ${m.continuous_torque} N·m, ${m.mass} kg)`]);
+  }
+  for (const [v, text] of options) {
+    const o = document.createElement("option");
+    o.value = v; o.textContent = text;
+    select.append(o);
+  }
+  select.value = motorStart(loaded, joint);
+  select.addEventListener("change", changed);
+  row.append(joint, select);
+  parent.append(row);
+}
+
+function motorStart(loaded, joint) {
+  const mine = loaded.values.actuators[joint];
+  return mine !== null ? mine : loaded.has_actuators ? LOADED_MOTOR : "";
 }
 
 function heading(parent, text) {
@@ -69,6 +101,8 @@ function buildControls(loaded) {
   slider(c, "speed", "speed [m/s]", 0.02, Math.max(1, 2 * v.speed), v.speed, "any");
   slider(c, "step_height", "step height [m]", 0.01, Math.max(0.3, 2 * v.step_height),
          v.step_height, "any");
+  heading(c, "motors (peak / continuous torque, mass)");
+  for (const joint of ["root", "hip", "knee"]) motorChoice(c, joint, loaded);
 }
 
 function query() {
@@ -79,6 +113,10 @@ function query() {
                      "step_height"]) params.set(key, get(key));
   params.set("nominal_angles", [v.nominal_angles[0], get("theta2"), get("theta3")].join(","));
   params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
+  for (const joint of ["root", "hip", "knee"]) {
+    const motor = get("motor_" + joint);
+    if (motor !== LOADED_MOTOR) params.set("actuators." + joint, motor);
+  }
   return params.toString();
 }
 explorer.query = query;
@@ -180,7 +218,10 @@ function drawScene(answer) {
   const canvas = document.getElementById("scene");
   const ctx = canvas.getContext("2d");
   ctx.clearRect(0, 0, canvas.width, canvas.height);
-  const chains = answer.stance.chains;
+  const shown = shownExtreme(answer);
+  const chains = shown ? shown.chains : answer.stance.chains;
+  document.getElementById("pose-note").textContent = shown ? shown.name + " " +
+    shown.value.toFixed(4) + unitOf(shown.name) + ", stopped by " + shown.limited_by : "";
   const span = Math.max(...chains.flat().map((p) => Math.hypot(p[0], p[1], p[2])));
   const scale = 0.42 * Math.min(canvas.width, canvas.height) / span;
   const centre = [canvas.width / 2, canvas.height * 0.62];
@@ -199,6 +240,16 @@ function drawScene(answer) {
   ctx.beginPath();
   roots.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
   ctx.closePath(); ctx.fill(); ctx.stroke();
+  if (document.getElementById("reach").checked) {
+    ctx.fillStyle = "rgba(40,90,200,0.35)";
+    answer.stance.reach.forEach((points, leg) => {
+      const z = answer.stance.chains[leg][answer.stance.chains[leg].length - 1][2];
+      for (const [x, y] of points) {
+        const [u, v] = at([x, y, z]);
+        ctx.fillRect(u - 1, v - 1, 2, 2);
+      }
+    });
+  }
   const used = answer.stance.utilisation;
   ctx.lineWidth = 4;
   chains.forEach((chain, leg) => {
@@ -214,13 +265,30 @@ function drawScene(answer) {
   ctx.lineWidth = 1;
 }
 
+function unitOf(name) {
+  return "xyz".includes(name[0]) && name.length === 2 ? " m" : " rad";
+}
+
+function shownExtreme(answer) {
+  const name = document.getElementById("pose").value;
+  return name ? answer.extremes.find((x) => x.name === name) || null : null;
+}
+
 function drawExtremes(extremes) {
+  const pose = document.getElementById("pose");
+  if (pose.options.length === 1) {
+    for (const x of extremes) {
+      const o = document.createElement("option");
+      o.value = x.name; o.textContent = "the extreme " + x.name;
+      pose.append(o);
+    }
+  }
   const body = document.querySelector("#extremes tbody");
   body.replaceChildren();
   for (const x of extremes) {
     const tr = document.createElement("tr");
-    const unit = "xyz".includes(x.name[0]) && x.name.length === 2 ? " m" : " rad";
-    for (const text of [x.name, x.value.toFixed(4) + unit, x.limited_by]) {
+    tr.addEventListener("click", () => { pose.value = x.name; drawScene(explorer.answer); });
+    for (const text of [x.name, x.value.toFixed(4) + unitOf(x.name), x.limited_by]) {
       const td = document.createElement("td");
       td.textContent = text;
       tr.append(td);
@@ -273,6 +341,47 @@ async function pollCloud() {
     "the walking payload capacity" + (cloud.error ? " — " + cloud.error : "");
 }
 
+const JOB_ANSWERS = {
+  free: (a) => "FB " + a.fb.toPrecision(4) + " with the other five coordinates free" +
+    (a.converged ? "" : " (not shown to be the maximum)"),
+  decide: (a) => a.best ? "best: l1 " + a.best.design.l1.toPrecision(3) + ", l2 " +
+    a.best.design.l2.toPrecision(3) + ", l3 " + a.best.design.l3.toPrecision(3) + " m, " +
+    a.best.objective.name + " " + a.best.objective.value.toPrecision(4) +
+    (a.feasible ? "" : " (no design met every requirement)") : "no answer",
+};
+
+function showJob(box, job) {
+  const bar = box.querySelector("progress");
+  const state = box.querySelector(".job-state");
+  const button = box.querySelector("button");
+  box.dataset.state = job.state;
+  if (job.state === "none") return;
+  if (job.total) { bar.max = job.total; bar.value = job.done; } else bar.removeAttribute("value");
+  button.textContent = job.state === "running" ? "stop" : box.dataset.label;
+  const seconds = job.elapsed.toFixed(0) + " s";
+  state.textContent = job.state === "running" ? (job.total ? job.done + "/" + job.total + ", " : "") +
+    seconds : job.state === "done" ? JOB_ANSWERS[job.kind](job.answer) + " (" + seconds + ")"
+    : job.state + (job.error ? ": " + job.error : "");
+  if (job.state === "done") { bar.max = 1; bar.value = 1; }
+}
+
+async function pollJob(box) {
+  const job = await fetch("api/job?kind=" + box.dataset.kind).then((r) => r.json());
+  showJob(box, job);
+  if (job.state === "running") setTimeout(() => pollJob(box), 500);
+}
+
+async function startOrStopJob(box) {
+  const kind = box.dataset.kind;
+  const running = box.dataset.state === "running";
+  const url = running ? "api/job/stop?kind=" + kind : "api/job?kind=" + kind + "&" + query();
+  const r = await fetch(url, {method: "POST"});
+  const job = await r.json();
+  if (!r.ok) { box.querySelector(".job-state").textContent = job.error; return; }
+  showJob(box, job);
+  if (job.state === "running") setTimeout(() => pollJob(box), 500);
+}
+
 function reset() {
   const v = explorer.loaded.values;
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
@@ -283,6 +392,9 @@ function reset() {
     const input = document.getElementById(id);
     input.value = x;
     input.nextElementSibling.textContent = Number(x).toPrecision(3);
+  }
+  for (const joint of ["root", "hip", "knee"]) {
+    document.getElementById("motor_" + joint).value = motorStart(explorer.loaded, joint);
   }
   changed();
 }
@@ -313,6 +425,13 @@ async function start() {
   document.getElementById("reset").addEventListener("click", reset);
   document.getElementById("save").addEventListener("click", save);
   turnable(document.getElementById("scene"));
+  document.getElementById("pose").addEventListener("change", () => drawScene(explorer.answer));
+  document.getElementById("reach").addEventListener("change", () => drawScene(explorer.answer));
+  for (const box of document.querySelectorAll("#jobs .job")) {
+    const button = box.querySelector("button");
+    box.dataset.label = button.textContent;
+    button.addEventListener("click", () => startOrStopJob(box));
+  }
   pollCloud();
   await evaluate();
 }

@@ -1,0 +1,162 @@
+"""The explorer's long jobs: a free-coupled search or a decision, run beside the sliders.
+
+A job is the command line itself (``hexaleg flexibility --mode free --json`` or
+``hexaleg decide --json``) on the design the sliders show, written to a temporary design
+file with the session's ``[requirements]``: its numbers are the command's, and, being
+another process, it never slows the sliders' evaluations down. Its progress is read
+from the command's own progress lines on its stderr (:mod:`hexaleg.study.progress`,
+printed every :data:`~hexaleg.explore.job_runner.INTERVAL` seconds here), its answer
+from its stdout. One job of each kind at a time; starting one again stops the first; a
+job is stopped by its process id; all are stopped when the explorer stops.
+"""
+
+from __future__ import annotations
+
+import json
+import re
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from hexaleg.exceptions import ParameterError
+
+__all__ = ["JOB_KINDS", "Job", "Jobs"]
+
+JOB_KINDS: dict[str, tuple[str, ...]] = {
+    "free": ("flexibility", "--mode", "free", "--json"),
+    "decide": ("decide", "--json"),
+}
+"""Each kind of job: the hexaleg command and options it runs on the shown design."""
+
+PROGRESS_LINE = re.compile(r"^hexaleg: (\d+)/(\d+) ")
+"""A progress line of :class:`~hexaleg.study.progress.Progress`: ``done/total``."""
+
+
+@dataclass
+class Job:
+    """One running or finished job.
+
+    Attributes:
+        kind: ``"free"`` or ``"decide"``.
+        process: The command's process.
+        folder: The temporary folder holding its design file (removed when it ends).
+        started: When it started (monotonic clock) [s].
+        done: Steps finished, from its last progress line.
+        total: Steps in all (0 until its first progress line).
+        answer: Its JSON answer, once it has ended well.
+        error: Its last stderr line, if it ended badly.
+
+    """
+
+    kind: str
+    process: subprocess.Popen[str]
+    folder: tempfile.TemporaryDirectory[str]
+    started: float = field(default_factory=time.monotonic)
+    done: int = 0
+    total: int = 0
+    answer: dict[str, Any] | None = None
+    error: str = ""
+    ended: threading.Event = field(default_factory=threading.Event)
+
+    def state(self) -> str:
+        """``running``, ``done``, ``failed`` or ``stopped``."""
+        if not self.ended.is_set():
+            return "running"
+        if self.answer is not None:
+            return "done"
+        killed = (self.process.returncode or 0) < 0  # ended by a signal: stopped
+        return "stopped" if killed else "failed"
+
+    def to_dict(self) -> dict[str, Any]:
+        """What the page shows: state, progress, elapsed time [s], the answer or the error."""
+        return {
+            "kind": self.kind,
+            "pid": self.process.pid,
+            "state": self.state(),
+            "done": self.done,
+            "total": self.total,
+            "elapsed": time.monotonic() - self.started,
+            "answer": self.answer,
+            "error": self.error,
+        }
+
+    def follow(self) -> None:
+        """Read its progress lines to the end, then its answer (run in a thread)."""
+        assert self.process.stderr is not None and self.process.stdout is not None
+        last = ""
+        for line in self.process.stderr:
+            found = PROGRESS_LINE.match(line)
+            if found:
+                self.done, self.total = int(found[1]), int(found[2])
+            elif line.strip():
+                last = line.strip()
+        out = self.process.stdout.read()
+        status = self.process.wait()
+        if status == 0:
+            try:
+                self.answer = json.loads(out)
+            except json.JSONDecodeError:
+                self.error = "the command's answer is not JSON"
+        else:
+            self.error = last or f"the command ended with status {status}"
+        self.folder.cleanup()
+        self.ended.set()
+
+    def stop(self) -> None:
+        """Stop its process (by its pid) and wait for it to end."""
+        if not self.ended.is_set():
+            self.process.terminate()
+            try:
+                self.process.wait(timeout=10)
+            except subprocess.TimeoutExpired:
+                self.process.kill()
+        self.ended.wait(timeout=10)
+
+
+class Jobs:
+    """The explorer's jobs, at most one of each kind running."""
+
+    def __init__(self) -> None:
+        self._jobs: dict[str, Job] = {}
+        self._lock = threading.Lock()
+
+    def start(self, kind: str, design_text: str) -> Job:
+        """Run the job ``kind`` on the design file text ``design_text`` (TOML)."""
+        if kind not in JOB_KINDS:
+            raise ParameterError("kind", kind, f"must be one of {', '.join(JOB_KINDS)}")
+        with self._lock:
+            if kind in self._jobs:
+                self._jobs[kind].stop()
+            folder = tempfile.TemporaryDirectory(prefix="hexaleg-explore-")
+            design = Path(folder.name) / "design.toml"
+            design.write_text(design_text, encoding="utf-8")
+            command = [sys.executable, "-m", "hexaleg.explore.job_runner",
+                       *JOB_KINDS[kind], "--design", str(design)]  # fmt: skip
+            process = subprocess.Popen(
+                command,
+                stdin=subprocess.DEVNULL,
+                stdout=subprocess.PIPE,
+                stderr=subprocess.PIPE,
+                text=True,
+                cwd=folder.name,
+            )
+            job = Job(kind, process, folder)
+            threading.Thread(target=job.follow, daemon=True).start()
+            self._jobs[kind] = job
+            return job
+
+    def get(self, kind: str) -> Job | None:
+        """The latest job of ``kind``, if one was started."""
+        return self._jobs.get(kind)
+
+    def stop(self, kind: str | None = None) -> None:
+        """Stop the job of ``kind``, or every job."""
+        with self._lock:
+            for name, job in self._jobs.items():
+                if kind is None or name == kind:
+                    job.stop()
