@@ -249,6 +249,8 @@ def test_loads_json_and_the_study_see_the_continuous_torque_bind(tmp_path, capsy
     measured = evaluate(design, ["walking_payload_capacity"], model=model)  # studies, decide
     assert measured["walking_payload_capacity"] == pytest.approx(oracle, rel=1e-6)
     assert measured.causes["walking_payload_capacity"].kind == "continuous_torque"
+
+
 def test_the_capacity_bound_by_the_zmp_is_where_the_gait_turns_infeasible():
     """The capacity and ``feasible`` agree: just under it feasible, just over it tipping."""
     design = HexapodDesign(rated_torques=(1e5, 1e5, 1e5))
