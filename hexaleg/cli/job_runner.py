@@ -1,6 +1,6 @@
 """Run one hexaleg command for the explorer, its progress lines printed often.
 
-``python -m hexaleg.explore.job_runner COMMAND [OPTIONS]`` is ``hexaleg COMMAND
+``python -m hexaleg.cli.job_runner COMMAND [OPTIONS]`` is ``hexaleg COMMAND
 [OPTIONS]`` with a progress line on stderr every :data:`INTERVAL` seconds instead of
 every few: the page's progress bar moves while a job runs (:mod:`hexaleg.explore.jobs`).
 """
