@@ -123,26 +123,29 @@ def bench_decide_actuators(evaluations: int | None) -> list[Row]:
             f"feasible {result.feasible}"
         )
 
+    name = f"decide --choose-actuators, 3 free lengths, {found.evaluations} designs"
+
+    def compared(label: str, seconds: float, result, ratio: float, what: str) -> Row:
+        return Row(name, label, seconds, ratio, None, note=f"ratio: time per design {what}; "
+                   + note(result))  # fmt: skip
+
     def per_design(seconds: float, result) -> float:
         return seconds / result.evaluations
 
-    name = f"decide --choose-actuators, 3 free lengths, {found.evaluations} designs"
     return [
         Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 90 s", note=note(found)),
-        Row(
-            name,
+        compared(
             f"baseline: lengths only, those actuators fixed ({fixed.evaluations} designs)",
             t_fixed,
+            fixed,
             per_design(elapsed, found) / per_design(t_fixed, fixed),
-            None,
-            note="ratio: time per design choosing / with the actuators fixed; " + note(fixed),
+            "choosing / with the actuators fixed",
         ),
-        Row(
-            name,
+        compared(
             f"--free-gear-ratio too ({geared.evaluations} designs)",
             t_geared,
+            geared,
             per_design(t_geared, geared) / per_design(elapsed, found),
-            None,
-            note="ratio: time per design with free ratios / choosing only; " + note(geared),
+            "with free ratios / choosing only",
         ),
     ]
