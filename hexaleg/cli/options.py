@@ -18,6 +18,7 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.gait.spec import Gait
 from hexaleg.layouts import Layout
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
@@ -168,6 +169,16 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     return inputs_from_args(args)[0]
 
 
+def design_gait(args: argparse.Namespace) -> Gait:
+    """The ``--design`` file's ``[gait]`` table's gait; the default gait without one."""
+    path = getattr(args, "design", None)
+    if path is None:
+        return Gait()
+    from hexaleg.design_file import load_gait  # reads TOML only when asked
+
+    return load_gait(path)
+
+
 def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
     """The design the shared options describe, and the ``--design`` file's requirements.
 
@@ -183,6 +194,12 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         if path is None
         else load_design_file(path, Requirements.from_table)
     )
+    if path is not None:
+        from dataclasses import replace
+
+        from hexaleg.design_file import load_gait
+
+        requirements = replace(requirements, walked=load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
         from hexaleg.cli.robot_table import load_robot_table
 
