@@ -105,3 +105,16 @@ def test_a_bad_gait_table_is_refused_in_one_line(tmp_path, capsys, table, expect
     err = capsys.readouterr().err.strip()
     assert expected in err and "\n" not in err
     assert not out.exists()
+
+
+def test_design_init_and_show_round_trip_the_table(files, tmp_path, capsys):
+    with_table, without = files
+    written = tmp_path / "again.toml"
+    assert run_cli(["design", "init", str(written), "--design", str(with_table)]) == 0
+    assert load_gait(written) == load_gait(with_table)
+    shown = _json(capsys, ["design", "show", "--design", str(written)])
+    assert shown["gait"] == _options_gait(["--design", str(without), *OPTIONS]).to_dict()
+    plain = tmp_path / "plain_again.toml"
+    assert run_cli(["design", "init", str(plain), "--design", str(without)]) == 0
+    assert "[gait]" not in plain.read_text()
+    assert "gait" not in _json(capsys, ["design", "show", "--design", str(plain)])
