@@ -30,7 +30,6 @@ from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.field_spec import FieldSpec
-from hexaleg.gait.spec import Gait
 from hexaleg.limits import JOINT_NAMES, JointLimits
 
 if sys.version_info >= (3, 11):
@@ -88,7 +87,7 @@ ROBOT = "robot"
 """An imported robot's table (``hexaleg design import``), read by the commands that take one."""
 
 GAIT = "gait"
-"""The gait table: read by :meth:`hexaleg.gait.spec.Gait.from_table` (:func:`load_gait`)."""
+"""The gait table: read by :meth:`hexaleg.gait.spec.Gait.from_table` (:func:`load_table`)."""
 
 TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS, ROBOT, GAIT)
 """Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, the
@@ -146,22 +145,23 @@ def load_design_file(
         design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
         if not isinstance(table, dict):
             raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
-        Gait.from_table(data.get(GAIT, {}))  # refused by every command, not only the walking
         return design, read_requirements(table)
     except ParameterError as err:
         raise _located(path, text, json_file, err) from None
 
 
-def load_gait(path: str | os.PathLike[str]) -> Gait:
-    """The gait a design file's ``[gait]`` table describes (the default gait without one).
+def load_table(
+    path: str | os.PathLike[str], name: str, read: Callable[[Mapping[str, Any]], T]
+) -> T:
+    """Table ``name`` of a design file as ``read`` reads it (an empty table if it has none).
 
     Raises:
-        DesignFileError: naming the file, the line and ``gait.<key>``.
+        DesignFileError: naming the file, the line and the key ``read`` refused.
 
     """
     path, text, json_file, data = _parsed(path)
     try:
-        return Gait.from_table(data.get(GAIT, {}))
+        return read(data.get(name, {}))
     except ParameterError as err:
         raise _located(path, text, json_file, err) from None
 

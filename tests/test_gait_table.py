@@ -13,7 +13,7 @@ from conftest import run_cli
 
 from hexaleg.cli.gait import gait_from_args
 from hexaleg.cli.main import build_parser
-from hexaleg.design_file import load_gait
+from hexaleg.cli.options import load_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, cast
@@ -174,9 +175,19 @@ def design_gait(args: argparse.Namespace) -> Gait:
     path = getattr(args, "design", None)
     if path is None:
         return Gait()
-    from hexaleg.design_file import load_gait  # reads TOML only when asked
-
     return load_gait(path)
+
+
+def load_gait(path: str | os.PathLike[str]) -> Gait:
+    """The gait a design file's ``[gait]`` table describes (the default gait without one).
+
+    Raises:
+        DesignFileError: naming the file, the line and ``gait.<key>``.
+
+    """
+    from hexaleg.design_file import GAIT, load_table  # reads TOML only when asked
+
+    return load_table(path, GAIT, Gait.from_table)
 
 
 def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
@@ -196,8 +207,6 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
     )
     if path is not None:
         from dataclasses import replace
-
-        from hexaleg.design_file import load_gait
 
         requirements = replace(requirements, walked=load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
