@@ -86,7 +86,10 @@ REQUIREMENTS = "requirements"
 ROBOT = "robot"
 """An imported robot's table (``hexaleg design import``), read by the commands that take one."""
 
-TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS, ROBOT)
+GAIT = "gait"
+"""The gait table: read by :meth:`hexaleg.gait.spec.Gait.from_table` (:func:`load_table`)."""
+
+TOP_KEYS = (*FIELDS, "mount", REQUIREMENTS, ROBOT, GAIT)
 """Keys of a design file: every field's, ``mount`` for the ``[[mount]]`` tables, the
 ``[requirements]`` and the ``[robot]`` tables."""
 
@@ -137,6 +140,40 @@ def load_design_file(
         DesignFileError: naming the file, the line where it can be found and the key.
 
     """
+    path, text, json_file, data = _parsed(path)
+    try:
+        design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
+        if not isinstance(table, dict):
+            raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
+        return design, read_requirements(table)
+    except ParameterError as err:
+        raise _located(path, text, json_file, err) from None
+
+
+def load_table(
+    path: str | os.PathLike[str], name: str, read: Callable[[Mapping[str, Any]], T]
+) -> T:
+    """Table ``name`` of a design file as ``read`` reads it (an empty table if it has none).
+
+    Raises:
+        DesignFileError: naming the file, the line and the key ``read`` refused.
+
+    """
+    path, text, json_file, data = _parsed(path)
+    try:
+        return read(data.get(name, {}))
+    except ParameterError as err:
+        raise _located(path, text, json_file, err) from None
+
+
+def _located(path: Path, text: str, json_file: bool, err: ParameterError) -> DesignFileError:
+    line = _line_of(text, err.field, json_file)
+    where = f"{path}, line {line}" if line else str(path)
+    return DesignFileError(f"{where}: {err}")
+
+
+def _parsed(path: str | os.PathLike[str]) -> tuple[Path, str, bool, dict[str, Any]]:
+    """The file, its text, whether it is JSON, and its table of design keys."""
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
@@ -156,15 +193,7 @@ def load_design_file(
         data = _printed_design(data)
     if not isinstance(data, dict):
         raise DesignFileError(f"{path}: expected a table of design keys, got {type(data).__name__}")
-    try:
-        design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
-        if not isinstance(table, dict):
-            raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
-        return design, read_requirements(table)
-    except ParameterError as err:
-        line = _line_of(text, err.field, json_file)
-        where = f"{path}, line {line}" if line else str(path)
-        raise DesignFileError(f"{where}: {err}") from None
+    return path, text, json_file, data
 
 
 def _printed_design(data: object) -> object:
@@ -206,7 +235,7 @@ def _first_sentence(err: Exception) -> str:
 
 def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
     """The design of a mapping of design keys (a parsed TOML file or a JSON ``design``)."""
-    data = _radians({k: v for k, v in data.items() if k not in (REQUIREMENTS, ROBOT)}, "")
+    data = _radians({k: v for k, v in data.items() if k not in (REQUIREMENTS, ROBOT, GAIT)}, "")
     unknown = [key for key in data if key not in TOP_KEYS]
     if unknown:
         raise _unknown(unknown[0], TOP_KEYS, "")

@@ -33,7 +33,7 @@ def test_every_key_is_an_option_with_its_declared_metavar_and_help():
 
 
 def test_every_requirement_is_a_field_bounds_a_declared_metric_and_reaches_the_table():
-    fields = {f.name for f in dataclasses.fields(Requirements)}
+    fields = {f.name for f in dataclasses.fields(Requirements)} - {"walked"}  # the gait walked
     degrees = {c.name for c in CONDITIONS.values() if c.kind == "degrees"}
     assert fields == set(REQUIREMENTS) | (set(CONDITIONS) - degrees)
     text = example_table()

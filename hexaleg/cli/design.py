@@ -15,6 +15,7 @@ from hexaleg.cli.robot_options import (
     robot_from_args,
 )
 from hexaleg.design import HexapodDesign
+from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
 
@@ -80,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         return _import(args)
     design, requirements = inputs_from_args(args)
     if args.action == "init":
-        return _init(args.file, design, args.force)
+        return _init(args.file, design, args.force, requirements.walked)
     robot = robot_from_args(args)
     if robot is not None:
         return _show_robot(args, robot, design)
@@ -88,11 +89,15 @@ def run(args: argparse.Namespace) -> int:
         out = {"design": design.as_dict(), "derived": derived(design)}
         if requirements.given:
             out["requirements"] = requirements.to_dict()
+        if requirements.walked != Gait():
+            out["gait"] = requirements.walked.to_dict()
         print_json(out)
     else:
         show(design)
         if requirements.given:
             show_requirements(requirements)
+        if requirements.walked != Gait():
+            print_table("Gait (the file's [gait] table)", gait_rows(requirements.walked))
     return 0
 
 
@@ -179,7 +184,7 @@ def _toml_ready(value: Any) -> Any:
     return "none" if value is None else value
 
 
-def _init(file: str, design: HexapodDesign, force: bool) -> int:
+def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
     from hexaleg._io import check_output_file, write_text
     from hexaleg.design_text import design_toml
 
@@ -188,7 +193,8 @@ def _init(file: str, design: HexapodDesign, force: bool) -> int:
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    report_files([write_text(path, design_toml(design) + "\n" + example_table())])
+    walked = "" if gait == Gait() else "\n" + gait_toml(gait)
+    report_files([write_text(path, design_toml(design) + walked + "\n" + example_table())])
     return 0
 
 
@@ -230,6 +236,31 @@ def show(design: HexapodDesign) -> None:
             f"{mount.yaw:8.4f} ({math.degrees(mount.yaw):6.1f}°)  "
             + ", ".join(f"{v:.4f}" for v in foot)
         )
+
+
+def gait_toml(gait: Gait) -> str:
+    """The ``[gait]`` table of ``gait`` (exact: :meth:`Gait.from_table` reads it back)."""
+    keys = ("pattern", "period", "stride", "step_height", "heading", "samples")
+    values = {key: getattr(gait, key) for key in keys}
+    lines = [
+        f"{k} = {v!r}" if not isinstance(v, str) else f'{k} = "{v}"' for k, v in values.items()
+    ]
+    return (
+        "\n".join(
+            ["# The gait every walking command walks by default (s, m, rad).", "[gait]", *lines]
+        )
+        + "\n"
+    )
+
+
+def gait_rows(gait: Gait) -> list[tuple[str, str]]:
+    """The gait's keys, one a row (SI units)."""
+    units = {"period": "s", "stride": "m", "step_height": "m", "heading": "rad", "speed": "m/s"}
+    return [
+        (key, f"{value:.6g} {units[key]}" if key in units else str(value))
+        for key, value in gait.to_dict().items()
+        if key != "duty_factor"
+    ]
 
 
 def show_requirements(requirements: Requirements) -> None:

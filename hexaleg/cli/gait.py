@@ -15,6 +15,7 @@ from hexaleg.cli.options import (
     add_output_options,
     bounded_int,
     design_from_args,
+    design_gait,
 )
 from hexaleg.cli.output import (
     check_outputs,
@@ -59,11 +60,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def add_gait_options(parser: argparse.ArgumentParser) -> None:
     """The gait's options (gait, simulate): pattern, period, stride, step height, heading..."""
-    group = parser.add_argument_group("gait (defaults chosen for the default robot)")
+    group = parser.add_argument_group(
+        "gait (defaults: the --design file's [gait] table, else chosen for the default robot)"
+    )
     group.add_argument(
         "--pattern",
         choices=choices(GaitPattern),
-        default=DEFAULT.pattern,
         help="which legs swing together: three, two or one at a time (default tripod)",
     )
     for flag, metavar, what in (
@@ -85,7 +87,6 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
     group.add_argument(
         "--samples",
         type=bounded_int(*SAMPLES_RANGE),
-        default=DEFAULT.samples,
         metavar="N",
         help=f"samples per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]} "
         f"(default {DEFAULT.samples})",
@@ -93,15 +94,20 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
 
 
 def gait_from_args(args: argparse.Namespace) -> Gait:
-    """The gait the options describe (validated)."""
+    """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+
+    The options given override the table's keys, as they would the defaults: the table's
+    ``speed`` has set its period, so ``--stride`` alone keeps that period.
+    """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
+    base = design_gait(args)
     changes = {
         name: getattr(args, name)
-        for name in ("period", "stride", "step_height", "heading")
+        for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
         if getattr(args, name) is not None
     }
-    gait = Gait(pattern=args.pattern, samples=args.samples, **changes)
+    gait = base.replace(**changes)
     return gait if args.speed is None else gait.with_speed(args.speed)
 
 

@@ -14,6 +14,7 @@ from hexaleg.cli.options import (
     add_output_options,
     add_stance_option,
     design_from_args,
+    design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
@@ -110,7 +111,8 @@ def run(args: argparse.Namespace) -> int:
     analysis = analyze_loads(
         design, payload, args.friction, args.stance, args.distribution, args.mode, model=model
     )
-    walking = walking_payload_capacity(model, Gait(), payload.position)
+    gait = design_gait(args)
+    walking = walking_payload_capacity(model, gait, payload.position)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
@@ -118,7 +120,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
-    rows.insert(at, ("walking payload capacity", _walking(walking)))
+    rows.insert(at, ("walking payload capacity", _walking(walking, gait)))
     print_table(lengths_title("Statics", design.lengths), rows)
     return 0
 
@@ -192,11 +194,11 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
-def _walking(walking: WalkingCapacity) -> str:
-    gait = Gait()
-    how = f"walking the default {gait.pattern} gait at {gait.speed:g} m/s"
+def _walking(walking: WalkingCapacity, gait: Gait) -> str:
+    which = "default" if gait == Gait() else "design's"
+    how = f"walking the {which} {gait.pattern} gait at {gait.speed:g} m/s"
     if not walking.walks:
-        return f"none: cannot walk the default {gait.pattern} gait ({walking.limited_by})"
+        return f"none: cannot walk the {which} {gait.pattern} gait ({walking.limited_by})"
     return f"{walking.mass:.2f} kg {how}, limited by {walking.limited_by}"
 
 

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, cast
@@ -18,6 +19,7 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.gait.spec import Gait
 from hexaleg.layouts import Layout
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
@@ -168,6 +170,26 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     return inputs_from_args(args)[0]
 
 
+def design_gait(args: argparse.Namespace) -> Gait:
+    """The ``--design`` file's ``[gait]`` table's gait; the default gait without one."""
+    path = getattr(args, "design", None)
+    if path is None:
+        return Gait()
+    return load_gait(path)
+
+
+def load_gait(path: str | os.PathLike[str]) -> Gait:
+    """The gait a design file's ``[gait]`` table describes (the default gait without one).
+
+    Raises:
+        DesignFileError: naming the file, the line and ``gait.<key>``.
+
+    """
+    from hexaleg.design_file import GAIT, load_table  # reads TOML only when asked
+
+    return load_table(path, GAIT, Gait.from_table)
+
+
 def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
     """The design the shared options describe, and the ``--design`` file's requirements.
 
@@ -183,6 +205,10 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         if path is None
         else load_design_file(path, Requirements.from_table)
     )
+    if path is not None:
+        from dataclasses import replace
+
+        requirements = replace(requirements, walked=load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
         from hexaleg.cli.robot_options import ROBOT_COMMANDS
         from hexaleg.cli.robot_table import load_robot_table

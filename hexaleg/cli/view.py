@@ -12,6 +12,7 @@ from hexaleg.cli.options import (
     add_stance_option,
     bounded_int,
     design_from_args,
+    design_gait,
     note,
 )
 from hexaleg.cli.output import check_outputs, report_files
@@ -54,8 +55,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--gait",
         action="store_true",
-        help="animate one period of the default tripod gait instead (hexaleg gait --html "
-        "for other gaits), legs coloured by |τ|/rated",
+        help="animate one period of the --design file's [gait] (else the default tripod gait) "
+        "instead (hexaleg gait --html for other gaits), legs coloured by |τ|/rated",
     )
 
 
@@ -88,11 +89,11 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
-    """``--gait``: the default gait's animation, written or served."""
+    """``--gait``: the design file's gait's animation (else the default's), written or served."""
     from hexaleg.gait.analysis import analyze_gait, require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
-    analysis = analyze_gait(model.design, model=model, limits=False)
+    analysis = analyze_gait(model.design, design_gait(args), model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])

@@ -19,14 +19,16 @@ fastest change (a tripod's swing lasts half of them).
 
 from __future__ import annotations
 
+import difflib
 import math
 from dataclasses import dataclass, replace
 from typing import Any
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import GaitPattern, require_choice
-from hexaleg.exceptions import DesignError
+from hexaleg.exceptions import DesignError, ParameterError
 from hexaleg.gait.pattern import duty_factor
+from hexaleg.table_records import TableKeyError, require_table
 
 PERIOD_RANGE = (0.05, 1000.0)
 """Allowed gait period T [s]."""
@@ -38,6 +40,21 @@ SPEED_RANGE = (1e-4, 100.0)
 """Allowed body speed v [m/s] (``--speed``)."""
 SAMPLES_RANGE = (12, 100_000)
 """Allowed samples N per period."""
+
+TABLE = "gait"
+"""The design file's table of the gait every walking command uses by default."""
+
+TABLE_KEYS: dict[str, str] = {
+    "pattern": "tripod, tetrapod or wave",
+    "period": f"period T in [{PERIOD_RANGE[0]:g}, {PERIOD_RANGE[1]:g}] s",
+    "stride": f"stride S in [{STRIDE_RANGE[0]:g}, {STRIDE_RANGE[1]:g}] m",
+    "step_height": f"step height H in [{STEP_HEIGHT_RANGE[0]:g}, {STEP_HEIGHT_RANGE[1]:g}] m",
+    "heading": "heading ψ in [-π, π] rad",
+    "speed": f"body speed v in [{SPEED_RANGE[0]:g}, {SPEED_RANGE[1]:g}] m/s (sets the period)",
+    "samples": f"samples N per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]}",
+}
+"""The ``[gait]`` table's keys (the ``gait`` command's options, ``--step-height`` as
+``step_height``) and what each allows."""
 
 
 @dataclass(frozen=True)
@@ -103,6 +120,39 @@ class Gait:
                 f"must lie in [{low:.4g}, {high:.4g}] [m/s] at stride {self.stride:g} m",
             )
         return replace(self, period=period)
+
+    @classmethod
+    def from_table(cls, table: Any) -> Gait:
+        """The gait a design file's ``[gait]`` table describes: its keys over the defaults.
+
+        ``speed`` sets the period from the stride (:meth:`with_speed`), so the table gives
+        ``speed`` or ``period``, not both.
+
+        Raises:
+            ParameterError: One line naming ``gait.<key>`` and its range, or an unknown key
+                with the nearest known one.
+
+        """
+        table = require_table(TABLE, table, ", ".join(TABLE_KEYS))
+        for key in table:
+            if key not in TABLE_KEYS:
+                close = difflib.get_close_matches(key, list(TABLE_KEYS), n=1, cutoff=0.5)
+                hint = (
+                    f"did you mean {close[0]!r} ({TABLE_KEYS[close[0]]})?"
+                    if close
+                    else "known keys: " + ", ".join(TABLE_KEYS)
+                )
+                raise TableKeyError(f"{TABLE}.{key}", hint, f"unknown key '{TABLE}.{key}': {hint}")
+        if "speed" in table and "period" in table:
+            raise ParameterError(
+                f"{TABLE}.speed", table["speed"], "sets the period: give speed or period, not both"
+            )
+        fields = {k: v for k, v in table.items() if k != "speed"}
+        try:
+            gait = cls(**fields)
+            return gait if "speed" not in table else gait.with_speed(table["speed"])
+        except ParameterError as err:
+            raise ParameterError(f"{TABLE}.{err.field}", err.value, err.allowed) from None
 
     def replace(self, **changes: Any) -> Gait:
         """Copy with some fields changed (validated again)."""

@@ -45,6 +45,7 @@ import difflib
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
+from dataclasses import field as dataclass_field
 from typing import Any
 
 from hexaleg._checks import require_finite, require_in_range
@@ -74,6 +75,9 @@ class Requirements:
         range_km: Distance walked on one charge of the design's battery [km].
         continuous_margin: Largest share of its continuous torque any joint's RMS torque
             may be walking the gait [-].
+        walked: The gait walked before ``speed`` and ``step_height`` apply: the design
+            file's ``[gait]`` table, else the default gait (not a requirement: what it
+            is measured walking).
 
     """
 
@@ -89,6 +93,7 @@ class Requirements:
     walking_payload: float | None = None
     range_km: float | None = None
     continuous_margin: float | None = None
+    walked: Gait = dataclass_field(default_factory=Gait)
 
     def __post_init__(self) -> None:
         for name, spec in REQUIREMENTS.items():
@@ -186,12 +191,13 @@ class Requirements:
 
     @property
     def gait(self) -> Gait:
-        """The gait every design walks: :class:`~hexaleg.gait.spec.Gait`'s tripod and stride.
+        """The gait every design walks: :attr:`walked` (the design file's ``[gait]``).
 
-        It lifts ``step_height`` and walks at the required ``speed`` (the gait's own
-        speed without one).
+        It lifts ``step_height`` and walks at the required ``speed`` where they are given
+        (the ``[gait]`` table's, else the default gait's, without them).
         """
-        gait = Gait() if self.step_height is None else Gait(step_height=self.step_height)
+        gait = self.walked
+        gait = gait if self.step_height is None else gait.replace(step_height=self.step_height)
         return gait if self.speed is None else gait.with_speed(self.speed)
 
     def walking_conditions(self) -> str:

@@ -1,0 +1,120 @@
+"""A design file's ``[gait]`` table: the default gait of every command that walks.
+
+Oracle: the ``gait`` command's own options (``--speed --step-height --stride``) on the
+same design without the table; the table must give exactly their numbers.
+"""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+from conftest import run_cli
+
+from hexaleg.cli.gait import gait_from_args
+from hexaleg.cli.main import build_parser
+from hexaleg.cli.options import load_gait
+from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.spec import Gait
+from hexaleg.robot.model import HexapodModel
+from hexaleg.study.requirements import Requirements
+
+OPTIONS = ["--speed", "0.2", "--step-height", "0.05", "--stride", "0.25"]
+TABLE = "[gait]\nspeed = 0.2\nstep_height = 0.05\nstride = 0.25\n"
+
+
+@pytest.fixture
+def files(tmp_path):
+    with_table, without = tmp_path / "walks.toml", tmp_path / "plain.toml"
+    with_table.write_text("l3 = 0.35\n" + TABLE)
+    without.write_text("l3 = 0.35\n")
+    return with_table, without
+
+
+def _json(capsys, argv):
+    assert run_cli([*argv, "--json"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def _options_gait(argv):
+    """The gait the ``gait`` command's options describe (the oracle)."""
+    return gait_from_args(build_parser().parse_args(["gait", *argv]))
+
+
+def test_the_table_reads_as_the_options_do(files):
+    with_table, without = files
+    assert load_gait(with_table) == _options_gait(["--design", str(without), *OPTIONS])
+    assert load_gait(without) == Gait()
+
+
+def test_gait_walks_the_table_as_the_options(files, capsys):
+    with_table, without = files
+    assert _json(capsys, ["gait", "--design", str(with_table)]) == _json(
+        capsys, ["gait", "--design", str(without), *OPTIONS]
+    )
+
+
+def test_options_override_the_table(files):
+    with_table, _ = files
+    gait = _options_gait(["--design", str(with_table), "--step-height", "0.08"])
+    assert gait == load_gait(with_table).replace(step_height=0.08)
+    assert gait.stride == 0.25 and gait.period == pytest.approx(0.25 / (0.5 * 0.2))
+
+
+def test_loads_walking_capacity_walks_the_table(files, capsys):
+    with_table, without = files
+    found = _json(capsys, ["loads", "--design", str(with_table)])["walking_payload_capacity"]
+    args = build_parser().parse_args(["gait", "--design", str(without), *OPTIONS])
+    from hexaleg.cli.options import design_from_args
+
+    model = HexapodModel(design_from_args(args))
+    oracle = walking_payload_capacity(model, gait_from_args(args))
+    assert found == oracle.to_dict()
+    default = _json(capsys, ["loads", "--design", str(without)])["walking_payload_capacity"]
+    assert default != found  # the table changed what is computed
+
+
+def test_requirements_walk_the_table_and_override_it(files):
+    with_table, _ = files
+    args = build_parser().parse_args(["decide", "--design", str(with_table)])
+    from hexaleg.cli.options import inputs_from_args
+
+    requirements = inputs_from_args(args)[1]
+    assert requirements.gait == load_gait(with_table)
+    faster = Requirements(speed=0.3, step_height=0.07, walked=requirements.walked)
+    assert faster.gait == Gait(stride=0.25, step_height=0.07).with_speed(0.3)
+
+
+@pytest.mark.parametrize(
+    ("table", "expected"),
+    [
+        ("step_hieght = 0.05", "unknown key 'gait.step_hieght': did you mean 'step_height'"),
+        ("stride = -1", "gait.stride = -1 is not valid: must lie in [0.0001, 100]"),
+        ("pattern = 'gallop'", "gait.pattern"),
+        ("speed = 0.2\nperiod = 2", "gait.speed"),
+        ("samples = 3", "gait.samples"),
+    ],
+)
+@pytest.mark.parametrize("command", ["gait", "loads", "workspace"])
+def test_a_bad_gait_table_is_refused_in_one_line(tmp_path, capsys, table, expected, command):
+    path = tmp_path / "bad.toml"
+    path.write_text(f"[gait]\n{table}\n")
+    out = tmp_path / "out.csv"
+    argv = [command, "--design", str(path)] + (["--csv", str(out)] if command == "gait" else [])
+    assert run_cli(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert expected in err and "\n" not in err
+    assert not out.exists()
+
+
+def test_design_init_and_show_round_trip_the_table(files, tmp_path, capsys):
+    with_table, without = files
+    written = tmp_path / "again.toml"
+    assert run_cli(["design", "init", str(written), "--design", str(with_table)]) == 0
+    assert load_gait(written) == load_gait(with_table)
+    shown = _json(capsys, ["design", "show", "--design", str(written)])
+    assert shown["gait"] == _options_gait(["--design", str(without), *OPTIONS]).to_dict()
+    plain = tmp_path / "plain_again.toml"
+    assert run_cli(["design", "init", str(plain), "--design", str(without)]) == 0
+    assert "[gait]" not in plain.read_text()
+    assert "gait" not in _json(capsys, ["design", "show", "--design", str(plain)])
