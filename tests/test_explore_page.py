@@ -105,7 +105,7 @@ CHOOSE_MOTORS_AND_RUN_A_JOB = """
   }
   const row = document.querySelector('#numbers tr[data-key="energy_per_km"]');
   const endpoint = await fetch('api/evaluate?' + e.query()).then(r => r.json());
-  const box = document.querySelector('#jobs .job[data-kind="free"]');
+  const box = document.querySelector('#jobs .job[data-kind="decide"]');  // minutes long
   box.querySelector('button').click();
   const bar = box.querySelector('progress');
   const start = Date.now();
@@ -123,7 +123,7 @@ CHOOSE_MOTORS_AND_RUN_A_JOB = """
 """
 
 
-def test_motors_chosen_on_the_page_and_a_free_coupled_search_shown_and_stopped():
+def test_motors_chosen_on_the_page_and_a_decision_shown_and_stopped():
     require_chromium()
     with running() as server:
         got = evaluate(server.url, CHOOSE_MOTORS_AND_RUN_A_JOB)

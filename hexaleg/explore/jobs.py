@@ -5,7 +5,7 @@ A job is the command line itself (``hexaleg flexibility --mode free --json`` or
 file with the session's ``[requirements]``: its numbers are the command's, and, being
 another process, it never slows the sliders' evaluations down. Its progress is read
 from the command's own progress lines on its stderr (:mod:`hexaleg.study.progress`,
-printed every :data:`~hexaleg.cli.job_runner.INTERVAL` seconds here), its answer
+printed at every step here: :mod:`hexaleg.cli.job_runner`), its answer
 from its stdout. One job of each kind at a time; starting one again stops the first; a
 job is stopped by its process id; all are stopped when the explorer stops.
 """
