@@ -123,8 +123,8 @@ ROUNDING_CASES = [
     ((1 + 1e-15, 1 + 1e-15), 2, False, 1e-14),  # (0.1 m is the shortest body: not below)
     ((1.0, 1.0), 1, False, -1e-14),
 ]
-"""Rounding-level changes of the inputs and of the floating-point path (issue 34: one
-answer on every machine)."""
+"""Rounding-level changes of the inputs and of the floating-point path: a seeded search
+gives one answer on every machine."""
 
 
 @pytest.mark.slow

@@ -204,7 +204,7 @@ def test_a_study_row_whose_zmp_leaves_the_feet_is_not_gait_feasible(hexapod_mode
     from hexaleg.study.evaluation import Conditions, evaluate
     from hexaleg.study.rows import WALKING_METRICS, walking_columns
 
-    payload = Payload(30.0, (100.0, 100.0, 100.0))  # issue #34: "feasible yes", margin −37 m
+    payload = Payload(30.0, (100.0, 100.0, 100.0))  # once "feasible yes" at a margin of −37 m
     conditions = Conditions(payload=payload, gait=STUDY_GAIT, keep=True)
     found = evaluate(hexapod_model.design, WALKING_METRICS, conditions, model=hexapod_model)
     assert found.gait is not None and found.gait.walkable and found.gait.min_zmp_margin < 0

@@ -261,7 +261,7 @@ def test_the_max_speed_stops_where_the_zmp_leaves_the_feet_as_a_bisection_finds(
 
 def test_a_gait_whose_zmp_leaves_the_feet_is_infeasible_and_names_the_zmp():
     model, gait = HexapodModel(HexapodDesign()), Gait(samples=40)
-    payload = Payload(30.0, (100.0, 100.0, 100.0))  # issue #34's fuzz case, far off the body
+    payload = Payload(30.0, (100.0, 100.0, 100.0))  # far off the body: the robot tips
     walked = analyze_gait(model.design, gait, payload, model=model)
     margins = walked.zmp_margin
     assert walked.walkable and margins.min() < -1.0

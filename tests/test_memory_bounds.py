@@ -1,4 +1,4 @@
-"""Memory bounded by design: a long run needs about what a short one does (issue 34).
+"""Memory bounded by design: a long run needs about what a short one does.
 
 Each command runs in a child process whose peak resident memory (its own and its
 children's, as the kernel counts it) is read back; the long case must stay within a
