@@ -265,6 +265,17 @@ def test_the_page_offers_the_shipped_catalog(explorer):
     assert loaded["has_actuators"] is False
 
 
+def test_the_reach_is_answered_on_its_own_for_the_design_asked(explorer):
+    from hexaleg.explore.answer import feet_reach
+
+    status, got = explorer.get("api/reach?l3=0.45&body_width=0.55")
+    assert status == 200
+    assert got["reach"] == feet_reach(HexapodDesign(l3=0.45, body_width=0.55))
+    status, evaluated = explorer.get("api/evaluate?l3=0.45")
+    assert status == 200 and "reach" not in evaluated["stance"]  # not paid by each redraw
+    assert explorer.get("api/reach?l3=-1")[0] == 400
+
+
 def test_a_query_chooses_motors_by_catalog_name_or_takes_them_away(tmp_path):
     file_design = load_design_file(_motors_file(tmp_path, MOTORS), Requirements.from_table)[0]
     base = HexapodDesign()
@@ -318,10 +329,10 @@ def test_each_extreme_is_drawn_with_the_feet_where_the_nominal_stance_plants_the
 
 
 def test_the_feet_s_reach_is_where_each_leg_can_put_its_foot_on_the_ground():
-    from hexaleg.explore.answer import REACH_SLICE, answer
+    from hexaleg.explore.answer import REACH_SLICE, answer, feet_reach
 
     design = HexapodDesign()
-    got = answer(design, Conditions(), Requirements())["stance"]
+    got = answer(design, Conditions(), Requirements())["stance"] | {"reach": feet_reach(design)}
     l1, l2, l3 = design.lengths
     yaw_low, yaw_high = design.stance_limits.theta1
     for leg, (chain, reach) in enumerate(zip(got["chains"], got["reach"], strict=True)):

@@ -102,8 +102,7 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
 def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
-    ``chains``: each leg's three joints and its foot; ``reach``: each foot's reach on the
-    ground (x, y) [m]; ``utilisation``: each leg's largest
+    ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
     peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
     """
     design = model.design
@@ -116,7 +115,6 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     return {
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
-        "reach": _reach(model, chains[:, -1, 2]),
         "utilisation": utilisation,
         "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
     }
@@ -130,14 +128,16 @@ REACH_POINTS = 400
 """Most points of each leg's reach sent to the page."""
 
 
-def _reach(model: HexapodModel, ground: np.ndarray) -> list[list[list[float]]]:
-    """Each leg's foot reach on the ground, world frame [m], at the nominal body pose.
+def feet_reach(design: HexapodDesign) -> list[list[list[float]]]:
+    """Each leg's foot reach on the ground (x, y), world frame [m], at the nominal body pose.
 
     The Monte Carlo cloud of one leg within the stance limits (as ``gait --plot`` draws
     it), placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's
-    nominal foot height, thinned to at most :data:`REACH_POINTS` points.
+    nominal foot height, thinned to at most :data:`REACH_POINTS` points. Asked for apart
+    from :func:`answer` (the page shows it on demand): a slider's redraw does not pay it.
     """
-    design = model.design
+    model = model_of(design)
+    ground = model.leg_chains(model.nominal_configuration())[:, -1, 2]
     cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
     base = model.nominal_base_pose()
     roots = model.root_placements()

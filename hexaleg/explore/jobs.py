@@ -25,7 +25,7 @@ from typing import Any
 
 from hexaleg.exceptions import ParameterError
 
-__all__ = ["JOB_KINDS", "Job", "Jobs"]
+__all__ = ["JOB_KINDS", "Job", "Jobs", "require_job_kind"]
 
 JOB_KINDS: dict[str, tuple[str, ...]] = {
     "free": ("flexibility", "--mode", "free", "--json"),
@@ -118,6 +118,13 @@ class Job:
         self.ended.wait(timeout=10)
 
 
+def require_job_kind(kind: str) -> str:
+    """``kind`` if it names a job (:data:`JOB_KINDS`), else a ParameterError naming ``kind``."""
+    if kind not in JOB_KINDS:
+        raise ParameterError("kind", kind, f"must be one of {', '.join(JOB_KINDS)}")
+    return kind
+
+
 class Jobs:
     """The explorer's jobs, at most one of each kind running."""
 
@@ -127,8 +134,7 @@ class Jobs:
 
     def start(self, kind: str, design_text: str) -> Job:
         """Run the job ``kind`` on the design file text ``design_text`` (TOML)."""
-        if kind not in JOB_KINDS:
-            raise ParameterError("kind", kind, f"must be one of {', '.join(JOB_KINDS)}")
+        kind = require_job_kind(kind)
         with self._lock:
             if kind in self._jobs:
                 self._jobs[kind].stop()

@@ -6,6 +6,7 @@ given (127.0.0.1 unless the user asks; port 0 lets the system pick). Endpoints:
 - ``GET /``: the page; ``GET /explore.js``, ``/explore.css``: its script and style;
 - ``GET /api/evaluate?l1=…&…``: one design's numbers (:func:`~.answer.answer`); a bad
   value answers 400 with ``{"error", "field", "allowed"}`` and the server keeps serving;
+- ``GET /api/reach?…``: each foot's reach on the ground for that design (on demand);
 - ``GET /api/loaded``: what the page starts at and resets to;
 - ``GET /api/cloud``: the study's cloud (``ready`` false while it is measured);
 - ``POST /api/save?…``: writes the design the query describes to the session's file;
@@ -80,6 +81,7 @@ class _Handler(BaseHTTPRequestHandler):
         session = self.server.session
         routes = {
             "/api/evaluate": lambda params: session.evaluate(params),
+            "/api/reach": lambda params: session.reach(params),
             "/api/loaded": lambda params: session.loaded(),
             "/api/cloud": lambda params: session.cloud.to_dict(),
             "/api/job": lambda params: session.job(_kind(params)),
@@ -135,12 +137,9 @@ class _Handler(BaseHTTPRequestHandler):
 
 def _kind(params: dict[str, str]) -> str:
     """The job a request names (``kind``), taken out of the design's keys."""
-    from hexaleg.explore.jobs import JOB_KINDS
+    from hexaleg.explore.jobs import require_job_kind
 
-    kind = params.pop("kind", "")
-    if kind not in JOB_KINDS:
-        raise ParameterError("kind", kind, f"must be one of {', '.join(JOB_KINDS)}")
-    return kind
+    return require_job_kind(params.pop("kind", ""))
 
 
 def _stopped(session: Session, kind: str) -> dict[str, Any]:

@@ -20,7 +20,7 @@ from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import HexalegError
-from hexaleg.explore.answer import answer, loaded_values
+from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs
 from hexaleg.explore.query import Query, parse_query
@@ -90,6 +90,10 @@ class Session:
         if required.given:  # the leg length the loaded design has, unless the file says
             required = required.resolved(self.design)
         return answer(asked.design, asked.conditions, required)
+
+    def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
+        """Each foot's reach on the ground for the design a query asks for (``reach``)."""
+        return {"reach": feet_reach(self.query(params).design)}
 
     def loaded(self) -> dict[str, Any]:
         """What the page starts at and resets to: values, sliders, motors, requirements."""

@@ -3,8 +3,8 @@
 // measures run from the slider's input event to the page drawn with its answer.
 "use strict";
 
-const explorer = {loaded: null, answer: null, cloud: null, redraws: 0, pending: false,
-                  inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
+const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws: 0,
+                  pending: false, inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
 window.explorer = explorer;
 
 const ROWS = [
@@ -141,6 +141,7 @@ async function evaluate() {
       status.className = "error";
     } else {
       explorer.answer = answer.body;
+      await loadReach();
       draw(answer.body);
       status.textContent = answer.body.error || ("measured in " +
         answer.body.evaluate_ms.toFixed(0) + " ms");
@@ -154,6 +155,11 @@ async function evaluate() {
   if (start) performance.measure("redraw", start, "drawn-" + number);
   explorer.inFlight = false;
   if (explorer.pending) evaluate();
+}
+
+async function loadReach() {  // only while it is shown: a redraw without it does not pay it
+  explorer.reach = document.getElementById("reach").checked
+    ? (await fetch("api/reach?" + query()).then((r) => r.json())).reach : null;
 }
 
 function draw(answer) {
@@ -240,9 +246,9 @@ function drawScene(answer) {
   ctx.beginPath();
   roots.forEach((p, i) => (i ? ctx.lineTo(...at(p)) : ctx.moveTo(...at(p))));
   ctx.closePath(); ctx.fill(); ctx.stroke();
-  if (document.getElementById("reach").checked) {
+  if (document.getElementById("reach").checked && explorer.reach) {
     ctx.fillStyle = "rgba(40,90,200,0.35)";
-    answer.stance.reach.forEach((points, leg) => {
+    explorer.reach.forEach((points, leg) => {
       const z = answer.stance.chains[leg][answer.stance.chains[leg].length - 1][2];
       for (const [x, y] of points) {
         const [u, v] = at([x, y, z]);
@@ -426,7 +432,10 @@ async function start() {
   document.getElementById("save").addEventListener("click", save);
   turnable(document.getElementById("scene"));
   document.getElementById("pose").addEventListener("change", () => drawScene(explorer.answer));
-  document.getElementById("reach").addEventListener("change", () => drawScene(explorer.answer));
+  document.getElementById("reach").addEventListener("change", async () => {
+    await loadReach();
+    drawScene(explorer.answer);
+  });
   for (const box of document.querySelectorAll("#jobs .job")) {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
