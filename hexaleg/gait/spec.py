@@ -19,7 +19,6 @@ fastest change (a tripod's swing lasts half of them).
 
 from __future__ import annotations
 
-import difflib
 import math
 from dataclasses import dataclass, replace
 from typing import Any
@@ -27,8 +26,9 @@ from typing import Any
 from hexaleg._checks import require_in_range
 from hexaleg._typing import GaitPattern, require_choice
 from hexaleg.exceptions import DesignError, ParameterError
+from hexaleg.field_spec import FieldSpec
 from hexaleg.gait.pattern import duty_factor
-from hexaleg.table_records import TableKeyError, require_table
+from hexaleg.table_records import require_table, unknown_key
 
 PERIOD_RANGE = (0.05, 1000.0)
 """Allowed gait period T [s]."""
@@ -44,17 +44,17 @@ SAMPLES_RANGE = (12, 100_000)
 TABLE = "gait"
 """The design file's table of the gait every walking command uses by default."""
 
-TABLE_KEYS: dict[str, str] = {
-    "pattern": "tripod, tetrapod or wave",
-    "period": f"period T in [{PERIOD_RANGE[0]:g}, {PERIOD_RANGE[1]:g}] s",
-    "stride": f"stride S in [{STRIDE_RANGE[0]:g}, {STRIDE_RANGE[1]:g}] m",
-    "step_height": f"step height H in [{STEP_HEIGHT_RANGE[0]:g}, {STEP_HEIGHT_RANGE[1]:g}] m",
-    "heading": "heading ψ in [-π, π] rad",
-    "speed": f"body speed v in [{SPEED_RANGE[0]:g}, {SPEED_RANGE[1]:g}] m/s (sets the period)",
-    "samples": f"samples N per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]}",
-}
+TABLE_KEYS: tuple[FieldSpec, ...] = (
+    FieldSpec("gait pattern: tripod, tetrapod or wave", kind="choice", name="pattern"),
+    FieldSpec("period T", "s", PERIOD_RANGE, name="period"),
+    FieldSpec("stride S", "m", STRIDE_RANGE, name="stride"),
+    FieldSpec("step height H", "m", STEP_HEIGHT_RANGE, name="step_height"),
+    FieldSpec("heading ψ", "rad", (-math.pi, math.pi), name="heading"),
+    FieldSpec("body speed v (sets the period)", "m/s", SPEED_RANGE, name="speed"),
+    FieldSpec("samples N per period", "-", SAMPLES_RANGE, name="samples"),
+)
 """The ``[gait]`` table's keys (the ``gait`` command's options, ``--step-height`` as
-``step_height``) and what each allows."""
+``step_height``) and what each allows, in the words every table's unknown key uses."""
 
 
 @dataclass(frozen=True)
@@ -133,16 +133,11 @@ class Gait:
                 with the nearest known one.
 
         """
-        table = require_table(TABLE, table, ", ".join(TABLE_KEYS))
+        known = [spec.name for spec in TABLE_KEYS]
+        table = require_table(TABLE, table, ", ".join(known))
         for key in table:
-            if key not in TABLE_KEYS:
-                close = difflib.get_close_matches(key, list(TABLE_KEYS), n=1, cutoff=0.5)
-                hint = (
-                    f"did you mean {close[0]!r} ({TABLE_KEYS[close[0]]})?"
-                    if close
-                    else "known keys: " + ", ".join(TABLE_KEYS)
-                )
-                raise TableKeyError(f"{TABLE}.{key}", hint, f"unknown key '{TABLE}.{key}': {hint}")
+            if key not in known:
+                raise unknown_key(TABLE, key, TABLE_KEYS)
         if "speed" in table and "period" in table:
             raise ParameterError(
                 f"{TABLE}.speed", table["speed"], "sets the period: give speed or period, not both"
