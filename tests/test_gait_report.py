@@ -86,10 +86,11 @@ def test_the_section_states_the_claim_whatever_the_grid_shows(torque, energy, ve
 
 def _section_text(comparison: WalkingComparison | None) -> str:
     from hexaleg.output.report.motors import MotorsRecord
+    from hexaleg.output.report.options import ReportOptions
     from hexaleg.output.report.part import ReportData
 
     records = {WalkingRecord: WalkingRecord(comparison), MotorsRecord: MotorsRecord(None)}
-    data = ReportData(HexapodDesign(), None, None, records)  # type: ignore[arg-type]
+    data = ReportData(HexapodDesign(), ReportOptions(), None, records)  # type: ignore[arg-type]
     found = section(data)
     return found.title + "\n" + "\n".join(str(block) for block in found.blocks)
 

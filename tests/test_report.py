@@ -402,3 +402,38 @@ def test_every_number_reads_the_same_in_the_report_its_json_and_its_figures(repo
     assert _reads_as(sentence[2], first["l3_ratio"])
     star = [t for t in _figure_texts(out / "pareto_front.png") if "front's best grid point" in t]
     assert len(star) == 1 and f"tibia {sentence[2]}" in star[0]
+
+
+@pytest.mark.slow
+def test_a_design_s_gait_is_what_the_whole_report_walks(tmp_path):
+    from hexaleg import analyze_gait
+    from hexaleg.gait.capacity import walking_payload_capacity
+    from hexaleg.gait.spec import Gait
+    from hexaleg.robot.model import HexapodModel
+
+    gait = Gait(step_height=0.08).with_speed(0.2)
+    options = ReportOptions(
+        l3_points=REDUCED.l3_points,
+        sensitivity_points=REDUCED.sensitivity_points,
+        workers=1,
+        progress=False,
+        vector_figures=False,
+        l1_ratios=(0.1,),
+        gait=gait,
+    )
+    data = build_report(tmp_path / "r", HexapodDesign(), options).to_dict()
+    text = (tmp_path / "r" / "report.md").read_text()
+    assert "the default gait" not in text and text.count("the design's gait") >= 4
+    recommended = data["decision"]["recommended"]
+    theirs = HexapodDesign(*recommended["lengths_m"])
+    capacity = walking_payload_capacity(HexapodModel(theirs), gait).mass
+    assert recommended["metrics"]["walking_payload_capacity"] == pytest.approx(capacity, 1e-9)
+    mine = walking_payload_capacity(HexapodModel(HexapodDesign()), gait).mass
+    assert data["decision"]["yours"]["metrics"]["walking_payload_capacity"] == pytest.approx(
+        mine, 1e-9
+    )
+    assert mine != pytest.approx(_walking(HexapodDesign()), rel=1e-3)  # the gait matters
+    band = data["recommendation"]["l3_band"]
+    for leg in (theirs, *(HexapodDesign.from_ratios(0.1, end) for end in band)):
+        walked = analyze_gait(leg, gait, limits=False)
+        assert walked.feasible and not walked.over_rating and walked.min_zmp_margin > 0

@@ -61,8 +61,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--simulate",
         action="store_true",
-        help='also walk the default gait in MuJoCo: the "Simulated walk" section (needs '
-        "the [sim] extra: MuJoCo)",
+        help="also walk the design's gait ([gait], else the default) in MuJoCo: the "
+        '"Simulated walk" section (needs the [sim] extra: MuJoCo)',
     )
 
 
@@ -81,6 +81,7 @@ def run(args: argparse.Namespace) -> int:
         pdf=args.pdf,
         requirements=requirements if requirements.given else None,
         simulate=args.simulate,
+        gait=requirements.walked,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)

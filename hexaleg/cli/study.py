@@ -17,8 +17,8 @@ from hexaleg.cli.options import (
     add_stance_option,
     add_sweep_options,
     capped_workers,
-    design_from_args,
     field_sweep_from_args,
+    inputs_from_args,
     study_total,
 )
 from hexaleg.cli.output import report_files
@@ -68,7 +68,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
-    base = design_from_args(args)
+    base, in_file = inputs_from_args(args)  # in_file.walked: the file's [gait]
     field_sweep = field_sweep_from_args(args)
     check_output_folder(args.output)  # the study folder itself is checked as it is claimed
     spec = StudySpec(
@@ -79,6 +79,7 @@ def run(args: argparse.Namespace) -> int:
         stance=args.stance,
         base=base,
         collisions=args.collisions,
+        walked=in_file.walked,
     )
     executor: AbstractContextManager[Executor] = (
         local_pool(capped_workers(args.workers))

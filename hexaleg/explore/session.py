@@ -50,7 +50,8 @@ class Session:
     Attributes:
         design: The loaded design (what reset returns to).
         conditions: The loaded conditions: the requirements' payload, slope and gait when
-            the file has them, else level ground, no payload and the default gait.
+            the file has them, else level ground, no payload and the file's ``[gait]``
+            (the default gait without one).
         requirements: The design file's requirements, as written (none given: nothing is
             checked); a leg length not required is the loaded design's.
         save_to: The design file "save design" writes (.toml).
@@ -75,7 +76,9 @@ class Session:
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
         conditions = (
-            Goal(requirements.resolved(design)).conditions if requirements.given else Conditions()
+            Goal(requirements.resolved(design)).conditions
+            if requirements.given
+            else Conditions(gait=requirements.walked)
         )
         return cls(design, conditions, requirements, path, Cloud(design, conditions).start())
 

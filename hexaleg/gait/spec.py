@@ -107,6 +107,15 @@ class Gait:
         """Body speed v = S / (β·T) [m/s]."""
         return self.stride / (self.duty_factor * self.period)
 
+    @property
+    def named(self) -> str:
+        """How prose, captions and legends name it: "the default gait", or "the design's gait".
+
+        A gait other than the default comes from a design file's ``[gait]`` table (or the
+        command line); a text that needs its pattern and speed says them beside the name.
+        """
+        return "the default gait" if self == Gait() else "the design's gait"
+
     def with_speed(self, speed: float) -> Gait:
         """The same stride at body speed ``speed`` [m/s]: period T = S / (β·v)."""
         speed = require_in_range("speed", speed, *SPEED_RANGE, "m/s")

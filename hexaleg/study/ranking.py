@@ -3,7 +3,8 @@
 The rule (:data:`RANKING_RULE`): a design's score is the geometric mean of its improved
 workspace area [m²] (eq 16), average manipulability w_A [m³] (eq 27), axis-locked FB [-]
 (eq 29) and walking payload capacity [kg] (:mod:`hexaleg.gait.capacity`: what the robot
-carries walking the default gait within its ratings, not only standing), each divided by
+carries walking the design's gait, its ``[gait]`` or else the default, within its
+ratings, not only standing), each divided by
 the user's design's own value. A score of 1.10 is 10 % better than the user's design on
 that (logarithmic) average, and every metric counts alike whatever its unit or its spread
 over a grid: doubling the payload raises a score as much as doubling FB. A score depends

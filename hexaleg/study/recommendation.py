@@ -12,7 +12,7 @@ ratio refined between grid points; the band keeps ≥ 97 % of its score.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 import numpy.typing as npt
@@ -22,6 +22,7 @@ from scipy import optimize
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import Conditions, evaluate
@@ -77,16 +78,19 @@ class DecisionOptions:
         l1_ratios: Coxa ratios the recommendation may take; ``None``: the swept ones at
             least :data:`~.recommendation.PRACTICAL_L1_RATIO` (all of them if none is).
         collisions: The robot's own parts touching also stop the body (FB).
+        gait: The gait the walking metrics walk (the design file's ``[gait]``, else the
+            default gait).
 
     """
 
     l1_ratios: tuple[float, ...] | None = None
     collisions: bool = False
+    gait: Gait = field(default_factory=Gait)
 
     @property
     def conditions(self) -> Conditions:
-        """What the ranked metrics are measured under: level ground, no payload."""
-        return Conditions(collisions=self.collisions)
+        """What the ranked metrics are measured under: level ground, no payload, :attr:`gait`."""
+        return Conditions(gait=self.gait, collisions=self.collisions)
 
     def describe_candidates(self) -> str:
         """The allowed coxa ratios, in words."""

@@ -20,6 +20,7 @@ from typing import Any
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
+from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.study.evaluation import (
@@ -37,7 +38,7 @@ Cell = float | str | bool
 """A table cell: a number [its column's unit], a description, or a flag."""
 
 WALKING_METRICS = (*PERIOD_METRICS, *ELECTRICAL_METRICS, "walking_payload_capacity")
-"""The metrics of a study's gait (:data:`~hexaleg.gait.analysis.STUDY_GAIT`)."""
+"""The metrics of a study's gait (:attr:`~hexaleg.study.sweep.StudySpec.walked`)."""
 
 KEY_COLUMNS = ("l1_ratio", "l3_ratio", "l1", "l2", "l3")
 """The columns every row has: its ratios [-] and lengths [m] (NaN where it failed)."""
@@ -140,14 +141,16 @@ def _electrical_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[st
     return {name: evaluation[name] for name in ELECTRICAL_METRICS}
 
 
-def design_walking_columns(design: HexapodDesign, model: HexapodModel) -> dict[str, Cell]:
-    """``design``'s walking columns as a study row has them: the study's gait, no payload.
+def design_walking_columns(
+    design: HexapodDesign, model: HexapodModel, gait: Gait = STUDY_GAIT
+) -> dict[str, Cell]:
+    """``design``'s walking columns as a study row has them: walking ``gait``, no payload.
 
     Raises:
         HexalegError: the design cannot be measured (its nominal stance cannot stand).
 
     """
-    found = evaluate(design, WALKING_METRICS, Conditions(gait=STUDY_GAIT, keep=True), model=model)
+    found = evaluate(design, WALKING_METRICS, Conditions(gait=gait, keep=True), model=model)
     if found.error or found.gait is None:
         raise HexalegError(found.error)
     return walking_columns(found.gait, found)

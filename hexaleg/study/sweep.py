@@ -38,6 +38,7 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
+from hexaleg.gait.spec import Gait
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
@@ -71,7 +72,9 @@ class StudySpec:
         base: Every other field of the designs (body, mounts, posture, limits).
         collisions: The robot's own parts touching also stop the body.
         statics: Also compute each design's torques, stability, slopes and payload.
-        gait: Also compute each design's walking columns (the default tripod gait).
+        gait: Also compute each design's walking columns, walking ``walked``.
+        walked: The gait every design walks: the design file's ``[gait]`` table, else
+            :data:`~hexaleg.gait.analysis.STUDY_GAIT` (the default gait).
 
     """
 
@@ -84,6 +87,7 @@ class StudySpec:
     collisions: bool = False
     statics: bool = True
     gait: bool = True
+    walked: Gait = STUDY_GAIT
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
@@ -112,8 +116,8 @@ class StudySpec:
 
     @property
     def conditions(self) -> Conditions:
-        """What each design is measured under: level, no payload, :data:`STUDY_GAIT`."""
-        return Conditions(gait=STUDY_GAIT, stance=self.stance, mode=self.mode,
+        """What each design is measured under: level, no payload, walking :attr:`walked`."""
+        return Conditions(gait=self.walked, stance=self.stance, mode=self.mode,
                           collisions=self.collisions, keep=True)  # fmt: skip
 
     def row_of(self, design: HexapodDesign) -> StudyRow:
@@ -136,6 +140,7 @@ class StudySpec:
             "collisions": self.collisions,
             "statics": self.statics,
             "gait": self.gait,
+            **({} if self.walked == STUDY_GAIT else {"walked": self.walked.to_dict()}),
             "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
         }
 

@@ -4,7 +4,7 @@ The sequel to the paper (Liu, Yang, Wang, Feng, *Dynamic Modeling and Dimensiona
 Optimization of Legged Mechanisms for Construction Robots*) sizes the leg for walking and
 reports cutting peak joint torque and energy by over 20 %. :func:`walking_comparison`
 asks the same of a study's grid: among the designs that walk the study's gait
-(:data:`~hexaleg.gait.analysis.STUDY_GAIT`), the one with the least peak joint torque
+(:attr:`~hexaleg.study.sweep.StudySpec.walked`), the one with the least peak joint torque
 and the one with the least cost of transport, each against the paper's 0.2/0.4/0.4 leg
 (on the study's body, at its total leg length). Pure data; the report presents it.
 """
@@ -18,7 +18,6 @@ from typing import Any
 import pandas as pd
 
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.study.rows import Cell, StudyRow, design_walking_columns
 from hexaleg.study.sweep import StudySpec, base_model
 
@@ -102,9 +101,9 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
         raise HexalegError("the study has no walking columns (StudySpec.gait was off)")
     walking = table[table["gait_feasible"].fillna(False).astype(bool)]
     if walking.empty:
-        raise HexalegError("no design of the study walks the default gait")
+        raise HexalegError(f"no design of the study walks {spec.walked.named}")
     paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
-    columns = design_walking_columns(paper, base_model(spec.base).with_design(paper))
+    columns = design_walking_columns(paper, base_model(spec.base).with_design(paper), spec.walked)
     reference = StudyRow(*PAPER_RATIOS, paper.lengths, columns)
     return WalkingComparison(
         reference=reference,
@@ -112,7 +111,7 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
         least_energy=StudyRow.from_dict(walking.loc[walking[ENERGY].idxmin()].to_dict()),
         walking=len(walking),
         designs=len(table),
-        gait=STUDY_GAIT.to_dict(),
+        gait=spec.walked.to_dict(),
     )
 
 

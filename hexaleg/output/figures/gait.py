@@ -18,7 +18,8 @@ import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
-from hexaleg.gait.analysis import GaitAnalysis
+from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
+from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
@@ -151,7 +152,10 @@ def foot_paths_figure(analysis: GaitAnalysis, reach: Mapping[str, ArrayF] | None
 
 @drawn
 def walking_study_figure(
-    table: pd.DataFrame, rated: Mapping[str, float] | None = None, marks: Sequence[Mark] = ()
+    table: pd.DataFrame,
+    rated: Mapping[str, float] | None = None,
+    marks: Sequence[Mark] = (),
+    gait: Gait = STUDY_GAIT,
 ) -> Figure:
     """The study's walking against tibia ratio: hip and knee peaks, CoT, walking payload.
 
@@ -162,6 +166,7 @@ def walking_study_figure(
         table: The study's rows (its walking columns).
         rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
         marks: Designs marked on every panel (your design, the recommended one).
+        gait: The gait the study's designs walk (named in the title).
 
     """
     fig = new_figure(8.8)
@@ -187,8 +192,8 @@ def walking_study_figure(
     panels[-1].set_xlabel("tibia ratio l3 / L [-]")
     panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
     fig.suptitle(
-        "Walking the default tripod gait (gaps: designs that cannot walk it unloaded "
-        "within their ratings)"
+        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s (gaps: designs that "
+        "cannot walk it unloaded within their ratings)"
     )
     return fig
 

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
+from hexaleg.gait.analysis import STUDY_GAIT
+from hexaleg.gait.spec import Gait
 from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 from hexaleg.statics.loads import LoadsAnalysis
@@ -38,13 +40,18 @@ def slopes_differ(analysis: LoadsAnalysis) -> bool:
 
 
 @drawn
-def loads_figure(analysis: LoadsAnalysis, walking: Mapping[str, float] | None = None) -> Figure:
+def loads_figure(
+    analysis: LoadsAnalysis,
+    walking: Mapping[str, float] | None = None,
+    gait: Gait = STUDY_GAIT,
+) -> Figure:
     """Peak |τ| per joint type standing (and walking) against its rating; slopes per heading.
 
     Args:
         analysis: The statics.
-        walking: The peak |τ| per joint type [N·m] walking the default gait with the same
+        walking: The peak |τ| per joint type [N·m] walking ``gait`` with the same
             payload, drawn beside the standing peaks if given.
+        gait: The gait walked (named in the legend).
 
     The slope panel is drawn only where the headings differ; else the report states the
     one slope in a table.
@@ -53,7 +60,7 @@ def loads_figure(analysis: LoadsAnalysis, walking: Mapping[str, float] | None = 
     with_slopes = slopes_differ(analysis)
     fig = new_figure(4.2)
     torques, *rest = fig.subplots(1, 2 if with_slopes else 1, squeeze=False)[0]
-    _torque_bars(torques, analysis, walking)
+    _torque_bars(torques, analysis, walking, gait)
     if rest:
         _slope_bars(rest[0], analysis)
     l1, l2, l3 = analysis.design.lengths
@@ -67,7 +74,9 @@ def loads_figure(analysis: LoadsAnalysis, walking: Mapping[str, float] | None = 
     return fig
 
 
-def _torque_bars(ax: Axes, analysis: LoadsAnalysis, walking: Mapping[str, float] | None) -> None:
+def _torque_bars(
+    ax: Axes, analysis: LoadsAnalysis, walking: Mapping[str, float] | None, gait: Gait
+) -> None:
     nominal = analysis.nominal.peak_torques()
     joints = list(nominal)
     x = np.arange(len(joints))
@@ -77,7 +86,7 @@ def _torque_bars(ax: Axes, analysis: LoadsAnalysis, walking: Mapping[str, float]
         (f"standing, peak over the 12 {mode} extremes", analysis.peak_torques),
     ]
     if walking is not None:
-        series.append(("walking the default gait, peak", walking))
+        series.append((f"walking {gait.named}, peak", walking))
     width = 0.8 / len(series)
     for k, (label, peaks) in enumerate(series):
         offset = (k - (len(series) - 1) / 2) * width
@@ -113,19 +122,23 @@ def _slope_bars(ax: Axes, analysis: LoadsAnalysis) -> None:
 
 @drawn
 def statics_study_figure(
-    table: pd.DataFrame, rated: Mapping[str, float] | None = None, marks: Sequence[Mark] = ()
+    table: pd.DataFrame,
+    rated: Mapping[str, float] | None = None,
+    marks: Sequence[Mark] = (),
+    gait: Gait = STUDY_GAIT,
 ) -> Figure:
     """Hip and knee torques over the extremes and the payload capacities, against tibia ratio.
 
     One panel under another, sharing the tibia-ratio axis, each joint's rating on its
     torque panel; the standing payload capacity spans decades over a sweep (a short femur
     lifts tonnes), so its axis is logarithmic, the largest named, and the walking payload
-    capacity (default gait, every rating) is drawn beside it, dashed, where the leg walks.
+    capacity (walking ``gait``, every rating) is drawn beside it, dashed, where the leg walks.
 
     Args:
         table: The study's rows.
         rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
         marks: Designs marked on every panel (your design, the recommended one).
+        gait: The gait the study's designs walk (named in the title).
 
     """
     fig = new_figure(8.4)
@@ -134,7 +147,7 @@ def statics_study_figure(
         ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing: nominal and 12 extremes"),
         ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing: nominal and 12 extremes"),
         ("payload_capacity", "payload [kg], log scale",
-         "Payload capacity: standing (solid), walking the default gait (dashed)"),
+         f"Payload capacity: standing (solid), walking {gait.named} (dashed)"),
     )  # fmt: skip
     groups = list(zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False))
     for ax, (column, label, title) in zip(panels, columns, strict=True):

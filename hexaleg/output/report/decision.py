@@ -39,7 +39,7 @@ COSTS: tuple[str, ...] = (
     "payload_capacity",
 )
 """What the choice costs, beside the scored metrics: the body's height and stability, the
-default gait's ZMP margin, torques, speed and energy, and the standing payload capacity."""
+report's gait's ZMP margin, torques, speed and energy, and the standing payload capacity."""
 
 
 @dataclass(frozen=True)
@@ -86,7 +86,7 @@ def section(data: ReportData) -> Section:
     total = design.leg_length
     lengths = ", ".join(f"{r * total:.3f}" for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio))
     yours = ", ".join(f"{length:.3f}" for length in design.lengths)
-    answer = record.requirements
+    answer, gait = record.requirements, data.options.gait
     first = () if answer is None else (*requirement_blocks(answer), _WITHOUT_REQUIREMENTS)
     return Section(
         "Decision",
@@ -94,9 +94,9 @@ def section(data: ReportData) -> Section:
             *first,
             f"**Recommended: {proportions_text(rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)}**, "
             f"for your {total:g} m leg **{lengths} m** (yours: {yours} m), "
-            f"chosen among {data.options.decision.describe_candidates()}, every one walking the "
-            f"default gait; any tibia ratio in {ratio_text(rec.l3_band[0])}–"
-            f"{ratio_text(rec.l3_band[1])} keeps "
+            f"chosen among {data.options.decision.describe_candidates()}, every one walking "
+            f"{gait.named} ({gait.pattern} at {gait.speed:.2g} m/s); any tibia ratio in "
+            f"{ratio_text(rec.l3_band[0])}–{ratio_text(rec.l3_band[1])} keeps "
             f"≥ {BAND:.0%} of its score and walks. Both keep your body, mounts, posture and "
             f"ratings; what changes is below. {departure(rec)}",
             table(

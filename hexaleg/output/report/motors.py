@@ -1,7 +1,8 @@
-"""Report part: the motors and the battery of the design, walking the default gait.
+"""Report part: the motors and the battery of the design, walking the report's gait.
 
 Presentation only: the numbers come from one gait period of the report's design
-(:func:`~hexaleg.gait.analysis.analyze_gait` at the study's gait) through its actuators
+(:func:`~hexaleg.gait.analysis.analyze_gait` at the report's gait,
+:attr:`~.options.ReportOptions.gait`) through its actuators
 (:mod:`hexaleg.electrical`): each joint type's actuator, its every margin to its ratings
 (peak torque, continuous torque against the RMS, supply voltage, speed), where the power
 goes (mechanical against copper loss), the energy per kilometre and the battery's range.
@@ -18,7 +19,7 @@ from typing import Any
 from hexaleg.actuators import Actuators
 from hexaleg.electrical.period import ElectricalResult
 from hexaleg.electrical.ratings import RATED
-from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis, analyze_gait
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData
@@ -41,10 +42,12 @@ class MotorsRecord:
 
 
 def compute(data: ReportData) -> MotorsRecord:
-    """Walk the study's gait with the design's own model, if it has actuators."""
+    """Walk the report's gait with the design's own model, if it has actuators."""
     if data.design.actuators is None:
         return MotorsRecord(None)
-    walked = analyze_gait(data.design, STUDY_GAIT, model=data.model, limits=False, speed=True)
+    walked = analyze_gait(
+        data.design, data.options.gait, model=data.model, limits=False, speed=True
+    )
     return MotorsRecord(walked)
 
 
@@ -79,7 +82,7 @@ def section(data: ReportData) -> Section:
     return Section(
         title,
         (
-            f"Walking the study's gait ({walked.gait.pattern} at {walked.gait.speed:.2g} m/s), "
+            f"Walking {walked.gait.named} ({walked.gait.pattern} at {walked.gait.speed:.2g} m/s), "
             f"the robot weighs {significant(walked.mass)} kg with its motors "
             f"({significant(actuators.total_mass)} kg){_battery_mass(data)}. Each joint "
             "type's actuator:",

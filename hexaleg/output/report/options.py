@@ -2,11 +2,12 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
 from hexaleg.exceptions import HexalegError
+from hexaleg.gait.spec import Gait
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import max_workers
@@ -45,8 +46,10 @@ class ReportOptions:
             time.
         requirements: What the robot must do: the Decision section then shows first the
             best design that meets it (:func:`hexaleg.study.decide.decide`).
-        simulate: Also walk the default gait in MuJoCo (the ``[sim]`` extra) for the
+        simulate: Also walk :attr:`gait` in MuJoCo (the ``[sim]`` extra) for the
             "Simulated walk" section.
+        gait: The gait every walking number of the report is measured on: the design
+            file's ``[gait]`` table, else the default gait.
 
     """
 
@@ -62,6 +65,7 @@ class ReportOptions:
     vector_figures: bool = True
     requirements: Requirements | None = None
     simulate: bool = False
+    gait: Gait = field(default_factory=Gait)
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:
@@ -96,5 +100,5 @@ class ReportOptions:
 
     @property
     def decision(self) -> DecisionOptions:
-        """What the decision may choose from (the allowed coxa ratios, collisions)."""
-        return DecisionOptions(self.l1_ratios, self.collisions)
+        """What the decision may choose from (the allowed coxa ratios, collisions, gait)."""
+        return DecisionOptions(self.l1_ratios, self.collisions, self.gait)

@@ -65,9 +65,9 @@ def section(data: ReportData) -> Section:
         "Pareto front: workspace, manipulability, flexibility and walking payload",
         (
             f"Among the sweep's designs at the allowed coxa ratios (as in section "
-            f"{recommended}), {len(front)} walk the default gait and are beaten by no other in "
-            "improved area, w_A, FB and walking payload capacity at once. The grid is dense "
-            "and every metric on it exact, so the front is read off it directly (no "
+            f"{recommended}), {len(front)} walk {data.options.gait.named} and are beaten by no "
+            "other in improved area, w_A, FB and walking payload capacity at once. The grid is "
+            "dense and every metric on it exact, so the front is read off it directly (no "
             "evolutionary search could be more exact). The front is ranked by the rule of "
             f"section {recommended} (each score relative to your design's 1); a design that "
             "beats another in every metric also scores higher, so its first, "

@@ -1,6 +1,7 @@
 """Report part (``report --simulate``): the planned gait walked in MuJoCo, and a still of it.
 
-The part walks the default gait with the report's design for :data:`CYCLES` periods
+The part walks the report's gait (:attr:`~.options.ReportOptions.gait`) with the report's
+design for :data:`CYCLES` periods
 (:func:`~hexaleg.sim.simulate_gait`), sets the measures beside the plan's, and shows the
 robot half a period into the last one, one tripod in mid-swing: MuJoCo's own picture
 where an offscreen OpenGL works (EGL or OSMesa), else the links drawn as lines from the
@@ -18,7 +19,6 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pinocchio as pin
 
-from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, FULL_WIDTH, drawn, new_figure, save
 from hexaleg.output.report.document import Figure, Section, table
@@ -49,8 +49,9 @@ class SimulationRecord:
 
 
 def compute(data: ReportData) -> SimulationRecord:
-    """Walk the default gait for :data:`CYCLES` periods in MuJoCo."""
-    return SimulationRecord(simulate_gait(data.design, Gait(), cycles=CYCLES, model=data.model))
+    """Walk the report's gait for :data:`CYCLES` periods in MuJoCo."""
+    gait = data.options.gait
+    return SimulationRecord(simulate_gait(data.design, gait, cycles=CYCLES, model=data.model))
 
 
 def section(data: ReportData) -> Section:
@@ -62,7 +63,7 @@ def section(data: ReportData) -> Section:
     return Section(
         "Simulated walk: the plan in a physics engine",
         (
-            f"The design walked the default gait ({gait.pattern}, T = {gait.period:g} s, "
+            f"The design walked {gait.named} ({gait.pattern}, T = {gait.period:g} s, "
             f"S = {gait.stride:g} m, H = {gait.step_height:g} m: v = {gait.speed:.3g} m/s) "
             f"for {result.cycles} periods in MuJoCo, from rest: hexaleg's URDF on a free "
             f"body, foot spheres on a floor (μ = {result.friction:g}), joint servos fed the "

@@ -63,15 +63,16 @@ def section(data: ReportData) -> Section:
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
             f"Payload capacity at the centre of the body's top face, standing: "
             f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}; "
-            f"walking the default gait: **{float(yours['walking_payload_capacity']):.1f} kg**, "
+            f"walking {data.options.gait.named}: "
+            f"**{float(yours['walking_payload_capacity']):.1f} kg**, "
             f"limited by {yours['walking_payload_limited_by']}. "
             f"Steepest slope the robot stands on, body level with the ground (μ = "
             f"{loads.friction:g}):",
             _slope_table(loads, differ),
             Figure(
                 "loads",
-                "This design's largest joint torques, standing and walking the default gait, "
-                "against their ratings"
+                "This design's largest joint torques, standing and walking "
+                f"{data.options.gait.named}, against their ratings"
                 + (", and the steepest slope by uphill heading" if differ else ""),
             ),
             Figure(
@@ -132,13 +133,15 @@ def _slope_table(loads: LoadsAnalysis, differ: bool) -> str:
 def write_files(data: ReportData, out: Path) -> None:
     """The study's torques and payload against tibia ratio, and this design's loads."""
     save(
-        statics_study_figure(data[StudyRecord].table, rated_torques(data), study_marks(data)),
+        statics_study_figure(
+            data[StudyRecord].table, rated_torques(data), study_marks(data), data.options.gait
+        ),
         out / "study_statics.png",
         svg=data.options.svg,
     )
     yours = data[StudyRecord].yours
     walking = {joint: float(yours[f"gait_peak_{joint}_torque"]) for joint in LEG_JOINTS}
-    figure = loads_figure(data[StaticsRecord].axis, walking)
+    figure = loads_figure(data[StaticsRecord].axis, walking, data.options.gait)
     save(figure, out / "loads.png", svg=data.options.svg)
 
 

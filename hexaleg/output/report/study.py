@@ -55,6 +55,7 @@ def compute(data: ReportData) -> StudyRecord:
         design.leg_length,
         base=design,
         collisions=options.collisions,
+        walked=options.gait,
     )
     with local_pool(options.workers) as pool:
         table = study_table(spec, sweep(spec, pool))

@@ -1,4 +1,4 @@
-"""Report part: walking, the grid walking the default gait against the sequel's claim.
+"""Report part: walking, the grid walking the report's gait against the sequel's claim.
 
 Presentation only: the numbers come from the study's ``gait_*`` columns and from
 :func:`hexaleg.study.walking.walking_comparison` (the grid's least-torque and least-energy
@@ -47,8 +47,9 @@ def section(data: ReportData) -> Section:
     """The gait, the best walking legs against the paper's, the claim, and the figure."""
     comparison = data[WalkingRecord].comparison
     title = "Walking: what a gait period costs"
+    named = data.options.gait.named
     if comparison is None:
-        return Section(title, ("No design of the grid walks the default gait.",))
+        return Section(title, (f"No design of the grid walks {named}.",))
     gait = comparison.gait
     rows = [
         _row("the paper's leg", comparison.reference),
@@ -58,7 +59,7 @@ def section(data: ReportData) -> Section:
     return Section(
         title,
         (
-            f"Every design of the grid walks one period of the default gait: a "
+            f"Every design of the grid walks one period of {named}: a "
             f"{gait['pattern']} at {gait['speed']:.2g} m/s (period {gait['period']:g} s, stride "
             f"{gait['stride']:g} m, step height {gait['step_height']:g} m), no payload; "
             f"{comparison.walking} of the {comparison.designs} designs can (the others break "
@@ -80,7 +81,7 @@ def section(data: ReportData) -> Section:
             *_motors(data),
             Figure(
                 FIGURE,
-                "Walking the default gait: peak hip and knee torque beside their ratings, "
+                f"Walking {named}: peak hip and knee torque beside their ratings, "
                 "mechanical cost of transport and walking payload capacity against the tibia "
                 "ratio, for each coxa ratio (gaps: designs that cannot walk it unloaded); your "
                 "design and the recommended one marked",
@@ -152,7 +153,10 @@ def _why(comparison: WalkingComparison) -> str:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The study's peak torque and cost of transport against tibia ratio."""
-    figure = walking_study_figure(data[StudyRecord].table, rated_torques(data), study_marks(data))
+    study = data[StudyRecord]
+    figure = walking_study_figure(
+        study.table, rated_torques(data), study_marks(data), data.options.gait
+    )
     save(figure, out / f"{FIGURE}.png", svg=data.options.svg)
 
 
