@@ -106,3 +106,22 @@ def test_the_manipulability_surface_names_its_lengths(default_design, tmp_path):
     surface = manipulability_surface(default_design.lengths, default_design.manipulability_limits)
     fig = manipulability_surface_figure([surface], ["this design, l = (0.2, 0.4, 0.4) m"])
     assert "0.2, 0.4, 0.4" in fig.axes[0].get_title()
+
+
+@pytest.mark.parametrize("peak", [90.0, 149.0, 160.0])
+def test_a_rating_s_label_stays_inside_its_axes(peak):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    from matplotlib.figure import Figure
+
+    from hexaleg.output.figures.marks import rating_line
+
+    ax = Figure().subplots()
+    ax.plot([0, 1], [20.0, peak])
+    rating_line(ax, 150.0, "hip")
+    ax.figure.canvas.draw()
+    label = ax.texts[-1].get_window_extent()
+    frame = ax.get_window_extent()
+    assert frame.y0 <= label.y0 and label.y1 <= frame.y1  # the label inside the frame
+    assert ax.get_ylim()[0] <= 20.0 and ax.get_ylim()[1] >= max(150.0, peak)

@@ -192,8 +192,8 @@ def walking_study_figure(
     panels[-1].set_xlabel("tibia ratio l3 / L [-]")
     panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
     fig.suptitle(
-        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s (gaps: designs that "
-        "cannot walk it unloaded within their ratings)"
+        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
+        "that cannot walk it unloaded within their ratings)"
     )
     return fig
 

@@ -74,8 +74,15 @@ def draw_marks(ax: Axes, marks: Sequence[Mark], x: str, y: str, scale: float = 1
 
 
 def rating_line(ax: Axes, rated: float, what: str) -> None:
-    """A dashed horizontal line at the rating ``rated`` of ``what`` (``"hip"``)."""
+    """A dashed horizontal line at the rating ``rated`` of ``what`` (``"hip"``), labelled.
+
+    Draw it after the curves: where the line runs near the top of the axes, the axes grow
+    so that its label stays inside them.
+    """
     ax.axhline(rated, color="k", ls="--", lw=1.1, label="rating")
+    low, high = ax.get_ylim()
+    if rated > high - 0.1 * (high - low):
+        ax.set_ylim(low, rated + 0.12 * (high - low))
     ax.annotate(f"{what} rating {rated:g}", (1.0, rated), xycoords=("axes fraction", "data"),
                 xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
                 fontsize=7.5)  # fmt: skip
