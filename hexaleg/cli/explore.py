@@ -64,9 +64,9 @@ def run(args: argparse.Namespace) -> int:
         raise HexalegError(f"cannot serve on {args.host}:{args.port}: {err.strerror}") from None
     for signum in (signal.SIGINT, signal.SIGTERM):  # Ctrl-C or kill: stop cleanly
         signal.signal(signum, signal.default_int_handler)
-    print(f"hexaleg explore: open {browser_url(args.host, server.port, '/')}", flush=True)
-    print("serving until Ctrl-C", file=sys.stderr, flush=True)
-    try:
+    try:  # from the URL on: a signal even before serving begins stops it cleanly
+        print(f"hexaleg explore: open {browser_url(args.host, server.port, '/')}", flush=True)
+        print("serving until Ctrl-C", file=sys.stderr, flush=True)
         server.serve_forever(poll_interval=0.2)
     except KeyboardInterrupt:
         pass
