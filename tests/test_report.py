@@ -11,6 +11,7 @@ from conftest import run_cli
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
+from hexaleg.design_file import load_design
 from hexaleg.exceptions import HexalegError
 from hexaleg.output.report import ReportOptions, build_report
 
@@ -412,6 +413,12 @@ def test_a_design_s_gait_is_what_the_whole_report_walks(tmp_path):
     from hexaleg.robot.model import HexapodModel
 
     gait = Gait(step_height=0.08).with_speed(0.2)
+    motors = tmp_path / "motors.toml"
+    motors.write_text(
+        '[actuators.root]\ncatalog = "hd_cha_17a_e_100"\n[actuators.hip]\ncatalog = '
+        '"hd_cha_25a_100"\n[actuators.knee]\ncatalog = "hd_cha_20a_100"\n'
+    )
+    design = load_design(motors)
     options = ReportOptions(
         l3_points=REDUCED.l3_points,
         sensitivity_points=REDUCED.sensitivity_points,
@@ -421,19 +428,29 @@ def test_a_design_s_gait_is_what_the_whole_report_walks(tmp_path):
         l1_ratios=(0.1,),
         gait=gait,
     )
-    data = build_report(tmp_path / "r", HexapodDesign(), options).to_dict()
+    data = build_report(tmp_path / "r", design, options).to_dict()
     text = (tmp_path / "r" / "report.md").read_text()
     assert "the default gait" not in text and text.count("the design's gait") >= 4
     recommended = data["decision"]["recommended"]
-    theirs = HexapodDesign(*recommended["lengths_m"])
+    theirs = design.with_ratios(
+        data["recommendation"]["l1_ratio"], data["recommendation"]["l3_ratio"]
+    )
     capacity = walking_payload_capacity(HexapodModel(theirs), gait).mass
     assert recommended["metrics"]["walking_payload_capacity"] == pytest.approx(capacity, 1e-9)
-    mine = walking_payload_capacity(HexapodModel(HexapodDesign()), gait).mass
+    mine = walking_payload_capacity(HexapodModel(design), gait).mass
     assert data["decision"]["yours"]["metrics"]["walking_payload_capacity"] == pytest.approx(
         mine, 1e-9
     )
-    assert mine != pytest.approx(_walking(HexapodDesign()), rel=1e-3)  # the gait matters
+    default = walking_payload_capacity(HexapodModel(theirs)).mass  # walking the default gait
+    assert capacity != pytest.approx(default, rel=1e-3)  # the gait matters
+    for leg, costs in ((design, "yours"), (theirs, "recommended")):  # what the choice costs
+        walked = analyze_gait(leg, gait, limits=False, speed=True)
+        found = data["decision"]["costs"][costs]
+        assert found["max_speed"] == pytest.approx(walked.max_speed.value, rel=1e-9)
+        assert found["gait_peak_hip_torque"] == pytest.approx(walked.metrics.peak_torque["hip"])
+        assert found["energy_per_km"] == pytest.approx(walked.electrical.energy_per_km, 1e-9)
     band = data["recommendation"]["l3_band"]
-    for leg in (theirs, *(HexapodDesign.from_ratios(0.1, end) for end in band)):
+    for end in band:
+        leg = design.with_ratios(0.1, end)
         walked = analyze_gait(leg, gait, limits=False)
         assert walked.feasible and not walked.over_rating and walked.min_zmp_margin > 0

@@ -42,6 +42,11 @@ COSTS: tuple[str, ...] = (
 report's gait's ZMP margin, torques, speed and energy, and the standing payload capacity."""
 
 
+def cost_metrics(design: HexapodDesign) -> tuple[str, ...]:
+    """:data:`COSTS`, and with actuators the energy per km drawn through them."""
+    return COSTS + (("energy_per_km",) if design.actuators is not None else ())
+
+
 @dataclass(frozen=True)
 class DecisionRecord:
     """The recommendation beside the user's design, and the answer to their requirements.
@@ -50,8 +55,8 @@ class DecisionRecord:
         recommendation: The grid's one recommendation, with the user's
             design's metrics it is scored against.
         leg_length: The user's leg length, at which the ratios are lengths [m].
-        yours: The user's design's :data:`COSTS`.
-        recommended: The recommended design's :data:`COSTS`.
+        yours: The user's design's :func:`cost_metrics`, walking the report's gait.
+        recommended: The recommended design's :func:`cost_metrics`, the same way.
         requirements: The best design meeting the user's requirements, and the user's
             checked against them; ``None`` when none were given.
 
@@ -69,7 +74,8 @@ def compute(data: ReportData) -> DecisionRecord:
     grid = data[RecommendationRecord]
     rec = grid.recommendation
     theirs = data.design.with_ratios(rec.l1_ratio, rec.l3_ratio)
-    costs = [evaluate(design, COSTS) for design in (data.design, theirs)]
+    metrics, conditions = cost_metrics(data.design), data.options.decision.conditions
+    costs = [evaluate(design, metrics, conditions) for design in (data.design, theirs)]
     requirements = data.options.requirements
     answer = None
     if requirements is not None:
@@ -160,7 +166,7 @@ def _cost_rows(record: DecisionRecord, design: HexapodDesign) -> list[tuple[str,
     """The costs of the choice, a torque beside its rating, a speed beside what binds."""
     rated = dict(zip(LEG_JOINTS, design.rated_torques, strict=True))
     rows: list[tuple[str, ...]] = []
-    for name in COSTS:
+    for name in cost_metrics(design):
         spec, yours, theirs = METRICS[name], record.yours[name], record.recommended[name]
         label = spec.described
         joint = next((j for j in LEG_JOINTS if f"_{j}_" in name), None)
