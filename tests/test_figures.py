@@ -125,3 +125,33 @@ def test_a_rating_s_label_stays_inside_its_axes(peak):
     frame = ax.get_window_extent()
     assert frame.y0 <= label.y0 and label.y1 <= frame.y1  # the label inside the frame
     assert ax.get_ylim()[0] <= 20.0 and ax.get_ylim()[1] >= max(150.0, peak)
+
+
+def test_the_ranges_figure_marks_both_designs_on_every_curve_and_names_each_once():
+    import math
+
+    import pandas as pd
+
+    from hexaleg.output.figures.marks import your_and_recommended
+    from hexaleg.output.figures.study import ranges_figure
+
+    ratios = np.linspace(0.2, 0.6, 5)
+    axes = ("x", "y", "z", "roll", "pitch", "yaw")
+    rng = np.random.default_rng(3)
+    table = pd.DataFrame(
+        {"l1_ratio": 0.1, "l3_ratio": ratios}
+        | {f"range_{a}": rng.uniform(0.1, 0.6, ratios.size) for a in axes}
+    )
+    yours, theirs = table.iloc[1].to_dict(), table.iloc[3].to_dict()
+    figure = ranges_figure(table, 0.1, your_and_recommended(yours, theirs))
+    panels = zip(figure.axes, (axes[:3], axes[3:]), (1.0, 180 / math.pi), strict=True)
+    for ax, names, scale in panels:
+        points = {tuple(np.round(c.get_offsets()[0], 12)) for c in ax.collections}
+        expected = {
+            (round(row["l3_ratio"], 12), round(row[f"range_{a}"] * scale, 12))
+            for row in (yours, theirs)
+            for a in names
+        }
+        assert points == expected  # each design on each of the panel's three curves
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert labels.count("your design") == 1 and sum("recommended" in t for t in labels) == 1

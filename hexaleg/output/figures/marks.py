@@ -44,8 +44,12 @@ class Mark:
     marker: str = "D"
     color: str = "#d62728"
 
-    def draw(self, ax: Axes, x: str, y: str, scale: float = 1.0) -> None:
-        """The mark at (row[x], scale·row[y]) if the row has both, finite."""
+    def draw(self, ax: Axes, x: str, y: str, scale: float = 1.0, labelled: bool = True) -> None:
+        """The mark at (row[x], scale·row[y]) if the row has both, finite.
+
+        ``labelled`` False leaves it out of the legend (a mark drawn on several curves of
+        one axes is named once).
+        """
         if x not in self.values or y not in self.values:
             return
         px, py = float(self.values[x]), float(self.values[y]) * scale
@@ -55,7 +59,7 @@ class Mark:
         ax.scatter(
             [px], [py], s=150 if filled else 70, marker=self.marker, zorder=5,
             facecolor=self.color if filled else "none", edgecolor=self.color, linewidth=1.8,
-            label=self.label,
+            label=self.label if labelled else "_nolegend_",
         )  # fmt: skip
 
 
@@ -67,10 +71,12 @@ def your_and_recommended(yours: Mapping[str, Any], recommended: Mapping[str, Any
     ]
 
 
-def draw_marks(ax: Axes, marks: Sequence[Mark], x: str, y: str, scale: float = 1.0) -> None:
-    """Each mark on ``ax`` at its ``x`` and ``y`` columns."""
+def draw_marks(
+    ax: Axes, marks: Sequence[Mark], x: str, y: str, scale: float = 1.0, labelled: bool = True
+) -> None:
+    """Each mark on ``ax`` at its ``x`` and ``y`` columns (in the legend if ``labelled``)."""
     for mark in marks:
-        mark.draw(ax, x, y, scale)
+        mark.draw(ax, x, y, scale, labelled)
 
 
 def rating_line(ax: Axes, rated: float, what: str) -> None:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -59,9 +60,13 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
 
 
 @drawn
-def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
-    """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio."""
-    fig = new_figure(3.6)
+def ranges_figure(table: pd.DataFrame, l1_ratio: float, marks: Sequence[Mark] = ()) -> Figure:
+    """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio.
+
+    ``marks`` (your design, the recommended one) are drawn on each of the six curves at
+    their own tibia ratio and ranges, named once per panel.
+    """
+    fig = new_figure(4.4 if marks else 3.6)
     left, right = fig.subplots(1, 2)
     group = table[np.isclose(table["l1_ratio"], l1_ratio)]
     for k, axis in enumerate(("x", "y", "z")):
@@ -71,6 +76,7 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
             color=COLORS[k],
             label=f"S_{axis} along {axis}",
         )
+        draw_marks(left, marks, "l3_ratio", f"range_{axis}", labelled=k == 0)
     for k, (axis, about) in enumerate((("roll", "x"), ("pitch", "y"), ("yaw", "z"))):
         right.plot(
             group["l3_ratio"],
@@ -78,12 +84,20 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float) -> Figure:
             color=COLORS[k],
             label=f"φ_{about} ({axis})",
         )
+        draw_marks(right, marks, "l3_ratio", f"range_{axis}", math.degrees(1.0), k == 0)
     left.set_ylabel("translation range [m]")
     right.set_ylabel("rotation range [°]")
     for ax in (left, right):
         ax.set_xlabel("tibia ratio l3 / L [-]")
         ax.grid(True, alpha=0.3)
-        ax.legend()
+        handles, labels = ax.get_legend_handles_labels()
+        curves = [k for k, label in enumerate(labels) if label not in {m.label for m in marks}]
+        order = curves + [k for k in range(len(labels)) if k not in curves]  # marks last
+        if marks:  # under the panel, clear of the curves and the marks
+            ax.legend([handles[k] for k in order], [labels[k] for k in order], ncols=2,
+                      fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.16))  # fmt: skip
+        else:
+            ax.legend()
     fig.suptitle(
         f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
     )
@@ -98,7 +112,7 @@ def write_study_figures(
 ) -> list[Path]:
     """Fig 15 (FB curves) and Fig 14 (ranges, for the smallest coxa ratio); the PNGs.
 
-    ``svg`` writes an SVG beside each PNG; ``marks`` are drawn on Fig 15.
+    ``svg`` writes an SVG beside each PNG; ``marks`` are drawn on both.
     """
     out = Path(out_dir)
     valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
@@ -107,7 +121,7 @@ def write_study_figures(
     return [
         save(fb_figure(valid, peak_table(valid), marks), out / "flexibility_fb.png", svg),
         save(
-            ranges_figure(valid, float(valid["l1_ratio"].min())),
+            ranges_figure(valid, float(valid["l1_ratio"].min()), marks),
             out / "flexibility_ranges.png",
             svg,
         ),
