@@ -359,3 +359,17 @@ def test_refusals(tmp_path, capsys, argv, table, expected):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and expected in err[0], err
     assert not target.exists()
+
+
+def test_an_edited_top_level_length_of_an_imported_design_is_refused(tmp_path, capsys):
+    design = tmp_path / "kraby.toml"
+    assert run_cli(["design", "import", KRABY, "-o", str(design)]) == 0
+    lines = design.read_text().splitlines()
+    edited = [("l2 = 0.08" if line.startswith("l2 = ") else line) for line in lines]
+    design.write_text("\n".join(edited) + "\n")
+    target = tmp_path / "out.urdf"
+    capsys.readouterr()
+    assert run_cli(["urdf", "--design", str(design), "-o", str(target)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "l2 = 0.08 is not the robot file's femur (0.0602 m)" in err[0], err
+    assert "[robot.segments]" in err[0] and not target.exists()

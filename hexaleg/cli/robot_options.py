@@ -103,11 +103,34 @@ def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
     )
     lengths, fields = _segment_lengths(args, table)
     robot = import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot)
+    if table is not None:
+        _check_file_segments(args, robot)
     if not lengths:
         return robot
     from hexaleg.robot.resize import resize_robot
 
     return resize_robot(robot, lengths, lambda leg, segment: fields[leg, segment])
+
+
+def _check_file_segments(args: argparse.Namespace, robot: ImportedRobot) -> None:
+    """Refuse a design file whose ``l1 l2 l3`` were edited: a ``[robot]``'s are its file's."""
+    from hexaleg.cli.robot_table import file_segments
+    from hexaleg.leg_geometry import SEGMENT_NAMES
+    from hexaleg.robot.resize import SAME_LENGTH
+
+    written = file_segments(args.design)
+    read = robot.legs[0].reading.geometry
+    for flag, segment in zip(("l1", "l2", "l3"), SEGMENT_NAMES, strict=True):
+        value = written.get(flag)
+        if getattr(args, flag, None) is not None or not isinstance(value, int | float):
+            continue
+        length = max(getattr(read, segment), 1e-9)  # a coxa of 0 is written as 1e-9
+        if abs(value - length) > SAME_LENGTH:
+            raise UsageError(
+                f"{args.design}: {flag} = {value:g} is not the robot file's {segment} "
+                f"({length:.6g} m): an imported robot's segments are read from its file; "
+                f"change them in [robot.segments] or with --{flag}"
+            )
 
 
 def _segment_lengths(

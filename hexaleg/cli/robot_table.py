@@ -32,16 +32,27 @@ else:  # pragma: no cover - Python 3.10
 
 def load_robot_table(path: str | os.PathLike[str]) -> dict[str, Any] | None:
     """A TOML design file's ``[robot]`` table, or ``None`` if it has none (or is JSON)."""
-    path = Path(path)
-    if path.suffix.lower() != ".toml":
-        return None
-    try:
-        table = tomllib.loads(read_design_text(path)).get(ROBOT)
-    except (tomllib.TOMLDecodeError, ValueError, RecursionError):
-        return None  # the design's own reading reports it
+    table = _toml(path).get(ROBOT)
     if table is not None and not isinstance(table, dict):
         raise DesignFileError(f"{path}: robot must be a [robot] table")
     return table
+
+
+def file_segments(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """The design file's own ``l1``, ``l2``, ``l3`` (those it gives), as written."""
+    data = _toml(path)
+    return {key: data[key] for key in ("l1", "l2", "l3") if key in data}
+
+
+def _toml(path: str | os.PathLike[str]) -> dict[str, Any]:
+    """A TOML design file's contents; empty if it is JSON or unreadable as TOML."""
+    path = Path(path)
+    if path.suffix.lower() != ".toml":
+        return {}
+    try:
+        return tomllib.loads(read_design_text(path))
+    except (tomllib.TOMLDecodeError, ValueError, RecursionError):
+        return {}  # the design's own reading reports it
 
 
 SEGMENTS_TABLE = "segments"

@@ -129,7 +129,8 @@ def resize_robot(
         foot = leg.reading.foot
         feet[leg.name] = replace(foot, point=(float(point[0]), float(point[1]), float(point[2])))
     root.insert(0, ET.Comment(_summary(changes)))
-    text = ET.tostring(root, encoding="unicode")
+    ET.indent(root, space="  ")
+    text = ET.tostring(root, encoding="unicode") + "\n"
     return _read_again(robot, text, feet, changes)
 
 
