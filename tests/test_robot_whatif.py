@@ -373,3 +373,42 @@ def test_an_edited_top_level_length_of_an_imported_design_is_refused(tmp_path, c
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "l2 = 0.08 is not the robot file's femur (0.0602 m)" in err[0], err
     assert "[robot.segments]" in err[0] and not target.exists()
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+def test_the_standing_model_of_the_changed_robot_is_the_changed_file():
+    from hexaleg.robot.imported_model import ImportedHexapodModel
+
+    original = import_robot(KRABY)
+    changed = resize_robot(
+        original, {leg.name: {"femur": 0.075, "tibia": 0.1} for leg in original.legs}
+    )
+    model = ImportedHexapodModel(changed)
+    q = model.nominal_configuration()
+    ours = pin.rnea(model.model, model.data, q, np.zeros(model.model.nv), np.zeros(model.model.nv))
+    raw = pin.buildModelFromXML(urdf_with_feet(changed), pin.JointModelFreeFlyer())
+    q_raw = pin.neutral(raw)
+    q_raw[3:7] = q[3:7]  # the same body orientation: level
+    for leg in changed.legs:
+        for name in leg.joint_names:
+            q_raw[raw.joints[raw.getJointId(name)].idx_q] = q[
+                model.model.joints[model.model.getJointId(name)].idx_q
+            ]
+    zero = np.zeros(raw.nv)
+    theirs = pin.rnea(raw, raw.createData(), q_raw, zero, zero)
+    for leg in changed.legs:
+        ids = [(model.model.getJointId(n), raw.getJointId(n)) for n in leg.joint_names]
+        np.testing.assert_allclose(
+            [ours[model.model.joints[a].idx_v] for a, _ in ids],
+            [theirs[raw.joints[b].idx_v] for _, b in ids],
+            atol=1e-9,
+        )
+    assert pin.computeTotalMass(model.model) == pytest.approx(
+        _total_mass(urdf_with_feet(changed)), rel=1e-12
+    )
+    expected = _total_mass(original.text) + sum(
+        (0.075 / leg.reading.geometry.femur - 1) * leg.masses[1].mass
+        + (0.1 / leg.reading.geometry.tibia - 1) * leg.masses[2].mass
+        for leg in original.legs
+    )
+    assert pin.computeTotalMass(model.model) == pytest.approx(expected, rel=1e-12)
