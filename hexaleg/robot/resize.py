@@ -42,7 +42,6 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENT_RANGE
 from hexaleg.exceptions import ParameterError
-from hexaleg.leg_frames import segment_frames
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.chains import LegChain
 from hexaleg.robot.description import Inertial, RobotDescription, parse_urdf
@@ -121,11 +120,11 @@ def resize_robot(
         for change in (c for c in changes if c.leg == leg.name):
             k = SEGMENT_NAMES.index(change.segment)
             stretch = _Stretch(leg, k, change.ratio)
-            stretched = _stretch_segment(robot.description, leg.chain, k, frames, stretch, elements)
-            if k == 2:
+            end = _stretch_segment(robot.description, leg.chain, k, frames, stretch, elements)
+            if k == 2:  # the tibia ends at the foot
                 point = stretch.point(point)
-                stretched = point
-            _draw_cylinder(elements[("link", leg.chain.segments[k][0])], change, stretch, stretched)
+                end = point
+            _draw_cylinder(elements[("link", leg.chain.segments[k][0])], change, stretch, end)
         foot = leg.reading.foot
         feet[leg.name] = replace(foot, point=(float(point[0]), float(point[1]), float(point[2])))
     root.insert(0, ET.Comment(_summary(changes)))
@@ -169,14 +168,11 @@ class _Stretch:
     """The stretch of segment ``k`` of ``leg`` by ``ratio``, in its link's frame (at q = 0)."""
 
     def __init__(self, leg: ImportedLeg, k: int, ratio: float) -> None:
-        geometry, joint_map = leg.reading.geometry, leg.reading.joint_map
-        kinematic = segment_frames(geometry, joint_map.from_file(np.zeros(3)))[k]
-        link = geometry.link_placement(k)  # the link's frame in the segment frame K
-        self.to_segment = link  # link coordinates → K coordinates
-        self.from_segment = np.linalg.inv(link)
+        geometry = leg.reading.geometry
+        self.to_segment = geometry.link_placement(k)  # link coordinates → segment frame K's
+        self.from_segment = np.linalg.inv(self.to_segment)
         self.ratio = ratio
         self.direction = geometry.segment_directions()[k]  # d, in the link's frame
-        self.kinematic = kinematic
 
     def point(self, p: ArrayF) -> ArrayF:
         """A point (3,) in the link's frame, stretched [m]."""
@@ -199,8 +195,7 @@ def _stretch_segment(
 ) -> ArrayF:
     """Stretch segment ``k``'s links in the XML; the next joint's origin (3,) in its link frame.
 
-    For the tibia (no next joint) the returned point is meaningless (the caller uses the
-    foot).
+    The tibia has no next joint: its end is the foot, which the caller moves (zeros here).
     """
     names = chain.segments[k]
     inverse = np.linalg.inv(frames[names[0]])
