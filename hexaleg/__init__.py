@@ -46,6 +46,7 @@ __all__ = [
     "RobotImportWarning",
     "STANCE_LIMITS",
     "SearchSettings",
+    "SegmentChange",
     "SimulationResult",
     "StanceGeometry",
     "StudySpec",
@@ -74,6 +75,7 @@ __all__ = [
     "rectangle_mounts",
     "render_hexapod",
     "render_leg",
+    "resize_robot",
     "run_study",
     "simulate_gait",
     "write_urdf",
@@ -119,6 +121,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.robot.feet import FootSearch
     from hexaleg.robot.imported import ImportedRobot, import_robot
     from hexaleg.robot.model import HexapodModel, LegModel
+    from hexaleg.robot.resize import SegmentChange, resize_robot
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.sim.result import SimulationResult
     from hexaleg.sim.simulate import simulate_gait

@@ -95,8 +95,8 @@ def test_design_import_round_trip(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["flexibility", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
-        (["loads", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (["flexibility", "--urdf", KRABY, "--l2", "0"], "--l2 = 0 is not valid"),
+        (["loads", "--urdf", KRABY, "--l2", "-1"], "--l2 = -1 is not valid"),
         (["loads", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
         (["gait", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["report", "--urdf", KRABY], "--urdf does not run on this command yet"),
@@ -106,7 +106,7 @@ def test_design_import_round_trip(tmp_path, capsys):
             ["workspace", "--urdf", KRABY, "--ratios", "0.2", "0.4", "--total", "0.2"],
             "--ratios with --urdf: give --l1 --l2 --l3",
         ),
-        (["urdf", "--urdf", KRABY, "--l2", "0.1"], "--l2 with --urdf"),
+        (["urdf", "--urdf", KRABY, "--l2", "101"], "--l2 = 101 is not valid"),
         (["workspace", "--urdf", OCHS], "give foot_offset X Y Z (--foot-offset)"),
         (["manipulability", "--urdf", "missing.urdf"], "no such file"),
         (["workspace", "--urdf", HUMA], "$(find phantomx_description)"),

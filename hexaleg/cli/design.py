@@ -119,6 +119,12 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
         return 0
     show(design)
     print("  legs read from " + str(record["source"]))
+    for change in record["changed_segments"]:
+        print(
+            f"    {change['leg']} {change['segment']} changed from the file's "
+            f"{change['file_length']:.4g} m to {change['length']:.4g} m (mass × "
+            f"{change['mass_ratio']:.4g})"
+        )
     for leg in record["legs"]:
         print(
             f"    {leg['name']}: joints {', '.join(leg['joints'])}; coxa {leg['coxa']:.4g}, "
@@ -172,6 +178,8 @@ def _robot_table(args: argparse.Namespace, output: Any, record: dict[str, Any]) 
     table["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
     comment = "# [robot]: the robot file this design was read from (hexaleg design import);\n"
     comment += "# [robot.read] records what was read, for reference: editing it changes nothing.\n"
+    comment += "# What if: [robot.segments] coxa/femur/tibia = M (every leg) or\n"
+    comment += "# [robot.segments.<leg>] change the segments along their own lines [m].\n"
     return comment + tomli_w.dumps({"robot": table})
 
 

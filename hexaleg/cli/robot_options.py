@@ -73,7 +73,12 @@ def add_robot_options(parser: argparse.ArgumentParser, required: bool = False) -
 
 
 def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
-    """The robot of ``--urdf`` (or of the ``--design`` file's ``[robot]`` table), or ``None``."""
+    """The robot of ``--urdf`` (or of the ``--design`` file's ``[robot]`` table), or ``None``.
+
+    ``--l1 --l2 --l3`` (every leg) and the design file's ``[robot.segments]`` (per leg, the
+    command line's first) change the robot's segments along their own lines
+    (:func:`~hexaleg.robot.resize.resize_robot`).
+    """
     from hexaleg.cli.robot_table import load_robot_table
     from hexaleg.robot.feet import FootSearch
     from hexaleg.robot.imported import import_robot
@@ -96,7 +101,61 @@ def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
         frame=settings["foot_frame"],
         packages=settings["packages"],
     )
-    return import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot)
+    lengths, fields = _segment_lengths(args, table)
+    robot = import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot)
+    if table is not None:
+        _check_file_segments(args, robot)
+    if not lengths:
+        return robot
+    from hexaleg.robot.resize import resize_robot
+
+    return resize_robot(robot, lengths, lambda leg, segment: fields[leg, segment])
+
+
+def _check_file_segments(args: argparse.Namespace, robot: ImportedRobot) -> None:
+    """Refuse a design file whose ``l1 l2 l3`` were edited: a ``[robot]``'s are its file's."""
+    from hexaleg.cli.robot_table import file_segments
+    from hexaleg.leg_geometry import SEGMENT_NAMES
+    from hexaleg.robot.resize import SAME_LENGTH
+
+    written = file_segments(args.design)
+    read = robot.legs[0].reading.geometry
+    for flag, segment in zip(("l1", "l2", "l3"), SEGMENT_NAMES, strict=True):
+        value = written.get(flag)
+        if getattr(args, flag, None) is not None or not isinstance(value, int | float):
+            continue
+        length = max(getattr(read, segment), 1e-9)  # a coxa of 0 is written as 1e-9
+        if abs(value - length) > SAME_LENGTH:
+            raise UsageError(
+                f"{args.design}: {flag} = {value:g} is not the robot file's {segment} "
+                f"({length:.6g} m): an imported robot's segments are read from its file; "
+                f"change them in [robot.segments] or with --{flag}"
+            )
+
+
+def _segment_lengths(
+    args: argparse.Namespace, table: dict[str, Any] | None
+) -> tuple[dict[str, dict[str, float]], dict[tuple[str, str], str]]:
+    """The new segment lengths by leg [m], and the field each came from (for errors)."""
+    from hexaleg.cli.robot_table import segment_lengths
+    from hexaleg.layouts import LEG_NAMES
+    from hexaleg.leg_geometry import SEGMENT_NAMES
+
+    lengths: dict[str, dict[str, float]] = {}
+    fields: dict[tuple[str, str], str] = {}
+    if table is not None:
+        for leg, segments in segment_lengths(table).items():
+            for segment, (value, field) in segments.items():
+                lengths.setdefault(leg, {})[segment] = value
+                fields[leg, segment] = field
+    for flag, segment in zip(("l1", "l2", "l3"), SEGMENT_NAMES, strict=True):
+        given = getattr(args, flag, None)
+        if given is None:
+            continue
+        for leg in LEG_NAMES:
+            lengths.setdefault(leg, {})[segment] = float(given)
+            fields[leg, segment] = f"--{flag}"
+    return lengths, fields
 
 
 def _settings(args: argparse.Namespace, table: dict[str, Any] | None, folder: Path) -> dict:
@@ -159,25 +218,14 @@ def add_refused_robot_option(parser: argparse.ArgumentParser) -> None:
         parser.add_argument(flag, nargs=nargs, action=_Refuse, help=argparse.SUPPRESS)
 
 
-SEGMENT_FLAGS = ("l1", "l2", "l3", "ratios")
-"""Options that would change the segments: not yet applied to an imported robot."""
-
-
-def refuse_unsupported(args: argparse.Namespace, segments: bool = False) -> None:
+def refuse_unsupported(args: argparse.Namespace) -> None:
     """Refuse, with ``--urdf``, the options not yet applied to an imported robot.
 
-    With ``segments``, ``--l1 --l2 --l3`` are applied by the caller (only ``--ratios`` is
-    refused).
+    ``--l1 --l2 --l3`` change its segments (:func:`robot_from_args`); ``--ratios`` would
+    need a total leg length the file does not have, so it is refused.
     """
-    flags = ("ratios",) if segments else SEGMENT_FLAGS
-    given = [f for f in flags if getattr(args, f, None) is not None]
-    if given and segments:
+    if getattr(args, "ratios", None) is not None:
         raise UsageError("--ratios with --urdf: give --l1 --l2 --l3 to change the segments")
-    if given:
-        raise UsageError(
-            f"--{given[0]} with --urdf: this command does not change an imported robot's "
-            f"segments yet (workspace and manipulability do)"
-        )
     if getattr(args, "plot", None) is not None:
         raise UsageError("--plot with --urdf is not supported yet: use --json")
 
@@ -186,25 +234,22 @@ def robot_legs(args: argparse.Namespace, design: Any) -> tuple[str, dict[str, An
     """The robot file and each leg's general leg by hexaleg's name; ``None`` without a robot.
 
     ``design`` (the options' design) only gives the joint-limit sets: the paper's, on
-    hexaleg's angles. ``--l1 --l2 --l3`` change every leg's coxa, femur and tibia along
-    their own lines, keeping offsets and bends (:meth:`LegGeometry.with_lengths`).
+    hexaleg's angles. The legs are read from the robot file as changed by ``--l1 --l2
+    --l3`` and ``[robot.segments]`` (:func:`robot_from_args`).
     """
     robot = robot_from_args(args)
     if robot is None:
         return None
-    refuse_unsupported(args, segments=True)
-    lengths = {"coxa": args.l1, "femur": args.l2, "tibia": args.l3}
-    return str(robot.source), {
-        leg.name: leg.reading.geometry.with_lengths(**lengths) for leg in robot.legs
-    }
+    refuse_unsupported(args)
+    return str(robot.source), {leg.name: leg.reading.geometry for leg in robot.legs}
 
 
 def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexapodModel | None:
     """The whole imported robot as a Pinocchio model over ``design``; ``None`` without one.
 
     The path of every command that analyses the robot standing (its masses, its feet, its
-    nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`.
-    Options that would change the segments are refused (:func:`refuse_unsupported`).
+    nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`, with
+    the segments changed by ``--l1 --l2 --l3`` and ``[robot.segments]``.
     """
     robot = robot_from_args(args)
     if robot is None:

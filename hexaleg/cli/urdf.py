@@ -13,7 +13,9 @@ DESCRIPTION = (
     "Render the hexapod URDF from the Xacro templates for the given design. Joint "
     "values of the URDF are the paper's θ1, θ2, θ3 [rad]; lengths are in metres. With "
     "--urdf, your robot's own URDF (its joints, zeros, signs, masses and meshes) with a link "
-    "<leg>_foot at each foot point hexaleg found."
+    "<leg>_foot at each foot point hexaleg found; --l1 --l2 --l3 (every leg) or the design "
+    "file's [robot.segments] (per leg) lengthen or shorten its segments along their own lines, "
+    "drawn then as cylinders in place of their meshes."
 )
 
 ROBOT_OPTIONS = True
@@ -45,6 +47,12 @@ def run(args: argparse.Namespace) -> int:
         from hexaleg.robot.imported import urdf_with_feet
 
         refuse_unsupported(args)
-        written = write_text(target, urdf_with_feet(robot))
+        text = urdf_with_feet(robot)
+        if robot.changes:
+            from hexaleg.cli.options import note
+            from hexaleg.robot.resize import changes_note
+
+            note(changes_note(robot.changes))
+        written = write_text(target, text)
     report_files([written])
     return 0

@@ -14,6 +14,7 @@ import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -25,6 +26,9 @@ from hexaleg.robot.description import RobotDescription, parse_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
 from hexaleg.robot.legs import LegReading, read_leg
 from hexaleg.robot.source import Packages, read_robot_text
+
+if TYPE_CHECKING:
+    from hexaleg.robot.resize import SegmentChange
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,6 +99,8 @@ class ImportedRobot:
         legs: The six legs, in hexaleg's order ``lf lm lr rf rm rr``.
         body: The body's links (root and every link fixed or locked to it).
         body_mass: The body's links lumped, in the root link's frame.
+        changes: The segments changed from the file's (:mod:`hexaleg.robot.resize`),
+            empty for the robot as the file draws it.
 
     """
 
@@ -104,6 +110,7 @@ class ImportedRobot:
     legs: tuple[ImportedLeg, ...]
     body: tuple[str, ...]
     body_mass: SegmentMass
+    changes: tuple[SegmentChange, ...] = ()
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -147,7 +154,7 @@ def robot_from_text(
     readings = [read_leg(c, frames, find_foot(description, c, frames, search)) for c in chains.legs]
     names = _leg_names([r.mount[:3, 3] for r in readings])
     legs = [
-        ImportedLeg(name, chain, reading, _segment_masses(description, chain, frames))
+        ImportedLeg(name, chain, reading, segment_masses(description, chain, frames))
         for name, chain, reading in zip(names, chains.legs, readings, strict=True)
     ]
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
@@ -205,9 +212,10 @@ def _warn_implausible_inertias(description: RobotDescription) -> None:
         )
 
 
-def _segment_masses(
+def segment_masses(
     description: RobotDescription, chain: LegChain, frames: Mapping[str, ArrayF]
 ) -> tuple[SegmentMass, SegmentMass, SegmentMass]:
+    """Each segment's links lumped in its joint's child link frame (coxa, femur, tibia)."""
     a, b, c = (
         lumped_mass(description, links, frames, frames[links[0]]) for links in chain.segments
     )

@@ -2,7 +2,8 @@
 
 :class:`ImportedHexapodModel` is a :class:`~hexaleg.robot.model.HexapodModel` built from
 the robot file itself (:func:`~hexaleg.robot.imported.urdf_with_feet`: its joints, zeros,
-signs, masses and inertias, and a ``hexaleg_<leg>_foot`` frame at each foot), with three things
+signs, masses and inertias, and a ``hexaleg_<leg>_foot`` frame at each foot; the changed file
+when segments were changed, :mod:`~hexaleg.robot.resize`), with three things
 added so that every analysis written for hexaleg's model reads it unchanged:
 
 - a massless link ``hexaleg_body`` carried by the free flyer, the design's body frame

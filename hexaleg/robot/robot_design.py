@@ -7,7 +7,8 @@ spanning the mounts and no taller than the tibia (so the nominal posture stands)
 file's body mass and joint ratings. :func:`robot_record` lists, per leg, the file's joint
 names, the mount, the dimensions and offsets, the joint map, the foot rule, the limits,
 ratings and segment masses — what ``design show --urdf FILE --json`` prints as
-``design.legs`` and ``design import`` records.
+``design.legs`` and ``design import`` records — and the segments changed from the file's
+(:mod:`hexaleg.robot.resize`).
 """
 
 from __future__ import annotations
@@ -122,6 +123,7 @@ def robot_record(
         "body_links": list(robot.body),
         "body_mass": robot.body_mass.mass,
         "legs": legs,
+        "changed_segments": [change.as_dict() for change in robot.changes],
         "units": {"lengths": "m", "angles": "rad", "mass": "kg", "effort": "N·m"},
     }
 
