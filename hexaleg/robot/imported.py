@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -95,6 +95,7 @@ class ImportedRobot:
         legs: The six legs, in hexaleg's order ``lf lm lr rf rm rr``.
         body: The body's links (root and every link fixed or locked to it).
         body_mass: The body's links lumped, in the root link's frame.
+        packages: The package folders its ``package://`` references were read with.
 
     """
 
@@ -104,6 +105,7 @@ class ImportedRobot:
     legs: tuple[ImportedLeg, ...]
     body: tuple[str, ...]
     body_mass: SegmentMass
+    packages: Packages = field(default_factory=dict)
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -153,7 +155,9 @@ def robot_from_text(
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
     body = lumped_mass(description, chains.body, frames, np.eye(4))
     _warn_implausible_inertias(description)
-    return ImportedRobot(source, text, description, tuple(legs), chains.body, body)
+    return ImportedRobot(
+        source, text, description, tuple(legs), chains.body, body, dict(search.packages)
+    )
 
 
 def lumped_mass(
