@@ -88,8 +88,9 @@ def test_scene_has_every_extreme_by_name_and_an_animation(hexapod_model, default
                 name: umsgpack.unpackb(node.object)["object"]["materials"][0]["color"]
                 for name, node in visuals.items()
             }
-            links = {"root": "coxa", "hip": "femur", "knee": "tibia"}
-            binding = {f"{c.leg}_{links[c.joint]}_0" for c in extreme.binding}
+            # the links each joint moves: the knee carries the tibia and the foot fixed to it
+            moved = {"root": ("coxa",), "hip": ("femur",), "knee": ("tibia", "foot")}
+            binding = {f"{c.leg}_{link}_0" for c in extreme.binding for link in moved[c.joint]}
             assert extreme.limited_by in extreme.binding
             assert {name for name, c in colours.items() if c == red} == binding
         # nothing else is reddish: red means a limit (the footholds are black, the cloud grey)

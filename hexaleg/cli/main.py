@@ -12,7 +12,8 @@ import argparse
 import importlib
 import os
 import sys
-from collections.abc import Sequence
+import warnings
+from collections.abc import Callable, Sequence
 from typing import Any, NamedTuple, NoReturn
 
 from hexaleg._compiled import use_private_matplotlib_cache
@@ -155,7 +156,9 @@ def main(argv: Sequence[str] | None = None) -> int:
     args = build_parser(command or "").parse_args(argv)
     use_private_matplotlib_cache()  # before any command imports Matplotlib
     try:
-        status = int(args.run(args))
+        with warnings.catch_warnings():  # a warning is one line, not a source line
+            warnings.formatwarning = _one_line_warning(args.command)
+            status = int(args.run(args))
         _flush_stdout()
         return status
     except HexalegError as err:
@@ -169,6 +172,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     except OSError as err:  # the system refused: a full disk, a closed stream, a lost mount
         where = f" ({err.filename})" if err.filename else ""
         return _fail(args.command, f"{os_reason(err)}{where}")
+
+
+def _one_line_warning(command: str) -> Callable[..., str]:
+    """A :func:`warnings.formatwarning` of one line: ``hexaleg COMMAND: warning: MESSAGE``.
+
+    Warnings recorded rather than shown (as by a test's ``pytest.warns``) are untouched.
+    """
+
+    def line(message: Warning | str, *_: object, **__: object) -> str:
+        return f"hexaleg {command}: warning: {message}\n"
+
+    return line
 
 
 def _as_typed(err: HexalegError, argv: Sequence[str]) -> str:

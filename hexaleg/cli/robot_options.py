@@ -28,6 +28,7 @@ ROBOT_COMMANDS = (
     "flexibility",
     "loads",
     "urdf",
+    "view",
 )
 """The commands that run on an imported robot."""
 

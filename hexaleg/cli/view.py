@@ -8,6 +8,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from hexaleg.cli.options import (
+    UsageError,
     add_design_options,
     add_stance_option,
     bounded_int,
@@ -16,6 +17,7 @@ from hexaleg.cli.options import (
     note,
 )
 from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.cli.robot_options import add_robot_options, robot_model
 from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.server import (
@@ -36,6 +38,9 @@ DESCRIPTION = (
     "the scene stays on 127.0.0.1); Ctrl-C stops it. --html writes a self-contained "
     "snapshot instead of serving."
 )
+
+ROBOT_OPTIONS = True
+"""It runs on an imported robot (``--urdf``)."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -58,6 +63,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="animate one period of the --design file's [gait] (else the default tripod gait) "
         "instead (hexaleg gait --html for other gaits), legs coloured by |τ|/rated",
     )
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -69,14 +75,19 @@ def run(args: argparse.Namespace) -> int:
 
     design = design_from_args(args)
     check_outputs({"--html": args.html})
-    model = HexapodModel(design)
+    imported = robot_model(args, design)
+    model: HexapodModel = HexapodModel(design) if imported is None else imported
+    if imported is not None:
+        if args.gait:
+            raise UsageError("--gait with --urdf is not supported yet: view the stance")
+        _note_missing_meshes(imported.missing_meshes)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
         )
     if args.gait:
         return _view_gait(model, args)
-    result = axis_locked_flexibility(design, args.stance, model)
+    result = axis_locked_flexibility(model.design, args.stance, model)
     loads = loads_at_extremes(model, result)
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
@@ -86,6 +97,18 @@ def run(args: argparse.Namespace) -> int:
         lambda viewer: build_scene(viewer, model, result, args.workspace, loads=loads),
         STATICS_LEGEND,
     )
+
+
+def _note_missing_meshes(missing: tuple[str, ...]) -> None:
+    """Say which of the file's visual meshes are not drawn, and how to have them drawn."""
+    if missing:
+        listed = ", ".join(missing[:3]) + (
+            f" and {len(missing) - 3} more" if len(missing) > 3 else ""
+        )
+        note(
+            f"{len(missing)} visual mesh file(s) not found, those visuals are not drawn: "
+            f"{listed} (give --package NAME=DIR for package:// paths)"
+        )
 
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:

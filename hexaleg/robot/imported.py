@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -101,6 +101,7 @@ class ImportedRobot:
         body_mass: The body's links lumped, in the root link's frame.
         changes: The segments changed from the file's (:mod:`hexaleg.robot.resize`),
             empty for the robot as the file draws it.
+        packages: The package folders its ``package://`` references were read with.
 
     """
 
@@ -111,6 +112,7 @@ class ImportedRobot:
     body: tuple[str, ...]
     body_mass: SegmentMass
     changes: tuple[SegmentChange, ...] = ()
+    packages: Packages = field(default_factory=dict)
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -160,7 +162,8 @@ def robot_from_text(
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
     body = lumped_mass(description, chains.body, frames, np.eye(4))
     _warn_implausible_inertias(description)
-    return ImportedRobot(source, text, description, tuple(legs), chains.body, body)
+    packages = dict(search.packages)
+    return ImportedRobot(source, text, description, tuple(legs), chains.body, body, (), packages)
 
 
 def lumped_mass(

@@ -35,6 +35,7 @@ from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex, set_armature
 from hexaleg.robot.model import root_frame_name as _root
 from hexaleg.robot.robot_design import nominal_posture, robot_design
+from hexaleg.robot.source import with_resolved_meshes
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
@@ -131,6 +132,24 @@ class ImportedHexapodModel(HexapodModel):
     def urdf(self) -> str:
         """The URDF the model was built from (the file's, with feet, body and root frames)."""
         return self._text
+
+    def visual_model(self) -> pin.GeometryModel:
+        """The file's visuals, each mesh read from its local file (:attr:`missing_meshes`).
+
+        A visual whose mesh file is not found (``package://`` without its ``--package``,
+        meshes not shipped with the file) is left out.
+        """
+        text, _ = self._drawn()
+        return pin.buildGeomFromUrdfString(self.model, text, pin.GeometryType.VISUAL)
+
+    @property
+    def missing_meshes(self) -> tuple[str, ...]:
+        """The visual mesh references whose files were not found, each once."""
+        return self._drawn()[1]
+
+    def _drawn(self) -> tuple[str, tuple[str, ...]]:
+        base = None if self.robot.source is None else self.robot.source.parent
+        return with_resolved_meshes(self._text, base, self.robot.packages)
 
     def with_design(self, design: HexapodDesign) -> HexapodModel:
         """Not for an imported robot: its masses and joints are the file's."""

@@ -191,6 +191,10 @@ class HexapodModel:
             )
         return self._collision.copy()
 
+    def visual_model(self) -> pin.GeometryModel:
+        """The URDF's visual geometry, what a viewer draws (parsed on each call)."""
+        return pin.buildGeomFromUrdfString(self.model, self.urdf, pin.GeometryType.VISUAL)
+
     def with_design(self, design: HexapodDesign) -> HexapodModel:
         """The model of ``design``, whose segments, ratings or posture differ, without Xacro.
 
@@ -243,6 +247,11 @@ class HexapodModel:
     def leg_v_indices(self, leg: str) -> npt.NDArray[np.int_]:
         """Indices of (θ1, θ2, θ3) of ``leg`` in the velocity vector v."""
         return self._leg(leg).v
+
+    def leg_joint_ids(self, leg: str) -> tuple[int, int, int]:
+        """Pinocchio joint ids of ``leg``'s root, hip and knee joints."""
+        root, hip, knee = self._leg(leg).joints
+        return root, hip, knee
 
     def foot_frame_id(self, leg: str) -> int:
         """Pinocchio frame id of the foot of ``leg``."""

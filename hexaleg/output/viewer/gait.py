@@ -26,7 +26,7 @@ from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.viewer.legend import GAIT_LEGEND, torque_colour
 from hexaleg.output.viewer.server import static_page
-from hexaleg.output.viewer.stage import JOINT_LINKS, ROOT, Stage
+from hexaleg.output.viewer.stage import ROOT, Stage
 from hexaleg.robot.model import HexapodModel
 
 NODE = f"{ROOT}/gait"
@@ -126,7 +126,7 @@ def _leg_links(stage: Stage, robot: Any, legs: tuple[str, ...]) -> dict[tuple[in
     return {
         (i, j): [
             robot.getViewerNodeName(obj, pin.GeometryType.VISUAL)
-            for obj in stage.link_objects({f"{leg}_{JOINT_LINKS[joint]}"})
+            for obj in stage.joint_objects(leg, (joint,))
         ]
         for i, leg in enumerate(legs)
         for j, joint in enumerate(LEG_JOINTS)

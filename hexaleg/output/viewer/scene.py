@@ -23,7 +23,7 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.viewer.legend import HIGHLIGHT, STATICS_LEGEND, torque_colour
 from hexaleg.output.viewer.server import static_page
-from hexaleg.output.viewer.stage import JOINT_LINKS, ROOT, Stage, translation
+from hexaleg.output.viewer.stage import BODY_JOINT, ROOT, Stage, translation
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import stance_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
@@ -86,7 +86,7 @@ def _add_extremes(
         copy = stage.robot(path)
         if loads is not None:
             _colour_by_torque(stage, copy, loads.extremes[k].state)
-        for obj in stage.link_objects(_limiting_links(extreme)):
+        for obj in _limiting_objects(stage, extreme):
             copy.loadViewerGeometryObject(obj, pin.GeometryType.VISUAL, list(HIGHLIGHT))
         copy.display(_extreme_configuration(stage, extreme))
         stage.viewer[path].set_property("visible", False)
@@ -109,7 +109,7 @@ def _colour_by_torque(stage: Stage, robot: Any, state: StaticState) -> None:
     for leg, leg_ratios in zip(state.legs, ratios, strict=True):
         for joint, ratio in zip(LEG_JOINTS, leg_ratios, strict=True):
             colour = list(torque_colour(ratio))
-            for obj in stage.link_objects({f"{leg}_{JOINT_LINKS[joint]}"}):
+            for obj in stage.joint_objects(leg, (joint,)):
                 robot.loadViewerGeometryObject(obj, pin.GeometryType.VISUAL, colour)
 
 
@@ -118,7 +118,8 @@ def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> 
 
     if leg not in model.leg_names:
         raise ParameterError("--workspace", leg, f"legs are {', '.join(model.leg_names)}")
-    cloud = monte_carlo_workspace(model.design, samples=samples, seed=0)
+    general = model.leg_geometry(leg) if getattr(model, "general_legs", False) else None
+    cloud = monte_carlo_workspace(model.design, samples=samples, seed=0, leg=general)
     root = model.nominal_base_pose() * model.root_placements()[leg]
     points = cloud.points @ root.rotation.T + root.translation
     heights = (cloud.points[:, 2] - cloud.points[:, 2].min()) / max(
@@ -139,22 +140,26 @@ def _extreme_configuration(stage: Stage, extreme: Extreme, share: float = 1.0) -
     return configuration
 
 
-def _limiting_links(extreme: Extreme) -> set[str]:
-    """Links to highlight for every binding constraint.
+def _limiting_objects(stage: Stage, extreme: Extreme) -> list[Any]:
+    """The visuals to highlight for every binding constraint, each once.
 
-    The link a limiting joint moves, a whole leg out of reach, or the body on the ground.
+    The link a limiting joint moves, a whole leg out of reach, the body on the ground, or
+    the two links that touch.
     """
-    return {link for cause in extreme.binding for link in _cause_links(cause)}
+    found = {id(obj): obj for cause in extreme.binding for obj in _cause_objects(stage, cause)}
+    return list(found.values())
 
 
-def _cause_links(cause: Cause) -> tuple[str, ...]:
-    if cause.kind == "joint":
-        return (f"{cause.leg}_{JOINT_LINKS[cause.joint or '']}",)
-    if cause.kind == "reach":
-        return tuple(f"{cause.leg}_{part}" for part in ("coxa", "femur", "tibia", "foot"))
+def _cause_objects(stage: Stage, cause: Cause) -> list[Any]:
+    if cause.kind == "joint" and cause.leg and cause.joint:
+        return stage.joint_objects(cause.leg, (cause.joint,))
+    if cause.kind == "reach" and cause.leg:
+        return stage.joint_objects(cause.leg)
     if cause.kind == "ground":
-        return ("base_link",)
-    return ()
+        return stage.carried_by({BODY_JOINT})
+    if cause.kind == "collision" and cause.links:
+        return stage.link_objects(cause.links)
+    return []
 
 
 def _animate_trip(animation: Any, stage: Stage, nominal: Any, extreme: Extreme, frame: int) -> int:

@@ -5,6 +5,10 @@ start from a :class:`Stage`: the meshcat tree cleared and the ground laid under 
 stance, then add robots under their own nodes (:meth:`Stage.robot`), move them in
 keyframes (:meth:`Stage.pose`), colour their links (:meth:`Stage.link_objects`), and
 end with the camera placed (:meth:`Stage.place_camera`).
+
+Links are found by the joint that carries them (:meth:`Stage.joint_objects`), not by
+name, so the same scene draws hexaleg's robot and an imported one whose links are named
+as its file names them.
 """
 
 from __future__ import annotations
@@ -16,14 +20,15 @@ from typing import Any
 import numpy as np
 import pinocchio as pin
 
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 
 ROOT = "hexaleg"
 """The scene tree's node under which hexaleg draws everything."""
 
-JOINT_LINKS = {"root": "coxa", "hip": "femur", "knee": "tibia"}
-"""The link each leg joint moves."""
+BODY_JOINT = 1
+"""Pinocchio joint id of the free flyer: what carries the body's visuals."""
 
 
 @dataclass(frozen=True)
@@ -34,7 +39,7 @@ class Stage:
         viewer: The ``meshcat.Visualizer`` drawn into.
         model: The hexapod's Pinocchio model (its URDF gives the geometry).
         geometry: The stance the ground and the camera are sized for.
-        visual: The robot's visual geometry, read from the URDF.
+        visual: The robot's visual geometry (:meth:`.HexapodModel.visual_model`).
 
     """
 
@@ -49,7 +54,7 @@ class Stage:
         import meshcat.geometry as mg
 
         geometry = StanceGeometry.from_model(model, legs)
-        visual = pin.buildGeomFromUrdfString(model.model, model.urdf, pin.GeometryType.VISUAL)
+        visual = model.visual_model()
         viewer.delete()
         viewer["/Grid"].set_property("visible", False)
         span = _ground_side(geometry)
@@ -71,7 +76,17 @@ class Stage:
 
     def link_objects(self, links: Collection[str]) -> list[Any]:
         """The visual objects of ``links`` (URDF link names, e.g. ``lf_femur``)."""
-        return [obj for obj in self.visual.geometryObjects if obj.name.rsplit("_", 1)[0] in links]
+        frames = self.model.model.frames
+        return [obj for obj in self.visual.geometryObjects if frames[obj.parentFrame].name in links]
+
+    def carried_by(self, joints: Collection[int]) -> list[Any]:
+        """The visual objects that ``joints`` (Pinocchio joint ids) move directly."""
+        return [obj for obj in self.visual.geometryObjects if obj.parentJoint in joints]
+
+    def joint_objects(self, leg: str, joints: Collection[str] = LEG_JOINTS) -> list[Any]:
+        """The visual objects ``leg``'s ``joints`` (``"root"``, ...) move: its segments' links."""
+        ids = self.model.leg_joint_ids(leg)
+        return self.carried_by({ids[LEG_JOINTS.index(joint)] for joint in joints})
 
     def pose(self, keyframe: Any, robot: Any, q: np.ndarray) -> None:
         """Set, in one animation keyframe, every visual of ``robot`` at configuration ``q``."""
