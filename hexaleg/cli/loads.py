@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -139,16 +139,10 @@ def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
         "axis",
         model=model,
     )
-    source = str(model.robot.source)
     if args.json:
-        nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
-        files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
-        print_json(
-            {"robot": source}
-            | analysis.to_dict()
-            | {"joint_angles": nominal, "urdf_joint_angles": files}
-        )
+        print_json(robot_angles(model) | analysis.to_dict())
         return 0
+    source = str(model.robot.source)
     print_table(lengths_title(f"Statics of {source}", model.design.lengths), _rows(analysis))
     return 0
 

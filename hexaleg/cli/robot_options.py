@@ -27,6 +27,7 @@ ROBOT_COMMANDS = (
     "manipulability",
     "flexibility",
     "loads",
+    "gait",
     "urdf",
 )
 """The commands that run on an imported robot."""
@@ -213,6 +214,17 @@ def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexa
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
     return ImportedHexapodModel(robot, design)
+
+
+def robot_angles(model: ImportedHexapodModel) -> dict[str, Any]:
+    """The robot file and each leg's nominal posture, JSON-ready [rad].
+
+    ``robot`` (the file), ``joint_angles`` (hexaleg's θ) and ``urdf_joint_angles`` (the
+    file's q = s·θ + o).
+    """
+    nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
+    files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
+    return {"robot": str(model.robot.source), "joint_angles": nominal, "urdf_joint_angles": files}
 
 
 def refuse_free(args: argparse.Namespace) -> None:
