@@ -28,6 +28,7 @@ ROBOT_COMMANDS = (
     "flexibility",
     "loads",
     "gait",
+    "simulate",
     "urdf",
 )
 """The commands that run on an imported robot."""

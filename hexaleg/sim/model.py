@@ -19,6 +19,14 @@ URDF's mass and inertia) and adds what a URDF does not say:
 
 Only the feet touch the floor and the robot does not collide with itself: contacts
 between the leg links are the collision analysis' business (:mod:`hexaleg.stance.collisions`).
+
+An imported robot (:class:`~hexaleg.robot.imported_model.ImportedHexapodModel`) is its
+model's URDF — the file's links, masses, inertias and joints, the free joint on the body
+link hexaleg adds — without the file's visual and collision shapes (meshes MuJoCo would
+have to find; only the feet touch the floor), each foot a sphere of
+:data:`IMPORTED_FOOT_RADIUS` on its foot point. Its servos act on the file's joints: the
+plan's angles, rates and torques on hexaleg's θ are mapped by q = s·θ + o, and what the
+servos measure is mapped back.
 """
 
 from __future__ import annotations
@@ -36,7 +44,7 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ModelError, ParameterError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
 
@@ -55,6 +63,9 @@ PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
 """Contact bits: robot geoms collide with the floor only, never with each other."""
+IMPORTED_FOOT_RADIUS = 0.005
+"""An imported robot's contact sphere at each foot point [m] (its file draws no foot sphere
+hexaleg reads)."""
 
 
 MAX_GAIN = 1e9
@@ -154,6 +165,20 @@ def reflected_inertia(model: HexapodModel, carried: float | None = None) -> Arra
     return np.asarray(inertia.max(axis=0), dtype=float)
 
 
+def contact_radius(model: HexapodModel, leg: str) -> float:
+    """Radius of ``leg``'s contact sphere [m]: its URDF foot's, an imported robot's constant."""
+    return IMPORTED_FOOT_RADIUS if model.general_legs else foot_radius(model.urdf, leg)
+
+
+def without_shapes(urdf: str) -> str:
+    """The URDF text without its links' visual and collision shapes (masses and joints kept)."""
+    tree = ET.fromstring(urdf)
+    for link in tree.iter("link"):
+        for shape in link.findall("visual") + link.findall("collision"):
+            link.remove(shape)
+    return ET.tostring(tree, encoding="unicode")
+
+
 def foot_radius(urdf: str, leg: str) -> float:
     """Radius of the sphere the URDF draws as ``leg``'s foot [m]."""
     link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
@@ -184,17 +209,18 @@ def robot_spec(
     check_friction(friction)
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
-    spec = mujoco.MjSpec.from_string(model.urdf)
+    urdf = without_shapes(model.urdf) if model.general_legs else model.urdf
+    spec = mujoco.MjSpec.from_string(urdf)
     spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
     spec.option.timestep = timestep
     spec.option.gravity = [0.0, 0.0, -GRAVITY]
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
-    base = spec.body("base_link")
+    base = spec.body(model.frame_name(model.base_frame))
     base.add_freejoint(name=ROOT_JOINT)
     for geom in spec.geoms:  # the URDF's collision shapes: touch the floor, not each other
         geom.contype, geom.conaffinity = ROBOT_CONTACT, 0
-    radius = foot_radius(model.urdf, model.leg_names[0])
+    radius = contact_radius(model, model.leg_names[0])
     spec.worldbody.add_geom(
         name=FLOOR,
         type=mujoco.mjtGeom.mjGEOM_PLANE,
@@ -205,10 +231,12 @@ def robot_spec(
         rgba=[0.8, 0.8, 0.8, 1.0],
     )
     for leg in model.leg_names:
-        spec.body(foot_frame_name(leg)).add_geom(
+        body, at = _carrier(spec.body(model.frame_name(model.foot_frame_id(leg))))
+        body.add_geom(
             name=contact_geom_name(leg),
             type=mujoco.mjtGeom.mjGEOM_SPHERE,
-            size=[foot_radius(model.urdf, leg), 0.0, 0.0],
+            size=[contact_radius(model, leg), 0.0, 0.0],
+            pos=at.tolist(),
             contype=ROBOT_CONTACT,
             conaffinity=0,
             condim=3,
@@ -221,9 +249,27 @@ def robot_spec(
     return spec
 
 
+def _carrier(body: Any) -> tuple[Any, ArrayF]:
+    """The body that carries ``body``'s origin, and where that origin lies in it [m].
+
+    ``body`` itself if it has a mass or a joint; else (a massless link fixed to its parent,
+    as the feet hexaleg adds to a robot file) the first such body up the tree. A contact
+    on a massless body is softer than MuJoCo's contact parameters say: its impedance is
+    scaled by the body's own weight.
+    """
+    point = np.zeros(3)
+    while body.mass <= 0 and not body.joints and body.parent is not None:
+        rotation = np.zeros(9)
+        mujoco = require_mujoco()
+        mujoco.mju_quat2Mat(rotation, np.asarray(body.quat, dtype=float))
+        point = np.asarray(body.pos, dtype=float) + rotation.reshape(3, 3) @ point
+        body = body.parent
+    return body, point
+
+
 def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
     if payload.mass > 0:
-        spec.body("base_link").add_body(
+        spec.body(model.frame_name(model.base_frame)).add_body(
             name=PAYLOAD_BODY,
             pos=payload.point(model).tolist(),
             mass=payload.mass,
@@ -239,10 +285,9 @@ def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
         joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE  # the rating clamps nothing
     armatures = model.design.actuators.armatures if model.design.actuators else (0.0, 0.0, 0.0)
     for leg in model.leg_names:
-        for joint, kp, kd, armature in zip(
-            LEG_JOINTS, gains.stiffness, gains.damping, armatures, strict=True
+        for name, kp, kd, armature in zip(
+            model.leg_joint_names(leg), gains.stiffness, gains.damping, armatures, strict=True
         ):
-            name = joint_name(leg, joint)
             spec.joint(name).armature = armature  # the rotor's N²·J, as Pinocchio's
             actuator = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
             actuator.set_to_position(kp=kp, kv=kd)
@@ -270,7 +315,9 @@ class SimModel:
         feet: Body id of each foot (legs,).
         contacts: Geom id of each foot's contact sphere (legs,).
         floor: Geom id of the floor.
-        base: Body id of ``base_link``.
+        base: Body id of the body link (``base_link``; an imported robot's ``hexaleg_body``).
+        signs: Each leg joint's dq/dθ (legs, 3), s of q = s·θ + o (all 1 for hexaleg's URDF).
+        offsets: Each leg joint's o (legs, 3) [rad].
 
     """
 
@@ -293,18 +340,20 @@ class SimModel:
             found = np.vectorize(lambda n: mujoco.mj_name2id(self.mj, kind, n))(names)
             return np.asarray(found, dtype=int)
 
-        names = [[joint_name(leg, j) for j in LEG_JOINTS] for leg in model.leg_names]
+        legs = model.leg_names
+        names = [list(model.leg_joint_names(leg)) for leg in legs]
         joints = ids(mujoco.mjtObj.mjOBJ_JOINT, names)
         self.qpos = self.mj.jnt_qposadr[joints]
         self.dof = self.mj.jnt_dofadr[joints]
         self.actuators = ids(mujoco.mjtObj.mjOBJ_ACTUATOR, names)
         body = mujoco.mjtObj.mjOBJ_BODY
-        self.feet = ids(body, [foot_frame_name(leg) for leg in model.leg_names])
-        self.contacts = ids(
-            mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in model.leg_names]
-        )
+        self.feet = ids(body, [model.frame_name(model.foot_frame_id(leg)) for leg in legs])
+        self.contacts = ids(mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in legs])
         self.floor = int(mujoco.mj_name2id(self.mj, mujoco.mjtObj.mjOBJ_GEOM, FLOOR))
-        self.base = int(mujoco.mj_name2id(self.mj, body, "base_link"))
+        self.base = int(mujoco.mj_name2id(self.mj, body, model.frame_name(model.base_frame)))
+        self.signs = np.array([model.joint_signs(leg) for leg in legs])
+        self.offsets = np.array([model.joint_values(leg, np.zeros(3)) for leg in legs])
+        self._q_index = np.array([model.leg_q_indices(leg) for leg in legs])
         self.stiffness = np.tile(self.gains.stiffness, (len(model.leg_names), 1))
         self.damping = np.tile(self.gains.damping, (len(model.leg_names), 1))
 
@@ -319,7 +368,7 @@ class SimModel:
         qpos = np.zeros(self.mj.nq)
         qpos[:3] = q[:3]
         qpos[3], qpos[4:7] = q[6], q[3:6]
-        qpos[self.qpos] = self.hexapod.joint_angles(q)
+        qpos[self.qpos] = q[self._q_index]  # the same URDF joints: the same values
         return qpos
 
     def configuration_of(self, qpos: npt.ArrayLike) -> ArrayF:
@@ -327,20 +376,30 @@ class SimModel:
         qpos = np.asarray(qpos, dtype=float)
         base = np.concatenate((qpos[:3], qpos[4:7], qpos[3:4]))
         base[3:] /= np.linalg.norm(base[3:])
-        return self.hexapod.configuration(pin.XYZQUATToSE3(base), qpos[self.qpos])
+        q = self.hexapod.configuration(pin.XYZQUATToSE3(base))
+        q[self._q_index] = qpos[self.qpos]
+        return q
+
+    def angles_of(self, values: npt.ArrayLike) -> ArrayF:
+        """Hexaleg's angles θ = s·(q − o) (..., legs, 3) [rad] of the joints' values q."""
+        theta: ArrayF = self.signs * (np.asarray(values, dtype=float) - self.offsets)
+        return theta
 
     def command(self, q_ref: ArrayF, v_ref: ArrayF, torque: ArrayF) -> ArrayF:
         """Actuator controls (legs·3,) giving τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇).
 
         Args:
-            q_ref: Joint angles to track (..., legs, 3) [rad].
-            v_ref: Joint speeds to track (..., legs, 3) [rad/s].
-            torque: Feed-forward torques (..., legs, 3) [N·m].
+            q_ref: Joint angles θ to track (..., legs, 3) [rad].
+            v_ref: Joint speeds θ̇ to track (..., legs, 3) [rad/s].
+            torque: Feed-forward torques on θ (..., legs, 3) [N·m].
+
+        Each is mapped onto the model's joints (q = s·θ + o, q̇ = s·θ̇, s·τ).
 
         """
         # A position actuator gives k_p (u − q) − k_d q̇; shifting its set-point u by
         # (k_d q̇_ref + τ_ff) / k_p adds the reference speed's damping and the feed-forward.
-        u = q_ref + (self.damping * v_ref + torque) / self.stiffness
+        s = self.signs
+        u = s * q_ref + self.offsets + (self.damping * (s * v_ref) + s * torque) / self.stiffness
         out = np.empty((*u.shape[:-2], self.mj.nu))
         out[..., self.actuators] = u
         return out

@@ -131,7 +131,7 @@ def _meter(period: float, velocity: ArrayF, model: HexapodModel) -> WalkMeter:
     return WalkMeter(
         period,
         velocity,
-        design.nominal_height,
+        float(model.nominal_base_pose().translation[2]),
         legs=model.leg_names,
         rated_torques=design.rated_torques,
     )
