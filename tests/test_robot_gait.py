@@ -34,6 +34,7 @@ from hexaleg.robot.imported import import_robot, robot_from_text
 from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
+from hexaleg.statics.forces import Payload
 
 ROBOTS = Path(__file__).parent / "data" / "robots"
 KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
@@ -311,3 +312,27 @@ def test_gait_table_on_a_real_robot(capsys):
     assert run_cli(["gait", "--urdf", KRABY, *SMALL]) == 0
     out = capsys.readouterr().out
     assert "Walking" in out and "kraby" in out and "max stride" in out
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tmp_path, capsys):
+    target = tmp_path / "kraby.toml"
+    assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
+    with target.open("a") as file:  # a gait this small robot walks
+        file.write("\n[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.6\nsamples = 48\n")
+    capsys.readouterr()
+    loads = _json(capsys, ["loads", "--design", str(target), "--json"])
+    capacity = loads["walking_payload_capacity"]
+    assert capacity["walks"] and capacity["mass"] > 0.1
+    model = _imported(KRABY)
+    gait = Gait(stride=0.03, step_height=0.02, period=0.6, samples=48)
+
+    def holds(mass):
+        walked = analyze_gait(model.design, gait, Payload(mass), model=model, limits=False)
+        return walked.walkable and walked.tipping is None and not walked.over_rating
+
+    assert holds(capacity["mass"] * (1 - 1e-6))
+    assert not holds(capacity["mass"] * (1 + 1e-6))
+    # and without a [gait] table the default gait, too big for Kraby, is not walked at all
+    plain = _json(capsys, ["loads", "--urdf", KRABY, "--json"])
+    assert not plain["walking_payload_capacity"]["walks"]
