@@ -244,15 +244,6 @@ class HexapodModel:
         """Indices of (θ1, θ2, θ3) of ``leg`` in the velocity vector v."""
         return self._leg(leg).v
 
-    def leg_joint_names(self, leg: str) -> tuple[str, str, str]:
-        """The model's names of ``leg``'s (root, hip, knee) joints (a robot file's own)."""
-        root, hip, knee = (str(self.model.names[i]) for i in self._leg(leg).joints)
-        return (root, hip, knee)
-
-    def frame_name(self, frame_id: int) -> str:
-        """The name of Pinocchio frame ``frame_id`` (a link's frame is named as the link)."""
-        return str(self.model.frames[frame_id].name)
-
     def foot_frame_id(self, leg: str) -> int:
         """Pinocchio frame id of the foot of ``leg``."""
         return self._leg(leg).foot_frame

@@ -23,10 +23,9 @@ between the leg links are the collision analysis' business (:mod:`hexaleg.stance
 An imported robot (:class:`~hexaleg.robot.imported_model.ImportedHexapodModel`) is its
 model's URDF — the file's links, masses, inertias and joints, the free joint on the body
 link hexaleg adds — without the file's visual and collision shapes (meshes MuJoCo would
-have to find; only the feet touch the floor), each foot a sphere of
-:data:`IMPORTED_FOOT_RADIUS` on its foot point. Its servos act on the file's joints: the
-plan's angles, rates and torques on hexaleg's θ are mapped by q = s·θ + o, and what the
-servos measure is mapped back.
+have to find; only the feet touch the floor), each foot a sphere on its foot point
+(:mod:`.feet`). Its servos act on the file's joints: the plan's angles, rates and torques
+on hexaleg's θ are mapped by q = s·θ + o, and what the servos measure is mapped back.
 """
 
 from __future__ import annotations
@@ -42,10 +41,17 @@ import pinocchio as pin
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import ModelError, ParameterError
+from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
+from hexaleg.sim.feet import (
+    contact_body,
+    contact_geom_name,
+    contact_radius,
+    frame_name,
+    leg_joint_names,
+)
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
 
 TIMESTEP = 1e-3
@@ -63,19 +69,11 @@ PAYLOAD_BODY = "payload"
 """Name of the payload's body."""
 ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
 """Contact bits: robot geoms collide with the floor only, never with each other."""
-IMPORTED_FOOT_RADIUS = 0.005
-"""An imported robot's contact sphere at each foot point [m] (its file draws no foot sphere
-hexaleg reads)."""
 
 
 MAX_GAIN = 1e9
 """Largest servo stiffness [N·m/rad] and damping [N·m·s/rad]: stiffer servos make MuJoCo's
 position actuators stiff beyond what its step resolves."""
-
-
-def contact_geom_name(leg: str) -> str:
-    """Name of the contact sphere of ``leg``'s foot."""
-    return f"{leg}_foot_contact"
 
 
 @dataclass(frozen=True)
@@ -165,11 +163,6 @@ def reflected_inertia(model: HexapodModel, carried: float | None = None) -> Arra
     return np.asarray(inertia.max(axis=0), dtype=float)
 
 
-def contact_radius(model: HexapodModel, leg: str) -> float:
-    """Radius of ``leg``'s contact sphere [m]: its URDF foot's, an imported robot's constant."""
-    return IMPORTED_FOOT_RADIUS if model.general_legs else foot_radius(model.urdf, leg)
-
-
 def without_shapes(urdf: str) -> str:
     """The URDF text without its links' visual and collision shapes (masses and joints kept)."""
     tree = ET.fromstring(urdf)
@@ -177,15 +170,6 @@ def without_shapes(urdf: str) -> str:
         for shape in link.findall("visual") + link.findall("collision"):
             link.remove(shape)
     return ET.tostring(tree, encoding="unicode")
-
-
-def foot_radius(urdf: str, leg: str) -> float:
-    """Radius of the sphere the URDF draws as ``leg``'s foot [m]."""
-    link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
-    sphere = None if link is None else link.find("visual/geometry/sphere")
-    if sphere is None:
-        raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
-    return float(sphere.attrib["radius"])
 
 
 def robot_spec(
@@ -216,7 +200,7 @@ def robot_spec(
     spec.option.gravity = [0.0, 0.0, -GRAVITY]
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
-    base = spec.body(model.frame_name(model.base_frame))
+    base = spec.body(frame_name(model, model.base_frame))
     base.add_freejoint(name=ROOT_JOINT)
     for geom in spec.geoms:  # the URDF's collision shapes: touch the floor, not each other
         geom.contype, geom.conaffinity = ROBOT_CONTACT, 0
@@ -231,7 +215,7 @@ def robot_spec(
         rgba=[0.8, 0.8, 0.8, 1.0],
     )
     for leg in model.leg_names:
-        body, at = _carrier(spec.body(model.frame_name(model.foot_frame_id(leg))))
+        body, at = contact_body(spec.body(frame_name(model, model.foot_frame_id(leg))))
         body.add_geom(
             name=contact_geom_name(leg),
             type=mujoco.mjtGeom.mjGEOM_SPHERE,
@@ -249,27 +233,9 @@ def robot_spec(
     return spec
 
 
-def _carrier(body: Any) -> tuple[Any, ArrayF]:
-    """The body that carries ``body``'s origin, and where that origin lies in it [m].
-
-    ``body`` itself if it has a mass or a joint; else (a massless link fixed to its parent,
-    as the feet hexaleg adds to a robot file) the first such body up the tree. A contact
-    on a massless body is softer than MuJoCo's contact parameters say: its impedance is
-    scaled by the body's own weight.
-    """
-    point = np.zeros(3)
-    while body.mass <= 0 and not body.joints and body.parent is not None:
-        rotation = np.zeros(9)
-        mujoco = require_mujoco()
-        mujoco.mju_quat2Mat(rotation, np.asarray(body.quat, dtype=float))
-        point = np.asarray(body.pos, dtype=float) + rotation.reshape(3, 3) @ point
-        body = body.parent
-    return body, point
-
-
 def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
     if payload.mass > 0:
-        spec.body(model.frame_name(model.base_frame)).add_body(
+        spec.body(frame_name(model, model.base_frame)).add_body(
             name=PAYLOAD_BODY,
             pos=payload.point(model).tolist(),
             mass=payload.mass,
@@ -286,7 +252,7 @@ def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
     armatures = model.design.actuators.armatures if model.design.actuators else (0.0, 0.0, 0.0)
     for leg in model.leg_names:
         for name, kp, kd, armature in zip(
-            model.leg_joint_names(leg), gains.stiffness, gains.damping, armatures, strict=True
+            leg_joint_names(model, leg), gains.stiffness, gains.damping, armatures, strict=True
         ):
             spec.joint(name).armature = armature  # the rotor's N²·J, as Pinocchio's
             actuator = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
@@ -341,16 +307,16 @@ class SimModel:
             return np.asarray(found, dtype=int)
 
         legs = model.leg_names
-        names = [list(model.leg_joint_names(leg)) for leg in legs]
+        names = [list(leg_joint_names(model, leg)) for leg in legs]
         joints = ids(mujoco.mjtObj.mjOBJ_JOINT, names)
         self.qpos = self.mj.jnt_qposadr[joints]
         self.dof = self.mj.jnt_dofadr[joints]
         self.actuators = ids(mujoco.mjtObj.mjOBJ_ACTUATOR, names)
         body = mujoco.mjtObj.mjOBJ_BODY
-        self.feet = ids(body, [model.frame_name(model.foot_frame_id(leg)) for leg in legs])
+        self.feet = ids(body, [frame_name(model, model.foot_frame_id(leg)) for leg in legs])
         self.contacts = ids(mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in legs])
         self.floor = int(mujoco.mj_name2id(self.mj, mujoco.mjtObj.mjOBJ_GEOM, FLOOR))
-        self.base = int(mujoco.mj_name2id(self.mj, body, model.frame_name(model.base_frame)))
+        self.base = int(mujoco.mj_name2id(self.mj, body, frame_name(model, model.base_frame)))
         self.signs = np.array([model.joint_signs(leg) for leg in legs])
         self.offsets = np.array([model.joint_values(leg, np.zeros(3)) for leg in legs])
         self._q_index = np.array([model.leg_q_indices(leg) for leg in legs])

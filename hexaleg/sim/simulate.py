@@ -66,7 +66,7 @@ def simulate_gait(
         distribution: How the plan shares the load among the standing feet
             (``"min-norm"`` or ``"min-torque"``, as in ``loads``): its feed-forward torques.
         gains: Joint servo gains (default: :meth:`ServoGains.from_bandwidth`).
-        model: The design's Pinocchio model, if already built.
+        model: The design's Pinocchio model, if already built, or an imported robot's.
 
     Raises:
         ParameterError: ``stride`` beyond the design's max stride, or bad ``cycles``.
@@ -74,8 +74,7 @@ def simulate_gait(
 
     """
     require_mujoco()
-    gait = Gait() if gait is None else gait
-    cycles = _checked_cycles(cycles, gait.period, friction)
+    cycles = _checked_cycles(cycles, (Gait() if gait is None else gait).period, friction)
     model = HexapodModel(design) if model is None else model
     analysis = analyze_gait(
         design,
