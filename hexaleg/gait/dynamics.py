@@ -168,9 +168,8 @@ def leg_rows(model: HexapodModel, rows: ArrayF) -> ArrayF:
     model's joint axis is s times the torque on θ).
     """
     v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
-    if not model.general_legs:
-        return rows[:, v_index]
-    return rows[:, v_index] * joint_signs(model)
+    on_theta: ArrayF = rows[:, v_index] * joint_signs(model)
+    return on_theta
 
 
 def min_norm_split(
