@@ -280,6 +280,11 @@ def test_a_stride_beyond_the_max_is_refused_in_one_line(capsys, tmp_path):
     assert _json(capsys, ["gait", "--urdf", KRABY, "--stride", str(0.99 * limit), *small])
     assert run_cli(["gait", "--urdf", KRABY, "--stride", str(1.01 * limit), *small]) == 2
     capsys.readouterr()
+    # the default gait's 10 cm step is beyond this small robot at any stride: said so
+    assert run_cli(["gait", "--urdf", KRABY, "--csv", str(csv)]) == 2
+    lines = capsys.readouterr().err.strip().splitlines()
+    assert len(lines) == 1 and "no stride walks at step height 0.1 m" in lines[0]
+    assert not csv.exists()
 
 
 @pytest.mark.parametrize(
