@@ -116,6 +116,7 @@ class _RawFile:
         (KRABY, ["--distribution", "min-torque", "--samples", "24"]),
         ("ochs", []),
         ("drawn:3", ["--payload", "0.3"]),
+        ("drawn:5", ["--pattern", "wave", "--heading", "-2.0"]),
     ],
 )
 def test_gait_torques_equal_pinocchio_rnea_on_the_file(capsys, tmp_path, path, extra):
