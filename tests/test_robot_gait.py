@@ -292,7 +292,6 @@ def test_a_stride_beyond_the_max_is_refused_in_one_line(capsys, tmp_path):
     ("extra", "expected"),
     [
         (["--html", "out.html"], "--html with --urdf is not supported yet"),
-        (["--plot", "out"], "--plot with --urdf is not supported yet"),
         (["--l2", "0.1"], "--l2 with --urdf"),
     ],
 )
@@ -342,3 +341,11 @@ def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tm
     # and without a [gait] table the default gait, too big for Kraby, is not walked at all
     plain = _json(capsys, ["loads", "--urdf", KRABY, "--json"])
     assert not plain["walking_payload_capacity"]["walks"]
+
+
+def test_gait_figures_of_an_imported_robot(tmp_path, capsys):
+    out = tmp_path / "figures"
+    assert run_cli(["gait", "--urdf", KRABY, *SMALL, "--plot", str(out)]) == 0
+    capsys.readouterr()
+    for name in ("gait_joints.png", "gait_feet.png"):
+        assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

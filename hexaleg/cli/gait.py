@@ -126,7 +126,7 @@ def gait_from_args(args: argparse.Namespace) -> Gait:
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
     design = design_from_args(args)
-    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
     if robot is not None and args.html is not None:
         raise UsageError("--html with --urdf is not supported yet: use --json or --csv")
     model = HexapodModel(design) if robot is None else robot
@@ -146,7 +146,7 @@ def run(args: argparse.Namespace) -> int:
     if args.csv is not None:
         written.append(_write_csv(analysis, Path(args.csv), robot))
     if args.plot is not None:
-        write_plots(args.plot, lambda out: _write_figures(analysis, out))
+        write_plots(args.plot, lambda out: _write_figures(analysis, model, out))
     if args.html is not None:
         from hexaleg.output.viewer.gait import write_gait_html
 
@@ -187,20 +187,38 @@ def file_columns(analysis: GaitAnalysis, robot: ImportedHexapodModel) -> dict[st
     return columns
 
 
-def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:
+def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> list[Path]:
     from hexaleg.output.figures.gait import write_gait_figures
-    from hexaleg.swing.workspace import monte_carlo_workspace
 
-    design = analysis.design
-    cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
-    in_body = analysis.frames.points_in_body(cloud.points)
-    reach = dict(zip(analysis.legs, in_body, strict=True))
-    written = write_gait_figures(analysis, out, reach)
+    written = write_gait_figures(analysis, out, reach_clouds(analysis, model))
     if analysis.electrical is not None:
         from hexaleg.output.figures.motors import write_motor_figures
 
         written += write_motor_figures(analysis, out)
     return written
+
+
+def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
+    """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
+
+    The design's stance limits on the design's leg; an imported robot's legs each by its
+    own general leg within its file's limits (what holds them walking).
+    """
+    from hexaleg.limits import JointLimits
+    from hexaleg.swing.workspace import monte_carlo_workspace
+
+    design = analysis.design
+    if not model.general_legs:
+        cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
+        return dict(zip(analysis.legs, analysis.frames.points_in_body(cloud.points), strict=True))
+    clouds = {}
+    for i, leg in enumerate(analysis.legs):
+        lower, upper = model.joint_limits(leg)
+        root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
+        limits = JointLimits(root, hip, knee, name=f"{leg}'s file limits")
+        cloud = monte_carlo_workspace(design, 20_000, 0, limits, model.leg_geometry(leg))
+        clouds[leg] = analysis.frames.points_in_body(cloud.points)[i]
+    return clouds
 
 
 def _feasible(analysis: GaitAnalysis) -> str:

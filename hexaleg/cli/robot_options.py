@@ -165,11 +165,13 @@ SEGMENT_FLAGS = ("l1", "l2", "l3", "ratios")
 """Options that would change the segments: not yet applied to an imported robot."""
 
 
-def refuse_unsupported(args: argparse.Namespace, segments: bool = False) -> None:
+def refuse_unsupported(
+    args: argparse.Namespace, segments: bool = False, plots: bool = False
+) -> None:
     """Refuse, with ``--urdf``, the options not yet applied to an imported robot.
 
     With ``segments``, ``--l1 --l2 --l3`` are applied by the caller (only ``--ratios`` is
-    refused).
+    refused); with ``plots``, the caller draws ``--plot``.
     """
     flags = ("ratios",) if segments else SEGMENT_FLAGS
     given = [f for f in flags if getattr(args, f, None) is not None]
@@ -180,7 +182,7 @@ def refuse_unsupported(args: argparse.Namespace, segments: bool = False) -> None
             f"--{given[0]} with --urdf: this command does not change an imported robot's "
             f"segments yet (workspace and manipulability do)"
         )
-    if getattr(args, "plot", None) is not None:
+    if getattr(args, "plot", None) is not None and not plots:
         raise UsageError("--plot with --urdf is not supported yet: use --json")
 
 
@@ -201,17 +203,20 @@ def robot_legs(args: argparse.Namespace, design: Any) -> tuple[str, dict[str, An
     }
 
 
-def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexapodModel | None:
+def robot_model(
+    args: argparse.Namespace, design: HexapodDesign, plots: bool = False
+) -> ImportedHexapodModel | None:
     """The whole imported robot as a Pinocchio model over ``design``; ``None`` without one.
 
-    The path of every command that analyses the robot standing (its masses, its feet, its
-    nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`.
-    Options that would change the segments are refused (:func:`refuse_unsupported`).
+    The path of every command that analyses the robot standing or walking (its masses, its
+    feet, its nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`.
+    Options that would change the segments are refused (:func:`refuse_unsupported`), and
+    ``--plot`` unless the command draws the robot's figures (``plots``).
     """
     robot = robot_from_args(args)
     if robot is None:
         return None
-    refuse_unsupported(args)
+    refuse_unsupported(args, plots=plots)
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
     return ImportedHexapodModel(robot, design)
