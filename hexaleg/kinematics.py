@@ -7,7 +7,9 @@ any yaw–pitch–pitch leg as a :class:`~hexaleg.leg_geometry.LegGeometry` (cox
 l2, tibia l3, hip height h, lateral offset e) — and joint angles with a trailing axis
 of size 3 (θ1 root, θ2 hip, θ3 knee) [rad], any leading shape; positions are expressed
 in the leg-root frame (z up along the yaw axis, coxa along x at θ1 = 0). The paper's
-formulas are the case h = e = 0, computed by the same lines.
+formulas are the case h = e = 0, computed by the same lines. :func:`foot_position`,
+:func:`foot_jacobian` and :func:`leg_solution` also take several different legs side by
+side (:data:`~hexaleg.leg_geometry.LegRows`), their angles' leg axis the one before the last.
 """
 
 from __future__ import annotations
@@ -18,11 +20,11 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Lengths
-from hexaleg.leg_geometry import LegLike, leg_parameters
+from hexaleg.leg_geometry import Dimension, LegLike, LegRows, leg_parameters
 from hexaleg.limits import JointLimits
 
 
-def foot_position(leg: LegLike, theta: npt.ArrayLike) -> ArrayF:
+def foot_position(leg: LegLike | LegRows, theta: npt.ArrayLike) -> ArrayF:
     """Foot position p (..., 3) in the leg-root frame [m] (eq 7; h and e added for a general leg).
 
     Args:
@@ -53,7 +55,7 @@ def planar_foot_position(leg: LegLike, theta2: npt.ArrayLike, theta3: npt.ArrayL
     )
 
 
-def foot_jacobian(leg: LegLike, theta: npt.ArrayLike) -> ArrayF:
+def foot_jacobian(leg: LegLike | LegRows, theta: npt.ArrayLike) -> ArrayF:
     """Foot linear-velocity Jacobian dp/dθ (..., 3, 3) in the leg-root frame [m/rad] (eq 22)."""
     l1, l2, l3, _, e = leg_parameters(leg)
     theta = np.asarray(theta, dtype=float)
@@ -154,7 +156,7 @@ def inverse_kinematics(
 
 
 def leg_plane(
-    leg: float | LegLike, position: npt.ArrayLike
+    leg: float | LegLike | LegRows, position: npt.ArrayLike
 ) -> tuple[ArrayF, ArrayF, ArrayF, ArrayF]:
     """θ1 toward the target, and the target in the leg plane seen from the hip.
 
@@ -173,6 +175,9 @@ def leg_plane(
         r the hip-to-foot distance in the leg plane [m].
 
     """
+    a1: Dimension
+    h: Dimension
+    e: Dimension
     if isinstance(leg, int | float | np.floating):
         a1, h, e = float(leg), 0.0, 0.0
     else:
@@ -192,7 +197,7 @@ def leg_plane(
     return theta1, planar_x, z, np.hypot(planar_x, z)  # r² = τ + l1² of eq 9
 
 
-def leg_solution(leg: LegLike, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF]:
+def leg_solution(leg: LegLike | LegRows, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF]:
     """Knee-down joint angles (..., 3) [rad] and hip-to-foot distance r (...) [m].
 
     The kernel behind :func:`inverse_kinematics` and the flexibility margins: the
@@ -204,12 +209,17 @@ def leg_solution(leg: LegLike, position: npt.ArrayLike) -> tuple[ArrayF, ArrayF]
 
 
 def plane_solution(
-    lengths: Lengths, theta1: ArrayF, planar_x: ArrayF, pz: ArrayF, r: ArrayF
+    lengths: Lengths | tuple[Dimension, Dimension, Dimension],
+    theta1: ArrayF,
+    planar_x: ArrayF,
+    pz: ArrayF,
+    r: ArrayF,
 ) -> ArrayF:
     """Knee-down joint angles (..., 3) [rad] from a target already in the leg plane.
 
     Args:
-        lengths: Segment lengths (l1, l2, l3) [m].
+        lengths: Segment lengths (l1, l2, l3) [m], each an array of several legs' if
+            the angles are theirs side by side.
         theta1: Root angle toward the target [rad] (from :func:`leg_plane`).
         planar_x: Hip-to-target distance along the coxa [m].
         pz: Target height above the hip axis [m].

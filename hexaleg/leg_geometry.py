@@ -31,7 +31,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -180,10 +180,38 @@ def as_leg(leg: LegLike) -> LegGeometry:
     return leg if isinstance(leg, LegGeometry) else LegGeometry.from_lengths(leg)
 
 
-def leg_parameters(leg: LegLike) -> tuple[float, float, float, float, float]:
-    """(a1, l2, l3, h, e) [m] of a leg, without validating three plain lengths again."""
+LegRows = npt.NDArray[np.float64]
+"""Several legs side by side: one row (a1, l2, l3, h, e) [m] per leg (..., 5).
+
+Given to the closed forms of :mod:`hexaleg.kinematics` in place of one leg, each column
+broadcasts over the angles' leg axis (the one before the last): six different legs at once.
+"""
+
+Dimension = float | npt.NDArray[np.float64]
+"""One dimension of a leg [m], or of each of several legs side by side (:data:`LegRows`)."""
+
+
+@overload
+def leg_parameters(leg: LegLike) -> tuple[float, float, float, float, float]: ...
+
+
+@overload
+def leg_parameters(
+    leg: LegRows,
+) -> tuple[LegRows, LegRows, LegRows, LegRows, LegRows]: ...
+
+
+def leg_parameters(
+    leg: LegLike | LegRows,
+) -> tuple[Dimension, Dimension, Dimension, Dimension, Dimension]:
+    """(a1, l2, l3, h, e) [m] of a leg, without validating three plain lengths again.
+
+    Of several legs (:data:`LegRows`), the five columns, each (...,) one value per leg.
+    """
     if isinstance(leg, LegGeometry):
         return (leg.coxa, leg.femur, leg.tibia, leg.hip_height, leg.foot_lateral)
+    if isinstance(leg, np.ndarray):
+        return (leg[..., 0], leg[..., 1], leg[..., 2], leg[..., 3], leg[..., 4])
     l1, l2, l3 = leg
     return (l1, l2, l3, 0.0, 0.0)
 

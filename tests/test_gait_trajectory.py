@@ -16,8 +16,9 @@ from hexaleg.gait import Gait, analyze_gait, duty_factor, gait_phases, legs_arou
 from hexaleg.gait.feasibility import COLUMNS, violations
 from hexaleg.gait.jacobian import inverse_times, leg_partials, rate_times, transpose_times
 from hexaleg.gait.trajectory import LegFrames, knee_heights
-from hexaleg.kinematics import foot_jacobian, foot_position
+from hexaleg.kinematics import foot_jacobian, foot_position, leg_solution
 from hexaleg.layouts import LegMount
+from hexaleg.leg_geometry import LegGeometry
 
 
 @given(samples=st.integers(12, 2000))
@@ -163,6 +164,44 @@ def test_the_closed_form_jacobian_products():
     np.testing.assert_allclose(
         rate_times(leg, rates), (ahead - behind)[..., 0] / (2 * h), atol=1e-7
     )
+
+
+def test_the_jacobian_products_of_six_general_legs_side_by_side():
+    # each leg its own coxa, femur, tibia, hip height h and lateral offset e, as an imported
+    # robot's rows; the oracle takes each leg alone (a LegGeometry, no broadcasting)
+    rng = np.random.default_rng(11)
+    rows = np.column_stack(
+        (
+            rng.uniform(0.0, 0.1, 6),
+            rng.uniform(0.05, 0.2, 6),
+            rng.uniform(0.06, 0.25, 6),
+            rng.uniform(-0.05, 0.05, 6),
+            rng.uniform(-0.04, 0.04, 6),
+        )
+    )
+    theta = rng.uniform(-1.2, 1.2, (30, 6, 3))
+    theta[..., 2] = -rng.uniform(0.3, 2.5, (30, 6))
+    rates, push = rng.normal(size=(2, 30, 6, 3))
+    leg = leg_partials(rows, theta)
+    h = 1e-6
+    for i, row in enumerate(rows):
+        alone = LegGeometry(*row)
+        jac = foot_jacobian(alone, theta[:, i])
+        solved = np.linalg.solve(jac, push[:, i, :, None])[..., 0]
+        np.testing.assert_allclose(inverse_times(leg, push)[:, i], solved, atol=1e-10)
+        pushed = (np.swapaxes(jac, 1, 2) @ push[:, i, :, None])[..., 0]
+        np.testing.assert_allclose(transpose_times(leg, push)[:, i], pushed, atol=1e-14)
+        ahead = foot_jacobian(alone, theta[:, i] + h * rates[:, i]) @ rates[:, i, :, None]
+        behind = foot_jacobian(alone, theta[:, i] - h * rates[:, i]) @ rates[:, i, :, None]
+        expected = (ahead - behind)[..., 0] / (2 * h)
+        np.testing.assert_allclose(rate_times(leg, rates)[:, i], expected, atol=1e-7)
+        # and the rows' FK and IK are each leg's own
+        targets = foot_position(alone, theta[:, i])
+        np.testing.assert_allclose(foot_position(rows, theta)[:, i], targets, atol=1e-15)
+        angles, reach = leg_solution(rows, foot_position(rows, theta))
+        own, own_reach = leg_solution(alone, targets)
+        np.testing.assert_allclose(angles[:, i], own, atol=1e-15)
+        np.testing.assert_allclose(reach[:, i], own_reach, atol=1e-15)
 
 
 def test_knee_heights_are_the_femur_tips(hexapod_model):

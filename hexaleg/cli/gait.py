@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
@@ -26,10 +27,15 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
+from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
+
+if TYPE_CHECKING:
+    from hexaleg._typing import ArrayF
+    from hexaleg.robot.imported_model import ImportedHexapodModel
 
 DEFAULT = Gait()
 DESCRIPTION = (
@@ -42,8 +48,13 @@ DESCRIPTION = (
     "whether the period is feasible, the max stride and the max speed within the ratings; "
     "flags every joint over its rating. A design with [actuators] also gets each motor's "
     "current, voltage and copper loss, the electrical energy, cost of transport and Wh/km, "
-    "the battery's runtime and range, and checks continuous torque and voltage."
+    "the battery's runtime and range, and checks continuous torque and voltage. With --urdf, "
+    "your robot: each leg its own general leg and nominal posture, the file's masses, "
+    "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
+    "and in the file's joints (urdf_* in the JSON and CSV)."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -56,6 +67,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
     )
+    add_robot_options(parser)
 
 
 def add_gait_options(parser: argparse.ArgumentParser) -> None:
@@ -114,19 +126,27 @@ def gait_from_args(args: argparse.Namespace) -> Gait:
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
     design = design_from_args(args)
+    robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
+    if robot is not None and args.html is not None:
+        raise UsageError("--html with --urdf is not supported yet: use --json or --csv")
+    model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args)
     payload = payload_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
-    model = HexapodModel(design)
     analysis = analyze_gait(
-        design, gait, payload, distribution=args.distribution, friction=args.friction, model=model
+        model.design,
+        gait,
+        payload,
+        distribution=args.distribution,
+        friction=args.friction,
+        model=model,
     )
     require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []
     if args.csv is not None:
-        written.append(_write_csv(analysis, Path(args.csv)))
+        written.append(_write_csv(analysis, Path(args.csv), robot))
     if args.plot is not None:
-        write_plots(args.plot, lambda out: _write_figures(analysis, out))
+        write_plots(args.plot, lambda out: _write_figures(analysis, model, out))
     if args.html is not None:
         from hexaleg.output.viewer.gait import write_gait_html
 
@@ -134,33 +154,71 @@ def run(args: argparse.Namespace) -> int:
     report_files(written)
     summary = summary_stream(args.csv, args.html)
     if args.json:
-        print_json(analysis.to_dict(), summary)
+        mine = {} if robot is None else robot_angles(robot)
+        print_json(mine | analysis.to_dict(), summary)
         return 0
-    print_table(lengths_title("Walking", design.lengths), rows(analysis), summary)
+    title = "Walking" if robot is None else f"Walking {robot.robot.source}"
+    print_table(lengths_title(title, model.design.lengths), rows(analysis), summary)
     return 0
 
 
-def _write_csv(analysis: GaitAnalysis, path: Path) -> Path:
+def _write_csv(analysis: GaitAnalysis, path: Path, robot: ImportedHexapodModel | None) -> Path:
     import pandas as pd
 
-    table = pd.DataFrame(analysis.time_series())
-    return write_text(path, table.to_csv(index=False))
+    columns = analysis.time_series()
+    if robot is not None:
+        columns |= file_columns(analysis, robot)
+    return write_text(path, pd.DataFrame(columns).to_csv(index=False))
 
 
-def _write_figures(analysis: GaitAnalysis, out: Path) -> list[Path]:
+def file_columns(analysis: GaitAnalysis, robot: ImportedHexapodModel) -> dict[str, ArrayF]:
+    """An imported robot's period in its file's joints, as named columns (N,) each.
+
+    Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
+    (s·τ, the torque about the file's joint axis) [N·m].
+    """
+    columns = {}
+    for i, leg in enumerate(analysis.legs):
+        values = robot.joint_values(leg, analysis.joint_angles[:, i])
+        torques = robot.joint_signs(leg) * analysis.joint_torques[:, i]
+        for j, joint in enumerate(LEG_JOINTS):
+            columns[f"{leg}_{joint}_urdf_q"] = values[:, j]
+            columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
+    return columns
+
+
+def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> list[Path]:
     from hexaleg.output.figures.gait import write_gait_figures
-    from hexaleg.swing.workspace import monte_carlo_workspace
 
-    design = analysis.design
-    cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
-    in_body = analysis.frames.points_in_body(cloud.points)
-    reach = dict(zip(analysis.legs, in_body, strict=True))
-    written = write_gait_figures(analysis, out, reach)
+    written = write_gait_figures(analysis, out, reach_clouds(analysis, model))
     if analysis.electrical is not None:
         from hexaleg.output.figures.motors import write_motor_figures
 
         written += write_motor_figures(analysis, out)
     return written
+
+
+def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
+    """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
+
+    The design's stance limits on the design's leg; an imported robot's legs each by its
+    own general leg within its file's limits (what holds them walking).
+    """
+    from hexaleg.limits import JointLimits
+    from hexaleg.swing.workspace import monte_carlo_workspace
+
+    design = analysis.design
+    if not model.general_legs:
+        cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
+        return dict(zip(analysis.legs, analysis.frames.points_in_body(cloud.points), strict=True))
+    clouds = {}
+    for i, leg in enumerate(analysis.legs):
+        lower, upper = model.joint_limits(leg)
+        root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
+        limits = JointLimits(root, hip, knee, name=f"{leg}'s file limits")
+        cloud = monte_carlo_workspace(design, 20_000, 0, limits, model.leg_geometry(leg))
+        clouds[leg] = analysis.frames.points_in_body(cloud.points)[i]
+    return clouds
 
 
 def _feasible(analysis: GaitAnalysis) -> str:

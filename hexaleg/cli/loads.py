@@ -17,14 +17,13 @@ from hexaleg.cli.options import (
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
 
 if TYPE_CHECKING:
     from hexaleg.gait.capacity import WalkingCapacity
-    from hexaleg.robot.imported_model import ImportedHexapodModel
     from hexaleg.statics.loads import LoadsAnalysis
 
 DESCRIPTION = (
@@ -33,7 +32,8 @@ DESCRIPTION = (
     "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
-    "extremes axis-locked within the file's limits; the walking capacity not yet)."
+    "extremes axis-locked within the file's limits, the walking capacity as `gait --urdf` "
+    "walks it)."
 )
 
 ROBOT_OPTIONS = True
@@ -102,54 +102,34 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.statics.loads import analyze_loads
 
     design = design_from_args(args)
-    robot = robot_model(args, design)
+    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
     if robot is not None:
-        return _run_imported(args, robot)
+        refuse_free(args)
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
-    model = HexapodModel(design)
+    model = HexapodModel(design) if robot is None else robot
     analysis = analyze_loads(
-        design, payload, args.friction, args.stance, args.distribution, args.mode, model=model
+        model.design,
+        payload,
+        args.friction,
+        args.stance,
+        args.distribution,
+        args.mode,
+        model=model,
     )
     gait = design_gait(args)
     walking = walking_payload_capacity(model, gait, payload.position)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
-        print_json(analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
+        mine = {} if robot is None else robot_angles(robot)
+        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
     rows.insert(at, ("walking payload capacity", _walking(walking, gait)))
-    print_table(lengths_title("Statics", design.lengths), rows)
-    return 0
-
-
-def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
-    """The statics of an imported robot: nominal stance and axis-locked extremes (no walking)."""
-    from hexaleg.statics.loads import analyze_loads
-
-    refuse_free(args)
-    analysis = analyze_loads(
-        model.design,
-        payload_from_args(args),
-        args.friction,
-        args.stance,
-        args.distribution,
-        "axis",
-        model=model,
-    )
-    source = str(model.robot.source)
-    if args.json:
-        nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
-        files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
-        print_json(
-            {"robot": source}
-            | analysis.to_dict()
-            | {"joint_angles": nominal, "urdf_joint_angles": files}
-        )
-        return 0
-    print_table(lengths_title(f"Statics of {source}", model.design.lengths), _rows(analysis))
+    title = "Statics" if robot is None else f"Statics of {robot.robot.source}"
+    print_table(lengths_title(title, model.design.lengths), rows)
     return 0
 
 

@@ -27,6 +27,8 @@ ROBOT_COMMANDS = (
     "manipulability",
     "flexibility",
     "loads",
+    "gait",
+    "simulate",
     "urdf",
     "view",
 )
@@ -219,15 +221,16 @@ def add_refused_robot_option(parser: argparse.ArgumentParser) -> None:
         parser.add_argument(flag, nargs=nargs, action=_Refuse, help=argparse.SUPPRESS)
 
 
-def refuse_unsupported(args: argparse.Namespace) -> None:
+def refuse_unsupported(args: argparse.Namespace, plots: bool = False) -> None:
     """Refuse, with ``--urdf``, the options not yet applied to an imported robot.
 
     ``--l1 --l2 --l3`` change its segments (:func:`robot_from_args`); ``--ratios`` would
-    need a total leg length the file does not have, so it is refused.
+    need a total leg length the file does not have, so it is refused; with ``plots``, the
+    caller draws ``--plot``.
     """
     if getattr(args, "ratios", None) is not None:
         raise UsageError("--ratios with --urdf: give --l1 --l2 --l3 to change the segments")
-    if getattr(args, "plot", None) is not None:
+    if getattr(args, "plot", None) is not None and not plots:
         raise UsageError("--plot with --urdf is not supported yet: use --json")
 
 
@@ -245,20 +248,34 @@ def robot_legs(args: argparse.Namespace, design: Any) -> tuple[str, dict[str, An
     return str(robot.source), {leg.name: leg.reading.geometry for leg in robot.legs}
 
 
-def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexapodModel | None:
+def robot_model(
+    args: argparse.Namespace, design: HexapodDesign, plots: bool = False
+) -> ImportedHexapodModel | None:
     """The whole imported robot as a Pinocchio model over ``design``; ``None`` without one.
 
-    The path of every command that analyses the robot standing (its masses, its feet, its
-    nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`, with
-    the segments changed by ``--l1 --l2 --l3`` and ``[robot.segments]``.
+    The path of every command that analyses the robot standing or walking (its masses, its
+    feet, its nominal posture): :class:`~hexaleg.robot.imported_model.ImportedHexapodModel`,
+    with the segments changed by ``--l1 --l2 --l3`` and ``[robot.segments]``; ``--plot``
+    is refused unless the command draws the robot's figures (``plots``).
     """
     robot = robot_from_args(args)
     if robot is None:
         return None
-    refuse_unsupported(args)
+    refuse_unsupported(args, plots=plots)
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
     return ImportedHexapodModel(robot, design)
+
+
+def robot_angles(model: ImportedHexapodModel) -> dict[str, Any]:
+    """The robot file and each leg's nominal posture, JSON-ready [rad].
+
+    ``robot`` (the file), ``joint_angles`` (hexaleg's θ) and ``urdf_joint_angles`` (the
+    file's q = s·θ + o).
+    """
+    nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
+    files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
+    return {"robot": str(model.robot.source), "joint_angles": nominal, "urdf_joint_angles": files}
 
 
 def refuse_free(args: argparse.Namespace) -> None:

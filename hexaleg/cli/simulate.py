@@ -10,7 +10,13 @@ import numpy as np
 
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
-from hexaleg.cli.options import add_design_options, bounded_int, design_from_args, note
+from hexaleg.cli.options import (
+    UsageError,
+    add_design_options,
+    bounded_int,
+    design_from_args,
+    note,
+)
 from hexaleg.cli.output import (
     check_outputs,
     lengths_title,
@@ -19,6 +25,7 @@ from hexaleg.cli.output import (
     report_files,
     summary_stream,
 )
+from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
@@ -35,8 +42,13 @@ DESCRIPTION = (
     "plan's, each servo over its rated torque flagged (as in gait and loads). Then the "
     "robot stands 2 s on the first tripod (lf, rm, lr) with the other feet lifted 2 cm: "
     "each standing foot's vertical force beside the statics' (`loads --stance tripod`). "
-    "A stride beyond the design's max stride is refused before simulating."
+    "A stride beyond the design's max stride is refused before simulating. With --urdf, "
+    "your robot: its file's links, masses, inertias and joints in MuJoCo (its meshes left "
+    "out: only the feet touch the floor, each a 5 mm sphere), walking the gait `gait --urdf` "
+    "plans."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -44,6 +56,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_design_options(parser)
     add_gait_options(parser)
     add_payload_options(parser)
+    add_robot_options(parser)
     low, high = CYCLES_RANGE
     parser.add_argument(
         "--cycles",
@@ -72,18 +85,24 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
     design = design_from_args(args)
+    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    for flag in ("html", "video"):
+        if robot is not None and getattr(args, flag) is not None:
+            raise UsageError(f"--{flag} with --urdf is not supported yet: use --json")
+    model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args)
     payload = payload_from_args(args)
     check_outputs({"--html": args.html, "--video": args.video})  # before simulating
     if args.video is not None:
         check_video_path(args.video)
     result = simulate_gait(
-        design,
+        model.design,
         gait,
         payload,
         cycles=args.cycles,
         friction=args.friction,
         distribution=args.distribution,
+        model=model,
     )
     written: list[Path] = []
     if args.html is not None:
@@ -93,10 +112,12 @@ def run(args: argparse.Namespace) -> int:
     report_files(written)
     summary = summary_stream(args.html, args.video)
     if args.json:
-        print_json(result.to_dict(), summary)
+        print_json(({} if robot is None else robot_angles(robot)) | result.to_dict(), summary)
         return 0
-    title = lengths_title("Simulated walk (MuJoCo)", design.lengths)
-    print_table(title, rows(result), summary)
+    what = "" if robot is None else f" of {robot.robot.source}"
+    title = lengths_title(f"Simulated walk (MuJoCo){what}", model.design.lengths)
+    height = float(model.nominal_base_pose().translation[2])
+    print_table(title, rows(result, height), summary)
     return 0
 
 
@@ -122,8 +143,8 @@ def _video(result: SimulationResult, path: str) -> list[Path]:
     return [outcome.path]
 
 
-def rows(result: SimulationResult) -> list[tuple[str, str]]:
-    """The text table's rows."""
+def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str]]:
+    """The text table's rows (``nominal_height``: the body's over the ground [m])."""
     metrics, gait, design = result.metrics, result.gait, result.design
     rows = [
         (
@@ -143,7 +164,7 @@ def rows(result: SimulationResult) -> list[tuple[str, str]]:
         ),
         (
             "lowest body height",
-            f"{metrics.min_height:.4f} m (nominal {design.nominal_height:.4f} m)",
+            f"{metrics.min_height:.4f} m (nominal {nominal_height:.4f} m)",
         ),
         ("fell", "YES" if metrics.fell else "no"),
         ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),

@@ -357,7 +357,8 @@ def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
             f"must be at most {limit.value:.4g} [m], this design's max stride at step height "
             f"{gait.step_height:g} m (beyond it: {limit.limited_by})",
         )
-    raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}")
+    why = "" if limit.value > 0 else f" (no stride walks at step height {gait.step_height:g} m)"
+    raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}{why}")
 
 
 STUDY_GAIT = Gait()

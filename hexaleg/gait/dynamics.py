@@ -10,6 +10,10 @@ swinging legs carry their own inertia and gravity. The split is the minimum-norm
 the statics (:func:`~hexaleg.statics.forces.min_torque_forces`), on the equilibrium rows
 of :func:`~hexaleg.statics.forces.equilibrium` written about the body's origin.
 
+Joint angles are hexaleg's θ; the model's joints turn as q = s·θ + o (the identity for
+hexaleg's own URDF, a robot file's signs and offsets for an imported robot), so the RNEA
+runs at q, q̇ = s·θ̇, q̈ = s·θ̈ and each joint's torque on θ is s times the model's.
+
 Every joint velocity is (1/T)·(a derivative by the phase) and every acceleration (1/T²)·(…),
 so RNEA = g(q) + (M(q)·q'' + C(q, q')·q')/T² exactly: a static part and an inertial part
 over T². Both are computed once (Pinocchio's generalized gravity, and RNEA without
@@ -79,15 +83,19 @@ class LoadedRobot:
         self.model.gravity.linear = self.gravity
         self.data = model.data if own else self.model.createData()
         self.mass = float(pin.computeTotalMass(self.model))
+        self.legs = model.leg_names
         self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
         self.v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
+        self.signs = joint_signs(model)
         self.height = float(model.nominal_base_pose().translation[2])
+        self._joint_values = model.joint_values
 
     def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
         """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
 
         Args:
-            motion: Joint angles and their phase derivatives (N, 6, 3), ``leg_names`` order.
+            motion: Joint angles θ and their phase derivatives (N, 6, 3), ``leg_names``
+                order (the model's joints at q = s·θ + o).
             base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
 
         """
@@ -96,12 +104,13 @@ class LoadedRobot:
         q[:, :3] = np.arange(count)[:, None] / count * base_travel
         q[:, 2] += self.height
         q[:, 6] = 1.0  # level: the identity quaternion (x, y, z, w)
-        q[:, self.q_index] = motion.angles
+        for i, leg in enumerate(self.legs):
+            q[:, self.q_index[i]] = self._joint_values(leg, motion.angles[:, i])
         velocity = np.zeros((count, model.nv))
         velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
-        velocity[:, self.v_index] = motion.velocity
+        velocity[:, self.v_index] = self.signs * motion.velocity
         acceleration = np.zeros((count, model.nv))
-        acceleration[:, self.v_index] = motion.acceleration
+        acceleration[:, self.v_index] = self.signs * motion.acceleration
         static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
         for k in range(count):
             static[k] = pin.computeGeneralizedGravity(model, data, q[k])
@@ -147,10 +156,20 @@ def stance_indices(phases: GaitPhases) -> npt.NDArray[np.intp]:
     return np.nonzero(stance)[1].reshape(len(stance), -1)
 
 
+def joint_signs(model: HexapodModel) -> ArrayF:
+    """dq/dθ of every leg joint (6, 3), ``leg_names`` order (±1; all +1 for hexaleg's URDF)."""
+    return np.array([model.joint_signs(leg) for leg in model.leg_names])
+
+
 def leg_rows(model: HexapodModel, rows: ArrayF) -> ArrayF:
-    """The legs' joint rows (N, 6, 3) of generalized forces (N, nv), ``leg_names`` order."""
+    """The legs' joint rows (N, 6, 3) of generalized forces (N, nv), on hexaleg's θ.
+
+    ``leg_names`` order; each row times its joint's sign dq/dθ (a torque about the
+    model's joint axis is s times the torque on θ).
+    """
     v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
-    return rows[:, v_index]
+    on_theta: ArrayF = rows[:, v_index] * joint_signs(model)
+    return on_theta
 
 
 def min_norm_split(
@@ -201,7 +220,7 @@ def min_torque_split(
     count, rated = len(feet), np.array(model.design.rated_torques)
     generalized = rnea.static + rnea.inertial / period**2
     joints = leg_rows(model, generalized)
-    in_roots = foot_jacobian(frames.lengths, motion.angles)
+    in_roots = foot_jacobian(frames.parameters, motion.angles)
     jacobian = np.einsum("lij,nljk->nlik", frames.root_rotations, in_roots)  # body frame
     forces = np.zeros((count, 6, 3))
     for k, legs in enumerate(stance_indices(phases)):

@@ -5,6 +5,8 @@ At each sample and for each leg:
 - the foot within the leg's reach, |l2 − l3| ≤ r ≤ l2 + l3 (r hip to foot);
 - every joint within the design's URDF limits (swinging legs) or within the stance limits
   of §6 (standing legs, which are tighter: the URDF's are the envelope of every limit set);
+  an imported robot's legs within the file's limits, standing or swinging (as its
+  flexibility holds them);
 - the knee above the ground, hence the whole tibia (its other end, the foot, stands on the
   ground or swings above it: H·64·s³(1 − s)³ ≥ 0).
 
@@ -24,6 +26,7 @@ import numpy.typing as npt
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.gait.trajectory import LegFrames, knee_heights
+from hexaleg.leg_geometry import leg_parameters
 from hexaleg.limits import LEG_JOINTS, JointLimits
 from hexaleg.robot.model import HexapodModel
 
@@ -46,25 +49,45 @@ class JointBounds:
     """The joint limits a gait is held to (6, 3) [rad], ``leg_names`` order.
 
     Attributes:
-        urdf_lower: The URDF's lower limits, read from the model.
+        urdf_lower: The URDF's lower limits, read from the model (on hexaleg's θ).
         urdf_upper: The URDF's upper limits.
-        stance: The design's stance limits (§6).
+        stance: The design's stance limits (§6) that hold the standing legs; ``None`` for
+            an imported robot, whose standing legs keep the file's limits.
 
     """
 
     urdf_lower: ArrayF
     urdf_upper: ArrayF
-    stance: JointLimits
+    stance: JointLimits | None
 
     @classmethod
     def from_model(cls, model: HexapodModel) -> JointBounds:
-        """The model's URDF limits and its design's stance limits."""
+        """The model's URDF limits and its design's stance limits (none: a robot file's)."""
         limits = [model.joint_limits(leg) for leg in model.leg_names]
         return cls(
             urdf_lower=np.array([lower for lower, _ in limits]),
             urdf_upper=np.array([upper for _, upper in limits]),
-            stance=model.design.stance_limits,
+            stance=None if model.general_legs else model.design.stance_limits,
         )
+
+    def bounds(
+        self, stance: npt.NDArray[np.bool_], theta: ArrayF
+    ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+        """The (lower, upper) limits (..., N, 6, 3) [rad] at angles θ (..., N, 6, 3) [rad].
+
+        Standing legs (``stance`` (N, 6)) get the stance limits, their knee's lower bound
+        coupled to the hip where those are.
+        """
+        if self.stance is None:
+            return self.urdf_lower, self.urdf_upper
+        standing = stance[..., None]
+        lower = np.where(standing, self.stance.lower, self.urdf_lower)
+        upper = np.where(standing, self.stance.upper, self.urdf_upper)
+        if self.stance.coupled_knee:
+            coupled = self.stance.knee_lower(theta[..., 1])
+            lower = np.broadcast_to(lower, theta.shape).copy()
+            lower[..., 2] = np.where(stance, coupled, lower[..., 2])
+        return lower, upper
 
 
 def gait_margins(
@@ -84,14 +107,8 @@ def gait_margins(
         reach: Hip-to-foot distances (..., N, 6) [m].
 
     """
-    _, l2, l3 = frames.lengths
-    standing = stance[..., None]
-    lower = np.where(standing, bounds.stance.lower, bounds.urdf_lower)
-    upper = np.where(standing, bounds.stance.upper, bounds.urdf_upper)
-    if bounds.stance.coupled_knee:
-        coupled = bounds.stance.knee_lower(theta[..., 1])
-        lower = np.broadcast_to(lower, theta.shape).copy()
-        lower[..., 2] = np.where(stance, coupled, lower[..., 2])
+    _, l2, l3, _, _ = leg_parameters(frames.parameters)
+    lower, upper = bounds.bounds(stance, theta)
     joints = np.stack((theta - lower, upper - theta), axis=-1).reshape(*theta.shape[:-1], 6)
     return np.concatenate(
         (

@@ -1,11 +1,14 @@
 """The leg's foot Jacobian (eq 22) in closed form: J⁻¹·ṗ, Jᵀ·f and J̇·θ̇ from one set of partials.
 
 With R = l1 + l2·cos θ2 + l3·cos(θ2+θ3) the foot's reach along the coxa and
-Z = l2·sin θ2 + l3·sin(θ2+θ3) its height (eq 7), the foot is p = (cos θ1·R, sin θ1·R, Z)
-in the leg-root frame, and J = [R·(−sin θ1, cos θ1, 0) | (cos θ1·R_θ, sin θ1·R_θ, Z_θ)]
-for θ = θ2, θ3. Across the coxa only the root moves the foot; along it and up, hip and
-knee form a 2×2 system of determinant l2·l3·sin θ3. :func:`leg_partials` evaluates the
-trigonometry once for every product a gait needs; the tests hold each product against
+Z = h + l2·sin θ2 + l3·sin(θ2+θ3) its height (eq 7; a general leg's hip height h and
+lateral offset e, :mod:`hexaleg.leg_geometry`), the foot is
+p = Rz(θ1)·(R, e, Z) in the leg-root frame. In the coxa's turning axes (radial, across, up)
+J = [(−e, R, 0) | (R_θ, 0, Z_θ)] for θ = θ2, θ3: across the coxa only the root moves the
+foot; along it and up, hip and knee form a 2×2 system of determinant l2·l3·sin θ3 (the
+root's share −e·θ̇1 moved to the right-hand side). :func:`leg_partials` evaluates the
+trigonometry once for every product a gait needs, for one leg or for six different legs
+side by side (:data:`~hexaleg.leg_geometry.LegRows`); the tests hold each product against
 :func:`hexaleg.kinematics.foot_jacobian` and finite differences.
 """
 
@@ -17,6 +20,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF, Lengths
+from hexaleg.leg_geometry import Dimension, LegRows, leg_parameters
 
 
 class LegPartials(NamedTuple):
@@ -28,7 +32,8 @@ class LegPartials(NamedTuple):
         reach: R [m].
         r2, r3: ∂R/∂θ2, ∂R/∂θ3 [m/rad].
         z2, z3: ∂Z/∂θ2, ∂Z/∂θ3 [m/rad].
-        l2, l3: Femur and tibia lengths [m].
+        l2, l3: Femur and tibia lengths [m] (one per leg for legs side by side).
+        lateral: The foot's lateral offset e [m] (likewise).
 
     """
 
@@ -43,13 +48,21 @@ class LegPartials(NamedTuple):
     r3: ArrayF
     z2: ArrayF
     z3: ArrayF
-    l2: float
-    l3: float
+    l2: Dimension
+    l3: Dimension
+    lateral: Dimension = 0.0
 
 
-def leg_partials(lengths: Lengths, theta: npt.ArrayLike) -> LegPartials:
-    """The partials of eq 7 at joint angles θ (..., 3) [rad]."""
-    l1, l2, l3 = lengths
+def leg_partials(leg: Lengths | LegRows, theta: npt.ArrayLike) -> LegPartials:
+    """The partials of eq 7 at joint angles θ (..., 3) [rad].
+
+    Args:
+        leg: The paper's segment lengths (l1, l2, l3) [m], or legs side by side (the
+            angles' leg axis the one before the last).
+        theta: Joint angles (..., 3) [rad].
+
+    """
+    l1, l2, l3, _, lateral = leg_parameters(leg)
     theta = np.asarray(theta, dtype=float)
     t2, t23 = theta[..., 1], theta[..., 1] + theta[..., 2]
     c2, s2, c23, s23 = np.cos(t2), np.sin(t2), np.cos(t23), np.sin(t23)
@@ -67,6 +80,7 @@ def leg_partials(lengths: Lengths, theta: npt.ArrayLike) -> LegPartials:
         z3=l3 * c23,
         l2=l2,
         l3=l3,
+        lateral=lateral,
     )
 
 
@@ -81,9 +95,11 @@ def inverse_times(leg: LegPartials, rhs: npt.ArrayLike) -> ArrayF:
     across = -leg.s1 * rhs[..., 0] + leg.c1 * rhs[..., 1]
     det = leg.r2 * leg.z3 - leg.r3 * leg.z2
     with np.errstate(divide="ignore", invalid="ignore"):
+        root = across / leg.reach
+        radial = radial + leg.lateral * root  # what the hip and knee move along the coxa
         return np.stack(
             (
-                across / leg.reach,
+                root,
                 (leg.z3 * radial - leg.r3 * rhs[..., 2]) / det,
                 (leg.r2 * rhs[..., 2] - leg.z2 * radial) / det,
             ),
@@ -98,7 +114,7 @@ def transpose_times(leg: LegPartials, force: npt.ArrayLike) -> ArrayF:
     across = -leg.s1 * force[..., 0] + leg.c1 * force[..., 1]
     return np.stack(
         (
-            leg.reach * across,
+            leg.reach * across - leg.lateral * radial,
             leg.r2 * radial + leg.z2 * force[..., 2],
             leg.r3 * radial + leg.z3 * force[..., 2],
         ),
@@ -111,7 +127,8 @@ def rate_times(leg: LegPartials, rates: npt.ArrayLike) -> ArrayF:
 
     The leg plane's centripetal terms are R_q = −(l2 cos θ2·ω2² + l3 cos θ23·ω23²) and
     Z_q = −(l2 sin θ2·ω2² + l3 sin θ23·ω23²) (ω23 = ω2 + ω3); the root's turn adds −R·ω1²
-    (centripetal) along the coxa and 2·Ṙ·ω1 (Coriolis) across it.
+    (centripetal) along the coxa and 2·Ṙ·ω1 (Coriolis) across it, and a lateral offset e
+    its own centripetal −e·ω1² across it.
     """
     rates = np.asarray(rates, dtype=float)
     w1, w2, w23 = rates[..., 0], rates[..., 1], rates[..., 1] + rates[..., 2]
@@ -120,7 +137,7 @@ def rate_times(leg: LegPartials, rates: npt.ArrayLike) -> ArrayF:
         reach_q = -(leg.l2 * leg.c2 * w2**2 + leg.l3 * leg.c23 * w23**2)
         height_q = -(leg.l2 * leg.s2 * w2**2 + leg.l3 * leg.s23 * w23**2)
         radial = reach_q - leg.reach * w1**2
-        across = 2 * reach_rate * w1
+        across = 2 * reach_rate * w1 - leg.lateral * w1**2
         return np.stack(
             (leg.c1 * radial - leg.s1 * across, leg.s1 * radial + leg.c1 * across, height_q),
             axis=-1,

@@ -93,12 +93,13 @@ def _out_of_reach(walker: Walker) -> float:
     """A stride [m] no gait reaches.
 
     A standing foot ends S/2 from its nominal foothold, at least S/2 − d from its leg's
-    root (d the foothold's distance from the root), which must stay within l1 + l2 + l3:
-    the leg nearest its foothold bounds S by 2·(d + l).
+    root (d the foothold's distance from the root), which must stay within the leg's
+    reach l = a1 + l2 + l3 + |h| + |e|: the leg nearest its foothold bounds S by 2·(d + l).
     """
     frames = walker.frames
     offsets = np.linalg.norm(frames.footholds - frames.root_positions, axis=1)
-    return float(2.0 * (offsets.min() + sum(frames.lengths)))
+    reach = np.abs(frames.parameters).sum(axis=1)
+    return float(2.0 * (offsets + reach).min())
 
 
 def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
@@ -106,7 +107,8 @@ def _margins(walker: Walker, strides: ArrayF) -> ArrayF:
     shapes, frames = walker.shapes, walker.frames
     along = strides[:, None, None, None] * shapes.along[None, ..., None] * walker.heading
     lift = walker.gait.step_height * shapes.lift[..., None] * np.array([0.0, 0.0, 1.0])
-    angles, reach = leg_solution(frames.lengths, frames.to_roots(frames.footholds + along + lift))
+    targets = frames.to_roots(frames.footholds + along + lift)
+    angles, reach = leg_solution(frames.parameters, targets)
     return walker.margins(angles, reach)
 
 

@@ -15,9 +15,12 @@ Both are affine in S and H, so paths are built from phase-only shapes. Lift-off 
 touchdown join the stance with equal velocity (−v·u) and zero acceleration: the paths are
 twice continuously differentiable. Derivatives are taken by φ (d/dt = (1/T)·d/dφ), so one
 motion serves every period. Joint angles come from the knee-down closed-form IK (eq 8–9)
-in each leg-root frame; joint velocities and accelerations are exact:
+in each leg-root frame, each leg its model's general leg
+(:meth:`~hexaleg.robot.model.HexapodModel.leg_geometry`: the paper's leg for hexaleg's
+designs, the file's for an imported robot); joint velocities and accelerations are exact:
 θ' = J⁻¹·p' and θ'' = J⁻¹·(p'' − J'·θ'), J the foot Jacobian of eq 22 in closed form
-(:mod:`hexaleg.gait.jacobian`).
+(:mod:`hexaleg.gait.jacobian`). Angles are hexaleg's θ; the model maps them onto its
+joints (:meth:`~hexaleg.robot.model.HexapodModel.joint_values`).
 """
 
 from __future__ import annotations
@@ -32,6 +35,7 @@ from hexaleg._typing import ArrayF, Lengths
 from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
+from hexaleg.leg_geometry import LegRows, leg_parameters
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, joint_name
 
 
@@ -41,7 +45,8 @@ class LegFrames:
 
     Attributes:
         legs: Leg names, the model's ``leg_names`` order.
-        lengths: Segment lengths (l1, l2, l3) [m].
+        parameters: Each leg's general leg (a1, l2, l3, h, e) (6, 5) [m]
+            (:data:`~hexaleg.leg_geometry.LegRows`).
         root_rotations: Leg-root frame orientations (6, 3, 3).
         root_positions: Leg-root frame origins (6, 3) [m].
         footholds: Nominal foot positions P (6, 3) [m].
@@ -50,7 +55,7 @@ class LegFrames:
     """
 
     legs: tuple[str, ...]
-    lengths: Lengths
+    parameters: LegRows
     root_rotations: ArrayF
     root_positions: ArrayF
     footholds: ArrayF
@@ -58,20 +63,28 @@ class LegFrames:
 
     @classmethod
     def from_model(cls, model: HexapodModel) -> LegFrames:
-        """The legs of ``model`` at its nominal stance."""
-        design = model.design
+        """The legs of ``model`` at its nominal stance (each leg its own posture)."""
+        legs = model.leg_names
         roots = _root_placements(model)
-        rotations = np.array([roots[leg].rotation for leg in model.leg_names])
-        positions = np.array([roots[leg].translation for leg in model.leg_names])
-        foot = foot_position(design.lengths, design.nominal_angles)
+        rotations = np.array([roots[leg].rotation for leg in legs])
+        positions = np.array([roots[leg].translation for leg in legs])
+        parameters = np.array([leg_parameters(model.leg_geometry(leg)) for leg in legs])
+        nominal = np.array([model.nominal_angles(leg) for leg in legs])
+        foot = foot_position(parameters, nominal)
         return cls(
-            legs=model.leg_names,
-            lengths=design.lengths,
+            legs=legs,
+            parameters=parameters,
             root_rotations=rotations,
             root_positions=positions,
-            footholds=positions + rotations @ foot,
+            footholds=positions + (rotations @ foot[:, :, None])[:, :, 0],
             height=float(model.nominal_base_pose().translation[2]),
         )
+
+    @property
+    def lengths(self) -> Lengths:
+        """The segments (a1, l2, l3) [m]: one design has one leg's, on all six."""
+        a1, l2, l3 = (float(v) for v in self.parameters[0, :3])
+        return (a1, l2, l3)
 
     def to_roots(self, vectors: ArrayF, points: bool = True) -> ArrayF:
         """Body-frame points (``points=False``: directions) (..., 6, 3) in the leg-root frames."""
@@ -92,9 +105,12 @@ def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
     """Each leg-root frame in the body frame: the root joints' placements on the free flyer.
 
     Read without kinematics when the roots hang on the free-flyer joint, as the templates
-    build them (a study's designs then need no Pinocchio data); otherwise from the model's
-    forward kinematics.
+    build them (a study's designs then need no Pinocchio data); otherwise (an imported
+    robot's leg-root frames are fixed frames on its body) from the model's forward
+    kinematics.
     """
+    if model.general_legs:
+        return model.root_placements()
     pinocchio = model.model
     base = pinocchio.getJointId(ROOT_JOINT)
     ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
@@ -209,8 +225,8 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
     targets = frames.to_roots(paths.position)
     velocity = frames.to_roots(paths.velocity, points=False)
     acceleration = frames.to_roots(paths.acceleration, points=False)
-    angles, reach = leg_solution(frames.lengths, targets)
-    leg = leg_partials(frames.lengths, angles)
+    angles, reach = leg_solution(frames.parameters, targets)
+    leg = leg_partials(frames.parameters, angles)
     rates = inverse_times(leg, velocity)
     with np.errstate(invalid="ignore"):  # a straight leg: unbounded rates
         accelerations = inverse_times(leg, acceleration - rate_times(leg, rates))
@@ -220,12 +236,15 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
 def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:
     """Each knee's height above the ground (..., 6) [m], body level at its nominal height.
 
-    The knee is the femur's tip, eq 7 without the tibia; only its height is needed, so
-    only the leg-root frames' z rows turn it into the body frame.
+    The knee is the femur's tip, eq 7 without the tibia (of a general leg, the point of
+    the knee axis in the tibia's plane, e off the leg plane); only its height is needed,
+    so only the leg-root frames' z rows turn it into the body frame.
     """
-    l1, l2, _ = frames.lengths
+    a1, l2, _, h, e = leg_parameters(frames.parameters)
     t1, t2 = angles[..., 0], angles[..., 1]
-    out = l1 + l2 * np.cos(t2)
+    out = a1 + l2 * np.cos(t2)
+    c1, s1 = np.cos(t1), np.sin(t1)
     up = frames.root_rotations[:, 2, :]  # (6, 3)
-    rise = up[:, 0] * np.cos(t1) * out + up[:, 1] * np.sin(t1) * out + up[:, 2] * l2 * np.sin(t2)
+    rise = up[:, 0] * (c1 * out - s1 * e) + up[:, 1] * (s1 * out + c1 * e)
+    rise = rise + up[:, 2] * (h + l2 * np.sin(t2))
     return frames.height + frames.root_positions[:, 2] + rise

@@ -19,6 +19,13 @@ URDF's mass and inertia) and adds what a URDF does not say:
 
 Only the feet touch the floor and the robot does not collide with itself: contacts
 between the leg links are the collision analysis' business (:mod:`hexaleg.stance.collisions`).
+
+An imported robot (:class:`~hexaleg.robot.imported_model.ImportedHexapodModel`) is its
+model's URDF — the file's links, masses, inertias and joints, the free joint on the body
+link hexaleg adds — without the file's visual and collision shapes (meshes MuJoCo would
+have to find; only the feet touch the floor), each foot a sphere on its foot point
+(:mod:`.feet`). Its servos act on the file's joints: the plan's angles, rates and torques
+on hexaleg's θ are mapped by q = s·θ + o, and what the servos measure is mapped back.
 """
 
 from __future__ import annotations
@@ -34,10 +41,17 @@ import pinocchio as pin
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import ModelError, ParameterError
+from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.model import ROOT_JOINT, HexapodModel, foot_frame_name, joint_name
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
+from hexaleg.sim.feet import (
+    contact_body,
+    contact_geom_name,
+    contact_radius,
+    frame_name,
+    leg_joint_names,
+)
 from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
 
 TIMESTEP = 1e-3
@@ -60,11 +74,6 @@ ROBOT_CONTACT, FLOOR_CONTACT = 1, 2
 MAX_GAIN = 1e9
 """Largest servo stiffness [N·m/rad] and damping [N·m·s/rad]: stiffer servos make MuJoCo's
 position actuators stiff beyond what its step resolves."""
-
-
-def contact_geom_name(leg: str) -> str:
-    """Name of the contact sphere of ``leg``'s foot."""
-    return f"{leg}_foot_contact"
 
 
 @dataclass(frozen=True)
@@ -154,13 +163,13 @@ def reflected_inertia(model: HexapodModel, carried: float | None = None) -> Arra
     return np.asarray(inertia.max(axis=0), dtype=float)
 
 
-def foot_radius(urdf: str, leg: str) -> float:
-    """Radius of the sphere the URDF draws as ``leg``'s foot [m]."""
-    link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
-    sphere = None if link is None else link.find("visual/geometry/sphere")
-    if sphere is None:
-        raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
-    return float(sphere.attrib["radius"])
+def without_shapes(urdf: str) -> str:
+    """The URDF text without its links' visual and collision shapes (masses and joints kept)."""
+    tree = ET.fromstring(urdf)
+    for link in tree.iter("link"):
+        for shape in link.findall("visual") + link.findall("collision"):
+            link.remove(shape)
+    return ET.tostring(tree, encoding="unicode")
 
 
 def robot_spec(
@@ -184,17 +193,18 @@ def robot_spec(
     check_friction(friction)
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
-    spec = mujoco.MjSpec.from_string(model.urdf)
+    urdf = without_shapes(model.urdf) if model.general_legs else model.urdf
+    spec = mujoco.MjSpec.from_string(urdf)
     spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
     spec.option.timestep = timestep
     spec.option.gravity = [0.0, 0.0, -GRAVITY]
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
-    base = spec.body("base_link")
+    base = spec.body(frame_name(model, model.base_frame))
     base.add_freejoint(name=ROOT_JOINT)
     for geom in spec.geoms:  # the URDF's collision shapes: touch the floor, not each other
         geom.contype, geom.conaffinity = ROBOT_CONTACT, 0
-    radius = foot_radius(model.urdf, model.leg_names[0])
+    radius = contact_radius(model, model.leg_names[0])
     spec.worldbody.add_geom(
         name=FLOOR,
         type=mujoco.mjtGeom.mjGEOM_PLANE,
@@ -205,10 +215,12 @@ def robot_spec(
         rgba=[0.8, 0.8, 0.8, 1.0],
     )
     for leg in model.leg_names:
-        spec.body(foot_frame_name(leg)).add_geom(
+        body, at = contact_body(spec.body(frame_name(model, model.foot_frame_id(leg))))
+        body.add_geom(
             name=contact_geom_name(leg),
             type=mujoco.mjtGeom.mjGEOM_SPHERE,
-            size=[foot_radius(model.urdf, leg), 0.0, 0.0],
+            size=[contact_radius(model, leg), 0.0, 0.0],
+            pos=at.tolist(),
             contype=ROBOT_CONTACT,
             conaffinity=0,
             condim=3,
@@ -223,7 +235,7 @@ def robot_spec(
 
 def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
     if payload.mass > 0:
-        spec.body("base_link").add_body(
+        spec.body(frame_name(model, model.base_frame)).add_body(
             name=PAYLOAD_BODY,
             pos=payload.point(model).tolist(),
             mass=payload.mass,
@@ -239,10 +251,9 @@ def _add_servos(spec: Any, model: HexapodModel, gains: ServoGains) -> None:
         joint.actfrclimited = mujoco.mjtLimited.mjLIMITED_FALSE  # the rating clamps nothing
     armatures = model.design.actuators.armatures if model.design.actuators else (0.0, 0.0, 0.0)
     for leg in model.leg_names:
-        for joint, kp, kd, armature in zip(
-            LEG_JOINTS, gains.stiffness, gains.damping, armatures, strict=True
+        for name, kp, kd, armature in zip(
+            leg_joint_names(model, leg), gains.stiffness, gains.damping, armatures, strict=True
         ):
-            name = joint_name(leg, joint)
             spec.joint(name).armature = armature  # the rotor's N²·J, as Pinocchio's
             actuator = spec.add_actuator(name=name, target=name, trntype=mujoco.mjtTrn.mjTRN_JOINT)
             actuator.set_to_position(kp=kp, kv=kd)
@@ -270,7 +281,9 @@ class SimModel:
         feet: Body id of each foot (legs,).
         contacts: Geom id of each foot's contact sphere (legs,).
         floor: Geom id of the floor.
-        base: Body id of ``base_link``.
+        base: Body id of the body link (``base_link``; an imported robot's ``hexaleg_body``).
+        signs: Each leg joint's dq/dθ (legs, 3), s of q = s·θ + o (all 1 for hexaleg's URDF).
+        offsets: Each leg joint's o (legs, 3) [rad].
 
     """
 
@@ -293,18 +306,20 @@ class SimModel:
             found = np.vectorize(lambda n: mujoco.mj_name2id(self.mj, kind, n))(names)
             return np.asarray(found, dtype=int)
 
-        names = [[joint_name(leg, j) for j in LEG_JOINTS] for leg in model.leg_names]
+        legs = model.leg_names
+        names = [list(leg_joint_names(model, leg)) for leg in legs]
         joints = ids(mujoco.mjtObj.mjOBJ_JOINT, names)
         self.qpos = self.mj.jnt_qposadr[joints]
         self.dof = self.mj.jnt_dofadr[joints]
         self.actuators = ids(mujoco.mjtObj.mjOBJ_ACTUATOR, names)
         body = mujoco.mjtObj.mjOBJ_BODY
-        self.feet = ids(body, [foot_frame_name(leg) for leg in model.leg_names])
-        self.contacts = ids(
-            mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in model.leg_names]
-        )
+        self.feet = ids(body, [frame_name(model, model.foot_frame_id(leg)) for leg in legs])
+        self.contacts = ids(mujoco.mjtObj.mjOBJ_GEOM, [contact_geom_name(leg) for leg in legs])
         self.floor = int(mujoco.mj_name2id(self.mj, mujoco.mjtObj.mjOBJ_GEOM, FLOOR))
-        self.base = int(mujoco.mj_name2id(self.mj, body, "base_link"))
+        self.base = int(mujoco.mj_name2id(self.mj, body, frame_name(model, model.base_frame)))
+        self.signs = np.array([model.joint_signs(leg) for leg in legs])
+        self.offsets = np.array([model.joint_values(leg, np.zeros(3)) for leg in legs])
+        self._q_index = np.array([model.leg_q_indices(leg) for leg in legs])
         self.stiffness = np.tile(self.gains.stiffness, (len(model.leg_names), 1))
         self.damping = np.tile(self.gains.damping, (len(model.leg_names), 1))
 
@@ -319,7 +334,7 @@ class SimModel:
         qpos = np.zeros(self.mj.nq)
         qpos[:3] = q[:3]
         qpos[3], qpos[4:7] = q[6], q[3:6]
-        qpos[self.qpos] = self.hexapod.joint_angles(q)
+        qpos[self.qpos] = q[self._q_index]  # the same URDF joints: the same values
         return qpos
 
     def configuration_of(self, qpos: npt.ArrayLike) -> ArrayF:
@@ -327,20 +342,30 @@ class SimModel:
         qpos = np.asarray(qpos, dtype=float)
         base = np.concatenate((qpos[:3], qpos[4:7], qpos[3:4]))
         base[3:] /= np.linalg.norm(base[3:])
-        return self.hexapod.configuration(pin.XYZQUATToSE3(base), qpos[self.qpos])
+        q = self.hexapod.configuration(pin.XYZQUATToSE3(base))
+        q[self._q_index] = qpos[self.qpos]
+        return q
+
+    def angles_of(self, values: npt.ArrayLike) -> ArrayF:
+        """Hexaleg's angles θ = s·(q − o) (..., legs, 3) [rad] of the joints' values q."""
+        theta: ArrayF = self.signs * (np.asarray(values, dtype=float) - self.offsets)
+        return theta
 
     def command(self, q_ref: ArrayF, v_ref: ArrayF, torque: ArrayF) -> ArrayF:
         """Actuator controls (legs·3,) giving τ_ff + k_p (q_ref − q) + k_d (q̇_ref − q̇).
 
         Args:
-            q_ref: Joint angles to track (..., legs, 3) [rad].
-            v_ref: Joint speeds to track (..., legs, 3) [rad/s].
-            torque: Feed-forward torques (..., legs, 3) [N·m].
+            q_ref: Joint angles θ to track (..., legs, 3) [rad].
+            v_ref: Joint speeds θ̇ to track (..., legs, 3) [rad/s].
+            torque: Feed-forward torques on θ (..., legs, 3) [N·m].
+
+        Each is mapped onto the model's joints (q = s·θ + o, q̇ = s·θ̇, s·τ).
 
         """
         # A position actuator gives k_p (u − q) − k_d q̇; shifting its set-point u by
         # (k_d q̇_ref + τ_ff) / k_p adds the reference speed's damping and the feed-forward.
-        u = q_ref + (self.damping * v_ref + torque) / self.stiffness
+        s = self.signs
+        u = s * q_ref + self.offsets + (self.damping * (s * v_ref) + s * torque) / self.stiffness
         out = np.empty((*u.shape[:-2], self.mj.nu))
         out[..., self.actuators] = u
         return out

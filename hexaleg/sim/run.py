@@ -111,9 +111,9 @@ def _steps(sim: SimModel, data: Any, plan: Plan, times: ArrayF) -> tuple[Trace, 
         time=times,
         base_position=qpos[:, :3],
         base_quaternion=qpos[:, 3:7],
-        joint_angles=qpos[:, sim.qpos],
+        joint_angles=sim.angles_of(qpos[:, sim.qpos]),
         reference=reference,
-        joint_torques=applied,
+        joint_torques=sim.signs * applied,  # on θ
         foot_positions=feet,
         standing=standing,
     )

@@ -66,7 +66,7 @@ def simulate_gait(
         distribution: How the plan shares the load among the standing feet
             (``"min-norm"`` or ``"min-torque"``, as in ``loads``): its feed-forward torques.
         gains: Joint servo gains (default: :meth:`ServoGains.from_bandwidth`).
-        model: The design's Pinocchio model, if already built.
+        model: The design's Pinocchio model, if already built, or an imported robot's.
 
     Raises:
         ParameterError: ``stride`` beyond the design's max stride, or bad ``cycles``.
@@ -74,8 +74,7 @@ def simulate_gait(
 
     """
     require_mujoco()
-    gait = Gait() if gait is None else gait
-    cycles = _checked_cycles(cycles, gait.period, friction)
+    cycles = _checked_cycles(cycles, (Gait() if gait is None else gait).period, friction)
     model = HexapodModel(design) if model is None else model
     analysis = analyze_gait(
         design,
@@ -103,6 +102,7 @@ def simulate_gait(
         frames=run.frames,
         frame_torques=run.frame_torques,
         frame_rate=run.frame_rate,
+        robot=model if model.general_legs else None,
     )
 
 
@@ -131,7 +131,7 @@ def _meter(period: float, velocity: ArrayF, model: HexapodModel) -> WalkMeter:
     return WalkMeter(
         period,
         velocity,
-        design.nominal_height,
+        float(model.nominal_base_pose().translation[2]),
         legs=model.leg_names,
         rated_torques=design.rated_torques,
     )

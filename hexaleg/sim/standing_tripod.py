@@ -69,13 +69,19 @@ class StandingCheck:
 
 
 def lifted_configuration(model: HexapodModel, standing: tuple[str, ...], lift: float) -> ArrayF:
-    """The nominal stance with every leg not in ``standing`` lifting its foot by ``lift`` [m]."""
-    design = model.design
-    foot = foot_position(design.lengths, design.nominal_angles) + np.array([0.0, 0.0, lift])
-    raised = inverse_kinematics(design.lengths, foot).theta
-    angles = {
-        leg: raised if leg not in standing else design.nominal_angles for leg in model.leg_names
-    }
+    """The nominal stance with every leg not in ``standing`` lifting its foot by ``lift`` [m].
+
+    Each leg from its own nominal posture, by its own general leg (an imported robot's).
+    """
+    angles = {}
+    for leg in model.leg_names:
+        nominal = model.nominal_angles(leg)
+        if leg in standing:
+            angles[leg] = np.asarray(nominal)
+            continue
+        geometry = model.leg_geometry(leg)
+        foot = foot_position(geometry, nominal) + np.array([0.0, 0.0, lift])
+        angles[leg] = inverse_kinematics(geometry, foot).theta
     return model.configuration(model.nominal_base_pose(), angles)
 
 
@@ -127,12 +133,14 @@ def standing_check(
 
 
 def _holding_torques(model: HexapodModel, statics: Statics, q: ArrayF) -> ArrayF:
-    """Joint torques (legs, 3) [N·m] holding ``q``.
+    """Joint torques on θ (legs, 3) [N·m] holding ``q``.
 
     The statics' on the standing legs; each lifted leg holds its own weight.
     """
     gravity: Any = pin.computeGeneralizedGravity(model.model, model.data, q)
-    torques = np.array([gravity[model.leg_v_indices(leg)] for leg in model.leg_names])
+    torques = np.array(
+        [model.joint_signs(leg) * gravity[model.leg_v_indices(leg)] for leg in model.leg_names]
+    )
     state = statics.state(q)
     for leg, tau in zip(state.legs, state.joint_torques, strict=True):
         torques[model.leg_names.index(leg)] = tau

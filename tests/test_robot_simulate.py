@@ -1,0 +1,143 @@
+"""``simulate --urdf FILE``: an imported robot in MuJoCo, against Pinocchio on the raw file.
+
+Oracles: MuJoCo's inverse dynamics of the model hexaleg builds (``mj_inverse``, in the air)
+against Pinocchio's RNEA on the file as written, at random joint angles, rates and
+accelerations mapped onto the file's joints by the signs and offsets ``design show``
+reads, and each contact sphere's centre against Pinocchio's forward kinematics of the
+file's foot point; then the walk itself: it must not fall, must cover most of the planned
+distance, and the robot standing on a tripod must press each foot on the floor with the
+force the statics give (the statics held to RNEA on the raw file in ``test_robot_loads``).
+"""
+
+from __future__ import annotations
+
+import json
+import warnings
+from pathlib import Path
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from conftest import run_cli
+from robot_files import draw_hexapod
+
+from hexaleg.exceptions import RobotImportWarning
+from hexaleg.robot.feet import FootSearch
+from hexaleg.robot.imported import import_robot
+from hexaleg.robot.imported_model import ImportedHexapodModel
+
+mujoco = pytest.importorskip("mujoco")
+
+from hexaleg.sim.model import SimModel  # noqa: E402 (needs MuJoCo)
+
+ROBOTS = Path(__file__).parent / "data" / "robots"
+KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
+OCHS = str(ROBOTS / "phantomx_kevinochs" / "urdf" / "phantomX_model.xacro")
+OCHS_OFFSET = (0.0, 0.133, 0.0)
+SMALL = ["--stride", "0.03", "--step-height", "0.02", "--period", "0.8", "--cycles", "3"]
+"""A short walk every robot here takes: two measured periods."""
+
+
+def _json(capsys, argv):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        assert run_cli(argv) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def _robot(path, tmp_path):
+    """The file, its options and its foot offset; ``drawn:N`` draws six equal general legs."""
+    if path == "ochs":
+        return OCHS, ["--foot-offset", *map(str, OCHS_OFFSET)], OCHS_OFFSET
+    if path.startswith("drawn:"):  # hip height, lateral offset, mixed signs, bends
+        target = tmp_path / "drawn.urdf"
+        target.write_text(draw_hexapod(int(path.split(":")[1]), same_legs=True)[0])
+        return str(target), [], None
+    return path, [], None
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("path", [KRABY, "ochs", "drawn:3"])
+def test_mujoco_model_is_the_file_in_pinocchio(capsys, tmp_path, path):
+    path, options, offset = _robot(path, tmp_path)
+    shown = _json(capsys, ["design", "show", "--urdf", path, *options, "--json"])
+    legs = {leg["name"]: leg for leg in shown["design"]["legs"]}
+    robot = import_robot(path, foot=FootSearch(offset=offset))
+    sim = SimModel(ImportedHexapodModel(robot))
+    raw = pin.buildModelFromXML(robot.text, pin.JointModelFreeFlyer())
+    raw.gravity.linear = np.array([0.0, 0.0, -9.81])
+    data_pin, data = raw.createData(), mujoco.MjData(sim.mj)
+    names = [leg.name for leg in robot.legs]
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        theta = np.array([legs[n]["nominal"]["joint_angles"] for n in names])
+        theta += rng.uniform(-0.2, 0.2, theta.shape)
+        rates, accelerations = rng.uniform(-2, 2, (2, *theta.shape))
+        q, v, a = pin.neutral(raw), np.zeros(raw.nv), np.zeros(raw.nv)
+        q[2] = 2.0  # in the air: no contact
+        data.qpos[:] = 0.0
+        data.qpos[2], data.qpos[3] = 2.0, 1.0
+        data.qvel[:], data.qacc[:] = 0.0, 0.0
+        for i, name in enumerate(names):
+            signs, offsets = np.asarray(legs[name]["joint_signs"]), legs[name]["joint_offsets"]
+            joints = [raw.joints[raw.getJointId(j)] for j in legs[name]["joints"]]
+            for k, joint in enumerate(joints):
+                q[joint.idx_q] = signs[k] * theta[i, k] + offsets[k]
+                v[joint.idx_v] = signs[k] * rates[i, k]
+                a[joint.idx_v] = signs[k] * accelerations[i, k]
+                data.qpos[sim.qpos[i, k]] = q[joint.idx_q]
+                data.qvel[sim.dof[i, k]] = v[joint.idx_v]
+                data.qacc[sim.dof[i, k]] = a[joint.idx_v]
+        mujoco.mj_inverse(sim.mj, data)
+        assert data.ncon == 0
+        tau = pin.rnea(raw, data_pin, q, v, a)
+        scale = max(1.0, float(np.abs(tau).max()))
+        for i, name in enumerate(names):
+            columns = [raw.joints[raw.getJointId(j)].idx_v for j in legs[name]["joints"]]
+            np.testing.assert_allclose(
+                data.qfrc_inverse[sim.dof[i]], tau[columns], atol=1e-9 * scale
+            )
+        # the body's linear rows: the same force whatever the point (the body is level)
+        np.testing.assert_allclose(data.qfrc_inverse[:3], tau[:3], atol=1e-9 * scale)
+        # each contact sphere on the file's foot point (both bodies at the same place)
+        pin.framesForwardKinematics(raw, data_pin, q)
+        root = mujoco.mj_name2id(sim.mj, mujoco.mjtObj.mjOBJ_BODY, robot.description.root)
+        shift = data.xpos[root] - q[:3]  # the file's root link in MuJoCo and in Pinocchio
+        for i, leg in enumerate(robot.legs):
+            link = raw.getFrameId(leg.chain.segments[2][0])
+            foot = data_pin.oMf[link] * pin.SE3(np.eye(3), np.asarray(leg.reading.foot.point))
+            centre = data.geom_xpos[sim.contacts[i]] - shift
+            np.testing.assert_allclose(centre, foot.translation, atol=1e-9)
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("path", [KRABY, "drawn:3"])
+def test_the_imported_robot_walks_and_stands_as_the_statics_say(capsys, tmp_path, path):
+    path, options, _ = _robot(path, tmp_path)
+    result = _json(capsys, ["simulate", "--urdf", path, *options, *SMALL, "--json"])
+    assert result["robot"] == path and "urdf_joint_angles" in result
+    assert not result["fell"]
+    assert result["distance"] > 0.9 * result["planned_distance"]
+    assert result["tracking_rms"] < 0.05
+    standing = result["standing"]
+    for leg, force in standing["foot_forces_z"].items():
+        assert force == pytest.approx(standing["statics_foot_forces_z"][leg], rel=0.03)
+    planned, measured = result["peak_torque_planned"], result["peak_torque_measured"]
+    assert measured["hip"] == pytest.approx(planned["hip"], rel=0.2)
+
+
+@pytest.mark.parametrize(
+    ("extra", "expected"),
+    [
+        (["--html", "out.html"], "--html with --urdf is not supported yet"),
+        (["--video", "out.gif"], "--video with --urdf is not supported yet"),
+        (["--stride", "0.5"], "max stride"),
+    ],
+)
+def test_simulate_refusals_are_one_line(capsys, tmp_path, extra, expected):
+    argv = ["simulate", "--urdf", KRABY, "--step-height", "0.02", "--stride", "0.03", *extra]
+    assert run_cli(argv) == 2
+    out, err = capsys.readouterr()
+    lines = err.strip().splitlines()
+    assert out == "" and len(lines) == 1 and expected in lines[0], err
+    assert not (tmp_path / "out.html").exists()
