@@ -288,18 +288,26 @@ def test_a_stride_beyond_the_max_is_refused_in_one_line(capsys, tmp_path):
     assert not csv.exists()
 
 
-@pytest.mark.parametrize(
-    ("extra", "expected"),
-    [
-        (["--html", "out.html"], "--html with --urdf is not supported yet"),
-        (["--l2", "0.1"], "--l2 with --urdf"),
-    ],
-)
-def test_unsupported_options_are_refused_in_one_line(capsys, tmp_path, extra, expected):
-    assert run_cli(["gait", "--urdf", KRABY, *SMALL, *extra]) == 2
-    lines = capsys.readouterr().err.strip().splitlines()
-    assert len(lines) == 1 and expected in lines[0]
-    assert not (tmp_path / "out.html").exists()
+def test_the_animation_is_drawn_with_the_file_s_meshes(tmp_path, capsys):
+    page = tmp_path / "walk.html"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        assert run_cli(["gait", "--urdf", KRABY, *SMALL, "--html", str(page)]) == 0
+    assert page.stat().st_size > 1_000_000  # Kraby's STL meshes are in it
+
+
+def test_a_changed_segment_walks_as_the_changed_file_does(tmp_path, capsys):
+    changed = tmp_path / "longer.urdf"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        assert run_cli(["urdf", "--urdf", KRABY, "--l2", "0.07", "-o", str(changed)]) == 0
+    via_option = _json(capsys, ["gait", "--urdf", KRABY, "--l2", "0.07", *SMALL, "--json"])
+    via_file = _json(capsys, ["gait", "--urdf", str(changed), *SMALL, "--json"])
+    plain = _json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
+    assert via_option["design"]["l2"] == pytest.approx(0.07, abs=1e-12)
+    for key in ("peak_torque", "rms_torque", "peak_speed"):
+        assert via_option[key] == pytest.approx(via_file[key], rel=1e-9)
+    assert via_option["peak_torque"] != pytest.approx(plain["peak_torque"], rel=1e-3)
 
 
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")

@@ -154,10 +154,21 @@ def test_view_writes_the_scene_of_an_imported_robot(tmp_path, capsys):
         warnings.simplefilter("ignore", RobotImportWarning)
         assert run_cli(["view", "--urdf", str(KRABY), "--html", str(out)]) == 0
     assert out.stat().st_size > 1_000_000  # the file's meshes are in it
-    refused = tmp_path / "gait.html"
+    walk = tmp_path / "gait.html"
+    small = ["--design", str(_kraby_gait(tmp_path))]
+    assert run_cli(["view", "--urdf", str(KRABY), *small, "--gait", "--html", str(walk)]) == 0
+    assert walk.stat().st_size > 1_000_000
+    refused = tmp_path / "refused.html"  # the default gait's 10 cm step: no stride walks it
     assert run_cli(["view", "--urdf", str(KRABY), "--gait", "--html", str(refused)]) == 2
     err = capsys.readouterr().err.strip().splitlines()[-1]
-    assert "--gait with --urdf" in err and not refused.exists()
+    assert "no stride walks at step height 0.1 m" in err and not refused.exists()
+
+
+def _kraby_gait(folder: Path) -> Path:
+    """A design file of a gait Kraby walks: its [gait] (the file's [robot] from --urdf)."""
+    path = folder / "small.toml"
+    path.write_text("[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.8\nsamples = 60\n")
+    return path
 
 
 def test_a_warning_is_one_line_naming_the_command():

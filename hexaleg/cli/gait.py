@@ -127,8 +127,6 @@ def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
     design = design_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
-    if robot is not None and args.html is not None:
-        raise UsageError("--html with --urdf is not supported yet: use --json or --csv")
     model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args)
     payload = payload_from_args(args)

@@ -8,7 +8,6 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 from hexaleg.cli.options import (
-    UsageError,
     add_design_options,
     add_stance_option,
     bounded_int,
@@ -78,8 +77,6 @@ def run(args: argparse.Namespace) -> int:
     imported = robot_model(args, design)
     model: HexapodModel = HexapodModel(design) if imported is None else imported
     if imported is not None:
-        if args.gait:
-            raise UsageError("--gait with --urdf is not supported yet: view the stance")
         _note_missing_meshes(imported.missing_meshes)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
