@@ -32,7 +32,8 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError, RobotImportError
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
-from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex, set_armature
+from hexaleg.robot.inertia import set_armature
+from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
 from hexaleg.robot.robot_design import nominal_posture, robot_design
 from hexaleg.robot.source import with_resolved_meshes
@@ -110,7 +111,7 @@ class ImportedHexapodModel(HexapodModel):
                         f"revolute leg joints only (give it limits)"
                     )
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
-        set_armature(model, legs.values(), design)
+        set_armature(model, [leg.v for leg in legs.values()], design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
         self.leg_names = robot.leg_names
         self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}

@@ -14,10 +14,12 @@ end, the knee motor at the femur's end), the battery on the body at ``battery_at
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
+import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import FOOT_MASS, HexapodDesign
@@ -161,3 +163,22 @@ def body_solid(design: HexapodDesign) -> LinkInertial:
             mass * (length * length + width * width) / 12,
         ),
     )
+
+
+def pinocchio_inertia(inertial: LinkInertial, offset: float = 0.0) -> pin.Inertia:
+    """``inertial`` as Pinocchio's, its link frame ``offset`` [m] along x of the joint's."""
+    com = inertial.com + np.array([offset, 0.0, 0.0])
+    return pin.Inertia(inertial.mass, com, inertial.tensor)
+
+
+def set_armature(
+    model: pin.Model, legs: Iterable[npt.NDArray[np.int_]], design: HexapodDesign
+) -> None:
+    """Each leg joint's armature: its actuator's reflected rotor inertia N²·J [kg·m²].
+
+    ``legs``: each leg's velocity indices (root, hip, knee). Pinocchio's dynamics (RNEA,
+    CRBA, ABA) add armature·q̈ to each joint's torque; a design without actuators has none.
+    """
+    armatures = (0.0, 0.0, 0.0) if design.actuators is None else design.actuators.armatures
+    for indices in legs:
+        model.armature[indices] = armatures

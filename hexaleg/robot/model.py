@@ -20,7 +20,12 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.inertia import LinkInertial, body_inertial, leg_inertials
+from hexaleg.robot.inertia import (
+    body_inertial,
+    leg_inertials,
+    pinocchio_inertia,
+    set_armature,
+)
 from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
 
 ROOT_JOINT = "root_joint"
@@ -86,7 +91,7 @@ class LegModel:
         self.urdf = render_leg(design)
         self.model = pin.buildModelFromXML(self.urdf)
         self._leg = _LegIndex(self.model, SINGLE_LEG_NAME)
-        set_armature(self.model, [self._leg], design)
+        set_armature(self.model, [self._leg.v], design)
         self.data = self.model.createData()
         if self.model.nq != 3 or list(self._leg.q) != [0, 1, 2]:
             raise ModelError(f"single-leg model has nq = {self.model.nq}, expected 3 in leg order")
@@ -157,7 +162,7 @@ class HexapodModel:
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
         if _model is None:
-            set_armature(self.model, self._legs.values(), design)
+            set_armature(self.model, [leg.v for leg in self._legs.values()], design)
         self.base_frame = _frame_id(self.model, _base)
         self.body_box: ArrayF | None = None  # None: the body's collision shape is the URDF's
         self._collision: pin.GeometryModel | None = None
@@ -214,13 +219,13 @@ class HexapodModel:
                 "with_design changes only segment lengths, ratings, posture, actuators, battery"
             )
         model = pin.Model(self.model)
-        model.inertias[model.getJointId(ROOT_JOINT)] = _pinocchio(body_inertial(design))
-        set_armature(model, self._legs.values(), design)
+        model.inertias[model.getJointId(ROOT_JOINT)] = pinocchio_inertia(body_inertial(design))
+        set_armature(model, [leg.v for leg in self._legs.values()], design)
         links = leg_inertials(design)
         inertias = (
-            _pinocchio(links["coxa"]),
-            _pinocchio(links["femur"]),
-            _pinocchio(links["tibia"]) + _pinocchio(links["foot"], offset=design.l3),
+            pinocchio_inertia(links["coxa"]),
+            pinocchio_inertia(links["femur"]),
+            pinocchio_inertia(links["tibia"]) + pinocchio_inertia(links["foot"], offset=design.l3),
         )
         hip, knee, foot = (pin.SE3(np.eye(3), np.array([x, 0.0, 0.0])) for x in design.lengths)
         for index in self._legs.values():
@@ -380,17 +385,6 @@ class HexapodModel:
             ) from None
 
 
-def set_armature(model: pin.Model, legs: Iterable[_LegIndex], design: HexapodDesign) -> None:
-    """Each leg joint's armature: its actuator's reflected rotor inertia N²·J [kg·m²].
-
-    Pinocchio's dynamics (RNEA, CRBA, ABA) add armature·q̈ to each joint's torque; a
-    design without actuators has none.
-    """
-    armatures = (0.0, 0.0, 0.0) if design.actuators is None else design.actuators.armatures
-    for index in legs:
-        model.armature[index.v] = armatures
-
-
 def _joint_id(model: pin.Model, name: str) -> int:
     if not model.existJointName(name):
         raise ModelError(f"the model has no joint named {name!r}")
@@ -401,9 +395,3 @@ def _frame_id(model: pin.Model, name: str) -> int:
     if not model.existFrame(name):
         raise ModelError(f"the model has no frame named {name!r}")
     return int(model.getFrameId(name))
-
-
-def _pinocchio(inertial: LinkInertial, offset: float = 0.0) -> pin.Inertia:
-    """``inertial`` as Pinocchio's, its link frame ``offset`` [m] along x of the joint's."""
-    com = inertial.com + np.array([offset, 0.0, 0.0])
-    return pin.Inertia(inertial.mass, com, inertial.tensor)
