@@ -16,7 +16,7 @@ import sys
 
 from bench_decide import bench_decide, bench_decide_actuators, bench_decide_walking
 from bench_electrical import bench_electrical
-from bench_explore import bench_explore
+from bench_explore import bench_explore, bench_explore_robot
 from bench_flexibility import bench_dask, bench_flexibility
 from bench_gait import bench_gait
 from bench_import import bench_import
@@ -40,6 +40,7 @@ WORKLOADS = {
     "decide_walking": lambda quick, r: bench_decide_walking(60 if quick else None),
     "import": lambda quick, r: bench_import(r),
     "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
+    "explore_robot": lambda quick, r: bench_explore_robot(4 if quick else 12, r),
     "decide_actuators": lambda quick, r: bench_decide_actuators(120 if quick else None),
 }
 

@@ -9,16 +9,19 @@ measures (slider input to page drawn) are read and reported, not held to a time 
 
 from __future__ import annotations
 
+import json
+import subprocess
+import sys
+from pathlib import Path
+
 import pytest
 from browser import evaluate, require_chromium
 from explorer import running
 
-from hexaleg.design_file import load_design
-
 pytestmark = pytest.mark.slow
 
 MOVE_SLIDER = """
-(async () => {
+(async (VALUES) => {
   const sleep = (ms) => new Promise(r => setTimeout(r, ms));
   while (!window.explorer) await sleep(20);  // the script not loaded yet
   await window.explorer.started;
@@ -31,7 +34,7 @@ MOVE_SLIDER = """
   const scene = () => document.getElementById('scene').toDataURL();
   const before = {numbers: shown(), scene: scene(), query: e.query()};
   const moves = [];
-  for (const value of [0.46, 0.44, 0.48]) {
+  for (const value of VALUES) {
     const l3 = document.getElementById('l3');
     l3.value = value;
     l3.dispatchEvent(new Event('input', {bubbles: true}));
@@ -50,8 +53,11 @@ MOVE_SLIDER = """
           saved: document.getElementById('saved').textContent,
           reset: {numbers: shown(), query: e.query()},
           status: document.getElementById('status').textContent};
-})()
+})(%s)
 """
+
+ROBOTS = Path(__file__).parent / "data" / "robots"
+KRABY = ROBOTS / "kraby" / "hexapod.urdf"
 
 
 def _endpoint_value(answer: dict, key: str) -> float | None:
@@ -61,14 +67,24 @@ def _endpoint_value(answer: dict, key: str) -> float | None:
     return value
 
 
-def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(tmp_path):
+@pytest.mark.parametrize(
+    ("robot", "loaded", "values"),
+    [
+        ((), "0.4", ("0.46", "0.44", "0.48")),
+        (("--urdf", str(KRABY)), "0.088", ("0.1", "0.08", "0.095")),
+    ],
+    ids=["template", "kraby"],
+)
+def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(
+    tmp_path, robot, loaded, values
+):
     require_chromium()
     saved = tmp_path / "saved.toml"
-    with running("--save", str(saved)) as server:
-        got = evaluate(server.url, MOVE_SLIDER)
+    with running(*robot, "--save", str(saved)) as server:
+        got = evaluate(server.url, MOVE_SLIDER % json.dumps([float(v) for v in values]))
     before, moves = got["before"], got["moves"]
-    assert "l3=0.4&" in before["query"] + "&"
-    for move, l3 in zip(moves, ("0.46", "0.44", "0.48"), strict=True):
+    assert f"l3={loaded}&" in before["query"] + "&"
+    for move, l3 in zip(moves, values, strict=True):
         assert f"l3={l3}&" in move["query"] + "&"
         numbers, endpoint = move["numbers"], move["endpoint"]
         assert numbers["fb"] != before["numbers"]["fb"]
@@ -83,9 +99,19 @@ def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(tmp_p
     assert moves[0]["scene"] != moves[1]["scene"]
     assert len(got["redraws"]) == 3 and all(d > 0 for d in got["redraws"])
     assert got["saved"] == f"wrote {saved}"
-    assert load_design(saved).l3 == pytest.approx(0.48)  # the last slider position
+    shown = _design_show(saved)  # the saved file reads back as the robot at the last slider
+    assert shown["l3"] == pytest.approx(float(values[-1]), abs=1e-9)
     assert got["reset"] == {"numbers": before["numbers"], "query": before["query"]}
     print(f"redraw after a slider move [ms]: {', '.join(f'{d:.0f}' for d in got['redraws'])}")
+
+
+def _design_show(path: Path) -> dict:
+    """``design show --design PATH --json``'s design, run as a user would."""
+    found = subprocess.run(
+        [sys.executable, "-m", "hexaleg", "design", "show", "--design", str(path), "--json"],
+        capture_output=True, text=True, timeout=300, check=True,
+    )  # fmt: skip
+    return json.loads(found.stdout)["design"]
 
 
 CHOOSE_MOTORS_AND_RUN_A_JOB = """

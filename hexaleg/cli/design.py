@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from hexaleg.cli.options import UsageError, add_design_options, inputs_from_args
 from hexaleg.cli.output import print_json, print_table, report_files
@@ -13,11 +13,15 @@ from hexaleg.cli.robot_options import (
     add_robot_options,
     refuse_unsupported,
     robot_from_args,
+    robot_table,
 )
 from hexaleg.design import HexapodDesign
 from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
+
+if TYPE_CHECKING:
+    from hexaleg.robot.imported import ImportedRobot
 
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
@@ -142,7 +146,7 @@ def _import(args: argparse.Namespace) -> int:
     """Write the design file of the robot file ``args.urdf``."""
     from hexaleg._io import check_output_file, write_text
     from hexaleg.design_text import design_toml
-    from hexaleg.robot.robot_design import robot_design, robot_record
+    from hexaleg.robot.robot_design import robot_design
 
     path = check_output_file(args.output)
     if path.suffix.lower() != ".toml":
@@ -153,43 +157,20 @@ def _import(args: argparse.Namespace) -> int:
     if robot is None:  # unreachable: FILE is required
         raise UsageError("design import needs the robot's FILE")
     design = robot_design(robot)
-    table = _robot_table(args, path, robot_record(robot))
+    table = _robot_table(args, path, robot)
     report_files([write_text(path, design_toml(design) + "\n" + table)])
     return 0
 
 
-def _robot_table(args: argparse.Namespace, output: Any, record: dict[str, Any]) -> str:
-    """The ``[robot]`` table: the file (relative to the design file), its options, the record."""
-    import os
-
+def _robot_table(args: argparse.Namespace, output: Any, robot: ImportedRobot) -> str:
+    """The ``[robot]`` table (:func:`~hexaleg.cli.robot_options.robot_table`), commented."""
     import tomli_w
 
-    folder = output.resolve().parent
-    table: dict[str, Any] = {"urdf": os.path.relpath(os.path.abspath(args.urdf), folder)}
-    table["xacro_args"] = dict(a.split(":=", 1) for a in args.xacro_arg)
-    table["packages"] = {
-        name: os.path.relpath(os.path.abspath(folder_), folder)
-        for name, folder_ in (p.split("=", 1) for p in args.package)
-    }
-    if args.foot_frame is not None:
-        table["foot_frame"] = args.foot_frame
-    if args.foot_offset is not None:
-        table["foot_offset"] = list(args.foot_offset)
-    table["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
     comment = "# [robot]: the robot file this design was read from (hexaleg design import);\n"
     comment += "# [robot.read] records what was read, for reference: editing it changes nothing.\n"
     comment += "# What if: [robot.segments] coxa/femur/tibia = M (every leg) or\n"
     comment += "# [robot.segments.<leg>] change the segments along their own lines [m].\n"
-    return comment + tomli_w.dumps({"robot": table})
-
-
-def _toml_ready(value: Any) -> Any:
-    """``value`` with every ``None`` (an unbounded limit, a rating not given) as "none"."""
-    if isinstance(value, dict):
-        return {k: _toml_ready(v) for k, v in value.items()}
-    if isinstance(value, list | tuple):
-        return [_toml_ready(v) for v in value]
-    return "none" if value is None else value
+    return comment + tomli_w.dumps({"robot": robot_table(args, output, robot)})
 
 
 def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:

@@ -161,6 +161,48 @@ def _segment_lengths(
     return lengths, fields
 
 
+def robot_table(args: argparse.Namespace, output: Path, robot: ImportedRobot) -> dict[str, Any]:
+    """The ``[robot]`` table of a design file at ``output`` that reads ``robot`` back.
+
+    The robot file and the package folders relative to the design file's folder, the
+    Xacro arguments and foot options as given (``--urdf`` and its companions, else the
+    ``--design`` file's ``[robot]``), and what was read (``read``, for reference only).
+    """
+    import os
+
+    from hexaleg.cli.robot_table import load_robot_table
+    from hexaleg.robot.robot_design import robot_record
+
+    design = getattr(args, "design", None)
+    table = load_robot_table(design) if design and args.urdf is None else None
+    settings = _settings(args, table, Path(design or ".").parent)
+    folder = output.resolve().parent
+    written: dict[str, Any] = {
+        "urdf": os.path.relpath(os.path.abspath(settings["urdf"]), folder),
+        "xacro_args": dict(settings["xacro_args"]),
+        "packages": {
+            name: os.path.relpath(os.path.abspath(path), folder)
+            for name, path in settings["packages"].items()
+        },
+    }
+    if settings["foot_frame"] is not None:
+        written["foot_frame"] = settings["foot_frame"]
+    if settings["foot_offset"] is not None:
+        written["foot_offset"] = list(settings["foot_offset"])
+    record = robot_record(robot)
+    written["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
+    return written
+
+
+def _toml_ready(value: Any) -> Any:
+    """``value`` with every ``None`` (an unbounded limit, a rating not given) as "none"."""
+    if isinstance(value, dict):
+        return {k: _toml_ready(v) for k, v in value.items()}
+    if isinstance(value, list | tuple):
+        return [_toml_ready(v) for v in value]
+    return "none" if value is None else value
+
+
 def _settings(args: argparse.Namespace, table: dict[str, Any] | None, folder: Path) -> dict:
     """The robot file and its reading options: the command line's over the design file's."""
     xacro_args = _pairs(args.xacro_arg, ":=", "--xacro-arg", "NAME:=VALUE")

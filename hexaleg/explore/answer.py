@@ -21,10 +21,11 @@ import numpy as np
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS, JointLimits
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
+from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
 from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
 from hexaleg.study.goal import Goal
@@ -58,7 +59,10 @@ EXPLORED: tuple[str, ...] = (
 
 
 def answer(
-    design: HexapodDesign, conditions: Conditions, requirements: Requirements
+    design: HexapodDesign,
+    conditions: Conditions,
+    requirements: Requirements,
+    model: HexapodModel | None = None,
 ) -> dict[str, Any]:
     """The page's numbers for ``design`` under ``conditions``, checked against ``requirements``.
 
@@ -66,10 +70,12 @@ def answer(
         design: The design.
         conditions: What it is measured under (the sliders' payload and gait).
         requirements: The design file's requirements (none given: nothing checked).
+        model: Its model (an imported robot's at these segments); derived from hexaleg's
+            template (:func:`~hexaleg.robot.model_cache.model_of`) if omitted.
 
     """
     start = time.perf_counter()
-    model = model_of(design)
+    model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
     shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
     metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
@@ -111,7 +117,9 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     if found.gait is not None:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
         used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
-        utilisation = [float(used[leg].max()) if leg in used else None for leg in model.leg_names]
+        utilisation = [  # None where the period has no torque (a foot out of reach: NaN)
+            _finite(float(used[leg].max())) if leg in used else None for leg in model.leg_names
+        ]
     return {
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
@@ -128,27 +136,49 @@ REACH_POINTS = 400
 """Most points of each leg's reach sent to the page."""
 
 
-def feet_reach(design: HexapodDesign) -> list[list[list[float]]]:
+def feet_reach(design: HexapodDesign, model: HexapodModel | None = None) -> list[list[list[float]]]:
     """Each leg's foot reach on the ground (x, y), world frame [m], at the nominal body pose.
 
     The Monte Carlo cloud of one leg within the stance limits (as ``gait --plot`` draws
-    it), placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's
-    nominal foot height, thinned to at most :data:`REACH_POINTS` points. Asked for apart
-    from :func:`answer` (the page shows it on demand): a slider's redraw does not pay it.
+    it; an imported robot's legs each by its own general leg within its file limits),
+    placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's nominal
+    foot height, thinned to at most :data:`REACH_POINTS` points. Asked for apart from
+    :func:`answer` (the page shows it on demand): a slider's redraw does not pay it.
     """
-    model = model_of(design)
+    model = model_of(design) if model is None else model
     ground = model.leg_chains(model.nominal_configuration())[:, -1, 2]
-    cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
     base = model.nominal_base_pose()
     roots = model.root_placements()
+    clouds = _reach_clouds(design, model)
     out = []
-    for leg, height in zip(model.leg_names, ground, strict=True):
+    for leg, height, cloud in zip(model.leg_names, ground, clouds, strict=True):
         placed = base * roots[leg]
         world = cloud.points @ placed.rotation.T + placed.translation
         near = world[np.abs(world[:, 2] - height) < REACH_SLICE]
         step = max(1, math.ceil(len(near) / REACH_POINTS))
         out.append(near[::step, :2].round(4).tolist())
     return out
+
+
+def _reach_clouds(design: HexapodDesign, model: HexapodModel) -> list[Any]:
+    """Each leg's Monte Carlo cloud in its leg-root frame: one for all legs of the template."""
+    if not getattr(model, "general_legs", False):
+        cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
+        return [cloud] * len(model.leg_names)
+    geometry = StanceGeometry.from_model(model, model.leg_names)
+    return [
+        monte_carlo_workspace(
+            design,
+            REACH_SAMPLES,
+            seed=0,
+            limits=JointLimits(
+                (low[0], high[0]), (low[1], high[1]), (low[2], high[2]), name=f"{leg} file"
+            ),
+            leg=model.leg_geometry(leg),
+        )
+        for leg, low, high in zip(model.leg_names, geometry.joint_lower, geometry.joint_upper,
+                                  strict=True)
+    ]  # fmt: skip
 
 
 def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:
@@ -204,6 +234,7 @@ def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str,
         "payload": payload.mass,
         "payload_at": payload.position_on(design),
         "speed": conditions.gait.speed,
+        "stride": conditions.gait.stride,
         "step_height": conditions.gait.step_height,
     }
 

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from typing import Any
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
@@ -17,7 +18,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate_many
+from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
 
 __all__ = ["CLOUD_METRICS", "Cloud"]
 
@@ -31,8 +32,14 @@ TIBIA_POINTS = 12
 class Cloud:
     """The cloud, measured in a background thread; :meth:`to_dict` answers what is there."""
 
-    def __init__(self, design: HexapodDesign, conditions: Conditions) -> None:
-        self._design, self._conditions = design, conditions
+    def __init__(
+        self,
+        design: HexapodDesign,
+        conditions: Conditions,
+        models: Callable[[HexapodDesign], HexapodModel] | None = None,
+    ) -> None:
+        """``models``: an imported robot's model of each design (hexaleg's template if none)."""
+        self._design, self._conditions, self._models = design, conditions, models
         self._points: list[dict[str, float | None]] = []
         self._error = ""
         self._done = threading.Event()
@@ -70,9 +77,12 @@ class Cloud:
                 continue  # this leg cannot stand on the loaded body
         if not designs:
             return []
-        base = HexapodModel(designs[0])
-        template = StanceGeometry.from_model(base, self._conditions.stance)
-        found = evaluate_many(designs, CLOUD_METRICS, self._conditions, base, template)
+        if self._models is None:
+            base = HexapodModel(designs[0])
+            template = StanceGeometry.from_model(base, self._conditions.stance)
+            found = evaluate_many(designs, CLOUD_METRICS, self._conditions, base, template)
+        else:
+            designs, found = self._each(designs)
         points = []
         for design, evaluation in zip(designs, found, strict=True):
             if evaluation.error:
@@ -86,6 +96,19 @@ class Cloud:
                 point[name] = value if math.isfinite(value) else None
             points.append(point)
         return points
+
+    def _each(self, designs: list[HexapodDesign]) -> tuple[list[HexapodDesign], list[Evaluation]]:
+        """An imported robot's designs, each on its own model (those it cannot take left out)."""
+        assert self._models is not None
+        kept, found = [], []
+        for design in designs:
+            try:
+                model = self._models(design)
+            except HexalegError:
+                continue  # a segment it cannot stretch to that length
+            kept.append(model.design)
+            found.append(evaluate(model.design, CLOUD_METRICS, self._conditions, model=model))
+        return kept, found
 
 
 def coxa_ratios(design: HexapodDesign) -> list[float]:

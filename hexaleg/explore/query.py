@@ -4,7 +4,7 @@ A query names any design field by its key in a design file (``l1=0.25``,
 ``body_width=0.7``, a triple as three comma-separated numbers:
 ``nominal_angles=0,0.1,-1.5``) and the conditions the sliders set: the payload
 (``payload`` [kg], ``payload_at`` = x,y,z in the body frame [m]) and the gait's
-``speed`` [m/s] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
+``speed`` [m/s], ``stride`` [m] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
 ``actuators.knee`` choose each joint type's motor by its catalog name (``hexaleg
 actuators``), as ``catalog = "NAME"`` does in a design file; empty values take the
 motors away (the ratings they gave kept, no motor model); a joint type not named keeps
@@ -37,6 +37,7 @@ CONDITION_KEYS: dict[str, str] = {
     "payload": "payload mass [kg]",
     "payload_at": f"payload position x,y,z in the body frame, each in ±{PAYLOAD_REACH:g} [m]",
     "speed": "gait speed [m/s] (the stride kept, the period set)",
+    "stride": "gait stride [m] (the period kept; with speed, the speed kept)",
     "step_height": "gait step height [m]",
 }
 """The conditions a query may set, with what each is."""
@@ -129,6 +130,8 @@ def _conditions(params: Mapping[str, str], base: Conditions) -> Conditions:
             position = (x, y, z)
         payload = _checked_payload(mass, position)
     gait = base.gait
+    if "stride" in params:
+        gait = gait.replace(stride=_number("stride", params["stride"], "m"))
     if "step_height" in params:
         gait = gait.replace(step_height=_number("step_height", params["step_height"], "m"))
     if "speed" in params:

@@ -24,6 +24,8 @@ from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs
 from hexaleg.explore.query import Query, parse_query
+from hexaleg.explore.robot import FIXED_KEYS, ExploredRobot
+from hexaleg.robot.model import HexapodModel
 from hexaleg.study.evaluation import Conditions
 from hexaleg.study.goal import Goal
 from hexaleg.study.requirements import Requirements
@@ -57,6 +59,8 @@ class Session:
         save_to: The design file "save design" writes (.toml).
         cloud: The study's cloud around the loaded design, measured in the background.
         jobs: Its long jobs (free-coupled search, decide), each another process.
+        robot: The imported robot explored (``--urdf``, or a design file's ``[robot]``),
+            ``None`` for hexaleg's own.
 
     """
 
@@ -66,12 +70,17 @@ class Session:
     save_to: Path
     cloud: Cloud = field(compare=False)
     jobs: Jobs = field(default_factory=Jobs, compare=False)
+    robot: ExploredRobot | None = field(default=None, compare=False)
 
     @classmethod
     def start(
-        cls, design: HexapodDesign, requirements: Requirements, save_to: str | Path
+        cls,
+        design: HexapodDesign,
+        requirements: Requirements,
+        save_to: str | Path,
+        robot: ExploredRobot | None = None,
     ) -> Session:
-        """The session of a loaded design; its cloud starts measuring."""
+        """The session of a loaded design (an imported robot's: ``robot.model.design``)."""
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
@@ -80,11 +89,19 @@ class Session:
             if requirements.given
             else Conditions(gait=requirements.walked)
         )
-        return cls(design, conditions, requirements, path, Cloud(design, conditions).start())
+        models = None if robot is None else robot.model.with_design  # uncached: its own thread
+        cloud = Cloud(design, conditions, models).start()
+        return cls(design, conditions, requirements, path, cloud, robot=robot)
 
     def query(self, params: Mapping[str, str]) -> Query:
         """The design and conditions a query asks for (a ParameterError names a bad key)."""
+        if self.robot is not None:
+            self.robot.refuse_fixed(params)
         return parse_query(params, self.design, self.conditions)
+
+    def model_for(self, design: HexapodDesign) -> HexapodModel | None:
+        """The imported robot at ``design``'s segments; ``None``: hexaleg's template's."""
+        return None if self.robot is None else self.robot.model_for(design)
 
     def evaluate(self, params: Mapping[str, str]) -> dict[str, Any]:
         """The page's numbers for the design a query asks for."""
@@ -92,17 +109,22 @@ class Session:
         required = self.requirements
         if required.given:  # the leg length the loaded design has, unless the file says
             required = required.resolved(self.design)
-        return answer(asked.design, asked.conditions, required)
+        model = self.model_for(asked.design)
+        design = asked.design if model is None else model.design
+        return answer(design, asked.conditions, required, model)
 
     def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
         """Each foot's reach on the ground for the design a query asks for (``reach``)."""
-        return {"reach": feet_reach(self.query(params).design)}
+        design = self.query(params).design
+        model = self.model_for(design)
+        return {"reach": feet_reach(design if model is None else model.design, model)}
 
     def loaded(self) -> dict[str, Any]:
         """What the page starts at and resets to: values, sliders, motors, requirements."""
         values = loaded_values(self.design, self.conditions)
+        shown = [s for s in SLIDERS if self.robot is None or s[0] not in FIXED_KEYS]
         ranges = {
-            key: [low * values[key], high * values[key], label] for key, label, low, high in SLIDERS
+            key: [low * values[key], high * values[key], label] for key, label, low, high in shown
         }
         bounds = {spec.key: spec.bounds for spec in DESIGN_FIELDS if spec.bounds is not None}
         motors = [{key: entry.to_dict()[key] for key in CATALOG_COLUMNS}
@@ -115,11 +137,13 @@ class Session:
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),
+            "robot": None if self.robot is None else self.robot.source,
         }
 
     def design_text(self, params: Mapping[str, str]) -> str:
         """The design file (TOML) of the design a query asks for, the requirements kept."""
-        text = design_toml(self.query(params).design)
+        design = self.query(params).design
+        text = design_toml(design) if self.robot is None else self.robot.design_text(design)
         if self.requirements.given:
             text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
         return text
@@ -129,7 +153,14 @@ class Session:
         return write_text(self.save_to, self.design_text(params))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
-        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
+        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for.
+
+        Raises:
+            HexalegError: On an imported robot (the jobs run hexaleg's own robot for now).
+
+        """
+        if self.robot is not None:
+            raise HexalegError(f"the {kind} job does not run on an imported robot yet")
         return self.jobs.start(kind, self.design_text(params)).to_dict()
 
     def job(self, kind: str) -> dict[str, Any]:

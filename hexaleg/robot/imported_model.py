@@ -29,8 +29,8 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import ModelError, RobotImportError
-from hexaleg.leg_geometry import LegGeometry
+from hexaleg.exceptions import RobotImportError
+from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
@@ -152,9 +152,33 @@ class ImportedHexapodModel(HexapodModel):
         base = None if self.robot.source is None else self.robot.source.parent
         return with_resolved_meshes(self._text, base, self.robot.packages)
 
-    def with_design(self, design: HexapodDesign) -> HexapodModel:
-        """Not for an imported robot: its masses and joints are the file's."""
-        raise ModelError("an imported robot's model is built from its file, not a design")
+    def with_design(self, design: HexapodDesign) -> ImportedHexapodModel:
+        """The robot with every leg's segments at ``design``'s l1, l2, l3, over ``design``.
+
+        The segments change along their own lines (:func:`~hexaleg.robot.resize.resize_robot`:
+        offsets and bends kept, the segments' links stretched); ``design``'s posture and
+        payload-independent fields go over the file's as for the robot as read. A segment
+        within :data:`~hexaleg.robot.resize.SAME_LENGTH` of its length is kept as it is.
+
+        Raises:
+            ParameterError: A length out of range, or a coxa of length 0 changed.
+
+        """
+        from hexaleg.robot.resize import SAME_LENGTH, resize_robot
+
+        lengths = {
+            leg.name: {
+                name: float(asked)
+                for name, asked, now in zip(
+                    SEGMENT_NAMES, design.lengths, leg.reading.geometry.lengths, strict=True
+                )
+                if abs(asked - now) > SAME_LENGTH
+            }
+            for leg in self.robot.legs
+        }
+        changed = {leg: segments for leg, segments in lengths.items() if segments}
+        robot = resize_robot(self.robot, changed) if changed else self.robot
+        return ImportedHexapodModel(robot, design)
 
     def nominal_angles(self, leg: str) -> tuple[float, float, float]:
         """``leg``'s nominal angles θ [rad]: the design's, moved inside the leg's file limits."""

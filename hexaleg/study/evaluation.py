@@ -26,6 +26,7 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
+import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.cause import Cause
@@ -258,12 +259,14 @@ class _Measuring:
 
     def _search_flexibility(self) -> FlexibilityResult:
         conditions, design = self.conditions, self.design
+        # an imported robot's geometry is its model's own: the searches read it from there
+        geometry = None if getattr(self._model, "general_legs", False) else self.geometry
         if conditions.mode == "axis":
             return axis_locked_flexibility(
                 design,
                 conditions.stance,
                 self._model,
-                geometry=self.geometry,
+                geometry=geometry,
                 collisions=conditions.collisions,
             )
         with warnings.catch_warnings():
@@ -272,17 +275,19 @@ class _Measuring:
                 design,
                 conditions.stance,
                 self.model,
-                geometry=self.geometry,
+                geometry=geometry,
                 collisions=conditions.collisions,
             )
 
     # -- the analyses ------------------------------------------------------------------
 
     def _measure_geometry(self) -> None:
-        design = self.design
+        design, model = self.design, self._model
+        mass, height = design.total_mass, design.nominal_height
+        if model is not None and getattr(model, "general_legs", False):  # the file's, not ours
+            mass, height = pin.computeTotalMass(model.model), self.geometry.nominal_height
         self.values |= {"leg_length": design.leg_length, "coxa_length": design.l1,
-                        "robot_mass": design.total_mass,
-                        "nominal_height": design.nominal_height}  # fmt: skip
+                        "robot_mass": mass, "nominal_height": height}  # fmt: skip
 
     def _measure_workspace(self) -> None:
         self.values["improved_area"] = improved_area_closed_form(self.design.l2, self.design.l3)

@@ -89,18 +89,22 @@ function buildControls(loaded) {
   heading(c, "nominal posture [rad]");
   slider(c, "theta2", "hip θ2", -0.5236, 0.5236, v.nominal_angles[1], "any");
   slider(c, "theta3", "knee θ3", -2.356, -0.2618, v.nominal_angles[2], "any");
-  heading(c, "body [m]");
-  for (const key of ["body_length", "body_width"]) {
-    slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
-  }
+  const body = ["body_length", "body_width"].filter((key) => key in s);  // not a file's body
+  if (body.length) heading(c, "body [m]");
+  for (const key of body) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
   heading(c, "payload");
   slider(c, "payload", "mass [kg]", 0, Math.max(50, 2 * v.payload), v.payload, "any");
   slider(c, "payload_x", "at x [m]", -v.body_length / 2, v.body_length / 2, v.payload_at[0], "any");
   slider(c, "payload_y", "at y [m]", -v.body_width / 2, v.body_width / 2, v.payload_at[1], "any");
   heading(c, "gait (tripod)");
   slider(c, "speed", "speed [m/s]", 0.02, Math.max(1, 2 * v.speed), v.speed, "any");
+  slider(c, "stride", "stride [m]", 0.01, Math.max(0.6, 2 * v.stride), v.stride, "any");
   slider(c, "step_height", "step height [m]", 0.01, Math.max(0.3, 2 * v.step_height),
          v.step_height, "any");
+  if (loaded.robot) {  // an imported robot: its motors are its file's ratings
+    heading(c, "robot: " + loaded.robot + " (body and ratings the file's)");
+    return;
+  }
   heading(c, "motors (peak / continuous torque, mass)");
   for (const joint of ["root", "hip", "knee"]) motorChoice(c, joint, loaded);
 }
@@ -109,11 +113,14 @@ function query() {
   const get = (id) => document.getElementById(id).value;
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
-  for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "speed",
-                     "step_height"]) params.set(key, get(key));
+  for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
+                     "speed", "step_height"]) {
+    if (document.getElementById(key)) params.set(key, get(key));
+  }
   params.set("nominal_angles", [v.nominal_angles[0], get("theta2"), get("theta3")].join(","));
   params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
   for (const joint of ["root", "hip", "knee"]) {
+    if (!document.getElementById("motor_" + joint)) continue;
     const motor = get("motor_" + joint);
     if (motor !== LOADED_MOTOR) params.set("actuators." + joint, motor);
   }
@@ -393,14 +400,16 @@ function reset() {
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
     body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
     payload: v.payload, payload_x: v.payload_at[0], payload_y: v.payload_at[1],
-    speed: v.speed, step_height: v.step_height};
+    speed: v.speed, stride: v.stride, step_height: v.step_height};
   for (const [id, x] of Object.entries(start)) {
     const input = document.getElementById(id);
+    if (!input) continue;
     input.value = x;
     input.nextElementSibling.textContent = Number(x).toPrecision(3);
   }
   for (const joint of ["root", "hip", "knee"]) {
-    document.getElementById("motor_" + joint).value = motorStart(explorer.loaded, joint);
+    const choice = document.getElementById("motor_" + joint);
+    if (choice) choice.value = motorStart(explorer.loaded, joint);
   }
   changed();
 }
@@ -440,6 +449,10 @@ async function start() {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
     button.addEventListener("click", () => startOrStopJob(box));
+    if (explorer.loaded.robot) {  // the jobs run hexaleg's own robot for now
+      button.disabled = true;
+      box.querySelector(".job-state").textContent = "not yet for an imported robot";
+    }
   }
   pollCloud();
   await evaluate();
