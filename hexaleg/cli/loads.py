@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
+from hexaleg.cli.robot_options import add_robot_options, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -33,7 +33,7 @@ DESCRIPTION = (
     "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
-    "extremes axis-locked within the file's limits; the walking capacity not yet)."
+    "extremes within the file's limits; the walking capacity not yet)."
 )
 
 ROBOT_OPTIONS = True
@@ -126,17 +126,16 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
-    """The statics of an imported robot: nominal stance and axis-locked extremes (no walking)."""
+    """The statics of an imported robot: nominal stance and extremes (no walking)."""
     from hexaleg.statics.loads import analyze_loads
 
-    refuse_free(args)
     analysis = analyze_loads(
         model.design,
         payload_from_args(args),
         args.friction,
         args.stance,
         args.distribution,
-        "axis",
+        args.mode,
         model=model,
     )
     source = str(model.robot.source)

@@ -213,11 +213,3 @@ def robot_model(args: argparse.Namespace, design: HexapodDesign) -> ImportedHexa
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
     return ImportedHexapodModel(robot, design)
-
-
-def refuse_free(args: argparse.Namespace) -> None:
-    """Refuse, with ``--urdf``, free-coupled flexibility and self-collisions (not yet)."""
-    if getattr(args, "mode", "axis") != "axis":
-        raise UsageError("--mode free with --urdf is not supported yet: use --mode axis")
-    if getattr(args, "collisions", False):
-        raise UsageError("--collisions with --urdf is not supported yet")

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 
 import numpy as np
@@ -95,6 +95,7 @@ class ImportedRobot:
         legs: The six legs, in hexaleg's order ``lf lm lr rf rm rr``.
         body: The body's links (root and every link fixed or locked to it).
         body_mass: The body's links lumped, in the root link's frame.
+        packages: The package folders its ``package://`` meshes are found in.
 
     """
 
@@ -104,6 +105,7 @@ class ImportedRobot:
     legs: tuple[ImportedLeg, ...]
     body: tuple[str, ...]
     body_mass: SegmentMass
+    packages: Packages = field(default_factory=dict)
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -130,7 +132,8 @@ def import_robot(
     search = foot or FootSearch()
     if search.base_dir is None:
         search = FootSearch(search.offset, search.frame, path.parent, packages or search.packages)
-    return robot_from_text(text, search, lock, source=path)
+    robot = robot_from_text(text, search, lock, source=path)
+    return replace(robot, packages=dict(packages or search.packages))
 
 
 def robot_from_text(

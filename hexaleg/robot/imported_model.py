@@ -28,8 +28,9 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import ModelError, RobotImportError
+from hexaleg.exceptions import ModelError, RobotImportError, RobotImportWarning
 from hexaleg.leg_geometry import LegGeometry
+from hexaleg.robot.collision_geometry import collision_geometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex, set_armature
 from hexaleg.robot.model import root_frame_name as _root
@@ -130,6 +131,27 @@ class ImportedHexapodModel(HexapodModel):
     def urdf(self) -> str:
         """The URDF the model was built from (the file's, with feet, body and root frames)."""
         return self._text
+
+    def collision_model(self) -> pin.GeometryModel:
+        """A copy of the file's collision geometry, its meshes found as the import finds them.
+
+        A ``<collision>`` whose mesh names no file is left out, with a warning
+        (:func:`~hexaleg.robot.collision_geometry.collision_geometry`).
+        """
+        if self._collision is None:
+            folder = None if self.robot.source is None else self.robot.source.parent
+            geometry, missing = collision_geometry(
+                self.model, self._text, folder, self.robot.packages
+            )
+            if missing:
+                warnings.warn(
+                    f"{len(missing)} collision mesh(es) not found ({missing[0]} first): those "
+                    f"parts are not checked for contact (give --package NAME=DIR)",
+                    RobotImportWarning,
+                    stacklevel=2,
+                )
+            self._collision = geometry
+        return self._collision.copy()
 
     def with_design(self, design: HexapodDesign) -> HexapodModel:
         """Not for an imported robot: its masses and joints are the file's."""
