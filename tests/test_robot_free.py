@@ -17,6 +17,7 @@ oracles check what an answer is, not that it is the best.
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import io
 import json
 import re
@@ -40,9 +41,14 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
 from hexaleg.stance import collision_starts, free_coupled
 from hexaleg.stance.flexibility import flexibility
-from hexaleg.stance.geometry import StanceGeometry
+from hexaleg.stance.geometry import (
+    StanceGeometry,
+    stance_forward_kinematics,
+    stance_inverse_kinematics,
+)
 from hexaleg.stance.margin_jacobian import pose_margins_and_jacobian
 from hexaleg.stance.margin_kernel import column_count, kernel_geometry, margins_of
+from hexaleg.stance.symmetry import MIRRORS, mirror_flips
 
 ROBOTS = Path(__file__).parent / "data" / "robots"
 KRABY = ROBOTS / "kraby" / "hexapod.urdf"
@@ -332,3 +338,75 @@ def test_collisions_without_any_part_to_check_are_refused_in_one_line(capsys):
     captured = capsys.readouterr()
     error = [line for line in captured.err.splitlines() if "error" in line]
     assert captured.out == "" and len(error) == 1 and "no two of the robot's parts" in error[0]
+
+
+@pytest.mark.parametrize("seed", [3, 5])
+def test_stance_kinematics_of_a_general_leg_put_the_models_feet_on_their_footholds(tmp_path, seed):
+    """IK by each leg's own geometry, checked by Pinocchio's FK of the model; FK inverts it."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        model = ImportedHexapodModel(import_robot(_drawn(tmp_path, seed)))
+    geometry = StanceGeometry.from_model(model)
+    rng = np.random.default_rng(seed)
+    for d in rng.uniform(-1, 1, size=(5, 6)) * np.array([0.01, 0.01, 0.01, 0.05, 0.05, 0.05]):
+        body = pin.SE3(pin.rpy.rpyToMatrix(*d[3:]), d[:3] + geometry.nominal_pose.translation)
+        solution = stance_inverse_kinematics(geometry, body)
+        assert solution.reachable.all()
+        q = model.configuration(body, dict(zip(geometry.legs, solution.theta, strict=True)))
+        index = [model.leg_names.index(leg) for leg in geometry.legs]
+        np.testing.assert_allclose(model.foot_positions(q)[index], geometry.footholds, atol=1e-9)
+        fitted = stance_forward_kinematics(geometry, solution.theta)
+        np.testing.assert_allclose(fitted.homogeneous, body.homogeneous, atol=1e-9)
+
+
+def _template_back(**changes):
+    """The default design's stance read from its own URDF imported back, legs changed."""
+    limits = STANCE_LIMITS
+    design = HexapodDesign(
+        workspace_limits=limits,
+        improved_limits=limits,
+        manipulability_limits=limits,
+        stance_limits=limits,
+    )
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        model = ImportedHexapodModel(robot_from_text(render_hexapod(design)), design)
+    geometry = StanceGeometry.from_model(model)
+    legs = list(geometry.leg_geometries)
+    bounds = np.array(geometry.leg_bounds)
+    for leg, (lateral, root) in changes.items():
+        n = geometry.legs.index(leg)
+        legs[n] = dataclasses.replace(legs[n], foot_lateral=lateral)
+        bounds[:, n, 0] = root
+    return dataclasses.replace(geometry, leg_geometries=tuple(legs), leg_bounds=bounds)
+
+
+MIRRORED = {"lf": (0.01, (-0.5, 0.7)), "rf": (-0.01, (-0.7, 0.5))}
+"""A left-right pair of general legs: lateral offsets and root limits [m, rad] mirrored."""
+
+
+@pytest.mark.parametrize(
+    ("changes", "expected"),
+    [
+        (MIRRORED, {"left-right"}),
+        ({**MIRRORED, "rf": (0.01, (-0.7, 0.5))}, set()),  # e not mirrored
+        ({**MIRRORED, "rf": (-0.01, (-0.5, 0.7))}, set()),  # root limits not mirrored
+    ],
+    ids=["mirrored pair", "lateral offset", "root limits"],
+)
+def test_a_general_legs_mirror_is_found_where_every_margin_mirrors(changes, expected):
+    """The flips found are those under which the exact margins are a permutation."""
+    geometry = _template_back(**changes)
+    found = {name for name, (_, flip) in MIRRORS.items() if _has(mirror_flips(geometry), flip)}
+    assert found == expected
+    kernel = kernel_geometry([geometry], smooth=False)
+    d = np.random.default_rng(0).uniform(-1, 1, size=(16, 6)) * 0.05
+    design = np.zeros(len(d), dtype=np.int64)
+    for name, (_, flip) in MIRRORS.items():
+        here = np.sort(margins_of(kernel, d, design), axis=-1)
+        there = np.sort(margins_of(kernel, np.ascontiguousarray(d * flip), design), axis=-1)
+        assert np.allclose(here, there, atol=1e-12) == (name in expected), name
+
+
+def _has(flips, flip):
+    return any(np.array_equal(f, flip) for f in flips)
