@@ -410,3 +410,12 @@ def test_a_general_legs_mirror_is_found_where_every_margin_mirrors(changes, expe
 
 def _has(flips, flip):
     return any(np.array_equal(f, flip) for f in flips)
+
+
+def test_the_table_names_the_free_mode_and_its_evidence(capsys, small_search):
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        assert run_cli(["flexibility", "--urdf", str(KRABY), "--mode", "free"]) == 0
+    out = capsys.readouterr().out
+    assert f"Body flexibility of {KRABY} (free, stance lf lm lr rf rm rr)" in out
+    assert "evidence" in out and "extremes reached from nominal by a feasible path" in out

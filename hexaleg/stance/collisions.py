@@ -1,11 +1,13 @@
 """Self-collision: the robot's own parts touching, as one more constraint on the body.
 
-The geometry is the URDF's collision geometry (the body box and each leg link's
-cylinder), read by Pinocchio into a geometry model; distances come from coal
-through ``pinocchio.computeDistances``. Every pair of parts is checked except those
-joined by a joint (the body and a coxa, a coxa and its femur, a femur and its tibia),
-which touch by construction. The clearance (smallest distance over the pairs) is a
-margin like the others: ≥ 0 holds.
+The geometry is the URDF's collision geometry (the template's body box and each leg
+link's cylinder; a robot file's own shapes and meshes:
+:meth:`~hexaleg.robot.model.HexapodModel.collision_model`), read by Pinocchio into a
+geometry model; distances come from coal through ``pinocchio.computeDistances``. Every
+pair of parts is checked except those on one rigid body or on two bodies joined by a
+joint (the body and a coxa, a coxa and its femur, a femur and its tibia), which touch
+by construction. Each part is named by the link that carries it. The clearance (smallest
+distance over the pairs) is a margin like the others: ≥ 0 holds.
 """
 
 from __future__ import annotations
