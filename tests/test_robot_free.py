@@ -419,3 +419,23 @@ def test_the_table_names_the_free_mode_and_its_evidence(capsys, small_search):
     out = capsys.readouterr().out
     assert f"Body flexibility of {KRABY} (free, stance lf lm lr rf rm rr)" in out
     assert "evidence" in out and "extremes reached from nominal by a feasible path" in out
+
+
+def test_the_template_urdf_imported_back_collides_where_the_design_does():
+    """A short body's coxae touch: the file's geometry (the template's own) stops it there."""
+    limits = STANCE_LIMITS
+    design = HexapodDesign(
+        body_length=0.1,
+        body_width=0.4,
+        workspace_limits=limits,
+        improved_limits=limits,
+        manipulability_limits=limits,
+        stance_limits=limits,
+    )
+    own = flexibility(design, "axis", "all", HexapodModel(design), collisions=True)
+    model = ImportedHexapodModel(robot_from_text(render_hexapod(design)), design)
+    back = flexibility(model.design, "axis", "all", model, collisions=True)
+    assert any(e.limited_by.kind == "collision" for e in own.extremes)
+    for mine, theirs in zip(back.extremes, own.extremes, strict=True):
+        assert mine.value == pytest.approx(theirs.value, abs=1e-9), theirs.name
+        assert mine.binding == theirs.binding, theirs.name
