@@ -40,6 +40,7 @@ from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
 from hexaleg.stance import collision_starts, free_coupled
+from hexaleg.stance.configurations import stance_configurations
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import (
     StanceGeometry,
@@ -357,6 +358,10 @@ def test_stance_kinematics_of_a_general_leg_put_the_models_feet_on_their_foothol
         np.testing.assert_allclose(model.foot_positions(q)[index], geometry.footholds, atol=1e-9)
         fitted = stance_forward_kinematics(geometry, solution.theta)
         np.testing.assert_allclose(fitted.homogeneous, body.homogeneous, atol=1e-9)
+    # the configurations the self-collision check poses: the same feet on their footholds
+    d = rng.uniform(-1, 1, size=(5, 6)) * np.array([0.01, 0.01, 0.01, 0.05, 0.05, 0.05])
+    for q in stance_configurations(model, geometry, d):
+        np.testing.assert_allclose(model.foot_positions(q)[index], geometry.footholds, atol=1e-9)
 
 
 def _template_back(**changes):
