@@ -16,10 +16,12 @@ from hexaleg.cli.options import (
     design_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_model
+from hexaleg.cli.robot_options import add_robot_options, robot_model
 
 if TYPE_CHECKING:
+    from hexaleg.design import HexapodDesign
     from hexaleg.robot.imported_model import ImportedHexapodModel
+    from hexaleg.robot.model import HexapodModel
     from hexaleg.stance.extremes import FlexibilityResult
 
 DESCRIPTION = (
@@ -28,7 +30,8 @@ DESCRIPTION = (
     "semantics) or with the other five free (--mode free), until a foot leaves its "
     "reach, a joint hits its stance limit or the body touches the ground. Prints the "
     "12 extremes with their causes, the ranges (eq 28) and FB (eq 29). With --urdf, your "
-    "robot (axis-locked): each leg its own general leg and the file's joint limits."
+    "robot: each leg its own general leg, the file's joint limits and, with --collisions, "
+    "the file's collision geometry."
 )
 
 ROBOT_OPTIONS = True
@@ -47,20 +50,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
-    from hexaleg.stance.extremes import FlexibilityWarning
-    from hexaleg.stance.flexibility import flexibility
-    from hexaleg.study.progress import progress_callback
 
     design = design_from_args(args)
     robot = robot_model(args, design)
     if robot is not None:
         return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing
-    with warnings.catch_warnings(), progress_callback("search steps") as progress:
-        warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
-        result = flexibility(
-            design, args.mode, args.stance, collisions=args.collisions, progress=progress
-        )
+    result = _extremes(args, design)
     if args.plot is not None:
         write_plots(
             args.plot, lambda out: [save(extremes_figure(result), out / "flexibility_extremes.png")]
@@ -78,11 +74,8 @@ def run(args: argparse.Namespace) -> int:
 
 
 def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
-    """Axis-locked flexibility of an imported robot, in hexaleg's angles and the file's."""
-    from hexaleg.stance.flexibility import flexibility
-
-    refuse_free(args)
-    result = flexibility(model.design, "axis", args.stance, model)
+    """The flexibility of an imported robot, in hexaleg's angles and the file's."""
+    result = _extremes(args, model.design, model)
     source = str(model.robot.source)
     if args.json:
         summary = result.to_dict()
@@ -93,9 +86,24 @@ def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
             }
         print_json({"robot": source} | summary)
         return 0
-    title = f"Body flexibility of {source} (axis, stance {' '.join(result.legs)})"
+    title = f"Body flexibility of {source} ({result.mode}, stance {' '.join(result.legs)})"
     print_table(lengths_title(title, model.design.lengths), _rows(result))
     return 0
+
+
+def _extremes(
+    args: argparse.Namespace, design: HexapodDesign, model: HexapodModel | None = None
+) -> FlexibilityResult:
+    """The extremes the options ask for, a progress line per search step."""
+    from hexaleg.stance.extremes import FlexibilityWarning
+    from hexaleg.stance.flexibility import flexibility
+    from hexaleg.study.progress import progress_callback
+
+    with warnings.catch_warnings(), progress_callback("search steps") as progress:
+        warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
+        return flexibility(
+            design, args.mode, args.stance, model, collisions=args.collisions, progress=progress
+        )
 
 
 def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:

@@ -17,7 +17,7 @@ from hexaleg.cli.options import (
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_angles, robot_model
+from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -32,8 +32,8 @@ DESCRIPTION = (
     "extremes, the stability margin, the steepest slope per heading (tip or slide) and "
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
-    "extremes axis-locked within the file's limits, the walking capacity as `gait --urdf` "
-    "walks it)."
+    "extremes within the file's limits, axis-locked or free-coupled, the walking capacity as "
+    "`gait --urdf` walks it)."
 )
 
 ROBOT_OPTIONS = True
@@ -103,8 +103,6 @@ def run(args: argparse.Namespace) -> int:
 
     design = design_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
-    if robot is not None:
-        refuse_free(args)
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
     model = HexapodModel(design) if robot is None else robot

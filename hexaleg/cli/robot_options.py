@@ -318,11 +318,3 @@ def robot_angles(model: ImportedHexapodModel) -> dict[str, Any]:
     nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
     files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
     return {"robot": str(model.robot.source), "joint_angles": nominal, "urdf_joint_angles": files}
-
-
-def refuse_free(args: argparse.Namespace) -> None:
-    """Refuse, with ``--urdf``, free-coupled flexibility and self-collisions (not yet)."""
-    if getattr(args, "mode", "axis") != "axis":
-        raise UsageError("--mode free with --urdf is not supported yet: use --mode axis")
-    if getattr(args, "collisions", False):
-        raise UsageError("--collisions with --urdf is not supported yet")

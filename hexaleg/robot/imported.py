@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -139,7 +139,8 @@ def import_robot(
     search = foot or FootSearch()
     if search.base_dir is None:
         search = FootSearch(search.offset, search.frame, path.parent, packages or search.packages)
-    return robot_from_text(text, search, lock, source=path)
+    robot = robot_from_text(text, search, lock, source=path)
+    return replace(robot, packages=dict(packages or search.packages))
 
 
 def robot_from_text(

@@ -29,14 +29,14 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import RobotImportError
+from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
+from hexaleg.robot.geometry_model import GeometryKind, file_geometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
 from hexaleg.robot.robot_design import nominal_posture, robot_design
-from hexaleg.robot.source import with_resolved_meshes
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
@@ -134,23 +134,40 @@ class ImportedHexapodModel(HexapodModel):
         """The URDF the model was built from (the file's, with feet, body and root frames)."""
         return self._text
 
+    def collision_model(self) -> pin.GeometryModel:
+        """A copy of the file's collision geometry, its meshes found as the import finds them.
+
+        A ``<collision>`` whose mesh names no file is left out, with a warning
+        (:func:`~hexaleg.robot.geometry_model.file_geometry`).
+        """
+        if self._collision is None:
+            geometry, missing = self._file_geometry("collision")
+            if missing:
+                warnings.warn(
+                    f"{len(missing)} collision mesh(es) not found ({missing[0]} first): those "
+                    f"parts are not checked for contact (give --package NAME=DIR)",
+                    RobotImportWarning,
+                    stacklevel=2,
+                )
+            self._collision = geometry
+        return self._collision.copy()
+
     def visual_model(self) -> pin.GeometryModel:
         """The file's visuals, each mesh read from its local file (:attr:`missing_meshes`).
 
         A visual whose mesh file is not found (``package://`` without its ``--package``,
         meshes not shipped with the file) is left out.
         """
-        text, _ = self._drawn()
-        return pin.buildGeomFromUrdfString(self.model, text, pin.GeometryType.VISUAL)
+        return self._file_geometry("visual")[0]
 
     @property
     def missing_meshes(self) -> tuple[str, ...]:
         """The visual mesh references whose files were not found, each once."""
-        return self._drawn()[1]
+        return self._file_geometry("visual")[1]
 
-    def _drawn(self) -> tuple[str, tuple[str, ...]]:
+    def _file_geometry(self, kind: GeometryKind) -> tuple[pin.GeometryModel, tuple[str, ...]]:
         base = None if self.robot.source is None else self.robot.source.parent
-        return with_resolved_meshes(self._text, base, self.robot.packages)
+        return file_geometry(self.model, self._text, kind, base, self.robot.packages)
 
     def with_design(self, design: HexapodDesign) -> ImportedHexapodModel:
         """The robot with every leg's segments at ``design``'s l1, l2, l3, over ``design``.

@@ -118,31 +118,3 @@ def _xacro_finds(packages: Packages) -> Iterator[None]:
 def _one_line(err: BaseException) -> str:
     """An exception's message on one line."""
     return " ".join(str(err).split()) or type(err).__name__
-
-
-def with_resolved_meshes(
-    text: str, base_dir: Path | None, packages: Packages
-) -> tuple[str, tuple[str, ...]]:
-    """URDF ``text`` with every ``<visual>`` mesh at its local file's absolute path.
-
-    A visual whose mesh file cannot be found (:func:`resolve_resource`) is left out, so a
-    viewer draws what it can; its reference is returned among the missing ones, each once.
-    Collision geometry is left as written.
-    """
-    import xml.etree.ElementTree as ET
-
-    root = ET.fromstring(text)
-    missing: dict[str, None] = {}
-    for link in root.iter("link"):
-        for visual in list(link.findall("visual")):
-            mesh = visual.find("geometry/mesh")
-            if mesh is None:
-                continue
-            reference = mesh.get("filename", "")
-            found = resolve_resource(reference, base_dir, packages)
-            if found is None:
-                missing[reference] = None
-                link.remove(visual)
-            else:
-                mesh.set("filename", str(found.resolve()))
-    return ET.tostring(root, encoding="unicode"), tuple(missing)

@@ -1,11 +1,13 @@
 """Self-collision: the robot's own parts touching, as one more constraint on the body.
 
-The geometry is the URDF's collision geometry (the body box and each leg link's
-cylinder), read by Pinocchio into a geometry model; distances come from coal
-through ``pinocchio.computeDistances``. Every pair of parts is checked except those
-joined by a joint (the body and a coxa, a coxa and its femur, a femur and its tibia),
-which touch by construction. The clearance (smallest distance over the pairs) is a
-margin like the others: ≥ 0 holds.
+The geometry is the URDF's collision geometry (the template's body box and each leg
+link's cylinder; a robot file's own shapes and meshes:
+:meth:`~hexaleg.robot.model.HexapodModel.collision_model`), read by Pinocchio into a
+geometry model; distances come from coal through ``pinocchio.computeDistances``. Every
+pair of parts is checked except those on one rigid body or on two bodies joined by a
+joint (the body and a coxa, a coxa and its femur, a femur and its tibia), which touch
+by construction. Each part is named by the link that carries it. The clearance (smallest
+distance over the pairs) is a margin like the others: ≥ 0 holds.
 """
 
 from __future__ import annotations
@@ -51,12 +53,15 @@ class SelfCollision:
 
     Attributes:
         pairs: The checked pairs, as link names.
+        mirrored: Whether the parts are known to be drawn mirror-symmetric, as hexaleg's
+            template draws them (a robot file's may not be: its searches use no mirror).
 
     """
 
     def __init__(self, model: HexapodModel, geometry: StanceGeometry) -> None:
         self.model = model
         self.geometry = geometry
+        self.mirrored = not model.general_legs
         self.geometry_model = model.collision_model()
         self.geometry_model.addAllCollisionPairs()
         parent_joints = [o.parentJoint for o in self.geometry_model.geometryObjects]
@@ -76,10 +81,16 @@ class SelfCollision:
         for distance_request in self.geometry_data.distanceRequests:
             distance_request.gjk_tolerance = GJK_TOLERANCE
         _without_warm_starts(self.geometry_data)
-        names = [_link_name(o.name) for o in self.geometry_model.geometryObjects]
+        frames = model.model.frames
+        names = [frames[o.parentFrame].name for o in self.geometry_model.geometryObjects]
         self.pairs: tuple[tuple[str, str], ...] = tuple(
             (names[p.first], names[p.second]) for p in self.geometry_model.collisionPairs
         )
+        if not self.pairs:
+            raise HexalegError(
+                "self-collision: no two of the robot's parts can touch (no collision geometry "
+                "beyond parts joined by a joint; a robot file's meshes not found are left out)"
+            )
         nominal = self.clearance(np.eye(3), np.array([0.0, 0.0, geometry.nominal_height]))
         if nominal[0] <= 0:
             raise HexalegError(f"at the nominal stance, {nominal[1]}: the design collides")
@@ -160,7 +171,7 @@ def collision_limited(
     (:func:`~hexaleg.stance.symmetry.mirror_sources`), its touching pairs found at the
     mirrored pose.
     """
-    every_leg_stands = len(geometry.legs) == len(collision.model.leg_names)
+    every_leg_stands = len(geometry.legs) == len(collision.model.leg_names) and collision.mirrored
     directions = [(e.axis, e.sign) for e in extremes]
     sources = mirror_sources(directions, search_flips(geometry, every_leg_stands))
     scanned = [k for k in range(len(extremes)) if k not in sources]
@@ -234,8 +245,3 @@ def _without_warm_starts(data: pin.GeometryData) -> None:
         warnings.simplefilter("ignore", DeprecationWarning)
         for request in [*data.collisionRequests, *data.distanceRequests]:
             request.enable_cached_gjk_guess = False
-
-
-def _link_name(geometry_name: str) -> str:
-    """``lf_femur_0`` → ``lf_femur``: the link a geometry object belongs to."""
-    return geometry_name.rsplit("_", 1)[0]

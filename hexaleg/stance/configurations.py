@@ -16,7 +16,6 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
-from hexaleg.kinematics import inverse_kinematics
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.constraints import displacement_poses, rpy_rotation
 from hexaleg.stance.extremes import Extreme
@@ -69,9 +68,13 @@ def stance_configurations(
 def posed_configurations(
     model: HexapodModel, geometry: StanceGeometry, rotation: ArrayF, translation: ArrayF
 ) -> ArrayF:
-    """Configurations (P, nq) at body poses (P, 3, 3), (P, 3), the stance legs by the IK."""
+    """Configurations (P, nq) at body poses (P, 3, 3), (P, 3), the stance legs by the IK.
+
+    Each stance leg by its own geometry (:meth:`StanceGeometry.leg_solutions`): a robot
+    file's general leg, or the paper's leg of the design's lengths.
+    """
     rotation = np.asarray(rotation, dtype=float).reshape(-1, 3, 3)
     translation = np.asarray(translation, dtype=float).reshape(-1, 3)
-    theta = inverse_kinematics(geometry.lengths, geometry.feet_in_roots(rotation, translation))
-    angles = {leg: theta.theta[:, n] for n, leg in enumerate(geometry.legs)}
+    theta, _ = geometry.leg_solutions(geometry.feet_in_roots(rotation, translation))
+    angles = {leg: theta[:, n] for n, leg in enumerate(geometry.legs)}
     return configurations(model, rotation, translation, angles)

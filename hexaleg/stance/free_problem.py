@@ -55,7 +55,9 @@ class FreeProblem:
         self.labels = constraint_labels(geometry.legs)
         self.smooth_kernel = kernel_geometry([geometry], smooth=True)
         self.exact_kernel = kernel_geometry([geometry], smooth=False)
-        every_leg_stands = collision is None or len(geometry.legs) == len(collision.model.leg_names)
+        every_leg_stands = collision is None or (
+            len(geometry.legs) == len(collision.model.leg_names) and collision.mirrored
+        )
         self.flips = search_flips(geometry, every_leg_stands)
         self.basis = np.vstack([np.zeros(6), STEP * np.eye(6)])
         self._at: ArrayF | None = None  # the last d evaluated, and its seven poses' margins

@@ -298,22 +298,31 @@ def stance_inverse_kinematics(geometry: StanceGeometry, body: pin.SE3) -> Invers
     """Joint angles (N, 3) [rad] of every stance leg for a body pose, feet on their footholds.
 
     ``reachable`` (N,) flags legs whose foothold is out of reach or whose angles
-    leave the stance limits.
+    leave the stance limits. Each leg by its own geometry and limits (a robot file's).
     """
     targets = geometry.feet_in_roots(body.rotation, body.translation)
-    return inverse_kinematics(geometry.lengths, targets, limits=geometry.limits)
+    if not geometry.leg_geometries:
+        return inverse_kinematics(geometry.lengths, targets, limits=geometry.limits)
+    solved = [inverse_kinematics(g, targets[n]) for n, g in enumerate(geometry.leg_geometries)]
+    theta = np.array([s.theta for s in solved])
+    inside = (theta >= geometry.joint_lower - 1e-12) & (theta <= geometry.joint_upper + 1e-12)
+    reachable = np.array([s.reachable for s in solved]) & inside.all(axis=-1)
+    return InverseKinematics(theta, reachable)
 
 
 def stance_forward_kinematics(geometry: StanceGeometry, joint_angles: npt.ArrayLike) -> pin.SE3:
     """Body pose from the stance legs' joint angles (N, 3) [rad] (eq 13, N ≥ 3).
 
-    Each leg gives its foot in the body frame, u_i = T_root·p(θ_i); the body pose
-    T_C with T_C·u_i = foothold_i is the rigid least-squares fit (Kabsch).
+    Each leg gives its foot in the body frame, u_i = T_root·p(θ_i) (by its own geometry);
+    the body pose T_C with T_C·u_i = foothold_i is the rigid least-squares fit (Kabsch).
     """
     angles = np.asarray(joint_angles, dtype=float)
-    feet_body = geometry.root_positions + np.einsum(
-        "nij,nj->ni", geometry.root_rotations, foot_position(geometry.lengths, angles)
-    )
+    if geometry.leg_geometries:
+        legs = zip(geometry.leg_geometries, angles, strict=True)
+        feet = np.array([foot_position(leg, theta) for leg, theta in legs])
+    else:
+        feet = foot_position(geometry.lengths, angles)
+    feet_body = geometry.root_positions + np.einsum("nij,nj->ni", geometry.root_rotations, feet)
     return rigid_fit(feet_body, geometry.footholds)
 
 

@@ -129,14 +129,18 @@ def leg_derivatives(
 
     Where the IK is clipped (out of reach) the clipped angles' derivatives are zero, as a
     difference quotient sees them. The smooth reach margins change by −d(r²) and d(r²).
+    A general leg's θ1 keeps the foot e off the leg plane, −px·s1 + py·c1 = e, so
+    dθ1 = (c1·dy − s1·dx)/(px·c1 + py·s1); its hip lies h above the root.
     """
     l2, l3 = lengths[1], lengths[2]
+    h, e = (lengths[3], lengths[4]) if lengths.shape[0] > 3 else (0.0, 0.0)
     planar_x, r2, r = leg.planar_x, leg.r2, leg.r
+    pz = pz - h
     r_safe = r if r > 0 else 1.0
     hip_cos = (r2 + l2**2 - l3**2) / (2 * l2 * r_safe)
-    flat = px**2 + py**2
-    d_theta1 = (px * dy - py * dx) / flat if flat > 0 else 0.0
-    d_planar = leg.c1 * dx + leg.s1 * dy  # θ1 turns with the foot: its own term vanishes
+    radial = px * leg.c1 + py * leg.s1
+    d_theta1 = (leg.c1 * dy - leg.s1 * dx) / radial if radial != 0 else 0.0
+    d_planar = leg.c1 * dx + leg.s1 * dy + e * d_theta1
     d_r2 = 2 * (planar_x * d_planar + pz * dz)
     d_knee_cos = d_r2 / (2 * l2 * l3)
     knee_cos = leg.cos_knee

@@ -31,23 +31,30 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
     """The displacement flips (:data:`MIRRORS`) of the reflections the stance is symmetric under.
 
     Symmetric: each stance leg's root, coxa direction and foothold reflect onto another
-    stance leg's, the root joint's limits are symmetric (a reflection negates θ1), and
-    the body (a centred box or cylinder) is its own mirror image.
+    stance leg's, whose leg is the mirror image of the first (a reflection negates θ1
+    and a general leg's lateral offset e, so the root joint's limits and e must mirror,
+    every other dimension and limit be equal), and the body (a centred box or cylinder)
+    is its own mirror image.
     """
-    lower, upper = geometry.limits.theta1
-    if abs(lower + upper) > SYMMETRY_TOLERANCE:
-        return []
+    legs = geometry.leg_parameters  # (a1, l2, l3, h, e) per leg
+    lower, upper = geometry.joint_lower, geometry.joint_upper
     flips = []
     keep_handed = np.diag([1.0, -1.0, 1.0])  # the mirrored leg frame stays right-handed
     for reflection, flip in MIRRORS.values():
         roots = geometry.root_positions @ reflection
         feet = geometry.footholds @ reflection
         frames = reflection @ geometry.root_rotations @ keep_handed
+        mirrored_legs = legs @ np.diag([1.0, 1.0, 1.0, 1.0, -1.0])
+        mirrored_lower = np.column_stack([-upper[:, 0], lower[:, 1:]])
+        mirrored_upper = np.column_stack([-lower[:, 0], upper[:, 1:]])
         matched = all(
             any(
-                np.abs(roots[i] - geometry.root_positions[j]).max() < SYMMETRY_TOLERANCE
-                and np.abs(feet[i] - geometry.footholds[j]).max() < SYMMETRY_TOLERANCE
-                and np.abs(frames[i] - geometry.root_rotations[j]).max() < SYMMETRY_TOLERANCE
+                _close(roots[i], geometry.root_positions[j])
+                and _close(feet[i], geometry.footholds[j])
+                and _close(frames[i], geometry.root_rotations[j])
+                and _close(mirrored_legs[i], legs[j])
+                and _close(mirrored_lower[i], lower[j])
+                and _close(mirrored_upper[i], upper[j])
                 for j in range(len(geometry.legs))
             )
             for i in range(len(geometry.legs))
@@ -55,6 +62,10 @@ def mirror_flips(geometry: StanceGeometry) -> list[ArrayF]:
         if matched:
             flips.append(flip)
     return flips
+
+
+def _close(a: ArrayF, b: ArrayF) -> bool:
+    return bool(np.abs(np.asarray(a) - np.asarray(b)).max() < SYMMETRY_TOLERANCE)
 
 
 def search_flips(geometry: StanceGeometry, every_leg_stands: bool = True) -> list[ArrayF]:
