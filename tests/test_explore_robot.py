@@ -10,6 +10,7 @@ leg's own segments and offsets as ``design show`` lists them.
 from __future__ import annotations
 
 import json
+import time
 import urllib.parse
 import warnings
 from pathlib import Path
@@ -125,8 +126,20 @@ def test_the_page_offers_the_segments_posture_payload_and_gait_only(explorer):
     assert sorted(loaded["sliders"]) == ["l1", "l2", "l3"]
     assert loaded["values"]["l3"] == pytest.approx(0.088, abs=1e-9)  # Kraby's tibia
     assert loaded["values"]["stride"] == pytest.approx(0.03)  # the file's [gait]
-    status, job = explorer.post("api/job?kind=free")
+    status, job = explorer.post("api/job?kind=decide")
     assert status == 400 and "imported robot" in job["error"]
+
+
+def test_the_free_coupled_job_answers_as_the_command_line_on_the_robot(explorer, capsys):
+    status, job = explorer.post("api/job?kind=free&l2=0.07")
+    assert status == 200 and job["state"] == "running", job
+    deadline = time.monotonic() + 240
+    while job["state"] == "running" and time.monotonic() < deadline:
+        time.sleep(0.5)
+        job = explorer.get("api/job?kind=free")[1]
+    assert job["state"] == "done", job
+    free = _cli(capsys, "flexibility", "--urdf", KRABY, "--l2", "0.07", "--mode", "free")
+    assert job["answer"]["fb"] == pytest.approx(free["fb"], rel=1e-9)
 
 
 def test_save_writes_a_design_file_that_reads_back_as_the_robot_at_the_slid_lengths(

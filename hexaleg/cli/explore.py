@@ -66,7 +66,7 @@ def run(args: argparse.Namespace) -> int:
 
     design, requirements = inputs_from_args(args)
     save_to = _save_target(args)
-    robot = _explored_robot(args, design, save_to)
+    robot = _explored_robot(args, design)
     if robot is not None:
         design = robot.model.design
     if not is_loopback(args.host):
@@ -94,9 +94,7 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _explored_robot(
-    args: argparse.Namespace, design: HexapodDesign, save_to: Path
-) -> ExploredRobot | None:
+def _explored_robot(args: argparse.Namespace, design: HexapodDesign) -> ExploredRobot | None:
     """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
     from hexaleg.explore.robot import ExploredRobot
 
@@ -108,7 +106,7 @@ def _explored_robot(
         if change.leg == model.robot.legs[0].name:
             lengths[change.segment] = change.file_length
     l1, l2, l3 = (lengths[name] for name in SEGMENT_NAMES)
-    return ExploredRobot(model, robot_table(args, save_to, model.robot), (l1, l2, l3))
+    return ExploredRobot(model, robot_table(args, None, model.robot), (l1, l2, l3))
 
 
 def _save_target(args: argparse.Namespace) -> Path:

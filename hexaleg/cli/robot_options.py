@@ -161,12 +161,15 @@ def _segment_lengths(
     return lengths, fields
 
 
-def robot_table(args: argparse.Namespace, output: Path, robot: ImportedRobot) -> dict[str, Any]:
+def robot_table(
+    args: argparse.Namespace, output: Path | None, robot: ImportedRobot
+) -> dict[str, Any]:
     """The ``[robot]`` table of a design file at ``output`` that reads ``robot`` back.
 
-    The robot file and the package folders relative to the design file's folder, the
-    Xacro arguments and foot options as given (``--urdf`` and its companions, else the
-    ``--design`` file's ``[robot]``), and what was read (``read``, for reference only).
+    The robot file and the package folders relative to the design file's folder (absolute
+    paths without ``output``), the Xacro arguments and foot options as given (``--urdf``
+    and its companions, else the ``--design`` file's ``[robot]``), and what was read
+    (``read``, for reference only).
     """
     import os
 
@@ -176,14 +179,15 @@ def robot_table(args: argparse.Namespace, output: Path, robot: ImportedRobot) ->
     design = getattr(args, "design", None)
     table = load_robot_table(design) if design and args.urdf is None else None
     settings = _settings(args, table, Path(design or ".").parent)
-    folder = output.resolve().parent
+
+    def where(path: Any) -> str:
+        found = os.path.abspath(path)
+        return found if output is None else os.path.relpath(found, output.resolve().parent)
+
     written: dict[str, Any] = {
-        "urdf": os.path.relpath(os.path.abspath(settings["urdf"]), folder),
+        "urdf": where(settings["urdf"]),
         "xacro_args": dict(settings["xacro_args"]),
-        "packages": {
-            name: os.path.relpath(os.path.abspath(path), folder)
-            for name, path in settings["packages"].items()
-        },
+        "packages": {name: where(path) for name, path in settings["packages"].items()},
     }
     if settings["foot_frame"] is not None:
         written["foot_frame"] = settings["foot_frame"]

@@ -10,10 +10,12 @@ slid lengths as ``[robot.segments]``, the design's own ``l1 l2 l3`` kept at the 
 
 from __future__ import annotations
 
+import os
 import threading
 from collections import OrderedDict
 from collections.abc import Mapping
 from dataclasses import dataclass, field
+from pathlib import Path
 from typing import Any
 
 import tomli_w
@@ -41,7 +43,7 @@ class ExploredRobot:
         model: Its model at the loaded segments (the design file's ``[robot.segments]``
             and ``--l*`` applied).
         table: The design file's ``[robot]`` table without its ``segments``: the robot file
-            (relative to the design file), how it is read, what was read.
+            and package folders (absolute paths), how it is read, what was read.
         file_lengths: The segments (l1, l2, l3) as the robot file draws them [m].
 
     """
@@ -87,12 +89,21 @@ class ExploredRobot:
                     "explorer slides its segments, posture, payload and gait)",
                 )
 
-    def design_text(self, design: HexapodDesign) -> str:
-        """The design file of the robot at ``design``'s segments and posture (TOML)."""
+    def design_text(self, design: HexapodDesign, at: Path | None = None) -> str:
+        """The design file of the robot at ``design``'s segments and posture (TOML).
+
+        ``at``: where the file is written, its paths then relative to its folder (a file
+        written elsewhere, a job's, keeps them absolute).
+        """
         l1, l2, l3 = self.file_lengths
         written = design.replace(l1=max(l1, 1e-9), l2=l2, l3=l3)  # the file's, as read
         segments = dict(zip(SEGMENT_NAMES, design.lengths, strict=True))
         if l1 <= 0:  # a coxa of length 0 has nothing to stretch: it stays the file's
             segments.pop("coxa")
         table = {**self.table, "segments": segments}
+        if at is not None:
+            folder = at.resolve().parent
+            table["urdf"] = os.path.relpath(table["urdf"], folder)
+            packages = table["packages"]
+            table["packages"] = {name: os.path.relpath(packages[name], folder) for name in packages}
         return design_toml(written) + "\n" + tomli_w.dumps({"robot": table})

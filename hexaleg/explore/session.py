@@ -140,27 +140,31 @@ class Session:
             "robot": None if self.robot is None else self.robot.source,
         }
 
-    def design_text(self, params: Mapping[str, str]) -> str:
-        """The design file (TOML) of the design a query asks for, the requirements kept."""
+    def design_text(self, params: Mapping[str, str], at: Path | None = None) -> str:
+        """The design file (TOML) of the design a query asks for, the requirements kept.
+
+        ``at``: where it is written (an imported robot's file paths relative to it).
+        """
         design = self.query(params).design
-        text = design_toml(design) if self.robot is None else self.robot.design_text(design)
+        robot = self.robot
+        text = design_toml(design) if robot is None else robot.design_text(design, at)
         if self.requirements.given:
             text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
         return text
 
     def save(self, params: Mapping[str, str]) -> Path:
         """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
-        return write_text(self.save_to, self.design_text(params))
+        return write_text(self.save_to, self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
         """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for.
 
         Raises:
-            HexalegError: On an imported robot (the jobs run hexaleg's own robot for now).
+            HexalegError: ``decide`` on an imported robot (not yet).
 
         """
-        if self.robot is not None:
-            raise HexalegError(f"the {kind} job does not run on an imported robot yet")
+        if self.robot is not None and kind == "decide":
+            raise HexalegError("the decide job does not run on an imported robot yet")
         return self.jobs.start(kind, self.design_text(params)).to_dict()
 
     def job(self, kind: str) -> dict[str, Any]:
