@@ -21,7 +21,10 @@ level at the height that puts the feet, on average, on the ground.
 
 from __future__ import annotations
 
+import math
 import warnings
+import xml.etree.ElementTree as ET
+from collections.abc import Sequence
 
 import numpy as np
 import numpy.typing as npt
@@ -75,7 +78,34 @@ def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
         added.append(_fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount))
     end = text.rindex("</robot>")
     note = "  <!-- hexaleg: body and leg-root frames -->\n"
-    return text[:end] + note + "".join(added) + text[end:]
+    text = text[:end] + note + "".join(added) + text[end:]
+    return _bounded_continuous(text, [name for leg in robot.legs for name in leg.joint_names])
+
+
+CONTINUOUS_RANGE = (-math.pi, math.pi)
+"""The range a continuous leg joint is analysed over: every angle once, about its zero [rad]."""
+
+
+def _bounded_continuous(text: str, joints: Sequence[str]) -> str:
+    """``text`` with each continuous joint of ``joints`` a revolute one over ``CONTINUOUS_RANGE``.
+
+    Pinocchio models a continuous joint by (cos q, sin q); the whole-robot analyses need
+    one coordinate per joint and bounds to search within. Its ``effort`` and ``velocity``
+    are kept.
+    """
+    root = ET.fromstring(text)
+    changed = False
+    for joint in root.iter("joint"):
+        if joint.get("type") != "continuous" or joint.get("name") not in joints:
+            continue
+        joint.set("type", "revolute")
+        limit = joint.find("limit")
+        if limit is None:
+            limit = ET.SubElement(joint, "limit", effort="0", velocity="0")
+        limit.set("lower", repr(CONTINUOUS_RANGE[0]))
+        limit.set("upper", repr(CONTINUOUS_RANGE[1]))
+        changed = True
+    return ET.tostring(root, encoding="unicode") if changed else text
 
 
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
@@ -94,7 +124,8 @@ class ImportedHexapodModel(HexapodModel):
 
     Raises:
         RobotImportError: The legs differ in their segments (one design has one leg), a
-            leg joint is continuous, or the nominal posture does not put the feet level.
+            or the nominal posture does not put the feet level. A continuous leg joint is
+            analysed as a revolute one over :data:`CONTINUOUS_RANGE` (every angle once).
 
     """
 
@@ -103,13 +134,6 @@ class ImportedHexapodModel(HexapodModel):
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
         model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
-        for leg in robot.legs:
-            for name in leg.joint_names:
-                if model.joints[model.getJointId(name)].nq != 1:
-                    raise RobotImportError(
-                        f"joint {name} is continuous: the analyses of the whole robot take "
-                        f"revolute leg joints only (give it limits)"
-                    )
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
         set_armature(model, [leg.v for leg in legs.values()], design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
