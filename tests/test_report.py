@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import json
 import re
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -293,14 +294,7 @@ def test_the_decision_comes_first_with_one_recommendation_scored_by_one_rule(rep
 def test_a_fixed_coxa_moves_the_recommendation(tmp_path):
     design = HexapodDesign(l1=0.15, l2=0.6, l3=0.45, body_length=1.4, body_width=0.8)
     free = build_report(tmp_path / "free", design, REDUCED).to_dict()["recommendation"]
-    options = ReportOptions(
-        l3_points=REDUCED.l3_points,
-        sensitivity_points=REDUCED.sensitivity_points,
-        workers=1,
-        progress=False,
-        vector_figures=False,
-        l1_ratios=(0.125,),  # the user's own coxa: 0.15 m of a 1.2 m leg
-    )
+    options = replace(REDUCED, l1_ratios=(0.125,))  # the user's own coxa: 0.15 m of 1.2 m
     fixed = build_report(tmp_path / "fixed", design, options).to_dict()["recommendation"]
     assert free["l1_ratio"] != pytest.approx(0.125)  # so the fixed coxa is a constraint
     assert fixed["l1_ratio"] == pytest.approx(0.125)
@@ -419,15 +413,7 @@ def test_a_design_s_gait_is_what_the_whole_report_walks(tmp_path):
         '"hd_cha_25a_100"\n[actuators.knee]\ncatalog = "hd_cha_20a_100"\n'
     )
     design = load_design(motors)
-    options = ReportOptions(
-        l3_points=REDUCED.l3_points,
-        sensitivity_points=REDUCED.sensitivity_points,
-        workers=1,
-        progress=False,
-        vector_figures=False,
-        l1_ratios=(0.1,),
-        gait=gait,
-    )
+    options = replace(REDUCED, l1_ratios=(0.1,), gait=gait)
     data = build_report(tmp_path / "r", design, options).to_dict()
     text = (tmp_path / "r" / "report.md").read_text()
     assert "the default gait" not in text and text.count("the design's gait") >= 4

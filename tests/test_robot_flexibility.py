@@ -19,10 +19,9 @@ import pytest
 from conftest import run_cli
 from raw_chain import RawChain, body_pose
 from robot_files import draw_hexapod
+from robots import equal_limits_design
 
-from hexaleg import HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
-from hexaleg.limits import STANCE_LIMITS
 from hexaleg.robot.imported import robot_from_text
 from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
@@ -96,14 +95,7 @@ def test_each_extreme_is_the_last_feasible_closed_chain_in_pinocchio(
 
 @pytest.mark.parametrize("layout", ["rectangle", "hexagon"])
 def test_the_template_urdf_imported_back_has_the_designs_extremes(layout):
-    limits = STANCE_LIMITS  # every limit set the same, so the URDF's limits are the stance's
-    design = HexapodDesign(
-        layout=layout,
-        workspace_limits=limits,
-        improved_limits=limits,
-        manipulability_limits=limits,
-        stance_limits=limits,
-    )
+    design = equal_limits_design(layout)
     own = flexibility(design, "axis", "all", HexapodModel(design))
     model = ImportedHexapodModel(robot_from_text(render_hexapod(design)), design)
     back = flexibility(model.design, "axis", "all", model)

@@ -31,6 +31,7 @@ import pytest
 from conftest import run_cli
 from raw_chain import RawChain, body_pose
 from robot_files import draw_hexapod
+from robots import equal_limits_design
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -184,14 +185,7 @@ def test_loads_take_the_free_extremes_of_an_imported_robot(robot):
 
 @pytest.mark.parametrize("layout", ["rectangle", "hexagon"])
 def test_the_template_urdf_imported_back_has_the_designs_free_extremes(layout):
-    limits = STANCE_LIMITS  # every limit set the same, so the URDF's limits are the stance's
-    design = HexapodDesign(
-        layout=layout,
-        workspace_limits=limits,
-        improved_limits=limits,
-        manipulability_limits=limits,
-        stance_limits=limits,
-    )
+    design = equal_limits_design(layout)
     own = flexibility(design, "free", "all", HexapodModel(design))
     model = ImportedHexapodModel(robot_from_text(render_hexapod(design)), design)
     back = flexibility(model.design, "free", "all", model)

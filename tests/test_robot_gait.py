@@ -13,16 +13,14 @@ back, which must walk as the design does to 1e-9.
 
 from __future__ import annotations
 
-import json
 import warnings
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pinocchio as pin
 import pytest
 from conftest import run_cli
-from robot_files import draw_hexapod
+from robots import KRABY, robot_json, robot_under_test
 
 from hexaleg import HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
@@ -36,31 +34,9 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
 from hexaleg.statics.forces import Payload
 
-ROBOTS = Path(__file__).parent / "data" / "robots"
-KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
-OCHS = str(ROBOTS / "phantomx_kevinochs" / "urdf" / "phantomX_model.xacro")
-OCHS_OFFSET = (0.0, 0.133, 0.0)
 G = 9.81
 SMALL = ["--stride", "0.03", "--step-height", "0.02", "--period", "0.8", "--samples", "60"]
 """A gait every robot here walks: short strides, a low step, quick enough for inertia."""
-
-
-def _json(capsys, argv):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobotImportWarning)
-        assert run_cli(argv) == 0
-    return json.loads(capsys.readouterr().out)
-
-
-def _robot(path, tmp_path):
-    """The file, its options and its foot offset; ``drawn:N`` draws six equal general legs."""
-    if path == "ochs":
-        return OCHS, ["--foot-offset", *map(str, OCHS_OFFSET)], OCHS_OFFSET
-    if path.startswith("drawn:"):  # hip height, lateral offset, mixed signs, bends
-        target = tmp_path / "drawn.urdf"
-        target.write_text(draw_hexapod(int(path.split(":")[1]), same_legs=True)[0])
-        return str(target), [], None
-    return path, [], None
 
 
 class _RawFile:
@@ -120,11 +96,11 @@ class _RawFile:
     ],
 )
 def test_gait_torques_equal_pinocchio_rnea_on_the_file(capsys, tmp_path, path, extra):
-    path, options, offset = _robot(path, tmp_path)
+    path, options, offset = robot_under_test(path, tmp_path)
     csv = tmp_path / "gait.csv"
     argv = ["--urdf", path, *options]
-    summary = _json(capsys, ["gait", *argv, *SMALL, *extra, "--csv", str(csv), "--json"])
-    shown = _json(capsys, ["design", "show", *argv, "--json"])
+    summary = robot_json(capsys, ["gait", *argv, *SMALL, *extra, "--csv", str(csv), "--json"])
+    shown = robot_json(capsys, ["design", "show", *argv, "--json"])
     raw = _RawFile(path, offset, shown)
     balance = 1e-5 if "min-torque" in extra else 1e-9  # ProxQP's own tolerance on A f = b
     payload = summary["payload"]
@@ -181,7 +157,7 @@ def _imported(path, offset=None):
 
 @pytest.mark.parametrize("path", [KRABY, "ochs", "drawn:5"])
 def test_feet_follow_the_planned_paths_in_pinocchio_on_the_file(tmp_path, path):
-    path, _, offset = _robot(path, tmp_path)
+    path, _, offset = robot_under_test(path, tmp_path)
     model = _imported(path, offset)
     gait = Gait(stride=0.03, step_height=0.02, period=0.8, samples=48)
     analysis = analyze_gait(model.design, gait, model=model, limits=False)
@@ -278,7 +254,7 @@ def test_a_stride_beyond_the_max_is_refused_in_one_line(capsys, tmp_path):
     # and that max stride is one the robot walks, a little more one it does not
     limit = float(lines[0].split("must be at most ")[1].split()[0])
     small = ["--step-height", "0.02", "--samples", "60", "--json"]
-    assert _json(capsys, ["gait", "--urdf", KRABY, "--stride", str(0.99 * limit), *small])
+    assert robot_json(capsys, ["gait", "--urdf", KRABY, "--stride", str(0.99 * limit), *small])
     assert run_cli(["gait", "--urdf", KRABY, "--stride", str(1.01 * limit), *small]) == 2
     capsys.readouterr()
     # the default gait's 10 cm step is beyond this small robot at any stride: said so
@@ -301,9 +277,9 @@ def test_a_changed_segment_walks_as_the_changed_file_does(tmp_path, capsys):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RobotImportWarning)
         assert run_cli(["urdf", "--urdf", KRABY, "--l2", "0.07", "-o", str(changed)]) == 0
-    via_option = _json(capsys, ["gait", "--urdf", KRABY, "--l2", "0.07", *SMALL, "--json"])
-    via_file = _json(capsys, ["gait", "--urdf", str(changed), *SMALL, "--json"])
-    plain = _json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
+    via_option = robot_json(capsys, ["gait", "--urdf", KRABY, "--l2", "0.07", *SMALL, "--json"])
+    via_file = robot_json(capsys, ["gait", "--urdf", str(changed), *SMALL, "--json"])
+    plain = robot_json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
     assert via_option["design"]["l2"] == pytest.approx(0.07, abs=1e-12)
     for key in ("peak_torque", "rms_torque", "peak_speed"):
         assert via_option[key] == pytest.approx(via_file[key], rel=1e-9)
@@ -315,13 +291,13 @@ def test_the_design_files_robot_table_walks_as_the_file(tmp_path, capsys):
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
     capsys.readouterr()
-    via_file = _json(capsys, ["gait", "--design", str(target), *SMALL, "--json"])
-    direct = _json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
+    via_file = robot_json(capsys, ["gait", "--design", str(target), *SMALL, "--json"])
+    direct = robot_json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
     assert via_file == direct | {"robot": via_file["robot"]}
     assert direct["urdf_joint_angles"]["lf"] != direct["joint_angles"]["lf"]  # the file's zeros
 
 
-def test_gait_table_on_a_real_robot(capsys):
+def test_gait_table_on_a_realrobot_under_test(capsys):
     assert run_cli(["gait", "--urdf", KRABY, *SMALL]) == 0
     out = capsys.readouterr().out
     assert "Walking" in out and "kraby" in out and "max stride" in out
@@ -334,7 +310,7 @@ def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tm
     with target.open("a") as file:  # a gait this small robot walks
         file.write("\n[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.6\nsamples = 48\n")
     capsys.readouterr()
-    loads = _json(capsys, ["loads", "--design", str(target), "--json"])
+    loads = robot_json(capsys, ["loads", "--design", str(target), "--json"])
     capacity = loads["walking_payload_capacity"]
     assert capacity["walks"] and capacity["mass"] > 0.1
     model = _imported(KRABY)
@@ -347,11 +323,11 @@ def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tm
     assert holds(capacity["mass"] * (1 - 1e-6))
     assert not holds(capacity["mass"] * (1 + 1e-6))
     # and without a [gait] table the default gait, too big for Kraby, is not walked at all
-    plain = _json(capsys, ["loads", "--urdf", KRABY, "--json"])
+    plain = robot_json(capsys, ["loads", "--urdf", KRABY, "--json"])
     assert not plain["walking_payload_capacity"]["walks"]
 
 
-def test_gait_figures_of_an_imported_robot(tmp_path, capsys):
+def test_gait_figures_of_an_importedrobot_under_test(tmp_path, capsys):
     out = tmp_path / "figures"
     assert run_cli(["gait", "--urdf", KRABY, *SMALL, "--plot", str(out)]) == 0
     capsys.readouterr()

@@ -11,17 +11,12 @@ force the statics give (the statics held to RNEA on the raw file in ``test_robot
 
 from __future__ import annotations
 
-import json
-import warnings
-from pathlib import Path
-
 import numpy as np
 import pinocchio as pin
 import pytest
 from conftest import run_cli
-from robot_files import draw_hexapod
+from robots import KRABY, robot_json, robot_under_test
 
-from hexaleg.exceptions import RobotImportWarning
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import import_robot
 from hexaleg.robot.imported_model import ImportedHexapodModel
@@ -30,37 +25,15 @@ mujoco = pytest.importorskip("mujoco")
 
 from hexaleg.sim.model import SimModel  # noqa: E402 (needs MuJoCo)
 
-ROBOTS = Path(__file__).parent / "data" / "robots"
-KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
-OCHS = str(ROBOTS / "phantomx_kevinochs" / "urdf" / "phantomX_model.xacro")
-OCHS_OFFSET = (0.0, 0.133, 0.0)
 SMALL = ["--stride", "0.03", "--step-height", "0.02", "--period", "0.8", "--cycles", "3"]
 """A short walk every robot here takes: two measured periods."""
-
-
-def _json(capsys, argv):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobotImportWarning)
-        assert run_cli(argv) == 0
-    return json.loads(capsys.readouterr().out)
-
-
-def _robot(path, tmp_path):
-    """The file, its options and its foot offset; ``drawn:N`` draws six equal general legs."""
-    if path == "ochs":
-        return OCHS, ["--foot-offset", *map(str, OCHS_OFFSET)], OCHS_OFFSET
-    if path.startswith("drawn:"):  # hip height, lateral offset, mixed signs, bends
-        target = tmp_path / "drawn.urdf"
-        target.write_text(draw_hexapod(int(path.split(":")[1]), same_legs=True)[0])
-        return str(target), [], None
-    return path, [], None
 
 
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 @pytest.mark.parametrize("path", [KRABY, "ochs", "drawn:3"])
 def test_mujoco_model_is_the_file_in_pinocchio(capsys, tmp_path, path):
-    path, options, offset = _robot(path, tmp_path)
-    shown = _json(capsys, ["design", "show", "--urdf", path, *options, "--json"])
+    path, options, offset = robot_under_test(path, tmp_path)
+    shown = robot_json(capsys, ["design", "show", "--urdf", path, *options, "--json"])
     legs = {leg["name"]: leg for leg in shown["design"]["legs"]}
     robot = import_robot(path, foot=FootSearch(offset=offset))
     sim = SimModel(ImportedHexapodModel(robot))
@@ -113,8 +86,8 @@ def test_mujoco_model_is_the_file_in_pinocchio(capsys, tmp_path, path):
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 @pytest.mark.parametrize("path", [KRABY, "drawn:3"])
 def test_the_imported_robot_walks_and_stands_as_the_statics_say(capsys, tmp_path, path):
-    path, options, _ = _robot(path, tmp_path)
-    result = _json(capsys, ["simulate", "--urdf", path, *options, *SMALL, "--json"])
+    path, options, _ = robot_under_test(path, tmp_path)
+    result = robot_json(capsys, ["simulate", "--urdf", path, *options, *SMALL, "--json"])
     assert result["robot"] == path and "urdf_joint_angles" in result
     assert not result["fell"]
     assert result["distance"] > 0.9 * result["planned_distance"]
