@@ -218,17 +218,8 @@ class HexapodDesign:
             **fields: Any other :class:`HexapodDesign` field.
 
         """
-        total = require_in_range("total", total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
-        l1_ratio = require_ratio("l1_ratio", l1_ratio)
-        l3_ratio = require_ratio("l3_ratio", l3_ratio)
-        if not l1_ratio + l3_ratio < 1.0:
-            raise ParameterError(
-                "l1_ratio + l3_ratio",
-                l1_ratio + l3_ratio,
-                "must be < 1 so that the femur ratio 1 - l1_ratio - l3_ratio is positive",
-            )
-        l1, l3 = l1_ratio * total, l3_ratio * total
-        return cls(l1=l1, l2=total - l1 - l3, l3=l3, **fields)
+        l1, l2, l3 = ratio_lengths(l1_ratio, l3_ratio, total)
+        return cls(l1=l1, l2=l2, l3=l3, **fields)
 
     def with_ratios(
         self, l1_ratio: float, l3_ratio: float, total: float | None = None
@@ -397,3 +388,25 @@ FIELD_RANGES: dict[str, tuple[float, float, str]] = {
     if spec.kind == "number" and spec.bounds is not None
 }
 """Each number field's plausible range (lower, upper, unit); values outside are refused."""
+
+
+def ratio_lengths(
+    l1_ratio: float, l3_ratio: float, total: float = DEFAULT_LEG_LENGTH
+) -> tuple[float, float, float]:
+    """(l1, l2, l3) [m] of coxa and tibia ratios [-] of a total leg length ``total`` [m].
+
+    Raises:
+        ParameterError: A ratio outside (0, 1), their sum not below 1, ``total`` out of range.
+
+    """
+    total = require_in_range("total", total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
+    l1_ratio = require_ratio("l1_ratio", l1_ratio)
+    l3_ratio = require_ratio("l3_ratio", l3_ratio)
+    if not l1_ratio + l3_ratio < 1.0:
+        raise ParameterError(
+            "l1_ratio + l3_ratio",
+            l1_ratio + l3_ratio,
+            "must be < 1 so that the femur ratio 1 - l1_ratio - l3_ratio is positive",
+        )
+    l1, l3 = l1_ratio * total, l3_ratio * total
+    return (l1, total - l1 - l3, l3)

@@ -42,6 +42,7 @@ from hexaleg.study.executors import local_pool
 from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (
     AtBound,
@@ -74,12 +75,21 @@ class CheckedDesign:
     walking_over_rating: tuple[OverRating, ...] = ()
 
     @classmethod
-    def of(cls, design: HexapodDesign, goal: Goal) -> CheckedDesign:
-        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings."""
+    def of(
+        cls, design: HexapodDesign, goal: Goal, robot: RobotDesigns | None = None
+    ) -> CheckedDesign:
+        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings.
+
+        With ``robot``, ``design``'s segments are the imported robot's, changed on every
+        leg: its file's model at them is measured (and its design reported).
+        """
         requirements = goal.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
         try:
-            model = HexapodModel(design)
+            if robot is None:
+                model: HexapodModel = HexapodModel(design)
+            else:
+                design, model = robot.point(design.lengths)
             locked = flexibility(design, "axis", model=model)
             standing = loads_at_extremes(model, locked, payload).over_rating
         except HexalegError as err:
@@ -141,6 +151,8 @@ class DecideResult:
         method: The search algorithm and its settings.
         evaluations: Designs evaluated by the search (and the conflict's searches).
         seed: The search's seed.
+        robot: The imported robot's file whose segments were searched (``None``: the
+            template's designs).
 
     """
 
@@ -154,6 +166,7 @@ class DecideResult:
     method: str
     evaluations: int
     seed: int
+    robot: str | None = None
 
     @property
     def bounds_binding(self) -> tuple[AtBound, ...]:
@@ -199,6 +212,8 @@ class DecideResult:
             },
             "feasible": self.feasible,
         }
+        if self.robot is not None:
+            out["robot"] = self.robot
         if self.walks:
             out["gait"] = self.requirements.gait.to_dict() | {
                 "payload": self.requirements.payload_mass
@@ -229,6 +244,7 @@ def decide(
     journal: str | os.PathLike[str] | None = None,
     resume: bool = False,
     progress: bool | None = None,
+    robot: RobotDesigns | None = None,
 ) -> DecideResult:
     """The best design meeting ``requirements``, by ``objective``, and ``design`` checked.
 
@@ -252,6 +268,9 @@ def decide(
         resume: Continue ``journal`` instead of refusing to overwrite it.
         progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
             else a line every few seconds.
+        robot: An imported robot (``design`` its design): every design is its file with
+            every leg's segments changed, searched around its own (its lengths the start
+            and the centre of the bounds, :func:`~.search_space.search_space`).
 
     Raises:
         ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
@@ -261,17 +280,20 @@ def decide(
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective or Objective())
-    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings)
+    space = _space(
+        design, requirements, free_posture, free, actuators, ratio_ranges, settings, robot
+    )
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
-    best = CheckedDesign.of(space.design(outcome.x), goal)
+    best = CheckedDesign.of(space.design(outcome.x), goal, robot)
     return DecideResult(
         requirements=requirements, objective=goal.objective, variables=space.variables,
-        best=best, yours=CheckedDesign.of(design, goal), feasible=best.meets_all,
+        best=best, yours=CheckedDesign.of(design, goal, robot), feasible=best.meets_all,
         conflict=conflict, method=outcome.method, seed=settings.seed,
         evaluations=sum(found.evaluations for found in search.done),
+        robot=None if robot is None else robot.file.path,
     )  # fmt: skip
 
 
@@ -283,11 +305,12 @@ def _space(
     actuators: Sequence[Actuator],
     ratio_ranges: Sequence[tuple[float, float] | None] | None,
     settings: SearchSettings,
+    robot: RobotDesigns | None = None,
 ) -> SearchSpace:
     """What the search varies; a budget of partial generations is refused before any work."""
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators, requirements.range_km is not None, ratio_ranges,
+        actuators, requirements.range_km is not None, ratio_ranges, robot,
     )  # fmt: skip
     settings.generations(len(space.variables))
     return space
@@ -372,4 +395,5 @@ def _fingerprint(
         "ratio_ranges": [None if r is None else [*r] for r in space.ratio_ranges],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
+        **({} if space.robot is None else {"robot": space.robot.fingerprint()}),
     }

@@ -53,6 +53,7 @@ from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.goal import Goal
 from hexaleg.study.progress import Progress
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
@@ -182,13 +183,24 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
             designs[k] = space.design(x)
         except HexalegError as err:
             out[k] = Evaluation(error=str(err))
-    if not space.same_body:
+    if space.robot is not None:
+        out |= {k: robot_evaluation(space.robot, goal, d) for k, d in designs.items()}
+    elif not space.same_body:
         out |= {k: goal.evaluate(design) for k, design in designs.items()}
     else:
         base, template = base_model(space.base), _template(space.base)
         found = goal.evaluate_many(list(designs.values()), base, template)
         out |= dict(zip(designs, found, strict=True))
     return [out[k] for k in range(len(task.points))]
+
+
+def robot_evaluation(robot: RobotDesigns, goal: Goal, design: HexapodDesign) -> Evaluation:
+    """``goal``'s evaluation of the imported robot with every leg's segments at ``design``'s."""
+    try:
+        point, model = robot.point(design.lengths)
+    except HexalegError as err:
+        return Evaluation(error=str(err))
+    return goal.evaluate(point, model)
 
 
 # -- the search ---------------------------------------------------------------------------

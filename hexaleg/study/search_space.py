@@ -40,6 +40,7 @@ from hexaleg.study.actuator_variables import (
     gear_coordinate,
     geared_entry,
 )
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -59,6 +60,10 @@ FREEABLE = (*SEGMENTS, *POSTURE, *SWEEPABLE, *CHOICES, *GEARS, BATTERY)
 LEG_CAP = "l1 + l2 + l3 at most the leg length"
 STANCE_CAP = "the design's stance limits"
 """Why a segment's and a nominal angle's bounds are what they are, in words."""
+
+ROBOT_SPAN = 0.5
+"""An imported robot's segment is searched within this share of its own length either
+side of it [-] (its l1, l2, l3 the centre of the bounds)."""
 
 AT_BOUND_SHARE = 1e-3
 """A free variable within this share of its range from a bound is at that bound [-]."""
@@ -136,6 +141,9 @@ class SearchSpace:
         entries: The actuators a choice variable picks from, in the catalog's order.
         ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
             only), what a gear ratio variable spans; empty without such variables.
+        robot: The imported robot whose designs these are: a point's segments are its
+            file's, changed on every leg (:mod:`~hexaleg.study.robot_designs`); ``None``:
+            hexaleg's template.
 
     """
 
@@ -143,6 +151,7 @@ class SearchSpace:
     variables: tuple[FreeVariable, ...]
     entries: tuple[Actuator, ...] = ()
     ratio_ranges: tuple[tuple[float, float] | None, ...] = ()
+    robot: RobotDesigns | None = None
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -224,7 +233,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables, self.entries, self.ratio_ranges)
+        return dataclasses.replace(self, variables=variables)
 
 
 @dataclass(frozen=True)
@@ -319,6 +328,7 @@ def search_space(
     actuators: Sequence[Actuator] = (),
     battery: bool = False,
     ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
+    robot: RobotDesigns | None = None,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -333,18 +343,23 @@ def search_space(
         battery: Free the battery's capacity (a range is required), if the design has one.
         ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
             own only): free each joint type's within its entry's (None: ratios kept).
+        robot: An imported robot: each segment is searched within :data:`ROBOT_SPAN` of
+            its own length (a coxa of 0 stays 0), and ``free`` may only bound segments.
 
     """
     floor = segment_floor(leg_length)
-    chosen: dict[str, FreeVariable] = {
-        name: FreeVariable(name, floor, leg_length) for name in SEGMENTS
-    }
+    chosen: dict[str, FreeVariable] = (
+        {name: FreeVariable(name, floor, leg_length) for name in SEGMENTS}
+        if robot is None
+        else _around(robot, floor, leg_length)
+    )
     if min_coxa is not None:
         if min_coxa >= leg_length:
             raise ParameterError(
                 "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
             )
-        chosen["l1"] = FreeVariable("l1", max(floor, min_coxa), leg_length)
+        if "l1" in chosen:
+            chosen["l1"] = FreeVariable("l1", max(floor, min_coxa, chosen["l1"].lower), leg_length)
     limits = base.stance_limits
     if free_posture:
         chosen["theta2"] = FreeVariable("theta2", *limits.theta2)
@@ -360,6 +375,14 @@ def search_space(
                 "--free", f"{variable.name}={variable.typed}", f"{variable.name} is given twice"
             )
         given.add(variable.name)
+        if robot is not None and variable.name not in chosen:
+            raise ParameterError(
+                "--free",
+                f"{variable.name}={variable.typed}",
+                "with --urdf, one of "
+                + ", ".join(chosen)
+                + " (the robot file's segments; the rest is its file's)",
+            )
         if variable.name in allowed:
             _check_within(variable, *allowed[variable.name])
         chosen[variable.name] = variable
@@ -369,7 +392,26 @@ def search_space(
         chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
     bounds, spans = actuator_bounds(actuators, ratio_ranges)
     chosen |= {name: FreeVariable(name, *bound) for name, bound in bounds.items()}
-    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans)
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans, robot)
+
+
+def _around(robot: RobotDesigns, floor: float, leg_length: float) -> dict[str, FreeVariable]:
+    """An imported robot's segments, each within :data:`ROBOT_SPAN` of its own length [m].
+
+    A coxa of 0 (the yaw and hip axes meet) cannot be stretched: it is not free.
+    """
+    chosen = {}
+    for name, length in zip(SEGMENTS, robot.lengths, strict=True):
+        if name == "l1" and robot.fixed_coxa:
+            continue
+        lower = max(floor, (1 - ROBOT_SPAN) * length)
+        upper = min((1 + ROBOT_SPAN) * length, leg_length, SEGMENT_RANGE[1])
+        if upper <= lower:
+            raise ParameterError(
+                "leg_length", leg_length, f"above {lower:.4g} m, where {name} is searched from"
+            )
+        chosen[name] = FreeVariable(name, lower, upper)
+    return chosen
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:
