@@ -12,6 +12,7 @@ from hexaleg.output.report import (
     motors,
     pareto,
     recommendation,
+    robot,
     sensitivity,
     simulation,
     statics,
@@ -42,7 +43,12 @@ PARTS: tuple[Part[Any], ...] = (
 
 
 def parts_for(options: ReportOptions) -> tuple[Part[Any], ...]:
-    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``."""
+    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``.
+
+    An imported robot's report has its own parts (:data:`~.robot.ROBOT_PARTS`).
+    """
+    if options.robot is not None:
+        return robot.ROBOT_PARTS
     if not options.simulate:
         return PARTS
     after = PARTS.index(walking.PART) + 1

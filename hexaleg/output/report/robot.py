@@ -1,0 +1,429 @@
+"""Report parts of an imported robot: what the report tells of a user's own hexapod.
+
+The report of hexaleg's template (:data:`~hexaleg.output.report.registry.PARTS`) is built
+around the paper's leg: its closed-form workspace and manipulability on the segment
+lengths alone, its reproduction tables, the free-coupled flexibility, the template body's
+sensitivity, the recommendation on the paper's ratio grid. On an imported robot
+(``report --urdf FILE``) the report runs what holds for the robot's own file
+(:data:`ROBOT_PARTS`): its metrics as read, the axis-locked flexibility, the statics
+and walking payload, the study of its segments at other ratios (each row its file with
+the segments changed, :mod:`~hexaleg.study.robot_designs`), the 3-D view and, with
+requirements, the decision over its segments. :data:`SKIPPED` says which sections are
+left out and why; the report prints it in its first section.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from hexaleg.design import l3_ratio_grid
+from hexaleg.exceptions import HexalegError
+from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
+from hexaleg.output.figures import extremes_figure, save, write_study_figures
+from hexaleg.output.figures.canvas import save as save_still
+from hexaleg.output.figures.marks import Mark
+from hexaleg.output.figures.stance import stance_figure
+from hexaleg.output.report import design, viewer
+from hexaleg.output.report.document import Figure, Section, table, write_csv
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.requirements import requirement_blocks
+from hexaleg.output.viewer.scene import write_static_html
+from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.constraints import TRANSLATIONS
+from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.study.decide import DecideResult, decide
+from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.executors import local_pool
+from hexaleg.study.metrics import METRICS
+from hexaleg.study.robot_designs import RobotDesigns
+from hexaleg.study.rows import StudyRow
+from hexaleg.study.sweep import StudySpec, peak_table, study_table, sweep, write_journal
+from hexaleg.study.sweep import write_table as write_study_table
+
+SKIPPED = (
+    ("Workspace (Fig 8, Table 5) and manipulability (Fig 9–11, Table 6)",
+     "they are the paper's leg in closed form on the segment lengths alone, and its "
+     "reproduction tables are of the paper's leg; `workspace --urdf` and `manipulability "
+     "--urdf` measure each of your robot's own legs"),
+    ("Free-coupled flexibility and its statics",
+     "not yet run on an imported robot (`flexibility --urdf` is axis-locked)"),
+    ("Posture and body sensitivity",
+     "it varies hexaleg's template body and mounts, not your robot's file"),
+    ("Recommendation, Pareto front and the decision's costs",
+     "they rank the paper's ratio grid with the template's manipulability map; with "
+     "requirements, the decision over your robot's segments is shown instead"),
+    ("Walking comparison with the paper's leg", "there is no paper's leg on your robot's body"),
+)  # fmt: skip
+"""The template report's sections not run on an imported robot, and why."""
+
+METRIC_NAMES = (
+    "fb", "payload_capacity", "walking_payload_capacity", "max_speed", "stability_margin",
+    "max_slope", "ground_clearance", "robot_mass", "nominal_height", "leg_length",
+)  # fmt: skip
+"""The robot's metrics the first section lists (as read, under the report's gait)."""
+
+
+def robot_of(data: ReportData) -> RobotDesigns:
+    """The imported robot of the report (its options')."""
+    robot = data.options.robot
+    if robot is None:
+        raise HexalegError("an imported robot's report part ran without a robot")
+    return robot
+
+
+# -- the robot as read ----------------------------------------------------------------------
+
+
+def design_section(data: ReportData) -> Section:
+    """The robot's segments and mounts, and where its URDF is."""
+    d = data.design
+    rows = [
+        ("coxa l1, femur l2, tibia l3 [m]", f"{d.l1:.4g}, {d.l2:.4g}, {d.l3:.4g}"),
+        ("leg length L [m]", f"{d.leg_length:.4g}"),
+        (
+            "legs (x, y, yaw)",
+            "; ".join(
+                f"{m.name} ({m.x:.4g}, {m.y:.4g}, {math.degrees(m.yaw):.0f}°)" for m in d.legs
+            ),
+        ),
+    ]
+    return Section(
+        "Design",
+        (
+            "Your robot's segments and leg mounts as read from its file. The URDF analysed "
+            f"(the file's, with hexaleg's body and leg-root frames) is [{design.URDF}]"
+            f"({design.URDF}); the design is in [report.json](report.json).",
+            table(["field", "value"], rows),
+        ),
+    )
+
+
+DESIGN = Part(design.DesignRecord, design.compute, design_section, step="URDF",
+              files=design.write_files, level=0)  # fmt: skip
+
+
+@dataclass(frozen=True)
+class RobotRecord:
+    """The imported robot as read, measured once for every metric the report lists.
+
+    Attributes:
+        source: The robot file.
+        evaluation: Its metrics under the report's gait (no payload, level ground).
+
+    """
+
+    source: str
+    evaluation: Evaluation
+
+
+def compute_robot(data: ReportData) -> RobotRecord:
+    """The robot's metrics as one evaluation of it measures them."""
+    conditions = Conditions(gait=data.options.gait)
+    found = evaluate(data.design, METRIC_NAMES, conditions, model=data.model)
+    if found.error:
+        raise HexalegError(f"{robot_of(data).file.path}: {found.error}")
+    return RobotRecord(robot_of(data).file.path, found)
+
+
+def robot_section(data: ReportData) -> Section:
+    """The robot, its metrics, and the template's sections left out."""
+    record = data[RobotRecord]
+    rows = []
+    for name in METRIC_NAMES:
+        spec, value = METRICS[name], record.evaluation.values[name]
+        cause = record.evaluation.causes.get(name)
+        unit = "" if spec.unit in ("1", "-") else f" {spec.unit}"
+        shown = "—" if math.isnan(value) else f"{value:.4g}{unit}"
+        rows.append((spec.label, shown, "" if cause is None else str(cause)))
+    skipped = [(title, why) for title, why in SKIPPED]
+    return Section(
+        f"Your robot: {record.source}",
+        (
+            "The robot file as read (each leg its own general leg, the file's masses, joint "
+            f"limits and feet), walking {data.options.gait.named} for the walking numbers:",
+            table(["metric", "value", "limited by"], rows),
+            "Sections of hexaleg's report left out for an imported robot, and why:",
+            table(["section", "why it is left out"], skipped),
+        ),
+    )
+
+
+def robot_json(record: RobotRecord) -> dict[str, Any]:
+    """``robot``: the file and its metrics; ``skipped``: the sections left out and why."""
+    evaluation = record.evaluation
+    return {
+        "robot": {
+            "urdf": record.source,
+            "metrics": dict(evaluation.values),
+            "limited_by": {k: str(v) for k, v in evaluation.causes.items()},
+        },
+        "skipped": [{"section": title, "why": why} for title, why in SKIPPED],
+    }
+
+
+ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json)
+
+
+# -- axis-locked flexibility and the statics --------------------------------------------
+
+
+@dataclass(frozen=True)
+class RobotStanceRecord:
+    """The robot's axis-locked flexibility and its statics there.
+
+    Attributes:
+        flexibility: The twelve axis-locked extremes, all six feet down.
+        loads: The statics at the nominal stance and at each extreme (no payload).
+        walking: The largest payload carried walking the report's gait.
+
+    """
+
+    flexibility: FlexibilityResult
+    loads: LoadsAnalysis
+    walking: WalkingCapacity
+
+
+def compute_stance(data: ReportData) -> RobotStanceRecord:
+    """Axis-locked flexibility on the robot's model, its statics, its walking capacity."""
+    locked = axis_locked_flexibility(data.design, "all", data.model)
+    loads = loads_at_extremes(data.model, locked)
+    walking = walking_payload_capacity(data.model, data.options.gait)
+    return RobotStanceRecord(locked, loads, walking)
+
+
+def _displacement(value: float, axis: str) -> str:
+    if axis in TRANSLATIONS:
+        return f"{value:+.4f} m"
+    return f"{value:+.4f} rad ({math.degrees(value):+.2f}°)"
+
+
+def stance_section(data: ReportData) -> Section:
+    """The twelve extremes, FB, the torques there and the payload capacities."""
+    record = data[RobotStanceRecord]
+    locked, loads = record.flexibility, record.loads
+    nominal = loads.nominal.peak_torques()
+    rated = dict(zip(nominal, data.design.rated_torques, strict=True))
+    torques = [
+        (j, f"{rated[j]:g}", f"{nominal[j]:.3g}", f"{loads.peak_torques[j]:.3g}") for j in nominal
+    ]
+    walking = record.walking
+    walks = f"**{walking.mass:.2f} kg**" if walking.walks else "none (it cannot walk it)"
+    return Section(
+        "Body flexibility and statics (axis-locked, the file's joint limits)",
+        (
+            f"All six feet on their nominal footholds, one body coordinate moving at a time: "
+            f"**FB = {locked.fb:.4f}**. Each extreme stops at the first constraint that breaks:",
+            table(
+                ["direction", "extreme", "stopped by"],
+                [(e.name, _displacement(e.value, e.axis), e.description) for e in locked.extremes],
+            ),
+            Figure("flexibility_extremes", "How far the body moves along and about each axis"),
+            f"The robot weighs {loads.nominal.mass:.3f} kg; stability margin at the nominal "
+            f"stance {loads.nominal.stability_margin:.4f} m. Payload capacity standing: "
+            f"**{loads.capacity.mass:.2f} kg**, limited by {loads.capacity.limited_by}; walking "
+            f"{data.options.gait.named}: {walks}, limited by {walking.limited_by}. Peak |τ| in "
+            "N·m:",
+            table(["joint", "rated", "nominal stance", "over the extremes"], torques),
+        ),
+    )
+
+
+def stance_files(data: ReportData, out: Path) -> None:
+    """The extremes figure and ``extremes.csv``."""
+    locked = data[RobotStanceRecord].flexibility
+    save(extremes_figure(locked), out / "flexibility_extremes.png", svg=data.options.svg)
+    write_csv(
+        out / "extremes.csv",
+        [{"direction": e.name, "value": e.value, "limited_by": e.description}
+         for e in locked.extremes],
+    )  # fmt: skip
+
+
+def stance_json(record: RobotStanceRecord) -> dict[str, Any]:
+    """``flexibility`` (axis-locked), ``loads`` (axis-locked) and the walking capacity."""
+    loads = {k: v for k, v in record.loads.to_dict().items() if k != "design"}
+    return {
+        "flexibility": {"axis": record.flexibility.to_dict()},
+        "loads": {"axis": loads},
+        "walking_payload_capacity": record.walking.to_dict(),
+    }
+
+
+STANCE = Part(
+    RobotStanceRecord,
+    compute_stance,
+    stance_section,
+    step="flexibility and statics",
+    files=stance_files,
+    json=stance_json,
+    level=2,
+)
+
+
+# -- the study of its segments ------------------------------------------------------------
+
+STUDY_FOLDER = "study"
+
+
+@dataclass(frozen=True)
+class RobotStudyRecord:
+    """The robot's segments at other ratios of its leg length (each row its changed file).
+
+    Attributes:
+        spec: What was swept.
+        table: One row per design.
+        yours: The robot as read, measured as the study measures its rows.
+
+    """
+
+    spec: StudySpec
+    table: pd.DataFrame
+    yours: StudyRow
+
+
+def compute_study(data: ReportData) -> RobotStudyRecord:
+    """The study of the robot's coxa × tibia ratios at its own leg length."""
+    options = data.options
+    spec = StudySpec(
+        options.swept_l1_ratios,
+        tuple(l3_ratio_grid(options.l3_points)),
+        data.design.leg_length,
+        base=data.design,
+        walked=options.gait,
+        robot=robot_of(data),
+    )
+    with local_pool(options.workers) as pool:
+        found = study_table(spec, sweep(spec, pool))
+    return RobotStudyRecord(spec, found, spec.row_of(data.design))
+
+
+def study_section(data: ReportData) -> Section:
+    """The FB peaks of the robot's study."""
+    record = data[RobotStudyRecord]
+    peaks = peak_table(record.table).to_dict(orient="records")
+    failed = int((record.table["error"] != "").sum())
+    return Section(
+        "Design study: your robot's segments at other ratios",
+        (
+            f"{len(record.table)} designs ({len(record.spec.l1_ratios)} coxa ratios × "
+            f"{len(record.spec.l3_ratios)} tibia ratios of your robot's leg length "
+            f"{record.spec.total:.4g} m), each your robot's file with every leg's segments "
+            f"changed along their own lines; {failed} could not be measured. Table: "
+            f"[{STUDY_FOLDER}/study.csv]({STUDY_FOLDER}/study.csv).",
+            Figure("flexibility_fb", "FB against tibia ratio for each coxa ratio; yours marked"),
+            table(
+                ["l1 ratio", "FB peak l3 ratio", "peak FB"],
+                [
+                    (f"{p['l1_ratio']:.3f}", f"{p['peak_l3_ratio']:.3f}", f"{p['peak_fb']:.4f}")
+                    for p in peaks
+                ],
+            ),
+        ),
+    )
+
+
+def study_files(data: ReportData, out: Path) -> None:
+    """The study folder (journal and table) and its figures, the robot as read marked."""
+    record = data[RobotStudyRecord]
+    write_journal(out / STUDY_FOLDER, record.spec, record.table)
+    write_study_table(record.spec, record.table, out / STUDY_FOLDER)
+    marks = [Mark("your robot", record.yours.to_dict())]
+    write_study_figures(record.table, out, svg=data.options.svg, marks=marks)
+
+
+def study_json(record: RobotStudyRecord) -> dict[str, Any]:
+    """``study_peaks`` and ``study_yours`` (the robot as read, as a study row)."""
+    return {
+        "study_peaks": peak_table(record.table).to_dict(orient="records"),
+        "study_yours": record.yours.to_dict(),
+    }
+
+
+STUDY = Part(
+    RobotStudyRecord,
+    compute_study,
+    study_section,
+    step="design study",
+    files=study_files,
+    json=study_json,
+    level=2,
+)
+
+
+# -- the 3-D view and the requirements ----------------------------------------------------
+
+
+def viewer_files(data: ReportData, out: Path) -> None:
+    """The static viewer page and its still, as the template report's."""
+    record = data[RobotStanceRecord]
+    save_still(stance_figure(data.model), out / f"{viewer.STILL}.png", svg=data.options.svg)
+    write_static_html(
+        data.model,
+        record.flexibility,
+        out / viewer.PAGE,
+        data[viewer.ViewerRecord].workspace_leg,
+        record.loads,
+    )
+
+
+VIEWER = Part(viewer.ViewerRecord, viewer.compute, viewer.section, step="3-D view",
+              files=viewer_files)  # fmt: skip
+
+
+@dataclass(frozen=True)
+class RobotDecisionRecord:
+    """The best segments for the user's requirements (``None``: none given)."""
+
+    answer: DecideResult | None
+
+
+def compute_decision(data: ReportData) -> RobotDecisionRecord:
+    """Decide over the robot's segments when the user gave requirements."""
+    requirements = data.options.requirements
+    if requirements is None:
+        return RobotDecisionRecord(None)
+    with local_pool(data.options.workers) as pool:
+        answer = decide(
+            data.design, requirements, executor=pool, progress=False, robot=robot_of(data)
+        )
+    return RobotDecisionRecord(answer)
+
+
+def decision_section(data: ReportData) -> Section:
+    """The answer to the requirements, or how to ask."""
+    answer = data[RobotDecisionRecord].answer
+    if answer is None:
+        return Section(
+            "Your requirements",
+            ("None given: `report --urdf FILE --payload KG ...` (or a `[requirements]` table) "
+             "adds the best segments of your robot that meet them.",),
+        )  # fmt: skip
+    return Section("Your requirements", requirement_blocks(answer))
+
+
+def decision_json(record: RobotDecisionRecord) -> dict[str, Any]:
+    """``requirements_decision`` when requirements were given."""
+    return {} if record.answer is None else {"requirements_decision": record.answer.to_dict()}
+
+
+DECISION = Part(RobotDecisionRecord, compute_decision, decision_section, step="decision",
+                json=decision_json, level=0)  # fmt: skip
+
+
+ROBOT_PARTS: tuple[Part[Any], ...] = (
+    DECISION,
+    DESIGN,
+    ROBOT,
+    STANCE,
+    STUDY,
+    VIEWER,
+)
+"""The parts of an imported robot's report, in reading order."""
+
+__all__ = ["ROBOT_PARTS", "SKIPPED"]
