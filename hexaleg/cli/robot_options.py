@@ -32,6 +32,9 @@ ROBOT_COMMANDS = (
     "simulate",
     "urdf",
     "view",
+    "study",
+    "decide",
+    "report",
 )
 """The commands that run on an imported robot."""
 
