@@ -31,7 +31,8 @@ from hexaleg.study.optimize import (
     SearchSettings,
 )
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
-from hexaleg.study.search_space import FREEABLE, GEARS, ROBOT_SPAN, AtBound, FreeVariable
+from hexaleg.study.robot_designs import ROBOT_SPAN
+from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
 DESCRIPTION = (
     "Find the best leg for what the robot must do: of the designs meeting every requirement "

@@ -31,7 +31,8 @@ from hexaleg.output.report.decision import DecisionRecord
 from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
 from hexaleg.output.report.recommendation import RecommendationRecord
-from hexaleg.output.report.robot import RobotDecisionRecord, RobotRecord
+from hexaleg.output.report.robot import RobotRecord
+from hexaleg.output.report.robot_study import RobotDecisionRecord
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "

@@ -28,7 +28,7 @@ import numpy.typing as npt
 from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
-from hexaleg.design import HexapodDesign
+from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
@@ -250,27 +250,22 @@ def decide(
 
     Args:
         design: The user's design: every field not freed, and the design checked.
-        requirements: What the robot must do (none by default; the leg length defaults
-            to ``design``'s).
+        requirements: What the robot must do (none by default; leg length: ``design``'s).
         objective: What to make best (default: maximize FB).
         free_posture: Also free the nominal hip and knee angles.
         free: More free variables (body fields), or other bounds for l1, l2, l3.
-        actuators: A catalog's actuators: each joint type's is chosen among them (a
-            categorical variable each); none, the design's own are kept.
+        actuators: A catalog's actuators to choose each joint type's from (none: its own).
         ratio_ranges: One per actuator, its lowest and highest gear ratio [-] (None: its
-            own ratio only), e.g. a catalog entry's ``gear_ratio_range``: also free each
-            joint type's gear ratio within its chosen entry's range
-            (:meth:`~hexaleg.actuators.Actuator.with_gear_ratio` scales the ratings).
+            own only), e.g. a catalog entry's ``gear_ratio_range``: also free each joint
+            type's within its entry's (:meth:`~hexaleg.actuators.Actuator.with_gear_ratio`).
         settings: Seed and budget of the search.
         executor: Where designs are evaluated; a local process pool if omitted.
         workers: Size of that pool (default: the number of CPUs).
         journal: A file keeping every evaluated design (JSON lines), to resume from.
         resume: Continue ``journal`` instead of refusing to overwrite it.
-        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
-            else a line every few seconds.
-        robot: An imported robot (``design`` its design): every design is its file with
-            every leg's segments changed, searched around its own (its lengths the start
-            and the centre of the bounds, :func:`~.search_space.search_space`).
+        progress: ``False`` shows nothing; else a bar on a terminal, a line every few seconds.
+        robot: An imported robot (``design`` its design): its file with every leg's segments
+            changed, searched around its own (:func:`~.search_space.search_space`).
 
     Raises:
         ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
@@ -280,9 +275,8 @@ def decide(
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective or Objective())
-    space = _space(
-        design, requirements, free_posture, free, actuators, ratio_ranges, settings, robot
-    )
+    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings,
+                   robot)  # fmt: skip
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
@@ -307,7 +301,13 @@ def _space(
     settings: SearchSettings,
     robot: RobotDesigns | None = None,
 ) -> SearchSpace:
-    """What the search varies; a budget of partial generations is refused before any work."""
+    """What the search varies; a budget of partial generations is refused before any work.
+
+    An imported robot's posture, motors and body are its file's: only its segments are free.
+    """
+    if robot is not None and any(v.name not in SEGMENTS for v in free):
+        typed = next(f"{v.name}={v.typed}" for v in free if v.name not in SEGMENTS)
+        raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
         actuators, requirements.range_km is not None, ratio_ranges, robot,

@@ -23,14 +23,19 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
-from hexaleg.design import HexapodDesign
+from hexaleg.design import SEGMENT_RANGE, HexapodDesign
+from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import ImportedRobot, import_robot
 from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.resize import SAME_LENGTH, resize_robot
 
-__all__ = ["RobotDesigns", "RobotFile"]
+__all__ = ["ROBOT_SPAN", "RobotDesigns", "RobotFile"]
+
+ROBOT_SPAN = 0.5
+"""A decision searches an imported robot's segment within this share of its own length
+either side of it [-]: its l1, l2, l3 are the centre of the bounds."""
 
 Lengths = tuple[float, float, float]
 """(l1, l2, l3): coxa, femur and tibia of every leg [m]."""
@@ -123,6 +128,28 @@ class RobotDesigns:
     def fixed_coxa(self) -> bool:
         """Whether the coxa cannot change: it is 0 in the file (the yaw and hip axes meet)."""
         return self.lengths[0] <= SAME_LENGTH
+
+    def segment_bounds(self, floor: float, leg_length: float) -> dict[str, tuple[float, float]]:
+        """Each free segment's search bounds [m]: within :data:`ROBOT_SPAN` of its own.
+
+        At least ``floor`` and at most ``leg_length`` [m]; a coxa of 0 is not free.
+
+        Raises:
+            ParameterError: ``leg_length`` below a segment's lower bound.
+
+        """
+        bounds = {}
+        for name, length in zip(SEGMENTS_FLAG.values(), self.lengths, strict=True):
+            if name == "l1" and self.fixed_coxa:
+                continue
+            lower = max(floor, (1 - ROBOT_SPAN) * length)
+            upper = min((1 + ROBOT_SPAN) * length, leg_length, SEGMENT_RANGE[1])
+            if upper <= lower:
+                raise ParameterError(
+                    "leg_length", leg_length, f"above {lower:.4g} m, where {name} is searched from"
+                )
+            bounds[name] = (lower, upper)
+        return bounds
 
     def point(self, lengths: Lengths | None = None) -> tuple[HexapodDesign, ImportedHexapodModel]:
         """The design and model of the robot with every leg's segments at ``lengths`` [m].

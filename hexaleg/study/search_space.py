@@ -61,10 +61,6 @@ LEG_CAP = "l1 + l2 + l3 at most the leg length"
 STANCE_CAP = "the design's stance limits"
 """Why a segment's and a nominal angle's bounds are what they are, in words."""
 
-ROBOT_SPAN = 0.5
-"""An imported robot's segment is searched within this share of its own length either
-side of it [-] (its l1, l2, l3 the centre of the bounds)."""
-
 AT_BOUND_SHARE = 1e-3
 """A free variable within this share of its range from a bound is at that bound [-]."""
 
@@ -141,9 +137,8 @@ class SearchSpace:
         entries: The actuators a choice variable picks from, in the catalog's order.
         ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
             only), what a gear ratio variable spans; empty without such variables.
-        robot: The imported robot whose designs these are: a point's segments are its
-            file's, changed on every leg (:mod:`~hexaleg.study.robot_designs`); ``None``:
-            hexaleg's template.
+        robot: The imported robot whose file, its segments changed, each point is
+            (:mod:`~hexaleg.study.robot_designs`); ``None``: hexaleg's template.
 
     """
 
@@ -343,23 +338,10 @@ def search_space(
         battery: Free the battery's capacity (a range is required), if the design has one.
         ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
             own only): free each joint type's within its entry's (None: ratios kept).
-        robot: An imported robot: each segment is searched within :data:`ROBOT_SPAN` of
-            its own length (a coxa of 0 stays 0), and ``free`` may only bound segments.
+        robot: An imported robot: its segments around its own (``segment_bounds``).
 
     """
-    floor = segment_floor(leg_length)
-    chosen: dict[str, FreeVariable] = (
-        {name: FreeVariable(name, floor, leg_length) for name in SEGMENTS}
-        if robot is None
-        else _around(robot, floor, leg_length)
-    )
-    if min_coxa is not None:
-        if min_coxa >= leg_length:
-            raise ParameterError(
-                "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
-            )
-        if "l1" in chosen:
-            chosen["l1"] = FreeVariable("l1", max(floor, min_coxa, chosen["l1"].lower), leg_length)
+    chosen = _segments(leg_length, min_coxa, robot)
     limits = base.stance_limits
     if free_posture:
         chosen["theta2"] = FreeVariable("theta2", *limits.theta2)
@@ -375,14 +357,6 @@ def search_space(
                 "--free", f"{variable.name}={variable.typed}", f"{variable.name} is given twice"
             )
         given.add(variable.name)
-        if robot is not None and variable.name not in chosen:
-            raise ParameterError(
-                "--free",
-                f"{variable.name}={variable.typed}",
-                "with --urdf, one of "
-                + ", ".join(chosen)
-                + " (the robot file's segments; the rest is its file's)",
-            )
         if variable.name in allowed:
             _check_within(variable, *allowed[variable.name])
         chosen[variable.name] = variable
@@ -395,23 +369,19 @@ def search_space(
     return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans, robot)
 
 
-def _around(robot: RobotDesigns, floor: float, leg_length: float) -> dict[str, FreeVariable]:
-    """An imported robot's segments, each within :data:`ROBOT_SPAN` of its own length [m].
-
-    A coxa of 0 (the yaw and hip axes meet) cannot be stretched: it is not free.
-    """
-    chosen = {}
-    for name, length in zip(SEGMENTS, robot.lengths, strict=True):
-        if name == "l1" and robot.fixed_coxa:
-            continue
-        lower = max(floor, (1 - ROBOT_SPAN) * length)
-        upper = min((1 + ROBOT_SPAN) * length, leg_length, SEGMENT_RANGE[1])
-        if upper <= lower:
-            raise ParameterError(
-                "leg_length", leg_length, f"above {lower:.4g} m, where {name} is searched from"
-            )
-        chosen[name] = FreeVariable(name, lower, upper)
-    return chosen
+def _segments(
+    leg_length: float, min_coxa: float | None, robot: RobotDesigns | None
+) -> dict[str, FreeVariable]:
+    """The segments' default bounds: the template's, or around an imported robot's own."""
+    floor = segment_floor(leg_length)
+    own = dict.fromkeys(SEGMENTS, (floor, leg_length))
+    if robot is not None:
+        own = robot.segment_bounds(floor, leg_length)
+    if min_coxa is not None and min_coxa >= leg_length:
+        raise ParameterError("min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)")
+    if min_coxa is not None and "l1" in own:
+        own["l1"] = (max(min_coxa, own["l1"][0]), leg_length)
+    return {name: FreeVariable(name, *bounds) for name, bounds in own.items()}
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:

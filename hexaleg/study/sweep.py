@@ -33,13 +33,13 @@ from hexaleg.design import (
     SEGMENT_RANGE,
     SEGMENTS,
     HexapodDesign,
-    ratio_lengths,
     require_in_range,
     require_ratio,
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
+from hexaleg.grids import ratio_lengths
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
