@@ -6,10 +6,10 @@ lengths alone, its reproduction tables, the free-coupled flexibility, the templa
 sensitivity, the recommendation on the paper's ratio grid. On an imported robot
 (``report --urdf FILE``) the report runs what holds for the robot's own file
 (:data:`~hexaleg.output.report.registry.ROBOT_PARTS`): its metrics as read, the
-axis-locked flexibility, the statics and walking payload, the study of its segments at other ratios (each row its file with
-the segments changed, :mod:`~hexaleg.output.report.robot_study`), the 3-D view and,
-with requirements, the decision over its segments. :data:`SKIPPED` says which sections are
-left out and why; the report prints it in its first section.
+axis-locked flexibility, the statics and walking payload, the study of its segments at
+other ratios and, with requirements, the decision over them
+(:mod:`~hexaleg.output.report.robot_study`), the 3-D view. :data:`SKIPPED` says which
+sections are left out and why; the report prints it in its first section.
 """
 
 from __future__ import annotations
