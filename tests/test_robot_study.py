@@ -205,3 +205,18 @@ def test_refusals_are_one_line_and_write_nothing(tmp_path, capsys, argv, expecte
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and expected in err, err
     assert not out.exists()
+
+
+def test_decide_measures_segments_the_template_design_would_refuse(capsys):
+    # tibias at most the robot's body height: hexaleg's template design refuses them (its
+    # body would not clear the feet), the robot's own model stands on them
+    argv = ["decide", "--urdf", KRABY, "--free", "l3=0.03:0.044", "--evaluations", "60",
+            "--workers", "2", "--json"]  # fmt: skip
+    answer = _json(capsys, argv)
+    best = answer["best"]["design"]
+    lengths = (best["l1"], best["l2"], best["l3"])
+    assert answer["feasible"] and 0.03 <= lengths[2] <= 0.044
+    with pytest.raises(Exception, match="feet must stand below"):
+        HexapodDesign(l1=lengths[0], l2=lengths[1], l3=0.9 * lengths[2], body_height=0.088)
+    flex = _json(capsys, ["flexibility", "--urdf", KRABY, *_lengths(lengths), "--json"])
+    assert answer["best"]["objective"]["value"] == pytest.approx(flex["fb"], rel=1e-9)

@@ -40,7 +40,7 @@ from hexaleg.study.conflict import Conflict, find_conflict
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
 from hexaleg.study.goal import Goal, Objective
-from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
+from hexaleg.study.optimize import SearchOutcome, SearchSettings, design_at, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
@@ -281,7 +281,7 @@ def decide(
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
-    best = CheckedDesign.of(space.design(outcome.x), goal, robot)
+    best = CheckedDesign.of(design_at(space, outcome.x), goal, robot)
     return DecideResult(
         requirements=requirements, objective=goal.objective, variables=space.variables,
         best=best, yours=CheckedDesign.of(design, goal, robot), feasible=best.meets_all,

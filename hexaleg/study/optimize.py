@@ -49,11 +49,11 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.goal import Goal
 from hexaleg.study.progress import Progress
-from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
 from hexaleg.study.sweep import base_model
@@ -176,6 +176,8 @@ def _template(base: HexapodDesign) -> StanceGeometry:
 def evaluate_points(task: _Task) -> list[Evaluation]:
     """The evaluation of each point of a task (runs in a worker)."""
     space, goal = task.space, task.goal
+    if space.robot is not None:  # no template design: the robot's file at the point's segments
+        return [robot_evaluation(space, goal, x) for x in task.points]
     designs: dict[int, HexapodDesign] = {}
     out: dict[int, Evaluation] = {}
     for k, x in enumerate(task.points):
@@ -183,9 +185,7 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
             designs[k] = space.design(x)
         except HexalegError as err:
             out[k] = Evaluation(error=str(err))
-    if space.robot is not None:
-        out |= {k: robot_evaluation(space.robot, goal, d) for k, d in designs.items()}
-    elif not space.same_body:
+    if not space.same_body:
         out |= {k: goal.evaluate(design) for k, design in designs.items()}
     else:
         base, template = base_model(space.base), _template(space.base)
@@ -194,13 +194,29 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
     return [out[k] for k in range(len(task.points))]
 
 
-def robot_evaluation(robot: RobotDesigns, goal: Goal, design: HexapodDesign) -> Evaluation:
-    """``goal``'s evaluation of the imported robot with every leg's segments at ``design``'s."""
+def robot_evaluation(space: SearchSpace, goal: Goal, x: npt.ArrayLike) -> Evaluation:
+    """``goal``'s evaluation of the imported robot with every leg's segments at point ``x``.
+
+    The point is no template design (whose checks are not the robot's): the robot's file
+    at its segments is.
+    """
     try:
-        point, model = robot.point(design.lengths)
+        point, model = _robot_point(space, x)
     except HexalegError as err:
         return Evaluation(error=str(err))
     return goal.evaluate(point, model)
+
+
+def design_at(space: SearchSpace, x: npt.ArrayLike) -> HexapodDesign:
+    """The design at point ``x``: the space's, or the imported robot's at its segments."""
+    return space.design(x) if space.robot is None else _robot_point(space, x)[0]
+
+
+def _robot_point(space: SearchSpace, x: npt.ArrayLike) -> tuple[HexapodDesign, HexapodModel]:
+    robot = space.robot
+    assert robot is not None
+    values = dict(zip(space.names, np.asarray(x, dtype=float).tolist(), strict=True))
+    return robot.point(robot.lengths_at(values))
 
 
 # -- the search ---------------------------------------------------------------------------

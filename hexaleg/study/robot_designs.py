@@ -129,6 +129,14 @@ class RobotDesigns:
         """Whether the coxa cannot change: it is 0 in the file (the yaw and hip axes meet)."""
         return self.lengths[0] <= SAME_LENGTH
 
+    def lengths_at(self, values: Mapping[str, float]) -> Lengths:
+        """(l1, l2, l3) [m]: the segments ``values`` names (``"l2"``), the robot's own else."""
+        l1, l2, l3 = (
+            float(values.get(name, own))
+            for name, own in zip(SEGMENTS_FLAG.values(), self.lengths, strict=True)
+        )
+        return (l1, l2, l3)
+
     def segment_bounds(self, floor: float, leg_length: float) -> dict[str, tuple[float, float]]:
         """Each free segment's search bounds [m]: within :data:`ROBOT_SPAN` of its own.
 
