@@ -202,7 +202,11 @@ def stance_section(data: ReportData) -> Section:
         (j, f"{rated[j]:g}", f"{nominal[j]:.3g}", f"{loads.peak_torques[j]:.3g}") for j in nominal
     ]
     walking = record.walking
-    walks = f"**{walking.mass:.2f} kg**" if walking.walks else "none (it cannot walk it)"
+    walks = (
+        f"**{walking.mass:.2f} kg**"
+        if walking.walks
+        else "none (it cannot walk it: a design file's `[gait]` table sets one it can)"
+    )
     return Section(
         "Body flexibility and statics (axis-locked, the file's joint limits)",
         (
