@@ -175,9 +175,12 @@ def test_report_numbers_equal_the_single_design_commands(tmp_path, capsys):
     walking = report["walking_payload_capacity"]["mass"]
     assert walking == pytest.approx(single["walking_payload_capacity"], rel=1e-9)
     assert report["study_yours"]["fb"] == pytest.approx(single["fb"], rel=1e-9)
+    for command in ("workspace", "manipulability"):  # each leg's swing phase
+        legs = _json(capsys, [command, "--urdf", KRABY, "--json"])["legs"]
+        assert {name: leg[command] for name, leg in report["legs"].items()} == legs
     text = (out / "report.md").read_text()
     assert f"FB = {single['fb']:.4f}" in text
-    assert "left out for an imported robot" in text and "Table 6" in text
+    assert "left out for an imported robot" in text and "Tables 5 and 6" in text
     rows = pd.read_csv(out / "study" / "study.csv")
     assert len(rows) == 10 and (out / "viewer.html").exists()
 

@@ -47,6 +47,7 @@ ROBOT_PARTS: tuple[Part[Any], ...] = (
     robot_study.DECISION,
     robot.DESIGN,
     robot.ROBOT,
+    robot.SWING,
     robot.STANCE,
     robot_study.STUDY,
     robot.VIEWER,

@@ -34,12 +34,13 @@ from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
 from hexaleg.study.metrics import METRICS
 from hexaleg.study.robot_designs import RobotDesigns
+from hexaleg.swing.manipulability import analyze_manipulability
+from hexaleg.swing.workspace import analyze_workspace
 
 SKIPPED = (
-    ("Workspace (Fig 8, Table 5) and manipulability (Fig 9–11, Table 6)",
-     "they are the paper's leg in closed form on the segment lengths alone, and its "
-     "reproduction tables are of the paper's leg; `workspace --urdf` and `manipulability "
-     "--urdf` measure each of your robot's own legs"),
+    ("The paper's workspace and manipulability sweeps (Fig 8–11) and its Tables 5 and 6",
+     "they reproduce the paper's leg over its segment ratios; your robot's own legs are "
+     "measured in the swing-phase section instead"),
     ("Free-coupled flexibility and its statics",
      "not yet run on an imported robot (`flexibility --urdf` is axis-locked)"),
     ("Posture and body sensitivity",
@@ -157,6 +158,71 @@ def robot_json(record: RobotRecord) -> dict[str, Any]:
 
 
 ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json)
+
+
+# -- the swing phase of each leg -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RobotSwingRecord:
+    """Each leg's workspace and manipulability, by its own general leg.
+
+    Attributes:
+        legs: Per leg (hexaleg's name), ``workspace`` and ``manipulability`` as
+            ``workspace --urdf`` and ``manipulability --urdf`` give them (SI units).
+
+    """
+
+    legs: dict[str, dict[str, Any]]
+
+
+def compute_swing(data: ReportData) -> RobotSwingRecord:
+    """Monte Carlo and planar workspace, optimum pose and w_A of every leg."""
+    design, samples = data.design, data.options.monte_carlo_samples
+    legs = {}
+    for leg in robot_of(data).robot.legs:
+        geometry = leg.reading.geometry
+        legs[leg.name] = {
+            "workspace": analyze_workspace(design, samples, leg=geometry).to_dict(design=False),
+            "manipulability": analyze_manipulability(design, general=geometry).to_dict(
+                design=False
+            ),
+        }
+    return RobotSwingRecord(legs)
+
+
+def swing_section(data: ReportData) -> Section:
+    """One row a leg: planar areas, Monte Carlo reach, optimum w and average w_A."""
+    rows = []
+    for name, leg in data[RobotSwingRecord].legs.items():
+        area, cloud = leg["workspace"]["area"], leg["workspace"]["monte_carlo"]
+        optimum, average = leg["manipulability"]["optimum"], leg["manipulability"]["average"]
+        reach = cloud["upper_bound"][0]  # along the leg-root frame's x, toward the hip
+        cells = (area["rectangular"], area["improved"], reach, optimum["w"], average["improved"])
+        rows.append((name, *(f"{value:.4g}" for value in cells)))
+    return Section(
+        "Swing phase: each leg's workspace and manipulability",
+        (
+            "Each leg by its own general leg (offsets and bends as the file draws them), in "
+            "the paper's joint-limit sets: planar workspace areas (Tables 3 and 4) in m², the "
+            f"farthest Monte Carlo foot point ({data.options.monte_carlo_samples} samples) "
+            "along the leg root's x in m, the optimum w = |det J| and the average w_A on the "
+            "improved domain in m³ (eq 25–27), as `workspace --urdf` and `manipulability "
+            "--urdf` give them:",
+            table(
+                ["leg", "rectangular area", "improved area", "reach x", "optimum w", "w_A"], rows
+            ),
+        ),
+    )
+
+
+def swing_json(record: RobotSwingRecord) -> dict[str, Any]:
+    """``legs``: each leg's ``workspace`` and ``manipulability``."""
+    return {"legs": record.legs}
+
+
+SWING = Part(RobotSwingRecord, compute_swing, swing_section, step="swing phase",
+             json=swing_json, level=2)  # fmt: skip
 
 
 # -- axis-locked flexibility and the statics --------------------------------------------
@@ -279,4 +345,4 @@ VIEWER = Part(viewer.ViewerRecord, viewer.compute, viewer.section, step="3-D vie
               files=viewer_files)  # fmt: skip
 
 
-__all__ = ["DESIGN", "ROBOT", "SKIPPED", "STANCE", "VIEWER"]
+__all__ = ["DESIGN", "ROBOT", "SKIPPED", "STANCE", "SWING", "VIEWER"]
