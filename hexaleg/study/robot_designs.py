@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
 
-from hexaleg.design import SEGMENT_RANGE, HexapodDesign
+from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.feet import FootSearch
@@ -106,7 +106,8 @@ class RobotDesigns:
     Attributes:
         file: The robot file and the segments the user changed (the robot "as given").
         over: The design its numbers go over (joint-limit sets, posture, gait ratings),
-            as every single-design command takes it (:func:`robot_design`).
+            as every single-design command takes it
+            (:func:`~hexaleg.robot.robot_design.robot_design`).
 
     """
 
@@ -132,8 +133,7 @@ class RobotDesigns:
     def lengths_at(self, values: Mapping[str, float]) -> Lengths:
         """(l1, l2, l3) [m]: the segments ``values`` names (``"l2"``), the robot's own else."""
         l1, l2, l3 = (
-            float(values.get(name, own))
-            for name, own in zip(SEGMENTS_FLAG.values(), self.lengths, strict=True)
+            float(values.get(name, own)) for name, own in zip(SEGMENTS, self.lengths, strict=True)
         )
         return (l1, l2, l3)
 
@@ -147,7 +147,7 @@ class RobotDesigns:
 
         """
         bounds = {}
-        for name, length in zip(SEGMENTS_FLAG.values(), self.lengths, strict=True):
+        for name, length in zip(SEGMENTS, self.lengths, strict=True):
             if name == "l1" and self.fixed_coxa:
                 continue
             lower = max(floor, (1 - ROBOT_SPAN) * length)
@@ -198,8 +198,5 @@ def _model(designs: RobotDesigns, lengths: tuple[float, ...] | None) -> Imported
 
 
 def _field(leg: str, segment: str) -> str:
-    return SEGMENTS_FLAG[segment]
-
-
-SEGMENTS_FLAG = dict(zip(SEGMENT_NAMES, ("l1", "l2", "l3"), strict=True))
-"""The design field of each segment: what an error names."""
+    """A changed segment's name in errors: the design field (``l2``), as on every leg."""
+    return SEGMENTS[SEGMENT_NAMES.index(segment)]
