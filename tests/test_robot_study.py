@@ -248,3 +248,41 @@ def test_decide_and_report_read_the_robot_from_an_imported_design_file(tmp_path,
     assert report["flexibility"]["axis"]["fb"] == pytest.approx(
         direct["yours"]["objective"]["value"], rel=1e-9
     )
+
+
+def _walking_grid(min_walking: float, gait, points: int = 4) -> float:
+    """The largest FB on a grid of the bounds among legs carrying ``min_walking`` walking."""
+    from hexaleg.gait.capacity import walking_payload_capacity
+
+    robot = import_robot(KRABY, foot=FootSearch())
+    own = robot.legs[0].reading.geometry.lengths
+    axes = [np.linspace(0.5 * length, 1.5 * length, points) for length in own]
+    best = -math.inf
+    for lengths in itertools.product(*axes):
+        if sum(lengths) > sum(own) + 1e-12:
+            continue
+        changes = {leg: dict(zip(("coxa", "femur", "tibia"), lengths, strict=True))
+                   for leg in robot.leg_names}  # fmt: skip
+        model = ImportedHexapodModel(resize_robot(robot, changes), HexapodDesign())
+        if walking_payload_capacity(model, gait).mass < min_walking:
+            continue
+        best = max(best, flexibility(model.design, "axis", "all", model).fb)
+    return best
+
+
+def test_decide_with_a_walking_payload_meets_it_and_beats_a_grid(tmp_path, capsys):
+    from hexaleg.gait.spec import Gait
+
+    gait_file = _gait_file(tmp_path)
+    required = float(np.random.default_rng(3).uniform(2.0, 3.0))
+    argv = ["decide", "--urdf", KRABY, "--design", gait_file, "--walking-payload",
+            repr(required), "--evaluations", "150", "--workers", "2", "--json"]  # fmt: skip
+    answer = _json(capsys, argv)
+    best = answer["best"]["design"]
+    lengths = (best["l1"], best["l2"], best["l3"])
+    single = _single(capsys, lengths, gait_file)
+    assert answer["feasible"] and single["walking_payload_capacity"] >= required
+    assert answer["best"]["objective"]["value"] == pytest.approx(single["fb"], rel=1e-9)
+    gait = Gait(stride=0.03, step_height=0.02, period=0.8, samples=60)  # the file's [gait]
+    grid = _walking_grid(required, gait)
+    assert grid > -math.inf and single["fb"] >= grid * (1 - 1e-9), (single["fb"], grid)
