@@ -77,6 +77,10 @@ def study_section(data: ReportData) -> Section:
             f"{record.spec.total:.4g} m), each your robot's file with every leg's segments "
             f"changed along their own lines; {failed} could not be measured. Table: "
             f"[{STUDY_FOLDER}/study.csv]({STUDY_FOLDER}/study.csv).",
+            Figure(
+                "flexibility_ranges",
+                "The six ranges of the body pose against tibia ratio, for the smallest coxa ratio",
+            ),
             Figure("flexibility_fb", "FB against tibia ratio for each coxa ratio; yours marked"),
             table(
                 ["l1 ratio", "FB peak l3 ratio", "peak FB"],
