@@ -286,3 +286,20 @@ def test_decide_with_a_walking_payload_meets_it_and_beats_a_grid(tmp_path, capsy
     gait = Gait(stride=0.03, step_height=0.02, period=0.8, samples=60)  # the file's [gait]
     grid = _walking_grid(required, gait)
     assert grid > -math.inf and single["fb"] >= grid * (1 - 1e-9), (single["fb"], grid)
+
+
+def test_a_study_carries_the_robot_file_s_reading_options_to_its_workers(tmp_path, capsys):
+    # a Xacro file without feet: the foot offset must reach every worker that reads it again
+    ochs = str(Path(KRABY).parents[1] / "phantomx_kevinochs" / "urdf" / "phantomX_model.xacro")
+    foot = ["--foot-offset", "0", "0.133", "0"]
+    out = tmp_path / "study"
+    argv = ["study", "--urdf", ochs, *foot, "--l1-ratios", "0.15", "--l3-points", "3",
+            "--workers", "2", "-o", str(out)]  # fmt: skip
+    assert run_cli(argv) == 0, capsys.readouterr().err
+    table = pd.read_csv(out / "study.csv", keep_default_na=False, na_values=[""])
+    measured = table[table["error"].isna()]
+    assert len(measured) >= 2
+    for row in measured.to_dict(orient="records"):
+        lengths = _lengths((row["l1"], row["l2"], row["l3"]))
+        flex = _json(capsys, ["flexibility", "--urdf", ochs, *foot, *lengths, "--json"])
+        assert row["fb"] == pytest.approx(flex["fb"], rel=1e-9)
