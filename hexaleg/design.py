@@ -27,7 +27,13 @@ from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
-from hexaleg.grids import L3_RATIO_POINTS, L3_RATIO_RANGE, MAX_L3_POINTS, l3_ratio_grid  # noqa: F401
+from hexaleg.grids import (  # noqa: F401
+    L3_RATIO_POINTS,
+    L3_RATIO_RANGE,
+    MAX_L3_POINTS,
+    l3_ratio_grid,
+    ratio_lengths,
+)
 from hexaleg.kinematics import foot_position
 from hexaleg.layouts import (
     LEG_NAMES,
@@ -219,16 +225,8 @@ class HexapodDesign:
 
         """
         total = require_in_range("total", total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
-        l1_ratio = require_ratio("l1_ratio", l1_ratio)
-        l3_ratio = require_ratio("l3_ratio", l3_ratio)
-        if not l1_ratio + l3_ratio < 1.0:
-            raise ParameterError(
-                "l1_ratio + l3_ratio",
-                l1_ratio + l3_ratio,
-                "must be < 1 so that the femur ratio 1 - l1_ratio - l3_ratio is positive",
-            )
-        l1, l3 = l1_ratio * total, l3_ratio * total
-        return cls(l1=l1, l2=total - l1 - l3, l3=l3, **fields)
+        l1, l2, l3 = ratio_lengths(l1_ratio, l3_ratio, total)
+        return cls(l1=l1, l2=l2, l3=l3, **fields)
 
     def with_ratios(
         self, l1_ratio: float, l3_ratio: float, total: float | None = None

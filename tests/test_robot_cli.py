@@ -98,8 +98,7 @@ def test_design_import_round_trip(tmp_path, capsys):
         (["flexibility", "--urdf", KRABY, "--l2", "0"], "--l2 = 0 is not valid"),
         (["loads", "--urdf", KRABY, "--l2", "-1"], "--l2 = -1 is not valid"),
         (["loads", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
-        (["decide", "--urdf", KRABY], "--urdf does not run on this command yet"),
-        (["report", "--urdf", KRABY], "--urdf does not run on this command yet"),
+        (["actuators", "--urdf", KRABY], "--urdf does not run on this command yet"),
         (["design", "init", "x.toml", "--urdf", KRABY], "--urdf does not run"),
         (["workspace", "--foot-offset", "0", "0", "0"], "--foot-offset only applies together"),
         (
@@ -130,7 +129,7 @@ def test_imported_design_file_is_refused_by_other_commands(tmp_path, capsys):
     assert via_file == _json(capsys, ["flexibility", "--urdf", KRABY, "--json"]) | {
         "robot": via_file["robot"]
     }
-    assert run_cli(["decide", "--design", str(target)]) == 2
+    assert run_cli(["design", "init", str(tmp_path / "new.toml"), "--design", str(target)]) == 2
     assert "describes an imported robot" in capsys.readouterr().err
     # a failed import writes nothing
     bad = tmp_path / "ochs.toml"

@@ -17,6 +17,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
+from hexaleg.cli.robot_options import add_robot_options, robot_designs
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
@@ -30,6 +31,7 @@ from hexaleg.study.optimize import (
     SearchSettings,
 )
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
+from hexaleg.study.robot_designs import ROBOT_SPAN
 from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
 DESCRIPTION = (
@@ -42,8 +44,12 @@ DESCRIPTION = (
     "before it is printed, with each requirement's value, margin, whether it binds and what "
     "limits it, and every joint over its rating standing with the payload and walking; the "
     "--design is checked the same way. If nothing meets them all, it names the requirements "
-    "that conflict and the nearest value of each that the others allow."
+    "that conflict and the nearest value of each that the others allow. With --urdf, your "
+    "robot: its file with every leg's segments changed, each searched within "
+    f"{ROBOT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
 )
+
+ROBOT_OPTIONS = True
 
 
 SHOWN_OVER_RATING = 4
@@ -108,11 +114,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     search.add_argument("--resume", action="store_true", help="continue the --journal FILE")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
     design, in_file = inputs_from_args(args)
+    robot = robot_designs(args, design)
+    if robot is not None:
+        refuse_for_robot(args)
+        design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
@@ -140,12 +151,23 @@ def run(args: argparse.Namespace) -> int:
             executor=pool,
             journal=args.journal,
             resume=args.resume,
+            robot=robot,
         )
     if args.json:
         print_json(result.to_dict())
     else:
         print(render(result))
     return 0
+
+
+def refuse_for_robot(args: argparse.Namespace) -> None:
+    """Refuse, with ``--urdf``, what would change more of the robot than its segments."""
+    for flag in ("free_posture", "choose_actuators", "free_gear_ratio"):
+        if getattr(args, flag, False):
+            raise UsageError(
+                f"--{flag.replace('_', '-')} with --urdf: an imported robot's posture, motors "
+                "and masses are its file's; decide searches its segments"
+            )
 
 
 def _catalog_actuators(
@@ -169,7 +191,8 @@ def render(result: DecideResult) -> str:
     """The answer as text: the best design, yours, and the conflict if any."""
     free = ", ".join(f"{v.name} {v.lower:.4g}..{v.upper:.4g}" for v in result.variables)
     lines = [
-        f"Decision: {result.objective.sense} {result.objective.spec.label} over {free}",
+        f"Decision: {result.objective.sense} {result.objective.spec.label} over {free}"
+        + ("" if result.robot is None else f" of {result.robot}'s legs"),
         f"  search: {result.evaluations} designs, {result.method}, seed {result.seed}",
     ]
     if result.walks:

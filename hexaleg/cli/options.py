@@ -234,10 +234,22 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         return design, requirements
     if args.total is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
-    for name in SEGMENTS:
-        if getattr(args, name, None) is not None:
-            changes[name] = getattr(args, name)
+    if not _imported(args, path):  # a robot's --l1 --l2 --l3 change its file (robot_from_args)
+        for name in SEGMENTS:
+            if getattr(args, name, None) is not None:
+                changes[name] = getattr(args, name)
     return (base.replace(**changes) if changes else base), requirements
+
+
+def _imported(args: argparse.Namespace, path: str | None) -> bool:
+    """Whether the command analyses an imported robot (``--urdf``, or a ``[robot]`` file)."""
+    if not getattr(args, "robot_options", False):
+        return False
+    if getattr(args, "urdf", None) is not None:
+        return True
+    from hexaleg.cli.robot_table import load_robot_table
+
+    return path is not None and load_robot_table(path) is not None
 
 
 def _value(given: Any) -> Any:

@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 
 from hexaleg.cli.options import (
+    UsageError,
     add_collisions_option,
     add_design_options,
     add_field_sweep_option,
@@ -17,11 +18,21 @@ from hexaleg.cli.options import (
     inputs_from_args,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.output.report import REPORT_HTML, REPORT_MD, REPORT_PDF, ReportOptions, build_report
+from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.output.report import (
+    REPORT_HTML,
+    REPORT_MD,
+    REPORT_PDF,
+    ReportData,
+    ReportOptions,
+    build_report,
+)
 from hexaleg.output.report.decision import DecisionRecord
 from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
 from hexaleg.output.report.recommendation import RecommendationRecord
+from hexaleg.output.report.robot import RobotRecord
+from hexaleg.output.report.robot_study import RobotDecisionRecord
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -29,8 +40,12 @@ DESCRIPTION = (
     "write DIR/report.md, DIR/report.html (and DIR/report.pdf with --pdf), the figures (PNG "
     "and SVG), tables and raw data "
     "(CSV/JSON), the URDF and a static 3-D viewer. The folder is replaced only when the "
-    "new report is complete."
+    "new report is complete. With --urdf, your robot: the sections that hold for its own "
+    "file (its metrics, axis-locked flexibility, statics, a study of its segments, the 3-D "
+    "view, the decision over its segments); the report says which it leaves out and why."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -64,12 +79,17 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="also walk the design's gait ([gait], else the default) in MuJoCo: the "
         '"Simulated walk" section (needs the [sim] extra: MuJoCo)',
     )
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
     design, in_file = inputs_from_args(args)  # a bad design is refused before any note
     sweep = field_sweep_from_args(args)
+    robot = robot_designs(args, design)
+    if robot is not None:
+        _refuse_for_robot(args, sweep is not None)
+        design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,
@@ -82,9 +102,12 @@ def run(args: argparse.Namespace) -> int:
         requirements=requirements if requirements.given else None,
         simulate=args.simulate,
         gait=requirements.walked,
+        robot=robot,
     )
     data = build_report(args.output, design, options)
     out = Path(args.output)
+    if robot is not None:
+        return _print_robot(data, out, args.pdf)
     rec = data[RecommendationRecord].recommendation
     written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if args.pdf else [])
     print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
@@ -96,6 +119,38 @@ def run(args: argparse.Namespace) -> int:
     answer = data[DecisionRecord].requirements
     if answer is not None:
         lengths = ", ".join(f"{length:.3f}" for length in answer.best.design.lengths)
+        verdict = "meets" if answer.feasible else "comes closest to meeting"
+        print(f"l = ({lengths}) m {verdict} your requirements")
+    return 0
+
+
+def _refuse_for_robot(args: argparse.Namespace, swept: bool) -> None:
+    """Refuse, with ``--urdf``, the options of sections an imported robot's report leaves out."""
+    given = [
+        flag
+        for flag, on in (
+            ("--collisions", args.collisions),
+            ("--simulate", args.simulate),
+            ("--sweep", swept),
+            ("--sensitivity-points", args.sensitivity_points != ReportOptions.sensitivity_points),
+        )
+        if on
+    ]
+    if given:
+        raise UsageError(
+            f"{given[0]} with --urdf: that section of the report is not run on an imported robot"
+        )
+
+
+def _print_robot(data: ReportData, out: Path, pdf: bool) -> int:
+    """Where the imported robot's report is, its FB, and the answer to any requirements."""
+    written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if pdf else [])
+    print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
+    record = data[RobotRecord]
+    print(f"{record.source}: FB = {record.evaluation['fb']:.4f}")
+    answer = data[RobotDecisionRecord].answer
+    if answer is not None:
+        lengths = ", ".join(f"{length:.4g}" for length in answer.best.design.lengths)
         verdict = "meets" if answer.feasible else "comes closest to meeting"
         print(f"l = ({lengths}) m {verdict} your requirements")
     return 0

@@ -17,6 +17,7 @@ if TYPE_CHECKING:
     from hexaleg.design import HexapodDesign
     from hexaleg.robot.imported import ImportedRobot
     from hexaleg.robot.imported_model import ImportedHexapodModel
+    from hexaleg.study.robot_designs import RobotDesigns, RobotFile
 
 ROBOT_GROUP = "robot file (your hexapod's URDF or Xacro instead of hexaleg's template)"
 
@@ -31,6 +32,10 @@ ROBOT_COMMANDS = (
     "simulate",
     "urdf",
     "view",
+    "study",
+    "decide",
+    "report",
+    "explore",
 )
 """The commands that run on an imported robot."""
 
@@ -82,9 +87,16 @@ def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
     command line's first) change the robot's segments along their own lines
     (:func:`~hexaleg.robot.resize.resize_robot`).
     """
+    found = _robot_and_file(args)
+    return None if found is None else found[0]
+
+
+def _robot_and_file(args: argparse.Namespace) -> tuple[ImportedRobot, RobotFile] | None:
+    """:func:`robot_from_args`'s robot, and how to read it again in another process."""
     from hexaleg.cli.robot_table import load_robot_table
     from hexaleg.robot.feet import FootSearch
     from hexaleg.robot.imported import import_robot
+    from hexaleg.study.robot_designs import RobotFile
 
     design = getattr(args, "design", None)
     table = load_robot_table(design) if design and args.urdf is None else None
@@ -108,11 +120,32 @@ def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
     robot = import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot)
     if table is not None:
         _check_file_segments(args, robot)
+    file = RobotFile.of(
+        str(settings["urdf"]), settings["xacro_args"], settings["packages"], foot, lengths
+    )
     if not lengths:
-        return robot
+        return robot, file
     from hexaleg.robot.resize import resize_robot
 
-    return resize_robot(robot, lengths, lambda leg, segment: fields[leg, segment])
+    return resize_robot(robot, lengths, lambda leg, segment: fields[leg, segment]), file
+
+
+def robot_designs(args: argparse.Namespace, design: HexapodDesign) -> RobotDesigns | None:
+    """The imported robot's designs (the study's, the decision's, the report's), or ``None``.
+
+    The robot of :func:`robot_from_args` over ``design`` (the options' design, as every
+    single-design command takes it); each design point is that file with its segments
+    changed (:class:`~hexaleg.study.robot_designs.RobotDesigns`).
+    """
+    from hexaleg.study.robot_designs import RobotDesigns
+
+    found = _robot_and_file(args)
+    if found is None:
+        return None
+    refuse_unsupported(args)
+    designs = RobotDesigns(found[1], design)
+    designs.point()  # the robot as given stands over this design, or is refused now
+    return designs
 
 
 def _check_file_segments(args: argparse.Namespace, robot: ImportedRobot) -> None:

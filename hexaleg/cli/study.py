@@ -9,6 +9,7 @@ from pathlib import Path
 
 from hexaleg._io import check_output_folder, write_text
 from hexaleg.cli.options import (
+    UsageError,
     add_collisions_option,
     add_design_options,
     add_field_sweep_option,
@@ -22,10 +23,12 @@ from hexaleg.cli.options import (
     study_total,
 )
 from hexaleg.cli.output import report_files
-from hexaleg.design import l3_ratio_grid
+from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_designs
+from hexaleg.design import HexapodDesign, l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.paper import L1_RATIOS
 from hexaleg.study.executors import dask_executor, local_pool
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import (
     CHUNK,
@@ -42,8 +45,12 @@ DESCRIPTION = (
     f"{CHUNK} axis-locked designs "
     "(one free-coupled design) on a local process pool or a Dask cluster. Rows are "
     "written to DIR/rows.jsonl as each task finishes; --resume "
-    "continues an interrupted study. Writes study.csv, study.json and the figures."
+    "continues an interrupted study. Writes study.csv, study.json and the figures. With "
+    "--urdf, your robot (axis-locked): each row its file with every leg's segments at the "
+    "row's lengths, at its own total leg length unless --total is given."
 )
+
+ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -64,22 +71,27 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_field_sweep_option(
         parser, "also write the sensitivity table (FB peak per value) over one body field"
     )
+    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
     base, in_file = inputs_from_args(args)  # in_file.walked: the file's [gait]
     field_sweep = field_sweep_from_args(args)
+    robot = _robot(args, base, field_sweep is not None)
+    if robot is not None:
+        base = robot.point()[0]
     check_output_folder(args.output)  # the study folder itself is checked as it is claimed
     spec = StudySpec(
         tuple(args.l1_ratios or L1_RATIOS),
         tuple(l3_ratio_grid(args.l3_points)),
-        total=study_total(args, base),
+        total=study_total(args, base) if robot is None else args.total or base.leg_length,
         mode=args.mode,
         stance=args.stance,
         base=base,
         collisions=args.collisions,
         walked=in_file.walked,
+        robot=robot,
     )
     executor: AbstractContextManager[Executor] = (
         local_pool(capped_workers(args.workers))
@@ -102,3 +114,22 @@ def run(args: argparse.Namespace) -> int:
     for peak in peak_table(table).to_dict(orient="records"):
         print(f"  {peak['l1_ratio']:.3f} → {peak['peak_l3_ratio']:.4f}, {peak['peak_fb']:.4f}")
     return 0
+
+
+def _robot(args: argparse.Namespace, base: HexapodDesign, swept: bool) -> RobotDesigns | None:
+    """The imported robot's designs; the options that do not apply to one refused."""
+    robot = robot_designs(args, base)
+    if robot is None:
+        return None
+    refuse_free(args)
+    if args.sensitivity or swept:
+        raise UsageError(
+            "--sensitivity and --sweep with --urdf: they vary hexaleg's template body, "
+            "not your robot's file"
+        )
+    if robot.fixed_coxa:
+        raise UsageError(
+            "--urdf: the robot's coxa is 0 m (its yaw and hip axes meet): a study of coxa "
+            "ratios cannot stretch it; use decide --urdf, which keeps it"
+        )
+    return robot

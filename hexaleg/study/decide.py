@@ -28,7 +28,7 @@ import numpy.typing as npt
 from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
-from hexaleg.design import HexapodDesign
+from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
@@ -40,8 +40,9 @@ from hexaleg.study.conflict import Conflict, find_conflict
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
 from hexaleg.study.goal import Goal, Objective
-from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
+from hexaleg.study.optimize import SearchOutcome, SearchSettings, design_at, run_search
 from hexaleg.study.requirements import RequirementCheck, Requirements
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (
     AtBound,
@@ -74,12 +75,21 @@ class CheckedDesign:
     walking_over_rating: tuple[OverRating, ...] = ()
 
     @classmethod
-    def of(cls, design: HexapodDesign, goal: Goal) -> CheckedDesign:
-        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings."""
+    def of(
+        cls, design: HexapodDesign, goal: Goal, robot: RobotDesigns | None = None
+    ) -> CheckedDesign:
+        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings.
+
+        With ``robot``, ``design``'s segments are the imported robot's, changed on every
+        leg: its file's model at them is measured (and its design reported).
+        """
         requirements = goal.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
         try:
-            model = HexapodModel(design)
+            if robot is None:
+                model: HexapodModel = HexapodModel(design)
+            else:
+                design, model = robot.point(design.lengths)
             locked = flexibility(design, "axis", model=model)
             standing = loads_at_extremes(model, locked, payload).over_rating
         except HexalegError as err:
@@ -141,6 +151,8 @@ class DecideResult:
         method: The search algorithm and its settings.
         evaluations: Designs evaluated by the search (and the conflict's searches).
         seed: The search's seed.
+        robot: The imported robot's file whose segments were searched (``None``: the
+            template's designs).
 
     """
 
@@ -154,6 +166,7 @@ class DecideResult:
     method: str
     evaluations: int
     seed: int
+    robot: str | None = None
 
     @property
     def bounds_binding(self) -> tuple[AtBound, ...]:
@@ -199,6 +212,8 @@ class DecideResult:
             },
             "feasible": self.feasible,
         }
+        if self.robot is not None:
+            out["robot"] = self.robot
         if self.walks:
             out["gait"] = self.requirements.gait.to_dict() | {
                 "payload": self.requirements.payload_mass
@@ -229,29 +244,28 @@ def decide(
     journal: str | os.PathLike[str] | None = None,
     resume: bool = False,
     progress: bool | None = None,
+    robot: RobotDesigns | None = None,
 ) -> DecideResult:
     """The best design meeting ``requirements``, by ``objective``, and ``design`` checked.
 
     Args:
         design: The user's design: every field not freed, and the design checked.
-        requirements: What the robot must do (none by default; the leg length defaults
-            to ``design``'s).
+        requirements: What the robot must do (none by default; leg length: ``design``'s).
         objective: What to make best (default: maximize FB).
         free_posture: Also free the nominal hip and knee angles.
         free: More free variables (body fields), or other bounds for l1, l2, l3.
-        actuators: A catalog's actuators: each joint type's is chosen among them (a
-            categorical variable each); none, the design's own are kept.
+        actuators: A catalog's actuators to choose each joint type's from (none: its own).
         ratio_ranges: One per actuator, its lowest and highest gear ratio [-] (None: its
-            own ratio only), e.g. a catalog entry's ``gear_ratio_range``: also free each
-            joint type's gear ratio within its chosen entry's range
-            (:meth:`~hexaleg.actuators.Actuator.with_gear_ratio` scales the ratings).
+            own only), e.g. a catalog entry's ``gear_ratio_range``: also free each joint
+            type's within its entry's (:meth:`~hexaleg.actuators.Actuator.with_gear_ratio`).
         settings: Seed and budget of the search.
         executor: Where designs are evaluated; a local process pool if omitted.
         workers: Size of that pool (default: the number of CPUs).
         journal: A file keeping every evaluated design (JSON lines), to resume from.
         resume: Continue ``journal`` instead of refusing to overwrite it.
-        progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
-            else a line every few seconds.
+        progress: ``False`` shows nothing; else a bar on a terminal, a line every few seconds.
+        robot: An imported robot (``design`` its design): its file with every leg's segments
+            changed, searched around its own (:func:`~.search_space.search_space`).
 
     Raises:
         ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
@@ -261,17 +275,19 @@ def decide(
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
     goal = Goal(requirements, objective or Objective())
-    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings)
+    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings,
+                   robot)  # fmt: skip
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
-    best = CheckedDesign.of(space.design(outcome.x), goal)
+    best = CheckedDesign.of(design_at(space, outcome.x), goal, robot)
     return DecideResult(
         requirements=requirements, objective=goal.objective, variables=space.variables,
-        best=best, yours=CheckedDesign.of(design, goal), feasible=best.meets_all,
+        best=best, yours=CheckedDesign.of(design, goal, robot), feasible=best.meets_all,
         conflict=conflict, method=outcome.method, seed=settings.seed,
         evaluations=sum(found.evaluations for found in search.done),
+        robot=None if robot is None else robot.file.path,
     )  # fmt: skip
 
 
@@ -283,11 +299,18 @@ def _space(
     actuators: Sequence[Actuator],
     ratio_ranges: Sequence[tuple[float, float] | None] | None,
     settings: SearchSettings,
+    robot: RobotDesigns | None = None,
 ) -> SearchSpace:
-    """What the search varies; a budget of partial generations is refused before any work."""
+    """What the search varies; a budget of partial generations is refused before any work.
+
+    An imported robot's posture, motors and body are its file's: only its segments are free.
+    """
+    if robot is not None and any(v.name not in SEGMENTS for v in free):
+        typed = next(f"{v.name}={v.typed}" for v in free if v.name not in SEGMENTS)
+        raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
         design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators, requirements.range_km is not None, ratio_ranges,
+        actuators, requirements.range_km is not None, ratio_ranges, robot,
     )  # fmt: skip
     settings.generations(len(space.variables))
     return space
@@ -372,4 +395,5 @@ def _fingerprint(
         "ratio_ranges": [None if r is None else [*r] for r in space.ratio_ranges],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
+        **({} if space.robot is None else {"robot": space.robot.fingerprint()}),
     }

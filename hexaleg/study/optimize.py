@@ -49,6 +49,7 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.goal import Goal
@@ -175,6 +176,8 @@ def _template(base: HexapodDesign) -> StanceGeometry:
 def evaluate_points(task: _Task) -> list[Evaluation]:
     """The evaluation of each point of a task (runs in a worker)."""
     space, goal = task.space, task.goal
+    if space.robot is not None:  # no template design: the robot's file at the point's segments
+        return [robot_evaluation(space, goal, x) for x in task.points]
     designs: dict[int, HexapodDesign] = {}
     out: dict[int, Evaluation] = {}
     for k, x in enumerate(task.points):
@@ -189,6 +192,31 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
         found = goal.evaluate_many(list(designs.values()), base, template)
         out |= dict(zip(designs, found, strict=True))
     return [out[k] for k in range(len(task.points))]
+
+
+def robot_evaluation(space: SearchSpace, goal: Goal, x: npt.ArrayLike) -> Evaluation:
+    """``goal``'s evaluation of the imported robot with every leg's segments at point ``x``.
+
+    The point is no template design (whose checks are not the robot's): the robot's file
+    at its segments is.
+    """
+    try:
+        point, model = _robot_point(space, x)
+    except HexalegError as err:
+        return Evaluation(error=str(err))
+    return goal.evaluate(point, model)
+
+
+def design_at(space: SearchSpace, x: npt.ArrayLike) -> HexapodDesign:
+    """The design at point ``x``: the space's, or the imported robot's at its segments."""
+    return space.design(x) if space.robot is None else _robot_point(space, x)[0]
+
+
+def _robot_point(space: SearchSpace, x: npt.ArrayLike) -> tuple[HexapodDesign, HexapodModel]:
+    robot = space.robot
+    assert robot is not None
+    values = dict(zip(space.names, np.asarray(x, dtype=float).tolist(), strict=True))
+    return robot.point(robot.lengths_at(values))
 
 
 # -- the search ---------------------------------------------------------------------------

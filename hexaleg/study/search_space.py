@@ -40,6 +40,7 @@ from hexaleg.study.actuator_variables import (
     gear_coordinate,
     geared_entry,
 )
+from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -136,6 +137,8 @@ class SearchSpace:
         entries: The actuators a choice variable picks from, in the catalog's order.
         ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
             only), what a gear ratio variable spans; empty without such variables.
+        robot: The imported robot whose file, its segments changed, each point is
+            (:mod:`~hexaleg.study.robot_designs`); ``None``: hexaleg's template.
 
     """
 
@@ -143,6 +146,7 @@ class SearchSpace:
     variables: tuple[FreeVariable, ...]
     entries: tuple[Actuator, ...] = ()
     ratio_ranges: tuple[tuple[float, float] | None, ...] = ()
+    robot: RobotDesigns | None = None
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -224,7 +228,7 @@ class SearchSpace:
             else v
             for v in self.variables
         )
-        return SearchSpace(self.base, variables, self.entries, self.ratio_ranges)
+        return dataclasses.replace(self, variables=variables)
 
 
 @dataclass(frozen=True)
@@ -319,6 +323,7 @@ def search_space(
     actuators: Sequence[Actuator] = (),
     battery: bool = False,
     ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
+    robot: RobotDesigns | None = None,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -333,18 +338,10 @@ def search_space(
         battery: Free the battery's capacity (a range is required), if the design has one.
         ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
             own only): free each joint type's within its entry's (None: ratios kept).
+        robot: An imported robot: its segments around its own (``segment_bounds``).
 
     """
-    floor = segment_floor(leg_length)
-    chosen: dict[str, FreeVariable] = {
-        name: FreeVariable(name, floor, leg_length) for name in SEGMENTS
-    }
-    if min_coxa is not None:
-        if min_coxa >= leg_length:
-            raise ParameterError(
-                "min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)"
-            )
-        chosen["l1"] = FreeVariable("l1", max(floor, min_coxa), leg_length)
+    chosen = _segments(leg_length, min_coxa, robot)
     limits = base.stance_limits
     if free_posture:
         chosen["theta2"] = FreeVariable("theta2", *limits.theta2)
@@ -369,7 +366,22 @@ def search_space(
         chosen[BATTERY] = FreeVariable(BATTERY, *CAPACITY_BOUNDS)
     bounds, spans = actuator_bounds(actuators, ratio_ranges)
     chosen |= {name: FreeVariable(name, *bound) for name, bound in bounds.items()}
-    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans)
+    return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans, robot)
+
+
+def _segments(
+    leg_length: float, min_coxa: float | None, robot: RobotDesigns | None
+) -> dict[str, FreeVariable]:
+    """The segments' default bounds: the template's, or around an imported robot's own."""
+    floor = segment_floor(leg_length)
+    own = dict.fromkeys(SEGMENTS, (floor, leg_length))
+    if robot is not None:
+        own = robot.segment_bounds(floor, leg_length)
+    if min_coxa is not None and min_coxa >= leg_length:
+        raise ParameterError("min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)")
+    if min_coxa is not None and "l1" in own:
+        own["l1"] = (max(min_coxa, own["l1"][0]), leg_length)
+    return {name: FreeVariable(name, *bounds) for name, bounds in own.items()}
 
 
 def _check_within(variable: FreeVariable, low: float, high: float, why: str) -> None:

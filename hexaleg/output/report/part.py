@@ -196,7 +196,8 @@ def compute_parts(
     ordered = compute_order(parts)
     with Progress(len(ordered) + 1, unit="steps", show=options.progress) as shown:
         shown.update(0, "model and URDF")
-        data = ReportData(design, options, HexapodModel(design), parts=tuple(parts))
+        model = HexapodModel(design) if options.robot is None else options.robot.point()[1]
+        data = ReportData(design, options, model, parts=tuple(parts))
         for part in ordered:
             shown.update(1, part.step or part.record.__name__)
             data = data.with_record(part.compute(data.only(part.needs)))

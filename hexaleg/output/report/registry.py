@@ -12,6 +12,8 @@ from hexaleg.output.report import (
     motors,
     pareto,
     recommendation,
+    robot,
+    robot_study,
     sensitivity,
     simulation,
     statics,
@@ -41,8 +43,25 @@ PARTS: tuple[Part[Any], ...] = (
 """Every part of the report, in reading order; each is computed after the parts it needs."""
 
 
+ROBOT_PARTS: tuple[Part[Any], ...] = (
+    robot_study.DECISION,
+    robot.DESIGN,
+    robot.ROBOT,
+    robot.SWING,
+    robot.STANCE,
+    robot_study.STUDY,
+    robot.VIEWER,
+)
+"""The parts of an imported robot's report (:mod:`.robot`, :mod:`.robot_study`), in order."""
+
+
 def parts_for(options: ReportOptions) -> tuple[Part[Any], ...]:
-    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``."""
+    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``.
+
+    An imported robot's report has its own parts (:data:`~.robot.ROBOT_PARTS`).
+    """
+    if options.robot is not None:
+        return ROBOT_PARTS
     if not options.simulate:
         return PARTS
     after = PARTS.index(walking.PART) + 1

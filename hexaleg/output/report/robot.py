@@ -1,0 +1,348 @@
+"""Report parts of an imported robot: what the report tells of a user's own hexapod.
+
+The report of hexaleg's template (:data:`~hexaleg.output.report.registry.PARTS`) is built
+around the paper's leg: its closed-form workspace and manipulability on the segment
+lengths alone, its reproduction tables, the free-coupled flexibility, the template body's
+sensitivity, the recommendation on the paper's ratio grid. On an imported robot
+(``report --urdf FILE``) the report runs what holds for the robot's own file
+(:data:`~hexaleg.output.report.registry.ROBOT_PARTS`): its metrics as read, the
+axis-locked flexibility, the statics and walking payload, the study of its segments at
+other ratios and, with requirements, the decision over them
+(:mod:`~hexaleg.output.report.robot_study`), the 3-D view. :data:`SKIPPED` says which
+sections are left out and why; the report prints it in its first section.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+from hexaleg.exceptions import HexalegError
+from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
+from hexaleg.output.figures import extremes_figure, save
+from hexaleg.output.figures.stance import stance_figure
+from hexaleg.output.report import design, viewer
+from hexaleg.output.report.document import Figure, Section, table, write_csv
+from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.viewer.scene import write_static_html
+from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.stance.constraints import TRANSLATIONS
+from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
+from hexaleg.study.metrics import METRICS
+from hexaleg.study.robot_designs import RobotDesigns
+from hexaleg.swing.manipulability import analyze_manipulability
+from hexaleg.swing.workspace import analyze_workspace
+
+SKIPPED = (
+    ("The paper's workspace and manipulability sweeps (Fig 8–11) and its Tables 5 and 6",
+     "they reproduce the paper's leg over its segment ratios; your robot's own legs are "
+     "measured in the swing-phase section instead"),
+    ("Free-coupled flexibility and its statics",
+     "not yet run on an imported robot (`flexibility --urdf` is axis-locked)"),
+    ("Posture and body sensitivity",
+     "it varies hexaleg's template body and mounts, not your robot's file"),
+    ("Recommendation, Pareto front and the decision's costs",
+     "they rank the paper's ratio grid with the template's manipulability map; with "
+     "requirements, the decision over your robot's segments is shown instead"),
+    ("Walking comparison with the paper's leg", "there is no paper's leg on your robot's body"),
+)  # fmt: skip
+"""The template report's sections not run on an imported robot, and why."""
+
+METRIC_NAMES = (
+    "fb", "payload_capacity", "walking_payload_capacity", "max_speed", "stability_margin",
+    "max_slope", "ground_clearance", "robot_mass", "nominal_height", "leg_length",
+)  # fmt: skip
+"""The robot's metrics the first section lists (as read, under the report's gait)."""
+
+
+def robot_of(data: ReportData) -> RobotDesigns:
+    """The imported robot of the report (its options')."""
+    robot = data.options.robot
+    if robot is None:
+        raise HexalegError("an imported robot's report part ran without a robot")
+    return robot
+
+
+# -- the robot as read ----------------------------------------------------------------------
+
+
+def design_section(data: ReportData) -> Section:
+    """The robot's segments and mounts, and where its URDF is."""
+    d = data.design
+    rows = [
+        ("coxa l1, femur l2, tibia l3 [m]", f"{d.l1:.4g}, {d.l2:.4g}, {d.l3:.4g}"),
+        ("leg length L [m]", f"{d.leg_length:.4g}"),
+        (
+            "legs (x, y, yaw)",
+            "; ".join(
+                f"{m.name} ({m.x:.4g}, {m.y:.4g}, {math.degrees(m.yaw):.0f}°)" for m in d.legs
+            ),
+        ),
+    ]
+    return Section(
+        "Design",
+        (
+            "Your robot's segments and leg mounts as read from its file. The URDF analysed "
+            f"(the file's, with hexaleg's body and leg-root frames) is [{design.URDF}]"
+            f"({design.URDF}); the design is in [report.json](report.json).",
+            table(["field", "value"], rows),
+        ),
+    )
+
+
+DESIGN = Part(design.DesignRecord, design.compute, design_section, step="URDF",
+              files=design.write_files, level=0)  # fmt: skip
+
+
+@dataclass(frozen=True)
+class RobotRecord:
+    """The imported robot as read, measured once for every metric the report lists.
+
+    Attributes:
+        source: The robot file.
+        evaluation: Its metrics under the report's gait (no payload, level ground).
+
+    """
+
+    source: str
+    evaluation: Evaluation
+
+
+def compute_robot(data: ReportData) -> RobotRecord:
+    """The robot's metrics as one evaluation of it measures them."""
+    conditions = Conditions(gait=data.options.gait)
+    found = evaluate(data.design, METRIC_NAMES, conditions, model=data.model)
+    if found.error:
+        raise HexalegError(f"{robot_of(data).file.path}: {found.error}")
+    return RobotRecord(robot_of(data).file.path, found)
+
+
+def robot_section(data: ReportData) -> Section:
+    """The robot, its metrics, and the template's sections left out."""
+    record = data[RobotRecord]
+    rows = []
+    for name in METRIC_NAMES:
+        spec, value = METRICS[name], record.evaluation.values[name]
+        cause = record.evaluation.causes.get(name)
+        unit = "" if spec.unit in ("1", "-") else f" {spec.unit}"
+        shown = "—" if math.isnan(value) else f"{value:.4g}{unit}"
+        rows.append((spec.label, shown, "" if cause is None else str(cause)))
+    skipped = [(title, why) for title, why in SKIPPED]
+    return Section(
+        f"Your robot: {record.source}",
+        (
+            "The robot file as read (each leg its own general leg, the file's masses, joint "
+            f"limits and feet), walking {data.options.gait.named} for the walking numbers:",
+            table(["metric", "value", "limited by"], rows),
+            "Sections of hexaleg's report left out for an imported robot, and why:",
+            table(["section", "why it is left out"], skipped),
+        ),
+    )
+
+
+def robot_json(record: RobotRecord) -> dict[str, Any]:
+    """``robot``: the file and its metrics; ``skipped``: the sections left out and why."""
+    evaluation = record.evaluation
+    return {
+        "robot": {
+            "urdf": record.source,
+            "metrics": dict(evaluation.values),
+            "limited_by": {k: str(v) for k, v in evaluation.causes.items()},
+        },
+        "skipped": [{"section": title, "why": why} for title, why in SKIPPED],
+    }
+
+
+ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json)
+
+
+# -- the swing phase of each leg -----------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class RobotSwingRecord:
+    """Each leg's workspace and manipulability, by its own general leg.
+
+    Attributes:
+        legs: Per leg (hexaleg's name), ``workspace`` and ``manipulability`` as
+            ``workspace --urdf`` and ``manipulability --urdf`` give them (SI units).
+
+    """
+
+    legs: dict[str, dict[str, Any]]
+
+
+def compute_swing(data: ReportData) -> RobotSwingRecord:
+    """Monte Carlo and planar workspace, optimum pose and w_A of every leg."""
+    design, samples = data.design, data.options.monte_carlo_samples
+    legs = {}
+    for leg in robot_of(data).robot.legs:
+        geometry = leg.reading.geometry
+        legs[leg.name] = {
+            "workspace": analyze_workspace(design, samples, leg=geometry).to_dict(design=False),
+            "manipulability": analyze_manipulability(design, general=geometry).to_dict(
+                design=False
+            ),
+        }
+    return RobotSwingRecord(legs)
+
+
+def swing_section(data: ReportData) -> Section:
+    """One row a leg: planar areas, Monte Carlo reach, optimum w and average w_A."""
+    rows = []
+    for name, leg in data[RobotSwingRecord].legs.items():
+        area, cloud = leg["workspace"]["area"], leg["workspace"]["monte_carlo"]
+        optimum, average = leg["manipulability"]["optimum"], leg["manipulability"]["average"]
+        reach = cloud["upper_bound"][0]  # along the leg-root frame's x, toward the hip
+        cells = (area["rectangular"], area["improved"], reach, optimum["w"], average["improved"])
+        rows.append((name, *(f"{value:.4g}" for value in cells)))
+    return Section(
+        "Swing phase: each leg's workspace and manipulability",
+        (
+            "Each leg by its own general leg (offsets and bends as the file draws them), in "
+            "the paper's joint-limit sets: planar workspace areas (Tables 3 and 4) in m², the "
+            f"farthest Monte Carlo foot point ({data.options.monte_carlo_samples} samples) "
+            "along the leg root's x in m, the optimum w = |det J| and the average w_A on the "
+            "improved domain in m³ (eq 25–27), as `workspace --urdf` and `manipulability "
+            "--urdf` give them:",
+            table(
+                ["leg", "rectangular area", "improved area", "reach x", "optimum w", "w_A"], rows
+            ),
+        ),
+    )
+
+
+def swing_json(record: RobotSwingRecord) -> dict[str, Any]:
+    """``legs``: each leg's ``workspace`` and ``manipulability``."""
+    return {"legs": record.legs}
+
+
+SWING = Part(RobotSwingRecord, compute_swing, swing_section, step="swing phase",
+             json=swing_json, level=2)  # fmt: skip
+
+
+# -- axis-locked flexibility and the statics --------------------------------------------
+
+
+@dataclass(frozen=True)
+class RobotStanceRecord:
+    """The robot's axis-locked flexibility and its statics there.
+
+    Attributes:
+        flexibility: The twelve axis-locked extremes, all six feet down.
+        loads: The statics at the nominal stance and at each extreme (no payload).
+        walking: The largest payload carried walking the report's gait.
+
+    """
+
+    flexibility: FlexibilityResult
+    loads: LoadsAnalysis
+    walking: WalkingCapacity
+
+
+def compute_stance(data: ReportData) -> RobotStanceRecord:
+    """Axis-locked flexibility on the robot's model, its statics, its walking capacity."""
+    locked = axis_locked_flexibility(data.design, "all", data.model)
+    loads = loads_at_extremes(data.model, locked)
+    walking = walking_payload_capacity(data.model, data.options.gait)
+    return RobotStanceRecord(locked, loads, walking)
+
+
+def _displacement(value: float, axis: str) -> str:
+    if axis in TRANSLATIONS:
+        return f"{value:+.4f} m"
+    return f"{value:+.4f} rad ({math.degrees(value):+.2f}°)"
+
+
+def stance_section(data: ReportData) -> Section:
+    """The twelve extremes, FB, the torques there and the payload capacities."""
+    record = data[RobotStanceRecord]
+    locked, loads = record.flexibility, record.loads
+    nominal = loads.nominal.peak_torques()
+    rated = dict(zip(nominal, data.design.rated_torques, strict=True))
+    torques = [
+        (j, f"{rated[j]:g}", f"{nominal[j]:.3g}", f"{loads.peak_torques[j]:.3g}") for j in nominal
+    ]
+    walking = record.walking
+    walks = (
+        f"**{walking.mass:.2f} kg**"
+        if walking.walks
+        else "none (it cannot walk it: a design file's `[gait]` table sets one it can)"
+    )
+    return Section(
+        "Body flexibility and statics (axis-locked, the file's joint limits)",
+        (
+            f"All six feet on their nominal footholds, one body coordinate moving at a time: "
+            f"**FB = {locked.fb:.4f}**. Each extreme stops at the first constraint that breaks:",
+            table(
+                ["direction", "extreme", "stopped by"],
+                [(e.name, _displacement(e.value, e.axis), e.description) for e in locked.extremes],
+            ),
+            Figure("flexibility_extremes", "How far the body moves along and about each axis"),
+            f"The robot weighs {loads.nominal.mass:.3f} kg; stability margin at the nominal "
+            f"stance {loads.nominal.stability_margin:.4f} m. Payload capacity standing: "
+            f"**{loads.capacity.mass:.2f} kg**, limited by {loads.capacity.limited_by}; walking "
+            f"{data.options.gait.named}: {walks}, limited by {walking.limited_by}. Peak |τ| in "
+            "N·m:",
+            table(["joint", "rated", "nominal stance", "over the extremes"], torques),
+        ),
+    )
+
+
+def stance_files(data: ReportData, out: Path) -> None:
+    """The extremes figure and ``extremes.csv``."""
+    locked = data[RobotStanceRecord].flexibility
+    save(extremes_figure(locked), out / "flexibility_extremes.png", svg=data.options.svg)
+    write_csv(
+        out / "extremes.csv",
+        [{"direction": e.name, "value": e.value, "limited_by": e.description}
+         for e in locked.extremes],
+    )  # fmt: skip
+
+
+def stance_json(record: RobotStanceRecord) -> dict[str, Any]:
+    """``flexibility`` (axis-locked), ``loads`` (axis-locked) and the walking capacity."""
+    loads = {k: v for k, v in record.loads.to_dict().items() if k != "design"}
+    return {
+        "flexibility": {"axis": record.flexibility.to_dict()},
+        "loads": {"axis": loads},
+        "walking_payload_capacity": record.walking.to_dict(),
+    }
+
+
+STANCE = Part(
+    RobotStanceRecord,
+    compute_stance,
+    stance_section,
+    step="flexibility and statics",
+    files=stance_files,
+    json=stance_json,
+    level=2,
+)
+
+
+# -- the 3-D view ------------------------------------------------------------------------
+
+
+def viewer_files(data: ReportData, out: Path) -> None:
+    """The static viewer page and its still, as the template report's."""
+    record = data[RobotStanceRecord]
+    save(stance_figure(data.model), out / f"{viewer.STILL}.png", svg=data.options.svg)
+    write_static_html(
+        data.model,
+        record.flexibility,
+        out / viewer.PAGE,
+        data[viewer.ViewerRecord].workspace_leg,
+        record.loads,
+    )
+
+
+VIEWER = Part(viewer.ViewerRecord, viewer.compute, viewer.section, step="3-D view",
+              files=viewer_files)  # fmt: skip
+
+
+__all__ = ["DESIGN", "ROBOT", "SKIPPED", "STANCE", "SWING", "VIEWER"]
