@@ -20,6 +20,7 @@ import pytest
 from conftest import run_cli
 from robot_files import draw_hexapod
 
+from hexaleg.exceptions import RobotImportWarning
 from hexaleg.leg_frames import gravity_torques
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import import_robot, robot_from_text, urdf_with_feet
@@ -295,10 +296,34 @@ def test_design_show_and_the_design_files_segments(tmp_path, capsys):
     assert run_cli(["urdf", "--design", str(design), "-o", str(target)]) == 0
     capsys.readouterr()
     _assert_changed_as_asked(original, target.read_text(), {"lf": {"tibia": 0.1}}, seeds=(None,))
-    # one design has one leg: the commands that need one say which legs differ
-    assert run_cli(["design", "show", "--design", str(design)]) == 2
-    err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and "differ" in err[0], err
+    # legs that differ: the design's l1 l2 l3 are leg lf's, said in one warning
+    with pytest.warns(RobotImportWarning, match="differ from leg"):
+        shown = _json(capsys, ["design", "show", "--design", str(design), "--json"])
+    tibias = {leg["name"]: leg["tibia"] for leg in shown["design"]["legs"]}
+    assert tibias["lf"] == pytest.approx(0.1, abs=1e-12) and tibias["rf"] != pytest.approx(0.1)
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+def test_legs_changed_apart_stand_as_the_changed_file_does(tmp_path, capsys):
+    """The middle legs' femurs longer: the whole robot's statics take each leg's own.
+
+    Oracle: the changed robot written out by ``hexaleg urdf`` and read again as a plain
+    robot file, whose legs then simply differ.
+    """
+    design = tmp_path / "kraby.toml"
+    assert run_cli(["design", "import", KRABY, "-o", str(design)]) == 0
+    middle = "".join(f"\n[robot.segments.{leg}]\nfemur = 0.075\n" for leg in ("lm", "rm"))
+    design.write_text(design.read_text() + middle)  # the femurs level: the feet stay level
+    written = tmp_path / "middle_legs.urdf"
+    assert run_cli(["urdf", "--design", str(design), "-o", str(written)]) == 0
+    capsys.readouterr()
+    changed = _json(capsys, ["loads", "--design", str(design), "--json"])
+    plain = _json(capsys, ["loads", "--urdf", str(written), "--json"])
+    torques = changed["nominal"]["joint_torques"]
+    for leg, values in plain["nominal"]["joint_torques"].items():
+        assert torques[leg] == pytest.approx(values, rel=1e-9, abs=1e-12), leg
+    uniform = _json(capsys, ["loads", "--urdf", KRABY, "--json"])["nominal"]["joint_torques"]
+    assert torques["lm"] != pytest.approx(uniform["lm"], rel=1e-3)  # the longer femurs count
 
 
 def test_loads_weighs_the_changed_robot(capsys):

@@ -123,9 +123,9 @@ class ImportedHexapodModel(HexapodModel):
             if omitted.
 
     Raises:
-        RobotImportError: The legs differ in their segments (one design has one leg), a
-            or the nominal posture does not put the feet level. A continuous leg joint is
-            analysed as a revolute one over :data:`CONTINUOUS_RANGE` (every angle once).
+        RobotImportError: The nominal posture does not put the feet level. A continuous
+            leg joint is analysed as a revolute one over :data:`CONTINUOUS_RANGE` (every
+            angle once); legs of different segments each by their own general leg.
 
     """
 

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.exceptions import RobotImportWarning
 from hexaleg.layouts import LegMount
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.imported import ImportedLeg, ImportedRobot
@@ -36,19 +36,24 @@ SAME_LENGTH = 1e-9
 def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> HexapodDesign:
     """The design of ``robot``: its segments, mounts, body mass and ratings over ``base``.
 
-    Raises:
-        RobotImportError: The legs' segments differ (a design has one leg for all six).
-
+    Legs whose segments differ (a file drawn so, or per-leg ``[robot.segments]``) are
+    warned about: the design's ``l1 l2 l3`` are then the first leg's, which is what the
+    design-level numbers (workspace area, w_A, leg length) describe, while every analysis
+    of the whole robot takes each leg's own general leg.
     """
     base = HexapodDesign() if base is None else base
     first = robot.legs[0].reading.geometry.lengths
     for leg in robot.legs[1:]:
         lengths = leg.reading.geometry.lengths
         if max(abs(a - b) for a, b in zip(lengths, first, strict=True)) > SAME_LENGTH:
-            raise RobotImportError(
+            warnings.warn(
                 f"leg {leg.name}'s segments {_mm(lengths)} differ from leg "
-                f"{robot.legs[0].name}'s {_mm(first)}; hexaleg's design has one leg for all six"
+                f"{robot.legs[0].name}'s {_mm(first)}: the design's l1 l2 l3 are leg "
+                f"{robot.legs[0].name}'s; the whole robot's analyses take each leg's own",
+                RobotImportWarning,
+                stacklevel=2,
             )
+            break
     mounts = [_mount(leg) for leg in robot.legs]
     plane = sum(m.z for m in mounts) / len(mounts)
     hip = robot.legs[0].reading.geometry.hip_height
