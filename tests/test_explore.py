@@ -348,3 +348,24 @@ def test_the_feet_s_reach_is_where_each_leg_can_put_its_foot_on_the_ground():
         yaw = np.angle(np.exp(1j * (np.arctan2(out[:, 1], out[:, 0]) - heading)))
         assert np.all((yaw >= yaw_low - 1e-9) & (yaw <= yaw_high + 1e-9)), leg
         assert np.min(np.hypot(*(points - foot[:2]).T)) < 0.05  # the nominal foot is in it
+
+
+def test_a_key_given_twice_answers_400_naming_it(explorer):
+    status, got = explorer.get("api/evaluate?l2=0.4&l2=0.5")
+    assert status == 400 and got["field"] == "l2" and "more than once" in got["error"]
+
+
+def test_a_period_that_breaks_a_constraint_colours_no_leg(explorer):
+    status, got = explorer.get("api/evaluate?stride=1.5")  # beyond any foot's reach
+    assert status == 200 and got["walks"] is False
+    assert got["stance"]["utilisation"] == [None] * 6
+
+
+def test_a_page_that_goes_away_mid_answer_is_not_reported(capsys):
+    from hexaleg.explore.server import ExplorerServer
+
+    try:
+        raise ConnectionResetError(104, "Connection reset by peer")
+    except ConnectionResetError:
+        ExplorerServer.handle_error(None, None, None)  # type: ignore[arg-type]
+    assert capsys.readouterr().err == ""

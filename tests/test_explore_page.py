@@ -159,3 +159,49 @@ def test_motors_chosen_on_the_page_and_a_decision_shown_and_stopped():
     assert moved["state"] == "running" and 0 < moved["value"] <= moved["max"], got
     assert moved["text"].startswith(f"{moved['value']:.0f}/{moved['max']:.0f}, ")
     assert got["state"] == "stopped", got  # the button stopped it
+
+
+ONE_MOTOR_AND_A_REFUSED_POSTURE = """
+(async () => {
+  const sleep = (ms) => new Promise(r => setTimeout(r, ms));
+  while (!window.explorer) await sleep(20);
+  await window.explorer.started;
+  const e = window.explorer;
+  const idle = async () => { while (e.inFlight || e.pending) await sleep(20); };
+  const set = async (id, value, kind) => {
+    const input = document.getElementById(id);
+    input.value = value;
+    input.dispatchEvent(new Event(kind, {bubbles: true}));
+    await idle();
+  };
+  await idle();
+  await set('motor_hip', 'hd_cha_25a_100', 'change');  // one motor chosen: the others follow
+  const motors = ['root', 'hip', 'knee'].map(j => document.getElementById('motor_' + j).value);
+  const afterMotor = {status: document.getElementById('status').className, motors: motors,
+                      stale: document.getElementById('results').classList.contains('stale')};
+  await set('theta3', -0.27, 'input');
+  const shown = () => [...document.querySelectorAll('#numbers tr')].map(tr => tr.dataset.value);
+  const fb = shown();
+  await set('theta2', 0.52, 'input');  // the knee above the coupled bound: refused
+  const refused = {status: document.getElementById('status').textContent,
+                   stale: document.getElementById('results').classList.contains('stale'),
+                   fb: shown()};
+  await set('theta2', 0.0, 'input');
+  await set('theta3', -1.5, 'input');
+  return {afterMotor: afterMotor, fb: fb, refused: refused,
+          again: document.getElementById('results').classList.contains('stale')};
+})()
+"""
+
+
+def test_one_motor_fills_the_others_and_a_refused_design_greys_the_numbers():
+    require_chromium()
+    with running() as server:
+        got = evaluate(server.url, ONE_MOTOR_AND_A_REFUSED_POSTURE)
+    after = got["afterMotor"]
+    assert after["motors"] == ["hd_cha_25a_100"] * 3 and after["status"] != "error", got
+    assert not after["stale"]
+    refused = got["refused"]
+    assert refused["stale"] and "last design measured" in refused["status"], got
+    assert refused["fb"] == got["fb"]  # the numbers kept are the last measured design's
+    assert not got["again"]  # a design measured again: no longer grey

@@ -113,7 +113,9 @@ def test_the_feet_s_reach_lies_within_each_leg_s_span(explorer, capsys):
         assert (np.linalg.norm(points - root, axis=1) <= span + 1e-9).all(), leg["name"]
 
 
-@pytest.mark.parametrize("key", ["body_length", "body_width", "actuators.hip"])
+@pytest.mark.parametrize(
+    "key", ["body_length", "body_width", "actuators.hip", "rated_torques", "body_mass", "layout"]
+)
 def test_what_the_file_fixes_answers_400_and_the_server_keeps_serving(explorer, key):
     status, got = explorer.get(f"api/evaluate?{key}=0.5")
     assert status == 400 and key in got["error"] and "imported robot" in got["error"]
@@ -146,8 +148,9 @@ def test_save_writes_a_design_file_that_reads_back_as_the_robot_at_the_slid_leng
     tmp_path, capsys, gait_file
 ):
     saved = tmp_path / "kraby.toml"
+    gait = "stride=0.03&step_height=0.02&speed=0.05"
     with running("--urdf", KRABY, "--save", str(saved)) as server:
-        status, wrote = server.post("api/save?l2=0.07&l3=0.095")
+        status, wrote = server.post("api/save?l2=0.07&l3=0.095&" + gait)
         status_fb, got = server.get("api/evaluate?l2=0.07&l3=0.095")
     assert status == 200 and wrote["wrote"] == str(saved) and status_fb == 200
     assert got["stance"]["utilisation"] == [None] * 6  # the default gait: its feet out of reach
@@ -156,3 +159,6 @@ def test_save_writes_a_design_file_that_reads_back_as_the_robot_at_the_slid_leng
     assert _cli(capsys, "flexibility", "--design", str(saved))["fb"] == pytest.approx(
         got["fb"], rel=RTOL
     )
+    walked = _cli(capsys, "design", "show", "--design", str(saved))["gait"]  # the sliders' gait
+    assert (walked["stride"], walked["step_height"]) == pytest.approx((0.03, 0.02))
+    assert walked["speed"] == pytest.approx(0.05)

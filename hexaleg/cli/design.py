@@ -16,6 +16,7 @@ from hexaleg.cli.robot_options import (
     robot_table,
 )
 from hexaleg.design import HexapodDesign
+from hexaleg.design_text import gait_toml
 from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
@@ -87,40 +88,41 @@ def run(args: argparse.Namespace) -> int:
     if args.action == "init":
         return _init(args.file, design, args.force, requirements.walked)
     robot = robot_from_args(args)
-    if robot is not None:
-        return _show_robot(args, robot, design)
+    out = (
+        {"design": design.as_dict(), "derived": derived(design)}
+        if robot is None
+        else _show_robot(args, robot, design)
+    )
     if args.json:
-        out = {"design": design.as_dict(), "derived": derived(design)}
         if requirements.given:
             out["requirements"] = requirements.to_dict()
         if requirements.walked != Gait():
             out["gait"] = requirements.walked.to_dict()
         print_json(out)
-    else:
+        return 0
+    if robot is None:
         show(design)
-        if requirements.given:
-            show_requirements(requirements)
-        if requirements.walked != Gait():
-            print_table("Gait (the file's [gait] table)", gait_rows(requirements.walked))
+    if requirements.given:
+        show_requirements(requirements)
+    if requirements.walked != Gait():
+        print_table("Gait (the file's [gait] table)", gait_rows(requirements.walked))
     return 0
 
 
-def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> int:
-    """The imported robot's design and what was read, per leg."""
+def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> dict[str, Any]:
+    """The imported robot's design and what was read, per leg: JSON-ready, else printed."""
     from hexaleg.robot.robot_design import robot_design, robot_record
 
     refuse_unsupported(args)
     design = robot_design(robot, design)
     record = robot_record(robot, design.nominal_angles)
+    shown = {
+        "design": {**design.as_dict(), "legs": record["legs"]},
+        "derived": derived(design),
+        "robot": {k: v for k, v in record.items() if k != "legs"},
+    }
     if args.json:
-        print_json(
-            {
-                "design": {**design.as_dict(), "legs": record["legs"]},
-                "derived": derived(design),
-                "robot": {k: v for k, v in record.items() if k != "legs"},
-            }
-        )
-        return 0
+        return shown
     show(design)
     print("  legs read from " + str(record["source"]))
     for change in record["changed_segments"]:
@@ -139,7 +141,7 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
         moved = leg["nominal"]["moved_into_limits"]
         if moved:
             print(f"      nominal {', '.join(moved)} angle moved inside the file's limits")
-    return 0
+    return shown
 
 
 def _import(args: argparse.Namespace) -> int:
@@ -225,21 +227,6 @@ def show(design: HexapodDesign) -> None:
             f"{mount.yaw:8.4f} ({math.degrees(mount.yaw):6.1f}°)  "
             + ", ".join(f"{v:.4f}" for v in foot)
         )
-
-
-def gait_toml(gait: Gait) -> str:
-    """The ``[gait]`` table of ``gait`` (exact: :meth:`Gait.from_table` reads it back)."""
-    keys = ("pattern", "period", "stride", "step_height", "heading", "samples")
-    values = {key: getattr(gait, key) for key in keys}
-    lines = [
-        f"{k} = {v!r}" if not isinstance(v, str) else f'{k} = "{v}"' for k, v in values.items()
-    ]
-    return (
-        "\n".join(
-            ["# The gait every walking command walks by default (s, m, rad).", "[gait]", *lines]
-        )
-        + "\n"
-    )
 
 
 def gait_rows(gait: Gait) -> list[tuple[str, str]]:

@@ -109,12 +109,13 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
     ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
-    peak |τ| over a gait period against its joint's rating [-] (``None`` if it did not walk).
+    peak |τ| over a gait period against its joint's rating [-] (``None`` where the period
+    breaks a constraint: a joint limit, a foot out of reach — it is not walked).
     """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
-    if found.gait is not None:
+    if found.gait is not None and found.gait.feasible:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
         used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)

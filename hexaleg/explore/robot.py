@@ -23,13 +23,15 @@ import tomli_w
 from hexaleg.design import HexapodDesign
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import ParameterError
+from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.imported_model import ImportedHexapodModel
 
 __all__ = ["ExploredRobot"]
 
-FIXED_KEYS = ("body_length", "body_width", "actuators.root", "actuators.hip", "actuators.knee")
-"""What a query may not set on an imported robot: its body and motors are its file's."""
+SLID_KEYS = ("l1", "l2", "l3", "nominal_angles")
+"""The design keys a query sets on an imported robot: its segments and posture. Every other
+design key (its body, mounts, masses, limits, ratings, motors) is its file's."""
 
 CACHED_MODELS = 32
 """Models of recent segment lengths kept (a slider dragged back and forth reuses them)."""
@@ -74,19 +76,19 @@ class ExploredRobot:
             return found
 
     def refuse_fixed(self, params: Mapping[str, str]) -> None:
-        """Refuse a query setting what the robot file fixes (its body, its motors).
+        """Refuse a query setting what the robot file fixes (any design key but :data:`SLID_KEYS`).
 
         Raises:
             ParameterError: Naming the first such key.
 
         """
-        for key in FIXED_KEYS:
-            if key in params:
+        for key in params:
+            if (key in DESIGN_KEYS or key in ACTUATOR_KEYS) and key not in SLID_KEYS:
                 raise ParameterError(
                     key,
                     params[key],
-                    "not for an imported robot: its body and ratings are its file's (the "
-                    "explorer slides its segments, posture, payload and gait)",
+                    "not for an imported robot: its body, masses, limits and ratings are its "
+                    "file's (the explorer slides its segments, posture, payload and gait)",
                 )
 
     def design_text(self, design: HexapodDesign, at: Path | None = None) -> str:

@@ -18,6 +18,7 @@ given (127.0.0.1 unless the user asks; port 0 lets the system pick). Endpoints:
 from __future__ import annotations
 
 import json
+import sys
 from http import HTTPStatus
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 from importlib import resources
@@ -56,6 +57,13 @@ class ExplorerServer(ThreadingHTTPServer):
     def port(self) -> int:
         """The port it listens on (the system's choice for port 0)."""
         return int(self.server_address[1])
+
+    def handle_error(self, request: Any, client_address: Any) -> None:
+        """A page that went away mid-answer is no error; anything else is one line."""
+        error = sys.exc_info()[1]
+        if isinstance(error, ConnectionError):
+            return
+        print(f"hexaleg explore: a request failed: {error!r}", file=sys.stderr)
 
 
 def _family(host: str) -> Any:
@@ -149,5 +157,15 @@ def _stopped(session: Session, kind: str) -> dict[str, Any]:
 
 
 def _params(query: str) -> dict[str, str]:
-    """A query string's keys and values (a key given twice: its last value)."""
-    return dict(parse_qsl(query, keep_blank_values=True))
+    """A query string's keys and values.
+
+    Raises:
+        ParameterError: A key given twice (which value was meant is not known).
+
+    """
+    pairs = parse_qsl(query, keep_blank_values=True)
+    params = dict(pairs)
+    if len(params) < len(pairs):
+        twice = next(key for key in params if sum(k == key for k, _ in pairs) > 1)
+        raise ParameterError(twice, params[twice], "given more than once: give it once")
+    return params

@@ -18,13 +18,14 @@ import tomli_w
 from hexaleg._io import check_output_file, write_text
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
-from hexaleg.design_text import design_toml
+from hexaleg.design_text import design_toml, gait_toml
 from hexaleg.exceptions import HexalegError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs
 from hexaleg.explore.query import Query, parse_query
-from hexaleg.explore.robot import FIXED_KEYS, ExploredRobot
+from hexaleg.explore.robot import SLID_KEYS, ExploredRobot
+from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.study.evaluation import Conditions
 from hexaleg.study.goal import Goal
@@ -122,7 +123,7 @@ class Session:
     def loaded(self) -> dict[str, Any]:
         """What the page starts at and resets to: values, sliders, motors, requirements."""
         values = loaded_values(self.design, self.conditions)
-        shown = [s for s in SLIDERS if self.robot is None or s[0] not in FIXED_KEYS]
+        shown = [s for s in SLIDERS if self.robot is None or s[0] in SLID_KEYS]
         ranges = {
             key: [low * values[key], high * values[key], label] for key, label, low, high in shown
         }
@@ -143,11 +144,15 @@ class Session:
     def design_text(self, params: Mapping[str, str], at: Path | None = None) -> str:
         """The design file (TOML) of the design a query asks for, the requirements kept.
 
-        ``at``: where it is written (an imported robot's file paths relative to it).
+        The sliders' gait is its ``[gait]`` table (none for the default gait); the payload
+        is a condition, not part of a design, so it is not written. ``at``: where the file
+        is written (an imported robot's file paths relative to it).
         """
-        design = self.query(params).design
-        robot = self.robot
+        asked = self.query(params)
+        design, robot, gait = asked.design, self.robot, asked.conditions.gait
         text = design_toml(design) if robot is None else robot.design_text(design, at)
+        if gait != Gait():
+            text += "\n" + gait_toml(gait)
         if self.requirements.given:
             text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
         return text

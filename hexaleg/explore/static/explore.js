@@ -64,7 +64,15 @@ function motorChoice(parent, joint, loaded) {
     select.append(o);
   }
   select.value = motorStart(loaded, joint);
-  select.addEventListener("change", changed);
+  select.addEventListener("change", () => {  // a motor model needs a motor at every joint type
+    if (select.value !== "") {
+      for (const other of ["root", "hip", "knee"]) {
+        const choice = document.getElementById("motor_" + other);
+        if (choice.value === "") choice.value = select.value;
+      }
+    }
+    changed();
+  });
   row.append(joint, select);
   parent.append(row);
 }
@@ -78,6 +86,7 @@ function heading(parent, text) {
   const h = document.createElement("h2");
   h.textContent = text;
   parent.append(h);
+  return h;
 }
 
 function buildControls(loaded) {
@@ -93,16 +102,19 @@ function buildControls(loaded) {
   if (body.length) heading(c, "body [m]");
   for (const key of body) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
   heading(c, "payload");
-  slider(c, "payload", "mass [kg]", 0, Math.max(50, 2 * v.payload), v.payload, "any");
+  const leg = v.l1 + v.l2 + v.l3;  // the ranges scale with the robot: 1 m legs, 50 kg
+  slider(c, "payload", "mass [kg]", 0, Math.max(50 * leg, 2 * v.payload), v.payload, "any");
   slider(c, "payload_x", "at x [m]", -v.body_length / 2, v.body_length / 2, v.payload_at[0], "any");
   slider(c, "payload_y", "at y [m]", -v.body_width / 2, v.body_width / 2, v.payload_at[1], "any");
   heading(c, "gait (tripod)");
-  slider(c, "speed", "speed [m/s]", 0.02, Math.max(1, 2 * v.speed), v.speed, "any");
-  slider(c, "stride", "stride [m]", 0.01, Math.max(0.6, 2 * v.stride), v.stride, "any");
-  slider(c, "step_height", "step height [m]", 0.01, Math.max(0.3, 2 * v.step_height),
+  slider(c, "speed", "speed [m/s]", 0.02 * leg, Math.max(leg, 2 * v.speed), v.speed, "any");
+  slider(c, "stride", "stride [m]", 0.01 * leg, Math.max(0.6 * leg, 2 * v.stride), v.stride,
+         "any");
+  slider(c, "step_height", "step height [m]", 0.01 * leg, Math.max(0.3 * leg, 2 * v.step_height),
          v.step_height, "any");
   if (loaded.robot) {  // an imported robot: its motors are its file's ratings
-    heading(c, "robot: " + loaded.robot + " (body and ratings the file's)");
+    const name = loaded.robot.split("/").pop();
+    heading(c, "robot " + name + ": body, masses and ratings the file's").title = loaded.robot;
     return;
   }
   heading(c, "motors (peak / continuous torque, mass)");
@@ -143,15 +155,20 @@ async function evaluate() {
   try {
     const answer = await fetch("api/evaluate?" + query()).then((r) => r.json().then(
       (body) => ({ok: r.ok, body: body})));
-    if (!answer.ok) {
-      status.textContent = answer.body.error;
+    const results = document.getElementById("results");
+    if (!answer.ok) {  // what is shown is the last design measured, not the sliders'
+      status.textContent = answer.body.error + " (the numbers shown are of the last design measured)";
       status.className = "error";
+      results.classList.add("stale");
+      document.getElementById("pictures").classList.add("stale");
     } else {
+      results.classList.remove("stale");
+      document.getElementById("pictures").classList.remove("stale");
       explorer.answer = answer.body;
       await loadReach();
       draw(answer.body);
-      status.textContent = answer.body.error || ("measured in " +
-        answer.body.evaluate_ms.toFixed(0) + " ms");
+      status.textContent = (answer.body.error ||
+        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms") + gaitHint(answer.body);
       status.className = answer.body.error ? "error" : "";
     }
   } catch (err) {
@@ -209,7 +226,8 @@ function drawRequirements(checks) {
     li.className = c.met ? "met" : "failed";
     li.dataset.name = c.name;
     const got = c.value === null || c.value === undefined ? "" : " — " + Number(c.value).toPrecision(4);
-    li.textContent = (c.met ? "✓ " : "✗ ") + c.text + got;
+    const why = !c.met && c.limited_by ? " (" + (c.limited_by.description || c.limited_by) + ")" : "";
+    li.textContent = (c.met ? "✓ " : "✗ ") + c.text + got + why;
     list.append(li);
   }
 }
@@ -220,6 +238,14 @@ function project(p, view, scale, centre) {
   const x = cy * p[0] - sy * p[1];
   const y = sy * p[0] + cy * p[1];
   return [centre[0] + scale * x, centre[1] - scale * (cp * p[2] - sp * y)];
+}
+
+function gaitHint(answer) {  // a gait too big for the robot: say what to change
+  const walking = answer.limited_by.max_speed || answer.limited_by.walking_payload_capacity;
+  const why = walking ? walking.description || "" : "";
+  return /out of reach|no stride/.test(why)
+    ? " — the gait is too big for this robot: shorten the stride or the step height (sliders, or the design file's [gait])"
+    : "";
 }
 
 function legColour(u) {
@@ -323,7 +349,8 @@ function drawChart() {
   panels.forEach(([key, label], i) => {
     const x0 = 40 + i * canvas.width / 2, w = canvas.width / 2 - 55, y0 = 15, h = canvas.height - 45;
     const values = points.map((p) => p[key]).concat(v ? [v[key]] : []).filter((x) => x !== null);
-    const top = Math.max(1e-9, ...values) * 1.1;
+    const highest = Math.max(0, ...values);
+    const top = highest > 0 ? highest * 1.1 : 1;  // none above zero: a unit axis, not 1e-9
     const xs = (r) => x0 + w * (r - 0.1) / 0.65, ys = (y) => y0 + h - h * y / top;
     ctx.strokeStyle = "#889"; ctx.strokeRect(x0, y0, w, h);
     ctx.fillStyle = "#333";
@@ -349,7 +376,7 @@ async function pollCloud() {
   const caption = document.getElementById("chart-caption");
   if (!cloud.ready) { setTimeout(pollCloud, 1000); return; }
   caption.textContent = "the study's designs (" + cloud.points.length + ", at coxa ratios " +
-    [...new Set(cloud.points.map((p) => p.l1_ratio))].join(", ") +
+    [...new Set(cloud.points.map((p) => Number(p.l1_ratio.toPrecision(3))))].join(", ") +
     "; lighter: longer coxa) and this one (red): tibia ratio l3/L against FB and against " +
     "the walking payload capacity" + (cloud.error ? " — " + cloud.error : "");
 }
@@ -373,7 +400,8 @@ function showJob(box, job) {
   button.textContent = job.state === "running" ? "stop" : box.dataset.label;
   const seconds = job.elapsed.toFixed(0) + " s";
   state.textContent = job.state === "running" ? (job.total ? job.done + "/" + job.total + ", " : "") +
-    seconds : job.state === "done" ? JOB_ANSWERS[job.kind](job.answer) + " (" + seconds + ")"
+    seconds : job.state === "done" ? JOB_ANSWERS[job.kind](job.answer) + " (" + seconds +
+    (box.dataset.lengths ? ", for l = " + box.dataset.lengths + " m" : "") + ")"
     : job.state + (job.error ? ": " + job.error : "");
   if (job.state === "done") { bar.max = 1; bar.value = 1; }
 }
@@ -388,6 +416,10 @@ async function startOrStopJob(box) {
   const kind = box.dataset.kind;
   const running = box.dataset.state === "running";
   const url = running ? "api/job/stop?kind=" + kind : "api/job?kind=" + kind + "&" + query();
+  if (!running) {  // the answer is of the design shown now: say which
+    box.dataset.lengths = ["l1", "l2", "l3"].map(
+      (k) => Number(document.getElementById(k).value).toPrecision(3)).join(", ");
+  }
   const r = await fetch(url, {method: "POST"});
   const job = await r.json();
   if (!r.ok) { box.querySelector(".job-state").textContent = job.error; return; }
