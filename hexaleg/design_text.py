@@ -17,7 +17,6 @@ from hexaleg.battery import BATTERY_FIELDS
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_file import ANGLES, MOUNT_KEYS
 from hexaleg.field_spec import FieldSpec
-from hexaleg.gait.spec import Gait
 from hexaleg.limits import JOINT_NAMES, LEG_JOINTS, JointLimits
 
 
@@ -83,18 +82,3 @@ def _line(key: str, value: Any, comment: str) -> str:
     if key in ANGLES:
         comment += " (" + ", ".join(f"{math.degrees(v):.6g}°" for v in items) + ")"
     return f"{key} = {text}  # {comment}"
-
-
-def gait_toml(gait: Gait) -> str:
-    """The ``[gait]`` table of ``gait`` (exact: :meth:`Gait.from_table` reads it back)."""
-    keys = ("pattern", "period", "stride", "step_height", "heading", "samples")
-    values = {key: getattr(gait, key) for key in keys}
-    lines = [
-        f"{k} = {v!r}" if not isinstance(v, str) else f'{k} = "{v}"' for k, v in values.items()
-    ]
-    return (
-        "\n".join(
-            ["# The gait every walking command walks by default (s, m, rad).", "[gait]", *lines]
-        )
-        + "\n"
-    )

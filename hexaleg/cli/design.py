@@ -16,7 +16,6 @@ from hexaleg.cli.robot_options import (
     robot_table,
 )
 from hexaleg.design import HexapodDesign
-from hexaleg.design_text import gait_toml
 from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
@@ -184,7 +183,7 @@ def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
         raise UsageError(f"design init {path}: the file must end in .toml")
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    walked = "" if gait == Gait() else "\n" + gait_toml(gait)
+    walked = "" if gait == Gait() else "\n" + gait.to_toml()
     report_files([write_text(path, design_toml(design) + walked + "\n" + example_table())])
     return 0
 

@@ -23,7 +23,7 @@ from hexaleg.cli.options import (
     study_total,
 )
 from hexaleg.cli.output import report_files
-from hexaleg.cli.robot_options import add_robot_options, refuse_free, robot_designs
+from hexaleg.cli.robot_options import add_robot_options, robot_designs
 from hexaleg.design import HexapodDesign, l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.paper import L1_RATIOS
@@ -121,7 +121,12 @@ def _robot(args: argparse.Namespace, base: HexapodDesign, swept: bool) -> RobotD
     robot = robot_designs(args, base)
     if robot is None:
         return None
-    refuse_free(args)
+    if args.mode != "axis" or args.collisions:  # a study of a robot file: axis-locked, for now
+        flag = "--mode free" if args.mode != "axis" else "--collisions"
+        raise UsageError(
+            f"{flag} with study --urdf is not supported yet: a robot's study is axis-locked "
+            "(flexibility --urdf takes it for one design)"
+        )
     if args.sensitivity or swept:
         raise UsageError(
             "--sensitivity and --sweep with --urdf: they vary hexaleg's template body, "

@@ -18,7 +18,7 @@ import tomli_w
 from hexaleg._io import check_output_file, write_text
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
-from hexaleg.design_text import design_toml, gait_toml
+from hexaleg.design_text import design_toml
 from hexaleg.exceptions import HexalegError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
@@ -152,7 +152,7 @@ class Session:
         design, robot, gait = asked.design, self.robot, asked.conditions.gait
         text = design_toml(design) if robot is None else robot.design_text(design, at)
         if gait != Gait():
-            text += "\n" + gait_toml(gait)
+            text += "\n" + gait.to_toml()
         if self.requirements.given:
             text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
         return text

@@ -162,6 +162,16 @@ class Gait:
         """Copy with some fields changed (validated again)."""
         return replace(self, **changes)
 
+    def to_toml(self) -> str:
+        """The design file's ``[gait]`` table of this gait (exact: :meth:`from_table` reads it)."""
+        keys = ("pattern", "period", "stride", "step_height", "heading", "samples")
+        lines = [
+            f'{key} = "{value}"' if isinstance(value, str) else f"{key} = {value!r}"
+            for key, value in ((key, getattr(self, key)) for key in keys)
+        ]
+        head = "# The gait every walking command walks by default (s, m, rad)."
+        return "\n".join([head, f"[{TABLE}]", *lines]) + "\n"
+
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form, with the duty factor and speed it implies (s, m, rad, m/s)."""
         return {
