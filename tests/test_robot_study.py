@@ -188,7 +188,7 @@ def test_report_numbers_equal_the_single_design_commands(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["study", "--urdf", KRABY, "--mode", "free"], "--mode free with --urdf"),
+        (["study", "--urdf", KRABY, "--mode", "free"], "--mode free with study --urdf"),
         (["study", "--urdf", KRABY, "--sensitivity"], "--sensitivity and --sweep with --urdf"),
         (["study", "--urdf", KRABY, "--collisions"], "--collisions with --urdf"),
         (["decide", "--urdf", KRABY, "--free-posture"], "--free-posture with --urdf"),

@@ -280,9 +280,10 @@ def _refine(
         value = score(seen[l3_ratio], reference)
         return -value if np.isfinite(value) else np.inf
 
-    result = optimize.minimize_scalar(
-        negative, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5}
-    )
+    with np.errstate(invalid="ignore"):  # a leg that cannot walk scores inf: Brent's steps
+        result = optimize.minimize_scalar(  # then subtract it, and fall back to golden section
+            negative, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5}
+        )
     if np.isfinite(result.fun) and -result.fun > grid_best[0]:
         metrics = seen[float(result.x)]
         return float(result.x), float(-result.fun), {m: float(metrics[m]) for m in RANKED_METRICS}
