@@ -190,7 +190,7 @@ def test_report_numbers_equal_the_single_design_commands(tmp_path, capsys):
     [
         (["study", "--urdf", KRABY, "--mode", "free"], "--mode free with study --urdf"),
         (["study", "--urdf", KRABY, "--sensitivity"], "--sensitivity and --sweep with --urdf"),
-        (["study", "--urdf", KRABY, "--collisions"], "--collisions with --urdf"),
+        (["study", "--urdf", KRABY, "--collisions"], "--collisions with study --urdf"),
         (["decide", "--urdf", KRABY, "--free-posture"], "--free-posture with --urdf"),
         (["decide", "--urdf", KRABY, "--choose-actuators"], "--choose-actuators with --urdf"),
         (["decide", "--urdf", KRABY, "--free", "body_width=0.1:0.2"], "with --urdf, one of"),

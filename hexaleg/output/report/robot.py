@@ -42,7 +42,8 @@ SKIPPED = (
      "they reproduce the paper's leg over its segment ratios; your robot's own legs are "
      "measured in the swing-phase section instead"),
     ("Free-coupled flexibility and its statics",
-     "not yet run on an imported robot (`flexibility --urdf` is axis-locked)"),
+     "not yet in this report of an imported robot: `flexibility --urdf FILE --mode free` "
+     "runs it (with `--collisions`, on the file's collision geometry)"),
     ("Posture and body sensitivity",
      "it varies hexaleg's template body and mounts, not your robot's file"),
     ("Recommendation, Pareto front and the decision's costs",
@@ -258,14 +259,25 @@ def _displacement(value: float, axis: str) -> str:
     return f"{value:+.4f} rad ({math.degrees(value):+.2f}°)"
 
 
+ROUND_OFF = 1e-9
+"""A torque below this share of its joint's rating is round-off of a zero [-]."""
+
+
+def _torque(value: float, rated: float) -> str:
+    """A peak |τ| [N·m] in three digits; round-off of a zero (2e-18 N·m) as 0."""
+    return "0" if abs(value) < ROUND_OFF * rated else f"{value:.3g}"
+
+
 def stance_section(data: ReportData) -> Section:
     """The twelve extremes, FB, the torques there and the payload capacities."""
     record = data[RobotStanceRecord]
     locked, loads = record.flexibility, record.loads
     nominal = loads.nominal.peak_torques()
     rated = dict(zip(nominal, data.design.rated_torques, strict=True))
+    peaks = loads.peak_torques
     torques = [
-        (j, f"{rated[j]:g}", f"{nominal[j]:.3g}", f"{loads.peak_torques[j]:.3g}") for j in nominal
+        (j, f"{rated[j]:g}", _torque(nominal[j], rated[j]), _torque(peaks[j], rated[j]))
+        for j in nominal
     ]
     walking = record.walking
     walks = (
