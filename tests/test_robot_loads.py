@@ -143,3 +143,25 @@ def test_loads_table_on_a_real_robot(capsys):
     out = capsys.readouterr().out
     assert "Statics of" in out and "payload capacity" in out
     assert "peak |τ| hip: nominal / extremes" in out
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+def test_a_design_file_s_own_ratings_override_the_file_s(tmp_path, capsys):
+    """Oracle: the robot file itself with its joints' efforts edited to the same ratings."""
+    design = tmp_path / "kraby.toml"
+    assert run_cli(["design", "import", KRABY, "-o", str(design)]) == 0
+    text = design.read_text()
+    assert "rated_torques = [1.18, 1.18, 1.18]" in text  # what was read: the file's efforts
+    design.write_text(
+        text.replace("rated_torques = [1.18, 1.18, 1.18]", "rated_torques = [2.0, 2.0, 2.0]", 1)
+    )
+    edited = tmp_path / "hexapod.urdf"
+    edited.write_text(Path(KRABY).read_text().replace('effort="1.18"', 'effort="2.0"'))
+    capsys.readouterr()
+    found = _json(capsys, ["loads", "--design", str(design), "--json"])
+    expected = _json(capsys, ["loads", "--urdf", str(edited), "--json"])
+    assert found["design"]["rated_torques"] == [2.0, 2.0, 2.0]
+    assert found["payload_capacity"] == expected["payload_capacity"]
+    assert found["walking_payload_capacity"] == expected["walking_payload_capacity"]
+    plain = _json(capsys, ["loads", "--urdf", KRABY, "--json"])
+    assert plain["payload_capacity"]["mass"] < found["payload_capacity"]["mass"]

@@ -36,6 +36,9 @@ SAME_LENGTH = 1e-9
 def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> HexapodDesign:
     """The design of ``robot``: its segments, mounts, body mass and ratings over ``base``.
 
+    ``base``'s own body mass, rated torques and rated speeds (those other than hexaleg's
+    defaults: a design file's, edited) override the file's (:data:`OVERRIDDEN`).
+
     Legs whose segments differ (a file drawn so, or per-leg ``[robot.segments]``) are
     warned about: the design's ``l1 l2 l3`` are then the first leg's, which is what the
     design-level numbers (workspace area, w_A, leg length) describe, while every analysis
@@ -67,7 +70,10 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
         "body_width": 2 * max(abs(m.y) for m in mounts),
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
     }
-    if robot.body_mass.mass >= MIN_BODY_MASS:
+    given = _given(base)
+    if "body_mass" in given:
+        pass  # the design file's own body mass, over the file's
+    elif robot.body_mass.mass >= MIN_BODY_MASS:
         changes["body_mass"] = robot.body_mass.mass
     else:
         warnings.warn(
@@ -77,11 +83,25 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
             stacklevel=2,
         )
     efforts, speeds = robot.legs[0].ratings
-    if all(e is not None and e > 0 for e in efforts):
+    if "rated_torques" not in given and all(e is not None and e > 0 for e in efforts):
         changes["rated_torques"] = tuple(float(e) for e in efforts if e is not None)
-    if all(v is not None and v > 0 for v in speeds):
+    if "rated_speeds" not in given and all(v is not None and v > 0 for v in speeds):
         changes["rated_speeds"] = tuple(float(v) for v in speeds if v is not None)
     return base.replace(**changes)
+
+
+OVERRIDDEN = ("body_mass", "rated_torques", "rated_speeds")
+"""The file's values a design overrides: its own, where they are not hexaleg's defaults."""
+
+
+def _given(base: HexapodDesign) -> set[str]:
+    """Which of :data:`OVERRIDDEN` ``base`` sets itself (a value other than the default's).
+
+    A design file written by ``design import`` holds the robot file's values, so it
+    overrides nothing until one is edited; ``--urdf`` alone goes over the default design.
+    """
+    default = HexapodDesign()
+    return {name for name in OVERRIDDEN if getattr(base, name) != getattr(default, name)}
 
 
 def _mount(leg: ImportedLeg) -> LegMount:
