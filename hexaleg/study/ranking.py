@@ -39,8 +39,9 @@ Metrics = Mapping[str, float]
 RANKING_RULE = (
     "a design's score is the geometric mean of its improved workspace area (eq 16), "
     "average manipulability w_A (eq 27), axis-locked body flexibility FB (eq 29) and "
-    "walking payload capacity (the largest payload carried walking the default tripod gait "
-    "within every rating, in place of the standing capacity, which a leg that cannot walk "
+    "walking payload capacity (the largest payload carried walking the gait — the design "
+    "file's [gait], else the default tripod — within every rating, in place of the standing "
+    "capacity, which a leg that cannot walk "
     "still has), each divided by your design's own value: your design scores 1, and 1.10 is "
     "10 % better on that average, every metric counting alike whatever its unit. Only legs "
     "that walk the gait unloaded within their ratings are ranked. A score depends on that "
