@@ -128,37 +128,38 @@ def test_the_page_offers_the_segments_posture_payload_and_gait_only(explorer):
     assert sorted(loaded["sliders"]) == ["l1", "l2", "l3"]
     assert loaded["values"]["l3"] == pytest.approx(0.088, abs=1e-9)  # Kraby's tibia
     assert loaded["values"]["stride"] == pytest.approx(0.03)  # the file's [gait]
-    status, job = explorer.post("api/job?kind=decide")
-    assert status == 400 and "imported robot" in job["error"]
 
 
-def test_the_free_coupled_job_answers_as_the_command_line_on_the_robot(explorer, capsys):
-    status, job = explorer.post("api/job?kind=free&l2=0.07")
+def _job(explorer: Explorer, kind: str, query: str) -> dict:
+    """Start the job ``kind`` on the design ``query`` asks for; its state once it ends."""
+    status, job = explorer.post(f"api/job?kind={kind}&{query}")
     assert status == 200 and job["state"] == "running", job
     deadline = time.monotonic() + 240
     while job["state"] == "running" and time.monotonic() < deadline:
         time.sleep(0.5)
-        job = explorer.get("api/job?kind=free")[1]
+        job = explorer.get(f"api/job?kind={kind}")[1]
     assert job["state"] == "done", job
+    return job
+
+
+def test_the_free_coupled_job_answers_as_the_command_line_on_the_robot(explorer, capsys):
+    job = _job(explorer, "free", "l2=0.07")
     free = _cli(capsys, "flexibility", "--urdf", KRABY, "--l2", "0.07", "--mode", "free")
     assert job["answer"]["fb"] == pytest.approx(free["fb"], rel=1e-9)
 
 
-def test_save_writes_a_design_file_that_reads_back_as_the_robot_at_the_slid_lengths(
+@pytest.mark.slow  # two decisions over Kraby's segments, a minute each on 2 cores
+def test_the_decide_job_answers_as_the_command_line_on_the_saved_design(
     tmp_path, capsys, gait_file
 ):
     saved = tmp_path / "kraby.toml"
-    gait = "stride=0.03&step_height=0.02&speed=0.05"
-    with running("--urdf", KRABY, "--save", str(saved)) as server:
-        status, wrote = server.post("api/save?l2=0.07&l3=0.095&" + gait)
-        status_fb, got = server.get("api/evaluate?l2=0.07&l3=0.095")
-    assert status == 200 and wrote["wrote"] == str(saved) and status_fb == 200
-    assert got["stance"]["utilisation"] == [None] * 6  # the default gait: its feet out of reach
-    shown = _cli(capsys, "design", "show", "--design", str(saved))["design"]
-    assert (shown["l2"], shown["l3"]) == pytest.approx((0.07, 0.095), abs=1e-9)
-    assert _cli(capsys, "flexibility", "--design", str(saved))["fb"] == pytest.approx(
-        got["fb"], rel=RTOL
-    )
-    walked = _cli(capsys, "design", "show", "--design", str(saved))["gait"]  # the sliders' gait
-    assert (walked["stride"], walked["step_height"]) == pytest.approx((0.03, 0.02))
-    assert walked["speed"] == pytest.approx(0.05)
+    with running("--urdf", KRABY, "--design", str(gait_file), "--save", str(saved)) as server:
+        assert server.post("api/save?l2=0.07")[0] == 200
+        job = _job(server, "decide", "l2=0.07")
+    decided = _cli(capsys, "decide", "--design", str(saved))  # the job's design, as saved
+    lengths = [
+        [answer["best"]["design"][k] for k in ("l1", "l2", "l3")]
+        for answer in (job["answer"], decided)
+    ]
+    assert lengths[0] == pytest.approx(lengths[1], rel=1e-9)
+    assert job["answer"]["best"]["objective"] == pytest.approx(decided["best"]["objective"])

@@ -162,14 +162,7 @@ class Session:
         return write_text(self.save_to, self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
-        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for.
-
-        Raises:
-            HexalegError: ``decide`` on an imported robot (not yet).
-
-        """
-        if self.robot is not None and kind == "decide":
-            raise HexalegError("the decide job does not run on an imported robot yet")
+        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
         return self.jobs.start(kind, self.design_text(params)).to_dict()
 
     def job(self, kind: str) -> dict[str, Any]:

@@ -481,10 +481,6 @@ async function start() {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
     button.addEventListener("click", () => startOrStopJob(box));
-    if (explorer.loaded.robot && box.dataset.kind === "decide") {  // not yet on a robot file
-      button.disabled = true;
-      box.querySelector(".job-state").textContent = "not yet for an imported robot";
-    }
   }
   pollCloud();
   await evaluate();
