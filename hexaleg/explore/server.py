@@ -58,7 +58,7 @@ class ExplorerServer(ThreadingHTTPServer):
         """The port it listens on (the system's choice for port 0)."""
         return int(self.server_address[1])
 
-    def handle_error(self, request: Any, client_address: Any) -> None:
+    def handle_error(self, _request: Any, _client_address: Any) -> None:
         """A page that went away mid-answer is no error; anything else is one line."""
         error = sys.exc_info()[1]
         if isinstance(error, ConnectionError):
