@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 from hexaleg.cli.options import (
     UsageError,
@@ -33,6 +34,9 @@ from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.robot import RobotRecord
 from hexaleg.output.report.robot_study import RobotDecisionRecord
+
+if TYPE_CHECKING:
+    from hexaleg.study.decide import DecideResult
 
 DESCRIPTION = (
     "Run the workspace, manipulability and body-flexibility analyses on the design (the "
@@ -109,19 +113,28 @@ def run(args: argparse.Namespace) -> int:
     if robot is not None:
         return _print_robot(data, out, args.pdf)
     rec = data[RecommendationRecord].recommendation
-    written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if args.pdf else [])
-    print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
+    _print_written(out, args.pdf)
     print(
         f"recommended l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
         f"{rec.l3_ratio:.3f} (tibia ratio band {rec.l3_band[0]:.3f}-{rec.l3_band[1]:.3f}); "
         f"this design: FB = {data[FlexibilityRecord].axis.fb:.4f}"
     )
-    answer = data[DecisionRecord].requirements
+    _print_answer(data[DecisionRecord].requirements, ".3f")
+    return 0
+
+
+def _print_written(out: Path, pdf: bool) -> None:
+    """Where the report is."""
+    written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if pdf else [])
+    print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
+
+
+def _print_answer(answer: DecideResult | None, digits: str) -> None:
+    """The lengths that meet the requirements, if some were given (``digits``: the format)."""
     if answer is not None:
-        lengths = ", ".join(f"{length:.3f}" for length in answer.best.design.lengths)
+        lengths = ", ".join(f"{length:{digits}}" for length in answer.best.design.lengths)
         verdict = "meets" if answer.feasible else "comes closest to meeting"
         print(f"l = ({lengths}) m {verdict} your requirements")
-    return 0
 
 
 def _refuse_for_robot(args: argparse.Namespace, swept: bool) -> None:
@@ -144,13 +157,8 @@ def _refuse_for_robot(args: argparse.Namespace, swept: bool) -> None:
 
 def _print_robot(data: ReportData, out: Path, pdf: bool) -> int:
     """Where the imported robot's report is, its FB, and the answer to any requirements."""
-    written = [out / REPORT_MD, out / REPORT_HTML] + ([out / REPORT_PDF] if pdf else [])
-    print(f"wrote {', '.join(map(str, written[:-1]))} and {written[-1]}")
+    _print_written(out, pdf)
     record = data[RobotRecord]
     print(f"{record.source}: FB = {record.evaluation['fb']:.4f}")
-    answer = data[RobotDecisionRecord].answer
-    if answer is not None:
-        lengths = ", ".join(f"{length:.4g}" for length in answer.best.design.lengths)
-        verdict = "meets" if answer.feasible else "comes closest to meeting"
-        print(f"l = ({lengths}) m {verdict} your requirements")
+    _print_answer(data[RobotDecisionRecord].answer, ".4g")
     return 0
