@@ -24,17 +24,18 @@ from __future__ import annotations
 import math
 import warnings
 import xml.etree.ElementTree as ET
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
+from pathlib import Path
 
 import numpy as np
 import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
-from hexaleg.design import HexapodDesign
+from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
-from hexaleg.robot.geometry_model import GeometryKind, file_geometry
+from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
@@ -79,7 +80,11 @@ def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
     end = text.rindex("</robot>")
     note = "  <!-- hexaleg: body and leg-root frames -->\n"
     text = text[:end] + note + "".join(added) + text[end:]
-    return _bounded_continuous(text, [name for leg in robot.legs for name in leg.joint_names])
+    joints = robot.description.joints
+    continuous = [
+        n for leg in robot.legs for n in leg.joint_names if joints[n].kind == "continuous"
+    ]
+    return _bounded_continuous(text, continuous) if continuous else text
 
 
 CONTINUOUS_RANGE = (-math.pi, math.pi)
@@ -87,16 +92,15 @@ CONTINUOUS_RANGE = (-math.pi, math.pi)
 
 
 def _bounded_continuous(text: str, joints: Sequence[str]) -> str:
-    """``text`` with each continuous joint of ``joints`` a revolute one over ``CONTINUOUS_RANGE``.
+    """``text`` with the continuous joints ``joints`` revolute over ``CONTINUOUS_RANGE``.
 
     Pinocchio models a continuous joint by (cos q, sin q); the whole-robot analyses need
     one coordinate per joint and bounds to search within. Its ``effort`` and ``velocity``
     are kept.
     """
     root = ET.fromstring(text)
-    changed = False
     for joint in root.iter("joint"):
-        if joint.get("type") != "continuous" or joint.get("name") not in joints:
+        if joint.get("name") not in joints:
             continue
         joint.set("type", "revolute")
         limit = joint.find("limit")
@@ -104,8 +108,39 @@ def _bounded_continuous(text: str, joints: Sequence[str]) -> str:
             limit = ET.SubElement(joint, "limit", effort="0", velocity="0")
         limit.set("lower", repr(CONTINUOUS_RANGE[0]))
         limit.set("upper", repr(CONTINUOUS_RANGE[1]))
-        changed = True
-    return ET.tostring(root, encoding="unicode") if changed else text
+    return ET.tostring(root, encoding="unicode")
+
+
+def resized_model(
+    robot: ImportedRobot, lengths: Mapping[str, float], over: HexapodDesign
+) -> ImportedHexapodModel:
+    """The model of ``robot`` with every leg's segments at ``lengths``, over ``over``.
+
+    ``lengths``: coxa, femur, tibia [m] (those named), the same on every leg, each changed
+    along its own line (:func:`~hexaleg.robot.resize.resize_robot`); a segment within
+    :data:`~hexaleg.robot.resize.SAME_LENGTH` of a leg's own is kept as it is. A length is
+    named in errors by its design field (``l2``), as every leg changes alike.
+
+    Raises:
+        ParameterError: A length out of range, or a coxa of length 0 changed.
+
+    """
+    from hexaleg.robot.resize import SAME_LENGTH, resize_robot
+
+    changed = {}
+    for leg in robot.legs:
+        own = dict(zip(SEGMENT_NAMES, leg.reading.geometry.lengths, strict=True))
+        asked = {s: float(v) for s, v in lengths.items() if abs(v - own[s]) > SAME_LENGTH}
+        if asked:
+            changed[leg.name] = asked
+    if changed:
+        robot = resize_robot(robot, changed, _design_field)
+    return ImportedHexapodModel(robot, over)
+
+
+def _design_field(leg: str, segment: str) -> str:
+    """A changed segment's name in errors: its design field (``l2``), the same on every leg."""
+    return SEGMENTS[SEGMENT_NAMES.index(segment)]
 
 
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
@@ -186,12 +221,16 @@ class ImportedHexapodModel(HexapodModel):
 
     @property
     def missing_meshes(self) -> tuple[str, ...]:
-        """The visual mesh references whose files were not found, each once."""
-        return self._file_geometry("visual")[1]
+        """The visual mesh references whose files were not found, each once (no mesh read)."""
+        return with_resolved_meshes(self._text, "visual", self._folder, self.robot.packages)[1]
+
+    @property
+    def _folder(self) -> Path | None:
+        """The robot file's folder, where its relative mesh paths start."""
+        return None if self.robot.source is None else self.robot.source.parent
 
     def _file_geometry(self, kind: GeometryKind) -> tuple[pin.GeometryModel, tuple[str, ...]]:
-        base = None if self.robot.source is None else self.robot.source.parent
-        return file_geometry(self.model, self._text, kind, base, self.robot.packages)
+        return file_geometry(self.model, self._text, kind, self._folder, self.robot.packages)
 
     def with_design(self, design: HexapodDesign) -> ImportedHexapodModel:
         """The robot with every leg's segments at ``design``'s l1, l2, l3, over ``design``.
@@ -205,21 +244,8 @@ class ImportedHexapodModel(HexapodModel):
             ParameterError: A length out of range, or a coxa of length 0 changed.
 
         """
-        from hexaleg.robot.resize import SAME_LENGTH, resize_robot
-
-        lengths = {
-            leg.name: {
-                name: float(asked)
-                for name, asked, now in zip(
-                    SEGMENT_NAMES, design.lengths, leg.reading.geometry.lengths, strict=True
-                )
-                if abs(asked - now) > SAME_LENGTH
-            }
-            for leg in self.robot.legs
-        }
-        changed = {leg: segments for leg, segments in lengths.items() if segments}
-        robot = resize_robot(self.robot, changed) if changed else self.robot
-        return ImportedHexapodModel(robot, design)
+        lengths = dict(zip(SEGMENT_NAMES, design.lengths, strict=True))
+        return resized_model(self.robot, lengths, design)
 
     def nominal_angles(self, leg: str) -> tuple[float, float, float]:
         """``leg``'s nominal angles θ [rad]: the design's, moved inside the leg's file limits."""

@@ -28,7 +28,7 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import ImportedRobot, import_robot
-from hexaleg.robot.imported_model import ImportedHexapodModel
+from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model
 from hexaleg.robot.resize import SAME_LENGTH, resize_robot
 
 __all__ = ["ROBOT_SPAN", "RobotDesigns", "RobotFile"]
@@ -186,17 +186,9 @@ class RobotDesigns:
 
 @lru_cache(maxsize=8)
 def _model(designs: RobotDesigns, lengths: tuple[float, ...] | None) -> ImportedHexapodModel:
-    robot = designs.robot
-    if lengths is not None:
-        names = SEGMENT_NAMES[1:] if designs.fixed_coxa else SEGMENT_NAMES
-        values = lengths[1:] if designs.fixed_coxa else lengths
-        asked = dict(zip(names, values, strict=True))
-        robot = resize_robot(robot, {leg: asked for leg in robot.leg_names}, _field)
+    asked = {} if lengths is None else dict(zip(SEGMENT_NAMES, lengths, strict=True))
+    if designs.fixed_coxa:  # a coxa of 0 stays 0
+        asked.pop("coxa", None)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # shown once, when the robot was first read
-        return ImportedHexapodModel(robot, designs.over)
-
-
-def _field(leg: str, segment: str) -> str:
-    """A changed segment's name in errors: the design field (``l2``), as on every leg."""
-    return SEGMENTS[SEGMENT_NAMES.index(segment)]
+        return resized_model(designs.robot, asked, designs.over)
