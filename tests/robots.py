@@ -27,6 +27,7 @@ OCHS_OFFSET = (0.0, 0.133, 0.0)
 
 def robot_json(capsys: pytest.CaptureFixture[str], argv: list[str]) -> dict:
     """A command's ``--json`` (given in ``argv``), the files' placeholder masses not warned."""
+    capsys.readouterr()  # what was printed before is not this command's
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RobotImportWarning)
         assert run_cli(argv) == 0

@@ -20,14 +20,21 @@ from explorer import running
 
 pytestmark = pytest.mark.slow
 
-MOVE_SLIDER = """
-(async (VALUES) => {
+PAGE_READY = """\
   const sleep = (ms) => new Promise(r => setTimeout(r, ms));
   while (!window.explorer) await sleep(20);  // the script not loaded yet
   await window.explorer.started;
   const e = window.explorer;
   const idle = async () => { while (e.inFlight || e.pending) await sleep(20); };
-  await idle();
+"""
+"""Each page script's start: the page loaded and started, ``e`` the explorer, ``idle()``."""
+
+MOVE_SLIDER = (
+    """
+(async (VALUES) => {
+"""
+    + PAGE_READY
+    + """  await idle();
   while (!(e.cloud && e.cloud.ready)) await sleep(100);  // redraws timed without it measuring
   const shown = () => Object.fromEntries([...document.querySelectorAll('#numbers tr')]
     .map(tr => [tr.dataset.key, tr.dataset.value === '' ? null : Number(tr.dataset.value)]));
@@ -55,6 +62,7 @@ MOVE_SLIDER = """
           status: document.getElementById('status').textContent};
 })(%s)
 """
+)
 
 ROBOTS = Path(__file__).parent / "data" / "robots"
 KRABY = ROBOTS / "kraby" / "hexapod.urdf"
@@ -114,14 +122,12 @@ def _design_show(path: Path) -> dict:
     return json.loads(found.stdout)["design"]
 
 
-CHOOSE_MOTORS_AND_RUN_A_JOB = """
+CHOOSE_MOTORS_AND_RUN_A_JOB = (
+    """
 (async () => {
-  const sleep = (ms) => new Promise(r => setTimeout(r, ms));
-  while (!window.explorer) await sleep(20);
-  await window.explorer.started;
-  const e = window.explorer;
-  const idle = async () => { while (e.inFlight || e.pending) await sleep(20); };
-  await idle();
+"""
+    + PAGE_READY
+    + """  await idle();
   const motors = {root: 'hd_cha_20a_100', hip: 'hd_cha_32a_50', knee: 'hd_cha_25a_100'};
   for (const [joint, name] of Object.entries(motors)) {
     const select = document.getElementById('motor_' + joint);
@@ -147,6 +153,7 @@ CHOOSE_MOTORS_AND_RUN_A_JOB = """
           text: box.querySelector('.job-state').textContent};
 })()
 """
+)
 
 
 def test_motors_chosen_on_the_page_and_a_decision_shown_and_stopped():
@@ -161,14 +168,12 @@ def test_motors_chosen_on_the_page_and_a_decision_shown_and_stopped():
     assert got["state"] == "stopped", got  # the button stopped it
 
 
-ONE_MOTOR_AND_A_REFUSED_POSTURE = """
+ONE_MOTOR_AND_A_REFUSED_POSTURE = (
+    """
 (async () => {
-  const sleep = (ms) => new Promise(r => setTimeout(r, ms));
-  while (!window.explorer) await sleep(20);
-  await window.explorer.started;
-  const e = window.explorer;
-  const idle = async () => { while (e.inFlight || e.pending) await sleep(20); };
-  const set = async (id, value, kind) => {
+"""
+    + PAGE_READY
+    + """  const set = async (id, value, kind) => {
     const input = document.getElementById(id);
     input.value = value;
     input.dispatchEvent(new Event(kind, {bubbles: true}));
@@ -192,6 +197,7 @@ ONE_MOTOR_AND_A_REFUSED_POSTURE = """
           again: document.getElementById('results').classList.contains('stale')};
 })()
 """
+)
 
 
 def test_one_motor_fills_the_others_and_a_refused_design_greys_the_numbers():

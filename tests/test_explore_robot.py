@@ -9,22 +9,16 @@ leg's own segments and offsets as ``design show`` lists them.
 
 from __future__ import annotations
 
-import json
 import time
 import urllib.parse
-import warnings
 from pathlib import Path
 
 import numpy as np
 import pinocchio as pin
 import pytest
 from explorer import Explorer, running
+from robots import KRABY, robot_json
 
-from hexaleg.cli import main
-from hexaleg.exceptions import RobotImportWarning
-
-ROBOTS = Path(__file__).parent / "data" / "robots"
-KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
 GAIT = "[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.8\nsamples = 60\n"
 """A gait this small robot walks (the default one is sized for hexaleg's)."""
 RTOL = 1e-9
@@ -41,14 +35,6 @@ def gait_file(tmp_path_factory) -> Path:
 def explorer(gait_file) -> Explorer:
     with running("--urdf", KRABY, "--design", str(gait_file), "--save", "unused.toml") as server:
         yield server
-
-
-def _cli(capsys, *argv: str) -> dict:
-    capsys.readouterr()
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobotImportWarning)
-        assert main([*argv, "--json"]) == 0
-    return json.loads(capsys.readouterr().out)
 
 
 def _lengths(count: int) -> list[dict[str, float]]:
@@ -70,11 +56,11 @@ def test_the_endpoint_s_numbers_are_the_command_line_s(explorer, capsys, gait_fi
     assert status == 200 and got["error"] == "", got
     robot = ["--urdf", KRABY, *(p for k, v in lengths.items() for p in (f"--{k}", str(v)))]
     walked = [*robot, "--design", str(gait_file)]
-    flexibility = _cli(capsys, "flexibility", *robot)
-    loads = _cli(capsys, "loads", *walked)
-    gait = _cli(capsys, "gait", *walked)
-    workspace = _cli(capsys, "workspace", *robot, "--samples", "1")
-    manipulability = _cli(capsys, "manipulability", *robot)
+    flexibility = robot_json(capsys, ["flexibility", *robot, "--json"])
+    loads = robot_json(capsys, ["loads", *walked, "--json"])
+    gait = robot_json(capsys, ["gait", *walked, "--json"])
+    workspace = robot_json(capsys, ["workspace", *robot, "--samples", "1", "--json"])
+    manipulability = robot_json(capsys, ["manipulability", *robot, "--json"])
     first = next(iter(workspace["legs"].values()))
     expected = {
         "fb": flexibility["fb"],
@@ -103,7 +89,9 @@ def test_the_robot_weighs_what_its_file_says(explorer):
 def test_the_feet_s_reach_lies_within_each_leg_s_span(explorer, capsys):
     status, got = explorer.get("api/reach?l2=0.07")
     assert status == 200
-    shown = _cli(capsys, "design", "show", "--urdf", KRABY, "--l2", "0.07")["design"]["legs"]
+    shown = robot_json(capsys, ["design", "show", "--urdf", KRABY, "--l2", "0.07", "--json"])[
+        "design"
+    ]["legs"]
     status, stance = explorer.get("api/evaluate?l2=0.07")
     for leg, reach, chain in zip(shown, got["reach"], stance["stance"]["chains"], strict=True):
         points = np.asarray(reach)
@@ -144,7 +132,9 @@ def _job(explorer: Explorer, kind: str, query: str) -> dict:
 
 def test_the_free_coupled_job_answers_as_the_command_line_on_the_robot(explorer, capsys):
     job = _job(explorer, "free", "l2=0.07")
-    free = _cli(capsys, "flexibility", "--urdf", KRABY, "--l2", "0.07", "--mode", "free")
+    free = robot_json(
+        capsys, ["flexibility", "--urdf", KRABY, "--l2", "0.07", "--mode", "free", "--json"]
+    )
     assert job["answer"]["fb"] == pytest.approx(free["fb"], rel=1e-9)
 
 
@@ -156,7 +146,9 @@ def test_the_decide_job_answers_as_the_command_line_on_the_saved_design(
     with running("--urdf", KRABY, "--design", str(gait_file), "--save", str(saved)) as server:
         assert server.post("api/save?l2=0.07")[0] == 200
         job = _job(server, "decide", "l2=0.07")
-    decided = _cli(capsys, "decide", "--design", str(saved))  # the job's design, as saved
+    decided = robot_json(
+        capsys, ["decide", "--design", str(saved), "--json"]
+    )  # the job's design, as saved
     lengths = [
         [answer["best"]["design"][k] for k in ("l1", "l2", "l3")]
         for answer in (job["answer"], decided)
