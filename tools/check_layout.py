@@ -1,4 +1,4 @@
-"""Check hexaleg's layout: no upward import, no module over 400 lines, no function over 60.
+"""Check hexaleg's layout: no upward import, no module over 500 lines, no function over 60.
 
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
@@ -75,7 +75,8 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Each layer's name and the top-level modules or packages of ``hexaleg`` in it."""
 
-MAX_MODULE_LINES = 400
+MAX_MODULE_LINES = 500
+"""A module holds one concept: long enough for one, not two (raised from 400 by issue #38)."""
 MAX_FUNCTION_LINES = 60
 
 

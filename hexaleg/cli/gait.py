@@ -199,24 +199,16 @@ def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> li
 def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
     """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
 
-    The design's stance limits on the design's leg; an imported robot's legs each by its
-    own general leg within its file's limits (what holds them walking).
+    Each leg by its own leg within the limits that hold it standing
+    (:func:`~hexaleg.swing.workspace.standing_reach`).
     """
-    from hexaleg.limits import JointLimits
-    from hexaleg.swing.workspace import monte_carlo_workspace
+    from hexaleg.swing.workspace import standing_reach
 
-    design = analysis.design
-    if not model.general_legs:
-        cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
-        return dict(zip(analysis.legs, analysis.frames.points_in_body(cloud.points), strict=True))
-    clouds = {}
-    for i, leg in enumerate(analysis.legs):
-        lower, upper = model.joint_limits(leg)
-        root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
-        limits = JointLimits(root, hip, knee, name=f"{leg}'s file limits")
-        cloud = monte_carlo_workspace(design, 20_000, 0, limits, model.leg_geometry(leg))
-        clouds[leg] = analysis.frames.points_in_body(cloud.points)[i]
-    return clouds
+    clouds = standing_reach(model)
+    return {
+        leg: analysis.frames.points_in_body(clouds[leg].points)[i]
+        for i, leg in enumerate(analysis.legs)
+    }
 
 
 def _feasible(analysis: GaitAnalysis) -> str:

@@ -51,6 +51,10 @@ BODY_LINK = PREFIX + "body"
 LEVEL_FEET = 1e-3
 """Largest spread of the feet's heights at the nominal posture, body level [m]."""
 
+CONTACT_RADIUS = 0.005
+"""The sphere each foot point touches the ground with in a simulation [m]: small beside a
+robot's legs, so that the contact is where the file's foot point is."""
+
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
     """The robot's URDF with its feet, a body link at ``design``'s body frame, leg-root frames.
@@ -182,11 +186,51 @@ class ImportedHexapodModel(HexapodModel):
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
         self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
 
-    general_legs = True
-
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg, as read from the file."""
         return self._geometry[self._leg(leg).name]
+
+    @property
+    def own_legs(self) -> dict[str, LegGeometry]:
+        """Each leg's general leg as the file draws it (offsets, bends), by name."""
+        return {name: self._geometry[name] for name in self.leg_names}
+
+    @property
+    def stance_limits(self) -> None:
+        """None: each leg's own file limits hold it standing as they hold it swinging."""
+        return None
+
+    @property
+    def mirror_symmetric(self) -> bool:
+        """False: a robot file's parts may not be drawn mirror-symmetric."""
+        return False
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the robot [kg]: Pinocchio's total of the file's links (its design's none)."""
+        return float(pin.computeTotalMass(self.model))
+
+    @property
+    def nominal_footholds(self) -> ArrayF:
+        """Every foot at the nominal posture, body frame at the origin (6, 3) [m]."""
+        return self.foot_positions(self.configuration(pin.SE3.Identity()))
+
+    def contact_radius(self, leg: str) -> float:
+        """:data:`CONTACT_RADIUS` [m]: the file's feet draw no sphere hexaleg reads."""
+        self._leg(leg)
+        return CONTACT_RADIUS
+
+    @property
+    def simulation_urdf(self) -> str:
+        """The URDF without its links' shapes (masses and joints kept): only the feet touch.
+
+        A file's meshes would need their files and make poor contact shapes.
+        """
+        tree = ET.fromstring(self._text)
+        for link in tree.iter("link"):
+            for shape in link.findall("visual") + link.findall("collision"):
+                link.remove(shape)
+        return ET.tostring(tree, encoding="unicode")
 
     @property
     def urdf(self) -> str:

@@ -26,7 +26,6 @@ from dataclasses import dataclass, field
 from functools import cached_property
 
 import numpy as np
-import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.cause import Cause
@@ -259,8 +258,7 @@ class _Measuring:
 
     def _search_flexibility(self) -> FlexibilityResult:
         conditions, design = self.conditions, self.design
-        # an imported robot's geometry is its model's own: the searches read it from there
-        geometry = None if getattr(self._model, "general_legs", False) else self.geometry
+        geometry = self._template  # the body's, if given; else the searches read the model
         if conditions.mode == "axis":
             return axis_locked_flexibility(
                 design,
@@ -282,10 +280,9 @@ class _Measuring:
     # -- the analyses ------------------------------------------------------------------
 
     def _measure_geometry(self) -> None:
-        design, model = self.design, self._model
-        mass, height = design.total_mass, design.nominal_height
-        if model is not None and getattr(model, "general_legs", False):  # the file's, not ours
-            mass, height = pin.computeTotalMass(model.model), self.geometry.nominal_height
+        design, model = self.design, self._model  # without a model, the design's own
+        mass = design.total_mass if model is None else model.total_mass
+        height = design.nominal_height if model is None else model.nominal_height
         self.values |= {"leg_length": design.leg_length, "coxa_length": design.l1,
                         "robot_mass": mass, "nominal_height": height}  # fmt: skip
 

@@ -13,7 +13,7 @@ from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.paper import CLAIMED_W_A_PEAK
 from hexaleg.paper.reproduction import digits_transposed, table6_reproduction
-from hexaleg.robot.model import LegModel
+from hexaleg.robot.leg_model import LegModel
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
