@@ -8,16 +8,16 @@ from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
 from hexaleg.actuators import Actuator
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
     bounded_int,
     capped_workers,
-    inputs_from_args,
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.cli.robot_designs import robot_designs
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
@@ -48,9 +48,6 @@ DESCRIPTION = (
     "robot: its file with every leg's segments changed, each searched within "
     f"{ROBOT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
 )
-
-ROBOT_OPTIONS = True
-
 
 SHOWN_OVER_RATING = 4
 """Joints over their ratings a design's text lists, the furthest over first."""
@@ -114,16 +111,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     search.add_argument("--resume", action="store_true", help="continue the --journal FILE")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
-    design, in_file = inputs_from_args(args)
-    robot = robot_designs(args, design)
+    inputs = inputs_from_args(args)
+    design, in_file = inputs.design, inputs.requirements
+    robot = robot_designs(inputs.robot)
     if robot is not None:
         refuse_for_robot(args)
-        design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")

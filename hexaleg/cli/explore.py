@@ -8,15 +8,15 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import add_design_options, bounded_int, inputs_from_args, note
-from hexaleg.cli.robot_options import add_robot_options, robot_model, robot_table
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import add_design_options, bounded_int, note
 from hexaleg.exceptions import HexalegError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.output.viewer.server import browser_url, is_loopback
 
 if TYPE_CHECKING:
-    from hexaleg.design import HexapodDesign
     from hexaleg.explore.robot import ExploredRobot
+    from hexaleg.robot.robot import Robot
 
 DESCRIPTION = (
     "Serve a page where every slider (segment lengths, posture, body size, payload, gait "
@@ -28,9 +28,6 @@ DESCRIPTION = (
     "file's [robot]), your robot: its segments slide along their own lines, its body and "
     "ratings stay the file's."
 )
-
-ROBOT_OPTIONS = True
-"""It runs on an imported robot (``--urdf``)."""
 
 DEFAULT_SAVE = "design.toml"
 
@@ -56,7 +53,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"the .toml file 'save design' writes (default: the --design file if it is "
         f".toml, else {DEFAULT_SAVE})",
     )
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
@@ -64,11 +60,10 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.explore.server import ExplorerServer
     from hexaleg.explore.session import Session
 
-    design, requirements = inputs_from_args(args)
+    inputs = inputs_from_args(args)
+    design, requirements = inputs.design, inputs.requirements
     save_to = _save_target(args)
-    robot = _explored_robot(args, design)
-    if robot is not None:
-        design = robot.model.design
+    robot = _explored_robot(inputs.robot)
     if not is_loopback(args.host):
         note(
             f"--host {args.host} serves the explorer beyond this machine, to anyone who can "
@@ -94,19 +89,21 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _explored_robot(args: argparse.Namespace, design: HexapodDesign) -> ExploredRobot | None:
+def _explored_robot(robot: Robot) -> ExploredRobot | None:
     """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
     from hexaleg.explore.robot import ExploredRobot
+    from hexaleg.robot.imported_model import ImportedHexapodModel
+    from hexaleg.robot.robot_table import robot_table
 
-    model = robot_model(args, design)
-    if model is None:
+    model = robot.model
+    if not isinstance(model, ImportedHexapodModel):
         return None
     lengths = dict(zip(SEGMENT_NAMES, model.robot.legs[0].reading.geometry.lengths, strict=True))
     for change in model.robot.changes:  # back to the file's: what the saved file's l* say
         if change.leg == model.robot.legs[0].name:
             lengths[change.segment] = change.file_length
     l1, l2, l3 = (lengths[name] for name in SEGMENT_NAMES)
-    return ExploredRobot(model, robot_table(args, None, model.robot), (l1, l2, l3))
+    return ExploredRobot(model, robot_table(robot.source, model.robot, None), (l1, l2, l3))
 
 
 def _save_target(args: argparse.Namespace) -> Path:

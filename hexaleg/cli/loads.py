@@ -8,16 +8,14 @@ from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import Distribution, choices
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_from_args,
-    design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -36,8 +34,6 @@ DESCRIPTION = (
     "`gait --urdf` walks it)."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
@@ -46,7 +42,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
-    add_robot_options(parser)
 
 
 def add_payload_options(parser: argparse.ArgumentParser) -> None:
@@ -98,14 +93,13 @@ def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
     from hexaleg.gait.capacity import walking_payload_capacity
     from hexaleg.output.figures import loads_figure, save
-    from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
-    design = design_from_args(args)
-    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    inputs = inputs_from_args(args)
+    robot, gait = inputs.robot, inputs.gait
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
-    model = HexapodModel(design) if robot is None else robot
+    model = robot.model
     analysis = analyze_loads(
         model.design,
         payload,
@@ -115,19 +109,17 @@ def run(args: argparse.Namespace) -> int:
         args.mode,
         model=model,
     )
-    gait = design_gait(args)
     walking = walking_payload_capacity(model, gait, payload.position)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
-        mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
+        walks = {"walking_payload_capacity": walking.to_dict()}
+        print_json(robot.posture() | analysis.to_dict() | walks)
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
     rows.insert(at, ("walking payload capacity", _walking(walking, gait)))
-    title = "Statics" if robot is None else f"Statics of {robot.robot.source}"
-    print_table(lengths_title(title, model.design.lengths), rows)
+    print_table(lengths_title(robot.titled("Statics"), model.design.lengths), rows)
     return 0
 
 

@@ -6,6 +6,7 @@ import argparse
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     UsageError,
     add_collisions_option,
@@ -16,10 +17,9 @@ from hexaleg.cli.options import (
     bounded_int,
     capped_workers,
     field_sweep_from_args,
-    inputs_from_args,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.cli.robot_designs import robot_designs
 from hexaleg.output.report import (
     REPORT_HTML,
     REPORT_MD,
@@ -48,8 +48,6 @@ DESCRIPTION = (
     "file (its metrics, axis-locked flexibility, statics, a study of its segments, the 3-D "
     "view, the decision over its segments); the report says which it leaves out and why."
 )
-
-ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -83,17 +81,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="also walk the design's gait ([gait], else the default) in MuJoCo: the "
         '"Simulated walk" section (needs the [sim] extra: MuJoCo)',
     )
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
-    design, in_file = inputs_from_args(args)  # a bad design is refused before any note
+    inputs = inputs_from_args(args)  # a bad design is refused before any note
+    design, in_file = inputs.design, inputs.requirements
     sweep = field_sweep_from_args(args)
-    robot = robot_designs(args, design)
+    robot = robot_designs(inputs.robot)
     if robot is not None:
         _refuse_for_robot(args, sweep is not None)
-        design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,

@@ -8,6 +8,7 @@ from contextlib import AbstractContextManager
 from pathlib import Path
 
 from hexaleg._io import check_output_folder, write_text
+from hexaleg.cli.inputs import inputs_from_args, study_total
 from hexaleg.cli.options import (
     UsageError,
     add_collisions_option,
@@ -19,14 +20,13 @@ from hexaleg.cli.options import (
     add_sweep_options,
     capped_workers,
     field_sweep_from_args,
-    inputs_from_args,
-    study_total,
 )
 from hexaleg.cli.output import report_files
-from hexaleg.cli.robot_options import add_robot_options, robot_designs
-from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.cli.robot_designs import robot_designs
+from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.paper import L1_RATIOS
+from hexaleg.robot.robot import Robot
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import sensitivity_table
@@ -50,8 +50,6 @@ DESCRIPTION = (
     "row's lengths, at its own total leg length unless --total is given."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
@@ -71,14 +69,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_field_sweep_option(
         parser, "also write the sensitivity table (FB peak per value) over one body field"
     )
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
-    base, in_file = inputs_from_args(args)  # in_file.walked: the file's [gait]
+    inputs = inputs_from_args(args)
+    base, in_file = inputs.design, inputs.requirements  # in_file.walked: the file's [gait]
     field_sweep = field_sweep_from_args(args)
-    robot = _robot(args, base, field_sweep is not None)
+    robot = _robot(args, inputs.robot, field_sweep is not None)
     if robot is not None:
         base = robot.point()[0]
     check_output_folder(args.output)  # the study folder itself is checked as it is claimed
@@ -116,9 +114,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _robot(args: argparse.Namespace, base: HexapodDesign, swept: bool) -> RobotDesigns | None:
+def _robot(args: argparse.Namespace, given: Robot, swept: bool) -> RobotDesigns | None:
     """The imported robot's designs; the options that do not apply to one refused."""
-    robot = robot_designs(args, base)
+    robot = robot_designs(given)
     if robot is None:
         return None
     if args.mode != "axis" or args.collisions:  # a study of a robot file: axis-locked, for now

@@ -160,16 +160,22 @@ class ImportedHexapodModel(HexapodModel):
         robot: The imported robot.
         base: The design its numbers go over (:func:`robot_design`); the default design's
             if omitted.
+        design: ``robot``'s design over ``base``, if already made (:func:`imported_design`).
 
-    Raises:
-        RobotImportError: The nominal posture does not put the feet level. A continuous
-            leg joint is analysed as a revolute one over :data:`CONTINUOUS_RANGE` (every
-            angle once); legs of different segments each by their own general leg.
+    A continuous leg joint is analysed as a revolute one over :data:`CONTINUOUS_RANGE`
+    (every angle once); legs of different segments each by their own general leg. A robot
+    whose nominal posture does not put the feet level is refused when stood
+    (:meth:`nominal_base_pose`).
 
     """
 
-    def __init__(self, robot: ImportedRobot, base: HexapodDesign | None = None) -> None:
-        design = _design(robot, base)
+    def __init__(
+        self,
+        robot: ImportedRobot,
+        base: HexapodDesign | None = None,
+        design: HexapodDesign | None = None,
+    ) -> None:
+        design = imported_design(robot, base) if design is None else design
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
         model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
@@ -182,7 +188,7 @@ class ImportedHexapodModel(HexapodModel):
             leg.name: nominal_posture(leg, design.nominal_angles)["joint_angles"]
             for leg in robot.legs
         }
-        self._height = self._standing_height()
+        self._feet = self.foot_positions(self.configuration(pin.SE3.Identity()))[:, 2]
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
         self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
 
@@ -211,6 +217,11 @@ class ImportedHexapodModel(HexapodModel):
         return float(pin.computeTotalMass(self.model))
 
     @property
+    def body_mass(self) -> float:
+        """Mass of the body's links in the file [kg] (a placeholder's, if the file has one)."""
+        return float(self.robot.body_mass.mass)
+
+    @property
     def nominal_footholds(self) -> ArrayF:
         """Every foot at the nominal posture, body frame at the origin (6, 3) [m]."""
         return self.foot_positions(self.configuration(pin.SE3.Identity()))
@@ -219,6 +230,11 @@ class ImportedHexapodModel(HexapodModel):
         """:data:`CONTACT_RADIUS` [m]: the file's feet draw no sphere hexaleg reads."""
         self._leg(leg)
         return CONTACT_RADIUS
+
+    @property
+    def simulation_draws_links(self) -> bool:
+        """False: the simulated file has no shapes but its feet (:attr:`simulation_urdf`)."""
+        return False
 
     @property
     def simulation_urdf(self) -> str:
@@ -314,21 +330,32 @@ class ImportedHexapodModel(HexapodModel):
         return self._maps[self._leg(leg).name].theta_bounds(lower, upper)
 
     def nominal_base_pose(self) -> pin.SE3:
-        """The body level, at the height that puts the feet on the ground (their mean)."""
-        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self._height]))
+        """The body level, at the height that puts the feet on the ground (their mean).
 
-    def _standing_height(self) -> float:
-        feet = self.foot_positions(self.configuration(pin.SE3.Identity()))[:, 2]
-        if feet.max() - feet.min() > LEVEL_FEET:
+        Raises:
+            RobotImportError: The nominal posture does not put the feet level: the robot
+                cannot stand as the analyses stand it.
+
+        """
+        spread = self._feet.max() - self._feet.min()
+        if spread > LEVEL_FEET:
             raise RobotImportError(
-                f"the nominal posture puts the feet {1000 * (feet.max() - feet.min()):.1f} mm "
-                f"apart in height (at most {1000 * LEVEL_FEET:g} mm): the legs do not stand level"
+                f"the nominal posture puts the feet {1000 * spread:.1f} mm apart in height "
+                f"(at most {1000 * LEVEL_FEET:g} mm): the legs do not stand level"
             )
-        return float(-feet.mean())
+        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self.nominal_height]))
+
+    @property
+    def nominal_height(self) -> float:
+        """The body's height that puts the feet, on average, on the ground [m]."""
+        return float(-self._feet.mean())
 
 
-def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
-    """:func:`robot_design`, saying that a placeholder body's mass is the file's here."""
+def imported_design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
+    """The design of ``robot`` over ``base`` (:func:`robot_design`), its warnings shown.
+
+    A placeholder body's mass is said to be the file's here: the model weighs the file's.
+    """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         design = robot_design(robot, base)

@@ -156,6 +156,11 @@ class HexapodModel:
         return self.design.total_mass
 
     @property
+    def body_mass(self) -> float:
+        """Mass of the body alone [kg]: the design's."""
+        return self.design.body_mass
+
+    @property
     def nominal_height(self) -> float:
         """Height of the body frame above the ground at the nominal stance [m]."""
         return float(self.nominal_base_pose().translation[2])
@@ -184,6 +189,11 @@ class HexapodModel:
     def simulation_urdf(self) -> str:
         """The URDF a physics simulator loads: this one, its primitive shapes touching."""
         return self.urdf
+
+    @property
+    def simulation_draws_links(self) -> bool:
+        """Whether the simulated robot has its links' shapes, so that a render shows it."""
+        return True
 
     @property
     def data(self) -> pin.Data:

@@ -19,6 +19,7 @@ at other lengths it is the file with every leg's segments changed along their ow
 from __future__ import annotations
 
 import warnings
+from collections.abc import Mapping
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
@@ -30,13 +31,18 @@ from hexaleg.design_text import design_toml
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
-from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model
+from hexaleg.robot.imported_model import (
+    ImportedHexapodModel,
+    imported_design,
+    resized_model,
+)
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.robot.recipe import TEMPLATE_NAME, RobotSource
 from hexaleg.robot.resize import SAME_LENGTH, changes_note
 from hexaleg.robot.robot_design import robot_record
-from hexaleg.robot.robot_table import robot_table
+from hexaleg.robot.robot_table import check_written_lengths, robot_table
+from hexaleg.robot.urdf import render_hexapod
 
 __all__ = ["FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers"]
 
@@ -71,19 +77,22 @@ class Robot:
         over: HexapodDesign,
         model: HexapodModel | None = None,
         given: ImportedRobot | None = None,
+        design: HexapodDesign | None = None,
     ) -> None:
         self.source, self.over = source, over
         self._model, self._given = model, given
+        self._design = over if design is None else design
 
     @classmethod
     def build(cls, source: RobotSource | None = None, over: HexapodDesign | None = None) -> Robot:
         """The robot of ``source`` over ``over`` (default: the template, the default design).
 
-        A robot file is read (once per process) and its model built now, so a file that
-        cannot stand is refused here; its warnings (placeholder masses, inertias) are shown.
+        A robot file is read now (once per process; its warnings, placeholder masses and
+        inertias, shown) and its design made; its model, on first use (a file whose legs do
+        not stand level is refused then, as its URDF is written without one).
 
         Raises:
-            HexalegError: The file cannot be read, changed or stood on, in one line.
+            HexalegError: The file cannot be read or changed, in one line.
 
         """
         source = RobotSource() if source is None else source
@@ -93,21 +102,25 @@ class Robot:
         given, caught = source.read()
         for warning in caught:
             warnings.warn(warning.message, warning.category, stacklevel=2)
-        return cls(source, over, ImportedHexapodModel(given, over), given)
+        return cls(source, over, None, given, imported_design(given, over))
 
     # -- what it is ---------------------------------------------------------------------------
 
     @property
     def model(self) -> HexapodModel:
-        """Its Pinocchio model (the template's is built on first use)."""
+        """Its Pinocchio model, built on first use."""
         if self._model is None:
-            self._model = model_of(self.over)
+            self._model = (
+                model_of(self.over)
+                if self._given is None
+                else ImportedHexapodModel(self._given, self.over, self._design)
+            )
         return self._model
 
     @property
     def design(self) -> HexapodDesign:
         """The design its analyses go over: its segments, body, mounts, posture, ratings."""
-        return self.over if self._given is None else self.model.design
+        return self._design
 
     @property
     def name(self) -> str:
@@ -126,14 +139,16 @@ class Robot:
     @property
     def own_legs(self) -> dict[str, LegGeometry] | None:
         """Each leg's own general leg where the legs are not the design's (see the model's)."""
-        return None if self._given is None else self.model.own_legs
+        if self._given is None:
+            return None
+        return {leg.name: leg.reading.geometry for leg in self._read.legs}
 
     @property
     def lengths(self) -> Lengths:
         """Its own (l1, l2, l3) [m]: the design's, or a robot file's first leg's (l1 may be 0)."""
         if self._given is None:
             return self.design.lengths
-        a, b, c = self.model.leg_geometry(self.leg_names[0]).lengths
+        a, b, c = self._read.legs[0].reading.geometry.lengths
         return (float(a), float(b), float(c))
 
     @property
@@ -183,7 +198,8 @@ class Robot:
         )
         changes.pop("l1", None)  # a coxa of 0 stays 0
         over = self.over.replace(**changes) if changes else self.over
-        return Robot(self.source, over, _file_model(self.source, lengths, over), self._given)
+        model = _file_model(self.source, lengths, over)
+        return Robot(self.source, over, model, self._given, model.design)
 
     def segment_bounds(self, floor: float, leg_length: float) -> dict[str, tuple[float, float]]:
         """Each free segment's search bounds [m], at least ``floor``, at most ``leg_length``.
@@ -209,6 +225,23 @@ class Robot:
                 )
             bounds[name] = (lower, upper)
         return bounds
+
+    def check_written_lengths(
+        self, written: Mapping[str, Any], overridden: set[str], where: str
+    ) -> None:
+        """Refuse a design file of this robot file whose ``l1 l2 l3`` are not the file's.
+
+        A robot file's segments are read from it (changed in ``[robot.segments]``); the
+        design file's own lengths, unless ``overridden`` on the command line, must be the
+        file's (:func:`~hexaleg.robot.robot_table.check_written_lengths`). The template's
+        design file gives its lengths itself: nothing to check.
+
+        Raises:
+            DesignFileError: Naming the key, its value and the file's length.
+
+        """
+        if self._given is not None:
+            check_written_lengths(_file_lengths(self._given), written, overridden, where)
 
     # -- what it says of itself -----------------------------------------------------------------
 
@@ -248,8 +281,26 @@ class Robot:
             return {}
         model = self.model
         nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
-        files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
-        return {"robot": self.name, "joint_angles": nominal, "urdf_joint_angles": files}
+        return self.named() | {"joint_angles": nominal} | self.in_file_joints(nominal)
+
+    def named(self) -> dict[str, Any]:
+        """``{"robot": FILE}`` for a command's JSON where the robot is a file's, else ``{}``."""
+        return {} if self._given is None else {"robot": self.name}
+
+    def in_file_joints(self, angles: Mapping[str, Any]) -> dict[str, Any]:
+        """Angles θ by leg [rad] also in a robot file's own joints, for a command's JSON.
+
+        ``{"urdf_joint_angles": {leg: q}}`` with q = s·θ + o per leg; ``{}`` for the
+        template, whose joints are θ.
+        """
+        if self._given is None:
+            return {}
+        model = self.model
+        return {
+            "urdf_joint_angles": {
+                leg: model.joint_values(leg, theta).tolist() for leg, theta in angles.items()
+            }
+        }
 
     def urdf(self) -> str:
         """Its URDF: the template rendered at its design, or the file with its feet marked.
@@ -258,7 +309,7 @@ class Robot:
         ``<leg>_foot`` at each foot point, its changed segments drawn as cylinders.
         """
         if self._given is None:
-            return self.model.urdf
+            return render_hexapod(self.design)
         return urdf_with_feet(self._read)
 
     @property
@@ -289,9 +340,11 @@ class Robot:
     @property
     def _read(self) -> ImportedRobot:
         """The robot file as this robot stands (its segments as changed)."""
-        model = self.model
-        assert isinstance(model, ImportedHexapodModel)
-        return model.robot
+        model = self._model
+        if isinstance(model, ImportedHexapodModel):
+            return model.robot  # at other lengths than the file's as given
+        assert self._given is not None
+        return self._given
 
 
 ROBOT_COMMENT = (
@@ -306,7 +359,7 @@ ROBOT_COMMENT = (
 def derived_numbers(design: HexapodDesign, model: HexapodModel) -> dict[str, Any]:
     """What follows from the robot: leg length, nominal height, mass, mounts, footholds.
 
-    The mass, standing height and footholds are the model's (a robot file's: Pinocchio's
+    The masses, standing height and footholds are the model's (a robot file's: Pinocchio's
     total of its links, the height that puts its feet on the ground, each foot at its own
     nominal posture); the template's model carries its design's.
     """
@@ -317,6 +370,7 @@ def derived_numbers(design: HexapodDesign, model: HexapodModel) -> dict[str, Any
         "leg_length": design.leg_length,
         "nominal_height": model.nominal_height,
         "total_mass": model.total_mass,
+        "body_mass": model.body_mass,
         "mounts": {
             m.name: {"x": m.x, "y": m.y, "z": m.z, "yaw": m.yaw, "foothold": list(foot)}
             for m, foot in zip(design.legs, feet, strict=True)

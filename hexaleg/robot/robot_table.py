@@ -129,12 +129,15 @@ def _length(field: str, value: Any) -> float:
 
 
 def check_written_lengths(
-    robot: ImportedRobot, written: Mapping[str, Any], overridden: set[str], where: str
+    lengths: tuple[float, float, float],
+    written: Mapping[str, Any],
+    overridden: set[str],
+    where: str,
 ) -> None:
     """Refuse a design file whose ``l1 l2 l3`` were edited: a ``[robot]``'s are its file's.
 
     Args:
-        robot: The robot as read (its segments changed by the file's ``[robot.segments]``).
+        lengths: The robot file's own first leg's coxa, femur and tibia [m].
         written: The design file's own top-level keys.
         overridden: The segments (``l2``) the command line sets itself.
         where: The design file, as errors name it.
@@ -143,12 +146,11 @@ def check_written_lengths(
         DesignFileError: Naming the key, its value and the robot file's length.
 
     """
-    read = robot.legs[0].reading.geometry
-    for name, segment in zip(SEGMENTS, SEGMENT_NAMES, strict=True):
+    for name, segment, own in zip(SEGMENTS, SEGMENT_NAMES, lengths, strict=True):
         value = written.get(name)
         if name in overridden or isinstance(value, bool) or not isinstance(value, int | float):
             continue
-        length = max(getattr(read, segment), 1e-9)  # a coxa of 0 is written as 1e-9
+        length = max(own, 1e-9)  # a coxa of 0 is written as 1e-9
         if abs(value - length) > SAME_LENGTH:
             raise DesignFileError(
                 f"{where}: {name} = {value:g} is not the robot file's {segment} "
