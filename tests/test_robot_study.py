@@ -188,9 +188,7 @@ def test_report_numbers_equal_the_single_design_commands(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["study", "--urdf", KRABY, "--mode", "free"], "--mode free with study --urdf"),
         (["study", "--urdf", KRABY, "--sensitivity"], "--sensitivity and --sweep with --urdf"),
-        (["study", "--urdf", KRABY, "--collisions"], "--collisions with study --urdf"),
         (["decide", "--urdf", KRABY, "--free-posture"], "--free-posture with --urdf"),
         (["decide", "--urdf", KRABY, "--choose-actuators"], "--choose-actuators with --urdf"),
         (["decide", "--urdf", KRABY, "--free", "body_width=0.1:0.2"], "with --urdf, one of"),
@@ -303,3 +301,23 @@ def test_a_study_carries_the_robot_file_s_reading_options_to_its_workers(tmp_pat
         lengths = _lengths((row["l1"], row["l2"], row["l3"]))
         flex = _json(capsys, ["flexibility", "--urdf", ochs, *foot, *lengths, "--json"])
         assert row["fb"] == pytest.approx(flex["fb"], rel=1e-9)
+
+
+@pytest.mark.slow
+def test_a_free_coupled_study_row_equals_the_single_design_command(tmp_path, capsys):
+    out = tmp_path / "free"
+    argv = ["study", "--urdf", KRABY, "--mode", "free", "--l1-ratios", "0.25",
+            "--l3-points", "2", "--workers", "2", "-o", str(out)]  # fmt: skip
+    assert run_cli(argv) == 0, capsys.readouterr().err
+    rows = pd.read_csv(out / "study.csv", keep_default_na=False, na_values=[""])
+    locked = _study(tmp_path, "locked", ["--urdf", KRABY])
+    measured = [row for row in rows.to_dict(orient="records") if pd.isna(row["error"])]
+    assert measured, rows["error"].tolist()
+    for row in measured:
+        lengths = (row["l1"], row["l2"], row["l3"])
+        argv = ["flexibility", "--urdf", KRABY, *_lengths(lengths), "--mode", "free", "--json"]
+        single = _json(capsys, argv)
+        assert row["fb"] == pytest.approx(single["fb"], rel=1e-9)
+        same = locked[np.isclose(locked["l3_ratio"], row["l3_ratio"])]
+        same = same[np.isclose(same["l1_ratio"], row["l1_ratio"])]
+        assert same.empty or row["fb"] >= float(same["fb"].iloc[0]) - 1e-9  # free ≥ locked

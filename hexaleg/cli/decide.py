@@ -17,8 +17,8 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.cli.robot_designs import robot_designs
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.robot import SEGMENT_SPAN, Robot
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.goal import Objective
@@ -31,7 +31,6 @@ from hexaleg.study.optimize import (
     SearchSettings,
 )
 from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
-from hexaleg.study.robot_designs import ROBOT_SPAN
 from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
 DESCRIPTION = (
@@ -46,7 +45,7 @@ DESCRIPTION = (
     "--design is checked the same way. If nothing meets them all, it names the requirements "
     "that conflict and the nearest value of each that the others allow. With --urdf, your "
     "robot: its file with every leg's segments changed, each searched within "
-    f"{ROBOT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
+    f"{SEGMENT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
 )
 
 SHOWN_OVER_RATING = 4
@@ -116,10 +115,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
     inputs = inputs_from_args(args)
-    design, in_file = inputs.design, inputs.requirements
-    robot = robot_designs(inputs.robot)
-    if robot is not None:
-        refuse_for_robot(args)
+    robot, in_file = inputs.robot, inputs.requirements
+    refuse_for_robot(args, robot)
     requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
@@ -136,7 +133,7 @@ def run(args: argparse.Namespace) -> int:
     actuators, ranges = _catalog_actuators(args.choose_actuators, args.free_gear_ratio)
     with executor as pool:
         result = decide(
-            design,
+            robot,
             requirements,
             objective,
             free_posture=args.free_posture,
@@ -147,7 +144,6 @@ def run(args: argparse.Namespace) -> int:
             executor=pool,
             journal=args.journal,
             resume=args.resume,
-            robot=robot,
         )
     if args.json:
         print_json(result.to_dict())
@@ -156,10 +152,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def refuse_for_robot(args: argparse.Namespace) -> None:
-    """Refuse, with ``--urdf``, what would change more of the robot than its segments."""
-    for flag in ("free_posture", "choose_actuators", "free_gear_ratio"):
-        if getattr(args, flag, False):
+def refuse_for_robot(args: argparse.Namespace, robot: Robot) -> None:
+    """Refuse what would free more of the robot than a search may (a file's: its segments)."""
+    for flag, field in (
+        ("free_posture", "nominal_angles"),
+        ("choose_actuators", "actuators"),
+        ("free_gear_ratio", "actuators"),
+    ):
+        if getattr(args, flag, False) and not robot.searches(field):
             raise UsageError(
                 f"--{flag.replace('_', '-')} with --urdf: an imported robot's posture, motors "
                 "and masses are its file's; decide searches its segments"

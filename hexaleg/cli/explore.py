@@ -6,17 +6,11 @@ import argparse
 import signal
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, note
 from hexaleg.exceptions import HexalegError
-from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.output.viewer.server import browser_url, is_loopback
-
-if TYPE_CHECKING:
-    from hexaleg.explore.robot import ExploredRobot
-    from hexaleg.robot.robot import Robot
 
 DESCRIPTION = (
     "Serve a page where every slider (segment lengths, posture, body size, payload, gait "
@@ -61,15 +55,13 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.explore.session import Session
 
     inputs = inputs_from_args(args)
-    design, requirements = inputs.design, inputs.requirements
     save_to = _save_target(args)
-    robot = _explored_robot(inputs.robot)
     if not is_loopback(args.host):
         note(
             f"--host {args.host} serves the explorer beyond this machine, to anyone who can "
             "reach it, without authentication: they can measure designs and save the design file"
         )
-    session = Session.start(design, requirements, save_to, robot)
+    session = Session.start(inputs.robot, inputs.requirements, save_to)
     try:
         server = ExplorerServer(session, args.host, args.port)
     except OSError as err:
@@ -87,23 +79,6 @@ def run(args: argparse.Namespace) -> int:
         session.jobs.stop()
     print("hexaleg explore: stopped", file=sys.stderr)
     return 0
-
-
-def _explored_robot(robot: Robot) -> ExploredRobot | None:
-    """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
-    from hexaleg.explore.robot import ExploredRobot
-    from hexaleg.robot.imported_model import ImportedHexapodModel
-    from hexaleg.robot.robot_table import robot_table
-
-    model = robot.model
-    if not isinstance(model, ImportedHexapodModel):
-        return None
-    lengths = dict(zip(SEGMENT_NAMES, model.robot.legs[0].reading.geometry.lengths, strict=True))
-    for change in model.robot.changes:  # back to the file's: what the saved file's l* say
-        if change.leg == model.robot.legs[0].name:
-            lengths[change.segment] = change.file_length
-    l1, l2, l3 = (lengths[name] for name in SEGMENT_NAMES)
-    return ExploredRobot(model, robot_table(robot.source, model.robot, None), (l1, l2, l3))
 
 
 def _save_target(args: argparse.Namespace) -> Path:

@@ -20,13 +20,14 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping
+from dataclasses import fields
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
 import tomli_w
 
-from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign
+from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign, ratio_lengths
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
@@ -44,7 +45,7 @@ from hexaleg.robot.robot_design import robot_record
 from hexaleg.robot.robot_table import check_written_lengths, robot_table
 from hexaleg.robot.urdf import render_hexapod
 
-__all__ = ["FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers"]
+__all__ = ["FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers", "robot_of"]
 
 SEGMENT_SPAN = 0.5
 """A decision searches a robot file's segment within this share of its own length either
@@ -57,6 +58,9 @@ ratings are the file's (and the design file's overrides it was built over)."""
 
 Lengths = tuple[float, float, float]
 """(l1, l2, l3): coxa, femur and tibia [m]."""
+
+SegmentChanges = tuple[tuple[str, float], ...]
+"""A robot file's segments changed on every leg: (``coxa``/``femur``/``tibia``, length [m])."""
 
 
 class Robot:
@@ -78,10 +82,28 @@ class Robot:
         model: HexapodModel | None = None,
         given: ImportedRobot | None = None,
         design: HexapodDesign | None = None,
+        lengths: SegmentChanges = (),
     ) -> None:
         self.source, self.over = source, over
         self._model, self._given = model, given
         self._design = over if design is None else design
+        self._lengths = lengths  # a robot file's segments changed by at(), every leg
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        """A robot crosses processes as its recipe, built again there once (:func:`robot_of`)."""
+        return (robot_of, self._recipe)
+
+    def __eq__(self, other: object) -> bool:
+        """Robots of the same recipe are the same robot."""
+        return isinstance(other, Robot) and self._recipe == other._recipe
+
+    def __hash__(self) -> int:
+        """The recipe's hash."""
+        return hash(self._recipe)
+
+    @property
+    def _recipe(self) -> tuple[RobotSource, HexapodDesign, SegmentChanges]:
+        return (self.source, self.over, self._lengths)
 
     @classmethod
     def build(cls, source: RobotSource | None = None, over: HexapodDesign | None = None) -> Robot:
@@ -167,8 +189,11 @@ class Robot:
 
     # -- other robots of the same source ------------------------------------------------------
 
-    def at(self, **changes: Any) -> Robot:
+    def at(self, design: HexapodDesign | None = None, /, **changes: Any) -> Robot:
         """The robot with the design fields ``changes`` changed (segments, posture, …).
+
+        ``design``: a design whose fields that differ from the robot's are changes too (a
+        query's design, made from this robot's).
 
         The template: the model of its design so changed, derived in closed form from a
         model of the same body (:func:`~hexaleg.robot.model_cache.model_of`). A robot file:
@@ -181,8 +206,11 @@ class Robot:
 
         """
         if self._given is None:
-            design = self.design.replace(**changes)
+            design = self.design if design is None else design
+            design = design.replace(**changes) if changes else design
             return Robot(self.source, design, model_of(design))
+        if design is not None:
+            changes = _differing(self.design, design) | changes
         refused = [name for name in changes if not self.takes(name)]
         if refused:
             raise ParameterError(
@@ -191,15 +219,42 @@ class Robot:
                 "not for a robot file: its body, mounts, masses, limits and ratings are its "
                 "file's (its segments and posture change)",
             )
-        lengths = tuple(
-            (segment, float(changes.pop(name)))
-            for name, segment in zip(SEGMENTS, SEGMENT_NAMES, strict=True)
-            if name in changes and not (name == "l1" and self.fixed_coxa)
-        )
+        lengths = dict(self._lengths)
+        for name, segment in zip(SEGMENTS, SEGMENT_NAMES, strict=True):
+            if name in changes and not (name == "l1" and self.fixed_coxa):
+                lengths[segment] = float(changes.pop(name))
         changes.pop("l1", None)  # a coxa of 0 stays 0
         over = self.over.replace(**changes) if changes else self.over
-        model = _file_model(self.source, lengths, over)
-        return Robot(self.source, over, model, self._given, model.design)
+        return _derived(self.source, over, tuple(sorted(lengths.items())))
+
+    def at_ratios(self, l1_ratio: float, l3_ratio: float, total: float | None = None) -> Robot:
+        """The robot with its segments at these ratios of a total leg length [m] (its own).
+
+        Raises:
+            ParameterError: A ratio or length out of range (:meth:`at`'s too).
+
+        """
+        total = self.design.leg_length if total is None else total
+        lengths = ratio_lengths(l1_ratio, l3_ratio, total)
+        return self.at(**dict(zip(SEGMENTS, lengths, strict=True)))
+
+    def rebuilt(self) -> Robot:
+        """The robot measured again from its own URDF, nothing derived.
+
+        The template's model rendered and built from its design; a robot file's model is
+        built from its own (changed) file already.
+        """
+        if self._given is not None:
+            return self
+        return Robot(self.source, self.design, HexapodModel(self.design))
+
+    def searches(self, field: str) -> bool:
+        """Whether a decision may free design field ``field`` (the template's: any).
+
+        A robot file's segments only: its posture stands within its own limits and its
+        motors and body are its file's.
+        """
+        return self._given is None or field in SEGMENTS
 
     def segment_bounds(self, floor: float, leg_length: float) -> dict[str, tuple[float, float]]:
         """Each free segment's search bounds [m], at least ``floor``, at most ``leg_length``.
@@ -402,11 +457,37 @@ def _segments_table(read: ImportedRobot) -> dict[str, Any]:
 
 
 @lru_cache(maxsize=32)
-def _file_model(
-    source: RobotSource, lengths: tuple[tuple[str, float], ...], over: HexapodDesign
-) -> ImportedHexapodModel:
+def _derived(source: RobotSource, over: HexapodDesign, lengths: SegmentChanges) -> Robot:
     """The robot file of ``source`` with every leg's ``lengths`` changed, over ``over``."""
     given, _ = source.read()
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # shown once, when the robot was built
-        return resized_model(given, dict(lengths), over)
+        model = resized_model(given, dict(lengths), over)
+    return Robot(source, over, model, given, model.design, lengths)
+
+
+@lru_cache(maxsize=8)
+def robot_of(source: RobotSource, over: HexapodDesign, lengths: SegmentChanges = ()) -> Robot:
+    """The robot of a recipe, built once per process, its warnings not shown again.
+
+    What a robot sent to another process (a study's or a decision's worker) is built from
+    there (:meth:`Robot.__reduce__`).
+    """
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # shown where the robot was first built
+        robot = Robot.build(source, over)
+        return robot.at(**_fields(lengths)) if lengths else robot
+
+
+def _differing(design: HexapodDesign, other: HexapodDesign) -> dict[str, Any]:
+    """The fields of ``other`` whose values differ from ``design``'s."""
+    return {
+        f.name: getattr(other, f.name)
+        for f in fields(HexapodDesign)
+        if getattr(other, f.name) != getattr(design, f.name)
+    }
+
+
+def _fields(lengths: SegmentChanges) -> dict[str, float]:
+    """Segment changes (``femur``, 0.08) as design fields (``l2``)."""
+    return {SEGMENTS[SEGMENT_NAMES.index(segment)]: value for segment, value in lengths}

@@ -130,6 +130,18 @@ class StanceGeometry:
         )
 
     @classmethod
+    def template_of(
+        cls, model: HexapodModel, stance: StanceSet | Sequence[str] = "all"
+    ) -> StanceGeometry | None:
+        """The geometry other designs of ``model``'s body derive theirs from in closed form.
+
+        By :meth:`with_design`; ``None`` where its legs are their own
+        (:attr:`~hexaleg.robot.model.HexapodModel.own_legs`): each design's is then read from
+        its own model.
+        """
+        return cls.from_model(model, stance) if model.own_legs is None else None
+
+    @classmethod
     def of_design(
         cls,
         design: HexapodDesign,

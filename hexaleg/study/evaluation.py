@@ -150,22 +150,26 @@ def evaluate_many(
     designs: Sequence[HexapodDesign],
     metrics: Collection[str],
     conditions: Conditions,
-    base: HexapodModel,
-    template: StanceGeometry,
+    models: Sequence[HexapodModel],
+    template: StanceGeometry | None,
 ) -> list[Evaluation]:
-    """:func:`evaluate` of designs of one body (``base``'s), their flexibility searched together.
+    """:func:`evaluate` of designs of one robot, their flexibility searched together.
 
     Args:
-        designs: Designs differing from ``base``'s only in their legs, ratings and posture.
+        designs: Designs of one body, differing only in their legs, ratings and posture.
         metrics: What to measure.
         conditions: What they are measured under.
-        base: A model of that body: each design's is derived from it.
-        template: The body's stance geometry (``conditions.stance``'s legs).
+        models: Each design's model (derived from its body's, or its own).
+        template: The body's stance geometry (``conditions.stance``'s legs), from which each
+            design's derives in closed form; ``None`` where the legs are their own
+            (:meth:`~hexaleg.stance.geometry.StanceGeometry.template_of`): each design is
+            then read and searched on its own model.
 
     """
-    models = [base.with_design(design) for design in designs]
     found: Sequence[FlexibilityResult | None] = [None] * len(designs)
-    if "fb" in metrics and conditions.mode == "axis" and designs:
+    batched = template is not None and "fb" in metrics and conditions.mode == "axis"
+    if batched and designs:
+        assert template is not None
         try:
             found = axis_locked_flexibility_many(
                 designs, template, models, collisions=conditions.collisions

@@ -19,7 +19,7 @@ import pandas as pd
 
 from hexaleg.exceptions import HexalegError
 from hexaleg.study.rows import Cell, StudyRow, design_walking_columns
-from hexaleg.study.sweep import StudySpec, base_model
+from hexaleg.study.sweep import StudySpec
 
 PAPER_RATIOS = (0.2, 0.4)
 """The paper's leg: coxa and tibia ratios l1/L, l3/L (0.2/0.4/0.4) [-]."""
@@ -102,9 +102,9 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     walking = table[table["gait_feasible"].fillna(False).astype(bool)]
     if walking.empty:
         raise HexalegError(f"no design of the study walks {spec.walked.named}")
-    paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
-    columns = design_walking_columns(paper, base_model(spec.base).with_design(paper), spec.walked)
-    reference = StudyRow(*PAPER_RATIOS, paper.lengths, columns)
+    paper = spec.robot.at_ratios(*PAPER_RATIOS, spec.total)
+    columns = design_walking_columns(paper.design, paper.model, spec.walked)
+    reference = StudyRow(*PAPER_RATIOS, paper.design.lengths, columns)
     return WalkingComparison(
         reference=reference,
         least_torque=StudyRow.from_dict(walking.loc[walking[TORQUE].idxmin()].to_dict()),
