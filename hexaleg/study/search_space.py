@@ -390,9 +390,7 @@ def search_space(
     return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans, robot)
 
 
-def _segments(
-    leg_length: float, min_coxa: float | None, robot: Robot
-) -> dict[str, FreeVariable]:
+def _segments(leg_length: float, min_coxa: float | None, robot: Robot) -> dict[str, FreeVariable]:
     """The segments' default bounds: the robot's (the whole leg, or around a file's own)."""
     own = robot.segment_bounds(segment_floor(leg_length), leg_length)
     if min_coxa is not None and min_coxa >= leg_length:

@@ -52,6 +52,7 @@ PARTS: tuple[Part[Any], ...] = (
 )
 """Every part of the report, in reading order; each is computed after the parts it needs."""
 
+
 def parts_for(robot: Robot, options: ReportOptions) -> tuple[Part[Any], ...]:
     """The parts of :data:`PARTS` that hold for ``robot`` and ``options``, in reading order."""
     return tuple(part for part in PARTS if part.holds(robot, options) is None)
