@@ -1,4 +1,4 @@
-"""``study``, ``decide`` and ``report`` on an imported robot, held against the single-design path.
+"""``study``, ``decide`` and ``report`` on a robot, held against the single-design path.
 
 Oracles: each row, answer and report number is measured again here with the single-design
 commands (``flexibility --urdf FILE --l1 .. --l2 .. --l3 .. --json``, ``loads --urdf ...
@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from conftest import run_cli
+from robots import KINDS, robot_argv, robot_of
 
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.feet import FootSearch
@@ -54,10 +55,11 @@ def _lengths(values) -> list[str]:
     return ["--l1", l1, "--l2", l2, "--l3", l3]
 
 
-def _single(capsys, lengths, gait: str) -> dict[str, float]:
+def _single(capsys, lengths, gait: str, robot: list[str] | None = None) -> dict[str, float]:
     """FB, standing and walking payload capacity from the single-design commands."""
-    flex = _json(capsys, ["flexibility", "--urdf", KRABY, *_lengths(lengths), "--json"])
-    argv = ["loads", "--urdf", KRABY, "--design", gait, *_lengths(lengths), "--json"]
+    robot = ["--urdf", KRABY] if robot is None else robot
+    flex = _json(capsys, ["flexibility", *robot, *_lengths(lengths), "--json"])
+    argv = ["loads", *robot, "--design", gait, *_lengths(lengths), "--json"]
     loads = _json(capsys, argv)
     return {
         "fb": flex["fb"],
@@ -73,11 +75,11 @@ def _study(tmp_path: Path, name: str, argv: list[str]) -> pd.DataFrame:
     return pd.read_csv(out / "study.csv", keep_default_na=False, na_values=[""])
 
 
-def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys):
-    gait = _gait_file(tmp_path)
-    table = _study(tmp_path, "study", ["--urdf", KRABY, "--design", gait])
-    robot = import_robot(KRABY, foot=FootSearch())
-    total = sum(robot.legs[0].reading.geometry.lengths)  # the robot's own leg length
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys, kind):
+    gait, argv = _gait_file(tmp_path), robot_argv(kind)
+    table = _study(tmp_path, "study", [*argv, "--design", gait])
+    total = robot_of(kind).design.leg_length  # the robot's own leg length
     measured = table[table["error"].isna()]
     assert len(measured) == 5  # 0.25 + 0.75 leaves no femur: that row is refused
     for row in measured.to_dict(orient="records"):
@@ -88,10 +90,15 @@ def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys):
              row["l3_ratio"] * total],
             rtol=1e-12,
         )  # fmt: skip
-        single = _single(capsys, lengths, gait)
+        single = _single(capsys, lengths, gait, argv)
         for column, value in single.items():
             assert row[column] == pytest.approx(value, rel=1e-9, abs=1e-12), column
     assert (measured["walking_payload_capacity"] > 0).sum() >= 2  # the file's gait is walked
+
+
+def test_a_study_of_an_imported_design_file_is_the_robot_files(tmp_path):
+    gait = _gait_file(tmp_path)
+    table = _study(tmp_path, "study", ["--urdf", KRABY, "--design", gait])
     # the same study from a design file written by `design import` (its [robot] table)
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
