@@ -12,15 +12,14 @@ import hashlib
 import math
 import pickle
 import sys
-import warnings
 from pathlib import Path
 
 import pinocchio as pin
 import pytest
-from robots import KRABY, OCHS, OCHS_OFFSET
+from robots import KINDS, KRABY, OCHS, OCHS_OFFSET, robot_of
 
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.exceptions import ParameterError, RobotImportWarning
+from hexaleg.exceptions import ParameterError
 from hexaleg.robot.recipe import RobotSource, SegmentLength
 from hexaleg.robot.robot import SEGMENT_SPAN, Robot
 from hexaleg.robot.robot_table import table_source
@@ -30,10 +29,6 @@ if sys.version_info >= (3, 11):
     import tomllib
 else:  # pragma: no cover
     import tomli as tomllib
-
-KINDS = ("template", "kraby")
-"""Each kind of robot: hexaleg's template at the default design, a robot file as read."""
-
 
 def source_of(kind: str) -> RobotSource:
     """The recipe of a kind of robot."""
@@ -52,9 +47,7 @@ def kind(request: pytest.FixtureRequest) -> str:
 
 
 def built(kind: str) -> Robot:
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobotImportWarning)  # Kraby's placeholder body mass
-        return Robot.build(source_of(kind))
+    return robot_of(kind)
 
 
 def test_the_mass_is_pinocchios_of_what_the_robot_is_built_from(kind):
