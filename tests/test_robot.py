@@ -30,6 +30,7 @@ if sys.version_info >= (3, 11):
 else:  # pragma: no cover
     import tomli as tomllib
 
+
 def source_of(kind: str) -> RobotSource:
     """The recipe of a kind of robot."""
     return RobotSource() if kind == "template" else RobotSource.of(KRABY)
