@@ -128,8 +128,6 @@ def test_refusals_of_chains_and_feet():
         robot_from_text("<robot>", source=Path("bad.urdf"))
     with pytest.raises(RobotImportError, match=r"no such file"):
         read_robot_text(ROBOTS / "missing.urdf")
-    with pytest.raises(RobotImportError, match=r"\$\(find phantomx_description\)"):
-        read_robot_text(HUMA)
 
 
 def _collision(origin: str, geometry: str) -> str:

@@ -76,8 +76,9 @@ def run(args: argparse.Namespace) -> int:
     check_outputs({"--html": args.html})
     imported = robot_model(args, design)
     model: HexapodModel = HexapodModel(design) if imported is None else imported
-    if imported is not None:
-        _note_missing_meshes(imported.missing_meshes)
+    missing = None if imported is None else imported.missing_meshes_note("not drawn")
+    if missing is not None:
+        note(missing)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
@@ -94,18 +95,6 @@ def run(args: argparse.Namespace) -> int:
         lambda viewer: build_scene(viewer, model, result, args.workspace, loads=loads),
         STATICS_LEGEND,
     )
-
-
-def _note_missing_meshes(missing: tuple[str, ...]) -> None:
-    """Say which of the file's visual meshes are not drawn, and how to have them drawn."""
-    if missing:
-        listed = ", ".join(missing[:3]) + (
-            f" and {len(missing) - 3} more" if len(missing) > 3 else ""
-        )
-        note(
-            f"{len(missing)} visual mesh file(s) not found, those visuals are not drawn: "
-            f"{listed} (give --package NAME=DIR for package:// paths)"
-        )
 
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:

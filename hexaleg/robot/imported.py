@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -25,6 +25,7 @@ from hexaleg.robot.chains import LegChain, find_chains
 from hexaleg.robot.description import RobotDescription, parse_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
 from hexaleg.robot.legs import LegReading, read_leg
+from hexaleg.robot.packages import PackageFolders
 from hexaleg.robot.source import Packages, read_robot_text
 
 if TYPE_CHECKING:
@@ -101,7 +102,7 @@ class ImportedRobot:
         body_mass: The body's links lumped, in the root link's frame.
         changes: The segments changed from the file's (:mod:`hexaleg.robot.resize`),
             empty for the robot as the file draws it.
-        packages: The package folders its ``package://`` references were read with.
+        packages: Where its ``package://`` references are found.
 
     """
 
@@ -112,7 +113,7 @@ class ImportedRobot:
     body: tuple[str, ...]
     body_mass: SegmentMass
     changes: tuple[SegmentChange, ...] = ()
-    packages: Packages = field(default_factory=dict)
+    packages: PackageFolders = field(default_factory=PackageFolders)
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -135,12 +136,12 @@ def import_robot(
 
     """
     path = Path(path)
-    text = read_robot_text(path, xacro_args, packages)
+    folders = PackageFolders.of(packages, path.parent)
+    text = read_robot_text(path, xacro_args, folders)
     search = foot or FootSearch()
     if search.base_dir is None:
-        search = FootSearch(search.offset, search.frame, path.parent, packages or search.packages)
-    robot = robot_from_text(text, search, lock, source=path)
-    return replace(robot, packages=dict(packages or search.packages))
+        search = FootSearch(search.offset, search.frame, path.parent, folders)
+    return robot_from_text(text, search, lock, source=path)
 
 
 def robot_from_text(
@@ -163,7 +164,7 @@ def robot_from_text(
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
     body = lumped_mass(description, chains.body, frames, np.eye(4))
     _warn_implausible_inertias(description)
-    packages = dict(search.packages)
+    packages = PackageFolders.of(search.packages, search.base_dir)
     return ImportedRobot(source, text, description, tuple(legs), chains.body, body, (), packages)
 
 

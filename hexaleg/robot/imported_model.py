@@ -35,7 +35,12 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
-from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
+from hexaleg.robot.geometry_model import (
+    GeometryKind,
+    file_geometry,
+    missing_meshes_note,
+    with_resolved_meshes,
+)
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
@@ -202,9 +207,9 @@ class ImportedHexapodModel(HexapodModel):
         if self._collision is None:
             geometry, missing = self._file_geometry("collision")
             if missing:
+                what = "those parts are not checked for contact"
                 warnings.warn(
-                    f"{len(missing)} collision mesh(es) not found ({missing[0]} first): those "
-                    f"parts are not checked for contact (give --package NAME=DIR)",
+                    missing_meshes_note(missing, self.robot.packages, what),
                     RobotImportWarning,
                     stacklevel=2,
                 )
@@ -223,6 +228,11 @@ class ImportedHexapodModel(HexapodModel):
     def missing_meshes(self) -> tuple[str, ...]:
         """The visual mesh references whose files were not found, each once (no mesh read)."""
         return with_resolved_meshes(self._text, "visual", self._folder, self.robot.packages)[1]
+
+    def missing_meshes_note(self, what: str) -> str | None:
+        """One sentence on the visual meshes not found (``what`` that means); ``None``: none."""
+        missing = self.missing_meshes
+        return missing_meshes_note(missing, self.robot.packages, what) if missing else None
 
     @property
     def _folder(self) -> Path | None:

@@ -1,27 +1,32 @@
 """A robot file's URDF text: read as is, or expanded from Xacro in-process.
 
 A Xacro file (``.xacro``, or one that declares the ``xacro`` namespace) is expanded by
-the ``xacro`` package with the given arguments (``NAME:=VALUE``) and package folders
-(``NAME=DIR``), which serve ``$(find NAME)`` in the file and ``package://NAME/`` in its
-mesh references (:func:`resolve_resource`). Nothing is looked up in the environment:
-without a folder, ``$(find NAME)`` is refused naming the package.
+the ``xacro`` package with the given arguments (``NAME:=VALUE``); ``$(find NAME)`` is
+answered as ROS answers it (:class:`~hexaleg.robot.packages.PackageFolders`: the given
+folders, then the folders above the file, then ``ROS_PACKAGE_PATH``), and a package found
+nowhere is refused in one line naming it and ``--package NAME=DIR``. xacro's own warnings
+come out as one-line :class:`~hexaleg.exceptions.RobotImportWarning` s, except its
+"redefining global symbol" (a file's own ``pi`` property, the usual ROS 1 idiom, is what its
+author meant).
 """
 
 from __future__ import annotations
 
+import io
 import threading
+import warnings
 from collections.abc import Iterator, Mapping
-from contextlib import contextmanager
+from contextlib import contextmanager, redirect_stderr
 from pathlib import Path
-from urllib.parse import unquote, urlparse
 
-from hexaleg.exceptions import RobotImportError
+from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.robot.packages import PackageFolders, missing_packages_note
 
 _XACRO_LOCK = threading.Lock()
 """xacro keeps its arguments and file stack in module globals: one expansion at a time."""
 
-Packages = Mapping[str, str | Path]
-"""Package name → its folder, for ``$(find NAME)`` and ``package://NAME/``."""
+Packages = Mapping[str, str | Path] | PackageFolders
+"""Package name → its folder given by the user, or every package folder of a robot file."""
 
 
 def read_robot_text(
@@ -34,7 +39,8 @@ def read_robot_text(
     Args:
         path: A URDF or Xacro file.
         args: Xacro arguments, name → value (``NAME:=VALUE`` on a command line).
-        packages: Package folders, name → folder.
+        packages: Package folders, name → folder (searched further as
+            :class:`~hexaleg.robot.packages.PackageFolders` does).
 
     """
     path = Path(path)
@@ -46,7 +52,7 @@ def read_robot_text(
         raise RobotImportError(f"{path} cannot be read: {_one_line(err)}") from None
     if not is_xacro(path, text):
         return text
-    return expand_xacro(path, args or {}, packages or {})
+    return expand_xacro(path, args or {}, PackageFolders.of(packages, path.parent))
 
 
 def is_xacro(path: Path, text: str) -> bool:
@@ -61,49 +67,36 @@ def expand_xacro(path: Path, args: Mapping[str, str], packages: Packages) -> str
     for name, value in args.items():
         if not isinstance(name, str) or not isinstance(value, str):
             raise RobotImportError(f"xacro argument {name!r} := {value!r}: both must be text")
+    folders = PackageFolders.of(packages, path.parent)
+    missing: list[str] = []
     try:
-        with _xacro_finds(packages):
+        with _xacro_finds(folders, missing), _xacro_warnings(path):
             document = xacro.process_file(str(path), mappings=dict(args))
     except RobotImportError:
         raise
     except Exception as err:  # xacro raises XacroException, NameError, KeyError, ...
+        if missing:  # xacro wraps what find raised in its own exception: say it plainly
+            raise RobotImportError(
+                f"{path.name} uses $(find {missing[0]}): {missing_packages_note(missing, path)}"
+            ) from None
         raise RobotImportError(f"xacro failed on {path.name}: {_one_line(err)}") from None
     return str(document.toxml())
 
 
-def resolve_resource(reference: str, base_dir: Path | None, packages: Packages) -> Path | None:
-    """The local file a mesh reference names, or ``None`` if it names none that exists.
-
-    ``package://NAME/rest`` is looked up in ``packages``, ``file://`` and absolute paths
-    as they are, relative paths against the robot file's folder ``base_dir``.
-    """
-    if reference.startswith("package://"):
-        name, _, rest = reference[len("package://") :].partition("/")
-        folder = packages.get(name)
-        candidate = Path(folder) / rest if folder is not None else None
-    elif reference.startswith("file://"):
-        candidate = Path(unquote(urlparse(reference).path))
-    elif "://" in reference:
-        candidate = None
-    else:
-        path = Path(reference)
-        candidate = path if path.is_absolute() or base_dir is None else base_dir / path
-    return candidate if candidate is not None and candidate.is_file() else None
-
-
 @contextmanager
-def _xacro_finds(packages: Packages) -> Iterator[None]:
-    """``$(find NAME)`` answered from ``packages`` while xacro runs, then restored."""
+def _xacro_finds(packages: PackageFolders, missing: list[str]) -> Iterator[None]:
+    """``$(find NAME)`` answered from ``packages`` while xacro runs, then restored.
+
+    A package found nowhere is appended to ``missing`` before xacro is stopped.
+    """
     from xacro import substitution_args
 
     def find(name: str) -> str:
-        if name not in packages:
-            given = ", ".join(sorted(packages)) or "none"
-            raise RobotImportError(
-                f"the file uses $(find {name}): give the package folder as {name}=DIR "
-                f"(packages given: {given})"
-            )
-        return str(Path(packages[name]).resolve())
+        folder = packages.find(name)
+        if folder is None:
+            missing.append(name)
+            raise RobotImportError(missing_packages_note([name]))
+        return str(folder.resolve())
 
     with _XACRO_LOCK:
         saved = substitution_args._eval_find, substitution_args._eval_dict["find"]
@@ -113,6 +106,35 @@ def _xacro_finds(packages: Packages) -> Iterator[None]:
             yield
         finally:
             substitution_args._eval_find, substitution_args._eval_dict["find"] = saved
+
+
+REDEFINED = "redefining global symbol"
+"""The start of xacro's warning about a file's property named as one of its built-ins."""
+
+
+@contextmanager
+def _xacro_warnings(path: Path) -> Iterator[None]:
+    """Xacro's stderr while it runs: each warning one :class:`RobotImportWarning` line.
+
+    xacro prints a warning and then where it was (``when processing file: ...``) as
+    lines of their own; the location lines are dropped, and so are redefinitions of its
+    global symbols (``pi``): a file's own property is what its author meant.
+    """
+    captured = io.StringIO()
+    try:
+        with redirect_stderr(captured):
+            yield
+    finally:
+        _warn_lines(captured.getvalue(), path)
+
+
+def _warn_lines(printed: str, path: Path) -> None:
+    """:func:`_xacro_warnings`' warnings, from what xacro printed."""
+    for line in printed.splitlines():
+        text = line.strip()
+        if text.startswith("warning:") and REDEFINED not in text:
+            message = text[len("warning:") :].strip()
+            warnings.warn(f"xacro on {path.name}: {message}", RobotImportWarning, stacklevel=5)
 
 
 def _one_line(err: BaseException) -> str:
