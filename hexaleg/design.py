@@ -58,7 +58,9 @@ from hexaleg.limits import (
 )
 
 SEGMENT_RANGE = (1e-3, 100.0)
-"""Plausible segment length l1, l2, l3 [m]: a millimetre to a hundred metres."""
+"""Plausible segment length l2, l3 [m]: a millimetre to a hundred metres."""
+COXA_RANGE = (0.0, SEGMENT_RANGE[1])
+"""Plausible coxa length l1 [m]: 0 is a leg whose hip axis meets its yaw axis."""
 BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
 
@@ -117,7 +119,7 @@ class HexapodDesign:
     """
 
     # fmt: off
-    l1: float = declare(0.2, "coxa length", "m", SEGMENT_RANGE, option="lengths")
+    l1: float = declare(0.2, "coxa length", "m", COXA_RANGE, option="lengths")
     l2: float = declare(0.4, "femur length", "m", SEGMENT_RANGE, option="lengths")
     l3: float = declare(0.4, "tibia length", "m", SEGMENT_RANGE, option="lengths")
     body_length: float = declare(

@@ -44,6 +44,7 @@ class Spider:
         body: The base link's collision: ``"mesh"`` (a box STL), ``"box"``, or ``None``.
         body_size: The body box's size (x, y, z), centred on the root link.
         masses: Body, coxa, femur, tibia link masses.
+        longer: Each leg's femur drawn this much longer than ``femur``.
 
     """
 
@@ -64,6 +65,7 @@ class Spider:
     body: str | None = "mesh"
     body_size: tuple[float, float, float] = (0.16, 0.12, 0.03)
     masses: tuple[float, float, float, float] = (1.2, 0.05, 0.08, 0.06)
+    longer: tuple[float, ...] = (0.0,) * 6
     joint_names: tuple[str, ...] = field(default=("coxa", "femur", "tibia"))
 
     def root(self, k: int) -> tuple[float, float]:
@@ -207,7 +209,7 @@ def _leg(spider: Spider, k: int, name: str) -> list[str]:
             "revolute",
             femur,
             tibia,
-            (spider.femur, 0.0, 0.0),
+            (spider.femur + spider.longer[k], 0.0, 0.0),
             (0.0, 0.0, 0.0),
             spider.limits,
             spider,

@@ -160,7 +160,7 @@ def _check_file_segments(args: argparse.Namespace, robot: ImportedRobot) -> None
         value = written.get(flag)
         if getattr(args, flag, None) is not None or not isinstance(value, int | float):
             continue
-        length = max(getattr(read, segment), 1e-9)  # a coxa of 0 is written as 1e-9
+        length = getattr(read, segment)
         if abs(value - length) > SAME_LENGTH:
             raise UsageError(
                 f"{args.design}: {flag} = {value:g} is not the robot file's {segment} "

@@ -237,6 +237,19 @@ def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
     return names
 
 
+FOOT_MATCH = 1e-9
+"""A link this close to a leg's foot point is that foot [m]."""
+
+
+def carries_foot(leg: ImportedLeg, link: str, frames: Mapping[str, ArrayF]) -> bool:
+    """Whether ``link`` is fixed beyond ``leg``'s knee at its foot point (``frames`` at q = 0)."""
+    last = leg.chain.segments[2]
+    if link not in last[1:]:
+        return False
+    local = np.linalg.inv(frames[last[0]]) @ frames[link]
+    return bool(np.linalg.norm(local[:3, 3] - np.asarray(leg.reading.foot.point)) < FOOT_MATCH)
+
+
 def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
     """The robot's own URDF text with a link ``<leg>_foot`` fixed at each leg's foot point.
 
@@ -244,13 +257,20 @@ def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
     the file's, so the result moves and weighs like the original, joint for joint.
     ``prefix`` goes before each added link's and joint's name.
 
+    A ``<leg>_foot`` link the file already has on that leg at its foot point (hexaleg's
+    own output, read back) is kept as it is and not added again.
+
     Raises:
-        RobotImportError: The file already has a link or joint of one of those names.
+        RobotImportError: The file already has a link or joint of one of those names that
+            is not that leg's foot.
 
     """
     added = []
+    frames = robot.description.frames_at_zero()
     for leg in robot.legs:
         link, joint = f"{prefix}{leg.name}_foot", f"{prefix}{leg.name}_foot_joint"
+        if carries_foot(leg, link, frames):
+            continue  # the file's own <leg>_foot is this leg's foot: hexaleg's output read back
         for name, kind in ((link, "link"), (joint, "joint")):
             if name in robot.description.links or name in robot.description.joints:
                 raise RobotImportError(
@@ -266,6 +286,8 @@ def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
             f'    <origin xyz="{xyz}" rpy="0 0 0"/>\n'
             f"  </joint>\n"
         )
+    if not added:
+        return robot.text
     end = robot.text.rindex("</robot>")
     feet = "  <!-- hexaleg: each leg's foot point -->\n" + "".join(added)
     return robot.text[:end] + feet + robot.text[end:]

@@ -45,7 +45,7 @@ from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import nominal_posture, robot_design
+from hexaleg.robot.robot_design import mount_plane, nominal_posture, robot_design
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
@@ -150,8 +150,7 @@ def _design_field(leg: str, segment: str) -> str:
 
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
     """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
-    first = robot.legs[0]
-    return float(first.reading.mount[2, 3]) - design.legs[0].z
+    return mount_plane(robot) - design.legs[0].z
 
 
 class ImportedHexapodModel(HexapodModel):

@@ -29,8 +29,16 @@ from hexaleg.robot.imported import ImportedLeg, ImportedRobot
 MIN_BODY_MASS = 1e-3
 """A lighter body is a placeholder (a ``<mass value="0.0001"/>``), not a body [kg]."""
 
-SAME_LENGTH = 1e-9
-"""Segments that differ by less than this are one length [m]."""
+SEGMENTS_DIFFER = 1e-4
+"""Legs whose segments differ by more than this are said to differ [m]: a CAD export's
+round-off (micrometres) is not a different leg."""
+
+LEVEL_MOUNTS = 1e-3
+"""Leg roots within this of one height are on one plane, the design's [m]; their offsets
+from it are reported, the model keeps each at its own height."""
+
+ROUND_OFF = 1e-10
+"""Mount heights that differ by less than this are equal, not reported [m]."""
 
 
 def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> HexapodDesign:
@@ -46,26 +54,15 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
     """
     base = HexapodDesign() if base is None else base
     first = robot.legs[0].reading.geometry.lengths
-    for leg in robot.legs[1:]:
-        lengths = leg.reading.geometry.lengths
-        if max(abs(a - b) for a, b in zip(lengths, first, strict=True)) > SAME_LENGTH:
-            warnings.warn(
-                f"leg {leg.name}'s segments {_mm(lengths)} differ from leg "
-                f"{robot.legs[0].name}'s {_mm(first)}: the design's l1 l2 l3 are leg "
-                f"{robot.legs[0].name}'s; the whole robot's analyses take each leg's own",
-                RobotImportWarning,
-                stacklevel=2,
-            )
-            break
-    mounts = [_mount(leg) for leg in robot.legs]
-    plane = sum(m.z for m in mounts) / len(mounts)
+    _warn_different_legs(robot)
+    mounts = level_mounts(robot)
     hip = robot.legs[0].reading.geometry.hip_height
     changes: dict[str, Any] = {
-        "l1": max(first[0], 1e-9),
+        "l1": first[0],
         "l2": first[1],
         "l3": first[2],
         "layout": "custom",
-        "mounts": tuple(replace(m, z=m.z - plane) for m in mounts),
+        "mounts": mounts,
         "body_length": 2 * max(abs(m.x) for m in mounts),
         "body_width": 2 * max(abs(m.y) for m in mounts),
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
@@ -104,13 +101,63 @@ def _given(base: HexapodDesign) -> set[str]:
     return {name for name in OVERRIDDEN if getattr(base, name) != getattr(default, name)}
 
 
-def _mount(leg: ImportedLeg) -> LegMount:
-    x, y, z = (float(v) for v in leg.reading.mount[:3, 3])
+def _warn_different_legs(robot: ImportedRobot) -> None:
+    """Warn once if a leg's segments differ from the first leg's by more than 0.1 mm."""
+    first = robot.legs[0].reading.geometry.lengths
+    for leg in robot.legs[1:]:
+        lengths = leg.reading.geometry.lengths
+        apart = max(abs(a - b) for a, b in zip(lengths, first, strict=True))
+        if apart > SEGMENTS_DIFFER:
+            digits = max(2, math.ceil(-math.log10(1000 * apart)) + 1)
+            warnings.warn(
+                f"leg {leg.name}'s segments {_mm(lengths, digits)} differ from leg "
+                f"{robot.legs[0].name}'s {_mm(first, digits)}: the design's l1 l2 l3 are leg "
+                f"{robot.legs[0].name}'s; the whole robot's analyses take each leg's own",
+                RobotImportWarning,
+                stacklevel=3,
+            )
+            return
+
+
+def mount_plane(robot: ImportedRobot) -> float:
+    """The mean height of the leg roots in the root link's frame [m]: the design's body plane."""
+    return float(np.mean([leg.reading.mount[2, 3] for leg in robot.legs]))
+
+
+def level_mounts(robot: ImportedRobot) -> tuple[LegMount, ...]:
+    """The six mounts in the design's body frame: on the roots' mean plane (z = 0).
+
+    Roots at different heights are said so, each leg's offset from the mean named: within
+    :data:`LEVEL_MOUNTS` they are one plane up to the file's round-off; farther apart the
+    feet must still stand level (the model keeps every root where the file puts it).
+    """
+    plane = mount_plane(robot)
+    offsets = {leg.name: float(leg.reading.mount[2, 3]) - plane for leg in robot.legs}
+    spread = max(offsets.values()) - min(offsets.values())
+    if spread > ROUND_OFF:
+        unit, scale = ("µm", 1e6) if spread < LEVEL_MOUNTS else ("mm", 1e3)
+        listed = ", ".join(f"{name} {scale * dz:+.3g}" for name, dz in offsets.items())
+        within = (
+            f"within {1000 * LEVEL_MOUNTS:g} mm"
+            if spread <= LEVEL_MOUNTS
+            else f"more than {1000 * LEVEL_MOUNTS:g} mm apart (the feet must still stand level)"
+        )
+        warnings.warn(
+            f"the leg roots' heights differ by {scale * spread:.3g} {unit}, {within}: their "
+            f"mean is the body's plane, each leg's offset from it ({unit}): {listed}",
+            RobotImportWarning,
+            stacklevel=3,
+        )
+    return tuple(_mount(leg, 0.0) for leg in robot.legs)
+
+
+def _mount(leg: ImportedLeg, z: float) -> LegMount:
+    x, y, _ = (float(v) for v in leg.reading.mount[:3, 3])
     return LegMount(leg.name, x, y, z, leg.reading.mount_yaw)
 
 
-def _mm(lengths: tuple[float, ...]) -> str:
-    return "(" + ", ".join(f"{1000 * v:.2f}" for v in lengths) + ") mm"
+def _mm(lengths: tuple[float, ...], digits: int = 2) -> str:
+    return "(" + ", ".join(f"{1000 * v:.{digits}f}" for v in lengths) + ") mm"
 
 
 def nominal_posture(leg: ImportedLeg, nominal: tuple[float, float, float]) -> dict[str, Any]:

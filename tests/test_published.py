@@ -1,0 +1,101 @@
+"""Robots as their authors publish them: round-off, exporter defaults, a coxa of 0.
+
+Each robot is written by the test (:mod:`published`) from known numbers; the oracles are
+those numbers and Pinocchio's own model of the raw file (its total mass, its kinematics).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+
+import numpy as np
+import pinocchio as pin
+import pytest
+from conftest import run_cli
+from published import ROUND_OFF_HEIGHT, Spider, write_package
+
+from hexaleg.robot.imported import import_robot
+from hexaleg.robot.robot_design import robot_design
+
+GRAVITY = 9.81
+RATED = Spider(limits=(-1.5, 1.5), effort=2.0, velocity=5.0)
+"""A written hexapod with limits and ratings in its file."""
+
+
+def _json(capsys, argv):
+    """A command's JSON, and its warnings' messages joined (one a line)."""
+    capsys.readouterr()
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        assert run_cli([*argv, "--json"]) == 0, capsys.readouterr().err
+    said = "\n".join(str(w.message) for w in caught)
+    return json.loads(capsys.readouterr().out), said
+
+
+def _file_mass(urdf) -> float:
+    model = pin.buildModelFromUrdf(str(urdf), pin.JointModelFreeFlyer())
+    return float(pin.computeTotalMass(model))
+
+
+@pytest.mark.parametrize("raised", [1e-9, ROUND_OFF_HEIGHT])
+def test_a_mount_off_by_round_off_stands_and_says_so(tmp_path, capsys, raised):
+    heights = (0.0, 0.0, 0.0, raised, 0.0, 0.0)
+    urdf = write_package(tmp_path, Spider(**{**vars(RATED), "heights": heights}))
+    shown, err = _json(capsys, ["loads", "--urdf", str(urdf)])
+    vertical = sum(force[2] for force in shown["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
+    # leg4 (hexaleg's rr) is the raised one: named with its offset from the mean plane
+    assert "leg roots' heights differ" in err and "within 1 mm" in err
+    offset = f"rr {1e6 * raised * 5 / 6:+.3g}"
+    assert offset in err, err
+
+
+def test_segments_differ_only_beyond_a_tenth_of_a_millimetre(tmp_path):
+    close = write_package(
+        tmp_path / "a", Spider(**{**vars(RATED), "longer": (0, 0, 0, 5e-5, 0, 0)})
+    )
+    far = write_package(tmp_path / "b", Spider(**{**vars(RATED), "longer": (0, 0, 0, 3e-4, 0, 0)}))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot_design(import_robot(close))
+    assert not [w for w in caught if "differ from leg" in str(w.message)]
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot_design(import_robot(far))
+    said = [str(w.message) for w in caught if "differ from leg" in str(w.message)]
+    assert len(said) == 1
+    # the two triples printed differ where the legs do: femur 60.0 mm against 60.3 mm
+    shown = said[0].split("(")[1:3]
+    assert shown[0].split(",")[1] != shown[1].split(",")[1], said[0]
+
+
+def test_a_coxa_of_zero_is_a_hexapod(tmp_path, capsys):
+    urdf = write_package(tmp_path, Spider(**{**vars(RATED), "coxa": 0.0}))
+    shown, _ = _json(capsys, ["design", "show", "--urdf", str(urdf)])
+    assert shown["design"]["l1"] == 0.0
+    assert shown["design"]["l2"] == pytest.approx(0.06, abs=1e-9)
+    loads, _ = _json(capsys, ["loads", "--urdf", str(urdf)])
+    vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
+    flexibility, _ = _json(capsys, ["flexibility", "--urdf", str(urdf)])
+    assert flexibility["fb"] > 0
+
+
+def test_hexaleg_urdf_reads_its_own_output_back(tmp_path, capsys):
+    urdf = write_package(tmp_path, RATED)
+    first, second = tmp_path / "feet.urdf", tmp_path / "again.urdf"
+    assert run_cli(["urdf", "--urdf", str(urdf), "-o", str(first)]) == 0
+    assert run_cli(["urdf", "--urdf", str(first), "-o", str(second)]) == 0
+    assert second.read_text() == first.read_text()
+    # each added <leg>_foot sits where the drawn tibia ends: 0.1 m straight below the knee
+    model = pin.buildModelFromUrdf(str(second))
+    data = model.createData()
+    pin.framesForwardKinematics(model, data, pin.neutral(model))
+    for leg in import_robot(second).legs:
+        knee = data.oMi[model.getJointId(leg.joint_names[2])].translation
+        foot = data.oMf[model.getFrameId(f"{leg.name}_foot")].translation
+        np.testing.assert_allclose(foot - knee, (0.0, 0.0, -0.1), atol=1e-7)
+    assert math.isclose(_file_mass(second), _file_mass(urdf), rel_tol=1e-12)
+    assert not [w for w in capsys.readouterr().err.splitlines() if "already has" in w]
