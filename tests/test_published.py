@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import warnings
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
@@ -42,7 +43,7 @@ def _file_mass(urdf) -> float:
 @pytest.mark.parametrize("raised", [1e-9, ROUND_OFF_HEIGHT])
 def test_a_mount_off_by_round_off_stands_and_says_so(tmp_path, capsys, raised):
     heights = (0.0, 0.0, 0.0, raised, 0.0, 0.0)
-    urdf = write_package(tmp_path, Spider(**{**vars(RATED), "heights": heights}))
+    urdf = write_package(tmp_path, replace(RATED, heights=heights))
     shown, err = _json(capsys, ["loads", "--urdf", str(urdf)])
     vertical = sum(force[2] for force in shown["nominal"]["foot_forces"].values())
     assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
@@ -53,10 +54,8 @@ def test_a_mount_off_by_round_off_stands_and_says_so(tmp_path, capsys, raised):
 
 
 def test_segments_differ_only_beyond_a_tenth_of_a_millimetre(tmp_path):
-    close = write_package(
-        tmp_path / "a", Spider(**{**vars(RATED), "longer": (0, 0, 0, 5e-5, 0, 0)})
-    )
-    far = write_package(tmp_path / "b", Spider(**{**vars(RATED), "longer": (0, 0, 0, 3e-4, 0, 0)}))
+    close = write_package(tmp_path / "a", replace(RATED, longer=(0, 0, 0, 5e-5, 0, 0)))
+    far = write_package(tmp_path / "b", replace(RATED, longer=(0, 0, 0, 3e-4, 0, 0)))
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         robot_design(import_robot(close))
@@ -72,7 +71,7 @@ def test_segments_differ_only_beyond_a_tenth_of_a_millimetre(tmp_path):
 
 
 def test_a_coxa_of_zero_is_a_hexapod(tmp_path, capsys):
-    urdf = write_package(tmp_path, Spider(**{**vars(RATED), "coxa": 0.0}))
+    urdf = write_package(tmp_path, replace(RATED, coxa=0.0))
     shown, _ = _json(capsys, ["design", "show", "--urdf", str(urdf)])
     assert shown["design"]["l1"] == 0.0
     assert shown["design"]["l2"] == pytest.approx(0.06, abs=1e-9)
