@@ -233,7 +233,8 @@ def test_a_real_four_joint_leg_is_refused_naming_its_joints():
     golem = ROBOTS / "golem_4dof" / "urdf" / "hexapod_model.xacro"
     expected = (
         r"^leg from joint coxa_joint_\w\w has 4 revolute joints \(coxa_joint_\w\w, "
-        r"femur_joint_\w\w, tibia_joint_\w\w, tarsus_joint_\w\w\); a yaw-pitch-pitch leg has 3$"
+        r"femur_joint_\w\w, tibia_joint_\w\w, tarsus_joint_\w\w\); a yaw-pitch-pitch leg has 3 "
+        r"\(--lock-joint NAME holds one at its zero\)$"
     )
     with pytest.raises(RobotImportError, match=expected):
         import_robot(golem)

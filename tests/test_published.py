@@ -98,3 +98,63 @@ def test_hexaleg_urdf_reads_its_own_output_back(tmp_path, capsys):
         np.testing.assert_allclose(foot - knee, (0.0, 0.0, -0.1), atol=1e-7)
     assert math.isclose(_file_mass(second), _file_mass(urdf), rel_tol=1e-12)
     assert not [w for w in capsys.readouterr().err.splitlines() if "already has" in w]
+
+
+# the paper's joint-limit sets (Table 2, Table 4, eq 26, §6): their envelope on θ [rad]
+PAPER_ENVELOPE = ((-math.pi / 4, -math.pi / 3, -5 * math.pi / 6), (math.pi / 4, math.pi / 3, 0.0))
+
+
+@pytest.mark.parametrize("limits", [(0.0, 0.0), (0.3, -0.3)])
+def test_joints_without_limits_get_hexalegs_sets_said_once(tmp_path, capsys, limits):
+    urdf = write_package(tmp_path, replace(RATED, limits=limits))
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        robot = import_robot(urdf)
+    said = [str(w.message) for w in caught if "no limits in the file" in str(w.message)]
+    assert len(said) == 1 and "leg1_coxa_joint" in said[0], said
+    for leg in robot.legs:
+        np.testing.assert_allclose(leg.theta_limits, PAPER_ENVELOPE, atol=1e-12)
+    # the file written back carries them on q: the knee's zero is θ3 = −π/2 (q = θ3 + π/2)
+    written = tmp_path / "written.urdf"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["urdf", "--urdf", str(urdf), "-o", str(written)]) == 0
+    model = pin.buildModelFromUrdf(str(written))
+    knee = model.joints[model.getJointId("leg1_tibia_joint")].idx_q
+    assert model.lowerPositionLimit[knee] == pytest.approx(-5 * math.pi / 6 + math.pi / 2)
+    assert model.upperPositionLimit[knee] == pytest.approx(math.pi / 2)
+    loads, _ = _json(capsys, ["loads", "--urdf", str(urdf)])
+    assert len(loads["extremes"]) == 12  # the robot stands and moves within them
+
+
+def test_a_foot_contact_sensor_is_locked_naming_it(tmp_path, capsys):
+    urdf = write_package(tmp_path, replace(RATED, sensor=True))
+    loads, said = _json(capsys, ["loads", "--urdf", str(urdf)])
+    locked = [line for line in said.splitlines() if "beyond the legs' knees" in line]
+    assert len(locked) == 1 and "leg6_contact_joint" in locked[0] and "prismatic" in locked[0]
+    vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
+    shown, _ = _json(capsys, ["design", "show", "--urdf", str(urdf)])
+    feet = {leg["foot"]["source"] for leg in shown["design"]["legs"]}
+    assert feet == {f"link leg{k}_foot_sensor" for k in range(1, 7)}
+
+
+def test_lock_joint_holds_a_joint_the_file_moves(tmp_path, capsys):
+    urdf = write_package(tmp_path, replace(RATED, sensor=True))
+    turned = urdf.read_text().replace('type="prismatic"', 'type="revolute"')
+    turned = turned.replace('lower="-0.0001" upper="0.0001"', 'lower="-1.0" upper="1.0"')
+    (urdf.parent / "turned.urdf").write_text(turned)
+    argv = ["loads", "--urdf", str(urdf.parent / "turned.urdf")]
+    assert run_cli(argv) == 2
+    assert "--lock-joint NAME" in capsys.readouterr().err
+    loads, _ = _json(capsys, [*argv, "--lock-joint", "leg?_contact_joint"])
+    vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
+    saved = tmp_path / "turned.toml"
+    lock = ["--lock-joint", "leg?_contact_joint"]
+    assert run_cli(["design", "import", argv[2], *lock, "-o", str(saved)]) == 0
+    assert 'lock_joints = [\n    "leg?_contact_joint",\n]' in saved.read_text() or (
+        'lock_joints = ["leg?_contact_joint"]' in saved.read_text()
+    )
+    again, _ = _json(capsys, ["loads", "--design", str(saved)])
+    assert again["nominal"] == loads["nominal"]

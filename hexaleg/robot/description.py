@@ -297,9 +297,7 @@ def _joint(element: ET.Element) -> Joint:
         raise RobotImportError(f"{where} is {kind} but has no <limit>")
     low = (lower or 0.0) if bounded else -math.inf
     high = (upper or 0.0) if bounded else math.inf
-    if low > high:
-        raise RobotImportError(f"{where} has lower limit {low:g} > upper limit {high:g}")
-    return Joint(
+    return Joint(  # lower > upper: no limits given on a leg's joint, refused on another
         name=name,
         kind=kind,
         parent=str(parent.get("link")),

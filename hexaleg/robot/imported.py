@@ -24,6 +24,13 @@ from hexaleg.layouts import LEG_NAMES
 from hexaleg.robot.chains import LegChain, find_chains
 from hexaleg.robot.description import RobotDescription, parse_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
+from hexaleg.robot.file_defaults import (
+    locked_as_fixed,
+    refuse_reversed,
+    unlimited_joints,
+    warn_locked,
+    warn_unlimited,
+)
 from hexaleg.robot.legs import LegReading, read_leg
 from hexaleg.robot.packages import PackageFolders
 from hexaleg.robot.source import Packages, read_robot_text
@@ -150,12 +157,24 @@ def robot_from_text(
     lock: Sequence[str] = (),
     source: Path | None = None,
 ) -> ImportedRobot:
-    """The hexapod of URDF ``text`` (see :func:`import_robot`)."""
+    """The hexapod of URDF ``text`` (see :func:`import_robot`).
+
+    What the file leaves unsaid (:mod:`.file_defaults`): leg joints without limits get
+    hexaleg's, and the joints locked (``lock``, and those beyond a knee that are not the
+    leg's) are made fixed, in the robot's text itself, each said once.
+    """
     description = parse_urdf(text, str(source) if source else "<string>")
     chains = find_chains(description, lock)
     frames = description.frames_at_zero()
     search = foot or FootSearch()
     readings = [read_leg(c, frames, find_foot(description, c, frames, search)) for c in chains.legs]
+    limits = unlimited_joints(list(zip(chains.legs, readings, strict=True)))
+    refuse_reversed(description, [j.name for c in chains.legs for j in c.joints])
+    fixed = [name for name in chains.locked if name not in chains.accessories]
+    if limits or fixed:
+        warn_unlimited(limits)
+        warn_locked(chains.beyond, description)
+        return robot_from_text(locked_as_fixed(text, fixed, limits), search, (), source)
     names = _leg_names([r.mount[:3, 3] for r in readings])
     legs = [
         ImportedLeg(name, chain, reading, segment_masses(description, chain, frames))
