@@ -79,6 +79,16 @@ geared actuators of the default ratings; written to each URDF joint's ``velocity
 SPEED_RANGE = (1e-3, 1e4)
 """Plausible rated joint speed [rad/s]."""
 
+NEEDS_RATING = "needs a rating"
+"""What a result that needs a rating the design does not give says instead of a number."""
+
+
+def ratings_text(values: tuple[float, ...] | None, unit: str) -> str:
+    """Ratings for a line of text: ``60, 150, 120 N·m``, or that they are not given."""
+    if values is None:
+        return f"not given: each result that needs one says \"{NEEDS_RATING}\""
+    return ", ".join(f"{v:g}" for v in values) + f" {unit}"
+
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
 
@@ -91,6 +101,7 @@ keeps the foot (sdformat drops massless links, PyBullet weighs them 1 kg)."""
 
 __all__ = [
     "DESIGN_FIELDS",
+    "NEEDS_RATING",
     "FIELD_RANGES",
     "LEG_NAMES",
     "TRIPODS",
@@ -182,13 +193,15 @@ class HexapodDesign:
         4.0, "mass per length of coxa, femur and tibia", "kg/m", (1e-4, 1e5)
     )
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
-    rated_torques: tuple[float, float, float] = declare(
-        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort)", "N·m",
-        TORQUE_RANGE, kind="triple", items=LEG_JOINTS,
+    rated_torques: tuple[float, float, float] | None = declare(
+        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort; none: not "
+        "given, as a robot file's effort of 0)", "N·m", TORQUE_RANGE, kind="triple",
+        items=LEG_JOINTS, option="ratings", optional=True,
     )
-    rated_speeds: tuple[float, float, float] = declare(
-        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
-        SPEED_RANGE, kind="triple", items=LEG_JOINTS,
+    rated_speeds: tuple[float, float, float] | None = declare(
+        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity; none: not "
+        "given, as a robot file's velocity of 0)", "rad/s", SPEED_RANGE, kind="triple",
+        items=LEG_JOINTS, option="ratings", optional=True,
     )
     actuators: Actuators | None = declare(
         None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
@@ -263,6 +276,11 @@ class HexapodDesign:
     def lengths(self) -> tuple[float, float, float]:
         """Segment lengths (l1, l2, l3) [m]."""
         return (self.l1, self.l2, self.l3)
+
+    @property
+    def rated(self) -> bool:
+        """Whether both ratings are given: torques and speeds (a robot file may give neither)."""
+        return self.rated_torques is not None and self.rated_speeds is not None
 
     @property
     def leg_length(self) -> float:

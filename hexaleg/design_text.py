@@ -32,6 +32,9 @@ def design_toml(design: HexapodDesign) -> str:
         derived = design.actuators is not None and spec.name in ("rated_torques", "rated_speeds")
         if spec.kind in ("number", "triple", "choice") and not derived:
             value = getattr(design, spec.name)
+            if value is None:  # a rating not given: named, left for the user to write
+                lines.append(f"# {spec.key} = [{', '.join(spec.items)}]  # not given: {spec.unit}")
+                continue
             lines.append(
                 _line(spec.key, list(value) if spec.kind == "triple" else value, spec.described)
             )

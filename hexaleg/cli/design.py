@@ -15,7 +15,7 @@ from hexaleg.cli.robot_options import (
     robot_from_args,
     robot_table,
 )
-from hexaleg.design import HexapodDesign
+from hexaleg.design import HexapodDesign, ratings_text
 from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
@@ -215,8 +215,8 @@ def show(design: HexapodDesign) -> None:
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
             ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"),
-            ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
-            ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
+            ("rated torques", ratings_text(design.rated_torques, "N·m")),
+            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
         ],
     )
     print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")

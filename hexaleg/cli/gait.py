@@ -29,6 +29,7 @@ from hexaleg.cli.output import (
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
+from hexaleg.design import NEEDS_RATING
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -262,6 +263,15 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
+def _rating(ratings: tuple[float, ...] | None, joint: int) -> float:
+    """A joint type's rating; +inf (nothing is over it) where the design gives none."""
+    return math.inf if ratings is None else ratings[joint]
+
+
+def _rated(rating: float) -> str:
+    return "rating not given" if math.isinf(rating) else f"rated {rating:g}"
+
+
 def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     """The text table's rows."""
     gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
@@ -277,18 +287,19 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
-        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rated_torque = _rating(design.rated_torques, j)
+        rated_speed = _rating(design.rated_speeds, j)
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
-                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m ({_rated(rated_torque)})"
                 + (", OVER RATING" if torque > rated_torque else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{speed:.3f} rad/s ({_rated(rated_speed)}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
                 + (", OVER RATING" if speed > rated_speed else ""),
             )
@@ -303,6 +314,8 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_stride is not None and not design.rated:
+        rows.append(("max speed", NEEDS_RATING))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

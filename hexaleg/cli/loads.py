@@ -18,6 +18,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.design import NEEDS_RATING
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -121,7 +122,8 @@ def run(args: argparse.Namespace) -> int:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
+        walked = None if walking is None else walking.to_dict()  # None: it needs a rating
+        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walked})
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
@@ -136,7 +138,8 @@ TIPS_OVER = "TIPS OVER on level ground"
 
 
 def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
-    rated = dict(zip(LEG_JOINTS, analysis.design.rated_torques, strict=True))
+    given = analysis.design.rated_torques
+    rated = dict(zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True))
     nominal = analysis.nominal.peak_torques()
     margin = f"{analysis.nominal.stability_margin:.4f} m"
     if analysis.tips_over:
@@ -153,7 +156,7 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                f"(rated {rated[joint]:g} N·m)"
+                + (f"(rated {rated[joint]:g} N·m)" if given else "(rating not given)")
                 + (", OVER RATING" if analysis.peak_torques[joint] > rated[joint] else ""),
             )
         )
@@ -172,7 +175,9 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
-def _walking(walking: WalkingCapacity, gait: Gait) -> str:
+def _walking(walking: WalkingCapacity | None, gait: Gait) -> str:
+    if walking is None:
+        return NEEDS_RATING
     which = "default" if gait == Gait() else "design's"
     how = f"walking the {which} {gait.pattern} gait at {gait.speed:g} m/s"
     if not walking.walks:
@@ -182,6 +187,8 @@ def _walking(walking: WalkingCapacity, gait: Gait) -> str:
 
 def _capacity(analysis: LoadsAnalysis) -> str:
     capacity = analysis.capacity
+    if capacity is None:
+        return NEEDS_RATING
     text = f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"
     if analysis.tips_over:
         text += f"; the {analysis.payload.mass:g} kg payload tips the robot over"

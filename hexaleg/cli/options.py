@@ -78,7 +78,7 @@ def add_design_options(
         help="read the design from a TOML design file (hexaleg design init) or a .json "
         "design printed by hexaleg; the options below override its values",
     )
-    offered = {"lengths": lengths, "body": body, "posture": posture}
+    offered = {"lengths": lengths, "body": body, "posture": posture, "ratings": body}
     for spec in DESIGN_FIELDS:
         if spec.option is not None and offered[spec.option]:
             _add_field_option(group, spec)

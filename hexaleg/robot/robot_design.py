@@ -23,6 +23,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.layouts import LegMount
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.file_defaults import missing_ratings
 from hexaleg.robot.imported import ImportedLeg, ImportedRobot
 
 MIN_BODY_MASS = 1e-3
@@ -78,12 +79,59 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
             RobotImportWarning,
             stacklevel=2,
         )
+    return base.replace(**changes, **file_ratings(robot, given))
+
+
+def file_ratings(robot: ImportedRobot, given: set[str]) -> dict[str, Any]:
+    """The ratings the robot file gives (``None``: not given), for those ``given`` does not.
+
+    A joint's ``effort`` or ``velocity`` of 0 or absent is no rating (an exporter's
+    default): the design's rating of that kind is then ``None`` — never a number from
+    nowhere — and one warning names the joints and how to give the ratings.
+    """
     efforts, speeds = robot.legs[0].ratings
-    if "rated_torques" not in given and all(e is not None and e > 0 for e in efforts):
-        changes["rated_torques"] = tuple(float(e) for e in efforts if e is not None)
-    if "rated_speeds" not in given and all(v is not None and v > 0 for v in speeds):
-        changes["rated_speeds"] = tuple(float(v) for v in speeds if v is not None)
-    return base.replace(**changes)
+    unrated = missing_ratings([leg.chain for leg in robot.legs])
+    ratings: dict[str, Any] = {}
+    for field, values, missing in zip(RATINGS, (efforts, speeds), unrated, strict=True):
+        if field in given:
+            continue
+        ratings[field] = None if missing else tuple(float(v or 0.0) for v in values)
+    missing = [
+        (field, names)
+        for field, names in zip(RATINGS, unrated, strict=True)
+        if names and field not in given
+    ]
+    if missing:
+        _warn_unrated(missing)
+    return ratings
+
+
+RATINGS = ("rated_torques", "rated_speeds")
+"""The design's rating fields, read from each URDF joint's ``effort`` and ``velocity``."""
+
+
+def _warn_unrated(missing: list[tuple[str, tuple[str, ...]]]) -> None:
+    """One warning: which joints have no rating, what needs one, how to give them."""
+    attribute = {"rated_torques": "effort", "rated_speeds": "velocity"}
+    said = "; ".join(
+        f"joints {_listed(names)} have no {attribute[field]}" for field, names in missing
+    )
+    fields = " and ".join(field for field, _ in missing)
+    options = " and ".join(
+        "--" + field.replace("_", "-") + " ROOT HIP KNEE" for field, _ in missing
+    )
+    warnings.warn(
+        f"{said} (0 or absent in the file): the payload capacities, the max speed and the "
+        f"checks against ratings need a rating; give them as {fields} in the design file or "
+        f"{options}",
+        RobotImportWarning,
+        stacklevel=4,
+    )
+
+
+def _listed(names: tuple[str, ...], most: int = 4) -> str:
+    more = f" and {len(names) - most} more" if len(names) > most else ""
+    return ", ".join(names[:most]) + more
 
 
 OVERRIDDEN = ("body_mass", "rated_torques", "rated_speeds")

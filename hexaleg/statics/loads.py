@@ -15,7 +15,7 @@ from typing import Any
 import numpy as np
 
 from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
-from hexaleg.design import HexapodDesign
+from hexaleg.design import NEEDS_RATING, HexapodDesign
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
@@ -54,7 +54,8 @@ class LoadsAnalysis:
         nominal: The statics at the nominal stance.
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
-        capacity: The largest payload at the payload's point.
+        capacity: The largest payload at the payload's point; ``None`` when the design
+            gives no rated torques (it needs a rating).
         mode: Which flexibility extremes (axis-locked or free-coupled).
 
     """
@@ -66,7 +67,7 @@ class LoadsAnalysis:
     nominal: StaticState
     extremes: tuple[ExtremeLoads, ...]
     slopes: tuple[SlopeLimit, ...]
-    capacity: PayloadCapacity
+    capacity: PayloadCapacity | None
     mode: FlexibilityMode
 
     @property
@@ -101,8 +102,10 @@ class LoadsAnalysis:
         return columns | {
             "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
-            "payload_capacity": self.capacity.mass,
-            "payload_limited_by": str(self.capacity.limited_by),
+            "payload_capacity": None if self.capacity is None else self.capacity.mass,
+            "payload_limited_by": NEEDS_RATING
+            if self.capacity is None
+            else str(self.capacity.limited_by),
         }
 
     @property
@@ -150,7 +153,9 @@ class LoadsAnalysis:
                 }
                 for s in self.slopes
             ],
-            "payload_capacity": {
+            "payload_capacity": None
+            if self.capacity is None
+            else {
                 "mass": self.capacity.mass,
                 "limited_by": self.capacity.limited_by.to_dict(),
                 "tips_over": self.tips_over,
@@ -236,6 +241,8 @@ def loads_at_extremes(
         nominal=nominal,
         extremes=extremes,
         slopes=slope_limits(statics.support, nominal.com, friction),
-        capacity=payload_capacity(statics, q, distribution, at=nominal),
+        capacity=None
+        if design.rated_torques is None
+        else payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
     )
