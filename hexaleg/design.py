@@ -56,6 +56,13 @@ from hexaleg.limits import (
     WORKSPACE_LIMITS,
     JointLimits,
 )
+from hexaleg.ratings import (
+    DEFAULT_RATED_SPEEDS,
+    DEFAULT_RATED_TORQUES,
+    SPEED_RANGE,
+    TORQUE_RANGE,
+    Ratings,
+)
 
 SEGMENT_RANGE = (1e-3, 100.0)
 """Plausible segment length l2, l3 [m]: a millimetre to a hundred metres."""
@@ -63,31 +70,6 @@ COXA_RANGE = (0.0, SEGMENT_RANGE[1])
 """Plausible coxa length l1 [m]: 0 is a leg whose hip axis meets its yaw axis."""
 BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
-
-DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: well above
-what the nominal stance asks of each joint (``hexaleg loads``), with room for the body's
-extremes and a payload."""
-
-TORQUE_RANGE = (1e-3, 1e6)
-"""Plausible rated torque [N·m]."""
-
-DEFAULT_RATED_SPEEDS: tuple[float, float, float] = (3.0, 3.0, 3.0)
-"""Rated joint speeds (root, hip, knee) [rad/s]: about 29 rpm at the output, typical of
-geared actuators of the default ratings; written to each URDF joint's ``velocity``."""
-
-SPEED_RANGE = (1e-3, 1e4)
-"""Plausible rated joint speed [rad/s]."""
-
-NEEDS_RATING = "needs a rating"
-"""What a result that needs a rating the design does not give says instead of a number."""
-
-
-def ratings_text(values: tuple[float, ...] | None, unit: str) -> str:
-    """Ratings for a line of text: ``60, 150, 120 N·m``, or that they are not given."""
-    if values is None:
-        return f"not given: each result that needs one says \"{NEEDS_RATING}\""
-    return ", ".join(f"{v:g}" for v in values) + f" {unit}"
 
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
@@ -101,7 +83,6 @@ keeps the foot (sdformat drops massless links, PyBullet weighs them 1 kg)."""
 
 __all__ = [
     "DESIGN_FIELDS",
-    "NEEDS_RATING",
     "FIELD_RANGES",
     "LEG_NAMES",
     "TRIPODS",
@@ -193,12 +174,12 @@ class HexapodDesign:
         4.0, "mass per length of coxa, femur and tibia", "kg/m", (1e-4, 1e5)
     )
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
-    rated_torques: tuple[float, float, float] | None = declare(
+    rated_torques: Ratings = declare(
         DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort; none: not "
         "given, as a robot file's effort of 0)", "N·m", TORQUE_RANGE, kind="triple",
         items=LEG_JOINTS, option="ratings", optional=True,
     )
-    rated_speeds: tuple[float, float, float] | None = declare(
+    rated_speeds: Ratings = declare(
         DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity; none: not "
         "given, as a robot file's velocity of 0)", "rad/s", SPEED_RANGE, kind="triple",
         items=LEG_JOINTS, option="ratings", optional=True,

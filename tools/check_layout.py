@@ -7,7 +7,7 @@ layer and those below it, never one above::
                 _lazy
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text
+                table_records, grids, design_text, ratings
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical
@@ -63,6 +63,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "table_records",
             "grids",
             "design_text",
+            "ratings",
         ),
     ),
     ("numerics", ("numerics",)),

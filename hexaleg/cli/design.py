@@ -15,8 +15,9 @@ from hexaleg.cli.robot_options import (
     robot_from_args,
     robot_table,
 )
-from hexaleg.design import HexapodDesign, ratings_text
+from hexaleg.design import HexapodDesign
 from hexaleg.gait.spec import Gait
+from hexaleg.ratings import ratings_text
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
 

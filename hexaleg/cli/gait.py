@@ -29,9 +29,9 @@ from hexaleg.cli.output import (
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
-from hexaleg.design import NEEDS_RATING
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 
 if TYPE_CHECKING:

@@ -14,7 +14,6 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
-from hexaleg.design import NEEDS_RATING
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.dynamics import (
     ForceSplit,
@@ -35,6 +34,7 @@ from hexaleg.gait.trajectory import (
     joint_motion,
     path_shapes,
 )
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import (
     DEFAULT_FRICTION,

@@ -96,13 +96,13 @@ def file_ratings(robot: ImportedRobot, given: set[str]) -> dict[str, Any]:
         if field in given:
             continue
         ratings[field] = None if missing else tuple(float(v or 0.0) for v in values)
-    missing = [
+    said = [
         (field, names)
         for field, names in zip(RATINGS, unrated, strict=True)
         if names and field not in given
     ]
-    if missing:
-        _warn_unrated(missing)
+    if said:
+        _warn_unrated(said)
     return ratings
 
 

@@ -22,6 +22,7 @@ from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
 from hexaleg.limits import JOINT_NAMES, LEG_JOINTS
+from hexaleg.ratings import as_written
 from hexaleg.robot.inertia import TIBIA_RADIUS_RATIO, body_inertial, leg_inertials
 
 HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
@@ -110,7 +111,7 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
     for joint in JOINT_NAMES:
         numbers[f"{joint}_lower"], numbers[f"{joint}_upper"] = getattr(limits, joint)
     for joint, effort, speed in zip(
-        LEG_JOINTS, design.rated_torques, design.rated_speeds, strict=True
+        LEG_JOINTS, as_written(design.rated_torques), as_written(design.rated_speeds), strict=True
     ):
         numbers[f"{joint}_effort"], numbers[f"{joint}_velocity"] = effort, speed
     for link, inertial in leg_inertials(design).items():

@@ -33,6 +33,7 @@ from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import torque_scale
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
@@ -149,21 +150,6 @@ class StaticState:
         return {joint: float(peak) for joint, peak in zip(LEG_JOINTS, peaks, strict=True)}
 
 
-UNRATED_SCALE = (1.0, 1.0, 1.0)
-"""What the min-torque forces weigh a design's torques by when it gives no ratings [N·m]:
-each joint alike, so that they minimize Σ τ² itself."""
-
-
-def torque_scale(design: HexapodDesign) -> ArrayF:
-    """The torques (root, hip, knee) the min-torque forces weigh by (3,) [N·m].
-
-    The design's rated torques; :data:`UNRATED_SCALE` when it gives none (no rating is
-    read from them: the capacities and checks that need one say so instead).
-    """
-    rated = design.rated_torques
-    return np.array(UNRATED_SCALE if rated is None else rated, dtype=float)
-
-
 class Statics:
     """Statics of one robot standing on a set of legs, at any configuration.
 
@@ -187,7 +173,7 @@ class Statics:
         self.legs = tuple(legs)
         self.payload = payload or Payload()
         self.friction = friction
-        self.rated = torque_scale(model.design)
+        self.rated = torque_scale(model.design.rated_torques)
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ

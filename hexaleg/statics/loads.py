@@ -8,6 +8,7 @@ and the payload capacity.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -15,8 +16,9 @@ from typing import Any
 import numpy as np
 
 from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
-from hexaleg.design import NEEDS_RATING, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
@@ -93,7 +95,7 @@ class LoadsAnalysis:
         return min(self.slopes, key=lambda s: s.max_slope)
 
     def study_columns(self) -> dict[str, float | str]:
-        """The design's columns in a study table (N·m, m, rad, kg)."""
+        """The design's columns in a study table (N·m, m, rad, kg; NaN: needs a rating)."""
         nominal, overall = self.nominal.peak_torques(), self.peak_torques
         columns: dict[str, float | str] = {}
         for joint in LEG_JOINTS:
@@ -102,7 +104,7 @@ class LoadsAnalysis:
         return columns | {
             "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
-            "payload_capacity": None if self.capacity is None else self.capacity.mass,
+            "payload_capacity": math.nan if self.capacity is None else self.capacity.mass,
             "payload_limited_by": NEEDS_RATING
             if self.capacity is None
             else str(self.capacity.limited_by),

@@ -15,6 +15,7 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
+from hexaleg._typing import ArrayF
 from hexaleg.limits import LEG_JOINTS
 
 Quantity = Literal["torque", "speed", "peak_torque", "continuous_torque", "voltage"]
@@ -144,3 +145,16 @@ def over_rating_at(
         for j, joint in enumerate(LEG_JOINTS)
         if peaks[i, j] > rated[j]
     )
+
+
+def rating_use(values: npt.ArrayLike, rated: npt.ArrayLike | None) -> ArrayF:
+    """|value| / rating (..., 3) [-] of each joint (root, hip, knee), for colouring.
+
+    Without ratings (``None``: not given) each joint type's |value| over its own largest:
+    the colours then say where the torque peaks, not how near a rating it is.
+    """
+    magnitude = np.abs(np.asarray(values, dtype=float))
+    if rated is None:
+        peaks = magnitude.reshape(-1, 3).max(axis=0)
+        return magnitude / np.where(peaks > 0, peaks, 1.0)
+    return magnitude / np.asarray(rated, dtype=float)
