@@ -64,6 +64,9 @@ from hexaleg.ratings import (
     Ratings,
 )
 
+RATING = {"option": "ratings", "optional": True}
+"""A rating field's declaration: ``--rated-*``, and ``None`` for not given (a file's 0)."""
+
 SEGMENT_RANGE = (1e-3, 100.0)
 """Plausible segment length l2, l3 [m]: a millimetre to a hundred metres."""
 COXA_RANGE = (0.0, SEGMENT_RANGE[1])
@@ -176,14 +179,10 @@ class HexapodDesign:
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
     rated_torques: Ratings = declare(
         DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort; none: not "
-        "given, as a robot file's effort of 0)", "N·m", TORQUE_RANGE, kind="triple",
-        items=LEG_JOINTS, option="ratings", optional=True,
-    )
+        "given)", "N·m", TORQUE_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
     rated_speeds: Ratings = declare(
         DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity; none: not "
-        "given, as a robot file's velocity of 0)", "rad/s", SPEED_RANGE, kind="triple",
-        items=LEG_JOINTS, option="ratings", optional=True,
-    )
+        "given)", "rad/s", SPEED_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
     actuators: Actuators | None = declare(
         None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
         "torques and speed ratings are the rated ones", kind="record",

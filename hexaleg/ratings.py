@@ -13,6 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import ParameterError
 
 __all__ = [
     "DEFAULT_RATED_SPEEDS",
@@ -24,6 +25,7 @@ __all__ = [
     "UNRATED_SCALE",
     "as_written",
     "ratings_text",
+    "require_ratings",
     "torque_scale",
 ]
 
@@ -76,3 +78,16 @@ def torque_scale(rated_torques: Ratings) -> ArrayF:
     them: the capacities and checks that need one say so instead).
     """
     return np.array(UNRATED_SCALE if rated_torques is None else rated_torques, dtype=float)
+
+
+def require_ratings(rated_torques: Ratings, rated_speeds: Ratings, what: str) -> None:
+    """Refuse, naming the field and the option, ``what`` needs ratings that are not given."""
+    for field, given in (("rated_torques", rated_torques), ("rated_speeds", rated_speeds)):
+        if given is None:  # a robot file's efforts or velocities of 0
+            flag = "--" + field.replace("_", "-")
+            raise ParameterError(
+                field,
+                "not given",
+                f"{what} {NEEDS_RATING} of every joint: give {field} (root, hip, knee) in the "
+                f"design file or {flag} ROOT HIP KNEE",
+            )

@@ -158,3 +158,57 @@ def test_lock_joint_holds_a_joint_the_file_moves(tmp_path, capsys):
     )
     again, _ = _json(capsys, ["loads", "--design", str(saved)])
     assert again["nominal"] == loads["nominal"]
+
+
+UNRATED = replace(RATED, effort=0.0, velocity=0.0)
+"""The written hexapod with the exporter's effort="0" velocity="0"."""
+
+
+def test_effort_zero_is_no_rating_and_never_a_number(tmp_path, capsys):
+    urdf = write_package(tmp_path / "unrated", UNRATED)
+    loads, said = _json(capsys, ["loads", "--urdf", str(urdf)])
+    assert loads["payload_capacity"] is None and loads["walking_payload_capacity"] is None
+    assert loads["design"]["rated_torques"] is None and loads["over_rating"] == []
+    warned = [line for line in said.splitlines() if "have no effort" in line]
+    assert len(warned) == 1 and "leg1_coxa_joint" in warned[0]
+    assert "--rated-torques ROOT HIP KNEE" in warned[0] and "rated_torques" in warned[0]
+    capsys.readouterr()
+    assert run_cli(["loads", "--urdf", str(urdf)]) == 0
+    text = capsys.readouterr().out
+    assert "payload capacity                   needs a rating" in text
+    assert "walking payload capacity           needs a rating" in text
+    assert "60" not in text.split("peak |τ| root")[1].split("\n")[0]  # no invented rating
+    # the ratings given as options are the file's own: the same capacity as the rated file
+    given = ["--rated-torques", "2", "2", "2", "--rated-speeds", "5", "5", "5"]
+    by_options, _ = _json(capsys, ["loads", "--urdf", str(urdf), *given])
+    by_file, _ = _json(capsys, ["loads", "--urdf", str(write_package(tmp_path / "rated", RATED))])
+    assert by_options["payload_capacity"] == by_file["payload_capacity"]
+    assert by_file["payload_capacity"]["mass"] > 0
+
+
+def test_gait_and_decide_need_a_rating(tmp_path, capsys):
+    urdf = write_package(tmp_path, UNRATED)
+    walked = ["--urdf", str(urdf), "--stride", "0.04", "--step-height", "0.02", "--period", "1"]
+    gait, _ = _json(capsys, ["gait", *walked])
+    assert gait["max_speed"] is None and gait["max_stride"] > 0 and gait["over_rating"] == []
+    capsys.readouterr()
+    assert run_cli(["decide", "--urdf", str(urdf), "--evaluations", "48"]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "--rated-torques ROOT HIP KNEE" in err[0], err
+
+
+def test_design_import_writes_no_invented_rating(tmp_path, capsys):
+    urdf = write_package(tmp_path, UNRATED)
+    saved = tmp_path / "spider.toml"
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["design", "import", str(urdf), "-o", str(saved)]) == 0
+    written = saved.read_text()
+    assert "\nrated_torques" not in written and "# rated_torques = [ROOT, HIP, KNEE]" in written
+    assert "150.0," not in written and "60.0," not in written  # hexaleg's default ratings
+    loads, _ = _json(capsys, ["loads", "--design", str(saved)])
+    assert loads["payload_capacity"] is None
+    edited = written.replace("# rated_torques = [ROOT, HIP, KNEE]", "rated_torques = [2, 2, 2]\n#")
+    saved.write_text(edited)
+    loads, _ = _json(capsys, ["loads", "--design", str(saved)])
+    assert loads["payload_capacity"]["mass"] > 0

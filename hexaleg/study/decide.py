@@ -31,7 +31,6 @@ from hexaleg.actuators import Actuator
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
-from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
@@ -269,8 +268,7 @@ def decide(
             changed, searched around its own (:func:`~.search_space.search_space`).
 
     Raises:
-        ParameterError: No design, a design without ratings, ``resume`` without
-            ``journal``, a bound out of range.
+        ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
 
     """
     _check_arguments(design, journal, resume)
@@ -322,13 +320,6 @@ def _check_arguments(
     design: HexapodDesign, journal: str | os.PathLike[str] | None, resume: bool
 ) -> None:
     require_instance("design", design, HexapodDesign, "a HexapodDesign")
-    for field in ("rated_torques", "rated_speeds"):
-        if getattr(design, field) is None:  # a robot file's efforts or velocities of 0
-            flag = "--" + field.replace("_", "-")
-            raise ParameterError(
-                field, "not given", f"decide {NEEDS_RATING} of every joint: give {field} "
-                f"(root, hip, knee) in the design file or {flag} ROOT HIP KNEE",
-            )  # fmt: skip
     if resume and journal is None:
         raise ParameterError("resume", resume, "continues a journal: give journal=FILE")
 
