@@ -212,3 +212,37 @@ def test_design_import_writes_no_invented_rating(tmp_path, capsys):
     saved.write_text(edited)
     loads, _ = _json(capsys, ["loads", "--design", str(saved)])
     assert loads["payload_capacity"]["mass"] > 0
+
+
+def test_the_default_gait_of_a_small_robot_is_its_own(tmp_path, capsys):
+    urdf = write_package(tmp_path, RATED)  # legs of 0.04 + 0.06 + 0.1 = 0.2 m
+    walked, _ = _json(capsys, ["gait", "--urdf", str(urdf)])
+    gait, leg = walked["gait"], 0.04 + 0.06 + 0.1
+    assert gait["step_height"] == pytest.approx(0.1 * leg, rel=1e-6)  # the STL's float32
+    assert gait["stride"] / (0.5 * gait["period"]) == pytest.approx(0.3 * leg, rel=1e-6)
+    assert walked["feasible"] and walked["max_speed"] is not None
+    # its stride is half its max stride at that step height: twice it is the limit
+    twice = 2 * gait["stride"]
+    steps = ["--step-height", repr(gait["step_height"]), "--period", repr(gait["period"])]
+    below, _ = _json(capsys, ["gait", "--urdf", str(urdf), *steps, "--stride", repr(twice * 0.999)])
+    assert below["violations"] == []
+    capsys.readouterr()
+    beyond = ["gait", "--urdf", str(urdf), *steps, "--stride", repr(twice * 1.001)]
+    assert run_cli(beyond) == 2
+    assert "stride" in capsys.readouterr().err
+    # a [gait] table's keys go over it, the others kept
+    table = tmp_path / "walk.toml"
+    table.write_text("[gait]\nsamples = 60\n")
+    design = ["--design", str(table)]
+    tabled, _ = _json(capsys, ["gait", "--urdf", str(urdf), *design, "--stride", "0.01"])
+    assert tabled["gait"]["samples"] == 60 and tabled["gait"]["stride"] == 0.01
+    assert tabled["gait"]["step_height"] == gait["step_height"]
+
+
+def test_the_template_keeps_its_default_gait(capsys):
+    from hexaleg import HexapodDesign, HexapodModel
+    from hexaleg.gait.defaults import default_gait
+    from hexaleg.gait.spec import Gait
+
+    assert default_gait(HexapodModel(HexapodDesign())) == Gait()
+    assert Gait() == Gait(period=2.0, stride=0.3, step_height=0.1, samples=200)

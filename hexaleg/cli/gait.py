@@ -106,15 +106,17 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def gait_from_args(args: argparse.Namespace) -> Gait:
+def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
     """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+
+    Both over ``model``'s default gait (a robot file's is sized to it: :func:`design_gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
     """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
-    base = design_gait(args)
+    base = design_gait(args, model)
     changes = {
         name: getattr(args, name)
         for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
@@ -129,7 +131,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload = payload_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(

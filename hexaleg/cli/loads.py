@@ -18,6 +18,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.ratings import NEEDS_RATING
@@ -116,7 +117,7 @@ def run(args: argparse.Namespace) -> int:
         args.mode,
         model=model,
     )
-    gait = design_gait(args)
+    gait = design_gait(args, model)
     walking = walking_payload_capacity(model, gait, payload.position)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
@@ -127,7 +128,8 @@ def run(args: argparse.Namespace) -> int:
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
-    rows.insert(at, ("walking payload capacity", _walking(walking, gait)))
+    own = gait == default_gait(model)  # no [gait]: the robot's own default gait
+    rows.insert(at, ("walking payload capacity", _walking(walking, gait, own)))
     title = "Statics" if robot is None else f"Statics of {robot.robot.source}"
     print_table(lengths_title(title, model.design.lengths), rows)
     return 0
@@ -175,10 +177,10 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
-def _walking(walking: WalkingCapacity | None, gait: Gait) -> str:
+def _walking(walking: WalkingCapacity | None, gait: Gait, default: bool) -> str:
     if walking is None:
         return NEEDS_RATING
-    which = "default" if gait == Gait() else "design's"
+    which = "default" if default else "design's"
     how = f"walking the {which} {gait.pattern} gait at {gait.speed:g} m/s"
     if not walking.walks:
         return f"none: cannot walk the {which} {gait.pattern} gait ({walking.limited_by})"

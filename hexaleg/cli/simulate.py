@@ -89,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
         if robot is not None and getattr(args, flag) is not None:
             raise UsageError(f"--{flag} with --urdf is not supported yet: use --json")
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload = payload_from_args(args)
     check_outputs({"--html": args.html, "--video": args.video})  # before simulating
     if args.video is not None:

@@ -102,7 +102,7 @@ def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     from hexaleg.gait.analysis import analyze_gait, require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
-    analysis = analyze_gait(model.design, design_gait(args), model=model, limits=False)
+    analysis = analyze_gait(model.design, design_gait(args, model), model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])

@@ -187,6 +187,7 @@ class ImportedHexapodModel(HexapodModel):
         self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
 
     general_legs = True
+    own_default_gait = True  # a robot file's: the template's gait is a 1 m leg's
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg, as read from the file."""

@@ -169,6 +169,7 @@ class HexapodModel:
         self._collision: pin.GeometryModel | None = None
 
     general_legs = False  # whether the legs are a robot file's (:meth:`leg_geometry`)
+    own_default_gait = False  # a default gait sized to it (:mod:`hexaleg.gait.defaults`)
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
