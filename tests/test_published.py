@@ -246,3 +246,56 @@ def test_the_template_keeps_its_default_gait(capsys):
 
     assert default_gait(HexapodModel(HexapodDesign())) == Gait()
     assert Gait() == Gait(period=2.0, stride=0.3, step_height=0.1, samples=200)
+
+
+def test_legs_rooted_on_the_x_axis_are_named_by_where_they_point(tmp_path, capsys):
+    # roots along the body's axis, alternating sides, each coxa pointing straight left or right
+    xs = (0.15, 0.03, -0.09, 0.09, -0.03, -0.15)
+    yaws = (math.pi / 2,) * 3 + (-math.pi / 2,) * 3
+    spider = replace(RATED, roots=tuple((x, 0.0) for x in xs), yaws=yaws)
+    shown, _ = _json(capsys, ["design", "show", "--urdf", str(write_package(tmp_path, spider))])
+    named = {leg["name"]: leg["joints"][0] for leg in shown["design"]["legs"]}
+    # left: the coxas pointing +y, front to rear by x; right likewise
+    expected = {"lf": 1, "lm": 2, "lr": 3, "rf": 4, "rm": 5, "rr": 6}
+    assert named == {name: f"leg{k}_coxa_joint" for name, k in expected.items()}
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_legs_around_a_turned_body_keep_their_names(tmp_path, capsys, seed):
+    # six legs every 60° from a random first angle: lf is the left leg nearest ahead
+    first = np.random.default_rng(seed).uniform(0.05, math.pi / 3 - 0.05)
+    angles = tuple(first + k * math.pi / 3 for k in range(6))
+    shown, _ = _json(
+        capsys,
+        ["design", "show", "--urdf", str(write_package(tmp_path, replace(RATED, angles=angles)))],
+    )
+    named = {leg["name"]: int(leg["joints"][0][3]) - 1 for leg in shown["design"]["legs"]}
+    # left front to rear, right rear to front: counter-clockwise on each side
+    left = sorted(
+        (k for k in range(6) if math.sin(angles[k]) > 0), key=lambda k: -math.cos(angles[k])
+    )
+    right = sorted(
+        (k for k in range(6) if math.sin(angles[k]) < 0), key=lambda k: math.cos(angles[k])
+    )
+    assert [named[n] for n in ("lf", "lm", "lr")] == left
+    assert [named[n] for n in ("rr", "rm", "rf")] == right
+
+
+@pytest.mark.parametrize(
+    ("body", "said"),
+    [("box", "the body's collision box"), ("mesh", "fitted to the body's collision meshes")],
+)
+def test_the_body_the_extremes_stop_at_is_the_files(tmp_path, capsys, body, said):
+    size = (0.16, 0.12, 0.08)  # centred on the root link, the leg roots' plane
+    spider = replace(RATED, limits=(-3.0, 3.0), body=body, body_size=size)
+    urdf = write_package(tmp_path, spider)
+    shown, _ = _json(capsys, ["design", "show", "--urdf", str(urdf)])
+    box = shown["robot"]["body_box"]
+    np.testing.assert_allclose(box["size"], size, rtol=1e-6)  # float32 STL vertices
+    assert said in box["from"]
+    # lowered, the body stops where its bottom, 0.04 m below the roots, meets the ground:
+    # the feet stand 0.1 m (the tibia) below the roots
+    flexibility, _ = _json(capsys, ["flexibility", "--urdf", str(urdf)])
+    lowest = next(e for e in flexibility["extremes"] if e["axis"] == "z" and e["sign"] < 0)
+    assert lowest["value"] == pytest.approx(-(0.1 - 0.04), abs=1e-6)
+    assert lowest["limited_by"]["kind"] == "ground"

@@ -125,6 +125,10 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
         return shown
     show(design)
     print("  legs read from " + str(record["source"]))
+    if record["body_box"] is not None:  # what the extremes stop at
+        box = record["body_box"]
+        size = " × ".join(f"{v:.3g}" for v in box["size"])
+        print(f"  body box {size} m, where the extremes stop: {box['from']}")
     for change in record["changed_segments"]:
         print(
             f"    {change['leg']} {change['segment']} changed from the file's "

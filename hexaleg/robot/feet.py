@@ -186,7 +186,7 @@ def _mesh(
     for link, shape in shapes:
         if shape.shape != "mesh" or shape.filename is None:
             continue
-        vertices = _vertices(shape.filename, search)
+        vertices = mesh_vertices(shape.filename, search)
         if vertices is None:
             missing.append(shape.filename)
             continue
@@ -201,7 +201,7 @@ def _mesh(
     return Foot("mesh", best[2], _triple(best[1])), missing
 
 
-def _vertices(reference: str, search: FootSearch) -> ArrayF | None:
+def mesh_vertices(reference: str, search: FootSearch) -> ArrayF | None:
     """A mesh file's vertices (N, 3) in its own units, or ``None`` if it cannot be read."""
     path = resolve_resource(reference, search.base_dir, search.packages)
     if path is None:

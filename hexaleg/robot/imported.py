@@ -2,8 +2,8 @@
 
 :func:`import_robot` reads the file (:mod:`.source`), its tree (:mod:`.description`),
 its six legs (:mod:`.chains`), each leg's foot (:mod:`.feet`) and general leg
-(:mod:`.legs`), and names the legs as hexaleg does (``lf lm lr rf rm rr``: the three
-legs mounted farthest left are the left ones, each side ordered front to rear).
+(:mod:`.legs`), and names the legs as hexaleg does (``lf lm lr rf rm rr``: by where they
+point around the body, :mod:`.leg_names`).
 Masses are the file's: each segment's links (the joint's child and every link fixed to
 it) are lumped into one rigid body in the segment's link frame.
 """
@@ -21,6 +21,7 @@ import numpy as np
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.layouts import LEG_NAMES
+from hexaleg.robot.body_shape import BodyBox, body_box
 from hexaleg.robot.chains import LegChain, find_chains
 from hexaleg.robot.description import RobotDescription, parse_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
@@ -31,6 +32,7 @@ from hexaleg.robot.file_defaults import (
     warn_locked,
     warn_unlimited,
 )
+from hexaleg.robot.leg_names import leg_directions, leg_names
 from hexaleg.robot.legs import LegReading, read_leg
 from hexaleg.robot.packages import PackageFolders
 from hexaleg.robot.source import Packages, read_robot_text
@@ -110,6 +112,7 @@ class ImportedRobot:
         changes: The segments changed from the file's (:mod:`hexaleg.robot.resize`),
             empty for the robot as the file draws it.
         packages: Where its ``package://`` references are found.
+        body_shape: The box its body's collision geometry gives (:mod:`.body_shape`).
 
     """
 
@@ -121,6 +124,7 @@ class ImportedRobot:
     body_mass: SegmentMass
     changes: tuple[SegmentChange, ...] = ()
     packages: PackageFolders = field(default_factory=PackageFolders)
+    body_shape: BodyBox | None = None
 
     @property
     def leg_names(self) -> tuple[str, ...]:
@@ -175,7 +179,8 @@ def robot_from_text(
         warn_unlimited(limits)
         warn_locked(chains.beyond, description)
         return robot_from_text(locked_as_fixed(text, fixed, limits), search, (), source)
-    names = _leg_names([r.mount[:3, 3] for r in readings])
+    reaches = [r.geometry.coxa + r.geometry.femur for r in readings]
+    names = leg_names(leg_directions([r.mount for r in readings], reaches))
     legs = [
         ImportedLeg(name, chain, reading, segment_masses(description, chain, frames))
         for name, chain, reading in zip(names, chains.legs, readings, strict=True)
@@ -184,7 +189,13 @@ def robot_from_text(
     body = lumped_mass(description, chains.body, frames, np.eye(4))
     _warn_implausible_inertias(description)
     packages = PackageFolders.of(search.packages, search.base_dir)
-    return ImportedRobot(source, text, description, tuple(legs), chains.body, body, (), packages)
+    roots = np.array([r.mount[:3, 3] for r in readings])
+    shape = body_box(
+        description, chains.body, float(roots[:, 2].mean()), roots, search.base_dir, packages
+    )
+    return ImportedRobot(
+        source, text, description, tuple(legs), chains.body, body, (), packages, shape
+    )
 
 
 def lumped_mass(
@@ -244,16 +255,6 @@ def segment_masses(
         lumped_mass(description, links, frames, frames[links[0]]) for links in chain.segments
     )
     return (a, b, c)
-
-
-def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
-    """Hexaleg's names of legs rooted at ``roots`` (body frame): the 3 leftmost are left."""
-    order = sorted(range(len(roots)), key=lambda i: (-roots[i][1], -roots[i][0]))
-    names = [""] * len(roots)
-    for side, members in (("l", order[:3]), ("r", order[3:])):
-        for position, i in zip("fmr", sorted(members, key=lambda i: -roots[i][0]), strict=True):
-            names[i] = side + position
-    return names
 
 
 FOOT_MATCH = 1e-9

@@ -184,7 +184,9 @@ class ImportedHexapodModel(HexapodModel):
         }
         self._height = self._standing_height()
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
-        self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
+        shape = robot.body_shape
+        box = [design.body_length, design.body_width, design.body_height]
+        self.body_box = np.array(box) / 2 if shape is None else shape.half_extents.copy()
 
     general_legs = True
     own_default_gait = True  # a robot file's: the template's gait is a 1 m leg's

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from hexaleg.design import HexapodDesign
+from hexaleg.design import BODY_RANGE, HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.layouts import LegMount
 from hexaleg.limits import LEG_JOINTS
@@ -63,8 +63,7 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
         "l3": first[2],
         "layout": "custom",
         "mounts": mounts,
-        "body_length": 2 * max(abs(m.x) for m in mounts),
-        "body_width": 2 * max(abs(m.y) for m in mounts),
+        **_body_extent(robot, mounts),
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
     }
     given = _given(base)
@@ -146,6 +145,15 @@ def _given(base: HexapodDesign) -> set[str]:
     """
     default = HexapodDesign()
     return {name for name in OVERRIDDEN if getattr(base, name) != getattr(default, name)}
+
+
+def _body_extent(robot: ImportedRobot, mounts: tuple[LegMount, ...]) -> dict[str, float]:
+    """The design's body length and width [m]: the file's body box (else the roots' span)."""
+    if robot.body_shape is not None:
+        length, width, _ = robot.body_shape.size
+    else:
+        length, width = 2 * max(abs(m.x) for m in mounts), 2 * max(abs(m.y) for m in mounts)
+    return {"body_length": max(length, BODY_RANGE[0]), "body_width": max(width, BODY_RANGE[0])}
 
 
 def _warn_different_legs(robot: ImportedRobot) -> None:
@@ -240,6 +248,7 @@ def robot_record(
         "source": None if robot.source is None else str(robot.source),
         "name": robot.description.name,
         "body_links": list(robot.body),
+        "body_box": None if robot.body_shape is None else robot.body_shape.as_dict(),
         "body_mass": robot.body_mass.mass,
         "legs": legs,
         "changed_segments": [change.as_dict() for change in robot.changes],
