@@ -25,8 +25,8 @@ class RawChain:
         first = shown["design"]["legs"][0]
         self.plane = first["mount"]["z"] - shown["design"]["mounts"][0]["z"]
         design = shown["design"]
-        self.half = np.array([design["body_length"], design["body_width"], design["body_height"]])
-        self.half /= 2
+        box = shown["robot"]["body_box"]  # the body the extremes stop at, as design show says
+        self.half = np.array(box["size"]) / 2
 
     def joints(self, name):
         """Leg ``name``'s three Pinocchio joints, from the body out."""
