@@ -110,3 +110,39 @@ def test_xacro_find_is_answered_or_named_in_one_plain_line(tmp_path, capsys):
     message = str(caught.value)
     assert "$(find spider_description)" in message and "--package spider_description=DIR" in message
     assert "class" not in message and "Error" not in message
+
+
+INTERBOTIX = (
+    Path(__file__).parent
+    / "data/robots/interbotix_pxmark4s/interbotix_xshexapod_descriptions/urdf/pxmark4s.urdf.xacro"
+)
+
+
+def test_a_public_description_package_reads_as_published(capsys):
+    import json
+    import math
+    import warnings
+
+    import pinocchio as pin
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["design", "show", "--urdf", str(INTERBOTIX), "--json"]) == 0
+    shown = json.loads(capsys.readouterr().out)
+    # by hand from the Xacro: the hip 52.9 mm along the coxa, the knee (60, −15) mm from
+    # the hip, the foot link (95, −90) mm from the knee; effort 3 N·m, velocity π rad/s
+    for leg in shown["design"]["legs"]:
+        assert leg["coxa"] == pytest.approx(0.052907539, abs=1e-9)
+        assert leg["femur"] == pytest.approx(math.hypot(0.06, 0.015), abs=1e-9)
+        assert leg["tibia"] == pytest.approx(math.hypot(0.095, 0.09), abs=1e-9)
+        assert leg["foot"]["rule"] == "frame"
+    assert shown["design"]["rated_torques"] == [3.0, 3.0, 3.0]
+    assert "fitted to the body's collision meshes" in shown["robot"]["body_box"]["from"]
+    # its masses, standing: the feet carry what Pinocchio weighs the expanded file at
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["loads", "--urdf", str(INTERBOTIX), "--json"]) == 0
+    loads = json.loads(capsys.readouterr().out)
+    model = pin.buildModelFromXML(read_robot_text(INTERBOTIX), pin.JointModelFreeFlyer())
+    vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(9.81 * pin.computeTotalMass(model), rel=1e-12)

@@ -299,3 +299,52 @@ def test_the_body_the_extremes_stop_at_is_the_files(tmp_path, capsys, body, said
     lowest = next(e for e in flexibility["extremes"] if e["axis"] == "z" and e["sign"] < 0)
     assert lowest["value"] == pytest.approx(-(0.1 - 0.04), abs=1e-6)
     assert lowest["limited_by"]["kind"] == "ground"
+
+
+def _stand_height(theta2: np.ndarray, theta3: np.ndarray) -> np.ndarray:
+    """How far below its root a drawn leg's foot stands (eq 7's z, negated) [m]."""
+    return -(0.06 * np.sin(theta2) + 0.1 * np.sin(theta2 + theta3))
+
+
+def test_a_robot_whose_default_posture_cannot_stand_stands_after_the_search(tmp_path, capsys):
+    # a body reaching 0.12 m below the roots, a 0.1 m tibia: θ = (0, 0, −π/2) puts it 2 cm
+    # into the ground
+    spider = replace(RATED, body="box", body_size=(0.16, 0.12, 0.24))
+    urdf = write_package(tmp_path, spider)
+    shown, said = _json(capsys, ["design", "show", "--urdf", str(urdf)])
+    assert "20 mm below the ground" in said and "it stands at" in said
+    chosen = [leg["nominal"]["joint_angles"] for leg in shown["design"]["legs"]]
+    assert all(angles == chosen[0] for angles in chosen)
+    _, t2, t3 = chosen[0]
+    height = float(_stand_height(np.array(t2), np.array(t3)))
+    assert height - 0.12 >= 0.1 * height - 1e-12  # it stands with room
+    # no posture on a fine grid that stands with the same room is nearer the paper's
+    hips, knees = np.meshgrid(np.linspace(-1.45, 1.45, 600), np.linspace(-3.02, -0.12, 600))
+    stands = _stand_height(hips, knees) * 0.9 >= 0.12
+    nearest = np.hypot(hips, knees + math.pi / 2)[stands].min()
+    assert math.hypot(t2, t3 + math.pi / 2) <= nearest + 0.03  # the search's grid step
+    # and every command stands there: the body lowered reaches the ground from that height
+    flexibility, _ = _json(capsys, ["flexibility", "--urdf", str(urdf)])
+    lowest = next(e for e in flexibility["extremes"] if e["axis"] == "z" and e["sign"] < 0)
+    if lowest["limited_by"]["kind"] == "ground":
+        assert lowest["value"] == pytest.approx(-(height - 0.12), abs=1e-6)
+
+
+def test_a_posture_that_cannot_stand_is_refused_naming_what_breaks(tmp_path, capsys):
+    # limits q in [0.2, 1.0] on every joint: θ2 ≥ 0.2 lifts the femur, θ3 ≤ −0.57 + ... the
+    # paper's θ is moved inside them (θ1, θ2 to 0.2, θ3 to −1.37) and the body is deeper
+    spider = replace(RATED, limits=(0.2, 1.0), body="box", body_size=(0.16, 0.12, 0.17))
+    urdf = write_package(tmp_path, spider)
+    capsys.readouterr()
+    assert run_cli(["loads", "--urdf", str(urdf)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    height = float(_stand_height(np.array(0.2), np.array(0.2 - math.pi / 2)))
+    below = f"{1000 * (0.085 - height):.3g} mm below the ground"
+    assert len(err) == 1 and below in err[0] and "does not stand" in err[0], err
+    # not as deep: the posture moved inside the limits stands, and says it moved
+    shallow = replace(spider, body_size=(0.16, 0.12, 0.03))
+    shown, _ = _json(
+        capsys, ["design", "show", "--urdf", str(write_package(tmp_path / "b", shallow))]
+    )
+    moved = shown["design"]["legs"][0]["nominal"]["moved_into_limits"]
+    assert moved == ["root", "hip", "knee"]

@@ -110,8 +110,7 @@ def _fitted(points: ArrayF, plane: float, source: str) -> BodyBox:
             max(float(-local[:, 2].min()), MIN_HALF),
         ]
     )
-    size = " × ".join(f"{2 * h:.3g}" for h in half)
-    return BodyBox(half, f"{source} ({size} m)")
+    return BodyBox(half, source)
 
 
 def _placed(frame: ArrayF, shape: Collision, vertices: ArrayF) -> ArrayF:

@@ -15,7 +15,7 @@ added so that every analysis written for hexaleg's model reads it unchanged:
   are given on θ (the file's torque times s).
 
 Each leg stands at its own nominal posture: the design's nominal angles moved inside that
-leg's file limits (:func:`~hexaleg.robot.robot_design.nominal_posture`); the body stands
+leg's file limits, or the nearest that stands (:mod:`~hexaleg.robot.standing`); the body stands
 level at the height that puts the feet, on average, on the ground.
 """
 
@@ -45,16 +45,14 @@ from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import mount_plane, nominal_posture, robot_design
+from hexaleg.robot.robot_design import body_depth, mount_plane, robot_design
+from hexaleg.robot.standing import LEVEL_FEET, standing_posture
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
 
 BODY_LINK = PREFIX + "body"
 """The link added as the body frame of an imported robot's model."""
-
-LEVEL_FEET = 1e-3
-"""Largest spread of the feet's heights at the nominal posture, body level [m]."""
 
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
@@ -178,10 +176,8 @@ class ImportedHexapodModel(HexapodModel):
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
         self.leg_names = robot.leg_names
         self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}
-        self._nominal = {
-            leg.name: nominal_posture(leg, design.nominal_angles)["joint_angles"]
-            for leg in robot.legs
-        }
+        standing = standing_posture(robot, design.nominal_angles, body_depth(robot))
+        self._nominal = dict(zip(robot.leg_names, standing.angles, strict=True))
         self._height = self._standing_height()
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
         shape = robot.body_shape

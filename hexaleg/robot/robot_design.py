@@ -22,9 +22,9 @@ import numpy as np
 from hexaleg.design import BODY_RANGE, HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.layouts import LegMount
-from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.file_defaults import missing_ratings
 from hexaleg.robot.imported import ImportedLeg, ImportedRobot
+from hexaleg.robot.standing import standing_posture
 
 MIN_BODY_MASS = 1e-3
 """A lighter body is a placeholder (a ``<mass value="0.0001"/>``), not a body [kg]."""
@@ -215,21 +215,28 @@ def _mm(lengths: tuple[float, ...], digits: int = 2) -> str:
     return "(" + ", ".join(f"{1000 * v:.{digits}f}" for v in lengths) + ") mm"
 
 
-def nominal_posture(leg: ImportedLeg, nominal: tuple[float, float, float]) -> dict[str, Any]:
-    """The design's nominal angles on ``leg``, moved inside the file's limits where they are not.
+def nominal_postures(robot: ImportedRobot, nominal: tuple[float, float, float]) -> list[dict]:
+    """Each leg's nominal posture: the design's angles where they stand (:mod:`.standing`).
 
-    Returns ``joint_angles`` (hexaleg's θ [rad]), ``urdf_joint_angles`` (the file's q [rad])
-    and ``moved``, the joints whose nominal angle lay outside the file's limits.
+    Per leg ``joint_angles`` (hexaleg's θ [rad]), ``urdf_joint_angles`` (the file's q
+    [rad]), ``moved_into_limits`` (the joints whose design angle lay outside the leg's
+    limits) and ``chosen`` (why another posture was chosen; ``None`` if the design's stands).
     """
-    lower, upper = leg.theta_limits
-    wanted = np.asarray(nominal, dtype=float)
-    theta = np.clip(wanted, lower, upper)
-    moved = [LEG_JOINTS[i] for i in range(3) if theta[i] != wanted[i]]
-    return {
-        "joint_angles": _list(theta),
-        "urdf_joint_angles": _list(leg.reading.joint_map.to_file(theta)),
-        "moved_into_limits": moved,
-    }
+    standing = standing_posture(robot, nominal, body_depth(robot))
+    return [
+        {
+            "joint_angles": _list(theta),
+            "urdf_joint_angles": _list(leg.reading.joint_map.to_file(theta)),
+            "moved_into_limits": list(moved),
+            "chosen": standing.chosen,
+        }
+        for leg, theta, moved in zip(robot.legs, standing.angles, standing.moved, strict=True)
+    ]
+
+
+def body_depth(robot: ImportedRobot) -> float:
+    """How far the body's box reaches below the roots' plane [m] (0 without one)."""
+    return 0.0 if robot.body_shape is None else float(robot.body_shape.half_extents[2])
 
 
 def robot_record(
@@ -238,12 +245,12 @@ def robot_record(
     """What was read from the robot file, JSON-ready (SI units, radians).
 
     With the design's ``nominal`` angles, each leg also gives its nominal posture in
-    hexaleg's angles and in the file's (:func:`nominal_posture`).
+    hexaleg's angles and in the file's (:func:`nominal_postures`).
     """
     legs = [leg_record(leg) for leg in robot.legs]
     if nominal is not None:
-        for record, leg in zip(legs, robot.legs, strict=True):
-            record["nominal"] = nominal_posture(leg, nominal)
+        for record, posture in zip(legs, nominal_postures(robot, nominal), strict=True):
+            record["nominal"] = posture
     return {
         "source": None if robot.source is None else str(robot.source),
         "name": robot.description.name,
