@@ -169,8 +169,8 @@ API_CASES = {
         "must be 3 numbers [rad]: theta1, theta2, theta3",
     ),
     "nominal_angles text": (lambda: HexapodDesign(nominal_angles="abc"), "nominal_angles", "3"),
-    "rated_torques None": (
-        lambda: HexapodDesign(rated_torques=None),
+    "rated_torques text": (  # None is valid: not given (a robot file's effort of 0)
+        lambda: HexapodDesign(rated_torques="abc"),
         "rated_torques",
         "root, hip, knee",
     ),
