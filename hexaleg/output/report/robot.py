@@ -21,6 +21,7 @@ from typing import Any
 
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
+from hexaleg.gait.defaults import default_gait
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.output.figures.stance import stance_figure
 from hexaleg.output.report import design, viewer
@@ -138,7 +139,7 @@ def robot_section(data: ReportData) -> Section:
         f"Your robot: {record.source}",
         (
             "The robot file as read (each leg its own general leg, the file's masses, joint "
-            f"limits and feet), walking {data.options.gait.named} for the walking numbers:",
+            f"limits and feet), walking {_gait_named(data)} for the walking numbers:",
             table(["metric", "value", "limited by"], rows),
             "Sections of hexaleg's report left out for an imported robot, and why:",
             table(["section", "why it is left out"], skipped),
@@ -299,10 +300,16 @@ def stance_section(data: ReportData) -> Section:
             Figure("flexibility_extremes", "How far the body moves along and about each axis"),
             f"The robot weighs {loads.nominal.mass:.3f} kg; stability margin at the nominal "
             f"stance {loads.nominal.stability_margin:.4f} m. Payload capacity standing: "
-            f"{standing}; walking {data.options.gait.named}: {walks}. Peak |τ| in N·m:",
+            f"{standing}; walking {_gait_named(data)}: {walks}. Peak |τ| in N·m:",
             table(["joint", "rated", "nominal stance", "over the extremes"], torques),
         ),
     )
+
+
+def _gait_named(data: ReportData) -> str:
+    """The walked gait's name: "the default gait" for the robot's own (sized to it)."""
+    gait = data.options.gait
+    return "the default gait" if gait == default_gait(data.model) else gait.named
 
 
 def _capacities(record: RobotStanceRecord) -> tuple[str, str]:
