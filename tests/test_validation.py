@@ -119,7 +119,11 @@ def test_a_file_over_the_size_cap_is_refused(tmp_path, capsys):
 
 
 ABSURD_FILES = {
-    "1 and 400 zeros": ("robot.toml", "l1 = 1" + "0" * 400 + "\n", ["l1 = <an integer", "[0, 100]"]),
+    "1 and 400 zeros": (
+        "robot.toml",
+        "l1 = 1" + "0" * 400 + "\n",
+        ["l1 = <an integer", "[0, 100]"],
+    ),
     "5000 digits, TOML": ("robot.toml", "l1 = " + "9" * 5000 + "\n", ["Exceeds the limit"]),
     "5000 digits, JSON": ("robot.json", '{"l1": ' + "9" * 5000 + "}", ["Exceeds the limit"]),
     "nested, TOML": ("robot.toml", "l1 = " + "[" * 100_000 + "]" * 100_000, ["nested"]),
