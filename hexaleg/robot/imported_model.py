@@ -36,7 +36,13 @@ from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
 from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
-from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
+from hexaleg.robot.imported import (
+    ImportedRobot,
+    fixed_joint,
+    link_element,
+    urdf_with_feet,
+    with_elements,
+)
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
@@ -69,17 +75,14 @@ def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
             f"the file already has a link or joint named {taken[0]!r}: hexaleg adds it"
         )
     added = [
-        f'  <link name="{BODY_LINK}"/>\n',
+        link_element(BODY_LINK),
         _fixed(f"{BODY_LINK}_joint", BODY_LINK, robot.description.root, _shift(-plane)),
     ]
     for leg in robot.legs:
         link = f"{PREFIX}{leg.name}_root"
-        added.append(f'  <link name="{link}"/>\n')
         mount = _shift(-plane) @ leg.reading.mount
-        added.append(_fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount))
-    end = text.rindex("</robot>")
-    note = "  <!-- hexaleg: body and leg-root frames -->\n"
-    text = text[:end] + note + "".join(added) + text[end:]
+        added += [link_element(link), _fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount)]
+    text = with_elements(text, "hexaleg: body and leg-root frames", added)
     joints = robot.description.joints
     continuous = [
         n for leg in robot.legs for n in leg.joint_names if joints[n].kind == "continuous"
@@ -306,12 +309,5 @@ def _shift(z: float) -> ArrayF:
 
 
 def _fixed(name: str, parent: str, child: str, placement: ArrayF) -> str:
-    xyz = " ".join(repr(float(v)) for v in placement[:3, 3])
-    rpy = " ".join(repr(float(v)) for v in pin.rpy.matrixToRpy(placement[:3, :3]))
-    return (
-        f'  <joint name="{name}" type="fixed">\n'
-        f'    <parent link="{parent}"/>\n'
-        f'    <child link="{child}"/>\n'
-        f'    <origin xyz="{xyz}" rpy="{rpy}"/>\n'
-        f"  </joint>\n"
-    )
+    rpy = pin.rpy.matrixToRpy(placement[:3, :3])
+    return fixed_joint(name, parent, child, placement[:3, 3], rpy)
