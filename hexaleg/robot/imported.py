@@ -120,6 +120,11 @@ class ImportedRobot:
         """The legs' names (hexaleg's), in order."""
         return tuple(leg.name for leg in self.legs)
 
+    @property
+    def mass(self) -> float:
+        """The whole robot's mass [kg]: the body's links and every leg's."""
+        return self.body_mass.mass + sum(m.mass for leg in self.legs for m in leg.masses)
+
 
 def import_robot(
     path: str | Path,

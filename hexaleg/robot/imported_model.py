@@ -33,7 +33,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.exceptions import RobotImportError, RobotImportWarning, one_line
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
 from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
 from hexaleg.robot.imported import (
@@ -46,7 +46,12 @@ from hexaleg.robot.imported import (
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import nominal_posture, robot_design
+from hexaleg.robot.robot_design import (
+    MIN_BODY_MASS,
+    NO_MASSES,
+    nominal_posture,
+    robot_design,
+)
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
@@ -56,6 +61,10 @@ BODY_LINK = PREFIX + "body"
 
 LEVEL_FEET = 1e-3
 """Largest spread of the feet's heights at the nominal posture, body level [m]."""
+
+MIN_ROBOT_MASS = MIN_BODY_MASS
+"""A robot file whose links weigh less than this in all gives no masses [kg]: it draws the
+robot's kinematics only (common: ``<inertial>`` left out, or a placeholder ``0``)."""
 
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
@@ -146,6 +155,31 @@ def _design_field(leg: str, segment: str) -> str:
     return SEGMENTS[SEGMENT_NAMES.index(segment)]
 
 
+def has_masses(model: HexapodModel) -> bool:
+    """Whether the robot's links weigh :data:`MIN_ROBOT_MASS` or more (the template's do)."""
+    return float(pin.computeTotalMass(model.model)) >= MIN_ROBOT_MASS
+
+
+def robot_mass(model: HexapodModel) -> float:
+    """The whole robot's mass [kg]: every link of its model.
+
+    Raises:
+        RobotImportError: A robot file without masses (:func:`has_masses`): statics,
+            walking and simulation need them, kinematics do not.
+
+    """
+    mass = float(pin.computeTotalMass(model.model))
+    if mass < MIN_ROBOT_MASS:
+        source = model.robot.source if isinstance(model, ImportedHexapodModel) else None
+        raise RobotImportError(
+            f"{source or 'the robot file'} gives no masses (no link has an <inertial> with a "
+            f"mass): statics, walking and simulation need them; give each link an <inertial> "
+            f"with its mass and inertia (workspace, manipulability, flexibility, view, urdf "
+            f"and design show need none)"
+        )
+    return mass
+
+
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
     """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
     first = robot.legs[0]
@@ -171,7 +205,11 @@ class ImportedHexapodModel(HexapodModel):
         design = _design(robot, base)
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
-        model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        try:
+            model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        except (ValueError, RuntimeError) as err:  # what the file's checks did not foresee
+            message = f"Pinocchio cannot read the robot's URDF: {one_line(err)}"
+            raise RobotImportError(message) from None
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
         set_armature(model, [leg.v for leg in legs.values()], design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
@@ -293,6 +331,8 @@ def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
         design = robot_design(robot, base)
     for warning in caught:
         message = str(warning.message)
+        if message.startswith(NO_MASSES):
+            continue  # what needs masses refuses (robot_mass), in one line of its own
         if message.startswith("the file's body weighs"):
             message = (
                 f"the file's body weighs {robot.body_mass.mass:.3g} kg: the statics use the "

@@ -29,6 +29,9 @@ from hexaleg.robot.imported import ImportedLeg, ImportedRobot
 MIN_BODY_MASS = 1e-3
 """A lighter body is a placeholder (a ``<mass value="0.0001"/>``), not a body [kg]."""
 
+NO_MASSES = "the file gives no masses"
+"""How a warning about a robot file without any mass (a kinematics-only file) begins."""
+
 SAME_LENGTH = 1e-9
 """Segments that differ by less than this are one length [m]."""
 
@@ -75,6 +78,13 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
         pass  # the design file's own body mass, over the file's
     elif robot.body_mass.mass >= MIN_BODY_MASS:
         changes["body_mass"] = robot.body_mass.mass
+    elif robot.mass < MIN_BODY_MASS:
+        warnings.warn(
+            f"{NO_MASSES}: kinematics only (statics, walking and simulation are refused); "
+            f"body_mass {base.body_mass:g} kg is the design's placeholder",
+            RobotImportWarning,
+            stacklevel=2,
+        )
     else:
         warnings.warn(
             f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "

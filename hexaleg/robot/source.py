@@ -31,7 +31,7 @@ from pathlib import Path
 from urllib.parse import unquote, urlparse
 
 from hexaleg._input import check_input_file, read_input_file, size_text
-from hexaleg.exceptions import RobotImportError
+from hexaleg.exceptions import RobotImportError, one_line
 
 MAX_ROBOT_FILE_BYTES = 16 * 2**20
 """Largest robot file read, file Xacro includes and URDF a Xacro file expands to [bytes].
@@ -83,7 +83,7 @@ def read_robot_text(
     try:
         text = data.decode("utf-8")
     except UnicodeDecodeError as err:
-        raise RobotImportError(f"{path} cannot be read: {_one_line(err)}") from None
+        raise RobotImportError(f"{path} cannot be read: {one_line(err)}") from None
     if not is_xacro(path, text):
         return text
     return expand_xacro(path, args or {}, packages or {})
@@ -139,7 +139,7 @@ def expand_xacro(path: Path, args: Mapping[str, str], packages: Packages) -> str
     except subprocess.TimeoutExpired:
         raise RobotImportError(_past_time(path)) from None
     except OSError as err:
-        raise RobotImportError(f"xacro on {path.name} could not start: {_one_line(err)}") from None
+        raise RobotImportError(f"xacro on {path.name} could not start: {one_line(err)}") from None
     if done.returncode == 0:
         return done.stdout.decode("utf-8")
     said = done.stderr.decode("utf-8", errors="replace").strip().splitlines()
@@ -178,7 +178,7 @@ def xacro_text(path: str, args: Mapping[str, str], packages: Packages, output: i
             ) from None
         if isinstance(cause, RobotImportError):
             raise cause from None
-        raise RobotImportError(f"xacro failed on {name}: {_one_line(err)}") from None
+        raise RobotImportError(f"xacro failed on {name}: {one_line(err)}") from None
     if len(text.encode("utf-8")) > output:
         raise RobotImportError(f"xacro on {name} writes more than {size_text(output)} of URDF")
     return text
@@ -274,13 +274,3 @@ def _xacro_finds(packages: Packages) -> Iterator[None]:
             yield
         finally:
             substitution_args._eval_find, substitution_args._eval_dict["find"] = saved
-
-
-MESSAGE_CHARS = 300
-"""Longest library message quoted in a refusal [characters]: xacro's nest its contexts."""
-
-
-def _one_line(err: BaseException) -> str:
-    """An exception's message on one line, at most :data:`MESSAGE_CHARS` long."""
-    text = " ".join(str(err).split()) or type(err).__name__
-    return text if len(text) <= MESSAGE_CHARS else text[: MESSAGE_CHARS - 3] + "..."
