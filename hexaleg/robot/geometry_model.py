@@ -76,6 +76,13 @@ def file_geometry(
     try:
         geometry = pin.buildGeomFromUrdfString(model, resolved, _PINOCCHIO_KIND[kind])
     except (RuntimeError, ValueError) as err:
-        message = f"the file's {kind} geometry cannot be read: {one_line(err)}"
-        raise RobotImportError(message) from None
+        raise RobotImportError(
+            f"the file's {kind} geometry cannot be read: {_reason(err)}"
+        ) from None
     return geometry, missing
+
+
+def _reason(err: Exception) -> str:
+    """A mesh loader's error in one line: coal's message without its source location and hint."""
+    text = one_line(err)
+    return text.split(" message: ", 1)[-1].split(" Hint: ", 1)[0]

@@ -46,12 +46,7 @@ from hexaleg.robot.imported import (
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import (
-    MIN_BODY_MASS,
-    NO_MASSES,
-    nominal_posture,
-    robot_design,
-)
+from hexaleg.robot.robot_design import NO_MASSES, nominal_posture, robot_design
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
@@ -61,10 +56,6 @@ BODY_LINK = PREFIX + "body"
 
 LEVEL_FEET = 1e-3
 """Largest spread of the feet's heights at the nominal posture, body level [m]."""
-
-MIN_ROBOT_MASS = MIN_BODY_MASS
-"""A robot file whose links weigh less than this in all gives no masses [kg]: it draws the
-robot's kinematics only (common: ``<inertial>`` left out, or a placeholder ``0``)."""
 
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
@@ -156,8 +147,8 @@ def _design_field(leg: str, segment: str) -> str:
 
 
 def has_masses(model: HexapodModel) -> bool:
-    """Whether the robot's links weigh :data:`MIN_ROBOT_MASS` or more (the template's do)."""
-    return float(pin.computeTotalMass(model.model)) >= MIN_ROBOT_MASS
+    """Whether any link has a mass (a kinematics-only file's do not; the template's do)."""
+    return float(pin.computeTotalMass(model.model)) > 0.0
 
 
 def robot_mass(model: HexapodModel) -> float:
@@ -169,7 +160,7 @@ def robot_mass(model: HexapodModel) -> float:
 
     """
     mass = float(pin.computeTotalMass(model.model))
-    if mass < MIN_ROBOT_MASS:
+    if mass <= 0.0:
         source = model.robot.source if isinstance(model, ImportedHexapodModel) else None
         raise RobotImportError(
             f"{source or 'the robot file'} gives no masses (no link has an <inertial> with a "
