@@ -117,6 +117,14 @@ CASES = [
           ("/dev/zero", {"d.toml": ROBOT_TABLE.format("/dev/zero")},
            ["design", "show", "--design", "d.toml"], "/dev/zero", "a character device"),
       )),
+    # 8: Xacro nesting without end: Python's recursion limit, in the Xacro process
+    *(Case(f"xacro: {what}", {"top.xacro": XACRO.format(name="r", body=body)},
+           ["design", "show", "--urdf", "top.xacro"],
+           "xacro on top.xacro nests macros or includes deeper than Python's recursion limit")
+      for what, body in (
+          ("a macro calling itself", '<xacro:macro name="m"><xacro:m/></xacro:macro><xacro:m/>'),
+          ("a file including itself", '<xacro:include filename="top.xacro"/>'),
+      )),
     Case("a robot file over the size cap", {"big.urdf": Sparse(source.MAX_ROBOT_FILE_BYTES + 1)},
          ["design", "show", "--urdf", "big.urdf"], "big.urdf is 16 MiB, larger than 16 MiB"),
     # 10: a huge mesh, refused by its size before any library reads it
@@ -317,6 +325,17 @@ def test_a_mesh_at_the_cap_is_read_and_one_past_it_refused(tmp_path, monkeypatch
     monkeypatch.setattr(source, "MAX_MESH_BYTES", 999)
     with pytest.raises(RobotImportError, match=r"mesh m\.stl is 1000 bytes, larger than 999 bytes"):
         source.check_mesh_file(mesh, "m.stl")
+
+
+def test_xacro_past_its_output_cap_is_one_line(tmp_path, monkeypatch, capsys):
+    monkeypatch.setattr(source, "MAX_ROBOT_FILE_BYTES", 20_000)
+    links = '<xacro:macro name="l" params="i"><link name="link${i}"/></xacro:macro>'
+    many = "".join(f'<xacro:l i="{i}"/>' for i in range(1000))  # about 24 kB of URDF
+    (tmp_path / "top.xacro").write_text(XACRO.format(name="r", body=links + many))
+    assert (tmp_path / "top.xacro").stat().st_size < 20_000
+    assert run_cli(["design", "show", "--urdf", str(tmp_path / "top.xacro")]) == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "xacro on top.xacro writes more than 19.5 KiB of URDF" in err
 
 
 @pytest.mark.parametrize(
