@@ -18,13 +18,13 @@ import json
 import math
 import os
 import re
-import stat
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TypeVar, cast
 
 from hexaleg._checks import require_finite
+from hexaleg._input import read_input_file
 from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
@@ -208,25 +208,12 @@ def _printed_design(data: object) -> object:
 
 
 def read_design_text(path: Path) -> str:
-    """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never blocks on a FIFO."""
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never opens a FIFO."""
+    data = read_input_file(path, MAX_FILE_BYTES, f"--design {path}", DesignFileError)
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-    except OSError as err:
-        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise DesignFileError(f"--design {path}: not a regular file")
-        with os.fdopen(fd, "rb", closefd=False) as file:
-            data = file.read(MAX_FILE_BYTES + 1)
-        if len(data) > MAX_FILE_BYTES:
-            raise DesignFileError(
-                f"--design {path}: larger than {MAX_FILE_BYTES // 2**20} MiB, not a design file"
-            )
         return data.decode("utf-8")
-    except (OSError, UnicodeDecodeError) as err:
+    except UnicodeDecodeError as err:
         raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
-    finally:
-        os.close(fd)
 
 
 def _first_sentence(err: Exception) -> str:

@@ -4,7 +4,7 @@ The layers follow DESIGN.md's data flow, lowest first; a module may import its o
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
-                _lazy
+                _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
                 table_records, grids, design_text
@@ -42,6 +42,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "_journal",
             "_compiled",
             "_lazy",
+            "_input",
         ),
     ),
     (

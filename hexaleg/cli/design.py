@@ -117,12 +117,15 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
     record = robot_record(robot, design.nominal_angles)
     shown = {
         "design": {**design.as_dict(), "legs": record["legs"]},
-        "derived": derived(design),
+        "derived": {**derived(design), "total_mass": robot.mass},  # the file's links
         "robot": {k: v for k, v in record.items() if k != "legs"},
     }
     if args.json:
         return shown
-    show(design)
+    if robot.mass <= 0.0:
+        show(design, "none: the file gives no masses (kinematics only)")
+    else:
+        show(design, f"{robot.mass:.4g} kg, the file's links (body {robot.body_mass.mass:.4g} kg)")
     print("  legs read from " + str(record["source"]))
     for change in record["changed_segments"]:
         print(
@@ -205,8 +208,13 @@ def derived(design: HexapodDesign) -> dict[str, Any]:
     }
 
 
-def show(design: HexapodDesign) -> None:
-    """The design as text: the body, derived values, then one row per leg."""
+def show(design: HexapodDesign, mass: str | None = None) -> None:
+    """The design as text: the body, derived values, then one row per leg.
+
+    ``mass``: what the mass row says, when it is not the design's (an imported robot's).
+    """
+    if mass is None:
+        mass = f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"
     print_table(
         f"Design ({design.body_description})",
         [
@@ -214,7 +222,7 @@ def show(design: HexapodDesign) -> None:
             ("leg length", f"{design.leg_length:.4g} m"),
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"),
+            ("mass", mass),
             ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
             ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
         ],

@@ -68,6 +68,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
     from hexaleg.output.viewer.scene import build_scene, write_static_html
+    from hexaleg.robot.imported_model import has_masses
     from hexaleg.robot.model import HexapodModel
     from hexaleg.stance.axis_locked import axis_locked_flexibility
     from hexaleg.statics.loads import loads_at_extremes
@@ -85,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     if args.gait:
         return _view_gait(model, args)
     result = axis_locked_flexibility(model.design, args.stance, model)
-    loads = loads_at_extremes(model, result)
+    loads = loads_at_extremes(model, result) if has_masses(model) else None  # else uncoloured
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0

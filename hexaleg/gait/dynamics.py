@@ -34,6 +34,7 @@ from hexaleg.gait.jacobian import transpose_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
+from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.statics.forces import Payload, equilibrium, min_norm_forces, min_torque_forces
 
@@ -73,6 +74,7 @@ class LoadedRobot:
     """
 
     def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
+        robot_mass(model)  # a robot file without masses is refused here
         self.gravity = np.array([0.0, 0.0, -gravity])
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)

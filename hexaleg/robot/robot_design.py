@@ -29,6 +29,9 @@ from hexaleg.robot.imported import ImportedLeg, ImportedRobot
 MIN_BODY_MASS = 1e-3
 """A lighter body is a placeholder (a ``<mass value="0.0001"/>``), not a body [kg]."""
 
+NO_MASSES = "the file gives no masses"
+"""How a warning about a robot file without any mass (a kinematics-only file) begins."""
+
 SAME_LENGTH = 1e-9
 """Segments that differ by less than this are one length [m]."""
 
@@ -71,23 +74,37 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
     }
     given = _given(base)
-    if "body_mass" in given:
-        pass  # the design file's own body mass, over the file's
-    elif robot.body_mass.mass >= MIN_BODY_MASS:
-        changes["body_mass"] = robot.body_mass.mass
-    else:
-        warnings.warn(
-            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
-            f"body_mass {base.body_mass:g} kg",
-            RobotImportWarning,
-            stacklevel=2,
-        )
+    changes.update(_body_mass(robot, base, given))
     efforts, speeds = robot.legs[0].ratings
     if "rated_torques" not in given and all(e is not None and e > 0 for e in efforts):
         changes["rated_torques"] = tuple(float(e) for e in efforts if e is not None)
     if "rated_speeds" not in given and all(v is not None and v > 0 for v in speeds):
         changes["rated_speeds"] = tuple(float(v) for v in speeds if v is not None)
     return base.replace(**changes)
+
+
+def _body_mass(robot: ImportedRobot, base: HexapodDesign, given: set[str]) -> dict[str, float]:
+    """The design's ``body_mass`` [kg]: the file's body's, else (with a warning) the design's.
+
+    ``base``'s own (``given``) goes over the file's; a body lighter than
+    :data:`MIN_BODY_MASS` is a placeholder, and a file without any mass is kinematics only.
+    """
+    if "body_mass" in given:
+        return {}  # the design file's own body mass, over the file's
+    if robot.body_mass.mass >= MIN_BODY_MASS:
+        return {"body_mass": robot.body_mass.mass}
+    if robot.mass <= 0.0:
+        message = (
+            f"{NO_MASSES}: kinematics only (statics, walking and simulation are refused); "
+            f"body_mass {base.body_mass:g} kg is the design's placeholder"
+        )
+    else:
+        message = (
+            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
+            f"body_mass {base.body_mass:g} kg"
+        )
+    warnings.warn(message, RobotImportWarning, stacklevel=3)
+    return {}
 
 
 OVERRIDDEN = ("body_mass", "rated_torques", "rated_speeds")
