@@ -1,0 +1,406 @@
+"""Sizing the legs' tubes: the lightest on a grid that holds every standing case.
+
+The grid (:class:`TubeGrid`): outer diameters D on a 1 mm grid from 4 mm to 120 mm, walls
+t in 0.5 mm steps from 0.5 mm up to D/2 (a solid rod), with D/t ≤ 50 against local
+buckling of a thin wall. For given loads the choice is exact on the grid: each segment's
+tubes that keep every ratio ≤ 1 (:mod:`.stresses`) are reduced to those no lighter tube
+is as stiff as (fewer cannot be lighter and still hold the deflection), and the triple of
+least mass Σ ρ·A·l whose feet deflect within the limit in every standing case is searched
+among them, exhaustively over the cases that bind (a case is added when the best triple
+so far breaks it).
+
+A tube's mass changes the loads (its weight, and the feet's forces), so sizing iterates:
+the loads with the grid's lightest tubes, the lightest tubes that hold them, the loads
+with those, ... until the tubes chosen are the tubes that loaded them (:attr:`SizedStructure.
+iterations` says how many rounds; :data:`MAX_ITERATIONS` at most). Starting from the
+lightest tubes, the loads grow from below, so the tubes settled on are the lightest that
+hold their own loads.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass
+from functools import cached_property
+from typing import Any
+
+import numpy as np
+import numpy.typing as npt
+
+from hexaleg._typing import ArrayF, Distribution, FlexibilityMode, StanceSet
+from hexaleg.design import HexapodDesign
+from hexaleg.exceptions import ParameterError
+from hexaleg.leg_structure import Structure, Tube
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.flexibility import flexibility
+from hexaleg.stance.geometry import stance_legs
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.deflection import foot_deflections
+from hexaleg.structure.standing import StandingCases, standing_cases, standing_terms
+from hexaleg.structure.stresses import stress_ratio, tube_stresses
+
+MAX_ITERATIONS = 30
+"""Most rounds of loads and tubes before sizing gives up settling."""
+
+
+@dataclass(frozen=True)
+class TubeGrid:
+    """The tubes sizing chooses from.
+
+    Attributes:
+        smallest_diameter: The smallest outer diameter D [m].
+        largest_diameter: The largest outer diameter D [m].
+        diameter_step: D's step [m].
+        wall_step: The wall's step, and its thinnest [m].
+        max_slenderness: The largest D/t [-] (against local buckling of the wall).
+
+    """
+
+    smallest_diameter: float = 0.004
+    largest_diameter: float = 0.120
+    diameter_step: float = 0.001
+    wall_step: float = 0.0005
+    max_slenderness: float = 50.0
+
+    def __post_init__(self) -> None:
+        if not 0 < self.smallest_diameter <= self.largest_diameter:
+            raise ParameterError(
+                "largest_diameter", self.largest_diameter, "at least smallest_diameter > 0 [m]"
+            )
+        if not (self.diameter_step > 0 and self.wall_step > 0 and self.max_slenderness >= 2):
+            raise ParameterError("grid", self, "positive steps [m] and max_slenderness ≥ 2 [-]")
+
+    @cached_property
+    def tubes(self) -> tuple[ArrayF, ArrayF]:
+        """Every tube of the grid: outer diameters and walls (n,) each [m]."""
+        count = round((self.largest_diameter - self.smallest_diameter) / self.diameter_step)
+        diameters, walls = [], []
+        for d in self.smallest_diameter + self.diameter_step * np.arange(count + 1):
+            steps = np.arange(1, math.floor(d / 2 / self.wall_step + 1e-9) + 1) * self.wall_step
+            kept = steps[d / steps <= self.max_slenderness + 1e-9]
+            diameters += [d] * len(kept)
+            walls += list(kept)
+        return np.round(diameters, 9), np.round(walls, 9)  # to the nanometre: 0.039, not …01
+
+    @cached_property
+    def useful(self) -> npt.NDArray[np.intp]:
+        """The grid tubes no other is as light, as strong and as stiff as (indices).
+
+        Tube a beats tube b when its area is no larger and its section modulus 2I/D and
+        second moment I no smaller (one of them strictly): a's stresses (N/A, M/(2I/D),
+        T/(4I/D)) and deflection are then no larger, for no more mass, so sizing never
+        needs b.
+        """
+        outer, wall = self.tubes
+        area, moment = _area(outer, wall), _moment(outer, wall)
+        modulus = 2 * moment / outer
+        beaten = np.zeros(len(outer), dtype=bool)
+        for start in range(0, len(outer), 512):  # by blocks: n² booleans at once are many
+            rows = slice(start, start + 512)
+            no_worse = (
+                (area[None, :] <= area[rows, None])
+                & (modulus[None, :] >= modulus[rows, None])
+                & (moment[None, :] >= moment[rows, None])
+            )
+            better = (
+                (area[None, :] < area[rows, None])
+                | (modulus[None, :] > modulus[rows, None])
+                | (moment[None, :] > moment[rows, None])
+            )
+            beaten[rows] = (no_worse & better).any(axis=1)
+        return np.flatnonzero(~beaten)
+
+    @cached_property
+    def sections(self) -> tuple[ArrayF, ArrayF, ArrayF]:
+        """The useful tubes' outer diameters [m], areas [m²], second moments [m⁴]."""
+        outer, wall = (values[self.useful] for values in self.tubes)
+        return outer, _area(outer, wall), _moment(outer, wall)
+
+    def tube(self, index: int) -> Tube:
+        """The useful tube ``index`` (into :attr:`sections`)."""
+        outer, wall = (values[self.useful] for values in self.tubes)
+        return Tube(float(outer[index]), float(wall[index]))
+
+    def to_dict(self) -> dict[str, float]:
+        """JSON-ready (m, -)."""
+        return dict(vars(self))
+
+
+@dataclass(frozen=True, eq=False)
+class SizedStructure:
+    """The tubes sizing chose, and the structure checked with them.
+
+    Attributes:
+        design: The design with the chosen tubes.
+        check: Its structure in every standing case, with its own loads.
+        iterations: Rounds of loads and tubes until the tubes settled.
+        settled: Whether they settled (else :data:`MAX_ITERATIONS` rounds ran).
+        found: Whether some tubes on the grid hold every case (else the strongest are kept).
+        grid: The grid chosen from.
+
+    """
+
+    design: HexapodDesign
+    check: StructureCheck
+    iterations: int
+    settled: bool
+    found: bool
+    grid: TubeGrid
+
+    @property
+    def structure(self) -> Structure:
+        """The structure with the chosen tubes."""
+        assert self.design.structure is not None
+        return self.design.structure
+
+    def to_dict(self) -> dict[str, Any]:
+        """How sizing went (the tubes are the check's)."""
+        return {
+            "iterations": self.iterations,
+            "settled": self.settled,
+            "found": self.found,
+            "grid": self.grid.to_dict(),
+        }
+
+
+def size_structure(
+    design: HexapodDesign,
+    *,
+    payload: Payload | None = None,
+    slope: float = 0.0,
+    friction: float = DEFAULT_FRICTION,
+    stance: StanceSet | Sequence[str] = "all",
+    distribution: Distribution = "min-norm",
+    mode: FlexibilityMode = "axis",
+    model: HexapodModel | None = None,
+    grid: TubeGrid | None = None,
+) -> SizedStructure:
+    """The lightest tubes of ``grid`` that hold every standing case of ``design``.
+
+    Args:
+        design: A design with a ``[structure]`` (its material, safety factor and limit;
+            its tubes, if any, are replaced).
+        payload: The payload on the body in every case (none by default).
+        slope: The slope [rad] stood on in every heading (0: level ground only).
+        friction: Friction coefficient μ [-].
+        stance: Stance legs.
+        distribution: How the feet share the load.
+        mode: Which flexibility extremes: axis-locked or free-coupled.
+        model: ``design``'s model (hexaleg's template), if already built.
+        grid: The tubes to choose from (:class:`TubeGrid`'s defaults if omitted).
+
+    """
+    if design.structure is None:
+        raise ParameterError("structure", None, "the design has no [structure] to size")
+    grid = DEFAULT_GRID if grid is None else grid
+    model = HexapodModel(design) if model is None else model
+    legs = stance_legs(model, stance)
+    extremes = flexibility(design, mode, legs, model).extremes
+    cases = standing_cases(model, legs, extremes, payload, slope, friction, distribution)
+    return size_for_cases(design, cases, model, grid)
+
+
+def size_for_cases(
+    design: HexapodDesign, cases: StandingCases, model: HexapodModel, grid: TubeGrid
+) -> SizedStructure:
+    """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`)."""
+    structure = design.structure
+    if structure is None:
+        raise ParameterError("structure", None, "the design has no [structure] to size")
+    area = grid.sections[1]
+    lightest = int(np.argmin(area))
+    chosen: tuple[int, int, int] = (lightest, lightest, lightest)
+    found, settled, iterations = True, False, 0
+    limit = structure.limit(design.leg_length)
+    active: list[int] = []
+    while iterations < MAX_ITERATIONS and not settled:
+        iterations += 1
+        sized = design.replace(structure=structure.with_tubes(_tubes(grid, chosen)))
+        loads, integrals = standing_terms(model.with_design(sized), cases)
+        best = choose_tubes(loads, integrals, structure, design.lengths, limit, grid, active)
+        found = best is not None
+        best = _strongest(loads, structure, grid) if best is None else best
+        settled, chosen = best == chosen, best
+    final = structure.with_tubes(_tubes(grid, chosen))
+    deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
+    check = StructureCheck(
+        final, design.lengths, model.leg_names, cases.names, loads, deflections, limit
+    )
+    sized = design.replace(structure=final)
+    return SizedStructure(sized, check, iterations, settled, found, grid)
+
+
+DEFAULT_GRID = TubeGrid()
+"""The grid sizing chooses from unless told (its useful tubes found once per process)."""
+
+
+def _area(outer: ArrayF, wall: ArrayF) -> ArrayF:
+    inner = np.maximum(outer - 2 * wall, 0.0)
+    return np.pi / 4 * (outer**2 - inner**2)
+
+
+def _moment(outer: ArrayF, wall: ArrayF) -> ArrayF:
+    inner = np.maximum(outer - 2 * wall, 0.0)
+    return np.pi / 64 * (outer**4 - inner**4)
+
+
+def _tubes(grid: TubeGrid, chosen: tuple[int, int, int]) -> tuple[Tube, Tube, Tube]:
+    return (grid.tube(chosen[0]), grid.tube(chosen[1]), grid.tube(chosen[2]))
+
+
+def segment_ratios(loads: ArrayF, structure: Structure, grid: TubeGrid) -> ArrayF:
+    """Each grid tube's worst ratio (3, n) per segment, over every case and leg [-]."""
+    outer, area, moment = grid.sections
+    out = np.empty((3, len(outer)))
+    for segment in range(3):
+        cases = _dominant(np.abs(loads[:, :, segment].reshape(-1, 3)))
+        _, tau, von_mises = tube_stresses(
+            cases[None, :, :], outer[:, None], area[:, None], moment[:, None]
+        )
+        out[segment] = stress_ratio(von_mises, tau, structure).max(axis=1)
+    return out
+
+
+def _dominant(loads: ArrayF) -> ArrayF:
+    """The loads (m, 3) no other load exceeds in all of N, M_b and T (stress grows in each)."""
+    loads = np.unique(loads, axis=0)
+    at_least = np.all(loads[None, :, :] >= loads[:, None, :], axis=-1)  # [i, j]: j ≥ i
+    np.fill_diagonal(at_least, False)
+    return loads[~at_least.any(axis=1)]
+
+
+def _strongest(loads: ArrayF, structure: Structure, grid: TubeGrid) -> tuple[int, int, int]:
+    """Each segment's grid tube of the least worst ratio (when none holds)."""
+    ratios = segment_ratios(loads, structure, grid)
+    coxa, femur, tibia = (int(np.argmin(r)) for r in ratios)
+    return (coxa, femur, tibia)
+
+
+def choose_tubes(
+    loads: ArrayF,
+    integrals: ArrayF,
+    structure: Structure,
+    lengths: tuple[float, float, float],
+    limit: float,
+    grid: TubeGrid,
+    active: list[int] | None = None,
+) -> tuple[int, int, int] | None:
+    """The grid tubes (coxa, femur, tibia) of least mass that hold these loads, if any.
+
+    Args:
+        loads: Section loads (K, legs, 3, 3) [N, N·m, N·m].
+        integrals: Deflection integrals (K, legs, 3, 3) [N·m³] (:mod:`.deflection`).
+        structure: The material, safety factor.
+        lengths: Segment lengths [m].
+        limit: The foot's deflection limit [m].
+        grid: The tubes (indices into its :attr:`~TubeGrid.sections`).
+        active: The cases (flat index of case and leg) that bound the deflection last
+            time, searched from the start; the cases found binding are added to it.
+
+    """
+    _, area, moment = grid.sections
+    holds = segment_ratios(loads, structure, grid) <= 1
+    fronts = [_stiffest_for_mass(np.flatnonzero(ok), area, moment) for ok in holds]
+    if any(len(front) == 0 for front in fronts):
+        return None
+    density = structure.material.density
+    masses = [density * area[f] * length for f, length in zip(fronts, lengths, strict=True)]
+    vectors = integrals.reshape(-1, 3, 3) / structure.material.youngs_modulus  # (C, 3, 3)
+    inverse = [1.0 / moment[f] for f in fronts]
+    bound = _bound(masses, inverse, vectors, limit)
+    if bound is not None:  # no triple heavier than a feasible one can be the lightest
+        floor = sum(m[0] for m in masses)
+        kept = [np.flatnonzero(m - m[0] <= bound - floor) for m in masses]
+        fronts = [f[k] for f, k in zip(fronts, kept, strict=True)]
+        masses = [m[k] for m, k in zip(masses, kept, strict=True)]
+        inverse = [x[k] for x, k in zip(inverse, kept, strict=True)]
+    active = [] if active is None else active
+    while True:
+        best = _least_mass(masses, inverse, vectors[active], limit)
+        if best is None:
+            return None
+        x = np.array([inverse[s][best[s]] for s in range(3)])
+        bent = np.linalg.norm(np.einsum("csk,s->ck", vectors, x), axis=-1)
+        worst = int(np.argmax(bent))
+        if bent[worst] <= limit:
+            return (int(fronts[0][best[0]]), int(fronts[1][best[1]]), int(fronts[2][best[2]]))
+        active.append(worst)
+
+
+def _bound(
+    masses: list[ArrayF], inverse: list[ArrayF], vectors: ArrayF, limit: float
+) -> float | None:
+    """The mass of some triple that holds every case, if one is found, else ``None``.
+
+    Each front is walked up together, at the same share of its length: the first share
+    (by bisection) whose triple holds bounds the lightest from above.
+    """
+
+    def triple(share: float) -> tuple[int, ...]:
+        return tuple(min(round(share * (len(m) - 1)), len(m) - 1) for m in masses)
+
+    def holds(index: tuple[int, ...]) -> bool:
+        x = np.array([inverse[s][index[s]] for s in range(3)])
+        return bool(np.linalg.norm(np.einsum("csk,s->ck", vectors, x), axis=-1).max() <= limit)
+
+    if not holds(triple(1.0)):
+        return None
+    low, high = 0.0, 1.0
+    for _ in range(12):
+        middle = (low + high) / 2
+        low, high = (low, middle) if holds(triple(middle)) else (middle, high)
+    return float(sum(m[i] for m, i in zip(masses, triple(high), strict=True)))
+
+
+def _stiffest_for_mass(indices: ArrayF, area: ArrayF, moment: ArrayF) -> ArrayF:
+    """Of ``indices``, by area, those stiffer (I) than every lighter one."""
+    order = indices[np.lexsort((-moment[indices], area[indices]))]
+    stiffest = np.maximum.accumulate(moment[order])
+    kept = np.ones(len(order), dtype=bool)
+    kept[1:] = moment[order][1:] > stiffest[:-1]
+    return order[kept]
+
+
+def _least_mass(
+    masses: list[ArrayF], inverse: list[ArrayF], vectors: ArrayF, limit: float
+) -> tuple[int, int, int] | None:
+    """Indices into each front of the lightest triple whose feet deflect within ``limit``.
+
+    Args:
+        masses: Each segment's front's masses, ascending [kg].
+        inverse: Their 1/I, descending [m⁻⁴].
+        vectors: Each active case's deflection per unit 1/I of each segment (A, 3, 3).
+        limit: The deflection limit [m].
+
+    A case's deflection is ‖Σ_s x_s·v_s‖, x_s a segment's 1/I: for a coxa and a femur,
+    ‖b + x·c‖ with x the tibia's is within the limit on an interval of x (a convex
+    quadratic's sublevel set), written with the products v_s·v_t; the lightest tibia is
+    the least stiff one inside every case's interval.
+
+    """
+    if len(vectors) == 0:
+        return (0, 0, 0)
+    gram = np.einsum("aik,ajk->aij", vectors, vectors)[:, :, :, None, None]  # (A, 3, 3, 1, 1)
+    xc, xf = inverse[0][:, None], inverse[1][None, :]  # (C, 1), (1, F)
+    bb = gram[:, 0, 0] * xc * xc + 2 * gram[:, 0, 1] * xc * xf + gram[:, 1, 1] * xf * xf
+    bc = gram[:, 0, 2] * xc + gram[:, 1, 2] * xf  # (A, C, F)
+    cc = np.broadcast_to(gram[:, 2, 2], bb.shape)
+    square = bc * bc - cc * (bb - limit * limit)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        root = np.sqrt(np.maximum(square, 0.0))
+        low = np.where(cc > 0, (-bc - root) / cc, np.where(bb <= limit * limit, -np.inf, np.inf))
+        high = np.where(cc > 0, (-bc + root) / cc, np.where(bb <= limit * limit, np.inf, -np.inf))
+    empty = (cc > 0) & (square < 0)
+    low, high = np.where(empty, np.inf, low).max(axis=0), np.where(empty, -np.inf, high).min(axis=0)
+    descending = -inverse[2]  # ascending: the tibia's front from light (large 1/I) to stiff
+    first = np.searchsorted(descending, -high, side="left")  # first tibia with 1/I ≤ high
+    last = np.searchsorted(descending, -low, side="right") - 1  # last with 1/I ≥ low
+    ok = (first <= last) & (first < len(descending))
+    if not ok.any():
+        return None
+    tibia = masses[2][np.minimum(first, len(descending) - 1)]
+    total = np.where(ok, masses[0][:, None] + masses[1][None, :] + tibia, np.inf)
+    i, j = np.unravel_index(int(np.argmin(total)), total.shape)
+    return (int(i), int(j), int(first[i, j]))
