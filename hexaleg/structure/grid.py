@@ -9,7 +9,7 @@ is as light, as strong and as stiff as (:attr:`TubeGrid.useful`).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, fields
 from functools import cached_property
 
 import numpy as np
@@ -100,7 +100,7 @@ class TubeGrid:
 
     def to_dict(self) -> dict[str, float]:
         """JSON-ready (m, -)."""
-        return dict(vars(self))
+        return {f.name: getattr(self, f.name) for f in fields(self)}
 
 
 DEFAULT_GRID = TubeGrid()
