@@ -19,7 +19,7 @@ import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.leg_structure import LEG_SEGMENTS, Structure, segment_masses
-from hexaleg.structure.stresses import LOAD_NAMES, stress_ratio, tube_stresses
+from hexaleg.structure.stresses import LOAD_NAMES, section_loads, stress_ratio, tube_stresses
 
 
 @dataclass(frozen=True)
@@ -64,8 +64,9 @@ class StructureCheck:
         lengths: Segment lengths (l1, l2, l3) [m].
         legs: Leg names, in the model's order.
         cases: Each load case's name (K).
-        loads: Section loads at each segment's proximal joint (K, legs, 3, 3): axial force N
-            [N], bending moment M_b [N·m], torsion T [N·m].
+        wrenches: The wrench at each segment's proximal joint (K, legs, 3, 6): the force [N]
+            then the moment [N·m] the proximal side exerts, in the segment's frame (x along
+            it; :mod:`.wrenches`).
         deflections: Each foot's deflection (K, legs) [m] in a standing case; ``None`` for
             a walk (deflection is checked standing).
         limit: The foot's deflection limit [m].
@@ -76,9 +77,14 @@ class StructureCheck:
     lengths: tuple[float, float, float]
     legs: tuple[str, ...]
     cases: tuple[str, ...]
-    loads: ArrayF
+    wrenches: ArrayF
     deflections: ArrayF | None
     limit: float
+
+    @cached_property
+    def loads(self) -> ArrayF:
+        """Section loads (K, legs, 3, 3): axial force N [N], bending M_b and torsion T [N·m]."""
+        return section_loads(self.wrenches)
 
     @cached_property
     def stresses(self) -> tuple[ArrayF, ArrayF, ArrayF]:

@@ -37,7 +37,7 @@ from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import foot_deflections
 from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
 from hexaleg.structure.standing import StandingCases, standing_cases, standing_terms
-from hexaleg.structure.stresses import stress_ratio, tube_stresses
+from hexaleg.structure.stresses import section_loads, stress_ratio, tube_stresses
 
 MAX_ITERATIONS = 30
 """Most rounds of loads and tubes before sizing gives up settling."""
@@ -133,7 +133,8 @@ def size_for_cases(
     while iterations < MAX_ITERATIONS and not settled:
         iterations += 1
         sized = design.replace(structure=structure.with_tubes(_tubes(grid, chosen)))
-        loads, integrals = standing_terms(model.with_design(sized), cases)
+        wrenches, integrals = standing_terms(model.with_design(sized), cases)
+        loads = section_loads(wrenches)
         best = choose_tubes(loads, integrals, structure, design.lengths, limit, grid, active)
         found = best is not None
         best = _strongest(loads, structure, grid) if best is None else best
@@ -141,7 +142,7 @@ def size_for_cases(
     final = structure.with_tubes(_tubes(grid, chosen))
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
-        final, design.lengths, model.leg_names, cases.names, loads, deflections, limit
+        final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit
     )
     sized = design.replace(structure=final)
     return SizedStructure(sized, check, iterations, settled, found, grid)

@@ -26,7 +26,6 @@ from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, Statics
 from hexaleg.statics.slopes import SLOPE_HEADINGS, slope_gravity
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
-from hexaleg.structure.stresses import section_loads
 from hexaleg.structure.wrenches import leg_states, segment_wrenches
 
 NOMINAL = "nominal"
@@ -109,15 +108,15 @@ def standing_forces(model: HexapodModel, cases: StandingCases) -> ArrayF:
 
 
 def standing_terms(model: HexapodModel, cases: StandingCases) -> tuple[ArrayF, ArrayF]:
-    """Section loads (K, 6, 3, 3) and deflection integrals (K, 6, 3, 3) of each case.
+    """Wrenches (K, 6, 3, 6) and deflection integrals (K, 6, 3, 3) of each case.
 
     What a tube's stress and its foot's deflection follow from, with the model's masses
-    (:func:`~.stresses.section_loads`, :func:`~.deflection.deflection_integrals`).
+    (:func:`~.wrenches.segment_wrenches`, :func:`~.deflection.deflection_integrals`).
     """
     forces = standing_forces(model, cases)
     states = leg_states(model, cases.configurations, cases.gravities)
     integrals = deflection_integrals(model.design, states, forces, cases.gravities)
-    return section_loads(segment_wrenches(states, forces)), integrals
+    return segment_wrenches(states, forces), integrals
 
 
 def check_standing(model: HexapodModel, cases: StandingCases) -> StructureCheck:
@@ -125,14 +124,14 @@ def check_standing(model: HexapodModel, cases: StandingCases) -> StructureCheck:
     design = model.design
     if design.structure is None:
         raise ParameterError("structure", None, "the design has no [structure] to check")
-    loads, integrals = standing_terms(model, cases)
+    wrenches, integrals = standing_terms(model, cases)
     deflections = np.linalg.norm(foot_deflections(integrals, design.structure), axis=-1)
     return StructureCheck(
         design.structure,
         design.lengths,
         model.leg_names,
         cases.names,
-        loads,
+        wrenches,
         deflections,
         design.structure.limit(design.leg_length),
     )

@@ -14,7 +14,6 @@ import numpy.typing as npt
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.ratings import at_times
 from hexaleg.structure.check import StructureCheck
-from hexaleg.structure.stresses import section_loads
 from hexaleg.structure.wrenches import leg_states, segment_wrenches
 
 
@@ -46,13 +45,13 @@ def check_walking(
     states = leg_states(
         model, configurations, np.array([0.0, 0.0, -gravity]), velocities, accelerations
     )
-    loads = section_loads(segment_wrenches(states, foot_forces))
+    wrenches = segment_wrenches(states, foot_forces)
     return StructureCheck(
         structure,
         design.lengths,
         model.leg_names,
         tuple(at_times(times)),
-        loads,
+        wrenches,
         None,
         structure.limit(design.leg_length),
     )
