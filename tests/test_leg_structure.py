@@ -180,7 +180,7 @@ def test_bad_structure_input_is_one_line_exit_2_and_nothing_written(
 
 
 def test_a_missing_tube_without_size_names_the_segment():
-    with pytest.raises(ParameterError, match="tibia .* size = true"):
+    with pytest.raises(ParameterError, match=r"tibia .* size = true"):
         Structure(ALUMINIUM, Tube(0.04, 0.002), Tube(0.04, 0.002))
 
 

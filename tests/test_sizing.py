@@ -122,8 +122,9 @@ def check_against_brute_force(design, cases):
     sized = size_for_cases(design, cases, model, SMALL)
     total, holds, triples = brute_force(design, model, cases)
     chosen = sized.structure.tubes
+    density = design.structure.material.density
     mass = sum(
-        design.structure.material.density * t.area * l for t, l in zip(chosen, design.lengths)
+        density * tube.area * length for tube, length in zip(chosen, design.lengths, strict=True)
     )
     if not holds.any():
         assert not sized.found and not sized.check.feasible

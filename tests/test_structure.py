@@ -201,16 +201,16 @@ def straight_states(design, angles):
     """Every leg at ``angles``, the body at the origin, level: the legs' joints and feet."""
     model = HexapodModel(design)
     q = model.configuration(pin.SE3.Identity(), np.array([angles] * 6))
-    return model, leg_states(model, [q], np.zeros(3))
+    return leg_states(model, [q], np.zeros(3))
 
 
 def bent(design, foot_force):
     """lf's foot deflection vector [m] under a force at its foot alone (no weight)."""
-    model, states = straight_states(design, design.nominal_angles)
+    states = straight_states(design, design.nominal_angles)
     forces = np.zeros((1, 6, 3))
     forces[0, 0] = foot_force
     integrals = deflection_integrals(design, states, forces, np.zeros(3))
-    return foot_deflections(integrals, design.structure)[0, 0], model
+    return foot_deflections(integrals, design.structure)[0, 0]
 
 
 def leg_axes(design):
@@ -225,7 +225,7 @@ def test_a_straight_leg_bends_as_a_cantilever():
         l1=0.2, l2=0.35, l3=0.3, nominal_angles=(0.0, 0.0, -0.3),
         structure=Structure(ALUMINIUM, tube, tube, tube),
     )  # fmt: skip
-    model, states = straight_states(design, (0.0, 0.0, 0.0))
+    states = straight_states(design, (0.0, 0.0, 0.0))
     forces = np.zeros((1, 6, 3))
     forces[0, 0, 2] = -120.0
     integrals = deflection_integrals(design, states, forces, np.zeros(3))
@@ -240,7 +240,7 @@ def test_a_straight_chain_of_three_stiffnesses_sums_their_shares():
         l1=0.15, l2=0.4, l3=0.35, nominal_angles=(0.0, 0.0, -0.3),
         structure=Structure(ALUMINIUM, *tubes),
     )  # fmt: skip
-    model, states = straight_states(design, (0.0, 0.0, 0.0))
+    states = straight_states(design, (0.0, 0.0, 0.0))
     forces = np.zeros((1, 6, 3))
     forces[0, 0, 2] = 80.0
     integrals = deflection_integrals(design, states, forces, np.zeros(3))
@@ -270,10 +270,10 @@ def test_an_l_shaped_leg_bends_as_its_closed_form(load):
     ei_post = ALUMINIUM.youngs_modulus * post.second_moment
     out, up = leg_axes(design)
     if load == "down":  # the post only carries it along its axis; the arm bends and turns
-        deflection, _ = bent(design, -150.0 * up)
+        deflection = bent(design, -150.0 * up)
         expected = -150.0 * a**3 / (3 * ei_arm) * up - 150.0 * a**2 * b / (2 * ei_arm) * out
     else:  # the post bends as a cantilever, the arm under the constant moment H·b
-        deflection, _ = bent(design, 90.0 * out)
+        deflection = bent(design, 90.0 * out)
         along = 90.0 * b**3 / (3 * ei_post) + 90.0 * b**2 * a / ei_arm
         expected = along * out + 90.0 * b * a**2 / (2 * ei_arm) * up
     np.testing.assert_allclose(deflection, expected, rtol=1e-10, atol=1e-14)
