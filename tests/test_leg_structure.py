@@ -91,7 +91,7 @@ def test_the_model_carries_the_tubes_with_its_foot_and_actuator_points(seed):
     np.testing.assert_allclose(inertia.inertia, tensor + foot + shift, rtol=1e-10, atol=1e-18)
 
 
-@pytest.mark.parametrize("seed", [6, 7, 8])
+@pytest.mark.parametrize("seed", [6, pytest.param(7, marks=pytest.mark.slow), 8])
 def test_with_design_equals_the_model_built_from_the_urdf(seed):
     design = random_structured(seed, STEEL)
     fast = HexapodModel(HexapodDesign(l1=0.3)).with_design(design)

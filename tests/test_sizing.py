@@ -138,7 +138,9 @@ def check_against_brute_force(design, cases):
     return sized
 
 
-@pytest.mark.parametrize("seed", [2, 4, 9])  # the deflection binds, a stress binds, both walls
+@pytest.mark.parametrize(
+    "seed", [4, 9, pytest.param(2, marks=pytest.mark.slow)]
+)  # a stress binds; the deflection binds, with thick walls; the deflection alone
 def test_sizing_is_never_heavier_than_any_grid_triple_holding_its_own_loads(seed):
     design = seeded(seed)
     model = HexapodModel(design)
