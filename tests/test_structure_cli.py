@@ -1,4 +1,4 @@
-"""``loads``, ``gait`` and ``design show`` with a [structure] table: JSON, flags, sizing, refusals."""
+"""``loads``, ``gait`` and ``design show`` with [structure]: JSON, flags, sizing, refusals."""
 
 from __future__ import annotations
 

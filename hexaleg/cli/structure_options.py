@@ -16,10 +16,10 @@ from hexaleg.cli.options import UsageError, note
 from hexaleg.design import HexapodDesign
 from hexaleg.leg_structure import LEG_SEGMENTS, Structure, segment_masses
 from hexaleg.statics.forces import Payload
-from hexaleg.structure.check import StructureCheck
-from hexaleg.structure.sizing import SizedStructure, size_structure
 
 if TYPE_CHECKING:
+    from hexaleg.structure.check import StructureCheck
+    from hexaleg.structure.sizing import SizedStructure
     from hexaleg.study.requirements import Requirements
 
 IMPORTED = (
@@ -44,6 +44,8 @@ def size_if_asked(
         raise UsageError(IMPORTED)
     if not structure.size:
         return design, None
+    from hexaleg.structure.sizing import size_structure  # the search: not to parse options
+
     payload = Payload(requirements.payload or 0.0, requirements.payload_at)
     sized = size_structure(design, payload=payload, slope=requirements.slope or 0.0)
     if not sized.found:
