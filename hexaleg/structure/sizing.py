@@ -140,6 +140,9 @@ def size_for_cases(
         best = _strongest(loads, structure, grid) if best is None else best
         settled, chosen = best == chosen, best
     final = structure.with_tubes(_tubes(grid, chosen))
+    if not settled:  # the last loads were the tubes' before: check the last tubes' own
+        sized = design.replace(structure=final)
+        wrenches, integrals = standing_terms(model.with_design(sized), cases)
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
         final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit

@@ -113,10 +113,21 @@ def standing_terms(model: HexapodModel, cases: StandingCases) -> tuple[ArrayF, A
     What a tube's stress and its foot's deflection follow from, with the model's masses
     (:func:`~.wrenches.segment_wrenches`, :func:`~.deflection.deflection_integrals`).
     """
+    require_template(model)
     forces = standing_forces(model, cases)
     states = leg_states(model, cases.configurations, cases.gravities)
     integrals = deflection_integrals(model.design, states, forces, cases.gravities)
     return segment_wrenches(states, forces), integrals
+
+
+def require_template(model: HexapodModel) -> None:
+    """Refuse a robot file's model: ``[structure]`` describes hexaleg's own legs' tubes."""
+    if model.general_legs:
+        raise ParameterError(
+            "structure",
+            model.design.structure,
+            "hexaleg's own legs only: a robot file's links are its own",
+        )
 
 
 def check_standing(model: HexapodModel, cases: StandingCases) -> StructureCheck:
@@ -124,6 +135,7 @@ def check_standing(model: HexapodModel, cases: StandingCases) -> StructureCheck:
     design = model.design
     if design.structure is None:
         raise ParameterError("structure", None, "the design has no [structure] to check")
+    require_template(model)
     wrenches, integrals = standing_terms(model, cases)
     deflections = np.linalg.norm(foot_deflections(integrals, design.structure), axis=-1)
     return StructureCheck(

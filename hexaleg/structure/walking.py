@@ -14,6 +14,7 @@ import numpy.typing as npt
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.ratings import at_times
 from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.standing import require_template
 from hexaleg.structure.wrenches import leg_states, segment_wrenches
 
 
@@ -42,6 +43,7 @@ def check_walking(
     structure = design.structure
     if structure is None or any(tube is None for tube in structure.tubes):
         return None
+    require_template(model)
     states = leg_states(
         model, configurations, np.array([0.0, 0.0, -gravity]), velocities, accelerations
     )
