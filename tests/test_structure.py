@@ -331,3 +331,38 @@ def test_walking_wrenches_carry_the_links_inertial_forces(seed):
 def _knee_forces(check, leg):
     """The tibia's axial and shear forces in its frame, rebuilt from the stress record."""
     return check.wrenches[:, leg, 2, :3]
+
+
+@pytest.mark.parametrize("seed", [9, 10])
+def test_the_vectorized_legs_are_pinocchio_s_frames_and_rnea_forces(seed):
+    """Random body poses, velocities and accelerations: oMi, the feet and RNEA's data.f."""
+    design = seeded_design(seed)
+    model = HexapodModel(design)
+    pm, data = model.model, model.data
+    rng = np.random.default_rng(seed)
+    q = np.array([pin.randomConfiguration(pm, -np.ones(pm.nq), np.ones(pm.nq)) for _ in range(4)])
+    v, a = rng.normal(size=(2, 4, pm.nv))
+    gravity = np.array([0.5, -0.3, -GRAVITY])
+    states = leg_states(model, q, gravity, v, a)
+    saved = pm.gravity.linear.copy()
+    pm.gravity.linear = gravity
+    try:
+        for k in range(4):
+            pin.framesForwardKinematics(pm, data, q[k])
+            pin.rnea(pm, data, q[k], v[k], a[k])
+            for i, leg in enumerate(model.leg_names):
+                for s, joint in enumerate(model.leg_joint_ids(leg)):
+                    placement = data.oMi[joint]
+                    np.testing.assert_allclose(
+                        states.rotations[k, i, s], placement.rotation, atol=1e-14
+                    )
+                    np.testing.assert_allclose(
+                        states.origins[k, i, s], placement.translation, atol=1e-14
+                    )
+                    np.testing.assert_allclose(
+                        states.own[k, i, s], data.f[joint].vector, atol=1e-11
+                    )
+                foot = data.oMf[model.foot_frame_id(leg)].translation
+                np.testing.assert_allclose(states.feet[k, i], foot, atol=1e-14)
+    finally:
+        pm.gravity.linear = saved

@@ -29,7 +29,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import FOOT_MASS, HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.leg_structure import Structure, segment_masses
-from hexaleg.structure.wrenches import LegStates
+from hexaleg.structure.wrenches import LegStates, cross
 
 SIMPSON = np.array([1.0, 4.0, 1.0]) / 6
 """Simpson's weights at s = 0, l/2, l, times the segment's length."""
@@ -75,11 +75,11 @@ def deflection_integrals(
         for weight, s in zip(SIMPSON, (0.0, lengths[k] / 2, lengths[k]), strict=True):
             point = origins[:, :, k] + s * axis
             rest = lengths[k] - s  # the segment's own weight beyond s, at its middle
-            moment = np.cross((rest / 2) * axis, densities[k] * rest * g)
+            moment = cross((rest / 2) * axis, densities[k] * rest * g)
             for position, force in beyond[k]:
-                moment = moment + np.cross(position - point, force)
+                moment = moment + cross(position - point, force)
             across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
-            out[:, :, k] += weight * lengths[k] * np.cross(across, feet - point)
+            out[:, :, k] += weight * lengths[k] * cross(across, feet - point)
     return out
 
 
