@@ -142,10 +142,12 @@ def leg_states(
         omega = omega + axis * rate
         lever = (rotation @ legs.levers[:, k, :, None])[..., 0]
         centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
-        inertia = rotation @ legs.inertias[:, k] @ rotation.swapaxes(-1, -2)
         forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
-        spun = (inertia @ omega[..., None])[..., 0]
-        moments[:, :, k] = (inertia @ alpha[..., None])[..., 0] + cross(omega, spun)
+        spin_here = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
+        turn_here = np.einsum("klji,klj->kli", rotation, alpha)
+        spun = (legs.inertias[:, k] @ spin_here[..., None])[..., 0]
+        local = (legs.inertias[:, k] @ turn_here[..., None])[..., 0] + cross(spin_here, spun)
+        moments[:, :, k] = (rotation @ local[..., None])[..., 0]
         centres[:, :, k] = origin + lever
         rotations[:, :, k], origins[:, :, k] = rotation, origin
         parent_r, parent_o = rotation, origin
