@@ -24,7 +24,6 @@ from hexaleg.materials import Material, shipped_materials
 from hexaleg.table_records import (
     REQUIRED,
     check_record,
-    checked,
     record_from_table,
     require_table,
     unknown_key,
@@ -98,16 +97,16 @@ class Structure:
     # fmt: off
     material: Material = declare(
         REQUIRED, "a catalog material's name (hexaleg materials), or a table of its density, "
-        "youngs_modulus and yield_strength", kind="record",
+        "youngs_modulus and yield_strength", kind="record", record=Material,
     )
     coxa: Tube | None = declare(
-        None, "the coxa's tube: outer_diameter, wall", "m", kind="record"
+        None, "the coxa's tube: outer_diameter, wall", "m", kind="record", record=Tube
     )
     femur: Tube | None = declare(
-        None, "the femur's tube: outer_diameter, wall", "m", kind="record"
+        None, "the femur's tube: outer_diameter, wall", "m", kind="record", record=Tube
     )
     tibia: Tube | None = declare(
-        None, "the tibia's tube: outer_diameter, wall", "m", kind="record"
+        None, "the tibia's tube: outer_diameter, wall", "m", kind="record", record=Tube
     )
     safety_factor: float = declare(
         2.0, "safety factor: the stress allowed is the strength over it", "-", (1.0, 100.0)
@@ -123,16 +122,10 @@ class Structure:
     # fmt: on
 
     def __post_init__(self) -> None:
-        if not isinstance(self.material, Material):
-            raise ParameterError("material", self.material, "a Material")
-        for name in ("safety_factor", "deflection_limit"):
-            object.__setattr__(self, name, checked(FIELDS[name], getattr(self, name)))
+        check_record(self, STRUCTURE_FIELDS)
         if not isinstance(self.size, bool):
             raise ParameterError("size", self.size, "must be true or false")
-        for segment in LEG_SEGMENTS:
-            tube = getattr(self, segment)
-            if tube is not None and not isinstance(tube, Tube):
-                raise ParameterError(segment, tube, "a Tube (outer_diameter, wall [m]) or None")
+        for segment, tube in zip(LEG_SEGMENTS, self.tubes, strict=True):
             if tube is None and not self.size:
                 raise ParameterError(
                     segment,
