@@ -18,6 +18,7 @@ small grid checked under its own loads.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -132,7 +133,7 @@ def size_for_cases(
     active: list[int] = []
     while iterations < MAX_ITERATIONS and not settled:
         iterations += 1
-        sized = design.replace(structure=structure.with_tubes(_tubes(grid, chosen)))
+        sized = _with_structure(design, structure.with_tubes(_tubes(grid, chosen)))
         wrenches, integrals = standing_terms(model.with_design(sized), cases)
         loads = section_loads(wrenches)
         best = choose_tubes(loads, integrals, structure, design.lengths, limit, grid, active)
@@ -141,14 +142,24 @@ def size_for_cases(
         settled, chosen = best == chosen, best
     final = structure.with_tubes(_tubes(grid, chosen))
     if not settled:  # the last loads were the tubes' before: check the last tubes' own
-        sized = design.replace(structure=final)
+        sized = _with_structure(design, final)
         wrenches, integrals = standing_terms(model.with_design(sized), cases)
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
         final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit
     )
-    sized = design.replace(structure=final)
-    return SizedStructure(sized, check, iterations, settled, found, grid)
+    return SizedStructure(_with_structure(design, final), check, iterations, settled, found, grid)
+
+
+def _with_structure(design: HexapodDesign, structure: Structure) -> HexapodDesign:
+    """``design`` with another structure, without checking its other fields again.
+
+    The structure checks itself and no other field depends on it; a design's own checks
+    (its mounts, its footholds) cost a millisecond a round.
+    """
+    changed = copy.copy(design)
+    object.__setattr__(changed, "structure", structure)
+    return changed
 
 
 def _tubes(grid: TubeGrid, chosen: tuple[int, int, int]) -> tuple[Tube, Tube, Tube]:
