@@ -26,7 +26,7 @@ from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, Statics
 from hexaleg.statics.slopes import SLOPE_HEADINGS, slope_gravity
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
-from hexaleg.structure.wrenches import leg_states, segment_wrenches
+from hexaleg.structure.wrenches import leg_states, require_template, segment_wrenches
 
 NOMINAL = "nominal"
 """The first standing case: the nominal stance."""
@@ -118,16 +118,6 @@ def standing_terms(model: HexapodModel, cases: StandingCases) -> tuple[ArrayF, A
     states = leg_states(model, cases.configurations, cases.gravities)
     integrals = deflection_integrals(model.design, states, forces, cases.gravities)
     return segment_wrenches(states, forces), integrals
-
-
-def require_template(model: HexapodModel) -> None:
-    """Refuse a robot file's model: ``[structure]`` describes hexaleg's own legs' tubes."""
-    if model.general_legs:
-        raise ParameterError(
-            "structure",
-            model.design.structure,
-            "hexaleg's own legs only: a robot file's links are its own",
-        )
 
 
 def check_standing(model: HexapodModel, cases: StandingCases) -> StructureCheck:

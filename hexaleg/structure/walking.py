@@ -14,8 +14,7 @@ import numpy.typing as npt
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.ratings import at_times
 from hexaleg.structure.check import StructureCheck
-from hexaleg.structure.standing import require_template
-from hexaleg.structure.wrenches import leg_states, segment_wrenches
+from hexaleg.structure.wrenches import leg_states, require_template, segment_wrenches
 
 
 def check_walking(

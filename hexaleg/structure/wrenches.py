@@ -25,6 +25,7 @@ import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._typing import ArrayF
+from hexaleg.exceptions import ParameterError
 from hexaleg.robot.model import HexapodModel
 
 
@@ -93,6 +94,16 @@ def _axis(joint: pin.JointModel) -> ArrayF:
     joint.calc(data, np.zeros(joint.nq))
     axis: ArrayF = np.asarray(data.S, dtype=float).reshape(6, -1)[3:, 0].copy()
     return axis
+
+
+def require_template(model: HexapodModel) -> None:
+    """Refuse a robot file's model: ``[structure]`` describes hexaleg's own legs' tubes."""
+    if model.general_legs:
+        raise ParameterError(
+            "structure",
+            model.design.structure,
+            "hexaleg's own legs only: a robot file's links are its own",
+        )
 
 
 def leg_states(
