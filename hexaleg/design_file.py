@@ -30,6 +30,7 @@ from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.leg_structure import Structure
 from hexaleg.limits import JOINT_NAMES, JointLimits
 
 if sys.version_info >= (3, 11):
@@ -76,8 +77,9 @@ ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 RECORDS: dict[str, Callable[[Any], Any]] = {
     "actuators": Actuators.from_table,
     "battery": Battery.from_table,
+    "structure": Structure.from_table,
 }
-"""How each table of its own keys is read (``[actuators.root]``, ``[battery]``)."""
+"""How each table of its own keys is read (``[actuators.root]``, ``[battery]``, ``[structure]``)."""
 
 REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by

@@ -7,10 +7,10 @@ layer and those below it, never one above::
                 _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text
+                table_records, grids, design_text, materials, leg_structure
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/, sim/, electrical
+    analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
     study       study/, paper/
     output      output/
     cli         cli/, __main__
@@ -64,11 +64,13 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "table_records",
             "grids",
             "design_text",
+            "materials",
+            "leg_structure",
         ),
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical", "structure")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("explore", ("explore",)),

@@ -15,6 +15,7 @@ from hexaleg.cli.robot_options import (
     robot_from_args,
     robot_table,
 )
+from hexaleg.cli.structure_options import size_if_asked, structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
 from hexaleg.gait.spec import Gait
 from hexaleg.study.requirements import Requirements
@@ -26,7 +27,8 @@ if TYPE_CHECKING:
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
     "the values the options give (say --layout hexagon --body-radius 0.35), and an example "
-    "[requirements] table for decide and report, commented out."
+    "[requirements] table for decide and report and a [structure] table of the legs' tubes, "
+    "commented out."
 )
 
 DESCRIPTION = (
@@ -87,11 +89,14 @@ def run(args: argparse.Namespace) -> int:
     if args.action == "init":
         return _init(args.file, design, args.force, requirements.walked)
     robot = robot_from_args(args)
+    design, sized = size_if_asked(design, requirements, robot is not None)
     out = (
         {"design": design.as_dict(), "derived": derived(design)}
         if robot is None
         else _show_robot(args, robot, design)
     )
+    if sized is not None:
+        out["derived"]["sizing"] = sized.to_dict() | {"check": sized.check.to_dict()}
     if args.json:
         if requirements.given:
             out["requirements"] = requirements.to_dict()
@@ -101,6 +106,13 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if robot is None:
         show(design)
+        if design.structure is not None:
+            rows = (
+                tube_rows(design.structure, design.lengths)
+                if sized is None
+                else structure_rows(sized.check, sized)
+            )
+            print_table("Structure (the file's [structure] table)", rows)
     if requirements.given:
         show_requirements(requirements)
     if requirements.walked != Gait():
@@ -179,7 +191,7 @@ def _robot_table(args: argparse.Namespace, output: Any, robot: ImportedRobot) ->
 
 def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
     from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_text import design_toml
+    from hexaleg.design_text import design_toml, structure_example
 
     path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
@@ -187,7 +199,9 @@ def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
     walked = "" if gait == Gait() else "\n" + gait.to_toml()
-    report_files([write_text(path, design_toml(design) + walked + "\n" + example_table())])
+    structure = "" if design.structure is not None else "\n" + structure_example()
+    text = design_toml(design) + walked + structure + "\n" + example_table()
+    report_files([write_text(path, text)])
     return 0
 
 

@@ -11,12 +11,13 @@ from hexaleg.cli.options import (
     add_design_options,
     add_stance_option,
     bounded_int,
-    design_from_args,
     design_gait,
+    inputs_from_args,
     note,
 )
 from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.cli.robot_options import add_robot_options, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.server import (
@@ -73,9 +74,10 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.stance.axis_locked import axis_locked_flexibility
     from hexaleg.statics.loads import loads_at_extremes
 
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     check_outputs({"--html": args.html})
     imported = robot_model(args, design)
+    design = size_if_asked(design, requirements, imported is not None)[0]
     model: HexapodModel = HexapodModel(design) if imported is None else imported
     if imported is not None:
         _note_missing_meshes(imported.missing_meshes)
