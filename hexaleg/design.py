@@ -47,6 +47,7 @@ from hexaleg.layouts import (
     require_apart,
     resolve_layout,
 )
+from hexaleg.leg_structure import Structure, segment_masses
 from hexaleg.limits import (
     IMPROVED_LIMITS,
     JOINT_NAMES,
@@ -174,7 +175,7 @@ class HexapodDesign:
     )
     body_mass: float = declare(60.0, "body mass", "kg", (1e-3, 1e6))
     link_linear_density: float = declare(
-        4.0, "mass per length of coxa, femur and tibia", "kg/m", (1e-4, 1e5)
+        4.0, "mass per length of a segment without a [structure] tube", "kg/m", (1e-4, 1e5)
     )
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
     rated_torques: Ratings = declare(
@@ -185,19 +186,20 @@ class HexapodDesign:
         "given)", "rad/s", SPEED_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
     actuators: Actuators | None = declare(
         None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
-        "torques and speed ratings are the rated ones", kind="record",
+        "torques and speed ratings are the rated ones", kind="record", record=Actuators,
     )
-    battery: Battery | None = declare(None, "the battery, [battery]", kind="record")
+    battery: Battery | None = declare(None, "the battery, [battery]", kind="record", record=Battery)
+    structure: Structure | None = declare(
+        None, "the legs' tubes and their material, [structure]; each segment without one "
+        "weighs link_linear_density", kind="record", record=Structure,
+    )
 
     def __post_init__(self) -> None:
         for spec in DESIGN_FIELDS:  # each value on its own first, then how they fit together
             object.__setattr__(self, spec.name, spec.check(getattr(self, spec.name)))
         if self.actuators is not None:
-            require_instance("actuators", self.actuators, Actuators, "an Actuators or None")
             object.__setattr__(self, "rated_torques", self.actuators.rated_torques)
             object.__setattr__(self, "rated_speeds", self.actuators.rated_speeds)
-        if self.battery is not None:
-            require_instance("battery", self.battery, Battery, "a Battery or None")
         layout = resolve_layout(self.layout, self.mounts)
         object.__setattr__(self, "layout", layout)
         mounts = checked_mounts(layout, self.mounts, self.layout_mounts(), self.link_radius)
@@ -270,7 +272,8 @@ class HexapodDesign:
     @property
     def total_mass(self) -> float:
         """Mass of the whole robot [kg]: body, six legs' links, feet, actuators, battery."""
-        legs = 6 * (self.link_linear_density * self.leg_length + FOOT_MASS)
+        segments = segment_masses(self.structure, self.lengths, self.link_linear_density)
+        legs = 6 * (sum(segments) + FOOT_MASS)
         motors = 0.0 if self.actuators is None else self.actuators.total_mass
         return self.body_mass + legs + motors + (0.0 if self.battery is None else self.battery.mass)
 
@@ -331,7 +334,7 @@ class HexapodDesign:
                 value = [vars(m).copy() for m in value]
             elif isinstance(value, JointLimits):
                 value = value.as_dict()
-            elif isinstance(value, Actuators | Battery):
+            elif isinstance(value, Actuators | Battery | Structure):
                 value = value.to_table()
             elif isinstance(value, tuple):
                 value = list(value)

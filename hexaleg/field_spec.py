@@ -42,6 +42,7 @@ class FieldSpec:
         items: Names of a triple's three numbers, e.g. ``("root", "hip", "knee")``.
         applies: Where the field applies, when not always: ``"hexagon layout"``.
         option: The command-line group that offers ``--<name>``; ``None``: files only.
+        record: A record field's class: a value that is set must be one.
         name: The field's name, which is also its key in a design file.
         default: The field's default value.
         optional: ``None`` is a value: not given (a robot file's unrated joints).
@@ -55,6 +56,7 @@ class FieldSpec:
     items: tuple[str, ...] = ()
     applies: str = ""
     option: OptionGroup | None = None
+    record: type | None = None
     name: str = ""
     default: Any = None
     optional: bool = False
@@ -84,8 +86,8 @@ class FieldSpec:
     def check(self, value: Any) -> Any:
         """``value`` checked and normalized (floats, a tuple), or a ParameterError naming it.
 
-        Numbers, triples and limit sets are checked here; a layout's choice and mounts
-        depend on other fields, so the design checks them.
+        Numbers, triples, limit sets and records are checked here; a layout's choice and
+        mounts depend on other fields, so the design checks them.
         """
         if value is None and self.optional:
             return None
@@ -101,6 +103,8 @@ class FieldSpec:
             return require_instance(
                 self.name, value, JointLimits, "a JointLimits (theta1, theta2, theta3 [rad])"
             )
+        if self.kind == "record" and self.record is not None and value is not None:
+            return require_instance(self.name, value, self.record, f"a {self.record.__name__}")
         return value
 
     def _number(self, name: str, value: Any) -> float:

@@ -119,7 +119,8 @@ def test_refusals_of_chains_and_feet():
     # a fourth revolute joint on a leg
     extra = (
         '<joint name="leg0_j4" type="revolute"><parent link="leg0_tibia"/><child link="x4"/>'
-        '<axis xyz="0 0 1"/><limit lower="-1" upper="1"/></joint><link name="x4"/></robot>'
+        '<axis xyz="0 0 1"/><limit lower="-1" upper="1" effort="1" velocity="1"/></joint>'
+        '<link name="x4"/></robot>'
     )
     four = text.replace("</robot>", extra)
     with pytest.raises(RobotImportError, match=r"leg from joint leg0_j1 has 4 revolute joints"):

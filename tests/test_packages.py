@@ -12,7 +12,7 @@ import pytest
 from conftest import run_cli
 from published import Spider, write_package
 
-from hexaleg.exceptions import RobotImportError
+from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.robot.imported import import_robot
 from hexaleg.robot.packages import ROS_PACKAGE_PATH, PackageFolders, ros_package_path
 from hexaleg.robot.source import read_robot_text
@@ -146,3 +146,23 @@ def test_a_public_description_package_reads_as_published(capsys):
     model = pin.buildModelFromXML(read_robot_text(INTERBOTIX), pin.JointModelFreeFlyer())
     vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
     assert vertical == pytest.approx(9.81 * pin.computeTotalMass(model), rel=1e-12)
+
+
+def test_xacro_warnings_come_back_from_its_process_but_pi(tmp_path):
+    """Oracle: the two warnings the file is written to draw (xacro's own texts); pi's dropped."""
+    xacro = tmp_path / "w.urdf.xacro"
+    xacro.write_text(
+        '<robot name="w" xmlns:xacro="http://www.ros.org/wiki/xacro">'
+        '<xacro:property name="pi" value="3.14159"/>'
+        '<xacro:property name="a" value="1" colour="red"/>'
+        '<xacro:property name="b" value="2" shade="dark"/>'
+        '<link name="base_${a + b}"/></robot>'
+    )
+    with pytest.warns(RobotImportWarning) as caught:
+        text = read_robot_text(xacro)
+    assert '<link name="base_3"/>' in text
+    said = sorted(str(w.message) for w in caught if issubclass(w.category, RobotImportWarning))
+    assert said == [
+        "xacro on w.urdf.xacro: xacro:property: unknown attribute(s): colour",
+        "xacro on w.urdf.xacro: xacro:property: unknown attribute(s): shade",
+    ]

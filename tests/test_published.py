@@ -160,6 +160,25 @@ def test_lock_joint_holds_a_joint_the_file_moves(tmp_path, capsys):
     assert again["nominal"] == loads["nominal"]
 
 
+def test_a_locked_joints_name_cannot_end_the_note_hexaleg_writes(tmp_path, capsys):
+    """A name holding ``-->`` and markup stays a name in the rewritten text (XML's own parse)."""
+    import xml.etree.ElementTree as ET
+
+    urdf = write_package(tmp_path, replace(RATED, sensor=True))
+    hostile = "leg6_contact---&gt;&lt;link name=&quot;evil&quot;/&gt;&lt;!--"
+    text = urdf.read_text().replace('"leg6_contact_joint"', f'"{hostile}"')
+    assert text.count(hostile) == 1
+    (urdf.parent / "hostile.urdf").write_text(text)
+    robot = import_robot(urdf.parent / "hostile.urdf")
+    root = ET.fromstring(robot.text)
+    assert not any(link.get("name") == "evil" for link in root.iter("link"))
+    fixed = {j.get("name") for j in root.iter("joint") if j.get("type") == "fixed"}
+    assert 'leg6_contact---><link name="evil"/><!--' in fixed
+    loads, _ = _json(capsys, ["loads", "--urdf", str(urdf.parent / "hostile.urdf")])
+    vertical = sum(force[2] for force in loads["nominal"]["foot_forces"].values())
+    assert vertical == pytest.approx(_file_mass(urdf) * GRAVITY, rel=1e-12)
+
+
 UNRATED = replace(RATED, effort=0.0, velocity=0.0)
 """The written hexapod with the exporter's effort="0" velocity="0"."""
 

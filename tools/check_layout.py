@@ -4,13 +4,13 @@ The layers follow DESIGN.md's data flow, lowest first; a module may import its o
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
-                _lazy
+                _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text, ratings
+                table_records, grids, design_text, ratings, materials, leg_structure
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/, sim/, electrical
+    analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
     study       study/, paper/
     output      output/
     cli         cli/, __main__
@@ -42,6 +42,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "_journal",
             "_compiled",
             "_lazy",
+            "_input",
         ),
     ),
     (
@@ -64,11 +65,13 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "grids",
             "design_text",
             "ratings",
+            "materials",
+            "leg_structure",
         ),
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical", "structure")),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("explore", ("explore",)),

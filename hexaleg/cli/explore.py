@@ -104,10 +104,12 @@ def run(args: argparse.Namespace) -> int:
 def _explored_robot(args: argparse.Namespace, design: HexapodDesign) -> ExploredRobot | None:
     """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
     from hexaleg.explore.robot import ExploredRobot
+    from hexaleg.robot.imported_model import robot_mass
 
     model = robot_model(args, design)
     if model is None:
         return None
+    robot_mass(model)  # its payloads and torques need the file's masses: refused before serving
     lengths = dict(zip(SEGMENT_NAMES, model.robot.legs[0].reading.geometry.lengths, strict=True))
     for change in model.robot.changes:  # back to the file's: what the saved file's l* say
         if change.leg == model.robot.legs[0].name:

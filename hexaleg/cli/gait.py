@@ -15,8 +15,8 @@ from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
     bounded_int,
-    design_from_args,
     design_gait,
+    inputs_from_args,
 )
 from hexaleg.cli.output import (
     check_outputs,
@@ -28,6 +28,7 @@ from hexaleg.cli.output import (
     write_plots,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked, structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
@@ -52,7 +53,9 @@ DESCRIPTION = (
     "the battery's runtime and range, and checks continuous torque and voltage. With --urdf, "
     "your robot: each leg its own general leg and nominal posture, the file's masses, "
     "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
-    "and in the file's joints (urdf_* in the JSON and CSV)."
+    "and in the file's joints (urdf_* in the JSON and CSV). With a [structure] table, each "
+    "leg tube's worst stress ratio over the period, the links' inertial forces included (a "
+    "tube over its strength makes the period infeasible)."
 )
 
 ROBOT_OPTIONS = True
@@ -128,8 +131,9 @@ def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) 
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
+    design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args, model)
     payload = payload_from_args(args)
@@ -156,10 +160,14 @@ def run(args: argparse.Namespace) -> int:
     summary = summary_stream(args.csv, args.html)
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict(), summary)
+        out = analysis.to_dict()
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(mine | out, summary)
         return 0
     title = "Walking" if robot is None else f"Walking {robot.robot.source}"
-    print_table(lengths_title(title, model.design.lengths), rows(analysis), summary)
+    table = rows(analysis) + structure_rows(analysis.structure, sized)
+    print_table(lengths_title(title, model.design.lengths), table, summary)
     return 0
 
 

@@ -13,11 +13,12 @@ from hexaleg.cli.options import (
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_from_args,
     design_gait,
+    inputs_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked, structure_rows
 from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
@@ -35,7 +36,10 @@ DESCRIPTION = (
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
     "extremes within the file's limits, axis-locked or free-coupled, the walking capacity as "
-    "`gait --urdf` walks it)."
+    "`gait --urdf` walks it). With a [structure] table, each leg tube's axial force, "
+    "bending and torsion at its proximal joint, its von Mises stress against the material's "
+    "strength over the safety factor, and each foot's deflection, in every case and on the "
+    "[requirements] slope (size = true: the lightest tubes that hold, chosen first)."
 )
 
 ROBOT_OPTIONS = True
@@ -103,10 +107,11 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)
+    design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
     analysis = analyze_loads(
         model.design,
@@ -116,6 +121,7 @@ def run(args: argparse.Namespace) -> int:
         args.distribution,
         args.mode,
         model=model,
+        slope=requirements.slope or 0.0,
     )
     gait = design_gait(args, model)
     walking = walking_payload_capacity(model, gait, payload.position)
@@ -124,9 +130,12 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
         walked = None if walking is None else walking.to_dict()  # None: it needs a rating
-        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walked})
+        out = analysis.to_dict() | {"walking_payload_capacity": walked}
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(mine | out)
         return 0
-    rows = _rows(analysis)
+    rows = _rows(analysis) + structure_rows(analysis.structure, sized)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
     own = gait == default_gait(model)  # no [gait]: the robot's own default gait
     rows.insert(at, ("walking payload capacity", _walking(walking, gait, own)))

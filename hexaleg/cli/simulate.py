@@ -12,7 +12,7 @@ from hexaleg.cli.options import (
     UsageError,
     add_design_options,
     bounded_int,
-    design_from_args,
+    inputs_from_args,
     note,
 )
 from hexaleg.cli.output import (
@@ -24,6 +24,7 @@ from hexaleg.cli.output import (
     summary_stream,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
@@ -83,8 +84,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    design = size_if_asked(design, requirements, robot is not None)[0]
     for flag in ("html", "video"):
         if robot is not None and getattr(args, flag) is not None:
             raise UsageError(f"--{flag} with --urdf is not supported yet: use --json")

@@ -35,6 +35,7 @@ from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
 from hexaleg.ratings import torque_scale
+from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.statics.forces import (
     Payload,
@@ -79,6 +80,7 @@ class LoadedRobot:
     """
 
     def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
+        robot_mass(model)  # a robot file without masses is refused here
         self.gravity = np.array([0.0, 0.0, -gravity])
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)

@@ -9,7 +9,8 @@ The rules, first match wins:
 4. ``box`` / ``cylinder``: the far end of a collision box (the face centre along its
    longest side) or cylinder or capsule (its end along its axis), farthest from the knee;
 5. ``mesh``: the collision mesh's vertex farthest from the knee axis (STL, OBJ, DAE via
-   trimesh, at the file's scale: a mesh drawn in millimetres has scale 0.001).
+   trimesh, at the file's scale: a mesh drawn in millimetres has scale 0.001; a file over
+   :data:`~hexaleg.robot.source.MAX_MESH_BYTES` is refused by its size, never read).
 
 Without any of them the leg is refused, naming the ``foot_offset`` option.
 """
@@ -30,7 +31,7 @@ from hexaleg.exceptions import RobotImportError
 from hexaleg.robot.chains import LegChain
 from hexaleg.robot.description import Collision, RobotDescription
 from hexaleg.robot.packages import PackageFolders, missing_packages_note, resolve_resource
-from hexaleg.robot.source import Packages
+from hexaleg.robot.source import Packages, check_mesh_file
 
 FootRule = Literal["foot_offset", "frame", "sphere", "box", "cylinder", "mesh"]
 """How a leg's foot point was found."""
@@ -206,6 +207,7 @@ def mesh_vertices(reference: str, search: FootSearch) -> ArrayF | None:
     path = resolve_resource(reference, search.base_dir, search.packages)
     if path is None:
         return None
+    check_mesh_file(path, reference)  # a mesh over the cap is refused, never read
     import trimesh
 
     try:

@@ -17,6 +17,7 @@ every joint and rate every motor at nothing. hexaleg reads them as "not given":
 
 from __future__ import annotations
 
+import re
 import warnings
 import xml.etree.ElementTree as ET
 from collections.abc import Mapping, Sequence
@@ -135,7 +136,8 @@ def locked_as_fixed(
         said.append(f"joints locked at their zero (fixed): {', '.join(locked)}")
     if limits:
         said.append(f"hexaleg's joint limits for joints the file gives none: {', '.join(limits)}")
-    root.insert(0, ET.Comment(" hexaleg: " + "; ".join(said) + " "))
+    note = re.sub("-(?=-)", "- ", " ".join("; ".join(said).split()))  # no "--" ends it
+    root.insert(0, ET.Comment(f" hexaleg: {note} "))
     return ET.tostring(root, encoding="unicode") + "\n"
 
 

@@ -5,7 +5,9 @@ is find the meshes as hexaleg finds them (:func:`~hexaleg.robot.packages.resolve
 relative to the robot file's folder, ``package://NAME/`` in the given package folders). So
 each mesh reference is replaced by the file it names before Pinocchio reads the text, and
 a shape whose mesh names no file is left out and reported: a viewer does not draw it, the
-collision check does not test it.
+collision check does not test it. A mesh file over
+:data:`~hexaleg.robot.source.MAX_MESH_BYTES` is refused by its size before Pinocchio (coal,
+assimp) reads it.
 """
 
 from __future__ import annotations
@@ -16,9 +18,9 @@ from typing import Literal
 
 import pinocchio as pin
 
-from hexaleg.exceptions import RobotImportError
+from hexaleg.exceptions import RobotImportError, one_line
 from hexaleg.robot.packages import PackageFolders, missing_packages_note, resolve_resource
-from hexaleg.robot.source import Packages
+from hexaleg.robot.source import Packages, check_mesh_file
 
 __all__ = ["GeometryKind", "file_geometry", "missing_meshes_note", "with_resolved_meshes"]
 
@@ -54,6 +56,7 @@ def with_resolved_meshes(
                 missing[reference] = None
                 link.remove(shape)
             else:
+                check_mesh_file(path, reference)  # over the cap: refused, never read
                 mesh.set("filename", str(path.resolve()))
     return ET.tostring(root, encoding="unicode"), tuple(missing)
 
@@ -74,7 +77,9 @@ def file_geometry(
     try:
         geometry = pin.buildGeomFromUrdfString(model, resolved, _PINOCCHIO_KIND[kind])
     except (RuntimeError, ValueError) as err:
-        raise RobotImportError(f"the file's {kind} geometry cannot be read: {err}") from None
+        raise RobotImportError(
+            f"the file's {kind} geometry cannot be read: {_reason(err)}"
+        ) from None
     return geometry, missing
 
 
@@ -88,3 +93,9 @@ def missing_meshes_note(missing: tuple[str, ...], packages: PackageFolders, what
     unfound = packages.missing(missing)
     how = missing_packages_note(unfound) if unfound else "check the paths"
     return f"{len(missing)} mesh file(s) not found, {what}: {listed}; {how}"
+
+
+def _reason(err: Exception) -> str:
+    """A mesh loader's error in one line: coal's message without its source location and hint."""
+    text = one_line(err)
+    return text.split(" message: ", 1)[-1].split(" Hint: ", 1)[0]

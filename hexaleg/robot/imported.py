@@ -11,7 +11,8 @@ it) are lumped into one rigid body in the segment's link frame.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
+import xml.etree.ElementTree as ET
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -23,7 +24,7 @@ from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.robot.body_shape import BodyBox, body_box
 from hexaleg.robot.chains import LegChain, find_chains
-from hexaleg.robot.description import RobotDescription, parse_urdf
+from hexaleg.robot.description import RobotDescription, parse_urdf, plain_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
 from hexaleg.robot.file_defaults import (
     locked_as_fixed,
@@ -131,6 +132,11 @@ class ImportedRobot:
         """The legs' names (hexaleg's), in order."""
         return tuple(leg.name for leg in self.legs)
 
+    @property
+    def mass(self) -> float:
+        """The whole robot's mass [kg]: the body's links and every leg's."""
+        return self.body_mass.mass + sum(m.mass for leg in self.legs for m in leg.masses)
+
 
 def import_robot(
     path: str | Path,
@@ -167,6 +173,7 @@ def robot_from_text(
     hexaleg's, and the joints locked (``lock``, and those beyond a knee that are not the
     leg's) are made fixed, in the robot's text itself, each said once.
     """
+    text = plain_urdf(text, str(source) if source else "<string>")
     description = parse_urdf(text, str(source) if source else "<string>")
     chains = find_chains(description, lock)
     frames = description.frames_at_zero()
@@ -297,17 +304,41 @@ def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
                     f"the file already has a {kind} named {name!r}: hexaleg's foot links "
                     f"are <leg>_foot"
                 )
-        xyz = " ".join(repr(float(v)) for v in leg.reading.foot.point)
-        added.append(
-            f'  <link name="{link}"/>\n'
-            f'  <joint name="{joint}" type="fixed">\n'
-            f'    <parent link="{leg.chain.segments[2][0]}"/>\n'
-            f'    <child link="{link}"/>\n'
-            f'    <origin xyz="{xyz}" rpy="0 0 0"/>\n'
-            f"  </joint>\n"
-        )
+        parent = leg.chain.segments[2][0]
+        added += [link_element(link), fixed_joint(joint, parent, link, leg.reading.foot.point)]
     if not added:
         return robot.text
-    end = robot.text.rindex("</robot>")
-    feet = "  <!-- hexaleg: each leg's foot point -->\n" + "".join(added)
-    return robot.text[:end] + feet + robot.text[end:]
+    return with_elements(robot.text, "hexaleg: each leg's foot point", added)
+
+
+def link_element(name: str) -> str:
+    """A massless ``<link>`` named ``name``, as XML text (the name escaped)."""
+    return ET.tostring(ET.Element("link", name=name), encoding="unicode")
+
+
+def fixed_joint(
+    name: str, parent: str, child: str, xyz: Iterable[float], rpy: Iterable[float] = (0, 0, 0)
+) -> str:
+    """A fixed ``<joint>`` placing ``child`` at ``xyz`` [m], ``rpy`` [rad] in ``parent``.
+
+    XML text, every name escaped as XML requires: a file's names may hold ``"``, ``<`` or
+    ``&``, which pasted as they are would end the attribute or add elements.
+    """
+    element = ET.Element("joint", name=name, type="fixed")
+    ET.SubElement(element, "parent", link=parent)
+    ET.SubElement(element, "child", link=child)
+    ET.SubElement(
+        element,
+        "origin",
+        xyz=" ".join(repr(float(v)) for v in xyz),
+        rpy=" ".join(repr(float(v)) for v in rpy),
+    )
+    ET.indent(element, space="  ", level=1)
+    return ET.tostring(element, encoding="unicode")
+
+
+def with_elements(text: str, note: str, elements: Sequence[str]) -> str:
+    """URDF ``text`` with ``elements`` (XML text) added before ``</robot>``, after ``note``."""
+    end = text.rindex("</robot>")
+    added = "".join(f"  {element.strip()}\n" for element in elements)
+    return f"{text[:end]}  <!-- {note} -->\n{added}{text[end:]}"

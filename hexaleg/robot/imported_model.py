@@ -33,7 +33,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.exceptions import RobotImportError, RobotImportWarning, one_line
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
 from hexaleg.robot.geometry_model import (
     GeometryKind,
@@ -41,11 +41,17 @@ from hexaleg.robot.geometry_model import (
     missing_meshes_note,
     with_resolved_meshes,
 )
-from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
+from hexaleg.robot.imported import (
+    ImportedRobot,
+    fixed_joint,
+    link_element,
+    urdf_with_feet,
+    with_elements,
+)
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import body_depth, mount_plane, robot_design
+from hexaleg.robot.robot_design import NO_MASSES, body_depth, mount_plane, robot_design
 from hexaleg.robot.standing import LEVEL_FEET, standing_posture
 
 PREFIX = "hexaleg_"
@@ -72,17 +78,14 @@ def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
             f"the file already has a link or joint named {taken[0]!r}: hexaleg adds it"
         )
     added = [
-        f'  <link name="{BODY_LINK}"/>\n',
+        link_element(BODY_LINK),
         _fixed(f"{BODY_LINK}_joint", BODY_LINK, robot.description.root, _shift(-plane)),
     ]
     for leg in robot.legs:
         link = f"{PREFIX}{leg.name}_root"
-        added.append(f'  <link name="{link}"/>\n')
         mount = _shift(-plane) @ leg.reading.mount
-        added.append(_fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount))
-    end = text.rindex("</robot>")
-    note = "  <!-- hexaleg: body and leg-root frames -->\n"
-    text = text[:end] + note + "".join(added) + text[end:]
+        added += [link_element(link), _fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount)]
+    text = with_elements(text, "hexaleg: body and leg-root frames", added)
     joints = robot.description.joints
     continuous = [
         n for leg in robot.legs for n in leg.joint_names if joints[n].kind == "continuous"
@@ -146,6 +149,31 @@ def _design_field(leg: str, segment: str) -> str:
     return SEGMENTS[SEGMENT_NAMES.index(segment)]
 
 
+def has_masses(model: HexapodModel) -> bool:
+    """Whether any link has a mass (a kinematics-only file's do not; the template's do)."""
+    return float(pin.computeTotalMass(model.model)) > 0.0
+
+
+def robot_mass(model: HexapodModel) -> float:
+    """The whole robot's mass [kg]: every link of its model.
+
+    Raises:
+        RobotImportError: A robot file without masses (:func:`has_masses`): statics,
+            walking and simulation need them, kinematics do not.
+
+    """
+    mass = float(pin.computeTotalMass(model.model))
+    if mass <= 0.0:
+        source = model.robot.source if isinstance(model, ImportedHexapodModel) else None
+        raise RobotImportError(
+            f"{source or 'the robot file'} gives no masses (no link has an <inertial> with a "
+            f"mass): statics, walking and simulation need them; give each link an <inertial> "
+            f"with its mass and inertia (workspace, manipulability, flexibility, view, urdf "
+            f"and design show need none)"
+        )
+    return mass
+
+
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
     """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
     return mount_plane(robot) - design.legs[0].z
@@ -170,7 +198,11 @@ class ImportedHexapodModel(HexapodModel):
         design = _design(robot, base)
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
-        model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        try:
+            model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        except (ValueError, RuntimeError) as err:  # what the file's checks did not foresee
+            message = f"Pinocchio cannot read the robot's URDF: {one_line(err)}"
+            raise RobotImportError(message) from None
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
         set_armature(model, [leg.v for leg in legs.values()], design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
@@ -298,6 +330,8 @@ def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
         design = robot_design(robot, base)
     for warning in caught:
         message = str(warning.message)
+        if message.startswith(NO_MASSES):
+            continue  # what needs masses refuses (robot_mass), in one line of its own
         if message.startswith("the file's body weighs"):
             message = (
                 f"the file's body weighs {robot.body_mass.mass:.3g} kg: the statics use the "
@@ -314,12 +348,5 @@ def _shift(z: float) -> ArrayF:
 
 
 def _fixed(name: str, parent: str, child: str, placement: ArrayF) -> str:
-    xyz = " ".join(repr(float(v)) for v in placement[:3, 3])
-    rpy = " ".join(repr(float(v)) for v in pin.rpy.matrixToRpy(placement[:3, :3]))
-    return (
-        f'  <joint name="{name}" type="fixed">\n'
-        f'    <parent link="{parent}"/>\n'
-        f'    <child link="{child}"/>\n'
-        f'    <origin xyz="{xyz}" rpy="{rpy}"/>\n'
-        f"  </joint>\n"
-    )
+    rpy = pin.rpy.matrixToRpy(placement[:3, :3])
+    return fixed_joint(name, parent, child, placement[:3, 3], rpy)

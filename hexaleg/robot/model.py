@@ -128,7 +128,7 @@ class LegModel:
 
 
 DERIVED_FIELDS = frozenset(
-    ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles", "actuators", "battery")
+    "l1 l2 l3 rated_torques rated_speeds nominal_angles actuators battery structure".split()
 )
 """The design fields :meth:`HexapodModel.with_design` sets on a copy of a model."""
 
@@ -218,7 +218,8 @@ class HexapodModel:
             if f.name not in DERIVED_FIELDS
         ):
             raise ModelError(
-                "with_design changes only segment lengths, ratings, posture, actuators, battery"
+                "with_design changes only segment lengths, ratings, posture, actuators, battery, "
+                "structure"
             )
         model = pin.Model(self.model)
         model.inertias[model.getJointId(ROOT_JOINT)] = pinocchio_inertia(body_inertial(design))

@@ -28,6 +28,9 @@ from functools import lru_cache
 from pathlib import Path
 from urllib.parse import unquote, urlparse
 
+from hexaleg._input import read_input_file
+from hexaleg.exceptions import HexalegError
+
 __all__ = [
     "PackageFolders",
     "missing_packages_note",
@@ -202,15 +205,12 @@ def _manifest_name(path: str) -> str | None:
 @lru_cache(maxsize=64)
 def _declared_name(path: str, mtime_ns: int, size: int) -> str | None:
     """:func:`_manifest_name` of the file as it was at ``mtime_ns`` and ``size`` (cached)."""
-    if size > MAX_MANIFEST_BYTES:
-        return None
-    try:
-        with open(path, "rb") as file:
-            data = file.read(MAX_MANIFEST_BYTES + 1)
-        if len(data) > MAX_MANIFEST_BYTES or b"<!ENTITY" in data:
+    try:  # a regular file within the cap only, never waited on (as a robot file is read)
+        data = read_input_file(path, MAX_MANIFEST_BYTES, path)
+        if b"<!ENTITY" in data:
             return None
         node = ET.fromstring(data).find("name")
-    except (OSError, ET.ParseError):
+    except (HexalegError, ET.ParseError):
         return None
     text = None if node is None or node.text is None else node.text.strip()
     return text or None

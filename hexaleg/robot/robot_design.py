@@ -40,6 +40,9 @@ from it are reported, the model keeps each at its own height."""
 ROUND_OFF = 1e-10
 """Mount heights that differ by less than this are equal, not reported [m]."""
 
+NO_MASSES = "the file gives no masses"
+"""How a warning about a robot file without any mass (a kinematics-only file) begins."""
+
 
 def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> HexapodDesign:
     """The design of ``robot``: its segments, mounts, body mass and ratings over ``base``.
@@ -67,17 +70,7 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
     }
     given = _given(base)
-    if "body_mass" in given:
-        pass  # the design file's own body mass, over the file's
-    elif robot.body_mass.mass >= MIN_BODY_MASS:
-        changes["body_mass"] = robot.body_mass.mass
-    else:
-        warnings.warn(
-            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
-            f"body_mass {base.body_mass:g} kg",
-            RobotImportWarning,
-            stacklevel=2,
-        )
+    changes.update(_body_mass(robot, base, given))
     return base.replace(**changes, **file_ratings(robot, given))
 
 
@@ -131,6 +124,30 @@ def _warn_unrated(missing: list[tuple[str, tuple[str, ...]]]) -> None:
 def _listed(names: tuple[str, ...], most: int = 4) -> str:
     more = f" and {len(names) - most} more" if len(names) > most else ""
     return ", ".join(names[:most]) + more
+
+
+def _body_mass(robot: ImportedRobot, base: HexapodDesign, given: set[str]) -> dict[str, float]:
+    """The design's ``body_mass`` [kg]: the file's body's, else (with a warning) the design's.
+
+    ``base``'s own (``given``) goes over the file's; a body lighter than
+    :data:`MIN_BODY_MASS` is a placeholder, and a file without any mass is kinematics only.
+    """
+    if "body_mass" in given:
+        return {}  # the design file's own body mass, over the file's
+    if robot.body_mass.mass >= MIN_BODY_MASS:
+        return {"body_mass": robot.body_mass.mass}
+    if robot.mass <= 0.0:
+        message = (
+            f"{NO_MASSES}: kinematics only (statics, walking and simulation are refused); "
+            f"body_mass {base.body_mass:g} kg is the design's placeholder"
+        )
+    else:
+        message = (
+            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
+            f"body_mass {base.body_mass:g} kg"
+        )
+    warnings.warn(message, RobotImportWarning, stacklevel=3)
+    return {}
 
 
 OVERRIDDEN = ("body_mass", "rated_torques", "rated_speeds")

@@ -28,6 +28,8 @@ from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics, StaticState
 from hexaleg.statics.ratings import OverRating, over_rating
 from hexaleg.statics.slopes import SlopeLimit, slope_limits
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.standing import check_standing, standing_cases
 
 
 @dataclass(frozen=True)
@@ -59,6 +61,9 @@ class LoadsAnalysis:
         capacity: The largest payload at the payload's point; ``None`` when the design
             gives no rated torques (it needs a rating).
         mode: Which flexibility extremes (axis-locked or free-coupled).
+        structure: The legs' tubes checked at the nominal stance, the extremes and the
+            slope (:mod:`hexaleg.structure`); ``None`` without a ``[structure]`` whose
+            tubes are all given.
 
     """
 
@@ -71,6 +76,7 @@ class LoadsAnalysis:
     slopes: tuple[SlopeLimit, ...]
     capacity: PayloadCapacity | None
     mode: FlexibilityMode
+    structure: StructureCheck | None = None
 
     @property
     def peak_torques(self) -> dict[str, float]:
@@ -163,6 +169,7 @@ class LoadsAnalysis:
                 "tips_over": self.tips_over,
             },
             "over_rating": [o.to_dict() for o in self.over_rating],
+            "structure": None if self.structure is None else self.structure.to_dict(),
             "units": {
                 "force": "N, ground frame",
                 "torque": "N·m",
@@ -200,6 +207,7 @@ def analyze_loads(
     distribution: Distribution = "min-norm",
     mode: FlexibilityMode = "axis",
     model: HexapodModel | None = None,
+    slope: float = 0.0,
 ) -> LoadsAnalysis:
     """The statics of ``design``: nominal stance, twelve extremes, slopes, payload capacity.
 
@@ -211,11 +219,12 @@ def analyze_loads(
         distribution: ``"min-norm"`` or ``"min-torque"``.
         mode: The extremes of axis-locked or free-coupled flexibility.
         model: The design's Pinocchio model, if already built.
+        slope: The slope [rad] the legs' structure is also checked on, every heading.
 
     """
     model = HexapodModel(design) if model is None else model
     result = flexibility(design, mode, stance_legs(model, stance), model)
-    return loads_at_extremes(model, result, payload, friction, distribution)
+    return loads_at_extremes(model, result, payload, friction, distribution, slope)
 
 
 def loads_at_extremes(
@@ -224,8 +233,13 @@ def loads_at_extremes(
     payload: Payload | None = None,
     friction: float = DEFAULT_FRICTION,
     distribution: Distribution = "min-norm",
+    slope: float = 0.0,
 ) -> LoadsAnalysis:
-    """The statics of a flexibility result's design, at its nominal stance and extremes."""
+    """The statics of a flexibility result's design, at its nominal stance and extremes.
+
+    With a ``[structure]`` whose tubes are given, the legs' tubes are checked there too,
+    and on ``slope`` [rad] in every heading.
+    """
     design, legs, mode = result.design, result.legs, result.mode
     statics = Statics(model, legs, payload, friction)
     q = model.nominal_configuration()
@@ -247,4 +261,22 @@ def loads_at_extremes(
         if design.rated_torques is None
         else payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
+        structure=_structure(model, result, statics, distribution, slope),
     )
+
+
+def _structure(
+    model: HexapodModel,
+    result: FlexibilityResult,
+    statics: Statics,
+    distribution: Distribution,
+    slope: float,
+) -> StructureCheck | None:
+    """The legs' tubes checked in the standing cases, if the design gives them all."""
+    structure = model.design.structure
+    if structure is None or any(tube is None for tube in structure.tubes):
+        return None
+    cases = standing_cases(
+        model, result.legs, result.extremes, statics.payload, slope, statics.friction, distribution
+    )
+    return check_standing(model, cases)

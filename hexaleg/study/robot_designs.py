@@ -28,7 +28,7 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import ImportedRobot, import_robot
-from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model
+from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model, robot_mass
 from hexaleg.robot.resize import SAME_LENGTH, resize_robot
 
 __all__ = ["ROBOT_SPAN", "RobotDesigns", "RobotFile"]
@@ -169,10 +169,12 @@ class RobotDesigns:
         ``None``: the robot as given. A coxa of 0 in the file stays 0 (``l1`` ignored).
 
         Raises:
-            HexalegError: A length out of range, or a robot that cannot stand at them.
+            HexalegError: A length out of range, a robot that cannot stand at them, or a
+                robot file without masses.
 
         """
         model = _model(self, None if lengths is None else tuple(float(v) for v in lengths))
+        robot_mass(model)  # every design point is weighed: a file without masses is refused
         return model.design, model
 
     def fingerprint(self) -> dict[str, Any]:
