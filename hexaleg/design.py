@@ -57,26 +57,23 @@ from hexaleg.limits import (
     WORKSPACE_LIMITS,
     JointLimits,
 )
+from hexaleg.ratings import (
+    DEFAULT_RATED_SPEEDS,
+    DEFAULT_RATED_TORQUES,
+    SPEED_RANGE,
+    TORQUE_RANGE,
+    Ratings,
+)
+
+RATING = {"option": "ratings", "optional": True}
+"""A rating field's declaration: ``--rated-*``, and ``None`` for not given (a file's 0)."""
 
 SEGMENT_RANGE = (1e-3, 100.0)
-"""Plausible segment length l1, l2, l3 [m]: a millimetre to a hundred metres."""
+"""Plausible segment length l2, l3 [m]: a millimetre to a hundred metres."""
+COXA_RANGE = (0.0, SEGMENT_RANGE[1])
+"""Plausible coxa length l1 [m]: 0 is a leg whose hip axis meets its yaw axis."""
 BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
-
-DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: well above
-what the nominal stance asks of each joint (``hexaleg loads``), with room for the body's
-extremes and a payload."""
-
-TORQUE_RANGE = (1e-3, 1e6)
-"""Plausible rated torque [N·m]."""
-
-DEFAULT_RATED_SPEEDS: tuple[float, float, float] = (3.0, 3.0, 3.0)
-"""Rated joint speeds (root, hip, knee) [rad/s]: about 29 rpm at the output, typical of
-geared actuators of the default ratings; written to each URDF joint's ``velocity``."""
-
-SPEED_RANGE = (1e-3, 1e4)
-"""Plausible rated joint speed [rad/s]."""
 
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
@@ -118,7 +115,7 @@ class HexapodDesign:
     """
 
     # fmt: off
-    l1: float = declare(0.2, "coxa length", "m", SEGMENT_RANGE, option="lengths")
+    l1: float = declare(0.2, "coxa length", "m", COXA_RANGE, option="lengths")
     l2: float = declare(0.4, "femur length", "m", SEGMENT_RANGE, option="lengths")
     l3: float = declare(0.4, "tibia length", "m", SEGMENT_RANGE, option="lengths")
     body_length: float = declare(
@@ -181,14 +178,12 @@ class HexapodDesign:
         4.0, "mass per length of a segment without a [structure] tube", "kg/m", (1e-4, 1e5)
     )
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
-    rated_torques: tuple[float, float, float] = declare(
-        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort)", "N·m",
-        TORQUE_RANGE, kind="triple", items=LEG_JOINTS,
-    )
-    rated_speeds: tuple[float, float, float] = declare(
-        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
-        SPEED_RANGE, kind="triple", items=LEG_JOINTS,
-    )
+    rated_torques: Ratings = declare(
+        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort; none: not "
+        "given)", "N·m", TORQUE_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
+    rated_speeds: Ratings = declare(
+        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity; none: not "
+        "given)", "rad/s", SPEED_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
     actuators: Actuators | None = declare(
         None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
         "torques and speed ratings are the rated ones", kind="record", record=Actuators,
@@ -263,6 +258,11 @@ class HexapodDesign:
     def lengths(self) -> tuple[float, float, float]:
         """Segment lengths (l1, l2, l3) [m]."""
         return (self.l1, self.l2, self.l3)
+
+    @property
+    def rated(self) -> bool:
+        """Whether both ratings are given: torques and speeds (a robot file may give neither)."""
+        return self.rated_torques is not None and self.rated_speeds is not None
 
     @property
     def leg_length(self) -> float:

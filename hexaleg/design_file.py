@@ -235,6 +235,8 @@ def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
         kind = "mounts" if key == "mount" else FIELDS[key].kind
         if kind == "number":
             kwargs[key] = _number(key, value, FIELDS[key].unit)
+        elif kind == "triple" and value is None and FIELDS[key].optional:
+            kwargs[key] = None  # JSON's null: not given (a robot file's rating)
         elif kind == "triple":
             kwargs[key] = _numbers(key, value, FIELDS[key].items, FIELDS[key].unit)
         elif kind == "limits":

@@ -37,6 +37,9 @@ def design_toml(design: HexapodDesign) -> str:
         derived = design.actuators is not None and spec.name in ("rated_torques", "rated_speeds")
         if spec.kind in ("number", "triple", "choice") and not derived:
             value = getattr(design, spec.name)
+            if value is None:  # a rating not given: named, left for the user to write
+                lines.append(_not_given(spec))
+                continue
             lines.append(
                 _line(spec.key, list(value) if spec.kind == "triple" else value, spec.described)
             )
@@ -54,6 +57,12 @@ def design_toml(design: HexapodDesign) -> str:
             "# " + _line(k, getattr(design.legs[0], k), c) for k, c in MOUNT_KEYS.items()
         ]
     return "\n".join(lines) + "\n"
+
+
+def _not_given(spec: FieldSpec) -> str:
+    """A rating the design does not give, as a commented line to fill in."""
+    items = ", ".join(item.upper() for item in spec.items)
+    return f"# {spec.key} = [{items}]  # not given (a robot file's 0): the actuators' [{spec.unit}]"
 
 
 def _record_tables(design: HexapodDesign) -> list[str]:

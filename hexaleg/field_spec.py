@@ -22,7 +22,7 @@ FieldKind = Literal["number", "triple", "limits", "choice", "mounts", "record"]
 """A field's shape: one number, three numbers, a joint-limit set, a named choice, leg mounts,
 or a record of its own keys read from a table (the actuators, the battery)."""
 
-OptionGroup = Literal["lengths", "body", "posture"]
+OptionGroup = Literal["lengths", "body", "posture", "ratings"]
 """The command-line groups of design options (a command offers only those it uses)."""
 
 SPEC = "hexaleg"
@@ -45,6 +45,7 @@ class FieldSpec:
         record: A record field's class: a value that is set must be one.
         name: The field's name, which is also its key in a design file.
         default: The field's default value.
+        optional: ``None`` is a value: not given (a robot file's unrated joints).
 
     """
 
@@ -58,6 +59,7 @@ class FieldSpec:
     record: type | None = None
     name: str = ""
     default: Any = None
+    optional: bool = False
 
     @property
     def key(self) -> str:
@@ -87,6 +89,8 @@ class FieldSpec:
         Numbers, triples, limit sets and records are checked here; a layout's choice and
         mounts depend on other fields, so the design checks them.
         """
+        if value is None and self.optional:
+            return None
         if self.kind == "number":
             return self._number(self.name, value)
         if self.kind == "triple":

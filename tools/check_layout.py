@@ -7,7 +7,7 @@ layer and those below it, never one above::
                 _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text, materials, leg_structure
+                table_records, grids, design_text, ratings, materials, leg_structure
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
@@ -64,6 +64,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "table_records",
             "grids",
             "design_text",
+            "ratings",
             "materials",
             "leg_structure",
         ),

@@ -18,6 +18,7 @@ from hexaleg.cli.robot_options import (
 from hexaleg.cli.structure_options import size_if_asked, structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
 from hexaleg.gait.spec import Gait
+from hexaleg.ratings import ratings_text
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.requirements_table import example_table
 
@@ -139,6 +140,10 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
     else:
         show(design, f"{robot.mass:.4g} kg, the file's links (body {robot.body_mass.mass:.4g} kg)")
     print("  legs read from " + str(record["source"]))
+    if record["body_box"] is not None:  # what the extremes stop at
+        box = record["body_box"]
+        size = " × ".join(f"{v:.3g}" for v in box["size"])
+        print(f"  body box {size} m, where the extremes stop: {box['from']}")
     for change in record["changed_segments"]:
         print(
             f"    {change['leg']} {change['segment']} changed from the file's "
@@ -237,8 +242,8 @@ def show(design: HexapodDesign, mass: str | None = None) -> None:
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
             ("mass", mass),
-            ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
-            ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
+            ("rated torques", ratings_text(design.rated_torques, "N·m")),
+            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
         ],
     )
     print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")

@@ -32,6 +32,7 @@ from hexaleg.cli.structure_options import size_if_asked, structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 
 if TYPE_CHECKING:
@@ -108,15 +109,17 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def gait_from_args(args: argparse.Namespace) -> Gait:
+def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
     """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+
+    Both over ``model``'s default gait (a robot file's is sized to it: :func:`design_gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
     """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
-    base = design_gait(args)
+    base = design_gait(args, model)
     changes = {
         name: getattr(args, name)
         for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
@@ -132,7 +135,7 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
     design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload = payload_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(
@@ -270,6 +273,15 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
+def _rating(ratings: tuple[float, ...] | None, joint: int) -> float:
+    """A joint type's rating; +inf (nothing is over it) where the design gives none."""
+    return math.inf if ratings is None else ratings[joint]
+
+
+def _rated(rating: float) -> str:
+    return "rating not given" if math.isinf(rating) else f"rated {rating:g}"
+
+
 def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     """The text table's rows."""
     gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
@@ -285,18 +297,19 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
-        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rated_torque = _rating(design.rated_torques, j)
+        rated_speed = _rating(design.rated_speeds, j)
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
-                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m ({_rated(rated_torque)})"
                 + (", OVER RATING" if torque > rated_torque else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{speed:.3f} rad/s ({_rated(rated_speed)}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
                 + (", OVER RATING" if speed > rated_speed else ""),
             )
@@ -311,6 +324,8 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_stride is not None and not design.rated:
+        rows.append(("max speed", NEEDS_RATING))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

@@ -79,8 +79,9 @@ def run(args: argparse.Namespace) -> int:
     imported = robot_model(args, design)
     design = size_if_asked(design, requirements, imported is not None)[0]
     model: HexapodModel = HexapodModel(design) if imported is None else imported
-    if imported is not None:
-        _note_missing_meshes(imported.missing_meshes)
+    missing = None if imported is None else imported.missing_meshes_note("not drawn")
+    if missing is not None:
+        note(missing)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
@@ -99,24 +100,12 @@ def run(args: argparse.Namespace) -> int:
     )
 
 
-def _note_missing_meshes(missing: tuple[str, ...]) -> None:
-    """Say which of the file's visual meshes are not drawn, and how to have them drawn."""
-    if missing:
-        listed = ", ".join(missing[:3]) + (
-            f" and {len(missing) - 3} more" if len(missing) > 3 else ""
-        )
-        note(
-            f"{len(missing)} visual mesh file(s) not found, those visuals are not drawn: "
-            f"{listed} (give --package NAME=DIR for package:// paths)"
-        )
-
-
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
     from hexaleg.gait.analysis import analyze_gait, require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
-    analysis = analyze_gait(model.design, design_gait(args), model=model, limits=False)
+    analysis = analyze_gait(model.design, design_gait(args, model), model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])

@@ -72,7 +72,8 @@ class GaitAnalysis:
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
-        max_speed: The fastest walk within the ratings (None if not computed).
+        max_speed: The fastest walk within the ratings (None if not computed, or if the
+            design gives no ratings: it needs one).
         electrical: The period's currents, voltages, energy and battery use, and each
             joint against its actuator's ratings (None for a design without actuators).
         structure: The legs' tubes at every sample (None without a ``[structure]``).
@@ -274,7 +275,9 @@ def analyze_gait(
     known = (walk, loads) if distribution == "min-norm" else None
     stride_limit = max_stride(walker) if limits else None
     speed_limit = (
-        max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
+        max_speed(walker, stride_limit, known, fallback=limits)
+        if (limits or speed) and model.design.rated
+        else None  # no ratings: the max speed needs one
     )
     return _analysis(walker, walk, loads, stride_limit, speed_limit)
 

@@ -318,7 +318,7 @@ def _joint(element: ET.Element) -> Joint:
     if kind != "fixed" and norm == 0.0:
         raise RobotImportError(f"{where} has a zero axis")
     low, high, effort, velocity = _limits(element.find("limit"), kind, where)
-    return Joint(
+    return Joint(  # lower > upper: no limits given on a leg's joint, refused on another
         name=name,
         kind=kind,
         parent=str(parent.get("link")),
@@ -366,8 +366,6 @@ def _limits(
     upper = number(limit, "upper", where, position)
     low = (lower or 0.0) if bounded else -math.inf
     high = (upper or 0.0) if bounded else math.inf
-    if low > high:
-        raise RobotImportError(f"{where} has lower limit {low:g} > upper limit {high:g}")
     return low, high, ratings[0], ratings[1]
 
 

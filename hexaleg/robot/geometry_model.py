@@ -1,7 +1,7 @@
 """A robot file's visual or collision geometry as Pinocchio's geometry model, meshes on disk.
 
 Pinocchio reads a URDF's ``<visual>`` and ``<collision>`` shapes itself; what it cannot do
-is find the meshes as hexaleg finds them (:func:`~hexaleg.robot.source.resolve_resource`:
+is find the meshes as hexaleg finds them (:func:`~hexaleg.robot.packages.resolve_resource`:
 relative to the robot file's folder, ``package://NAME/`` in the given package folders). So
 each mesh reference is replaced by the file it names before Pinocchio reads the text, and
 a shape whose mesh names no file is left out and reported: a viewer does not draw it, the
@@ -19,9 +19,10 @@ from typing import Literal
 import pinocchio as pin
 
 from hexaleg.exceptions import RobotImportError, one_line
-from hexaleg.robot.source import Packages, check_mesh_file, resolve_resource
+from hexaleg.robot.packages import PackageFolders, missing_packages_note, resolve_resource
+from hexaleg.robot.source import Packages, check_mesh_file
 
-__all__ = ["GeometryKind", "file_geometry", "with_resolved_meshes"]
+__all__ = ["GeometryKind", "file_geometry", "missing_meshes_note", "with_resolved_meshes"]
 
 GeometryKind = Literal["visual", "collision"]
 """Which of a link's shapes: what is drawn, or what touches."""
@@ -80,6 +81,18 @@ def file_geometry(
             f"the file's {kind} geometry cannot be read: {_reason(err)}"
         ) from None
     return geometry, missing
+
+
+def missing_meshes_note(missing: tuple[str, ...], packages: PackageFolders, what: str) -> str:
+    """One sentence: how many mesh files were not found, ``what`` follows, how to give them.
+
+    ``what``: what that means, e.g. "those visuals are not drawn". Packages found nowhere
+    are named once (:func:`~hexaleg.robot.packages.missing_packages_note`), not per mesh.
+    """
+    listed = ", ".join(missing[:3]) + (f" and {len(missing) - 3} more" if len(missing) > 3 else "")
+    unfound = packages.missing(missing)
+    how = missing_packages_note(unfound) if unfound else "check the paths"
+    return f"{len(missing)} mesh file(s) not found, {what}: {listed}; {how}"
 
 
 def _reason(err: Exception) -> str:

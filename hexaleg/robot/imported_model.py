@@ -15,7 +15,7 @@ added so that every analysis written for hexaleg's model reads it unchanged:
   are given on θ (the file's torque times s).
 
 Each leg stands at its own nominal posture: the design's nominal angles moved inside that
-leg's file limits (:func:`~hexaleg.robot.robot_design.nominal_posture`); the body stands
+leg's file limits, or the nearest that stands (:mod:`~hexaleg.robot.standing`); the body stands
 level at the height that puts the feet, on average, on the ground.
 """
 
@@ -35,7 +35,12 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import RobotImportError, RobotImportWarning, one_line
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
-from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
+from hexaleg.robot.geometry_model import (
+    GeometryKind,
+    file_geometry,
+    missing_meshes_note,
+    with_resolved_meshes,
+)
 from hexaleg.robot.imported import (
     ImportedRobot,
     fixed_joint,
@@ -46,16 +51,14 @@ from hexaleg.robot.imported import (
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import NO_MASSES, nominal_posture, robot_design
+from hexaleg.robot.robot_design import NO_MASSES, body_depth, mount_plane, robot_design
+from hexaleg.robot.standing import LEVEL_FEET, standing_posture
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
 
 BODY_LINK = PREFIX + "body"
 """The link added as the body frame of an imported robot's model."""
-
-LEVEL_FEET = 1e-3
-"""Largest spread of the feet's heights at the nominal posture, body level [m]."""
 
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
@@ -173,8 +176,7 @@ def robot_mass(model: HexapodModel) -> float:
 
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
     """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
-    first = robot.legs[0]
-    return float(first.reading.mount[2, 3]) - design.legs[0].z
+    return mount_plane(robot) - design.legs[0].z
 
 
 class ImportedHexapodModel(HexapodModel):
@@ -206,15 +208,16 @@ class ImportedHexapodModel(HexapodModel):
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
         self.leg_names = robot.leg_names
         self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}
-        self._nominal = {
-            leg.name: nominal_posture(leg, design.nominal_angles)["joint_angles"]
-            for leg in robot.legs
-        }
+        standing = standing_posture(robot, design.nominal_angles, body_depth(robot))
+        self._nominal = dict(zip(robot.leg_names, standing.angles, strict=True))
         self._height = self._standing_height()
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
-        self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
+        shape = robot.body_shape
+        box = [design.body_length, design.body_width, design.body_height]
+        self.body_box = np.array(box) / 2 if shape is None else shape.half_extents.copy()
 
     general_legs = True
+    own_default_gait = True  # a robot file's: the template's gait is a 1 m leg's
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg, as read from the file."""
@@ -234,9 +237,9 @@ class ImportedHexapodModel(HexapodModel):
         if self._collision is None:
             geometry, missing = self._file_geometry("collision")
             if missing:
+                what = "those parts are not checked for contact"
                 warnings.warn(
-                    f"{len(missing)} collision mesh(es) not found ({missing[0]} first): those "
-                    f"parts are not checked for contact (give --package NAME=DIR)",
+                    missing_meshes_note(missing, self.robot.packages, what),
                     RobotImportWarning,
                     stacklevel=2,
                 )
@@ -255,6 +258,11 @@ class ImportedHexapodModel(HexapodModel):
     def missing_meshes(self) -> tuple[str, ...]:
         """The visual mesh references whose files were not found, each once (no mesh read)."""
         return with_resolved_meshes(self._text, "visual", self._folder, self.robot.packages)[1]
+
+    def missing_meshes_note(self, what: str) -> str | None:
+        """One sentence on the visual meshes not found (``what`` that means); ``None``: none."""
+        missing = self.missing_meshes
+        return missing_meshes_note(missing, self.robot.packages, what) if missing else None
 
     @property
     def _folder(self) -> Path | None:

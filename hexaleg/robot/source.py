@@ -1,10 +1,13 @@
 """A robot file's URDF text: read as is, or expanded from Xacro in a process within limits.
 
 A Xacro file (``.xacro``, or one that declares the ``xacro`` namespace) is expanded by
-the ``xacro`` package with the given arguments (``NAME:=VALUE``) and package folders
-(``NAME=DIR``), which serve ``$(find NAME)`` in the file and ``package://NAME/`` in its
-mesh references (:func:`resolve_resource`). Nothing is looked up in the environment:
-without a folder, ``$(find NAME)`` is refused naming the package.
+the ``xacro`` package with the given arguments (``NAME:=VALUE``); ``$(find NAME)`` is
+answered as ROS answers it (:class:`~hexaleg.robot.packages.PackageFolders`: the given
+folders, then the folders above the file, then ``ROS_PACKAGE_PATH``), and a package found
+nowhere is refused in one line naming it and ``--package NAME=DIR``. xacro's own warnings
+come out as one-line :class:`~hexaleg.exceptions.RobotImportWarning` s (at most
+:data:`MAX_XACRO_WARNINGS`), except its "redefining global symbol" (a file's own ``pi``
+property, the usual ROS 1 idiom, is what its author meant).
 
 Reading is bounded, whatever the file holds (:mod:`hexaleg._input`): a FIFO or a device is
 refused before it is opened, a file over :data:`MAX_ROBOT_FILE_BYTES` by its size, a mesh
@@ -25,13 +28,15 @@ import signal
 import subprocess
 import sys
 import threading
-from collections.abc import Iterator, Mapping
+import warnings
+from collections.abc import Iterable, Iterator, Mapping
 from contextlib import contextmanager
 from pathlib import Path
-from urllib.parse import unquote, urlparse
+from typing import Any
 
 from hexaleg._input import check_input_file, read_input_file, size_text
-from hexaleg.exceptions import RobotImportError, one_line
+from hexaleg.exceptions import RobotImportError, RobotImportWarning, one_line
+from hexaleg.robot.packages import PackageFolders, missing_packages_note
 
 MAX_ROBOT_FILE_BYTES = 16 * 2**20
 """Largest robot file read, file Xacro includes and URDF a Xacro file expands to [bytes].
@@ -51,14 +56,26 @@ robots expand in a few hundredths of a second."""
 XACRO_MEMORY_BYTES = 2**30
 """Most memory (address space) the Xacro expansion's process may hold [bytes]."""
 
+MAX_XACRO_WARNINGS = 20
+"""Most of xacro's warnings passed on for one expansion (the rest are dropped) [-]."""
+
+MAX_XACRO_CHATTER = 64 * 2**10
+"""Most of what xacro prints kept to find its warnings in (the rest is dropped) [chars]."""
+
+REDEFINED = "redefining global symbol"
+"""The start of xacro's warning about a file's property named as one of its built-ins."""
+
+WARNING_MARK = "xacro-warning\t"
+"""How the Xacro process marks a line of its standard error that is one of xacro's warnings."""
+
 _XACRO_LOCK = threading.Lock()
 """xacro keeps its arguments and file stack in module globals: one expansion at a time."""
 
 _PACKAGE_ROOT = Path(__file__).resolve().parents[2]
 """The folder that holds this ``hexaleg``: the Xacro process imports the same one."""
 
-Packages = Mapping[str, str | Path]
-"""Package name → its folder, for ``$(find NAME)`` and ``package://NAME/``."""
+Packages = Mapping[str, str | Path] | PackageFolders
+"""Package name → its folder given by the user, or every package folder of a robot file."""
 
 
 def read_robot_text(
@@ -71,7 +88,8 @@ def read_robot_text(
     Args:
         path: A URDF or Xacro file.
         args: Xacro arguments, name → value (``NAME:=VALUE`` on a command line).
-        packages: Package folders, name → folder.
+        packages: Package folders, name → folder (searched further as
+            :class:`~hexaleg.robot.packages.PackageFolders` does).
 
     Raises:
         RobotImportError: No such file, not a regular file (a FIFO, a device), larger than
@@ -86,7 +104,7 @@ def read_robot_text(
         raise RobotImportError(f"{path} cannot be read: {one_line(err)}") from None
     if not is_xacro(path, text):
         return text
-    return expand_xacro(path, args or {}, packages or {})
+    return expand_xacro(path, args or {}, PackageFolders.of(packages, path.parent))
 
 
 def check_mesh_file(path: str | Path, reference: str) -> int:
@@ -107,18 +125,27 @@ def is_xacro(path: Path, text: str) -> bool:
 def expand_xacro(path: Path, args: Mapping[str, str], packages: Packages) -> str:
     """URDF text of the Xacro file at ``path`` with ``args`` and ``packages``, within limits.
 
+    xacro's warnings (but a redefined global symbol) are each warned as a
+    :class:`~hexaleg.exceptions.RobotImportWarning` when the expansion succeeds.
+
     Raises:
-        RobotImportError: xacro fails, or runs past :data:`XACRO_SECONDS`, past
-            :data:`XACRO_MEMORY_BYTES` or past :data:`MAX_ROBOT_FILE_BYTES` of output.
+        RobotImportError: xacro fails, a ``$(find NAME)`` names a package found nowhere, or
+            it runs past :data:`XACRO_SECONDS`, past :data:`XACRO_MEMORY_BYTES` or past
+            :data:`MAX_ROBOT_FILE_BYTES` of output.
 
     """
     for name, value in args.items():
         if not isinstance(name, str) or not isinstance(value, str):
             raise RobotImportError(f"xacro argument {name!r} := {value!r}: both must be text")
+    folders = PackageFolders.of(packages, path.parent)
     request = {
         "path": str(path),
         "args": dict(args),
-        "packages": {name: str(folder) for name, folder in packages.items()},
+        "packages": {
+            "given": [list(pair) for pair in folders.given],
+            "start": folders.start,
+            "search_path": list(folders.search_path),
+        },
         "seconds": XACRO_SECONDS,
         "memory": XACRO_MEMORY_BYTES,
         "output": MAX_ROBOT_FILE_BYTES,
@@ -140,9 +167,14 @@ def expand_xacro(path: Path, args: Mapping[str, str], packages: Packages) -> str
         raise RobotImportError(_past_time(path)) from None
     except OSError as err:
         raise RobotImportError(f"xacro on {path.name} could not start: {one_line(err)}") from None
+    lines = done.stderr.decode("utf-8", errors="replace").strip().splitlines()
+    said = [line for line in lines if not line.startswith(WARNING_MARK)]
     if done.returncode == 0:
+        for line in lines[:MAX_XACRO_WARNINGS]:
+            if line.startswith(WARNING_MARK):
+                message = line[len(WARNING_MARK) :]
+                warnings.warn(f"xacro on {path.name}: {message}", RobotImportWarning, stacklevel=2)
         return done.stdout.decode("utf-8")
-    said = done.stderr.decode("utf-8", errors="replace").strip().splitlines()
     if done.returncode > 0 and said:
         raise RobotImportError(said[-1])
     if -done.returncode in (signal.SIGXCPU, signal.SIGKILL):
@@ -150,12 +182,21 @@ def expand_xacro(path: Path, args: Mapping[str, str], packages: Packages) -> str
     raise RobotImportError(f"xacro on {path.name} ended by {_ending(done.returncode)}")
 
 
-def xacro_text(path: str, args: Mapping[str, str], packages: Packages, output: int) -> str:
+def package_folders(request: Mapping[str, Any]) -> PackageFolders:
+    """The package folders :func:`expand_xacro` sends the Xacro process, read back."""
+    return PackageFolders(
+        tuple((str(name), str(folder)) for name, folder in request["given"]),
+        None if request["start"] is None else str(request["start"]),
+        tuple(str(entry) for entry in request["search_path"]),
+    )
+
+
+def xacro_text(path: str, args: Mapping[str, str], packages: PackageFolders, output: int) -> str:
     """The expansion itself (in the Xacro process): every file xacro opens checked first.
 
     Raises:
         RobotImportError: A file xacro opens is no regular file or is over the size cap,
-            ``$(find NAME)`` of a package not given, xacro fails, or its URDF is over
+            ``$(find NAME)`` names a package found nowhere, xacro fails, or its URDF is over
             ``output`` bytes.
 
     """
@@ -163,12 +204,17 @@ def xacro_text(path: str, args: Mapping[str, str], packages: Packages, output: i
 
     xacro.open = _checked_open  # xacro's parse and load_yaml: the module's name before builtins
     name = Path(path).name
+    missing: list[str] = []
     try:
-        with _xacro_finds(packages):
+        with _xacro_finds(packages, missing):
             text = str(xacro.process_file(path, mappings=dict(args)).toxml())
-    except RobotImportError:
-        raise
     except Exception as err:  # xacro raises XacroException, NameError, KeyError, ...
+        if missing:  # xacro wraps what find raised in its own exception: say it plainly
+            raise RobotImportError(
+                f"{name} uses $(find {missing[0]}): {missing_packages_note(missing, path)}"
+            ) from None
+        if isinstance(err, RobotImportError):
+            raise
         cause = _root_cause(err)
         if isinstance(cause, MemoryError):
             raise MemoryError from None
@@ -182,6 +228,21 @@ def xacro_text(path: str, args: Mapping[str, str], packages: Packages, output: i
     if len(text.encode("utf-8")) > output:
         raise RobotImportError(f"xacro on {name} writes more than {size_text(output)} of URDF")
     return text
+
+
+def xacro_warnings(printed: str) -> list[str]:
+    """The warnings xacro printed, each once, at most :data:`MAX_XACRO_WARNINGS`.
+
+    xacro prints a warning and then where it was (``when processing file: ...``) as
+    lines of their own; the location lines are dropped, and so are redefinitions of its
+    global symbols (``pi``): a file's own property is what its author meant.
+    """
+    found: dict[str, None] = {}
+    for line in printed.splitlines():
+        text = line.strip()
+        if text.startswith("warning:") and REDEFINED not in text:
+            found.setdefault(" ".join(text[len("warning:") :].split()), None)
+    return [message for message in found if message][:MAX_XACRO_WARNINGS]
 
 
 def past_memory(path: str, memory: int) -> str:
@@ -232,39 +293,20 @@ def xacro_cpu_seconds(seconds: float) -> int:
     return math.ceil(seconds) + 1
 
 
-def resolve_resource(reference: str, base_dir: Path | None, packages: Packages) -> Path | None:
-    """The local file a mesh reference names, or ``None`` if it names none that exists.
-
-    ``package://NAME/rest`` is looked up in ``packages``, ``file://`` and absolute paths
-    as they are, relative paths against the robot file's folder ``base_dir``.
-    """
-    if reference.startswith("package://"):
-        name, _, rest = reference[len("package://") :].partition("/")
-        folder = packages.get(name)
-        candidate = Path(folder) / rest if folder is not None else None
-    elif reference.startswith("file://"):
-        candidate = Path(unquote(urlparse(reference).path))
-    elif "://" in reference:
-        candidate = None
-    else:
-        path = Path(reference)
-        candidate = path if path.is_absolute() or base_dir is None else base_dir / path
-    return candidate if candidate is not None and candidate.is_file() else None
-
-
 @contextmanager
-def _xacro_finds(packages: Packages) -> Iterator[None]:
-    """``$(find NAME)`` answered from ``packages`` while xacro runs, then restored."""
+def _xacro_finds(packages: PackageFolders, missing: list[str]) -> Iterator[None]:
+    """``$(find NAME)`` answered from ``packages`` while xacro runs, then restored.
+
+    A package found nowhere is appended to ``missing`` before xacro is stopped.
+    """
     from xacro import substitution_args
 
     def find(name: str) -> str:
-        if name not in packages:
-            given = ", ".join(sorted(packages)) or "none"
-            raise RobotImportError(
-                f"the file uses $(find {name}): give the package folder as {name}=DIR "
-                f"(packages given: {given})"
-            )
-        return str(Path(packages[name]).resolve())
+        folder = packages.find(name)
+        if folder is None:
+            missing.append(name)
+            raise RobotImportError(missing_packages_note([name]))
+        return str(folder.resolve())
 
     with _XACRO_LOCK:
         saved = substitution_args._eval_find, substitution_args._eval_dict["find"]
@@ -274,3 +316,8 @@ def _xacro_finds(packages: Packages) -> Iterator[None]:
             yield
         finally:
             substitution_args._eval_find, substitution_args._eval_dict["find"] = saved
+
+
+def warning_lines(messages: Iterable[str]) -> str:
+    """The Xacro process's lines for ``messages`` (xacro's warnings), marked for its parent."""
+    return "".join(f"{WARNING_MARK}{' '.join(message.split())}\n" for message in messages)

@@ -23,6 +23,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
 from hexaleg.leg_structure import LEG_SEGMENTS
 from hexaleg.limits import JOINT_NAMES, LEG_JOINTS
+from hexaleg.ratings import as_written
 from hexaleg.robot.inertia import body_inertial, leg_inertials, segment_radii
 
 HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
@@ -112,7 +113,7 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
     for joint in JOINT_NAMES:
         numbers[f"{joint}_lower"], numbers[f"{joint}_upper"] = getattr(limits, joint)
     for joint, effort, speed in zip(
-        LEG_JOINTS, design.rated_torques, design.rated_speeds, strict=True
+        LEG_JOINTS, as_written(design.rated_torques), as_written(design.rated_speeds), strict=True
     ):
         numbers[f"{joint}_effort"], numbers[f"{joint}_velocity"] = effort, speed
     for link, inertial in leg_inertials(design).items():

@@ -33,6 +33,7 @@ from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import torque_scale
 from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
@@ -173,7 +174,7 @@ class Statics:
         self.legs = tuple(legs)
         self.payload = payload or Payload()
         self.friction = friction
-        self.rated = np.array(model.design.rated_torques)
+        self.rated = torque_scale(model.design.rated_torques)
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ

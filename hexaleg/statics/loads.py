@@ -8,6 +8,7 @@ and the payload capacity.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -17,6 +18,7 @@ import numpy as np
 from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
@@ -56,7 +58,8 @@ class LoadsAnalysis:
         nominal: The statics at the nominal stance.
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
-        capacity: The largest payload at the payload's point.
+        capacity: The largest payload at the payload's point; ``None`` when the design
+            gives no rated torques (it needs a rating).
         mode: Which flexibility extremes (axis-locked or free-coupled).
         structure: The legs' tubes checked at the nominal stance, the extremes and the
             slope (:mod:`hexaleg.structure`); ``None`` without a ``[structure]`` whose
@@ -71,7 +74,7 @@ class LoadsAnalysis:
     nominal: StaticState
     extremes: tuple[ExtremeLoads, ...]
     slopes: tuple[SlopeLimit, ...]
-    capacity: PayloadCapacity
+    capacity: PayloadCapacity | None
     mode: FlexibilityMode
     structure: StructureCheck | None = None
 
@@ -98,7 +101,7 @@ class LoadsAnalysis:
         return min(self.slopes, key=lambda s: s.max_slope)
 
     def study_columns(self) -> dict[str, float | str]:
-        """The design's columns in a study table (N·m, m, rad, kg)."""
+        """The design's columns in a study table (N·m, m, rad, kg; NaN: needs a rating)."""
         nominal, overall = self.nominal.peak_torques(), self.peak_torques
         columns: dict[str, float | str] = {}
         for joint in LEG_JOINTS:
@@ -107,8 +110,10 @@ class LoadsAnalysis:
         return columns | {
             "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
-            "payload_capacity": self.capacity.mass,
-            "payload_limited_by": str(self.capacity.limited_by),
+            "payload_capacity": math.nan if self.capacity is None else self.capacity.mass,
+            "payload_limited_by": NEEDS_RATING
+            if self.capacity is None
+            else str(self.capacity.limited_by),
         }
 
     @property
@@ -156,7 +161,9 @@ class LoadsAnalysis:
                 }
                 for s in self.slopes
             ],
-            "payload_capacity": {
+            "payload_capacity": None
+            if self.capacity is None
+            else {
                 "mass": self.capacity.mass,
                 "limited_by": self.capacity.limited_by.to_dict(),
                 "tips_over": self.tips_over,
@@ -250,7 +257,9 @@ def loads_at_extremes(
         nominal=nominal,
         extremes=extremes,
         slopes=slope_limits(statics.support, nominal.com, friction),
-        capacity=payload_capacity(statics, q, distribution, at=nominal),
+        capacity=None
+        if design.rated_torques is None
+        else payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
         structure=_structure(model, result, statics, distribution, slope),
     )

@@ -36,6 +36,7 @@ from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
@@ -46,6 +47,7 @@ from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 from hexaleg.study.metrics import METRICS, Analysis
+from hexaleg.study.period_values import ELECTRICAL_METRICS, period_values, unmeasured_electrical
 from hexaleg.study.standing_limits import Standing
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
@@ -180,10 +182,6 @@ def evaluate_many(
 
 
 PERIOD_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
-ELECTRICAL_METRICS = (
-    "energy_per_km", "electrical_cost_of_transport", "continuous_load", "battery_range",
-)  # fmt: skip
-"""The metrics of the period through the design's motors (:mod:`hexaleg.electrical`)."""
 PERIOD_DETAILS = (
     *ELECTRICAL_METRICS,
     "mechanical_energy_per_km",
@@ -313,10 +311,13 @@ class _Measuring:
         if "stability_margin" in self.metrics:
             nominal = statics.state(model.nominal_configuration())
             self.values["stability_margin"] = nominal.stability_margin
+        if model.design.rated_torques is None:  # within ratings the design does not give
+            self._needs_rating("payload_capacity", "max_slope")
+            return
         if conditions.slope is None:  # level ground: the statics' own payload capacity
             capacity = (
                 self.loads.capacity
-                if self.loads is not None
+                if self.loads is not None and self.loads.capacity is not None
                 else payload_capacity(statics, model.nominal_configuration())
             )
             self.values["payload_capacity"] = capacity.mass
@@ -330,15 +331,23 @@ class _Measuring:
         found = standing.max_slope(conditions.payload.mass)
         self.values["max_slope"], self.causes["max_slope"] = found
 
+    def _needs_rating(self, *names: str) -> None:
+        """``names`` unmeasured: they are within ratings the design does not give."""
+        for name in names:
+            self.values[name], self.unmeasured[name] = math.nan, NEEDS_RATING
+
     def _measure_walking(self) -> None:
         conditions = self.conditions
         if "walking_payload_capacity" in self.metrics:
             found = walking_payload_capacity(
                 self.model, conditions.gait, conditions.payload.position
             )
-            self.values["walking_payload_capacity"] = found.mass
-            self.causes["walking_payload_capacity"] = found.limited_by
-            self.walks = found.walks
+            if found is None:
+                self._needs_rating("walking_payload_capacity")
+            else:
+                self.values["walking_payload_capacity"] = found.mass
+                self.causes["walking_payload_capacity"] = found.limited_by
+                self.walks = found.walks
         if not (self.metrics & {*PERIOD_METRICS, *PERIOD_DETAILS} or conditions.keep):
             return
         walked = analyze_gait(
@@ -346,54 +355,15 @@ class _Measuring:
             speed=True,
         )  # fmt: skip
         self.walked = walked
-        assert walked.max_speed is not None  # speed=True
-        self.values["max_speed"] = walked.max_speed.value
-        self.causes["max_speed"] = walked.max_speed.limited_by
+        if walked.max_speed is None:  # speed=True: the design gives no ratings
+            self._needs_rating("max_speed")
+        else:
+            self.values["max_speed"] = walked.max_speed.value
+            self.causes["max_speed"] = walked.max_speed.limited_by
         if walked.walkable:
-            self.values |= _period_values(walked)
-            self.unmeasured |= _unmeasured_electrical(walked)
+            self.values |= period_values(walked)
+            self.unmeasured |= unmeasured_electrical(walked)
             return
         why = f"cannot walk the gait: {walked.violations[0]}"
         for name in (*PERIOD_METRICS[1:], *PERIOD_DETAILS):
             self.values[name], self.unmeasured[name] = math.nan, why
-
-
-def _electrical_values(walked: GaitAnalysis) -> dict[str, float]:
-    """The period's metrics through the motors: energy, cost, continuous load, range."""
-    electrical = walked.electrical
-    if electrical is None:
-        return dict.fromkeys(ELECTRICAL_METRICS, math.nan)
-    ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
-    battery = electrical.battery
-    return {
-        "energy_per_km": electrical.energy_per_km,
-        "electrical_cost_of_transport": electrical.cost_of_transport,
-        "continuous_load": float(ratios.max()),
-        "battery_range": math.nan if battery is None else battery.range,
-    }
-
-
-def _unmeasured_electrical(walked: GaitAnalysis) -> dict[str, str]:
-    """Why a metric through the motors has no value: no actuators, or no battery."""
-    if walked.design.actuators is None:
-        return dict.fromkeys(ELECTRICAL_METRICS, "the design has no [actuators]")
-    if walked.design.battery is None:
-        return {"battery_range": "the design has no [battery]"}
-    return {}
-
-
-def _period_values(walked: GaitAnalysis) -> dict[str, float]:
-    """The metrics of a feasible gait period: peaks, RMS, cost, energy per km, ZMP margin."""
-    metrics = walked.metrics
-    distance = walked.gait.speed * walked.gait.period  # per period [m]
-    values = {
-        "gait_peak_torque": max(metrics.peak_torque.values()),
-        "mechanical_cost_of_transport": metrics.cost_of_transport,
-        "mechanical_energy_per_km": metrics.positive_work / distance * 1000 / 3600,
-        "min_zmp_margin": walked.min_zmp_margin,
-        **_electrical_values(walked),
-    }
-    for joint in LEG_JOINTS:
-        values[f"gait_peak_{joint}_torque"] = metrics.peak_torque[joint]
-        values[f"gait_rms_{joint}_torque"] = metrics.rms_torque[joint]
-    return values

@@ -126,12 +126,18 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
         "mechanical_cost_of_transport": evaluation["mechanical_cost_of_transport"],
         "gait_feasible": ok and walked.tipping is None,
         "max_speed": evaluation["max_speed"],
-        "max_speed_limited_by": str(evaluation.causes["max_speed"]),
+        "max_speed_limited_by": _why(evaluation, "max_speed"),
         "walking_payload_capacity": evaluation["walking_payload_capacity"],
-        "walking_payload_limited_by": str(evaluation.causes["walking_payload_capacity"]),
+        "walking_payload_limited_by": _why(evaluation, "walking_payload_capacity"),
         "walks": bool(evaluation.walks),
         **_electrical_columns(walked, evaluation),
     }
+
+
+def _why(evaluation: Evaluation, name: str) -> str:
+    """What limits metric ``name``, or why it has no value ("needs a rating")."""
+    cause = evaluation.causes.get(name)
+    return str(cause) if cause is not None else evaluation.unmeasured.get(name, "")
 
 
 def _electrical_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, Cell]:

@@ -164,7 +164,7 @@ def _rows(rec: Recommendation) -> list[tuple[str, ...]]:
 
 def _cost_rows(record: DecisionRecord, design: HexapodDesign) -> list[tuple[str, ...]]:
     """The costs of the choice, a torque beside its rating, a speed beside what binds."""
-    rated = dict(zip(LEG_JOINTS, design.rated_torques, strict=True))
+    rated = dict(zip(LEG_JOINTS, design.rated_torques or (math.nan,) * 3, strict=True))
     rows: list[tuple[str, ...]] = []
     for name in cost_metrics(design):
         spec, yours, theirs = METRICS[name], record.yours[name], record.recommended[name]
