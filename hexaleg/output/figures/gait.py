@@ -21,7 +21,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
+from hexaleg.output.figures.canvas import COLORS, drawn, magnitude_axis, new_figure, save
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 
 if TYPE_CHECKING:
@@ -177,13 +177,14 @@ def walking_study_figure(
         ("mechanical_cost_of_transport", "mechanical CoT [-]"),
         ("walking_payload_capacity", "walking payload [kg]"),
     )
+    walks = table["walks"].astype(bool) if "walks" in table else pd.Series(True, table.index)
     for ax, (column, label) in zip(panels, columns, strict=True):
+        values = table[column].where(walks)  # a leg that cannot walk the gait: a gap, not a 0
         for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
-            values = group[column]
-            if "walks" in group:  # a leg that cannot walk the gait: a gap, not a zero
-                values = values.where(group["walks"].astype(bool))
-            ax.plot(group["l3_ratio"], values, color=color, label=f"coxa ratio {r1:.2f}")
+            ax.plot(group["l3_ratio"], values[group.index], color=color,
+                    label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
+        magnitude_axis(ax, values, label.split(" [")[0])
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
