@@ -1,12 +1,12 @@
 """Labels that cover no data: each put, when its figure is drawn, where it hides nothing.
 
 A label added by :func:`clear_label` carries a list of candidate spots (an anchor and an
-offset from it). When the figure is drawn, after the layout has placed every axes, the
-label takes the first spot where its box, padded by :data:`PAD_PX`, holds no point of a
-curve or a scatter, no bar and no other text of its axes, and lies inside the axes; if
-every spot hides something, the one hiding the fewest points. A label away from its
-anchor is tied to it by a thin leader line. The label takes no part in the layout, so
-placing it moves nothing else.
+offset from it), nearest first. When the figure is drawn, after the layout has placed
+every axes, the label takes the first spot where its box, padded by :data:`PAD_PX`, lies
+inside the axes and holds no point of a curve or a scatter marker, no bar, no legend and
+no other text of its axes, and where its leader line (drawn back to a point it has moved
+away from) crosses no marker or curve either; if every spot hides something, the one hiding
+the fewest points. The label takes no part in the layout, so placing it moves nothing else.
 """
 
 from __future__ import annotations
@@ -32,11 +32,11 @@ Spot = tuple[tuple[float, float], tuple[float, float], HAlign, VAlign]
 """A candidate spot: the anchor (in the label's ``xycoords``), the text's offset from it
 [pt], and the text's horizontal and vertical alignment."""
 
-PAD_PX = 2.0
-"""Clearance kept around a label's box [px]."""
+PAD_PX = 4.0
+"""Clearance kept around a label's box and along its leader line [px]."""
 
 STEP_PX = 2.0
-"""A curve is checked every this many pixels along its length [px]."""
+"""Curves and leader lines are checked every this many pixels along their length [px]."""
 
 LEADER = {"arrowstyle": "-", "lw": 0.6, "color": "0.3"}
 """The leader line from a label moved away from its point to the point."""
@@ -45,27 +45,35 @@ LEADER_PT = 8.0
 """A label further than this from its point [pt] gets a leader line."""
 
 FAINT = 0.3
-"""Shading fainter than this opacity (a band, a flat top) is background, not data [-]."""
+"""Shading and lines fainter than this opacity (a band, a flat top) are background [-]."""
 
-_SIDES: tuple[tuple[int, int, HAlign, VAlign], ...] = (
-    (-1, 0, "right", "center"),
-    (-1, 1, "right", "bottom"),
-    (-1, -1, "right", "top"),
-    (0, 1, "center", "bottom"),
-    (0, -1, "center", "top"),
-    (1, 0, "left", "center"),
-    (1, 1, "left", "bottom"),
-    (1, -1, "left", "top"),
-)
+_SHARE = {"left": 0.0, "right": 1.0, "bottom": 0.0, "top": 1.0, "center": 0.5}
+"""Where the anchor sits along the text's box, for each alignment; the leader line leaves
+the box there too (the box's side or corner nearest its point)."""
 
 
-_RELPOS = {"left": 0.0, "right": 1.0, "bottom": 0.0, "top": 1.0, "center": 0.5}
-"""Where along the text's box the leader line leaves it, for each alignment."""
+def _alignment(dx: float, dy: float) -> tuple[HAlign, VAlign]:
+    """The text's alignment for an offset (dx, dy): the text lies away from its point."""
+    ha: HAlign = "right" if dx < 0 else "left" if dx > 0 else "center"
+    va: VAlign = "top" if dy < 0 else "bottom" if dy > 0 else "center"
+    return ha, va
 
 
-def around(distances: Sequence[float] = (6, 16, 32, 56, 88)) -> list[Spot]:
-    """Spots around an anchor at each distance [pt]: left first, then above, below, right."""
-    return [((0.0, 0.0), (dx * d, dy * d), ha, va) for d in distances for dx, dy, ha, va in _SIDES]
+def around(reach_pt: float = 320.0, step_pt: float = 8.0) -> list[Spot]:
+    """Offsets around a point, nearest first: beside it, then ever further, up to a reach.
+
+    The first spots are the eight sides at 6 pt (left first, as a reader expects a name
+    beside its point); then a lattice of offsets every ``step_pt`` out to ``reach_pt``
+    [pt] either way, sorted by distance (ties: left before right, above before below).
+    """
+    near = [(-6.0, 0.0), (-6.0, 6.0), (-6.0, -6.0), (0.0, 6.0), (0.0, -6.0), (6.0, 0.0),
+            (6.0, 6.0), (6.0, -6.0)]  # fmt: skip
+    steps = np.arange(-reach_pt, reach_pt + step_pt / 2, step_pt)
+    lattice = sorted(
+        ((float(dx), float(dy)) for dx in steps for dy in steps if np.hypot(dx, dy) > 8.5),
+        key=lambda o: (round(float(np.hypot(*o)), 6), o[0] > 0, o[1] < 0),
+    )
+    return [((0.0, 0.0), offset, *_alignment(*offset)) for offset in near + lattice]
 
 
 CORNERS: list[Spot] = [
@@ -96,8 +104,9 @@ def clear_label(
         text: The label.
         xy: The point labelled (``spots`` anchor at it) in ``xycoords``; for ``"axes
             fraction"`` notes each spot's own anchor is used instead.
-        spots: Candidate spots; by default :func:`around` the point.
-        xycoords: The coordinates of ``xy`` and of the spots' anchors.
+        spots: Candidate spots, nearest first; by default :func:`around` the point.
+        xycoords: ``"data"`` or ``"axes fraction"``: the coordinates of ``xy`` and of the
+            spots' anchors.
         style: Text properties (``fontsize``, ``bbox``, ...).
 
     """
@@ -133,26 +142,28 @@ def _label_class() -> type:
         def _choose(self, renderer: RendererBase) -> None:
             ax = cast("Axes", self.axes)
             assert self.arrow_patch is not None
+            self._put(self.spots[0])
+            self.update_positions(renderer)
+            size = Text.get_window_extent(self, renderer).size  # the words, not the leader
             at = (ax.transData if self.xycoords == "data" else ax.transAxes).transform
-            points, boxes = _obstacles(ax, renderer, self)
+            anchors = at(np.array([spot[0] for spot in self.spots], dtype=float))
+            points, others = _obstacles(ax, renderer, self)
+            boxes = _boxes(self.spots, anchors, size, float(renderer.points_to_pixels(1.0)))
+            hidden = _hidden(boxes, points, others, ax.get_window_extent(renderer))
             tree = cKDTree(points) if len(points) else None
-            frame = ax.get_window_extent(renderer)
-            best: tuple[float, int] | None = None
-            for k, spot in enumerate(self.spots):
-                self._put(spot)
-                self.update_positions(renderer)
-                box = Text.get_window_extent(self, renderer)  # the text's box, no leader
-                hidden = _hidden(box, points, boxes, frame)
-                if tree is not None and _leads(spot):
-                    start = box.p0 + box.size * np.array(self._arrow_relpos)
-                    hidden += _under_leader(tree, start, at(self.xy))
-                if best is None or hidden < best[0]:
-                    best = (hidden, k)
-                if hidden == 0:
+            best = int(np.argmin(hidden))  # the nearest of the least hidden, unless ...
+            for k in np.flatnonzero(hidden == hidden.min()):
+                spot = self.spots[k]
+                if tree is None or not _leads(spot):
+                    best = int(k)
                     break
-            assert best is not None
-            self._put(self.spots[best[1]])
-            self.arrow_patch.set_visible(_leads(self.spots[best[1]]))
+                share = np.array([_SHARE[spot[2]], _SHARE[spot[3]]])
+                start = boxes[k, :2] + share * (boxes[k, 2:] - boxes[k, :2])
+                if _under_leader(tree, start, anchors[k]) == 0:  # ... one with a clear leader
+                    best = int(k)
+                    break
+            self._put(self.spots[best])
+            self.arrow_patch.set_visible(_leads(self.spots[best]))
 
         def _put(self, spot: Spot) -> None:
             anchor, offset, ha, va = spot
@@ -160,7 +171,7 @@ def _label_class() -> type:
             self.set_position(offset)
             self.set_horizontalalignment(ha)
             self.set_verticalalignment(va)
-            self._arrow_relpos = (_RELPOS[ha], _RELPOS[va])  # the corner nearest its point
+            self._arrow_relpos = (_SHARE[ha], _SHARE[va])
 
     return ClearLabel
 
@@ -170,8 +181,16 @@ def _leads(spot: Spot) -> bool:
     return float(np.hypot(*spot[1])) > LEADER_PT
 
 
-def _under_leader(tree: Any, start: ArrayF, end: ArrayF) -> float:
-    """How many obstacle points lie on the leader from ``start`` to ``end`` (display px).
+def _boxes(spots: Sequence[Spot], anchors: ArrayF, size: ArrayF, px_per_pt: float) -> ArrayF:
+    """The text's box (x0, y0, x1, y1) [display px] at each spot, (N, 4)."""
+    offsets = np.array([spot[1] for spot in spots], dtype=float) * px_per_pt
+    share = np.array([(_SHARE[spot[2]], _SHARE[spot[3]]) for spot in spots])
+    low = anchors + offsets - share * np.asarray(size, dtype=float)
+    return np.hstack([low, low + np.asarray(size, dtype=float)])
+
+
+def _under_leader(tree: Any, start: ArrayF, end: ArrayF) -> int:
+    """How many obstacle points lie on the leader from ``start`` to ``end`` [display px].
 
     The stretch within :data:`LEADER_PT` px of its point is left out: that is the point
     labelled.
@@ -179,10 +198,10 @@ def _under_leader(tree: Any, start: ArrayF, end: ArrayF) -> float:
     start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
     length = float(np.hypot(*(end - start)))
     if length <= LEADER_PT:
-        return 0.0
+        return 0
     t = np.linspace(0.0, 1.0 - LEADER_PT / length, max(int(length // STEP_PX), 2))
     near = tree.query_ball_point(start + t[:, None] * (end - start), r=PAD_PX)
-    return float(len(set().union(*near)))
+    return len(set().union(*near))
 
 
 def _obstacles(ax: Axes, renderer: RendererBase, label: object) -> tuple[ArrayF, list[Bbox]]:
@@ -194,14 +213,14 @@ def _obstacles(ax: Axes, renderer: RendererBase, label: object) -> tuple[ArrayF,
     for line in ax.get_lines():
         if line.get_visible() and _opaque(line.get_alpha()):
             points.append(_along(line.get_transform().transform(line.get_xydata())))
+    px_per_pt = np.asarray(renderer.points_to_pixels(1.0), dtype=float)
     for collection in ax.collections:
         if not collection.get_visible():
             continue
         if isinstance(collection, PathCollection):
             centres = collection.get_offset_transform().transform(collection.get_offsets())
             sizes = np.resize(np.asarray(collection.get_sizes(), dtype=float), len(centres))
-            radius = np.sqrt(sizes) / 2 * np.asarray(renderer.points_to_pixels(1.0), dtype=float)
-            points.append(_disks(centres, radius))
+            points.append(_disks(centres, np.sqrt(sizes) / 2 * px_per_pt))
         elif isinstance(collection, LineCollection):
             transform = collection.get_transform()
             for segment in collection.get_segments():
@@ -228,7 +247,7 @@ def _opaque(alpha: float | None) -> bool:
 
 
 def _along(xy: ArrayF) -> ArrayF:
-    """Points every :data:`STEP_PX` along a polyline (display px); NaN breaks it."""
+    """Points every :data:`STEP_PX` along a polyline [display px]; NaN breaks it."""
     xy = np.asarray(xy, dtype=float)
     if len(xy) < 2:
         return xy
@@ -244,18 +263,28 @@ def _along(xy: ArrayF) -> ArrayF:
 
 
 def _disks(centres: ArrayF, radius: ArrayF) -> ArrayF:
-    """Each marker as its centre and eight points on its rim (display px)."""
+    """Each marker as its centre and eight points on its rim [display px]."""
     angles = np.linspace(0.0, 2 * np.pi, 8, endpoint=False)
     rim = np.stack([np.cos(angles), np.sin(angles)], axis=1)
     ring = centres[:, None, :] + radius[:, None, None] * rim[None, :, :]
     return np.vstack([centres, ring.reshape(-1, 2)])
 
 
-def _hidden(box: Bbox, points: ArrayF, boxes: Sequence[Bbox], frame: Bbox) -> float:
-    """How much a label's box hides: points under it, boxes it overlaps, leaving the axes."""
-    x0, y0, x1, y1 = box.x0 - PAD_PX, box.y0 - PAD_PX, box.x1 + PAD_PX, box.y1 + PAD_PX
-    inside = (points[:, 0] >= x0) & (points[:, 0] <= x1) & (points[:, 1] >= y0)
-    count = float(np.count_nonzero(inside & (points[:, 1] <= y1)))
-    count += sum(10.0 for b in boxes if b.x0 < x1 and x0 < b.x1 and b.y0 < y1 and y0 < b.y1)
-    outside = box.x0 < frame.x0 or box.x1 > frame.x1 or box.y0 < frame.y0 or box.y1 > frame.y1
-    return count + (1e6 if outside else 0.0)
+def _hidden(boxes: ArrayF, points: ArrayF, others: Sequence[Bbox], frame: Bbox) -> ArrayF:
+    """How much each candidate box (N, 4) hides.
+
+    The obstacle points under it, 10 for each box it overlaps, 1e6 if it leaves the frame.
+    """
+    x0, y0 = boxes[:, 0] - PAD_PX, boxes[:, 1] - PAD_PX
+    x1, y1 = boxes[:, 2] + PAD_PX, boxes[:, 3] + PAD_PX
+    hidden = np.zeros(len(boxes))
+    for chunk in np.array_split(np.arange(len(boxes)), max(1, len(boxes) // 256)):
+        px, py = points[None, :, 0], points[None, :, 1]
+        inside = (px >= x0[chunk, None]) & (px <= x1[chunk, None])
+        inside &= (py >= y0[chunk, None]) & (py <= y1[chunk, None])
+        hidden[chunk] = inside.sum(axis=1)
+    for b in others:
+        hidden += 10.0 * ((b.x0 < x1) & (x0 < b.x1) & (b.y0 < y1) & (y0 < b.y1))
+    outside = (boxes[:, 0] < frame.x0) | (boxes[:, 2] > frame.x1)
+    outside |= (boxes[:, 1] < frame.y0) | (boxes[:, 3] > frame.y1)
+    return hidden + 1e6 * outside

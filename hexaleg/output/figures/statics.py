@@ -10,7 +10,14 @@ import pandas as pd
 
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
-from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
+from hexaleg.output.figures.canvas import (
+    COLORS,
+    drawn,
+    log_scale,
+    magnitude_axis,
+    name_largest,
+    new_figure,
+)
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 from hexaleg.statics.loads import LoadsAnalysis
 
@@ -158,6 +165,7 @@ def statics_study_figure(
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
+        magnitude_axis(ax, table[f"peak_{joint}_torque"], f"largest {joint} |τ|")
         if rated is not None:
             rating_line(ax, rated[joint], joint)
     payload = panels[2]
