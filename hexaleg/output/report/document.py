@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from pathlib import Path
 from typing import Any, Literal
 
@@ -34,6 +34,14 @@ def table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def cell(value: float, text: Callable[[float], str], missing: str) -> str:
+    """A table cell: ``text(value)``, or ``missing`` when ``value`` is NaN or infinite.
+
+    ``missing`` says in words why there is no number: a table never prints ``nan``.
+    """
+    return text(value) if math.isfinite(value) else missing
 
 
 TITLE = "hexaleg report"
