@@ -229,7 +229,7 @@ def test_the_walking_figure_reads_each_magnitude_from_zero_and_states_a_narrow_s
     note = " ".join(t.get_text() for t in figure.axes[2].texts)
     assert f"{cot.min():.3g} to {cot.max():.3g}" in note  # the 10 % spread, in numbers
     spread = 100 * (cot.max() - cot.min()) / cot.max()
-    assert f"spread of {spread:.0f} %" in note
+    assert f"all within {spread:.0f} %" in note
     assert not figure.axes[3].texts  # the payload spreads over its whole axis: no note
 
 

@@ -122,7 +122,7 @@ NARROW_SPREAD = 0.25
 """Values spreading less than this share of their largest look flat on an axis from zero [-]."""
 
 
-def magnitude_axis(ax: Axes, values: npt.ArrayLike, what: str) -> None:
+def magnitude_axis(ax: Axes, values: npt.ArrayLike, what: str = "") -> None:
     """Read a magnitude (a torque, a cost, a payload: ≥ 0) on ``ax``'s y axis against zero.
 
     The rule for every such axis: it starts at 0 and ends a little above the largest value,
@@ -130,7 +130,7 @@ def magnitude_axis(ax: Axes, values: npt.ArrayLike, what: str) -> None:
     like the whole axis; matplotlib's offset notation (``+8.8e-2`` above the axis, the ticks
     read as differences) is off. Where the finite ``values`` spread less than
     :data:`NARROW_SPREAD` of their largest, the curves look nearly flat from zero, so the
-    panel states their range in numbers (``what`` names the quantity), in a corner where
+    panel states their range in numbers (after ``what``, if given), in a corner where
     the note hides no data.
     """
     finite = np.asarray(values, dtype=float)
@@ -143,8 +143,7 @@ def magnitude_axis(ax: Axes, values: npt.ArrayLike, what: str) -> None:
         low = float(finite.min())
         clear_label(
             ax,
-            f"{what}: {low:.3g} to {high:.3g}, a spread of {100 * (high - low) / high:.0f} % "
-            "of the largest",
+            f"{what} {low:.3g} to {high:.3g}: all within {100 * (high - low) / high:.0f} %".strip(),
             (0.0, 0.0),
             CORNERS,
             xycoords="axes fraction",

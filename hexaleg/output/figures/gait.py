@@ -169,8 +169,8 @@ def walking_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
-    fig = new_figure(8.8)
-    panels = fig.subplots(4, 1, sharex=True)
+    fig = new_figure(6.2)
+    panels = fig.subplots(2, 2, sharex=True).ravel()
     columns = (
         ("gait_peak_hip_torque", "peak hip |τ| [N·m]"),
         ("gait_peak_knee_torque", "peak knee |τ| [N·m]"),
@@ -184,14 +184,16 @@ def walking_study_figure(
             ax.plot(group["l3_ratio"], values[group.index], color=color,
                     label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
-        magnitude_axis(ax, values, label.split(" [")[0])
+        magnitude_axis(ax, values)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
         if rated is not None:
             rating_line(ax, rated[joint], joint)
-    panels[-1].set_xlabel("tibia ratio l3 / L [-]")
-    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
+    for ax in panels[2:]:
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+    fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
+               fontsize=7.5)  # fmt: skip
     fig.suptitle(
         f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
         "that cannot walk it unloaded within their ratings)"

@@ -144,11 +144,12 @@ def _label_class() -> type:
             assert self.arrow_patch is not None
             self._put(self.spots[0])
             self.update_positions(renderer)
-            size = Text.get_window_extent(self, renderer).size  # the words, not the leader
+            size = np.asarray(Text.get_window_extent(self, renderer).size, dtype=float)
             at = (ax.transData if self.xycoords == "data" else ax.transAxes).transform
             anchors = at(np.array([spot[0] for spot in self.spots], dtype=float))
             points, others = _obstacles(ax, renderer, self)
-            boxes = _boxes(self.spots, anchors, size, float(renderer.points_to_pixels(1.0)))
+            px_per_pt = np.asarray(renderer.points_to_pixels(1.0), dtype=float)
+            boxes = _boxes(self.spots, anchors, size, float(px_per_pt))  # the words' boxes
             hidden = _hidden(boxes, points, others, ax.get_window_extent(renderer))
             tree = cKDTree(points) if len(points) else None
             best = int(np.argmin(hidden))  # the nearest of the least hidden, unless ...

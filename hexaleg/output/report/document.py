@@ -11,7 +11,10 @@ from __future__ import annotations
 
 import html
 import math
-from collections.abc import Callable, Sequence
+import re
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any, Literal
 
@@ -97,25 +100,180 @@ def _figure_markdown(figure: Figure, number: int, folder: Path) -> str:
 
 
 def report_html(report: Sequence[Section], folder: Path, medium: Medium = "screen") -> str:
-    """The whole report as one HTML page; figures are read from ``folder`` for their size."""
+    """The whole report as one HTML page; figures are read from ``folder`` for their size.
+
+    For ``"print"``, the blocks of :func:`print_blocks` in reading order, every figure at
+    its drawn size (the PDF's layout, :mod:`~hexaleg.output.report.pages`, may reorder and
+    shrink them).
+    """
+    if medium == "print":
+        return print_html(print_blocks(report, folder))
     numbers = figure_numbers(report)
-    body = [f"<h1>{TITLE}</h1>", _markdown(preamble(folder, medium))]
+    body = [f"<h1>{TITLE}</h1>", markdown_html(preamble(folder, medium))]
     for section in report:
-        body.append(f"<section>\n<div class='keep'><h2>{html.escape(section.title)}</h2>")
-        for k, block in enumerate(section.blocks):  # the heading stays with its first block
+        body.append(f"<section>\n<h2>{html.escape(section.title)}</h2>")
+        for block in section.blocks:
             if isinstance(block, Figure):
-                body.append(_figure_html(block, numbers[block.name], folder, medium))
+                body.append(figure_html(block, numbers[block.name], folder, medium))
             else:
-                body.append(_markdown(block))
-            if k == 0:
-                body.append("</div>")
-        body.append("</section>" if section.blocks else "</div></section>")
+                body.append(markdown_html(block))
+        body.append("</section>")
+    return _page("\n".join(body), STYLE)
+
+
+def _page(body: str, style: str) -> str:
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
-        f"<title>{TITLE}</title><style>{STYLE}{PRINT_STYLE if medium == 'print' else ''}"
-        "</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
+        f"<title>{TITLE}</title><style>{style}</style></head><body>\n{body}\n</body></html>\n"
     )
+
+
+@dataclass(frozen=True)
+class PrintBlock:
+    """A run of the print version that stays on one page.
+
+    Attributes:
+        html: Its HTML.
+        section: The index of its section (-1: the title and reading notes).
+        figure: The figure it shows, or ``""``.
+        keep: It must not be cut across pages (a heading with what follows, a paragraph
+            with the table it introduces, a table, a figure); else it is text and may be.
+        heading: It starts with its section's heading.
+
+    """
+
+    html: str
+    section: int
+    figure: str = ""
+    keep: bool = False
+    heading: bool = False
+
+
+def print_blocks(
+    report: Sequence[Section], folder: Path, scales: Mapping[str, float] | None = None
+) -> list[PrintBlock]:
+    """The print version cut into the blocks each kept on one page, in reading order.
+
+    Each markdown block is cut into its top-level elements (paragraphs, tables). A heading
+    is kept with the element after it, a paragraph with the table after it (the text that
+    introduces a table) and with anything after it when it ends with a colon; a chain of
+    such elements is one block. ``scales`` draws a figure (by name) at that share of its
+    size.
+    """
+    numbers = figure_numbers(report)
+    blocks = [PrintBlock(f"<h1>{TITLE}</h1>" + markdown_html(preamble(folder, "print")), -1)]
+    for index, section in enumerate(report):
+        units: list[tuple[str, str, str]] = [("h2", f"<h2>{html.escape(section.title)}</h2>", "")]
+        for block in section.blocks:
+            if isinstance(block, Figure):
+                scale = (scales or {}).get(block.name, 1.0)
+                shown = figure_html(block, numbers[block.name], folder, "print", scale)
+                units.append(("figure", shown, block.name))
+            else:
+                units += [(tag, part, "") for tag, part in top_level(markdown_html(block))]
+        blocks += _chains(units, index)
+    return blocks
+
+
+def _chains(units: Sequence[tuple[str, str, str]], section: int) -> list[PrintBlock]:
+    """Join each unit (tag, HTML, figure) that must stay with the next into one block."""
+    blocks: list[PrintBlock] = []
+    run: list[tuple[str, str, str]] = []
+    for k, unit in enumerate(units):
+        run.append(unit)
+        after = units[k + 1][0] if k + 1 < len(units) else ""
+        if after and _stays_with_next(unit, after):
+            continue
+        tags = {tag for tag, _, _ in run}
+        blocks.append(
+            PrintBlock(
+                "".join(part for _, part, _ in run),
+                section,
+                figure=next((name for _, _, name in run if name), ""),
+                keep=len(run) > 1 or bool(tags & {"table", "figure"}),
+                heading=run[0][0] == "h2",
+            )
+        )
+        run = []
+    return blocks
+
+
+def _stays_with_next(unit: tuple[str, str, str], after: str) -> bool:
+    tag, part, _ = unit
+    if tag in ("h2", "h3", "h4"):
+        return True
+    text = re.sub(r"<[^>]+>", "", part).strip()
+    return tag == "p" and (after == "table" or text.endswith(":"))
+
+
+def top_level(fragment: str) -> list[tuple[str, str]]:
+    """The top-level elements of an HTML fragment: (tag, its HTML), in order."""
+    found: list[tuple[str, str]] = []
+    parser = _TopLevel()
+    parser.feed(fragment)
+    parser.close()
+    lines = fragment.splitlines(keepends=True)
+    offsets = [0]
+    for line in lines:
+        offsets.append(offsets[-1] + len(line))
+    left = fragment
+    for tag, (l0, c0), (l1, c1) in parser.spans:
+        start, end = offsets[l0 - 1] + c0, offsets[l1 - 1] + c1
+        found.append((tag, fragment[start:end]))
+        left = left.replace(fragment[start:end], "", 1)
+    if left.strip() or not found:  # text outside any element: the fragment stays whole
+        return [("div", fragment)]
+    return found
+
+
+class _TopLevel(HTMLParser):
+    """Where each top-level element of a fragment starts and ends (line, column)."""
+
+    VOID = frozenset({"br", "hr", "img", "input", "meta", "link", "wbr", "col", "area"})
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=False)
+        self.depth = 0
+        self.open: tuple[str, tuple[int, int]] | None = None
+        self.spans: list[tuple[str, tuple[int, int], tuple[int, int]]] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if tag in self.VOID:
+            if self.depth == 0:
+                self.handle_startendtag(tag, attrs)
+            return
+        if self.depth == 0:
+            self.open = (tag, self.getpos())
+        self.depth += 1
+
+    def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if self.depth == 0:
+            line, column = self.getpos()
+            text = self.get_starttag_text() or ""
+            self.spans.append((tag, (line, column), (line, column + len(text))))
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in self.VOID or self.depth == 0:
+            return
+        self.depth -= 1
+        if self.depth == 0 and self.open is not None:
+            line, column = self.getpos()
+            self.spans.append((self.open[0], self.open[1], (line, column + len(f"</{tag}>"))))
+            self.open = None
+
+
+def print_html(blocks: Sequence[PrintBlock], order: Sequence[int] | None = None) -> str:
+    """The print page of ``blocks`` in ``order`` (reading order by default).
+
+    Each block is a ``<div class='block' id='b<index>'>``, kept on one page where it must be.
+    """
+    body = []
+    for k in range(len(blocks)) if order is None else order:
+        block = blocks[k]
+        keep = " keep" if block.keep else ""
+        body.append(f"<div class='block{keep}' id='b{k}'>{block.html}</div>")
+    return _page("\n".join(body), STYLE + PRINT_STYLE)
 
 
 STYLE = (
@@ -132,26 +290,30 @@ PRINT_STYLE = (
     "@page{size:A4;margin:12mm;@bottom-center{content:counter(page) ' / ' counter(pages);"
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
-    "h2,h3{break-after:avoid}.keep{break-inside:avoid}"
+    "h2,h3{break-after:avoid}.keep{break-inside:avoid}h2{margin-top:.9em}"
     "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
-"""Print layout (the PDF): A4, numbered pages, no table or figure cut, no heading left alone
-at the foot of a page: a heading is kept on the page of the block it introduces."""
+"""Print layout (the PDF): A4, numbered pages, no table, figure or kept block
+(:func:`print_blocks`) cut across pages."""
 
 
-def _markdown(text: str) -> str:
+def markdown_html(text: str) -> str:
+    """A markdown block (text, tables) as HTML."""
     return str(markdown.markdown(text, extensions=["tables"]))
 
 
-def _figure_html(figure: Figure, number: int, folder: Path, medium: Medium) -> str:
+def figure_html(
+    figure: Figure, number: int, folder: Path, medium: Medium, scale: float = 1.0
+) -> str:
+    """A figure with its caption; for print its SVG at ``scale`` of the size it was drawn."""
     width, height = png_size(folder / f"{figure.name}.png")
     caption = html.escape(f"Figure {number}: {figure.caption}")
     png, svg = f"{figure.name}.png", f"{figure.name}.svg"
     if medium == "print":  # vector, at the size it was drawn
         image = (
             f"<img src='{svg}' alt='{caption}' "
-            f"style='width:{width / DPI:.3f}in;height:{height / DPI:.3f}in'>"
+            f"style='width:{scale * width / DPI:.3f}in;height:{scale * height / DPI:.3f}in'>"
         )
     else:
         image = (
