@@ -131,14 +131,14 @@ def _page(body: str, style: str) -> str:
 
 @dataclass(frozen=True)
 class PrintBlock:
-    """A run of the print version that stays on one page.
+    """A run of the print version with no page break between its elements but inside text.
 
     Attributes:
         html: Its HTML.
         section: The index of its section (-1: the title and reading notes).
         figure: The figure it shows, or ``""``.
-        keep: It must not be cut across pages (a heading with what follows, a paragraph
-            with the table it introduces, a table, a figure); else it is text and may be.
+        keep: It holds only tables and figures: it cannot be cut across pages at all (text
+            can, between lines).
         heading: It starts with its section's heading.
 
     """
@@ -153,13 +153,15 @@ class PrintBlock:
 def print_blocks(
     report: Sequence[Section], folder: Path, scales: Mapping[str, float] | None = None
 ) -> list[PrintBlock]:
-    """The print version cut into the blocks each kept on one page, in reading order.
+    """The print version cut into blocks, in reading order.
 
     Each markdown block is cut into its top-level elements (paragraphs, tables). A heading
-    is kept with the element after it, a paragraph with the table after it (the text that
-    introduces a table) and with anything after it when it ends with a colon; a chain of
-    such elements is one block. ``scales`` draws a figure (by name) at that share of its
-    size.
+    stays with the element after it, a paragraph with the table after it (the text that
+    introduces a table) and with anything after it when it ends with a colon: no page
+    breaks after such an element (CSS ``break-after: avoid``, class ``intro`` on a
+    paragraph), so at least its last lines go to the next page with what it introduces;
+    a chain of such elements is one block. ``scales`` draws a figure (by name) at that
+    share of its size.
     """
     numbers = figure_numbers(report)
     blocks = [PrintBlock(f"<h1>{TITLE}</h1>" + markdown_html(preamble(folder, "print")), -1)]
@@ -177,21 +179,23 @@ def print_blocks(
 
 
 def _chains(units: Sequence[tuple[str, str, str]], section: int) -> list[PrintBlock]:
-    """Join each unit (tag, HTML, figure) that must stay with the next into one block."""
+    """Join each unit (tag, HTML, figure) that stays with the next into one block."""
     blocks: list[PrintBlock] = []
     run: list[tuple[str, str, str]] = []
-    for k, unit in enumerate(units):
-        run.append(unit)
+    for k, (tag, part, name) in enumerate(units):
         after = units[k + 1][0] if k + 1 < len(units) else ""
-        if after and _stays_with_next(unit, after):
+        stays = bool(after) and _stays_with_next((tag, part, name), after)
+        if stays and tag == "p":
+            part = part.replace("<p>", "<p class='intro'>", 1)
+        run.append((tag, part, name))
+        if stays:
             continue
-        tags = {tag for tag, _, _ in run}
         blocks.append(
             PrintBlock(
                 "".join(part for _, part, _ in run),
                 section,
                 figure=next((name for _, _, name in run if name), ""),
-                keep=len(run) > 1 or bool(tags & {"table", "figure"}),
+                keep=all(tag in ("table", "figure") for tag, _, _ in run),
                 heading=run[0][0] == "h2",
             )
         )
@@ -266,13 +270,12 @@ class _TopLevel(HTMLParser):
 def print_html(blocks: Sequence[PrintBlock], order: Sequence[int] | None = None) -> str:
     """The print page of ``blocks`` in ``order`` (reading order by default).
 
-    Each block is a ``<div class='block' id='b<index>'>``, kept on one page where it must be.
+    Each block is a ``<div class='block' id='b<index>'>``.
     """
     body = []
     for k in range(len(blocks)) if order is None else order:
         block = blocks[k]
-        keep = " keep" if block.keep else ""
-        body.append(f"<div class='block{keep}' id='b{k}'>{block.html}</div>")
+        body.append(f"<div class='block' id='b{k}'>{block.html}</div>")
     return _page("\n".join(body), STYLE + PRINT_STYLE)
 
 
@@ -290,12 +293,12 @@ PRINT_STYLE = (
     "@page{size:A4;margin:12mm;@bottom-center{content:counter(page) ' / ' counter(pages);"
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
-    "h2,h3{break-after:avoid}.keep{break-inside:avoid}h2{margin-top:.9em}"
+    "h2,h3,p.intro{break-after:avoid}h2{margin-top:.9em}"
     "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
-"""Print layout (the PDF): A4, numbered pages, no table, figure or kept block
-(:func:`print_blocks`) cut across pages."""
+"""Print layout (the PDF): A4, numbered pages, no table or figure cut across pages, no page
+break after a heading or after the words introducing a table (:func:`print_blocks`)."""
 
 
 def markdown_html(text: str) -> str:
