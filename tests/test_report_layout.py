@@ -305,9 +305,27 @@ def test_the_pdf_shows_a_still_of_the_3d_view_and_links_to_it(report):
 
     out, _ = report
     reader = PdfReader(out / "report.pdf")
-    (page,) = [p for p in reader.pages if "4. 3-D view" in p.extract_text()]
-    text = page.extract_text()
-    assert "viewer.html" in text
-    assert re.search(r"Figure \d+: The nominal stance", text.replace("\n", " "))
+    texts = [" ".join(p.extract_text().split()) for p in reader.pages]
+    (start,) = [k for k, text in enumerate(texts) if "4. 3-D view" in text]
+    (still,) = [k for k, text in enumerate(texts) if "The nominal stance, as viewer" in text]
+    assert still in (start, start + 1)  # the section's still: on its page or the next
+    assert "viewer.html" in texts[start]
+    assert re.search(r"Figure \d+: The nominal stance", texts[still])
+    assert "a still of it:" in texts[still]  # its introduction's end beside it
+    page = reader.pages[start]
     links = [a.get_object().get("/A", {}).get("/URI", "") for a in page.get("/Annots", [])]
     assert any(str(uri).endswith("viewer.html") for uri in links)
+
+
+def test_no_table_of_the_report_prints_nan_or_inf(report):
+    """A missing number is said in words: every cell of every table is read for nan/inf."""
+    out, _ = report
+    cells = [
+        cell.strip()
+        for line in (out / "report.md").read_text().splitlines()
+        if line.startswith("|")
+        for cell in line.strip("|").split("|")
+    ]
+    assert len(cells) > 100
+    bad = [c for c in cells if re.search(r"\b(nan|inf|infinity)\b", c, re.IGNORECASE)]
+    assert not bad, f"table cells {bad}"
