@@ -96,3 +96,28 @@ def test_a_heading_and_the_words_introducing_a_table_go_with_the_table(tmp_path)
     pages, _ = _pages(report, tmp_path)
     table = _page_of(pages, "row11 11")
     assert _page_of(pages, "Small") == _page_of(pages, "The numbers:") == table == 1
+
+
+def test_a_long_table_that_would_leave_a_page_mostly_blank_starts_in_it_cut_between_rows(
+    tmp_path,
+):
+    rows = "\n".join(f"| row{k} | {k} |" for k in range(45))  # about 70 % of a page
+    report = [
+        Section("Big", (_figure(tmp_path, "a", 0.42 * USABLE_IN),)),
+        Section("Long", ("The numbers:", f"| name | value |\n|---|---|\n{rows}")),
+    ]
+    pages, page = _pages(report, tmp_path)
+    first, last = _page_of(pages, "row0 0"), _page_of(pages, "row44 44")
+    assert first == _page_of(pages, "Figure 1: caption") == 0 and last == 1  # cut, not moved
+    assert all("name value" in pages[k] for k in (first, last))  # its header on both pages
+    assert "class=long" in page
+
+
+def test_a_short_table_is_never_cut(tmp_path):
+    rows = "\n".join(f"| row{k} | {k} |" for k in range(14))
+    report = [
+        Section("Big", (_figure(tmp_path, "a", 0.72 * USABLE_IN),)),
+        Section("Short", ("The numbers:", f"| name | value |\n|---|---|\n{rows}")),
+    ]
+    pages, _ = _pages(report, tmp_path)
+    assert _page_of(pages, "row0 0") == _page_of(pages, "row13 13") == 1

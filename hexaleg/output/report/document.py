@@ -10,10 +10,11 @@ each is shown at its natural pixel size (the figures are drawn for the page: at 
 from __future__ import annotations
 
 import html
+import itertools
 import math
 import re
-from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Collection, Mapping, Sequence
+from dataclasses import dataclass, replace
 from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any, Literal
@@ -151,7 +152,10 @@ class PrintBlock:
 
 
 def print_blocks(
-    report: Sequence[Section], folder: Path, scales: Mapping[str, float] | None = None
+    report: Sequence[Section],
+    folder: Path,
+    scales: Mapping[str, float] | None = None,
+    long_tables: Collection[str] = (),
 ) -> list[PrintBlock]:
     """The print version cut into blocks, in reading order.
 
@@ -161,7 +165,8 @@ def print_blocks(
     breaks after such an element (CSS ``break-after: avoid``, class ``intro`` on a
     paragraph), so at least its last lines go to the next page with what it introduces;
     a chain of such elements is one block. ``scales`` draws a figure (by name) at that
-    share of its size.
+    share of its size. Tables are named ``t<n>`` in reading order; those in ``long_tables``
+    may be cut between rows (their header repeated), the others are not cut.
     """
     numbers = figure_numbers(report)
     blocks = [PrintBlock(f"<h1>{TITLE}</h1>" + markdown_html(preamble(folder, "print")), -1)]
@@ -175,7 +180,13 @@ def print_blocks(
             else:
                 units += [(tag, part, "") for tag, part in top_level(markdown_html(block))]
         blocks += _chains(units, index)
-    return blocks
+    tables = itertools.count()
+
+    def named(found: re.Match[str]) -> str:
+        name = f"t{next(tables)}"
+        return f"<table id='{name}'{' class=long' if name in long_tables else ''}>"
+
+    return [replace(block, html=re.sub(r"<table>", named, block.html)) for block in blocks]
 
 
 def _chains(units: Sequence[tuple[str, str, str]], section: int) -> list[PrintBlock]:
@@ -294,11 +305,13 @@ PRINT_STYLE = (
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
     "h2,h3,p.intro{break-after:avoid}h2{margin-top:.9em}"
-    "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
+    "table{font-size:8.5pt;break-inside:avoid}table.long{break-inside:auto}"
+    "tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
-"""Print layout (the PDF): A4, numbered pages, no table or figure cut across pages, no page
-break after a heading or after the words introducing a table (:func:`print_blocks`)."""
+"""Print layout (the PDF): A4, numbered pages, no figure or table cut across pages (but a
+long table, between rows), no page break after a heading or after the words introducing a
+table (:func:`print_blocks`)."""
 
 
 def markdown_html(text: str) -> str:

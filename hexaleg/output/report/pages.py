@@ -4,16 +4,20 @@ WeasyPrint lays the blocks of :func:`~hexaleg.output.report.document.print_block
 A4 (CSS paged media): a block that must stay on one page (a heading with what follows it, a
 paragraph with its table, a table, a figure) moves whole to the next page when it does not
 fit in what is left of this one. Where that leaves a page (not the last) more than
-:data:`FIX_BLANK` blank and the block that moved holds a figure, the layout mends it, then
-lays the pages out again (at most :data:`MAX_PASSES` times):
+:data:`FIX_BLANK` blank, the layout mends it, then lays the pages out again (at most
+:data:`MAX_PASSES` times):
 
-1. the figure is drawn smaller, down to :data:`MIN_SCALE` of the size it was drawn, if that
+1. a figure that moved is drawn smaller, down to :data:`MIN_SCALE` of the size it was drawn, if that
    makes its block fit in the gap; else
 2. the text after it in its section fills the gap and the figure follows that text (a float,
    as LaTeX places figures), never past another figure nor into another section.
 
-A gap before a table or a heading is left: moving those would change what the text says
-"below". Figures keep their numbers (reading order); only where they are printed changes.
+3. a table at least :data:`LONG_TABLE` of a page tall that moved whole to the next page
+   starts in the gap instead, cut between two rows, its header repeated on the next page.
+
+A gap before a short table or a heading is left: moving those would change what the text
+says "below". Figures keep their numbers (reading order); only where they are printed
+changes.
 """
 
 from __future__ import annotations
@@ -42,6 +46,10 @@ as drawn, prints at 6.4 pt."""
 MAX_PASSES = 8
 """Layouts at most (the first, then one per mend)."""
 
+LONG_TABLE = 0.4
+"""A table at least this share of a page tall may be cut between rows (its header repeated)
+where moving it whole would leave a page mostly blank [-]."""
+
 SAFETY_PX = 32.0
 """Room left when a figure is shrunk to fit a gap [CSS px]: its top margin (1.5 rem), cut
 at the top of a page, is kept under the text above it."""
@@ -55,12 +63,14 @@ class Layout:
         order: Block indices in print order (a permutation of reading order).
         scales: Figure name → share of its drawn size [-].
         mended: Figure names already shrunk or floated (each is mended once).
+        long_tables: Tables (``t<n>``, in reading order) that may be cut across pages.
 
     """
 
     order: tuple[int, ...]
     scales: dict[str, float] = field(default_factory=dict)
     mended: frozenset[str] = frozenset()
+    long_tables: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -69,14 +79,18 @@ class Page:
 
     Attributes:
         blocks: The blocks on it, top to bottom: (index, top, height) [CSS px].
-        blank: The height left under its last block [CSS px].
+        blank: The height left under its last line, row or image [CSS px].
         usable: The height of its content area [CSS px].
+        top: The top of its content area [CSS px].
+        tables: The tables on it: (``t<n>``, top, height) [CSS px].
 
     """
 
     blocks: tuple[tuple[int, float, float], ...]
     blank: float
     usable: float
+    top: float = 0.0
+    tables: tuple[tuple[str, float, float], ...] = ()
 
 
 def lay_out(report: Sequence[Section], folder: Path) -> tuple[str, Document]:
@@ -87,7 +101,7 @@ def lay_out(report: Sequence[Section], folder: Path) -> tuple[str, Document]:
     logging.getLogger("fontTools").setLevel(logging.ERROR)
     layout = Layout(tuple(range(len(print_blocks(report, folder)))))
     for _ in range(MAX_PASSES):
-        blocks = print_blocks(report, folder, layout.scales)
+        blocks = print_blocks(report, folder, layout.scales, layout.long_tables)
         page = print_html(blocks, layout.order)
         document = weasyprint.HTML(string=page, base_url=str(folder)).render()
         mended = mend(blocks, layout, pages(document))
@@ -98,34 +112,58 @@ def lay_out(report: Sequence[Section], folder: Path) -> tuple[str, Document]:
 
 
 def pages(document: Document) -> list[Page]:
-    """Each page's blocks and blank height, from WeasyPrint's boxes."""
+    """Each page's blocks, tables and blank height, from WeasyPrint's boxes."""
     found = []
     for laid_out in document.pages:
         box = laid_out._page_box
         top, usable = float(box.content_box_y()), float(box.height)
         blocks = tuple(
             (int(child.element.get("id")[1:]), float(child.position_y), _height(child))
-            for child in _block_boxes(box)
+            for child in _boxes_of(box, "div", r"b\d+")
         )
-        bottom = max((y + h for _, y, h in blocks), default=top)
-        found.append(Page(blocks, top + usable - bottom, usable))
+        tables = tuple(
+            (str(child.element.get("id")), float(child.position_y), _height(child))
+            for child in _boxes_of(box, "table", r"t\d+")
+        )
+        bottom = max((_bottom(leaf) for leaf in _leaves(box)), default=top)
+        found.append(Page(blocks, top + usable - bottom, usable, top, tables))
     return found
+
+
+_INKED = ("LineBox", "TableRowBox", "BlockReplacedBox", "InlineReplacedBox")
+"""The boxes that print something: lines of text, table rows, images (a block that goes on
+to the next page stretches to the foot of this one, so it cannot say where the ink ends)."""
+
+
+def _leaves(box: Any) -> list[Any]:
+    """The printed boxes under ``box`` (text lines, table rows, images), but its margins'."""
+    found = []
+    for child in getattr(box, "children", None) or []:
+        kind = type(child).__name__
+        if kind == "MarginBox":  # the page number
+            continue
+        found += [child] if kind in _INKED else _leaves(child)
+    return found
+
+
+def _bottom(box: Any) -> float:
+    return float(box.position_y) + float(box.height)
 
 
 def _height(box: Any) -> float:
     return float(box.margin_height())
 
 
-def _block_boxes(box: Any) -> list[Any]:
-    """The boxes of the ``div.block`` elements under a page box, top to bottom."""
+def _boxes_of(box: Any, tag: str, ids: str) -> list[Any]:
+    """The outermost boxes of the ``tag`` elements with an id matching ``ids``, in order."""
     found = []
     for child in getattr(box, "children", None) or []:
         element = getattr(child, "element", None)
         name = element.get("id", "") if element is not None else ""
-        if getattr(child, "element_tag", None) == "div" and re.fullmatch(r"b\d+", name):
+        if getattr(child, "element_tag", None) == tag and re.fullmatch(ids, name):
             found.append(child)
         else:
-            found += _block_boxes(child)
+            found += _boxes_of(child, tag, ids)
     return found
 
 
@@ -134,17 +172,36 @@ def mend(blocks: Sequence[PrintBlock], layout: Layout, laid: Sequence[Page]) -> 
     for page, after in itertools.pairwise(laid):
         if page.blank <= FIX_BLANK * page.usable or not after.blocks:
             continue
-        k, _, height = after.blocks[0]
-        block = blocks[k]
-        if not block.figure or block.figure in layout.mended:
-            continue
-        if any(index == k for index, _, _ in page.blocks):  # continued from this page
-            continue
-        mended = _shrink(block, height, page.blank, layout) or _float(
-            blocks, k, page.blank, layout, laid
-        )
+        mended = _mend_figure(blocks, layout, laid, page, after) or _long_table(layout, page, after)
         if mended is not None:
             return mended
+    return None
+
+
+def _mend_figure(
+    blocks: Sequence[PrintBlock], layout: Layout, laid: Sequence[Page], page: Page, after: Page
+) -> Layout | None:
+    """Shrink or float the figure that opens the page after ``page``, if one does."""
+    k, _, height = after.blocks[0]
+    block = blocks[k]
+    if not block.figure or block.figure in layout.mended:
+        return None
+    if any(index == k for index, _, _ in page.blocks):  # continued from this page
+        return None
+    return _shrink(block, height, page.blank, layout) or _float(blocks, k, page.blank, layout, laid)
+
+
+def _long_table(layout: Layout, page: Page, after: Page) -> Layout | None:
+    """Let a long table that moved whole to the next page start in the gap it left."""
+    on_page = {name for name, _, _ in page.tables}
+    for name, top, height in after.tables:
+        if name in on_page or name in layout.long_tables:
+            continue
+        above = top - after.top  # the introduction's last lines, moved with it
+        moved = above < 0.25 * after.usable and above + height > page.blank
+        if moved and height >= LONG_TABLE * after.usable:
+            return replace(layout, long_tables=layout.long_tables | {name})
+        return None
     return None
 
 
