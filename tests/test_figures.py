@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import io
 import json
 
 import numpy as np
@@ -279,6 +280,9 @@ def test_the_pareto_front_names_its_largest_design_where_the_name_hides_no_point
     assert gaps.min() > 0, f"the label covers {int((gaps <= 0).sum())} markers"
     frame = ax.get_window_extent(renderer)
     assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 <= box.y1 <= frame.y1
+    spot = label.xyann
+    figure.savefig(io.BytesIO(), format="svg")  # 72 dpi: the same spot as the 150 dpi PNG
+    assert label.xyann == spot
 
 
 def _motor_design():

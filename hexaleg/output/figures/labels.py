@@ -2,7 +2,7 @@
 
 A label added by :func:`clear_label` carries a list of candidate spots (an anchor and an
 offset from it), nearest first. When the figure is drawn, after the layout has placed
-every axes, the label takes the first spot where its box, padded by :data:`PAD_PX`, lies
+every axes, the label takes the first spot where its box, padded by :data:`PAD_PT`, lies
 inside the axes and holds no point of a curve or a scatter marker, no bar, no legend and
 no other text of its axes, and where its leader line (drawn back to a point it has moved
 away from) crosses no marker or curve either; if every spot hides something, the one hiding
@@ -32,11 +32,12 @@ Spot = tuple[tuple[float, float], tuple[float, float], HAlign, VAlign]
 """A candidate spot: the anchor (in the label's ``xycoords``), the text's offset from it
 [pt], and the text's horizontal and vertical alignment."""
 
-PAD_PX = 4.0
-"""Clearance kept around a label's box and along its leader line [px]."""
+PAD_PT = 2.0
+"""Clearance kept around a label's box and along its leader line [pt]: in points, so the
+PNG (150 dpi) and the SVG (72 dpi) of a figure put the label at the same spot."""
 
-STEP_PX = 2.0
-"""Curves and leader lines are checked every this many pixels along their length [px]."""
+STEP_PT = 1.0
+"""Curves and leader lines are checked every this many points along their length [pt]."""
 
 LEADER = {"arrowstyle": "-", "lw": 0.6, "color": "0.3"}
 """The leader line from a label moved away from its point to the point."""
@@ -147,10 +148,11 @@ def _label_class() -> type:
             size = np.asarray(Text.get_window_extent(self, renderer).size, dtype=float)
             at = (ax.transData if self.xycoords == "data" else ax.transAxes).transform
             anchors = at(np.array([spot[0] for spot in self.spots], dtype=float))
-            points, others = _obstacles(ax, renderer, self)
-            px_per_pt = np.asarray(renderer.points_to_pixels(1.0), dtype=float)
-            boxes = _boxes(self.spots, anchors, size, float(px_per_pt))  # the words' boxes
-            hidden = _hidden(boxes, points, others, ax.get_window_extent(renderer))
+            px_per_pt = float(np.asarray(renderer.points_to_pixels(1.0), dtype=float))
+            points, others = _obstacles(ax, renderer, self, px_per_pt)
+            boxes = _boxes(self.spots, anchors, size, px_per_pt)  # the words' boxes
+            frame = ax.get_window_extent(renderer)
+            hidden = _hidden(boxes, points, others, frame, PAD_PT * px_per_pt)
             tree = cKDTree(points) if len(points) else None
             best = int(np.argmin(hidden))  # the nearest of the least hidden, unless ...
             for k in np.flatnonzero(hidden == hidden.min()):
@@ -160,7 +162,7 @@ def _label_class() -> type:
                     break
                 share = np.array([_SHARE[spot[2]], _SHARE[spot[3]]])
                 start = boxes[k, :2] + share * (boxes[k, 2:] - boxes[k, :2])
-                if _under_leader(tree, start, anchors[k]) == 0:  # ... one with a clear leader
+                if _under_leader(tree, start, anchors[k], px_per_pt) == 0:  # ... a clear leader
                     best = int(k)
                     break
             self._put(self.spots[best])
@@ -190,22 +192,25 @@ def _boxes(spots: Sequence[Spot], anchors: ArrayF, size: ArrayF, px_per_pt: floa
     return np.hstack([low, low + np.asarray(size, dtype=float)])
 
 
-def _under_leader(tree: Any, start: ArrayF, end: ArrayF) -> int:
+def _under_leader(tree: Any, start: ArrayF, end: ArrayF, px_per_pt: float) -> int:
     """How many obstacle points lie on the leader from ``start`` to ``end`` [display px].
 
-    The stretch within :data:`LEADER_PT` px of its point is left out: that is the point
+    The stretch within :data:`LEADER_PT` of its point is left out: that is the point
     labelled.
     """
     start, end = np.asarray(start, dtype=float), np.asarray(end, dtype=float)
-    length = float(np.hypot(*(end - start)))
-    if length <= LEADER_PT:
+    length, spared = float(np.hypot(*(end - start))), LEADER_PT * px_per_pt
+    if length <= spared:
         return 0
-    t = np.linspace(0.0, 1.0 - LEADER_PT / length, max(int(length // STEP_PX), 2))
-    near = tree.query_ball_point(start + t[:, None] * (end - start), r=PAD_PX)
+    samples = max(int(length // (STEP_PT * px_per_pt)), 2)
+    t = np.linspace(0.0, 1.0 - spared / length, samples)
+    near = tree.query_ball_point(start + t[:, None] * (end - start), r=PAD_PT * px_per_pt)
     return len(set().union(*near))
 
 
-def _obstacles(ax: Axes, renderer: RendererBase, label: object) -> tuple[ArrayF, list[Bbox]]:
+def _obstacles(
+    ax: Axes, renderer: RendererBase, label: object, px_per_pt: float
+) -> tuple[ArrayF, list[Bbox]]:
     """What a label must not hide on ``ax``, in display pixels: points, and boxes."""
     from matplotlib.collections import LineCollection, PathCollection
     from matplotlib.patches import Rectangle
@@ -213,8 +218,8 @@ def _obstacles(ax: Axes, renderer: RendererBase, label: object) -> tuple[ArrayF,
     points: list[ArrayF] = []
     for line in ax.get_lines():
         if line.get_visible() and _opaque(line.get_alpha()):
-            points.append(_along(line.get_transform().transform(line.get_xydata())))
-    px_per_pt = np.asarray(renderer.points_to_pixels(1.0), dtype=float)
+            xy = line.get_transform().transform(line.get_xydata())
+            points.append(_along(xy, STEP_PT * px_per_pt))
     for collection in ax.collections:
         if not collection.get_visible():
             continue
@@ -225,7 +230,7 @@ def _obstacles(ax: Axes, renderer: RendererBase, label: object) -> tuple[ArrayF,
         elif isinstance(collection, LineCollection):
             transform = collection.get_transform()
             for segment in collection.get_segments():
-                points.append(_along(transform.transform(segment)))
+                points.append(_along(transform.transform(segment), STEP_PT * px_per_pt))
     boxes = [
         patch.get_window_extent(renderer)
         for patch in ax.patches
@@ -247,8 +252,8 @@ def _opaque(alpha: float | None) -> bool:
     return alpha is None or alpha >= FAINT
 
 
-def _along(xy: ArrayF) -> ArrayF:
-    """Points every :data:`STEP_PX` along a polyline [display px]; NaN breaks it."""
+def _along(xy: ArrayF, step: float) -> ArrayF:
+    """Points every ``step`` along a polyline [display px]; NaN breaks it."""
     xy = np.asarray(xy, dtype=float)
     if len(xy) < 2:
         return xy
@@ -256,7 +261,7 @@ def _along(xy: ArrayF) -> ArrayF:
     for a, b in itertools.pairwise(xy):
         if not (np.isfinite(a).all() and np.isfinite(b).all()):
             continue
-        n = int(np.hypot(*(b - a)) // STEP_PX)
+        n = int(np.hypot(*(b - a)) // step)
         if n > 1:
             t = np.linspace(0.0, 1.0, n + 1)[1:-1, None]
             pieces.append(a + t * (b - a))
@@ -271,13 +276,15 @@ def _disks(centres: ArrayF, radius: ArrayF) -> ArrayF:
     return np.vstack([centres, ring.reshape(-1, 2)])
 
 
-def _hidden(boxes: ArrayF, points: ArrayF, others: Sequence[Bbox], frame: Bbox) -> ArrayF:
-    """How much each candidate box (N, 4) hides.
+def _hidden(
+    boxes: ArrayF, points: ArrayF, others: Sequence[Bbox], frame: Bbox, pad: float
+) -> ArrayF:
+    """How much each candidate box (N, 4) [display px], padded by ``pad``, hides.
 
     The obstacle points under it, 10 for each box it overlaps, 1e6 if it leaves the frame.
     """
-    x0, y0 = boxes[:, 0] - PAD_PX, boxes[:, 1] - PAD_PX
-    x1, y1 = boxes[:, 2] + PAD_PX, boxes[:, 3] + PAD_PX
+    x0, y0 = boxes[:, 0] - pad, boxes[:, 1] - pad
+    x1, y1 = boxes[:, 2] + pad, boxes[:, 3] + pad
     hidden = np.zeros(len(boxes))
     for chunk in np.array_split(np.arange(len(boxes)), max(1, len(boxes) // 256)):
         px, py = points[None, :, 0], points[None, :, 1]
