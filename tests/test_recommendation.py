@@ -126,3 +126,26 @@ def test_decision_options_say_which_coxa_ratios_compete():
 
     assert "≥ 0.10" in DecisionOptions().describe_candidates()
     assert "(0.125)" in DecisionOptions(l1_ratios=(0.125,)).describe_candidates()
+
+
+def test_the_report_table_gives_a_reason_where_a_coxa_ratio_has_no_leg_that_walks():
+    """A coxa ratio whose legs all fail to walk has no peaks: the table says so, not nan."""
+    from hexaleg import HexapodDesign
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.output.report.part import ReportData
+    from hexaleg.output.report.recommendation import NO_WALKER, RecommendationRecord, section
+    from hexaleg.study.rows import StudyRow
+
+    maps = _maps()
+    for values in maps.values():
+        values[0, :] = np.nan  # coxa ratio 0.05: no leg walks (the ranking's NaN)
+    rec = recommend(R1, R3, maps, YOURS)
+    record = RecommendationRecord(rec, 1.0, StudyRow(rec.l1_ratio, rec.l3_ratio))
+    data = ReportData(HexapodDesign(), ReportOptions(), None, {RecommendationRecord: record})  # type: ignore[arg-type]
+    (peaks,) = [block for block in section(data).blocks if "| l1 ratio |" in block]
+    rows = [line.split(" | ") for line in peaks.splitlines()[2:]]
+    assert len(rows) == len(R1)
+    assert "nan" not in peaks.lower() and "inf" not in peaks.lower()
+    assert rows[0][0] == "| 0.05" and rows[0][1] == NO_WALKER
+    for row, l1_ratio in zip(rows[1:], R1[1:], strict=True):  # the others as the rule has them
+        assert row[-1].rstrip(" |") == f"{_by_hand(l1_ratio, 0.45):.4f}"

@@ -4,7 +4,8 @@ The sequel to the paper (Liu, Yang, Wang, Feng, *Dynamic Modeling and Dimensiona
 Optimization of Legged Mechanisms for Construction Robots*) sizes the leg for walking and
 reports cutting peak joint torque and energy by over 20 %. :func:`walking_comparison`
 asks the same of a study's grid: among the designs that walk the study's gait
-(:attr:`~hexaleg.study.sweep.StudySpec.walked`), the one with the least peak joint torque
+(:attr:`~hexaleg.study.sweep.StudySpec.walked`) unloaded within every rating (:func:`walks`,
+as the ranking counts them), the one with the least peak joint torque
 and the one with the least cost of transport, each against the paper's 0.2/0.4/0.4 leg
 (on the study's body, at its total leg length). Pure data; the report presents it.
 """
@@ -33,9 +34,11 @@ class WalkingComparison:
 
     Attributes:
         reference: The paper's leg's row (its walking columns).
-        least_torque: The row of the design with the least peak joint torque.
-        least_energy: The row of the design with the least mechanical cost of transport.
-        walking: How many of the grid's designs walk the gait (of ``designs``).
+        least_torque: The row of the walking design with the least peak joint torque.
+        least_energy: The row of the walking design with the least mechanical cost of
+            transport.
+        walking: How many of the grid's designs walk the gait within every rating (of
+            ``designs``).
         designs: How many designs the grid has.
         gait: The gait walked (JSON-ready).
 
@@ -86,6 +89,17 @@ def _saving(value: Cell, reference: Cell) -> float:
     return 1.0 - value / reference if reference > 0 and math.isfinite(reference) else math.nan
 
 
+def walks(table: pd.DataFrame) -> pd.Series:
+    """Which designs of a study walk its gait: unloaded, within every rating.
+
+    The legs the ranking, the Pareto front and their figures count as walking (``walks``),
+    whose period can be walked at all (``gait_feasible``); a table from before the
+    ``walks`` column counts the second alone.
+    """
+    feasible = table["gait_feasible"].fillna(False).astype(bool)
+    return feasible & table["walks"].fillna(False).astype(bool) if "walks" in table else feasible
+
+
 def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison:
     """Compare the study's best walking designs with the paper's leg on the same body.
 
@@ -99,7 +113,7 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     """
     if TORQUE not in table:
         raise HexalegError("the study has no walking columns (StudySpec.gait was off)")
-    walking = table[table["gait_feasible"].fillna(False).astype(bool)]
+    walking = table[walks(table)]
     if walking.empty:
         raise HexalegError(f"no design of the study walks {spec.walked.named}")
     paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)

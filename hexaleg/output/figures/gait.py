@@ -21,7 +21,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
+from hexaleg.output.figures.canvas import COLORS, drawn, magnitude_axis, new_figure, save
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 
 if TYPE_CHECKING:
@@ -170,28 +170,31 @@ def walking_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
-    fig = new_figure(8.8)
-    panels = fig.subplots(4, 1, sharex=True)
+    fig = new_figure(6.2)
+    panels = fig.subplots(2, 2, sharex=True).ravel()
     columns = (
         ("gait_peak_hip_torque", "peak hip |τ| [N·m]"),
         ("gait_peak_knee_torque", "peak knee |τ| [N·m]"),
         ("mechanical_cost_of_transport", "mechanical CoT [-]"),
         ("walking_payload_capacity", "walking payload [kg]"),
     )
+    walks = table["walks"].astype(bool) if "walks" in table else pd.Series(True, table.index)
     for ax, (column, label) in zip(panels, columns, strict=True):
+        values = table[column].where(walks)  # a leg that cannot walk the gait: a gap, not a 0
         for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
-            values = group[column]
-            if "walks" in group:  # a leg that cannot walk the gait: a gap, not a zero
-                values = values.where(group["walks"].astype(bool))
-            ax.plot(group["l3_ratio"], values, color=color, label=f"coxa ratio {r1:.2f}")
+            ax.plot(group["l3_ratio"], values[group.index], color=color,
+                    label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
+        magnitude_axis(ax, values)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
         if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
-    panels[-1].set_xlabel("tibia ratio l3 / L [-]")
-    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
+    for ax in panels[2:]:
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+    fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
+               fontsize=7.5)  # fmt: skip
     fig.suptitle(
         f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
         "that cannot walk it unloaded within their ratings)"

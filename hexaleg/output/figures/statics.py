@@ -3,14 +3,21 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
-from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
+from hexaleg.output.figures.canvas import (
+    COLORS,
+    drawn,
+    log_scale,
+    magnitude_axis,
+    name_largest,
+    new_figure,
+)
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis
@@ -136,10 +143,11 @@ def statics_study_figure(
 ) -> Figure:
     """Hip and knee torques over the extremes and the payload capacities, against tibia ratio.
 
-    One panel under another, sharing the tibia-ratio axis, each joint's rating on its
-    torque panel; the standing payload capacity spans decades over a sweep (a short femur
-    lifts tonnes), so its axis is logarithmic, the largest named, and the walking payload
-    capacity (walking ``gait``, every rating) is drawn beside it, dashed, where the leg walks.
+    The hip and knee side by side over the payload, sharing the tibia-ratio axis, each
+    joint's rating on its torque panel; the standing payload capacity spans decades over a
+    sweep (a short femur lifts tonnes), so its axis is logarithmic, the largest named, and
+    the walking payload capacity (walking ``gait``, every rating) is drawn beside it,
+    dashed, where the leg walks.
 
     Args:
         table: The study's rows.
@@ -148,11 +156,13 @@ def statics_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
-    fig = new_figure(8.4)
-    panels = fig.subplots(3, 1, sharex=True)
+    fig = new_figure(6.6)
+    grid = fig.add_gridspec(2, 2, height_ratios=(1.0, 1.15))
+    hip = fig.add_subplot(grid[0, 0])
+    panels = [hip, fig.add_subplot(grid[0, 1], sharex=hip), fig.add_subplot(grid[1, :])]
     columns = (
-        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing: nominal and 12 extremes"),
-        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing: nominal and 12 extremes"),
+        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing"),
+        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing"),
         ("payload_capacity", "payload [kg], log scale",
          f"Payload capacity: standing (solid), walking {gait.named} (dashed)"),
     )  # fmt: skip
@@ -165,9 +175,27 @@ def statics_study_figure(
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
+        magnitude_axis(ax, table[f"peak_{joint}_torque"])
         if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
-    payload = panels[2]
+    _walking_payload(panels[2], table, groups, marks)
+    handles, labels = panels[0].get_legend_handles_labels()
+    unique = dict(zip(labels, handles, strict=True))
+    fig.legend(unique.values(), unique.keys(), loc="outside lower center", ncols=4,
+               fontsize=7.5)  # fmt: skip
+    for ax in panels:
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+    fig.suptitle(
+        "What each design of the sweep costs (foot forces shared by least Σ|f|²)\ntorques: "
+        "the largest over the nominal stance and its 12 extremes"
+    )
+    return fig
+
+
+def _walking_payload(
+    payload: Axes, table: pd.DataFrame, groups: Sequence[Any], marks: Sequence[Mark]
+) -> None:
+    """The walking payload capacity, dashed, beside the standing one; the axis logarithmic."""
     if "walking_payload_capacity" in table:
         for (_, group), color in groups:
             walking = group["walking_payload_capacity"].where(group["walking_payload_capacity"] > 0)
@@ -176,13 +204,6 @@ def statics_study_figure(
     log_scale(payload, "y")
     payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
     name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
-    handles, labels = panels[0].get_legend_handles_labels()
-    unique = dict(zip(labels, handles, strict=True))
-    panels[0].legend(unique.values(), unique.keys(), loc="center left",
-                     bbox_to_anchor=(1.01, 0.5), fontsize=7.5)  # fmt: skip
-    panels[2].set_xlabel("tibia ratio l3 / L [-]")
-    fig.suptitle("What each design of the sweep costs (foot forces shared by least Σ|f|²)")
-    return fig
 
 
 def design_names(table: pd.DataFrame, column: str = "payload_capacity") -> list[str]:

@@ -63,9 +63,11 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
 def ranges_figure(table: pd.DataFrame, l1_ratio: float, marks: Sequence[Mark] = ()) -> Figure:
     """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio.
 
-    ``marks`` (your design, the recommended one) are drawn on each of the six curves at
-    their own tibia ratio and ranges, named once per panel.
+    ``marks`` (your design, the recommended one) at this coxa ratio are drawn on each of
+    the six curves at their own tibia ratio and ranges, named once per panel; a mark at
+    another coxa ratio is not on these curves, so it is not drawn, and the title says so.
     """
+    marks, elsewhere = _on_coxa_ratio(marks, l1_ratio)
     fig = new_figure(4.4 if marks else 3.6)
     left, right = fig.subplots(1, 2)
     group = table[np.isclose(table["l1_ratio"], l1_ratio)]
@@ -98,10 +100,25 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float, marks: Sequence[Mark] = 
                       fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.16))  # fmt: skip
         else:
             ax.legend()
-    fig.suptitle(
-        f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
-    )
+    title = f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
+    if elsewhere:
+        title += "\n(not drawn, on other coxa ratios: " + ", ".join(elsewhere) + ")"
+    fig.suptitle(title)
     return fig
+
+
+def _on_coxa_ratio(marks: Sequence[Mark], l1_ratio: float) -> tuple[list[Mark], list[str]]:
+    """The marks at coxa ratio ``l1_ratio``, and the others named with their own coxa ratio."""
+    here: list[Mark] = []
+    elsewhere: list[str] = []
+    for mark in marks:
+        own = float(mark.values.get("l1_ratio", math.nan))
+        if math.isclose(own, l1_ratio, rel_tol=1e-9, abs_tol=1e-9):
+            here.append(mark)
+        else:
+            where = f"{own:.2f}" if math.isfinite(own) else "unknown"
+            elsewhere.append(f"{mark.label.split(' (')[0]} {where}")
+    return here, elsewhere
 
 
 def write_study_figures(
