@@ -9,10 +9,10 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from harness import Row, check_agree
 
 from hexaleg import HexapodDesign
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Objective
 from hexaleg.study.optimize import POPULATION_PER_VARIABLE, SearchSettings
-from hexaleg.study.requirements import Requirements
 
 
 def bench_decide(evaluations: int | None) -> list[Row]:

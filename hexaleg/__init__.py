@@ -88,6 +88,8 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import load_design
     from hexaleg.design_text import design_toml
+    from hexaleg.evaluation.goal import Objective
+    from hexaleg.evaluation.requirements import Requirements
     from hexaleg.exceptions import (
         DesignError,
         HexalegError,
@@ -131,9 +133,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.statics.forces import Payload
     from hexaleg.statics.loads import analyze_loads
     from hexaleg.study.decide import DecideResult, decide
-    from hexaleg.study.goal import Objective
     from hexaleg.study.optimize import SearchSettings
-    from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

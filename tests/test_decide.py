@@ -12,19 +12,19 @@ import pytest
 from conftest import random_designs, run_cli
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position
 from hexaleg.stance.axis_locked import axis_locked_flexibility_many
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics import Payload, Statics, analyze_loads, slope_gravity
+from hexaleg.statics.standing_limits import Standing
 from hexaleg.study.decide import decide
 from hexaleg.study.executors import local_pool
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SEGMENT_FLOOR
-from hexaleg.study.standing_limits import Standing
 
 AREA = Objective("improved_area")
 

@@ -9,11 +9,11 @@ import pytest
 from conftest import random_designs
 
 from hexaleg import Gait, HexapodDesign, Payload, analyze_gait
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SEGMENT_FLOOR
 from hexaleg.study.sweep import base_model
 

@@ -16,11 +16,11 @@ from hexaleg import (
     analyze_manipulability,
     flexibility,
 )
+from hexaleg.evaluation.evaluate import ANALYSES, Conditions, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, metric, objectives
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import ANALYSES, Conditions, evaluate, evaluate_many
-from hexaleg.study.metrics import METRICS, metric, objectives
 
 
 def _designs(count: int, seed: int) -> list[HexapodDesign]:
@@ -143,7 +143,7 @@ def test_every_metric_is_declared_once_and_measured_by_a_known_analysis():
      (1e6, "1000000"), (-0.000123, "-0.000123"), (0.0, "0")],
 )  # fmt: skip
 def test_numbers_in_sentences_read_as_an_engineer_writes_them(value, text):
-    from hexaleg.study.metrics import significant
+    from hexaleg.evaluation.metrics import significant
 
     assert significant(value) == text
     assert metric("payload_capacity").short(value) == f"{text} kg"

@@ -20,11 +20,11 @@ from conftest import run_cli
 from hexaleg import HexapodDesign
 from hexaleg.actuator_catalog import catalog_from_data, shipped_catalog
 from hexaleg.actuators import Actuator, Actuators
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import FreeVariable, search_space
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0,

@@ -18,11 +18,11 @@ from hexaleg import HexapodDesign, HexapodModel, analyze_gait
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.design_file import load_design
 from hexaleg.electrical.ratings import motor_loads
+from hexaleg.evaluation.evaluate import evaluate
 from hexaleg.gait.capacity import _voltage_bound, walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import evaluate
 
 
 def _walks(design, model, gait, mass, position) -> bool:

@@ -201,7 +201,7 @@ def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
 
 
 def test_a_study_row_whose_zmp_leaves_the_feet_is_not_gait_feasible(hexapod_model):
-    from hexaleg.study.evaluation import Conditions, evaluate
+    from hexaleg.evaluation.evaluate import Conditions, evaluate
     from hexaleg.study.rows import WALKING_METRICS, walking_columns
 
     payload = Payload(30.0, (100.0, 100.0, 100.0))  # once "feasible yes" at a margin of −37 m

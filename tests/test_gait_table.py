@@ -19,6 +19,7 @@ from hexaleg.cli.main import build_parser
 from hexaleg.cli.options import load_gait
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
@@ -27,7 +28,6 @@ from hexaleg.output.report import study as report_study
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import ReportData
 from hexaleg.robot.model import HexapodModel
-from hexaleg.study.requirements import Requirements
 
 OPTIONS = ["--speed", "0.2", "--step-height", "0.05", "--stride", "0.25"]
 MOTORS = ("hd_cha_17a_e_100", "hd_cha_25a_100", "hd_cha_20a_100")

@@ -9,11 +9,11 @@ import pytest
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
+from hexaleg.evaluation.evaluate import ELECTRICAL_METRICS, evaluate
+from hexaleg.evaluation.metrics import objectives
+from hexaleg.evaluation.requirements import Requirements, check
 from hexaleg.gait import analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
-from hexaleg.study.evaluation import ELECTRICAL_METRICS, evaluate
-from hexaleg.study.metrics import objectives
-from hexaleg.study.requirements import Requirements, check
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)
 

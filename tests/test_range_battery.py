@@ -9,12 +9,12 @@ import pytest
 from hexaleg import HexapodDesign
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
+from hexaleg.evaluation.evaluate import evaluate
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.evaluation import evaluate
-from hexaleg.study.goal import Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import FreeVariable, search_space
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)

@@ -368,7 +368,7 @@ def test_every_number_reads_the_same_in_the_report_its_json_and_its_figures(repo
     # the scored metrics: the Decision table's yours and recommended columns
     decision = saved["decision"]
     rows = dict(re.findall(r"^\| ([^|]+?) \| (\S+ \| \S+) \|", text.split("## Design")[0], re.M))
-    from hexaleg.study.metrics import METRICS
+    from hexaleg.evaluation.metrics import METRICS
 
     for name in decision["metrics"]:
         spec = METRICS[name]

@@ -9,11 +9,11 @@ import re
 import pytest
 
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirement_specs import CONDITIONS, REQUIREMENTS, table_keys
+from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.exceptions import ParameterError
-from hexaleg.study.metrics import METRICS
-from hexaleg.study.requirement_specs import CONDITIONS, REQUIREMENTS, table_keys
-from hexaleg.study.requirements import Requirements
-from hexaleg.study.requirements_table import example_table
 
 
 def _parser() -> argparse.ArgumentParser:

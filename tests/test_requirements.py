@@ -9,9 +9,9 @@ import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.design_file import DesignFileError, load_design, load_design_file
+from hexaleg.evaluation.requirement_specs import BINDING_SHARE, REQUIREMENTS
+from hexaleg.evaluation.requirements import Requirements, check
 from hexaleg.exceptions import ParameterError
-from hexaleg.study.requirement_specs import BINDING_SHARE, REQUIREMENTS
-from hexaleg.study.requirements import Requirements, check
 
 
 def test_table_keys_are_the_fields_and_degrees_become_radians():

@@ -11,8 +11,10 @@ layer and those below it, never one above::
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical
+    evaluation  evaluation/        (metrics, requirements, evaluate, goal: the shared vocabulary)
     study       study/, paper/
     output      output/
+    explore     explore/           (the live explorer)
     cli         cli/, __main__
 
 ``hexaleg/__init__.py`` (the lazy front door) is exempt. Imports inside a function count
@@ -68,6 +70,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
     ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
+    ("evaluation", ("evaluation",)),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("explore", ("explore",)),

@@ -18,11 +18,12 @@ from hexaleg.cli.options import (
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.metrics import objectives
+from hexaleg.evaluation.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.executors import dask_executor, local_pool
-from hexaleg.study.goal import Objective
-from hexaleg.study.metrics import objectives
 from hexaleg.study.optimize import (
     GENERATIONS,
     MAX_EVALUATIONS,
@@ -30,7 +31,6 @@ from hexaleg.study.optimize import (
     POPULATION_PER_VARIABLE,
     SearchSettings,
 )
-from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.robot_designs import ROBOT_SPAN
 from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 

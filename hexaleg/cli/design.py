@@ -16,9 +16,9 @@ from hexaleg.cli.robot_options import (
     robot_table,
 )
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.gait.spec import Gait
-from hexaleg.study.requirements import Requirements
-from hexaleg.study.requirements_table import example_table
 
 if TYPE_CHECKING:
     from hexaleg.robot.imported import ImportedRobot

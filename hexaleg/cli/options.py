@@ -25,7 +25,7 @@ from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
 
 if TYPE_CHECKING:
-    from hexaleg.study.requirements import Requirements
+    from hexaleg.evaluation.requirements import Requirements
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -197,7 +197,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
     ``[requirements]`` table is refused by a command that does not use it too.
     """
     from hexaleg.design_file import load_design_file  # reads TOML only when asked
-    from hexaleg.study.requirements import Requirements
+    from hexaleg.evaluation.requirements import Requirements
 
     path = getattr(args, "design", None)
     base, requirements = (

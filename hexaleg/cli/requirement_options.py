@@ -1,7 +1,7 @@
 """The requirement options of ``decide`` and ``report``, over a design file's ``[requirements]``.
 
 Each option is a key of the table (``--ground-clearance`` is ``ground_clearance``), made
-from its declaration (:mod:`hexaleg.study.requirement_specs`): its metavar and help are
+from its declaration (:mod:`hexaleg.evaluation.requirement_specs`): its metavar and help are
 the declaration's, each condition follows its requirement, and a key in degrees is the
 alternative of its requirement's option. An option given on the command line overrides
 the file's value.
@@ -13,7 +13,7 @@ import argparse
 import math
 from typing import Any
 
-from hexaleg.study.requirement_specs import (
+from hexaleg.evaluation.requirement_specs import (
     CONDITIONS,
     REQUIREMENTS,
     ConditionSpec,
@@ -21,7 +21,7 @@ from hexaleg.study.requirement_specs import (
     degree_keys,
     table_keys,
 )
-from hexaleg.study.requirements import Requirements, condition_value
+from hexaleg.evaluation.requirements import Requirements, condition_value
 
 GROUP = (
     "requirements (SI units, radians; each also a key of the design file's [requirements] "

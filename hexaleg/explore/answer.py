@@ -1,6 +1,6 @@
 """The explorer's answer about one design: every number the page shows, JSON-ready.
 
-One :func:`~hexaleg.study.evaluation.evaluate` measures the metrics of
+One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the metrics of
 :data:`EXPLORED` under the query's conditions; the answer names them as the command
 line's ``--json`` does (``fb``, ``payload_capacity``, ``peak_torque`` per joint type,
 ``max_speed`` ...) with what limits each, the nominal stance's points for the drawing,
@@ -21,16 +21,16 @@ import numpy as np
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
+from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements, limited_by_dict
 from hexaleg.limits import LEG_JOINTS, JointLimits
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
-from hexaleg.study.goal import Goal
-from hexaleg.study.metrics import METRICS
-from hexaleg.study.requirements import Requirements, limited_by_dict
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 __all__ = ["EXPLORED", "answer"]

@@ -2,8 +2,9 @@
 
 Designs of the loaded body and leg length at the paper's coxa ratios and the loaded
 design's own, over a grid of tibia ratios, each measured for FB and the walking payload
-capacity under the loaded conditions (one batch, :func:`~hexaleg.study.evaluation.evaluate_many`).
-It is measured once, in a background thread, while the page already answers.
+capacity under the loaded conditions (one batch,
+:func:`~hexaleg.evaluation.evaluate.evaluate_many`). It is measured once, in a background
+thread, while the page already answers.
 """
 
 from __future__ import annotations
@@ -14,11 +15,11 @@ from collections.abc import Callable
 from typing import Any
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
 
 __all__ = ["CLOUD_METRICS", "Cloud"]
 

@@ -23,13 +23,13 @@ from typing import Any
 
 from hexaleg.cause import Cause
 from hexaleg.design import SEGMENTS, HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirement_specs import REQUIREMENTS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION
-from hexaleg.study.evaluation import Evaluation
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
-from hexaleg.study.requirement_specs import REQUIREMENTS
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SearchSpace, segment_floor
 
 LEG_RELAXATION = 2.0

@@ -29,6 +29,9 @@ from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
 from hexaleg.design import SEGMENTS, HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
@@ -37,11 +40,8 @@ from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.conflict import Conflict, find_conflict
-from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, design_at, run_search
-from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (

@@ -48,11 +48,11 @@ from scipy.stats import qmc
 from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Evaluation
-from hexaleg.study.goal import Goal
 from hexaleg.study.progress import Progress
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace

@@ -21,11 +21,11 @@ from scipy import optimize
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, evaluate
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate
 from hexaleg.study.ranking import RANKED_METRICS, Metrics, relative_values, score, scores
 from hexaleg.swing.manipulability import AverageManipulabilityMap
 from hexaleg.swing.workspace import improved_area_closed_form

@@ -1,7 +1,7 @@
 """One design of a study as a row: its ratios, lengths and every column its table shows.
 
 A :class:`StudyRow` is made in the worker from the design's one
-:class:`~hexaleg.study.evaluation.Evaluation` (kept analyses included), so only numbers
+:class:`~hexaleg.evaluation.evaluate.Evaluation` (kept analyses included), so only numbers
 travel back: the flexibility (FB, the six ranges, the twelve extremes and what stops
 each), the statics at the nominal stance and at the extremes (peak torques, stability
 margin, the steepest slope, the payload capacity and what limits it) and the study's gait
@@ -18,18 +18,18 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
-from hexaleg.gait.spec import Gait
-from hexaleg.robot.model import HexapodModel
-from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.study.evaluation import (
+from hexaleg.evaluation.evaluate import (
     ELECTRICAL_METRICS,
     PERIOD_METRICS,
     Conditions,
     Evaluation,
     evaluate,
 )
+from hexaleg.exceptions import HexalegError
+from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
+from hexaleg.gait.spec import Gait
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.extremes import FlexibilityResult
 
 Key = tuple[float, float]
 """(coxa ratio, tibia ratio) of a design [-]."""

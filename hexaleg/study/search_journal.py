@@ -18,7 +18,7 @@ from hexaleg._io import shown
 from hexaleg._journal import Journal as JournalFile
 from hexaleg._journal import JournalKind, Record
 from hexaleg.cause import Cause
-from hexaleg.study.evaluation import Evaluation
+from hexaleg.evaluation.evaluate import Evaluation
 
 KIND = JournalKind("decide", "decision", "--journal")
 Point = tuple[str, tuple[float, ...]]

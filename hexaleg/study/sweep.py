@@ -36,6 +36,7 @@ from hexaleg.design import (
     require_in_range,
     require_ratio,
 )
+from hexaleg.evaluation.evaluate import Conditions, evaluate, evaluate_many
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
@@ -43,7 +44,6 @@ from hexaleg.grids import ratio_lengths
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate, evaluate_many
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
     FOLDER_KIND,

@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Section, change, table
 from hexaleg.output.report.pareto import ParetoRecord
@@ -23,9 +25,7 @@ from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.decide import DecideResult, decide
-from hexaleg.study.evaluation import Evaluation, evaluate
 from hexaleg.study.executors import local_pool
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, score
 from hexaleg.study.recommendation import BAND, Recommendation
 

@@ -8,6 +8,7 @@ from typing import Any
 
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import pareto_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
@@ -15,7 +16,6 @@ from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.pareto import pareto_front
 from hexaleg.study.ranking import RANKED_METRICS
 

@@ -8,10 +8,10 @@ each. The decision itself is :func:`hexaleg.study.decide.decide`.
 
 from __future__ import annotations
 
+from hexaleg.evaluation.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.output.report.document import table
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.decide import CheckedDesign, DecideResult
-from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.search_space import AtBound, value_of
 
 

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
 from hexaleg.output.figures import extremes_figure, save
@@ -31,8 +33,6 @@ from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.swing.manipulability import analyze_manipulability
 from hexaleg.swing.workspace import analyze_workspace

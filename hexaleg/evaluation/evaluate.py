@@ -1,13 +1,13 @@
 """One evaluation of a design: every metric anyone asks for, each analysis run at most once.
 
-:func:`evaluate` measures the metrics of :data:`~hexaleg.study.metrics.METRICS` that a
+:func:`evaluate` measures the metrics of :data:`~hexaleg.evaluation.metrics.METRICS` that a
 caller names — a study's row, a decision's candidate, the report's recommendation, the
 user's own design — under one set of :class:`Conditions` (payload, slope, gait, stance
 legs, collisions), into one frozen :class:`Evaluation`. Each metric's analysis runs once
 however many of its metrics are asked for: the improved workspace area in closed form
 (eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
 or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
-statics' payload capacity and steepest slope (:mod:`hexaleg.study.standing_limits`), and
+statics' payload capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), and
 one gait period (:func:`~hexaleg.gait.analysis.analyze_gait`) for the max speed, peak
 torque and cost of transport.
 
@@ -31,6 +31,7 @@ import pinocchio as pin
 from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.metrics import METRICS, Analysis
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
@@ -45,8 +46,7 @@ from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.metrics import METRICS, Analysis
-from hexaleg.study.standing_limits import Standing
+from hexaleg.statics.standing_limits import Standing
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
 
@@ -123,7 +123,7 @@ def evaluate(
 
     Args:
         design: The design.
-        metrics: Names of :data:`~hexaleg.study.metrics.METRICS` to measure.
+        metrics: Names of :data:`~hexaleg.evaluation.metrics.METRICS` to measure.
         conditions: What it is measured under (level ground, no payload, the default gait).
         model: The design's Pinocchio model (one derived from a model of the same body by
             :meth:`~hexaleg.robot.model.HexapodModel.with_design` is exact); when an

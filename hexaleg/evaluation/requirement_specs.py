@@ -1,14 +1,14 @@
 """Every requirement and condition of a decision, declared once.
 
-A requirement bounds one metric (:data:`~hexaleg.study.metrics.METRICS`); a condition says
+A requirement bounds one metric (:data:`~hexaleg.evaluation.metrics.METRICS`); a condition says
 under what it is measured (where the payload sits, how high the gait steps). Each is one
 record here, and every reader derives what it needs from that record: the fields and
-validation of :class:`~hexaleg.study.requirements.Requirements`, the keys of a design
+validation of :class:`~hexaleg.evaluation.requirements.Requirements`, the keys of a design
 file's ``[requirements]`` table and the commented example ``hexaleg design init`` writes,
 the command-line options of ``decide`` and ``report`` with their metavars and help, the
 evaluation (which metric to measure), the checks (which way is met, what binds) and the
 conflict messages. Adding a requirement is adding its record to :data:`REQUIREMENTS`
-(and a :class:`~hexaleg.study.metrics.MetricSpec` with its measuring step if the metric
+(and a :class:`~hexaleg.evaluation.metrics.MetricSpec` with its measuring step if the metric
 is new).
 """
 
@@ -20,9 +20,9 @@ from dataclasses import dataclass
 from typing import Literal
 
 from hexaleg.design import SEGMENT_RANGE
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import PAYLOAD_REACH, PAYLOAD_SEARCH_LIMIT
-from hexaleg.study.metrics import METRICS, MetricSpec
 
 Sense = Literal["at least", "at most"]
 """Which side of the required value meets a requirement."""

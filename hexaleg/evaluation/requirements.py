@@ -10,7 +10,7 @@ table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
 - ``slope`` [rad] (``slope_deg`` [°] in files and ``--slope-deg``): the steepest slope the
   robot stands on, uphill in every heading, carrying ``payload`` — the first slope where
   it tips, slides (tan α > μ) or a joint torque reaches its rating
-  (:mod:`hexaleg.study.standing_limits`);
+  (:mod:`hexaleg.statics.standing_limits`);
 - ``ground_clearance`` [m]: the body's underside above the ground at the nominal stance;
 - ``min_fb`` [-]: the axis-locked body flexibility FB (eq 29) at least this;
 - ``leg_length`` [m]: l1 + l2 + l3 at most this (default: the design's own);
@@ -51,9 +51,9 @@ from typing import Any
 from hexaleg._checks import require_finite, require_in_range
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirement_specs import CONDITIONS, REQUIREMENTS, degree_keys, table_keys
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.spec import Gait
-from hexaleg.study.requirement_specs import CONDITIONS, REQUIREMENTS, degree_keys, table_keys
 
 
 @dataclass(frozen=True)

@@ -1,14 +1,14 @@
 """The ``[requirements]`` table of a new design file: every key commented out, with its unit.
 
 Each key's meaning, unit and example value come from its declaration
-(:mod:`hexaleg.study.requirement_specs`); the table itself is read by
-:meth:`hexaleg.study.requirements.Requirements.from_table`.
+(:mod:`hexaleg.evaluation.requirement_specs`); the table itself is read by
+:meth:`hexaleg.evaluation.requirements.Requirements.from_table`.
 """
 
 from __future__ import annotations
 
 from hexaleg import design_file
-from hexaleg.study.requirement_specs import REQUIREMENTS, degree_keys, table_keys
+from hexaleg.evaluation.requirement_specs import REQUIREMENTS, degree_keys, table_keys
 
 
 def example_table() -> str:

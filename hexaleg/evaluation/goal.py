@@ -1,9 +1,9 @@
 """What a decision measures every design for: its requirements and its objective.
 
-An :class:`Objective` makes one metric (:data:`~hexaleg.study.metrics.METRICS`) best; a
-:class:`Goal` pairs it with the requirements (:mod:`hexaleg.study.requirements`), names
+An :class:`Objective` makes one metric (:data:`~hexaleg.evaluation.metrics.METRICS`) best; a
+:class:`Goal` pairs it with the requirements (:mod:`hexaleg.evaluation.requirements`), names
 the metrics both need and the conditions they are measured under, and measures a design
-for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.study.evaluation.evaluate`).
+for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.evaluation.evaluate.evaluate`).
 """
 
 from __future__ import annotations
@@ -12,14 +12,14 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, Better, MetricSpec, objectives
+from hexaleg.evaluation.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
 from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
-from hexaleg.study.metrics import METRICS, Better, MetricSpec, objectives
-from hexaleg.study.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
 
 
 @dataclass(frozen=True)
@@ -27,7 +27,7 @@ class Objective:
     """What the decision makes best.
 
     Attributes:
-        name: The metric: any of :data:`~hexaleg.study.metrics.METRICS` (the command line
+        name: The metric: any of :data:`~hexaleg.evaluation.metrics.METRICS` (the command line
             offers those declared as objectives, in their better direction).
         sense: ``"maximize"`` or ``"minimize"``.
 
@@ -109,7 +109,7 @@ class Goal:
     ) -> Evaluation:
         """``design``'s metrics for this goal; an error if its objective has no value.
 
-        The arguments after ``design`` are :func:`~hexaleg.study.evaluation.evaluate`'s.
+        The arguments after ``design`` are :func:`~hexaleg.evaluation.evaluate.evaluate`'s.
         """
         found = evaluate(
             design, self.metrics, self.conditions, model=model, template=template,

@@ -3,7 +3,7 @@
 A metric is one number measured on one design (its FB, its payload capacity, its max
 speed). Each is a :class:`MetricSpec` in :data:`METRICS`, and that one declaration is what
 every reader takes its name, unit and words from: the evaluation that measures it
-(:mod:`hexaleg.study.evaluation`), the study's ranking rule, ``decide``'s objectives and
+(:mod:`hexaleg.evaluation.evaluate`), the study's ranking rule, ``decide``'s objectives and
 requirements, the conflict messages, the report's decision and the study's columns.
 Adding a metric is adding its declaration here and its measuring step in the evaluation.
 """
