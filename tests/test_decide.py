@@ -56,7 +56,7 @@ def test_search_finds_the_closed_form_optimum_of_a_random_problem(seed):
     result = _decide(design, requirements, settings=SearchSettings(seed=seed))
     tibia = max((total - coxa) / 2, clearance + 0.05)
     best = 2 * math.pi * (total - coxa - tibia) * tibia / 3
-    found = result.best.evaluation.values["improved_area"]
+    found = result.best.evaluation.metrics.improved_area
     assert result.feasible and all(c.met for c in result.best.checks)
     assert found == pytest.approx(best, rel=5e-3) and found <= best * (1 + 1e-9)
     binds = {c.name for c in result.best.checks if c.binds}
@@ -210,9 +210,9 @@ def test_the_search_fast_path_measures_as_the_exact_one():
         fast = goal.evaluate(design, HexapodModel(base).with_design(design), template)
         exact = goal.evaluate(design)
         assert not exact.error, exact.error
-        assert fast.values.keys() == exact.values.keys()
-        for name, value in exact.values.items():
-            assert fast.values[name] == pytest.approx(value, rel=1e-9, abs=1e-12), name
+        assert fast.metrics.to_dict().keys() == exact.metrics.to_dict().keys()
+        for name, value in exact.metrics.to_dict().items():
+            assert fast.metrics.to_dict()[name] == pytest.approx(value, rel=1e-9, abs=1e-12), name
 
 
 # -- the answer's shape and the command ---------------------------------------------------
@@ -330,7 +330,7 @@ def test_search_is_within_half_a_percent_of_a_dense_grid():
             standing = Standing.of(Statics(model, model.leg_names, Payload(0.0)))
             if standing.max_payload(requirements.slope)[0] >= requirements.payload:
                 best = flexible.fb
-    found = result.best.evaluation.values["fb"]
+    found = result.best.evaluation.metrics.fb
     assert result.feasible and all(c.met for c in result.best.checks)
     assert found >= (1 - 5e-3) * best
 

@@ -371,7 +371,7 @@ def test_every_number_reads_the_same_in_the_report_its_json_and_its_figures(repo
     from hexaleg.evaluation.metrics import METRICS
 
     for name in decision["metrics"]:
-        spec = METRICS[name]
+        spec = METRICS.named(name)
         yours, theirs = rows[spec.described].split(" | ")
         assert _reads_as(yours, decision["yours"]["metrics"][name]), (name, yours)
         assert _reads_as(theirs, decision["recommended"]["metrics"][name]), (name, theirs)

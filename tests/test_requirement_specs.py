@@ -38,8 +38,8 @@ def test_every_requirement_is_a_field_bounds_a_declared_metric_and_reaches_the_t
     assert fields == set(REQUIREMENTS) | (set(CONDITIONS) - degrees)
     text = example_table()
     for name, spec in REQUIREMENTS.items():
-        assert spec.metric in METRICS
-        assert spec.unit == METRICS[spec.metric].unit
+        assert spec.metric is getattr(METRICS, spec.metric.name)
+        assert spec.unit == spec.metric.unit
         in_degrees = [c.name for c in CONDITIONS.values() if c.of == name and c.kind == "degrees"]
         assert f"# {in_degrees[0] if in_degrees else name} = " in text
 

@@ -9,6 +9,7 @@ import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.design_file import DesignFileError, load_design, load_design_file
+from hexaleg.evaluation.metrics import Causes, Metrics
 from hexaleg.evaluation.requirement_specs import BINDING_SHARE, REQUIREMENTS
 from hexaleg.evaluation.requirements import Requirements, check
 from hexaleg.exceptions import ParameterError
@@ -53,11 +54,11 @@ def test_the_leg_length_defaults_to_the_design_own():
 
 def test_margins_point_to_the_good_side_and_binding_is_within_one_percent():
     requirements = Requirements(payload=100.0, leg_length=1.0)
-    values = {"payload_capacity": 100.0 + 0.5 * BINDING_SHARE * 100, "leg_length": 0.8}
-    payload, leg = check(requirements, values, {})
+    values = Metrics(payload_capacity=100.0 + 0.5 * BINDING_SHARE * 100, leg_length=0.8)
+    payload, leg = check(requirements, values, Causes())
     assert payload.margin == pytest.approx(0.5) and payload.met and payload.binds
     assert leg.margin == pytest.approx(0.2) and leg.met and not leg.binds
-    short = check(requirements, {"payload_capacity": 90.0, "leg_length": 1.1}, {})
+    short = check(requirements, Metrics(payload_capacity=90.0, leg_length=1.1), Causes())
     assert [c.met for c in short] == [False, False]
     assert [c.binds for c in short] == [False, False]
     assert {k.sense for k in REQUIREMENTS.values()} == {"at least", "at most"}

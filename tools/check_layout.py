@@ -1,4 +1,4 @@
-"""Check hexaleg's layout: no upward import, no module over 400 lines, no function over 60.
+"""Check hexaleg's layout: no upward import, no module over 600 lines, no function over 60.
 
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
@@ -78,7 +78,9 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Each layer's name and the top-level modules or packages of ``hexaleg`` in it."""
 
-MAX_MODULE_LINES = 400
+MAX_MODULE_LINES = 600
+"""A module's most lines: a long module that is one concept (every metric's declaration, one
+evaluation's steps) beats two halves cut to fit; a module past this is likely two concepts."""
 MAX_FUNCTION_LINES = 60
 
 

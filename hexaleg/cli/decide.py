@@ -126,7 +126,11 @@ def run(args: argparse.Namespace) -> int:
         design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
     objective = (
-        Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
+        Objective(args.minimize, "minimize")
+        if args.minimize
+        else Objective(args.maximize)
+        if args.maximize
+        else Objective()
     )
     free = [FreeVariable.parse(text) for text in args.free]
     settings = SearchSettings(args.seed, args.evaluations)
@@ -223,7 +227,7 @@ def _design_block(
         head += f", battery {checked.design.battery.capacity:.4g} Wh"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
-    value = checked.evaluation.values[result.objective.name]
+    value = checked.evaluation.metrics.value(result.objective.spec)
     head += f", {result.objective.spec.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
     rows = [_row(result, check, binding) for check in checked.checks]
     if binding:

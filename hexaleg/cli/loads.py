@@ -18,6 +18,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
@@ -121,7 +122,8 @@ def run(args: argparse.Namespace) -> int:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
+        capacity = {METRICS.walking_payload_capacity.name: walking.to_dict()}
+        print_json(mine | analysis.to_dict() | capacity)
         return 0
     rows = _rows(analysis)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1

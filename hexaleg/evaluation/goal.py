@@ -33,7 +33,7 @@ class Objective:
 
     """
 
-    name: str = "fb"
+    name: str = METRICS.fb.name
     sense: Better = "maximize"
 
     def __post_init__(self) -> None:
@@ -54,7 +54,7 @@ class Objective:
     @property
     def spec(self) -> MetricSpec:
         """The metric's declaration."""
-        return METRICS[self.name]
+        return METRICS.named(self.name)
 
 
 @dataclass(frozen=True)
@@ -78,16 +78,16 @@ class Goal:
         return tuple(name for name in self.requirements.given if name not in self.relaxed)
 
     @property
-    def metrics(self) -> tuple[str, ...]:
+    def metrics(self) -> tuple[MetricSpec, ...]:
         """The metrics to measure: the requirements' and the objective's, in declared order."""
         needed = {REQUIREMENTS[name].metric for name in self.requirements.given}
-        needed.add(self.objective.name)
-        return tuple(name for name in METRICS if name in needed)
+        needed.add(self.objective.spec)
+        return tuple(spec for spec in METRICS if spec in needed)
 
     @property
     def walks(self) -> bool:
         """Whether the designs walk the requirements' gait (a walking metric is needed)."""
-        return any(METRICS[name].analysis == "walking" for name in self.metrics)
+        return any(spec.walks for spec in self.metrics)
 
     @property
     def conditions(self) -> Conditions:
@@ -112,9 +112,13 @@ class Goal:
         The arguments after ``design`` are :func:`~hexaleg.evaluation.evaluate.evaluate`'s.
         """
         found = evaluate(
-            design, self.metrics, self.conditions, model=model, template=template,
+            design,
+            self.metrics,
+            self.conditions,
+            model=model,
+            template=template,
             flexibility=flexibility,
-        )  # fmt: skip
+        )
         return self._measured(found)
 
     def evaluate_many(
@@ -126,12 +130,12 @@ class Goal:
 
     def _measured(self, evaluation: Evaluation) -> Evaluation:
         """The evaluation, or an error when the objective could not be measured."""
-        why = evaluation.unmeasured.get(self.objective.name)
+        why = evaluation.unmeasured[self.objective.spec]
         return Evaluation(error=why) if why else evaluation
 
     def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
         """Each requirement checked on an evaluation (its value, margin, what limits it)."""
-        return check(self.requirements, evaluation.values, evaluation.causes)
+        return check(self.requirements, evaluation.metrics, evaluation.causes)
 
     def meets(self, evaluation: Evaluation) -> bool:
         """Whether the design was measured and meets every constraint."""

@@ -50,7 +50,7 @@ class RequirementSpec:
     """
 
     name: str
-    metric: str
+    metric: MetricSpec
     sense: Sense
     bounds: tuple[float, float]
     help: str
@@ -60,14 +60,9 @@ class RequirementSpec:
     zero: bool = False
 
     @property
-    def spec(self) -> MetricSpec:
-        """The declaration of the metric it bounds."""
-        return METRICS[self.metric]
-
-    @property
     def unit(self) -> str:
         """Its unit: its metric's."""
-        return self.spec.unit
+        return self.metric.unit
 
     @property
     def option(self) -> str:
@@ -126,60 +121,157 @@ class ConditionSpec:
 REQUIREMENTS: Mapping[str, RequirementSpec] = {
     spec.name: spec
     for spec in (
-        RequirementSpec("payload", "payload_capacity", "at least", (0.0, PAYLOAD_SEARCH_LIMIT),
-                        "payload the robot must carry [kg]", "KG", 30.0, "the statics",
-                        zero=True),
-        RequirementSpec("slope", "max_slope", "at least", (0.0, math.pi / 2),
-                        "slope it must stand on, uphill in every heading, with the payload "
-                        "[rad]", "RAD", math.radians(15.0), "the statics", zero=True),
-        RequirementSpec("ground_clearance", "ground_clearance", "at least", (0.0, 100.0),
-                        "body underside above the ground at the nominal stance [m]", "M", 0.25,
-                        "geometry: the tibia, femur and nominal posture"),
-        RequirementSpec("min_fb", "fb", "at least", (0.0, 10.0),
-                        "least axis-locked body flexibility FB (eq 29) [-]", "F", 0.2,
-                        "geometry: twelve extremes, each stopped by its own constraint"),
-        RequirementSpec("leg_length", "leg_length", "at most",
-                        (3 * SEGMENT_RANGE[0], SEGMENT_RANGE[1]),
-                        "largest total leg length l1+l2+l3 [m] (default: the design's)", "M",
-                        1.0, "geometry: the design's l1 + l2 + l3"),
-        RequirementSpec("min_coxa", "coxa_length", "at least", SEGMENT_RANGE,
-                        "least coxa length l1, for the root actuator's packaging [m]", "M", 0.08,
-                        "geometry: the design's coxa length l1"),
-        RequirementSpec("speed", "max_speed", "at least", (0.0, 100.0),
-                        f"tripod gait speed ({Gait.stride:g} m stride) carrying the payload "
-                        "within the rated torques and speeds; with [actuators], within their "
-                        "electrical ratings: peak and continuous (RMS) torque, the supply "
-                        "voltage, max speed [m/s]", "M/S", 0.3, "the gait"),
-        RequirementSpec("walking_payload", "walking_payload_capacity", "at least",
-                        (0.0, PAYLOAD_SEARCH_LIMIT),
-                        "payload the robot must carry at payload_at walking that gait within "
-                        "every rating, the ZMP inside the standing feet [kg]", "KG", 10.0,
-                        "the gait", zero=True),
-        RequirementSpec("range_km", "battery_range", "at least", (0.0, 1e5),
-                        "distance it must walk that gait on one charge of its battery [km]",
-                        "KM", 5.0, "the gait and the battery"),
-        RequirementSpec("continuous_margin", "continuous_load", "at most", (0.01, 1.0),
-                        "largest share of its continuous torque any joint's RMS torque may be "
-                        "walking that gait [-]", "SHARE", 0.8, "the gait and the actuators"),
+        RequirementSpec(
+            "payload",
+            METRICS.payload_capacity,
+            "at least",
+            (0.0, PAYLOAD_SEARCH_LIMIT),
+            "payload the robot must carry [kg]",
+            "KG",
+            30.0,
+            "the statics",
+            zero=True,
+        ),
+        RequirementSpec(
+            "slope",
+            METRICS.max_slope,
+            "at least",
+            (0.0, math.pi / 2),
+            "slope it must stand on, uphill in every heading, with the payload [rad]",
+            "RAD",
+            math.radians(15.0),
+            "the statics",
+            zero=True,
+        ),
+        RequirementSpec(
+            "ground_clearance",
+            METRICS.ground_clearance,
+            "at least",
+            (0.0, 100.0),
+            "body underside above the ground at the nominal stance [m]",
+            "M",
+            0.25,
+            "geometry: the tibia, femur and nominal posture",
+        ),
+        RequirementSpec(
+            "min_fb",
+            METRICS.fb,
+            "at least",
+            (0.0, 10.0),
+            "least axis-locked body flexibility FB (eq 29) [-]",
+            "F",
+            0.2,
+            "geometry: twelve extremes, each stopped by its own constraint",
+        ),
+        RequirementSpec(
+            "leg_length",
+            METRICS.leg_length,
+            "at most",
+            (3 * SEGMENT_RANGE[0], SEGMENT_RANGE[1]),
+            "largest total leg length l1+l2+l3 [m] (default: the design's)",
+            "M",
+            1.0,
+            "geometry: the design's l1 + l2 + l3",
+        ),
+        RequirementSpec(
+            "min_coxa",
+            METRICS.coxa_length,
+            "at least",
+            SEGMENT_RANGE,
+            "least coxa length l1, for the root actuator's packaging [m]",
+            "M",
+            0.08,
+            "geometry: the design's coxa length l1",
+        ),
+        RequirementSpec(
+            "speed",
+            METRICS.max_speed,
+            "at least",
+            (0.0, 100.0),
+            f"tripod gait speed ({Gait.stride:g} m stride) carrying the payload "
+            "within the rated torques and speeds; with [actuators], within their "
+            "electrical ratings: peak and continuous (RMS) torque, the supply "
+            "voltage, max speed [m/s]",
+            "M/S",
+            0.3,
+            "the gait",
+        ),
+        RequirementSpec(
+            "walking_payload",
+            METRICS.walking_payload_capacity,
+            "at least",
+            (0.0, PAYLOAD_SEARCH_LIMIT),
+            "payload the robot must carry at payload_at walking that gait within "
+            "every rating, the ZMP inside the standing feet [kg]",
+            "KG",
+            10.0,
+            "the gait",
+            zero=True,
+        ),
+        RequirementSpec(
+            "range_km",
+            METRICS.battery_range,
+            "at least",
+            (0.0, 1e5),
+            "distance it must walk that gait on one charge of its battery [km]",
+            "KM",
+            5.0,
+            "the gait and the battery",
+        ),
+        RequirementSpec(
+            "continuous_margin",
+            METRICS.continuous_load,
+            "at most",
+            (0.01, 1.0),
+            "largest share of its continuous torque any joint's RMS torque may be "
+            "walking that gait [-]",
+            "SHARE",
+            0.8,
+            "the gait and the actuators",
+        ),
     )
-}  # fmt: skip
+}
 """Every requirement, in the order answers list them."""
 
 CONDITIONS: Mapping[str, ConditionSpec] = {
     spec.name: spec
     for spec in (
-        ConditionSpec("payload_at", "payload", "position",
-                      f"where the payload sits, body frame x, y, z, each in [-{PAYLOAD_REACH:g}, "
-                      f"{PAYLOAD_REACH:g}] [m] (default: the centre of the body's top face)",
-                      ("X", "Y", "Z"), (0.0, 0.0, 0.05), "m", (-PAYLOAD_REACH, PAYLOAD_REACH),
-                      "needs a payload [kg] to place", also=("walking_payload",)),
-        ConditionSpec("slope_deg", "slope", "degrees", "the same slope in degrees [°]",
-                      ("DEG",), 15.0, "°", (0.0, 90.0)),
-        ConditionSpec("step_height", "speed", "number",
-                      f"step height of that gait [m] (default {Gait.step_height:g})", ("M",),
-                      0.1, "m", (0.0, 10.0), "needs a speed [m/s] to walk at; > 0 [m]"),
+        ConditionSpec(
+            "payload_at",
+            "payload",
+            "position",
+            f"where the payload sits, body frame x, y, z, each in [-{PAYLOAD_REACH:g}, "
+            f"{PAYLOAD_REACH:g}] [m] (default: the centre of the body's top face)",
+            ("X", "Y", "Z"),
+            (0.0, 0.0, 0.05),
+            "m",
+            (-PAYLOAD_REACH, PAYLOAD_REACH),
+            "needs a payload [kg] to place",
+            also=("walking_payload",),
+        ),
+        ConditionSpec(
+            "slope_deg",
+            "slope",
+            "degrees",
+            "the same slope in degrees [°]",
+            ("DEG",),
+            15.0,
+            "°",
+            (0.0, 90.0),
+        ),
+        ConditionSpec(
+            "step_height",
+            "speed",
+            "number",
+            f"step height of that gait [m] (default {Gait.step_height:g})",
+            ("M",),
+            0.1,
+            "m",
+            (0.0, 10.0),
+            "needs a speed [m/s] to walk at; > 0 [m]",
+        ),
     )
-}  # fmt: skip
+}
 """Every condition, each after the requirement it belongs to in the table and the options."""
 
 

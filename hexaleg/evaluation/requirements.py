@@ -51,6 +51,7 @@ from typing import Any
 from hexaleg._checks import require_finite, require_in_range
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.metrics import Causes, Metrics
 from hexaleg.evaluation.requirement_specs import CONDITIONS, REQUIREMENTS, degree_keys, table_keys
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.spec import Gait
@@ -233,7 +234,7 @@ class Requirements:
 
 def format_value(name: str, value: float) -> str:
     """A requirement's value with its unit; slopes also in degrees."""
-    return REQUIREMENTS[name].spec.format(value)
+    return REQUIREMENTS[name].metric.format(value)
 
 
 def format_margin(check: RequirementCheck) -> str:
@@ -276,8 +277,11 @@ class RequirementCheck:
 
     def to_dict(self, binding: bool) -> dict[str, Any]:
         """JSON-ready: ``binds`` for the best design, ``met`` for the user's."""
-        out: dict[str, Any] = {"required": self.required, "value": self.value,
-                               "margin": self.margin}  # fmt: skip
+        out: dict[str, Any] = {
+            "required": self.required,
+            "value": self.value,
+            "margin": self.margin,
+        }
         out |= {"binds": self.binds} if binding else {"met": self.met}
         return out | {"limited_by": limited_by_dict(self.limited_by)}
 
@@ -289,15 +293,18 @@ def limited_by_dict(limited_by: Cause | str) -> dict[str, Any]:
     return {"kind": "design", "description": limited_by}
 
 
-def check(requirements: Requirements, values: Mapping[str, float],
-          causes: Mapping[str, Cause]) -> tuple[RequirementCheck, ...]:  # fmt: skip
-    """Each given requirement against a design's metric ``values`` (and what limits them)."""
+def check(
+    requirements: Requirements, metrics: Metrics, causes: Causes
+) -> tuple[RequirementCheck, ...]:
+    """Each given requirement against a design's ``metrics`` (and what limits them)."""
     checks = []
     for name in requirements.given:
         spec, required = REQUIREMENTS[name], float(getattr(requirements, name))
-        value = float(values[spec.metric])
-        checks.append(RequirementCheck(name, required, value, spec.margin(required, value),
-                                       causes.get(spec.metric, spec.reason)))  # fmt: skip
+        value = metrics.value(spec.metric)
+        limited_by = causes[spec.metric] or spec.reason
+        checks.append(
+            RequirementCheck(name, required, value, spec.margin(required, value), limited_by)
+        )
     return tuple(checks)
 
 

@@ -111,8 +111,8 @@ def find_conflict(space: SearchSpace, goal: Goal, least: Evaluation, search: Sea
         if relaxation is not None:
             relaxations.append(relaxation)
     names = tuple(r.name for r in relaxations) or tuple(c.name for c in checks if not c.met)
-    metrics = [REQUIREMENTS[n].metric for n in names]
-    causes = [least.causes[m] for m in metrics if m in least.causes]
+    found = (least.causes[REQUIREMENTS[n].metric] for n in names)
+    causes = [cause for cause in found if cause is not None]
     text = describe(names, goal.requirements, causes, space.base, relaxations)
     return Conflict(names, tuple(relaxations), text)
 
@@ -122,7 +122,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     requirements = goal.requirements
     required = float(getattr(requirements, name))
     spec = REQUIREMENTS[name]
-    objective = Objective(spec.metric, "maximize" if spec.sense == "at least" else "minimize")
+    objective = Objective(spec.metric.name, "maximize" if spec.sense == "at least" else "minimize")
     if name == "leg_length":
         longest = min(LEG_RELAXATION * required, spec.bounds[1])
         relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)
@@ -139,7 +139,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     outcome = search(widened, relaxed_goal)
     if not outcome.feasible:
         return None
-    value = float(outcome.evaluation.values[spec.metric])
+    value = outcome.evaluation.metrics.value(spec.metric)
     return Relaxation(name, required, value, tuple(float(v) for v in outcome.x))
 
 
@@ -156,7 +156,7 @@ def describe(
     150 N·m; 26 kg or 17° can".
     """
     listed = [
-        f"{REQUIREMENTS[n].spec.label} {short_value(n, float(getattr(requirements, n)))}"
+        f"{REQUIREMENTS[n].metric.label} {short_value(n, float(getattr(requirements, n)))}"
         for n in names
     ]
     joined = listed[0] if len(listed) == 1 else ", ".join(listed[:-1]) + " and " + listed[-1]
@@ -198,4 +198,4 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
 
 def short_value(name: str, value: float) -> str:
     """A requirement's value in a sentence: slopes in degrees, three significant digits."""
-    return REQUIREMENTS[name].spec.short(value)
+    return REQUIREMENTS[name].metric.short(value)

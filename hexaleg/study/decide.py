@@ -126,9 +126,12 @@ class CheckedDesign:
 
     def objective(self, objective: Objective) -> dict[str, Any]:
         """The objective's name, sense, value and unit, JSON-ready."""
-        value = self.evaluation.values.get(objective.name)
-        return {"name": objective.name, "sense": objective.sense, "value": value,
-                "unit": objective.spec.unit}  # fmt: skip
+        return {
+            "name": objective.name,
+            "sense": objective.sense,
+            "value": self.evaluation.metrics[objective.spec],
+            "unit": objective.spec.unit,
+        }
 
 
 def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
 from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
@@ -143,12 +144,16 @@ def statics_study_figure(
     """
     fig = new_figure(8.4)
     panels = fig.subplots(3, 1, sharex=True)
+    standing, walking = METRICS.payload_capacity.name, METRICS.walking_payload_capacity.name
     columns = (
         ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing: nominal and 12 extremes"),
         ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing: nominal and 12 extremes"),
-        ("payload_capacity", "payload [kg], log scale",
-         f"Payload capacity: standing (solid), walking {gait.named} (dashed)"),
-    )  # fmt: skip
+        (
+            standing,
+            "payload [kg], log scale",
+            f"Payload capacity: standing (solid), walking {gait.named} (dashed)",
+        ),
+    )
     groups = list(zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False))
     for ax, (column, label, title) in zip(panels, columns, strict=True):
         for (r1, group), color in groups:
@@ -161,24 +166,25 @@ def statics_study_figure(
         if rated is not None:
             rating_line(ax, rated[joint], joint)
     payload = panels[2]
-    if "walking_payload_capacity" in table:
+    if walking in table:
         for (_, group), color in groups:
-            walking = group["walking_payload_capacity"].where(group["walking_payload_capacity"] > 0)
-            payload.plot(group["l3_ratio"], walking, color=color, ls="--")
-        draw_marks(payload, marks, "l3_ratio", "walking_payload_capacity")
+            carried = group[walking].where(group[walking] > 0)
+            payload.plot(group["l3_ratio"], carried, color=color, ls="--")
+        draw_marks(payload, marks, "l3_ratio", walking)
     log_scale(payload, "y")
     payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
-    name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
+    name_largest(payload, table["l3_ratio"], table[standing], design_names(table, standing))
     handles, labels = panels[0].get_legend_handles_labels()
     unique = dict(zip(labels, handles, strict=True))
-    panels[0].legend(unique.values(), unique.keys(), loc="center left",
-                     bbox_to_anchor=(1.01, 0.5), fontsize=7.5)  # fmt: skip
+    panels[0].legend(
+        unique.values(), unique.keys(), loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5
+    )
     panels[2].set_xlabel("tibia ratio l3 / L [-]")
     fig.suptitle("What each design of the sweep costs (foot forces shared by least Σ|f|²)")
     return fig
 
 
-def design_names(table: pd.DataFrame, column: str = "payload_capacity") -> list[str]:
+def design_names(table: pd.DataFrame, column: str) -> list[str]:
     """Each design of a study table named by a capacity (a column [kg]) and its lengths."""
     return [
         f"{row[column]:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "

@@ -8,7 +8,6 @@ from typing import Any
 
 import pandas as pd
 
-from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import pareto_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
@@ -56,7 +55,7 @@ def section(data: ReportData) -> Section:
         (
             f"{r['l1_ratio']:.2f}",
             ratio_text(r["l3_ratio"]),
-            *(METRICS[name].cell(r[name]) for name in RANKED_METRICS),
+            *(spec.cell(r[spec.name]) for spec in RANKED_METRICS),
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")

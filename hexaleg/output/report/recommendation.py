@@ -80,7 +80,7 @@ def section(data: ReportData) -> Section:
                 [
                     (
                         f"{r['l1_ratio']:.2f}",
-                        *(ratio_text(r[f"{name}_peak_l3_ratio"]) for name in RANKED_METRICS),
+                        *(ratio_text(r[f"{spec.name}_peak_l3_ratio"]) for spec in RANKED_METRICS),
                         ratio_text(r["score_peak_l3_ratio"]),
                         f"{r['best_score']:.4f}",
                     )
@@ -119,9 +119,9 @@ def to_json(record: RecommendationRecord) -> dict[str, Any]:
             "l2_ratio": rec.l2_ratio,
             "l3_ratio": rec.l3_ratio,
             "l3_band": list(rec.l3_band),
-            "metrics": rec.metrics,
+            "metrics": rec.metrics.to_dict(),
             "score": rec.score,
-            "reference": rec.reference,
+            "reference": rec.reference.to_dict(),
             "peaks": rec.peaks.to_dict(orient="records"),
             "lengths_m": [rec.l1_ratio * total, rec.l2_ratio * total, rec.l3_ratio * total],
         }

@@ -8,6 +8,7 @@ each. The decision itself is :func:`hexaleg.study.decide.decide`.
 
 from __future__ import annotations
 
+from hexaleg.evaluation.goal import Objective
 from hexaleg.evaluation.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.output.report.document import table
 from hexaleg.statics.ratings import OverRating
@@ -23,21 +24,21 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         extreme = "largest" if objective.sense == "maximize" else "smallest"
         verdict = (
             f"**The best leg meeting your requirements: l = ({lengths}) m**, the {extreme} "
-            f"{objective.spec.label} of those that do: {_objective(best, objective.name)}"
+            f"{objective.spec.label} of those that do: {_objective(best, objective)}"
         )
     else:
         reason = result.conflict.description if result.conflict else "nothing meets them all"
         verdict = (
             f"**No leg within the bounds meets every requirement:** {reason}. The leg closest "
             f"to meeting them is l = ({lengths}) m, {objective.spec.label} "
-            f"{_objective(best, objective.name)}"
+            f"{_objective(best, objective)}"
         )
     rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
     rows += [_bound_row(at, yours) for at in result.bounds_binding]
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
     walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
-        f"{verdict}; your design: {objective.spec.label} {_objective(yours, objective.name)}.",
+        f"{verdict}; your design: {objective.spec.label} {_objective(yours, objective)}.",
         table(
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,
@@ -76,8 +77,8 @@ def _bound_row(at: AtBound, yours: CheckedDesign) -> tuple[str, ...]:
     )
 
 
-def _objective(checked: CheckedDesign, name: str) -> str:
-    value = checked.evaluation.values.get(name)
+def _objective(checked: CheckedDesign, objective: Objective) -> str:
+    value = checked.evaluation.metrics[objective.spec]
     return "—" if value is None else f"{value:.4g}"
 
 
