@@ -197,7 +197,7 @@ def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
     study = report_study.compute(ReportData(design, options, HexapodModel(design)))
     assert study.spec.walked == gait
     oracle = _gait_json(capsys, without, design)
-    assert study.yours["gait_peak_hip_torque"] == pytest.approx(
+    assert study.yours.metrics.gait_peak_hip_torque == pytest.approx(
         oracle["peak_torque"]["hip"], rel=1e-9
     )
     motors_file = tmp_path / "motors.toml"

@@ -6,8 +6,8 @@ layer and those below it, never one above::
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
                 _lazy
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
-                kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text
+                kinematics, leg_frames, gravity, cause, actuators, actuator_catalog,
+                battery, table_records, grids, design_text
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical
@@ -58,6 +58,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "leg_geometry",
             "kinematics",
             "leg_frames",
+            "gravity",
             "cause",
             "actuators",
             "actuator_catalog",

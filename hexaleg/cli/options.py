@@ -206,9 +206,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         else load_design_file(path, Requirements.from_table)
     )
     if path is not None:
-        from dataclasses import replace
-
-        requirements = replace(requirements, walked=load_gait(path))
+        requirements = requirements.walking(load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
         from hexaleg.cli.robot_options import ROBOT_COMMANDS
         from hexaleg.cli.robot_table import load_robot_table

@@ -14,7 +14,8 @@ from dataclasses import dataclass, field, replace
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
 from hexaleg.evaluation.metrics import METRICS, Better, MetricSpec, objectives
-from hexaleg.evaluation.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
+from hexaleg.evaluation.requirement_specs import REQUIREMENTS, SLOPE
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements, check
 from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
@@ -94,7 +95,7 @@ class Goal:
         """The conditions of the requirements: their payload, slope and gait."""
         requirements = self.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
-        return Conditions(payload, requirements.slope, requirements.gait)
+        return Conditions(payload, requirements.required(SLOPE), requirements.gait)
 
     def with_objective(self, objective: Objective, relaxed: tuple[str, ...] = ()) -> Goal:
         """The same requirements for another objective, some of them relaxed."""

@@ -1,42 +1,16 @@
 """What the robot must do: the requirements a decision meets, and how each is checked.
 
-Each requirement is optional and has the same name in a design file's ``[requirements]``
-table, on the command line (``--payload``, ``--slope``, ...) and in JSON:
+Each requirement (:mod:`~hexaleg.evaluation.requirement_specs`: what it bounds, its range,
+option and key) is optional and has the same name in a design file's ``[requirements]``
+table, on the command line (``--payload``, ``--slope``, ...) and in JSON. A
+:class:`Requirements` holds the values given, each checked against its declaration.
 
-- ``payload`` [kg] carried at ``payload_at`` (body frame [m]; default the centre of the
-  body's top face): the largest payload the nominal stance holds with every joint
-  torque within its rating and the centre of mass over the support polygon — on level
-  ground, and on every slope up to ``slope`` in every heading when a slope is required;
-- ``slope`` [rad] (``slope_deg`` [°] in files and ``--slope-deg``): the steepest slope the
-  robot stands on, uphill in every heading, carrying ``payload`` — the first slope where
-  it tips, slides (tan α > μ) or a joint torque reaches its rating
-  (:mod:`hexaleg.statics.standing_limits`);
-- ``ground_clearance`` [m]: the body's underside above the ground at the nominal stance;
-- ``min_fb`` [-]: the axis-locked body flexibility FB (eq 29) at least this;
-- ``leg_length`` [m]: l1 + l2 + l3 at most this (default: the design's own);
-- ``min_coxa`` [m]: l1 at least this (what the root actuator's packaging needs);
-- ``speed`` [m/s]: the fastest a tripod gait of the default stride
-  (:class:`~hexaleg.gait.spec.Gait`), lifting its feet ``step_height`` [m] (a condition of
-  it, like ``payload_at`` of the payload) and carrying the payload when one is required,
-  walks with every peak joint torque and joint speed within its rating and every
-  constraint of the period kept (:func:`~hexaleg.gait.limits.max_speed`; zero if that
-  stride cannot be walked at all) — at least this. :attr:`Requirements.gait` is that
-  gait at the required speed;
-- ``walking_payload`` [kg]: the largest payload at ``payload_at`` carried walking that gait
-  with every joint within its ratings and the ZMP inside the standing feet
-  (:mod:`hexaleg.gait.capacity`) — at least this;
-- ``range_km`` [km]: the distance that gait walks on one charge of the design's
-  ``[battery]``, through its ``[actuators]`` (:mod:`hexaleg.electrical`) — at least this;
-- ``continuous_margin`` [-]: every joint's RMS torque over that gait period as a share of
-  its actuator's continuous torque — at most this.
-
-The ratings are the design's ``rated_torques`` and ``rated_speeds``. A requirement's
-*margin* is how far its value is on the good side of the required one, in its own unit
-(negative: not met); it *binds* a design that meets it within :data:`BINDING_SHARE` of
-the required value. Every check says what limits its value: the constraint an analysis
-stops at (a :class:`~hexaleg.cause.Cause`: a joint at its rated torque, tipping, ...),
-or, for a value that is the design's own geometry,
-:attr:`~.requirement_specs.RequirementSpec.reason`.
+A requirement's *margin* is how far its value is on the good side of the required one,
+in its own unit (negative: not met); it *binds* a design that meets it within
+:data:`~.requirement_specs.BINDING_SHARE` of the required value. Every check says what
+limits its value: the constraint an analysis stops at (a :class:`~hexaleg.cause.Cause`:
+a joint at its rated torque, tipping, ...), or, for a value that is the design's own
+geometry, :attr:`~.requirement_specs.RequirementSpec.reason`.
 """
 
 from __future__ import annotations
@@ -44,80 +18,73 @@ from __future__ import annotations
 import difflib
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, replace
-from dataclasses import field as dataclass_field
+from dataclasses import dataclass
 from typing import Any
 
 from hexaleg._checks import require_finite, require_in_range
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.metrics import Causes, Metrics
-from hexaleg.evaluation.requirement_specs import CONDITIONS, REQUIREMENTS, degree_keys, table_keys
+from hexaleg.evaluation.requirement_specs import (
+    CONDITIONS,
+    LEG_LENGTH,
+    PAYLOAD,
+    PAYLOAD_AT,
+    REQUIREMENTS,
+    SLOPE,
+    SPEED,
+    STEP_HEIGHT,
+    ConditionSpec,
+    RequirementSpec,
+    condition_keys,
+    degree_keys,
+    table_keys,
+)
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.spec import Gait
 
+Position = tuple[float, float, float]
+"""A point in the body frame [m]."""
 
-@dataclass(frozen=True)
+
+@dataclass(frozen=True, init=False)
 class Requirements:
-    """What the robot must do; every requirement is optional (``None``: not required).
+    """What the robot must do: each requirement optional, each checked by its declaration.
+
+    ``Requirements(payload=30, slope=0.2, payload_at=(0.1, 0, 0.05))``: a keyword per
+    requirement or condition given, by its declared name
+    (:data:`~.requirement_specs.REQUIREMENTS`, :data:`~.requirement_specs.CONDITIONS`;
+    ``None``: not required); read back with :meth:`required` and :meth:`condition`.
 
     Attributes:
-        payload: Payload carried [kg].
-        payload_at: Where it sits, body frame [m]; ``None``: the centre of the top face.
-        slope: Slope stood on in every heading, carrying the payload [rad].
-        ground_clearance: Body underside above the ground at the nominal stance [m].
-        min_fb: Least axis-locked FB [-].
-        leg_length: Largest l1 + l2 + l3 [m]; ``None``: the design's own (:meth:`resolved`).
-        min_coxa: Least coxa length l1 [m].
-        speed: Tripod gait speed within the ratings [m/s].
-        step_height: Step height of that gait [m] (the gait's default if omitted).
-        walking_payload: Payload carried at ``payload_at`` walking that gait within every
-            rating [kg].
-        range_km: Distance walked on one charge of the design's battery [km].
-        continuous_margin: Largest share of its continuous torque any joint's RMS torque
-            may be walking the gait [-].
-        walked: The gait walked before ``speed`` and ``step_height`` apply: the design
-            file's ``[gait]`` table, else the default gait (not a requirement: what it
-            is measured walking).
+        values: Each requirement and condition given, by name, in the table's order [its
+            unit; a position as three coordinates].
+        walked: The gait walked before the speed and step height apply: the design file's
+            ``[gait]`` table, else the default gait (not a requirement: what it is
+            measured walking).
 
     """
 
-    payload: float | None = None
-    payload_at: tuple[float, float, float] | None = None
-    slope: float | None = None
-    ground_clearance: float | None = None
-    min_fb: float | None = None
-    leg_length: float | None = None
-    min_coxa: float | None = None
-    speed: float | None = None
-    step_height: float | None = None
-    walking_payload: float | None = None
-    range_km: float | None = None
-    continuous_margin: float | None = None
-    walked: Gait = dataclass_field(default_factory=Gait)
+    values: tuple[tuple[str, float | Position], ...]
+    walked: Gait
 
-    def __post_init__(self) -> None:
-        for name, spec in REQUIREMENTS.items():
-            value = getattr(self, name)
-            if value is not None:
-                checked = require_in_range(name, value, *spec.bounds, spec.unit)
-                if checked <= 0 and not spec.zero:
-                    raise ParameterError(name, value, f"must be positive [{spec.unit}]")
-                object.__setattr__(self, name, checked)
-        if self.slope is not None and self.slope >= math.pi / 2:
-            raise ParameterError("slope", self.slope, "must be less than π/2 [rad]")
-        for condition in CONDITIONS.values():
-            value = getattr(self, condition.name, None)
-            if value is None or not condition.needs:
-                continue
-            value = condition_value(condition.name, value)
-            owners = (condition.of, *condition.also)
-            if all(getattr(self, name) is None for name in owners) or (
-                condition.kind == "number" and value <= 0
-            ):
-                raise ParameterError(condition.name, value, condition.needs)
-            object.__setattr__(self, condition.name, value)
-        if self.speed is not None:
+    def __init__(self, walked: Gait | None = None, **given: Any) -> None:
+        keys = {key.name: key for key in table_keys() if key.name not in degree_keys()}
+        unknown = [name for name in given if name not in keys]
+        if unknown:
+            raise ParameterError(unknown[0], given[unknown[0]], "no requirement of that name")
+        checked: dict[str, float | Position] = {
+            name: _checked(REQUIREMENTS[name], value)
+            for name, value in given.items()
+            if name in REQUIREMENTS and value is not None
+        }
+        for name, value in given.items():
+            if name in CONDITIONS and value is not None:
+                checked[name] = _condition(CONDITIONS[name], value, checked)
+        ordered = [(name, checked[name]) for name in keys if name in checked]
+        object.__setattr__(self, "values", tuple(ordered))
+        object.__setattr__(self, "walked", Gait() if walked is None else walked)
+        if self.required(SPEED) is not None:
             _ = self.gait  # its period must lie in the gait's range (ParameterError "speed")
 
     # -- construction -------------------------------------------------------------------
@@ -127,7 +94,8 @@ class Requirements:
         """The requirements of a design file's ``[requirements]`` table.
 
         Args:
-            table: Keys as the fields' names (``slope_deg`` [°] for ``slope``).
+            table: Keys as the requirements' and conditions' names (``slope_deg`` [°] for
+                ``slope``).
             source: Where the table comes from, for error messages.
 
         Raises:
@@ -138,7 +106,7 @@ class Requirements:
         if not isinstance(table, Mapping):
             raise ParameterError(source, table, "must be a table of requirement keys")
         known = tuple(spec.name for spec in table_keys())
-        degrees = degree_keys()
+        degrees, conditions = degree_keys(), condition_keys()
         values: dict[str, Any] = {}
         for key, raw in table.items():
             field = f"{source}.{key}"
@@ -149,13 +117,14 @@ class Requirements:
                 hint = f"did you mean {close[0]!r}?" if close else "known: " + ", ".join(known)
                 raise ParameterError(field, raw, f"unknown requirement; {hint}")
             if key in degrees:
-                if degrees[key] in table:
+                name = degrees[key].name
+                if name in table:
                     raise ParameterError(
-                        field, raw, f"give the {degrees[key]} in radians or degrees, not both"
+                        field, raw, f"give the {name} in radians or degrees, not both"
                     )
-                values[degrees[key]] = math.radians(condition_value(key, raw, field))
-            elif key in CONDITIONS:
-                values[key] = condition_value(key, raw, field)
+                values[name] = math.radians(condition_value(conditions[key], raw, field))
+            elif key in conditions:
+                values[key] = condition_value(conditions[key], raw, field)
             else:
                 values[key] = require_finite(field, raw)
         try:
@@ -164,72 +133,114 @@ class Requirements:
             raise ParameterError(f"{source}.{err.field}", err.value, err.allowed) from None
 
     def replace(self, **changes: Any) -> Requirements:
-        """Copy with some requirements changed (validated again)."""
-        return replace(self, **changes)
+        """Copy with some requirements or conditions changed (``None`` drops one), checked again."""
+        return Requirements(self.walked, **(dict(self.values) | changes))
+
+    def walking(self, gait: Gait) -> Requirements:
+        """The same requirements, walking ``gait`` (:attr:`walked`)."""
+        return Requirements(gait, **dict(self.values))
 
     def resolved(self, design: HexapodDesign) -> Requirements:
         """These requirements with the defaults filled in from ``design`` (its leg length)."""
-        if self.leg_length is not None:
+        if self.required(LEG_LENGTH) is not None:
             return self
-        return self.replace(leg_length=design.leg_length)
+        return self.replace(**{LEG_LENGTH.name: design.leg_length})
 
     # -- queries ------------------------------------------------------------------------
 
+    def required(self, spec: RequirementSpec) -> float | None:
+        """The required value of ``spec`` [its unit]; ``None``: not required."""
+        value = dict(self.values).get(spec.name)
+        return None if value is None else float(value)  # type: ignore[arg-type]
+
+    def condition(self, spec: ConditionSpec) -> float | Position | None:
+        """The value of condition ``spec``; ``None``: not given (its default applies)."""
+        return dict(self.values).get(spec.name)
+
     @property
     def given(self) -> tuple[str, ...]:
-        """Names of the requirements set, in :data:`REQUIREMENTS` order."""
-        return tuple(name for name in REQUIREMENTS if getattr(self, name) is not None)
+        """Names of the requirements set, in :data:`~.requirement_specs.REQUIREMENTS` order."""
+        return tuple(name for name, _ in self.values if name in REQUIREMENTS)
 
     @property
     def payload_mass(self) -> float:
         """The payload to carry [kg] (0 when none is required)."""
-        return self.payload or 0.0
+        return self.required(PAYLOAD) or 0.0
+
+    @property
+    def payload_at(self) -> Position | None:
+        """Where the payload sits, body frame [m]; ``None``: the centre of the top face."""
+        value = self.condition(PAYLOAD_AT)
+        return value if isinstance(value, tuple) else None
 
     @property
     def needs_gait(self) -> bool:
         """Whether a walking requirement is set."""
-        return self.speed is not None
+        return self.required(SPEED) is not None
 
     @property
     def gait(self) -> Gait:
         """The gait every design walks: :attr:`walked` (the design file's ``[gait]``).
 
-        It lifts ``step_height`` and walks at the required ``speed`` where they are given
-        (the ``[gait]`` table's, else the default gait's, without them).
+        It lifts the required step height and walks at the required speed where they are
+        given (the ``[gait]`` table's, else the default gait's, without them).
         """
-        gait = self.walked
-        gait = gait if self.step_height is None else gait.replace(step_height=self.step_height)
-        return gait if self.speed is None else gait.with_speed(self.speed)
+        gait, step, speed = self.walked, self.condition(STEP_HEIGHT), self.required(SPEED)
+        gait = gait if not isinstance(step, float) else gait.replace(step_height=step)
+        return gait if speed is None else gait.with_speed(speed)
 
     def walking_conditions(self) -> str:
         """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``."""
         gait = self.gait
-        carrying = f"carrying {self.payload:g} kg" if self.payload else "no payload"
+        carrying = f"carrying {self.payload_mass:g} kg" if self.payload_mass else "no payload"
         return (
             f"{gait.pattern}, stride {gait.stride:g} m, step height {gait.step_height:g} m, "
             f"{carrying}"
         )
 
     def to_dict(self) -> dict[str, Any]:
-        """The requirements set, JSON-ready (SI units, radians)."""
-        out = {name: getattr(self, name) for name in self.given}
-        for name in CONDITIONS:
-            value = getattr(self, name, None)
-            if value is not None:
-                out[name] = list(value) if isinstance(value, tuple) else value
-        return out
+        """The requirements and conditions set, JSON-ready (SI units, radians)."""
+        return {
+            name: list(value) if isinstance(value, tuple) else value for name, value in self.values
+        }
 
     def describe(self, name: str) -> str:
         """``name``'s requirement in words, with its condition: ``payload ≥ 30 kg (on 15°)``."""
-        sign = "≥" if REQUIREMENTS[name].sense == "at least" else "≤"
-        text = f"{name} {sign} {format_value(name, getattr(self, name))}"
-        if name == "payload" and self.slope is not None:
-            text += f" (on every slope up to {math.degrees(self.slope):.3g}°)"
-        elif name == "slope" and self.payload is not None:
-            text += f" (carrying {self.payload:g} kg)"
-        elif name == "speed":
+        spec = REQUIREMENTS[name]
+        sign = "≥" if spec.sense == "at least" else "≤"
+        text = f"{name} {sign} {format_value(name, float(self.required(spec) or 0.0))}"
+        slope = self.required(SLOPE)
+        if spec is PAYLOAD and slope is not None:
+            text += f" (on every slope up to {math.degrees(slope):.3g}°)"
+        elif spec is SLOPE and self.required(PAYLOAD) is not None:
+            text += f" (carrying {self.payload_mass:g} kg)"
+        elif spec is SPEED:
             text += f" ({self.walking_conditions()})"
         return text
+
+
+def _checked(spec: RequirementSpec, value: Any) -> float:
+    """A required value within its declaration's bounds (positive unless zero may be)."""
+    checked = require_in_range(spec.name, value, *spec.bounds, spec.unit)
+    if checked <= 0 and not spec.zero:
+        raise ParameterError(spec.name, value, f"must be positive [{spec.unit}]")
+    if spec.below and checked >= spec.bounds[1]:
+        raise ParameterError(
+            spec.name, value, f"must be less than {spec.metric.format(spec.bounds[1])}"
+        )
+    return checked
+
+
+def _condition(
+    spec: ConditionSpec, value: Any, required: Mapping[str, float | Position]
+) -> float | Position:
+    """A condition's value checked, refused when none of its requirements is given."""
+    checked = condition_value(spec, value)
+    owners = (spec.of, *spec.also)
+    lonely = all(owner.name not in required for owner in owners)
+    if lonely or (spec.kind == "number" and isinstance(checked, float) and checked <= 0):
+        raise ParameterError(spec.name, value, spec.needs)
+    return checked
 
 
 def format_value(name: str, value: float) -> str:
@@ -299,8 +310,8 @@ def check(
     """Each given requirement against a design's ``metrics`` (and what limits them)."""
     checks = []
     for name in requirements.given:
-        spec, required = REQUIREMENTS[name], float(getattr(requirements, name))
-        value = metrics.value(spec.metric)
+        spec = REQUIREMENTS[name]
+        required, value = float(requirements.required(spec) or 0.0), metrics.value(spec.metric)
         limited_by = causes[spec.metric] or spec.reason
         checks.append(
             RequirementCheck(name, required, value, spec.margin(required, value), limited_by)
@@ -308,9 +319,9 @@ def check(
     return tuple(checks)
 
 
-def condition_value(name: str, value: Any, field: str | None = None) -> Any:
+def condition_value(spec: ConditionSpec, value: Any, field: str | None = None) -> Any:
     """A condition's value checked against its declaration (a tuple for a position)."""
-    spec, field = CONDITIONS[name], field or name
+    field = field or spec.name
     if spec.kind != "position":
         return require_in_range(field, value, *spec.bounds, spec.unit)
     if isinstance(value, str) or not hasattr(value, "__len__") or len(value) != 3:

@@ -33,14 +33,9 @@ from hexaleg.gait.trajectory import (
     joint_motion,
     path_shapes,
 )
+from hexaleg.gravity import GRAVITY
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import (
-    DEFAULT_FRICTION,
-    GRAVITY,
-    Payload,
-    check_friction,
-    check_gravity,
-)
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction, check_gravity
 
 
 @dataclass(frozen=True)

@@ -31,6 +31,7 @@ from hexaleg.actuators import Actuator
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.evaluation.evaluate import Evaluation
 from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirement_specs import LEG_LENGTH, MIN_COXA, RANGE_KM
 from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
@@ -177,7 +178,7 @@ class DecideResult:
 
         l1 at a ``min_coxa`` bound is left out: that requirement's check says it binds.
         """
-        coxa = self.requirements.min_coxa
+        coxa = self.requirements.required(MIN_COXA)
         return tuple(
             at
             for at in bounds_reached(self.variables, self.best.design)
@@ -312,9 +313,16 @@ def _space(
         typed = next(f"{v.name}={v.typed}" for v in free if v.name not in SEGMENTS)
         raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
-        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators, requirements.range_km is not None, ratio_ranges, robot,
-    )  # fmt: skip
+        design,
+        requirements.required(LEG_LENGTH) or 0.0,
+        requirements.required(MIN_COXA),
+        free_posture,
+        free,
+        actuators,
+        requirements.required(RANGE_KM) is not None,
+        ratio_ranges,
+        robot,
+    )
     settings.generations(len(space.variables))
     return space
 
