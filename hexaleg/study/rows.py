@@ -19,7 +19,7 @@ from typing import Any
 
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
-from hexaleg.evaluation.metrics import METRICS, WALKING, Metrics, MetricSpec
+from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
@@ -32,8 +32,17 @@ Key = tuple[float, float]
 Cell = float | str | bool
 """A table cell: a number [its column's unit], a description, or a flag."""
 
-WALKING_METRICS = tuple(spec for spec in METRICS if spec.analysis in WALKING)
-"""The metrics of a study's gait (:attr:`~hexaleg.study.sweep.StudySpec.walked`)."""
+WALKING_METRICS: tuple[MetricSpec, ...] = (
+    METRICS.walking_payload_capacity,
+    METRICS.max_speed,
+    METRICS.gait_peak_torque,
+    METRICS.mechanical_cost_of_transport,
+    *(spec for spec in METRICS if spec.torque == "peak"),
+    *(spec for spec in METRICS if spec.analysis == "motors"),
+)
+"""The metrics of a study's gait (:attr:`~hexaleg.study.sweep.StudySpec.walked`): the
+walking payload capacity, the max speed, the period's peak torques (each joint type's
+and the largest) and cost of transport, and those through the motors."""
 
 KEY_COLUMNS = ("l1_ratio", "l3_ratio", "l1", "l2", "l3")
 """The columns every row has: its ratios [-] and lengths [m] (NaN where it failed)."""
