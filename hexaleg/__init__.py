@@ -16,8 +16,10 @@ from hexaleg._lazy import lazy_exports
 from hexaleg._version import __version__
 
 __all__ = [
+    "Conditions",
     "DecideResult",
     "DesignError",
+    "Evaluation",
     "FlexibilityResult",
     "FlexibilityWarning",
     "FootSearch",
@@ -35,7 +37,9 @@ __all__ = [
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
+    "METRICS",
     "ManipulabilityAnalysis",
+    "Metrics",
     "ModelError",
     "Objective",
     "ParameterError",
@@ -63,6 +67,7 @@ __all__ = [
     "decide",
     "default_mounts",
     "design_toml",
+    "evaluate",
     "flexibility",
     "foot_jacobian",
     "foot_position",
@@ -88,7 +93,9 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import load_design
     from hexaleg.design_text import design_toml
+    from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
     from hexaleg.evaluation.goal import Objective
+    from hexaleg.evaluation.metrics import METRICS, Metrics
     from hexaleg.evaluation.requirements import Requirements
     from hexaleg.exceptions import (
         DesignError,

@@ -24,6 +24,7 @@ import warnings
 from collections.abc import Collection, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import TypeVar
 
 import numpy as np
 import pinocchio as pin
@@ -57,6 +58,9 @@ from hexaleg.swing.manipulability import average_manipulability, rectangular_and
 from hexaleg.swing.workspace import improved_area_closed_form
 
 __all__ = ["Conditions", "Evaluation", "evaluate", "evaluate_many"]
+
+Table = TypeVar("Table", Metrics, Causes, Reasons)
+"""A per-metric record of an evaluation: its values, their causes, why some have none."""
 
 
 @dataclass(frozen=True)
@@ -229,11 +233,9 @@ class _Measuring:
                 measured = replace(measured, **found.to_dict())
         kept = self.conditions.keep
         return Evaluation(
-            metrics=Metrics(**{s.name: v for s, v in measured.given() if s.name in self.asked}),
-            causes=Causes(**{s.name: c for s, c in self.causes.given() if s.name in self.asked}),
-            unmeasured=Reasons(
-                **{s.name: why for s, why in self.unmeasured.given() if s.name in self.asked}
-            ),
+            metrics=self._asked_only(measured),
+            causes=self._asked_only(self.causes),
+            unmeasured=self._asked_only(self.unmeasured),
             flexibility=self.flexibility if kept and "flexibility" in wanted else None,
             loads=self.loads if kept else None,
             gait=self.walked if kept and "period" in wanted else None,
@@ -242,6 +244,12 @@ class _Measuring:
 
     def _asked(self, spec: MetricSpec) -> bool:
         return spec.name in self.asked
+
+    def _asked_only(self, table: Table) -> Table:
+        """``table``'s fields of the metrics asked for (the others ``None``)."""
+        return replace(
+            table, **{s.name: None for s, _ in table.given() if s.name not in self.asked}
+        )
 
     # -- what the analyses share -----------------------------------------------------------
 
