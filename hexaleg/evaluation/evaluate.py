@@ -226,14 +226,14 @@ class _Measuring:
         wanted = {spec.analysis for spec in metrics}
         if self.conditions.keep and wanted & WALKING:
             wanted.add("period")  # the period walked is kept
-        measured = Metrics()
+        measured: dict[str, float | None] = {}
         for analysis in ANALYSES:
             if analysis in wanted:
                 found: Metrics = getattr(self, f"_measure_{analysis}")()
-                measured = replace(measured, **found.to_dict())
+                measured |= found.to_dict()
         kept = self.conditions.keep
         return Evaluation(
-            metrics=self._asked_only(measured),
+            metrics=self._asked_only(Metrics(**measured)),
             causes=self._asked_only(self.causes),
             unmeasured=self._asked_only(self.unmeasured),
             flexibility=self.flexibility if kept and "flexibility" in wanted else None,
@@ -247,9 +247,7 @@ class _Measuring:
 
     def _asked_only(self, table: Table) -> Table:
         """``table``'s fields of the metrics asked for (the others ``None``)."""
-        return replace(
-            table, **{s.name: None for s, _ in table.given() if s.name not in self.asked}
-        )
+        return type(table)(**{k: v for k, v in table.to_dict().items() if k in self.asked})
 
     # -- what the analyses share -----------------------------------------------------------
 

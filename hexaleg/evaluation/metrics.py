@@ -376,8 +376,7 @@ class PerMetric(Generic[T]):
 
     def items(self) -> Iterator[tuple[MetricSpec, T]]:
         """Each metric's declaration and its field, in declared order."""
-        for spec in METRICS:
-            yield spec, getattr(self, spec.name)
+        return zip(METRICS, vars(self).values(), strict=True)  # fields set in declared order
 
     def given(self) -> Iterator[tuple[MetricSpec, T]]:
         """:meth:`items` without the fields that are ``None``."""
@@ -385,7 +384,7 @@ class PerMetric(Generic[T]):
 
     def to_dict(self) -> dict[str, T]:
         """The fields that are not ``None``, by metric name (JSON's and the tables' keys)."""
-        return {spec.name: value for spec, value in self.given()}
+        return {name: value for name, value in vars(self).items() if value is not None}
 
 
 @dataclass(frozen=True)
@@ -443,7 +442,7 @@ class Declarations(PerMetric[MetricSpec]):
 
     def __iter__(self) -> Iterator[MetricSpec]:
         """The declarations, in declared order."""
-        return (getattr(self, f.name) for f in fields(self))
+        return iter(vars(self).values())
 
     def __contains__(self, name: object) -> bool:
         """Whether ``name`` names a metric."""
