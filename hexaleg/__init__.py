@@ -39,6 +39,7 @@ __all__ = [
     "MANIPULABILITY_LIMITS",
     "METRICS",
     "ManipulabilityAnalysis",
+    "Material",
     "Metrics",
     "ModelError",
     "Objective",
@@ -53,9 +54,11 @@ __all__ = [
     "SegmentChange",
     "SimulationResult",
     "StanceGeometry",
+    "Structure",
     "StudySpec",
     "TRIPODS",
     "TemplateError",
+    "Tube",
     "WORKSPACE_LIMITS",
     "WorkspaceAnalysis",
     "__version__",
@@ -82,7 +85,9 @@ __all__ = [
     "render_leg",
     "resize_robot",
     "run_study",
+    "shipped_materials",
     "simulate_gait",
+    "size_structure",
     "write_urdf",
 ]
 
@@ -118,6 +123,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     )
     from hexaleg.layouts import LEG_NAMES, TRIPODS, LegMount, hexagon_mounts, rectangle_mounts
     from hexaleg.leg_geometry import LegGeometry
+    from hexaleg.leg_structure import Structure, Tube
     from hexaleg.limits import (
         IMPROVED_LIMITS,
         MANIPULABILITY_LIMITS,
@@ -125,6 +131,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         WORKSPACE_LIMITS,
         JointLimits,
     )
+    from hexaleg.materials import Material, shipped_materials
     from hexaleg.output.report import build_report
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.feet import FootSearch
@@ -139,6 +146,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.stance.geometry import StanceGeometry
     from hexaleg.statics.forces import Payload
     from hexaleg.statics.loads import analyze_loads
+    from hexaleg.structure.sizing import size_structure
     from hexaleg.study.decide import DecideResult, decide
     from hexaleg.study.optimize import SearchSettings
     from hexaleg.study.sweep import StudySpec, run_study

@@ -21,6 +21,7 @@ from hexaleg.evaluation.evaluate import ANALYSES, Conditions, evaluate, evaluate
 from hexaleg.evaluation.metrics import METRICS, Metrics, PerMetric, objectives
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.forces import Payload
 
 
@@ -130,6 +131,23 @@ def test_a_gait_that_cannot_be_walked_leaves_its_costs_unmeasured_and_says_why()
     assert found.metrics.gait_peak_torque is not None and math.isnan(found.metrics.gait_peak_torque)
     assert "cannot walk the gait" in (found.unmeasured.gait_peak_torque or "")
     assert found.unmeasured.max_speed is None  # the max speed is measured all the same
+
+
+def test_a_design_without_ratings_leaves_what_needs_one_unmeasured_and_says_so():
+    rated = HexapodDesign()
+    unrated = rated.replace(rated_torques=None, rated_speeds=None)  # a robot file's effort="0"
+    needs = (METRICS.payload_capacity, METRICS.max_slope, METRICS.walking_payload_capacity,
+             METRICS.max_speed)  # fmt: skip
+    free = (METRICS.stability_margin, METRICS.gait_peak_torque)  # no rating enters them
+    found = evaluate(unrated, (*needs, *free))
+    for spec in needs:
+        assert math.isnan(found.metrics.value(spec)) and found.metrics[spec] is not None
+        assert found.unmeasured[spec] == NEEDS_RATING and found.causes[spec] is None
+    assert found.walks is None
+    alike = evaluate(rated, free)  # what needs no rating: the rated design's own values
+    for spec in free:
+        assert found.metrics.value(spec) == pytest.approx(alike.metrics.value(spec), rel=1e-12)
+        assert found.unmeasured[spec] is None
 
 
 def test_every_metric_is_declared_once_and_measured_by_a_known_analysis():

@@ -4,13 +4,13 @@ The layers follow DESIGN.md's data flow, lowest first; a module may import its o
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
-                _lazy
+                _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, gravity, cause, actuators, actuator_catalog,
-                battery, table_records, grids, design_text
+                battery, table_records, grids, design_text, ratings, materials, leg_structure
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/, sim/, electrical
+    analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
     evaluation  evaluation/        (metrics, requirements, evaluate, goal: the shared vocabulary)
     study       study/, paper/
     output      output/
@@ -44,6 +44,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "_journal",
             "_compiled",
             "_lazy",
+            "_input",
         ),
     ),
     (
@@ -66,11 +67,14 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "table_records",
             "grids",
             "design_text",
+            "ratings",
+            "materials",
+            "leg_structure",
         ),
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical", "structure")),
     ("evaluation", ("evaluation",)),
     ("study", ("study", "paper")),
     ("output", ("output",)),

@@ -14,6 +14,7 @@ from hexaleg.cli.options import (
     bounded_int,
     capped_workers,
     inputs_from_args,
+    walked_by,
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
@@ -22,6 +23,7 @@ from hexaleg.evaluation.goal import Objective
 from hexaleg.evaluation.metrics import objectives
 from hexaleg.evaluation.requirements import RequirementCheck, format_margin
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import require_ratings
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.decide_rows import AnswerRows, answer_rows, value_text
 from hexaleg.study.executors import dask_executor, local_pool
@@ -124,7 +126,9 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_designs(args, design)
     if robot is not None:
         refuse_for_robot(args)
-        design = robot.point()[0]
+        design, model = robot.point()
+        in_file = walked_by(args, in_file, model)  # the robot's own default gait
+    require_ratings(design.rated_torques, design.rated_speeds, "decide")
     requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize")

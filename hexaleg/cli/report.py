@@ -17,6 +17,7 @@ from hexaleg.cli.options import (
     capped_workers,
     field_sweep_from_args,
     inputs_from_args,
+    walked_by,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
@@ -94,7 +95,8 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_designs(args, design)
     if robot is not None:
         _refuse_for_robot(args, sweep is not None)
-        design = robot.point()[0]
+        design, model = robot.point()
+        in_file = walked_by(args, in_file, model)  # the robot's own default gait
     requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,

@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Collection, Sequence
+from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
 from typing import TypeVar
@@ -44,6 +44,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
@@ -98,7 +99,8 @@ class Evaluation:
             :attr:`unmeasured` says why it has no value.
         causes: What limits a metric, where something does (payload, slope, speed).
         error: Why the design cannot exist or stand; empty if it was measured.
-        unmeasured: Why a metric asked for has no value (a gait it cannot walk).
+        unmeasured: Why a metric asked for has no value (a gait it cannot walk; a rating
+            the design does not give: :data:`~hexaleg.ratings.NEEDS_RATING`).
         flexibility: Its flexibility, when kept (:attr:`Conditions.keep`).
         loads: The statics at the nominal stance and at the extremes, when kept.
         gait: The gait period walked, when kept.
@@ -349,10 +351,12 @@ class _Measuring:
                 else statics.state(model.nominal_configuration())
             )
             found = replace(found, stability_margin=nominal.stability_margin)
+        if model.design.rated_torques is None:  # within ratings the design does not give
+            return self._without((METRICS.payload_capacity, METRICS.max_slope), NEEDS_RATING, found)
         if conditions.slope is None:  # level ground: the statics' own payload capacity
             capacity = (
                 self.loads.capacity
-                if self.loads is not None
+                if self.loads is not None and self.loads.capacity is not None
                 else payload_capacity(statics, model.nominal_configuration())
             )
             found = replace(found, payload_capacity=capacity.mass)
@@ -371,20 +375,23 @@ class _Measuring:
     def _measure_walking(self) -> Metrics:
         conditions = self.conditions
         found = walking_payload_capacity(self.model, conditions.gait, conditions.payload.position)
+        if found is None:  # the design gives no ratings: the capacity within them needs one
+            return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
         self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
         self.walks = found.walks
         return Metrics(walking_payload_capacity=found.mass)
 
     def _measure_speed(self) -> Metrics:
         limit = self.walked.max_speed
-        assert limit is not None  # speed=True
+        if limit is None:  # speed=True: the design gives no ratings, the max speed needs one
+            return self._without((METRICS.max_speed,), NEEDS_RATING)
         self.causes = replace(self.causes, max_speed=limit.limited_by)
         return Metrics(max_speed=limit.value)
 
     def _measure_period(self) -> Metrics:
         walked = self.walked
         if not walked.walkable:
-            return self._without("period", f"cannot walk the gait: {walked.violations[0]}")
+            return self._without(_of("period"), f"cannot walk the gait: {walked.violations[0]}")
         metrics = walked.metrics
         distance = walked.gait.speed * walked.gait.period  # per period [m]
         torques = {  # each joint type's peak and RMS torque, as declared
@@ -405,10 +412,10 @@ class _Measuring:
     def _measure_motors(self) -> Metrics:
         walked = self.walked
         if not walked.walkable:
-            return self._without("motors", f"cannot walk the gait: {walked.violations[0]}")
+            return self._without(_of("motors"), f"cannot walk the gait: {walked.violations[0]}")
         electrical, design = walked.electrical, walked.design
         if electrical is None:
-            return self._without("motors", "the design has no [actuators]")
+            return self._without(_of("motors"), "the design has no [actuators]")
         ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
         battery = electrical.battery
         if design.battery is None:
@@ -420,8 +427,15 @@ class _Measuring:
             battery_range=math.nan if battery is None else battery.range,
         )
 
-    def _without(self, analysis: Analysis, why: str) -> Metrics:
-        """Every metric of ``analysis`` without a value (NaN), and ``why``."""
-        names = [spec.name for spec in METRICS if spec.analysis == analysis]
+    def _without(
+        self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None
+    ) -> Metrics:
+        """``found`` (if any) with ``specs`` without a value (NaN), and ``why`` they have none."""
+        names = [spec.name for spec in specs]
         self.unmeasured = replace(self.unmeasured, **dict.fromkeys(names, why))
-        return Metrics(**dict.fromkeys(names, math.nan))
+        return replace(Metrics() if found is None else found, **dict.fromkeys(names, math.nan))
+
+
+def _of(analysis: Analysis) -> list[MetricSpec]:
+    """The metrics ``analysis`` measures."""
+    return [spec for spec in METRICS if spec.analysis == analysis]

@@ -112,14 +112,16 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
 
     ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
     peak |τ| over a gait period against its joint's rating [-] (``None`` where the period
-    breaks a constraint: a joint limit, a foot out of reach — it is not walked).
+    breaks a constraint: a joint limit, a foot out of reach — it is not walked; and every
+    leg's when the design gives no ratings, as ``rated_torques``).
     """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
-    if found.gait is not None and found.gait.feasible:
+    rated = design.rated_torques
+    if found.gait is not None and found.gait.feasible and rated is not None:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
-        used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
+        used = dict(zip(found.gait.legs, peaks / np.asarray(rated), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)
             _finite(float(used[leg].max())) if leg in used else None for leg in model.leg_names
         ]
@@ -127,7 +129,7 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
         "utilisation": utilisation,
-        "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
+        "rated_torques": None if rated is None else dict(zip(LEG_JOINTS, rated, strict=True)),
     }
 
 

@@ -85,8 +85,11 @@ def walking_payload_capacity(
     gait: Gait | None = None,
     position: tuple[float, float, float] | None = None,
     gravity: float = GRAVITY,
-) -> WalkingCapacity:
+) -> WalkingCapacity | None:
     """The largest payload at ``position`` the design carries walking ``gait``.
+
+    ``None`` when the design gives no ratings (a robot file's efforts of 0): the capacity
+    within them needs a rating.
 
     Args:
         model: The design's Pinocchio model.
@@ -96,6 +99,8 @@ def walking_payload_capacity(
         gravity: Gravitational acceleration g [m/s²].
 
     """
+    if not model.design.rated:
+        return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
     unloaded = Walker(model, gait, Payload(0.0, position), gravity=gravity)
     walk = unloaded.stride(gait.stride)

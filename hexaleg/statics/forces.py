@@ -34,6 +34,8 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import torque_scale
+from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
@@ -171,11 +173,11 @@ class Statics:
         self.legs = tuple(legs)
         self.payload = payload or Payload()
         self.friction = friction
-        self.rated = np.array(model.design.rated_torques)
+        self.rated = torque_scale(model.design.rated_torques)
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ
-        self._robot_mass = float(pin.computeTotalMass(model.model))
+        self._robot_mass = robot_mass(model)
         self._support: SupportPolygon | None = None
         self._support_feet = np.zeros((len(self.legs), 2))
         self._downward = np.array([0.0, 0.0, -GRAVITY])

@@ -181,10 +181,10 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
     """What binds, in words: "with hip motors of 150 N·m", "without tipping"."""
     phrases: list[str] = []
     for cause in causes:
-        if cause.kind == "torque" and cause.joint is not None:
+        if cause.kind == "torque" and cause.joint is not None and design.rated_torques:
             rated = design.rated_torques[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} N·m"
-        elif cause.kind == "speed" and cause.joint is not None:
+        elif cause.kind == "speed" and cause.joint is not None and design.rated_speeds:
             rated = design.rated_speeds[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} rad/s"
         elif cause.kind in ("tip", "stability"):

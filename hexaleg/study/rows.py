@@ -119,14 +119,20 @@ def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, C
     and the walking payload capacity; ``walks``: whether it walks the gait unloaded within
     its ratings.
     """
-    ok, causes = walked.walkable, evaluation.causes
+    ok = walked.walkable
     return {
         "gait_positive_work": walked.metrics.positive_work if ok else math.nan,
         "gait_feasible": ok and walked.tipping is None,
-        "max_speed_limited_by": str(causes.max_speed),
-        "walking_payload_limited_by": str(causes.walking_payload_capacity),
+        "max_speed_limited_by": _why(evaluation, METRICS.max_speed),
+        "walking_payload_limited_by": _why(evaluation, METRICS.walking_payload_capacity),
         "walks": bool(evaluation.walks),
     }
+
+
+def _why(evaluation: Evaluation, spec: MetricSpec) -> str:
+    """What limits metric ``spec``, or why it has no value ("needs a rating")."""
+    cause = evaluation.causes[spec]
+    return str(cause) if cause is not None else evaluation.unmeasured[spec] or ""
 
 
 def walking_metrics(design: HexapodDesign) -> tuple[MetricSpec, ...]:

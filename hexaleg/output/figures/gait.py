@@ -62,8 +62,9 @@ def joint_figure(analysis: GaitAnalysis) -> Figure:
                 stand = np.where(analysis.stance[:, i], values[:, i, j], np.nan)
                 ax.plot(phase, values[:, i, j], color=LEG_COLORS[i], lw=0.6, alpha=0.6)
                 ax.plot(phase, stand, color=LEG_COLORS[i], lw=1.5, label=leg)
-            if quantity in rated:
-                limit = rated[quantity][j]
+            ratings = rated.get(quantity)
+            if ratings is not None:  # a design's ratings, if it gives them
+                limit = ratings[j]
                 for sign in (1, -1):
                     ax.axhline(sign * limit, color="k", ls="--", lw=1)
             ax.set_title(f"{joint} {quantity}")
@@ -199,7 +200,7 @@ def walking_study_figure(
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
-        if rated is not None:
+        if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
     panels[-1].set_xlabel("tibia ratio l3 / L [-]")
     panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)

@@ -13,6 +13,7 @@ from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
 from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis
 
 if TYPE_CHECKING:
@@ -67,10 +68,14 @@ def loads_figure(
     l1, l2, l3 = analysis.design.lengths
     capacity = analysis.capacity
     what = "standing and walking" if walking is not None else "standing"
+    held = (
+        NEEDS_RATING
+        if capacity is None
+        else f"{capacity.mass:.1f} kg, limited by {capacity.limited_by}"
+    )
     fig.suptitle(
         f"Peak joint torques {what} (l1, l2, l3 = {l1:.3g}, {l2:.3g}, {l3:.3g} m) against "
-        f"their ratings\nstanding payload capacity {capacity.mass:.1f} kg, limited by "
-        f"{capacity.limited_by}"
+        f"their ratings\nstanding payload capacity {held}"
     )
     return fig
 
@@ -92,14 +97,16 @@ def _torque_bars(
     for k, (label, peaks) in enumerate(series):
         offset = (k - (len(series) - 1) / 2) * width
         ax.bar(x + offset, [peaks[j] for j in joints], width, color=COLORS[k], label=label)
-    for k, rated in enumerate(analysis.design.rated_torques):
+    ratings = analysis.design.rated_torques or ()  # none drawn where not given
+    for k, rated in enumerate(ratings):
         ax.hlines(rated, k - 0.45, k + 0.45, colors="k", linestyles="--", lw=1.5)
-    ax.plot([], [], "k--", label="rated torque")
+    if ratings:
+        ax.plot([], [], "k--", label="rated torque")
     ax.set_xticks(x, [f"{joint} joints" for joint in joints])
     ax.set_ylabel("largest |τ| over the legs [N·m]")
     ax.set_title(f"Foot forces shared by {DISTRIBUTION_WORDS.get(analysis.distribution, '?')}")
     tops = [max(peaks.values()) for _, peaks in series]
-    ax.set_ylim(0, 1.45 * max(*analysis.design.rated_torques, *tops))
+    ax.set_ylim(0, 1.45 * max(*ratings, *tops))
     ax.legend(loc="upper left", ncols=2, fontsize=7.5)
     ax.grid(True, axis="y", alpha=0.3)
 
@@ -163,7 +170,7 @@ def statics_study_figure(
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
-        if rated is not None:
+        if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
     payload = panels[2]
     if walking in table:

@@ -157,7 +157,7 @@ def _rows(rec: Recommendation) -> list[tuple[str, ...]]:
 
 def _cost_rows(record: DecisionRecord, design: HexapodDesign) -> list[tuple[str, ...]]:
     """The costs of the choice, a torque beside its rating, a speed beside what binds."""
-    rated = dict(zip(LEG_JOINTS, design.rated_torques, strict=True))
+    rated = dict(zip(LEG_JOINTS, design.rated_torques or (math.nan,) * 3, strict=True))
     yours, theirs = record.yours.metrics, record.recommended.metrics
     rows = []
     for spec in cost_metrics(design):

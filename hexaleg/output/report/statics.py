@@ -15,6 +15,7 @@ from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 
 
@@ -62,7 +63,7 @@ def section(data: ReportData) -> Section:
             _torque_table(data),
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
             f"Payload capacity at the centre of the body's top face, standing: "
-            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}; "
+            f"{_capacity(loads)}; "
             f"walking {data.options.gait.named}: "
             f"**{yours.metrics.value(METRICS.walking_payload_capacity):.1f} kg**, "
             f"limited by {yours.columns['walking_payload_limited_by']}. "
@@ -85,6 +86,14 @@ def section(data: ReportData) -> Section:
     )
 
 
+def _capacity(loads: LoadsAnalysis) -> str:
+    """The standing payload capacity in words (it may need a rating)."""
+    capacity = loads.capacity
+    if capacity is None:
+        return NEEDS_RATING
+    return f"**{capacity.mass:.1f} kg**, limited by {capacity.limited_by}"
+
+
 def _torque_table(data: ReportData) -> str:
     record = data[StaticsRecord]
     nominal = record.axis.nominal.peak_torques()
@@ -99,7 +108,10 @@ def _torque_table(data: ReportData) -> str:
             f"{record.free.peak_torques[joint]:.1f}",
         )
         for joint, rated, speed in zip(
-            nominal, design.rated_torques, design.rated_speeds, strict=True
+            nominal,
+            design.rated_torques or (math.nan,) * 3,
+            design.rated_speeds or (math.nan,) * 3,
+            strict=True,
         )
     ]
     header = [
