@@ -19,13 +19,13 @@ from collections.abc import Callable
 from harness import Row, check_agree, median_times
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.evaluation.evaluate import Conditions, evaluate
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.leg_structure import Structure
 from hexaleg.materials import shipped_materials
 from hexaleg.statics.forces import Payload
 from hexaleg.structure.sizing import size_structure
 from hexaleg.structure.standing import check_standing, standing_cases
-from hexaleg.study.evaluation import Conditions, evaluate
-from hexaleg.study.metrics import METRICS
 
 PAYLOAD, SLOPE = Payload(20.0), math.radians(10)
 

@@ -16,8 +16,10 @@ from hexaleg._lazy import lazy_exports
 from hexaleg._version import __version__
 
 __all__ = [
+    "Conditions",
     "DecideResult",
     "DesignError",
+    "Evaluation",
     "FlexibilityResult",
     "FlexibilityWarning",
     "FootSearch",
@@ -35,8 +37,10 @@ __all__ = [
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
+    "METRICS",
     "ManipulabilityAnalysis",
     "Material",
+    "Metrics",
     "ModelError",
     "Objective",
     "ParameterError",
@@ -66,6 +70,7 @@ __all__ = [
     "decide",
     "default_mounts",
     "design_toml",
+    "evaluate",
     "flexibility",
     "foot_jacobian",
     "foot_position",
@@ -93,6 +98,10 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import load_design
     from hexaleg.design_text import design_toml
+    from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+    from hexaleg.evaluation.goal import Objective
+    from hexaleg.evaluation.metrics import METRICS, Metrics
+    from hexaleg.evaluation.requirements import Requirements
     from hexaleg.exceptions import (
         DesignError,
         HexalegError,
@@ -139,9 +148,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.statics.loads import analyze_loads
     from hexaleg.structure.sizing import size_structure
     from hexaleg.study.decide import DecideResult, decide
-    from hexaleg.study.goal import Objective
     from hexaleg.study.optimize import SearchSettings
-    from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

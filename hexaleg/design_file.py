@@ -83,7 +83,7 @@ RECORDS: dict[str, Callable[[Any], Any]] = {
 
 REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by
-:meth:`hexaleg.study.requirements.Requirements.from_table`."""
+:meth:`hexaleg.evaluation.requirements.Requirements.from_table`."""
 
 ROBOT = "robot"
 """An imported robot's table (``hexaleg design import``), read by the commands that take one."""

@@ -30,11 +30,11 @@ import hexaleg
 from hexaleg._folders import MARKER, replace_folder
 from hexaleg._io import write_text
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.study import optimize
 from hexaleg.study import progress as progress_module
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.sensitivity import sensitivity_table
 

@@ -7,12 +7,13 @@ import math
 import pytest
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.walking import WalkingRecord, section
-from hexaleg.study.rows import StudyRow, design_walking_columns
+from hexaleg.study.rows import StudyRow, design_walking_row
 from hexaleg.study.sweep import StudySpec, sweep_in_process
 from hexaleg.study.walking import WalkingComparison, walking_comparison, walking_or_none
 
@@ -28,16 +29,18 @@ def test_the_comparison_picks_the_least_and_measures_the_paper_leg(small_study):
     comparison = walking_comparison(table, spec)
     walking = table[table["walks"]]  # unloaded, within every rating: as the ranking counts
     assert comparison.walking == len(walking) < comparison.designs == 8  # 0.2 + 0.76 cannot
-    assert comparison.least_torque["gait_peak_torque"] == walking["gait_peak_torque"].min()
-    assert comparison.least_energy["mechanical_cost_of_transport"] == (
+    least_torque, least_energy = comparison.least_torque.metrics, comparison.least_energy.metrics
+    assert least_torque.gait_peak_torque == walking["gait_peak_torque"].min()
+    assert least_energy.mechanical_cost_of_transport == (
         walking["mechanical_cost_of_transport"].min()
     )
     paper = HexapodDesign()  # the 0.2/0.4/0.4 leg on the default body
     single = analyze_gait(paper, STUDY_GAIT, model=HexapodModel(paper))
-    assert comparison.reference["gait_peak_torque"] == pytest.approx(
+    assert comparison.reference.metrics.gait_peak_torque == pytest.approx(
         max(single.metrics.peak_torque.values()), rel=1e-12
     )
-    expected = 1 - comparison.least_torque["gait_peak_torque"] / max(
+    assert comparison.reference.key == (0.2, 0.4)
+    expected = 1 - least_torque.value(METRICS.gait_peak_torque) / max(
         single.metrics.peak_torque.values()
     )
     assert comparison.torque_saving == pytest.approx(expected, rel=1e-12)
@@ -105,7 +108,7 @@ def test_the_least_cost_leg_is_chosen_among_the_legs_that_walk_within_their_rati
     table.loc[over[0], "gait_peak_torque"] = 0.5 * walking["gait_peak_torque"].min()
     comparison = walking_comparison(table, spec)
     assert comparison.least_energy.key == tuple(table.loc[cheapest, ["l1_ratio", "l3_ratio"]])
-    assert comparison.least_energy["walks"] and comparison.least_torque["walks"]
+    assert comparison.least_energy.columns["walks"] and comparison.least_torque.columns["walks"]
     assert comparison.walking == int(table["walks"].sum())
 
 
@@ -160,8 +163,9 @@ def test_the_animation_comes_after_every_object_it_colours(hexapod_model):
 
 def test_study_columns_match_on_a_free_flyer_built_from_the_urdf():
     design = HexapodDesign.from_ratios(0.1, 0.5)
-    columns = design_walking_columns(design, HexapodModel(design))
-    assert columns["gait_feasible"] and not math.isnan(columns["mechanical_cost_of_transport"])
+    row = design_walking_row(design, HexapodModel(design))
+    assert row.columns["gait_feasible"]
+    assert not math.isnan(row.metrics.value(METRICS.mechanical_cost_of_transport))
 
 
 def test_the_animation_s_legend_says_what_a_gait_s_colours_mean(hexapod_model):

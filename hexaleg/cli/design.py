@@ -17,10 +17,10 @@ from hexaleg.cli.robot_options import (
 )
 from hexaleg.cli.structure_options import size_if_asked, structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.gait.spec import Gait
 from hexaleg.ratings import ratings_text
-from hexaleg.study.requirements import Requirements
-from hexaleg.study.requirements_table import example_table
 
 if TYPE_CHECKING:
     from hexaleg.robot.imported import ImportedRobot

@@ -19,6 +19,8 @@ from hexaleg.cli.options import (
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.cli.structure_options import size_if_asked, structure_rows
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
@@ -121,7 +123,7 @@ def run(args: argparse.Namespace) -> int:
         args.distribution,
         args.mode,
         model=model,
-        slope=requirements.slope or 0.0,
+        slope=requirements.required(SLOPE) or 0.0,
     )
     gait = design_gait(args, model)
     walking = walking_payload_capacity(model, gait, payload.position)
@@ -130,7 +132,7 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
         walked = None if walking is None else walking.to_dict()  # None: it needs a rating
-        out = analysis.to_dict() | {"walking_payload_capacity": walked}
+        out = analysis.to_dict() | {METRICS.walking_payload_capacity.name: walked}
         if sized is not None:
             out["structure"]["sizing"] = sized.to_dict()
         print_json(mine | out)

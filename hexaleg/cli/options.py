@@ -26,8 +26,8 @@ from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
 
 if TYPE_CHECKING:
+    from hexaleg.evaluation.requirements import Requirements
     from hexaleg.robot.model import HexapodModel
-    from hexaleg.study.requirements import Requirements
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -189,9 +189,7 @@ def walked_by(
     args: argparse.Namespace, requirements: Requirements, model: HexapodModel
 ) -> Requirements:
     """``requirements`` walking ``model``'s gait: the file's ``[gait]`` over its own default."""
-    from dataclasses import replace
-
-    return replace(requirements, walked=design_gait(args, model))
+    return requirements.walking(design_gait(args, model))
 
 
 def load_gait(path: str | os.PathLike[str], base: Gait | None = None) -> Gait:
@@ -213,7 +211,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
     ``[requirements]`` table is refused by a command that does not use it too.
     """
     from hexaleg.design_file import load_design_file  # reads TOML only when asked
-    from hexaleg.study.requirements import Requirements
+    from hexaleg.evaluation.requirements import Requirements
 
     path = getattr(args, "design", None)
     base, requirements = (
@@ -222,9 +220,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         else load_design_file(path, Requirements.from_table)
     )
     if path is not None:
-        from dataclasses import replace
-
-        requirements = replace(requirements, walked=load_gait(path))
+        requirements = requirements.walking(load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
         from hexaleg.cli.robot_options import ROBOT_COMMANDS
         from hexaleg.cli.robot_table import load_robot_table

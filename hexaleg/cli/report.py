@@ -21,6 +21,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.report import (
     REPORT_HTML,
     REPORT_MD,
@@ -161,6 +162,6 @@ def _print_robot(data: ReportData, out: Path, pdf: bool) -> int:
     """Where the imported robot's report is, its FB, and the answer to any requirements."""
     _print_written(out, pdf)
     record = data[RobotRecord]
-    print(f"{record.source}: FB = {record.evaluation['fb']:.4f}")
+    print(f"{record.source}: FB = {record.evaluation.metrics.value(METRICS.fb):.4f}")
     _print_answer(data[RobotDecisionRecord].answer, ".4g")
     return 0

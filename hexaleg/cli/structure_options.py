@@ -14,13 +14,14 @@ from typing import TYPE_CHECKING
 
 from hexaleg.cli.options import UsageError, note
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.leg_structure import LEG_SEGMENTS, Structure, segment_masses
 from hexaleg.statics.forces import Payload
 
 if TYPE_CHECKING:
+    from hexaleg.evaluation.requirements import Requirements
     from hexaleg.structure.check import StructureCheck
     from hexaleg.structure.sizing import SizedStructure
-    from hexaleg.study.requirements import Requirements
 
 IMPORTED = (
     "[structure] describes hexaleg's own legs' tubes; an imported robot keeps its file's "
@@ -46,8 +47,8 @@ def size_if_asked(
         return design, None
     from hexaleg.structure.sizing import size_structure  # the search: not to parse options
 
-    payload = Payload(requirements.payload or 0.0, requirements.payload_at)
-    sized = size_structure(design, payload=payload, slope=requirements.slope or 0.0)
+    payload = Payload(requirements.payload_mass, requirements.payload_at)
+    sized = size_structure(design, payload=payload, slope=requirements.required(SLOPE) or 0.0)
     if not sized.found:
         note("no tubes on the sizing grid hold every case: the strongest are used (see below)")
     return sized.design, sized

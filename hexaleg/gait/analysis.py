@@ -29,9 +29,10 @@ from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 from hexaleg.statics.ratings import OverRating, at_times, over_rating
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.walking import check_walking

@@ -48,9 +48,10 @@ from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Payload
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.support import SupportPolygon
 
 PROBE_MASS = 1.0

@@ -34,15 +34,10 @@ from hexaleg.gait.trajectory import (
     joint_motion,
     path_shapes,
 )
+from hexaleg.gravity import GRAVITY
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import (
-    DEFAULT_FRICTION,
-    GRAVITY,
-    Payload,
-    check_friction,
-    check_gravity,
-)
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction, check_gravity
 
 
 @dataclass(frozen=True)

@@ -42,6 +42,7 @@ import pinocchio as pin
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.sim._mujoco import compiled, refusal, require_mujoco
@@ -52,7 +53,7 @@ from hexaleg.sim.feet import (
     frame_name,
     leg_joint_names,
 )
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 
 TIMESTEP = 1e-3
 """Simulation time step [s]."""

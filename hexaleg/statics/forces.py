@@ -1,8 +1,8 @@
 """Foot forces and joint torques holding a pose, with an optional payload.
 
-Gravity g = 9.81 m/s² along −z of the ground frame (tilted on a slope). Masses and
-centres of mass come from the URDF through Pinocchio, plus an optional payload, a
-point mass on the body. The stance feet's forces f_i [N] (ground frame) balance
+Gravity g (:data:`~hexaleg.gravity.GRAVITY`) along −z of the ground frame (tilted on a
+slope). Masses and centres of mass come from the URDF through Pinocchio, plus an optional
+payload, a point mass on the body. The stance feet's forces f_i [N] (ground frame) balance
 gravity: Σ f_i + M·g = 0 and Σ (p_i − c) × f_i = 0 about the whole centre of mass c.
 Two distributions:
 
@@ -32,14 +32,13 @@ from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.ratings import torque_scale
 from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.support import SupportPolygon, ground_point
 
-GRAVITY = 9.81
-"""Gravitational acceleration [m/s²]."""
 DEFAULT_FRICTION = 0.6
 """Default friction coefficient μ between feet and ground [-]."""
 FRICTION_RANGE = (1e-3, 10.0)

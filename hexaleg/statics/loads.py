@@ -8,7 +8,6 @@ and the payload capacity.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -101,16 +100,19 @@ class LoadsAnalysis:
         return min(self.slopes, key=lambda s: s.max_slope)
 
     def study_columns(self) -> dict[str, float | str]:
-        """The design's columns in a study table (N·m, m, rad, kg; NaN: needs a rating)."""
+        """The design's columns in a study table (N·m, m, rad) beside its metrics.
+
+        The payload capacity and the stability margin are the study's metrics; what limits
+        the capacity is a column here (:data:`~hexaleg.ratings.NEEDS_RATING` without rated
+        torques).
+        """
         nominal, overall = self.nominal.peak_torques(), self.peak_torques
         columns: dict[str, float | str] = {}
         for joint in LEG_JOINTS:
             columns[f"peak_{joint}_torque_nominal"] = nominal[joint]
             columns[f"peak_{joint}_torque"] = overall[joint]
         return columns | {
-            "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
-            "payload_capacity": math.nan if self.capacity is None else self.capacity.mass,
             "payload_limited_by": NEEDS_RATING
             if self.capacity is None
             else str(self.capacity.limited_by),

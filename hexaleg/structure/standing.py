@@ -19,10 +19,11 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.exceptions import ParameterError
+from hexaleg.gravity import GRAVITY
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, Statics
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics
 from hexaleg.statics.slopes import SLOPE_HEADINGS, slope_gravity
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections

@@ -18,6 +18,7 @@ import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
@@ -73,8 +74,12 @@ def joint_figure(analysis: GaitAnalysis) -> Figure:
                 ax.set_ylabel(label)
             if row == len(QUANTITIES):
                 ax.set_xlabel("phase t/T [-]")
-    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=6,
-               title="one curve per leg, thick while it stands; dashed: the ratings")  # fmt: skip
+    fig.legend(
+        *ax.get_legend_handles_labels(),
+        loc="outside lower center",
+        ncols=6,
+        title="one curve per leg, thick while it stands; dashed: the ratings",
+    )
     fig.suptitle(_title(analysis))
     return fig
 
@@ -92,13 +97,20 @@ def _footfalls(ax: Axes, analysis: GaitAnalysis, phase: ArrayF) -> None:
             stop = phase[end] + step
             spans = [(phase[start], stop)] if start <= end else [(phase[start], 1), (0, stop)]
             for lo, hi in spans:
-                ax.axvspan(lo, hi, ymin=(5 - i) / 6 + 0.02, ymax=(6 - i) / 6 - 0.02,
-                           color=LEG_COLORS[i], alpha=0.7)  # fmt: skip
+                ax.axvspan(
+                    lo,
+                    hi,
+                    ymin=(5 - i) / 6 + 0.02,
+                    ymax=(6 - i) / 6 - 0.02,
+                    color=LEG_COLORS[i],
+                    alpha=0.7,
+                )
     ax.set_yticks((5.5 - np.arange(len(analysis.legs))) / 6, analysis.legs)
     ax.set_ylim(0, 1)
     ax.set_xlim(0, 1)
-    ax.set_title(f"stance (shaded), {analysis.gait.pattern}, duty factor "
-                 f"{analysis.gait.duty_factor:.3g}")  # fmt: skip
+    ax.set_title(
+        f"stance (shaded), {analysis.gait.pattern}, duty factor {analysis.gait.duty_factor:.3g}"
+    )
 
 
 def _title(analysis: GaitAnalysis) -> str:
@@ -173,10 +185,10 @@ def walking_study_figure(
     fig = new_figure(6.2)
     panels = fig.subplots(2, 2, sharex=True).ravel()
     columns = (
-        ("gait_peak_hip_torque", "peak hip |τ| [N·m]"),
-        ("gait_peak_knee_torque", "peak knee |τ| [N·m]"),
-        ("mechanical_cost_of_transport", "mechanical CoT [-]"),
-        ("walking_payload_capacity", "walking payload [kg]"),
+        (METRICS.gait_peak_hip_torque.name, "peak hip |τ| [N·m]"),
+        (METRICS.gait_peak_knee_torque.name, "peak knee |τ| [N·m]"),
+        (METRICS.mechanical_cost_of_transport.name, "mechanical CoT [-]"),
+        (METRICS.walking_payload_capacity.name, "walking payload [kg]"),
     )
     walks = table["walks"].astype(bool) if "walks" in table else pd.Series(True, table.index)
     for ax, (column, label) in zip(panels, columns, strict=True):

@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
 from hexaleg.output.figures.canvas import (
@@ -160,12 +161,16 @@ def statics_study_figure(
     grid = fig.add_gridspec(2, 2, height_ratios=(1.0, 1.15))
     hip = fig.add_subplot(grid[0, 0])
     panels = [hip, fig.add_subplot(grid[0, 1], sharex=hip), fig.add_subplot(grid[1, :])]
+    standing = METRICS.payload_capacity.name
     columns = (
         ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing"),
         ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing"),
-        ("payload_capacity", "payload [kg], log scale",
-         f"Payload capacity: standing (solid), walking {gait.named} (dashed)"),
-    )  # fmt: skip
+        (
+            standing,
+            "payload [kg], log scale",
+            f"Payload capacity: standing (solid), walking {gait.named} (dashed)",
+        ),
+    )
     groups = list(zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False))
     for ax, (column, label, title) in zip(panels, columns, strict=True):
         for (r1, group), color in groups:
@@ -181,8 +186,7 @@ def statics_study_figure(
     _walking_payload(panels[2], table, groups, marks)
     handles, labels = panels[0].get_legend_handles_labels()
     unique = dict(zip(labels, handles, strict=True))
-    fig.legend(unique.values(), unique.keys(), loc="outside lower center", ncols=4,
-               fontsize=7.5)  # fmt: skip
+    fig.legend(unique.values(), unique.keys(), loc="outside lower center", ncols=4, fontsize=7.5)
     for ax in panels:
         ax.set_xlabel("tibia ratio l3 / L [-]")
     fig.suptitle(
@@ -196,17 +200,18 @@ def _walking_payload(
     payload: Axes, table: pd.DataFrame, groups: Sequence[Any], marks: Sequence[Mark]
 ) -> None:
     """The walking payload capacity, dashed, beside the standing one; the axis logarithmic."""
-    if "walking_payload_capacity" in table:
+    standing, walking = METRICS.payload_capacity.name, METRICS.walking_payload_capacity.name
+    if walking in table:
         for (_, group), color in groups:
-            walking = group["walking_payload_capacity"].where(group["walking_payload_capacity"] > 0)
-            payload.plot(group["l3_ratio"], walking, color=color, ls="--")
-        draw_marks(payload, marks, "l3_ratio", "walking_payload_capacity")
+            carried = group[walking].where(group[walking] > 0)
+            payload.plot(group["l3_ratio"], carried, color=color, ls="--")
+        draw_marks(payload, marks, "l3_ratio", walking)
     log_scale(payload, "y")
     payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
-    name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
+    name_largest(payload, table["l3_ratio"], table[standing], design_names(table, standing))
 
 
-def design_names(table: pd.DataFrame, column: str = "payload_capacity") -> list[str]:
+def design_names(table: pd.DataFrame, column: str) -> list[str]:
     """Each design of a study table named by a capacity (a column [kg]) and its lengths."""
     return [
         f"{row[column]:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "

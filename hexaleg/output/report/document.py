@@ -24,10 +24,10 @@ import pandas as pd
 
 from hexaleg._io import write_text
 from hexaleg._version import __version__
+from hexaleg.evaluation.metrics import significant
 from hexaleg.output.figures.canvas import DPI
 from hexaleg.output.report.part import Part, ReportData, numbered
 from hexaleg.output.report.section import Figure, Section
-from hexaleg.study.metrics import significant
 
 Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""

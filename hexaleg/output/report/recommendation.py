@@ -102,7 +102,7 @@ NO_WALKER = "no leg at this coxa ratio walks the gait within its ratings"
 
 def _peak_row(peaks: dict[str, float]) -> list[str]:
     """One coxa ratio's row of peaks: the tibia ratios and best score, or why there are none."""
-    l3_columns = [*(f"{name}_peak_l3_ratio" for name in RANKED_METRICS), "score_peak_l3_ratio"]
+    l3_columns = [*(f"{spec.name}_peak_l3_ratio" for spec in RANKED_METRICS), "score_peak_l3_ratio"]
     values = [peaks[column] for column in l3_columns]
     if not any(math.isfinite(v) for v in (*values, peaks["best_score"])):
         return [f"{peaks['l1_ratio']:.2f}", NO_WALKER, *("—" for _ in l3_columns)]
@@ -129,9 +129,9 @@ def to_json(record: RecommendationRecord) -> dict[str, Any]:
             "l2_ratio": rec.l2_ratio,
             "l3_ratio": rec.l3_ratio,
             "l3_band": list(rec.l3_band),
-            "metrics": rec.metrics,
+            "metrics": rec.metrics.to_dict(),
             "score": rec.score,
-            "reference": rec.reference,
+            "reference": rec.reference.to_dict(),
             "peaks": rec.peaks.to_dict(orient="records"),
             "lengths_m": [rec.l1_ratio * total, rec.l2_ratio * total, rec.l3_ratio * total],
         }

@@ -19,6 +19,8 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
 from hexaleg.gait.defaults import default_gait
@@ -33,8 +35,6 @@ from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.swing.manipulability import analyze_manipulability
 from hexaleg.swing.workspace import analyze_workspace
@@ -55,10 +55,18 @@ SKIPPED = (
 )  # fmt: skip
 """The template report's sections not run on an imported robot, and why."""
 
-METRIC_NAMES = (
-    "fb", "payload_capacity", "walking_payload_capacity", "max_speed", "stability_margin",
-    "max_slope", "ground_clearance", "robot_mass", "nominal_height", "leg_length",
-)  # fmt: skip
+METRIC_NAMES: tuple[MetricSpec, ...] = (
+    METRICS.fb,
+    METRICS.payload_capacity,
+    METRICS.walking_payload_capacity,
+    METRICS.max_speed,
+    METRICS.stability_margin,
+    METRICS.max_slope,
+    METRICS.ground_clearance,
+    METRICS.robot_mass,
+    METRICS.nominal_height,
+    METRICS.leg_length,
+)
 """The robot's metrics the first section lists (as read, under the report's gait)."""
 
 
@@ -128,9 +136,8 @@ def robot_section(data: ReportData) -> Section:
     """The robot, its metrics, and the template's sections left out."""
     record = data[RobotRecord]
     rows = []
-    for name in METRIC_NAMES:
-        spec, value = METRICS[name], record.evaluation.values[name]
-        cause = record.evaluation.causes.get(name)
+    for spec in METRIC_NAMES:
+        value, cause = record.evaluation.metrics.value(spec), record.evaluation.causes[spec]
         unit = "" if spec.unit in ("1", "-") else f" {spec.unit}"
         shown = "—" if math.isnan(value) else f"{value:.4g}{unit}"
         rows.append((spec.label, shown, "" if cause is None else str(cause)))
@@ -153,8 +160,8 @@ def robot_json(record: RobotRecord) -> dict[str, Any]:
     return {
         "robot": {
             "urdf": record.source,
-            "metrics": dict(evaluation.values),
-            "limited_by": {k: str(v) for k, v in evaluation.causes.items()},
+            "metrics": evaluation.metrics.to_dict(),
+            "limited_by": {k: str(v) for k, v in evaluation.causes.to_dict().items()},
         },
         "skipped": [{"section": title, "why": why} for title, why in SKIPPED],
     }
@@ -345,7 +352,9 @@ def stance_json(record: RobotStanceRecord) -> dict[str, Any]:
     return {
         "flexibility": {"axis": record.flexibility.to_dict()},
         "loads": {"axis": loads},
-        "walking_payload_capacity": None if record.walking is None else record.walking.to_dict(),
+        METRICS.walking_payload_capacity.name: None
+        if record.walking is None
+        else record.walking.to_dict(),
     }
 
 

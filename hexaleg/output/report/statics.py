@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import loads_figure, save, statics_study_figure
 from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
 from hexaleg.output.report.document import Figure, Section, table
@@ -65,8 +65,8 @@ def section(data: ReportData) -> Section:
             f"Payload capacity at the centre of the body's top face, standing: "
             f"{_capacity(loads)}; "
             f"walking {data.options.gait.named}: "
-            f"**{float(yours['walking_payload_capacity']):.1f} kg**, "
-            f"limited by {yours['walking_payload_limited_by']}. "
+            f"**{yours.metrics.value(METRICS.walking_payload_capacity):.1f} kg**, "
+            f"limited by {yours.columns['walking_payload_limited_by']}. "
             f"Steepest slope the robot stands on, body level with the ground (μ = "
             f"{loads.friction:g}):",
             _slope_table(loads, differ),
@@ -114,8 +114,13 @@ def _torque_table(data: ReportData) -> str:
             strict=True,
         )
     ]
-    header = ["joint", "rated torque", "rated speed [rad/s]", "nominal stance",
-              "over the axis-locked extremes"]  # fmt: skip
+    header = [
+        "joint",
+        "rated torque",
+        "rated speed [rad/s]",
+        "nominal stance",
+        "over the axis-locked extremes",
+    ]
     return table([*header, "over the free-coupled extremes"], rows)
 
 
@@ -152,7 +157,8 @@ def write_files(data: ReportData, out: Path) -> None:
         svg=data.options.svg,
     )
     yours = data[StudyRecord].yours
-    walking = {joint: float(yours[f"gait_peak_{joint}_torque"]) for joint in LEG_JOINTS}
+    peaks = yours.metrics.joint_torques("peak")
+    walking = {joint: math.nan if peak is None else peak for joint, peak in peaks.items()}
     figure = loads_figure(data[StaticsRecord].axis, walking, data.options.gait)
     save(figure, out / "loads.png", svg=data.options.svg)
 

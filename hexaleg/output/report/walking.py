@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.document import Figure, Section, table
@@ -98,13 +99,14 @@ def _motors(data: ReportData) -> tuple[str, ...]:
 
 
 def _row(name: str, row: StudyRow) -> list[str]:
+    metrics = row.metrics
     return [
         name,
-        f"{row['l1_ratio']:.3g}",
-        f"{row['l3_ratio']:.3g}",
-        f"{row[TORQUE]:.1f}",
-        f"{row[ENERGY]:.4f}",
-        f"{row['max_speed']:.3f}",
+        f"{row.l1_ratio:.3g}",
+        f"{row.l3_ratio:.3g}",
+        f"{metrics.value(TORQUE):.1f}",
+        f"{metrics.value(ENERGY):.4f}",
+        f"{metrics.value(METRICS.max_speed):.3f}",
     ]
 
 
@@ -156,16 +158,17 @@ def _reference_rated(comparison: WalkingComparison) -> str:
 def _why(comparison: WalkingComparison) -> str:
     """Which joint carries the peak, how the best leg differs, and what it gives up."""
     reference, best = comparison.reference, comparison.least_torque
-    joint = max(("root", "hip", "knee"), key=lambda j: reference[f"gait_peak_{j}_torque"])
-    femur = 1 - float(best["l1_ratio"]) - float(best["l3_ratio"])
-    paper_femur = 1 - float(reference["l1_ratio"]) - float(reference["l3_ratio"])
-    slower = float(best["max_speed"]) < float(reference["max_speed"])
+    peaks = reference.metrics.joint_torques("peak")
+    joint = max(peaks, key=lambda j: peaks[j] or 0.0)  # the paper's leg walks: each is a number
+    femur = 1 - best.l1_ratio - best.l3_ratio
+    paper_femur = 1 - reference.l1_ratio - reference.l3_ratio
+    speed, paper_speed = (row.metrics.value(METRICS.max_speed) for row in (best, reference))
     return (
         f"The paper's leg's peak is at its {joint}; the least-torque leg's femur is "
         f"{femur:.2f} of the leg against {paper_femur:.2f}, and it walks "
-        + ("slower" if slower else "at least as fast")
-        + f" within its ratings ({float(best['max_speed']):.2f} against "
-        f"{float(reference['max_speed']):.2f} m/s, {best['max_speed_limited_by']})."
+        + ("slower" if speed < paper_speed else "at least as fast")
+        + f" within its ratings ({speed:.2f} against {paper_speed:.2f} m/s, "
+        f"{best.columns['max_speed_limited_by']})."
     )
 
 
