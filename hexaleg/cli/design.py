@@ -11,17 +11,21 @@ from hexaleg._io import check_output_file, write_text
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import UsageError, add_design_options, add_robot_options
 from hexaleg.cli.output import print_json, print_table, report_files
+from hexaleg.cli.structure_options import structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
+from hexaleg.design_text import structure_example
+from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.gait.spec import Gait
+from hexaleg.ratings import ratings_text
 from hexaleg.robot.robot import Robot
-from hexaleg.study.requirements import Requirements
-from hexaleg.study.requirements_table import example_table
 
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
     "the values the options give (say --layout hexagon --body-radius 0.35), and an example "
-    "[requirements] table for decide and report, commented out. With --urdf (or a --design "
-    "file's [robot]), the robot file's design and its [robot] table, as design import writes."
+    "[requirements] table for decide and report and a [structure] table of the legs' tubes, "
+    "commented out. With --urdf (or a --design file's [robot]), the robot file's design and "
+    "its [robot] table, as design import writes."
 )
 
 DESCRIPTION = (
@@ -76,23 +80,34 @@ def run(args: argparse.Namespace) -> int:
         path = _target(args.output, "design import -o", args.force)
         report_files([write_text(path, inputs_from_args(args).robot.design_text(path))])
         return 0
-    inputs = inputs_from_args(args)
-    requirements = inputs.requirements
+    inputs = inputs_from_args(args, size=args.action == "show")
+    requirements, sized = inputs.written, inputs.sized
+    gait = inputs.gait if inputs.gait_given and inputs.gait != inputs.default_gait else None
     if args.action == "init":
-        return _init(args.file, inputs.robot, args.force, requirements.walked)
+        return _init(args.file, inputs.robot, args.force, gait)
     out = inputs.robot.record()
+    if sized is not None:
+        out["derived"]["sizing"] = sized.to_dict() | {"check": sized.check.to_dict()}
     if args.json:
         if requirements.given:
             out["requirements"] = requirements.to_dict()
-        if requirements.walked != Gait():
-            out["gait"] = requirements.walked.to_dict()
+        if gait is not None:
+            out["gait"] = gait.to_dict()
         print_json(out)
         return 0
-    show(inputs.design, out)
+    design = inputs.design
+    show(design, out)
+    if design.structure is not None:
+        rows = (
+            tube_rows(design.structure, design.lengths)
+            if sized is None
+            else structure_rows(sized.check, sized)
+        )
+        print_table("Structure (the file's [structure] table)", rows)
     if requirements.given:
         show_requirements(requirements)
-    if requirements.walked != Gait():
-        print_table("Gait (the file's [gait] table)", gait_rows(requirements.walked))
+    if gait is not None:
+        print_table("Gait (the file's [gait] table)", gait_rows(gait))
     return 0
 
 
@@ -106,10 +121,16 @@ def _target(file: str, what: str, force: bool) -> Path:
     return path
 
 
-def _init(file: str, robot: Robot, force: bool, gait: Gait) -> int:
+def _init(file: str, robot: Robot, force: bool, gait: Gait | None) -> int:
+    """Write the robot's design file, its gait if given, and the commented examples.
+
+    The ``[structure]`` example where the robot's links are its design's and it has none.
+    """
     path = _target(file, "design init", force)
-    walked = "" if gait == Gait() else "\n" + gait.to_toml()
-    text = robot.design_text(path) + walked + "\n" + example_table()
+    walked = "" if gait is None else "\n" + gait.to_toml()
+    tubes = robot.design_links and robot.design.structure is None
+    structure = "\n" + structure_example() if tubes else ""
+    text = robot.design_text(path) + walked + structure + "\n" + example_table()
     report_files([write_text(path, text)])
     return 0
 
@@ -117,7 +138,12 @@ def _init(file: str, robot: Robot, force: bool, gait: Gait) -> int:
 def show(design: HexapodDesign, record: dict[str, Any]) -> None:
     """The robot's record (``design show --json``) as text: design, derived values, legs."""
     derived = record["derived"]
-    body = derived["body_mass"]
+    total, body = derived["total_mass"], derived["body_mass"]
+    mass = (
+        f"{total:.4g} kg (body {body:.4g} kg{_drive(design)})"
+        if total > 0
+        else "none: the file gives no masses (kinematics only)"
+    )
     print_table(
         f"Design ({derived['body']})",
         [
@@ -125,9 +151,9 @@ def show(design: HexapodDesign, record: dict[str, Any]) -> None:
             ("leg length", f"{derived['leg_length']:.4g} m"),
             ("nominal height", f"{derived['nominal_height']:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", f"{derived['total_mass']:.4g} kg (body {body:.4g} kg{_drive(design)})"),
-            ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
-            ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
+            ("mass", mass),
+            ("rated torques", ratings_text(design.rated_torques, "N·m")),
+            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
         ],
     )
     print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")
@@ -144,6 +170,10 @@ def show(design: HexapodDesign, record: dict[str, Any]) -> None:
 def _show_legs(record: dict[str, Any]) -> None:
     """A robot file's legs as read: where from, the segments changed, each leg's numbers."""
     print("  legs read from " + str(record["robot"]["source"]))
+    box = record["robot"].get("body_box")
+    if box is not None:  # what the extremes stop at
+        size = " × ".join(f"{v:.3g}" for v in box["size"])
+        print(f"  body box {size} m, where the extremes stop: {box['from']}")
     for change in record["robot"]["changed_segments"]:
         print(
             f"    {change['leg']} {change['segment']} changed from the file's "

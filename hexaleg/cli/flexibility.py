@@ -45,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
 
-    robot = inputs_from_args(args).robot
+    robot = inputs_from_args(args, size=True).robot  # sized tubes are drawn and collide
     check_outputs({}, {"--plot": args.plot})  # before computing
     result = _extremes(args, robot)
     if args.plot is not None:

@@ -28,9 +28,11 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
+from hexaleg.cli.structure_options import structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 
 if TYPE_CHECKING:
@@ -51,7 +53,9 @@ DESCRIPTION = (
     "the battery's runtime and range, and checks continuous torque and voltage. With --urdf, "
     "your robot: each leg its own general leg and nominal posture, the file's masses, "
     "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
-    "and in the file's joints (urdf_* in the JSON and CSV)."
+    "and in the file's joints (urdf_* in the JSON and CSV). With a [structure] table, each "
+    "leg tube's worst stress ratio over the period, the links' inertial forces included (a "
+    "tube over its strength makes the period infeasible)."
 )
 
 
@@ -103,7 +107,10 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
 
 
 def gait_from_args(args: argparse.Namespace, base: Gait) -> Gait:
-    """The gait the options describe (validated), over the ``--design`` file's ``base``.
+    """The gait the options describe (validated), over ``base``: the gait the robot walks.
+
+    ``base``: the ``--design`` file's ``[gait]`` over the robot's own default gait (a robot
+    file's is sized to it: :attr:`~hexaleg.cli.inputs.Inputs.gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
@@ -121,8 +128,8 @@ def gait_from_args(args: argparse.Namespace, base: Gait) -> Gait:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    inputs = inputs_from_args(args)
-    robot = inputs.robot
+    inputs = inputs_from_args(args, size=True)
+    robot, sized = inputs.robot, inputs.sized
     model = robot.model
     gait = gait_from_args(args, inputs.gait)
     payload = payload_from_args(args)
@@ -148,10 +155,14 @@ def run(args: argparse.Namespace) -> int:
     report_files(written)
     summary = summary_stream(args.csv, args.html)
     if args.json:
-        print_json(robot.posture() | analysis.to_dict(), summary)
+        out = analysis.to_dict()
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(robot.posture() | out, summary)
         return 0
     title = lengths_title(robot.titled("Walking"), model.design.lengths)
-    print_table(title, rows(analysis), summary)
+    table = rows(analysis) + structure_rows(analysis.structure, sized)
+    print_table(title, table, summary)
     return 0
 
 
@@ -251,6 +262,15 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
+def _rating(ratings: tuple[float, ...] | None, joint: int) -> float:
+    """A joint type's rating; +inf (nothing is over it) where the design gives none."""
+    return math.inf if ratings is None else ratings[joint]
+
+
+def _rated(rating: float) -> str:
+    return "rating not given" if math.isinf(rating) else f"rated {rating:g}"
+
+
 def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     """The text table's rows."""
     gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
@@ -266,18 +286,19 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
-        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rated_torque = _rating(design.rated_torques, j)
+        rated_speed = _rating(design.rated_speeds, j)
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
-                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m ({_rated(rated_torque)})"
                 + (", OVER RATING" if torque > rated_torque else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{speed:.3f} rad/s ({_rated(rated_speed)}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
                 + (", OVER RATING" if speed > rated_speed else ""),
             )
@@ -292,6 +313,8 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_stride is not None and not design.rated:
+        rows.append(("max speed", NEEDS_RATING))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

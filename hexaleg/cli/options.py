@@ -72,7 +72,7 @@ def add_design_options(
         help="read the design from a TOML design file (hexaleg design init) or a .json "
         "design printed by hexaleg; the options below override its values",
     )
-    offered = {"lengths": lengths, "body": body, "posture": posture}
+    offered = {"lengths": lengths, "body": body, "posture": posture, "ratings": body}
     for spec in DESIGN_FIELDS:
         if spec.option is not None and offered[spec.option]:
             _add_field_option(group, spec)
@@ -125,6 +125,14 @@ def add_robot_options(parser: argparse.ArgumentParser, required: bool = False) -
         type=float,
         metavar=("X", "Y", "Z"),
         help="the foot point in each leg's last link frame [m], when the file draws no foot",
+    )
+    group.add_argument(
+        "--lock-joint",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="hold this joint of the file at its zero, as a fixed joint (a glob pattern; "
+        "repeatable; a [robot] table's lock_joints): a sensor's or a tool's, not the leg's",
     )
 
 

@@ -77,7 +77,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
     inputs = inputs_from_args(args)  # a bad design is refused before any note
-    robot, in_file = inputs.robot, inputs.requirements
+    robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
     requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,

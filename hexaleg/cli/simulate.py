@@ -6,8 +6,6 @@ import argparse
 import math
 from pathlib import Path
 
-import numpy as np
-
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
@@ -25,6 +23,7 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import CYCLES_RANGE, DEFAULT_CYCLES, simulate_gait
 from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path
+from hexaleg.statics.ratings import rating_use
 
 DESCRIPTION = (
     "Walk the design's planned gait in MuJoCo (pip install 'hexaleg[sim]'): hexaleg's URDF "
@@ -75,7 +74,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    inputs = inputs_from_args(args)
+    inputs = inputs_from_args(args, size=True)  # sized tubes: their masses and shapes
     robot = inputs.robot
     model = robot.model
     gait = gait_from_args(args, inputs.gait)
@@ -116,7 +115,7 @@ def _animation(result: SimulationResult, model: HexapodModel, path: str) -> Path
     """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
     from hexaleg.output.viewer.gait import write_motion_html
 
-    ratios = np.abs(result.frame_torques) / np.array(result.design.rated_torques)
+    ratios = rating_use(result.frame_torques, result.design.rated_torques)
     return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
 
 
@@ -160,12 +159,13 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
         ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),
         ("standing-foot slip", f"{metrics.slip:.4f} m"),
     ]
-    for joint, rated in zip(LEG_JOINTS, design.rated_torques, strict=True):
+    given = design.rated_torques
+    for joint, rated in zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True):
         rows.append(
             (
                 f"{joint}: peak |τ| simulated / planned",
                 f"{metrics.peak_torque[joint]:.2f} / {result.planned_peak_torque[joint]:.2f} "
-                f"N·m (rated {rated:g})"
+                + (f"N·m (rated {rated:g})" if given else "N·m (rating not given)")
                 + (", OVER RATING" if metrics.peak_torque[joint] > rated else ""),
             )
         )

@@ -72,7 +72,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
     inputs = inputs_from_args(args)
-    robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the file's [gait]
+    robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
     base = robot.design
     field_sweep = field_sweep_from_args(args)
     _refuse(args, robot, field_sweep is not None)

@@ -33,7 +33,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
-    robot = inputs_from_args(args).robot
+    robot = inputs_from_args(args, size=True).robot  # sized tubes: their links
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
     text = robot.urdf()

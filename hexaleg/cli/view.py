@@ -58,13 +58,16 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
     from hexaleg.output.viewer.scene import build_scene, write_static_html
+    from hexaleg.robot.imported_model import has_masses
     from hexaleg.stance.axis_locked import axis_locked_flexibility
     from hexaleg.statics.loads import loads_at_extremes
 
-    inputs = inputs_from_args(args)
+    inputs = inputs_from_args(args, size=True)  # sized tubes are drawn
     check_outputs({"--html": args.html})
     model = inputs.robot.model
-    _note_missing_meshes(model.missing_meshes)
+    missing = model.missing_meshes_note("not drawn")
+    if missing is not None:
+        note(missing)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
@@ -72,7 +75,7 @@ def run(args: argparse.Namespace) -> int:
     if args.gait:
         return _view_gait(model, inputs.gait, args)
     result = axis_locked_flexibility(model.design, args.stance, model)
-    loads = loads_at_extremes(model, result)
+    loads = loads_at_extremes(model, result) if has_masses(model) else None  # else uncoloured
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0
@@ -81,18 +84,6 @@ def run(args: argparse.Namespace) -> int:
         lambda viewer: build_scene(viewer, model, result, args.workspace, loads=loads),
         STATICS_LEGEND,
     )
-
-
-def _note_missing_meshes(missing: tuple[str, ...]) -> None:
-    """Say which of the file's visual meshes are not drawn, and how to have them drawn."""
-    if missing:
-        listed = ", ".join(missing[:3]) + (
-            f" and {len(missing) - 3} more" if len(missing) > 3 else ""
-        )
-        note(
-            f"{len(missing)} visual mesh file(s) not found, those visuals are not drawn: "
-            f"{listed} (give --package NAME=DIR for package:// paths)"
-        )
 
 
 def _view_gait(model: HexapodModel, gait: Gait, args: argparse.Namespace) -> int:

@@ -3,7 +3,7 @@
 The loaded robot at its leg length, at the paper's coxa ratios and its own, over a grid
 of tibia ratios (:meth:`~hexaleg.robot.robot.Robot.at_ratios`), each measured for FB and
 the walking payload capacity under the loaded conditions (a batch per coxa ratio,
-:func:`~hexaleg.study.evaluation.evaluate_many`).
+:func:`~hexaleg.evaluation.evaluate.evaluate_many`).
 It is measured once, in a background thread, while the page already answers.
 """
 
@@ -14,15 +14,16 @@ import threading
 from typing import Any
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.evaluation.evaluate import Conditions, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS
 from hexaleg.robot.robot import Robot
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate_many
 
 __all__ = ["CLOUD_METRICS", "Cloud"]
 
-CLOUD_METRICS = ("fb", "walking_payload_capacity")
+CLOUD_METRICS: tuple[MetricSpec, ...] = (METRICS.fb, METRICS.walking_payload_capacity)
 """What each design of the cloud is measured for."""
 
 TIBIA_POINTS = 12
@@ -84,9 +85,9 @@ class Cloud:
                 "l1_ratio": l1_ratio,
                 "l3_ratio": design.l3 / design.leg_length,
             }
-            for name in CLOUD_METRICS:
-                value = evaluation.values.get(name, math.nan)
-                point[name] = value if math.isfinite(value) else None
+            for spec in CLOUD_METRICS:
+                value = evaluation.metrics.value(spec)
+                point[spec.name] = value if math.isfinite(value) else None
             points.append(point)
         return points
 

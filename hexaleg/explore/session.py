@@ -21,6 +21,9 @@ import tomli_w
 from hexaleg._io import check_output_file, write_text
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
@@ -28,9 +31,6 @@ from hexaleg.explore.jobs import Jobs
 from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, Query, parse_query
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.robot import Robot
-from hexaleg.study.evaluation import Conditions
-from hexaleg.study.goal import Goal
-from hexaleg.study.requirements import Requirements
 
 __all__ = ["Session"]
 
@@ -74,7 +74,14 @@ class Session:
 
     @classmethod
     def start(cls, robot: Robot, requirements: Requirements, save_to: str | Path) -> Session:
-        """The session of a loaded robot."""
+        """The session of a loaded robot.
+
+        Raises:
+            HexalegError: A robot without masses (its payloads and torques need them),
+                or a file to save to that is not TOML: refused before serving.
+
+        """
+        robot.require_masses()
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")

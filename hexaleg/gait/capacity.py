@@ -48,9 +48,10 @@ from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Payload
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.support import SupportPolygon
 
 PROBE_MASS = 1.0
@@ -84,8 +85,11 @@ def walking_payload_capacity(
     gait: Gait | None = None,
     position: tuple[float, float, float] | None = None,
     gravity: float = GRAVITY,
-) -> WalkingCapacity:
+) -> WalkingCapacity | None:
     """The largest payload at ``position`` the design carries walking ``gait``.
+
+    ``None`` when the design gives no ratings (a robot file's efforts of 0): the capacity
+    within them needs a rating.
 
     Args:
         model: The design's Pinocchio model.
@@ -95,6 +99,8 @@ def walking_payload_capacity(
         gravity: Gravitational acceleration g [m/s²].
 
     """
+    if not model.design.rated:
+        return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
     unloaded = Walker(model, gait, Payload(0.0, position), gravity=gravity)
     walk = unloaded.stride(gait.stride)

@@ -21,6 +21,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import LEG_JOINTS, JointLimits
+from hexaleg.ratings import as_written
 from hexaleg.robot.inertia import (
     body_inertial,
     leg_inertials,
@@ -77,7 +78,7 @@ BASE_FRAME = "base_link"
 
 
 DERIVED_FIELDS = frozenset(
-    ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles", "actuators", "battery")
+    "l1 l2 l3 rated_torques rated_speeds nominal_angles actuators battery structure".split()
 )
 """The design fields :meth:`HexapodModel.with_design` sets on a copy of a model."""
 
@@ -143,6 +144,24 @@ class HexapodModel:
         return self.design.stance_limits
 
     @property
+    def own_default_gait(self) -> bool:
+        """Whether its default gait is sized to it (:mod:`hexaleg.gait.defaults`).
+
+        False here: :class:`~hexaleg.gait.spec.Gait`'s defaults are the template's, sized
+        for the paper's 1 m leg.
+        """
+        return False
+
+    @property
+    def design_links(self) -> bool:
+        """Whether its leg links are built from the design (segments, ``[structure]`` tubes).
+
+        True here: the template renders each segment's link from the design, a tube of
+        its ``[structure]`` included, each along x of its joint's frame.
+        """
+        return True
+
+    @property
     def mirror_symmetric(self) -> bool:
         """Whether the robot is drawn mirror-symmetric left to right, as the templates are.
 
@@ -174,6 +193,10 @@ class HexapodModel:
     def missing_meshes(self) -> tuple[str, ...]:
         """Visual mesh references whose files were not found: none, the templates draw none."""
         return ()
+
+    def missing_meshes_note(self, what: str) -> str | None:
+        """One sentence on the visual meshes not found (``what`` that means); ``None``: none."""
+        return None
 
     def contact_radius(self, leg: str) -> float:
         """Radius of the sphere ``leg``'s foot touches the ground with [m]: the URDF's foot's."""
@@ -237,7 +260,8 @@ class HexapodModel:
             if f.name not in DERIVED_FIELDS
         ):
             raise ModelError(
-                "with_design changes only segment lengths, ratings, posture, actuators, battery"
+                "with_design changes only segment lengths, ratings, posture, actuators, battery, "
+                "structure"
             )
         model = pin.Model(self.model)
         model.inertias[model.getJointId(ROOT_JOINT)] = pinocchio_inertia(body_inertial(design))
@@ -252,9 +276,8 @@ class HexapodModel:
         for index in self._legs.values():
             model.jointPlacements[index.joints[1]] = hip
             model.jointPlacements[index.joints[2]] = knee
-            for joint, inertia, effort, speed in zip(
-                index.joints, inertias, design.rated_torques, design.rated_speeds, strict=True
-            ):
+            ratings = as_written(design.rated_torques), as_written(design.rated_speeds)
+            for joint, inertia, effort, speed in zip(index.joints, inertias, *ratings, strict=True):
                 model.inertias[joint] = inertia
                 model.effortLimit[model.idx_vs[joint]] = effort
                 model.velocityLimit[model.idx_vs[joint]] = speed

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from functools import lru_cache
 from typing import Any
@@ -57,6 +57,8 @@ class RobotSource:
         foot_offset: The foot point in each leg's last link frame [m], if given.
         foot_frame: The glob pattern of the foot links, if given.
         segments: The segments changed from the file's, per leg.
+        lock: The joints held at their zero as fixed joints (glob patterns, in the order
+            given: the design file's ``lock_joints``, then ``--lock-joint``).
 
     Raises:
         ParameterError: Reading options without a file, or a foot given both ways.
@@ -69,10 +71,12 @@ class RobotSource:
     foot_offset: tuple[float, float, float] | None = None
     foot_frame: str | None = None
     segments: tuple[SegmentLength, ...] = ()
+    lock: tuple[str, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "xacro_args", tuple(sorted(dict(self.xacro_args).items())))
         object.__setattr__(self, "packages", tuple(sorted(dict(self.packages).items())))
+        object.__setattr__(self, "lock", tuple(dict.fromkeys(self.lock)))
         if self.foot_offset is not None:
             x, y, z = (float(v) for v in self.foot_offset)
             object.__setattr__(self, "foot_offset", (x, y, z))
@@ -94,6 +98,7 @@ class RobotSource:
         foot_offset: tuple[float, float, float] | None = None,
         foot_frame: str | None = None,
         segments: tuple[SegmentLength, ...] = (),
+        lock: Sequence[str] = (),
     ) -> RobotSource:
         """The source of the robot file at ``path`` read with these options."""
         return cls(
@@ -103,6 +108,7 @@ class RobotSource:
             foot_offset,
             foot_frame,
             tuple(segments),
+            tuple(lock),
         )
 
     def read(self) -> tuple[ImportedRobot, tuple[warnings.WarningMessage, ...]]:
@@ -126,10 +132,11 @@ class RobotSource:
             "foot_offset": self.foot_offset,
             "foot_frame": self.foot_frame,
             "segments": [[s.leg, s.segment, s.length] for s in self.segments],
+            **({"lock": list(self.lock)} if self.lock else {}),
         }
 
 
-_OPTIONS = ("xacro_args", "packages", "foot_offset", "foot_frame", "segments")
+_OPTIONS = ("xacro_args", "packages", "foot_offset", "foot_frame", "segments", "lock")
 """The fields that say how a robot file is read: none of them applies to the template."""
 
 
@@ -140,7 +147,7 @@ def _read(source: RobotSource) -> tuple[ImportedRobot, tuple[warnings.WarningMes
     foot = FootSearch(offset=source.foot_offset, frame=source.foot_frame, packages=packages)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        robot = import_robot(source.path, dict(source.xacro_args), packages, foot)
+        robot = import_robot(source.path, dict(source.xacro_args), packages, foot, source.lock)
         changes: dict[str, dict[str, float]] = {}
         named: dict[tuple[str, str], str] = {}
         for change in source.segments:

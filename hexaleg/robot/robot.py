@@ -36,6 +36,7 @@ from hexaleg.robot.imported_model import (
     ImportedHexapodModel,
     imported_design,
     resized_model,
+    robot_mass,
 )
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
@@ -177,6 +178,24 @@ class Robot:
     def fixed_coxa(self) -> bool:
         """Whether its coxa cannot change: 0 in its file (the yaw and hip axes meet)."""
         return self.lengths[0] <= SAME_LENGTH
+
+    @property
+    def design_links(self) -> bool:
+        """Whether its leg links are built from its design, ``[structure]`` tubes included.
+
+        The template's are; a robot file's links are its file's (see the model's).
+        """
+        return self._given is None
+
+    def require_masses(self) -> None:
+        """Refuse a robot without masses, before what needs them (statics, walking, a study).
+
+        Raises:
+            RobotImportError: A robot file whose links have no mass, in one line
+                (:func:`~hexaleg.robot.imported_model.robot_mass`).
+
+        """
+        robot_mass(self.model)
 
     @property
     def body_sweepable(self) -> bool:
@@ -385,7 +404,7 @@ class Robot:
             return design_toml(self.design)
         read = self._read
         lengths = _file_lengths(read)
-        written = self.design.replace(l1=max(lengths[0], 1e-9), l2=lengths[1], l3=lengths[2])
+        written = self.design.replace(l1=lengths[0], l2=lengths[1], l3=lengths[2])
         table = robot_table(self.source, read, at)
         segments = _segments_table(read)
         if segments:

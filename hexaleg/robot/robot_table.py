@@ -4,7 +4,8 @@
 relative to the design file's folder, the Xacro arguments and foot options, and what was
 read (``[robot.read]``, for reference only). :func:`table_source` reads it back as a
 :class:`~hexaleg.robot.recipe.RobotSource`. Besides the file and its reading options,
-``[robot.segments]`` changes the robot's segments along their own lines
+``lock_joints`` holds joints of the file at their zero (a sensor's, a tool's: glob
+patterns), and ``[robot.segments]`` changes the robot's segments along their own lines
 (:mod:`hexaleg.robot.resize`), for every leg or per leg::
 
     [robot.segments]
@@ -32,7 +33,17 @@ from hexaleg.robot.resize import SAME_LENGTH
 from hexaleg.robot.robot_design import robot_record
 from hexaleg.table_records import require_table
 
-__all__ = ["SEGMENTS_TABLE", "check_written_lengths", "robot_table", "table_source"]
+__all__ = [
+    "LOCK_KEY",
+    "SEGMENTS_TABLE",
+    "check_written_lengths",
+    "lock_patterns",
+    "robot_table",
+    "table_source",
+]
+
+LOCK_KEY = "lock_joints"
+"""A ``[robot]`` table's list of joints (glob patterns) held at their zero as fixed joints."""
 
 SEGMENTS_TABLE = "segments"
 """``[robot.segments]``: segment lengths changed from the robot file's (``coxa``, ``femur``,
@@ -66,7 +77,23 @@ def table_source(table: Mapping[str, Any], folder: Path, where: str) -> RobotSou
     frame = table.get("foot_frame")
     if frame is not None and not isinstance(frame, str):
         raise ParameterError(f"{ROBOT}.foot_frame", frame, "must be a glob pattern (text)")
-    return RobotSource.of(str(urdf), xacro_args, packages, offset, frame, segment_lengths(table))
+    segments = segment_lengths(table)
+    return RobotSource.of(
+        str(urdf), xacro_args, packages, offset, frame, segments, lock_patterns(table, where)
+    )
+
+
+def lock_patterns(table: Mapping[str, Any], where: str) -> tuple[str, ...]:
+    """``[robot] lock_joints``: the joints held at their zero (glob patterns).
+
+    Raises:
+        DesignFileError: Not a list of joint names.
+
+    """
+    saved = table.get(LOCK_KEY, [])
+    if not isinstance(saved, list) or not all(isinstance(p, str) and p for p in saved):
+        raise DesignFileError(f"{where}: [{ROBOT}] {LOCK_KEY} must be a list of joint names")
+    return tuple(saved)
 
 
 def _foot_offset(value: Any) -> tuple[float, float, float]:
@@ -150,11 +177,10 @@ def check_written_lengths(
         value = written.get(name)
         if name in overridden or isinstance(value, bool) or not isinstance(value, int | float):
             continue
-        length = max(own, 1e-9)  # a coxa of 0 is written as 1e-9
-        if abs(value - length) > SAME_LENGTH:
+        if abs(value - own) > SAME_LENGTH:
             raise DesignFileError(
                 f"{where}: {name} = {value:g} is not the robot file's {segment} "
-                f"({length:.6g} m): an imported robot's segments are read from its file; "
+                f"({own:.6g} m): an imported robot's segments are read from its file; "
                 f"change them in [robot.segments] or with --{name}"
             )
 
@@ -181,6 +207,8 @@ def robot_table(source: RobotSource, robot: ImportedRobot, at: Path | None) -> d
         written["foot_frame"] = source.foot_frame
     if source.foot_offset is not None:
         written["foot_offset"] = list(source.foot_offset)
+    if source.lock:
+        written[LOCK_KEY] = list(source.lock)
     record = robot_record(robot)
     written["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
     return written

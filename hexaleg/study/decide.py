@@ -29,8 +29,13 @@ from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirement_specs import LEG_LENGTH, MIN_COXA, RANGE_KM
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
+from hexaleg.ratings import require_ratings
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.stance.flexibility import flexibility
@@ -38,11 +43,8 @@ from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.conflict import Conflict, find_conflict
-from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
-from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (
     AtBound,
@@ -118,9 +120,12 @@ class CheckedDesign:
 
     def objective(self, objective: Objective) -> dict[str, Any]:
         """The objective's name, sense, value and unit, JSON-ready."""
-        value = self.evaluation.values.get(objective.name)
-        return {"name": objective.name, "sense": objective.sense, "value": value,
-                "unit": objective.spec.unit}  # fmt: skip
+        return {
+            "name": objective.name,
+            "sense": objective.sense,
+            "value": self.evaluation.metrics[objective.spec],
+            "unit": objective.spec.unit,
+        }
 
 
 def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
@@ -166,7 +171,7 @@ class DecideResult:
 
         l1 at a ``min_coxa`` bound is left out: that requirement's check says it binds.
         """
-        coxa = self.requirements.min_coxa
+        coxa = self.requirements.required(MIN_COXA)
         return tuple(
             at
             for at in bounds_reached(self.variables, self.best.design)
@@ -258,7 +263,8 @@ def decide(
         progress: ``False`` shows nothing; else a bar on a terminal, a line every few seconds.
 
     Raises:
-        ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
+        ParameterError: No design, ``resume`` without ``journal``, a bound out of range, a
+            rating not given; a robot file without masses (``RobotImportError``).
 
     """
     robot = _robot(robot)
@@ -301,19 +307,34 @@ def _space(
         typed = f"{refused[0].name}={refused[0].typed}"
         raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
-        robot.design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture,
-        free, actuators, requirements.range_km is not None, ratio_ranges, robot,
-    )  # fmt: skip
+        robot.design,
+        requirements.required(LEG_LENGTH) or 0.0,
+        requirements.required(MIN_COXA),
+        free_posture,
+        free,
+        actuators,
+        requirements.required(RANGE_KM) is not None,
+        ratio_ranges,
+        robot,
+    )
     settings.generations(len(space.variables))
     return space
 
 
 def _robot(given: Robot | HexapodDesign) -> Robot:
-    """The robot decided on: a design is hexaleg's template at it."""
-    if isinstance(given, Robot):
-        return given
-    require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
-    return robot_of(RobotSource(), given)
+    """The robot decided on (a design: hexaleg's template at it), weighed and rated.
+
+    Raises:
+        RobotImportError: A robot file without masses (the payloads and torques need them).
+        ParameterError: A rating the robot does not give.
+
+    """
+    if not isinstance(given, Robot):
+        require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
+        given = robot_of(RobotSource(), given)
+    given.require_masses()
+    require_ratings(given.design.rated_torques, given.design.rated_speeds, "decide")
+    return given
 
 
 def _check_arguments(journal: str | os.PathLike[str] | None, resume: bool) -> None:

@@ -252,9 +252,14 @@ def compute_parts(
     A design is hexaleg's template at it. Progress is shown as a study's
     (:class:`~hexaleg.study.progress.Progress`): a bar on a terminal, a line every few
     seconds elsewhere, naming the step that runs.
+
+    Raises:
+        RobotImportError: A robot file without masses, before any part is computed.
+
     """
     if not isinstance(robot, Robot):
         robot = robot_of(RobotSource(), robot)
+    robot.require_masses()  # its statics, walking and decision weigh it: refused up front
     verdicts = [(part, part.holds(robot, options)) for part in parts]
     held = tuple(part for part, left in verdicts if left is None)
     said = tuple(dict.fromkeys(left for _, left in verdicts if left is not None and left.why))
