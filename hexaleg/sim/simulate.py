@@ -102,7 +102,7 @@ def simulate_gait(
         frames=run.frames,
         frame_torques=run.frame_torques,
         frame_rate=run.frame_rate,
-        robot=model if model.general_legs else None,
+        model=model,
     )
 
 

@@ -23,7 +23,7 @@ from hexaleg.evaluation.metrics import significant
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 
 POWER, ENVELOPE = "gait_power", "gait_envelope"
 """The figures' file names, without extension."""
@@ -199,4 +199,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=where_legs_are_the_designs("", ""),
 )
