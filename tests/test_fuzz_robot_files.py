@@ -312,7 +312,7 @@ def test_a_file_without_masses_is_viewed_uncoloured_and_written(tmp_path, capsys
 
 def test_explore_refuses_a_file_without_masses_before_serving(tmp_path, monkeypatch, capsys):
     served = []
-    monkeypatch.setattr("hexaleg.explore.server.ExplorerServer", lambda *a: served.append(a))
+    monkeypatch.setattr("hexaleg.cli.explore.ExplorerServer", lambda *a: served.append(a))
     (tmp_path / "m.urdf").write_text(MASSLESS)
     monkeypatch.chdir(tmp_path)
     assert run_cli(["explore", "--urdf", "m.urdf"]) == 2

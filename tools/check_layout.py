@@ -7,7 +7,8 @@ layer and those below it, never one above::
                 _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, gravity, cause, actuators, actuator_catalog,
-                battery, table_records, grids, design_text, ratings, materials, leg_structure
+                battery, table_records, grids, design_text, ratings, materials, leg_structure,
+                field_sweep
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
@@ -99,6 +100,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "ratings",
             "materials",
             "leg_structure",
+            "field_sweep",
         ),
     ),
     ("numerics", ("numerics",)),

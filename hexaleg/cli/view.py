@@ -11,13 +11,19 @@ from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, add_stance_option, bounded_int, note
 from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.exceptions import ParameterError
+from hexaleg.gait.analysis import analyze_gait, require_walkable
+from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
+from hexaleg.output.viewer.scene import build_scene, write_static_html
 from hexaleg.output.viewer.server import (
     LoopbackServer,
     client,
     is_loopback,
     serve_until_stopped,
 )
+from hexaleg.robot.imported_model import has_masses
+from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.statics.loads import loads_at_extremes
 
 if TYPE_CHECKING:
     from hexaleg.gait.spec import Gait
@@ -57,11 +63,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
-    from hexaleg.output.viewer.scene import build_scene, write_static_html
-    from hexaleg.robot.imported_model import has_masses
-    from hexaleg.stance.axis_locked import axis_locked_flexibility
-    from hexaleg.statics.loads import loads_at_extremes
-
     inputs = inputs_from_args(args, size=True)  # sized tubes are drawn
     check_outputs({"--html": args.html})
     model = inputs.robot.model
@@ -88,9 +89,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _view_gait(model: HexapodModel, gait: Gait, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
-    from hexaleg.gait.analysis import analyze_gait, require_walkable
-    from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
-
     analysis = analyze_gait(model.design, gait, model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:

@@ -26,6 +26,7 @@ from typing import Any
 from urllib.parse import parse_qsl, urlsplit
 
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.explore.jobs import require_job_kind
 from hexaleg.explore.session import Session
 
 __all__ = ["ExplorerServer"]
@@ -145,8 +146,6 @@ class _Handler(BaseHTTPRequestHandler):
 
 def _kind(params: dict[str, str]) -> str:
     """The job a request names (``kind``), taken out of the design's keys."""
-    from hexaleg.explore.jobs import require_job_kind
-
     return require_job_kind(params.pop("kind", ""))
 
 
