@@ -156,7 +156,7 @@ def quick_backends():
     walked = simulate_gait(HexapodDesign(), cycles=2)  # a real answer, from a short walk
     patches = {
         "hexaleg.cli.simulate.simulate_gait": lambda *args, **kwargs: walked,
-        "hexaleg.cli.simulate._animation": lambda result, path: Path(path),
+        "hexaleg.cli.simulate._animation": lambda result, model, path: Path(path),
         "hexaleg.cli.simulate._video": lambda result, path: [],
         "hexaleg.cli.decide.decide": lambda *args, **kwargs: decided,
         "hexaleg.cli.report.build_report": fake_report,

@@ -400,10 +400,13 @@ def _robot_table(line: str) -> str:
     return f"[robot]\n{urdf}{line}\n"
 
 
+TWO_COMMANDS = (["loads"], ["design", "show"])
+"""The commands each row runs on, in turn (the slow sweep runs every command)."""
+
 KEY_CASES = [
     *(Case(f"{argv[0]}: [robot] {line}", {"k.urdf": KRABY, "d.toml": _robot_table(line)},
            [*argv, "--design", "d.toml"], message)
-      for line, message in ROBOT_KEYS.items() for argv in (["loads"], ["design", "show"])),
+      for (line, message), argv in zip(ROBOT_KEYS.items(), TWO_COMMANDS * 4, strict=True)),
     *(Case(f"loads --foot-offset {' '.join(values)}", {"k.urdf": KRABY},
            ["loads", "--urdf", "k.urdf", "--foot-offset", *values],
            f"--foot-offset = {shown} is not valid: {OFFSET}")
@@ -412,7 +415,7 @@ KEY_CASES = [
     *(Case(f"{argv[0]} {option} beside --urdf", {"k.urdf": KRABY},
            [*argv, "--urdf", "k.urdf", option, *values],
            f"{option} = {_shown(values[0])} is not valid: {FIXED}")
-      for option, values in BODY_OPTIONS.items() for argv in (["loads"], ["design", "show"])),
+      for (option, values), argv in zip(BODY_OPTIONS.items(), TWO_COMMANDS * 4, strict=True)),
 ]  # fmt: skip
 
 
@@ -444,7 +447,7 @@ def imported(tmp_path_factory) -> str:
 
 EDITS = {  # a key of an imported design file edited: what it is edited to
     "body_length": (r"^body_length = .*$", "body_length = 0.5"),
-    "layout": (r"^layout = .*$", 'layout = "hexagon"'),
+    "body_width": (r"^body_width = .*$", "body_width = 0.4"),
     "body_radius": (r"^body_radius = .*$", "body_radius = 0.3"),
     "mount": (r"^x = 0\.092225.*$", "x = 0.2"),
     "stance_limits": (r"(\[stance_limits\].*\n)theta1 = .*$", r"\1theta1 = [-0.5, 0.5]"),
@@ -460,8 +463,11 @@ def _edited(text: str, key: str) -> str:
     return edited
 
 
-@pytest.mark.parametrize("key", EDITS)
-@pytest.mark.parametrize("argv", [["loads"], ["design", "show"]], ids=" ".join)
+@pytest.mark.parametrize(
+    ("key", "argv"),
+    list(zip(EDITS, TWO_COMMANDS * 3, strict=True)),
+    ids=[f"{key}: {argv[0]}" for key, argv in zip(EDITS, TWO_COMMANDS * 3, strict=True)],
+)
 def test_an_imported_design_file_edited_where_the_robot_file_rules_is_refused(
     tmp_path, monkeypatch, imported, key, argv
 ):

@@ -11,7 +11,7 @@ from hexaleg._io import check_output_file, write_text
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import UsageError, add_design_options, add_robot_options
 from hexaleg.cli.output import print_json, print_table, report_files
-from hexaleg.cli.structure_options import structure_rows, tube_rows
+from hexaleg.cli.structure_rows import structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
 from hexaleg.design_text import structure_example
 from hexaleg.evaluation.requirements import Requirements

@@ -26,7 +26,7 @@ from hexaleg.cli.output import (
     write_plots,
 )
 from hexaleg.cli.payload_options import add_payload_options, payload_from_args
-from hexaleg.cli.structure_options import structure_rows
+from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.gait import write_gait_figures

@@ -15,7 +15,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.payload_options import add_payload_options, payload_from_args
-from hexaleg.cli.structure_options import structure_rows
+from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.gait.capacity import walking_payload_capacity
