@@ -31,6 +31,7 @@ from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.field_sweep import SWEEPABLE
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot, robot_of
@@ -42,7 +43,6 @@ from hexaleg.study.actuator_variables import (
     gear_coordinate,
     geared_entry,
 )
-from hexaleg.field_sweep import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
 """Smallest segment searched, as a share of the leg length [-] (2 cm on a 1 m leg)."""
