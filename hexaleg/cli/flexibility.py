@@ -16,6 +16,7 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityWarning
@@ -48,7 +49,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
-    robot = inputs_from_args(args, size=True).robot  # sized tubes are drawn and collide
+    robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes are drawn and collide
     check_outputs({}, {"--plot": args.plot})  # before computing
     result = _extremes(args, robot)
     if args.plot is not None:

@@ -27,6 +27,7 @@ from hexaleg.cli.output import (
 )
 from hexaleg.cli.payload_options import add_payload_options, payload_from_args
 from hexaleg.cli.structure_rows import structure_rows
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.gait import write_gait_figures
@@ -73,7 +74,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    inputs = inputs_from_args(args, size=True)
+    inputs = inputs_from_args(args, sizing=sized_for)
     robot, sized = inputs.robot, inputs.sized
     model = robot.model
     gait = gait_from_args(args, inputs.gait)

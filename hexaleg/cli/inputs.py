@@ -15,7 +15,7 @@ from typing import Any
 from hexaleg.cli.options import DESIGN_FLAGS, UsageError, note
 from hexaleg.design import DEFAULT_LEG_LENGTH, SEGMENTS, HexapodDesign
 from hexaleg.design_file import DesignFile, read_design_file
-from hexaleg.evaluation.inputs import Inputs, resolve_inputs
+from hexaleg.evaluation.inputs import Inputs, Sizing, resolve_inputs
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.recipe import RobotSource, SegmentLength
@@ -27,13 +27,14 @@ READING_OPTIONS = ("xacro_arg", "package", "foot_frame", "foot_offset", "lock_jo
 """How a robot file is read: options that need one."""
 
 
-def inputs_from_args(args: argparse.Namespace, *, size: bool = False) -> Inputs:
+def inputs_from_args(args: argparse.Namespace, *, sizing: Sizing | None = None) -> Inputs:
     """The robot, requirements and gait that the design options and ``--design`` describe.
 
     Args:
         args: The parsed options.
-        size: Size the legs' tubes first where the file's ``[structure]`` says
-            ``size = true`` (the commands that measure the tubes).
+        sizing: How a command that measures the legs' tubes sizes them first, where the
+            file's ``[structure]`` says ``size = true``
+            (:func:`~hexaleg.evaluation.sizing.sized_for`).
 
     Raises:
         HexalegError: A bad option, design file or robot file, in one line.
@@ -46,7 +47,7 @@ def inputs_from_args(args: argparse.Namespace, *, size: bool = False) -> Inputs:
     given = _given(args)
     design = _design(args, base, source, given)
     of_file = file is not None and source.path is not None and getattr(args, "urdf", None) is None
-    return resolve_inputs(design, source, file, given=given, robot_of_file=of_file, size=size)
+    return resolve_inputs(design, source, file, given=given, robot_of_file=of_file, sizing=sizing)
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:

@@ -18,6 +18,7 @@ from hexaleg.cli.payload_options import add_payload_options, payload_from_args
 from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
@@ -54,7 +55,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
-    inputs = inputs_from_args(args, size=True)
+    inputs = inputs_from_args(args, sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)

@@ -18,6 +18,7 @@ from hexaleg.cli.output import (
     summary_stream,
 )
 from hexaleg.cli.payload_options import add_payload_options, payload_from_args
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.viewer.gait import write_motion_html
 from hexaleg.robot.model import HexapodModel
@@ -75,7 +76,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    inputs = inputs_from_args(args, size=True)  # sized tubes: their masses and shapes
+    inputs = inputs_from_args(args, sizing=sized_for)  # sized tubes: their masses and shapes
     robot = inputs.robot
     model = robot.model
     gait = gait_from_args(args, inputs.gait)

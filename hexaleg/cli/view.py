@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING, Any
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, add_stance_option, bounded_int, note
 from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import analyze_gait, require_walkable
 from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
@@ -63,7 +64,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
-    inputs = inputs_from_args(args, size=True)  # sized tubes are drawn
+    inputs = inputs_from_args(args, sizing=sized_for)  # sized tubes are drawn
     check_outputs({"--html": args.html})
     model = inputs.robot.model
     missing = model.missing_meshes_note("not drawn")

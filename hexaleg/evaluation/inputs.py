@@ -7,32 +7,33 @@ and the robot built once from them (:meth:`~hexaleg.robot.robot.Robot.build`): h
 template at the design, or a robot file, whose body, mounts and stance limits are its own
 (:meth:`~hexaleg.robot.robot.Robot.check_over` refuses them given over it). Where the file's
 ``[structure]`` says ``size = true`` and the caller measures the tubes, the legs' tubes are
-sized first for the file's required payload and slope (:func:`sized_for`). The gait the
+sized first, by the caller's sizing (:func:`hexaleg.evaluation.sizing.sized_for`: for the
+file's required payload and slope; a caller that does not measure tubes never imports the
+search, nor the stance's compiled kernels it runs on). The gait the
 robot walks is the file's ``[gait]`` over the robot's own default gait
 (:func:`~hexaleg.gait.defaults.default_gait`), found once, when first asked.
 """
 
 from __future__ import annotations
 
-import warnings
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from functools import cached_property
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import GAIT, REQUIREMENTS, DesignFile
-from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot
-from hexaleg.statics.forces import Payload
-from hexaleg.structure.sizing import SizedStructure, SizingWarning, size_structure
 
-__all__ = ["IMPORTED", "Inputs", "resolve_inputs", "sized_for", "written_requirements"]
+if TYPE_CHECKING:  # the result's type only: the search is the caller's (Sizing)
+    from hexaleg.structure.sizing import SizedStructure
+
+__all__ = ["IMPORTED", "Inputs", "Sizing", "resolve_inputs", "written_requirements"]
 
 IMPORTED = (
     "[structure] describes hexaleg's own legs' tubes; an imported robot keeps its file's "
@@ -40,8 +41,10 @@ IMPORTED = (
 )
 """Why a robot file's design refuses a ``[structure]`` table."""
 
-NOT_FOUND = "no tubes on the sizing grid hold every case: the strongest are used"
-"""What sizing says when no tubes of its grid hold (the structure's rows show by how much)."""
+Sizing = Callable[[HexapodDesign, Requirements], "SizedStructure | None"]
+"""How a caller that measures the tubes sizes them: a design's tubes sized for the
+requirements where its ``[structure]`` asks, else ``None``
+(:func:`hexaleg.evaluation.sizing.sized_for`)."""
 
 
 @dataclass(frozen=True)
@@ -105,7 +108,7 @@ def resolve_inputs(
     *,
     given: Mapping[str, Any] | None = None,
     robot_of_file: bool = False,
-    size: bool = False,
+    sizing: Sizing | None = None,
 ) -> Inputs:
     """The robot, requirements and gait of ``design`` built as ``source`` says.
 
@@ -121,9 +124,9 @@ def resolve_inputs(
             values: a robot file refuses those it fixes.
         robot_of_file: Whether the robot is the one the file's ``[robot]`` table names (its
             design file was written from it: what the robot file fixes must be its own).
-        size: Size the legs' tubes first where the file's ``[structure]`` says
-            ``size = true`` (the callers that measure the tubes), for the file's required
-            payload and slope.
+        sizing: The sizing of the legs' tubes, for a caller that measures them: run first
+            with the file's requirements (it sizes where the ``[structure]`` says
+            ``size = true``).
 
     Raises:
         HexalegError: A bad table, value or robot file, in one line.
@@ -134,7 +137,7 @@ def resolve_inputs(
     robot.check_over(given or {}, file if robot_of_file else None)
     if design.structure is not None and not robot.design_links:
         raise HexalegError(IMPORTED)
-    sized = sized_for(design, requirements) if size else None
+    sized = None if sizing is None else sizing(design, requirements)
     if sized is not None:
         robot = Robot.build(source, sized.design)
     return Inputs(robot, requirements, file, sized)
@@ -146,21 +149,3 @@ def written_requirements(file: DesignFile | None) -> Requirements:
         return Requirements()
     requirements = file.table(REQUIREMENTS, Requirements.from_table)
     return requirements.walking(file.table(GAIT, Gait.from_table))
-
-
-def sized_for(design: HexapodDesign, requirements: Requirements) -> SizedStructure | None:
-    """``design``'s tubes sized if its ``[structure]`` says ``size = true``; else ``None``.
-
-    The lightest on the sizing grid that hold the nominal stance, the twelve extremes and the
-    required slope, carrying the required payload (``payload``, ``payload_at`` and ``slope``
-    of ``requirements``; none if they give none). Warns (:class:`SizingWarning`) when no
-    tubes of the grid hold every case: the strongest are then used.
-    """
-    structure = design.structure
-    if structure is None or not structure.size:
-        return None
-    payload = Payload(requirements.payload_mass, requirements.payload_at)
-    sized = size_structure(design, payload=payload, slope=requirements.required(SLOPE) or 0.0)
-    if not sized.found:
-        warnings.warn(NOT_FOUND, SizingWarning, stacklevel=2)
-    return sized
