@@ -66,6 +66,7 @@ class Actuator:
 
     """
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     gear_ratio: float = declare(
         REQUIRED, "gear ratio N: motor turns per joint turn", "-", GEAR_RATIO_RANGE

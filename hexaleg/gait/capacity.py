@@ -257,8 +257,9 @@ def _zmp_bound(
     parts = []
     for wrench in wrenches:
         force, moment = wrench[:, :3], wrench[:, 3:]
-        numerator = np.stack((-(moment[:, 1] + height * force[:, 0]),
-                              moment[:, 0] - height * force[:, 1]), axis=-1)  # fmt: skip
+        numerator = np.stack(
+            (-(moment[:, 1] + height * force[:, 0]), moment[:, 0] - height * force[:, 1]), axis=-1
+        )
         parts.append((numerator, force[:, 2]))
     stance = walker.phases.stance
     offsets, slopes = [], []

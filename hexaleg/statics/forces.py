@@ -243,9 +243,11 @@ class Statics:
             forces = min_norm_forces(*equilibrium(feet, com, mass, gravity))
         else:
             forces = np.array(
-                [self._min_torque(*terms, mass, gravity) for terms in zip(
-                    feet, com, generalized, jacobians, strict=True)]
-            )  # fmt: skip
+                [
+                    self._min_torque(*terms, mass, gravity)
+                    for terms in zip(feet, com, generalized, jacobians, strict=True)
+                ]
+            )
         torques = generalized - np.einsum("kfv,kf->kv", jacobians, forces)
         residuals = np.abs(torques[:, :6]).max(axis=1)
         joint_torques = torques[:, self._v] * self._signs

@@ -107,10 +107,16 @@ def _variant_rows(
     except HexalegError as err:
         shown.update(len(l1_ratios) * len(l3_ratios))
         return [
-            {"variant": name, "l1_ratio": r1, "peak_l3_ratio": math.nan, "peak_fb": math.nan,
-             "failed_designs": len(l3_ratios), "note": str(err)}
+            {
+                "variant": name,
+                "l1_ratio": r1,
+                "peak_l3_ratio": math.nan,
+                "peak_fb": math.nan,
+                "failed_designs": len(l3_ratios),
+                "note": str(err),
+            }
             for r1 in l1_ratios
-        ]  # fmt: skip
+        ]
     spec = StudySpec(
         tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, changed, statics=False
     )
