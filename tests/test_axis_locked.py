@@ -8,9 +8,8 @@ import pytest
 from margin_oracle import exact_margins
 
 from hexaleg import HexapodDesign, HexapodModel
-from hexaleg.stance import StanceGeometry, direction_poses, stance_configuration
+from hexaleg.stance import StanceGeometry, direction_poses, flexibility, stance_configuration
 from hexaleg.stance.constraints import AXES, constraint_labels
-from hexaleg.stance.flexibility import flexibility
 
 DESIGNS = [
     HexapodDesign(),

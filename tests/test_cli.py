@@ -157,7 +157,7 @@ def test_flexibility_json_has_the_documented_fields(capsys):
         assert key in design
     # reproducible without hexaleg's defaults: the JSON design rebuilds the same result
     from hexaleg import HexapodDesign, JointLimits, LegMount
-    from hexaleg.stance.flexibility import flexibility
+    from hexaleg.stance import flexibility
 
     rebuilt = HexapodDesign(
         l1=design["l1"],

@@ -10,10 +10,9 @@ import pytest
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.cli import main
 from hexaleg.exceptions import HexalegError
-from hexaleg.stance import AXES, StanceGeometry
+from hexaleg.stance import AXES, StanceGeometry, flexibility
 from hexaleg.stance.collisions import SelfCollision
 from hexaleg.stance.constraints import direction_poses, displacement_poses
-from hexaleg.stance.flexibility import flexibility
 
 SHORT_BODY = HexapodDesign(body_length=0.1, body_width=0.4)
 

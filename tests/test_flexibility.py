@@ -6,8 +6,7 @@ import math
 
 import pytest
 
-from hexaleg.stance import AXES, DIRECTIONS, flexibility_index
-from hexaleg.stance.flexibility import flexibility
+from hexaleg.stance import AXES, DIRECTIONS, flexibility, flexibility_index
 
 
 def test_fb_is_eq29(hexapod_model, default_design):

@@ -10,8 +10,7 @@ from robots import robot_of
 from test_axis_locked import DESIGNS
 
 from hexaleg import HexapodModel
-from hexaleg.stance import AXES, FlexibilityWarning, free_flexibility
-from hexaleg.stance.flexibility import flexibility
+from hexaleg.stance import AXES, FlexibilityWarning, flexibility, free_flexibility
 
 ROBOTS = [
     *(pytest.param("template", d, id=f"l={d.l1:.2f},{d.l2:.2f},{d.l3:.2f}") for d in DESIGNS[:3]),

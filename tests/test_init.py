@@ -100,7 +100,6 @@ LAZY_PACKAGES = (
     "hexaleg.output.figures",
     "hexaleg.output.viewer",
     "hexaleg.robot",
-    "hexaleg.stance",
     "hexaleg.statics",
     "hexaleg.study",
     "hexaleg.swing",

@@ -20,9 +20,8 @@ import yourdfpy
 from hexaleg import HexapodDesign, HexapodModel, LegMount
 from hexaleg.exceptions import DesignError
 from hexaleg.kinematics import foot_position
-from hexaleg.stance import StanceGeometry, direction_poses, stance_configuration
+from hexaleg.stance import StanceGeometry, direction_poses, flexibility, stance_configuration
 from hexaleg.stance.constraints import AXES
-from hexaleg.stance.flexibility import flexibility
 
 CUSTOM = (
     LegMount("a", 0.45, 0.25, 0.0, 0.6),

@@ -4,15 +4,30 @@
 :mod:`.constraints` gives every constraint's margin (NumPy, the reference) and
 :mod:`.margin_kernel` the same compiled; :mod:`.axis_locked` and :mod:`.free_coupled`
 (with :mod:`.climb`, :mod:`.paths`, :mod:`.free_problem`) find the twelve extremes;
-:mod:`.flexibility` is the front door (:func:`hexaleg.flexibility`; not a name of this
-package, whose module of the same name would hide it once imported).
+:mod:`.flexibility` is the front door.
 """
 
-from __future__ import annotations
-
-from typing import TYPE_CHECKING
-
-from hexaleg._lazy import lazy_exports
+from hexaleg.cause import Cause
+from hexaleg.stance.axis_locked import axis_locked_extremes, axis_locked_flexibility
+from hexaleg.stance.constraints import AXES, DIRECTIONS, direction_poses, stance_margins
+from hexaleg.stance.extremes import (
+    Extreme,
+    FlexibilityResult,
+    FlexibilityWarning,
+    SearchEvidence,
+    flexibility_index,
+)
+from hexaleg.stance.flexibility import flexibility
+from hexaleg.stance.free_coupled import free_flexibility
+from hexaleg.stance.geometry import (
+    StanceGeometry,
+    mobility,
+    rigid_fit,
+    stance_configuration,
+    stance_forward_kinematics,
+    stance_inverse_kinematics,
+    stance_legs,
+)
 
 __all__ = [
     "AXES",
@@ -26,6 +41,7 @@ __all__ = [
     "axis_locked_extremes",
     "axis_locked_flexibility",
     "direction_poses",
+    "flexibility",
     "flexibility_index",
     "free_flexibility",
     "mobility",
@@ -36,27 +52,3 @@ __all__ = [
     "stance_legs",
     "stance_margins",
 ]
-
-__getattr__, __dir__ = lazy_exports(__name__)
-
-if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
-    from hexaleg.cause import Cause
-    from hexaleg.stance.axis_locked import axis_locked_extremes, axis_locked_flexibility
-    from hexaleg.stance.constraints import AXES, DIRECTIONS, direction_poses, stance_margins
-    from hexaleg.stance.extremes import (
-        Extreme,
-        FlexibilityResult,
-        FlexibilityWarning,
-        SearchEvidence,
-        flexibility_index,
-    )
-    from hexaleg.stance.free_coupled import free_flexibility
-    from hexaleg.stance.geometry import (
-        StanceGeometry,
-        mobility,
-        rigid_fit,
-        stance_configuration,
-        stance_forward_kinematics,
-        stance_inverse_kinematics,
-        stance_legs,
-    )
