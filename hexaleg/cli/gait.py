@@ -7,8 +7,6 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-import numpy as np
-
 from hexaleg._io import write_text
 from hexaleg.cli.gait_options import add_gait_options, gait_from_args
 from hexaleg.cli.inputs import inputs_from_args
@@ -35,10 +33,8 @@ from hexaleg.output.figures.motors import write_motor_figures
 from hexaleg.output.viewer.gait import write_gait_html
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-from hexaleg.swing.workspace import standing_reach
 
 if TYPE_CHECKING:
-    from hexaleg._typing import ArrayF
     from hexaleg.robot.robot import Robot
 
 DESCRIPTION = (
@@ -114,47 +110,16 @@ def _write_csv(analysis: GaitAnalysis, path: Path, robot: Robot) -> Path:
     """The time series, a robot file's joints also in the file's own (``_urdf_*`` columns)."""
     import pandas as pd
 
-    columns = analysis.time_series() | file_columns(analysis, robot)
+    in_file = robot.file_columns(analysis.legs, analysis.joint_angles, analysis.joint_torques)
+    columns = analysis.time_series() | in_file
     return write_text(path, pd.DataFrame(columns).to_csv(index=False))
 
 
-def file_columns(analysis: GaitAnalysis, robot: Robot) -> dict[str, ArrayF]:
-    """The period in a robot file's own joints, as named columns (N,) each; none for the template.
-
-    Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
-    (s·τ, the torque about the file's joint axis) [N·m].
-    """
-    columns: dict[str, ArrayF] = {}
-    for i, leg in enumerate(analysis.legs):
-        angles = robot.in_file_joints({leg: analysis.joint_angles[:, i]})
-        if not angles:
-            return columns
-        values = angles["urdf_joint_angles"][leg]
-        torques = robot.model.joint_signs(leg) * analysis.joint_torques[:, i]
-        for j, joint in enumerate(LEG_JOINTS):
-            columns[f"{leg}_{joint}_urdf_q"] = np.asarray(values)[:, j]
-            columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
-    return columns
-
-
 def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> list[Path]:
-    written = write_gait_figures(analysis, out, reach_clouds(analysis, model))
+    written = write_gait_figures(analysis, out, analysis.reach_clouds(model))
     if analysis.electrical is not None:
         written += write_motor_figures(analysis, out)
     return written
-
-
-def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
-    """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
-
-    Each leg by its own leg within the limits that hold it standing
-    (:func:`~hexaleg.swing.workspace.standing_reach`).
-    """
-    clouds = standing_reach(model)
-    return {
-        leg: analysis.frames.points_in_body(clouds[leg].points)[i]
-        for i, leg in enumerate(analysis.legs)
-    }
 
 
 def _feasible(analysis: GaitAnalysis) -> str:

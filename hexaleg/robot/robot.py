@@ -19,19 +19,22 @@ at other lengths it is the file with every leg's segments changed along their ow
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import tomli_w
 
+from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign, ratio_lengths
 from hexaleg.design_file import DesignFile
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.imported_model import (
     ImportedHexapodModel,
@@ -414,6 +417,34 @@ class Robot:
                 leg: model.joint_values(leg, theta).tolist() for leg, theta in angles.items()
             }
         }
+
+    def file_columns(
+        self, legs: Sequence[str], joint_angles: ArrayF, joint_torques: ArrayF
+    ) -> dict[str, ArrayF]:
+        """A motion in a robot file's own joints, as named columns (N,) each.
+
+        ``{}`` for the template, whose joints are θ.
+
+        Args:
+            legs: The legs of the motion's columns, in order (L,).
+            joint_angles: Angles θ (N, L, 3) [rad].
+            joint_torques: Torques on θ (N, L, 3) [N·m].
+
+        Returns:
+            Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
+            (s·τ, the torque about the file's joint axis) [N·m].
+
+        """
+        if self._given is None:
+            return {}
+        model, columns = self.model, {}
+        for i, leg in enumerate(legs):
+            values = model.joint_values(leg, joint_angles[:, i])
+            torques = model.joint_signs(leg) * joint_torques[:, i]
+            for j, joint in enumerate(LEG_JOINTS):
+                columns[f"{leg}_{joint}_urdf_q"] = np.asarray(values)[:, j]
+                columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
+        return columns
 
     def urdf(self) -> str:
         """Its URDF: the template rendered at its design, or the file with its feet marked.
