@@ -30,15 +30,16 @@ What the check refuses, module by module:
   code is a module like any other.
 - **A hexaleg module imported inside a function**: such an import hides an upward import
   or a cycle from a reader, and from the interpreter until the function first runs. Every
-  hexaleg import is at the top of its module; a command's module may import its analyses
-  there, since ``hexaleg`` imports only the chosen command's module (``cli/main.py``'s
-  dispatch by :func:`importlib.import_module` over its table of commands, and the packages'
-  lazy front doors, :mod:`hexaleg._lazy`, are the only imports by name, and they are
-  no cycle: the front doors import nothing of their own package when imported). Heavy
-  third-party packages (matplotlib, meshcat, mujoco, weasyprint, distributed) may still be
-  imported inside the function that needs them, so that ``hexaleg --help`` and the commands
-  that do not draw stay fast: the check is about hexaleg's own modules only.
-  :data:`LOCAL_IMPORTS_ALLOWED` lists the exceptions with their reason; it is empty.
+  hexaleg import is at the top of its module; a command's module imports its analyses
+  there, since ``hexaleg`` imports only the chosen command's module. Two places import by
+  name instead, and are not import statements: ``cli/main.py``'s dispatch
+  (:func:`importlib.import_module` over its table of commands, so that ``hexaleg --help``
+  imports no command) and the packages' lazy front doors (:mod:`hexaleg._lazy`: a name is
+  imported from the module its ``TYPE_CHECKING`` import names, which the cycle check reads).
+  Heavy third-party packages (matplotlib, meshcat, mujoco, weasyprint, distributed, pandas
+  where only a figure needs it) may still be imported inside the function that needs them:
+  the check is about hexaleg's own modules only. :data:`LOCAL_IMPORTS_ALLOWED` would list
+  an exception with its reason; it is empty.
 - **A function over** :data:`MAX_FUNCTION_LINES` **lines**: a function that does not fit
   on a screen is a sign the piece wants splitting.
 
