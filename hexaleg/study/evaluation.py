@@ -32,9 +32,10 @@ from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.analysis import GaitAnalysis, analyze_walker
+from hexaleg.gait.capacity import walker_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walk import Walker
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
@@ -331,20 +332,17 @@ class _Measuring:
         self.values["max_slope"], self.causes["max_slope"] = found
 
     def _measure_walking(self) -> None:
-        conditions = self.conditions
+        conditions, empty = self.conditions, self.conditions.payload.with_mass(0.0)
+        walker = Walker(self.model, conditions.gait, conditions.payload)  # one walk for both
         if "walking_payload_capacity" in self.metrics:
-            found = walking_payload_capacity(
-                self.model, conditions.gait, conditions.payload.position
-            )
+            same = walker.payload == empty  # the capacity walks the gait unloaded
+            found = walker_capacity(walker if same else Walker(self.model, conditions.gait, empty))
             self.values["walking_payload_capacity"] = found.mass
             self.causes["walking_payload_capacity"] = found.limited_by
             self.walks = found.walks
         if not (self.metrics & {*PERIOD_METRICS, *PERIOD_DETAILS} or conditions.keep):
             return
-        walked = analyze_gait(
-            self.design, conditions.gait, conditions.payload, model=self.model, limits=False,
-            speed=True,
-        )  # fmt: skip
+        walked = analyze_walker(walker, limits=False, speed=True)
         self.walked = walked
         assert walked.max_speed is not None  # speed=True
         self.values["max_speed"] = walked.max_speed.value
