@@ -1,0 +1,157 @@
+"""The explorer under hostile HTTP: forged Origin and Host, malformed Content-Length.
+
+Raw requests (:mod:`http.client`, as curl sends them) to an explorer started as its own
+process on 127.0.0.1 (:mod:`explorer`). A request from another site (its Origin not the
+explorer's page) or through another name (a DNS-rebinding Host) answers 403 on every API
+endpoint, nothing written and no job started; the page's own requests keep working. A
+Content-Length that is not a byte count answers 400 (too large: 413) at once.
+"""
+
+from __future__ import annotations
+
+import http.client
+import json
+import socket
+import time
+from urllib.parse import urlsplit
+
+import pytest
+from explorer import Explorer, running
+
+from hexaleg.cli import main
+
+ANSWER_WITHIN = 10.0
+"""Bound on any answer here [s]: a refusal is immediate, never a wait for a body."""
+
+
+@pytest.fixture(scope="module")
+def design_file(tmp_path_factory) -> str:
+    path = tmp_path_factory.mktemp("explore_http") / "robot.toml"
+    assert main(["design", "init", str(path), "--l1", "0.18"]) == 0
+    path.write_text("# the user's comments\n" + path.read_text())
+    return str(path)
+
+
+@pytest.fixture(scope="module")
+def explorer(design_file) -> Explorer:
+    with running("--design", design_file) as server:
+        yield server
+
+
+def _port(server: Explorer) -> int:
+    return int(urlsplit(server.url).port or 0)
+
+
+def _send(
+    server: Explorer, method: str, path: str, headers: dict[str, str], body: bytes = b""
+) -> tuple[int, dict]:
+    """``method path`` with exactly ``headers`` (Host included) and ``body``: status, JSON."""
+    connection = http.client.HTTPConnection("127.0.0.1", _port(server), timeout=ANSWER_WITHIN)
+    try:
+        connection.putrequest(method, path, skip_host=True, skip_accept_encoding=True)
+        for name, value in headers.items():
+            connection.putheader(name, value)
+        connection.endheaders(body or None)
+        answer = connection.getresponse()
+        return answer.status, json.loads(answer.read() or b"{}")
+    finally:
+        connection.close()
+
+
+def _own(server: Explorer, host: str = "127.0.0.1") -> dict[str, str]:
+    """The headers of the explorer's own page, opened at ``host``."""
+    where = f"{host}:{_port(server)}"
+    return {"Host": where, "Origin": f"http://{where}", "Content-Length": "0"}
+
+
+FORGED = {
+    "another site's page": {"Origin": "http://evil.example"},
+    "a DNS-rebinding name": {"Host": "evil.example:{port}", "Origin": "http://evil.example:{port}"},
+    "another port": {"Host": "127.0.0.1:1", "Origin": "http://127.0.0.1:1"},
+    "a sandboxed page": {"Origin": "null"},
+    "the right host on https": {"Origin": "https://127.0.0.1:{port}"},
+    "a cross-site fetch without Origin": {"Origin": None, "Sec-Fetch-Site": "cross-site"},
+}
+"""How a request from elsewhere differs from the page's own (None: the header left out)."""
+
+ENDPOINTS = [
+    ("POST", "/api/save?l2=0.41"),
+    ("POST", "/api/job?kind=free"),
+    ("POST", "/api/job/stop?kind=free"),
+    ("GET", "/api/evaluate?l2=0.41"),
+    ("GET", "/api/reach"),
+    ("GET", "/api/loaded"),
+    ("GET", "/api/cloud"),
+    ("GET", "/api/job?kind=free"),
+]
+
+
+def _forged(server: Explorer, how: str) -> dict[str, str]:
+    headers = _own(server)
+    for name, value in FORGED[how].items():
+        if value is None:
+            headers.pop(name)
+        else:
+            headers[name] = value.format(port=_port(server))
+    return headers
+
+
+@pytest.mark.parametrize("how", list(FORGED))
+@pytest.mark.parametrize(("method", "path"), ENDPOINTS, ids=[" ".join(e) for e in ENDPOINTS])
+def test_a_request_from_elsewhere_is_refused_and_changes_nothing(
+    explorer, design_file, how, method, path
+):
+    before = open(design_file, "rb").read()
+    status, got = _send(explorer, method, path, _forged(explorer, how))
+    assert status == 403, got
+    assert got["field"] in ("Origin", "Host", "Sec-Fetch-Site") and "403" not in got["error"]
+    assert open(design_file, "rb").read() == before  # the user's file, comments and all
+    assert explorer.get("api/job?kind=free") == (200, {"kind": "free", "state": "none"})
+
+
+def test_the_page_s_own_requests_are_answered(explorer, design_file):
+    before = open(design_file, "rb").read()
+    for host in ("127.0.0.1", "localhost"):
+        status, got = _send(explorer, "GET", "/api/evaluate?l2=0.41", _own(explorer, host))
+        assert status == 200 and got["error"] == "", got
+    page = http.client.HTTPConnection("127.0.0.1", _port(explorer), timeout=ANSWER_WITHIN)
+    page.request("GET", "/", headers={"Host": f"localhost:{_port(explorer)}"})
+    assert page.getresponse().status == 200
+    page.close()
+    assert open(design_file, "rb").read() == before
+
+
+def test_the_page_itself_is_refused_through_another_name(explorer):
+    page = http.client.HTTPConnection("127.0.0.1", _port(explorer), timeout=ANSWER_WITHIN)
+    page.request("GET", "/", headers={"Host": f"evil.example:{_port(explorer)}"})
+    answer = page.getresponse()
+    assert answer.status == 403 and b"Host" in answer.read()
+    page.close()
+
+
+@pytest.mark.parametrize(
+    ("length", "status"),
+    [("abc", 400), ("-1", 400), ("+5", 400), ("1e3", 400), (str(10**12), 413), ("1,1", 400)],
+)
+@pytest.mark.parametrize("method", ["GET", "POST"])
+def test_a_content_length_that_is_no_byte_count_is_answered_at_once(
+    explorer, design_file, method, length, status
+):
+    before = open(design_file, "rb").read()
+    port = _port(explorer)
+    raw = (
+        f"{method} /api/save?l2=0.41 HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+        f"Origin: http://127.0.0.1:{port}\r\nContent-Length: {length}\r\n\r\n"
+    )
+    start = time.monotonic()
+    with socket.create_connection(("127.0.0.1", port), timeout=ANSWER_WITHIN) as connection:
+        connection.sendall(raw.encode("latin-1"))
+        answer = b""
+        while chunk := connection.recv(65536):  # the explorer closes the connection after
+            answer += chunk
+    assert time.monotonic() - start < ANSWER_WITHIN
+    head, _, body = answer.partition(b"\r\n\r\n")
+    assert head.startswith(f"HTTP/1.1 {status} ".encode()), answer
+    assert "Content-Length" in json.loads(body)["field"]
+    assert open(design_file, "rb").read() == before
+    assert explorer.get("api/loaded")[0] == 200  # and it keeps serving
