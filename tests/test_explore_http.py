@@ -155,3 +155,31 @@ def test_a_content_length_that_is_no_byte_count_is_answered_at_once(
     assert "Content-Length" in json.loads(body)["field"]
     assert open(design_file, "rb").read() == before
     assert explorer.get("api/loaded")[0] == 200  # and it keeps serving
+
+
+UNRELATED = "# the user's own notes, not a design\nanswer = 42\n"
+
+
+def test_save_without_a_path_given_never_replaces_a_file_it_did_not_write(tmp_path):
+    (tmp_path / "design.toml").write_text(UNRELATED)
+    with running("--l1", "0.18", cwd=tmp_path) as server:
+        status, got = server.post("api/save?l2=0.41")
+        assert status == 400 and got["field"] == "save"
+        assert "design.toml" in got["error"] and "exists" in got["error"]
+        assert "--save" in got["error"]
+        assert "--force" in got["error"]
+        (tmp_path / "design.toml").unlink()  # gone: the explorer's own from its first save
+        assert server.post("api/save?l2=0.41") == (200, {"wrote": "design.toml"})
+        assert server.post("api/save?l2=0.42")[0] == 200  # its own file, replaced
+        (tmp_path / "design.toml").write_text(UNRELATED)  # someone else's again
+        assert server.post("api/save?l2=0.43")[0] == 400
+    assert (tmp_path / "design.toml").read_text() == UNRELATED
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["design.toml"]
+
+
+@pytest.mark.parametrize("given", [["--save", "design.toml"], ["--force"]])
+def test_save_replaces_the_file_the_user_named_or_forced(tmp_path, given):
+    (tmp_path / "design.toml").write_text(UNRELATED)
+    with running("--l1", "0.18", *given, cwd=tmp_path) as server:
+        assert server.post("api/save?l2=0.41") == (200, {"wrote": "design.toml"})
+    assert "l2 = 0.41" in (tmp_path / "design.toml").read_text()

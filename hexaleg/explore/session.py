@@ -8,6 +8,8 @@ beside it, then a rename), the loaded ``[requirements]`` kept.
 
 from __future__ import annotations
 
+import os
+import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -19,7 +21,7 @@ from hexaleg._io import check_output_file, write_text
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_text import design_toml
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs
@@ -46,6 +48,54 @@ CATALOG_COLUMNS = ("name", "manufacturer", "model", "peak_torque", "continuous_t
 """What the page's motor choices show of each catalog entry."""
 
 
+class SaveTarget:
+    """Where "save design" writes, and whether a file already there may be replaced.
+
+    A file the user named (``--save``, a ``--design`` file) or allowed (``--force``) is
+    replaced whatever it holds; otherwise (the default ``design.toml``) only a file this
+    explorer wrote itself is: none there, it is made; one it did not write (another
+    inode or modification time than its last save left) is refused.
+
+    Args:
+        path: The design file (.toml).
+        replace: Whether a file there may be replaced whoever wrote it.
+
+    """
+
+    def __init__(self, path: Path, replace: bool) -> None:
+        self.path, self.replace = path, replace
+        self._written: tuple[int, int] | None = None  # (inode, mtime [ns]) of its last save
+        self._lock = threading.Lock()
+
+    def write(self, text: str) -> Path:
+        """Write ``text`` to :attr:`path` (atomically), unless it would replace another's file.
+
+        Raises:
+            ParameterError: ``save``: a file is there that this explorer did not write.
+
+        """
+        with self._lock:
+            if not self.replace:
+                self._refuse_another_file()
+            path = write_text(self.path, text)
+            found = os.stat(path)
+            self._written = (found.st_ino, found.st_mtime_ns)
+            return path
+
+    def _refuse_another_file(self) -> None:
+        try:
+            found = os.stat(self.path)
+        except FileNotFoundError:
+            return
+        if (found.st_ino, found.st_mtime_ns) != self._written:
+            raise ParameterError(
+                "save",
+                str(self.path),
+                "the file exists and this explorer did not write it: start hexaleg explore "
+                "with --save FILE to name the file to write, or --force to replace it",
+            )
+
+
 @dataclass(frozen=True)
 class Session:
     """One explorer's loaded inputs.
@@ -58,6 +108,7 @@ class Session:
         requirements: The design file's requirements, as written (none given: nothing is
             checked); a leg length not required is the loaded design's.
         save_to: The design file "save design" writes (.toml).
+        target: How it writes it (a file it did not write replaced only when allowed).
         cloud: The study's cloud around the loaded design, measured in the background.
         jobs: Its long jobs (free-coupled search, decide), each another process.
         robot: The imported robot explored (``--urdf``, or a design file's ``[robot]``),
@@ -69,6 +120,7 @@ class Session:
     conditions: Conditions
     requirements: Requirements
     save_to: Path
+    target: SaveTarget = field(compare=False)
     cloud: Cloud = field(compare=False)
     jobs: Jobs = field(default_factory=Jobs, compare=False)
     robot: ExploredRobot | None = field(default=None, compare=False)
@@ -80,8 +132,14 @@ class Session:
         requirements: Requirements,
         save_to: str | Path,
         robot: ExploredRobot | None = None,
+        *,
+        replace: bool = True,
     ) -> Session:
-        """The session of a loaded design (an imported robot's: ``robot.model.design``)."""
+        """The session of a loaded design (an imported robot's: ``robot.model.design``).
+
+        ``replace``: whether "save design" may replace a file at ``save_to`` it did not
+        write (the user named the file, or said ``--force``).
+        """
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
@@ -92,7 +150,8 @@ class Session:
         )
         models = None if robot is None else robot.model.with_design  # uncached: its own thread
         cloud = Cloud(design, conditions, models).start()
-        return cls(design, conditions, requirements, path, cloud, robot=robot)
+        target = SaveTarget(path, replace)
+        return cls(design, conditions, requirements, path, target, cloud, robot=robot)
 
     def query(self, params: Mapping[str, str]) -> Query:
         """The design and conditions a query asks for (a ParameterError names a bad key)."""
@@ -159,7 +218,7 @@ class Session:
 
     def save(self, params: Mapping[str, str]) -> Path:
         """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
-        return write_text(self.save_to, self.design_text(params, self.save_to))
+        return self.target.write(self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
         """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
