@@ -15,6 +15,7 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -74,6 +75,8 @@ class Case:
         message: What the one-line error says; empty when the command must succeed.
         made: Path → what it must then hold (the command's own output), checked exactly.
         says: What its standard output must say, when it succeeds.
+        never: What neither its output nor its error may hold (``inf``, a Python error);
+            a ``--json`` answer must be strict JSON (no NaN, no Infinity).
 
     """
 
@@ -83,6 +86,7 @@ class Case:
     message: str
     made: dict[str, str] = field(default_factory=dict)
     says: str = ""
+    never: tuple[str, ...] = ()
 
 
 def _decide_journal(path: str, resume: bool) -> Callable[[], object]:
@@ -234,6 +238,21 @@ CASES = [
          "resume = True is not valid: continues a journal: give journal=FILE"),
 ]  # fmt: skip
 
+FAR = {"far.toml": "[gait]\nstride = 1.2\n"}
+"""A design file whose gait no foot reaches: its joint speeds would be unbounded."""
+KRABY = str(Path(__file__).parent / "data" / "robots" / "kraby" / "hexapod.urdf")
+NOT_NUMBERS = (r"\binf\b", r"\bnan\b", r"\bInfinity\b", r"\bNaN\b", "Traceback", "Error:")
+"""Patterns of what no answer holds: a number that is none, a Python error."""
+
+SLOW_CASES = [  # each a whole decision (seconds)
+    *(Case(f"decide {name} --walking-payload 0.05{json}: never inf", FAR,
+           [*argv, "--walking-payload", "0.05", "--evaluations", "60", "--workers", "1",
+            *json.split()], "", says=says, never=NOT_NUMBERS)
+      for name, argv in (("far.toml", ["decide", "--design", "far.toml"]),
+                         ("kraby", ["decide", "--urdf", KRABY]))
+      for json, says in (("", "cannot walk it"), (" --json", '"walking_violation": "t = '))),
+]  # fmt: skip
+
 SIMULATE_CASES = [
     Case("simulate --l1 100 --l2 100 --l3 100", {},
          ["simulate", "--l1", "100", "--l2", "100", "--l3", "100", "--html", "s.html"],
@@ -308,7 +327,11 @@ def _run(case: Case) -> tuple[int, str, str]:
     return status, err.getvalue(), out.getvalue()
 
 
-@pytest.mark.parametrize("case", CASES, ids=[case.name for case in CASES])
+@pytest.mark.parametrize(
+    "case",
+    [*CASES, *(pytest.param(case, marks=pytest.mark.slow) for case in SLOW_CASES)],
+    ids=[case.name for case in (*CASES, *SLOW_CASES)],
+)
 def test_a_fuzz_case_loses_nothing_and_ends_in_one_line(tmp_path, monkeypatch, case):
     _check(case, tmp_path, monkeypatch)
 
@@ -333,6 +356,9 @@ def _check(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         return
     assert status == 0, err
     assert case.says in out, out
+    assert not any(re.search(word, out + err) for word in case.never), out + err
+    if not callable(case.run) and "--json" in case.run:
+        json.loads(out, parse_constant=lambda word: pytest.fail(f"{word} in the JSON"))
     for name, content in case.made.items():
         assert after.pop(name) == content.encode()
     kept = {name: value for name, value in before.items() if name not in case.made}

@@ -10,6 +10,7 @@ no two outputs on one path.
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 from collections.abc import Callable, Mapping, Sequence
@@ -25,9 +26,30 @@ PLOT_KIND = "figures"
 
 
 def print_json(data: dict[str, Any], file: TextIO | None = None) -> None:
-    """One JSON object on ``file`` (stdout); NaN and infinity are refused, never printed."""
+    """One JSON object on ``file`` (stdout), strict: never NaN or infinity.
+
+    A number JSON cannot hold is written ``null``, and ``not_finite`` names where and what
+    it was (``{"best.over_rating[0].peak": "inf"}``): the answer is still read by every
+    JSON reader, and says what it could not say.
+    """
     require_stdout()
-    print(json.dumps(data, indent=2, allow_nan=False), file=file)
+    missing: dict[str, str] = {}
+    found = _finite(data, "", missing)
+    if missing:
+        found["not_finite"] = missing
+    print(json.dumps(found, indent=2, allow_nan=False), file=file)
+
+
+def _finite(value: Any, where: str, missing: dict[str, str]) -> Any:
+    """``value`` with every non-finite float ``None``, each recorded by its path."""
+    if isinstance(value, float) and not math.isfinite(value):
+        missing[where] = repr(value)
+        return None
+    if isinstance(value, Mapping):
+        return {k: _finite(v, f"{where}.{k}".lstrip("."), missing) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v, f"{where}[{i}]", missing) for i, v in enumerate(value)]
+    return value
 
 
 def print_table(title: str, rows: Sequence[tuple[str, str]], file: TextIO | None = None) -> None:

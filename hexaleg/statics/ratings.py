@@ -8,6 +8,7 @@ it occurs.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -65,10 +66,9 @@ class OverRating:
 
     def __str__(self) -> str:
         unit, label = UNITS[self.quantity], LABELS[self.quantity]
-        return (
-            f"{self.leg} {self.joint} {label} {self.peak:.2f} {unit} over its rating "
-            f"{self.rated:g} {unit} ({self.at})"
-        )
+        peak = f"{self.peak:.2f} {unit}" if math.isfinite(self.peak) else "without bound"
+        rated = f"{self.rated:g} {unit}"
+        return f"{self.leg} {self.joint} {label} {peak} over its rating {rated} ({self.at})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (N·m, rad/s or V)."""

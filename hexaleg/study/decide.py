@@ -64,7 +64,10 @@ class CheckedDesign:
         standing_over_rating: Each joint over its rated torque carrying the required
             payload, at the nominal stance or an axis-locked extreme.
         walking_over_rating: Each joint over its rated torque or speed walking the
-            requirements' gait (none when no gait is walked).
+            requirements' gait (none when no gait is walked, or it cannot be).
+        walking_violation: Why the requirements' gait cannot be walked at all, its first
+            broken constraint (a foothold out of reach: the joints' speeds there have no
+            bound); empty when it can, or no gait is walked.
 
     """
 
@@ -73,6 +76,7 @@ class CheckedDesign:
     checks: tuple[RequirementCheck, ...]
     standing_over_rating: tuple[OverRating, ...] = ()
     walking_over_rating: tuple[OverRating, ...] = ()
+    walking_violation: str = ""
 
     @classmethod
     def of(
@@ -97,11 +101,13 @@ class CheckedDesign:
         evaluation = goal.evaluate(design, model, flexibility=locked)
         if evaluation.error:
             return cls(design, evaluation, (), standing)
-        walking: tuple[OverRating, ...] = ()
-        if goal.walks:
-            gait = requirements.gait
-            walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
-        return cls(design, evaluation, goal.checks(evaluation), standing, walking)
+        if not goal.walks:
+            return cls(design, evaluation, goal.checks(evaluation), standing)
+        walked = analyze_gait(design, requirements.gait, payload, model=model, limits=False)
+        walking, broken = (
+            (walked.over_rating, "") if walked.walkable else ((), str(walked.violations[0]))
+        )
+        return cls(design, evaluation, goal.checks(evaluation), standing, walking, broken)
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
         """(where, flags furthest over first) standing with the payload, and walking if walked."""
@@ -212,6 +218,9 @@ class DecideResult:
             },
             "feasible": self.feasible,
         }
+        for which, checked in (("best", self.best), ("yours", self.yours)):
+            if self.walks:  # null: the gait walks (its joints are flagged in over_rating)
+                out[which]["walking_violation"] = checked.walking_violation or None
         if self.robot is not None:
             out["robot"] = self.robot
         if self.walks:
