@@ -102,6 +102,20 @@ def _causes(value: object) -> str:
     return DECIDE_HEADER + json.dumps(row) + "\n"
 
 
+MOTORS = {
+    "motors.toml": "".join(
+        f'[actuators.{joint}]\ncatalog = "hd_cha_25a_100"\n' for joint in ("root", "hip", "knee")
+    )
+}
+"""A design file with catalog motors and no battery."""
+BATTERY = {"b.toml": "[battery]\ncapacity = 500\nspecific_energy = 150\n"}
+"""A design file with a battery and no motors."""
+FAR = {"far.toml": "[gait]\nstride = 1.2\n"}
+"""A design file whose gait no foot reaches: its joint speeds would be unbounded."""
+KRABY = str(Path(__file__).parent / "data" / "robots" / "kraby" / "hexapod.urdf")
+NOT_NUMBERS = (r"\binf\b", r"\bnan\b", r"\bInfinity\b", r"\bNaN\b", "Traceback", "Error:")
+"""Patterns of what no answer holds: a number that is none, a Python error."""
+
 CASES = [
     # data lost or overwritten
     Case("a text file as --journal, --resume", {"notes.txt": "notes\nlast line"},
@@ -190,6 +204,24 @@ CASES = [
          "argument --evaluations: 1000000 is not valid: must be in 48..100000"),
     Case("decide --leg-length 200", {}, ["decide", "--leg-length", "200"],
          "--leg-length = 200 is not valid: must lie in [0.003, 100] [m]"),
+    # decide: what a design cannot measure is refused before any search
+    *(Case(f"decide {' '.join(argv).replace(KRABY, 'kraby')} without [battery]", files,
+           ["decide", *argv], "--range-km = 5 is not valid: range needs a [battery] table" + more)
+      for argv, files, more in (
+          (["--range-km", "5"], {}, " and an [actuators] table in the design file (or --choose"),
+          (["--urdf", KRABY, "--range-km", "5"], {}, " and an [actuators] table"),
+          (["--range-km", "5", "--choose-actuators"], {}, " in the design file: the distance"),
+          (["--design", "motors.toml", "--range-km", "5"], MOTORS, " in the design file"))),
+    Case("decide --range-km 5 without [actuators]", BATTERY, ["decide", "--design", "b.toml",
+         "--range-km", "5"], "--range-km = 5 is not valid: range needs an [actuators] table"),
+    Case("[requirements] range_km without [battery]", {"r.toml": "[requirements]\nrange_km = 5\n"},
+         ["decide", "--design", "r.toml"], "range_km = 5 is not valid: range needs a [battery]"),
+    Case("decide --continuous-margin 0.8 without [actuators]", {},
+         ["decide", "--continuous-margin", "0.8"],
+         "--continuous-margin = 0.8 is not valid: continuous load needs an [actuators] table"),
+    Case("decide --maximize battery_range without [battery]", {},
+         ["decide", "--maximize", "battery_range"],
+         "--maximize = 'battery_range' is not valid: range needs a [battery] table"),
     # friction, declared once
     *(Case(f"{command} --friction {value}", {}, [command, "--friction", value, *more],
            f"--friction = {shown} is not valid: {allowed}")
@@ -237,12 +269,6 @@ CASES = [
          lambda: hexaleg.decide(HexapodDesign(), resume=True),
          "resume = True is not valid: continues a journal: give journal=FILE"),
 ]  # fmt: skip
-
-FAR = {"far.toml": "[gait]\nstride = 1.2\n"}
-"""A design file whose gait no foot reaches: its joint speeds would be unbounded."""
-KRABY = str(Path(__file__).parent / "data" / "robots" / "kraby" / "hexapod.urdf")
-NOT_NUMBERS = (r"\binf\b", r"\bnan\b", r"\bInfinity\b", r"\bNaN\b", "Traceback", "Error:")
-"""Patterns of what no answer holds: a number that is none, a Python error."""
 
 SLOW_CASES = [  # each a whole decision (seconds)
     *(Case(f"decide {name} --walking-payload 0.05{json}: never inf", FAR,

@@ -83,6 +83,11 @@ class OverRating:
         }
 
 
+def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
+    """Joints over their ratings, the furthest over (peak / rating) first."""
+    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
+
+
 def at_times(times: npt.ArrayLike) -> list[str]:
     """Each time [s] as a place where a peak occurs: ``"t = 0.420 s"``."""
     return [f"t = {t:.3f} s" for t in np.asarray(times, dtype=float)]

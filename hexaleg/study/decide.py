@@ -35,7 +35,7 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
-from hexaleg.statics.ratings import OverRating
+from hexaleg.statics.ratings import OverRating, furthest_first
 from hexaleg.study.conflict import Conflict, find_conflict
 from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
@@ -65,9 +65,8 @@ class CheckedDesign:
             payload, at the nominal stance or an axis-locked extreme.
         walking_over_rating: Each joint over its rated torque or speed walking the
             requirements' gait (none when no gait is walked, or it cannot be).
-        walking_violation: Why the requirements' gait cannot be walked at all, its first
-            broken constraint (a foothold out of reach: the joints' speeds there have no
-            bound); empty when it can, or no gait is walked.
+        walking_violation: The gait's first broken constraint when it cannot be walked at
+            all (a foothold out of reach: speeds without bound); empty otherwise.
 
     """
 
@@ -104,10 +103,9 @@ class CheckedDesign:
         if not goal.walks:
             return cls(design, evaluation, goal.checks(evaluation), standing)
         walked = analyze_gait(design, requirements.gait, payload, model=model, limits=False)
-        walking, broken = (
-            (walked.over_rating, "") if walked.walkable else ((), str(walked.violations[0]))
-        )
-        return cls(design, evaluation, goal.checks(evaluation), standing, walking, broken)
+        flags, broken = walked.over_rating, [str(found) for found in walked.violations[:1]]
+        walking = () if broken else flags
+        return cls(design, evaluation, goal.checks(evaluation), standing, walking, *broken)
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
         """(where, flags furthest over first) standing with the payload, and walking if walked."""
@@ -135,11 +133,6 @@ class CheckedDesign:
         value = self.evaluation.values.get(objective.name)
         return {"name": objective.name, "sense": objective.sense, "value": value,
                 "unit": objective.spec.unit}  # fmt: skip
-
-
-def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
-    """Joints over their ratings, the furthest over (peak / rating) first."""
-    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 @dataclass(frozen=True)
@@ -208,6 +201,7 @@ class DecideResult:
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
                 "over_rating": self.best.over_rating(),
+                "walking_violation": self.best.walking_violation or None,
                 "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
             "yours": {
@@ -215,12 +209,10 @@ class DecideResult:
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},
                 "over_rating": self.yours.over_rating(),
+                "walking_violation": self.yours.walking_violation or None,
             },
             "feasible": self.feasible,
         }
-        for which, checked in (("best", self.best), ("yours", self.yours)):
-            if self.walks:  # null: the gait walks (its joints are flagged in over_rating)
-                out[which]["walking_violation"] = checked.walking_violation or None
         if self.robot is not None:
             out["robot"] = self.robot
         if self.walks:
@@ -283,7 +275,7 @@ def decide(
     _check_arguments(design, journal, resume)
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
-    goal = Goal(requirements, objective or Objective())
+    goal = Goal(requirements, objective or Objective()).measurable(design, bool(actuators))
     space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings,
                    robot)  # fmt: skip
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)

@@ -46,7 +46,7 @@ from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.metrics import METRICS, Analysis
+from hexaleg.study.metrics import METRICS, Analysis, missing_tables
 from hexaleg.study.standing_limits import Standing
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
@@ -373,11 +373,8 @@ def _electrical_values(walked: GaitAnalysis) -> dict[str, float]:
 
 def _unmeasured_electrical(walked: GaitAnalysis) -> dict[str, str]:
     """Why a metric through the motors has no value: no actuators, or no battery."""
-    if walked.design.actuators is None:
-        return dict.fromkeys(ELECTRICAL_METRICS, "the design has no [actuators]")
-    if walked.design.battery is None:
-        return {"battery_range": "the design has no [battery]"}
-    return {}
+    missing = {name: missing_tables(name, walked.design) for name in ELECTRICAL_METRICS}
+    return {name: f"the design has no [{found[0]}]" for name, found in missing.items() if found}
 
 
 def _period_values(walked: GaitAnalysis) -> dict[str, float]:

@@ -12,13 +12,13 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 from hexaleg.design import HexapodDesign
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
 from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
-from hexaleg.study.metrics import METRICS, Better, MetricSpec, objectives
+from hexaleg.study.metrics import METRICS, Better, MetricSpec, missing_tables, objectives
 from hexaleg.study.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
 
 
@@ -129,6 +129,25 @@ class Goal:
         why = evaluation.unmeasured.get(self.objective.name)
         return Evaluation(error=why) if why else evaluation
 
+    def measurable(self, design: HexapodDesign, actuators: bool = False) -> Goal:
+        """The goal itself, once ``design`` is found to measure all it asks for.
+
+        ``actuators``: motors are being chosen (from a catalog) for every design.
+
+        Raises:
+            ParameterError: Before any search, the requirement (or ``maximize`` /
+                ``minimize``) whose metric needs a design-file table ``design`` lacks.
+
+        """
+        asked = [(name, REQUIREMENTS[name].metric, getattr(self.requirements, name))
+                 for name in self.requirements.given]  # fmt: skip
+        asked.append((self.objective.sense, self.objective.name, self.objective.name))
+        for name, metric, value in asked:
+            missing = missing_tables(metric, design, actuators)
+            if missing:
+                raise ParameterError(name, value, _needs(METRICS[metric], missing))
+        return self
+
     def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
         """Each requirement checked on an evaluation (its value, margin, what limits it)."""
         return check(self.requirements, evaluation.values, evaluation.causes)
@@ -138,3 +157,11 @@ class Goal:
         if evaluation.error:
             return False
         return all(c.met for c in self.checks(evaluation) if c.name in self.constraints)
+
+
+def _needs(metric: MetricSpec, missing: tuple[str, ...]) -> str:
+    """What a metric needs that a design lacks, in words (``missing``: tables, battery first)."""
+    tables = {"battery": "a [battery] table", "actuators": "an [actuators] table"}
+    needed = " and ".join(tables[name] for name in sorted(missing, key="battery".__ne__))
+    chosen = " (or --choose-actuators)" if "actuators" in missing else ""
+    return f"{metric.label} needs {needed} in the design file{chosen}: the {metric.text}"

@@ -15,6 +15,7 @@ from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Literal
 
+from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 
@@ -168,3 +169,22 @@ def metric(name: str) -> MetricSpec:
 def objectives(better: Better) -> tuple[str, ...]:
     """The metrics ``decide`` offers to make best in direction ``better``."""
     return tuple(m.name for m in METRICS.values() if m.objective and m.better == better)
+
+
+NEEDS: Mapping[str, tuple[str, ...]] = {
+    "energy_per_km": ("actuators",),
+    "electrical_cost_of_transport": ("actuators",),
+    "continuous_load": ("actuators",),
+    "battery_range": ("actuators", "battery"),
+}
+"""The design-file tables a metric is measured through: without them it has no value."""
+
+
+def missing_tables(name: str, design: HexapodDesign, actuators: bool = False) -> tuple[str, ...]:
+    """The tables (``"actuators"``, ``"battery"``) metric ``name`` needs that ``design`` lacks.
+
+    ``actuators``: motors are being chosen for it (``decide --choose-actuators``).
+    """
+    has = {"actuators": actuators or design.actuators is not None,
+           "battery": design.battery is not None}  # fmt: skip
+    return tuple(table for table in NEEDS.get(name, ()) if not has[table])
