@@ -212,6 +212,8 @@ CASES = [
           (["--urdf", KRABY, "--range-km", "5"], {}, " and an [actuators] table"),
           (["--range-km", "5", "--choose-actuators"], {}, " in the design file: the distance"),
           (["--design", "motors.toml", "--range-km", "5"], MOTORS, " in the design file"))),
+    Case("report --range-km 5 without [battery]", {}, ["report", "-o", "r", "--range-km", "5"],
+         "--range-km = 5 is not valid: range needs a [battery] table"),
     Case("decide --range-km 5 without [actuators]", BATTERY, ["decide", "--design", "b.toml",
          "--range-km", "5"], "--range-km = 5 is not valid: range needs an [actuators] table"),
     Case("[requirements] range_km without [battery]", {"r.toml": "[requirements]\nrange_km = 5\n"},

@@ -34,6 +34,7 @@ from hexaleg.output.report.options import MAX_SENSITIVITY_POINTS, MIN_L3_POINTS
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.robot import RobotRecord
 from hexaleg.output.report.robot_study import RobotDecisionRecord
+from hexaleg.study.goal import Goal
 
 if TYPE_CHECKING:
     from hexaleg.study.decide import DecideResult
@@ -95,6 +96,8 @@ def run(args: argparse.Namespace) -> int:
         _refuse_for_robot(args, sweep is not None)
         design = robot.point()[0]
     requirements = requirements_from_args(args, in_file)
+    if requirements.given:  # what the design cannot measure, refused before any section
+        Goal(requirements.resolved(design)).measurable(design)
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,
