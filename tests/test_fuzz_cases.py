@@ -293,6 +293,13 @@ SIMULATE_CASES = [
          "--friction = 0 is not valid: must lie in [0.001, 10] [-]"),
     Case("simulate_gait(None)", {}, lambda: hexaleg.simulate_gait(None),
          "design = None is not valid: must be a HexapodDesign"),
+    # a payload far beyond the robot: the simulation diverges, says so, writes no log
+    *(Case(f"simulate --urdf kraby --payload 10000{json}: diverged, said in one line", {},
+           ["simulate", "--urdf", KRABY, "--stride", "0.05", "--step-height", "0.02",
+            "--period", "1", "--cycles", "2", "--payload", "10000", *json.split()], "",
+           says=says, never=(*never, *NOT_NUMBERS))
+      for json, says, never in (("", "DIVERGED while walking, at t = ", (r"\bfell\b",)),
+                                (" --json", '"diverged": "while walking, at t = ', ()))),
 ]  # fmt: skip
 
 

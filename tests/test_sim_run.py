@@ -77,3 +77,33 @@ def test_a_plan_that_stands_still_keeps_the_robot_where_it_is(sim):
     peaks = state.peak_torques()
     for joint in ("hip", "knee"):
         assert metrics.peak_torque[joint] == pytest.approx(peaks[joint], rel=0.05, abs=0.5)
+
+
+def test_a_run_that_diverges_says_when_and_why_and_stops(sim):
+    """Each sign of divergence on a state built to show it (the oracle: the state itself),
+    and a run fed an absurd feed-forward stopping at once, saying so."""
+    import mujoco
+
+    from hexaleg.sim.engine import DIVERGED_SPEED, divergence, start
+
+    model = sim.hexapod
+    floor = -model.design.nominal_height
+    calm = start(sim, model.nominal_configuration())
+    assert divergence(sim, calm, floor) == ""
+    fast = start(sim, model.nominal_configuration())
+    fast.qvel[sim.dof[0, 2]] = 2 * DIVERGED_SPEED
+    assert "beyond 100" in divergence(sim, fast, floor)
+    sunk = model.nominal_configuration()
+    sunk[2] = 2 * floor
+    assert "through the ground" in divergence(sim, start(sim, sunk), floor)
+    bad = start(sim, model.nominal_configuration())
+    bad.warning[mujoco.mjtWarning.mjWARN_BADQACC].number = 1
+    assert "NaN, infinite or huge" in divergence(sim, bad, floor)
+    q = model.nominal_configuration()
+    plan = Plan(1.0, np.tile(model.joint_angles(q), (10, 1, 1)), np.zeros((10, 6, 3)),
+                np.full((10, 6, 3), 1e9), np.ones((10, 6), dtype=bool), np.zeros(2))  # fmt: skip
+    parts: list[Trace] = []
+    run = run_plan(sim, plan, duration=2.0, record=parts.append)
+    assert run.diverged.startswith("at t = ") and len(parts) == 1
+    assert len(parts[0].time) < 100  # stopped within a tenth of a second
+    assert run.frames.shape[0] == len(run.frame_torques) <= 3
