@@ -113,6 +113,8 @@ BATTERY = {"b.toml": "[battery]\ncapacity = 500\nspecific_energy = 150\n"}
 FAR = {"far.toml": "[gait]\nstride = 1.2\n"}
 """A design file whose gait no foot reaches: its joint speeds would be unbounded."""
 KRABY = str(Path(__file__).parent / "data" / "robots" / "kraby" / "hexapod.urdf")
+ROBOT_TEXT = Path(KRABY).read_text()
+"""A robot file's text, copied into the folder a row runs in."""
 NOT_NUMBERS = (r"\binf\b", r"\bnan\b", r"\bInfinity\b", r"\bNaN\b", "Traceback", "Error:")
 """Patterns of what no answer holds: a number that is none, a Python error."""
 
@@ -143,6 +145,18 @@ CASES = [
     Case("--journal -", {}, ["decide", "--journal", "-"], "it must be a file"),
     *(Case(f"{' '.join(argv)}: '-' is standard output, no file named '-'", {}, argv, "")
       for argv in (["gait", "--samples", "12", "--csv", "-"], ["urdf", "-o", "-"])),
+    # the input robot or design file is never an output
+    *(Case(f"urdf --urdf r.urdf -o {target}", {"r.urdf": ROBOT_TEXT, "sub/keep": "k"},
+           ["urdf", "--urdf", "r.urdf", "--l2", "0.08", "-o", target],
+           f"-o {target} is the robot file read (--urdf r.urdf): write it elsewhere")
+      for target in ("r.urdf", "sub/../r.urdf", "./r.urdf")),
+    Case("urdf --design d.toml -o d.toml", {"d.toml": "l1 = 0.2\n"},
+         ["urdf", "--design", "d.toml", "-o", "d.toml"],
+         "-o d.toml is the design file read (--design d.toml): write it elsewhere"),
+    Case("urdf --design with [robot] urdf, -o that robot file",
+         {"r.urdf": ROBOT_TEXT, "d.toml": '[robot]\nurdf = "r.urdf"\n'},
+         ["urdf", "--design", "d.toml", "-o", "r.urdf"],
+         "-o r.urdf is the robot file read"),
     # hangs
     Case("a FIFO as --journal, --resume", {"j.jsonl": FIFO},
          ["decide", "--journal", "j.jsonl", "--resume"], "j.jsonl is not a regular file"),
@@ -509,3 +523,15 @@ def test_view_gait_refuses_what_gait_refuses_in_the_same_words(tmp_path, monkeyp
         lines[argv[0]] = err.removeprefix(f"hexaleg {argv[0]}: error: ")
     assert lines["gait"] == lines["view"] and "max stride" in lines["gait"]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("link", [os.link, os.symlink], ids=["hard link", "symbolic link"])
+def test_the_input_robot_file_is_not_written_through_another_name(tmp_path, monkeypatch, link):
+    monkeypatch.chdir(tmp_path)
+    Path("r.urdf").write_text(ROBOT_TEXT)
+    link("r.urdf", "other.urdf")
+    before = _snapshot(tmp_path)
+    status, err, _ = _run(Case("", {}, ["urdf", "--urdf", "r.urdf", "-o", "other.urdf"], "x"))
+    assert status == 2 and err.count("\n") == 1
+    assert "-o other.urdf is the robot file read (--urdf r.urdf)" in err
+    assert _snapshot(tmp_path) == before

@@ -107,3 +107,30 @@ def test_a_run_that_diverges_says_when_and_why_and_stops(sim):
     assert run.diverged.startswith("at t = ") and len(parts) == 1
     assert len(parts[0].time) < 100  # stopped within a tenth of a second
     assert run.frames.shape[0] == len(run.frame_torques) <= 3
+
+
+def test_mujocos_warnings_are_collected_never_logged_in_the_working_folder(tmp_path, monkeypatch):
+    import warnings
+
+    import mujoco
+
+    from hexaleg.sim._mujoco import mujoco_warnings, pass_on
+
+    monkeypatch.chdir(tmp_path)
+    xml = '<mujoco><worldbody><body><freejoint/><geom size="0.1"/></body></worldbody></mujoco>'
+    model = mujoco.MjModel.from_xml_string(xml)
+    data = mujoco.MjData(model)
+    data.qfrc_applied[0] = float("nan")  # MuJoCo warns of a bad acceleration
+    before = mujoco.get_mju_user_warning()
+    with mujoco_warnings() as caught:
+        mujoco.mj_step(model, data)
+    assert mujoco.get_mju_user_warning() is before
+    assert len(caught) == 1 and "QACC" in caught[0]
+    assert list(tmp_path.iterdir()) == []  # no MUJOCO_LOG.TXT
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        pass_on(caught * 3)
+        pass_on([])
+    assert [str(w.message) for w in said] == [
+        f"MuJoCo warned 3 times in the simulation: {caught[0]}"
+    ]

@@ -9,6 +9,7 @@ no two outputs on one path.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 import os
@@ -69,6 +70,40 @@ def vector(values: Sequence[float], unit: str) -> str:
 def lengths_title(what: str, lengths: Sequence[float]) -> str:
     """A table title naming the segment lengths, e.g. ``Manipulability, l = (0.2, 0.4, 0.4) m``."""
     return f"{what}, l = ({lengths[0]:.4g}, {lengths[1]:.4g}, {lengths[2]:.4g}) m"
+
+
+def refuse_inputs_as_outputs(
+    outputs: Mapping[str, str | None], inputs: Mapping[str, tuple[str, str | Path | None]]
+) -> None:
+    """Refuse an output file that is a file the command reads, by any name.
+
+    The same file is the same device and inode, so a link or a ``../`` path to an input is
+    caught as the input itself; an output not there yet is no input.
+
+    Args:
+        outputs: Each output option and its path (``None``: not asked for).
+        inputs: What each input is (``"robot file"``) → how it was named and its path.
+
+    Raises:
+        HexalegError: ``-o r.urdf is the robot file read (--urdf r.urdf): write it elsewhere``.
+
+    """
+    read = {}
+    for what, (named, path) in inputs.items():
+        with contextlib.suppress(OSError):
+            if path is not None:
+                found = os.stat(path)
+                read[(found.st_dev, found.st_ino)] = (what, named)
+    for flag, target in outputs.items():
+        if target is None or standard_stream(target) is not None:
+            continue
+        try:
+            found = os.stat(target)
+        except OSError:  # not there: it is none of the inputs
+            continue
+        if (found.st_dev, found.st_ino) in read:
+            what, named = read[(found.st_dev, found.st_ino)]
+            raise HexalegError(f"{flag} {target} is the {what} read ({named}): write it elsewhere")
 
 
 def require_stdout() -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 
 from hexaleg.cli.options import add_design_options, design_from_args
-from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.cli.output import check_outputs, refuse_inputs_as_outputs, report_files
 from hexaleg.cli.robot_options import add_robot_options, refuse_unsupported, robot_from_args
 from hexaleg.robot.urdf import write_urdf
 
@@ -40,6 +40,12 @@ def run(args: argparse.Namespace) -> int:
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
     robot = robot_from_args(args)
+    source = None if robot is None else robot.source
+    named = f"--urdf {args.urdf}" if args.urdf else "the --design file's [robot] urdf"
+    refuse_inputs_as_outputs(
+        {"-o": target},
+        {"robot file": (named, source), "design file": (f"--design {args.design}", args.design)},
+    )
     if robot is None:
         written = write_urdf(design, target)
     else:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
@@ -37,3 +38,10 @@ def mujoco_warnings() -> Iterator[list[str]]:
         yield caught
     finally:
         mujoco.set_mju_user_warning(before)
+
+
+def pass_on(caught: list[str]) -> None:
+    """Say in one warning what MuJoCo warned of in a run that did not diverge (if anything)."""
+    if caught:
+        times = "once" if len(caught) == 1 else f"{len(caught)} times"
+        warnings.warn(f"MuJoCo warned {times} in the simulation: {caught[0]}", stacklevel=3)

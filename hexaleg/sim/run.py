@@ -18,7 +18,7 @@ import numpy as np
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.sim._mujoco import mujoco_warnings, require_mujoco
+from hexaleg.sim._mujoco import mujoco_warnings, pass_on, require_mujoco
 from hexaleg.sim.engine import divergence, foot_forces, start
 from hexaleg.sim.measure import Trace
 from hexaleg.sim.model import SimModel
@@ -96,7 +96,7 @@ def run_plan(
     frames: list[ArrayF] = []
     frame_torques: list[ArrayF] = []
     diverged = ""
-    with mujoco_warnings():  # the divergence says what they mean; no log file is written
+    with mujoco_warnings() as caught:  # no log file is written
         for first in range(0, steps, part):
             times = np.arange(first, min(first + part, steps), dtype=float) * sim.timestep
             trace, qpos, diverged = _steps(sim, data, plan, times, floor)
@@ -105,6 +105,8 @@ def run_plan(
             frame_torques.append(trace.joint_torques[::every].copy())  # not a view of the part
             if diverged:
                 break
+    if not diverged:  # a divergence says what they meant
+        pass_on(caught)
     rate = 1.0 / (every * sim.timestep)
     return Run(np.array(frames), np.concatenate(frame_torques), rate, diverged)
 
