@@ -47,7 +47,7 @@ from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait.dynamics import GeneralizedForces, carried_torques, payload_wrench
+from hexaleg.gait.dynamics import GeneralizedForces, payload_wrench
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Walker
@@ -126,12 +126,9 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    loads = unloaded.loads(gait.stride, walk, gait.period)
     probe = payload_wrench(unloaded.payload.point(model), PROBE_MASS, gravity)
-    base = loads.split.torques(gait.period)  # τ₀ (N, 6, 3)
-    slope = carried_torques(  # Δτ
-        unloaded.frames, unloaded.phases, walk.paths.position, walk.motion, probe / PROBE_MASS
-    )
+    loads, carried = unloaded.own_loads_carrying(probe)
+    base, slope = loads.split.torques(gait.period), carried / PROBE_MASS  # τ₀, Δτ (N, 6, 3)
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),

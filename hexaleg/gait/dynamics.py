@@ -204,11 +204,30 @@ def min_norm_split(
         rnea: The generalized forces.
 
     """
-    both = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]), axis=-1)  # (N, 6, 2)
-    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, both)
+    return min_norm_split_carrying(model, frames, phases, feet, motion, rnea)[0]
+
+
+def min_norm_split_carrying(
+    model: HexapodModel,
+    frames: LegFrames,
+    phases: GaitPhases,
+    feet: ArrayF,
+    motion: JointMotion,
+    rnea: GeneralizedForces,
+    wrench: ArrayF | None = None,
+) -> tuple[ForceSplit, ArrayF | None]:
+    """:func:`min_norm_split`, and in the same solve :func:`carried_torques` of ``wrench``.
+
+    Arguments as :func:`min_norm_split`'s; ``wrench`` (6,) [N, N·m], or none (``None``).
+    """
+    columns = [rnea.static[:, :6], rnea.inertial[:, :6]]
+    if wrench is not None:
+        columns.append(np.broadcast_to(np.asarray(wrench, dtype=float), (len(feet), 6)))
+    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
     joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
-    torques = joints - pushed
-    return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    torques = joints - pushed[:2]
+    split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    return split, (None if wrench is None else -pushed[2])
 
 
 def carried_torques(

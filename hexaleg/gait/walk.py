@@ -18,7 +18,9 @@ from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
     LoadedRobot,
+    carried_torques,
     min_norm_split,
+    min_norm_split_carrying,
     min_torque_split,
 )
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
@@ -177,6 +179,26 @@ class Walker:
         if shared and self._own_loads is None:
             self._own_loads = found
         return found
+
+    def own_loads_carrying(self, wrench: ArrayF) -> tuple[Loads, ArrayF]:
+        """The gait's own stride's min-norm loads and what a wrench adds, in one solve.
+
+        What the wrench (6,) [N, N·m], constant on the base's rows (a payload's), adds is
+        joint torques (N, 6, 3) [N·m]. The loads are the ones :meth:`loads` then shares.
+        """
+        walk, known = self.stride(self.gait.stride), self._own_loads
+        if known is not None or self.distribution != "min-norm":
+            loads = self.loads(self.gait.stride, walk, self.gait.period)
+            position, motion = walk.paths.position, walk.motion
+            return loads, carried_torques(self.frames, self.phases, position, motion, wrench)
+        travel = self.gait.stride / self.phases.duty_factor * self.heading
+        rnea = self.robot.generalized_forces(walk.motion, travel)
+        split, carried = min_norm_split_carrying(
+            self.model, self.frames, self.phases, walk.paths.position, walk.motion, rnea, wrench
+        )
+        assert carried is not None  # a wrench was given
+        self._own_loads = Loads(rnea, split)
+        return self._own_loads, carried
 
     def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
         """RNEA along the period of stride S [m], as static + inertial/T² (any period).
