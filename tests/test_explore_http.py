@@ -152,7 +152,7 @@ def test_a_content_length_that_is_no_byte_count_is_answered_at_once(
     assert time.monotonic() - start < ANSWER_WITHIN
     head, _, body = answer.partition(b"\r\n\r\n")
     assert head.startswith(f"HTTP/1.1 {status} ".encode()), answer
-    assert "Content-Length" in json.loads(body)["field"]
+    assert json.loads(body)["field"] == "Content-Length"
     assert open(design_file, "rb").read() == before
     assert explorer.get("api/loaded")[0] == 200  # and it keeps serving
 
@@ -183,3 +183,21 @@ def test_save_replaces_the_file_the_user_named_or_forced(tmp_path, given):
     with running("--l1", "0.18", *given, cwd=tmp_path) as server:
         assert server.post("api/save?l2=0.41") == (200, {"wrote": "design.toml"})
     assert "l2 = 0.41" in (tmp_path / "design.toml").read_text()
+
+
+def test_a_chunked_body_is_refused_at_once_and_the_server_keeps_serving(explorer, design_file):
+    before = open(design_file, "rb").read()
+    port = _port(explorer)
+    raw = (
+        f"POST /api/save?l2=0.41 HTTP/1.1\r\nHost: 127.0.0.1:{port}\r\n"
+        "Transfer-Encoding: chunked\r\n\r\n"  # and never a chunk
+    )
+    with socket.create_connection(("127.0.0.1", port), timeout=ANSWER_WITHIN) as connection:
+        connection.sendall(raw.encode("latin-1"))
+        answer = b""
+        while chunk := connection.recv(65536):
+            answer += chunk
+    head, _, body = answer.partition(b"\r\n\r\n")
+    assert head.startswith(b"HTTP/1.1 400 ") and json.loads(body)["field"] == "Transfer-Encoding"
+    assert open(design_file, "rb").read() == before
+    assert explorer.get("api/loaded")[0] == 200

@@ -145,7 +145,7 @@ class _Handler(BaseHTTPRequestHandler):
     def _admitted(self, path: str) -> bool:
         """Whether to serve the request: its Host, its body and (API) its Origin checked.
 
-        A refusal is answered here (403, or 400/413 for the body, the connection closed).
+        A refusal is answered here (403, or 400/413 for the body), the connection closed.
         """
         refused = self._foreign_host() or self._unread_body()
         if refused is None and path.startswith("/api/"):
@@ -153,6 +153,7 @@ class _Handler(BaseHTTPRequestHandler):
         if refused is None:
             return True
         status, field, error, allowed = refused
+        self.close_connection = True  # what is left of the request is not read
         self._json(status, {"error": error, "field": field, "allowed": allowed})
         return False
 
@@ -194,28 +195,22 @@ class _Handler(BaseHTTPRequestHandler):
     def _unread_body(self) -> tuple[HTTPStatus, str, str, str] | None:
         """Read and drop the body; a length that is no byte count (or too large) as a refusal."""
         allowed = f"a byte count 0..{MAX_BODY} (digits)"
+        chunked = self.headers.get("Transfer-Encoding")
+        if chunked is not None:  # no length to bound the body by
+            error = f"Transfer-Encoding {chunked!r} is not accepted: send a Content-Length"
+            return HTTPStatus.BAD_REQUEST, "Transfer-Encoding", error, "a Content-Length"
         lengths = self.headers.get_all("Content-Length") or []
-        if self.headers.get("Transfer-Encoding") is not None:
-            lengths = ["a Transfer-Encoding"]  # a chunked body: no length to bound it by
         if not lengths:
             return None
         text = lengths[0].strip()
         if len(lengths) > 1 or not (text.isascii() and text.isdigit()):
-            shown = ", ".join(lengths)
-            error = f"Content-Length {shown!r} is not valid: {allowed}"
-            return self._closing(HTTPStatus.BAD_REQUEST, error, allowed)
+            error = f"Content-Length {', '.join(lengths)!r} is not valid: {allowed}"
+            return HTTPStatus.BAD_REQUEST, "Content-Length", error, allowed
         if len(text) > len(str(MAX_BODY)) or int(text) > MAX_BODY:
             error = f"Content-Length {text} is too large: {allowed}"
-            return self._closing(HTTPStatus.REQUEST_ENTITY_TOO_LARGE, error, allowed)
+            return HTTPStatus.REQUEST_ENTITY_TOO_LARGE, "Content-Length", error, allowed
         self.rfile.read(int(text))  # the query is in the URL; the body is read and dropped
         return None
-
-    def _closing(
-        self, status: HTTPStatus, error: str, allowed: str
-    ) -> tuple[HTTPStatus, str, str, str]:
-        """A refusal of the body: the connection closes after it (the body is not read)."""
-        self.close_connection = True
-        return status, "Content-Length", error, allowed
 
     def _answer(self, compute: Any) -> None:
         """The endpoint's JSON, or a 400 naming what the user got wrong."""
