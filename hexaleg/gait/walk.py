@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
+from hexaleg.exceptions import ParameterError
 from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
@@ -185,9 +186,17 @@ class Walker:
 
         What the wrench (6,) [N, N·m], constant on the base's rows (a payload's), adds is
         joint torques (N, 6, 3) [N·m]. The loads are the ones :meth:`loads` then shares.
+
+        Raises:
+            ParameterError: The walker splits the load otherwise than min-norm.
+
         """
+        if self.distribution != "min-norm":
+            raise ParameterError(
+                "distribution", self.distribution, "'min-norm': a wrench's torques are its"
+            )
         walk, known = self.stride(self.gait.stride), self._own_loads
-        if known is not None or self.distribution != "min-norm":
+        if known is not None:
             loads = self.loads(self.gait.stride, walk, self.gait.period)
             position, motion = walk.paths.position, walk.motion
             return loads, carried_torques(self.frames, self.phases, position, motion, wrench)
