@@ -160,6 +160,43 @@ def test_a_content_length_that_is_no_byte_count_is_answered_at_once(
 UNRELATED = "# the user's own notes, not a design\nanswer = 42\n"
 
 
+def test_a_save_target_not_named_replaces_only_the_file_it_wrote(tmp_path):
+    from hexaleg.exceptions import ParameterError
+    from hexaleg.explore.session import SaveTarget
+
+    path = tmp_path / "design.toml"
+    path.write_text(UNRELATED)
+    target = SaveTarget(path, replace=False)
+    with pytest.raises(ParameterError, match="exists and this explorer did not write it"):
+        target.write("l1 = 0.2\n")
+    path.unlink()
+    target.write("l1 = 0.2\n")
+    target.write("l1 = 0.3\n")  # its own, replaced
+    assert path.read_text() == "l1 = 0.3\n"
+    path.write_text(UNRELATED)  # another's again
+    with pytest.raises(ParameterError):
+        target.write("l1 = 0.4\n")
+    assert path.read_text() == UNRELATED
+    SaveTarget(path, replace=True).write("l1 = 0.5\n")
+    assert path.read_text() == "l1 = 0.5\n"
+
+
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    [([], ("design.toml", False)), (["--force"], ("design.toml", False)),
+     (["--save", "a.toml"], ("a.toml", True)), (["--design", "d.toml"], ("d.toml", True)),
+     (["--design", "d.json"], ("design.toml", False))],
+)  # fmt: skip
+def test_save_names_the_file_the_user_gave(argv, expected):
+    from hexaleg.cli import build_parser
+    from hexaleg.cli.explore import _save_target
+
+    args = build_parser("explore").parse_args(["explore", *argv])
+    path, named = _save_target(args)
+    assert (str(path), named) == expected
+
+
+@pytest.mark.slow  # explorers started as processes, seconds each
 def test_save_without_a_path_given_never_replaces_a_file_it_did_not_write(tmp_path):
     (tmp_path / "design.toml").write_text(UNRELATED)
     with running("--l1", "0.18", cwd=tmp_path) as server:
@@ -177,6 +214,7 @@ def test_save_without_a_path_given_never_replaces_a_file_it_did_not_write(tmp_pa
     assert sorted(p.name for p in tmp_path.iterdir()) == ["design.toml"]
 
 
+@pytest.mark.slow  # explorers started as processes, seconds each
 @pytest.mark.parametrize("given", [["--save", "design.toml"], ["--force"]])
 def test_save_replaces_the_file_the_user_named_or_forced(tmp_path, given):
     (tmp_path / "design.toml").write_text(UNRELATED)
