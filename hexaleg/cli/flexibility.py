@@ -13,10 +13,11 @@ from hexaleg.cli.options import (
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_from_args,
+    inputs_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 
 if TYPE_CHECKING:
     from hexaleg.design import HexapodDesign
@@ -51,8 +52,9 @@ def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
 
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design)
+    design = size_if_asked(design, requirements, robot is not None)[0]  # tubes drawn, collide
     if robot is not None:
         return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing

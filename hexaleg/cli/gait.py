@@ -15,8 +15,8 @@ from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
     bounded_int,
-    design_from_args,
     design_gait,
+    inputs_from_args,
 )
 from hexaleg.cli.output import (
     check_outputs,
@@ -28,9 +28,11 @@ from hexaleg.cli.output import (
     write_plots,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked, structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 
 if TYPE_CHECKING:
@@ -51,7 +53,9 @@ DESCRIPTION = (
     "the battery's runtime and range, and checks continuous torque and voltage. With --urdf, "
     "your robot: each leg its own general leg and nominal posture, the file's masses, "
     "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
-    "and in the file's joints (urdf_* in the JSON and CSV)."
+    "and in the file's joints (urdf_* in the JSON and CSV). With a [structure] table, each "
+    "leg tube's worst stress ratio over the period, the links' inertial forces included (a "
+    "tube over its strength makes the period infeasible)."
 )
 
 ROBOT_OPTIONS = True
@@ -105,15 +109,17 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def gait_from_args(args: argparse.Namespace) -> Gait:
+def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
     """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+
+    Both over ``model``'s default gait (a robot file's is sized to it: :func:`design_gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
     """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
-    base = design_gait(args)
+    base = design_gait(args, model)
     changes = {
         name: getattr(args, name)
         for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
@@ -125,10 +131,11 @@ def gait_from_args(args: argparse.Namespace) -> Gait:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
+    design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload = payload_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(
@@ -153,10 +160,14 @@ def run(args: argparse.Namespace) -> int:
     summary = summary_stream(args.csv, args.html)
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict(), summary)
+        out = analysis.to_dict()
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(mine | out, summary)
         return 0
     title = "Walking" if robot is None else f"Walking {robot.robot.source}"
-    print_table(lengths_title(title, model.design.lengths), rows(analysis), summary)
+    table = rows(analysis) + structure_rows(analysis.structure, sized)
+    print_table(lengths_title(title, model.design.lengths), table, summary)
     return 0
 
 
@@ -262,6 +273,15 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
+def _rating(ratings: tuple[float, ...] | None, joint: int) -> float:
+    """A joint type's rating; +inf (nothing is over it) where the design gives none."""
+    return math.inf if ratings is None else ratings[joint]
+
+
+def _rated(rating: float) -> str:
+    return "rating not given" if math.isinf(rating) else f"rated {rating:g}"
+
+
 def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     """The text table's rows."""
     gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
@@ -277,18 +297,19 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
-        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rated_torque = _rating(design.rated_torques, j)
+        rated_speed = _rating(design.rated_speeds, j)
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
-                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m ({_rated(rated_torque)})"
                 + (", OVER RATING" if torque > rated_torque else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{speed:.3f} rad/s ({_rated(rated_speed)}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
                 + (", OVER RATING" if speed > rated_speed else ""),
             )
@@ -303,6 +324,8 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_stride is not None and not design.rated:
+        rows.append(("max speed", NEEDS_RATING))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

@@ -29,10 +29,13 @@ from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 from hexaleg.statics.ratings import OverRating, at_times, over_rating
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.walking import check_walking
 
 
 @dataclass(frozen=True)
@@ -70,9 +73,11 @@ class GaitAnalysis:
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
-        max_speed: The fastest walk within the ratings (None if not computed).
+        max_speed: The fastest walk within the ratings (None if not computed, or if the
+            design gives no ratings: it needs one).
         electrical: The period's currents, voltages, energy and battery use, and each
             joint against its actuator's ratings (None for a design without actuators).
+        structure: The legs' tubes at every sample (None without a ``[structure]``).
 
     """
 
@@ -101,6 +106,7 @@ class GaitAnalysis:
     max_stride: StrideLimit | None
     max_speed: SpeedLimit | None
     electrical: ElectricalResult | None
+    structure: StructureCheck | None = None
 
     @cached_property
     def zmp_margin(self) -> ArrayF:
@@ -129,14 +135,15 @@ class GaitAnalysis:
 
     @property
     def feasible(self) -> bool:
-        """Whether the period is walkable, stays upright and is within its actuators' ratings.
+        """Whether the period is walkable, upright, within its actuators' ratings and strong.
 
         Walkable: no constraint of its motion breaks (:attr:`violations`); upright: its
         ZMP never leaves the standing feet's polygon (:attr:`tipping`); ratings: only for
-        a design with actuators.
+        a design with actuators; strong: no leg tube over its strength (:attr:`structure`).
         """
         motors = self.electrical is not None and bool(self.electrical.over_rating)
-        return self.walkable and self.tipping is None and not motors
+        broken = self.structure is not None and self.structure.worst_ratio > 1
+        return self.walkable and self.tipping is None and not motors and not broken
 
     @property
     def infeasible_because(self) -> str | None:
@@ -149,6 +156,8 @@ class GaitAnalysis:
             return str(self.violations[0])
         if self.tipping is not None:
             return f"{self.tipping} (min ZMP margin {self.min_zmp_margin:.4g} m)"
+        if self.structure is not None and self.structure.worst_ratio > 1:
+            return "a leg segment over its strength (below)"
         return None if self.feasible else "over its actuators' ratings (below)"
 
     @property
@@ -206,6 +215,7 @@ class GaitAnalysis:
             "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
             "over_rating": [o.to_dict() for o in self.over_rating],
             **_electrical_dict(self.electrical),
+            "structure": None if self.structure is None else self.structure.to_dict(),
             "units": {
                 "period, time": "s",
                 "stride, step_height, max_stride, min_zmp_margin, position": "m",
@@ -276,7 +286,9 @@ def analyze_walker(walker: Walker, *, limits: bool = True, speed: bool = False) 
     known = (walk, loads) if distribution == "min-norm" else None
     stride_limit = max_stride(walker) if limits else None
     speed_limit = (
-        max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
+        max_speed(walker, stride_limit, known, fallback=limits)
+        if (limits or speed) and walker.model.design.rated
+        else None  # no ratings: the max speed needs one
     )
     return _analysis(walker, walk, loads, stride_limit, speed_limit)
 
@@ -320,6 +332,15 @@ def _analysis(
         max_stride=stride_limit,
         max_speed=speed_limit,
         electrical=_electrical(walker, torques, velocities),
+        structure=check_walking(
+            walker.model,
+            walker.times(period),
+            loads.rnea.configurations,
+            loads.rnea.velocities / period,
+            loads.rnea.accelerations / period**2,
+            loads.split.forces(period),
+            walker.gravity,
+        ),
     )
 
 

@@ -51,9 +51,10 @@ from hexaleg.gait.dynamics import GeneralizedForces, payload_wrench
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Payload
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 
 PROBE_MASS = 1.0
 """The payload of the second walk [kg]: any positive mass gives the same affine maps."""
@@ -86,8 +87,11 @@ def walking_payload_capacity(
     gait: Gait | None = None,
     position: tuple[float, float, float] | None = None,
     gravity: float = GRAVITY,
-) -> WalkingCapacity:
+) -> WalkingCapacity | None:
     """The largest payload at ``position`` the design carries walking ``gait``.
+
+    ``None`` when the design gives no ratings (a robot file's efforts of 0): the capacity
+    within them needs a rating.
 
     Args:
         model: The design's Pinocchio model.
@@ -97,6 +101,8 @@ def walking_payload_capacity(
         gravity: Gravitational acceleration g [m/s²].
 
     """
+    if not model.design.rated:
+        return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
     return walker_capacity(Walker(model, gait, Payload(0.0, position), gravity=gravity))
 

@@ -14,7 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
-from hexaleg.exceptions import ParameterError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
@@ -36,14 +36,10 @@ from hexaleg.gait.trajectory import (
     joint_motion,
     path_shapes,
 )
+from hexaleg.gravity import GRAVITY
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import (
-    DEFAULT_FRICTION,
-    GRAVITY,
-    Payload,
-    check_friction,
-    check_gravity,
-)
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction, check_gravity
 
 
 @dataclass(frozen=True)
@@ -220,6 +216,14 @@ class Walker:
         return self.robot.generalized_forces(walk.motion, travel)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
-        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee)."""
+        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee).
+
+        Raises:
+            HexalegError: The design gives no ratings (a robot file's efforts of 0): what
+                asks for them needs a rating (callers ask :attr:`HexapodDesign.rated` first).
+
+        """
         design = self.model.design
+        if design.rated_torques is None or design.rated_speeds is None:
+            raise HexalegError(f"the design gives no rated torques and speeds: {NEEDS_RATING}")
         return np.array(design.rated_torques), np.array(design.rated_speeds)

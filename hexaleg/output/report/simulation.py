@@ -109,23 +109,27 @@ def _walk_rows(record: SimulationRecord) -> list[tuple[str, ...]]:
     """Each measure with both controllers (``-``: that walk diverged) and the plan's."""
     design, result = record.result.design, record.result
     columns = [_measures(walk) for walk in record.walks.values()]
-    rated = zip(LEG_JOINTS, design.rated_torques, strict=True)
     planned = [
         f"{result.gait.speed * result.gait.period * (result.cycles - 1):.3f}", "0, 0",
         f"{design.nominal_height:.3f}", "no", "0", "0", "0",
-        *(f"{result.planned_peak_torque[joint]:.1f}" for joint, _ in rated),
+        *(f"{result.planned_peak_torque[joint]:.1f}" for joint in LEG_JOINTS),
     ]  # fmt: skip
     names = [
         "distance [m]", "max \\|roll\\|, \\|pitch\\| [°]", "lowest body height [m]", "fell",
         "RMS joint tracking error [rad]", "standing-foot slip [m]",
         "internal force, standing feet [N]",
-        *(f"peak \\|τ\\| {joint} [N·m] (rated {r:g})"
-          for joint, r in zip(LEG_JOINTS, design.rated_torques, strict=True)),
+        *(f"peak \\|τ\\| {joint} [N·m] ({_rating(r)})"
+          for joint, r in zip(LEG_JOINTS, design.rated_torques or (None,) * 3, strict=True)),
     ]  # fmt: skip
     return [
         (name, *(column[k] if column else "-" for column in columns), planned[k])
         for k, name in enumerate(names)
     ]
+
+
+def _rating(rated: float | None) -> str:
+    """A joint's rated torque [N·m] in a row's name, or that the design gives none."""
+    return "rating not given" if rated is None else f"rated {rated:g}"
 
 
 def _measures(result: SimulationResult) -> list[str]:

@@ -1,9 +1,9 @@
 """What a decision measures every design for: its requirements and its objective.
 
-An :class:`Objective` makes one metric (:data:`~hexaleg.study.metrics.METRICS`) best; a
-:class:`Goal` pairs it with the requirements (:mod:`hexaleg.study.requirements`), names
+An :class:`Objective` makes one metric (:data:`~hexaleg.evaluation.metrics.METRICS`) best; a
+:class:`Goal` pairs it with the requirements (:mod:`hexaleg.evaluation.requirements`), names
 the metrics both need and the conditions they are measured under, and measures a design
-for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.study.evaluation.evaluate`).
+for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.evaluation.evaluate.evaluate`).
 """
 
 from __future__ import annotations
@@ -12,14 +12,22 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import (
+    METRICS,
+    TABLE_WORDS,
+    Better,
+    DesignTable,
+    MetricSpec,
+    objectives,
+)
+from hexaleg.evaluation.requirement_specs import REQUIREMENTS, SLOPE
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements, check
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
-from hexaleg.study.metrics import METRICS, Better, MetricSpec, missing_tables, objectives
-from hexaleg.study.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
 
 
 @dataclass(frozen=True)
@@ -27,13 +35,13 @@ class Objective:
     """What the decision makes best.
 
     Attributes:
-        name: The metric: any of :data:`~hexaleg.study.metrics.METRICS` (the command line
+        name: The metric: any of :data:`~hexaleg.evaluation.metrics.METRICS` (the command line
             offers those declared as objectives, in their better direction).
         sense: ``"maximize"`` or ``"minimize"``.
 
     """
 
-    name: str = "fb"
+    name: str = METRICS.fb.name
     sense: Better = "maximize"
 
     def __post_init__(self) -> None:
@@ -54,7 +62,7 @@ class Objective:
     @property
     def spec(self) -> MetricSpec:
         """The metric's declaration."""
-        return METRICS[self.name]
+        return METRICS.named(self.name)
 
 
 @dataclass(frozen=True)
@@ -78,23 +86,23 @@ class Goal:
         return tuple(name for name in self.requirements.given if name not in self.relaxed)
 
     @property
-    def metrics(self) -> tuple[str, ...]:
+    def metrics(self) -> tuple[MetricSpec, ...]:
         """The metrics to measure: the requirements' and the objective's, in declared order."""
         needed = {REQUIREMENTS[name].metric for name in self.requirements.given}
-        needed.add(self.objective.name)
-        return tuple(name for name in METRICS if name in needed)
+        needed.add(self.objective.spec)
+        return tuple(spec for spec in METRICS if spec in needed)
 
     @property
     def walks(self) -> bool:
         """Whether the designs walk the requirements' gait (a walking metric is needed)."""
-        return any(METRICS[name].analysis == "walking" for name in self.metrics)
+        return any(spec.walks for spec in self.metrics)
 
     @property
     def conditions(self) -> Conditions:
         """The conditions of the requirements: their payload, slope and gait."""
         requirements = self.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
-        return Conditions(payload, requirements.slope, requirements.gait)
+        return Conditions(payload, requirements.required(SLOPE), requirements.gait)
 
     def with_objective(self, objective: Objective, relaxed: tuple[str, ...] = ()) -> Goal:
         """The same requirements for another objective, some of them relaxed."""
@@ -109,12 +117,16 @@ class Goal:
     ) -> Evaluation:
         """``design``'s metrics for this goal; an error if its objective has no value.
 
-        The arguments after ``design`` are :func:`~hexaleg.study.evaluation.evaluate`'s.
+        The arguments after ``design`` are :func:`~hexaleg.evaluation.evaluate.evaluate`'s.
         """
         found = evaluate(
-            design, self.metrics, self.conditions, model=model, template=template,
+            design,
+            self.metrics,
+            self.conditions,
+            model=model,
+            template=template,
             flexibility=flexibility,
-        )  # fmt: skip
+        )
         return self._measured(found)
 
     def evaluate_many(
@@ -126,7 +138,7 @@ class Goal:
 
     def _measured(self, evaluation: Evaluation) -> Evaluation:
         """The evaluation, or an error when the objective could not be measured."""
-        why = evaluation.unmeasured.get(self.objective.name)
+        why = evaluation.unmeasured[self.objective.spec]
         return Evaluation(error=why) if why else evaluation
 
     def measurable(self, design: HexapodDesign, actuators: bool = False) -> Goal:
@@ -136,21 +148,26 @@ class Goal:
 
         Raises:
             ParameterError: Before any search, the requirement (or ``maximize`` /
-                ``minimize``) whose metric needs a design-file table ``design`` lacks.
+                ``minimize``) whose metric needs a design-file table ``design`` lacks
+                (:attr:`~hexaleg.evaluation.metrics.MetricSpec.needs`).
 
         """
-        asked = [(name, REQUIREMENTS[name].metric, getattr(self.requirements, name))
-                 for name in self.requirements.given]  # fmt: skip
-        asked.append((self.objective.sense, self.objective.name, self.objective.name))
+        requirements = self.requirements
+        asked: list[tuple[str, MetricSpec, object]] = [
+            (spec.name, spec.metric, requirements.required(spec))
+            for spec in REQUIREMENTS.values()
+            if spec.name in requirements.given
+        ]
+        asked.append((self.objective.sense, self.objective.spec, self.objective.name))
         for name, metric, value in asked:
-            missing = missing_tables(metric, design, actuators)
-            if missing:
-                raise ParameterError(name, value, _needs(METRICS[metric], missing))
+            lacking = metric.lacks(design, actuators)
+            if lacking:
+                raise ParameterError(name, value, _needs(metric, lacking))
         return self
 
     def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
         """Each requirement checked on an evaluation (its value, margin, what limits it)."""
-        return check(self.requirements, evaluation.values, evaluation.causes)
+        return check(self.requirements, evaluation.metrics, evaluation.causes)
 
     def meets(self, evaluation: Evaluation) -> bool:
         """Whether the design was measured and meets every constraint."""
@@ -159,9 +176,8 @@ class Goal:
         return all(c.met for c in self.checks(evaluation) if c.name in self.constraints)
 
 
-def _needs(metric: MetricSpec, missing: tuple[str, ...]) -> str:
-    """What a metric needs that a design lacks, in words (``missing``: tables, battery first)."""
-    tables = {"battery": "a [battery] table", "actuators": "an [actuators] table"}
-    needed = " and ".join(tables[name] for name in sorted(missing, key="battery".__ne__))
-    chosen = " (or --choose-actuators)" if "actuators" in missing else ""
+def _needs(metric: MetricSpec, lacking: tuple[DesignTable, ...]) -> str:
+    """What ``metric`` needs that a design lacks (``lacking``: tables), in words."""
+    needed = " and ".join(words for table, words in TABLE_WORDS.items() if table in lacking)
+    chosen = " (or --choose-actuators)" if "actuators" in lacking else ""
     return f"{metric.label} needs {needed} in the design file{chosen}: the {metric.text}"
