@@ -277,8 +277,9 @@ CASES = [
                    ["view", "--gait", "--port", "1"])),
     # the API: hexaleg's own error, naming the argument
     *(Case(f"{name}(None)", {}, lambda name=name: getattr(hexaleg, name)(None),
-           "design = None is not valid: must be a HexapodDesign")
-      for name in ("analyze_loads", "analyze_gait", "decide")),
+           f"design = None is not valid: must be a {kind}")
+      for name, kind in (("analyze_loads", "HexapodDesign"), ("analyze_gait", "HexapodDesign"),
+                         ("decide", "Robot or a HexapodDesign"))),
     *(Case(f"analyze_gait({name}={value})", {},
            lambda name=name, value=value: hexaleg.analyze_gait(HexapodDesign(), **{name: value}),
            f"{name} = {value:g} is not valid: {allowed}")

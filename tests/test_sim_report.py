@@ -14,6 +14,7 @@ from hexaleg.output.report import PARTS, ReportData, ReportOptions, build_report
 from hexaleg.output.report.document import Figure
 from hexaleg.output.report.part import numbered
 from hexaleg.output.report.registry import parts_for
+from hexaleg.robot.robot import Robot
 
 if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
     pytest.importorskip("mujoco")
@@ -27,17 +28,18 @@ from hexaleg.sim.video import RenderOutcome
 @pytest.fixture(scope="module")
 def data(default_design):
     options = ReportOptions(simulate=True, vector_figures=True, progress=False)
-    parts = parts_for(options)
+    parts = parts_for(Robot.build(over=default_design), options)
     base = ReportData(default_design, options, HexapodModel(default_design), parts=parts)
     return base.with_record(simulation.compute(base))
 
 
-def test_the_part_comes_after_walking_only_when_asked():
-    assert parts_for(ReportOptions()) == PARTS
-    assert simulation.PART not in PARTS
-    asked = parts_for(ReportOptions(simulate=True))
-    assert len(asked) == len(PARTS) + 1
-    assert asked[asked.index(walking.PART) + 1] is simulation.PART
+def test_the_part_comes_after_walking_only_when_asked(default_design):
+    robot = Robot.build(over=default_design)
+    plain = parts_for(robot, ReportOptions())
+    assert simulation.PART in PARTS and simulation.PART not in plain
+    asked = parts_for(robot, ReportOptions(simulate=True))
+    after = plain.index(walking.PART) + 1
+    assert asked == (*plain[:after], simulation.PART, *plain[after:])
 
 
 def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):

@@ -28,7 +28,6 @@ from functools import cached_property
 from typing import TypeVar
 
 import numpy as np
-import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
@@ -159,22 +158,26 @@ def evaluate_many(
     designs: Sequence[HexapodDesign],
     metrics: Collection[MetricSpec],
     conditions: Conditions,
-    base: HexapodModel,
-    template: StanceGeometry,
+    models: Sequence[HexapodModel],
+    template: StanceGeometry | None,
 ) -> list[Evaluation]:
-    """:func:`evaluate` of designs of one body (``base``'s), their flexibility searched together.
+    """:func:`evaluate` of designs of one robot, their flexibility searched together.
 
     Args:
-        designs: Designs differing from ``base``'s only in their legs, ratings and posture.
+        designs: Designs of one body, differing only in their legs, ratings and posture.
         metrics: What to measure.
         conditions: What they are measured under.
-        base: A model of that body: each design's is derived from it.
-        template: The body's stance geometry (``conditions.stance``'s legs).
+        models: Each design's model (derived from its body's, or its own).
+        template: The body's stance geometry (``conditions.stance``'s legs), from which each
+            design's derives in closed form; ``None`` where the legs are their own
+            (:meth:`~hexaleg.stance.geometry.StanceGeometry.template_of`): each design is
+            then read and searched on its own model.
 
     """
-    models = [base.with_design(design) for design in designs]
     found: Sequence[FlexibilityResult | None] = [None] * len(designs)
-    if METRICS.fb in metrics and conditions.mode == "axis" and designs:
+    batched = template is not None and METRICS.fb in metrics and conditions.mode == "axis"
+    if batched and designs:
+        assert template is not None
         try:
             found = axis_locked_flexibility_many(
                 designs, template, models, collisions=conditions.collisions
@@ -276,8 +279,7 @@ class _Measuring:
 
     def _search_flexibility(self) -> FlexibilityResult:
         conditions, design = self.conditions, self.design
-        # an imported robot's geometry is its model's own: the searches read it from there
-        geometry = None if getattr(self._model, "general_legs", False) else self.geometry
+        geometry = self._template  # the body's, if given; else the searches read the model
         if conditions.mode == "axis":
             return axis_locked_flexibility(
                 design,
@@ -310,15 +312,12 @@ class _Measuring:
     # -- the analyses ------------------------------------------------------------------
 
     def _measure_geometry(self) -> Metrics:
-        design, model = self.design, self._model
-        mass, height = design.total_mass, design.nominal_height
-        if model is not None and getattr(model, "general_legs", False):  # the file's, not ours
-            mass, height = pin.computeTotalMass(model.model), self.geometry.nominal_height
+        design, model = self.design, self._model  # without a model, the design's own
         return Metrics(
             leg_length=design.leg_length,
             coxa_length=design.l1,
-            robot_mass=mass,
-            nominal_height=height,
+            robot_mass=design.total_mass if model is None else model.total_mass,
+            nominal_height=design.nominal_height if model is None else model.nominal_height,
         )
 
     def _measure_workspace(self) -> Metrics:

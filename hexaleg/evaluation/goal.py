@@ -130,10 +130,13 @@ class Goal:
         return self._measured(found)
 
     def evaluate_many(
-        self, designs: Sequence[HexapodDesign], base: HexapodModel, template: StanceGeometry
+        self,
+        designs: Sequence[HexapodDesign],
+        models: Sequence[HexapodModel],
+        template: StanceGeometry | None,
     ) -> list[Evaluation]:
-        """:meth:`evaluate` of designs of one body (see :func:`~.evaluation.evaluate_many`)."""
-        found = evaluate_many(designs, self.metrics, self.conditions, base, template)
+        """:meth:`evaluate` of designs of one robot (see :func:`~.evaluation.evaluate_many`)."""
+        found = evaluate_many(designs, self.metrics, self.conditions, models, template)
         return [self._measured(evaluation) for evaluation in found]
 
     def _measured(self, evaluation: Evaluation) -> Evaluation:

@@ -33,7 +33,7 @@ class SimulationResult:
         frames: The robot's Pinocchio configuration (F, nq) at ``frame_rate``, whole run.
         frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
         frame_rate: Frames per second [1/s].
-        robot: The imported robot's model it walked (``None``: the design's own, which
+        model: The Pinocchio model it walked (``None``: the design's own, which
             :meth:`sim_model` builds again from the design).
         controller: How the joints followed the plan: ``"servo"`` or ``"torque"``.
         diverged: Where and why the simulation diverged and stopped (``while walking, at
@@ -53,7 +53,7 @@ class SimulationResult:
     frames: ArrayF
     frame_torques: ArrayF
     frame_rate: float
-    robot: HexapodModel | None = None
+    model: HexapodModel | None = None
     controller: str = "servo"
     diverged: str = ""
 
@@ -65,7 +65,7 @@ class SimulationResult:
 
     def sim_model(self) -> SimModel:
         """The MuJoCo model the walk ran on, built again (for a video or a still)."""
-        model = HexapodModel(self.design) if self.robot is None else self.robot
+        model = HexapodModel(self.design) if self.model is None else self.model
         return SimModel(model, self.payload, self.friction, self.gains)
 
     def to_dict(self) -> dict[str, Any]:

@@ -112,7 +112,7 @@ def simulate_gait(
         cycles=cycles, gains=sim.gains, metrics=None if diverged else meter.metrics(cycles),
         planned_peak_torque=dict(analysis.metrics.peak_torque), standing=standing,
         frames=run.frames, frame_torques=run.frame_torques, frame_rate=run.frame_rate,
-        robot=model if model.general_legs else None, controller=controller, diverged=diverged,
+        model=model, controller=controller, diverged=diverged,
     )  # fmt: skip
 
 

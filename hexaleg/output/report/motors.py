@@ -25,7 +25,7 @@ from hexaleg.evaluation.metrics import significant
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.simulation import SimulationRecord
 from hexaleg.sim.measure import WalkMetrics
 
@@ -231,4 +231,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=where_legs_are_the_designs("", ""),
 )

@@ -22,8 +22,10 @@ import pinocchio as pin
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, FULL_WIDTH, drawn, new_figure, save
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.options import ReportOptions
+from hexaleg.output.report.part import LeftOut, Part, ReportData
 from hexaleg.robot.model import HexapodModel, joint_name
+from hexaleg.robot.robot import Robot
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import DEFAULT_CYCLES, simulate_gait
 
@@ -237,6 +239,21 @@ def to_json(record: SimulationRecord) -> dict[str, Any]:
     }
 
 
+def simulated(robot: Robot, options: ReportOptions) -> LeftOut | None:
+    """Where the section holds: asked for (``simulate``), legs the design's.
+
+    A robot file's walk is ``simulate --urdf FILE``'s, not yet this report's.
+    """
+    if not options.simulate:
+        return LeftOut()
+    if robot.own_legs is None:
+        return None
+    return LeftOut(
+        "Simulated walk",
+        "not yet in this report of an imported robot: `simulate --urdf FILE` walks it",
+    )
+
+
 PART = Part(
     SimulationRecord,
     compute,
@@ -245,4 +262,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=simulated,
 )
