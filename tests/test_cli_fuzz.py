@@ -110,11 +110,12 @@ def quick_backends():
 
         recommendation = SimpleNamespace(l1_ratio=0.1, l2_ratio=0.5, l3_ratio=0.4,
                                          l3_band=(0.3, 0.5))  # fmt: skip
-        return {
+        records = {
             RecommendationRecord: SimpleNamespace(recommendation=recommendation),
             FlexibilityRecord: SimpleNamespace(axis=SimpleNamespace(fb=0.2)),
             DecisionRecord: SimpleNamespace(requirements=None),
         }
+        return SimpleNamespace(records=records, parts=())  # no part: no headline to print
 
     def fake_html(model, result, path, workspace_leg=None, loads=None):
         return Path(path)
@@ -156,7 +157,7 @@ def quick_backends():
     walked = simulate_gait(HexapodDesign(), cycles=2)  # a real answer, from a short walk
     patches = {
         "hexaleg.cli.simulate.simulate_gait": lambda *args, **kwargs: walked,
-        "hexaleg.cli.simulate._animation": lambda result, path: Path(path),
+        "hexaleg.cli.simulate._animation": lambda result, model, path: Path(path),
         "hexaleg.cli.simulate._video": lambda result, path: [],
         "hexaleg.cli.decide.decide": lambda *args, **kwargs: decided,
         "hexaleg.cli.report.build_report": fake_report,
