@@ -110,11 +110,12 @@ def quick_backends():
 
         recommendation = SimpleNamespace(l1_ratio=0.1, l2_ratio=0.5, l3_ratio=0.4,
                                          l3_band=(0.3, 0.5))  # fmt: skip
-        return {
+        records = {
             RecommendationRecord: SimpleNamespace(recommendation=recommendation),
             FlexibilityRecord: SimpleNamespace(axis=SimpleNamespace(fb=0.2)),
             DecisionRecord: SimpleNamespace(requirements=None),
         }
+        return SimpleNamespace(records=records, parts=())  # no part: no headline to print
 
     def fake_html(model, result, path, workspace_leg=None, loads=None):
         return Path(path)

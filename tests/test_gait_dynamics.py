@@ -9,6 +9,7 @@
   the ZMP equals the one from Pinocchio's centroidal momentum rate: on each kind of robot
   (hexaleg's template, a robot file).
 - The static limit equals the statics (``loads``) at the nominal stance.
+- A payload's torques from its closed-form wrench equal RNEA with its mass on the body.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from robots import KINDS, robot_of
 
 from hexaleg import HexapodDesign, HexapodModel, LegModel
 from hexaleg.gait import Gait, Walker, analyze_gait
+from hexaleg.gait.dynamics import carried_torques, payload_wrench
 from hexaleg.statics import GRAVITY, Payload, analyze_loads
 
 # -- the Lagrange oracle -------------------------------------------------------------------
@@ -309,3 +311,20 @@ def test_a_random_design_balances_too():
         for i, jac in enumerate(_foot_jacobians(model, q).values()):
             tau -= jac.T @ walked.foot_forces[k, i]
         np.testing.assert_allclose(tau[:6], 0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_a_payloads_torques_are_what_pinocchio_gives_with_its_mass_on_the_body(seed):
+    # oracle: Pinocchio's RNEA on a copy of the model whose body inertia holds the point
+    # mass, split min-norm as any gait; against the closed-form wrench the capacity uses
+    rng = np.random.default_rng(seed)
+    design = HexapodDesign.from_ratios(rng.uniform(0.08, 0.2), rng.uniform(0.35, 0.6))
+    model, gait = HexapodModel(design), Gait(stride=rng.uniform(0.1, 0.25))
+    point, mass = tuple(rng.uniform([-0.3, -0.2, 0.0], [0.3, 0.2, 0.2])), rng.uniform(1, 20)
+    empty, loaded = (Walker(model, gait, Payload(m, point)) for m in (0.0, mass))
+    walk = empty.stride(gait.stride)
+    with_mass = loaded.loads(gait.stride, walk, gait.period).split.torques(gait.period)
+    without = empty.loads(gait.stride, walk, gait.period).split.torques(gait.period)
+    wrench = payload_wrench(np.array(point), mass, GRAVITY)
+    found = carried_torques(empty.frames, empty.phases, walk.paths.position, walk.motion, wrench)
+    np.testing.assert_allclose(found, with_mass - without, atol=1e-9 * np.abs(with_mass).max())

@@ -21,7 +21,7 @@ import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.output.figures.canvas import SMALLEST_TEXT_KEY
-from hexaleg.output.report import PARTS, ReportOptions, compute_report, render_report
+from hexaleg.output.report import ReportOptions, compute_report, render_report
 from hexaleg.output.report.document import sections
 from hexaleg.output.report.pages import LONG_TABLE, lay_out
 
@@ -178,7 +178,7 @@ def test_the_pdf_cuts_no_figure_and_only_a_long_table_between_rows(report):
     from pypdf import PdfReader
 
     out, data = report
-    page, document = lay_out(sections(data, PARTS), out)  # as the PDF was laid out
+    page, document = lay_out(sections(data, data.parts), out)  # as the PDF was laid out
     assert len(document.pages) == len(PdfReader(out / "report.pdf").pages)
     usable = float(document.pages[0]._page_box.height)
     pages_of: dict[int, set[int]] = {}
@@ -247,7 +247,7 @@ def test_no_page_ends_with_a_heading_or_the_words_that_introduce_a_table(report)
     groups them into) and the page WeasyPrint put each on.
     """
     out, data = report
-    _, document = lay_out(sections(data, PARTS), out)
+    _, document = lay_out(sections(data, data.parts), out)
     placed: dict = {}  # element → [tag, first page, last page, text], in print order
     parents: dict = {}
     for number, laid_out in enumerate(document.pages):

@@ -183,3 +183,24 @@ def test_a_files_posture_is_given_in_both_conventions(kind):
         assert posture["urdf_joint_angles"][leg] == pytest.approx(
             list(model.joint_values(leg, theta))
         )
+
+
+def test_a_relative_path_is_read_as_the_file_it_names_now(tmp_path, monkeypatch):
+    # oracle: Pinocchio's total mass of each file's own text, built here; the same relative
+    # path in two folders, then the file replaced in place, is each time the file there
+    text = Path(KRABY).read_text()
+    first, second = (text.replace('<mass value="0.667" />', f'<mass value="{m}" />', 1)
+                     for m in ("0.667", "1.5"))  # fmt: skip
+    for name, body in (("a", first), ("b", second)):
+        (tmp_path / name).mkdir()
+        (tmp_path / name / "r.urdf").write_text(body)
+    for name, body in (("a", first), ("b", second), ("a", first)):
+        monkeypatch.chdir(tmp_path / name)
+        expected = pin.computeTotalMass(pin.buildModelFromXML(body, pin.JointModelFreeFlyer()))
+        robot = Robot.build(RobotSource.of("r.urdf"))
+        assert robot.model.total_mass == pytest.approx(expected, rel=1e-12)
+    third = second.replace('<mass value="1.5" />', '<mass value="2.25" />')
+    (tmp_path / "a" / "r.urdf").write_text(third)
+    changed = pin.buildModelFromXML(third, pin.JointModelFreeFlyer())
+    robot = Robot.build(RobotSource.of("r.urdf"))
+    assert robot.model.total_mass == pytest.approx(pin.computeTotalMass(changed), rel=1e-12)

@@ -43,11 +43,17 @@ def test_the_part_comes_after_walking_only_when_asked(default_design):
 
 
 def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):
-    result = data[simulation.SimulationRecord].result
+    record = data[simulation.SimulationRecord]
+    result, torque = record.result, record.torque
+    assert (result.controller, torque.controller) == ("servo", "torque")
     section = numbered(data, simulation.PART)
     assert section.title.startswith("3.5 Simulated walk")
     text = "\n".join(b for b in section.blocks if isinstance(b, str))
-    assert f"{result.metrics.distance:.3f} ({100 * result.metrics.distance_ratio:.1f} %)" in text
+    assert "| quantity | servos | torque control | planned |" in text
+    for walk in (result, torque):
+        metrics = walk.metrics
+        assert f"{metrics.distance:.3f} ({100 * metrics.distance_ratio:.1f} %)" in text
+        assert f"| {metrics.internal_force:.1f} |" in text
     assert f"| {result.metrics.planned_distance:.3f} |" in text
     for leg in ("lf", "rm", "lr"):
         statics = result.standing.statics_foot_forces_z[leg]
@@ -60,8 +66,28 @@ def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(d
 
 def test_json_is_the_simulate_commands_without_the_design(data):
     fields = simulation.to_json(data[simulation.SimulationRecord])
-    assert set(fields) == {"simulation"}
-    assert set(fields["simulation"]) == JSON_KEYS - {"design"}
+    assert set(fields) == {"simulation"} and set(fields["simulation"]) == {"servo", "torque"}
+    for controller, walk in fields["simulation"].items():
+        assert set(walk) == JSON_KEYS - {"design"} and walk["controller"] == controller
+
+
+def test_the_motor_sizing_says_which_controller_it_holds_for_and_shows_both(data, tmp_path):
+    from hexaleg.design_file import load_design
+    from hexaleg.output.report import motors
+
+    path = tmp_path / "motors.toml"  # catalog motors on every joint (the walks: the default's)
+    path.write_text("".join(f'[actuators.{j}]\ncatalog = "hd_cha_25a_100"\n'
+                            for j in ("root", "hip", "knee")))  # fmt: skip
+    design = load_design(path)
+    mine = ReportData(design, data.options, HexapodModel(design), parts=data.parts)
+    record = data[simulation.SimulationRecord]
+    mine = mine.with_record(record).with_record(motors.compute(mine))
+    text = "\n".join(b for b in motors.section(mine).blocks if isinstance(b, str))
+    assert "what a torque-controlled robot needs" in text and "stiff" in text
+    assert "| joint | plan (the sizing) | servos | torque control |" in text
+    for joint in ("root", "hip", "knee"):
+        servo, torque = (w.metrics.peak_torque[joint] for w in record.walks.values())
+        assert f"| {servo:.3g} | {torque:.3g} |" in text
 
 
 def _picture(path) -> np.ndarray:

@@ -184,6 +184,27 @@ def test_exit_distances_reach_a_square_boundary_as_trigonometry_says():
     assert square.exit_distance(np.array([0.25, 0.5]), np.array([1.0, 0.0])) == pytest.approx(0.75)
 
 
+@pytest.mark.parametrize("count", [3, 4, 5, 6])
+def test_the_support_polygon_is_qhulls_hull_counter_clockwise(count):
+    # oracle: SciPy's qhull on seeded random feet; the edges run vertex to vertex
+    from scipy.spatial import ConvexHull
+
+    from hexaleg.statics import SupportPolygon
+
+    rng = np.random.default_rng(count)
+    for _ in range(50):
+        feet = rng.uniform(-1, 1, (count, 2))
+        polygon = SupportPolygon.of_feet(feet)
+        expected = ConvexHull(feet).vertices  # counter-clockwise for 2-D input
+        start = int(np.flatnonzero(expected == np.flatnonzero(
+            (feet == polygon.vertices[0]).all(axis=1))[0])[0])  # fmt: skip
+        np.testing.assert_array_equal(polygon.vertices, feet[np.roll(expected, -start)])
+        np.testing.assert_allclose(
+            polygon.edges, np.roll(polygon.vertices, -1, axis=0) - polygon.vertices
+        )
+        np.testing.assert_allclose(polygon.lengths, np.linalg.norm(polygon.edges, axis=1))
+
+
 @pytest.mark.parametrize("distribution", ["min-norm", "min-torque"])
 def test_states_of_many_poses_equal_each_pose_alone(model, distribution):
     legs = ("lf", "rm", "lr")

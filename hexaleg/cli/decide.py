@@ -252,6 +252,9 @@ def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]
     lines = []
     for where, flagged in checked.over_rating_groups(result):
         where += " (nominal stance and the 12 body extremes)" if where.startswith("stand") else ""
+        if where.startswith("walking") and checked.walking_violation:
+            lines.append(f"  {where}: cannot walk it, {checked.walking_violation}")
+            continue
         if not flagged:
             lines.append(f"  over its rating {where}: no joint")
         for flag in flagged[:SHOWN_OVER_RATING]:

@@ -47,20 +47,26 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--save",
         metavar="FILE",
         help=f"the .toml file 'save design' writes (default: the --design file if it is "
-        f".toml, else {DEFAULT_SAVE})",
+        f".toml, else {DEFAULT_SAVE}, which is replaced only if this explorer wrote it)",
+    )
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help=f"let 'save design' replace a {DEFAULT_SAVE} it did not write (without --save "
+        "or a .toml --design)",
     )
 
 
 def run(args: argparse.Namespace) -> int:
     """Serve the explorer until Ctrl-C or SIGTERM."""
     inputs = inputs_from_args(args)
-    save_to = _save_target(args)
+    save_to, named = _save_target(args)
     if not is_loopback(args.host):
         note(
             f"--host {args.host} serves the explorer beyond this machine, to anyone who can "
             "reach it, without authentication: they can measure designs and save the design file"
         )
-    session = Session.start(inputs.robot, inputs.requirements, save_to)
+    session = Session.start(inputs.robot, inputs.requirements, save_to, replace=named or args.force)
     try:
         server = ExplorerServer(session, args.host, args.port)
     except OSError as err:
@@ -80,10 +86,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _save_target(args: argparse.Namespace) -> Path:
-    """Where 'save design' writes: --save, else a .toml --design file, else design.toml."""
+def _save_target(args: argparse.Namespace) -> tuple[Path, bool]:
+    """Where 'save design' writes, and whether the user named that file.
+
+    --save, else a .toml --design file (both named), else design.toml (not named).
+    """
     if args.save is not None:
-        return Path(args.save)
+        return Path(args.save), True
     if args.design is not None and Path(args.design).suffix.lower() == ".toml":
-        return Path(args.design)
-    return Path(DEFAULT_SAVE)
+        return Path(args.design), True
+    return Path(DEFAULT_SAVE), False

@@ -18,6 +18,7 @@ from hexaleg.cli.options import (
     field_sweep_from_args,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
+from hexaleg.evaluation.goal import Goal
 from hexaleg.output.report import (
     REPORT_HTML,
     REPORT_MD,
@@ -79,6 +80,8 @@ def run(args: argparse.Namespace) -> int:
     inputs = inputs_from_args(args)  # a bad design is refused before any note
     robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
     requirements = requirements_from_args(args, in_file)
+    if requirements.given:  # what the design cannot measure, refused before any section
+        Goal(requirements.resolved(robot.design)).measurable(robot.design)
     options = ReportOptions(
         l3_points=args.l3_points,
         sensitivity_points=args.sensitivity_points,

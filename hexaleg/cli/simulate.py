@@ -6,6 +6,7 @@ import argparse
 import math
 from pathlib import Path
 
+from hexaleg._typing import Controller, choices
 from hexaleg.cli.gait_options import add_gait_options, gait_from_args
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import UsageError, add_design_options, bounded_int, note
@@ -40,8 +41,18 @@ DESCRIPTION = (
     "A stride beyond the design's max stride is refused before simulating. With --urdf, "
     "your robot: its file's links, masses, inertias and joints in MuJoCo (its meshes left "
     "out: only the feet touch the floor, each a 5 mm sphere), walking the gait `gait --urdf` "
-    "plans."
+    "plans. --controller torque: a torque-controlled robot (the plan's torques, a low-gain "
+    "PD, started at the plan's velocities) instead of stiff position servos; either "
+    "reports the internal force the standing feet push on each other with. A simulation "
+    "that diverges (MuJoCo's accelerations NaN or huge, a body through the ground) stops "
+    "and says so in one line."
 )
+
+CONTROLLERS = {
+    "servo": "servo: stiff position servos (the plan's torques fed forward), from rest",
+    "torque": "torque: the plan's torques and a low-gain PD, from the plan's velocities",
+}
+"""What each controller is, in the table."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -57,6 +68,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help=f"gait periods to walk, {low}..{high}; the first is not measured "
         f"(default {DEFAULT_CYCLES})",
+    )
+    parser.add_argument(
+        "--controller",
+        choices=choices(Controller),
+        default="servo",
+        help="how the joints follow the plan: stiff position 'servo's (default, from rest), "
+        "or 'torque' control (the plan's torques and a low-gain PD)",
     )
     parser.add_argument(
         "--json", action="store_true", help="print one JSON object (SI units, radians)"
@@ -97,6 +115,7 @@ def run(args: argparse.Namespace) -> int:
         friction=args.friction,
         distribution=args.distribution,
         model=model,
+        controller=args.controller,
     )
     written: list[Path] = []
     if args.html is not None:
@@ -109,6 +128,9 @@ def run(args: argparse.Namespace) -> int:
         print_json(robot.posture() | result.to_dict(), summary)
         return 0
     title = lengths_title(robot.titled("Simulated walk (MuJoCo)"), model.design.lengths)
+    if result.diverged:  # nothing it measured holds: one line, where and why
+        print(f"{title}: DIVERGED {result.diverged}; nothing it measured holds", file=summary)
+        return 0
     print_table(title, rows(result, model.nominal_height), summary)
     return 0
 
@@ -132,13 +154,15 @@ def _video(result: SimulationResult, path: str) -> list[Path]:
 
 def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str]]:
     """The text table's rows (``nominal_height``: the body's over the ground [m])."""
-    metrics, gait, design = result.metrics, result.gait, result.design
+    metrics, gait, design, standing = result.metrics, result.gait, result.design, result.standing
+    assert metrics is not None and standing is not None  # it did not diverge
     rows = [
         (
             "gait",
             f"{gait.pattern}, T = {gait.period:.4g} s, S = {gait.stride:.4g} m, "
             f"H = {gait.step_height:.4g} m, v = {gait.speed:.4g} m/s; {result.cycles} periods",
         ),
+        ("controller", CONTROLLERS[result.controller]),
         ("payload", f"{result.payload.mass:g} kg; friction μ = {result.friction:g}"),
         (
             "distance, periods 2..",
@@ -156,6 +180,7 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
         ("fell", "YES" if metrics.fell else "no"),
         ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),
         ("standing-foot slip", f"{metrics.slip:.4f} m"),
+        ("internal force, standing feet", f"{metrics.internal_force:.1f} N (planned 0)"),
     ]
     given = design.rated_torques
     for joint, rated in zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True):
@@ -168,7 +193,6 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
             )
         )
     rows += [("OVER RATING", str(over)) for over in metrics.over_rating]
-    standing = result.standing
     for leg in standing.legs:
         simulated, statics = standing.foot_forces_z[leg], standing.statics_foot_forces_z[leg]
         rows.append(

@@ -7,7 +7,7 @@ import argparse
 from hexaleg._io import write_text
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, note
-from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.cli.output import check_outputs, refuse_inputs_as_outputs, report_files
 from hexaleg.evaluation.sizing import sized_for
 
 DESCRIPTION = (
@@ -37,6 +37,14 @@ def run(args: argparse.Namespace) -> int:
     robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes: their links
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
+    named = f"--urdf {args.urdf}" if args.urdf else "the --design file's [robot] urdf"
+    refuse_inputs_as_outputs(  # the robot file's path: None for hexaleg's template
+        {"-o": target},
+        {
+            "robot file": (named, robot.source.path),
+            "design file": (f"--design {args.design}", args.design),
+        },
+    )
     text = robot.urdf()
     for line in robot.notes:
         note(line)

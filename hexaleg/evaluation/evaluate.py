@@ -8,7 +8,8 @@ however many of its metrics are asked for: the improved workspace area in closed
 (eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
 or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
 statics' payload capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), and
-one gait period (:func:`~hexaleg.gait.analysis.analyze_gait`) for the max speed, peak
+one walk of the gait (:class:`~hexaleg.gait.walk.Walker`) for the walking payload capacity
+and one period of it (:func:`~hexaleg.gait.analysis.analyze_walker`) for the max speed, peak
 torque and cost of transport.
 
 Given a model and a stance template of the same body (the fast path of sweeps and
@@ -40,9 +41,10 @@ from hexaleg.evaluation.metrics import (
     Reasons,
 )
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.analysis import GaitAnalysis, analyze_walker
+from hexaleg.gait.capacity import walker_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walk import Walker
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
@@ -297,17 +299,15 @@ class _Measuring:
             )
 
     @cached_property
+    def walker(self) -> Walker:
+        """The conditions' gait walked with their payload, once for every walking metric."""
+        conditions = self.conditions
+        return Walker(self.model, conditions.gait, conditions.payload)
+
+    @cached_property
     def walked(self) -> GaitAnalysis:
         """One period of the conditions' gait, with the fastest walk of its stride."""
-        conditions = self.conditions
-        return analyze_gait(
-            self.design,
-            conditions.gait,
-            conditions.payload,
-            model=self.model,
-            limits=False,
-            speed=True,
-        )
+        return analyze_walker(self.walker, limits=False, speed=True)
 
     # -- the analyses ------------------------------------------------------------------
 
@@ -372,10 +372,12 @@ class _Measuring:
         return replace(found, max_slope=slope)
 
     def _measure_walking(self) -> Metrics:
-        conditions = self.conditions
-        found = walking_payload_capacity(self.model, conditions.gait, conditions.payload.position)
-        if found is None:  # the design gives no ratings: the capacity within them needs one
+        if not self.model.design.rated:  # the capacity within ratings the design does not give
             return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
+        walker, conditions = self.walker, self.conditions
+        empty = conditions.payload.with_mass(0.0)  # the capacity walks the gait unloaded
+        unloaded = walker if walker.payload == empty else Walker(self.model, conditions.gait, empty)
+        found = walker_capacity(unloaded)
         self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
         self.walks = found.walks
         return Metrics(walking_payload_capacity=found.mass)
@@ -412,19 +414,21 @@ class _Measuring:
         walked = self.walked
         if not walked.walkable:
             return self._without(_of("motors"), f"cannot walk the gait: {walked.violations[0]}")
-        electrical, design = walked.electrical, walked.design
-        if electrical is None:
-            return self._without(_of("motors"), "the design has no [actuators]")
-        ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
-        battery = electrical.battery
-        if design.battery is None:
-            self.unmeasured = replace(self.unmeasured, battery_range="the design has no [battery]")
-        return Metrics(
-            energy_per_km=electrical.energy_per_km,
-            electrical_cost_of_transport=electrical.cost_of_transport,
-            continuous_load=float(ratios.max()),
-            battery_range=math.nan if battery is None else battery.range,
-        )
+        electrical, found = walked.electrical, Metrics()
+        if electrical is not None:
+            ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
+            battery = electrical.battery
+            found = Metrics(
+                energy_per_km=electrical.energy_per_km,
+                electrical_cost_of_transport=electrical.cost_of_transport,
+                continuous_load=float(ratios.max()),
+                battery_range=math.nan if battery is None else battery.range,
+            )
+        for spec in _of("motors"):  # without a table it is measured through: no value
+            lacking = spec.lacks(walked.design)
+            if lacking:
+                found = self._without((spec,), f"the design has no [{lacking[0]}]", found)
+        return found
 
     def _without(
         self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None

@@ -11,6 +11,8 @@ the loaded ``[requirements]`` kept.
 
 from __future__ import annotations
 
+import os
+import threading
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -47,6 +49,54 @@ CATALOG_COLUMNS = ("name", "manufacturer", "model", "peak_torque", "continuous_t
 """What the page's motor choices show of each catalog entry."""
 
 
+class SaveTarget:
+    """Where "save design" writes, and whether a file already there may be replaced.
+
+    A file the user named (``--save``, a ``--design`` file) or allowed (``--force``) is
+    replaced whatever it holds; otherwise (the default ``design.toml``) only a file this
+    explorer wrote itself is: none there, it is made; one it did not write (another
+    inode or modification time than its last save left) is refused.
+
+    Args:
+        path: The design file (.toml).
+        replace: Whether a file there may be replaced whoever wrote it.
+
+    """
+
+    def __init__(self, path: Path, replace: bool) -> None:
+        self.path, self.replace = path, replace
+        self._written: tuple[int, int] | None = None  # (inode, mtime [ns]) of its last save
+        self._lock = threading.Lock()
+
+    def write(self, text: str) -> Path:
+        """Write ``text`` to :attr:`path` (atomically), unless it would replace another's file.
+
+        Raises:
+            ParameterError: ``save``: a file is there that this explorer did not write.
+
+        """
+        with self._lock:
+            if not self.replace:
+                self._refuse_another_file()
+            path = write_text(self.path, text)
+            found = os.stat(path)
+            self._written = (found.st_ino, found.st_mtime_ns)
+            return path
+
+    def _refuse_another_file(self) -> None:
+        try:
+            found = os.stat(self.path)
+        except FileNotFoundError:
+            return
+        if (found.st_ino, found.st_mtime_ns) != self._written:
+            raise ParameterError(
+                "save",
+                str(self.path),
+                "the file exists and this explorer did not write it: start hexaleg explore "
+                "with --save FILE to name the file to write, or --force to replace it",
+            )
+
+
 @dataclass(frozen=True)
 class Session:
     """One explorer's loaded inputs.
@@ -60,6 +110,7 @@ class Session:
         requirements: The design file's requirements, as written (none given: nothing is
             checked); a leg length not required is the loaded design's.
         save_to: The design file "save design" writes (.toml).
+        target: How it writes it (a file it did not write replaced only when allowed).
         cloud: The study's cloud around the loaded design, measured in the background.
         jobs: Its long jobs (free-coupled search, decide), each another process.
 
@@ -69,12 +120,23 @@ class Session:
     conditions: Conditions
     requirements: Requirements
     save_to: Path
+    target: SaveTarget = field(compare=False)
     cloud: Cloud = field(compare=False)
     jobs: Jobs = field(default_factory=Jobs, compare=False)
 
     @classmethod
-    def start(cls, robot: Robot, requirements: Requirements, save_to: str | Path) -> Session:
+    def start(
+        cls,
+        robot: Robot,
+        requirements: Requirements,
+        save_to: str | Path,
+        *,
+        replace: bool = True,
+    ) -> Session:
         """The session of a loaded robot.
+
+        ``replace``: whether "save design" may replace a file at ``save_to`` it did not
+        write (the user named the file, or said ``--force``).
 
         Raises:
             HexalegError: A robot without masses (its payloads and torques need them),
@@ -91,7 +153,7 @@ class Session:
             else Conditions(gait=requirements.walked)
         )
         cloud = Cloud(robot, conditions).start()
-        return cls(robot, conditions, requirements, path, cloud)
+        return cls(robot, conditions, requirements, path, SaveTarget(path, replace), cloud)
 
     @property
     def design(self) -> HexapodDesign:
@@ -174,7 +236,7 @@ class Session:
 
     def save(self, params: Mapping[str, str]) -> Path:
         """Write the design a query asks for to :attr:`save_to`; the requirements kept."""
-        return write_text(self.save_to, self.design_text(params, self.save_to))
+        return self.target.write(self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
         """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""

@@ -46,13 +46,15 @@ from hexaleg._typing import ArrayF, CauseKind
 from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
+from hexaleg.exceptions import ParameterError
+from hexaleg.gait.dynamics import GeneralizedForces, payload_wrench
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gait.stability import feet_on_ground, zmp_sides
+from hexaleg.gait.walk import Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
-from hexaleg.statics.support import SupportPolygon
 
 PROBE_MASS = 1.0
 """The payload of the second walk [kg]: any positive mass gives the same affine maps."""
@@ -102,7 +104,25 @@ def walking_payload_capacity(
     if not model.design.rated:
         return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
-    unloaded = Walker(model, gait, Payload(0.0, position), gravity=gravity)
+    return walker_capacity(Walker(model, gait, Payload(0.0, position), gravity=gravity))
+
+
+def walker_capacity(unloaded: Walker) -> WalkingCapacity:
+    """:func:`walking_payload_capacity` of a walker already made, sharing its gait's walk.
+
+    Args:
+        unloaded: The robot walking the gait without payload, the payload's point its
+            position, min-norm forces.
+
+    Raises:
+        ParameterError: A walker with a payload, or another force distribution.
+
+    """
+    if unloaded.payload.mass != 0 or unloaded.distribution != "min-norm":
+        raise ParameterError(
+            "walker", unloaded.payload.mass, "carries no payload and splits min-norm forces"
+        )
+    model, gait, gravity = unloaded.model, unloaded.gait, unloaded.gravity
     walk = unloaded.stride(gait.stride)
     if walk.violations:
         return WalkingCapacity(0.0, walk.violations[0].cause, False)
@@ -112,14 +132,13 @@ def walking_payload_capacity(
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    loaded = Walker(model, gait, Payload(PROBE_MASS, position), gravity=gravity)
-    loads = [w.loads(gait.stride, walk, gait.period) for w in (unloaded, loaded)]
-    base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
-    slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
+    probe = payload_wrench(unloaded.payload.point(model), PROBE_MASS, gravity)
+    loads, carried = unloaded.own_loads_carrying(probe)
+    base, slope = loads.split.torques(gait.period), carried / PROBE_MASS  # τ₀, Δτ (N, 6, 3)
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
-        _zmp_bound(unloaded, loads, walk.paths.position, gait),
+        _zmp_bound(unloaded, loads.rnea, probe, walk.paths.position),
     ]
     actuators = model.design.actuators
     if actuators is not None:
@@ -247,32 +266,25 @@ def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
 
 
 def _zmp_bound(
-    walker: Walker, loads: list[Loads], feet: ArrayF, gait: Gait
+    walker: Walker, rnea: GeneralizedForces, probe: ArrayF, feet: ArrayF
 ) -> tuple[float, Cause] | None:
-    """The ZMP on the inner side of every edge of the standing feet's polygon."""
-    period, height = gait.period, walker.frames.height
-    wrenches = [load.rnea.static[:, :6] + load.rnea.inertial[:, :6] / period**2 for load in loads]
-    travel = loads[0].rnea.configurations[:, :2]  # the body's footprint, ground frame
-    # the ZMP's numerators: F_z·(x, y) relative to the body origin's footprint (stability.py)
-    parts = []
-    for wrench in wrenches:
-        force, moment = wrench[:, :3], wrench[:, 3:]
-        numerator = np.stack(
-            (-(moment[:, 1] + height * force[:, 0]), moment[:, 0] - height * force[:, 1]), axis=-1
-        )
-        parts.append((numerator, force[:, 2]))
-    stance = walker.phases.stance
-    offsets, slopes = [], []
-    for k in range(len(stance)):
-        polygon = SupportPolygon.of_feet(feet[k, stance[k], :2] + travel[k])
-        sides = []
-        for numerator, vertical in parts:  # F_z·cross(edge, zmp − vertex) ≥ 0 inside
-            relative = numerator[k] - (polygon.vertices - travel[k]) * vertical[k]
-            edges = polygon.edges
-            sides.append(edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0])
-        offsets.append(sides[0])
-        slopes.append((sides[1] - sides[0]) / PROBE_MASS)
-    found = _largest(np.concatenate(offsets), np.concatenate(slopes))
+    """The ZMP on the inner side of every edge of the standing feet's polygon.
+
+    Each side (:func:`~hexaleg.gait.stability.zmp_sides`) is linear in the base's wrench,
+    which is affine in the payload: the unloaded walk's sides and their change per kg
+    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows).
+    """
+    period, height = walker.gait.period, walker.frames.height
+    configurations = rnea.configurations  # the body's path, as the payload's
+    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
+    base, change = zmp_sides(
+        np.stack((wrench, np.broadcast_to(probe / PROBE_MASS, wrench.shape))),
+        height,
+        configurations[:, :2],
+        feet_on_ground(feet, configurations, height),
+        walker.phases.stance,
+    )
+    found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))
 
 

@@ -65,6 +65,19 @@ class GeneralizedForces:
     inertial: ArrayF
 
 
+def payload_wrench(point: ArrayF, mass: float, gravity: float) -> ArrayF:
+    """What a point mass on a level body adds to the base's generalized forces (6,).
+
+    The body's rows hold the wrench that carries it, in the body's frame at its origin:
+    its weight upward f = (0, 0, m·g) [N] and the moment p × f [N·m] of the point p [m]
+    (body frame). With the body level and at constant velocity (no rotation, no
+    acceleration: a gait period's body), the point's inertial forces are zero, so this is
+    exactly what RNEA gives with the mass added to the body's inertia.
+    """
+    force = np.array([0.0, 0.0, mass * gravity])
+    return np.concatenate((force, np.cross(point, force)))
+
+
 class LoadedRobot:
     """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
 
@@ -199,19 +212,71 @@ def min_norm_split(
         rnea: The generalized forces.
 
     """
-    count = len(feet)
+    return min_norm_split_carrying(model, frames, phases, feet, motion, rnea)[0]
+
+
+def min_norm_split_carrying(
+    model: HexapodModel,
+    frames: LegFrames,
+    phases: GaitPhases,
+    feet: ArrayF,
+    motion: JointMotion,
+    rnea: GeneralizedForces,
+    wrench: ArrayF | None = None,
+) -> tuple[ForceSplit, ArrayF | None]:
+    """:func:`min_norm_split`, and in the same solve :func:`carried_torques` of ``wrench``.
+
+    Arguments as :func:`min_norm_split`'s; ``wrench`` (6,) [N, N·m], or none (``None``).
+    """
+    columns = [rnea.static[:, :6], rnea.inertial[:, :6]]
+    if wrench is not None:
+        columns.append(np.broadcast_to(np.asarray(wrench, dtype=float), (len(feet), 6)))
+    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
+    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
+    torques = joints - pushed[:2]
+    split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    return split, (None if wrench is None else -pushed[2])
+
+
+def carried_torques(
+    frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrench: ArrayF
+) -> ArrayF:
+    """The joint torques (N, 6, 3) [N·m] a constant wrench (6,) on the base's rows adds.
+
+    What :func:`min_norm_split` gives with the wrench added to the base's rows less what it
+    gives without (the split is linear in them): −Jᵀ of the minimum-norm forces carrying
+    the wrench, e.g. a payload's (:func:`payload_wrench`). Arguments as
+    :func:`min_norm_split`'s.
+    """
+    columns = np.broadcast_to(np.asarray(wrench, dtype=float)[:, None], (len(feet), 6, 1))
+    return -_min_norm_pushes(frames, phases, feet, motion, columns)[1][0]
+
+
+def _min_norm_pushes(
+    frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrenches: ArrayF
+) -> tuple[ArrayF, ArrayF]:
+    """The minimum-norm feet's forces balancing base wrenches, and the torques they push.
+
+    Args:
+        frames: The legs.
+        phases: Who stands when.
+        feet: Foot positions (N, 6, 3) in the body frame [m].
+        motion: Joint angles (N, 6, 3).
+        wrenches: K base wrenches at each sample (N, 6, K) [N, N·m].
+
+    Returns:
+        The forces (N, 6, 3, K) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
+
+    """
+    count, kinds = len(feet), wrenches.shape[-1]
     standing = stance_indices(phases)
     rows = np.arange(count)[:, None]
     a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
-    both = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]), axis=-1)  # (N, 6, 2)
-    split = min_norm_forces(a, both).reshape(count, -1, 3, 2)
-    forces = np.zeros((count, 6, 3, 2))
+    split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
+    forces = np.zeros((count, 6, 3, kinds))
     forces[rows, standing] = split
-    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (2, N, 6, 3)
-    pushed = transpose_times(motion.partials, in_roots)  # Jᵀf per leg
-    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
-    torques = joints - pushed
-    return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (K, N, 6, 3)
+    return forces, transpose_times(motion.partials, in_roots)
 
 
 def min_torque_split(

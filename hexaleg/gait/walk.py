@@ -14,12 +14,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
     LoadedRobot,
+    carried_torques,
     min_norm_split,
+    min_norm_split_carrying,
     min_torque_split,
 )
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
@@ -91,6 +93,8 @@ class Walker:
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
         self.shapes: PathShapes = path_shapes(self.phases)
         self._robot: LoadedRobot | None = None
+        self._own: Stride | None = None  # the gait's own stride, walked once
+        self._own_loads: Loads | None = None  # its min-norm loads, computed once
 
     @property
     def robot(self) -> LoadedRobot:
@@ -105,14 +109,22 @@ class Walker:
         return np.array([np.cos(self.gait.heading), np.sin(self.gait.heading), 0.0])
 
     def stride(self, stride: float) -> Stride:
-        """The paths, joint motion and violations of stride S [m]."""
+        """The paths, joint motion and violations of stride S [m].
+
+        The gait's own stride is walked once: every analysis of it shares that walk.
+        """
+        if stride == self.gait.stride and self._own is not None:
+            return self._own
         paths = foot_paths(
             self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
         )
         motion = joint_motion(self.frames, paths)
         margins = self.margins(motion.angles, motion.reach)
         found = violations(margins, self.frames.legs, self.times(self.gait.period))
-        return Stride(paths, motion, found)
+        walk = Stride(paths, motion, found)
+        if stride == self.gait.stride:
+            self._own = walk
+        return walk
 
     def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
@@ -134,9 +146,16 @@ class Walker:
         """RNEA along the period and the feet's forces (min-torque: at period T [s]).
 
         ``rnea``, the stride's generalized forces if already computed (they do not depend
-        on the period), saves the inverse dynamics.
+        on the period), saves the inverse dynamics. The gait's own stride's min-norm loads
+        (any period) are computed once.
         """
-        rnea = self.generalized_forces(stride, walk) if rnea is None else rnea
+        shared = walk is self._own and self.distribution == "min-norm"
+        known = self._own_loads
+        if shared and known is not None and (rnea is None or rnea is known.rnea):
+            return known
+        if rnea is None:
+            travel = stride / self.phases.duty_factor * self.heading
+            rnea = self.robot.generalized_forces(walk.motion, travel)
         position = walk.paths.position
         if self.distribution == "min-norm":
             split = min_norm_split(
@@ -153,10 +172,46 @@ class Walker:
                 period,
                 self.friction,
             )
-        return Loads(rnea, split)
+        found = Loads(rnea, split)
+        if shared and self._own_loads is None:
+            self._own_loads = found
+        return found
+
+    def own_loads_carrying(self, wrench: ArrayF) -> tuple[Loads, ArrayF]:
+        """The gait's own stride's min-norm loads and what a wrench adds, in one solve.
+
+        What the wrench (6,) [N, N·m], constant on the base's rows (a payload's), adds is
+        joint torques (N, 6, 3) [N·m]. The loads are the ones :meth:`loads` then shares.
+
+        Raises:
+            ParameterError: The walker splits the load otherwise than min-norm.
+
+        """
+        if self.distribution != "min-norm":
+            raise ParameterError(
+                "distribution", self.distribution, "'min-norm': a wrench's torques are its"
+            )
+        walk, known = self.stride(self.gait.stride), self._own_loads
+        if known is not None:
+            loads = self.loads(self.gait.stride, walk, self.gait.period)
+            position, motion = walk.paths.position, walk.motion
+            return loads, carried_torques(self.frames, self.phases, position, motion, wrench)
+        travel = self.gait.stride / self.phases.duty_factor * self.heading
+        rnea = self.robot.generalized_forces(walk.motion, travel)
+        split, carried = min_norm_split_carrying(
+            self.model, self.frames, self.phases, walk.paths.position, walk.motion, rnea, wrench
+        )
+        assert carried is not None  # a wrench was given
+        self._own_loads = Loads(rnea, split)
+        return self._own_loads, carried
 
     def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
-        """RNEA along the period of stride S [m], as static + inertial/T² (any period)."""
+        """RNEA along the period of stride S [m], as static + inertial/T² (any period).
+
+        The gait's own stride's are computed once (for its walk from :meth:`stride`).
+        """
+        if walk is self._own and self.distribution == "min-norm":
+            return self.loads(stride, walk, self.gait.period).rnea
         travel = stride / self.phases.duty_factor * self.heading
         return self.robot.generalized_forces(walk.motion, travel)
 

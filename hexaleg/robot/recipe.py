@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import hashlib
 import math
+import os
 import warnings
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
@@ -117,6 +118,9 @@ class RobotSource:
     def read(self) -> tuple[ImportedRobot, tuple[warnings.WarningMessage, ...]]:
         """The robot file as read and changed, once per process, and the warnings it raised.
 
+        Read once per file as it stands: a relative path named again from another folder, or
+        the file replaced since, is read anew (the cache is keyed by :func:`_file_now`).
+
         Raises:
             HexalegError: The template has no file; the file cannot be read as six legs; a
                 segment change out of range (named as the user gave it).
@@ -124,7 +128,7 @@ class RobotSource:
         """
         if self.path is None:
             raise ParameterError("path", None, "hexaleg's template is rendered, not read")
-        return _read(self)
+        return _read(self, _file_now(self.path))
 
     def fingerprint(self, text: str) -> dict[str, Any]:
         """What determines the robot, JSON-ready, ``text`` being the file's URDF as read."""
@@ -162,8 +166,23 @@ _OPTIONS = ("xacro_args", "packages", "foot_offset", "foot_frame", "segments", "
 """The fields that say how a robot file is read: none of them applies to the template."""
 
 
+def _file_now(path: str) -> tuple[object, ...]:
+    """Which file ``path`` names now: its real path, device, inode, size and change time [ns].
+
+    A path not there (or not stat-able) is its absolute path alone: reading it says why.
+    """
+    try:
+        found = os.stat(path)
+    except OSError:
+        return (os.path.abspath(path),)
+    return (os.path.realpath(path), found.st_dev, found.st_ino, found.st_size, found.st_mtime_ns)
+
+
 @lru_cache(maxsize=4)
-def _read(source: RobotSource) -> tuple[ImportedRobot, tuple[warnings.WarningMessage, ...]]:
+def _read(
+    source: RobotSource, file: tuple[object, ...]
+) -> tuple[ImportedRobot, tuple[warnings.WarningMessage, ...]]:
+    """``source`` read; ``file``, the file it names as it stands, keys the cache only."""
     assert source.path is not None
     packages = dict(source.packages)
     foot = FootSearch(offset=source.foot_offset, frame=source.foot_frame, packages=packages)

@@ -8,6 +8,7 @@ it occurs.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -66,10 +67,9 @@ class OverRating:
 
     def __str__(self) -> str:
         unit, label = UNITS[self.quantity], LABELS[self.quantity]
-        return (
-            f"{self.leg} {self.joint} {label} {self.peak:.2f} {unit} over its rating "
-            f"{self.rated:g} {unit} ({self.at})"
-        )
+        peak = f"{self.peak:.2f} {unit}" if math.isfinite(self.peak) else "without bound"
+        rated = f"{self.rated:g} {unit}"
+        return f"{self.leg} {self.joint} {label} {peak} over its rating {rated} ({self.at})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (N·m, rad/s or V)."""
@@ -82,6 +82,11 @@ class OverRating:
             "at": self.at,
             "description": str(self),
         }
+
+
+def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
+    """Joints over their ratings, the furthest over (peak / rating) first."""
+    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 def at_times(times: npt.ArrayLike) -> list[str]:

@@ -41,7 +41,7 @@ from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
-from hexaleg.statics.ratings import OverRating
+from hexaleg.statics.ratings import OverRating, furthest_first
 from hexaleg.study.conflict import Conflict, find_conflict
 from hexaleg.study.executors import local_pool
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
@@ -66,7 +66,9 @@ class CheckedDesign:
         standing_over_rating: Each joint over its rated torque carrying the required
             payload, at the nominal stance or an axis-locked extreme.
         walking_over_rating: Each joint over its rated torque or speed walking the
-            requirements' gait (none when no gait is walked).
+            requirements' gait (none when no gait is walked, or it cannot be).
+        walking_violation: The gait's first broken constraint when it cannot be walked at
+            all (a foothold out of reach: speeds without bound); empty otherwise.
 
     """
 
@@ -75,6 +77,7 @@ class CheckedDesign:
     checks: tuple[RequirementCheck, ...]
     standing_over_rating: tuple[OverRating, ...] = ()
     walking_over_rating: tuple[OverRating, ...] = ()
+    walking_violation: str = ""
 
     @classmethod
     def of(cls, robot: Robot, goal: Goal) -> CheckedDesign:
@@ -91,11 +94,12 @@ class CheckedDesign:
         evaluation = goal.evaluate(design, model, flexibility=locked)
         if evaluation.error:
             return cls(design, evaluation, (), standing)
-        walking: tuple[OverRating, ...] = ()
-        if goal.walks:
-            gait = requirements.gait
-            walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
-        return cls(design, evaluation, goal.checks(evaluation), standing, walking)
+        if not goal.walks:
+            return cls(design, evaluation, goal.checks(evaluation), standing)
+        walked = analyze_gait(design, requirements.gait, payload, model=model, limits=False)
+        flags, broken = walked.over_rating, [str(found) for found in walked.violations[:1]]
+        walking = () if broken else flags
+        return cls(design, evaluation, goal.checks(evaluation), standing, walking, *broken)
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
         """(where, flags furthest over first) standing with the payload, and walking if walked."""
@@ -126,11 +130,6 @@ class CheckedDesign:
             "value": self.evaluation.metrics[objective.spec],
             "unit": objective.spec.unit,
         }
-
-
-def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
-    """Joints over their ratings, the furthest over (peak / rating) first."""
-    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 @dataclass(frozen=True)
@@ -199,6 +198,7 @@ class DecideResult:
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
                 "over_rating": self.best.over_rating(),
+                "walking_violation": self.best.walking_violation or None,
                 "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
             "yours": {
@@ -206,6 +206,7 @@ class DecideResult:
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},
                 "over_rating": self.yours.over_rating(),
+                "walking_violation": self.yours.walking_violation or None,
             },
             "feasible": self.feasible,
         }
@@ -272,7 +273,7 @@ def decide(
     design = robot.design
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
-    goal = Goal(requirements, objective or Objective())
+    goal = Goal(requirements, objective or Objective()).measurable(design, bool(actuators))
     space = _space(robot, requirements, free_posture, free, actuators, ratio_ranges, settings)
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
