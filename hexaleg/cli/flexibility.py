@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import math
 import warnings
-from typing import TYPE_CHECKING
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
@@ -18,14 +17,11 @@ from hexaleg.cli.options import (
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.evaluation.sizing import sized_for
 from hexaleg.output.figures import extremes_figure, save
+from hexaleg.robot.robot import Robot
 from hexaleg.stance.constraints import TRANSLATIONS
-from hexaleg.stance.extremes import FlexibilityWarning
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.study.progress import progress_callback
-
-if TYPE_CHECKING:
-    from hexaleg.robot.robot import Robot
-    from hexaleg.stance.extremes import FlexibilityResult
 
 DESCRIPTION = (
     "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "

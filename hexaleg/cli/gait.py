@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 from hexaleg._io import write_text
 from hexaleg.cli.gait_options import add_gait_options, gait_from_args
@@ -33,9 +32,7 @@ from hexaleg.output.figures.motors import write_motor_figures
 from hexaleg.output.viewer.gait import write_gait_html
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-
-if TYPE_CHECKING:
-    from hexaleg.robot.robot import Robot
+from hexaleg.robot.robot import Robot
 
 DESCRIPTION = (
     "One gait period of the design (SI units: s, m, kg, N·m, rad/s, W, J): the body walks "

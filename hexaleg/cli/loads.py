@@ -4,7 +4,6 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import TYPE_CHECKING
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
@@ -19,16 +18,12 @@ from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.evaluation.sizing import sized_for
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures import loads_figure, save
 from hexaleg.ratings import NEEDS_RATING
-from hexaleg.statics.loads import analyze_loads
-
-if TYPE_CHECKING:
-    from hexaleg.gait.capacity import WalkingCapacity
-    from hexaleg.statics.loads import LoadsAnalysis
+from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
 
 DESCRIPTION = (
     "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, add_stance_option, bounded_int, note
@@ -13,6 +13,7 @@ from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import analyze_gait, require_walkable
+from hexaleg.gait.spec import Gait
 from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.scene import build_scene, write_static_html
@@ -23,12 +24,9 @@ from hexaleg.output.viewer.server import (
     serve_until_stopped,
 )
 from hexaleg.robot.imported_model import has_masses
+from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.statics.loads import loads_at_extremes
-
-if TYPE_CHECKING:
-    from hexaleg.gait.spec import Gait
-    from hexaleg.robot.model import HexapodModel
 
 DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
