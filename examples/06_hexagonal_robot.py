@@ -12,9 +12,10 @@ from pathlib import Path
 import numpy as np
 
 from hexaleg.design_file import load_design
+from hexaleg.field_sweep import FieldSweep
 from hexaleg.stance import flexibility
 from hexaleg.statics.loads import analyze_loads
-from hexaleg.study.sensitivity import FieldSweep, sensitivity_table
+from hexaleg.study.sensitivity import sensitivity_table
 
 DESIGN_FILE = Path(__file__).with_name("hexagon_robot.toml")
 

@@ -10,11 +10,14 @@ table per entry, holding
 - optionally ``manufacturer``, ``model`` and ``notes`` (text: how a number was derived).
 
 ``hexaleg actuators`` lists it. Every entry is checked as an actuator is, and the
-catalog as a whole refuses a name given twice.
+catalog as a whole refuses a name given twice. A design file's ``[actuators]`` table, whose
+joints may name an entry (``catalog = "NAME"``), is read here
+(:func:`actuators_from_table`), where the entries are.
 """
 
 from __future__ import annotations
 
+import difflib
 import functools
 import math
 import sys
@@ -24,8 +27,9 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from hexaleg.actuators import ACTUATOR_FIELDS, GEAR_RATIO_RANGE, Actuator
+from hexaleg.actuators import ACTUATOR_FIELDS, GEAR_RATIO_RANGE, TABLE, Actuator, Actuators
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.table_records import ENTRY_NAME, record_from_table, require_table, unknown_name
 
 if sys.version_info >= (3, 11):
@@ -242,3 +246,44 @@ def shipped_catalog_path() -> Path:
 def shipped_catalog() -> Catalog:
     """The catalog hexaleg ships (``hexaleg/data/actuators.toml``), read once."""
     return load_catalog(shipped_catalog_path())
+
+
+def actuators_from_table(table: Any, catalog: Catalog | None = None) -> Actuators:
+    """The actuators a design file's ``[actuators]`` table describes.
+
+    Args:
+        table: ``{"root": {...}, "hip": {...}, "knee": {...}}``, each a table of
+            :class:`~hexaleg.actuators.Actuator` keys, or a ``catalog`` key and the keys it
+            overrides.
+        catalog: The catalog ``catalog = "NAME"`` refers to; hexaleg's own
+            (:func:`shipped_catalog`) if omitted.
+
+    Raises:
+        ParameterError: One line naming ``actuators.<joint>.<key>`` and its range, an
+            unknown key with the nearest known one, or an unknown catalog name with the
+            nearest entry.
+
+    """
+    table = require_table(TABLE, table, "root, hip and knee actuators")
+    for joint in table:
+        if joint not in LEG_JOINTS:
+            close = difflib.get_close_matches(joint, LEG_JOINTS, n=1)
+            hint = f"did you mean {close[0]!r}?" if close else "use root, hip and knee"
+            raise ParameterError(f"{TABLE}.{joint}", table[joint], f"no such joint: {hint}")
+    return Actuators(**{joint: _actuator(table, joint, catalog) for joint in LEG_JOINTS})
+
+
+def _actuator(table: Mapping[str, Any], joint: str, catalog: Catalog | None) -> Actuator:
+    """``[actuators.<joint>]``: its own keys over its catalog entry's."""
+    name = f"{TABLE}.{joint}"
+    if joint not in table:
+        raise ParameterError(name, None, "is missing: give each of root, hip and knee a table")
+    given = require_table(name, table[joint], ", ".join(s.name for s in ACTUATOR_FIELDS))
+    if "catalog" not in given:
+        hint = ', or catalog = "NAME" (hexaleg actuators lists them)'
+        return record_from_table(Actuator, ACTUATOR_FIELDS, given, name, hint=hint)
+    found = shipped_catalog() if catalog is None else catalog  # an empty catalog is falsy
+    entry = found.entry(given["catalog"], f"{name}.catalog")
+    actuator = record_from_table(Actuator, ACTUATOR_FIELDS, given, name, entry.values)
+    entry.require_gear_ratio(actuator.gear_ratio, f"{name}.gear_ratio")
+    return actuator

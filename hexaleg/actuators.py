@@ -3,10 +3,10 @@
 A design file holds one table per joint type, ``[actuators.root]``, ``[actuators.hip]``
 and ``[actuators.knee]``; each key is declared once below (:class:`Actuator`), in SI
 units. Every key without a default is required unless ``catalog = "NAME"`` names an
-entry of the actuator catalog (:mod:`hexaleg.actuator_catalog`, listed by
-``hexaleg actuators``) that supplies it; keys given beside ``catalog`` override the
-entry's, each on its own (an overridden ``gear_ratio`` keeps the entry's output-side
-ratings, so give those as well).
+entry of the actuator catalog that supplies it (the catalog reads such a table:
+:func:`hexaleg.actuator_catalog.actuators_from_table`, listed by ``hexaleg actuators``);
+keys given beside ``catalog`` override the entry's, each on its own (an overridden
+``gear_ratio`` keeps the entry's output-side ratings, so give those as well).
 
 The model is a DC-equivalent motor: torque τ_m = k_t·i at the motor, terminal
 resistance R in the same convention (copper loss i²R), a gearbox of ratio N and
@@ -39,18 +39,13 @@ N changes to N' = s·N and
 from __future__ import annotations
 
 import dataclasses
-import difflib
-from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import TYPE_CHECKING, Any, cast
+from typing import Any, cast
 
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.table_records import REQUIRED, check_record, record_from_table, require_table
-
-if TYPE_CHECKING:
-    from hexaleg.actuator_catalog import Catalog
+from hexaleg.table_records import REQUIRED, check_record
 
 GEAR_RATIO_RANGE = (1.0, 1e4)
 """Plausible gear ratio N [-]: direct drive to a harmonic drive's highest."""
@@ -71,6 +66,7 @@ class Actuator:
 
     """
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     gear_ratio: float = declare(
         REQUIRED, "gear ratio N: motor turns per joint turn", "-", GEAR_RATIO_RANGE
@@ -190,31 +186,6 @@ class Actuators:
             if not isinstance(getattr(self, joint), Actuator):
                 raise ParameterError(f"{TABLE}.{joint}", getattr(self, joint), "an Actuator")
 
-    @classmethod
-    def from_table(cls, table: Any, catalog: Catalog | None = None) -> Actuators:
-        """The actuators a design file's ``[actuators]`` table describes.
-
-        Args:
-            table: ``{"root": {...}, "hip": {...}, "knee": {...}}``, each a table of
-                :class:`Actuator` keys, or a ``catalog`` key and the keys it overrides.
-            catalog: The catalog ``catalog = "NAME"`` refers to; hexaleg's own
-                (:func:`~hexaleg.actuator_catalog.shipped_catalog`) if omitted.
-
-        Raises:
-            ParameterError: One line naming ``actuators.<joint>.<key>`` and its range, an
-                unknown key with the nearest known one, or an unknown catalog name with
-                the nearest entry.
-
-        """
-        table = require_table(TABLE, table, "root, hip and knee actuators")
-        for joint in table:
-            if joint not in LEG_JOINTS:
-                close = difflib.get_close_matches(joint, LEG_JOINTS, n=1)
-                hint = f"did you mean {close[0]!r}?" if close else "use root, hip and knee"
-                raise ParameterError(f"{TABLE}.{joint}", table[joint], f"no such joint: {hint}")
-        joints = {joint: _actuator(table, joint, catalog) for joint in LEG_JOINTS}
-        return cls(**joints)
-
     @property
     def joints(self) -> tuple[Actuator, Actuator, Actuator]:
         """(root, hip, knee)."""
@@ -253,7 +224,8 @@ class Actuators:
     def as_dict(self) -> dict[str, Any]:
         """JSON-ready form: each joint type's keys (SI units), as a design file's table.
 
-        :meth:`from_table` reads it back; :meth:`Actuator.as_dict` adds the derived numbers.
+        :func:`~hexaleg.actuator_catalog.actuators_from_table` reads it back;
+        :meth:`Actuator.as_dict` adds the derived numbers.
         """
         return self.to_table()
 
@@ -265,22 +237,3 @@ class Actuators:
     def total_mass(self) -> float:
         """The six legs' actuators: 6·(root + hip + knee) [kg]."""
         return 6 * sum(self.masses)
-
-
-def _actuator(table: Mapping[str, Any], joint: str, catalog: Catalog | None) -> Actuator:
-    """``[actuators.<joint>]``: its own keys over its catalog entry's."""
-    name = f"{TABLE}.{joint}"
-    if joint not in table:
-        raise ParameterError(name, None, "is missing: give each of root, hip and knee a table")
-    given = require_table(name, table[joint], ", ".join(s.name for s in ACTUATOR_FIELDS))
-    if "catalog" not in given:
-        hint = ', or catalog = "NAME" (hexaleg actuators lists them)'
-        return record_from_table(Actuator, ACTUATOR_FIELDS, given, name, hint=hint)
-    if catalog is None:
-        from hexaleg.actuator_catalog import shipped_catalog
-
-        catalog = shipped_catalog()
-    entry = catalog.entry(given["catalog"], f"{name}.catalog")
-    actuator = record_from_table(Actuator, ACTUATOR_FIELDS, given, name, entry.values)
-    entry.require_gear_ratio(actuator.gear_ratio, f"{name}.gear_ratio")
-    return actuator

@@ -28,6 +28,7 @@ TABLE = "battery"
 class Battery:
     """The robot's battery: capacity, specific energy, position, regeneration, electronics."""
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     capacity: float = declare(REQUIRED, "energy stored when full", "Wh", (1e-3, 1e7))
     specific_energy: float = declare(

@@ -114,6 +114,7 @@ class HexapodDesign:
 
     """
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     l1: float = declare(0.2, "coxa length", "m", COXA_RANGE, option="lengths")
     l2: float = declare(0.4, "femur length", "m", SEGMENT_RANGE, option="lengths")

@@ -26,7 +26,7 @@ from typing import Any, TypeVar, cast
 
 from hexaleg._checks import require_finite
 from hexaleg._input import read_input_file
-from hexaleg.actuators import Actuators
+from hexaleg.actuator_catalog import actuators_from_table
 from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
 from hexaleg.exceptions import HexalegError, ParameterError
@@ -76,7 +76,7 @@ ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 """Keys that are angles [rad]: each also accepted in degrees as ``<key>_deg``."""
 
 RECORDS: dict[str, Callable[[Any], Any]] = {
-    "actuators": Actuators.from_table,
+    "actuators": actuators_from_table,
     "battery": Battery.from_table,
     "structure": Structure.from_table,
 }

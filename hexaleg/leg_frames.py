@@ -20,11 +20,8 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
-from hexaleg.gravity import GRAVITY
+from hexaleg.gravity import LEVEL_GRAVITY
 from hexaleg.leg_geometry import LegLike, as_leg, leg_parameters, placement_matrix
-
-STANDARD_GRAVITY = np.array([0.0, 0.0, -GRAVITY])
-"""Gravity in a level leg-root frame [m/s²] (:data:`~hexaleg.gravity.GRAVITY` along −z)."""
 
 
 def segment_frames(leg: LegLike, theta: npt.ArrayLike) -> ArrayF:
@@ -94,7 +91,7 @@ def gravity_torques(
     theta: npt.ArrayLike,
     masses: npt.ArrayLike,
     coms: npt.ArrayLike,
-    gravity: npt.ArrayLike = STANDARD_GRAVITY,
+    gravity: npt.ArrayLike = LEVEL_GRAVITY,
 ) -> ArrayF:
     """Joint torques (..., 3) [N·m] on θ that hold the leg still against gravity.
 

@@ -43,6 +43,7 @@ DEFAULT_DEFLECTION_SHARE = 0.01
 class Tube:
     """A round tube: outer diameter and wall; a solid rod when the wall is half the diameter."""
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     outer_diameter: float = declare(REQUIRED, "outer diameter D", "m", (1e-4, 10.0))
     wall: float = declare(
@@ -94,6 +95,7 @@ Tube.__doc__ = cast(str, Tube.__doc__).rstrip() + "\n\n" + attributes_section(TU
 class Structure:
     """The legs' structure: a material, each segment's tube, the safety factor, the limits."""
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     material: Material = declare(
         REQUIRED, "a catalog material's name (hexaleg materials), or a table of its density, "

@@ -67,6 +67,7 @@ class Material:
 
     """
 
+    # a table, one field a row: its declaration's default, meaning, unit and range
     # fmt: off
     density: float = declare(REQUIRED, "density ρ", "kg/m³", (1.0, 3e4))
     youngs_modulus: float = declare(REQUIRED, "Young's modulus E", "Pa", (1e6, 1e13))

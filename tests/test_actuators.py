@@ -6,8 +6,13 @@ import math
 
 import pytest
 
-from hexaleg.actuator_catalog import Catalog, catalog_from_data, shipped_catalog
-from hexaleg.actuators import ACTUATOR_FIELDS, ACTUATOR_NUMBERS, Actuator, Actuators
+from hexaleg.actuator_catalog import (
+    Catalog,
+    actuators_from_table,
+    catalog_from_data,
+    shipped_catalog,
+)
+from hexaleg.actuators import ACTUATOR_FIELDS, ACTUATOR_NUMBERS, Actuator
 from hexaleg.battery import BATTERY_FIELDS, Battery
 from hexaleg.exceptions import ParameterError
 
@@ -32,7 +37,7 @@ def tables(**hip):
 
 def refusal(table, catalog=None) -> str:
     with pytest.raises(ParameterError) as info:
-        Actuators.from_table(table, catalog)
+        actuators_from_table(table, catalog)
     message = str(info.value)
     assert "\n" not in message
     return message
@@ -49,7 +54,7 @@ def test_an_actuator_and_what_it_implies():
 
 
 def test_the_three_joint_types_give_the_ratings_triples():
-    actuators = Actuators.from_table(
+    actuators = actuators_from_table(
         {
             "root": {**HIP, "peak_torque": 20.0, "max_speed": 3.0},
             "hip": HIP,
@@ -157,7 +162,7 @@ def test_a_catalog_entry_supplies_the_keys_and_given_keys_override_it(tiny):
         "hip": {"catalog": "big_drive", "gear_ratio": 100, "voltage": 24.0},
         "knee": {**HIP, "peak_torque": 40.0},
     }
-    actuators = Actuators.from_table(table, tiny)
+    actuators = actuators_from_table(table, tiny)
     assert actuators.root.gear_ratio == 50 and actuators.root.max_speed == 6.0
     assert actuators.root.catalog == "big_drive" and actuators.knee.catalog is None
     assert actuators.hip.gear_ratio == 100 and actuators.hip.voltage == 24.0

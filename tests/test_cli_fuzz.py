@@ -165,14 +165,15 @@ def quick_backends():
         "hexaleg.cli.study.write_study_figures": lambda table, out: [],
         "hexaleg.cli.study.sensitivity_table": lambda *args, **kwargs: table,
         "hexaleg.cli.study.write_text": lambda path, text: Path(path),
-        "hexaleg.output.viewer.scene.write_static_html": fake_html,
+        "hexaleg.cli.view.write_static_html": fake_html,
         "hexaleg.cli.view.LoopbackServer": FakeServer,
-        "hexaleg.output.viewer.scene.build_scene": lambda *args, **kwargs: None,
-        "hexaleg.output.viewer.gait.build_gait_scene": lambda *args, **kwargs: None,
-        "hexaleg.output.viewer.gait.write_gait_html": fake_html,
+        "hexaleg.cli.view.build_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.build_gait_scene": lambda *args, **kwargs: None,
+        "hexaleg.cli.view.write_gait_html": fake_html,
+        "hexaleg.cli.gait.write_gait_html": fake_html,
         "hexaleg.cli.view.client": lambda server: None,
         "hexaleg.cli.view.serve_until_stopped": lambda server: None,
-        "hexaleg.explore.server.ExplorerServer": FakeExplorer,
+        "hexaleg.cli.explore.ExplorerServer": FakeExplorer,
     }
     with pytest.MonkeyPatch.context() as monkeypatch:
         for target, value in patches.items():

@@ -18,7 +18,7 @@ import pytest
 from conftest import run_cli
 
 from hexaleg import HexapodDesign
-from hexaleg.actuator_catalog import catalog_from_data, shipped_catalog
+from hexaleg.actuator_catalog import actuators_from_table, catalog_from_data, shipped_catalog
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.metrics import METRICS
@@ -98,7 +98,7 @@ def test_a_point_sets_the_ratio_on_a_log_scale_and_an_entry_without_a_range_keep
     back = space.point(space.design(x))
     assert back[3:6] == pytest.approx([0.5, 0.5, 1.5])
     assert back[6:8] == pytest.approx([0.0, 0.5])
-    reread = Actuators.from_table(chosen.to_table(), CATALOG)  # a design file holds it
+    reread = actuators_from_table(chosen.to_table(), CATALOG)  # a design file holds it
     assert reread == chosen
     kept = search_space(design, 1.0, actuators=entries)  # without ranges: ratios kept
     assert "gear_ratio_hip" not in kept.names

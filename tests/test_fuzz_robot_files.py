@@ -15,6 +15,7 @@ import re
 import subprocess
 import sys
 import time
+import warnings
 import xml.etree.ElementTree as ET
 from pathlib import Path
 
@@ -312,7 +313,7 @@ def test_a_file_without_masses_is_viewed_uncoloured_and_written(tmp_path, capsys
 
 def test_explore_refuses_a_file_without_masses_before_serving(tmp_path, monkeypatch, capsys):
     served = []
-    monkeypatch.setattr("hexaleg.explore.server.ExplorerServer", lambda *a: served.append(a))
+    monkeypatch.setattr("hexaleg.cli.explore.ExplorerServer", lambda *a: served.append(a))
     (tmp_path / "m.urdf").write_text(MASSLESS)
     monkeypatch.chdir(tmp_path)
     assert run_cli(["explore", "--urdf", "m.urdf"]) == 2
@@ -356,3 +357,158 @@ def test_xacro_in_its_limited_process_expands_as_xacro_itself(path):
     started = time.monotonic()
     assert source.read_robot_text(ROBOTS / path) == expected
     assert time.monotonic() - started < 5.0
+
+
+# 4 and 13: a [robot] table's reading keys, and what a robot file fixes given over it
+DESIGN_COMMANDS = [
+    ["design", "show"], ["design", "init", "n.toml"], ["urdf", "-o", "u.urdf"], ["workspace"],
+    ["manipulability"], ["flexibility"], ["loads"], ["gait"], ["simulate"], ["decide"],
+    ["study", "-o", "s"], ["view", "--html", "v.html"], ["explore"], ["report", "-o", "r"],
+]  # fmt: skip
+"""Every command that takes a design (each reads the robot the same way)."""
+ONE_LEG = ("workspace", "manipulability")
+"""The commands of one leg, which take no body options at all (argparse refuses them)."""
+
+OFFSET = "must be three numbers X, Y, Z, each within ±10000 [m]"
+ROBOT_KEYS = {  # a [robot] key as the fuzz run wrote it: the line that refuses it
+    "foot_frame = 5": "robot.foot_frame = 5 is not valid: must be a glob pattern (text)",
+    "foot_offset = [1, 2]": f"robot.foot_offset = [1, 2] is not valid: {OFFSET}",
+    'foot_offset = "x"': f"robot.foot_offset = 'x' is not valid: {OFFSET}",
+    "foot_offset = [inf, 0, 0]": f"robot.foot_offset = [inf, 0, 0] is not valid: {OFFSET}",
+    "foot_offset = [1e300, 0, 0]": f"robot.foot_offset = [1e+300, 0, 0] is not valid: {OFFSET}",
+    "urdf = 5": "robot.urdf = 5 is not valid: must be the robot file's path (text)",
+    "xacro_args = 5": "robot.xacro_args = 5 is not valid: must be a table of NAME = VALUE",
+    "packages = [1]": "robot.packages = [1] is not valid: must be a table of NAME = FOLDER",
+}
+FIXED = "not for a robot file: its body, mounts, stance limits and links are its file's"
+BODY_OPTIONS = {  # an option a robot file fixes, given beside --urdf
+    "--body-length": ["0.5"], "--layout": ["hexagon"], "--front-yaw": ["0.5"],
+    "--middle-leg-offset": ["0.05"], "--body-radius": ["0.3"], "--body-width": ["0.4"],
+    "--first-leg-angle": ["0.4"], "--rear-yaw": ["2.0"],
+}  # fmt: skip
+
+
+def _shown(value: str) -> str:
+    """An option's value as a one-line refusal shows it: a number as is, text quoted."""
+    try:
+        return f"{float(value):g}"
+    except ValueError:
+        return repr(value)
+
+
+def _robot_table(line: str) -> str:
+    """A design file whose [robot] table names Kraby (k.urdf) and holds ``line``."""
+    urdf = "" if line.startswith("urdf =") else 'urdf = "k.urdf"\n'
+    return f"[robot]\n{urdf}{line}\n"
+
+
+TWO_COMMANDS = (["loads"], ["design", "show"])
+"""The commands each row runs on, in turn (the slow sweep runs every command)."""
+
+KEY_CASES = [
+    *(Case(f"{argv[0]}: [robot] {line}", {"k.urdf": KRABY, "d.toml": _robot_table(line)},
+           [*argv, "--design", "d.toml"], message)
+      for (line, message), argv in zip(ROBOT_KEYS.items(), TWO_COMMANDS * 4, strict=True)),
+    *(Case(f"loads --foot-offset {' '.join(values)}", {"k.urdf": KRABY},
+           ["loads", "--urdf", "k.urdf", "--foot-offset", *values],
+           f"--foot-offset = {shown} is not valid: {OFFSET}")
+      for values, shown in ((["inf", "0", "0"], "(inf, 0, 0)"), (["nan", "0", "0"], "(nan, 0, 0)"),
+                            (["1e300", "0", "0"], "(1e+300, 0, 0)"))),
+    *(Case(f"{argv[0]} {option} beside --urdf", {"k.urdf": KRABY},
+           [*argv, "--urdf", "k.urdf", option, *values],
+           f"{option} = {_shown(values[0])} is not valid: {FIXED}")
+      for (option, values), argv in zip(BODY_OPTIONS.items(), TWO_COMMANDS * 4, strict=True)),
+]  # fmt: skip
+
+
+@pytest.fixture
+def no_serving(monkeypatch):
+    """The explorer never serves in these tests: a refusal comes first, or the test fails."""
+    monkeypatch.setattr("hexaleg.cli.explore.ExplorerServer", lambda *a: pytest.fail("served"))
+
+
+@pytest.mark.parametrize("case", KEY_CASES, ids=[case.name for case in KEY_CASES])
+def test_what_a_robot_file_is_read_by_and_fixes_is_refused_in_one_line(
+    tmp_path, monkeypatch, no_serving, case
+):
+    _check(case, tmp_path, monkeypatch)
+
+
+@pytest.fixture(scope="module")
+def imported(tmp_path_factory) -> str:
+    """Kraby's design file as ``design import`` writes it, naming ``k.urdf`` beside it."""
+    folder = tmp_path_factory.mktemp("imported")
+    (folder / "k.urdf").write_text(KRABY)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert (
+            run_cli(["design", "import", str(folder / "k.urdf"), "-o", str(folder / "d.toml")]) == 0
+        )
+    return (folder / "d.toml").read_text()
+
+
+EDITS = {  # a key of an imported design file edited: what it is edited to
+    "body_length": (r"^body_length = .*$", "body_length = 0.5"),
+    "body_width": (r"^body_width = .*$", "body_width = 0.4"),
+    "body_radius": (r"^body_radius = .*$", "body_radius = 0.3"),
+    "mount": (r"^x = 0\.092225.*$", "x = 0.2"),
+    "stance_limits": (r"(\[stance_limits\].*\n)theta1 = .*$", r"\1theta1 = [-0.5, 0.5]"),
+    "front_yaw_deg": (r"^front_yaw = .*$", "front_yaw_deg = 30"),
+}
+"""Each edit's pattern (multi-line) in the imported file, and its replacement."""
+
+
+def _edited(text: str, key: str) -> str:
+    pattern, replacement = EDITS[key]
+    edited, count = re.subn(pattern, replacement, text, count=1, flags=re.M)
+    assert count == 1, key
+    return edited
+
+
+@pytest.mark.parametrize(
+    ("key", "argv"),
+    list(zip(EDITS, TWO_COMMANDS * 3, strict=True)),
+    ids=[f"{key}: {argv[0]}" for key, argv in zip(EDITS, TWO_COMMANDS * 3, strict=True)],
+)
+def test_an_imported_design_file_edited_where_the_robot_file_rules_is_refused(
+    tmp_path, monkeypatch, imported, key, argv
+):
+    files = {"k.urdf": KRABY, "d.toml": _edited(imported, key)}
+    case = Case(
+        f"{key} edited", files, [*argv, "--design", "d.toml"], f"d.toml: {key.removesuffix('_deg')}"
+    )
+    _check(case, tmp_path, monkeypatch)
+
+
+def test_an_imported_design_file_as_written_is_read_without_a_word(tmp_path, capsys, imported):
+    """The oracle of the edits above: unedited, the file is the robot file's design."""
+    (tmp_path / "k.urdf").write_text(KRABY)
+    (tmp_path / "d.toml").write_text(imported)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["design", "show", "--json", "--design", str(tmp_path / "d.toml")]) == 0
+        shown = json.loads(capsys.readouterr().out)
+        assert run_cli(["design", "show", "--json", "--urdf", str(tmp_path / "k.urdf")]) == 0
+    assert shown["design"] == json.loads(capsys.readouterr().out)["design"]
+
+
+@pytest.mark.slow  # every command, each refusing before it computes
+@pytest.mark.parametrize("argv", DESIGN_COMMANDS, ids=" ".join)
+def test_every_command_refuses_what_a_robot_file_fixes_and_a_bad_robot_key(
+    tmp_path, monkeypatch, no_serving, imported, argv
+):
+    offset = "foot_offset = [1, 2]"
+    cases = [
+        Case(f"[robot] {offset}", {"k.urdf": KRABY, "d.toml": _robot_table(offset)},
+             [*argv, "--design", "d.toml"], ROBOT_KEYS[offset]),
+        Case("--body-length beside --urdf", {"k.urdf": KRABY},
+             [*argv, "--urdf", "k.urdf", "--body-length", "0.5"],
+             "unrecognized arguments: --body-length 0.5" if argv[0] in ONE_LEG
+             else f"--body-length = 0.5 is not valid: {FIXED}"),
+        Case("body_length edited", {"k.urdf": KRABY, "d.toml": _edited(imported, "body_length")},
+             [*argv, "--design", "d.toml"], "d.toml: body_length = 0.5 is not the robot file's"),
+    ]  # fmt: skip
+    for case in cases:
+        folder = tmp_path / case.name.replace(" ", "_").replace("/", "_")
+        folder.mkdir()
+        _check(case, folder, monkeypatch)

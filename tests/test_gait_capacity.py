@@ -15,6 +15,7 @@ import pytest
 from conftest import run_cli
 
 from hexaleg import HexapodDesign, HexapodModel, analyze_gait
+from hexaleg.actuator_catalog import actuators_from_table
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.design_file import load_design
 from hexaleg.electrical.ratings import motor_loads
@@ -122,7 +123,7 @@ def _check_against_bisection(design, gait, position, kind):
 )
 def test_catalog_actuators_bind_on_the_rating_the_gait_analysis_breaks_first(knee, kind, text):
     catalog = {"root": "hd_cha_17a_e_100", "hip": "hd_cha_25a_100", "knee": knee}
-    actuators = Actuators.from_table({j: {"catalog": name} for j, name in catalog.items()})
+    actuators = actuators_from_table({j: {"catalog": name} for j, name in catalog.items()})
     design = HexapodDesign(actuators=actuators, **SMALL_LEG)
     found = _check_against_bisection(design, Gait(stride=0.2), None, kind)
     assert str(found.limited_by).endswith(text)

@@ -106,6 +106,29 @@ def test_gait_table_names_the_robot_and_its_max_stride(capsys, kind):
     assert "max stride" in out and "feasible" in out
 
 
+STEP = {"template": "0.1", "kraby": "0.02"}
+"""A step height each kind of robot walks at some stride [m]."""
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_a_stride_beyond_the_max_is_refused_at_the_max_the_robot_walks(capsys, tmp_path, kind):
+    robot = [*robot_argv(kind), "--step-height", STEP[kind]]
+    csv = tmp_path / "gait.csv"
+    assert run_cli(["gait", *robot, "--stride", "5", "--csv", str(csv), "--json"]) == 2
+    out, err = capsys.readouterr()
+    assert out == "" and not csv.exists()
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and "--stride = 5 is not valid" in lines[0], err
+    assert "max stride" in lines[0]
+    # the oracle: that max stride is one the robot walks, a little more one it does not
+    limit = float(lines[0].split("must be at most ")[1].split()[0])
+    small = [*robot, "--samples", "60", "--json"]
+    assert run_cli(["gait", *small, "--stride", str(0.99 * limit)]) == 0
+    assert json.loads(capsys.readouterr().out)["feasible"]
+    assert run_cli(["gait", *small, "--stride", str(1.01 * limit)]) == 2
+
+
 @pytest.mark.slow
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 @pytest.mark.parametrize("kind", KINDS)

@@ -14,7 +14,7 @@ import pytest
 from conftest import run_cli
 from explorer import running
 
-from hexaleg.cli.gait import gait_from_args
+from hexaleg.cli.gait_options import gait_from_args
 from hexaleg.cli.inputs import design_from_args, inputs_from_args
 from hexaleg.cli.main import build_parser
 from hexaleg.design import HexapodDesign

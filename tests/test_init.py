@@ -67,10 +67,12 @@ def test_public_names_come_from_their_modules():
 HEAVY = ("matplotlib", "pandas", "pymoo", "mujoco", "meshcat", "numba", "distributed")
 """Libraries a command imports only when it computes or draws, never to parse its options."""
 
-LIGHT_COMMANDS = ("", "design", "urdf", "workspace", "manipulability", "flexibility", "loads",
-                  "gait", "view")  # fmt: skip
-"""``hexaleg --help`` (``""``) and the commands whose parser stays light. The sweeping
-commands (study, report, decide) read their options' limits from the study layer."""
+LIGHT_COMMANDS = ("", "actuators", "materials", "workspace", "manipulability")
+"""``hexaleg --help`` (``""``) and the commands whose parser stays light. A command's module
+imports its analyses at its top (tools/check_layout.py), and only the chosen command's module
+is imported: those that measure the stance or size the legs' tubes (design, urdf, flexibility,
+loads, gait, simulate, view, explore) import the stance's compiled kernels (Numba) with it;
+the sweeping ones (study, report, decide) the study layer."""
 
 
 def test_building_the_parser_imports_no_heavy_library():

@@ -32,7 +32,7 @@ import pytest
 from conftest import run_cli
 from raw_chain import RawChain, body_pose
 from robot_files import draw_hexapod
-from robots import equal_limits_design
+from robots import KINDS, equal_limits_design, robot_argv
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -406,12 +406,14 @@ def _has(flips, flip):
     return any(np.array_equal(f, flip) for f in flips)
 
 
-def test_the_table_names_the_free_mode_and_its_evidence(capsys, small_search):
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_table_names_the_robot_the_free_mode_and_its_evidence(capsys, small_search, kind):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RobotImportWarning)
-        assert run_cli(["flexibility", "--urdf", str(KRABY), "--mode", "free"]) == 0
+        assert run_cli(["flexibility", *robot_argv(kind), "--mode", "free"]) == 0
     out = capsys.readouterr().out
-    assert f"Body flexibility of {KRABY} (free, stance lf lm lr rf rm rr)" in out
+    named = f"of {KRABY} " if kind == "kraby" else ""
+    assert f"Body flexibility {named}(free, stance lf lm lr rf rm rr)" in out
     assert "evidence" in out and "extremes reached from nominal by a feasible path" in out
 
 

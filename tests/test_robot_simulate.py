@@ -113,7 +113,6 @@ def test_the_simulated_walk_is_drawn_with_the_files_visuals(capsys, tmp_path):
     ("extra", "expected"),
     [
         (["--video", "out.gif"], "--video with --urdf is not supported yet"),
-        (["--stride", "0.5"], "max stride"),
     ],
 )
 def test_simulate_refusals_are_one_line(capsys, tmp_path, extra, expected):

@@ -171,7 +171,6 @@ def test_binding_beyond_loopback_says_what_is_exposed(monkeypatch, capsys):
     from conftest import run_cli
 
     from hexaleg.cli import view
-    from hexaleg.output.viewer import gait, scene
 
     bound = []
 
@@ -182,8 +181,8 @@ def test_binding_beyond_loopback_says_what_is_exposed(monkeypatch, capsys):
             bound.append((host, port, legend))
 
     monkeypatch.setattr(view, "LoopbackServer", Server)
-    monkeypatch.setattr(scene, "build_scene", lambda *args, **kwargs: None)
-    monkeypatch.setattr(gait, "build_gait_scene", lambda *args, **kwargs: None)
+    monkeypatch.setattr(view, "build_scene", lambda *args, **kwargs: None)
+    monkeypatch.setattr(view, "build_gait_scene", lambda *args, **kwargs: None)
     monkeypatch.setattr(view, "client", lambda server: None)
     monkeypatch.setattr(view, "serve_until_stopped", lambda server: None)
     assert run_cli(["view", "--host", "0.0.0.0", "--port", "7010"]) == 0

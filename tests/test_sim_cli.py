@@ -9,6 +9,7 @@ import time
 import numpy as np
 import pytest
 from conftest import run_cli
+from robots import KINDS, robot_argv
 
 from hexaleg import HexapodDesign
 
@@ -30,12 +31,14 @@ def _never(*args, **kwargs):
     raise AssertionError("simulated although the input was refused")
 
 
-def test_an_over_long_stride_exits_2_in_one_line_before_simulating(monkeypatch, capsys):
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_an_over_long_stride_exits_2_in_one_line_before_simulating(monkeypatch, capsys, kind):
     monkeypatch.setattr(simulate, "run_plan", _never)
-    assert run_cli(["simulate", "--stride", "0.9"]) == 2
+    assert run_cli(["simulate", *robot_argv(kind), "--step-height", "0.02", "--stride", "5"]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1
-    assert "stride = 0.9 is not valid" in err and "max stride" in err
+    assert "stride = 5 is not valid" in err and "max stride" in err
 
 
 @pytest.mark.parametrize(

@@ -107,9 +107,9 @@ def test_the_still_is_mujocos_picture_as_png_and_svg(data, tmp_path):
 
 
 def test_without_offscreen_opengl_the_still_is_drawn_as_lines(data, tmp_path, monkeypatch):
-    from hexaleg.sim import video
-
-    monkeypatch.setattr(video, "write_still", lambda *args: RenderOutcome(None, None, ("egl",)))
+    monkeypatch.setattr(
+        simulation, "write_still", lambda *args: RenderOutcome(None, None, ("egl",))
+    )
     simulation.write_files(data, tmp_path)
     svg = (tmp_path / f"{simulation.STILL}.svg").read_text()
     assert "<image" not in svg and "<path" in svg  # lines, not a picture

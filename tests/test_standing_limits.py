@@ -107,7 +107,7 @@ def test_tip_payload_is_where_the_footprint_reaches_an_edge():
     model = HexapodModel(design)
     statics = Statics(model, model.leg_names, Payload(0.0, (3.0, 0.0, 0.05)))
     standing = Standing.of(statics)
-    mass = standing.tip_payload(0.0)
+    mass = standing.tipping.payload(0.0)
     q = model.nominal_configuration()
     assert statics.state(q, payload=statics.payload.with_mass(mass * 0.999)).stability_margin > 0
     assert statics.state(q, payload=statics.payload.with_mass(mass * 1.001)).stability_margin < 0

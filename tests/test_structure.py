@@ -20,12 +20,12 @@ from hexaleg.actuators import Actuator, Actuators
 from hexaleg.design import FOOT_MASS
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.gait.spec import Gait
-from hexaleg.gravity import GRAVITY
+from hexaleg.gravity import GRAVITY, slope_gravity
 from hexaleg.leg_structure import Structure, Tube
 from hexaleg.materials import shipped_materials
 from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import analyze_loads
-from hexaleg.statics.slopes import SLOPE_HEADINGS, slope_gravity
+from hexaleg.statics.slopes import SLOPE_HEADINGS
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
 from hexaleg.structure.wrenches import leg_states
 

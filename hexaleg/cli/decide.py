@@ -7,6 +7,7 @@ import math
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
+from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuator
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
@@ -181,8 +182,6 @@ def _catalog_actuators(
         )
     if not choose:
         return [], None
-    from hexaleg.actuator_catalog import shipped_catalog
-
     entries = list(shipped_catalog())
     ranges = [entry.gear_ratio_range for entry in entries] if free_ratio else None
     return [entry.actuator for entry in entries], ranges

@@ -11,11 +11,12 @@ from hexaleg._io import check_output_file, write_text
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import UsageError, add_design_options, add_robot_options
 from hexaleg.cli.output import print_json, print_table, report_files
-from hexaleg.cli.structure_options import structure_rows, tube_rows
+from hexaleg.cli.structure_rows import structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
 from hexaleg.design_text import structure_example
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.evaluation.requirements_table import example_table
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.gait.spec import Gait
 from hexaleg.ratings import ratings_text
 from hexaleg.robot.robot import Robot
@@ -80,7 +81,7 @@ def run(args: argparse.Namespace) -> int:
         path = _target(args.output, "design import -o", args.force)
         report_files([write_text(path, inputs_from_args(args).robot.design_text(path))])
         return 0
-    inputs = inputs_from_args(args, size=args.action == "show")
+    inputs = inputs_from_args(args, sizing=sized_for if args.action == "show" else None)
     requirements, sized = inputs.written, inputs.sized
     gait = inputs.gait if inputs.gait_given and inputs.gait != inputs.default_gait else None
     if args.action == "init":

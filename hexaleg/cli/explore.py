@@ -10,6 +10,8 @@ from pathlib import Path
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, bounded_int, note
 from hexaleg.exceptions import HexalegError
+from hexaleg.explore.server import ExplorerServer
+from hexaleg.explore.session import Session
 from hexaleg.output.viewer.server import browser_url, is_loopback
 
 DESCRIPTION = (
@@ -57,9 +59,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Serve the explorer until Ctrl-C or SIGTERM."""
-    from hexaleg.explore.server import ExplorerServer
-    from hexaleg.explore.session import Session
-
     inputs = inputs_from_args(args)
     save_to, named = _save_target(args)
     if not is_loopback(args.host):

@@ -5,7 +5,6 @@ from __future__ import annotations
 import argparse
 import math
 import warnings
-from typing import TYPE_CHECKING
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
@@ -16,10 +15,13 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-
-if TYPE_CHECKING:
-    from hexaleg.robot.robot import Robot
-    from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.evaluation.sizing import sized_for
+from hexaleg.output.figures import extremes_figure, save
+from hexaleg.robot.robot import Robot
+from hexaleg.stance.constraints import TRANSLATIONS
+from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+from hexaleg.stance.flexibility import flexibility
+from hexaleg.study.progress import progress_callback
 
 DESCRIPTION = (
     "Body flexibility (paper §6): from the nominal stance the body moves along x, y, z "
@@ -43,9 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
-    from hexaleg.output.figures import extremes_figure, save
-
-    robot = inputs_from_args(args, size=True).robot  # sized tubes are drawn and collide
+    robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes are drawn and collide
     check_outputs({}, {"--plot": args.plot})  # before computing
     result = _extremes(args, robot)
     if args.plot is not None:
@@ -65,10 +65,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _extremes(args: argparse.Namespace, robot: Robot) -> FlexibilityResult:
     """The extremes the options ask for, a progress line per search step."""
-    from hexaleg.stance.extremes import FlexibilityWarning
-    from hexaleg.stance.flexibility import flexibility
-    from hexaleg.study.progress import progress_callback
-
     with warnings.catch_warnings(), progress_callback("search steps") as progress:
         warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
         return flexibility(
@@ -82,8 +78,6 @@ def _extremes(args: argparse.Namespace, robot: Robot) -> FlexibilityResult:
 
 
 def _rows(result: FlexibilityResult) -> list[tuple[str, str]]:
-    from hexaleg.stance.constraints import TRANSLATIONS
-
     rows = [("FB (eq 29)", f"{result.fb:.6f}")]
     for axis, value in result.ranges.items():
         if axis in TRANSLATIONS:

@@ -5,19 +5,13 @@ from __future__ import annotations
 import argparse
 import math
 from pathlib import Path
-from typing import TYPE_CHECKING
-
-import numpy as np
 
 from hexaleg._io import write_text
-from hexaleg._typing import GaitPattern, choices
+from hexaleg.cli.gait_options import add_gait_options, gait_from_args
 from hexaleg.cli.inputs import inputs_from_args
-from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import (
-    UsageError,
     add_design_options,
     add_output_options,
-    bounded_int,
 )
 from hexaleg.cli.output import (
     check_outputs,
@@ -28,18 +22,18 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
-from hexaleg.cli.structure_options import structure_rows
+from hexaleg.cli.payload_options import add_payload_options, payload_from_args
+from hexaleg.cli.structure_rows import structure_rows
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
-from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.output.figures.gait import write_gait_figures
+from hexaleg.output.figures.motors import write_motor_figures
+from hexaleg.output.viewer.gait import write_gait_html
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.robot import Robot
 
-if TYPE_CHECKING:
-    from hexaleg._typing import ArrayF
-    from hexaleg.robot.robot import Robot
-
-DEFAULT = Gait()
 DESCRIPTION = (
     "One gait period of the design (SI units: s, m, kg, N·m, rad/s, W, J): the body walks "
     "at constant velocity, level, at its nominal height; standing feet stay put, swinging "
@@ -71,64 +65,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def add_gait_options(parser: argparse.ArgumentParser) -> None:
-    """The gait's options (gait, simulate): pattern, period, stride, step height, heading..."""
-    group = parser.add_argument_group(
-        "gait (defaults: the --design file's [gait] table, else chosen for the default robot)"
-    )
-    group.add_argument(
-        "--pattern",
-        choices=choices(GaitPattern),
-        help="which legs swing together: three, two or one at a time (default tripod)",
-    )
-    for flag, metavar, what in (
-        ("--period", "S", "period T [s]"),
-        ("--stride", "M", "stride S, how far a standing foot moves relative to the body [m]"),
-        ("--step-height", "M", "step height H, the swinging foot's top above the ground [m]"),
-        ("--heading", "RAD", "direction of travel ψ in the body frame [rad] (0: ahead)"),
-    ):
-        name = flag[2:].replace("-", "_")
-        group.add_argument(
-            flag, type=float, metavar=metavar, help=f"{what} (default {getattr(DEFAULT, name):g})"
-        )
-    group.add_argument(
-        "--speed",
-        type=float,
-        metavar="M/S",
-        help="body speed v [m/s]: sets the period from the stride, T = S/(β·v)",
-    )
-    group.add_argument(
-        "--samples",
-        type=bounded_int(*SAMPLES_RANGE),
-        metavar="N",
-        help=f"samples per period, {SAMPLES_RANGE[0]}..{SAMPLES_RANGE[1]} "
-        f"(default {DEFAULT.samples})",
-    )
-
-
-def gait_from_args(args: argparse.Namespace, base: Gait) -> Gait:
-    """The gait the options describe (validated), over ``base``: the gait the robot walks.
-
-    ``base``: the ``--design`` file's ``[gait]`` over the robot's own default gait (a robot
-    file's is sized to it: :attr:`~hexaleg.cli.inputs.Inputs.gait`).
-
-    The options given override the table's keys, as they would the defaults: the table's
-    ``speed`` has set its period, so ``--stride`` alone keeps that period.
-    """
-    if args.speed is not None and args.period is not None:
-        raise UsageError("--speed sets the period: give --speed or --period, not both")
-    changes = {
-        name: getattr(args, name)
-        for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
-        if getattr(args, name) is not None
-    }
-    gait = base.replace(**changes)
-    return gait if args.speed is None else gait.with_speed(args.speed)
-
-
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    inputs = inputs_from_args(args, size=True)
+    inputs = inputs_from_args(args, sizing=sized_for)
     robot, sized = inputs.robot, inputs.sized
     model = robot.model
     gait = gait_from_args(args, inputs.gait)
@@ -149,8 +88,6 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:
         write_plots(args.plot, lambda out: _write_figures(analysis, model, out))
     if args.html is not None:
-        from hexaleg.output.viewer.gait import write_gait_html
-
         written.append(write_gait_html(model, analysis, args.html))
     report_files(written)
     summary = summary_stream(args.csv, args.html)
@@ -170,53 +107,16 @@ def _write_csv(analysis: GaitAnalysis, path: Path, robot: Robot) -> Path:
     """The time series, a robot file's joints also in the file's own (``_urdf_*`` columns)."""
     import pandas as pd
 
-    columns = analysis.time_series() | file_columns(analysis, robot)
+    in_file = robot.file_columns(analysis.legs, analysis.joint_angles, analysis.joint_torques)
+    columns = analysis.time_series() | in_file
     return write_text(path, pd.DataFrame(columns).to_csv(index=False))
 
 
-def file_columns(analysis: GaitAnalysis, robot: Robot) -> dict[str, ArrayF]:
-    """The period in a robot file's own joints, as named columns (N,) each; none for the template.
-
-    Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
-    (s·τ, the torque about the file's joint axis) [N·m].
-    """
-    columns: dict[str, ArrayF] = {}
-    for i, leg in enumerate(analysis.legs):
-        angles = robot.in_file_joints({leg: analysis.joint_angles[:, i]})
-        if not angles:
-            return columns
-        values = angles["urdf_joint_angles"][leg]
-        torques = robot.model.joint_signs(leg) * analysis.joint_torques[:, i]
-        for j, joint in enumerate(LEG_JOINTS):
-            columns[f"{leg}_{joint}_urdf_q"] = np.asarray(values)[:, j]
-            columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
-    return columns
-
-
 def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> list[Path]:
-    from hexaleg.output.figures.gait import write_gait_figures
-
-    written = write_gait_figures(analysis, out, reach_clouds(analysis, model))
+    written = write_gait_figures(analysis, out, analysis.reach_clouds(model))
     if analysis.electrical is not None:
-        from hexaleg.output.figures.motors import write_motor_figures
-
         written += write_motor_figures(analysis, out)
     return written
-
-
-def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
-    """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
-
-    Each leg by its own leg within the limits that hold it standing
-    (:func:`~hexaleg.swing.workspace.standing_reach`).
-    """
-    from hexaleg.swing.workspace import standing_reach
-
-    clouds = standing_reach(model)
-    return {
-        leg: analysis.frames.points_in_body(clouds[leg].points)[i]
-        for i, leg in enumerate(analysis.legs)
-    }
 
 
 def _feasible(analysis: GaitAnalysis) -> str:

@@ -1,39 +1,25 @@
-"""What a command's design options resolve to, once: the robot, the requirements, the gait.
+"""A command's design options, parsed into what resolves them: the design, the robot file.
 
-Every command that takes a design reads it here, the same way: the ``--design`` file is
-read and parsed once (:func:`~hexaleg.design_file.read_design_file`), its design,
-``[requirements]``, ``[gait]``, ``[structure]`` and ``[robot]`` tables taken from that one
-reading; the options given beside it override its values; the legs' tubes are sized first
-where the file asks and the command measures them (``size = true``,
-:func:`~hexaleg.cli.structure_options.size_if_asked`); and the robot is built once
-(:meth:`~hexaleg.robot.robot.Robot.build`) from ``--urdf FILE`` (or the file's ``[robot]``
-table) and its reading options, or is hexaleg's template at the design. The gait it walks is
-the file's ``[gait]`` over the robot's own default gait
-(:func:`~hexaleg.gait.defaults.default_gait`), found once, when first asked.
+The ``--design`` file is read and parsed once (:func:`~hexaleg.design_file.read_design_file`);
+the options given beside it set design fields over its design, and say which robot file to
+read and how (``--urdf FILE`` and its reading options over the file's ``[robot]`` table).
+What they resolve to, the robot built once with its requirements and gait, is
+:func:`hexaleg.evaluation.inputs.resolve_inputs`' to say; this module only parses.
 """
 
 from __future__ import annotations
 
 import argparse
-from dataclasses import dataclass
-from functools import cached_property
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from hexaleg.cli.options import DESIGN_FLAGS, UsageError, note
-from hexaleg.cli.structure_options import IMPORTED, size_if_asked
 from hexaleg.design import DEFAULT_LEG_LENGTH, SEGMENTS, HexapodDesign
-from hexaleg.design_file import GAIT, REQUIREMENTS, DesignFile, read_design_file
-from hexaleg.evaluation.requirements import Requirements
-from hexaleg.gait.defaults import default_gait
-from hexaleg.gait.spec import Gait
+from hexaleg.design_file import DesignFile, read_design_file
+from hexaleg.evaluation.inputs import Inputs, Sizing, resolve_inputs
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.recipe import RobotSource, SegmentLength
-from hexaleg.robot.robot import Robot
 from hexaleg.robot.robot_table import table_source
-
-if TYPE_CHECKING:
-    from hexaleg.structure.sizing import SizedStructure
 
 __all__ = ["Inputs", "design_from_args", "inputs_from_args", "study_total"]
 
@@ -41,72 +27,14 @@ READING_OPTIONS = ("xacro_arg", "package", "foot_frame", "foot_offset", "lock_jo
 """How a robot file is read: options that need one."""
 
 
-@dataclass(frozen=True)
-class Inputs:
-    """What the design options and the ``--design`` file resolve to.
-
-    Attributes:
-        robot: The robot to analyse, built once (its tubes sized if asked).
-        written: The file's ``[requirements]`` as written (none given: nothing required),
-            walking the file's ``[gait]`` over :class:`~hexaleg.gait.spec.Gait`'s defaults.
-        file: The ``--design`` file as read, if one was given.
-        sized: How the tubes were sized, where the file's ``[structure]`` asked and the
-            command measures them.
-
-    """
-
-    robot: Robot
-    written: Requirements
-    file: DesignFile | None = None
-    sized: SizedStructure | None = None
-
-    @property
-    def design(self) -> HexapodDesign:
-        """The robot's design."""
-        return self.robot.design
-
-    @cached_property
-    def default_gait(self) -> Gait:
-        """The gait the robot walks without a ``[gait]`` table, found once.
-
-        :class:`Gait`'s defaults for hexaleg's template; a robot file's own, scaled to its
-        legs (:func:`~hexaleg.gait.defaults.default_gait`).
-        """
-        return default_gait(self.robot.model)
-
-    @cached_property
-    def gait(self) -> Gait:
-        """The gait walked: the file's ``[gait]`` keys over :attr:`default_gait`."""
-        base = self.default_gait
-        if self.file is None:
-            return base
-        if base == Gait():  # the file's [gait] over Gait()'s, as read already
-            return self.written.walked
-        return self.file.table(GAIT, lambda table: Gait.from_table(table, base))
-
-    @property
-    def gait_given(self) -> bool:
-        """Whether the design file gives a ``[gait]`` table."""
-        return self.file is not None and GAIT in self.file.data
-
-    @cached_property
-    def requirements(self) -> Requirements:
-        """The file's requirements, walking :attr:`gait`."""
-        return self.written.walking(self.gait)
-
-
-def inputs_from_args(args: argparse.Namespace, *, size: bool = False) -> Inputs:
+def inputs_from_args(args: argparse.Namespace, *, sizing: Sizing | None = None) -> Inputs:
     """The robot, requirements and gait that the design options and ``--design`` describe.
-
-    The file is read once, and every command reads it the same way: a bad
-    ``[requirements]`` or ``[gait]`` table, or a ``[structure]`` on a robot file whose links
-    are its own, is refused by a command that does not use it too.
 
     Args:
         args: The parsed options.
-        size: Size the legs' tubes first where the file's ``[structure]`` says
-            ``size = true`` (the commands that measure the tubes), for the file's required
-            payload and slope.
+        sizing: How a command that measures the legs' tubes sizes them first, where the
+            file's ``[structure]`` says ``size = true``
+            (:func:`~hexaleg.evaluation.sizing.sized_for`).
 
     Raises:
         HexalegError: A bad option, design file or robot file, in one line.
@@ -115,26 +43,11 @@ def inputs_from_args(args: argparse.Namespace, *, size: bool = False) -> Inputs:
     path = getattr(args, "design", None)
     file = None if path is None else read_design_file(path)
     base = HexapodDesign() if file is None else file.design()
-    requirements = (
-        Requirements() if file is None else file.table(REQUIREMENTS, Requirements.from_table)
-    )
-    if file is not None:
-        requirements = requirements.walking(file.table(GAIT, Gait.from_table))
     source = _source(args, file)
-    design = _design(args, base, source)
-    robot = Robot.build(source, design)
-    if design.structure is not None and not robot.design_links:
-        raise UsageError(IMPORTED)
-    sized = None
-    if size:
-        sized_design, sized = size_if_asked(design, requirements)
-        if sized is not None:
-            robot = Robot.build(source, sized_design)
-    table = None if file is None or getattr(args, "urdf", None) else file.robot_table()
-    if table is not None and file is not None:
-        given = {name for name in SEGMENTS if getattr(args, name, None) is not None}
-        robot.check_written_lengths(file.data, given, str(file.path))
-    return Inputs(robot, requirements, file, sized)
+    given = _given(args)
+    design = _design(args, base, source, given)
+    of_file = file is not None and source.path is not None and getattr(args, "urdf", None) is None
+    return resolve_inputs(design, source, file, given=given, robot_of_file=of_file, sizing=sizing)
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
@@ -142,18 +55,24 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     return inputs_from_args(args).design
 
 
-def _design(args: argparse.Namespace, base: HexapodDesign, source: RobotSource) -> HexapodDesign:
-    """The design the options set over ``base``: a robot file's segments go to its source."""
-    changes: dict[str, Any] = {
-        name: _value(getattr(args, name))
-        for name in DESIGN_FLAGS
-        if getattr(args, name, None) is not None
+def _given(args: argparse.Namespace) -> dict[str, Any]:
+    """The design fields the options set, with their values (a list of numbers a tuple)."""
+    names = (*SEGMENTS, *DESIGN_FLAGS)
+    return {
+        name: _value(getattr(args, name)) for name in names if getattr(args, name, None) is not None
     }
+
+
+def _design(
+    args: argparse.Namespace, base: HexapodDesign, source: RobotSource, given: dict[str, Any]
+) -> HexapodDesign:
+    """The design the options set over ``base``: a robot file's segments go to its source."""
+    changes = {name: value for name, value in given.items() if name not in SEGMENTS}
     path = getattr(args, "design", None)
     if getattr(args, "ratios", None) is not None:
-        given = [f"--{n}" for n in SEGMENTS if getattr(args, n) is not None]
-        if given:
-            raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
+        typed = [f"--{n}" for n in SEGMENTS if n in given]
+        if typed:
+            raise UsageError(f"--ratios cannot be combined with {', '.join(typed)}")
         if source.path is not None:
             raise UsageError("--ratios with --urdf: give --l1 --l2 --l3 to change the segments")
         total = study_total(args, base)
@@ -164,7 +83,7 @@ def _design(args: argparse.Namespace, base: HexapodDesign, source: RobotSource) 
     if getattr(args, "total", None) is not None and hasattr(args, "ratios"):
         raise UsageError("--total only applies together with --ratios")
     if source.path is None:  # a robot file's --l1 --l2 --l3 change its file (_source)
-        changes |= {n: getattr(args, n) for n in SEGMENTS if getattr(args, n, None) is not None}
+        changes |= {name: value for name, value in given.items() if name in SEGMENTS}
     return base.replace(**changes) if changes else base
 
 

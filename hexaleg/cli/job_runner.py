@@ -10,15 +10,15 @@ from __future__ import annotations
 
 import sys
 
+from hexaleg.cli.main import main as hexaleg
+from hexaleg.study import progress
+
 INTERVAL = 0.0
 """Least time between two progress lines of a job [s]: none, a line per step."""
 
 
 def main(argv: list[str]) -> int:
     """Run ``hexaleg`` with ``argv``, a progress line at every step."""
-    from hexaleg.cli.main import main as hexaleg
-    from hexaleg.study import progress
-
     progress.INTERVAL = INTERVAL
     return hexaleg(argv)
 

@@ -4,10 +4,7 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import TYPE_CHECKING
 
-from hexaleg._checks import require_in_range
-from hexaleg._typing import Distribution, choices
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
@@ -16,17 +13,17 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.structure_options import structure_rows
+from hexaleg.cli.payload_options import add_payload_options, payload_from_args
+from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
+from hexaleg.evaluation.sizing import sized_for
+from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.output.figures import loads_figure, save
 from hexaleg.ratings import NEEDS_RATING
-from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
-
-if TYPE_CHECKING:
-    from hexaleg.gait.capacity import WalkingCapacity
-    from hexaleg.statics.loads import LoadsAnalysis
+from hexaleg.statics.loads import LoadsAnalysis, analyze_loads
 
 DESCRIPTION = (
     "Statics of the design (SI units: N, N·m, kg, m, rad): the foot forces balancing "
@@ -51,58 +48,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_output_options(parser)
 
 
-def add_payload_options(parser: argparse.ArgumentParser) -> None:
-    """``--payload``, ``--payload-at``, ``--friction`` and ``--distribution`` (loads, gait)."""
-    parser.add_argument(
-        "--payload", type=float, default=0.0, metavar="KG", help="payload mass [kg] (default 0)"
-    )
-    parser.add_argument(
-        "--payload-at",
-        type=float,
-        nargs=3,
-        metavar=("X", "Y", "Z"),
-        help=f"payload position in the body frame, each coordinate in [-{PAYLOAD_REACH:g}, "
-        f"{PAYLOAD_REACH:g}] [m] (default: the centre of the top face)",
-    )
-    parser.add_argument(
-        "--friction",
-        type=float,
-        default=DEFAULT_FRICTION,
-        metavar="MU",
-        help="friction coefficient between feet and ground, in [{:g}, {:g}] [-] ".format(
-            *FRICTION_RANGE
-        )
-        + f"(default {DEFAULT_FRICTION})",
-    )
-    parser.add_argument(
-        "--distribution",
-        choices=choices(Distribution),
-        default="min-norm",
-        help="how the feet share the load: least forces (default) or least torque/rating",
-    )
-
-
-def payload_from_args(args: argparse.Namespace) -> Payload:
-    """The payload ``--payload`` and ``--payload-at`` describe (validated)."""
-    if args.payload_at is None:
-        return Payload(args.payload)
-    return Payload(args.payload, payload_at_from_args(args.payload_at))
-
-
-def payload_at_from_args(values: list[float]) -> tuple[float, float, float]:
-    """``--payload-at X Y Z`` checked: each coordinate within ±:data:`PAYLOAD_REACH` [m]."""
-    reach = PAYLOAD_REACH
-    x, y, z = (require_in_range("--payload-at", v, -reach, reach, "m") for v in values)
-    return (x, y, z)
-
-
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
-    from hexaleg.gait.capacity import walking_payload_capacity
-    from hexaleg.output.figures import loads_figure, save
-    from hexaleg.statics.loads import analyze_loads
-
-    inputs = inputs_from_args(args, size=True)
+    inputs = inputs_from_args(args, sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload = payload_from_args(args)

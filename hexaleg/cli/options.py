@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import Any, cast
+from typing import cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
 from hexaleg.design import (
@@ -17,6 +17,7 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.field_sweep import MAX_SWEEP_POINTS, SWEEPABLE, FieldSweep
 from hexaleg.layouts import Layout
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
@@ -293,8 +294,6 @@ def add_l1_ratios_option(parser: argparse.ArgumentParser, default: str) -> None:
 
 def add_field_sweep_option(parser: argparse.ArgumentParser, what: str) -> None:
     """``--sweep FIELD=START:STOP:COUNT``: a body field swept in the sensitivity table."""
-    from hexaleg.study.sensitivity import MAX_SWEEP_POINTS, SWEEPABLE
-
     parser.add_argument(
         "--sweep",
         metavar="FIELD=A:B:N",
@@ -303,10 +302,8 @@ def add_field_sweep_option(parser: argparse.ArgumentParser, what: str) -> None:
     )
 
 
-def field_sweep_from_args(args: argparse.Namespace) -> Any:
-    """The parsed ``--sweep`` (a :class:`~hexaleg.study.sensitivity.FieldSweep`) or ``None``."""
-    from hexaleg.study.sensitivity import FieldSweep
-
+def field_sweep_from_args(args: argparse.Namespace) -> FieldSweep | None:
+    """The parsed ``--sweep`` or ``None``."""
     return None if args.sweep is None else FieldSweep.parse(args.sweep)
 
 

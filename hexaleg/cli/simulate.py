@@ -7,9 +7,8 @@ import math
 from pathlib import Path
 
 from hexaleg._typing import Controller, choices
-from hexaleg.cli.gait import add_gait_options, gait_from_args
+from hexaleg.cli.gait_options import add_gait_options, gait_from_args
 from hexaleg.cli.inputs import inputs_from_args
-from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import UsageError, add_design_options, bounded_int, note
 from hexaleg.cli.output import (
     check_outputs,
@@ -19,11 +18,14 @@ from hexaleg.cli.output import (
     report_files,
     summary_stream,
 )
+from hexaleg.cli.payload_options import add_payload_options, payload_from_args
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.output.viewer.gait import write_motion_html
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import CYCLES_RANGE, DEFAULT_CYCLES, simulate_gait
-from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path
+from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path, write_video
 from hexaleg.statics.ratings import rating_use
 
 DESCRIPTION = (
@@ -92,7 +94,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    inputs = inputs_from_args(args, size=True)  # sized tubes: their masses and shapes
+    inputs = inputs_from_args(args, sizing=sized_for)  # sized tubes: their masses and shapes
     robot = inputs.robot
     model = robot.model
     gait = gait_from_args(args, inputs.gait)
@@ -135,15 +137,11 @@ def run(args: argparse.Namespace) -> int:
 
 def _animation(result: SimulationResult, model: HexapodModel, path: str) -> Path:
     """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
-    from hexaleg.output.viewer.gait import write_motion_html
-
     ratios = rating_use(result.frame_torques, result.design.rated_torques)
     return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
 
 
 def _video(result: SimulationResult, path: str) -> list[Path]:
-    from hexaleg.sim.video import write_video
-
     outcome = write_video(result.sim_model(), result.frames, result.frame_rate, path)
     if outcome.path is None:
         note(

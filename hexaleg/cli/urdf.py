@@ -8,6 +8,7 @@ from hexaleg._io import write_text
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, note
 from hexaleg.cli.output import check_outputs, refuse_inputs_as_outputs, report_files
+from hexaleg.evaluation.sizing import sized_for
 
 DESCRIPTION = (
     "Render the hexapod URDF from the Xacro templates for the given design. Joint "
@@ -33,7 +34,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
-    robot = inputs_from_args(args, size=True).robot  # sized tubes: their links
+    robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes: their links
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
     named = f"--urdf {args.urdf}" if args.urdf else "the --design file's [robot] urdf"

@@ -5,23 +5,28 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any
+from typing import Any
 
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import add_design_options, add_stance_option, bounded_int, note
 from hexaleg.cli.output import check_outputs, report_files
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import ParameterError
+from hexaleg.gait.analysis import analyze_gait, require_walkable
+from hexaleg.gait.spec import Gait
+from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
+from hexaleg.output.viewer.scene import build_scene, write_static_html
 from hexaleg.output.viewer.server import (
     LoopbackServer,
     client,
     is_loopback,
     serve_until_stopped,
 )
-
-if TYPE_CHECKING:
-    from hexaleg.gait.spec import Gait
-    from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.imported_model import has_masses
+from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.statics.loads import loads_at_extremes
 
 DESCRIPTION = (
     "Serve a meshcat scene of the hexapod: ground, footholds, the nominal stance and the "
@@ -57,12 +62,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
-    from hexaleg.output.viewer.scene import build_scene, write_static_html
-    from hexaleg.robot.imported_model import has_masses
-    from hexaleg.stance.axis_locked import axis_locked_flexibility
-    from hexaleg.statics.loads import loads_at_extremes
-
-    inputs = inputs_from_args(args, size=True)  # sized tubes are drawn
+    inputs = inputs_from_args(args, sizing=sized_for)  # sized tubes are drawn
     check_outputs({"--html": args.html})
     model = inputs.robot.model
     missing = model.missing_meshes_note("not drawn")
@@ -88,9 +88,6 @@ def run(args: argparse.Namespace) -> int:
 
 def _view_gait(model: HexapodModel, gait: Gait, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
-    from hexaleg.gait.analysis import analyze_gait, require_walkable
-    from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
-
     analysis = analyze_gait(model.design, gait, model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:

@@ -39,6 +39,7 @@ from typing import Any
 from urllib.parse import parse_qsl, urlsplit
 
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.explore.jobs import require_job_kind
 from hexaleg.explore.session import Session
 from hexaleg.output.viewer.server import is_loopback
 
@@ -261,8 +262,6 @@ def _host_and_port(host: str) -> tuple[str, int] | None:
 
 def _kind(params: dict[str, str]) -> str:
     """The job a request names (``kind``), taken out of the design's keys."""
-    from hexaleg.explore.jobs import require_job_kind
-
     return require_job_kind(params.pop("kind", ""))
 
 

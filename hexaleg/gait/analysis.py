@@ -36,6 +36,7 @@ from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
 from hexaleg.statics.ratings import OverRating, at_times, over_rating
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.walking import check_walking
+from hexaleg.swing.workspace import standing_reach
 
 
 @dataclass(frozen=True)
@@ -197,6 +198,18 @@ class GaitAnalysis:
             for axis, k in (("x", 0), ("y", 1), ("z", 2)):
                 columns[f"{leg}_f{axis}"] = self.foot_forces[:, i, k]
         return columns | ({} if self.electrical is None else self.electrical.time_series())
+
+    def reach_clouds(self, model: HexapodModel) -> dict[str, ArrayF]:
+        """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
+
+        Each leg by its own leg within the limits that hold it standing
+        (:func:`~hexaleg.swing.workspace.standing_reach`), ``model`` this period's robot.
+        """
+        clouds = standing_reach(model)
+        return {
+            leg: self.frames.points_in_body(clouds[leg].points)[i]
+            for i, leg in enumerate(self.legs)
+        }
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready summary (SI: s, m, kg, N·m, rad/s, W, J); the time series are left out."""

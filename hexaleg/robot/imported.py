@@ -15,7 +15,6 @@ import xml.etree.ElementTree as ET
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -37,9 +36,6 @@ from hexaleg.robot.leg_names import leg_directions, leg_names
 from hexaleg.robot.legs import LegReading, read_leg
 from hexaleg.robot.packages import PackageFolders
 from hexaleg.robot.source import Packages, read_robot_text
-
-if TYPE_CHECKING:
-    from hexaleg.robot.resize import SegmentChange
 
 
 @dataclass(frozen=True, eq=False)
@@ -97,6 +93,39 @@ class ImportedLeg:
         """The file's ``effort`` [N·m] and ``velocity`` [rad/s] per joint (``None``: not given)."""
         joints = self.chain.joints
         return tuple(j.effort for j in joints), tuple(j.velocity for j in joints)
+
+
+@dataclass(frozen=True)
+class SegmentChange:
+    """One segment changed from the file's length.
+
+    Attributes:
+        leg: The leg's name (``lf`` … ``rr``).
+        segment: ``coxa``, ``femur`` or ``tibia``.
+        file_length: Its length as the file draws it [m].
+        length: Its length now [m].
+
+    """
+
+    leg: str
+    segment: str
+    file_length: float
+    length: float
+
+    @property
+    def ratio(self) -> float:
+        """The stretch k = length / file_length [-] of the segment, and of its mass."""
+        return self.length / self.file_length
+
+    def as_dict(self) -> dict[str, float | str]:
+        """JSON-ready, SI units."""
+        return {
+            "leg": self.leg,
+            "segment": self.segment,
+            "file_length": self.file_length,
+            "length": self.length,
+            "mass_ratio": self.ratio,
+        }
 
 
 @dataclass(frozen=True, eq=False)

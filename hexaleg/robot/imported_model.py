@@ -51,6 +51,7 @@ from hexaleg.robot.imported import (
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
+from hexaleg.robot.resize import SAME_LENGTH, resize_robot
 from hexaleg.robot.robot_design import NO_MASSES, body_depth, mount_plane, robot_design
 from hexaleg.robot.standing import LEVEL_FEET, standing_posture
 
@@ -135,8 +136,6 @@ def resized_model(
         ParameterError: A length out of range, or a coxa of length 0 changed.
 
     """
-    from hexaleg.robot.resize import SAME_LENGTH, resize_robot
-
     changed = {}
     for leg in robot.legs:
         own = dict(zip(SEGMENT_NAMES, leg.reading.geometry.lengths, strict=True))

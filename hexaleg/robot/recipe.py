@@ -10,6 +10,7 @@ is the empty one, ``RobotSource()``.
 from __future__ import annotations
 
 import hashlib
+import math
 import os
 import warnings
 from collections.abc import Mapping, Sequence
@@ -21,8 +22,9 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import ImportedRobot, import_robot
 from hexaleg.robot.resize import resize_robot
+from hexaleg.robot.urdf_numbers import MAX_LENGTH
 
-__all__ = ["TEMPLATE_NAME", "RobotSource", "SegmentLength"]
+__all__ = ["TEMPLATE_NAME", "RobotSource", "SegmentLength", "foot_offset_of"]
 
 TEMPLATE_NAME = "hexaleg's template"
 """What names the robot hexaleg renders from its Xacro templates at a design's numbers."""
@@ -79,8 +81,9 @@ class RobotSource:
         object.__setattr__(self, "packages", tuple(sorted(dict(self.packages).items())))
         object.__setattr__(self, "lock", tuple(dict.fromkeys(self.lock)))
         if self.foot_offset is not None:
-            x, y, z = (float(v) for v in self.foot_offset)
-            object.__setattr__(self, "foot_offset", (x, y, z))
+            object.__setattr__(self, "foot_offset", foot_offset_of(self.foot_offset))
+        if self.foot_frame is not None and not isinstance(self.foot_frame, str):
+            raise ParameterError("foot_frame", self.foot_frame, "must be a glob pattern (text)")
         if self.foot_frame is not None and self.foot_offset is not None:
             raise ParameterError(
                 "foot_offset", self.foot_offset, "excludes foot_frame (--foot-frame): give one"
@@ -138,6 +141,25 @@ class RobotSource:
             "segments": [[s.leg, s.segment, s.length] for s in self.segments],
             **({"lock": list(self.lock)} if self.lock else {}),
         }
+
+
+def foot_offset_of(value: Any, field: str = "foot_offset") -> tuple[float, float, float]:
+    """A foot offset: three numbers X, Y, Z [m], each within a robot's ±:data:`MAX_LENGTH`.
+
+    Raises:
+        ParameterError: Naming ``field``: not three numbers, or one not finite or too large.
+
+    """
+    allowed = f"must be three numbers X, Y, Z, each within ±{MAX_LENGTH:g} [m]"
+    if isinstance(value, str | bytes) or not isinstance(value, Sequence) or len(value) != 3:
+        raise ParameterError(field, value, allowed)
+    for number in value:
+        if isinstance(number, bool) or not isinstance(number, int | float):
+            raise ParameterError(field, value, allowed)
+        if not abs(number) <= MAX_LENGTH or not math.isfinite(number):  # nan: not <=
+            raise ParameterError(field, value, allowed)
+    x, y, z = (float(number) for number in value)
+    return (x, y, z)
 
 
 _OPTIONS = ("xacro_args", "packages", "foot_offset", "foot_frame", "segments", "lock")

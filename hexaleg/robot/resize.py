@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 import pinocchio as pin
@@ -46,7 +46,7 @@ from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.chains import LegChain
 from hexaleg.robot.description import Inertial, RobotDescription, parse_urdf
 from hexaleg.robot.feet import Foot
-from hexaleg.robot.imported import ImportedLeg, ImportedRobot, segment_masses
+from hexaleg.robot.imported import ImportedLeg, ImportedRobot, SegmentChange, segment_masses
 from hexaleg.robot.legs import read_leg
 
 SAME_LENGTH = 1e-9
@@ -57,39 +57,6 @@ CYLINDER_RADIUS = 0.1
 
 Lengths = Mapping[str, Mapping[str, float]]
 """New segment lengths [m] by leg name (``lf`` … ``rr``), then segment (coxa, femur, tibia)."""
-
-
-@dataclass(frozen=True)
-class SegmentChange:
-    """One segment changed from the file's length.
-
-    Attributes:
-        leg: The leg's name (``lf`` … ``rr``).
-        segment: ``coxa``, ``femur`` or ``tibia``.
-        file_length: Its length as the file draws it [m].
-        length: Its length now [m].
-
-    """
-
-    leg: str
-    segment: str
-    file_length: float
-    length: float
-
-    @property
-    def ratio(self) -> float:
-        """The stretch k = length / file_length [-] of the segment, and of its mass."""
-        return self.length / self.file_length
-
-    def as_dict(self) -> dict[str, float | str]:
-        """JSON-ready, SI units."""
-        return {
-            "leg": self.leg,
-            "segment": self.segment,
-            "file_length": self.file_length,
-            "length": self.length,
-            "mass_ratio": self.ratio,
-        }
 
 
 def resize_robot(

@@ -19,18 +19,22 @@ at other lengths it is the file with every leg's segments changed along their ow
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import fields
 from functools import lru_cache
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import tomli_w
 
+from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign, ratio_lengths
+from hexaleg.design_file import DesignFile
 from hexaleg.design_text import design_toml
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
 from hexaleg.robot.imported_model import (
     ImportedHexapodModel,
@@ -42,11 +46,11 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.robot.recipe import TEMPLATE_NAME, RobotSource
 from hexaleg.robot.resize import SAME_LENGTH, changes_note
-from hexaleg.robot.robot_design import robot_record
-from hexaleg.robot.robot_table import check_written_lengths, robot_table
+from hexaleg.robot.robot_design import robot_design, robot_record
+from hexaleg.robot.robot_table import check_written_fixed, check_written_lengths, robot_table
 from hexaleg.robot.urdf import render_hexapod
 
-__all__ = ["FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers", "robot_of"]
+__all__ = ["FILE_FIXES", "FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers", "robot_of"]
 
 SEGMENT_SPAN = 0.5
 """A decision searches a robot file's segment within this share of its own length either
@@ -56,6 +60,30 @@ FILE_TAKES = frozenset((*SEGMENTS, "nominal_angles"))
 """The design fields a robot file's robot takes from a caller: its segments (every leg's,
 changed along their own lines) and its posture. Its body, mounts, masses, limits and
 ratings are the file's (and the design file's overrides it was built over)."""
+
+FILE_FIXES = frozenset(
+    (
+        "body_length",
+        "body_width",
+        "layout",
+        "body_radius",
+        "first_leg_angle",
+        "middle_leg_offset",
+        "front_yaw",
+        "rear_yaw",
+        "mounts",
+        "stance_limits",
+        "link_linear_density",
+        "link_radius",
+    )
+)
+"""The design fields a robot file never takes from the design it is built over: its body's
+size and layout and its legs' mounts are its file's, each leg stands within its own joint
+limits, and its links' masses and shapes are the file's. (Its body height is the file's leg's
+below the design's; its body mass and ratings may be overridden, :mod:`.robot_design`.)"""
+
+FIXED = "not for a robot file: its body, mounts, stance limits and links are its file's"
+"""Why a field of :data:`FILE_FIXES` given over a robot file is refused."""
 
 Lengths = tuple[float, float, float]
 """(l1, l2, l3): coxa, femur and tibia [m]."""
@@ -300,22 +328,36 @@ class Robot:
             bounds[name] = (lower, upper)
         return bounds
 
-    def check_written_lengths(
-        self, written: Mapping[str, Any], overridden: set[str], where: str
-    ) -> None:
-        """Refuse a design file of this robot file whose ``l1 l2 l3`` are not the file's.
+    def check_over(self, given: Mapping[str, Any], file: DesignFile | None = None) -> None:
+        """Refuse what a robot file fixes, given over it: silently ignored, it would mislead.
 
-        A robot file's segments are read from it (changed in ``[robot.segments]``); the
-        design file's own lengths, unless ``overridden`` on the command line, must be the
-        file's (:func:`~hexaleg.robot.robot_table.check_written_lengths`). The template's
-        design file gives its lengths itself: nothing to check.
+        Args:
+            given: The design fields given over the design (a command's options), with
+                their values: none of :data:`FILE_FIXES`.
+            file: The design file written from this robot file (its ``[robot]`` table's),
+                if it is: its keys of :data:`FILE_FIXES` must hold the file's values, and
+                its ``l1 l2 l3`` the file's segments unless ``given``
+                (:func:`~hexaleg.robot.robot_table.check_written_lengths`). The template
+                takes everything: nothing to check.
 
         Raises:
-            DesignFileError: Naming the key, its value and the file's length.
+            ParameterError: A field of ``given`` the robot file fixes.
+            DesignFileError: A key of ``file`` edited from the robot file's value.
 
         """
-        if self._given is not None:
-            check_written_lengths(_file_lengths(self._given), written, overridden, where)
+        if self._given is None:
+            return
+        for name, value in given.items():
+            if name in FILE_FIXES:
+                raise ParameterError(name, value, FIXED)
+        if file is None:
+            return
+        overridden = {name for name in SEGMENTS if name in given}
+        check_written_lengths(_file_lengths(self._given), file.data, overridden, str(file.path))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # shown when the robot was built
+            reference = robot_design(self._given)
+        check_written_fixed(reference, file, FILE_FIXES, FIXED)
 
     # -- what it says of itself -----------------------------------------------------------------
 
@@ -375,6 +417,34 @@ class Robot:
                 leg: model.joint_values(leg, theta).tolist() for leg, theta in angles.items()
             }
         }
+
+    def file_columns(
+        self, legs: Sequence[str], joint_angles: ArrayF, joint_torques: ArrayF
+    ) -> dict[str, ArrayF]:
+        """A motion in a robot file's own joints, as named columns (N,) each.
+
+        ``{}`` for the template, whose joints are θ.
+
+        Args:
+            legs: The legs of the motion's columns, in order (L,).
+            joint_angles: Angles θ (N, L, 3) [rad].
+            joint_torques: Torques on θ (N, L, 3) [N·m].
+
+        Returns:
+            Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
+            (s·τ, the torque about the file's joint axis) [N·m].
+
+        """
+        if self._given is None:
+            return {}
+        model, columns = self.model, {}
+        for i, leg in enumerate(legs):
+            values = model.joint_values(leg, joint_angles[:, i])
+            torques = model.joint_signs(leg) * joint_torques[:, i]
+            for j, joint in enumerate(LEG_JOINTS):
+                columns[f"{leg}_{joint}_urdf_q"] = np.asarray(values)[:, j]
+                columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
+        return columns
 
     def urdf(self) -> str:
         """Its URDF: the template rendered at its design, or the file with its feet marked.

@@ -16,19 +16,21 @@ patterns), and ``[robot.segments]`` changes the robot's segments along their own
 
 from __future__ import annotations
 
+import dataclasses
+import math
 import os
-from collections.abc import Mapping
+from collections.abc import Iterable, Mapping
 from pathlib import Path
 from typing import Any
 
 from hexaleg._checks import require_in_range
-from hexaleg.design import SEGMENT_RANGE, SEGMENTS
-from hexaleg.design_file import ROBOT, DesignFileError
-from hexaleg.exceptions import ParameterError
+from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign
+from hexaleg.design_file import ROBOT, DesignFile, DesignFileError
+from hexaleg.exceptions import ParameterError, shorten
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.imported import ImportedRobot
-from hexaleg.robot.recipe import RobotSource, SegmentLength
+from hexaleg.robot.recipe import RobotSource, SegmentLength, foot_offset_of
 from hexaleg.robot.resize import SAME_LENGTH
 from hexaleg.robot.robot_design import robot_record
 from hexaleg.table_records import require_table
@@ -36,6 +38,7 @@ from hexaleg.table_records import require_table
 __all__ = [
     "LOCK_KEY",
     "SEGMENTS_TABLE",
+    "check_written_fixed",
     "check_written_lengths",
     "lock_patterns",
     "robot_table",
@@ -59,28 +62,46 @@ def table_source(table: Mapping[str, Any], folder: Path, where: str) -> RobotSou
         where: The design file, as errors name it.
 
     Raises:
-        DesignFileError: No ``urdf``, or tables that are not of text.
-        ParameterError: A bad foot offset or ``[robot.segments]`` key or length.
+        DesignFileError: No ``urdf``.
+        ParameterError: Naming the key: a ``urdf`` that is no path, ``xacro_args`` or
+            ``packages`` that are no tables of text, a bad foot offset or frame, or a bad
+            ``[robot.segments]`` key or length.
 
     """
-    try:
-        xacro_args = {str(k): str(v) for k, v in dict(table.get("xacro_args", {})).items()}
-        packages = {
-            str(k): str(folder / str(v)) for k, v in dict(table.get("packages", {})).items()
-        }
-        urdf = (folder / str(table["urdf"])).resolve()
-    except (KeyError, TypeError, ValueError):
-        raise DesignFileError(f"{where}: [robot] needs urdf = FILE (and tables of text)") from None
+    urdf = table.get("urdf")
+    if urdf is None:
+        raise DesignFileError(f"{where}: [robot] needs urdf = FILE, the robot file")
+    if not isinstance(urdf, str) or not urdf:
+        raise ParameterError(f"{ROBOT}.urdf", urdf, "must be the robot file's path (text)")
+    xacro_args = _text_table(table, "xacro_args", "NAME = VALUE")
+    packages = {
+        k: str(folder / v) for k, v in _text_table(table, "packages", "NAME = FOLDER").items()
+    }
     offset = table.get("foot_offset")
     if offset is not None:
-        offset = _foot_offset(offset)
+        offset = foot_offset_of(offset, f"{ROBOT}.foot_offset")
     frame = table.get("foot_frame")
     if frame is not None and not isinstance(frame, str):
         raise ParameterError(f"{ROBOT}.foot_frame", frame, "must be a glob pattern (text)")
     segments = segment_lengths(table)
+    try:
+        path = (folder / urdf).resolve()
+    except (OSError, ValueError):  # a NUL in the path, a loop of links
+        raise ParameterError(f"{ROBOT}.urdf", urdf, "must be the robot file's path") from None
     return RobotSource.of(
-        str(urdf), xacro_args, packages, offset, frame, segments, lock_patterns(table, where)
+        str(path), xacro_args, packages, offset, frame, segments, lock_patterns(table, where)
     )
+
+
+def _text_table(table: Mapping[str, Any], key: str, form: str) -> dict[str, str]:
+    """``[robot.<key>]``: names to text (a number is taken as its text), else refused."""
+    given = table.get(key, {})
+    if not isinstance(given, dict):
+        raise ParameterError(f"{ROBOT}.{key}", given, f"must be a table of {form}")
+    for name, value in given.items():
+        if isinstance(value, bool) or not isinstance(value, str | int | float):
+            raise ParameterError(f"{ROBOT}.{key}.{name}", value, f"must be text: {form}")
+    return {str(name): str(value) for name, value in given.items()}
 
 
 def lock_patterns(table: Mapping[str, Any], where: str) -> tuple[str, ...]:
@@ -94,18 +115,6 @@ def lock_patterns(table: Mapping[str, Any], where: str) -> tuple[str, ...]:
     if not isinstance(saved, list) or not all(isinstance(p, str) and p for p in saved):
         raise DesignFileError(f"{where}: [{ROBOT}] {LOCK_KEY} must be a list of joint names")
     return tuple(saved)
-
-
-def _foot_offset(value: Any) -> tuple[float, float, float]:
-    """``[robot] foot_offset``: three numbers [m]."""
-    if (
-        not isinstance(value, list | tuple)
-        or len(value) != 3
-        or not all(isinstance(v, int | float) and not isinstance(v, bool) for v in value)
-    ):
-        raise ParameterError(f"{ROBOT}.foot_offset", value, "must be three numbers X, Y, Z [m]")
-    x, y, z = (float(v) for v in value)
-    return (x, y, z)
 
 
 def segment_lengths(table: Mapping[str, Any]) -> tuple[SegmentLength, ...]:
@@ -183,6 +192,55 @@ def check_written_lengths(
                 f"({own:.6g} m): an imported robot's segments are read from its file; "
                 f"change them in [robot.segments] or with --{name}"
             )
+
+
+SAME_NUMBER = 1e-9
+"""Numbers of a design file this close to the robot file's are its file's [m or rad]."""
+
+
+def check_written_fixed(
+    reference: HexapodDesign, file: DesignFile, fixed: Iterable[str], why: str
+) -> None:
+    """Refuse a design file of a robot file whose keys the robot file fixes were edited.
+
+    ``design import`` writes every field, those the robot file fixes (its body, mounts,
+    stance limits) at the file's values; a robot file never takes them from the design
+    file, so a value other than the file's would be silently ignored.
+
+    Args:
+        reference: The robot file's design over hexaleg's defaults (what import writes).
+        file: The design file.
+        fixed: The design fields the robot file fixes.
+        why: What the refusal says of them.
+
+    Raises:
+        DesignFileError: Naming the key as written, its value and the robot file's.
+
+    """
+    written = file.design()
+    for name in fixed:
+        written_as = ("mount",) if name == "mounts" else (name, f"{name}_deg")  # [[mount]]
+        keys = [key for key in written_as if key in file.data]
+        if keys and not _same(getattr(written, name), getattr(reference, name)):
+            own = getattr(reference, name)
+            theirs = f" ({own:.6g})" if isinstance(own, float) else ""
+            raise DesignFileError(
+                f"{file.path}: {keys[0]} = {shorten(file.data[keys[0]])} is not the robot "
+                f"file's{theirs}: {why}; remove it from the design file"
+            )
+
+
+def _same(value: Any, other: Any) -> bool:
+    """Equal, numbers within :data:`SAME_NUMBER` (a file written on another machine)."""
+    if isinstance(value, float) and isinstance(other, float):
+        return math.isclose(value, other, rel_tol=SAME_NUMBER, abs_tol=SAME_NUMBER)
+    if isinstance(value, tuple) and isinstance(other, tuple):
+        return len(value) == len(other) and all(map(_same, value, other))
+    if dataclasses.is_dataclass(value) and type(value) is type(other):
+        return all(
+            _same(getattr(value, f.name), getattr(other, f.name)) for f in dataclasses.fields(value)
+        )
+    return bool(value == other)
 
 
 def robot_table(source: RobotSource, robot: ImportedRobot, at: Path | None) -> dict[str, Any]:

@@ -41,7 +41,7 @@ import pinocchio as pin
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
-from hexaleg.gravity import GRAVITY
+from hexaleg.gravity import LEVEL_GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
 from hexaleg.sim._mujoco import compiled, refusal, require_mujoco
@@ -186,7 +186,7 @@ def robot_spec(
     spec = _parsed(mujoco, model.simulation_urdf)
     spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
     spec.option.timestep = timestep
-    spec.option.gravity = [0.0, 0.0, -GRAVITY]
+    spec.option.gravity = LEVEL_GRAVITY.tolist()
     spec.option.integrator = mujoco.mjtIntegrator.mjINT_IMPLICITFAST
     spec.option.cone = mujoco.mjtCone.mjCONE_ELLIPTIC
     base = spec.body(frame_name(model, model.base_frame))

@@ -39,7 +39,7 @@ __all__ = [
 __getattr__, __dir__ = lazy_exports(__name__)
 
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
-    from hexaleg.gravity import GRAVITY
+    from hexaleg.gravity import GRAVITY, slope_gravity
     from hexaleg.stance.configurations import extreme_configurations
     from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
     from hexaleg.statics.forces import (
@@ -56,5 +56,5 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         analyze_loads,
         loads_at_extremes,
     )
-    from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_gravity, slope_limits
+    from hexaleg.statics.slopes import SLOPE_HEADINGS, SlopeLimit, slope_limits
     from hexaleg.statics.support import SupportPolygon, ground_point, stability_margin

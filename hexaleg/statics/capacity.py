@@ -13,7 +13,7 @@ from hexaleg.cause import Cause
 from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics, StaticState
-from hexaleg.statics.support import SupportPolygon
+from hexaleg.statics.support import Tipping
 
 
 @dataclass(frozen=True)
@@ -67,7 +67,7 @@ def payload_capacity(
             return False, STABILITY
         ratios = state.torque_ratios(statics.rated)
         if ratios.max() > 1.0:
-            return False, _torque_cause(statics, *_first_tied(ratios))
+            return False, _torque_cause(statics, *first_lowest(-ratios))
         if state.stability_margin <= 0:
             return False, STABILITY
         return True, SEARCH_LIMIT
@@ -109,14 +109,14 @@ def _affine_capacity(statics: Statics, q: npt.ArrayLike, at: StaticState | None)
     support = statics.support
     if np.any(np.abs(base) > rated) or support.signed_distance(robot_com) <= 0:
         ratios = np.abs(base) / rated
-        cause = STABILITY if ratios.max() <= 1 else _torque_cause(statics, *_first_tied(ratios))
+        cause = STABILITY if ratios.max() <= 1 else _torque_cause(statics, *first_lowest(-ratios))
         return PayloadCapacity(0.0, cause)
     with np.errstate(divide="ignore", invalid="ignore"):  # slope 0: that joint never binds
         limit = np.where(slope > 0, (rated - base) / slope, (-rated - base) / slope)
     limit = np.where(np.abs(slope) > 0, limit, np.inf)
-    leg, joint = _first_tied(-limit)
+    leg, joint = first_lowest(limit)
     mass, cause = float(limit[leg, joint]), _torque_cause(statics, leg, joint)
-    tipping = _tipping_payload(support, robot_com, robot_mass, point)
+    tipping = Tipping(robot_mass, robot_com, point, support).payload()
     if tipping < mass:
         mass, cause = tipping, STABILITY
     if mass >= PAYLOAD_SEARCH_LIMIT:
@@ -129,29 +129,13 @@ def _torque_cause(statics: Statics, leg: int, joint: int) -> Cause:
     return Cause("torque", statics.legs[leg], LEG_JOINTS[joint])
 
 
-def _tipping_payload(
-    support: SupportPolygon, robot_com: ArrayF, robot_mass: float, point: ArrayF
-) -> float:
-    """The payload [kg] at which the centre of mass's footprint leaves the support polygon.
-
-    With a payload m at p the footprint is c_r + s·(p − c_r), s = m / (M_r + m) < 1: it
-    leaves where that segment crosses the boundary, at m = M_r·s / (1 − s).
-    """
-    if support.signed_distance(point) > 0:
-        return math.inf  # a payload inside the polygon only steadies the robot
-    towards = point[:2] - robot_com[:2]
-    span = float(np.hypot(towards[0], towards[1]))
-    s = support.exit_distance(robot_com[:2], towards / span) / span
-    return math.inf if s >= 1 else robot_mass * s / (1 - s)
-
-
-def _first_tied(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
-    """(leg, joint) of the largest value, the first in leg order among near-equal ones.
+def first_lowest(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
+    """(leg, joint) of the smallest value, the first in leg order among near-equal ones.
 
     Mirror-image legs tie, and round-off must not choose between them.
     """
     flat = values.ravel()
-    best = flat.max()
-    index = int(np.flatnonzero(flat >= best - tolerance * max(1.0, abs(best)))[0])
-    leg, joint = np.unravel_index(index, values.shape)
+    lowest = float(flat.min())
+    slack = tolerance * max(1.0, abs(lowest)) if math.isfinite(lowest) else 0.0
+    leg, joint = np.unravel_index(int(np.flatnonzero(flat <= lowest + slack)[0]), values.shape)
     return int(leg), int(joint)

@@ -32,7 +32,7 @@ from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
-from hexaleg.gravity import GRAVITY
+from hexaleg.gravity import GRAVITY, LEVEL_GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.ratings import torque_scale
 from hexaleg.robot.imported_model import robot_mass
@@ -180,7 +180,7 @@ class Statics:
         self._robot_mass = robot_mass(model)
         self._support: SupportPolygon | None = None
         self._support_feet = np.zeros((len(self.legs), 2))
-        self._downward = np.array([0.0, 0.0, -GRAVITY])
+        self._downward = LEVEL_GRAVITY
 
     @property
     def support(self) -> SupportPolygon:
@@ -202,7 +202,7 @@ class Statics:
         self,
         q: npt.ArrayLike,
         distribution: Distribution = "min-norm",
-        gravity: npt.ArrayLike = (0.0, 0.0, -GRAVITY),
+        gravity: npt.ArrayLike = LEVEL_GRAVITY,
         payload: Payload | None = None,
     ) -> StaticState:
         """Forces, torques and stability margin holding configuration ``q``.
@@ -220,7 +220,7 @@ class Statics:
         self,
         configurations: Sequence[npt.ArrayLike],
         distribution: Distribution = "min-norm",
-        gravity: npt.ArrayLike = (0.0, 0.0, -GRAVITY),
+        gravity: npt.ArrayLike = LEVEL_GRAVITY,
         payload: Payload | None = None,
     ) -> list[StaticState]:
         """:meth:`state` of each configuration, the linear algebra done for all at once."""
@@ -243,9 +243,11 @@ class Statics:
             forces = min_norm_forces(*equilibrium(feet, com, mass, gravity))
         else:
             forces = np.array(
-                [self._min_torque(*terms, mass, gravity) for terms in zip(
-                    feet, com, generalized, jacobians, strict=True)]
-            )  # fmt: skip
+                [
+                    self._min_torque(*terms, mass, gravity)
+                    for terms in zip(feet, com, generalized, jacobians, strict=True)
+                ]
+            )
         torques = generalized - np.einsum("kfv,kf->kv", jacobians, forces)
         residuals = np.abs(torques[:, :6]).max(axis=1)
         joint_torques = torques[:, self._v] * self._signs

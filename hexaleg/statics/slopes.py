@@ -10,7 +10,6 @@ import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
-from hexaleg.gravity import GRAVITY
 from hexaleg.statics.support import SupportPolygon
 
 SLOPE_HEADINGS: tuple[float, ...] = (0.0, math.pi / 2, math.pi, -math.pi / 2)
@@ -58,15 +57,4 @@ def slope_limits(
     return tuple(
         SlopeLimit(heading, min(float(tip), slide), Cause("tip" if tip < slide else "slide"))
         for heading, tip in zip(headings, tips, strict=True)
-    )
-
-
-def slope_gravity(angle: float, heading: float) -> ArrayF:
-    """Gravity [m/s²] in the ground frame of a slope α uphill toward heading ψ."""
-    return GRAVITY * np.array(
-        [
-            -math.sin(angle) * math.cos(heading),
-            -math.sin(angle) * math.sin(heading),
-            -math.cos(angle),
-        ]
     )

@@ -35,8 +35,9 @@ from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 from hexaleg.gravity import GRAVITY
 from hexaleg.robot.model import LEG_JOINTS
+from hexaleg.statics.capacity import first_lowest
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics
-from hexaleg.statics.support import SupportPolygon
+from hexaleg.statics.support import Tipping
 
 BISECTIONS = 48
 """Halvings of the payload interval [0, 10⁴ kg]: to 4·10⁻¹¹ kg."""
@@ -51,10 +52,7 @@ class Standing:
         rated: Rated torques (root, hip, knee) (3,) [N·m].
         down: Torques under gravity −g·e_z (2, N, 3) [N·m]: without payload, and per kg.
         across: Torques under gravity +g·e_x and +g·e_y (2, 2, N, 3) [N·m]: likewise.
-        robot_mass: The robot's own mass [kg].
-        robot_com: Its centre of mass, ground frame (3,) [m].
-        payload_point: Where the payload sits, ground frame (3,) [m].
-        support: The stance feet's support polygon.
+        tipping: Where the robot with its payload tips over the stance feet's polygon.
         friction: Friction coefficient μ [-].
 
     """
@@ -63,10 +61,7 @@ class Standing:
     rated: ArrayF
     down: ArrayF
     across: ArrayF
-    robot_mass: float
-    robot_com: ArrayF
-    payload_point: ArrayF
-    support: SupportPolygon
+    tipping: Tipping
     friction: float
 
     @classmethod
@@ -89,10 +84,7 @@ class Standing:
             rated=np.asarray(statics.rated, dtype=float),
             down=np.stack([down[0], down[1] - down[0]]),
             across=np.stack([across[0], across[1] - across[0]]),
-            robot_mass=own.mass,
-            robot_com=own.com,
-            payload_point=point,
-            support=statics.support,
+            tipping=Tipping(own.mass, own.com, point, statics.support),
             friction=statics.friction,
         )
 
@@ -115,17 +107,6 @@ class Standing:
         at_slope = normal * math.cos(slope) + tangential * math.sin(slope)
         return np.where(reached, peak, at_slope)
 
-    def com(self, mass: float) -> ArrayF:
-        """Centre of mass of robot and payload ``mass`` [kg], ground frame (3,) [m]."""
-        total = self.robot_mass + mass
-        return (self.robot_mass * self.robot_com + mass * self.payload_point) / total
-
-    def tip_slope(self, mass: float) -> float:
-        """The slope [rad] at which the robot with payload ``mass`` tips, in the worst heading."""
-        com = self.com(mass)
-        distance = self.support.signed_distance(com[:2])
-        return math.atan2(distance, com[2]) if distance > 0 else 0.0
-
     # -- the limits --------------------------------------------------------------------
 
     def max_slope(self, mass: float) -> tuple[float, Cause]:
@@ -141,10 +122,10 @@ class Standing:
         crossing = crossing - np.arctan2(normal, tangential)  # A·sin(α + φ) = rated
         crossing = np.where(amplitude <= self.rated, math.pi / 2, crossing)
         crossing = np.where(normal > self.rated, 0.0, np.maximum(crossing, 0.0))
-        leg, joint = _first_lowest(crossing)
+        leg, joint = first_lowest(crossing)
         limits = [
             (math.atan(self.friction), Cause("slide")),
-            (self.tip_slope(mass), Cause("tip")),
+            (self.tipping.slope(mass), Cause("tip")),
             (float(crossing[leg, joint]), Cause("torque", self.legs[leg], LEG_JOINTS[joint])),
         ]
         return min(limits, key=lambda limit: limit[0])
@@ -158,13 +139,13 @@ class Standing:
         if math.tan(slope) > self.friction:
             return 0.0, Cause("slide")
         tip = Cause("tip" if slope > 0 else "stability")
-        tip_mass = self.tip_payload(slope)
+        tip_mass = self.tipping.payload(slope)
         torque_mass = _largest(
             lambda m: self.rated - self.worst_torques(m, slope),
             self.down.shape[1:],
             PAYLOAD_SEARCH_LIMIT,
         )
-        leg, joint = _first_lowest(torque_mass)
+        leg, joint = first_lowest(torque_mass)
         limits = [
             (float(tip_mass), tip),
             (float(torque_mass[leg, joint]), Cause("torque", self.legs[leg], LEG_JOINTS[joint])),
@@ -173,34 +154,6 @@ class Standing:
         if mass >= PAYLOAD_SEARCH_LIMIT:
             return PAYLOAD_SEARCH_LIMIT, Cause("search limit")
         return mass, cause
-
-    def tip_payload(self, slope: float) -> float:
-        """The payload [kg] at which the robot tips on ``slope`` [rad] in the worst heading.
-
-        The gravity line stays inside while every edge's inward distance of the centre of
-        mass's footprint exceeds c_z·tan α; with the payload m the centre of mass moves
-        along the segment from the robot's own toward the payload's point,
-        c = c_r + s·(p − c_r) with s = m / (M + m), and each edge's margin is affine in s:
-        it is lost at the smallest root (inf: never; 0: already).
-        """
-        start = self._edge_margins(self.robot_com, slope)
-        end = self._edge_margins(self.payload_point, slope)
-        if start.min() <= 0:
-            return 0.0
-        falling = end < 0
-        if not falling.any():
-            return math.inf
-        share = float((start[falling] / (start[falling] - end[falling])).min())
-        return self.robot_mass * share / (1 - share)
-
-    def _edge_margins(self, point: ArrayF, slope: float) -> ArrayF:
-        """Each support edge's inward distance of ``point``'s footprint less z·tan α (K,) [m]."""
-        relative = point[:2] - self.support.vertices
-        edges = self.support.edges
-        inward = (
-            edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]
-        ) / self.support.lengths
-        return inward - float(point[2]) * math.tan(slope)
 
 
 def _largest(margins: Callable[[ArrayF], ArrayF], shape: tuple[int, ...], upper: float) -> ArrayF:
@@ -219,15 +172,3 @@ def _largest(margins: Callable[[ArrayF], ArrayF], shape: tuple[int, ...], upper:
         lower = np.where(inside, middle, lower)
         higher = np.where(inside, higher, middle)
     return np.where(at_zero > 0, np.where(at_upper > 0, np.inf, lower), 0.0)
-
-
-def _first_lowest(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
-    """(leg, joint) of the smallest value, the first in leg order among near-equal ones.
-
-    Mirror-image legs tie, and round-off must not choose between them.
-    """
-    flat = values.ravel()
-    lowest = float(flat.min())
-    slack = tolerance * max(1.0, abs(lowest)) if math.isfinite(lowest) else 0.0
-    leg, joint = np.unravel_index(int(np.flatnonzero(flat <= lowest + slack)[0]), values.shape)
-    return int(leg), int(joint)

@@ -1,7 +1,13 @@
-"""The support polygon of the stance feet and the stability margin inside it."""
+"""The support polygon of the stance feet, the stability margin inside it, and tipping over.
+
+A robot tips when the gravity line through its centre of mass leaves the polygon: on a
+slope α in the worst heading, when the footprint's inward distance to an edge falls below
+c_z·tan α (:class:`Tipping`, for a payload at a point).
+"""
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -83,6 +89,65 @@ class SupportPolygon:
         hit = ~parallel & (t >= 0) & (s >= -1e-12) & (s <= 1 + 1e-12)
         distances: ArrayF = np.where(hit, t, np.inf).min(axis=1)
         return distances
+
+
+@dataclass(frozen=True)
+class Tipping:
+    """Where a robot carrying a payload at a point tips over its stance feet's polygon.
+
+    With a payload m at p the centre of mass moves along the segment from the robot's own
+    c_r toward p: c = c_r + s·(p − c_r), s = m / (M + m).
+
+    Attributes:
+        robot_mass: The robot's own mass M [kg].
+        robot_com: Its centre of mass c_r, ground frame (3,) [m].
+        payload_point: Where the payload sits p, ground frame (3,) [m].
+        support: The stance feet's support polygon.
+
+    """
+
+    robot_mass: float
+    robot_com: ArrayF
+    payload_point: ArrayF
+    support: SupportPolygon
+
+    def com(self, mass: float) -> ArrayF:
+        """Centre of mass of robot and payload ``mass`` [kg], ground frame (3,) [m]."""
+        total = self.robot_mass + mass
+        return (self.robot_mass * self.robot_com + mass * self.payload_point) / total
+
+    def slope(self, mass: float) -> float:
+        """The slope [rad] at which the robot with payload ``mass`` tips, in the worst heading."""
+        com = self.com(mass)
+        distance = self.support.signed_distance(com[:2])
+        return math.atan2(distance, com[2]) if distance > 0 else 0.0
+
+    def payload(self, slope: float = 0.0) -> float:
+        """The payload [kg] at which the robot tips on ``slope`` [rad] in the worst heading.
+
+        The gravity line stays inside while every edge's inward distance of the centre of
+        mass's footprint exceeds c_z·tan α; each edge's margin is affine in s along the
+        segment from c_r to p: it is lost at the smallest root, m = M·s / (1 − s) (inf:
+        never, a payload inside steadies the robot; 0: already).
+        """
+        start = self._edge_margins(self.robot_com, slope)
+        end = self._edge_margins(self.payload_point, slope)
+        if start.min() <= 0:
+            return 0.0
+        falling = end < 0
+        if not falling.any():
+            return math.inf
+        share = float((start[falling] / (start[falling] - end[falling])).min())
+        return self.robot_mass * share / (1 - share)
+
+    def _edge_margins(self, point: ArrayF, slope: float) -> ArrayF:
+        """Each edge's inward distance of ``point``'s footprint less z·tan α (K,) [m]."""
+        relative = point[:2] - self.support.vertices
+        edges = self.support.edges
+        inward = (
+            edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0]
+        ) / self.support.lengths
+        return inward - float(point[2]) * math.tan(slope)
 
 
 def _hull(points: ArrayF) -> list[int]:

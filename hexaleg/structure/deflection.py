@@ -60,7 +60,8 @@ def deflection_integrals(
     densities = np.array(masses) / lengths
     hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
     foot_force = np.asarray(foot_forces, dtype=float) + FOOT_MASS * g
-    # the loads beyond each segment's end: (position, force) of each, (K, 6, 3) both
+    # the loads beyond each segment's end: (position, force) of each, (K, 6, 3) both; one
+    # row per segment (coxa, femur, tibia), laid out as the chain is (fmt: skip below)
     middle = origins + axes * (lengths / 2)[:, None]
     beyond = [
         [(middle[:, :, 1], masses[1] * g), (origins[:, :, 1], hip * g),

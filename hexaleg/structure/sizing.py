@@ -44,6 +44,10 @@ MAX_ITERATIONS = 30
 """Most rounds of loads and tubes before sizing gives up settling."""
 
 
+class SizingWarning(UserWarning):
+    """Sizing found no tubes on its grid that hold every case: the strongest are kept."""
+
+
 @dataclass(frozen=True, eq=False)
 class SizedStructure:
     """The tubes sizing chose, and the structure checked with them.

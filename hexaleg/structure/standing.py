@@ -19,12 +19,12 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.exceptions import ParameterError
-from hexaleg.gravity import GRAVITY
+from hexaleg.gravity import GRAVITY, LEVEL_GRAVITY, slope_gravity
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics
-from hexaleg.statics.slopes import SLOPE_HEADINGS, slope_gravity
+from hexaleg.statics.slopes import SLOPE_HEADINGS
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
 from hexaleg.structure.wrenches import leg_states, require_template, segment_wrenches
@@ -80,8 +80,7 @@ def standing_cases(
     )
     headings = SLOPE_HEADINGS if slope > 0 else ()
     q = np.concatenate([*poses, np.tile(nominal, (len(headings), 1))])
-    down = np.array([0.0, 0.0, -GRAVITY])
-    gravities = [down] * (1 + len(extremes)) + [slope_gravity(slope, h) for h in headings]
+    gravities = [LEVEL_GRAVITY] * (1 + len(extremes)) + [slope_gravity(slope, h) for h in headings]
     names = (NOMINAL, *(e.name for e in extremes), *(slope_name(slope, h) for h in headings))
     return StandingCases(
         names, q, np.array(gravities), tuple(legs), payload or Payload(), friction, distribution

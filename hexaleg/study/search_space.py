@@ -4,7 +4,7 @@ By default the three segment lengths l1, l2, l3 are free, each from
 :data:`SEGMENT_FLOOR` of the leg length up to the leg length (l1 from ``min_coxa`` if
 required); the leg-length requirement bounds their sum. ``--free-posture`` also frees
 the nominal hip and knee angles (``theta2``, ``theta3``) within the stance limits, and
-``--free FIELD=LOWER:UPPER`` any body field of :data:`~hexaleg.study.sensitivity.SWEEPABLE`
+``--free FIELD=LOWER:UPPER`` any body field of :data:`~hexaleg.field_sweep.SWEEPABLE`
 (or narrows a segment's or an angle's bounds). ``--choose-actuators`` adds one
 categorical variable per joint type (``actuator_root``, ``actuator_hip``,
 ``actuator_knee``): a point's coordinate in [0, K) picks the catalog's ⌊x⌋-th of its K
@@ -31,6 +31,7 @@ from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
+from hexaleg.field_sweep import SWEEPABLE
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot, robot_of
@@ -42,7 +43,6 @@ from hexaleg.study.actuator_variables import (
     gear_coordinate,
     geared_entry,
 )
-from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
 """Smallest segment searched, as a share of the leg length [-] (2 cm on a 1 m leg)."""

@@ -114,8 +114,14 @@ def standing_reach(
             root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
             limits = JointLimits(root, hip, knee, name=f"{leg}'s own limits")
         shape = model.leg_geometry(leg)
-        key = (limits.lower.tobytes(), limits.upper.tobytes(), limits.coupled_knee, shape.lengths,
-               shape.hip_height, shape.foot_lateral)  # fmt: skip
+        key = (
+            limits.lower.tobytes(),
+            limits.upper.tobytes(),
+            limits.coupled_knee,
+            shape.lengths,
+            shape.hip_height,
+            shape.foot_lateral,
+        )
         if key not in made:
             made[key] = monte_carlo_workspace(model.design, samples, seed, limits, shape)
         clouds[leg] = made[key]

@@ -15,7 +15,6 @@ from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from hexaleg._typing import ArrayF
 from hexaleg.evaluation.metrics import METRICS
@@ -26,6 +25,7 @@ from hexaleg.output.figures.canvas import COLORS, drawn, magnitude_axis, new_fig
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 
 if TYPE_CHECKING:
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 
@@ -182,6 +182,8 @@ def walking_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
+    import pandas as pd  # heavy: only where a study is drawn
+
     fig = new_figure(6.2)
     panels = fig.subplots(2, 2, sharex=True).ravel()
     columns = (

@@ -6,7 +6,6 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
-import pandas as pd
 
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT
@@ -24,6 +23,7 @@ from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis
 
 if TYPE_CHECKING:
+    import pandas as pd
     from matplotlib.axes import Axes
     from matplotlib.figure import Figure
 

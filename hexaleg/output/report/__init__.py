@@ -57,6 +57,7 @@ from hexaleg.output.report.render import (
 )
 from hexaleg.output.report.section import Figure, Section
 from hexaleg.robot.robot import Robot
+from hexaleg.sim._mujoco import require_mujoco
 
 __all__ = [
     "PARTS",
@@ -103,8 +104,6 @@ def build_report(
     if options.pdf:
         require_pdf_engine()
     if options.simulate:
-        from hexaleg.sim._mujoco import require_mujoco
-
         require_mujoco()
     data = compute_report(HexapodDesign() if robot is None else robot, options)
     render_report(data, out_dir)

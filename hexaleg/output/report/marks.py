@@ -2,20 +2,15 @@
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING
-
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.marks import Mark, your_and_recommended
-
-if TYPE_CHECKING:
-    from hexaleg.output.report.part import ReportData
+from hexaleg.output.report.part import ReportData
+from hexaleg.output.report.recommendation import RecommendationRecord
+from hexaleg.output.report.study_record import StudyRecord
 
 
 def study_marks(data: ReportData) -> list[Mark]:
     """Your design and the recommended one (if any), each as the study measures its designs."""
-    from hexaleg.output.report.recommendation import RecommendationRecord
-    from hexaleg.output.report.study import StudyRecord
-
     yours = data[StudyRecord].yours.to_dict()
     recommended = data.records.get(RecommendationRecord)
     if recommended is None:  # a robot whose own legs the report recommends nothing for

@@ -24,6 +24,8 @@ from hexaleg.electrical.ratings import RATED
 from hexaleg.evaluation.metrics import significant
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.output.figures.canvas import save
+from hexaleg.output.figures.motors import envelope_figure, power_split_figure
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.simulation import SimulationRecord
@@ -207,9 +209,6 @@ def write_files(data: ReportData, out: Path) -> None:
     walked = data[MotorsRecord].walked
     if walked is None or walked.electrical is None:
         return
-    from hexaleg.output.figures.canvas import save
-    from hexaleg.output.figures.motors import envelope_figure, power_split_figure
-
     save(power_split_figure(walked), out / f"{POWER}.png", svg=data.options.svg)
     save(envelope_figure(walked), out / f"{ENVELOPE}.png", svg=data.options.svg)
 

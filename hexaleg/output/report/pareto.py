@@ -13,7 +13,7 @@ from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RANKED_GRID, RecommendationRecord
-from hexaleg.output.report.study import StudyRecord
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.pareto import pareto_front
 from hexaleg.study.ranking import RANKED_METRICS

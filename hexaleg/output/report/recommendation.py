@@ -15,7 +15,7 @@ from typing import Any
 from hexaleg.output.report.document import Section, cell, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
-from hexaleg.output.report.study import StudyRecord
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE

@@ -9,23 +9,21 @@ from __future__ import annotations
 
 from typing import Any
 
-from hexaleg.output.report import (
-    decision,
-    design,
-    flexibility,
-    manipulability,
-    motors,
-    pareto,
-    recommendation,
-    robot,
-    sensitivity,
-    simulation,
-    statics,
-    study,
-    viewer,
-    walking,
-    workspace,
-)
+import hexaleg.output.report.decision as decision
+import hexaleg.output.report.design as design
+import hexaleg.output.report.flexibility as flexibility
+import hexaleg.output.report.manipulability as manipulability
+import hexaleg.output.report.motors as motors
+import hexaleg.output.report.pareto as pareto
+import hexaleg.output.report.recommendation as recommendation
+import hexaleg.output.report.robot as robot
+import hexaleg.output.report.sensitivity as sensitivity
+import hexaleg.output.report.simulation as simulation
+import hexaleg.output.report.statics as statics
+import hexaleg.output.report.study as study
+import hexaleg.output.report.viewer as viewer
+import hexaleg.output.report.walking as walking
+import hexaleg.output.report.workspace as workspace
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import LeftOut, Part
 from hexaleg.robot.robot import Robot

@@ -28,6 +28,7 @@ from hexaleg.robot.model import HexapodModel, joint_name
 from hexaleg.robot.robot import Robot
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import DEFAULT_CYCLES, simulate_gait
+from hexaleg.sim.video import write_still
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure as PlotFigure
@@ -167,8 +168,6 @@ def _standing_blocks(result: SimulationResult) -> tuple[str, ...]:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The still: MuJoCo's picture where it can render offscreen, else the links as lines."""
-    from hexaleg.sim.video import write_still
-
     result = data[SimulationRecord].result
     q = result.frames[result.mid_stride_frame]
     title = f"Simulated in MuJoCo, t = {result.mid_stride_frame / result.frame_rate:.2f} s"

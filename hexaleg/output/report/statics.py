@@ -14,7 +14,7 @@ from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.flexibility import FREE_COUPLED, FlexibilityRecord
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
-from hexaleg.output.report.study import StudyRecord
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 

@@ -2,20 +2,17 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
-
-import pandas as pd
 
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import study_marks
 from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.study.executors import local_pool
-from hexaleg.study.rows import StudyRow
 from hexaleg.study.sweep import (
     StudySpec,
     peak_table,
@@ -27,23 +24,6 @@ from hexaleg.study.sweep import (
 
 FOLDER = "study"
 """The study's own folder inside the report (its table, journal and spec)."""
-
-
-@dataclass(frozen=True)
-class StudyRecord:
-    """The FB sweep (Fig 14–15) on the design's body and posture.
-
-    Attributes:
-        spec: What was swept.
-        table: One row per design: ranges, FB, torques, payload capacity, errors.
-        yours: Your design measured as the study measures its own (it is marked on the
-            study's figures).
-
-    """
-
-    spec: StudySpec
-    table: pd.DataFrame
-    yours: StudyRow
 
 
 def compute(data: ReportData) -> StudyRecord:

@@ -19,7 +19,7 @@ from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.motors import MotorsRecord, summary
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
-from hexaleg.output.report.study import StudyRecord
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.study.rows import StudyRow
 from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
 

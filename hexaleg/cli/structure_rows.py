@@ -1,54 +1,16 @@
-"""The legs' structure on the command line: tubes sized when the file asks, and their rows.
+"""The legs' structure as the commands print it: the material, each tube, its checks.
 
-A design file's ``[structure]`` with ``size = true`` has its tubes chosen before a command
-measures the design (:func:`size_if_asked`, where the design options resolve): the lightest
-on the grid that hold the nominal stance, the twelve extremes and the required slope,
-carrying the required payload (the file's ``[requirements]`` ``payload``, ``payload_at`` and
-``slope``; none if it has none). :func:`structure_rows` is what the text tables print of a
-check.
+The tubes are sized, where a design file's ``[structure]`` asks, before a command measures
+the design (:func:`hexaleg.evaluation.inputs.sized_for`); these are the text tables' rows.
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import note
-from hexaleg.design import HexapodDesign
-from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.leg_structure import LEG_SEGMENTS, Structure, segment_masses
-from hexaleg.statics.forces import Payload
-
-if TYPE_CHECKING:
-    from hexaleg.evaluation.requirements import Requirements
-    from hexaleg.structure.check import StructureCheck
-    from hexaleg.structure.sizing import SizedStructure
-
-IMPORTED = (
-    "[structure] describes hexaleg's own legs' tubes; an imported robot keeps its file's "
-    "links (remove [structure] from the design file)"
-)
-
-
-def size_if_asked(
-    design: HexapodDesign, requirements: Requirements
-) -> tuple[HexapodDesign, SizedStructure | None]:
-    """``design`` with its tubes sized if its ``[structure]`` says ``size = true``.
-
-    Called where the design options resolve (:func:`~hexaleg.cli.inputs.inputs_from_args`),
-    for the commands that measure the tubes; a robot file's ``[structure]`` is refused
-    there (:data:`IMPORTED`).
-    """
-    structure = design.structure
-    if structure is None or not structure.size:
-        return design, None
-    from hexaleg.structure.sizing import size_structure  # the search: not to parse options
-
-    payload = Payload(requirements.payload_mass, requirements.payload_at)
-    sized = size_structure(design, payload=payload, slope=requirements.required(SLOPE) or 0.0)
-    if not sized.found:
-        note("no tubes on the sizing grid hold every case: the strongest are used (see below)")
-    return sized.design, sized
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.sizing import SizedStructure
 
 
 def tube_rows(structure: Structure, lengths: tuple[float, float, float]) -> list[tuple[str, str]]:
