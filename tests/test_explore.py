@@ -19,10 +19,11 @@ from explorer import Explorer, running
 from hexaleg.cli import main
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design_file
-from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.evaluate import Conditions, _Measuring
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.explore.query import parse_query
+from hexaleg.explore.session import Session
 
 RTOL = 1e-9
 """Endpoint against command line: the same computation, summed in another order at most."""
@@ -127,6 +128,10 @@ def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer,
         ("speed=1000", "speed"),
         ("step_height=x", "step_height"),
         ("colour=red", "colour"),
+        ("theta2=0.9", "theta2"),
+        ("theta3=-2.5", "theta3"),
+        ("theta3=inf", "theta3"),
+        ("theta2=0.1&nominal_angles=0,0.1,-1.5", "theta2"),
     ],
 )
 def test_a_bad_value_answers_400_naming_its_field_and_the_server_keeps_serving(
@@ -211,6 +216,10 @@ def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
     assert gait.stride == Conditions().gait.stride  # the stride kept, the period set
     with pytest.raises(ParameterError, match=r"nominal_angles\.theta2"):
         parse_query({"nominal_angles": "0,x,-1"}, base, Conditions())
+    posed = parse_query({"theta2": "0.1", "theta3": "-1.4"}, base, Conditions()).design
+    assert posed == asked.design.replace(l1=base.l1)  # θ1 kept, θ2 and θ3 set
+    knee = parse_query({"theta3": "-1.2"}, posed, Conditions()).design
+    assert knee.nominal_angles == (0.0, 0.1, -1.2)
 
 
 def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
@@ -369,3 +378,81 @@ def test_a_page_that_goes_away_mid_answer_is_not_reported(capsys):
     except ConnectionResetError:
         ExplorerServer.handle_error(None, None, None)  # type: ignore[arg-type]
     assert capsys.readouterr().err == ""
+
+
+REQUIRED = """[requirements]
+payload = 10
+slope_deg = 5
+min_fb = 0.2
+speed = 0.1
+walking_payload = 5
+"""
+"""Requirements whose conditions (payload, slope, gait) the sliders start at."""
+
+
+def _session(tmp_path, monkeypatch, text: str) -> Session:
+    """The explorer's session of a design file ``text``, its study cloud left unmeasured."""
+    from hexaleg.cli import build_parser
+    from hexaleg.cli.inputs import inputs_from_args
+    from hexaleg.explore.cloud import Cloud
+
+    monkeypatch.setattr(Cloud, "start", lambda cloud: cloud)  # not measured: not counted
+    path = tmp_path / "design.toml"
+    path.write_text(text)
+    args = build_parser("explore").parse_args(["explore", "--design", str(path)])
+    inputs = inputs_from_args(args)
+    return Session.start(inputs.robot, inputs.requirements, path)
+
+
+def test_an_answer_evaluates_its_design_once_and_its_checks_read_the_numbers_shown(
+    tmp_path, monkeypatch
+):
+    session = _session(tmp_path, monkeypatch, REQUIRED)
+    evaluated: list[HexapodDesign] = []
+    measure = _Measuring.evaluation
+
+    def counted(self, metrics):
+        evaluated.append(self.design)
+        return measure(self, metrics)
+
+    monkeypatch.setattr(_Measuring, "evaluation", counted)
+    for query, unlike in [
+        ({"l3": "0.42"}, []),  # the sliders at the requirements' conditions
+        ({"l3": "0.42", "payload": "3", "speed": "0.2"}, ["payload.mass", "gait.period"]),
+    ]:
+        evaluated.clear()
+        got = session.evaluate(query)
+        assert len(evaluated) == 1, query  # one evaluation, whoever reads it
+        assert [c["name"] for c in got["requirements_conditions"]] == unlike
+        checks = {c["name"]: c["value"] for c in got["requirements"]}
+        assert checks["min_fb"] == got["fb"]
+        assert checks["payload"] == got["payload_capacity"]
+        assert checks["speed"] == got["max_speed"]
+        assert checks["walking_payload"] == got["walking_payload_capacity"]
+
+
+SIZED = """[structure]
+material = "aluminium_7075_t6"
+size = true
+
+[requirements]
+payload = 15
+"""
+
+
+def test_the_sized_tubes_are_the_loads_and_gait_commands(tmp_path, monkeypatch, capsys):
+    session = _session(tmp_path, monkeypatch, SIZED)
+    got = session.evaluate({"l2": "0.42"})["structure"]
+    options = ["--design", str(tmp_path / "design.toml"), "--l2", "0.42", "--payload", "15"]
+    loads = _cli(capsys, "loads", *options)["structure"]
+    gait = _cli(capsys, "gait", *options)["structure"]
+    assert got["sizing"] == {k: loads["sizing"][k] for k in ("found", "iterations", "settled")}
+    for segment, tube in loads["tubes"].items():
+        for key, value in tube.items():
+            assert got["tubes"][segment][key] == pytest.approx(value, rel=RTOL), (segment, key)
+    assert got["deflection"] == pytest.approx(loads["deflection"], rel=RTOL)
+    worst = max((loads, gait), key=lambda check: check["worst_ratio"])
+    assert got["worst_ratio"] == pytest.approx(worst["worst_ratio"], rel=RTOL)
+    assert got["worst"]["case"] == worst["worst"]["case"]
+    assert got["feasible"] is (loads["feasible"] and gait["feasible"])
+    assert session.evaluate({})["structure"]["tubes"] != got["tubes"]  # sized per design

@@ -1,11 +1,15 @@
 """The explorer's answer about one design: every number the page shows, JSON-ready.
 
-One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the metrics of
-:data:`EXPLORED` under the query's conditions; the answer names them as the command
-line's ``--json`` does (``fb``, ``payload_capacity``, ``peak_torque`` per joint type,
-``max_speed`` ...) with what limits each, the nominal stance's points for the drawing,
-and, when the design file has ``[requirements]``, each one checked under the
-requirements' own conditions (the same evaluation when they are the sliders' too).
+One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the design under the sliders'
+conditions, and every number of the answer reads it: the metrics of :data:`EXPLORED`,
+named as the command line's ``--json`` names them (``fb``, ``payload_capacity``,
+``peak_torque`` per joint type, ``max_speed`` ...) with what limits each, the nominal
+stance's points and the extremes for the drawing, the legs' tubes where the design has a
+``[structure]``, and, when the design file has ``[requirements]``, each one checked on
+that same evaluation. The sliders start at the requirements' conditions (payload, slope,
+gait); where they have been moved off them, the answer says which condition differs
+(``requirements_conditions``), so a check is never read as made under conditions it was
+not, and no quantity is shown with two values.
 """
 
 from __future__ import annotations
@@ -13,7 +17,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -32,7 +36,7 @@ from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
 from hexaleg.swing.workspace import standing_reach
 
-__all__ = ["EXPLORED", "answer"]
+__all__ = ["EXPLORED", "answer", "conditions_unlike"]
 
 SCALARS: tuple[MetricSpec, ...] = (
     METRICS.fb,
@@ -69,7 +73,8 @@ def answer(
     Args:
         design: The design.
         conditions: What it is measured under (the sliders' payload and gait).
-        requirements: The design file's requirements (none given: nothing checked).
+        requirements: The design file's requirements (none given: nothing checked), checked
+            on the same evaluation, under ``conditions``.
         model: Its model (an imported robot's at these segments); derived from hexaleg's
             template (:func:`~hexaleg.robot.model_cache.model_of`) if omitted.
 
@@ -77,13 +82,13 @@ def answer(
     start = time.perf_counter()
     model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
-    shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
-    metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
+    metrics = {*EXPLORED, *(goal.metrics if goal is not None else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
     out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
+    out["structure"] = _structure(found)
     if goal is not None:
-        checked = found if shared else goal.evaluate(design, model=model)
-        out["requirements"] = _checks(goal, checked)
+        out["requirements"] = _checks(goal, found)
+        out["requirements_conditions"] = conditions_unlike(goal.conditions, conditions, design)
     out["evaluate_ms"] = 1000 * (time.perf_counter() - start)
     return out
 
@@ -205,11 +210,67 @@ def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:
     return checks
 
 
+def conditions_unlike(
+    required: Conditions, shown: Conditions, design: HexapodDesign
+) -> list[dict[str, Any]]:
+    """Where the conditions ``shown`` differ from the ``required`` ones, condition by condition.
+
+    Each entry: ``name`` (``payload.mass``, ``gait.period``, ...), the ``required`` value and
+    the value ``shown`` [SI units, radians]; empty when the checks are made under the
+    requirements' own conditions. The payload's default position is spelled out first.
+    """
+    wanted, given = _flat(_placed(required, design)), _flat(_placed(shown, design))
+    return [
+        {"name": name, "required": value, "shown": given[name]}
+        for name, value in wanted.items()
+        if given[name] != value
+    ]
+
+
+def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
+    """A record's fields, and its records' fields, by dotted name (JSON-ready values)."""
+    if not is_dataclass(value) or isinstance(value, type):
+        return {prefix: list(value) if isinstance(value, tuple) else value}
+    out: dict[str, Any] = {}
+    for spec in fields(value):
+        if spec.name != "keep":  # what an evaluation keeps, not what it is measured under
+            out |= _flat(getattr(value, spec.name), f"{prefix}.{spec.name}".lstrip("."))
+    return out
+
+
 def _placed(conditions: Conditions, design: HexapodDesign) -> Conditions:
     """The conditions with the payload's position spelled out (its default made explicit)."""
     payload = conditions.payload
     x, y, z = payload.position_on(design)
     return replace(conditions, payload=Payload(payload.mass, (x, y, z)))
+
+
+def _structure(found: Evaluation) -> dict[str, Any] | None:
+    """The legs' tubes as the evaluation checked them; ``None`` without a tube to check.
+
+    ``tubes``: each segment's outer diameter, wall [m] and mass [kg]; ``worst_ratio`` and
+    ``worst`` (case, leg, segment): the largest von Mises stress over what is allowed [-],
+    over the standing cases (nominal stance and the twelve extremes, with the payload) and
+    the gait period, where it is walked; ``deflection`` [m]: the largest standing foot
+    deflection, with its ``deflection_limit`` [m]; ``feasible``: every ratio ≤ 1 and the
+    deflection within its limit.
+    """
+    standing = None if found.loads is None else found.loads.structure
+    if standing is None:
+        return None
+    walking = None if found.gait is None else found.gait.structure
+    checks = [standing]  # the period's where it was walked (not broken off: finite ratios)
+    checks += [walking] if walking is not None and math.isfinite(walking.worst_ratio) else []
+    worst = max(checks, key=lambda check: check.worst_ratio)
+    return {
+        "material": standing.structure.material.name,
+        "tubes": standing.tubes_dict(),
+        "worst_ratio": worst.worst_ratio,
+        "worst": worst.worst,
+        "deflection": standing.deflection,
+        "deflection_limit": standing.limit,
+        "feasible": all(check.feasible for check in checks),
+    }
 
 
 def _finite(value: float) -> float | None:

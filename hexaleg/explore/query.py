@@ -2,7 +2,9 @@
 
 A query names any design field by its key in a design file (``l1=0.25``,
 ``body_width=0.7``, a triple as three comma-separated numbers:
-``nominal_angles=0,0.1,-1.5``) and the conditions the sliders set: the payload
+``nominal_angles=0,0.1,-1.5``), the posture's hip and knee angles on their own
+(``theta2``, ``theta3`` [rad], each within the design's stance limits; θ1 kept) and the
+conditions the sliders set: the payload
 (``payload`` [kg], ``payload_at`` = x,y,z in the body frame [m]) and the gait's
 ``speed`` [m/s], ``stride`` [m] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
 ``actuators.knee`` choose each joint type's motor by its catalog name (``hexaleg
@@ -26,12 +28,22 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
 
-__all__ = ["ACTUATOR_KEYS", "CONDITION_KEYS", "DESIGN_KEYS", "Query", "parse_query"]
+__all__ = [
+    "ACTUATOR_KEYS",
+    "CONDITION_KEYS",
+    "DESIGN_KEYS",
+    "POSTURE_KEYS",
+    "Query",
+    "parse_query",
+]
 
 DESIGN_KEYS: dict[str, Any] = {
     spec.key: spec for spec in DESIGN_FIELDS if spec.kind in ("number", "triple", "choice")
 }
 """Design fields a query may set, by their design-file key."""
+
+POSTURE_KEYS: dict[str, int] = {"theta2": 1, "theta3": 2}
+"""The posture's angles a query may set on their own, with their place in ``nominal_angles``."""
 
 CONDITION_KEYS: dict[str, str] = {
     "payload": "payload mass [kg]",
@@ -72,7 +84,7 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
         ParameterError: An unknown key, or a value out of its field's range.
 
     """
-    known = (*DESIGN_KEYS, *CONDITION_KEYS, *ACTUATOR_KEYS)
+    known = (*DESIGN_KEYS, *POSTURE_KEYS, *CONDITION_KEYS, *ACTUATOR_KEYS)
     unknown = [key for key in params if key not in known]
     if unknown:
         raise ParameterError(
@@ -81,6 +93,8 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
     changes = {key: _field(key, text) for key, text in params.items() if key in DESIGN_KEYS}
     if any(key in params for key in ACTUATOR_KEYS):
         changes["actuators"] = _actuators(params, base.actuators)
+    if any(key in params for key in POSTURE_KEYS):
+        changes["nominal_angles"] = _posture(params, base.replace(**changes))
     design = base.replace(**changes) if changes else base
     return Query(design, _conditions(params, conditions))
 
@@ -94,6 +108,30 @@ def _field(key: str, text: str) -> Any:
         return spec.check(tuple(_number(f"{key}.{item}", part, spec.unit)
                                 for item, part in _three(key, text, spec.items)))  # fmt: skip
     return spec.check(_number(key, text, spec.unit, spec.bounds))
+
+
+def _posture(params: Mapping[str, str], base: HexapodDesign) -> tuple[float, float, float]:
+    """The posture a query's ``theta2`` and ``theta3`` set over ``base``'s [rad].
+
+    Each within ``base``'s stance limits (the limits the sliders span and the posture search
+    keeps to); given beside ``nominal_angles``, refused.
+    """
+    if "nominal_angles" in params:
+        key = next(key for key in POSTURE_KEYS if key in params)
+        raise ParameterError(key, params[key], "give nominal_angles or theta2 and theta3, not both")
+    angles = list(base.nominal_angles)
+    for key, index in POSTURE_KEYS.items():
+        if key in params:
+            low, high = getattr(base.stance_limits, key)
+            angle = _number(key, params[key], "rad", (low, high))
+            if not low <= angle <= high:
+                raise ParameterError(
+                    key,
+                    params[key],
+                    f"must be within the stance limits [{low:.6g}, {high:.6g}] [rad]",
+                )
+            angles[index] = angle
+    return angles[0], angles[1], angles[2]
 
 
 def _actuators(params: Mapping[str, str], loaded: Actuators | None) -> Actuators | None:

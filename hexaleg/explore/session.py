@@ -26,11 +26,12 @@ from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs
-from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, Query, parse_query
+from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, POSTURE_KEYS, Query, parse_query
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.robot import Robot
 
@@ -186,12 +187,28 @@ class Session:
         return asked, self.robot.at(asked.design)
 
     def evaluate(self, params: Mapping[str, str]) -> dict[str, Any]:
-        """The page's numbers for the design a query asks for."""
+        """The page's numbers for the design a query asks for.
+
+        Where its ``[structure]`` says ``size = true``, its tubes are sized first, for the
+        requirements' payload and slope (:func:`~hexaleg.evaluation.sizing.sized_for`, as
+        the commands that measure tubes size them); the answer's ``structure.sizing`` says
+        how.
+        """
         asked, robot = self.robot_at(params)
         required = self.requirements
         if required.given:  # the leg length the loaded design has, unless the file says
             required = required.resolved(self.design)
-        return answer(robot.design, asked.conditions, required, robot.model)
+        sized = sized_for(robot.design, self.requirements)
+        if sized is not None:
+            robot = robot.at(sized.design)
+        out = answer(robot.design, asked.conditions, required, robot.model)
+        if sized is not None and out["structure"] is not None:
+            out["structure"]["sizing"] = {
+                "found": sized.found,
+                "iterations": sized.iterations,
+                "settled": sized.settled,
+            }
+        return out
 
     def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
         """Each foot's reach on the ground for the design a query asks for (``reach``)."""
@@ -206,6 +223,8 @@ class Session:
             key: [low * values[key], high * values[key], label] for key, label, low, high in shown
         }
         bounds = {spec.key: spec.bounds for spec in DESIGN_FIELDS if spec.bounds is not None}
+        limits = self.design.stance_limits
+        posture = {key: list(getattr(limits, key)) for key in POSTURE_KEYS}
         motors = [{key: entry.to_dict()[key] for key in CATALOG_COLUMNS}
                   for entry in shipped_catalog()]  # fmt: skip
         return {
@@ -213,6 +232,7 @@ class Session:
             "catalog": motors,
             "has_actuators": self.design.actuators is not None,
             "sliders": ranges,
+            "posture": posture,
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),
