@@ -95,9 +95,10 @@ function buildControls(loaded) {
   const s = loaded.sliders;
   heading(c, "legs [m]");
   for (const key of ["l1", "l2", "l3"]) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
-  heading(c, "nominal posture [rad]");
-  slider(c, "theta2", "hip θ2", -0.5236, 0.5236, v.nominal_angles[1], "any");
-  slider(c, "theta3", "knee θ3", -2.356, -0.2618, v.nominal_angles[2], "any");
+  heading(c, "nominal posture [rad]");  // within the stance limits
+  const p = loaded.posture;
+  slider(c, "theta2", "hip θ2", p.theta2[0], p.theta2[1], v.nominal_angles[1], "any");
+  slider(c, "theta3", "knee θ3", p.theta3[0], p.theta3[1], v.nominal_angles[2], "any");
   const body = ["body_length", "body_width"].filter((key) => key in s);  // not a file's body
   if (body.length) heading(c, "body [m]");
   for (const key of body) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
@@ -129,7 +130,8 @@ function query() {
                      "speed", "step_height"]) {
     if (document.getElementById(key)) params.set(key, get(key));
   }
-  params.set("nominal_angles", [v.nominal_angles[0], get("theta2"), get("theta3")].join(","));
+  params.set("theta2", get("theta2"));
+  params.set("theta3", get("theta3"));
   params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
   for (const joint of ["root", "hip", "knee"]) {
     if (!document.getElementById("motor_" + joint)) continue;
@@ -188,7 +190,8 @@ async function loadReach() {  // only while it is shown: a redraw without it doe
 
 function draw(answer) {
   drawNumbers(answer);
-  drawRequirements(answer.requirements);
+  drawStructure(answer.structure);
+  drawRequirements(answer.requirements, answer.requirements_conditions);
   drawExtremes(answer.extremes);
   drawScene(answer);
   drawChart();
@@ -215,10 +218,52 @@ function drawNumbers(answer) {
   }
 }
 
-function drawRequirements(checks) {
+function drawStructure(structure) {  // the legs' tubes, from the same evaluation
+  const box = document.getElementById("structure");
+  box.hidden = !structure;
+  if (!structure) return;
+  const body = box.querySelector("tbody");
+  body.replaceChildren();
+  const mm = (x) => (1000 * x).toFixed(1) + " mm";
+  const rows = Object.entries(structure.tubes).map(([segment, t]) => [segment,
+    "⌀ " + mm(t.outer_diameter) + ", wall " + mm(t.wall) + ", " + t.mass.toFixed(3) + " kg",
+    segment]);
+  const w = structure.worst;
+  rows.push(["worst stress ratio", structure.worst_ratio.toFixed(3) + " (" + w.leg + " " +
+    w.segment + ", " + w.case + ")", "worst_ratio"]);
+  rows.push(["foot deflection", mm(structure.deflection) + " (limit " +
+    mm(structure.deflection_limit) + ")", "deflection"]);
+  for (const [label, text, key] of rows) {
+    const tr = document.createElement("tr");
+    tr.dataset.key = key;
+    for (const cell of [label, text]) {
+      const td = document.createElement("td");
+      td.textContent = cell;
+      tr.append(td);
+    }
+    body.append(tr);
+  }
+  const sizing = structure.sizing;
+  box.querySelector("p").textContent = structure.material + (sizing ? ", sized in " +
+    sizing.iterations + " rounds" + (sizing.found ? "" : ": no tubes of the grid hold, the " +
+    "strongest shown") : "") + (structure.feasible ? "" : " — OVER its strength or deflection limit");
+  box.classList.toggle("failed", !structure.feasible);
+}
+
+function conditionText(c) {
+  const shown = (x) => Array.isArray(x) ? x.map((y) => Number(y).toPrecision(3)).join(", ")
+    : x === null ? "none" : typeof x === "number" ? Number(x.toPrecision(4)) : x;
+  return c.name + " " + shown(c.shown) + " (required " + shown(c.required) + ")";
+}
+
+function drawRequirements(checks, unlike) {
   const box = document.getElementById("requirements");
   box.hidden = !checks;
   if (!checks) return;
+  const note = box.querySelector("p");  // the checks read the numbers shown: say under what
+  note.textContent = unlike.length ? "checked under the sliders' conditions, not the " +
+    "requirements': " + unlike.map(conditionText).join("; ") : "";
+  note.hidden = !unlike.length;
   const list = box.querySelector("ul");
   list.replaceChildren();
   for (const c of checks) {
