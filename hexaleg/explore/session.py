@@ -25,12 +25,13 @@ from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.metrics import METRICS, objectives
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
-from hexaleg.explore.jobs import Jobs
+from hexaleg.explore.jobs import Jobs, job_options
 from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, POSTURE_KEYS, Query, parse_query
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.robot import Robot
@@ -233,6 +234,8 @@ class Session:
             "has_actuators": self.design.actuators is not None,
             "sliders": ranges,
             "posture": posture,
+            "objectives": {better: objectives(better) for better in ("maximize", "minimize")},
+            "posture_objective": f"maximize={METRICS.walking_payload_capacity.name}",
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),
@@ -259,8 +262,14 @@ class Session:
         return self.target.write(self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
-        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
-        return self.jobs.start(kind, self.design_text(params)).to_dict()
+        """Start the long job ``kind`` on the design a query asks for.
+
+        ``kind``: ``free``, ``posture`` or ``decide`` (:data:`~.jobs.JOB_KINDS`); the
+        posture's objective is the query's ``maximize`` or ``minimize`` (:func:`job_options`).
+        """
+        asked = dict(params)
+        options = job_options(kind, asked)
+        return self.jobs.start(kind, self.design_text(asked), options).to_dict()
 
     def job(self, kind: str) -> dict[str, Any]:
         """The latest job of ``kind``: its state and progress (``state`` ``none``: never run)."""

@@ -99,6 +99,7 @@ function buildControls(loaded) {
   const p = loaded.posture;
   slider(c, "theta2", "hip θ2", p.theta2[0], p.theta2[1], v.nominal_angles[1], "any");
   slider(c, "theta3", "knee θ3", p.theta3[0], p.theta3[1], v.nominal_angles[2], "any");
+  postureJob(c, loaded);
   const body = ["body_length", "body_width"].filter((key) => key in s);  // not a file's body
   if (body.length) heading(c, "body [m]");
   for (const key of body) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
@@ -120,6 +121,34 @@ function buildControls(loaded) {
   }
   heading(c, "motors (peak / continuous torque, mass)");
   for (const joint of ["root", "hip", "knee"]) motorChoice(c, joint, loaded);
+}
+
+function postureJob(parent, loaded) {  // "best posture": a job whose answer moves the sliders
+  const row = document.createElement("label");
+  const select = document.createElement("select");
+  select.id = "posture_objective";
+  for (const [sense, names] of Object.entries(loaded.objectives)) {
+    for (const name of names) {
+      const o = document.createElement("option");
+      o.value = sense + "=" + name;
+      o.textContent = sense + " " + name.replaceAll("_", " ");
+      select.append(o);
+    }
+  }
+  select.value = loaded.posture_objective;
+  row.append("for", select);
+  const box = document.createElement("div");
+  box.className = "job";
+  box.dataset.kind = "posture";
+  const button = document.createElement("button");
+  button.type = "button";
+  button.textContent = "best posture";
+  const bar = document.createElement("progress");
+  Object.assign(bar, {max: 1, value: 0});
+  const state = document.createElement("span");
+  state.className = "job-state";
+  box.append(button, bar, state);
+  parent.append(row, box);
 }
 
 function query() {
@@ -427,6 +456,10 @@ async function pollCloud() {
 }
 
 const JOB_ANSWERS = {
+  posture: (a) => "θ2 " + a.best.nominal_angles[1].toFixed(3) + ", θ3 " +
+    a.best.nominal_angles[2].toFixed(3) + " rad: " + a.objective.name.replaceAll("_", " ") + " " +
+    a.best.objective.value.toPrecision(4) + " (as posed " + a.yours.objective.value.toPrecision(4) +
+    ")" + (a.feasible ? "" : " — no posture meets every requirement"),
   free: (a) => "FB " + a.fb.toPrecision(4) + " with the other five coordinates free" +
     (a.converged ? "" : " (not shown to be the maximum)"),
   decide: (a) => a.best ? "best: l1 " + a.best.design.l1.toPrecision(3) + ", l2 " +
@@ -449,6 +482,26 @@ function showJob(box, job) {
     (box.dataset.lengths ? ", for l = " + box.dataset.lengths + " m" : "") + ")"
     : job.state + (job.error ? ": " + job.error : "");
   if (job.state === "done") { bar.max = 1; bar.value = 1; }
+  if (job.state === "done" && JOB_DONE[job.kind] && box.dataset.applied !== String(job.pid)) {
+    box.dataset.applied = String(job.pid);  // once per job: the sliders moved to its answer
+    JOB_DONE[job.kind](job.answer);
+  }
+}
+
+const JOB_DONE = {
+  posture: (a) => {  // the sliders moved to the best posture, and the design measured there
+    for (const [id, angle] of [["theta2", a.best.nominal_angles[1]],
+                               ["theta3", a.best.nominal_angles[2]]]) {
+      const input = document.getElementById(id);
+      input.value = angle;
+      input.nextElementSibling.textContent = Number(input.value).toPrecision(3);
+    }
+    changed();
+  },
+};
+
+function jobParams(kind) {  // what a job asks beside the design shown: the posture's objective
+  return kind === "posture" ? "&" + document.getElementById("posture_objective").value : "";
 }
 
 async function pollJob(box) {
@@ -460,7 +513,8 @@ async function pollJob(box) {
 async function startOrStopJob(box) {
   const kind = box.dataset.kind;
   const running = box.dataset.state === "running";
-  const url = running ? "api/job/stop?kind=" + kind : "api/job?kind=" + kind + "&" + query();
+  const url = running ? "api/job/stop?kind=" + kind
+    : "api/job?kind=" + kind + "&" + query() + jobParams(kind);
   if (!running) {  // the answer is of the design shown now: say which
     box.dataset.lengths = ["l1", "l2", "l3"].map(
       (k) => Number(document.getElementById(k).value).toPrecision(3)).join(", ");
@@ -522,7 +576,7 @@ async function start() {
     await loadReach();
     drawScene(explorer.answer);
   });
-  for (const box of document.querySelectorAll("#jobs .job")) {
+  for (const box of document.querySelectorAll(".job")) {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
     button.addEventListener("click", () => startOrStopJob(box));
