@@ -15,6 +15,7 @@ from hexaleg.cause import Cause
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.statics import Payload, analyze_loads
+from hexaleg.statics.ground import Ground
 from hexaleg.study.rows import design_walking_columns
 
 GAIT_FIELDS = {
@@ -187,7 +188,8 @@ def test_the_study_columns_are_the_single_design_numbers(hexapod_model):
 def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
     gait = Gait(samples=16)
     walked = analyze_gait(hexapod_model.design, gait, distribution="min-torque",
-                          friction=0.5, model=hexapod_model, limits=False)  # fmt: skip
+                          ground=Ground(friction=0.5), model=hexapod_model,
+                          limits=False)  # fmt: skip
     norm = analyze_gait(hexapod_model.design, gait, model=hexapod_model, limits=False)
     standing = walked.foot_forces[walked.stance]
     assert (standing[:, 2] >= -1e-6).all()

@@ -7,9 +7,16 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from hexaleg._checks import require_in_range
 from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
-from hexaleg.cli.loads import add_payload_options, payload_from_args
+from hexaleg.cli.loads import (
+    add_payload_options,
+    add_safety_factor_option,
+    payload_from_args,
+    rated_text,
+    safety_factor_from_args,
+)
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
@@ -28,16 +35,20 @@ from hexaleg.cli.output import (
     write_plots,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
+from hexaleg.gait.walkable import require_walkable
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE, Ground
 
 if TYPE_CHECKING:
     from hexaleg._typing import ArrayF
     from hexaleg.robot.imported_model import ImportedHexapodModel
 
 DEFAULT = Gait()
+SLOPE_LIMIT = math.degrees(MAX_SLOPE)
+"""The steepest ``--slope-deg`` either way [°]: 60."""
 DESCRIPTION = (
     "One gait period of the design (SI units: s, m, kg, N·m, rad/s, W, J): the body walks "
     "at constant velocity, level, at its nominal height; standing feet stay put, swinging "
@@ -48,7 +59,10 @@ DESCRIPTION = (
     "whether the period is feasible, the max stride and the max speed within the ratings; "
     "flags every joint over its rating. A design with [actuators] also gets each motor's "
     "current, voltage and copper loss, the electrical energy, cost of transport and Wh/km, "
-    "the battery's runtime and range, and checks continuous torque and voltage. With --urdf, "
+    "the battery's runtime and range, and checks continuous torque and voltage against the "
+    "bus. --slope-deg walks a plane inclined that much (uphill, downhill or across): gravity "
+    "tilts in the body frame, which stays parallel to it, and each standing foot's force is "
+    "held within the friction cone. With --urdf, "
     "your robot: each leg its own general leg and nominal posture, the file's masses, "
     "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
     "and in the file's joints (urdf_* in the JSON and CSV)."
@@ -61,7 +75,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     add_gait_options(parser)
+    add_ground_options(parser)
     add_payload_options(parser)
+    add_safety_factor_option(parser)
     add_output_options(parser)
     parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
     parser.add_argument(
@@ -105,6 +121,34 @@ def add_gait_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_ground_options(parser: argparse.ArgumentParser) -> None:
+    """``--slope-deg`` and ``--slope-heading``: the plane the gait is walked on."""
+    group = parser.add_argument_group("ground (default level; --friction is its μ)")
+    group.add_argument(
+        "--slope-deg",
+        type=float,
+        default=0.0,
+        metavar="DEG",
+        help=f"walk on a plane inclined DEG in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°]: "
+        "positive rises along --slope-heading (uphill), negative falls (downhill)",
+    )
+    group.add_argument(
+        "--slope-heading",
+        type=float,
+        metavar="RAD",
+        help="direction in the body frame along which the ground rises [rad] (default: the "
+        "gait's heading, so the walk is up or down the fall line; heading ± π/2 walks across)",
+    )
+
+
+def ground_from_args(args: argparse.Namespace) -> Ground:
+    """The ground ``--slope-deg``, ``--slope-heading`` and ``--friction`` describe (checked)."""
+    slope = require_in_range("--slope-deg", args.slope_deg, -SLOPE_LIMIT, SLOPE_LIMIT, "°")
+    if args.slope_heading is not None:
+        require_in_range("--slope-heading", args.slope_heading, *HEADING_RANGE, "rad")
+    return Ground(math.radians(slope), args.slope_heading, args.friction)
+
+
 def gait_from_args(args: argparse.Namespace) -> Gait:
     """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
 
@@ -129,15 +173,16 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
     model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args)
-    payload = payload_from_args(args)
+    payload, ground = payload_from_args(args), ground_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(
         model.design,
         gait,
         payload,
         distribution=args.distribution,
-        friction=args.friction,
+        ground=ground,
         model=model,
+        safety_factor=safety_factor_from_args(args),
     )
     require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []
@@ -225,12 +270,16 @@ def _feasible(analysis: GaitAnalysis) -> str:
 
 
 def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
-    """The motors' rows: energy, power, cost, each joint type's loads, the battery."""
+    """The motors' rows: the bus, energy, power, cost, each joint type's loads, the battery."""
     electrical, actuators = analysis.electrical, analysis.design.actuators
     if electrical is None or actuators is None:
         return []
     share = electrical.copper_loss_per_period / max(electrical.energy_per_period, 1e-300)
     rows = [
+        (
+            "motors",
+            f"bus {electrical.supply:g} V, windings at {electrical.winding_temperature:g} °C",
+        ),
         (
             "electrical energy per period",
             f"{electrical.energy_per_period:.4g} J (copper loss "
@@ -247,7 +296,7 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
                 f"{joint}: RMS torque, current, voltage",
                 f"{figures.rms_torque:.2f} N·m (continuous {actuator.continuous_torque:g}), "
                 f"peak {figures.peak_current:.3g} A, {figures.peak_voltage:.3g} V "
-                f"(supply {actuator.voltage:g})",
+                f"(bus {electrical.supply:g})",
             )
         )
     if electrical.battery is not None:
@@ -255,51 +304,42 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
         rows.append(
             (
                 "battery",
-                f"{use.capacity:.4g} Wh, {use.mass:.3g} kg: runtime {use.runtime:.3g} h, "
-                f"range {use.range:.3g} km",
+                f"{use.capacity:.4g} Wh, {use.mass:.3g} kg, {100 * use.reserve:.0f} % kept in "
+                f"reserve: runtime {use.runtime:.3g} h, range {use.range:.3g} km",
             )
         )
     return rows
 
 
-def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
-    """The text table's rows."""
-    gait, metrics, design = analysis.gait, analysis.metrics, analysis.design
-    rows = [
-        (
-            "gait",
-            f"{gait.pattern} (β = {gait.duty_factor:.3g}), T = {gait.period:.4g} s, "
-            f"S = {gait.stride:.4g} m, H = {gait.step_height:.4g} m, "
-            f"ψ = {gait.heading:.4g} rad, {gait.samples} samples",
-        ),
-        ("body speed", f"{gait.speed:.4g} m/s"),
-        ("total mass", f"{analysis.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
-    ]
+def joint_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
+    """Each joint type's peak and RMS torque, peak speed and power, against rating / F."""
+    metrics, design, factor = analysis.metrics, analysis.design, analysis.safety_factor
+    rows = []
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
         rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
-                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m (rated {rated_torque:g})"
-                + (", OVER RATING" if torque > rated_torque else ""),
+                f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m "
+                f"(rated {rated_text(rated_torque, factor, 'N·m')})"
+                + (", OVER RATING" if torque > rated_torque / factor else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_speed:g}) / "
+                f"{speed:.3f} rad/s (rated {rated_text(rated_speed, factor, 'rad/s')}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
-                + (", OVER RATING" if speed > rated_speed else ""),
+                + (", OVER RATING" if speed > rated_speed / factor else ""),
             )
         )
-    rows += [
-        ("positive work per period", f"{metrics.positive_work:.2f} J"),
-        ("mechanical cost of transport", f"{metrics.cost_of_transport:.4f}"),
-        *electrical_rows(analysis),
-        ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m"),
-        ("feasible", _feasible(analysis)),
-    ]
+    return rows
+
+
+def limit_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
+    """The max stride and max speed, when computed."""
+    rows = []
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
@@ -311,5 +351,40 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
             else f" (T = {limit.period:.4g} s, S = {limit.stride:.4g} m)"
         )
         rows.append(("max speed", f"{limit.value:.4f} m/s{at}, limited by {limit.limited_by}"))
+    return rows
+
+
+def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
+    """The text table's rows."""
+    gait, metrics = analysis.gait, analysis.metrics
+    rows = [
+        (
+            "gait",
+            f"{gait.pattern} (β = {gait.duty_factor:.3g}), T = {gait.period:.4g} s, "
+            f"S = {gait.stride:.4g} m, H = {gait.step_height:.4g} m, "
+            f"ψ = {gait.heading:.4g} rad, {gait.samples} samples",
+        ),
+        ("ground", analysis.ground.describe(gait.heading)),
+        ("body speed", f"{gait.speed:.4g} m/s"),
+        ("total mass", f"{analysis.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
+    ]
+    if analysis.safety_factor != 1:
+        factor = analysis.safety_factor
+        rows.append(("safety factor", f"{factor:g}: peak torques and speeds within rating / F"))
+    rows += joint_rows(analysis)
+    rows += [
+        ("positive work per period", f"{metrics.positive_work:.2f} J"),
+        ("mechanical cost of transport", f"{metrics.cost_of_transport:.4f}"),
+        *electrical_rows(analysis),
+        ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m (on the ground's plane)"),
+        (
+            "friction needed",
+            f"{analysis.friction_needed:.3g} (largest tangential / normal force of a standing "
+            f"foot; μ = {analysis.ground.friction:g})",
+        ),
+        ("feasible", _feasible(analysis)),
+        *limit_rows(analysis),
+    ]
+    rows += [("SLIDES", str(slip)) for slip in analysis.slips]
     rows += [("OVER RATING", str(over)) for over in analysis.over_rating]
     return rows

@@ -21,6 +21,7 @@ from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_mod
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
+from hexaleg.statics.ratings import SAFETY_FACTOR_RANGE
 
 if TYPE_CHECKING:
     from hexaleg.gait.capacity import WalkingCapacity
@@ -43,6 +44,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     add_payload_options(parser)
+    add_safety_factor_option(parser)
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
@@ -80,6 +82,30 @@ def add_payload_options(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def add_safety_factor_option(parser: argparse.ArgumentParser) -> None:
+    """``--safety-factor F``: peak torques and speeds held within rating / F (loads, gait)."""
+    parser.add_argument(
+        "--safety-factor",
+        type=float,
+        default=1.0,
+        metavar="F",
+        help="hold every peak joint torque and speed within its rating / F, in "
+        "[{:g}, {:g}] [-] (default 1: the ratings as given)".format(*SAFETY_FACTOR_RANGE),
+    )
+
+
+def safety_factor_from_args(args: argparse.Namespace) -> float:
+    """``--safety-factor`` checked: a number in :data:`SAFETY_FACTOR_RANGE` [-]."""
+    return require_in_range("--safety-factor", args.safety_factor, *SAFETY_FACTOR_RANGE, "-")
+
+
+def rated_text(rating: float, safety_factor: float, unit: str) -> str:
+    """A rating as a table prints it: ``150 N·m``, or ``150 / 1.5 = 100 N·m`` with F ≠ 1."""
+    if safety_factor == 1:
+        return f"{rating:g} {unit}"
+    return f"{rating:g} / {safety_factor:g} = {rating / safety_factor:.4g} {unit}"
+
+
 def payload_from_args(args: argparse.Namespace) -> Payload:
     """The payload ``--payload`` and ``--payload-at`` describe (validated)."""
     if args.payload_at is None:
@@ -104,7 +130,7 @@ def run(args: argparse.Namespace) -> int:
     design = design_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
     check_outputs({}, {"--plot": args.plot})  # before computing
-    payload = payload_from_args(args)
+    payload, factor = payload_from_args(args), safety_factor_from_args(args)
     model = HexapodModel(design) if robot is None else robot
     analysis = analyze_loads(
         model.design,
@@ -114,9 +140,10 @@ def run(args: argparse.Namespace) -> int:
         args.distribution,
         args.mode,
         model=model,
+        safety_factor=factor,
     )
     gait = design_gait(args)
-    walking = walking_payload_capacity(model, gait, payload.position)
+    walking = walking_payload_capacity(model, gait, payload.position, safety_factor=factor)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
@@ -148,13 +175,16 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         ("total mass", f"{analysis.nominal.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
         ("stability margin, nominal", margin),
     ]
+    if analysis.safety_factor != 1:
+        rows.append(("safety factor", f"{analysis.safety_factor:g}: torques within rating / F"))
     for joint in LEG_JOINTS:
+        held = rated[joint] / analysis.safety_factor
         rows.append(
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                f"(rated {rated[joint]:g} N·m)"
-                + (", OVER RATING" if analysis.peak_torques[joint] > rated[joint] else ""),
+                f"(rated {rated_text(rated[joint], analysis.safety_factor, 'N·m')})"
+                + (", OVER RATING" if analysis.peak_torques[joint] > held else ""),
             )
         )
     for slope in analysis.slopes:

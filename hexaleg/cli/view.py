@@ -110,7 +110,8 @@ def _note_missing_meshes(missing: tuple[str, ...]) -> None:
 
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
-    from hexaleg.gait.analysis import analyze_gait, require_walkable
+    from hexaleg.gait.analysis import analyze_gait
+    from hexaleg.gait.walkable import require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
     analysis = analyze_gait(model.design, design_gait(args), model=model, limits=False)

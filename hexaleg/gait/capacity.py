@@ -11,6 +11,9 @@ wrench's two parts, and every constraint becomes a bound on m:
 
 - each joint at each sample: |τ₀ + m·Δτ| ≤ its rated torque;
 - each edge of the support polygon at each sample: the ZMP on its inner side;
+- each standing foot at each sample: its force within the friction cone,
+  |f_t| ≤ μ·f_n, with f = f₀ + m·Δf: the end of an interval of m from 0, a root of a
+  quadratic (:func:`~hexaleg.gait.friction.cone_limit`);
 - with actuators (:mod:`hexaleg.actuators`), each leg's joint over the period: its RMS
   torque within the continuous torque C. The mean square over the samples is a quadratic
   in m, mean(τ₀²) + 2m·mean(τ₀·Δτ) + m²·mean(Δτ²) ≤ C², whose larger root is the bound;
@@ -29,7 +32,10 @@ The actuators' masses and armatures are in the model both walks use, so they are
 and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacity is the
 smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
 and the constraint that gives it is what binds; broken unloaded, the first broken in the
-order above (peak torque, ZMP, continuous torque, voltage) is what stops the walk. No search
+order above (peak torque, ZMP, friction, continuous torque, voltage) is what stops the walk.
+On a slope (:class:`~hexaleg.statics.ground.Ground`) both walks have gravity tilted in the
+body frame, and the payload's weight with it; a safety factor F divides the peak torque and
+speed ratings (:meth:`~hexaleg.gait.walk.Walker.rated`). No search
 and no bisection: the tests hold it against a bisection on
 :func:`~hexaleg.gait.analysis.analyze_gait`, whose ``over_rating`` and ZMP margin first
 report a broken rating just past the capacity.
@@ -46,12 +52,14 @@ from hexaleg._typing import ArrayF, CauseKind
 from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
+from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Loads, Walker
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Payload
-from hexaleg.statics.support import SupportPolygon
+from hexaleg.statics.ground import LEVEL, Ground
 
 PROBE_MASS = 1.0
 """The payload of the second walk [kg]: any positive mass gives the same affine maps."""
@@ -84,6 +92,8 @@ def walking_payload_capacity(
     gait: Gait | None = None,
     position: tuple[float, float, float] | None = None,
     gravity: float = GRAVITY,
+    ground: Ground = LEVEL,
+    safety_factor: float = 1.0,
 ) -> WalkingCapacity:
     """The largest payload at ``position`` the design carries walking ``gait``.
 
@@ -93,10 +103,13 @@ def walking_payload_capacity(
         position: Where the payload sits, body frame [m]; the centre of the body's top
             face if omitted.
         gravity: Gravitational acceleration g [m/s²].
+        ground: The ground walked on: its slope and friction (level by default).
+        safety_factor: F ≥ 1 [-]: peak torques and joint speeds within rating / F.
 
     """
     gait = Gait() if gait is None else gait
-    unloaded = Walker(model, gait, Payload(0.0, position), gravity=gravity)
+    unloaded = Walker(model, gait, Payload(0.0, position), ground=ground, gravity=gravity,
+                      safety_factor=safety_factor)  # fmt: skip
     walk = unloaded.stride(gait.stride)
     if walk.violations:
         return WalkingCapacity(0.0, walk.violations[0].cause, False)
@@ -106,20 +119,21 @@ def walking_payload_capacity(
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    loaded = Walker(model, gait, Payload(PROBE_MASS, position), gravity=gravity)
+    loaded = unloaded.carrying(Payload(PROBE_MASS, position))
     loads = [w.loads(gait.stride, walk, gait.period) for w in (unloaded, loaded)]
     base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
     slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
-        _zmp_bound(unloaded, loads, walk.paths.position, gait),
+        _zmp_bound(unloaded, loads, walk.paths.position),
+        _grip_bound(unloaded, loads),
     ]
-    actuators = model.design.actuators
-    if actuators is not None:
+    actuators, bus = model.design.actuators, model.design.bus_voltage
+    if actuators is not None and bus is not None:
         bounds += [
             _continuous_bound(legs, base, slope, actuators),
-            _voltage_bound(legs, base, slope, velocities, actuators),
+            _voltage_bound(legs, base, slope, velocities, actuators, bus),
         ]
     found = [b for b in bounds if b is not None]
     broken = [b for b in found if b[0] < 0]
@@ -207,9 +221,14 @@ def _continuous_bound(
 
 
 def _voltage_bound(
-    legs: tuple[str, ...], base: ArrayF, slope: ArrayF, speeds: ArrayF, actuators: Actuators
+    legs: tuple[str, ...],
+    base: ArrayF,
+    slope: ArrayF,
+    speeds: ArrayF,
+    actuators: Actuators,
+    supply: float,
 ) -> tuple[float, Cause] | None:
-    """Each joint's motor at every sample within the supply: a torque window around zero.
+    """Each joint's motor at every sample within the bus voltage V: a window around τ = 0.
 
     The voltage needed at speed ω is e + s₊·τ for τ ≥ 0 and e − s₋·τ for τ < 0 (e the
     back-EMF; s₊, s₋ ≥ 0 the two branches' volts per N·m), read off the motor equations at
@@ -221,7 +240,7 @@ def _voltage_bound(
         motor_samples(torque, speeds, actuators).voltage
         for torque in (np.zeros_like(probe), probe, -probe)
     )
-    headroom = np.asarray(actuators.values("voltage")) - emf
+    headroom = supply - emf
     return _window_bound(
         "voltage",
         legs,
@@ -240,33 +259,42 @@ def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
     return reach
 
 
-def _zmp_bound(
-    walker: Walker, loads: list[Loads], feet: ArrayF, gait: Gait
-) -> tuple[float, Cause] | None:
-    """The ZMP on the inner side of every edge of the standing feet's polygon."""
-    period, height = gait.period, walker.frames.height
-    wrenches = [load.rnea.static[:, :6] + load.rnea.inertial[:, :6] / period**2 for load in loads]
-    travel = loads[0].rnea.configurations[:, :2]  # the body's footprint, ground frame
-    # the ZMP's numerators: F_z·(x, y) relative to the body origin's footprint (stability.py)
-    parts = []
-    for wrench in wrenches:
-        force, moment = wrench[:, :3], wrench[:, 3:]
-        numerator = np.stack((-(moment[:, 1] + height * force[:, 0]),
-                              moment[:, 0] - height * force[:, 1]), axis=-1)  # fmt: skip
-        parts.append((numerator, force[:, 2]))
+def _zmp_bound(walker: Walker, loads: list[Loads], feet: ArrayF) -> tuple[float, Cause] | None:
+    """The ZMP on the inner side of every edge of the standing feet's polygon.
+
+    Each side, F_z·cross(edge, ZMP − vertex), is linear in the wrench
+    (:func:`~hexaleg.gait.stability.zmp_sides`), hence affine in the payload.
+    """
+    period, height = walker.gait.period, walker.frames.height
+    configurations = loads[0].rnea.configurations
+    travel = configurations[:, :2]  # the body's footprint, ground frame
+    on_ground = feet_on_ground(feet, configurations, height)
     stance = walker.phases.stance
-    offsets, slopes = [], []
-    for k in range(len(stance)):
-        polygon = SupportPolygon.of_feet(feet[k, stance[k], :2] + travel[k])
-        sides = []
-        for numerator, vertical in parts:  # F_z·cross(edge, zmp − vertex) ≥ 0 inside
-            relative = numerator[k] - (polygon.vertices - travel[k]) * vertical[k]
-            edges = polygon.edges
-            sides.append(edges[:, 0] * relative[:, 1] - edges[:, 1] * relative[:, 0])
-        offsets.append(sides[0])
-        slopes.append((sides[1] - sides[0]) / PROBE_MASS)
-    found = _largest(np.concatenate(offsets), np.concatenate(slopes))
+    sides = [
+        zmp_sides(
+            load.rnea.static[:, :6] + load.rnea.inertial[:, :6] / period**2,
+            height,
+            travel,
+            on_ground,
+            stance,
+        )
+        for load in loads
+    ]
+    found = _largest(sides[0], (sides[1] - sides[0]) / PROBE_MASS)
     return None if found is None else (found[0], Cause("zmp"))
+
+
+def _grip_bound(walker: Walker, loads: list[Loads]) -> tuple[float, Cause] | None:
+    """Every standing foot's force within the friction cone, |f_t| ≤ μ·f_n (affine in m)."""
+    period = walker.gait.period
+    base = loads[0].split.forces(period)
+    slope = (loads[1].split.forces(period) - base) / PROBE_MASS
+    found = cone_limit(base, slope, walker.phases.stance, walker.ground.friction)
+    if found is None:
+        return None
+    mass, index = found
+    leg = index % len(walker.frames.legs)
+    return mass, Cause("slide", walker.frames.legs[leg])
 
 
 def _fastest(walker: Walker, over: np.ndarray, speeds: ArrayF) -> Cause:

@@ -62,18 +62,20 @@ class LoadedRobot:
     """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
 
     The payload is a point mass added to the body's inertia (its weight and, were the body
-    to accelerate, its inertia); gravity g [m/s²] points along −z. Without a payload, at
-    the model's own gravity, the model itself serves (a study's designs are not copied).
+    to accelerate, its inertia). Gravity is given in the body frame, which stays parallel
+    to the ground: −g·z on level ground, tilted on a slope
+    (:class:`~hexaleg.statics.ground.Ground`). Without a payload, at the model's own
+    gravity, the model itself serves (a study's designs are not copied).
 
     Args:
         model: The robot.
         payload: A point mass on the body.
-        gravity: Gravitational acceleration g [m/s²].
+        gravity: Gravitational acceleration in the body (ground) frame (3,) [m/s²].
 
     """
 
-    def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
-        self.gravity = np.array([0.0, 0.0, -gravity])
+    def __init__(self, model: HexapodModel, payload: Payload, gravity: ArrayF) -> None:
+        self.gravity = np.array(gravity, dtype=float)
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)
         if payload.mass > 0:

@@ -46,6 +46,7 @@ def stride_within_motors(walker: Walker, limit: StrideLimit, scan_steps: int) ->
     if actuators is None:
         return limit
     period, legs = walker.gait.period, walker.frames.legs
+    bus = walker.model.design.bus_voltage
 
     def loads(stride: float) -> RatingLoads | None:  # None: a joint's speed is unbounded
         walk = walker.stride(stride)
@@ -53,7 +54,7 @@ def stride_within_motors(walker: Walker, limit: StrideLimit, scan_steps: int) ->
         speeds = walk.motion.velocity / period
         if not (np.isfinite(torques).all() and np.isfinite(speeds).all()):
             return None  # a leg straight at the walkable max stride bound by reach
-        return motor_loads(torques, speeds, actuators, legs)
+        return motor_loads(torques, speeds, actuators, legs, bus, walker.safety_factor)
 
     def over(stride: float) -> bool:
         found = loads(stride)
@@ -105,7 +106,7 @@ def speed_within_motors(
     if actuators is None or limit.value == 0:
         return limit
     rnea = walker.generalized_forces(limit.stride, walk) if loads is None else None
-    legs = walker.frames.legs
+    legs, bus = walker.frames.legs, walker.model.design.bus_voltage
 
     def ratios(w: float) -> ArrayF:  # (continuous, voltage) ratios (2, L, 3) at w = 1/T²
         if loads is not None:
@@ -114,8 +115,9 @@ def speed_within_motors(
             period = math.inf if w == 0 else 1.0 / math.sqrt(w)
             torques = walker.loads(limit.stride, walk, period, rnea).split.torques(period)
         found: ArrayF = motor_loads(
-            torques, walk.motion.velocity * math.sqrt(w), actuators, legs
-        ).ratios
+            torques, walk.motion.velocity * math.sqrt(w), actuators, legs, bus,
+            walker.safety_factor,
+        ).ratios  # fmt: skip
         return found[1:3]
 
     high = 1.0 / limit.period**2

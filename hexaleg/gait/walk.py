@@ -9,6 +9,7 @@ the limits of :mod:`hexaleg.gait.limits` and the study's columns all walk throug
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 
 import numpy as np
@@ -34,13 +35,9 @@ from hexaleg.gait.trajectory import (
     path_shapes,
 )
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import (
-    DEFAULT_FRICTION,
-    GRAVITY,
-    Payload,
-    check_friction,
-    check_gravity,
-)
+from hexaleg.statics.forces import GRAVITY, Payload, check_gravity
+from hexaleg.statics.ground import LEVEL, Ground
+from hexaleg.statics.ratings import check_safety_factor
 
 
 @dataclass(frozen=True)
@@ -68,8 +65,12 @@ class Walker:
         gait: The gait (its pattern, samples, step height and heading are used).
         payload: A point mass on the body.
         distribution: How the standing feet share the load.
-        friction: Friction coefficient μ [-] (min-torque distribution).
+        ground: The ground walked on: its slope (gravity turns in the body frame, which
+            stays parallel to it) and friction μ (the min-torque distribution's, and what
+            the standing feet's forces are held to); level by default.
         gravity: Gravitational acceleration g [m/s²].
+        safety_factor: F ≥ 1 [-]: every peak torque and joint speed is held within its
+            rating / F (:meth:`rated`).
 
     """
 
@@ -79,27 +80,41 @@ class Walker:
         gait: Gait,
         payload: Payload | None = None,
         distribution: Distribution = "min-norm",
-        friction: float = DEFAULT_FRICTION,
+        ground: Ground = LEVEL,
         gravity: float = GRAVITY,
+        safety_factor: float = 1.0,
     ) -> None:
         require_choice("distribution", distribution, Distribution)
         self.model = model
         self.gait = gait
         self.payload = payload or Payload()
         self.distribution = distribution
-        self.friction = check_friction(friction)
+        self.ground = ground
+        self.friction = ground.friction
         self.gravity = check_gravity(gravity)
+        self.safety_factor = check_safety_factor(safety_factor)
         self.frames = LegFrames.from_model(model)
         self.bounds = JointBounds.from_model(model)
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
         self.shapes: PathShapes = path_shapes(self.phases)
         self._robot: LoadedRobot | None = None
 
+    def carrying(self, payload: Payload) -> Walker:
+        """The same walker with another payload (frames, bounds and phases shared)."""
+        other = copy.copy(self)
+        other.payload, other._robot = payload, None
+        return other
+
+    @property
+    def gravity_vector(self) -> ArrayF:
+        """Gravity in the body frame, which stays parallel to the ground (3,) [m/s²]."""
+        return self.ground.gravity(self.gait.heading, self.gravity)
+
     @property
     def robot(self) -> LoadedRobot:
         """The Pinocchio model with the payload (built on first use)."""
         if self._robot is None:
-            self._robot = LoadedRobot(self.model, self.payload, self.gravity)
+            self._robot = LoadedRobot(self.model, self.payload, self.gravity_vector)
         return self._robot
 
     @property
@@ -164,6 +179,6 @@ class Walker:
         return self.robot.generalized_forces(walk.motion, travel)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
-        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee)."""
-        design = self.model.design
-        return np.array(design.rated_torques), np.array(design.rated_speeds)
+        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F."""
+        design, factor = self.model.design, self.safety_factor
+        return np.array(design.rated_torques) / factor, np.array(design.rated_speeds) / factor

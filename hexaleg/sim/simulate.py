@@ -14,8 +14,9 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walkable import require_walkable
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.sim.measure import WalkMeter
@@ -25,6 +26,7 @@ from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, run_plan
 from hexaleg.sim.standing_tripod import standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
+from hexaleg.statics.ground import Ground
 
 DEFAULT_CYCLES = 4
 """Gait periods simulated by default."""
@@ -81,7 +83,7 @@ def simulate_gait(
         gait,
         payload,
         distribution=distribution,
-        friction=friction,
+        ground=Ground(friction=friction),
         model=model,
         limits=False,
     )

@@ -54,8 +54,9 @@ class LoadsAnalysis:
         nominal: The statics at the nominal stance.
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
-        capacity: The largest payload at the payload's point.
+        capacity: The largest payload at the payload's point (torques within rating / F).
         mode: Which flexibility extremes (axis-locked or free-coupled).
+        safety_factor: F [-]: every torque is held within its rating / F.
 
     """
 
@@ -68,6 +69,7 @@ class LoadsAnalysis:
     slopes: tuple[SlopeLimit, ...]
     capacity: PayloadCapacity
     mode: FlexibilityMode
+    safety_factor: float = 1.0
 
     @property
     def peak_torques(self) -> dict[str, float]:
@@ -107,7 +109,7 @@ class LoadsAnalysis:
 
     @property
     def over_rating(self) -> tuple[OverRating, ...]:
-        """Each stance joint whose |τ| exceeds its rating at the nominal stance or an extreme."""
+        """Each stance joint over its rating / F (|τ|) at the nominal stance or an extreme."""
         states = [self.nominal, *(e.state for e in self.extremes)]
         places = ["nominal", *(e.extreme.name for e in self.extremes)]
         return over_rating(
@@ -115,6 +117,8 @@ class LoadsAnalysis:
             [s.joint_torques for s in states],
             self.design.rated_torques,
             places,
+            "torque",
+            self.safety_factor,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -125,6 +129,7 @@ class LoadsAnalysis:
             "payload": self.payload.to_dict(self.design),
             "friction": self.friction,
             "distribution": self.distribution,
+            "safety_factor": self.safety_factor,
             "stance": list(legs),
             "mass": self.nominal.mass,
             "com": self.nominal.com.tolist(),
@@ -193,6 +198,7 @@ def analyze_loads(
     distribution: Distribution = "min-norm",
     mode: FlexibilityMode = "axis",
     model: HexapodModel | None = None,
+    safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
     """The statics of ``design``: nominal stance, twelve extremes, slopes, payload capacity.
 
@@ -204,11 +210,12 @@ def analyze_loads(
         distribution: ``"min-norm"`` or ``"min-torque"``.
         mode: The extremes of axis-locked or free-coupled flexibility.
         model: The design's Pinocchio model, if already built.
+        safety_factor: F ≥ 1 [-]: torques held within rating / F (flags and capacity).
 
     """
     model = HexapodModel(design) if model is None else model
     result = flexibility(design, mode, stance_legs(model, stance), model)
-    return loads_at_extremes(model, result, payload, friction, distribution)
+    return loads_at_extremes(model, result, payload, friction, distribution, safety_factor)
 
 
 def loads_at_extremes(
@@ -217,10 +224,14 @@ def loads_at_extremes(
     payload: Payload | None = None,
     friction: float = DEFAULT_FRICTION,
     distribution: Distribution = "min-norm",
+    safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
-    """The statics of a flexibility result's design, at its nominal stance and extremes."""
+    """The statics of a flexibility result's design, at its nominal stance and extremes.
+
+    ``safety_factor`` F divides every rated torque (the flags and the payload capacity).
+    """
     design, legs, mode = result.design, result.legs, result.mode
-    statics = Statics(model, legs, payload, friction)
+    statics = Statics(model, legs, payload, friction, safety_factor)
     q = model.nominal_configuration()
     nominal, *at_extremes = statics.states(
         [q, *extreme_configurations(model, result.extremes)], distribution
@@ -238,4 +249,5 @@ def loads_at_extremes(
         slopes=slope_limits(statics.support, nominal.com, friction),
         capacity=payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
+        safety_factor=statics.safety_factor,
     )

@@ -61,9 +61,9 @@ def slope_limits(
     )
 
 
-def slope_gravity(angle: float, heading: float) -> ArrayF:
-    """Gravity [m/s²] in the ground frame of a slope α uphill toward heading ψ."""
-    return GRAVITY * np.array(
+def slope_gravity(angle: float, heading: float, gravity: float = GRAVITY) -> ArrayF:
+    """Gravity [m/s²] in the ground frame of a slope α uphill toward heading ψ (g [m/s²])."""
+    return gravity * np.array(
         [
             -math.sin(angle) * math.cos(heading),
             -math.sin(angle) * math.sin(heading),
