@@ -73,15 +73,15 @@ class Ground:
         if self.level:
             return f"level ground, μ = {self.friction:g}"
         rises = self.uphill(walking)
-        across = math.remainder(rises - walking, 2 * math.pi)
-        if abs(across) < 1e-9:
+        off = math.degrees(math.remainder(rises - walking, 2 * math.pi))  # [°]
+        if abs(off) < 0.5:
             way = "uphill" if self.slope > 0 else "downhill"
-        elif abs(abs(across) - math.pi) < 1e-9:
+        elif abs(abs(off) - 180) < 0.5:
             way = "downhill" if self.slope > 0 else "uphill"
-        elif abs(abs(across) - math.pi / 2) < 1e-9:
+        elif abs(abs(off) - 90) < 0.5:
             way = "across"
         else:
-            way = f"{math.degrees(across):+.0f}° off the fall line"
+            way = f"{off:+.0f}° off the fall line"
         return (
             f"{math.degrees(self.slope):g}° slope rising along {rises:.4g} rad, walked {way}, "
             f"μ = {self.friction:g}"
