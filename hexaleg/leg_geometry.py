@@ -270,6 +270,8 @@ class JointMap:
 
 def _rigid(name: str, value: Any) -> Placement:
     """``value`` as a :data:`Placement` whose rotation is orthonormal and right-handed."""
+    if value is IDENTITY:  # the paper's leg, every design's: nothing to check
+        return IDENTITY
     try:
         checked = placement(value)
     except (ParameterError, TypeError, ValueError):

@@ -13,9 +13,9 @@ from hexaleg.cli.options import (
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_from_args,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_model
 
 if TYPE_CHECKING:
@@ -43,6 +43,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_mode_option(parser)
     add_stance_option(parser)
     add_collisions_option(parser)
+    add_best_posture_option(parser)
     add_output_options(parser)
     add_robot_options(parser)
 
@@ -51,7 +52,7 @@ def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
 
-    design = design_from_args(args)
+    design = posed_from_args(args)
     robot = robot_model(args, design)
     if robot is not None:
         return _run_imported(args, robot)

@@ -22,7 +22,6 @@ from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
     bounded_int,
-    design_from_args,
     design_gait,
 )
 from hexaleg.cli.output import (
@@ -34,6 +33,7 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
+from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
@@ -78,6 +78,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_ground_options(parser)
     add_payload_options(parser)
     add_safety_factor_option(parser)
+    add_best_posture_option(parser)
     add_output_options(parser)
     parser.add_argument("--csv", metavar="FILE", help="write the time series (one row per sample)")
     parser.add_argument(
@@ -169,7 +170,7 @@ def gait_from_args(args: argparse.Namespace) -> Gait:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    design = design_from_args(args)
+    design = posed_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
     model = HexapodModel(design) if robot is None else robot
     gait = gait_from_args(args)

@@ -13,10 +13,10 @@ from hexaleg.cli.options import (
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_from_args,
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
+from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
@@ -45,6 +45,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_design_options(parser)
     add_payload_options(parser)
     add_safety_factor_option(parser)
+    add_best_posture_option(parser)
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
@@ -127,7 +128,7 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
-    design = design_from_args(args)
+    design = posed_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload, factor = payload_from_args(args), safety_factor_from_args(args)

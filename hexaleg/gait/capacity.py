@@ -120,7 +120,10 @@ def walking_payload_capacity(
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
     loaded = unloaded.carrying(Payload(PROBE_MASS, position))
-    loads = [w.loads(gait.stride, walk, gait.period) for w in (unloaded, loaded)]
+    first = unloaded.loads(gait.stride, walk, gait.period)
+    inertial = first.rnea.inertial  # the payload adds no inertial force (it does not accelerate)
+    again = loaded.generalized_forces(gait.stride, walk, inertial)
+    loads = [first, loaded.loads(gait.stride, walk, gait.period, again)]
     base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
     slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
     legs = unloaded.frames.legs

@@ -92,13 +92,18 @@ class LoadedRobot:
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
 
-    def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
+    def generalized_forces(
+        self, motion: JointMotion, base_travel: ArrayF, inertial: ArrayF | None = None
+    ) -> GeneralizedForces:
         """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
 
         Args:
             motion: Joint angles θ and their phase derivatives (N, 6, 3), ``leg_names``
                 order (the model's joints at q = s·θ + o).
             base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
+            inertial: The inertial part (N, nv) if known: another payload's on the same
+                motion. A payload fixed to a body moving at constant velocity without turning
+                has no acceleration and no momentum rate, so it changes the static part only.
 
         """
         count, model, data = len(motion.angles), self.model, self.data
@@ -113,15 +118,17 @@ class LoadedRobot:
         velocity[:, self.v_index] = self.signs * motion.velocity
         acceleration = np.zeros((count, model.nv))
         acceleration[:, self.v_index] = self.signs * motion.acceleration
-        static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
+        static = np.empty((count, model.nv))
         for k in range(count):
             static[k] = pin.computeGeneralizedGravity(model, data, q[k])
-        model.gravity.linear = np.zeros(3)
-        try:
-            for k in range(count):
-                inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
-        finally:
-            model.gravity.linear = self.gravity
+        if inertial is None:
+            inertial = np.empty((count, model.nv))
+            model.gravity.linear = np.zeros(3)
+            try:
+                for k in range(count):
+                    inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
+            finally:
+                model.gravity.linear = self.gravity
         return GeneralizedForces(q, velocity, acceleration, static, inertial)
 
 

@@ -125,30 +125,34 @@ def cone_limit(
     a = mu2 * dn**2 - (dt**2).sum(axis=1)
     b = 2 * (mu2 * n0 * dn - (t0 * dt).sum(axis=1))
     c = mu2 * n0**2 - (t0**2).sum(axis=1)
-    ends = np.array([_first_end(*row) for row in zip(a, b, c, n0, dn, strict=True)])
+    ends = _first_ends(a, b, c, n0, dn)
     if not np.isfinite(ends).any():
         return None
     index = int(np.argmin(ends))
     return float(ends[index]), int(where[index])
 
 
-def _first_end(a: float, b: float, c: float, n0: float, dn: float) -> float:
-    """The least t > 0 where μ²f_n² − |f_t|² = a·t² + b·t + c reaches 0 with f_n ≥ 0 (∞: none).
+def _first_ends(a: ArrayF, b: ArrayF, c: ArrayF, n0: ArrayF, dn: ArrayF) -> ArrayF:
+    """Each least t > 0 where μ²f_n² − |f_t|² = a·t² + b·t + c reaches 0 with f_n ≥ 0 (∞: none).
 
-    The foot grips at t = 0 (c ≥ 0 up to round-off, f_n ≥ 0); g = μf_n − |f_t| is concave,
-    so the first root on the f_n ≥ 0 branch ends the interval that grips.
+    Each foot grips at t = 0 (c ≥ 0 up to round-off, f_n ≥ 0); g = μf_n − |f_t| is concave,
+    so the first root on the f_n ≥ 0 branch ends the interval that grips. The roots are
+    taken without cancellation: q = −(b + sign(b)·√(b² − 4ac))/2, t = q/a and c/q.
     """
-    scale = max(abs(a), abs(b), abs(c), 1e-300)
-    if abs(a) <= 1e-12 * scale:
-        roots = [-c / b] if abs(b) > 1e-12 * scale else []
-    else:
+    scale = np.maximum(np.maximum(np.abs(a), np.abs(b)), np.maximum(np.abs(c), 1e-300))
+    flat = np.abs(a) <= 1e-12 * scale
+    with np.errstate(divide="ignore", invalid="ignore"):
+        linear = np.where(np.abs(b) > 1e-12 * scale, -c / b, np.nan)
         disc = b * b - 4 * a * c
-        if disc < 0:
-            return math.inf
-        root = math.sqrt(disc)
-        q = -0.5 * (b + math.copysign(root, b))  # no cancellation
-        roots = [q / a] + ([c / q] if q != 0 else [])
-    ends = [t for t in roots if t > 0 and n0 + t * dn >= -GRIP_TOLERANCE * (abs(n0) + abs(t * dn))]
-    if c <= 0 and b < 0:  # touching the cone at t = 0 and leaving it
-        return 0.0
-    return min(ends, default=math.inf)
+        q = -0.5 * (b + np.copysign(np.sqrt(np.maximum(disc, 0.0)), b))
+        real = ~flat & (disc >= 0)
+        roots = np.stack(
+            (np.where(flat, linear, np.where(real, q / a, np.nan)),
+             np.where(real & (q != 0), c / q, np.nan))
+        )  # fmt: skip
+    slack = -GRIP_TOLERANCE * (np.abs(n0) + np.abs(roots * dn))
+    valid = (roots > 0) & (n0 + roots * dn >= slack)
+    ends = np.where(valid, roots, np.inf).min(axis=0)
+    ends[(c <= 0) & (b < 0)] = 0.0  # touching the cone at t = 0 and leaving it
+    out: ArrayF = ends
+    return out

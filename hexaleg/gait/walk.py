@@ -173,10 +173,16 @@ class Walker:
             )
         return Loads(rnea, split)
 
-    def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
-        """RNEA along the period of stride S [m], as static + inertial/T² (any period)."""
+    def generalized_forces(
+        self, stride: float, walk: Stride, inertial: ArrayF | None = None
+    ) -> GeneralizedForces:
+        """RNEA along the period of stride S [m], as static + inertial/T² (any period).
+
+        ``inertial``: the inertial part of another payload's walk of the same stride (the
+        payload changes only the static part: :meth:`LoadedRobot.generalized_forces`).
+        """
         travel = stride / self.phases.duty_factor * self.heading
-        return self.robot.generalized_forces(walk.motion, travel)
+        return self.robot.generalized_forces(walk.motion, travel, inertial)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
         """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F."""
