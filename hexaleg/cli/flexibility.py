@@ -7,6 +7,7 @@ import math
 import warnings
 from typing import TYPE_CHECKING
 
+from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -15,7 +16,6 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_model
 
 if TYPE_CHECKING:

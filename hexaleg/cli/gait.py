@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 from hexaleg._checks import require_in_range
 from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
+from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.loads import (
     add_payload_options,
     add_safety_factor_option,
@@ -33,7 +34,6 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
-from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait

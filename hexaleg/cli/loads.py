@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import Distribution, choices
+from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.options import (
     add_design_options,
     add_mode_option,
@@ -16,7 +17,6 @@ from hexaleg.cli.options import (
     design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.posture import add_best_posture_option, posed_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS

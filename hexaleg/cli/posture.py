@@ -7,10 +7,9 @@ import math
 from typing import Any
 
 from hexaleg.cli.decide import render
-from hexaleg.cli.options import UsageError, add_design_options, inputs_from_args
+from hexaleg.cli.options import add_design_options, inputs_from_args
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.cli.robot_table import load_robot_table
 from hexaleg.design import HexapodDesign
 from hexaleg.study.decide import DecideResult
 from hexaleg.study.goal import Objective
@@ -73,6 +72,8 @@ def answer_dict(result: DecideResult) -> dict[str, Any]:
     out = result.to_dict()
     for key, checked in (("best", result.best), ("yours", result.yours)):
         out[key] |= posture_figures(checked.design)
+        cause = checked.evaluation.causes.get(result.objective.name)
+        out[key]["objective"]["limited_by"] = None if cause is None else cause.to_dict()
     return out
 
 
@@ -81,7 +82,9 @@ def render_posture(result: DecideResult) -> str:
     lines = render(result).splitlines()
     for title, checked in (("Best design", result.best), ("Your design", result.yours)):
         at = next(i for i, line in enumerate(lines) if line.startswith(title))
-        lines.insert(at + 1, "  " + posture_line(checked.design))
+        cause = checked.evaluation.causes.get(result.objective.name)
+        limited = [] if cause is None else [f"  {result.objective.spec.label} limited by {cause}"]
+        lines[at + 1 : at + 1] = ["  " + posture_line(checked.design), *limited]
     return "\n".join(lines)
 
 
@@ -95,35 +98,3 @@ def posture_line(design: HexapodDesign) -> str:
         f"posture θ = ({radians}) rad ({degrees}), body height "
         f"{figures['nominal_height']:.4g} m, foothold radius {figures['foothold_radius']:.4g} m"
     )
-
-
-def add_best_posture_option(parser: argparse.ArgumentParser) -> None:
-    """``--best-posture``: stand the design at ``hexaleg posture``'s answer (loads, gait…)."""
-    parser.add_argument(
-        "--best-posture",
-        action="store_true",
-        help="stand the design at its best posture first: hexaleg posture's answer for the "
-        "same design options and the --design file's requirements (maximizing the walking "
-        "payload capacity); replaces --nominal-angles",
-    )
-
-
-def posed_from_args(args: argparse.Namespace) -> HexapodDesign:
-    """The design the options describe, at its best posture with ``--best-posture``.
-
-    Raises:
-        UsageError: ``--best-posture`` with ``--urdf`` (an imported robot stands as its
-            file does) or with ``--nominal-angles``.
-
-    """
-    design, in_file = inputs_from_args(args)
-    if not getattr(args, "best_posture", False):
-        return design
-    path = getattr(args, "design", None)
-    if getattr(args, "urdf", None) is not None or (
-        path is not None and load_robot_table(path) is not None
-    ):
-        raise UsageError("--best-posture on an imported robot: it stands as its file does")
-    if getattr(args, "nominal_angles", None) is not None:
-        raise UsageError("--best-posture chooses the nominal angles: drop --nominal-angles")
-    return best_posture(design, in_file, DEFAULT_OBJECTIVE).best.design
