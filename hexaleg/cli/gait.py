@@ -265,6 +265,13 @@ def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, Array
     return clouds
 
 
+def _friction_needed(analysis: GaitAnalysis) -> str:
+    needed, friction = analysis.friction_needed, analysis.ground.friction
+    if math.isinf(needed):
+        return f"∞: a standing foot would pull on the ground (μ = {friction:g})"
+    return f"{needed:.3g} (largest tangential / normal force of a standing foot; μ = {friction:g})"
+
+
 def _feasible(analysis: GaitAnalysis) -> str:
     why = analysis.infeasible_because
     return "yes" if why is None else f"no: {why}"
@@ -378,11 +385,7 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
         ("mechanical cost of transport", f"{metrics.cost_of_transport:.4f}"),
         *electrical_rows(analysis),
         ("min ZMP margin", f"{analysis.min_zmp_margin:.4f} m (on the ground's plane)"),
-        (
-            "friction needed",
-            f"{analysis.friction_needed:.3g} (largest tangential / normal force of a standing "
-            f"foot; μ = {analysis.ground.friction:g})",
-        ),
+        ("friction needed", _friction_needed(analysis)),
         ("feasible", _feasible(analysis)),
         *limit_rows(analysis),
     ]

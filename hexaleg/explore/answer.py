@@ -115,7 +115,7 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
-    if found.gait is not None and found.gait.feasible:
+    if found.gait is not None and found.gait.walkable:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
         used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)

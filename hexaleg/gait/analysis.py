@@ -10,6 +10,7 @@ torques and the feet's forces at each sample.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -140,7 +141,10 @@ class GaitAnalysis:
 
     @property
     def friction_needed(self) -> float:
-        """The least friction coefficient μ every standing foot's force needs [-]."""
+        """The least friction coefficient μ every standing foot's force needs [-].
+
+        Infinite (``null`` in JSON) when the plan makes a standing foot pull on the ground.
+        """
         return float(self.friction_ratios.max())
 
     @cached_property
@@ -233,7 +237,7 @@ class GaitAnalysis:
             "mass": self.mass,
             **self.metrics.to_dict(),
             "min_zmp_margin": self.min_zmp_margin,
-            "friction_needed": self.friction_needed,
+            "friction_needed": _finite(self.friction_needed),
             "slips": [slip.to_dict() for slip in self.slips],
             "feasible": self.feasible,
             "infeasible_because": self.infeasible_because,
@@ -260,6 +264,11 @@ class GaitAnalysis:
                 "battery": "kg, Wh, h, km",
             },
         }
+
+
+def _finite(value: float) -> float | None:
+    """``value``, or ``None`` (JSON's null) where it is unbounded."""
+    return value if math.isfinite(value) else None
 
 
 def _electrical_dict(electrical: ElectricalResult | None) -> dict[str, Any]:

@@ -27,18 +27,25 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
-def voltage_line(actuator: Actuator, speeds: ArrayF) -> ArrayF:
-    """The largest motoring output torque the supply drives at each output speed [N·m].
+def voltage_line(actuator: Actuator, speeds: ArrayF, supply: float, resistance: float) -> ArrayF:
+    """The largest motoring output torque the bus drives at each output speed [N·m].
 
-    From |k_t·N·ω| + |i|·R = V with τ = N·η·k_t·i (motoring): τ = N·η·k_t·(V − k_t·N·ω)/R;
-    infinite for R = 0 below the no-load speed, zero above it.
+    From |k_t·N·ω| + |i|·R = V with τ = N·η·k_t·i (motoring): τ = N·η·k_t·(V − k_t·N·ω)/R,
+    V the bus voltage [V] and R the windings' resistance at their temperature [Ω]; infinite
+    for R = 0 below the no-load speed, zero above it.
     """
     kt, ratio, eta = actuator.torque_constant, actuator.gear_ratio, actuator.gearbox_efficiency
-    room = np.clip(actuator.voltage - kt * ratio * np.abs(speeds), 0.0, None)
-    if actuator.resistance == 0:
+    room = np.clip(supply - kt * ratio * np.abs(speeds), 0.0, None)
+    if resistance == 0:
         return np.where(room > 0, np.inf, 0.0)
-    torque: ArrayF = ratio * eta * kt * room / actuator.resistance
+    torque: ArrayF = ratio * eta * kt * room / resistance
     return torque
+
+
+def _resistance(analysis: GaitAnalysis, j: int) -> float:
+    """Joint type ``j``'s winding resistance at the windings' temperature [Ω]."""
+    actuators = analysis.design.actuators
+    return float("nan") if actuators is None else actuators.resistances[j]
 
 
 def _need(analysis: GaitAnalysis) -> tuple[ElectricalResult, tuple[Actuator, ...]]:
@@ -101,7 +108,9 @@ def _envelope(ax: Axes, actuator: Actuator, analysis: GaitAnalysis, j: int) -> N
     )
     top = 1.1 * max(actuator.rated_speed, actuator.no_load_speed, float(speeds.max()))
     grid = np.linspace(0.0, top, 200)
-    limit = np.minimum(voltage_line(actuator, grid), 2 * actuator.peak_torque)
+    bus = _need(analysis)[0].supply
+    line = voltage_line(actuator, grid, bus, _resistance(analysis, j))
+    limit = np.minimum(line, 2 * actuator.peak_torque)
     for i, leg in enumerate(analysis.legs):
         ax.scatter(
             speeds[:, i],
@@ -113,7 +122,7 @@ def _envelope(ax: Axes, actuator: Actuator, analysis: GaitAnalysis, j: int) -> N
     ax.axhline(actuator.peak_torque, color="k", lw=1.2, label="peak torque")
     ax.axhline(actuator.continuous_torque, color="k", ls="--", lw=1.0, label="continuous torque")
     ax.axvline(actuator.rated_speed, color="k", ls=":", lw=1.0, label="speed rating")
-    ax.plot(grid, limit, color=COLORS[3], lw=1.2, label="voltage line (supply V)")
+    ax.plot(grid, limit, color=COLORS[3], lw=1.2, label=f"voltage line ({bus:g} V bus)")
     ax.set_xlim(0, top)
     ax.set_ylim(0, 1.15 * max(actuator.peak_torque, float(torques.max())))
     ax.grid(True, alpha=0.3)
