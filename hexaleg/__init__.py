@@ -23,6 +23,7 @@ __all__ = [
     "FootSearch",
     "Gait",
     "GaitAnalysis",
+    "Ground",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
@@ -59,6 +60,7 @@ __all__ = [
     "analyze_loads",
     "analyze_manipulability",
     "analyze_workspace",
+    "best_posture",
     "build_report",
     "decide",
     "default_mounts",
@@ -129,10 +131,12 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry
     from hexaleg.statics.forces import Payload
+    from hexaleg.statics.ground import Ground
     from hexaleg.statics.loads import analyze_loads
     from hexaleg.study.decide import DecideResult, decide
     from hexaleg.study.goal import Objective
     from hexaleg.study.optimize import SearchSettings
+    from hexaleg.study.posture import best_posture
     from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability

@@ -24,7 +24,7 @@ SAFETY_FACTOR_RANGE = (1.0, 100.0)
 
 def check_safety_factor(safety_factor: float) -> float:
     """``safety_factor`` as a float if it lies in :data:`SAFETY_FACTOR_RANGE`; else an error."""
-    return require_in_range("safety factor", safety_factor, *SAFETY_FACTOR_RANGE, "-")
+    return require_in_range("safety_factor", safety_factor, *SAFETY_FACTOR_RANGE, "-")
 
 
 Quantity = Literal["torque", "speed", "peak_torque", "continuous_torque", "voltage"]
