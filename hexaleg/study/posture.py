@@ -32,7 +32,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -50,12 +49,7 @@ from hexaleg.study.optimize import INVALID, objective_and_constraints
 from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import POSTURE, FreeVariable
 
-__all__ = [
-    "DEFAULT_OBJECTIVE",
-    "PostureSearch",
-    "best_posture",
-    "posture_figures",
-]
+__all__ = ["DEFAULT_OBJECTIVE", "best_posture", "posture_figures", "posture_variables"]
 
 DEFAULT_OBJECTIVE = Objective("walking_payload_capacity")
 """What a posture makes best unless told otherwise: the payload carried walking."""
@@ -73,29 +67,11 @@ TOLERANCE = 1e-10
 """Nelder–Mead's tolerances on the unit box and on the score."""
 
 
-@dataclass(frozen=True)
-class PostureSearch:
-    """How the best posture was found.
-
-    Attributes:
-        variables: θ2 and θ3 with the stance limits as bounds [rad].
-        evaluations: Designs evaluated (the given posture's included).
-        score: The best point's score (see the module docstring).
-
-    """
-
-    variables: tuple[FreeVariable, FreeVariable]
-    evaluations: int
-    score: float
-
-    @property
-    def method(self) -> str:
-        """The algorithm in words."""
-        rounds = " then ".join(f"{n}" for n, _ in POLISH)
-        return (
-            f"DIRECT (locally biased, {GLOBAL_EVALUATIONS} designs) over the stance limits, "
-            f"then Nelder–Mead ({rounds} designs); feasibility first"
-        )
+METHOD = (
+    f"DIRECT (locally biased, {GLOBAL_EVALUATIONS} designs) over the stance limits, then "
+    f"Nelder–Mead ({' then '.join(str(most) for most, _ in POLISH)} designs); feasibility first"
+)
+"""The search in words, as a decision states its method."""
 
 
 def posture_variables(design: HexapodDesign) -> tuple[FreeVariable, FreeVariable]:
@@ -194,13 +170,11 @@ def best_posture(
     goal = Goal(requirements, objective)
     scores = _Scores(design, goal, HexapodModel(design) if model is None else model)
     best = _search(scores, scores.unit(design))
-    chosen = scores.posed(scores.angles(best))
-    checked = CheckedDesign.of(chosen, goal)
-    search = PostureSearch(scores.variables, len(scores.seen), scores(best))
+    checked = CheckedDesign.of(scores.posed(scores.angles(best)), goal)
     return DecideResult(
-        requirements=requirements, objective=objective, variables=search.variables,
+        requirements=requirements, objective=objective, variables=scores.variables,
         best=checked, yours=CheckedDesign.of(design, goal), feasible=checked.meets_all,
-        conflict=None, method=search.method, evaluations=search.evaluations, seed=0,
+        conflict=None, method=METHOD, evaluations=len(scores.seen), seed=0,
     )  # fmt: skip
 
 
