@@ -89,6 +89,8 @@ standard insulation class for motor windings, class 180 (H) of IEC 60085 (180 °
 
 TEMPERATURE_KEY = "winding_temperature"
 """The ``[actuators]`` table's key of the windings' temperature, beside the joint tables."""
+TEMPERATURE_TEXT = "the windings' temperature: every R scaled from the datasheets' 25 °C [°C]"
+"""What ``winding_temperature`` is, as a design file's comment says it."""
 
 
 @dataclass(frozen=True)

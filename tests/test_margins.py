@@ -182,3 +182,18 @@ def test_loads_prints_the_safety_factor_and_flags_against_rating_over_f(capsys):
     assert printed["over_rating"]  # 150 N·m / 2.5 = 60 N·m at the hips holds no 30 kg
     assert run_cli(argv) == 0
     assert "(rated 150 / 2.5 = 60 N·m)" in capsys.readouterr().out
+
+
+def test_the_bus_temperature_and_reserve_read_back_from_toml_and_json(tmp_path):
+    from hexaleg.design_file import load_design
+    from hexaleg.design_text import design_toml
+
+    battery = Battery(capacity=300.0, specific_energy=150.0, voltage=36.0, reserve=0.1)
+    motors = Actuators(MOTOR, dataclasses.replace(MOTOR, voltage=24.0), MOTOR, 70.0)
+    design = DESIGN.replace(actuators=motors, battery=battery)
+    (tmp_path / "robot.toml").write_text(design_toml(design))
+    (tmp_path / "robot.json").write_text(json.dumps({"design": design.as_dict()}))
+    for name in ("robot.toml", "robot.json"):
+        again = load_design(tmp_path / name)
+        assert again == design and again.bus_voltage == 36.0
+        assert again.actuators.winding_temperature == 70.0 and again.battery.reserve == 0.1
