@@ -24,6 +24,7 @@ from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics import analyze_loads
+from hexaleg.statics.ground import Ground
 
 F = 1.4
 """The safety factor of the tests."""
@@ -197,3 +198,40 @@ def test_the_bus_temperature_and_reserve_read_back_from_toml_and_json(tmp_path):
         again = load_design(tmp_path / name)
         assert again == design and again.bus_voltage == 36.0
         assert again.actuators.winding_temperature == 70.0 and again.battery.reserve == 0.1
+
+
+def _walks(seed: int):
+    rng = np.random.default_rng(seed)
+    for _ in range(12):
+        angles = (0.0, rng.uniform(-0.4, 0.2), rng.uniform(-2.0, -1.2))
+        design = HexapodDesign.from_ratios(
+            rng.uniform(0.05, 0.3), rng.uniform(0.3, 0.6), nominal_angles=angles
+        )
+        gait = Gait(pattern=str(rng.choice(["tripod", "tetrapod", "wave"])), samples=60,
+                    period=rng.uniform(1.2, 3.0), stride=rng.uniform(0.1, 0.3))  # fmt: skip
+        ground = Ground(np.radians(rng.uniform(-12, 12)), rng.uniform(-3, 3))
+        yield design, gait, ground, rng.uniform(1.0, 1.3)
+
+
+@pytest.mark.parametrize(("design", "gait", "ground", "factor"), list(_walks(5)))
+def test_feasible_means_within_every_rating_so_the_max_speed_reaches_the_speed(
+    design, gait, ground, factor
+):
+    """Issue #39 item 7: "feasible yes" beside a joint over its rating and a max speed below
+    the speed walked. A walkable period is feasible exactly when its max speed (at its own
+    stride) reaches the speed it walks, and then no joint is over any rating."""
+    walked = analyze_gait(design, gait, ground=ground, limits=False, speed=True,
+                          safety_factor=factor)  # fmt: skip
+    if not walked.walkable:  # a joint limit or a foot's reach breaks: named first
+        assert not walked.feasible and walked.infeasible_because == str(walked.violations[0])
+        return
+    reaches = walked.max_speed.value >= gait.speed * (1 - 1e-9)
+    assert walked.feasible == reaches
+    assert walked.feasible == (not walked.over_rating and not walked.slips and not walked.tipping)
+
+
+def test_the_default_wave_gait_over_its_speed_rating_is_not_feasible():
+    walked = analyze_gait(HexapodDesign(), Gait(pattern="wave"), limits=False, speed=True)
+    assert walked.over_rating and not walked.feasible
+    assert walked.max_speed.value < walked.gait.speed
+    assert walked.infeasible_because.startswith("over its ratings: ")
