@@ -73,10 +73,11 @@ def model() -> HexapodModel:
 
 @pytest.mark.parametrize(
     ("degrees", "heading", "walking"),
-    [(12.0, None, 0.0), (-12.0, None, 0.0), (15.0, math.pi / 2, 0.0), (8.0, 0.7, 0.3)],
-)
+    [(12.0, None, 0.0), (-12.0, None, 0.0), (15.0, math.pi / 2, 0.0), (8.0, 0.7, 0.3),
+     (0.0, None, 0.0)],
+)  # fmt: skip
 def test_slope_torques_and_forces_equal_rnea_with_tilted_gravity(model, degrees, heading, walking):
-    """Uphill, downhill, across, and off the fall line with the gait turned."""
+    """Uphill, downhill, across, off the fall line with the gait turned, and level."""
     gait = GAIT.replace(heading=walking)
     ground = Ground(math.radians(degrees), heading)
     walked = analyze_gait(model.design, gait, model=model, ground=ground, limits=False)

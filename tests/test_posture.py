@@ -17,6 +17,7 @@ import math
 import numpy as np
 import pytest
 from conftest import run_cli
+from robots import KRABY
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.cli import main
@@ -147,6 +148,7 @@ def test_best_posture_stands_the_design_at_the_posture_commands_answer(printed, 
         (["gait", "--best-posture", "--nominal-angles", "0", "0", "-1"], "--nominal-angles"),
         (["posture", "--maximize", "speed"], "--maximize"),
         (["posture", "--payload", "-3"], "payload"),
+        (["loads", "--urdf", KRABY, "--best-posture"], "--best-posture on an imported robot"),
     ],
 )
 def test_bad_posture_options_are_one_line_and_exit_2(capsys, argv, fragment):
