@@ -22,9 +22,8 @@ from hexaleg.statics.slopes import slope_gravity
 __all__ = ["LEVEL", "MAX_SLOPE", "Ground"]
 
 MAX_SLOPE = math.radians(60.0)
-"""Steepest slope |α| walked [rad]: 60°. Past it no friction coefficient of
-:data:`~hexaleg.statics.forces.FRICTION_RANGE` short of 1.7 holds a foot, and no legged
-robot of the paper's kind is built for it."""
+"""Steepest slope |α| walked [rad]: 60° (issue #39's bound). Standing on it at all, with the
+weight shared evenly, already needs μ ≥ tan 60° ≈ 1.73."""
 
 HEADING_RANGE = (-2 * math.pi, 2 * math.pi)
 """Directions φ accepted [rad] (any turn, either way)."""
@@ -51,7 +50,7 @@ class Ground:
         slope = require_in_range("slope", self.slope, -MAX_SLOPE, MAX_SLOPE, "rad")
         object.__setattr__(self, "slope", slope)
         if self.heading is not None:
-            heading = require_in_range("slope heading", self.heading, *HEADING_RANGE, "rad")
+            heading = require_in_range("heading", self.heading, *HEADING_RANGE, "rad")
             object.__setattr__(self, "heading", heading)
         object.__setattr__(self, "friction", check_friction(self.friction))
 
