@@ -9,10 +9,11 @@ from concurrent.futures import ProcessPoolExecutor, ThreadPoolExecutor
 from harness import Row, check_agree
 
 from hexaleg import HexapodDesign
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Objective
 from hexaleg.study.optimize import POPULATION_PER_VARIABLE, SearchSettings
-from hexaleg.study.requirements import Requirements
 
 
 def bench_decide(evaluations: int | None) -> list[Row]:
@@ -31,16 +32,16 @@ def bench_decide(evaluations: int | None) -> list[Row]:
         t_pool, found = run(pool)
     with ThreadPoolExecutor(1) as here:
         t_here, alone = run(here)
-    best = [found.best.evaluation.values["fb"], *found.best.design.lengths]
+    best = [found.best.evaluation.metrics.value(METRICS.fb), *found.best.design.lengths]
     difference = check_agree(
         "decide 2 processes / 1",
         best,
-        [alone.best.evaluation.values["fb"], *alone.best.design.lengths],
+        [alone.best.evaluation.metrics.value(METRICS.fb), *alone.best.design.lengths],
         0.0,
     )
     name = f"decide, 3 free lengths, payload + slope, {found.evaluations} designs"
     note = (
-        f"FB {found.best.evaluation.values['fb']:.5f} at l = "
+        f"FB {found.best.evaluation.metrics.value(METRICS.fb):.5f} at l = "
         f"({', '.join(f'{v:.4f}' for v in found.best.design.lengths)}) m, feasible {found.feasible}"
     )
     return [
@@ -118,7 +119,7 @@ def bench_decide_actuators(evaluations: int | None) -> list[Row]:
         motors = best.actuators.joints if best.actuators else ()
         chosen = ", ".join(f"{a.catalog or 'given'} N={a.gear_ratio:.4g}" for a in motors)
         return (
-            f"{result.best.evaluation.values['robot_mass']:.2f} kg at l = "
+            f"{result.best.evaluation.metrics.value(METRICS.robot_mass):.2f} kg at l = "
             f"({', '.join(f'{v:.4f}' for v in best.lengths)}) m with {chosen}, "
             f"feasible {result.feasible}"
         )

@@ -18,12 +18,12 @@ from harness import Row, check_agree
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
+from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.explore.answer import answer
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.imported import import_robot
 from hexaleg.robot.imported_model import ImportedHexapodModel
-from hexaleg.study.evaluation import Conditions
-from hexaleg.study.requirements import Requirements
 
 KRABY = Path(__file__).parents[1] / "tests" / "data" / "robots" / "kraby" / "hexapod.urdf"
 """A real public hexapod (MIT), small: 49, 60, 88 mm segments."""

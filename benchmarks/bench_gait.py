@@ -15,7 +15,7 @@ from hexaleg.gait import Gait, Walker, analyze_gait
 from hexaleg.kinematics import inverse_kinematics
 from hexaleg.paper import L1_RATIOS
 from hexaleg.study import StudySpec, run_study
-from hexaleg.study.rows import design_walking_columns
+from hexaleg.study.rows import design_walking_row
 
 
 def per_sample_period(model: HexapodModel, gait: Gait) -> np.ndarray:
@@ -82,7 +82,7 @@ def bench_gait(l3_points: int, repeats: int) -> list[Row]:
         [hexaleg_period, lambda: per_sample_period(model, gait)], repeats, min_time=0.0
     )
     t_limits = median_time(lambda: analyze_gait(design, gait, model=model), repeats)
-    t_columns = median_time(lambda: design_walking_columns(design, model), repeats)
+    t_columns = median_time(lambda: design_walking_row(design, model), repeats)
     name = f"gait period, one design ({gait.samples} samples, six legs)"
     rows = [
         Row(name, "hexaleg analyze_gait(limits=False)", t_fast, None, None, "≤ 10 ms"),
@@ -90,7 +90,7 @@ def bench_gait(l3_points: int, repeats: int) -> list[Row]:
         Row(name, "hexaleg analyze_gait (+ max stride, max speed)", t_limits, None, None),
         Row(
             name,
-            "hexaleg design_walking_columns (+ max speed)",
+            "hexaleg design_walking_row (+ max speed)",
             t_columns,
             None,
             None,

@@ -8,11 +8,11 @@ import numpy as np
 from harness import Row
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.evaluation.evaluate import evaluate
+from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
-from hexaleg.study.evaluation import evaluate
-from hexaleg.study.goal import Goal
 from hexaleg.study.posture import DEFAULT_OBJECTIVE, best_posture
-from hexaleg.study.requirements import Requirements
 
 GRID = 31
 """Postures per angle of the baseline: a 31 × 31 grid over the stance limits."""
@@ -30,7 +30,7 @@ def grid_posture(design: HexapodDesign) -> float:
                 continue
             found = evaluate(posed, goal.metrics, goal.conditions, model=model.with_design(posed))
             if not found.error:
-                best = max(best, found[DEFAULT_OBJECTIVE.name])
+                best = max(best, found.metrics.value(DEFAULT_OBJECTIVE.spec))
     return float(best)
 
 
@@ -43,11 +43,11 @@ def bench_posture(repeats: int, grid: bool = True) -> list[Row]:
         result = best_posture(design)
         times.append(time.perf_counter() - start)
         cpu.append(time.process_time() - used)
-        value = result.best.evaluation[DEFAULT_OBJECTIVE.name]
+        value = result.best.evaluation.metrics.value(DEFAULT_OBJECTIVE.spec)
     median = float(np.median(times))
     name = f"best posture of one design ({result.evaluations} designs)"
     angles = ", ".join(f"{a:.4f}" for a in result.best.design.nominal_angles)
-    posed = result.yours.evaluation[DEFAULT_OBJECTIVE.name]
+    posed = result.yours.evaluation.metrics.value(DEFAULT_OBJECTIVE.spec)
     note = (
         f"walking payload {value:.3f} kg at θ = ({angles}) rad; as posed {posed:.3f} kg; "
         f"CPU time {np.median(cpu):.2f} s (a shared machine's wall time runs longer)"

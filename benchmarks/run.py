@@ -24,6 +24,7 @@ from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics,
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
 from bench_posture import bench_posture
 from bench_simulate import bench_simulate
+from bench_structure import bench_structure
 from harness import Row, seconds
 
 WORKLOADS = {
@@ -44,6 +45,7 @@ WORKLOADS = {
     "explore_robot": lambda quick, r: bench_explore_robot(4 if quick else 12, r),
     "decide_actuators": lambda quick, r: bench_decide_actuators(120 if quick else None),
     "posture": lambda quick, r: bench_posture(1 if quick else r, grid=not quick),
+    "structure": lambda quick, r: bench_structure(r),
 }
 
 

@@ -16,8 +16,10 @@ from hexaleg._lazy import lazy_exports
 from hexaleg._version import __version__
 
 __all__ = [
+    "Conditions",
     "DecideResult",
     "DesignError",
+    "Evaluation",
     "FlexibilityResult",
     "FlexibilityWarning",
     "FootSearch",
@@ -36,7 +38,10 @@ __all__ = [
     "LegModel",
     "LegMount",
     "MANIPULABILITY_LIMITS",
+    "METRICS",
     "ManipulabilityAnalysis",
+    "Material",
+    "Metrics",
     "ModelError",
     "Objective",
     "ParameterError",
@@ -50,9 +55,11 @@ __all__ = [
     "SegmentChange",
     "SimulationResult",
     "StanceGeometry",
+    "Structure",
     "StudySpec",
     "TRIPODS",
     "TemplateError",
+    "Tube",
     "WORKSPACE_LIMITS",
     "WorkspaceAnalysis",
     "__version__",
@@ -65,6 +72,7 @@ __all__ = [
     "decide",
     "default_mounts",
     "design_toml",
+    "evaluate",
     "flexibility",
     "foot_jacobian",
     "foot_position",
@@ -79,7 +87,9 @@ __all__ = [
     "render_leg",
     "resize_robot",
     "run_study",
+    "shipped_materials",
     "simulate_gait",
+    "size_structure",
     "write_urdf",
 ]
 
@@ -90,6 +100,10 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.design import HexapodDesign, default_mounts
     from hexaleg.design_file import load_design
     from hexaleg.design_text import design_toml
+    from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+    from hexaleg.evaluation.goal import Objective
+    from hexaleg.evaluation.metrics import METRICS, Metrics
+    from hexaleg.evaluation.requirements import Requirements
     from hexaleg.exceptions import (
         DesignError,
         HexalegError,
@@ -111,6 +125,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     )
     from hexaleg.layouts import LEG_NAMES, TRIPODS, LegMount, hexagon_mounts, rectangle_mounts
     from hexaleg.leg_geometry import LegGeometry
+    from hexaleg.leg_structure import Structure, Tube
     from hexaleg.limits import (
         IMPROVED_LIMITS,
         MANIPULABILITY_LIMITS,
@@ -118,6 +133,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         WORKSPACE_LIMITS,
         JointLimits,
     )
+    from hexaleg.materials import Material, shipped_materials
     from hexaleg.output.report import build_report
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.feet import FootSearch
@@ -133,11 +149,10 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.statics.forces import Payload
     from hexaleg.statics.ground import Ground
     from hexaleg.statics.loads import analyze_loads
+    from hexaleg.structure.sizing import size_structure
     from hexaleg.study.decide import DecideResult, decide
-    from hexaleg.study.goal import Objective
     from hexaleg.study.optimize import SearchSettings
     from hexaleg.study.posture import best_posture
-    from hexaleg.study.requirements import Requirements
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

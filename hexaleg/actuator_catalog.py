@@ -15,10 +15,8 @@ catalog as a whole refuses a name given twice.
 
 from __future__ import annotations
 
-import difflib
 import functools
 import math
-import re
 import sys
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field
@@ -28,7 +26,7 @@ from typing import Any
 
 from hexaleg.actuators import ACTUATOR_FIELDS, GEAR_RATIO_RANGE, Actuator
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.table_records import record_from_table, require_table
+from hexaleg.table_records import ENTRY_NAME, record_from_table, require_table, unknown_name
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -46,9 +44,6 @@ TEXT_KEYS: dict[str, str] = {
     "notes": "how derived numbers were derived, and caveats",
 }
 """The catalog's text keys beside the actuator's (``name`` and ``source`` required)."""
-
-NAME_PATTERN = re.compile(r"[a-z0-9][a-z0-9_]*")
-"""An entry's name: lower-case letters, digits and underscores."""
 
 
 class CatalogError(HexalegError):
@@ -149,12 +144,7 @@ class Catalog:
         for entry in self.entries:
             if entry.name == name:
                 return entry
-        if not isinstance(name, str):
-            raise ParameterError(field, name, "must be the name of a catalog entry")
-        close = difflib.get_close_matches(name, self.names, n=1, cutoff=0.4)
-        hint = f"did you mean {close[0]!r}?" if close else "none is called so"
-        listed = "hexaleg actuators lists them"
-        raise ParameterError(field, name, f"no such actuator: {hint} ({listed})")
+        raise unknown_name(field, name, self.names, "actuator", "hexaleg actuators lists them")
 
 
 def catalog_from_data(data: Mapping[str, Any]) -> Catalog:
@@ -177,7 +167,7 @@ def catalog_from_data(data: Mapping[str, Any]) -> Catalog:
 def _entry(raw: Any, index: int) -> CatalogEntry:
     table = require_table(f"{ENTRY_TABLE}[{index}]", raw, "actuator keys")
     name = table.get("name")
-    if not isinstance(name, str) or not NAME_PATTERN.fullmatch(name):
+    if not isinstance(name, str) or not ENTRY_NAME.fullmatch(name):
         raise ParameterError(
             f"{ENTRY_TABLE}[{index}].name", name, "lower-case letters, digits and '_'"
         )

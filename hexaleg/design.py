@@ -46,6 +46,7 @@ from hexaleg.layouts import (
     require_apart,
     resolve_layout,
 )
+from hexaleg.leg_structure import Structure, segment_masses
 from hexaleg.limits import (
     IMPROVED_LIMITS,
     JOINT_NAMES,
@@ -55,26 +56,23 @@ from hexaleg.limits import (
     WORKSPACE_LIMITS,
     JointLimits,
 )
+from hexaleg.ratings import (
+    DEFAULT_RATED_SPEEDS,
+    DEFAULT_RATED_TORQUES,
+    SPEED_RANGE,
+    TORQUE_RANGE,
+    Ratings,
+)
+
+RATING = {"option": "ratings", "optional": True}
+"""A rating field's declaration: ``--rated-*``, and ``None`` for not given (a file's 0)."""
 
 SEGMENT_RANGE = (1e-3, 100.0)
-"""Plausible segment length l1, l2, l3 [m]: a millimetre to a hundred metres."""
+"""Plausible segment length l2, l3 [m]: a millimetre to a hundred metres."""
+COXA_RANGE = (0.0, SEGMENT_RANGE[1])
+"""Plausible coxa length l1 [m]: 0 is a leg whose hip axis meets its yaw axis."""
 BODY_RANGE = (1e-2, 100.0)
 """Plausible body extent and leg-mount offset [m]."""
-
-DEFAULT_RATED_TORQUES: tuple[float, float, float] = (60.0, 150.0, 120.0)
-"""Rated torques (root, hip, knee) [N·m] of the default 60 kg body's actuators: well above
-what the nominal stance asks of each joint (``hexaleg loads``), with room for the body's
-extremes and a payload."""
-
-TORQUE_RANGE = (1e-3, 1e6)
-"""Plausible rated torque [N·m]."""
-
-DEFAULT_RATED_SPEEDS: tuple[float, float, float] = (3.0, 3.0, 3.0)
-"""Rated joint speeds (root, hip, knee) [rad/s]: about 29 rpm at the output, typical of
-geared actuators of the default ratings; written to each URDF joint's ``velocity``."""
-
-SPEED_RANGE = (1e-3, 1e4)
-"""Plausible rated joint speed [rad/s]."""
 
 SEGMENTS = ("l1", "l2", "l3")
 """The segment-length fields: coxa, femur, tibia."""
@@ -116,7 +114,7 @@ class HexapodDesign:
     """
 
     # fmt: off
-    l1: float = declare(0.2, "coxa length", "m", SEGMENT_RANGE, option="lengths")
+    l1: float = declare(0.2, "coxa length", "m", COXA_RANGE, option="lengths")
     l2: float = declare(0.4, "femur length", "m", SEGMENT_RANGE, option="lengths")
     l3: float = declare(0.4, "tibia length", "m", SEGMENT_RANGE, option="lengths")
     body_length: float = declare(
@@ -176,28 +174,29 @@ class HexapodDesign:
     )
     body_mass: float = declare(60.0, "body mass", "kg", (1e-3, 1e6))
     link_linear_density: float = declare(
-        4.0, "mass per length of coxa, femur and tibia", "kg/m", (1e-4, 1e5)
+        4.0, "mass per length of a segment without a [structure] tube", "kg/m", (1e-4, 1e5)
     )
     link_radius: float = declare(0.025, "radius of the links' cylinders", "m", (1e-4, 10.0))
-    rated_torques: tuple[float, float, float] = declare(
-        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort)", "N·m",
-        TORQUE_RANGE, kind="triple", items=LEG_JOINTS,
-    )
-    rated_speeds: tuple[float, float, float] = declare(
-        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity)", "rad/s",
-        SPEED_RANGE, kind="triple", items=LEG_JOINTS,
-    )
+    rated_torques: Ratings = declare(
+        DEFAULT_RATED_TORQUES, "actuators' rated torques (each URDF joint's effort; none: not "
+        "given)", "N·m", TORQUE_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
+    rated_speeds: Ratings = declare(
+        DEFAULT_RATED_SPEEDS, "actuators' rated speeds (each URDF joint's velocity; none: not "
+        "given)", "rad/s", SPEED_RANGE, kind="triple", items=LEG_JOINTS, **RATING)
     actuators: Actuators | None = declare(
         None, "each joint type's motor and gearbox, [actuators.root|hip|knee]; set, its peak "
-        "torques and speed ratings are the rated ones", kind="record",
+        "torques and speed ratings are the rated ones", kind="record", record=Actuators,
     )
-    battery: Battery | None = declare(None, "the battery, [battery]", kind="record")
+    battery: Battery | None = declare(None, "the battery, [battery]", kind="record", record=Battery)
+    structure: Structure | None = declare(
+        None, "the legs' tubes and their material, [structure]; each segment without one "
+        "weighs link_linear_density", kind="record", record=Structure,
+    )
 
     def __post_init__(self) -> None:
         for spec in DESIGN_FIELDS:  # each value on its own first, then how they fit together
             object.__setattr__(self, spec.name, spec.check(getattr(self, spec.name)))
         if self.actuators is not None:
-            require_instance("actuators", self.actuators, Actuators, "an Actuators or None")
             object.__setattr__(self, "rated_torques", self.actuators.rated_torques)
             object.__setattr__(self, "rated_speeds", self.actuators.rated_speeds)
         bus_voltage(self.battery, self.actuators)  # a Battery or None; motors of one bus
@@ -261,6 +260,11 @@ class HexapodDesign:
         return (self.l1, self.l2, self.l3)
 
     @property
+    def rated(self) -> bool:
+        """Whether both ratings are given: torques and speeds (a robot file may give neither)."""
+        return self.rated_torques is not None and self.rated_speeds is not None
+
+    @property
     def leg_length(self) -> float:
         """Total leg length L = l1 + l2 + l3 [m] (eq 29)."""
         return self.l1 + self.l2 + self.l3
@@ -268,7 +272,8 @@ class HexapodDesign:
     @property
     def total_mass(self) -> float:
         """Mass of the whole robot [kg]: body, six legs' links, feet, actuators, battery."""
-        legs = 6 * (self.link_linear_density * self.leg_length + FOOT_MASS)
+        segments = segment_masses(self.structure, self.lengths, self.link_linear_density)
+        legs = 6 * (sum(segments) + FOOT_MASS)
         motors = 0.0 if self.actuators is None else self.actuators.total_mass
         return self.body_mass + legs + motors + (0.0 if self.battery is None else self.battery.mass)
 
@@ -334,7 +339,7 @@ class HexapodDesign:
                 value = [vars(m).copy() for m in value]
             elif isinstance(value, JointLimits):
                 value = value.as_dict()
-            elif isinstance(value, Actuators | Battery):
+            elif isinstance(value, Actuators | Battery | Structure):
                 value = value.to_table()
             elif isinstance(value, tuple):
                 value = list(value)

@@ -18,18 +18,19 @@ import json
 import math
 import os
 import re
-import stat
 import sys
 from collections.abc import Callable, Mapping
 from pathlib import Path
 from typing import Any, TypeVar, cast
 
 from hexaleg._checks import require_finite
+from hexaleg._input import read_input_file
 from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign, LegMount
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.leg_structure import Structure
 from hexaleg.limits import JOINT_NAMES, JointLimits
 
 if sys.version_info >= (3, 11):
@@ -76,12 +77,13 @@ ANGLES = {k for k, s in FIELDS.items() if s.angle} | {*JOINT_NAMES, "yaw"}
 RECORDS: dict[str, Callable[[Any], Any]] = {
     "actuators": Actuators.from_table,
     "battery": Battery.from_table,
+    "structure": Structure.from_table,
 }
-"""How each table of its own keys is read (``[actuators.root]``, ``[battery]``)."""
+"""How each table of its own keys is read (``[actuators.root]``, ``[battery]``, ``[structure]``)."""
 
 REQUIREMENTS = "requirements"
 """The table of what the robot must do: handed over as it is, read by
-:meth:`hexaleg.study.requirements.Requirements.from_table`."""
+:meth:`hexaleg.evaluation.requirements.Requirements.from_table`."""
 
 ROBOT = "robot"
 """An imported robot's table (``hexaleg design import``), read by the commands that take one."""
@@ -208,25 +210,12 @@ def _printed_design(data: object) -> object:
 
 
 def read_design_text(path: Path) -> str:
-    """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never blocks on a FIFO."""
+    """The text of a regular file of at most :data:`MAX_FILE_BYTES`; never opens a FIFO."""
+    data = read_input_file(path, MAX_FILE_BYTES, f"--design {path}", DesignFileError)
     try:
-        fd = os.open(path, os.O_RDONLY | getattr(os, "O_NONBLOCK", 0))
-    except OSError as err:
-        raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
-    try:
-        if not stat.S_ISREG(os.fstat(fd).st_mode):
-            raise DesignFileError(f"--design {path}: not a regular file")
-        with os.fdopen(fd, "rb", closefd=False) as file:
-            data = file.read(MAX_FILE_BYTES + 1)
-        if len(data) > MAX_FILE_BYTES:
-            raise DesignFileError(
-                f"--design {path}: larger than {MAX_FILE_BYTES // 2**20} MiB, not a design file"
-            )
         return data.decode("utf-8")
-    except (OSError, UnicodeDecodeError) as err:
+    except UnicodeDecodeError as err:
         raise DesignFileError(f"--design {path}: cannot read it ({_reason(err)})") from None
-    finally:
-        os.close(fd)
 
 
 def _first_sentence(err: Exception) -> str:
@@ -246,6 +235,8 @@ def design_from_mapping(data: Mapping[str, Any]) -> HexapodDesign:
         kind = "mounts" if key == "mount" else FIELDS[key].kind
         if kind == "number":
             kwargs[key] = _number(key, value, FIELDS[key].unit)
+        elif kind == "triple" and value is None and FIELDS[key].optional:
+            kwargs[key] = None  # JSON's null: not given (a robot file's rating)
         elif kind == "triple":
             kwargs[key] = _numbers(key, value, FIELDS[key].items, FIELDS[key].unit)
         elif kind == "limits":

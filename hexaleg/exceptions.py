@@ -62,6 +62,20 @@ class RobotImportWarning(UserWarning):
     """A robot file was imported, but something in it deserves a look (an inertia, an axis)."""
 
 
+MAX_MESSAGE_CHARS = 300
+"""Longest library message quoted in a refusal [characters] (xacro nests its contexts)."""
+
+
+def one_line(err: BaseException) -> str:
+    """A library's exception as one line of at most :data:`MAX_MESSAGE_CHARS` characters.
+
+    Its lines joined (coal, assimp and MuJoCo write several), its type's name if it says
+    nothing.
+    """
+    text = " ".join(str(err).split()) or type(err).__name__
+    return text if len(text) <= MAX_MESSAGE_CHARS else text[: MAX_MESSAGE_CHARS - 3] + "..."
+
+
 MAX_VALUE_CHARS = 80
 """Longest text of a value in a message: a million-element list still gives one short line."""
 

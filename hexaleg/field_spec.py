@@ -22,7 +22,7 @@ FieldKind = Literal["number", "triple", "limits", "choice", "mounts", "record"]
 """A field's shape: one number, three numbers, a joint-limit set, a named choice, leg mounts,
 or a record of its own keys read from a table (the actuators, the battery)."""
 
-OptionGroup = Literal["lengths", "body", "posture"]
+OptionGroup = Literal["lengths", "body", "posture", "ratings"]
 """The command-line groups of design options (a command offers only those it uses)."""
 
 SPEC = "hexaleg"
@@ -42,8 +42,10 @@ class FieldSpec:
         items: Names of a triple's three numbers, e.g. ``("root", "hip", "knee")``.
         applies: Where the field applies, when not always: ``"hexagon layout"``.
         option: The command-line group that offers ``--<name>``; ``None``: files only.
+        record: A record field's class: a value that is set must be one.
         name: The field's name, which is also its key in a design file.
         default: The field's default value.
+        optional: ``None`` is a value: not given (a robot file's unrated joints).
 
     """
 
@@ -54,8 +56,10 @@ class FieldSpec:
     items: tuple[str, ...] = ()
     applies: str = ""
     option: OptionGroup | None = None
+    record: type | None = None
     name: str = ""
     default: Any = None
+    optional: bool = False
 
     @property
     def key(self) -> str:
@@ -82,9 +86,11 @@ class FieldSpec:
     def check(self, value: Any) -> Any:
         """``value`` checked and normalized (floats, a tuple), or a ParameterError naming it.
 
-        Numbers, triples and limit sets are checked here; a layout's choice and mounts
-        depend on other fields, so the design checks them.
+        Numbers, triples, limit sets and records are checked here; a layout's choice and
+        mounts depend on other fields, so the design checks them.
         """
+        if value is None and self.optional:
+            return None
         if self.kind == "number":
             return self._number(self.name, value)
         if self.kind == "triple":
@@ -97,6 +103,8 @@ class FieldSpec:
             return require_instance(
                 self.name, value, JointLimits, "a JointLimits (theta1, theta2, theta3 [rad])"
             )
+        if self.kind == "record" and self.record is not None and value is not None:
+            return require_instance(self.name, value, self.record, f"a {self.record.__name__}")
         return value
 
     def _number(self, name: str, value: Any) -> float:

@@ -20,10 +20,11 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.gravity import GRAVITY
 from hexaleg.leg_geometry import LegLike, as_leg, leg_parameters, placement_matrix
 
-STANDARD_GRAVITY = np.array([0.0, 0.0, -9.81])
-"""Gravity in a level leg-root frame [m/s²], as hexaleg's statics use it."""
+STANDARD_GRAVITY = np.array([0.0, 0.0, -GRAVITY])
+"""Gravity in a level leg-root frame [m/s²] (:data:`~hexaleg.gravity.GRAVITY` along −z)."""
 
 
 def segment_frames(leg: LegLike, theta: npt.ArrayLike) -> ArrayF:

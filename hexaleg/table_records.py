@@ -12,13 +12,17 @@ from __future__ import annotations
 
 import dataclasses
 import difflib
-from collections.abc import Mapping
+import re
+from collections.abc import Mapping, Sequence
 from typing import Any, TypeVar
 
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec
 
 T = TypeVar("T")
+
+ENTRY_NAME = re.compile(r"[a-z0-9][a-z0-9_]*")
+"""A catalog entry's name: lower-case letters, digits and underscores."""
 
 REQUIRED = dataclasses.MISSING
 """The default of a declared key that has none: the key is required."""
@@ -100,6 +104,26 @@ def unknown_key(table: str, key: str, specs: tuple[FieldSpec, ...]) -> TableKeyE
     else:
         allowed = "known keys: " + ", ".join(names)
     return TableKeyError(field, allowed, f"unknown key {field!r}: {allowed}")
+
+
+def unknown_name(
+    field: str, name: Any, names: Sequence[str], what: str, listed: str
+) -> ParameterError:
+    """The error for ``name``, which no entry of a catalog has: the nearest entry named.
+
+    Args:
+        field: The key that gave the name (``"structure.material"``).
+        name: What was given.
+        names: The catalog's names.
+        what: What an entry is (``"actuator"``, ``"material"``).
+        listed: Where the user finds them (``"hexaleg materials lists them"``).
+
+    """
+    if not isinstance(name, str):
+        return ParameterError(field, name, f"must be the name of a catalog {what}")
+    close = difflib.get_close_matches(name, names, n=1, cutoff=0.4)
+    hint = f"did you mean {close[0]!r}?" if close else "none is called so"
+    return ParameterError(field, name, f"no such {what}: {hint} ({listed})")
 
 
 def missing_key(table: str, spec: FieldSpec, hint: str = "") -> TableKeyError:

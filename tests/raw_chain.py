@@ -22,11 +22,10 @@ class RawChain:
         self.model = pin.buildModelFromXML(self.robot.text, pin.JointModelFreeFlyer())
         self.data = self.model.createData()
         self.legs = {leg["name"]: leg for leg in shown["design"]["legs"]}
-        first = shown["design"]["legs"][0]
-        self.plane = first["mount"]["z"] - shown["design"]["mounts"][0]["z"]
-        design = shown["design"]
-        self.half = np.array([design["body_length"], design["body_width"], design["body_height"]])
-        self.half /= 2
+        # the design's body frame: the roots' mean plane (the design's mounts at z = 0)
+        self.plane = np.mean([leg["mount"]["z"] for leg in shown["design"]["legs"]])
+        box = shown["robot"]["body_box"]  # the body the extremes stop at, as design show says
+        self.half = np.array(box["size"]) / 2
 
     def joints(self, name):
         """Leg ``name``'s three Pinocchio joints, from the body out."""

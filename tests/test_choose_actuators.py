@@ -11,11 +11,12 @@ from conftest import run_cli
 from hexaleg import HexapodDesign
 from hexaleg.actuator_catalog import catalog_from_data
 from hexaleg.actuators import Actuators
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import FreeVariable
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)
@@ -51,8 +52,9 @@ def test_the_search_picks_the_combination_an_exhaustive_search_does():
     for combination in itertools.product(entries, repeat=3):
         candidate = design.replace(actuators=Actuators(*combination))
         evaluation = goal.evaluate(candidate)
-        if goal.meets(evaluation) and evaluation["robot_mass"] < best_mass:
-            best, best_mass = combination, evaluation["robot_mass"]
+        mass = evaluation.metrics.value(METRICS.robot_mass)
+        if goal.meets(evaluation) and mass < best_mass:
+            best, best_mass = combination, mass
     assert best is not None and best[1].catalog != "light"  # the light hip is too weak
     assert found.feasible
     assert found.best.design.actuators is not None
@@ -60,7 +62,7 @@ def test_the_search_picks_the_combination_an_exhaustive_search_does():
     slack = (
         6 * design.link_linear_density * 3 * 1e-4
     )  # six legs' links, each segment ≤ 0.1 mm longer
-    assert found.best.evaluation["robot_mass"] == pytest.approx(best_mass, abs=slack)
+    assert found.best.evaluation.metrics.robot_mass == pytest.approx(best_mass, abs=slack)
 
 
 def test_choices_are_freed_by_the_flag_only(capsys):

@@ -29,7 +29,7 @@ def test_urdf_from_ratios_to_file(tmp_path):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["--l1", "-1"], "l1 = -1 is not valid: must lie in [0.001, 100] [m]"),
+        (["--l1", "-1"], "l1 = -1 is not valid: must lie in [0, 100] [m]"),
         (["--l3", "nan"], "l3 = nan is not valid: must be finite"),
         (["--ratios", "0.6", "0.5"], "l1_ratio + l3_ratio"),
         (["--ratios", "0.1", "0.4", "--l2", "0.3"], "--ratios cannot be combined with --l2"),
@@ -50,7 +50,7 @@ def test_unparsable_value_is_one_line_and_writes_nothing(tmp_path, capsys):
     assert info.value.code == 2
     _assert_one_line_error(
         capsys.readouterr().err,
-        "argument --l1: 'abc' is not valid: must be a number in [0.001, 100] [m]",
+        "argument --l1: 'abc' is not valid: must be a number in [0, 100] [m]",
     )
     assert list(tmp_path.iterdir()) == []
 
@@ -217,12 +217,13 @@ def test_each_command_module_has_the_command_interface(name):
 
 
 BAD_VALUES = [
-    (["urdf", "--l1=1e308"], "l1 = 1e+308 is not valid: must lie in [0.001, 100] [m]"),
+    (["urdf", "--l1=1e308"], "l1 = 1e+308 is not valid: must lie in [0, 100] [m]"),
     (
         ["urdf", "--body-length=1e-300"],
         "--body-length = 1e-300 is not valid: must lie in [0.01, 100]",
     ),
-    (["flexibility", "--l1", "1e-9"], "l1 = 1e-09 is not valid: must lie in [0.001, 100] [m]"),
+    (["flexibility", "--l1=-1e-9"], "l1 = -1e-09 is not valid: must lie in [0, 100] [m]"),
+    (["flexibility", "--l2", "1e-9"], "l2 = 1e-09 is not valid: must lie in [0.001, 100] [m]"),
     (["flexibility", "--l1=1e308"], "l1 = 1e+308 is not valid"),
     (["workspace", "--l1", "1e6", "--l2", "1e6", "--l3", "1e6"], "l1 = 1e+06 is not valid"),
     (["manipulability", "--l2=1e308", "--json"], "l2 = 1e+308 is not valid"),

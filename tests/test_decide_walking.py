@@ -9,11 +9,12 @@ import pytest
 from conftest import random_designs
 
 from hexaleg import Gait, HexapodDesign, Payload, analyze_gait
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SEGMENT_FLOOR
 from hexaleg.study.sweep import base_model
 
@@ -51,7 +52,7 @@ def test_your_design_meets_the_speed_as_the_gait_analysis_says(design, payload, 
         return Requirements(speed=speed, payload=payload, step_height=step_height)
 
     goal = Goal(requirements(0.2).resolved(design))
-    fastest = goal.evaluate(design).values["max_speed"]
+    fastest = goal.evaluate(design).metrics.value(METRICS.max_speed)
     if fastest == 0:  # cannot walk the stride within its ratings at any speed
         assert not _walks(design, 0.05, payload, step_height)
         return
@@ -73,7 +74,7 @@ def test_the_best_design_walks_at_the_reported_speed_and_not_two_percent_faster(
     result = _decide(design, requirements, Objective("improved_area"), 90)
     assert result.feasible, result.best.checks
     best = result.best
-    speed = best.evaluation.values["max_speed"]
+    speed = best.evaluation.metrics.value(METRICS.max_speed)
     assert speed >= 0.3
     assert _walks(best.design, speed * (1 - 1e-9), 10.0)
     assert not _walks(best.design, speed * 1.02, 10.0)
@@ -94,13 +95,13 @@ def test_a_gait_objective_is_measured_at_the_required_speed():
     measured = goal.evaluate(design)
     walked = analyze_gait(design, Gait(step_height=STEP).with_speed(0.25), Payload(5.0),
                           limits=False)  # fmt: skip
-    assert measured.values["gait_peak_torque"] == pytest.approx(
+    assert measured.metrics.gait_peak_torque == pytest.approx(
         float(np.abs(walked.joint_torques).max()), rel=1e-12
     )
     goal = Goal(
         requirements.resolved(design), Objective("mechanical_cost_of_transport", "minimize")
     )
-    assert goal.evaluate(design).values["mechanical_cost_of_transport"] == pytest.approx(
+    assert goal.evaluate(design).metrics.mechanical_cost_of_transport == pytest.approx(
         walked.metrics.cost_of_transport, rel=1e-12
     )
 
@@ -111,7 +112,8 @@ def test_a_design_that_cannot_walk_the_stride_has_no_gait_objective():
     assert "cannot walk the gait" in goal.evaluate(design).error
     speed = Goal(Requirements(speed=0.1).resolved(design))
     found = speed.evaluate(design)
-    assert found.values["max_speed"] == 0.0 and found.causes["max_speed"].kind in ("reach", "joint")
+    cause = found.causes.max_speed
+    assert found.metrics.max_speed == 0.0 and cause is not None and cause.kind in ("reach", "joint")
 
 
 def test_a_speed_no_gait_period_reaches_is_refused_with_its_range():
@@ -147,7 +149,7 @@ def test_a_speed_search_is_within_half_a_percent_of_a_grid_walked_forward():
                                       model=base.with_design(candidate), limits=False)  # fmt: skip
                 if walked.feasible and not walked.over_rating:
                     best = area
-    found = result.best.evaluation.values["improved_area"]
+    found = result.best.evaluation.metrics.improved_area
     assert best > 0 and result.feasible
     assert found >= (1 - 5e-3) * best
     assert _walks(result.best.design, 0.33, 10.0)

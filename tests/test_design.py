@@ -47,6 +47,10 @@ def test_from_ratios(l1_ratio, l3_ratio, total):
 @pytest.mark.parametrize("field", ["l1", "l2", "l3", "body_length", "body_width", "body_height"])
 @pytest.mark.parametrize("value", [0.0, -1.0, math.nan, math.inf, "abc"])
 def test_lengths_must_be_finite_and_positive(field, value):
+    if field == "l1" and value == 0.0:
+        # a coxa of 0: the hip axis meets the yaw axis, a valid hexapod (the leg of eq 7)
+        assert HexapodDesign(l1=0.0).nominal_footholds[0, 0] == pytest.approx(0.5 + 0.4 * 0.5**0.5)
+        return
     with pytest.raises(DesignError) as info:
         HexapodDesign(**{field: value})
     assert info.value.field == field

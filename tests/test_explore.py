@@ -19,10 +19,10 @@ from explorer import Explorer, running
 from hexaleg.cli import main
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design_file
+from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.explore.query import parse_query
-from hexaleg.study.evaluation import Conditions
-from hexaleg.study.requirements import Requirements
 
 RTOL = 1e-9
 """Endpoint against command line: the same computation, summed in another order at most."""

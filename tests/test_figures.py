@@ -2,6 +2,9 @@
 
 from __future__ import annotations
 
+import io
+import json
+
 import numpy as np
 import pytest
 
@@ -155,3 +158,182 @@ def test_the_ranges_figure_marks_both_designs_on_every_curve_and_names_each_once
         assert points == expected  # each design on each of the panel's three curves
         labels = [t.get_text() for t in ax.get_legend().get_texts()]
         assert labels.count("your design") == 1 and sum("recommended" in t for t in labels) == 1
+
+
+def _study_rows(l1_ratios, l3_ratios, rng):
+    import pandas as pd
+
+    axes = ("x", "y", "z", "roll", "pitch", "yaw")
+    rows = [
+        {"l1_ratio": r1, "l3_ratio": r3}
+        | {f"range_{a}": float(rng.uniform(0.1, 0.6)) for a in axes}
+        for r1 in l1_ratios
+        for r3 in l3_ratios
+    ]
+    return pd.DataFrame(rows)
+
+
+def test_the_ranges_figure_draws_only_the_designs_at_its_own_coxa_ratio():
+    from hexaleg.output.figures.marks import your_and_recommended
+    from hexaleg.output.figures.study import ranges_figure
+
+    table = _study_rows((0.05, 0.2), np.linspace(0.2, 0.6, 5), np.random.default_rng(5))
+    yours = table.iloc[7].to_dict()  # coxa ratio 0.2: not on the 0.05 panel
+    theirs = table.iloc[2].to_dict()  # coxa ratio 0.05
+    figure = ranges_figure(table, 0.05, your_and_recommended(yours, theirs))
+    for ax, names, scale in zip(
+        figure.axes, (("x", "y", "z"), ("roll", "pitch", "yaw")), (1.0, 180 / np.pi), strict=True
+    ):
+        points = {tuple(np.round(c.get_offsets()[0], 12)) for c in ax.collections}
+        assert points == {
+            (round(theirs["l3_ratio"], 12), round(theirs[f"range_{a}"] * scale, 12)) for a in names
+        }
+        labels = [t.get_text() for t in ax.get_legend().get_texts()]
+        assert "your design" not in labels and sum("recommended" in t for t in labels) == 1
+    title = figure.get_suptitle()
+    assert "your design 0.20" in title and "not drawn" in title  # said, not silently dropped
+
+
+def _walking_table(rng):
+    """A study's walking columns: CoT spread 10 % (0.088–0.098) as on the default grid."""
+    import pandas as pd
+
+    rows = []
+    for r1 in (0.1, 0.2):
+        for r3 in np.linspace(0.4, 0.7, 12):
+            rows.append({
+                "l1_ratio": r1, "l3_ratio": r3, "walks": bool(r3 > 0.42),
+                "gait_peak_hip_torque": 70 + 80 * (0.7 - r3) / 0.3 + rng.uniform(0, 2),
+                "gait_peak_knee_torque": 23 + 4 * (0.7 - r3) / 0.3,
+                "mechanical_cost_of_transport": 0.088 + 0.01 * ((r3 - 0.6) / 0.2) ** 2,
+                "walking_payload_capacity": 90 * (r3 - 0.42) / 0.28,
+            })  # fmt: skip
+    return pd.DataFrame(rows)
+
+
+def test_the_walking_figure_reads_each_magnitude_from_zero_and_states_a_narrow_spread():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+    from hexaleg.output.figures.gait import walking_study_figure
+
+    table = _walking_table(np.random.default_rng(2))
+    figure = walking_study_figure(table, {"hip": 150.0, "knee": 120.0})
+    FigureCanvasAgg(figure).draw()
+    columns = ("gait_peak_hip_torque", "gait_peak_knee_torque", "mechanical_cost_of_transport",
+               "walking_payload_capacity")  # fmt: skip
+    walking = table[table["walks"]]
+    for ax, column in zip(figure.axes, columns, strict=True):
+        low, high = ax.get_ylim()
+        assert low == 0.0 and high >= walking[column].max()  # the whole magnitude, from 0
+        assert ax.yaxis.get_offset_text().get_text() == ""  # ticks are values, not offsets
+    cot = walking["mechanical_cost_of_transport"]
+    note = " ".join(t.get_text() for t in figure.axes[2].texts)
+    assert f"{cot.min():.3g} to {cot.max():.3g}" in note  # the 10 % spread, in numbers
+    spread = 100 * (cot.max() - cot.min()) / cot.max()
+    assert f"all within {spread:.0f} %" in note
+    assert not figure.axes[3].texts  # the payload spreads over its whole axis: no note
+
+
+def _marker_disks(ax, renderer):
+    """Every scatter marker of ``ax``: centre (display px) and radius [px]."""
+    centres, radii = [], []
+    for collection in ax.collections:
+        offsets = collection.get_offset_transform().transform(collection.get_offsets())
+        sizes = np.resize(collection.get_sizes(), len(offsets))
+        centres.append(offsets)
+        radii.append(np.sqrt(sizes) / 2 * renderer.points_to_pixels(1.0))
+    return np.vstack(centres), np.concatenate(radii)
+
+
+def _crowded_front():
+    """A Pareto front whose largest walker has other designs all along its left, as on the
+    default grid (coxa 0.20's 94 kg beside coxa 0.10's and 0.15's)."""
+    import pandas as pd
+
+    rows = []
+    for r1, reach, slope in ((0.1, 73.0, 0.0014), (0.15, 89.0, 0.0011), (0.2, 94.0, 0.0009)):
+        for x in np.linspace(0.0, reach, 22):
+            rows.append({"l1_ratio": r1, "l3_ratio": 0.4 + x / 200, "l1": r1, "l2": 0.3,
+                         "l3": 0.4, "walking_payload_capacity": x, "fb": 0.242 - slope * x,
+                         "walks": True})  # fmt: skip
+    table = pd.DataFrame(rows)
+    return table, table.sort_values("fb", ascending=False)
+
+
+def test_the_pareto_front_names_its_largest_design_where_the_name_hides_no_point():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+
+    from hexaleg.output.figures.study import pareto_figure
+
+    table, front = _crowded_front()
+    figure = pareto_figure(table, front)
+    FigureCanvasAgg(figure).draw()
+    renderer = figure.canvas.get_renderer()
+    (ax,) = figure.axes
+    (label,) = [t for t in ax.texts if t.get_text().startswith("94 kg")]
+    box = Text.get_window_extent(label, renderer)  # the words, not the leader line
+    centres, radii = _marker_disks(ax, renderer)
+    nearest_x = np.clip(centres[:, 0], box.x0, box.x1)  # the box's point nearest each centre
+    nearest_y = np.clip(centres[:, 1], box.y0, box.y1)
+    gaps = np.hypot(centres[:, 0] - nearest_x, centres[:, 1] - nearest_y) - radii
+    assert gaps.min() > 0, f"the label covers {int((gaps <= 0).sum())} markers"
+    frame = ax.get_window_extent(renderer)
+    assert frame.x0 <= box.x0 and box.x1 <= frame.x1 and frame.y0 <= box.y0 <= box.y1 <= frame.y1
+    spot = label.xyann
+    figure.savefig(io.BytesIO(), format="svg")  # 72 dpi: the same spot as the 150 dpi PNG
+    assert label.xyann == spot
+
+
+def _motor_design():
+    from hexaleg import HexapodDesign
+    from hexaleg.actuators import Actuator, Actuators
+
+    keys = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)
+    return HexapodDesign(actuators=Actuators(
+        Actuator(60.0, peak_torque=80.0, continuous_torque=50.0, mass=0.8, **keys),
+        Actuator(100.0, peak_torque=250.0, continuous_torque=150.0, mass=2.0, **keys),
+        Actuator(80.0, peak_torque=150.0, continuous_torque=90.0, mass=1.2, **keys),
+    ))  # fmt: skip
+
+
+def test_the_motor_envelope_fits_its_samples_and_its_legend_names_only_what_is_drawn(tmp_path):
+    from matplotlib.colors import to_rgb
+    from PIL import Image
+
+    from hexaleg.gait import analyze_gait
+    from hexaleg.gait.analysis import STUDY_GAIT
+    from hexaleg.output.figures.canvas import DPI, TEXTS_KEY, save
+    from hexaleg.output.figures.gait import LEG_COLORS
+    from hexaleg.output.figures.motors import envelope_figure
+
+    walked = analyze_gait(_motor_design(), STUDY_GAIT, limits=False)
+    figure = envelope_figure(walked)
+    path = save(figure, tmp_path / "envelope.png")
+    panels = figure.axes[:3]
+    for j, ax in enumerate(panels):  # the samples fill the axes: at least 60 % each way
+        speeds = np.abs(walked.joint_velocities[:, :, j]).max()
+        torques = np.abs(walked.joint_torques[:, :, j]).max()
+        assert speeds >= 0.6 * ax.get_xlim()[1] and torques >= 0.6 * ax.get_ylim()[1]
+    with Image.open(path) as image:
+        pixels = np.asarray(image.convert("RGB")).astype(int)
+        texts = " ".join(json.loads(image.text[TEXTS_KEY]))
+    height = pixels.shape[0]
+    inside = np.zeros(pixels.shape[:2], dtype=bool)  # the panels' pixels, not the legend's
+    for ax in panels:
+        x0, y0, x1, y1 = (np.array(ax.get_window_extent().extents) * DPI / figure.dpi).round()
+        inside[height - int(y1) : height - int(y0), int(x0) : int(x1)] = True
+    legend = [t.get_text() for t in figure.legends[0].get_texts()]
+    for leg, color in zip(walked.legs, LEG_COLORS, strict=False):
+        rgb = np.round(np.array(to_rgb(color)) * 255).astype(int)
+        seen = int(((pixels == rgb).all(axis=2) & inside).sum())
+        if leg in legend:
+            assert seen > 0, f"{leg} is in the legend but not one of its pixels is drawn"
+        else:
+            assert seen == 0 and any(leg in t and "under" in t for t in legend)
+    assert sum(leg in legend for leg in walked.legs) < len(walked.legs)  # some legs overlap
+    for joint, actuator in zip(("root", "hip", "knee"), walked.design.actuators.joints,
+                               strict=True):  # fmt: skip
+        ax = panels[("root", "hip", "knee").index(joint)]
+        if actuator.rated_speed > ax.get_xlim()[1]:  # off the axes: named with its value
+            assert f"speed rating {actuator.rated_speed:.3g} rad/s" in texts

@@ -20,11 +20,12 @@ from conftest import run_cli
 from hexaleg import HexapodDesign
 from hexaleg.actuator_catalog import catalog_from_data, shipped_catalog
 from hexaleg.actuators import Actuator, Actuators
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import FreeVariable, search_space
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0,
@@ -124,7 +125,7 @@ def _energy(ratios: tuple[float, float, float]) -> float:
     entry = CATALOG.entry("geared").actuator
     motors = Actuators(*(entry.with_gear_ratio(float(n)) for n in ratios))
     evaluation = goal.evaluate(design.replace(actuators=motors))
-    return float(evaluation["energy_per_km"]) if goal.meets(evaluation) else math.inf
+    return evaluation.metrics.value(METRICS.energy_per_km) if goal.meets(evaluation) else math.inf
 
 
 @functools.cache
@@ -165,7 +166,7 @@ def test_decide_finds_the_ratios_a_brute_force_search_does(seed):
         )  # fmt: skip
     ratios, energy, coarse = _brute_force()
     assert found.feasible and found.best.design.actuators is not None
-    found_energy = found.best.evaluation["energy_per_km"]
+    found_energy = found.best.evaluation.metrics.value(METRICS.energy_per_km)
     assert found_energy <= coarse  # a continuous ratio does at least as well as the grid
     assert found_energy == pytest.approx(energy, rel=5e-3)
     chosen = [a.gear_ratio for a in found.best.design.actuators.joints]

@@ -30,17 +30,28 @@ import hexaleg
 from hexaleg._folders import MARKER, replace_folder
 from hexaleg._io import write_text
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.statics.ground import Ground
 from hexaleg.study import optimize
 from hexaleg.study import progress as progress_module
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.sensitivity import sensitivity_table
 
 FIFO = object()
 """A file's content in :attr:`Case.files` that makes it a FIFO instead."""
+
+
+@dataclass(frozen=True)
+class Sparse:
+    """A file's content in :attr:`Case.files`: ``size`` bytes of a hole (no disk used)."""
+
+    size: int
+
+
+SNAPSHOT_BYTES = 2**20
+"""A larger file is compared by its size and time of change, never read whole [bytes]."""
 HEADER = {"a": 1}
 """The fingerprint of the decide journals the API rows open."""
 DECIDE_HEADER = json.dumps({"decide": HEADER}) + "\n"
@@ -270,16 +281,22 @@ def _lay_out(folder: Path, files: dict[str, object]) -> None:
         path.parent.mkdir(parents=True, exist_ok=True)
         if content is FIFO:
             os.mkfifo(path)
+        elif isinstance(content, Sparse):
+            with path.open("wb") as file:
+                file.truncate(content.size)
         else:
             path.write_text(str(content))
 
 
 def _snapshot(folder: Path) -> dict[str, object]:
-    """Every entry below ``folder``: a file's bytes, FIFO or folder."""
+    """Every entry below ``folder``: a file's bytes (a large one's size), FIFO or folder."""
     found: dict[str, object] = {}
     for path in sorted(folder.rglob("*")):
         name = path.relative_to(folder).as_posix()
-        found[name] = path.read_bytes() if path.is_file() else "fifo" if path.is_fifo() else "/"
+        if path.is_file() and path.stat().st_size > SNAPSHOT_BYTES:
+            found[name] = (path.stat().st_size, path.stat().st_mtime_ns)
+        else:
+            found[name] = path.read_bytes() if path.is_file() else "fifo" if path.is_fifo() else "/"
     return found
 
 

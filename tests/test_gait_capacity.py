@@ -19,6 +19,8 @@ from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
 from hexaleg.design_file import load_design
 from hexaleg.electrical.ratings import motor_loads
+from hexaleg.evaluation.evaluate import evaluate
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.capacity import (
     PROBE_MASS,
     _voltage_bound,
@@ -29,7 +31,6 @@ from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Walker
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import evaluate
 
 
 def _walks(design, model, gait, mass, position) -> bool:
@@ -270,9 +271,11 @@ def test_loads_json_and_the_study_see_the_continuous_torque_bind(tmp_path, capsy
     assert printed["mass"] == pytest.approx(oracle, rel=1e-6)
     assert printed["limited_by"]["kind"] == "continuous_torque"
     assert printed["limited_by"]["joint"] == "hip"
-    measured = evaluate(design, ["walking_payload_capacity"], model=model)  # studies, decide
-    assert measured["walking_payload_capacity"] == pytest.approx(oracle, rel=1e-6)
-    assert measured.causes["walking_payload_capacity"].kind == "continuous_torque"
+    specs = [METRICS.walking_payload_capacity]
+    measured = evaluate(design, specs, model=model)  # studies, decide
+    assert measured.metrics.walking_payload_capacity == pytest.approx(oracle, rel=1e-6)
+    cause = measured.causes.walking_payload_capacity
+    assert cause is not None and cause.kind == "continuous_torque"
 
 
 def test_the_capacity_is_where_the_gait_turns_infeasible():

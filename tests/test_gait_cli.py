@@ -12,11 +12,12 @@ from conftest import run_cli
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.cause import Cause
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.statics import Payload, analyze_loads
 from hexaleg.statics.ground import Ground
-from hexaleg.study.rows import design_walking_columns
+from hexaleg.study.rows import design_walking_row
 
 GAIT_FIELDS = {
     "design",
@@ -169,20 +170,22 @@ def test_causes_of_every_kind_read_as_one_line():
 def test_the_study_columns_are_the_single_design_numbers(hexapod_model):
     design = HexapodDesign.from_ratios(0.15, 0.45)
     model = hexapod_model.with_design(design)
-    columns = design_walking_columns(design, model)
+    row = design_walking_row(design, model)
+    columns = row.to_dict()  # the study table's row
     single = analyze_gait(design, STUDY_GAIT, model=HexapodModel(design))
     assert columns["gait_feasible"] is True
     assert columns["gait_peak_hip_torque"] == pytest.approx(single.metrics.peak_torque["hip"])
     assert columns["gait_peak_torque"] == pytest.approx(max(single.metrics.peak_torque.values()))
-    assert columns["mechanical_cost_of_transport"] == pytest.approx(
+    assert row.metrics.mechanical_cost_of_transport == pytest.approx(
         single.metrics.cost_of_transport
     )
     assert single.max_speed is not None
-    assert columns["max_speed"] == pytest.approx(single.max_speed.value)
+    assert row.metrics.max_speed == pytest.approx(single.max_speed.value)
     infeasible = HexapodDesign.from_ratios(0.2, 0.75)
-    columns = design_walking_columns(infeasible, hexapod_model.with_design(infeasible))
-    assert columns["gait_feasible"] is False and math.isnan(columns["mechanical_cost_of_transport"])
-    assert columns["max_speed"] == 0.0
+    row = design_walking_row(infeasible, hexapod_model.with_design(infeasible))
+    assert row.columns["gait_feasible"] is False
+    assert math.isnan(row.metrics.value(METRICS.mechanical_cost_of_transport))
+    assert row.metrics.max_speed == 0.0
 
 
 def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
@@ -203,14 +206,15 @@ def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
 
 
 def test_a_study_row_whose_zmp_leaves_the_feet_is_not_gait_feasible(hexapod_model):
-    from hexaleg.study.evaluation import Conditions, evaluate
-    from hexaleg.study.rows import WALKING_METRICS, walking_columns
+    from hexaleg.evaluation.evaluate import Conditions, evaluate
+    from hexaleg.study.rows import WALKING_METRICS, study_row
 
     payload = Payload(30.0, (100.0, 100.0, 100.0))  # once "feasible yes" at a margin of −37 m
     conditions = Conditions(payload=payload, gait=STUDY_GAIT, keep=True)
-    found = evaluate(hexapod_model.design, WALKING_METRICS, conditions, model=hexapod_model)
+    specs = (METRICS.fb, *WALKING_METRICS)
+    found = evaluate(hexapod_model.design, specs, conditions, model=hexapod_model)
     assert found.gait is not None and found.gait.walkable and found.gait.min_zmp_margin < 0
-    columns = walking_columns(found.gait, found)
+    columns = study_row((0.2, 0.4), hexapod_model.design, found).to_dict()
     assert columns["gait_feasible"] is False  # ("walks": unloaded, it does)
     assert columns["max_speed"] == 0.0 and columns["max_speed_limited_by"] == (
         "ZMP leaves the support polygon"

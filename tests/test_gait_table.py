@@ -19,6 +19,7 @@ from hexaleg.cli.main import build_parser
 from hexaleg.cli.options import load_gait
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
@@ -27,7 +28,6 @@ from hexaleg.output.report import study as report_study
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import ReportData
 from hexaleg.robot.model import HexapodModel
-from hexaleg.study.requirements import Requirements
 
 OPTIONS = ["--speed", "0.2", "--step-height", "0.05", "--stride", "0.25"]
 MOTORS = ("hd_cha_17a_e_100", "hd_cha_25a_100", "hd_cha_20a_100")
@@ -197,7 +197,7 @@ def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
     study = report_study.compute(ReportData(design, options, HexapodModel(design)))
     assert study.spec.walked == gait
     oracle = _gait_json(capsys, without, design)
-    assert study.yours["gait_peak_hip_torque"] == pytest.approx(
+    assert study.yours.metrics.gait_peak_hip_torque == pytest.approx(
         oracle["peak_torque"]["hip"], rel=1e-9
     )
     motors_file = tmp_path / "motors.toml"

@@ -9,11 +9,11 @@ import pytest
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
+from hexaleg.evaluation.evaluate import evaluate
+from hexaleg.evaluation.metrics import METRICS, objectives
+from hexaleg.evaluation.requirements import Requirements, check
 from hexaleg.gait import analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
-from hexaleg.study.evaluation import ELECTRICAL_METRICS, evaluate
-from hexaleg.study.metrics import objectives
-from hexaleg.study.requirements import Requirements, check
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)
 
@@ -30,34 +30,38 @@ def motors(hip_continuous: float = 150.0) -> Actuators:
 DESIGN = HexapodDesign(actuators=motors(), battery=Battery(600.0, 180.0, regeneration=0.2))
 
 
+ELECTRICAL = tuple(spec for spec in METRICS if spec.analysis == "motors")
+
+
 def test_the_electrical_metrics_are_the_gait_periods():
-    found = evaluate(DESIGN, (*ELECTRICAL_METRICS, "robot_mass"))
+    found = evaluate(DESIGN, (*ELECTRICAL, METRICS.robot_mass)).metrics
     walked = analyze_gait(DESIGN, STUDY_GAIT, limits=False)
     electrical = walked.electrical
     assert electrical is not None and electrical.battery is not None
-    assert found["energy_per_km"] == pytest.approx(electrical.energy_per_km, rel=1e-12)
-    assert found["battery_range"] == pytest.approx(electrical.battery.range, rel=1e-12)
+    assert found.energy_per_km == pytest.approx(electrical.energy_per_km, rel=1e-12)
+    assert found.battery_range == pytest.approx(electrical.battery.range, rel=1e-12)
     rms = (walked.joint_torques**2).mean(axis=0) ** 0.5  # (legs, 3)
     continuous = [a.continuous_torque for a in DESIGN.actuators.joints]
-    assert found["continuous_load"] == pytest.approx((rms / continuous).max(), rel=1e-12)
-    assert found["robot_mass"] == pytest.approx(HexapodDesign().total_mass + 24.0 + 600 / 180)
+    assert found.continuous_load == pytest.approx((rms / continuous).max(), rel=1e-12)
+    assert found.robot_mass == pytest.approx(HexapodDesign().total_mass + 24.0 + 600 / 180)
 
 
 def test_a_design_without_motors_says_why_it_has_no_electrical_metrics():
-    found = evaluate(HexapodDesign(), ELECTRICAL_METRICS)
-    for name in ELECTRICAL_METRICS:
-        assert math.isnan(found[name]) and "actuators" in found.unmeasured[name]
-    no_battery = evaluate(HexapodDesign(actuators=motors()), ("battery_range",))
-    assert "battery" in no_battery.unmeasured["battery_range"]
+    found = evaluate(HexapodDesign(), ELECTRICAL)
+    for spec in ELECTRICAL:
+        assert math.isnan(found.metrics.value(spec)) and "actuators" in str(found.unmeasured[spec])
+    no_battery = evaluate(HexapodDesign(actuators=motors()), (METRICS.battery_range,))
+    assert "battery" in str(no_battery.unmeasured.battery_range)
 
 
 def test_range_and_continuous_margin_requirements_are_checked():
-    found = evaluate(DESIGN, ("battery_range", "continuous_load"))
-    load, distance = found["continuous_load"], found["battery_range"]
+    found = evaluate(DESIGN, (METRICS.battery_range, METRICS.continuous_load))
+    load = found.metrics.value(METRICS.continuous_load)
+    distance = found.metrics.value(METRICS.battery_range)
     meets = Requirements.from_table({"range_km": distance * 0.9, "continuous_margin": 1.0})
     fails = Requirements.from_table({"range_km": distance * 1.1, "continuous_margin": load * 0.9})
-    assert all(c.met for c in check(meets, found.values, found.causes))
-    assert not any(c.met for c in check(fails, found.values, found.causes))
+    assert all(c.met for c in check(meets, found.metrics, found.causes))
+    assert not any(c.met for c in check(fails, found.metrics, found.causes))
 
 
 def test_decide_minimizes_energy_per_km_and_robot_mass():

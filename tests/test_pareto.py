@@ -6,8 +6,16 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from hexaleg.evaluation.metrics import Metrics
 from hexaleg.study.pareto import non_dominated, pareto_table
-from hexaleg.study.ranking import RANKED_METRICS
+from hexaleg.study.ranking import ranked_columns
+
+COLUMNS = ranked_columns()
+
+
+def _ranked(values) -> Metrics:
+    """The four ranked metrics, in their order."""
+    return Metrics(**{name: float(v) for name, v in zip(COLUMNS, values, strict=True)})
 
 
 def test_non_dominated_on_hand_made_points():
@@ -25,7 +33,7 @@ def test_non_dominated_on_hand_made_points():
 
 
 def _grid(values, names):
-    grid = pd.DataFrame(values, columns=RANKED_METRICS)
+    grid = pd.DataFrame(values, columns=COLUMNS)
     grid["name"] = names
     return grid
 
@@ -35,7 +43,7 @@ def test_the_front_is_ranked_by_the_geometric_mean_relative_to_yours():
         [[1.0, 1.0, 1.0, 4.0], [2.0, 1.5, 1.0, 1.0], [2.0, 1.0, 1.0, 1.0], [4.0, 1.0, 1.0, 2.0]],
         ["p", "q", "r", "s"],
     )
-    yours = dict(zip(RANKED_METRICS, [1.0, 1.0, 1.0, 2.0], strict=True))
+    yours = _ranked([1.0, 1.0, 1.0, 2.0])
     front = pareto_table(grid, yours)
     assert set(front["name"]) == {"p", "q", "s"}  # r is beaten by q
     scores = dict(zip(front["name"], front["score"], strict=True))
@@ -47,13 +55,17 @@ def test_the_front_is_ranked_by_the_geometric_mean_relative_to_yours():
 def test_adding_designs_never_changes_a_score_on_the_front():
     rng = np.random.default_rng(7)
     grid = _grid(rng.uniform(0.1, 1.0, (40, 4)), range(40))
-    yours = dict(zip(RANKED_METRICS, rng.uniform(0.1, 1.0, 4), strict=True))
+    reference = rng.uniform(0.1, 1.0, 4)
+    yours = _ranked(reference)
     before = pareto_table(grid, yours).set_index("name")["score"]
     more = pd.concat([grid, _grid(rng.uniform(0.1, 1.2, (40, 4)), range(40, 80))])
     after = pareto_table(more, yours).set_index("name")["score"]
     kept = before.index.intersection(after.index)
     assert len(kept) > 0
     np.testing.assert_array_equal(after[kept].to_numpy(), before[kept].to_numpy())
-    products = [np.prod([r[m] / yours[m] for m in RANKED_METRICS]) for r in grid.to_dict("records")]
+    products = [
+        np.prod([r[m] / y for m, y in zip(COLUMNS, reference, strict=True)])
+        for r in grid.to_dict("records")
+    ]
     best = grid.iloc[int(np.argmax(products))]
     assert pareto_table(grid, yours).iloc[0]["name"] == best["name"]  # the grid's best is first

@@ -9,12 +9,13 @@ import pytest
 from hexaleg import HexapodDesign
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
+from hexaleg.evaluation.evaluate import evaluate
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.study.decide import decide
-from hexaleg.study.evaluation import evaluate
-from hexaleg.study.goal import Objective
 from hexaleg.study.optimize import SearchSettings
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import FreeVariable, search_space
 
 KEYS = dict(torque_constant=0.12, resistance=0.3, gearbox_efficiency=0.85, voltage=48.0)
@@ -29,7 +30,7 @@ DESIGN = HexapodDesign(actuators=MOTORS, battery=Battery(100.0, 150.0))
 def walked_range(capacity: float) -> float:
     """The range [km] of the design with a battery of ``capacity`` [Wh]."""
     design = DESIGN.replace(battery=Battery(capacity, 150.0))
-    return evaluate(design, ("battery_range",))["battery_range"]
+    return evaluate(design, (METRICS.battery_range,)).metrics.value(METRICS.battery_range)
 
 
 @pytest.mark.slow  # a bisection of whole evaluations and a 400-design search: a minute
@@ -50,7 +51,7 @@ def test_the_least_capacity_for_a_range_is_found():
         )  # fmt: skip
     battery = found.best.design.battery
     assert found.feasible and battery is not None
-    assert found.best.evaluation["battery_range"] >= required
+    assert found.best.evaluation.metrics.value(METRICS.battery_range) >= required
     assert battery.capacity == pytest.approx(high, rel=0.05)
 
 

@@ -368,10 +368,10 @@ def test_every_number_reads_the_same_in_the_report_its_json_and_its_figures(repo
     # the scored metrics: the Decision table's yours and recommended columns
     decision = saved["decision"]
     rows = dict(re.findall(r"^\| ([^|]+?) \| (\S+ \| \S+) \|", text.split("## Design")[0], re.M))
-    from hexaleg.study.metrics import METRICS
+    from hexaleg.evaluation.metrics import METRICS
 
     for name in decision["metrics"]:
-        spec = METRICS[name]
+        spec = METRICS.named(name)
         yours, theirs = rows[spec.described].split(" | ")
         assert _reads_as(yours, decision["yours"]["metrics"][name]), (name, yours)
         assert _reads_as(theirs, decision["recommended"]["metrics"][name]), (name, theirs)

@@ -7,6 +7,7 @@ Slow: one reduced report with its PDF (~1 min), then Chromium and WeasyPrint lay
 from __future__ import annotations
 
 import html
+import itertools
 import json
 import os
 import re
@@ -15,12 +16,14 @@ import subprocess
 import tempfile
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.output.figures.canvas import SMALLEST_TEXT_KEY
 from hexaleg.output.report import PARTS, ReportOptions, compute_report, render_report
-from hexaleg.output.report.document import report_html, sections
+from hexaleg.output.report.document import sections
+from hexaleg.output.report.pages import LONG_TABLE, lay_out
 
 pytestmark = pytest.mark.slow
 
@@ -171,23 +174,28 @@ def test_the_pdf_holds_every_section_and_figure_of_the_html(report):
             assert image.image.width < 1000, f"a {image.image.width} px image in the PDF"
 
 
-def test_the_pdf_cuts_no_table_or_figure_across_pages(report):
-    import weasyprint
+def test_the_pdf_cuts_no_figure_and_only_a_long_table_between_rows(report):
     from pypdf import PdfReader
 
     out, data = report
-    page = report_html(sections(data, PARTS), out, medium="print")
-    document = weasyprint.HTML(string=page, base_url=str(out)).render()
+    page, document = lay_out(sections(data, PARTS), out)  # as the PDF was laid out
     assert len(document.pages) == len(PdfReader(out / "report.pdf").pages)
+    usable = float(document.pages[0]._page_box.height)
     pages_of: dict[int, set[int]] = {}
+    heights: dict[int, float] = {}
+    elements = {}
     for number, laid_out in enumerate(document.pages):
         for box in _boxes(laid_out._page_box):
             if getattr(box, "element_tag", None) in ("table", "figure"):
                 pages_of.setdefault(id(box.element), set()).add(number)
-    tables = page.count("<table>")
-    figures = page.count("<figure>")
-    assert len(pages_of) == tables + figures  # every one laid out
-    assert all(len(pages) == 1 for pages in pages_of.values())
+                heights[id(box.element)] = heights.get(id(box.element), 0.0) + box.height
+                elements[id(box.element)] = box.element
+    assert len(pages_of) == page.count("<table") + page.count("<figure>")  # every one laid out
+    for key, pages in pages_of.items():
+        if len(pages) > 1:  # only a table, at least LONG_TABLE of a page, marked long
+            element = elements[key]
+            assert element.tag == "table" and element.get("class") == "long"
+            assert heights[key] >= LONG_TABLE * usable * 0.9  # its rows, less repeated headers
 
 
 def _boxes(box):
@@ -232,34 +240,71 @@ def test_no_heading_is_left_alone_at_the_foot_of_a_page(report):
         assert below, f"'{heading.title}' is the last thing on page {page + 1}"
 
 
-def test_no_page_is_half_blank_unless_a_taller_figure_follows(report):
-    import weasyprint
-    from pypdf import PdfReader
+def test_no_page_ends_with_a_heading_or_the_words_that_introduce_a_table(report):
+    """A heading and what follows it, a paragraph and the table after it: on one page.
 
+    Read from the print page's own elements in print order (not from the blocks hexaleg
+    groups them into) and the page WeasyPrint put each on.
+    """
     out, data = report
-    reader = PdfReader(out / "report.pdf")
-    page = report_html(sections(data, PARTS), out, medium="print")
-    laid_out = weasyprint.HTML(string=page, base_url=str(out)).render().pages
-    assert len(laid_out) == len(reader.pages)
-    usable = float(reader.pages[0].mediabox.height) - 2 * PAGE_MARGIN_PT
-    for number, pdf_page in enumerate(reader.pages[:-1]):
-        lowest = min(_text_heights(pdf_page))
-        left = lowest - PAGE_MARGIN_PT  # the blank height under the page's last line [pt]
-        if left <= usable / 2:
-            continue
-        figures = [
-            box
-            for box in _boxes(laid_out[number + 1]._page_box)
-            if getattr(box, "element_tag", None) == "figure"
-        ]
-        assert figures, f"page {number + 1} is {left / usable:.0%} blank and no figure follows"
-        first = min(figures, key=lambda box: box.position_y)
-        assert first.position_y * CSS_PX_PT <= PAGE_MARGIN_PT + 20, (
-            f"page {number + 1} is {left / usable:.0%} blank before text, not a figure"
-        )
-        assert first.margin_height() * CSS_PX_PT > left, (
-            f"page {number + 1} is {left / usable:.0%} blank, and the next figure would fit"
-        )
+    _, document = lay_out(sections(data, PARTS), out)
+    placed: dict = {}  # element → [tag, first page, last page, text], in print order
+    parents: dict = {}
+    for number, laid_out in enumerate(document.pages):
+        for box in _boxes(laid_out._page_box):
+            element = getattr(box, "element", None)
+            if element is not None and box.element_tag == "html" and not parents:
+                parents = {child: parent for parent in element.iter() for child in parent}
+            parent = parents.get(element)
+            if parent is None or parent.get("class", "").split()[:1] != ["block"]:
+                continue
+            if element in placed:
+                placed[element][2] = number
+            else:
+                text = " ".join("".join(element.itertext()).split())
+                placed[element] = [box.element_tag, number, number, text]
+    pairs = 0
+    for (tag, _, last, text), (next_tag, first, _, next_text) in itertools.pairwise(
+        placed.values()
+    ):
+        if tag == "h2" or (tag == "p" and next_tag == "table"):
+            pairs += 1
+            assert last == first, (
+                f"'{text[:60]}' ends page {last + 1}, '{next_text[:40]}' is on {first + 1}"
+            )
+    assert pairs > len(re.findall(r"<h2>", (out / "report.html").read_text()))  # and tables
+
+
+MOSTLY_BLANK = 0.5
+"""A page blank under more than half its height is mostly blank."""
+
+
+def _blank_shares(pdf: Path) -> list[float]:
+    """Each page's share of its text area left blank under its last ink, from its pixels."""
+    from PIL import Image
+
+    with tempfile.TemporaryDirectory() as folder:
+        subprocess.run(["pdftoppm", "-r", "30", "-gray", str(pdf), f"{folder}/p"], check=True)
+        shares = []
+        for path in sorted(Path(folder).glob("p-*.pgm")):
+            with Image.open(path) as image:
+                ink = np.asarray(image) < 200
+            height = ink.shape[0]
+            margin = round(height * 12 / 297)  # the print style's 12 mm margins on A4
+            area = ink[margin : height - margin]  # the footer sits in the bottom margin
+            rows = np.flatnonzero(area.any(axis=1))
+            shares.append(1.0 - (rows[-1] + 1) / len(area) if rows.size else 1.0)
+    return shares
+
+
+def test_no_page_but_the_last_is_mostly_blank(report):
+    out, _ = report
+    shares = _blank_shares(out / "report.pdf")
+    assert len(shares) > 5
+    mostly = [
+        (k + 1, f"{share:.0%}") for k, share in enumerate(shares[:-1]) if share > MOSTLY_BLANK
+    ]
+    assert not mostly, f"pages left mostly blank: {mostly}"
 
 
 def test_the_pdf_shows_a_still_of_the_3d_view_and_links_to_it(report):
@@ -267,9 +312,27 @@ def test_the_pdf_shows_a_still_of_the_3d_view_and_links_to_it(report):
 
     out, _ = report
     reader = PdfReader(out / "report.pdf")
-    (page,) = [p for p in reader.pages if "4. 3-D view" in p.extract_text()]
-    text = page.extract_text()
-    assert "viewer.html" in text
-    assert re.search(r"Figure \d+: The nominal stance", text.replace("\n", " "))
+    texts = [" ".join(p.extract_text().split()) for p in reader.pages]
+    (start,) = [k for k, text in enumerate(texts) if "4. 3-D view" in text]
+    (still,) = [k for k, text in enumerate(texts) if "The nominal stance, as viewer" in text]
+    assert still in (start, start + 1)  # the section's still: on its page or the next
+    assert "viewer.html" in texts[start]
+    assert re.search(r"Figure \d+: The nominal stance", texts[still])
+    assert "a still of it:" in texts[still]  # its introduction's end beside it
+    page = reader.pages[start]
     links = [a.get_object().get("/A", {}).get("/URI", "") for a in page.get("/Annots", [])]
     assert any(str(uri).endswith("viewer.html") for uri in links)
+
+
+def test_no_table_of_the_report_prints_nan_or_inf(report):
+    """A missing number is said in words: every cell of every table is read for nan/inf."""
+    out, _ = report
+    cells = [
+        cell.strip()
+        for line in (out / "report.md").read_text().splitlines()
+        if line.startswith("|")
+        for cell in line.strip("|").split("|")
+    ]
+    assert len(cells) > 100
+    bad = [c for c in cells if re.search(r"\b(nan|inf|infinity)\b", c, re.IGNORECASE)]
+    assert not bad, f"table cells {bad}"

@@ -153,6 +153,7 @@ def test_a_missing_pdf_engine_is_one_line_before_any_work(tmp_path, monkeypatch,
 def test_payload_axes_are_logarithmic_and_name_the_largest():
     import pandas as pd
 
+    from hexaleg.evaluation.metrics import Metrics
     from hexaleg.output.figures import pareto_figure, statics_study_figure
 
     l3 = np.linspace(0.1, 0.75, 5)
@@ -177,7 +178,7 @@ def test_payload_axes_are_logarithmic_and_name_the_largest():
     front = walking.assign(score=1.0)
     pareto = pareto_figure(walking, front).axes[0]
     assert "walking payload" in pareto.get_xlabel() and "20 kg" in pareto.texts[0].get_text()
-    yours = {"walking_payload_capacity": 4.0, "fb": 0.23}
+    yours = Metrics(walking_payload_capacity=4.0, fb=0.23)
     marked = pareto_figure(walking, front, yours).axes[0]
     (mark,) = [c for c in marked.collections if c.get_label() == "your design"]
     assert mark.get_offsets().tolist() == [[4.0, 0.23]]

@@ -9,17 +9,25 @@ import pytest
 
 from hexaleg import HexapodDesign
 from hexaleg.design_file import DesignFileError, load_design, load_design_file
+from hexaleg.evaluation.metrics import Causes, Metrics
+from hexaleg.evaluation.requirement_specs import (
+    BINDING_SHARE,
+    LEG_LENGTH,
+    PAYLOAD,
+    REQUIREMENTS,
+    SLOPE,
+    STEP_HEIGHT,
+)
+from hexaleg.evaluation.requirements import Requirements, check
 from hexaleg.exceptions import ParameterError
-from hexaleg.study.requirement_specs import BINDING_SHARE, REQUIREMENTS
-from hexaleg.study.requirements import Requirements, check
 
 
 def test_table_keys_are_the_fields_and_degrees_become_radians():
     table = {"payload": 30, "payload_at": [0.1, 0.0, 0.05], "slope_deg": 15, "min_coxa": 0.08}
     requirements = Requirements.from_table(table)
-    assert requirements.payload == 30.0
+    assert requirements.required(PAYLOAD) == 30.0
     assert requirements.payload_at == (0.1, 0.0, 0.05)
-    assert requirements.slope == pytest.approx(math.radians(15))
+    assert requirements.required(SLOPE) == pytest.approx(math.radians(15))
     assert requirements.given == ("payload", "slope", "min_coxa")
     assert Requirements.from_table(requirements.to_dict()) == requirements
 
@@ -29,6 +37,8 @@ def test_table_keys_are_the_fields_and_degrees_become_radians():
     [
         ({"payload": -1}, "requirements.payload", "[0, 10000] [kg]"),
         ({"slope": 2.0}, "requirements.slope", "[rad]"),
+        ({"slope": math.pi / 2}, "requirements.slope", "less than 1.571 rad (90°)"),
+        ({"rang_km": 3}, "requirements.rang_km", "did you mean 'range_km'"),
         ({"slope_deg": 95}, "requirements.slope_deg", "[0, 90] [°]"),
         ({"slope": 0.1, "slope_deg": 5}, "requirements.slope_deg", "not both"),
         ({"ground_clearance": 0}, "requirements.ground_clearance", "positive"),
@@ -47,17 +57,17 @@ def test_a_bad_table_names_the_key_and_what_is_allowed(table, field, words):
 
 def test_the_leg_length_defaults_to_the_design_own():
     design = HexapodDesign(l1=0.1, l2=0.5, l3=0.45)
-    assert Requirements().resolved(design).leg_length == pytest.approx(1.05)
-    assert Requirements(leg_length=0.9).resolved(design).leg_length == 0.9
+    assert Requirements().resolved(design).required(LEG_LENGTH) == pytest.approx(1.05)
+    assert Requirements(leg_length=0.9).resolved(design).required(LEG_LENGTH) == 0.9
 
 
 def test_margins_point_to_the_good_side_and_binding_is_within_one_percent():
     requirements = Requirements(payload=100.0, leg_length=1.0)
-    values = {"payload_capacity": 100.0 + 0.5 * BINDING_SHARE * 100, "leg_length": 0.8}
-    payload, leg = check(requirements, values, {})
+    values = Metrics(payload_capacity=100.0 + 0.5 * BINDING_SHARE * 100, leg_length=0.8)
+    payload, leg = check(requirements, values, Causes())
     assert payload.margin == pytest.approx(0.5) and payload.met and payload.binds
     assert leg.margin == pytest.approx(0.2) and leg.met and not leg.binds
-    short = check(requirements, {"payload_capacity": 90.0, "leg_length": 1.1}, {})
+    short = check(requirements, Metrics(payload_capacity=90.0, leg_length=1.1), Causes())
     assert [c.met for c in short] == [False, False]
     assert [c.binds for c in short] == [False, False]
     assert {k.sense for k in REQUIREMENTS.values()} == {"at least", "at most"}
@@ -84,7 +94,8 @@ def test_a_bad_requirement_in_a_file_names_the_file_and_line(tmp_path):
 
 def test_the_step_height_is_a_condition_of_the_speed():
     requirements = Requirements.from_table({"speed": 0.3, "step_height": 0.1})
-    assert requirements.given == ("speed",) and requirements.step_height == 0.1
+    assert requirements.given == ("speed",) and requirements.condition(STEP_HEIGHT) == 0.1
+    assert requirements.gait.step_height == 0.1
     assert Requirements.from_table(requirements.to_dict()) == requirements
     with pytest.raises(ParameterError, match="needs a speed"):
         Requirements(step_height=0.1)

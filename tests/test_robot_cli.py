@@ -108,7 +108,7 @@ def test_design_import_round_trip(tmp_path, capsys):
         (["urdf", "--urdf", KRABY, "--l2", "101"], "--l2 = 101 is not valid"),
         (["workspace", "--urdf", OCHS], "give foot_offset X Y Z (--foot-offset)"),
         (["manipulability", "--urdf", "missing.urdf"], "no such file"),
-        (["workspace", "--urdf", HUMA], "$(find phantomx_description)"),
+        (["workspace", "--urdf", HUMA], "tibia_l_coll.STL was not found or not readable"),
         (["workspace", "--urdf", KRABY, "--xacro-arg", "x=1"], "expected NAME:=VALUE"),
     ],
 )

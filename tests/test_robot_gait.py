@@ -257,8 +257,8 @@ def test_a_stride_beyond_the_max_is_refused_in_one_line(capsys, tmp_path):
     assert robot_json(capsys, ["gait", "--urdf", KRABY, "--stride", str(0.99 * limit), *small])
     assert run_cli(["gait", "--urdf", KRABY, "--stride", str(1.01 * limit), *small]) == 2
     capsys.readouterr()
-    # the default gait's 10 cm step is beyond this small robot at any stride: said so
-    assert run_cli(["gait", "--urdf", KRABY, "--csv", str(csv)]) == 2
+    # the template's 10 cm step is beyond this small robot at any stride: said so
+    assert run_cli(["gait", "--urdf", KRABY, "--step-height", "0.1", "--csv", str(csv)]) == 2
     lines = capsys.readouterr().err.strip().splitlines()
     assert len(lines) == 1 and "no stride walks at step height 0.1 m" in lines[0]
     assert not csv.exists()
@@ -322,9 +322,9 @@ def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tm
 
     assert holds(capacity["mass"] * (1 - 1e-6))
     assert not holds(capacity["mass"] * (1 + 1e-6))
-    # and without a [gait] table the default gait, too big for Kraby, is not walked at all
+    # and without a [gait] table Kraby walks its own default gait, sized to it
     plain = robot_json(capsys, ["loads", "--urdf", KRABY, "--json"])
-    assert not plain["walking_payload_capacity"]["walks"]
+    assert plain["walking_payload_capacity"]["walks"]
 
 
 def test_gait_figures_of_an_importedrobot_under_test(tmp_path, capsys):

@@ -158,10 +158,15 @@ def test_view_writes_the_scene_of_an_imported_robot(tmp_path, capsys):
     small = ["--design", str(_kraby_gait(tmp_path))]
     assert run_cli(["view", "--urdf", str(KRABY), *small, "--gait", "--html", str(walk)]) == 0
     assert walk.stat().st_size > 1_000_000
-    refused = tmp_path / "refused.html"  # the default gait's 10 cm step: no stride walks it
-    assert run_cli(["view", "--urdf", str(KRABY), "--gait", "--html", str(refused)]) == 2
+    refused = tmp_path / "refused.html"  # a 10 cm step (the template's): no stride walks it
+    tall = tmp_path / "tall.toml"
+    tall.write_text("[gait]\nstep_height = 0.1\n")
+    argv = ["view", "--urdf", str(KRABY), "--design", str(tall), "--gait", "--html", str(refused)]
+    assert run_cli(argv) == 2
     err = capsys.readouterr().err.strip().splitlines()[-1]
     assert "no stride walks at step height 0.1 m" in err and not refused.exists()
+    own = tmp_path / "own.html"  # without a [gait] table: its own default gait, sized to it
+    assert run_cli(["view", "--urdf", str(KRABY), "--gait", "--html", str(own)]) == 0
 
 
 def _kraby_gait(folder: Path) -> Path:

@@ -10,7 +10,7 @@ from conftest import random_designs
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.statics import Payload, Statics, payload_capacity, slope_gravity
-from hexaleg.study.standing_limits import Standing
+from hexaleg.statics.standing_limits import Standing
 
 
 def _headings(count):

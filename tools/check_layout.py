@@ -1,18 +1,20 @@
-"""Check hexaleg's layout: no upward import, no module over 400 lines, no function over 60.
+"""Check hexaleg's layout: no upward import, no module over 600 lines, no function over 60.
 
 The layers follow DESIGN.md's data flow, lowest first; a module may import its own
 layer and those below it, never one above::
 
     foundation  exceptions, _checks, _typing, _version, _io, _folders, _journal, _compiled,
-                _lazy
+                _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
-                kinematics, leg_frames, cause, actuators, actuator_catalog, battery,
-                table_records, grids, design_text
+                kinematics, leg_frames, gravity, cause, actuators, actuator_catalog,
+                battery, table_records, grids, design_text, ratings, materials, leg_structure
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
-    analysis    swing/, stance/, statics/, gait/, sim/, electrical
+    analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
+    evaluation  evaluation/        (metrics, requirements, evaluate, goal: the shared vocabulary)
     study       study/, paper/
     output      output/
+    explore     explore/           (the live explorer)
     cli         cli/, __main__
 
 ``hexaleg/__init__.py`` (the lazy front door) is exempt. Imports inside a function count
@@ -42,6 +44,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "_journal",
             "_compiled",
             "_lazy",
+            "_input",
         ),
     ),
     (
@@ -56,6 +59,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "leg_geometry",
             "kinematics",
             "leg_frames",
+            "gravity",
             "cause",
             "actuators",
             "actuator_catalog",
@@ -63,11 +67,15 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "table_records",
             "grids",
             "design_text",
+            "ratings",
+            "materials",
+            "leg_structure",
         ),
     ),
     ("numerics", ("numerics",)),
     ("robot", ("robot",)),
-    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical")),
+    ("analysis", ("swing", "stance", "statics", "gait", "sim", "electrical", "structure")),
+    ("evaluation", ("evaluation",)),
     ("study", ("study", "paper")),
     ("output", ("output",)),
     ("explore", ("explore",)),
@@ -75,7 +83,9 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
 )
 """Each layer's name and the top-level modules or packages of ``hexaleg`` in it."""
 
-MAX_MODULE_LINES = 400
+MAX_MODULE_LINES = 600
+"""A module's most lines: a long module that is one concept (every metric's declaration, one
+evaluation's steps) beats two halves cut to fit; a module past this is likely two concepts."""
 MAX_FUNCTION_LINES = 60
 
 

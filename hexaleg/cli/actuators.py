@@ -7,7 +7,7 @@ from typing import Any
 
 from hexaleg.actuator_catalog import Catalog, CatalogEntry, shipped_catalog, shipped_catalog_path
 from hexaleg.actuators import ACTUATOR_NUMBERS
-from hexaleg.cli.output import print_json, require_stdout
+from hexaleg.cli.output import columns, print_json, require_stdout
 from hexaleg.table_records import key_line
 
 DESCRIPTION = (
@@ -58,15 +58,8 @@ def catalog_text(catalog: Catalog) -> list[str]:
     header = ["name"] + [spec.name for spec in ACTUATOR_NUMBERS]
     units = [""] + [f"[{spec.unit}]" for spec in ACTUATOR_NUMBERS]
     rows = [_cells(entry) for entry in catalog]
-    widths = [max(len(row[i]) for row in [header, units, *rows]) for i in range(len(header))]
-
-    def line(cells: list[str]) -> str:
-        first = cells[0].ljust(widths[0])
-        rest = (cell.rjust(width) for cell, width in zip(cells[1:], widths[1:], strict=True))
-        return "  ".join([first, *rest]).rstrip()
-
     lines = [f"Actuator catalog ({len(catalog)} entries, {shipped_catalog_path()})", ""]
-    lines += [line(header), line(units), *(line(row) for row in rows), "", "Keys:"]
+    lines += [*columns([header, units, *rows]), "", "Keys:"]
     lines += [f"  {spec.name}: {key_line(spec)}" for spec in ACTUATOR_NUMBERS]
     lines += ["  (max_speed listed: the given one, or the no-load speed when not given)", ""]
     lines.append("Sources:")

@@ -7,10 +7,14 @@ parsers stay quick.
 from __future__ import annotations
 
 import argparse
+from typing import TYPE_CHECKING
 
 from hexaleg.cli.options import UsageError, inputs_from_args
 from hexaleg.cli.robot_table import load_robot_table
 from hexaleg.design import HexapodDesign
+
+if TYPE_CHECKING:
+    from hexaleg.evaluation.requirements import Requirements
 
 
 def add_best_posture_option(parser: argparse.ArgumentParser) -> None:
@@ -24,8 +28,11 @@ def add_best_posture_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def posed_from_args(args: argparse.Namespace) -> HexapodDesign:
-    """The design the options describe, at its best posture with ``--best-posture``.
+def posed_inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
+    """The design and requirements the options describe; with ``--best-posture``, posed.
+
+    The design stands at ``hexaleg posture``'s answer with ``--best-posture``, as the options
+    give it otherwise (:func:`~hexaleg.cli.options.inputs_from_args`).
 
     Raises:
         UsageError: ``--best-posture`` with ``--urdf`` (an imported robot stands as its
@@ -34,7 +41,7 @@ def posed_from_args(args: argparse.Namespace) -> HexapodDesign:
     """
     design, in_file = inputs_from_args(args)
     if not getattr(args, "best_posture", False):
-        return design
+        return design, in_file
     path = getattr(args, "design", None)
     if getattr(args, "urdf", None) is not None or (
         path is not None and load_robot_table(path) is not None
@@ -44,4 +51,4 @@ def posed_from_args(args: argparse.Namespace) -> HexapodDesign:
         raise UsageError("--best-posture chooses the nominal angles: drop --nominal-angles")
     from hexaleg.study.posture import DEFAULT_OBJECTIVE, best_posture  # SciPy, pymoo: heavy
 
-    return best_posture(design, in_file, DEFAULT_OBJECTIVE).best.design
+    return best_posture(design, in_file, DEFAULT_OBJECTIVE).best.design, in_file

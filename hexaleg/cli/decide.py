@@ -14,15 +14,19 @@ from hexaleg.cli.options import (
     bounded_int,
     capped_workers,
     inputs_from_args,
+    walked_by,
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.metrics import objectives
+from hexaleg.evaluation.requirements import RequirementCheck, format_margin
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import require_ratings
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
+from hexaleg.study.decide_rows import AnswerRows, answer_rows, value_text
 from hexaleg.study.executors import dask_executor, local_pool
-from hexaleg.study.goal import Objective
-from hexaleg.study.metrics import objectives
 from hexaleg.study.optimize import (
     GENERATIONS,
     MAX_EVALUATIONS,
@@ -30,7 +34,6 @@ from hexaleg.study.optimize import (
     POPULATION_PER_VARIABLE,
     SearchSettings,
 )
-from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
 from hexaleg.study.robot_designs import ROBOT_SPAN
 from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
@@ -123,10 +126,16 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_designs(args, design)
     if robot is not None:
         refuse_for_robot(args)
-        design = robot.point()[0]
+        design, model = robot.point()
+        in_file = walked_by(args, in_file, model)  # the robot's own default gait
+    require_ratings(design.rated_torques, design.rated_speeds, "decide")
     requirements = requirements_from_args(args, in_file)
     objective = (
-        Objective(args.minimize, "minimize") if args.minimize else Objective(args.maximize or "fb")
+        Objective(args.minimize, "minimize")
+        if args.minimize
+        else Objective(args.maximize)
+        if args.maximize
+        else Objective()
     )
     free = [FreeVariable.parse(text) for text in args.free]
     settings = SearchSettings(args.seed, args.evaluations)
@@ -199,16 +208,23 @@ def render(result: DecideResult) -> str:
         lines.append(f"  walking: {result.walking_text()}")
     lines.append("")
     verdict = "meets every requirement" if result.feasible else "LEAST INFEASIBLE: meets not all"
-    lines += _design_block("Best design", result.best, result, verdict, binding=True)
-    lines += _design_block("Your design", result.yours, result, "", binding=False)
+    answer = answer_rows(result)
+    lines += _design_block("Best design", result.best, result, answer, verdict)
+    lines += _design_block("Your design", result.yours, result, answer, "")
     if result.conflict is not None:
         lines += [f"No design meets every requirement: {result.conflict.description}."]
     return "\n".join(lines).rstrip()
 
 
 def _design_block(
-    title: str, checked: CheckedDesign, result: DecideResult, verdict: str, binding: bool
+    title: str, checked: CheckedDesign, result: DecideResult, answer: AnswerRows, verdict: str
 ) -> list[str]:
+    """One design: its head line, its requirements, the bounds that bind, joints over ratings.
+
+    The best design's rows say what binds, your design's what it passes; the bounds that
+    bind are the best design's.
+    """
+    binding = checked is result.best
     lengths = ", ".join(f"{v:.4g}" for v in checked.design.lengths)
     head = f"{title}: l = ({lengths}) m"
     motors = checked.design.actuators
@@ -223,11 +239,15 @@ def _design_block(
         head += f", battery {checked.design.battery.capacity:.4g} Wh"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
-    value = checked.evaluation.values[result.objective.name]
+    value = checked.evaluation.metrics.value(result.objective.spec)
     head += f", {result.objective.spec.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
-    rows = [_row(result, check, binding) for check in checked.checks]
+    rows = []
+    for requirement in answer.requirements:
+        check = requirement.best if binding else requirement.yours
+        if check is not None:
+            rows.append(_row(requirement.text, check, binding))
     if binding:
-        rows += [_bound_row(at) for at in result.bounds_binding]
+        rows += [_bound_row(bound.at) for bound in answer.bounds]
     width = [max((len(r[k]) for r in rows), default=0) for k in range(3)]
     lines = [head]
     for row in rows:
@@ -258,17 +278,17 @@ def _bound_row(at: AtBound) -> tuple[str, ...]:
     return searched, f"{at.value:.4g} {unit}", f"its {at.bound} bound", f"binds ({at.remedy})"
 
 
-def _row(result: DecideResult, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
+def _row(text: str, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
+    """A requirement checked on one design: the best (binds?) or yours (passes?)."""
     if binding:
         state = "binds" if check.binds else ("" if check.met else "NOT MET")
     else:
         state = "pass" if check.met else "FAIL"
-    limited = f" (limited by {check.limited_by})"
     if math.isnan(check.value):  # nothing to measure it on: no actuators, no battery
-        return (result.requirements.describe(check.name), "-", "", state + " (not measured)")
+        return (text, value_text(check), "", state + " (not measured)")
     return (
-        result.requirements.describe(check.name),
-        format_value(check.name, check.value),
+        text,
+        value_text(check),
         "margin " + format_margin(check),
-        state + limited,
+        f"{state} (limited by {check.limited_by})",
     )

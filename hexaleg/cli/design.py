@@ -15,10 +15,12 @@ from hexaleg.cli.robot_options import (
     robot_from_args,
     robot_table,
 )
+from hexaleg.cli.structure_options import size_if_asked, structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.requirements import Requirements
+from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.gait.spec import Gait
-from hexaleg.study.requirements import Requirements
-from hexaleg.study.requirements_table import example_table
+from hexaleg.ratings import ratings_text
 
 if TYPE_CHECKING:
     from hexaleg.robot.imported import ImportedRobot
@@ -26,7 +28,8 @@ if TYPE_CHECKING:
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
     "the values the options give (say --layout hexagon --body-radius 0.35), and an example "
-    "[requirements] table for decide and report, commented out."
+    "[requirements] table for decide and report and a [structure] table of the legs' tubes, "
+    "commented out."
 )
 
 DESCRIPTION = (
@@ -87,11 +90,14 @@ def run(args: argparse.Namespace) -> int:
     if args.action == "init":
         return _init(args.file, design, args.force, requirements.walked)
     robot = robot_from_args(args)
+    design, sized = size_if_asked(design, requirements, robot is not None)
     out = (
         {"design": design.as_dict(), "derived": derived(design)}
         if robot is None
         else _show_robot(args, robot, design)
     )
+    if sized is not None:
+        out["derived"]["sizing"] = sized.to_dict() | {"check": sized.check.to_dict()}
     if args.json:
         if requirements.given:
             out["requirements"] = requirements.to_dict()
@@ -101,6 +107,13 @@ def run(args: argparse.Namespace) -> int:
         return 0
     if robot is None:
         show(design)
+        if design.structure is not None:
+            rows = (
+                tube_rows(design.structure, design.lengths)
+                if sized is None
+                else structure_rows(sized.check, sized)
+            )
+            print_table("Structure (the file's [structure] table)", rows)
     if requirements.given:
         show_requirements(requirements)
     if requirements.walked != Gait():
@@ -117,13 +130,20 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
     record = robot_record(robot, design.nominal_angles)
     shown = {
         "design": {**design.as_dict(), "legs": record["legs"]},
-        "derived": derived(design),
+        "derived": {**derived(design), "total_mass": robot.mass},  # the file's links
         "robot": {k: v for k, v in record.items() if k != "legs"},
     }
     if args.json:
         return shown
-    show(design)
+    if robot.mass <= 0.0:
+        show(design, "none: the file gives no masses (kinematics only)")
+    else:
+        show(design, f"{robot.mass:.4g} kg, the file's links (body {robot.body_mass.mass:.4g} kg)")
     print("  legs read from " + str(record["source"]))
+    if record["body_box"] is not None:  # what the extremes stop at
+        box = record["body_box"]
+        size = " × ".join(f"{v:.3g}" for v in box["size"])
+        print(f"  body box {size} m, where the extremes stop: {box['from']}")
     for change in record["changed_segments"]:
         print(
             f"    {change['leg']} {change['segment']} changed from the file's "
@@ -176,7 +196,7 @@ def _robot_table(args: argparse.Namespace, output: Any, robot: ImportedRobot) ->
 
 def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
     from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_text import design_toml
+    from hexaleg.design_text import design_toml, structure_example
 
     path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
     if path.suffix.lower() != ".toml":
@@ -184,7 +204,9 @@ def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
     if path.exists() and not force:
         raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
     walked = "" if gait == Gait() else "\n" + gait.to_toml()
-    report_files([write_text(path, design_toml(design) + walked + "\n" + example_table())])
+    structure = "" if design.structure is not None else "\n" + structure_example()
+    text = design_toml(design) + walked + structure + "\n" + example_table()
+    report_files([write_text(path, text)])
     return 0
 
 
@@ -205,8 +227,13 @@ def derived(design: HexapodDesign) -> dict[str, Any]:
     }
 
 
-def show(design: HexapodDesign) -> None:
-    """The design as text: the body, derived values, then one row per leg."""
+def show(design: HexapodDesign, mass: str | None = None) -> None:
+    """The design as text: the body, derived values, then one row per leg.
+
+    ``mass``: what the mass row says, when it is not the design's (an imported robot's).
+    """
+    if mass is None:
+        mass = f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"
     print_table(
         f"Design ({design.body_description})",
         [
@@ -214,9 +241,9 @@ def show(design: HexapodDesign) -> None:
             ("leg length", f"{design.leg_length:.4g} m"),
             ("nominal height", f"{design.nominal_height:.4g} m"),
             ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"),
-            ("rated torques", ", ".join(f"{t:g}" for t in design.rated_torques) + " N·m"),
-            ("rated speeds", ", ".join(f"{w:g}" for w in design.rated_speeds) + " rad/s"),
+            ("mass", mass),
+            ("rated torques", ratings_text(design.rated_torques, "N·m")),
+            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
         ],
     )
     print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")

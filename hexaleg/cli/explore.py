@@ -8,7 +8,13 @@ import sys
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import add_design_options, bounded_int, inputs_from_args, note
+from hexaleg.cli.options import (
+    add_design_options,
+    bounded_int,
+    inputs_from_args,
+    note,
+    walked_by,
+)
 from hexaleg.cli.robot_options import add_robot_options, robot_model, robot_table
 from hexaleg.exceptions import HexalegError
 from hexaleg.leg_geometry import SEGMENT_NAMES
@@ -69,6 +75,7 @@ def run(args: argparse.Namespace) -> int:
     robot = _explored_robot(args, design)
     if robot is not None:
         design = robot.model.design
+        requirements = walked_by(args, requirements, robot.model)  # its own default gait
     if not is_loopback(args.host):
         note(
             f"--host {args.host} serves the explorer beyond this machine, to anyone who can "
@@ -97,10 +104,12 @@ def run(args: argparse.Namespace) -> int:
 def _explored_robot(args: argparse.Namespace, design: HexapodDesign) -> ExploredRobot | None:
     """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
     from hexaleg.explore.robot import ExploredRobot
+    from hexaleg.robot.imported_model import robot_mass
 
     model = robot_model(args, design)
     if model is None:
         return None
+    robot_mass(model)  # its payloads and torques need the file's masses: refused before serving
     lengths = dict(zip(SEGMENT_NAMES, model.robot.legs[0].reading.geometry.lengths, strict=True))
     for change in model.robot.changes:  # back to the file's: what the saved file's l* say
         if change.leg == model.robot.legs[0].name:

@@ -7,7 +7,7 @@ import math
 import warnings
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
+from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -17,6 +17,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 
 if TYPE_CHECKING:
     from hexaleg.design import HexapodDesign
@@ -52,8 +53,9 @@ def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
 
-    design = posed_from_args(args)
+    design, requirements = posed_inputs_from_args(args)
     robot = robot_model(args, design)
+    design = size_if_asked(design, requirements, robot is not None)[0]  # tubes drawn, collide
     if robot is not None:
         return _run_imported(args, robot)
     check_outputs({}, {"--plot": args.plot})  # before computing

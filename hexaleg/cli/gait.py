@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING
 from hexaleg._checks import require_in_range
 from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
-from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
+from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
 from hexaleg.cli.loads import (
     add_payload_options,
     add_safety_factor_option,
@@ -35,10 +35,12 @@ from hexaleg.cli.output import (
     write_plots,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked, structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.gait.walkable import require_walkable
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE, Ground
 
@@ -65,7 +67,9 @@ DESCRIPTION = (
     "held within the friction cone. With --urdf, "
     "your robot: each leg its own general leg and nominal posture, the file's masses, "
     "joint limits (standing and swinging) and ratings; angles and torques on hexaleg's θ, "
-    "and in the file's joints (urdf_* in the JSON and CSV)."
+    "and in the file's joints (urdf_* in the JSON and CSV). With a [structure] table, each "
+    "leg tube's worst stress ratio over the period, the links' inertial forces included (a "
+    "tube over its strength makes the period infeasible)."
 )
 
 ROBOT_OPTIONS = True
@@ -150,15 +154,17 @@ def ground_from_args(args: argparse.Namespace) -> Ground:
     return Ground(math.radians(slope), args.slope_heading, args.friction)
 
 
-def gait_from_args(args: argparse.Namespace) -> Gait:
+def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
     """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+
+    Both over ``model``'s default gait (a robot file's is sized to it: :func:`design_gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
     """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
-    base = design_gait(args)
+    base = design_gait(args, model)
     changes = {
         name: getattr(args, name)
         for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
@@ -170,10 +176,11 @@ def gait_from_args(args: argparse.Namespace) -> Gait:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    design = posed_from_args(args)
+    design, requirements = posed_inputs_from_args(args)
     robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
+    design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload, ground = payload_from_args(args), ground_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(
@@ -199,10 +206,14 @@ def run(args: argparse.Namespace) -> int:
     summary = summary_stream(args.csv, args.html)
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict(), summary)
+        out = analysis.to_dict()
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(mine | out, summary)
         return 0
     title = "Walking" if robot is None else f"Walking {robot.robot.source}"
-    print_table(lengths_title(title, model.design.lengths), rows(analysis), summary)
+    table = rows(analysis) + structure_rows(analysis.structure, sized)
+    print_table(lengths_title(title, model.design.lengths), table, summary)
     return 0
 
 
@@ -319,25 +330,38 @@ def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
+def _rating(ratings: tuple[float, ...] | None, joint: int) -> float:
+    """A joint type's rating; +inf (nothing is over it) where the design gives none."""
+    return math.inf if ratings is None else ratings[joint]
+
+
+def _rated(rating: float, safety_factor: float, unit: str) -> str:
+    """``rated 150 N·m`` (``/ F = …`` with F ≠ 1), or that the rating is not given."""
+    if math.isinf(rating):
+        return "rating not given"
+    return f"rated {rated_text(rating, safety_factor, unit)}"
+
+
 def joint_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     """Each joint type's peak and RMS torque, peak speed and power, against rating / F."""
     metrics, design, factor = analysis.metrics, analysis.design, analysis.safety_factor
     rows = []
     for j, joint in enumerate(LEG_JOINTS):
         torque, speed = metrics.peak_torque[joint], metrics.peak_speed[joint]
-        rated_torque, rated_speed = design.rated_torques[j], design.rated_speeds[j]
+        rated_torque = _rating(design.rated_torques, j)
+        rated_speed = _rating(design.rated_speeds, j)
         rows.append(
             (
                 f"{joint}: peak / RMS torque",
                 f"{torque:.2f} / {metrics.rms_torque[joint]:.2f} N·m "
-                f"(rated {rated_text(rated_torque, factor, 'N·m')})"
+                f"({_rated(rated_torque, factor, 'N·m')})"
                 + (", OVER RATING" if torque > rated_torque / factor else ""),
             )
         )
         rows.append(
             (
                 f"{joint}: peak speed / power",
-                f"{speed:.3f} rad/s (rated {rated_text(rated_speed, factor, 'rad/s')}) / "
+                f"{speed:.3f} rad/s ({_rated(rated_speed, factor, 'rad/s')}) / "
                 f"{metrics.peak_power[joint]:.1f} W"
                 + (", OVER RATING" if speed > rated_speed / factor else ""),
             )
@@ -351,6 +375,8 @@ def limit_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     if analysis.max_stride is not None:
         stride = analysis.max_stride
         rows.append(("max stride", f"{stride.value:.4f} m, limited by {stride.limited_by}"))
+    if analysis.max_stride is not None and not analysis.design.rated:
+        rows.append(("max speed", NEEDS_RATING))
     if analysis.max_speed is not None:
         limit = analysis.max_speed
         at = (

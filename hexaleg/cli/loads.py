@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import Distribution, choices
-from hexaleg.cli.best_posture import add_best_posture_option, posed_from_args
+from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
     add_mode_option,
@@ -18,8 +18,13 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked, structure_rows
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirement_specs import SLOPE
+from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
 from hexaleg.statics.ratings import SAFETY_FACTOR_RANGE
 
@@ -34,7 +39,10 @@ DESCRIPTION = (
     "the largest payload the nominal stance holds within the rated torques. With --urdf, "
     "your robot: the file's masses, feet, ratings and each leg's nominal posture (the "
     "extremes within the file's limits, axis-locked or free-coupled, the walking capacity as "
-    "`gait --urdf` walks it)."
+    "`gait --urdf` walks it). With a [structure] table, each leg tube's axial force, "
+    "bending and torsion at its proximal joint, its von Mises stress against the material's "
+    "strength over the safety factor, and each foot's deflection, in every case and on the "
+    "[requirements] slope (size = true: the lightest tubes that hold, chosen first)."
 )
 
 ROBOT_OPTIONS = True
@@ -128,10 +136,11 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
-    design = posed_from_args(args)
+    design, requirements = posed_inputs_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload, factor = payload_from_args(args), safety_factor_from_args(args)
+    design, sized = size_if_asked(design, requirements, robot is not None)
     model = HexapodModel(design) if robot is None else robot
     analysis = analyze_loads(
         model.design,
@@ -141,19 +150,25 @@ def run(args: argparse.Namespace) -> int:
         args.distribution,
         args.mode,
         model=model,
+        slope=requirements.required(SLOPE) or 0.0,
         safety_factor=factor,
     )
-    gait = design_gait(args)
+    gait = design_gait(args, model)
     walking = walking_payload_capacity(model, gait, payload.position, safety_factor=factor)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
         mine = {} if robot is None else robot_angles(robot)
-        print_json(mine | analysis.to_dict() | {"walking_payload_capacity": walking.to_dict()})
+        walked = None if walking is None else walking.to_dict()  # None: it needs a rating
+        out = analysis.to_dict() | {METRICS.walking_payload_capacity.name: walked}
+        if sized is not None:
+            out["structure"]["sizing"] = sized.to_dict()
+        print_json(mine | out)
         return 0
-    rows = _rows(analysis)
+    rows = _rows(analysis) + structure_rows(analysis.structure, sized)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
-    rows.insert(at, ("walking payload capacity", _walking(walking, gait)))
+    own = gait == default_gait(model)  # no [gait]: the robot's own default gait
+    rows.insert(at, ("walking payload capacity", _walking(walking, gait, own)))
     title = "Statics" if robot is None else f"Statics of {robot.robot.source}"
     print_table(lengths_title(title, model.design.lengths), rows)
     return 0
@@ -164,7 +179,8 @@ TIPS_OVER = "TIPS OVER on level ground"
 
 
 def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
-    rated = dict(zip(LEG_JOINTS, analysis.design.rated_torques, strict=True))
+    given = analysis.design.rated_torques
+    rated = dict(zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True))
     nominal = analysis.nominal.peak_torques()
     margin = f"{analysis.nominal.stability_margin:.4f} m"
     if analysis.tips_over:
@@ -184,7 +200,11 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                f"(rated {rated_text(rated[joint], analysis.safety_factor, 'N·m')})"
+                + (
+                    f"(rated {rated_text(rated[joint], analysis.safety_factor, 'N·m')})"
+                    if given
+                    else "(rating not given)"
+                )
                 + (", OVER RATING" if analysis.peak_torques[joint] > held else ""),
             )
         )
@@ -203,8 +223,10 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
     return rows
 
 
-def _walking(walking: WalkingCapacity, gait: Gait) -> str:
-    which = "default" if gait == Gait() else "design's"
+def _walking(walking: WalkingCapacity | None, gait: Gait, default: bool) -> str:
+    if walking is None:
+        return NEEDS_RATING
+    which = "default" if default else "design's"
     how = f"walking the {which} {gait.pattern} gait at {gait.speed:g} m/s"
     if not walking.walks:
         return f"none: cannot walk the {which} {gait.pattern} gait ({walking.limited_by})"
@@ -213,6 +235,8 @@ def _walking(walking: WalkingCapacity, gait: Gait) -> str:
 
 def _capacity(analysis: LoadsAnalysis) -> str:
     capacity = analysis.capacity
+    if capacity is None:
+        return NEEDS_RATING
     text = f"{capacity.mass:.2f} kg, limited by {capacity.limited_by}"
     if analysis.tips_over:
         text += f"; the {analysis.payload.mass:g} kg payload tips the robot over"

@@ -45,6 +45,11 @@ COMMANDS: tuple[Command, ...] = (
         "actuators", "hexaleg.cli.actuators", "the actuator catalog: datasheet numbers, sources"
     ),
     Command(
+        "materials",
+        "hexaleg.cli.materials",
+        "the materials catalog of the legs' tubes: density, stiffness, strength, sources",
+    ),
+    Command(
         "workspace",
         "hexaleg.cli.workspace",
         "swing-phase workspace: Monte Carlo cloud, planar and improved areas",

@@ -19,13 +19,15 @@ from hexaleg.design import (
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
+from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.layouts import Layout
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
 
 if TYPE_CHECKING:
-    from hexaleg.study.requirements import Requirements
+    from hexaleg.evaluation.requirements import Requirements
+    from hexaleg.robot.model import HexapodModel
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -78,7 +80,7 @@ def add_design_options(
         help="read the design from a TOML design file (hexaleg design init) or a .json "
         "design printed by hexaleg; the options below override its values",
     )
-    offered = {"lengths": lengths, "body": body, "posture": posture}
+    offered = {"lengths": lengths, "body": body, "posture": posture, "ratings": body}
     for spec in DESIGN_FIELDS:
         if spec.option is not None and offered[spec.option]:
             _add_field_option(group, spec)
@@ -170,16 +172,28 @@ def design_from_args(args: argparse.Namespace) -> HexapodDesign:
     return inputs_from_args(args)[0]
 
 
-def design_gait(args: argparse.Namespace) -> Gait:
-    """The ``--design`` file's ``[gait]`` table's gait; the default gait without one."""
+def design_gait(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
+    """The ``--design`` file's ``[gait]`` table's gait, its keys over the default gait.
+
+    The default gait is ``model``'s own (:func:`~hexaleg.gait.defaults.default_gait`: a
+    robot file's is sized to it), or :class:`Gait`'s defaults without a model.
+    """
     path = getattr(args, "design", None)
+    base = None if model is None else default_gait(model)
     if path is None:
-        return Gait()
-    return load_gait(path)
+        return Gait() if base is None else base
+    return load_gait(path, base)
 
 
-def load_gait(path: str | os.PathLike[str]) -> Gait:
-    """The gait a design file's ``[gait]`` table describes (the default gait without one).
+def walked_by(
+    args: argparse.Namespace, requirements: Requirements, model: HexapodModel
+) -> Requirements:
+    """``requirements`` walking ``model``'s gait: the file's ``[gait]`` over its own default."""
+    return requirements.walking(design_gait(args, model))
+
+
+def load_gait(path: str | os.PathLike[str], base: Gait | None = None) -> Gait:
+    """The gait a design file's ``[gait]`` table describes, over ``base`` (without one: it).
 
     Raises:
         DesignFileError: naming the file, the line and ``gait.<key>``.
@@ -187,7 +201,7 @@ def load_gait(path: str | os.PathLike[str]) -> Gait:
     """
     from hexaleg.design_file import GAIT, load_table  # reads TOML only when asked
 
-    return load_table(path, GAIT, Gait.from_table)
+    return load_table(path, GAIT, lambda table: Gait.from_table(table, base))
 
 
 def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
@@ -197,7 +211,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
     ``[requirements]`` table is refused by a command that does not use it too.
     """
     from hexaleg.design_file import load_design_file  # reads TOML only when asked
-    from hexaleg.study.requirements import Requirements
+    from hexaleg.evaluation.requirements import Requirements
 
     path = getattr(args, "design", None)
     base, requirements = (
@@ -206,9 +220,7 @@ def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requireme
         else load_design_file(path, Requirements.from_table)
     )
     if path is not None:
-        from dataclasses import replace
-
-        requirements = replace(requirements, walked=load_gait(path))
+        requirements = requirements.walking(load_gait(path))
     if path is not None and not getattr(args, "robot_options", False):
         from hexaleg.cli.robot_options import ROBOT_COMMANDS
         from hexaleg.cli.robot_table import load_robot_table

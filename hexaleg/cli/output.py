@@ -39,6 +39,18 @@ def print_table(title: str, rows: Sequence[tuple[str, str]], file: TextIO | None
         print(f"  {name:<{width}}  {value}", file=file)
 
 
+def columns(rows: Sequence[Sequence[str]]) -> list[str]:
+    """Rows of cells as aligned lines: the first column to the left, the others to the right."""
+    widths = [max(len(row[i]) for row in rows) for i in range(len(rows[0]))]
+    return [
+        "  ".join(
+            [row[0].ljust(widths[0])]
+            + [cell.rjust(width) for cell, width in zip(row[1:], widths[1:], strict=True)]
+        ).rstrip()
+        for row in rows
+    ]
+
+
 def vector(values: Sequence[float], unit: str) -> str:
     """``(a, b, c) unit`` with four decimals."""
     return "(" + ", ".join(f"{v:.4f}" for v in values) + f") {unit}"

@@ -11,9 +11,9 @@ from hexaleg.cli.options import add_design_options, inputs_from_args
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.metrics import objectives
 from hexaleg.study.decide import DecideResult
-from hexaleg.study.goal import Objective
-from hexaleg.study.metrics import objectives
 from hexaleg.study.posture import DEFAULT_OBJECTIVE, best_posture, posture_figures
 
 DESCRIPTION = (
@@ -72,7 +72,7 @@ def answer_dict(result: DecideResult) -> dict[str, Any]:
     out = result.to_dict()
     for key, checked in (("best", result.best), ("yours", result.yours)):
         out[key] |= posture_figures(checked.design)
-        cause = checked.evaluation.causes.get(result.objective.name)
+        cause = checked.evaluation.causes[result.objective.spec]
         out[key]["objective"]["limited_by"] = None if cause is None else cause.to_dict()
     return out
 
@@ -82,7 +82,7 @@ def render_posture(result: DecideResult) -> str:
     lines = render(result).splitlines()
     for title, checked in (("Best design", result.best), ("Your design", result.yours)):
         at = next(i for i, line in enumerate(lines) if line.startswith(title))
-        cause = checked.evaluation.causes.get(result.objective.name)
+        cause = checked.evaluation.causes[result.objective.spec]
         limited = [] if cause is None else [f"  {result.objective.spec.label} limited by {cause}"]
         lines[at + 1 : at + 1] = ["  " + posture_line(checked.design), *limited]
     return "\n".join(lines)

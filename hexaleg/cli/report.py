@@ -17,9 +17,11 @@ from hexaleg.cli.options import (
     capped_workers,
     field_sweep_from_args,
     inputs_from_args,
+    walked_by,
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.report import (
     REPORT_HTML,
     REPORT_MD,
@@ -93,7 +95,8 @@ def run(args: argparse.Namespace) -> int:
     robot = robot_designs(args, design)
     if robot is not None:
         _refuse_for_robot(args, sweep is not None)
-        design = robot.point()[0]
+        design, model = robot.point()
+        in_file = walked_by(args, in_file, model)  # the robot's own default gait
     requirements = requirements_from_args(args, in_file)
     options = ReportOptions(
         l3_points=args.l3_points,
@@ -159,6 +162,6 @@ def _print_robot(data: ReportData, out: Path, pdf: bool) -> int:
     """Where the imported robot's report is, its FB, and the answer to any requirements."""
     _print_written(out, pdf)
     record = data[RobotRecord]
-    print(f"{record.source}: FB = {record.evaluation['fb']:.4f}")
+    print(f"{record.source}: FB = {record.evaluation.metrics.value(METRICS.fb):.4f}")
     _print_answer(data[RobotDecisionRecord].answer, ".4g")
     return 0

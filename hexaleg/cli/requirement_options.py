@@ -1,7 +1,7 @@
 """The requirement options of ``decide`` and ``report``, over a design file's ``[requirements]``.
 
 Each option is a key of the table (``--ground-clearance`` is ``ground_clearance``), made
-from its declaration (:mod:`hexaleg.study.requirement_specs`): its metavar and help are
+from its declaration (:mod:`hexaleg.evaluation.requirement_specs`): its metavar and help are
 the declaration's, each condition follows its requirement, and a key in degrees is the
 alternative of its requirement's option. An option given on the command line overrides
 the file's value.
@@ -13,15 +13,15 @@ import argparse
 import math
 from typing import Any
 
-from hexaleg.study.requirement_specs import (
-    CONDITIONS,
+from hexaleg.evaluation.requirement_specs import (
     REQUIREMENTS,
     ConditionSpec,
     RequirementSpec,
+    condition_keys,
     degree_keys,
     table_keys,
 )
-from hexaleg.study.requirements import Requirements, condition_value
+from hexaleg.evaluation.requirements import Requirements, condition_value
 
 GROUP = (
     "requirements (SI units, radians; each also a key of the design file's [requirements] "
@@ -33,14 +33,15 @@ def add_requirement_options(parser: argparse.ArgumentParser) -> None:
     """Add ``--payload``, ``--payload-at``, ``--slope``/``--slope-deg`` and the others."""
     group = parser.add_argument_group(GROUP)
     degrees = degree_keys()
+    angles = set(degrees.values())
     alternatives: dict[str, Any] = {}
     for key in table_keys():
         target: Any = group
-        if key.name in degrees.values() or key.name in degrees:
-            requirement = degrees.get(key.name, key.name)
-            if requirement not in alternatives:
-                alternatives[requirement] = group.add_mutually_exclusive_group()
-            target = alternatives[requirement]
+        if key in angles or key.name in degrees:
+            requirement = degrees[key.name] if key.name in degrees else key
+            if requirement.name not in alternatives:
+                alternatives[requirement.name] = group.add_mutually_exclusive_group()
+            target = alternatives[requirement.name]
         _add(target, key)
 
 
@@ -61,13 +62,13 @@ def requirements_from_args(args: argparse.Namespace, base: Requirements) -> Requ
         name: getattr(args, name) for name in REQUIREMENTS if getattr(args, name, None) is not None
     }
     degrees = degree_keys()
-    for name in CONDITIONS:
+    for name, condition in condition_keys().items():
         given = getattr(args, name, None)
         if given is None:
             continue
-        value = condition_value(name, given)
+        value = condition_value(condition, given)
         if name in degrees:
-            changes[degrees[name]] = math.radians(value)
+            changes[degrees[name].name] = math.radians(value)
         else:
             changes[name] = value
     return base.replace(**changes) if changes else base

@@ -78,6 +78,7 @@ def add_robot_options(parser: argparse.ArgumentParser, required: bool = False) -
         metavar=("X", "Y", "Z"),
         help="the foot point in each leg's last link frame [m], when the file draws no foot",
     )
+    add_lock_option(group)
 
 
 def robot_from_args(args: argparse.Namespace) -> ImportedRobot | None:
@@ -102,7 +103,7 @@ def _robot_and_file(args: argparse.Namespace) -> tuple[ImportedRobot, RobotFile]
     table = load_robot_table(design) if design and args.urdf is None else None
     if args.urdf is None and table is None:
         given = [f for f in ("foot_frame", "foot_offset") if getattr(args, f, None) is not None]
-        given += [f for f in ("xacro_arg", "package") if getattr(args, f, None)]
+        given += [f for f in ("xacro_arg", "package", "lock_joint") if getattr(args, f, None)]
         if given:
             flag = "--" + given[0].replace("_", "-")
             raise UsageError(f"{flag} only applies together with --urdf FILE")
@@ -117,11 +118,12 @@ def _robot_and_file(args: argparse.Namespace) -> tuple[ImportedRobot, RobotFile]
         packages=settings["packages"],
     )
     lengths, fields = _segment_lengths(args, table)
-    robot = import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot)
+    lock = settings["lock_joints"]
+    robot = import_robot(settings["urdf"], settings["xacro_args"], settings["packages"], foot, lock)
     if table is not None:
         _check_file_segments(args, robot)
     file = RobotFile.of(
-        str(settings["urdf"]), settings["xacro_args"], settings["packages"], foot, lengths
+        str(settings["urdf"]), settings["xacro_args"], settings["packages"], foot, lengths, lock
     )
     if not lengths:
         return robot, file
@@ -160,7 +162,7 @@ def _check_file_segments(args: argparse.Namespace, robot: ImportedRobot) -> None
         value = written.get(flag)
         if getattr(args, flag, None) is not None or not isinstance(value, int | float):
             continue
-        length = max(getattr(read, segment), 1e-9)  # a coxa of 0 is written as 1e-9
+        length = getattr(read, segment)
         if abs(value - length) > SAME_LENGTH:
             raise UsageError(
                 f"{args.design}: {flag} = {value:g} is not the robot file's {segment} "
@@ -226,6 +228,8 @@ def robot_table(
         written["foot_frame"] = settings["foot_frame"]
     if settings["foot_offset"] is not None:
         written["foot_offset"] = list(settings["foot_offset"])
+    if settings["lock_joints"]:
+        written["lock_joints"] = list(settings["lock_joints"])
     record = robot_record(robot)
     written["read"] = _toml_ready({k: v for k, v in record.items() if k != "source"})
     return written
@@ -251,6 +255,7 @@ def _settings(args: argparse.Namespace, table: dict[str, Any] | None, folder: Pa
             "packages": packages,
             "foot_frame": args.foot_frame,
             "foot_offset": args.foot_offset,
+            "lock_joints": lock_patterns(args, None),
         }
     try:
         saved = {k: str(v) for k, v in dict(table.get("xacro_args", {})).items()}
@@ -265,6 +270,7 @@ def _settings(args: argparse.Namespace, table: dict[str, Any] | None, folder: Pa
         "packages": {**folders, **packages},
         "foot_frame": args.foot_frame if args.foot_frame is not None else frame,
         "foot_offset": args.foot_offset if args.foot_offset is not None else offset,
+        "lock_joints": lock_patterns(args, table),
     }
 
 
@@ -296,6 +302,7 @@ def add_refused_robot_option(parser: argparse.ArgumentParser) -> None:
         ("--package", 1),
         ("--foot-frame", 1),
         ("--foot-offset", 3),
+        ("--lock-joint", 1),
     ):
         parser.add_argument(flag, nargs=nargs, action=_Refuse, help=argparse.SUPPRESS)
 
@@ -355,3 +362,30 @@ def robot_angles(model: ImportedHexapodModel) -> dict[str, Any]:
     nominal = {leg: list(model.nominal_angles(leg)) for leg in model.leg_names}
     files = {leg: model.joint_values(leg, a).tolist() for leg, a in nominal.items()}
     return {"robot": str(model.robot.source), "joint_angles": nominal, "urdf_joint_angles": files}
+
+
+# -- locked joints (#40): kept apart so that the robot-options rework can move them as one --
+
+LOCK_KEY = "lock_joints"
+"""A ``[robot]`` table's list of joints (glob patterns) locked at their zero."""
+
+
+def add_lock_option(group: argparse._ArgumentGroup) -> None:
+    """``--lock-joint NAME`` (repeatable): a joint of the file held at its zero."""
+    group.add_argument(
+        "--lock-joint",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="hold this joint of the file at its zero, as a fixed joint (a glob pattern; "
+        "repeatable; a [robot] table's lock_joints): a sensor's or a tool's, not the leg's",
+    )
+
+
+def lock_patterns(args: argparse.Namespace, table: dict[str, Any] | None) -> tuple[str, ...]:
+    """The joints to lock: the ``[robot]`` table's ``lock_joints``, then ``--lock-joint``."""
+    saved = [] if table is None else table.get(LOCK_KEY, [])
+    if not isinstance(saved, list) or not all(isinstance(p, str) and p for p in saved):
+        raise UsageError(f"{args.design}: [robot] {LOCK_KEY} must be a list of joint names")
+    given = getattr(args, "lock_joint", None) or []
+    return tuple(dict.fromkeys([*saved, *given]))

@@ -6,15 +6,13 @@ import argparse
 import math
 from pathlib import Path
 
-import numpy as np
-
 from hexaleg.cli.gait import add_gait_options, gait_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
     bounded_int,
-    design_from_args,
+    inputs_from_args,
     note,
 )
 from hexaleg.cli.output import (
@@ -26,11 +24,13 @@ from hexaleg.cli.output import (
     summary_stream,
 )
 from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import CYCLES_RANGE, DEFAULT_CYCLES, simulate_gait
 from hexaleg.sim.video import VIDEO_SUFFIXES, check_video_path
+from hexaleg.statics.ratings import rating_use
 
 DESCRIPTION = (
     "Walk the design's planned gait in MuJoCo (pip install 'hexaleg[sim]'): hexaleg's URDF "
@@ -84,13 +84,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    design = size_if_asked(design, requirements, robot is not None)[0]
     for flag in ("html", "video"):
         if robot is not None and getattr(args, flag) is not None:
             raise UsageError(f"--{flag} with --urdf is not supported yet: use --json")
     model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args)
+    gait = gait_from_args(args, model)
     payload = payload_from_args(args)
     check_outputs({"--html": args.html, "--video": args.video})  # before simulating
     if args.video is not None:
@@ -125,7 +126,7 @@ def _animation(result: SimulationResult, path: str) -> Path:
     """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
     from hexaleg.output.viewer.gait import write_motion_html
 
-    ratios = np.abs(result.frame_torques) / np.array(result.design.rated_torques)
+    ratios = rating_use(result.frame_torques, result.design.rated_torques)
     model = HexapodModel(result.design)
     return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
 
@@ -170,12 +171,13 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
         ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),
         ("standing-foot slip", f"{metrics.slip:.4f} m"),
     ]
-    for joint, rated in zip(LEG_JOINTS, design.rated_torques, strict=True):
+    given = design.rated_torques
+    for joint, rated in zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True):
         rows.append(
             (
                 f"{joint}: peak |τ| simulated / planned",
                 f"{metrics.peak_torque[joint]:.2f} / {result.planned_peak_torque[joint]:.2f} "
-                f"N·m (rated {rated:g})"
+                + (f"N·m (rated {rated:g})" if given else "N·m (rating not given)")
                 + (", OVER RATING" if metrics.peak_torque[joint] > rated else ""),
             )
         )

@@ -21,6 +21,7 @@ from hexaleg.cli.options import (
     field_sweep_from_args,
     inputs_from_args,
     study_total,
+    walked_by,
 )
 from hexaleg.cli.output import report_files
 from hexaleg.cli.robot_options import add_robot_options, robot_designs
@@ -80,7 +81,8 @@ def run(args: argparse.Namespace) -> int:
     field_sweep = field_sweep_from_args(args)
     robot = _robot(args, base, field_sweep is not None)
     if robot is not None:
-        base = robot.point()[0]
+        base, model = robot.point()
+        in_file = walked_by(args, in_file, model)  # the robot's own default gait
     check_output_folder(args.output)  # the study folder itself is checked as it is claimed
     spec = StudySpec(
         tuple(args.l1_ratios or L1_RATIOS),

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 import argparse
 
-from hexaleg.cli.options import add_design_options, design_from_args
+from hexaleg.cli.options import add_design_options, inputs_from_args
 from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.cli.robot_options import add_robot_options, refuse_unsupported, robot_from_args
+from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.robot.urdf import write_urdf
 
 DESCRIPTION = (
@@ -36,10 +37,11 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Write the URDF to stdout or to the file given (see :func:`hexaleg._io.write_bytes`)."""
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     target = "-" if args.output is None else args.output
     check_outputs({"--output": target})
     robot = robot_from_args(args)
+    design = size_if_asked(design, requirements, robot is not None)[0]  # refused on a robot
     if robot is None:
         written = write_urdf(design, target)
     else:

@@ -11,12 +11,13 @@ from hexaleg.cli.options import (
     add_design_options,
     add_stance_option,
     bounded_int,
-    design_from_args,
     design_gait,
+    inputs_from_args,
     note,
 )
 from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.cli.robot_options import add_robot_options, robot_model
+from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.server import (
@@ -68,16 +69,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
     from hexaleg.output.viewer.scene import build_scene, write_static_html
+    from hexaleg.robot.imported_model import has_masses
     from hexaleg.robot.model import HexapodModel
     from hexaleg.stance.axis_locked import axis_locked_flexibility
     from hexaleg.statics.loads import loads_at_extremes
 
-    design = design_from_args(args)
+    design, requirements = inputs_from_args(args)
     check_outputs({"--html": args.html})
     imported = robot_model(args, design)
+    design = size_if_asked(design, requirements, imported is not None)[0]
     model: HexapodModel = HexapodModel(design) if imported is None else imported
-    if imported is not None:
-        _note_missing_meshes(imported.missing_meshes)
+    missing = None if imported is None else imported.missing_meshes_note("not drawn")
+    if missing is not None:
+        note(missing)
     if args.workspace is not None and args.workspace not in model.leg_names:
         raise ParameterError(
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
@@ -85,7 +89,7 @@ def run(args: argparse.Namespace) -> int:
     if args.gait:
         return _view_gait(model, args)
     result = axis_locked_flexibility(model.design, args.stance, model)
-    loads = loads_at_extremes(model, result)
+    loads = loads_at_extremes(model, result) if has_masses(model) else None  # else uncoloured
     if args.html is not None:
         report_files([write_static_html(model, result, args.html, args.workspace, loads)])
         return 0
@@ -96,25 +100,13 @@ def run(args: argparse.Namespace) -> int:
     )
 
 
-def _note_missing_meshes(missing: tuple[str, ...]) -> None:
-    """Say which of the file's visual meshes are not drawn, and how to have them drawn."""
-    if missing:
-        listed = ", ".join(missing[:3]) + (
-            f" and {len(missing) - 3} more" if len(missing) > 3 else ""
-        )
-        note(
-            f"{len(missing)} visual mesh file(s) not found, those visuals are not drawn: "
-            f"{listed} (give --package NAME=DIR for package:// paths)"
-        )
-
-
 def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
     from hexaleg.gait.analysis import analyze_gait
     from hexaleg.gait.walkable import require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
-    analysis = analyze_gait(model.design, design_gait(args), model=model, limits=False)
+    analysis = analyze_gait(model.design, design_gait(args, model), model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])

@@ -1,7 +1,7 @@
 """The live design explorer: a page on loopback where every length moved shows its consequences.
 
 :mod:`.query` reads a request into a design and its conditions, :mod:`.answer` measures
-it (one :func:`~hexaleg.study.evaluation.evaluate`), :mod:`.cloud` measures the study's
+it (one :func:`~hexaleg.evaluation.evaluate.evaluate`), :mod:`.cloud` measures the study's
 designs around it, :mod:`.session` holds what was loaded and saves, :mod:`.server` serves
 the page (``static/``) and the endpoints.
 """

@@ -1,6 +1,6 @@
 """The explorer's answer about one design: every number the page shows, JSON-ready.
 
-One :func:`~hexaleg.study.evaluation.evaluate` measures the metrics of
+One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the metrics of
 :data:`EXPLORED` under the query's conditions; the answer names them as the command
 line's ``--json`` does (``fb``, ``payload_capacity``, ``peak_torque`` per joint type,
 ``max_speed`` ...) with what limits each, the nominal stance's points for the drawing,
@@ -21,41 +21,42 @@ import numpy as np
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuator
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
+from hexaleg.evaluation.requirements import Requirements, limited_by_dict
 from hexaleg.limits import LEG_JOINTS, JointLimits
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import ELECTRICAL_METRICS, Conditions, Evaluation, evaluate
-from hexaleg.study.goal import Goal
-from hexaleg.study.metrics import METRICS
-from hexaleg.study.requirements import Requirements, limited_by_dict
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 __all__ = ["EXPLORED", "answer"]
 
-SCALARS = (
-    "fb",
-    "improved_area",
-    "average_manipulability",
-    "payload_capacity",
-    "walking_payload_capacity",
-    "max_speed",
-    "mechanical_energy_per_km",
-    "mechanical_cost_of_transport",
-    *ELECTRICAL_METRICS,
-    "ground_clearance",
-    "robot_mass",
+SCALARS: tuple[MetricSpec, ...] = (
+    METRICS.fb,
+    METRICS.improved_area,
+    METRICS.average_manipulability,
+    METRICS.payload_capacity,
+    METRICS.walking_payload_capacity,
+    METRICS.max_speed,
+    METRICS.mechanical_energy_per_km,
+    METRICS.mechanical_cost_of_transport,
+    *(spec for spec in METRICS if spec.analysis == "motors"),
+    METRICS.ground_clearance,
+    METRICS.robot_mass,
 )
 """Metrics answered under their own names (those through the motors ``None`` without
 ``[actuators]``, with the reason in ``unmeasured``)."""
 
-EXPLORED: tuple[str, ...] = (
+EXPLORED: tuple[MetricSpec, ...] = (
     *SCALARS,
-    *(f"gait_{kind}_{joint}_torque" for kind in ("peak", "rms") for joint in LEG_JOINTS),
+    *(spec for spec in METRICS if spec.torque is not None),
 )
-"""Every metric the explorer measures for a design."""
+"""Every metric the explorer measures for a design: those above, and each joint type's
+peak and RMS torque over the gait period (answered as ``peak_torque`` and ``rms_torque``)."""
 
 
 def answer(
@@ -90,18 +91,19 @@ def answer(
 
 def _numbers(found: Evaluation) -> dict[str, Any]:
     """The metrics as the command line names them, with what limits each."""
-    values = found.values
+    metrics = found.metrics
     out: dict[str, Any] = {"error": found.error}
-    out |= {name: _finite(values.get(name, math.nan)) for name in SCALARS}
-    for kind in ("peak", "rms"):
-        out[f"{kind}_torque"] = {
-            joint: _finite(values.get(f"gait_{kind}_{joint}_torque", math.nan))
-            for joint in LEG_JOINTS
+    out |= {spec.name: _finite(metrics.value(spec)) for spec in SCALARS}
+    for torque in ("peak", "rms"):
+        joints = metrics.joint_torques(torque)
+        out[f"{torque}_torque"] = {
+            joint: _finite(math.nan if value is None else value) for joint, value in joints.items()
         }
-    out["limited_by"] = {name: limited_by_dict(cause) for name, cause in found.causes.items()}
-    out["unmeasured"] = dict(found.unmeasured)
+    causes = found.causes.items()
+    out["limited_by"] = {s.name: limited_by_dict(c) for s, c in causes if c is not None}
+    out["unmeasured"] = {s.name: why for s, why in found.unmeasured.items() if why is not None}
     out["walks"] = found.walks
-    out["units"] = {name: METRICS[name].unit for name in SCALARS} | {"torque": "N·m"}
+    out["units"] = {spec.name: spec.unit for spec in SCALARS} | {"torque": "N·m"}
     return out
 
 
@@ -110,14 +112,16 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
 
     ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
     peak |τ| over a gait period against its joint's rating [-] (``None`` where the period
-    breaks a constraint: a joint limit, a foot out of reach — it is not walked).
+    breaks a constraint: a joint limit, a foot out of reach — it is not walked; and every
+    leg's when the design gives no ratings, as ``rated_torques``).
     """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
-    if found.gait is not None and found.gait.walkable:
+    rated = design.rated_torques
+    if found.gait is not None and found.gait.walkable and rated is not None:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
-        used = dict(zip(found.gait.legs, peaks / np.asarray(design.rated_torques), strict=True))
+        used = dict(zip(found.gait.legs, peaks / np.asarray(rated), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)
             _finite(float(used[leg].max())) if leg in used else None for leg in model.leg_names
         ]
@@ -125,7 +129,7 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
         "legs": list(model.leg_names),
         "chains": chains.round(6).tolist(),
         "utilisation": utilisation,
-        "rated_torques": dict(zip(LEG_JOINTS, design.rated_torques, strict=True)),
+        "rated_torques": None if rated is None else dict(zip(LEG_JOINTS, rated, strict=True)),
     }
 
 
@@ -177,9 +181,10 @@ def _reach_clouds(design: HexapodDesign, model: HexapodModel) -> list[Any]:
             ),
             leg=model.leg_geometry(leg),
         )
-        for leg, low, high in zip(model.leg_names, geometry.joint_lower, geometry.joint_upper,
-                                  strict=True)
-    ]  # fmt: skip
+        for leg, low, high in zip(
+            model.leg_names, geometry.joint_lower, geometry.joint_upper, strict=True
+        )
+    ]
 
 
 def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:
@@ -191,16 +196,29 @@ def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:
         return []
     extremes = found.flexibility.extremes
     posed = extreme_configurations(model, extremes)
-    return [{"name": x.name, "value": x.value, "limited_by": x.description,
-             "chains": model.leg_chains(q).round(6).tolist()}
-            for x, q in zip(extremes, posed, strict=True)]  # fmt: skip
+    return [
+        {
+            "name": x.name,
+            "value": x.value,
+            "limited_by": x.description,
+            "chains": model.leg_chains(q).round(6).tolist(),
+        }
+        for x, q in zip(extremes, posed, strict=True)
+    ]
 
 
 def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:
     """Each requirement checked: required, value, margin, met, what limits it, in words."""
     if found.error:
-        return [{"name": name, "met": False, "text": goal.requirements.describe(name),
-                 "error": found.error} for name in goal.requirements.given]  # fmt: skip
+        return [
+            {
+                "name": name,
+                "met": False,
+                "text": goal.requirements.describe(name),
+                "error": found.error,
+            }
+            for name in goal.requirements.given
+        ]
     checks = []
     for check in goal.checks(found):
         out = check.to_dict(binding=False) | {"name": check.name}

@@ -2,8 +2,9 @@
 
 Designs of the loaded body and leg length at the paper's coxa ratios and the loaded
 design's own, over a grid of tibia ratios, each measured for FB and the walking payload
-capacity under the loaded conditions (one batch, :func:`~hexaleg.study.evaluation.evaluate_many`).
-It is measured once, in a background thread, while the page already answers.
+capacity under the loaded conditions (one batch,
+:func:`~hexaleg.evaluation.evaluate.evaluate_many`). It is measured once, in a background
+thread, while the page already answers.
 """
 
 from __future__ import annotations
@@ -14,15 +15,16 @@ from collections.abc import Callable
 from typing import Any
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
 
 __all__ = ["CLOUD_METRICS", "Cloud"]
 
-CLOUD_METRICS = ("fb", "walking_payload_capacity")
+CLOUD_METRICS: tuple[MetricSpec, ...] = (METRICS.fb, METRICS.walking_payload_capacity)
 """What each design of the cloud is measured for."""
 
 TIBIA_POINTS = 12
@@ -91,9 +93,9 @@ class Cloud:
                 "l1_ratio": l1_ratio,
                 "l3_ratio": design.l3 / design.leg_length,
             }
-            for name in CLOUD_METRICS:
-                value = evaluation.values.get(name, math.nan)
-                point[name] = value if math.isfinite(value) else None
+            for spec in CLOUD_METRICS:
+                value = evaluation.metrics.value(spec)
+                point[spec.name] = value if math.isfinite(value) else None
             points.append(point)
         return points
 

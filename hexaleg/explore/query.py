@@ -21,10 +21,10 @@ from typing import Any
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import REFERENCE_TEMPERATURE, TABLE, Actuator, Actuators
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
-from hexaleg.study.evaluation import Conditions
 
 __all__ = ["ACTUATOR_KEYS", "CONDITION_KEYS", "DESIGN_KEYS", "Query", "parse_query"]
 

@@ -98,7 +98,7 @@ class ExploredRobot:
         written elsewhere, a job's, keeps them absolute).
         """
         l1, l2, l3 = self.file_lengths
-        written = design.replace(l1=max(l1, 1e-9), l2=l2, l3=l3)  # the file's, as read
+        written = design.replace(l1=l1, l2=l2, l3=l3)  # the file's, as read
         segments = dict(zip(SEGMENT_NAMES, design.lengths, strict=True))
         if l1 <= 0:  # a coxa of length 0 has nothing to stretch: it stays the file's
             segments.pop("coxa")

@@ -19,6 +19,9 @@ from hexaleg._io import check_output_file, write_text
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_text import design_toml
+from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
@@ -27,9 +30,6 @@ from hexaleg.explore.query import Query, parse_query
 from hexaleg.explore.robot import SLID_KEYS, ExploredRobot
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
-from hexaleg.study.evaluation import Conditions
-from hexaleg.study.goal import Goal
-from hexaleg.study.requirements import Requirements
 
 __all__ = ["Session"]
 

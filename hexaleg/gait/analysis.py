@@ -30,11 +30,14 @@ from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, Payload
+from hexaleg.statics.forces import Payload
 from hexaleg.statics.ground import LEVEL, Ground
 from hexaleg.statics.ratings import OverRating, at_times, over_rating
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.walking import check_walking
 
 
 @dataclass(frozen=True)
@@ -75,9 +78,11 @@ class GaitAnalysis:
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
-        max_speed: The fastest walk within the ratings (None if not computed).
+        max_speed: The fastest walk within the ratings (None if not computed, or if the
+            design gives no ratings: it needs one).
         electrical: The period's currents, voltages, energy and battery use, and each
             joint against its actuator's ratings (None for a design without actuators).
+        structure: The legs' tubes at every sample (None without a ``[structure]``).
 
     """
 
@@ -108,6 +113,7 @@ class GaitAnalysis:
     max_stride: StrideLimit | None
     max_speed: SpeedLimit | None
     electrical: ElectricalResult | None
+    structure: StructureCheck | None = None
 
     @cached_property
     def zmp_margin(self) -> ArrayF:
@@ -154,14 +160,14 @@ class GaitAnalysis:
 
     @property
     def feasible(self) -> bool:
-        """Whether the period can be walked as planned: every constraint and every rating.
+        """Whether the period can be walked as planned: every constraint, rating and tube.
 
         Walkable: no constraint of its motion breaks (:attr:`violations`); upright: its
         ZMP never leaves the standing feet's polygon (:attr:`tipping`); gripping: no
-        standing foot's force leaves the friction cone (:attr:`slips`); within every
-        rating (:attr:`over_rating`): peak torque and joint speed within rating / F and,
-        with actuators, RMS torque and the voltage the motors need. The max speed is then
-        at least the speed walked.
+        standing foot's force leaves the friction cone (:attr:`slips`); strong: no leg tube
+        over its strength (:attr:`structure`); within every rating (:attr:`over_rating`):
+        peak torque and joint speed within rating / F and, with actuators, RMS torque and
+        the voltage the motors need. The max speed is then at least the speed walked.
         """
         return self.infeasible_because is None
 
@@ -179,6 +185,8 @@ class GaitAnalysis:
         if self.slips:
             more = f" (and {len(self.slips) - 1} more feet)" if len(self.slips) > 1 else ""
             return f"{self.slips[0]}{more}"
+        if self.structure is not None and self.structure.worst_ratio > 1:
+            return "a leg segment over its strength (below)"
         over = self.over_rating
         if over:
             more = f" (and {len(over) - 1} more, below)" if len(over) > 1 else ""
@@ -247,6 +255,7 @@ class GaitAnalysis:
             "max_speed": None if self.max_speed is None else self.max_speed.to_dict(),
             "over_rating": [o.to_dict() for o in self.over_rating],
             **_electrical_dict(self.electrical),
+            "structure": None if self.structure is None else self.structure.to_dict(),
             "units": {
                 "period, time": "s",
                 "stride, step_height, max_stride, min_zmp_margin, position": "m",
@@ -318,7 +327,9 @@ def analyze_gait(
     known = (walk, loads) if distribution == "min-norm" else None
     stride_limit = max_stride(walker) if limits else None
     speed_limit = (
-        max_speed(walker, stride_limit, known, fallback=limits) if limits or speed else None
+        max_speed(walker, stride_limit, known, fallback=limits)
+        if (limits or speed) and model.design.rated
+        else None  # no ratings: the max speed needs one
     )
     return _analysis(walker, walk, loads, stride_limit, speed_limit)
 
@@ -364,6 +375,15 @@ def _analysis(
         max_stride=stride_limit,
         max_speed=speed_limit,
         electrical=_electrical(walker, torques, velocities),
+        structure=check_walking(
+            walker.model,
+            walker.times(period),
+            loads.rnea.configurations,
+            loads.rnea.velocities / period,
+            loads.rnea.accelerations / period**2,
+            loads.split.forces(period),
+            walker.gravity_vector,
+        ),
     )
 
 

@@ -55,10 +55,11 @@ from hexaleg.electrical.equations import motor_samples
 from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
-from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Payload
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.ground import LEVEL, Ground
 
 PROBE_MASS = 1.0
@@ -94,8 +95,11 @@ def walking_payload_capacity(
     gravity: float = GRAVITY,
     ground: Ground = LEVEL,
     safety_factor: float = 1.0,
-) -> WalkingCapacity:
+) -> WalkingCapacity | None:
     """The largest payload at ``position`` the design carries walking ``gait``.
+
+    ``None`` when the design gives no ratings (a robot file's efforts of 0): the capacity
+    within them needs a rating.
 
     Args:
         model: The design's Pinocchio model.
@@ -107,6 +111,8 @@ def walking_payload_capacity(
         safety_factor: F ≥ 1 [-]: peak torques and joint speeds within rating / F.
 
     """
+    if not model.design.rated:
+        return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
     unloaded = Walker(model, gait, Payload(0.0, position), ground=ground, gravity=gravity,
                       safety_factor=safety_factor)  # fmt: skip
@@ -119,11 +125,7 @@ def walking_payload_capacity(
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    loaded = unloaded.carrying(Payload(PROBE_MASS, position))
-    first = unloaded.loads(gait.stride, walk, gait.period)
-    inertial = first.rnea.inertial  # the payload adds no inertial force (it does not accelerate)
-    again = loaded.generalized_forces(gait.stride, walk, inertial)
-    loads = [first, loaded.loads(gait.stride, walk, gait.period, again)]
+    loads = _probe_loads(unloaded, walk, position)
     base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
     slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
     legs = unloaded.frames.legs
@@ -146,6 +148,18 @@ def walking_payload_capacity(
     if mass > PAYLOAD_SEARCH_LIMIT:
         return WalkingCapacity(PAYLOAD_SEARCH_LIMIT, Cause("search limit"), True)
     return WalkingCapacity(float(mass), cause, True)
+
+
+def _probe_loads(
+    unloaded: Walker, walk: Stride, position: tuple[float, float, float] | None
+) -> list[Loads]:
+    """The walk's loads without a payload and with :data:`PROBE_MASS` at ``position``."""
+    gait = unloaded.gait
+    loaded = unloaded.carrying(Payload(PROBE_MASS, position))
+    first = unloaded.loads(gait.stride, walk, gait.period)
+    inertial = first.rnea.inertial  # the payload adds no inertial force (it does not accelerate)
+    again = loaded.generalized_forces(gait.stride, walk, inertial)
+    return [first, loaded.loads(gait.stride, walk, gait.period, again)]
 
 
 def _largest(offset: ArrayF, slope: ArrayF) -> tuple[float, int] | None:

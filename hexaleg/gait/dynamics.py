@@ -34,8 +34,15 @@ from hexaleg.gait.jacobian import transpose_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
+from hexaleg.ratings import torque_scale
+from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
-from hexaleg.statics.forces import Payload, equilibrium, min_norm_forces, min_torque_forces
+from hexaleg.statics.forces import (
+    Payload,
+    equilibrium,
+    min_norm_forces,
+    min_torque_forces,
+)
 
 
 @dataclass(frozen=True)
@@ -75,6 +82,7 @@ class LoadedRobot:
     """
 
     def __init__(self, model: HexapodModel, payload: Payload, gravity: ArrayF) -> None:
+        robot_mass(model)  # a robot file without masses is refused here
         self.gravity = np.array(gravity, dtype=float)
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)
@@ -226,7 +234,7 @@ def min_torque_split(
     friction: float,
 ) -> ForceSplit:
     """The statics' min-torque QP at each sample, at period T [s] (no inertial part)."""
-    count, rated = len(feet), np.array(model.design.rated_torques)
+    count, rated = len(feet), torque_scale(model.design.rated_torques)
     generalized = rnea.static + rnea.inertial / period**2
     joints = leg_rows(model, generalized)
     in_roots = foot_jacobian(frames.parameters, motion.angles)

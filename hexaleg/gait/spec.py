@@ -131,8 +131,11 @@ class Gait:
         return replace(self, period=period)
 
     @classmethod
-    def from_table(cls, table: Any) -> Gait:
-        """The gait a design file's ``[gait]`` table describes: its keys over the defaults.
+    def from_table(cls, table: Any, base: Gait | None = None) -> Gait:
+        """The gait a design file's ``[gait]`` table describes: its keys over ``base``.
+
+        ``base``: the gait walked without a table (:class:`Gait`'s defaults if omitted; a
+        robot's own, :func:`~hexaleg.gait.defaults.default_gait`).
 
         ``speed`` sets the period from the stride (:meth:`with_speed`), so the table gives
         ``speed`` or ``period``, not both.
@@ -153,7 +156,7 @@ class Gait:
             )
         fields = {k: v for k, v in table.items() if k != "speed"}
         try:
-            gait = cls(**fields)
+            gait = replace(cls() if base is None else base, **fields)
             return gait if "speed" not in table else gait.with_speed(table["speed"])
         except ParameterError as err:
             raise ParameterError(f"{TABLE}.{err.field}", err.value, err.allowed) from None

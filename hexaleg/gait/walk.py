@@ -15,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
+from hexaleg.exceptions import HexalegError
 from hexaleg.gait.dynamics import (
     ForceSplit,
     GeneralizedForces,
@@ -34,8 +35,10 @@ from hexaleg.gait.trajectory import (
     joint_motion,
     path_shapes,
 )
+from hexaleg.gravity import GRAVITY
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import GRAVITY, Payload, check_gravity
+from hexaleg.statics.forces import Payload, check_gravity
 from hexaleg.statics.ground import LEVEL, Ground
 from hexaleg.statics.ratings import check_safety_factor
 
@@ -185,6 +188,14 @@ class Walker:
         return self.robot.generalized_forces(walk.motion, travel, inertial)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
-        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F."""
+        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F.
+
+        Raises:
+            HexalegError: The design gives no ratings (a robot file's efforts of 0): what
+                asks for them needs a rating (callers ask :attr:`HexapodDesign.rated` first).
+
+        """
         design, factor = self.model.design, self.safety_factor
+        if design.rated_torques is None or design.rated_speeds is None:
+            raise HexalegError(f"the design gives no rated torques and speeds: {NEEDS_RATING}")
         return np.array(design.rated_torques) / factor, np.array(design.rated_speeds) / factor

@@ -49,6 +49,24 @@ class Crossings(NamedTuple):
     binding: tuple[tuple[int, ...], ...]
 
 
+class StartBroken(HexalegError):
+    """The start (t = 0) already breaks a constraint: the caller names it from its column.
+
+    Attributes:
+        direction: The direction whose start was checked.
+        column: The broken constraint's column in the margins.
+        margin: Its margin there (negative).
+
+    """
+
+    def __init__(self, direction: int, column: int, margin: float) -> None:
+        self.direction, self.column, self.margin = direction, column, margin
+        super().__init__(f"the start breaks constraint {column} (margin {margin:.6g})")
+
+    def __reduce__(self) -> tuple[object, ...]:  # picklable across process pools
+        return (type(self), (self.direction, self.column, self.margin))
+
+
 def first_crossings(
     margins: Callable[[IndexArray, ArrayF], ArrayF],
     t_max: ArrayF,
@@ -119,7 +137,10 @@ def _first_failures(
         rows = np.broadcast_to(active[:, None], t.shape)
         smallest = scan(rows.ravel(), t.ravel()).min(axis=-1).reshape(t.shape)
         if with_start and np.any(smallest[:, 0] < 0):
-            raise HexalegError("the nominal stance itself violates a stance constraint")
+            worst = int(np.argmin(smallest[:, 0]))
+            at_start = scan(active[worst : worst + 1], t[worst : worst + 1, 0])[0]
+            column = int(np.argmin(at_start))
+            raise StartBroken(int(active[worst]), column, float(at_start[column]))
         infeasible = smallest < 0
         hit = infeasible.any(axis=1)
         first = np.argmax(infeasible, axis=1)

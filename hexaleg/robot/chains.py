@@ -4,8 +4,11 @@ The body is the root link with every link fixed to it. Each movable joint whose 
 is on the body starts a chain; the chain follows the one movable joint of each link group
 (links held together by fixed joints) out to the last. A chain of three revolute (or
 continuous) joints is a leg; a shorter one (a pan-tilt head, a sensor mount) is locked at
-q = 0 and weighs as part of the body; anything else is refused in one line naming what was
-found. Joints the caller locks (glob patterns) count as fixed everywhere.
+q = 0 and weighs as part of the body. Beyond a leg's third revolute joint, a joint that is
+not the leg's — a prismatic one (a foot-contact sensor), or one whose range is below
+:data:`LOCKED_RANGE` — is locked at q = 0 and moves with the tibia; anything else is refused
+in one line naming what was found. Joints the caller locks (glob patterns) count as fixed
+everywhere.
 """
 
 from __future__ import annotations
@@ -24,6 +27,10 @@ LEG_JOINT_COUNT = 3
 """Revolute joints of a yaw–pitch–pitch leg."""
 
 REVOLUTE = ("revolute", "continuous")
+
+LOCKED_RANGE = {"revolute": 0.01, "prismatic": 1e-3}
+"""A joint beyond a leg's third whose range (upper − lower) is below this is no joint of the
+leg but a part of the tibia: locked at q = 0 [rad, m]. A prismatic one is always locked."""
 
 
 @dataclass(frozen=True)
@@ -48,8 +55,11 @@ class Chains:
     Attributes:
         legs: The six legs, in the file's order.
         body: The body's links: the root link and every link fixed (or locked) to it.
-        locked: Every movable joint treated as fixed: the caller's, then the short chains'.
+        locked: Every movable joint treated as fixed: the caller's, then the short chains',
+            then those beyond a leg's knee.
         accessories: The short chains' joints (a subset of ``locked``).
+        beyond: The joints beyond a leg's knee locked as parts of its tibia (a subset of
+            ``locked``): prismatic ones and those of a range below :data:`LOCKED_RANGE`.
 
     """
 
@@ -57,6 +67,7 @@ class Chains:
     body: tuple[str, ...]
     locked: tuple[str, ...]
     accessories: tuple[str, ...]
+    beyond: tuple[str, ...] = ()
 
 
 def find_chains(description: RobotDescription, lock: Sequence[str] = ()) -> Chains:
@@ -69,10 +80,15 @@ def find_chains(description: RobotDescription, lock: Sequence[str] = ()) -> Chai
     """
     asked = _locked(description, lock)
     locked = set(asked)
+    beyond: list[str] = []
     legs: list[LegChain] = []
     accessories: list[str] = []
     for start in _chain_starts(description, locked):
         joints, segments = _follow(description, start, locked)
+        while len(joints) > LEG_JOINT_COUNT and not_the_legs(joints[LEG_JOINT_COUNT]):
+            beyond.append(joints[LEG_JOINT_COUNT].name)
+            locked.add(beyond[-1])
+            joints, segments = _follow(description, start, locked)
         if len(joints) < LEG_JOINT_COUNT:
             accessories += [j.name for j in joints]
             continue
@@ -90,7 +106,21 @@ def find_chains(description: RobotDescription, lock: Sequence[str] = ()) -> Chai
         )
     locked |= set(accessories)
     body = _group(description, description.root, locked)
-    return Chains(tuple(legs), body, tuple(asked) + tuple(accessories), tuple(accessories))
+    return Chains(
+        tuple(legs),
+        body,
+        tuple(asked) + tuple(accessories) + tuple(beyond),
+        tuple(accessories),
+        tuple(beyond),
+    )
+
+
+def not_the_legs(joint: Joint) -> bool:
+    """Whether a joint beyond a leg's knee is a part of its tibia: prismatic, or barely moving."""
+    if joint.kind == "prismatic":
+        return True
+    smallest = LOCKED_RANGE.get(joint.kind)
+    return smallest is not None and joint.upper - joint.lower < smallest
 
 
 def _locked(description: RobotDescription, patterns: Sequence[str]) -> list[str]:
@@ -138,7 +168,7 @@ def _follow(
             names = ", ".join(j.name for j in nxt)
             raise RobotImportError(
                 f"leg from joint {start.name} branches after joint {joints[-1].name}: "
-                f"joints {names} all move (lock the ones that are not the leg's)"
+                f"joints {names} all move (lock the ones that are not the leg's: --lock-joint NAME)"
             )
         if not nxt:
             return joints, segments
@@ -152,11 +182,13 @@ def _check_leg(joints: list[Joint]) -> None:
     if other:
         j = other[0]
         raise RobotImportError(
-            f"leg from joint {start} has a {j.kind} joint {j.name} (lock it to treat it as fixed)"
+            f"leg from joint {start} has a {j.kind} joint {j.name}: lock it at its zero "
+            f"with --lock-joint {j.name} (lock_joints in [robot])"
         )
     if len(joints) > LEG_JOINT_COUNT:
         names = ", ".join(j.name for j in joints)
         raise RobotImportError(
             f"leg from joint {start} has {len(joints)} revolute joints ({names}); "
-            f"a yaw-pitch-pitch leg has {LEG_JOINT_COUNT}"
+            f"a yaw-pitch-pitch leg has {LEG_JOINT_COUNT} (--lock-joint NAME holds one at its "
+            f"zero)"
         )

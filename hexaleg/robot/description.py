@@ -5,6 +5,17 @@ inertial in its own frame, its collision shapes) and every joint (type, parent, 
 origin, unit axis, limits), the root link and each link's child joints. A file that is
 not a URDF tree — not XML, no ``<robot>``, a joint naming a missing link, two roots, a
 loop, a number that is not one — is refused in one line naming what was found.
+
+What Pinocchio's URDF parser (urdfdom) and model refuse is refused here first, naming the
+joint and attribute: a ``<limit>`` without ``effort`` or ``velocity`` (the URDF
+specification requires both in every ``<limit>``, ROS wiki ``urdf/XML/joint``; urdfdom's
+``parseJointLimits`` fails without them, whatever the joint's type), a negative effort or
+velocity (Pinocchio: "min_effort greater than max_effort"), a tree deeper than
+:data:`MAX_TREE_DEPTH` (urdfdom and Pinocchio recurse once a link: a 4 000-deep chain
+overflows an 8 MiB stack). Numbers beyond a robot's bounds are refused
+(:mod:`~hexaleg.robot.urdf_numbers`). XML's own internal entities (``<!DOCTYPE robot
+[<!ENTITY ...>]>``) are XML: :func:`plain_urdf` expands them for the parsers that do not
+(urdfdom's TinyXML).
 """
 
 from __future__ import annotations
@@ -19,11 +30,26 @@ import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import RobotImportError
+from hexaleg.robot.urdf_numbers import (
+    LENGTH,
+    MAX_INERTIA,
+    MAX_LENGTH,
+    MAX_MASS,
+    MAX_POSITION,
+    MAX_RATING,
+    number,
+    numbers,
+    origin,
+)
 
 MOVABLE = ("revolute", "continuous", "prismatic", "floating", "planar")
 """URDF joint types that move; ``fixed`` is the only other one."""
 
 JOINT_TYPES = ("fixed", *MOVABLE)
+
+MAX_TREE_DEPTH = 1000
+"""Most joints between the root link and any link [-]: Pinocchio builds a 1 000-deep chain
+on an 8 MiB stack (tested), and crashed (SIGSEGV) on 4 000; a hexapod is about 10 deep."""
 
 Shape = Literal["sphere", "box", "cylinder", "capsule", "mesh"]
 
@@ -158,6 +184,7 @@ def parse_urdf(text: str, source: str = "<string>") -> RobotDescription:
         root=_root_link(links, joints, source),
         children=MappingProxyType(_children(links, joints)),
     )
+    _check_depth(description, source)
     unreached = sorted(set(links) - set(description.frames_at_zero()))
     if unreached:
         raise RobotImportError(
@@ -166,45 +193,35 @@ def parse_urdf(text: str, source: str = "<string>") -> RobotDescription:
     return description
 
 
-def rpy_matrix(rpy: ArrayF) -> ArrayF:
-    """Rotation (3, 3) of URDF roll-pitch-yaw angles: Rz(yaw) · Ry(pitch) · Rx(roll)."""
-    (cr, cp, cy), (sr, sp, sy) = np.cos(rpy), np.sin(rpy)
-    return np.array(
-        [
-            [cy * cp, cy * sp * sr - sy * cr, cy * sp * cr + sy * sr],
-            [sy * cp, sy * sp * sr + cy * cr, sy * sp * cr - cy * sr],
-            [-sp, cp * sr, cp * cr],
-        ]
-    )
+def plain_urdf(text: str, source: str = "<string>") -> str:
+    """URDF ``text`` without its document type: XML's internal entities expanded.
 
-
-def _numbers(text: str | None, count: int, where: str, default: float = 0.0) -> ArrayF:
-    """``count`` numbers from an attribute's text (``default`` each if it is absent)."""
-    if text is None:
-        return np.full(count, default)
+    Text without a ``<!DOCTYPE`` is returned as it is; otherwise it is parsed (comments
+    kept) and written again, every ``&name;`` replaced by its value. An external entity
+    is not read: its use is refused as undefined.
+    """
+    if "<!DOCTYPE" not in text:
+        return text
+    parser = ET.XMLParser(target=ET.TreeBuilder(insert_comments=True))
     try:
-        values = np.array([float(v) for v in text.split()])
-    except ValueError:
-        raise RobotImportError(f"{where} = {text!r} is not {count} numbers") from None
-    if values.shape != (count,) or not np.all(np.isfinite(values)):
-        raise RobotImportError(f"{where} = {text!r} is not {count} finite numbers")
-    return values
+        root = ET.fromstring(text, parser=parser)
+    except ET.ParseError as err:
+        raise RobotImportError(f"{source} is not XML: {err}") from None
+    return ET.tostring(root, encoding="unicode") + "\n"
 
 
-def _number(element: ET.Element | None, attribute: str, where: str) -> float | None:
-    """One number attribute of ``element``, ``None`` if the element or attribute is absent."""
-    if element is None or element.get(attribute) is None:
-        return None
-    return float(_numbers(element.get(attribute), 1, f"{where} {attribute}")[0])
-
-
-def _origin(element: ET.Element | None, where: str) -> ArrayF:
-    """The 4×4 transform of an ``<origin xyz rpy>`` (identity if absent)."""
-    matrix = np.eye(4)
-    if element is not None:
-        matrix[:3, 3] = _numbers(element.get("xyz"), 3, f"{where} origin xyz")
-        matrix[:3, :3] = rpy_matrix(_numbers(element.get("rpy"), 3, f"{where} origin rpy"))
-    return matrix
+def _check_depth(description: RobotDescription, source: str) -> None:
+    """Refuse a tree with a link more than :data:`MAX_TREE_DEPTH` joints below the root."""
+    stack = [(description.root, 0)]
+    while stack:
+        link, depth = stack.pop()
+        if depth > MAX_TREE_DEPTH:
+            raise RobotImportError(
+                f"{source}: link {link} lies {depth} joints below the root link "
+                f"{description.root}; hexaleg reads trees at most {MAX_TREE_DEPTH} joints deep "
+                "(MAX_TREE_DEPTH)"
+            )
+        stack.extend((joint.child, depth + 1) for joint in description.children.get(link, ()))
 
 
 def _named(element: ET.Element, what: str) -> str:
@@ -229,43 +246,53 @@ def _link(element: ET.Element) -> Link:
 
 
 def _inertial(node: ET.Element, where: str) -> Inertial:
-    origin = _origin(node.find("origin"), where)
-    mass = _number(node.find("mass"), "value", f"{where} mass") or 0.0
+    placement = origin(node.find("origin"), where)
+    mass_node, tensor = node.find("mass"), node.find("inertia")
+    names = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
+    if mass_node is None or mass_node.get("value") is None:
+        raise RobotImportError(f"{where} has no <mass value=...>: URDF requires it in <inertial>")
+    if tensor is None or any(tensor.get(n) is None for n in names):
+        raise RobotImportError(
+            f"{where} has no <inertia> with all of {', '.join(names)}: URDF requires it"
+        )
+    mass = number(mass_node, "value", f"{where} mass") or 0.0
     if mass < 0:
         raise RobotImportError(f"{where} mass = {mass:g} is negative")
-    tensor = node.find("inertia")
-    names = ("ixx", "ixy", "ixz", "iyy", "iyz", "izz")
-    values = [(_number(tensor, n, f"{where} inertia") or 0.0) for n in names]
+    if mass > MAX_MASS:
+        raise RobotImportError(f"{where} mass = {mass:g} is not valid: at most {MAX_MASS:g} [kg]")
+    bound = (MAX_INERTIA, "kg·m²")
+    values = [(number(tensor, n, f"{where} inertia", bound) or 0.0) for n in names]
     ixx, ixy, ixz, iyy, iyz, izz = values
     local = np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
-    rotation = origin[:3, :3]
-    return Inertial(mass, origin[:3, 3].copy(), rotation @ local @ rotation.T)
+    rotation = placement[:3, :3]
+    return Inertial(mass, placement[:3, 3].copy(), rotation @ local @ rotation.T)
 
 
 def _collision(node: ET.Element, where: str) -> Collision | None:
-    origin = _origin(node.find("origin"), where)
+    placement = origin(node.find("origin"), where)
     geometry = node.find("geometry")
     shape = None if geometry is None or len(geometry) == 0 else geometry[0]
     if shape is None:
         return None
     if shape.tag == "sphere":
-        return Collision(origin, "sphere", (_required(shape, "radius", where),))
+        return Collision(placement, "sphere", (_required(shape, "radius", where),))
     if shape.tag == "box":
-        return Collision(origin, "box", tuple(_numbers(shape.get("size"), 3, f"{where} box size")))
+        box = numbers(shape.get("size"), 3, f"{where} box size", bound=LENGTH)
+        return Collision(placement, "box", tuple(float(v) for v in box))
     if shape.tag in ("cylinder", "capsule"):
         size = (_required(shape, "radius", where), _required(shape, "length", where))
-        return Collision(origin, "cylinder" if shape.tag == "cylinder" else "capsule", size)
+        return Collision(placement, "cylinder" if shape.tag == "cylinder" else "capsule", size)
     if shape.tag == "mesh":
         filename = shape.get("filename")
         if not filename:
             raise RobotImportError(f"{where}: a mesh has no filename")
-        scale = tuple(_numbers(shape.get("scale"), 3, f"{where} mesh scale", default=1.0))
-        return Collision(origin, "mesh", scale, filename)
+        scale = numbers(shape.get("scale"), 3, f"{where} mesh scale", 1.0, (MAX_LENGTH, "-"))
+        return Collision(placement, "mesh", tuple(scale), filename)
     return None  # shapes hexaleg does not read (a foot is looked for on the others)
 
 
 def _required(element: ET.Element, attribute: str, where: str) -> float:
-    value = _number(element, attribute, f"{where} {element.tag}")
+    value = number(element, attribute, f"{where} {element.tag}", LENGTH)
     if value is None:
         raise RobotImportError(f"{where}: the {element.tag} has no {attribute}")
     return value
@@ -283,34 +310,63 @@ def _joint(element: ET.Element) -> Joint:
     if parent is None or not parent.get("link") or child is None or not child.get("link"):
         raise RobotImportError(f"{where} lacks a parent or child link")
     axis_node = element.find("axis")
-    axis = _numbers(None if axis_node is None else axis_node.get("xyz"), 3, f"{where} axis")
+    xyz = None if axis_node is None else axis_node.get("xyz")
+    axis = numbers(xyz, 3, f"{where} axis", bound=(MAX_LENGTH, "-"))
     if axis_node is None or axis_node.get("xyz") is None:
         axis = np.array([1.0, 0.0, 0.0])  # the URDF default
     norm = float(np.linalg.norm(axis))
     if kind != "fixed" and norm == 0.0:
         raise RobotImportError(f"{where} has a zero axis")
-    limit = element.find("limit")
-    lower = _number(limit, "lower", where)
-    upper = _number(limit, "upper", where)
-    bounded = kind in ("revolute", "prismatic")
-    if bounded and limit is None:
-        raise RobotImportError(f"{where} is {kind} but has no <limit>")
-    low = (lower or 0.0) if bounded else -math.inf
-    high = (upper or 0.0) if bounded else math.inf
-    if low > high:
-        raise RobotImportError(f"{where} has lower limit {low:g} > upper limit {high:g}")
-    return Joint(
+    low, high, effort, velocity = _limits(element.find("limit"), kind, where)
+    return Joint(  # lower > upper: no limits given on a leg's joint, refused on another
         name=name,
         kind=kind,
         parent=str(parent.get("link")),
         child=str(child.get("link")),
-        origin=_origin(element.find("origin"), where),
+        origin=origin(element.find("origin"), where),
         axis=axis / norm if norm > 0 else axis,
         lower=low,
         upper=high,
-        effort=_number(limit, "effort", where),
-        velocity=_number(limit, "velocity", where),
+        effort=effort,
+        velocity=velocity,
     )
+
+
+RATINGS = {"effort": "N·m or N", "velocity": "rad/s or m/s"}
+"""A ``<limit>``'s two ratings and their units (revolute or prismatic joint)."""
+
+
+def _limits(
+    limit: ET.Element | None, kind: str, where: str
+) -> tuple[float, float, float | None, float | None]:
+    """A joint's position limits [rad or m] (±inf if unbounded) and its two ratings.
+
+    A ``<limit>`` must give ``effort`` and ``velocity`` (the URDF specification; urdfdom
+    refuses it otherwise, whatever the joint's type), neither negative.
+    """
+    bounded = kind in ("revolute", "prismatic")
+    if bounded and limit is None:
+        raise RobotImportError(f"{where} is {kind} but has no <limit>")
+    ratings: list[float | None] = []
+    for attribute, unit in RATINGS.items():
+        value = number(limit, attribute, f"{where} <limit>", (MAX_RATING, unit))
+        if limit is not None and value is None:
+            raise RobotImportError(
+                f"{where} has a <limit> without {attribute}: URDF requires effort and velocity "
+                f"in every <limit> (its rated torque [N·m] and speed [rad/s])"
+            )
+        if value is not None and value < 0:
+            raise RobotImportError(
+                f"{where} <limit> {attribute} = {value:g} is negative: a rating is at least 0 "
+                f"[{unit}]"
+            )
+        ratings.append(value)
+    position = (MAX_POSITION, "rad or m")
+    lower = number(limit, "lower", where, position)
+    upper = number(limit, "upper", where, position)
+    low = (lower or 0.0) if bounded else -math.inf
+    high = (upper or 0.0) if bounded else math.inf
+    return low, high, ratings[0], ratings[1]
 
 
 def _root_link(links: dict[str, Link], joints: dict[str, Joint], source: str) -> str:

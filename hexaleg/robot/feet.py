@@ -9,7 +9,8 @@ The rules, first match wins:
 4. ``box`` / ``cylinder``: the far end of a collision box (the face centre along its
    longest side) or cylinder or capsule (its end along its axis), farthest from the knee;
 5. ``mesh``: the collision mesh's vertex farthest from the knee axis (STL, OBJ, DAE via
-   trimesh, at the file's scale: a mesh drawn in millimetres has scale 0.001).
+   trimesh, at the file's scale: a mesh drawn in millimetres has scale 0.001; a file over
+   :data:`~hexaleg.robot.source.MAX_MESH_BYTES` is refused by its size, never read).
 
 Without any of them the leg is refused, naming the ``foot_offset`` option.
 """
@@ -29,7 +30,8 @@ from hexaleg._typing import ArrayF
 from hexaleg.exceptions import RobotImportError
 from hexaleg.robot.chains import LegChain
 from hexaleg.robot.description import Collision, RobotDescription
-from hexaleg.robot.source import Packages, resolve_resource
+from hexaleg.robot.packages import PackageFolders, missing_packages_note, resolve_resource
+from hexaleg.robot.source import Packages, check_mesh_file
 
 FootRule = Literal["foot_offset", "frame", "sphere", "box", "cylinder", "mesh"]
 """How a leg's foot point was found."""
@@ -103,7 +105,7 @@ def find_foot(
         if found is None:
             found, missing = _mesh(shapes, local, axis, search)
             if found is None:
-                raise RobotImportError(_no_foot(chain, missing))
+                raise RobotImportError(_no_foot(chain, missing, search))
     return found
 
 
@@ -185,7 +187,7 @@ def _mesh(
     for link, shape in shapes:
         if shape.shape != "mesh" or shape.filename is None:
             continue
-        vertices = _vertices(shape.filename, search)
+        vertices = mesh_vertices(shape.filename, search)
         if vertices is None:
             missing.append(shape.filename)
             continue
@@ -200,11 +202,12 @@ def _mesh(
     return Foot("mesh", best[2], _triple(best[1])), missing
 
 
-def _vertices(reference: str, search: FootSearch) -> ArrayF | None:
+def mesh_vertices(reference: str, search: FootSearch) -> ArrayF | None:
     """A mesh file's vertices (N, 3) in its own units, or ``None`` if it cannot be read."""
     path = resolve_resource(reference, search.base_dir, search.packages)
     if path is None:
         return None
+    check_mesh_file(path, reference)  # a mesh over the cap is refused, never read
     import trimesh
 
     try:
@@ -215,8 +218,15 @@ def _vertices(reference: str, search: FootSearch) -> ArrayF | None:
     return vertices if vertices.ndim == 2 and len(vertices) else None
 
 
-def _no_foot(chain: LegChain, missing: list[str]) -> str:
+def _no_foot(chain: LegChain, missing: list[str], search: FootSearch) -> str:
     last = chain.segments[2][0]
+    packages = PackageFolders.of(search.packages, search.base_dir).missing(missing)
+    if packages:
+        return (
+            f"leg from joint {chain.joints[0].name}: no foot found on link {last}, whose "
+            f"mesh {missing[0]} is not found: {missing_packages_note(packages)}; or give "
+            f"foot_offset X Y Z (--foot-offset), the foot in {last}'s frame [m]"
+        )
     unread = f"; its mesh {missing[0]} was not found or not readable" if missing else ""
     return (
         f"leg from joint {chain.joints[0].name}: no foot found on link {last} (no link fixed "

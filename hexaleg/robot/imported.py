@@ -2,8 +2,8 @@
 
 :func:`import_robot` reads the file (:mod:`.source`), its tree (:mod:`.description`),
 its six legs (:mod:`.chains`), each leg's foot (:mod:`.feet`) and general leg
-(:mod:`.legs`), and names the legs as hexaleg does (``lf lm lr rf rm rr``: the three
-legs mounted farthest left are the left ones, each side ordered front to rear).
+(:mod:`.legs`), and names the legs as hexaleg does (``lf lm lr rf rm rr``: by where they
+point around the body, :mod:`.leg_names`).
 Masses are the file's: each segment's links (the joint's child and every link fixed to
 it) are lumped into one rigid body in the segment's link frame.
 """
@@ -11,8 +11,9 @@ it) are lumped into one rigid body in the segment's link frame.
 from __future__ import annotations
 
 import warnings
-from collections.abc import Mapping, Sequence
-from dataclasses import dataclass, field, replace
+import xml.etree.ElementTree as ET
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -21,10 +22,20 @@ import numpy as np
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import RobotImportError, RobotImportWarning
 from hexaleg.layouts import LEG_NAMES
+from hexaleg.robot.body_shape import BodyBox, body_box
 from hexaleg.robot.chains import LegChain, find_chains
-from hexaleg.robot.description import RobotDescription, parse_urdf
+from hexaleg.robot.description import RobotDescription, parse_urdf, plain_urdf
 from hexaleg.robot.feet import FootSearch, find_foot
+from hexaleg.robot.file_defaults import (
+    locked_as_fixed,
+    refuse_reversed,
+    unlimited_joints,
+    warn_locked,
+    warn_unlimited,
+)
+from hexaleg.robot.leg_names import leg_directions, leg_names
 from hexaleg.robot.legs import LegReading, read_leg
+from hexaleg.robot.packages import PackageFolders
 from hexaleg.robot.source import Packages, read_robot_text
 
 if TYPE_CHECKING:
@@ -101,7 +112,8 @@ class ImportedRobot:
         body_mass: The body's links lumped, in the root link's frame.
         changes: The segments changed from the file's (:mod:`hexaleg.robot.resize`),
             empty for the robot as the file draws it.
-        packages: The package folders its ``package://`` references were read with.
+        packages: Where its ``package://`` references are found.
+        body_shape: The box its body's collision geometry gives (:mod:`.body_shape`).
 
     """
 
@@ -112,12 +124,18 @@ class ImportedRobot:
     body: tuple[str, ...]
     body_mass: SegmentMass
     changes: tuple[SegmentChange, ...] = ()
-    packages: Packages = field(default_factory=dict)
+    packages: PackageFolders = field(default_factory=PackageFolders)
+    body_shape: BodyBox | None = None
 
     @property
     def leg_names(self) -> tuple[str, ...]:
         """The legs' names (hexaleg's), in order."""
         return tuple(leg.name for leg in self.legs)
+
+    @property
+    def mass(self) -> float:
+        """The whole robot's mass [kg]: the body's links and every leg's."""
+        return self.body_mass.mass + sum(m.mass for leg in self.legs for m in leg.masses)
 
 
 def import_robot(
@@ -135,12 +153,12 @@ def import_robot(
 
     """
     path = Path(path)
-    text = read_robot_text(path, xacro_args, packages)
+    folders = PackageFolders.of(packages, path.parent)
+    text = read_robot_text(path, xacro_args, folders)
     search = foot or FootSearch()
     if search.base_dir is None:
-        search = FootSearch(search.offset, search.frame, path.parent, packages or search.packages)
-    robot = robot_from_text(text, search, lock, source=path)
-    return replace(robot, packages=dict(packages or search.packages))
+        search = FootSearch(search.offset, search.frame, path.parent, folders)
+    return robot_from_text(text, search, lock, source=path)
 
 
 def robot_from_text(
@@ -149,13 +167,27 @@ def robot_from_text(
     lock: Sequence[str] = (),
     source: Path | None = None,
 ) -> ImportedRobot:
-    """The hexapod of URDF ``text`` (see :func:`import_robot`)."""
+    """The hexapod of URDF ``text`` (see :func:`import_robot`).
+
+    What the file leaves unsaid (:mod:`.file_defaults`): leg joints without limits get
+    hexaleg's, and the joints locked (``lock``, and those beyond a knee that are not the
+    leg's) are made fixed, in the robot's text itself, each said once.
+    """
+    text = plain_urdf(text, str(source) if source else "<string>")
     description = parse_urdf(text, str(source) if source else "<string>")
     chains = find_chains(description, lock)
     frames = description.frames_at_zero()
     search = foot or FootSearch()
     readings = [read_leg(c, frames, find_foot(description, c, frames, search)) for c in chains.legs]
-    names = _leg_names([r.mount[:3, 3] for r in readings])
+    limits = unlimited_joints(list(zip(chains.legs, readings, strict=True)))
+    refuse_reversed(description, [j.name for c in chains.legs for j in c.joints])
+    fixed = [name for name in chains.locked if name not in chains.accessories]
+    if limits or fixed:
+        warn_unlimited(limits)
+        warn_locked(chains.beyond, description)
+        return robot_from_text(locked_as_fixed(text, fixed, limits), search, (), source)
+    reaches = [r.geometry.coxa + r.geometry.femur for r in readings]
+    names = leg_names(leg_directions([r.mount for r in readings], reaches))
     legs = [
         ImportedLeg(name, chain, reading, segment_masses(description, chain, frames))
         for name, chain, reading in zip(names, chains.legs, readings, strict=True)
@@ -163,8 +195,14 @@ def robot_from_text(
     legs.sort(key=lambda leg: LEG_NAMES.index(leg.name))
     body = lumped_mass(description, chains.body, frames, np.eye(4))
     _warn_implausible_inertias(description)
-    packages = dict(search.packages)
-    return ImportedRobot(source, text, description, tuple(legs), chains.body, body, (), packages)
+    packages = PackageFolders.of(search.packages, search.base_dir)
+    roots = np.array([r.mount[:3, 3] for r in readings])
+    shape = body_box(
+        description, chains.body, float(roots[:, 2].mean()), roots, search.base_dir, packages
+    )
+    return ImportedRobot(
+        source, text, description, tuple(legs), chains.body, body, (), packages, shape
+    )
 
 
 def lumped_mass(
@@ -226,14 +264,17 @@ def segment_masses(
     return (a, b, c)
 
 
-def _leg_names(roots: Sequence[ArrayF]) -> list[str]:
-    """Hexaleg's names of legs rooted at ``roots`` (body frame): the 3 leftmost are left."""
-    order = sorted(range(len(roots)), key=lambda i: (-roots[i][1], -roots[i][0]))
-    names = [""] * len(roots)
-    for side, members in (("l", order[:3]), ("r", order[3:])):
-        for position, i in zip("fmr", sorted(members, key=lambda i: -roots[i][0]), strict=True):
-            names[i] = side + position
-    return names
+FOOT_MATCH = 1e-9
+"""A link this close to a leg's foot point is that foot [m]."""
+
+
+def carries_foot(leg: ImportedLeg, link: str, frames: Mapping[str, ArrayF]) -> bool:
+    """Whether ``link`` is fixed beyond ``leg``'s knee at its foot point (``frames`` at q = 0)."""
+    last = leg.chain.segments[2]
+    if link not in last[1:]:
+        return False
+    local = np.linalg.inv(frames[last[0]]) @ frames[link]
+    return bool(np.linalg.norm(local[:3, 3] - np.asarray(leg.reading.foot.point)) < FOOT_MATCH)
 
 
 def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
@@ -243,28 +284,61 @@ def urdf_with_feet(robot: ImportedRobot, prefix: str = "") -> str:
     the file's, so the result moves and weighs like the original, joint for joint.
     ``prefix`` goes before each added link's and joint's name.
 
+    A ``<leg>_foot`` link the file already has on that leg at its foot point (hexaleg's
+    own output, read back) is kept as it is and not added again.
+
     Raises:
-        RobotImportError: The file already has a link or joint of one of those names.
+        RobotImportError: The file already has a link or joint of one of those names that
+            is not that leg's foot.
 
     """
     added = []
+    frames = robot.description.frames_at_zero()
     for leg in robot.legs:
         link, joint = f"{prefix}{leg.name}_foot", f"{prefix}{leg.name}_foot_joint"
+        if carries_foot(leg, link, frames):
+            continue  # the file's own <leg>_foot is this leg's foot: hexaleg's output read back
         for name, kind in ((link, "link"), (joint, "joint")):
             if name in robot.description.links or name in robot.description.joints:
                 raise RobotImportError(
                     f"the file already has a {kind} named {name!r}: hexaleg's foot links "
                     f"are <leg>_foot"
                 )
-        xyz = " ".join(repr(float(v)) for v in leg.reading.foot.point)
-        added.append(
-            f'  <link name="{link}"/>\n'
-            f'  <joint name="{joint}" type="fixed">\n'
-            f'    <parent link="{leg.chain.segments[2][0]}"/>\n'
-            f'    <child link="{link}"/>\n'
-            f'    <origin xyz="{xyz}" rpy="0 0 0"/>\n'
-            f"  </joint>\n"
-        )
-    end = robot.text.rindex("</robot>")
-    feet = "  <!-- hexaleg: each leg's foot point -->\n" + "".join(added)
-    return robot.text[:end] + feet + robot.text[end:]
+        parent = leg.chain.segments[2][0]
+        added += [link_element(link), fixed_joint(joint, parent, link, leg.reading.foot.point)]
+    if not added:
+        return robot.text
+    return with_elements(robot.text, "hexaleg: each leg's foot point", added)
+
+
+def link_element(name: str) -> str:
+    """A massless ``<link>`` named ``name``, as XML text (the name escaped)."""
+    return ET.tostring(ET.Element("link", name=name), encoding="unicode")
+
+
+def fixed_joint(
+    name: str, parent: str, child: str, xyz: Iterable[float], rpy: Iterable[float] = (0, 0, 0)
+) -> str:
+    """A fixed ``<joint>`` placing ``child`` at ``xyz`` [m], ``rpy`` [rad] in ``parent``.
+
+    XML text, every name escaped as XML requires: a file's names may hold ``"``, ``<`` or
+    ``&``, which pasted as they are would end the attribute or add elements.
+    """
+    element = ET.Element("joint", name=name, type="fixed")
+    ET.SubElement(element, "parent", link=parent)
+    ET.SubElement(element, "child", link=child)
+    ET.SubElement(
+        element,
+        "origin",
+        xyz=" ".join(repr(float(v)) for v in xyz),
+        rpy=" ".join(repr(float(v)) for v in rpy),
+    )
+    ET.indent(element, space="  ", level=1)
+    return ET.tostring(element, encoding="unicode")
+
+
+def with_elements(text: str, note: str, elements: Sequence[str]) -> str:
+    """URDF ``text`` with ``elements`` (XML text) added before ``</robot>``, after ``note``."""
+    end = text.rindex("</robot>")
+    added = "".join(f"  {element.strip()}\n" for element in elements)
+    return f"{text[:end]}  <!-- {note} -->\n{added}{text[end:]}"

@@ -15,7 +15,7 @@ added so that every analysis written for hexaleg's model reads it unchanged:
   are given on θ (the file's torque times s).
 
 Each leg stands at its own nominal posture: the design's nominal angles moved inside that
-leg's file limits (:func:`~hexaleg.robot.robot_design.nominal_posture`); the body stands
+leg's file limits, or the nearest that stands (:mod:`~hexaleg.robot.standing`); the body stands
 level at the height that puts the feet, on average, on the ground.
 """
 
@@ -33,23 +33,32 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENTS, HexapodDesign
-from hexaleg.exceptions import RobotImportError, RobotImportWarning
+from hexaleg.exceptions import RobotImportError, RobotImportWarning, one_line
 from hexaleg.leg_geometry import SEGMENT_NAMES, LegGeometry
-from hexaleg.robot.geometry_model import GeometryKind, file_geometry, with_resolved_meshes
-from hexaleg.robot.imported import ImportedRobot, urdf_with_feet
+from hexaleg.robot.geometry_model import (
+    GeometryKind,
+    file_geometry,
+    missing_meshes_note,
+    with_resolved_meshes,
+)
+from hexaleg.robot.imported import (
+    ImportedRobot,
+    fixed_joint,
+    link_element,
+    urdf_with_feet,
+    with_elements,
+)
 from hexaleg.robot.inertia import set_armature
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel, _LegIndex
 from hexaleg.robot.model import root_frame_name as _root
-from hexaleg.robot.robot_design import nominal_posture, robot_design
+from hexaleg.robot.robot_design import NO_MASSES, body_depth, mount_plane, robot_design
+from hexaleg.robot.standing import LEVEL_FEET, standing_posture
 
 PREFIX = "hexaleg_"
 """Before the name of every link, joint and frame hexaleg adds to a robot file."""
 
 BODY_LINK = PREFIX + "body"
 """The link added as the body frame of an imported robot's model."""
-
-LEVEL_FEET = 1e-3
-"""Largest spread of the feet's heights at the nominal posture, body level [m]."""
 
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
@@ -69,17 +78,14 @@ def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
             f"the file already has a link or joint named {taken[0]!r}: hexaleg adds it"
         )
     added = [
-        f'  <link name="{BODY_LINK}"/>\n',
+        link_element(BODY_LINK),
         _fixed(f"{BODY_LINK}_joint", BODY_LINK, robot.description.root, _shift(-plane)),
     ]
     for leg in robot.legs:
         link = f"{PREFIX}{leg.name}_root"
-        added.append(f'  <link name="{link}"/>\n')
         mount = _shift(-plane) @ leg.reading.mount
-        added.append(_fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount))
-    end = text.rindex("</robot>")
-    note = "  <!-- hexaleg: body and leg-root frames -->\n"
-    text = text[:end] + note + "".join(added) + text[end:]
+        added += [link_element(link), _fixed(PREFIX + _root(leg.name), BODY_LINK, link, mount)]
+    text = with_elements(text, "hexaleg: body and leg-root frames", added)
     joints = robot.description.joints
     continuous = [
         n for leg in robot.legs for n in leg.joint_names if joints[n].kind == "continuous"
@@ -143,10 +149,34 @@ def _design_field(leg: str, segment: str) -> str:
     return SEGMENTS[SEGMENT_NAMES.index(segment)]
 
 
+def has_masses(model: HexapodModel) -> bool:
+    """Whether any link has a mass (a kinematics-only file's do not; the template's do)."""
+    return float(pin.computeTotalMass(model.model)) > 0.0
+
+
+def robot_mass(model: HexapodModel) -> float:
+    """The whole robot's mass [kg]: every link of its model.
+
+    Raises:
+        RobotImportError: A robot file without masses (:func:`has_masses`): statics,
+            walking and simulation need them, kinematics do not.
+
+    """
+    mass = float(pin.computeTotalMass(model.model))
+    if mass <= 0.0:
+        source = model.robot.source if isinstance(model, ImportedHexapodModel) else None
+        raise RobotImportError(
+            f"{source or 'the robot file'} gives no masses (no link has an <inertial> with a "
+            f"mass): statics, walking and simulation need them; give each link an <inertial> "
+            f"with its mass and inertia (workspace, manipulability, flexibility, view, urdf "
+            f"and design show need none)"
+        )
+    return mass
+
+
 def robot_plane(robot: ImportedRobot, design: HexapodDesign) -> float:
     """Height of ``design``'s body frame above the file's root link [m] (the mounts' plane)."""
-    first = robot.legs[0]
-    return float(first.reading.mount[2, 3]) - design.legs[0].z
+    return mount_plane(robot) - design.legs[0].z
 
 
 class ImportedHexapodModel(HexapodModel):
@@ -168,21 +198,26 @@ class ImportedHexapodModel(HexapodModel):
         design = _design(robot, base)
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
-        model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        try:
+            model = pin.buildModelFromXML(self._text, pin.JointModelFreeFlyer(), ROOT_JOINT)
+        except (ValueError, RuntimeError) as err:  # what the file's checks did not foresee
+            message = f"Pinocchio cannot read the robot's URDF: {one_line(err)}"
+            raise RobotImportError(message) from None
         legs = {leg.name: _LegIndex(model, leg.name, leg.joint_names, PREFIX) for leg in robot.legs}
         set_armature(model, [leg.v for leg in legs.values()], design)
         super().__init__(design, _model=model, _legs=legs, _base=BODY_LINK)
         self.leg_names = robot.leg_names
         self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}
-        self._nominal = {
-            leg.name: nominal_posture(leg, design.nominal_angles)["joint_angles"]
-            for leg in robot.legs
-        }
+        standing = standing_posture(robot, design.nominal_angles, body_depth(robot))
+        self._nominal = dict(zip(robot.leg_names, standing.angles, strict=True))
         self._height = self._standing_height()
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
-        self.body_box = np.array([design.body_length, design.body_width, design.body_height]) / 2
+        shape = robot.body_shape
+        box = [design.body_length, design.body_width, design.body_height]
+        self.body_box = np.array(box) / 2 if shape is None else shape.half_extents.copy()
 
     general_legs = True
+    own_default_gait = True  # a robot file's: the template's gait is a 1 m leg's
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg, as read from the file."""
@@ -202,9 +237,9 @@ class ImportedHexapodModel(HexapodModel):
         if self._collision is None:
             geometry, missing = self._file_geometry("collision")
             if missing:
+                what = "those parts are not checked for contact"
                 warnings.warn(
-                    f"{len(missing)} collision mesh(es) not found ({missing[0]} first): those "
-                    f"parts are not checked for contact (give --package NAME=DIR)",
+                    missing_meshes_note(missing, self.robot.packages, what),
                     RobotImportWarning,
                     stacklevel=2,
                 )
@@ -223,6 +258,11 @@ class ImportedHexapodModel(HexapodModel):
     def missing_meshes(self) -> tuple[str, ...]:
         """The visual mesh references whose files were not found, each once (no mesh read)."""
         return with_resolved_meshes(self._text, "visual", self._folder, self.robot.packages)[1]
+
+    def missing_meshes_note(self, what: str) -> str | None:
+        """One sentence on the visual meshes not found (``what`` that means); ``None``: none."""
+        missing = self.missing_meshes
+        return missing_meshes_note(missing, self.robot.packages, what) if missing else None
 
     @property
     def _folder(self) -> Path | None:
@@ -290,6 +330,8 @@ def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
         design = robot_design(robot, base)
     for warning in caught:
         message = str(warning.message)
+        if message.startswith(NO_MASSES):
+            continue  # what needs masses refuses (robot_mass), in one line of its own
         if message.startswith("the file's body weighs"):
             message = (
                 f"the file's body weighs {robot.body_mass.mass:.3g} kg: the statics use the "
@@ -306,12 +348,5 @@ def _shift(z: float) -> ArrayF:
 
 
 def _fixed(name: str, parent: str, child: str, placement: ArrayF) -> str:
-    xyz = " ".join(repr(float(v)) for v in placement[:3, 3])
-    rpy = " ".join(repr(float(v)) for v in pin.rpy.matrixToRpy(placement[:3, :3]))
-    return (
-        f'  <joint name="{name}" type="fixed">\n'
-        f'    <parent link="{parent}"/>\n'
-        f'    <child link="{child}"/>\n'
-        f'    <origin xyz="{xyz}" rpy="{rpy}"/>\n'
-        f"  </joint>\n"
-    )
+    rpy = pin.rpy.matrixToRpy(placement[:3, :3])
+    return fixed_joint(name, parent, child, placement[:3, 3], rpy)

@@ -3,8 +3,10 @@
 The Xacro templates receive these numbers and only place them; the sweeps' fast path
 (:meth:`~hexaleg.robot.model.HexapodModel.with_design`) builds its Pinocchio inertias
 from the same ones. Links are solids of uniform density: the coxa, femur and tibia are
-cylinders along +x of their link frame (the tibia thinner, :data:`TIBIA_RADIUS_RATIO`),
-the foot a small sphere at the tibia tip, the body a box or a cylinder about z.
+cylinders along +x of their link frame (the tibia thinner, :data:`TIBIA_RADIUS_RATIO`) of
+the design's ``link_linear_density``, or with a ``[structure]`` the segment's round tube
+of its material (:mod:`hexaleg.leg_structure`), the foot a small sphere at the tibia tip,
+the body a box or a cylinder about z.
 
 The design's actuators and battery are point masses on the links that carry them
 (:func:`with_points`): each joint's actuator at that joint's origin, on the link before
@@ -101,18 +103,52 @@ def with_points(
     )
 
 
-def rod(length: float, radius: float, density: float) -> LinkInertial:
-    """A solid cylinder from the link origin along +x.
+def rod(length: float, radius: float, density: float, inner_radius: float = 0.0) -> LinkInertial:
+    """A cylinder from the link origin along +x, solid or a tube of uniform wall.
+
+    About its centre a tube of mass m, radii R and r and length l has the moment
+    m·(R² + r²)/2 about its axis and m·(3·(R² + r²) + l²)/12 across it (r = 0: solid).
 
     Args:
-        length: Its length [m].
-        radius: Its radius [m].
+        length: Its length l [m].
+        radius: Its (outer) radius R [m].
         density: Its mass per length [kg/m].
+        inner_radius: Its bore's radius r [m] (0: a solid rod).
 
     """
     mass = density * length
-    side = mass * (3 * radius * radius + length * length) / 12
-    return LinkInertial(mass, length / 2, (mass * radius * radius / 2, side, side))
+    squares = radius * radius + inner_radius * inner_radius
+    side = mass * (3 * squares + length * length) / 12
+    return LinkInertial(mass, length / 2, (mass * squares / 2, side, side))
+
+
+def segment_radii(design: HexapodDesign) -> tuple[float, float, float]:
+    """Each segment's radius as drawn (coxa, femur, tibia) [m].
+
+    The outer radius of its ``[structure]`` tube; without one, ``link_radius`` (the tibia
+    :data:`TIBIA_RADIUS_RATIO` of it).
+    """
+    tubes = (None, None, None) if design.structure is None else design.structure.tubes
+    plain = (design.link_radius, design.link_radius, TIBIA_RADIUS_RATIO * design.link_radius)
+    coxa, femur, tibia = (
+        radius if tube is None else tube.outer_diameter / 2
+        for tube, radius in zip(tubes, plain, strict=True)
+    )
+    return (coxa, femur, tibia)
+
+
+def segment_rods(design: HexapodDesign) -> tuple[LinkInertial, ...]:
+    """The coxa's, femur's and tibia's own inertials (without the actuators they carry)."""
+    structure = design.structure
+    tubes = (None, None, None) if structure is None else structure.tubes
+    rods = []
+    for length, radius, tube in zip(design.lengths, segment_radii(design), tubes, strict=True):
+        if tube is None or structure is None:
+            rods.append(rod(length, radius, design.link_linear_density))
+        else:
+            density = tube.linear_density(structure.material)
+            rods.append(rod(length, radius, density, tube.inner_diameter / 2))
+    return tuple(rods)
 
 
 def sphere(mass: float, radius: float) -> LinkInertial:
@@ -126,13 +162,13 @@ def leg_inertials(design: HexapodDesign) -> dict[str, LinkInertial]:
 
     The coxa carries the hip's actuator at its end, the femur the knee's.
     """
-    radius, density = design.link_radius, design.link_linear_density
     hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
+    coxa, femur, tibia = segment_rods(design)
     return {
-        "coxa": with_points(rod(design.l1, radius, density), [(hip, (design.l1, 0.0, 0.0))]),
-        "femur": with_points(rod(design.l2, radius, density), [(knee, (design.l2, 0.0, 0.0))]),
-        "tibia": rod(design.l3, TIBIA_RADIUS_RATIO * radius, density),
-        "foot": sphere(FOOT_MASS, radius),
+        "coxa": with_points(coxa, [(hip, (design.l1, 0.0, 0.0))]),
+        "femur": with_points(femur, [(knee, (design.l2, 0.0, 0.0))]),
+        "tibia": tibia,
+        "foot": sphere(FOOT_MASS, design.link_radius),
     }
 
 

@@ -20,6 +20,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import as_written
 from hexaleg.robot.inertia import (
     body_inertial,
     leg_inertials,
@@ -127,7 +128,7 @@ class LegModel:
 
 
 DERIVED_FIELDS = frozenset(
-    ("l1", "l2", "l3", "rated_torques", "rated_speeds", "nominal_angles", "actuators", "battery")
+    "l1 l2 l3 rated_torques rated_speeds nominal_angles actuators battery structure".split()
 )
 """The design fields :meth:`HexapodModel.with_design` sets on a copy of a model."""
 
@@ -168,6 +169,7 @@ class HexapodModel:
         self._collision: pin.GeometryModel | None = None
 
     general_legs = False  # whether the legs are a robot file's (:meth:`leg_geometry`)
+    own_default_gait = False  # a default gait sized to it (:mod:`hexaleg.gait.defaults`)
 
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
@@ -216,7 +218,8 @@ class HexapodModel:
             if f.name not in DERIVED_FIELDS
         ):
             raise ModelError(
-                "with_design changes only segment lengths, ratings, posture, actuators, battery"
+                "with_design changes only segment lengths, ratings, posture, actuators, battery, "
+                "structure"
             )
         model = pin.Model(self.model)
         model.inertias[model.getJointId(ROOT_JOINT)] = pinocchio_inertia(body_inertial(design))
@@ -231,9 +234,8 @@ class HexapodModel:
         for index in self._legs.values():
             model.jointPlacements[index.joints[1]] = hip
             model.jointPlacements[index.joints[2]] = knee
-            for joint, inertia, effort, speed in zip(
-                index.joints, inertias, design.rated_torques, design.rated_speeds, strict=True
-            ):
+            ratings = as_written(design.rated_torques), as_written(design.rated_speeds)
+            for joint, inertia, effort, speed in zip(index.joints, inertias, *ratings, strict=True):
                 model.inertias[joint] = inertia
                 model.effortLimit[model.idx_vs[joint]] = effort
                 model.velocityLimit[model.idx_vs[joint]] = speed

@@ -15,22 +15,33 @@ from __future__ import annotations
 
 import math
 import warnings
-from dataclasses import replace
 from typing import Any
 
 import numpy as np
 
-from hexaleg.design import HexapodDesign
+from hexaleg.design import BODY_RANGE, HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.layouts import LegMount
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.file_defaults import missing_ratings
 from hexaleg.robot.imported import ImportedLeg, ImportedRobot
+from hexaleg.robot.standing import standing_posture
 
 MIN_BODY_MASS = 1e-3
 """A lighter body is a placeholder (a ``<mass value="0.0001"/>``), not a body [kg]."""
 
-SAME_LENGTH = 1e-9
-"""Segments that differ by less than this are one length [m]."""
+SEGMENTS_DIFFER = 1e-4
+"""Legs whose segments differ by more than this are said to differ [m]: a CAD export's
+round-off (micrometres) is not a different leg."""
+
+LEVEL_MOUNTS = 1e-3
+"""Leg roots within this of one height are on one plane, the design's [m]; their offsets
+from it are reported, the model keeps each at its own height."""
+
+ROUND_OFF = 1e-10
+"""Mount heights that differ by less than this are equal, not reported [m]."""
+
+NO_MASSES = "the file gives no masses"
+"""How a warning about a robot file without any mass (a kinematics-only file) begins."""
 
 
 def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> HexapodDesign:
@@ -46,48 +57,97 @@ def robot_design(robot: ImportedRobot, base: HexapodDesign | None = None) -> Hex
     """
     base = HexapodDesign() if base is None else base
     first = robot.legs[0].reading.geometry.lengths
-    for leg in robot.legs[1:]:
-        lengths = leg.reading.geometry.lengths
-        if max(abs(a - b) for a, b in zip(lengths, first, strict=True)) > SAME_LENGTH:
-            warnings.warn(
-                f"leg {leg.name}'s segments {_mm(lengths)} differ from leg "
-                f"{robot.legs[0].name}'s {_mm(first)}: the design's l1 l2 l3 are leg "
-                f"{robot.legs[0].name}'s; the whole robot's analyses take each leg's own",
-                RobotImportWarning,
-                stacklevel=2,
-            )
-            break
-    mounts = [_mount(leg) for leg in robot.legs]
-    plane = sum(m.z for m in mounts) / len(mounts)
+    _warn_different_legs(robot)
+    mounts = level_mounts(robot)
     hip = robot.legs[0].reading.geometry.hip_height
     changes: dict[str, Any] = {
-        "l1": max(first[0], 1e-9),
+        "l1": first[0],
         "l2": first[1],
         "l3": first[2],
         "layout": "custom",
-        "mounts": tuple(replace(m, z=m.z - plane) for m in mounts),
-        "body_length": 2 * max(abs(m.x) for m in mounts),
-        "body_width": 2 * max(abs(m.y) for m in mounts),
+        "mounts": mounts,
+        **_body_extent(robot, mounts),
         "body_height": min(base.body_height, max(first[2] - hip, 1e-3)),
     }
     given = _given(base)
-    if "body_mass" in given:
-        pass  # the design file's own body mass, over the file's
-    elif robot.body_mass.mass >= MIN_BODY_MASS:
-        changes["body_mass"] = robot.body_mass.mass
-    else:
-        warnings.warn(
-            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
-            f"body_mass {base.body_mass:g} kg",
-            RobotImportWarning,
-            stacklevel=2,
-        )
+    changes.update(_body_mass(robot, base, given))
+    return base.replace(**changes, **file_ratings(robot, given))
+
+
+def file_ratings(robot: ImportedRobot, given: set[str]) -> dict[str, Any]:
+    """The ratings the robot file gives (``None``: not given), for those ``given`` does not.
+
+    A joint's ``effort`` or ``velocity`` of 0 or absent is no rating (an exporter's
+    default): the design's rating of that kind is then ``None`` — never a number from
+    nowhere — and one warning names the joints and how to give the ratings.
+    """
     efforts, speeds = robot.legs[0].ratings
-    if "rated_torques" not in given and all(e is not None and e > 0 for e in efforts):
-        changes["rated_torques"] = tuple(float(e) for e in efforts if e is not None)
-    if "rated_speeds" not in given and all(v is not None and v > 0 for v in speeds):
-        changes["rated_speeds"] = tuple(float(v) for v in speeds if v is not None)
-    return base.replace(**changes)
+    unrated = missing_ratings([leg.chain for leg in robot.legs])
+    ratings: dict[str, Any] = {}
+    for field, values, missing in zip(RATINGS, (efforts, speeds), unrated, strict=True):
+        if field in given:
+            continue
+        ratings[field] = None if missing else tuple(float(v or 0.0) for v in values)
+    said = [
+        (field, names)
+        for field, names in zip(RATINGS, unrated, strict=True)
+        if names and field not in given
+    ]
+    if said:
+        _warn_unrated(said)
+    return ratings
+
+
+RATINGS = ("rated_torques", "rated_speeds")
+"""The design's rating fields, read from each URDF joint's ``effort`` and ``velocity``."""
+
+
+def _warn_unrated(missing: list[tuple[str, tuple[str, ...]]]) -> None:
+    """One warning: which joints have no rating, what needs one, how to give them."""
+    attribute = {"rated_torques": "effort", "rated_speeds": "velocity"}
+    said = "; ".join(
+        f"joints {_listed(names)} have no {attribute[field]}" for field, names in missing
+    )
+    fields = " and ".join(field for field, _ in missing)
+    options = " and ".join(
+        "--" + field.replace("_", "-") + " ROOT HIP KNEE" for field, _ in missing
+    )
+    warnings.warn(
+        f"{said} (0 or absent in the file): the payload capacities, the max speed and the "
+        f"checks against ratings need a rating; give them as {fields} in the design file or "
+        f"{options}",
+        RobotImportWarning,
+        stacklevel=4,
+    )
+
+
+def _listed(names: tuple[str, ...], most: int = 4) -> str:
+    more = f" and {len(names) - most} more" if len(names) > most else ""
+    return ", ".join(names[:most]) + more
+
+
+def _body_mass(robot: ImportedRobot, base: HexapodDesign, given: set[str]) -> dict[str, float]:
+    """The design's ``body_mass`` [kg]: the file's body's, else (with a warning) the design's.
+
+    ``base``'s own (``given``) goes over the file's; a body lighter than
+    :data:`MIN_BODY_MASS` is a placeholder, and a file without any mass is kinematics only.
+    """
+    if "body_mass" in given:
+        return {}  # the design file's own body mass, over the file's
+    if robot.body_mass.mass >= MIN_BODY_MASS:
+        return {"body_mass": robot.body_mass.mass}
+    if robot.mass <= 0.0:
+        message = (
+            f"{NO_MASSES}: kinematics only (statics, walking and simulation are refused); "
+            f"body_mass {base.body_mass:g} kg is the design's placeholder"
+        )
+    else:
+        message = (
+            f"the file's body weighs {robot.body_mass.mass:.3g} kg: kept the design's "
+            f"body_mass {base.body_mass:g} kg"
+        )
+    warnings.warn(message, RobotImportWarning, stacklevel=3)
+    return {}
 
 
 OVERRIDDEN = ("body_mass", "rated_torques", "rated_speeds")
@@ -104,30 +164,96 @@ def _given(base: HexapodDesign) -> set[str]:
     return {name for name in OVERRIDDEN if getattr(base, name) != getattr(default, name)}
 
 
-def _mount(leg: ImportedLeg) -> LegMount:
-    x, y, z = (float(v) for v in leg.reading.mount[:3, 3])
+def _body_extent(robot: ImportedRobot, mounts: tuple[LegMount, ...]) -> dict[str, float]:
+    """The design's body length and width [m]: the file's body box (else the roots' span)."""
+    if robot.body_shape is not None:
+        length, width, _ = robot.body_shape.size
+    else:
+        length, width = 2 * max(abs(m.x) for m in mounts), 2 * max(abs(m.y) for m in mounts)
+    return {"body_length": max(length, BODY_RANGE[0]), "body_width": max(width, BODY_RANGE[0])}
+
+
+def _warn_different_legs(robot: ImportedRobot) -> None:
+    """Warn once if a leg's segments differ from the first leg's by more than 0.1 mm."""
+    first = robot.legs[0].reading.geometry.lengths
+    for leg in robot.legs[1:]:
+        lengths = leg.reading.geometry.lengths
+        apart = max(abs(a - b) for a, b in zip(lengths, first, strict=True))
+        if apart > SEGMENTS_DIFFER:
+            digits = max(2, math.ceil(-math.log10(1000 * apart)) + 1)
+            warnings.warn(
+                f"leg {leg.name}'s segments {_mm(lengths, digits)} differ from leg "
+                f"{robot.legs[0].name}'s {_mm(first, digits)}: the design's l1 l2 l3 are leg "
+                f"{robot.legs[0].name}'s; the whole robot's analyses take each leg's own",
+                RobotImportWarning,
+                stacklevel=3,
+            )
+            return
+
+
+def mount_plane(robot: ImportedRobot) -> float:
+    """The mean height of the leg roots in the root link's frame [m]: the design's body plane."""
+    return float(np.mean([leg.reading.mount[2, 3] for leg in robot.legs]))
+
+
+def level_mounts(robot: ImportedRobot) -> tuple[LegMount, ...]:
+    """The six mounts in the design's body frame: on the roots' mean plane (z = 0).
+
+    Roots at different heights are said so, each leg's offset from the mean named: within
+    :data:`LEVEL_MOUNTS` they are one plane up to the file's round-off; farther apart the
+    feet must still stand level (the model keeps every root where the file puts it).
+    """
+    plane = mount_plane(robot)
+    offsets = {leg.name: float(leg.reading.mount[2, 3]) - plane for leg in robot.legs}
+    spread = max(offsets.values()) - min(offsets.values())
+    if spread > ROUND_OFF:
+        unit, scale = ("µm", 1e6) if spread < LEVEL_MOUNTS else ("mm", 1e3)
+        listed = ", ".join(f"{name} {scale * dz:+.3g}" for name, dz in offsets.items())
+        within = (
+            f"within {1000 * LEVEL_MOUNTS:g} mm"
+            if spread <= LEVEL_MOUNTS
+            else f"more than {1000 * LEVEL_MOUNTS:g} mm apart (the feet must still stand level)"
+        )
+        warnings.warn(
+            f"the leg roots' heights differ by {scale * spread:.3g} {unit}, {within}: their "
+            f"mean is the body's plane, each leg's offset from it ({unit}): {listed}",
+            RobotImportWarning,
+            stacklevel=3,
+        )
+    return tuple(_mount(leg, 0.0) for leg in robot.legs)
+
+
+def _mount(leg: ImportedLeg, z: float) -> LegMount:
+    x, y, _ = (float(v) for v in leg.reading.mount[:3, 3])
     return LegMount(leg.name, x, y, z, leg.reading.mount_yaw)
 
 
-def _mm(lengths: tuple[float, ...]) -> str:
-    return "(" + ", ".join(f"{1000 * v:.2f}" for v in lengths) + ") mm"
+def _mm(lengths: tuple[float, ...], digits: int = 2) -> str:
+    return "(" + ", ".join(f"{1000 * v:.{digits}f}" for v in lengths) + ") mm"
 
 
-def nominal_posture(leg: ImportedLeg, nominal: tuple[float, float, float]) -> dict[str, Any]:
-    """The design's nominal angles on ``leg``, moved inside the file's limits where they are not.
+def nominal_postures(robot: ImportedRobot, nominal: tuple[float, float, float]) -> list[dict]:
+    """Each leg's nominal posture: the design's angles where they stand (:mod:`.standing`).
 
-    Returns ``joint_angles`` (hexaleg's θ [rad]), ``urdf_joint_angles`` (the file's q [rad])
-    and ``moved``, the joints whose nominal angle lay outside the file's limits.
+    Per leg ``joint_angles`` (hexaleg's θ [rad]), ``urdf_joint_angles`` (the file's q
+    [rad]), ``moved_into_limits`` (the joints whose design angle lay outside the leg's
+    limits) and ``chosen`` (why another posture was chosen; ``None`` if the design's stands).
     """
-    lower, upper = leg.theta_limits
-    wanted = np.asarray(nominal, dtype=float)
-    theta = np.clip(wanted, lower, upper)
-    moved = [LEG_JOINTS[i] for i in range(3) if theta[i] != wanted[i]]
-    return {
-        "joint_angles": _list(theta),
-        "urdf_joint_angles": _list(leg.reading.joint_map.to_file(theta)),
-        "moved_into_limits": moved,
-    }
+    standing = standing_posture(robot, nominal, body_depth(robot))
+    return [
+        {
+            "joint_angles": _list(theta),
+            "urdf_joint_angles": _list(leg.reading.joint_map.to_file(theta)),
+            "moved_into_limits": list(moved),
+            "chosen": standing.chosen,
+        }
+        for leg, theta, moved in zip(robot.legs, standing.angles, standing.moved, strict=True)
+    ]
+
+
+def body_depth(robot: ImportedRobot) -> float:
+    """How far the body's box reaches below the roots' plane [m] (0 without one)."""
+    return 0.0 if robot.body_shape is None else float(robot.body_shape.half_extents[2])
 
 
 def robot_record(
@@ -136,16 +262,17 @@ def robot_record(
     """What was read from the robot file, JSON-ready (SI units, radians).
 
     With the design's ``nominal`` angles, each leg also gives its nominal posture in
-    hexaleg's angles and in the file's (:func:`nominal_posture`).
+    hexaleg's angles and in the file's (:func:`nominal_postures`).
     """
     legs = [leg_record(leg) for leg in robot.legs]
     if nominal is not None:
-        for record, leg in zip(legs, robot.legs, strict=True):
-            record["nominal"] = nominal_posture(leg, nominal)
+        for record, posture in zip(legs, nominal_postures(robot, nominal), strict=True):
+            record["nominal"] = posture
     return {
         "source": None if robot.source is None else str(robot.source),
         "name": robot.description.name,
         "body_links": list(robot.body),
+        "body_box": None if robot.body_shape is None else robot.body_shape.as_dict(),
         "body_mass": robot.body_mass.mass,
         "legs": legs,
         "changed_segments": [change.as_dict() for change in robot.changes],

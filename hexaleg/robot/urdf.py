@@ -21,8 +21,10 @@ from hexaleg._io import write_text
 from hexaleg._version import __version__
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import TemplateError
+from hexaleg.leg_structure import LEG_SEGMENTS
 from hexaleg.limits import JOINT_NAMES, LEG_JOINTS
-from hexaleg.robot.inertia import TIBIA_RADIUS_RATIO, body_inertial, leg_inertials
+from hexaleg.ratings import as_written
+from hexaleg.robot.inertia import body_inertial, leg_inertials, segment_radii
 
 HEXAPOD_TEMPLATE = "hexapod.urdf.xacro"
 LEG_TEMPLATE = "leg.urdf.xacro"
@@ -105,12 +107,13 @@ def _common_arguments(design: HexapodDesign) -> dict[str, str]:
         "l2": design.l2,
         "l3": design.l3,
         "link_radius": design.link_radius,
-        "tibia_radius": TIBIA_RADIUS_RATIO * design.link_radius,
     }
+    for segment, radius in zip(LEG_SEGMENTS, segment_radii(design), strict=True):
+        numbers[f"{segment}_radius"] = radius
     for joint in JOINT_NAMES:
         numbers[f"{joint}_lower"], numbers[f"{joint}_upper"] = getattr(limits, joint)
     for joint, effort, speed in zip(
-        LEG_JOINTS, design.rated_torques, design.rated_speeds, strict=True
+        LEG_JOINTS, as_written(design.rated_torques), as_written(design.rated_speeds), strict=True
     ):
         numbers[f"{joint}_effort"], numbers[f"{joint}_velocity"] = effort, speed
     for link, inertial in leg_inertials(design).items():

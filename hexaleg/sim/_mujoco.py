@@ -1,10 +1,11 @@
-"""The one place that imports MuJoCo: an optional extra, named in the error when missing."""
+"""The one place that imports MuJoCo (an optional extra, named when missing), its errors worded."""
 
 from __future__ import annotations
 
+import re
 from typing import Any
 
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, RobotImportError, one_line
 
 EXTRA = "hexaleg[sim]"
 """The optional extra that installs MuJoCo."""
@@ -17,3 +18,29 @@ def require_mujoco() -> Any:
     except ImportError:
         raise HexalegError(f"MuJoCo is not installed: pip install '{EXTRA}' to simulate") from None
     return mujoco
+
+
+def compiled(spec: Any) -> Any:
+    """``spec`` compiled (a link without mass, an inertia no body has: one line, the link named).
+
+    Raises:
+        RobotImportError: MuJoCo refuses the model.
+
+    """
+    try:
+        return spec.compile()
+    except ValueError as err:
+        raise refusal(err) from None
+
+
+def refusal(err: Exception) -> RobotImportError:
+    """MuJoCo's error as one line: ``MuJoCo cannot simulate link 'x': <its reason>``."""
+    lines = str(err).strip().splitlines() or [type(err).__name__]
+    reason = lines[0].removeprefix("Error:").split("; use '")[0]  # its compiler's options: not ours
+    named = re.search(r"Element name '([^']+)'", str(err))
+    if named is None:
+        return RobotImportError(f"MuJoCo cannot simulate the robot: {one_line(Exception(reason))}")
+    return RobotImportError(
+        f"MuJoCo cannot simulate link {named[1]!r}: {one_line(Exception(reason))} (its "
+        "<inertial> in the robot file)"
+    )

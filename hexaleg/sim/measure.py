@@ -184,7 +184,7 @@ def measure_walk(
     nominal_height: float,
     *,
     legs: Sequence[str],
-    rated_torques: npt.ArrayLike,
+    rated_torques: npt.ArrayLike | None,
 ) -> WalkMetrics:
     """The measures of a walk of ``cycles`` periods, over the cycles after the first.
 
@@ -219,13 +219,14 @@ class WalkMeter:
         nominal_height: float,
         *,
         legs: Sequence[str],
-        rated_torques: npt.ArrayLike,
+        rated_torques: npt.ArrayLike | None,
     ) -> None:
         planned = np.asarray(velocity, dtype=float)[:2]
         self._speed = float(np.linalg.norm(planned))
         self._heading = planned / self._speed if self._speed > 0 else np.array([1.0, 0.0])
         self._period, self._nominal_height = period, nominal_height
-        self._legs, self._rated = tuple(legs), np.asarray(rated_torques, dtype=float)
+        self._legs = tuple(legs)
+        self._rated = None if rated_torques is None else np.asarray(rated_torques, dtype=float)
         self._first: ArrayF | None = None  # body position at the first measured step
         self._last: ArrayF | None = None
         self._tilt = np.zeros(2)

@@ -42,9 +42,10 @@ import pinocchio as pin
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
-from hexaleg.sim._mujoco import require_mujoco
+from hexaleg.sim._mujoco import compiled, refusal, require_mujoco
 from hexaleg.sim.feet import (
     contact_body,
     contact_geom_name,
@@ -52,7 +53,7 @@ from hexaleg.sim.feet import (
     frame_name,
     leg_joint_names,
 )
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, Payload, check_friction
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 
 TIMESTEP = 1e-3
 """Simulation time step [s]."""
@@ -194,7 +195,7 @@ def robot_spec(
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
     urdf = without_shapes(model.urdf) if model.general_legs else model.urdf
-    spec = mujoco.MjSpec.from_string(urdf)
+    spec = _parsed(mujoco, urdf)
     spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
     spec.option.timestep = timestep
     spec.option.gravity = [0.0, 0.0, -GRAVITY]
@@ -231,6 +232,14 @@ def robot_spec(
     _add_payload(spec, model, payload or Payload())
     _add_servos(spec, model, gains)
     return spec
+
+
+def _parsed(mujoco: Any, urdf: str) -> Any:
+    """MuJoCo's spec of URDF text; its refusal in one line naming the link."""
+    try:
+        return mujoco.MjSpec.from_string(urdf)
+    except ValueError as err:
+        raise refusal(err) from None
 
 
 def _add_payload(spec: Any, model: HexapodModel, payload: Payload) -> None:
@@ -300,7 +309,7 @@ class SimModel:
         self.payload = payload or Payload()
         self.gains = ServoGains.from_bandwidth(model) if gains is None else gains
         self.spec = robot_spec(model, self.payload, friction, self.gains, timestep)
-        self.mj = self.spec.compile()
+        self.mj = compiled(self.spec)
 
         def ids(kind: Any, names: list[list[str]] | list[str]) -> npt.NDArray[np.int_]:
             found = np.vectorize(lambda n: mujoco.mj_name2id(self.mj, kind, n))(names)

@@ -16,7 +16,8 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, StanceSet
 from hexaleg.design import HexapodDesign
-from hexaleg.numerics.bracketing import IndexArray, first_crossings
+from hexaleg.exceptions import HexalegError
+from hexaleg.numerics.bracketing import IndexArray, StartBroken, first_crossings
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.collisions import SelfCollision, collision_limited
 from hexaleg.stance.constraints import (
@@ -24,6 +25,7 @@ from hexaleg.stance.constraints import (
     DIRECTIONS,
     TRANSLATIONS,
     Cause,
+    broken_at_nominal,
     constraint_labels,
 )
 from hexaleg.stance.extremes import Extreme, FlexibilityResult, pose_extremes
@@ -65,8 +67,14 @@ def axis_locked_extremes_many(
         return margins_of(kernel, displacements, design_of[direction])
 
     t_max = np.concatenate([search_ranges(g) for g in geometries])
-    crossings = first_crossings(margins, t_max)
     labels = constraint_labels(geometries[0].legs)
+    try:
+        crossings = first_crossings(margins, t_max)
+    except StartBroken as err:  # say what, where, and by how much
+        which = broken_at_nominal(
+            geometries[err.direction // count], labels[err.column], err.margin
+        )
+        raise HexalegError(f"the nominal stance breaks a stance constraint: {which}") from None
     results = []
     for i, geometry in enumerate(geometries):
         mine = range(i * count, (i + 1) * count)

@@ -114,3 +114,28 @@ def stance_margins(
     positions = np.ascontiguousarray(np.broadcast_to(translation, (*shape, 3)).reshape(-1, 3))
     values = margins_of_poses(kernel_geometry([geometry], smooth), rotations, positions)
     return values.reshape(*shape, values.shape[-1])
+
+
+def broken_at_nominal(geometry: StanceGeometry, cause: Cause, margin: float) -> str:
+    """What the nominal stance breaks, in words, from its ``cause`` and (negative) ``margin``.
+
+    The constraint, the leg and the joint or body part, and the value against its limit.
+    """
+    if cause.kind == "joint" and cause.leg is not None and cause.joint is not None:
+        leg, joint = geometry.legs.index(cause.leg), LEG_JOINTS.index(cause.joint)
+        if cause.bound == "lower":
+            limit = float(geometry.joint_lower[leg, joint])
+            value, side = limit + margin, "below its lower limit"
+        else:
+            limit = float(geometry.joint_upper[leg, joint])
+            value, side = limit - margin, "above its upper limit"
+        return (
+            f"leg {cause.leg}'s {cause.joint} joint at {value:.6g} rad, {side} {limit:.6g} rad "
+            f"(θ, hexaleg's angles)"
+        )
+    if cause.kind == "reach":
+        how = "farther than its reach" if cause.bound == "outer" else "nearer than its reach"
+        return f"leg {cause.leg}'s foothold {1000 * -margin:.3g} mm {how} (the foot is not on it)"
+    if cause.kind == "ground":
+        return f"the body's lowest point {1000 * -margin:.3g} mm below the ground (limit: 0)"
+    return f"{cause} (margin {margin:.6g})"

@@ -41,11 +41,11 @@ __all__ = [
 __getattr__, __dir__ = lazy_exports(__name__)
 
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
+    from hexaleg.gravity import GRAVITY
     from hexaleg.stance.configurations import extreme_configurations
     from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
     from hexaleg.statics.forces import (
         DEFAULT_FRICTION,
-        GRAVITY,
         Payload,
         Statics,
         StaticState,

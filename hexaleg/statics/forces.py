@@ -1,8 +1,8 @@
 """Foot forces and joint torques holding a pose, with an optional payload.
 
-Gravity g = 9.81 m/s² along −z of the ground frame (tilted on a slope). Masses and
-centres of mass come from the URDF through Pinocchio, plus an optional payload, a
-point mass on the body. The stance feet's forces f_i [N] (ground frame) balance
+Gravity g (:data:`~hexaleg.gravity.GRAVITY`) along −z of the ground frame (tilted on a
+slope). Masses and centres of mass come from the URDF through Pinocchio, plus an optional
+payload, a point mass on the body. The stance feet's forces f_i [N] (ground frame) balance
 gravity: Σ f_i + M·g = 0 and Σ (p_i − c) × f_i = 0 about the whole centre of mass c.
 Two distributions:
 
@@ -32,13 +32,14 @@ from hexaleg._checks import require_in_range, require_numbers
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import HexalegError
+from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import torque_scale
+from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.ratings import check_safety_factor
 from hexaleg.statics.support import SupportPolygon, ground_point
 
-GRAVITY = 9.81
-"""Gravitational acceleration [m/s²]."""
 DEFAULT_FRICTION = 0.6
 """Default friction coefficient μ between feet and ground [-]."""
 FRICTION_RANGE = (1e-3, 10.0)
@@ -177,11 +178,11 @@ class Statics:
         self.payload = payload or Payload()
         self.friction = friction
         self.safety_factor = check_safety_factor(safety_factor)
-        self.rated = np.array(model.design.rated_torques) / self.safety_factor
+        self.rated = torque_scale(model.design.rated_torques) / self.safety_factor
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ
-        self._robot_mass = float(pin.computeTotalMass(model.model))
+        self._robot_mass = robot_mass(model)
         self._support: SupportPolygon | None = None
         self._support_feet = np.zeros((len(self.legs), 2))
         self._downward = np.array([0.0, 0.0, -GRAVITY])

@@ -16,7 +16,8 @@ from typing import Any
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
-from hexaleg.statics.forces import DEFAULT_FRICTION, GRAVITY, check_friction
+from hexaleg.gravity import GRAVITY
+from hexaleg.statics.forces import DEFAULT_FRICTION, check_friction
 from hexaleg.statics.slopes import slope_gravity
 
 __all__ = ["LEVEL", "MAX_SLOPE", "Ground"]

@@ -17,6 +17,7 @@ import numpy as np
 from hexaleg._typing import Distribution, FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
@@ -26,6 +27,8 @@ from hexaleg.statics.capacity import PayloadCapacity, payload_capacity
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics, StaticState
 from hexaleg.statics.ratings import OverRating, over_rating
 from hexaleg.statics.slopes import SlopeLimit, slope_limits
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.standing import check_standing, standing_cases
 
 
 @dataclass(frozen=True)
@@ -54,8 +57,12 @@ class LoadsAnalysis:
         nominal: The statics at the nominal stance.
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
-        capacity: The largest payload at the payload's point (torques within rating / F).
+        capacity: The largest payload at the payload's point (torques within rating / F);
+            ``None`` when the design gives no rated torques (it needs a rating).
         mode: Which flexibility extremes (axis-locked or free-coupled).
+        structure: The legs' tubes checked at the nominal stance, the extremes and the
+            slope (:mod:`hexaleg.structure`); ``None`` without a ``[structure]`` whose
+            tubes are all given.
         safety_factor: F [-]: every torque is held within its rating / F.
 
     """
@@ -67,8 +74,9 @@ class LoadsAnalysis:
     nominal: StaticState
     extremes: tuple[ExtremeLoads, ...]
     slopes: tuple[SlopeLimit, ...]
-    capacity: PayloadCapacity
+    capacity: PayloadCapacity | None
     mode: FlexibilityMode
+    structure: StructureCheck | None = None
     safety_factor: float = 1.0
 
     @property
@@ -94,17 +102,22 @@ class LoadsAnalysis:
         return min(self.slopes, key=lambda s: s.max_slope)
 
     def study_columns(self) -> dict[str, float | str]:
-        """The design's columns in a study table (N·m, m, rad, kg)."""
+        """The design's columns in a study table (N·m, m, rad) beside its metrics.
+
+        The payload capacity and the stability margin are the study's metrics; what limits
+        the capacity is a column here (:data:`~hexaleg.ratings.NEEDS_RATING` without rated
+        torques).
+        """
         nominal, overall = self.nominal.peak_torques(), self.peak_torques
         columns: dict[str, float | str] = {}
         for joint in LEG_JOINTS:
             columns[f"peak_{joint}_torque_nominal"] = nominal[joint]
             columns[f"peak_{joint}_torque"] = overall[joint]
         return columns | {
-            "stability_margin": self.nominal.stability_margin,
             "worst_max_slope": self.worst_slope.max_slope,
-            "payload_capacity": self.capacity.mass,
-            "payload_limited_by": str(self.capacity.limited_by),
+            "payload_limited_by": NEEDS_RATING
+            if self.capacity is None
+            else str(self.capacity.limited_by),
         }
 
     @property
@@ -155,12 +168,15 @@ class LoadsAnalysis:
                 }
                 for s in self.slopes
             ],
-            "payload_capacity": {
+            "payload_capacity": None
+            if self.capacity is None
+            else {
                 "mass": self.capacity.mass,
                 "limited_by": self.capacity.limited_by.to_dict(),
                 "tips_over": self.tips_over,
             },
             "over_rating": [o.to_dict() for o in self.over_rating],
+            "structure": None if self.structure is None else self.structure.to_dict(),
             "units": {
                 "force": "N, ground frame",
                 "torque": "N·m",
@@ -198,6 +214,7 @@ def analyze_loads(
     distribution: Distribution = "min-norm",
     mode: FlexibilityMode = "axis",
     model: HexapodModel | None = None,
+    slope: float = 0.0,
     safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
     """The statics of ``design``: nominal stance, twelve extremes, slopes, payload capacity.
@@ -210,12 +227,13 @@ def analyze_loads(
         distribution: ``"min-norm"`` or ``"min-torque"``.
         mode: The extremes of axis-locked or free-coupled flexibility.
         model: The design's Pinocchio model, if already built.
+        slope: The slope [rad] the legs' structure is also checked on, every heading.
         safety_factor: F ≥ 1 [-]: torques held within rating / F (flags and capacity).
 
     """
     model = HexapodModel(design) if model is None else model
     result = flexibility(design, mode, stance_legs(model, stance), model)
-    return loads_at_extremes(model, result, payload, friction, distribution, safety_factor)
+    return loads_at_extremes(model, result, payload, friction, distribution, slope, safety_factor)
 
 
 def loads_at_extremes(
@@ -224,11 +242,14 @@ def loads_at_extremes(
     payload: Payload | None = None,
     friction: float = DEFAULT_FRICTION,
     distribution: Distribution = "min-norm",
+    slope: float = 0.0,
     safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
     """The statics of a flexibility result's design, at its nominal stance and extremes.
 
-    ``safety_factor`` F divides every rated torque (the flags and the payload capacity).
+    With a ``[structure]`` whose tubes are given, the legs' tubes are checked there too,
+    and on ``slope`` [rad] in every heading. ``safety_factor`` F divides every rated torque
+    (the flags and the payload capacity).
     """
     design, legs, mode = result.design, result.legs, result.mode
     statics = Statics(model, legs, payload, friction, safety_factor)
@@ -247,7 +268,27 @@ def loads_at_extremes(
         nominal=nominal,
         extremes=extremes,
         slopes=slope_limits(statics.support, nominal.com, friction),
-        capacity=payload_capacity(statics, q, distribution, at=nominal),
+        capacity=None
+        if design.rated_torques is None
+        else payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
+        structure=_structure(model, result, statics, distribution, slope),
         safety_factor=statics.safety_factor,
     )
+
+
+def _structure(
+    model: HexapodModel,
+    result: FlexibilityResult,
+    statics: Statics,
+    distribution: Distribution,
+    slope: float,
+) -> StructureCheck | None:
+    """The legs' tubes checked in the standing cases, if the design gives them all."""
+    structure = model.design.structure
+    if structure is None or any(tube is None for tube in structure.tubes):
+        return None
+    cases = standing_cases(
+        model, result.legs, result.extremes, statics.payload, slope, statics.friction, distribution
+    )
+    return check_standing(model, cases)

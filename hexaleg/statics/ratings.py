@@ -16,6 +16,7 @@ import numpy as np
 import numpy.typing as npt
 
 from hexaleg._checks import require_in_range
+from hexaleg._typing import ArrayF
 from hexaleg.limits import LEG_JOINTS
 
 SAFETY_FACTOR_RANGE = (1.0, 100.0)
@@ -110,7 +111,7 @@ def at_times(times: npt.ArrayLike) -> list[str]:
 def over_rating(
     legs: Sequence[str],
     values: npt.ArrayLike,
-    rated: npt.ArrayLike,
+    rated: npt.ArrayLike | None,
     places: Sequence[str],
     quantity: Quantity = "torque",
     safety_factor: float = 1.0,
@@ -120,7 +121,8 @@ def over_rating(
     Args:
         legs: Leg names (N,).
         values: Torques or speeds (K, N, 3) at K places [N·m or rad/s].
-        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s].
+        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s]; ``None``: not given, so
+            none is known to be exceeded (the results that need them say so).
         places: What each of the K places is called (``"nominal"``, ``"t = 0.42 s"``).
         quantity: ``"torque"`` or ``"speed"``.
         safety_factor: F [-]: each rating is held at rating / F.
@@ -129,6 +131,8 @@ def over_rating(
         One entry per joint over its rating, in leg then joint order.
 
     """
+    if rated is None:
+        return ()
     magnitude = np.abs(np.asarray(values, dtype=float))  # (K, N, 3)
     worst = magnitude.argmax(axis=0)  # (N, 3)
     where = [[places[k] for k in row] for row in worst]
@@ -138,7 +142,7 @@ def over_rating(
 def over_rating_at(
     legs: Sequence[str],
     peaks: npt.ArrayLike,
-    rated: npt.ArrayLike,
+    rated: npt.ArrayLike | None,
     where: Sequence[Sequence[str]],
     quantity: Quantity = "torque",
     safety_factor: float = 1.0,
@@ -148,12 +152,14 @@ def over_rating_at(
     Args:
         legs: Leg names (N,).
         peaks: Each joint's largest |value| (N, 3) [N·m or rad/s].
-        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s].
+        rated: Ratings (root, hip, knee) (3,) [N·m or rad/s]; ``None``: not given.
         where: Where each joint's peak occurs (N lists of 3).
         quantity: ``"torque"`` or ``"speed"``.
         safety_factor: F [-]: each rating is held at rating / F.
 
     """
+    if rated is None:
+        return ()
     peaks = np.asarray(peaks, dtype=float)
     held = np.asarray(rated, dtype=float) / safety_factor
     return tuple(
@@ -164,3 +170,16 @@ def over_rating_at(
         for j, joint in enumerate(LEG_JOINTS)
         if peaks[i, j] > held[j]
     )
+
+
+def rating_use(values: npt.ArrayLike, rated: npt.ArrayLike | None) -> ArrayF:
+    """|value| / rating (..., 3) [-] of each joint (root, hip, knee), for colouring.
+
+    Without ratings (``None``: not given) each joint type's |value| over its own largest:
+    the colours then say where the torque peaks, not how near a rating it is.
+    """
+    magnitude = np.abs(np.asarray(values, dtype=float))
+    if rated is None:
+        peaks = magnitude.reshape(-1, 3).max(axis=0)
+        return magnitude / np.where(peaks > 0, peaks, 1.0)
+    return magnitude / np.asarray(rated, dtype=float)

@@ -10,7 +10,7 @@ import numpy as np
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
-from hexaleg.statics.forces import GRAVITY
+from hexaleg.gravity import GRAVITY
 from hexaleg.statics.support import SupportPolygon
 
 SLOPE_HEADINGS: tuple[float, ...] = (0.0, math.pi / 2, math.pi, -math.pi / 2)

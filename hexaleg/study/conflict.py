@@ -23,19 +23,25 @@ from typing import Any
 
 from hexaleg.cause import Cause
 from hexaleg.design import SEGMENTS, HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirement_specs import (
+    LEG_LENGTH,
+    MIN_COXA,
+    PAYLOAD,
+    REQUIREMENTS,
+    SLOPE,
+)
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import DEFAULT_FRICTION
-from hexaleg.study.evaluation import Evaluation
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome
-from hexaleg.study.requirement_specs import REQUIREMENTS
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import SearchSpace, segment_floor
 
 LEG_RELAXATION = 2.0
 """How much longer than required a relaxed leg may grow [-]."""
 
-COUPLED = {"payload": "slope", "slope": "payload"}
+COUPLED = {PAYLOAD.name: SLOPE.name, SLOPE.name: PAYLOAD.name}
 """Requirements that one condition states twice: relaxing one relaxes the other."""
 
 Search = Callable[[SearchSpace, Goal], SearchOutcome]
@@ -111,27 +117,26 @@ def find_conflict(space: SearchSpace, goal: Goal, least: Evaluation, search: Sea
         if relaxation is not None:
             relaxations.append(relaxation)
     names = tuple(r.name for r in relaxations) or tuple(c.name for c in checks if not c.met)
-    metrics = [REQUIREMENTS[n].metric for n in names]
-    causes = [least.causes[m] for m in metrics if m in least.causes]
+    found = (least.causes[REQUIREMENTS[n].metric] for n in names)
+    causes = [cause for cause in found if cause is not None]
     text = describe(names, goal.requirements, causes, space.base, relaxations)
     return Conflict(names, tuple(relaxations), text)
 
 
 def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxation | None:
     """The nearest value of requirement ``name`` that the others allow (None: they do not)."""
-    requirements = goal.requirements
-    required = float(getattr(requirements, name))
-    spec = REQUIREMENTS[name]
-    objective = Objective(spec.metric, "maximize" if spec.sense == "at least" else "minimize")
-    if name == "leg_length":
+    requirements, spec = goal.requirements, REQUIREMENTS[name]
+    required = float(requirements.required(spec) or 0.0)
+    objective = Objective(spec.metric.name, "maximize" if spec.sense == "at least" else "minimize")
+    if spec is LEG_LENGTH:
         longest = min(LEG_RELAXATION * required, spec.bounds[1])
-        relaxed_goal = Goal(requirements.replace(leg_length=longest), objective)
+        relaxed_goal = Goal(requirements.replace(**{name: longest}), objective)
         widened = space
         for segment in SEGMENTS:
             widened = widened.widened(segment, upper=longest)
-    elif name == "min_coxa":
-        relaxed_goal = Goal(requirements.replace(min_coxa=None), objective)
-        floor = segment_floor(float(requirements.leg_length or space.upper.max()))
+    elif spec is MIN_COXA:
+        relaxed_goal = Goal(requirements.replace(**{name: None}), objective)
+        floor = segment_floor(requirements.required(LEG_LENGTH) or float(space.upper.max()))
         widened = space.widened("l1", lower=floor)
     else:
         relaxed = (name, COUPLED[name]) if COUPLED.get(name) in requirements.given else (name,)
@@ -139,7 +144,7 @@ def _relax(space: SearchSpace, goal: Goal, name: str, search: Search) -> Relaxat
     outcome = search(widened, relaxed_goal)
     if not outcome.feasible:
         return None
-    value = float(outcome.evaluation.values[spec.metric])
+    value = outcome.evaluation.metrics.value(spec.metric)
     return Relaxation(name, required, value, tuple(float(v) for v in outcome.x))
 
 
@@ -156,16 +161,15 @@ def describe(
     150 N·m; 26 kg or 17° can".
     """
     listed = [
-        f"{REQUIREMENTS[n].spec.label} {short_value(n, float(getattr(requirements, n)))}"
-        for n in names
+        f"{spec.metric.label} {short_value(n, float(requirements.required(spec) or 0.0))}"
+        for n, spec in ((n, REQUIREMENTS[n]) for n in names)
     ]
     joined = listed[0] if len(listed) == 1 else ", ".join(listed[:-1]) + " and " + listed[-1]
     verb = {1: "cannot hold", 2: "cannot both hold"}.get(len(listed), "cannot all hold")
     because = _because(causes, design)
-    if not because and "leg_length" not in names:
-        because = (
-            f"within a leg length of {short_value('leg_length', requirements.leg_length or 0)}"
-        )
+    if not because and LEG_LENGTH.name not in names:
+        longest = requirements.required(LEG_LENGTH) or 0.0
+        because = f"within a leg length of {short_value(LEG_LENGTH.name, longest)}"
     sentence = f"{joined} {verb}" + (f" {because}" if because else "")
     if not relaxations:
         return sentence + "; no one of them relaxed alone is enough"
@@ -177,10 +181,10 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
     """What binds, in words: "with hip motors of 150 N·m", "without tipping"."""
     phrases: list[str] = []
     for cause in causes:
-        if cause.kind == "torque" and cause.joint is not None:
+        if cause.kind == "torque" and cause.joint is not None and design.rated_torques:
             rated = design.rated_torques[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} N·m"
-        elif cause.kind == "speed" and cause.joint is not None:
+        elif cause.kind == "speed" and cause.joint is not None and design.rated_speeds:
             rated = design.rated_speeds[LEG_JOINTS.index(cause.joint)]
             phrase = f"with {cause.joint} motors of {rated:g} rad/s"
         elif cause.kind in ("tip", "stability"):
@@ -198,4 +202,4 @@ def _because(causes: Sequence[Cause], design: HexapodDesign) -> str:
 
 def short_value(name: str, value: float) -> str:
     """A requirement's value in a sentence: slopes in degrees, three significant digits."""
-    return REQUIREMENTS[name].spec.short(value)
+    return REQUIREMENTS[name].metric.short(value)

@@ -29,6 +29,10 @@ from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
 from hexaleg.design import SEGMENTS, HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.requirement_specs import LEG_LENGTH, MIN_COXA, RANGE_KM
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
 from hexaleg.robot.model import HexapodModel
@@ -37,11 +41,8 @@ from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.conflict import Conflict, find_conflict
-from hexaleg.study.evaluation import Evaluation
 from hexaleg.study.executors import local_pool
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import SearchOutcome, SearchSettings, design_at, run_search
-from hexaleg.study.requirements import RequirementCheck, Requirements
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (
@@ -126,9 +127,12 @@ class CheckedDesign:
 
     def objective(self, objective: Objective) -> dict[str, Any]:
         """The objective's name, sense, value and unit, JSON-ready."""
-        value = self.evaluation.values.get(objective.name)
-        return {"name": objective.name, "sense": objective.sense, "value": value,
-                "unit": objective.spec.unit}  # fmt: skip
+        return {
+            "name": objective.name,
+            "sense": objective.sense,
+            "value": self.evaluation.metrics[objective.spec],
+            "unit": objective.spec.unit,
+        }
 
 
 def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
@@ -174,7 +178,7 @@ class DecideResult:
 
         l1 at a ``min_coxa`` bound is left out: that requirement's check says it binds.
         """
-        coxa = self.requirements.min_coxa
+        coxa = self.requirements.required(MIN_COXA)
         return tuple(
             at
             for at in bounds_reached(self.variables, self.best.design)
@@ -309,9 +313,16 @@ def _space(
         typed = next(f"{v.name}={v.typed}" for v in free if v.name not in SEGMENTS)
         raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
-        design, float(requirements.leg_length or 0), requirements.min_coxa, free_posture, free,
-        actuators, requirements.range_km is not None, ratio_ranges, robot,
-    )  # fmt: skip
+        design,
+        requirements.required(LEG_LENGTH) or 0.0,
+        requirements.required(MIN_COXA),
+        free_posture,
+        free,
+        actuators,
+        requirements.required(RANGE_KM) is not None,
+        ratio_ranges,
+        robot,
+    )
     settings.generations(len(space.variables))
     return space
 

@@ -48,11 +48,11 @@ from scipy.stats import qmc
 from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.goal import Goal
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Evaluation
-from hexaleg.study.goal import Goal
 from hexaleg.study.progress import Progress
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
@@ -247,8 +247,10 @@ class _Evaluator:
                 found[x] = known
         missing = list(dict.fromkeys(x for x in keys if x not in found))
         self.bar.update(len(keys) - len(missing))
-        tasks = [_Task(self.space, self.goal, tuple(missing[i : i + CHUNK]))
-                 for i in range(0, len(missing), CHUNK)]  # fmt: skip
+        tasks = [
+            _Task(self.space, self.goal, tuple(missing[i : i + CHUNK]))
+            for i in range(0, len(missing), CHUNK)
+        ]
         if self.executor is None:
             results = [evaluate_points(task) for task in tasks]
         else:
@@ -287,7 +289,7 @@ def objective_and_constraints(goal: Goal, evaluation: Evaluation) -> tuple[float
         return INVALID, np.full(count, INVALID)
     checks = {c.name: c for c in goal.checks(evaluation)}
     g = [-checks[name].margin / max(abs(checks[name].required), 1e-9) for name in goal.constraints]
-    cost = goal.objective.cost(float(evaluation.values[goal.objective.name]))
+    cost = goal.objective.cost(evaluation.metrics.value(goal.objective.spec))
     return cost, np.array(g or [0.0])
 
 

@@ -15,7 +15,8 @@ import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
-from hexaleg.study.ranking import RANKED_METRICS, Metrics, ranking_scores
+from hexaleg.evaluation.metrics import METRICS, Metrics
+from hexaleg.study.ranking import ranked_columns, ranking_scores
 from hexaleg.study.recommendation import DecisionOptions, Recommendation, candidate_mask
 from hexaleg.swing.manipulability import AverageManipulabilityMap
 from hexaleg.swing.workspace import improved_area_closed_form
@@ -46,7 +47,7 @@ def pareto_table(grid: pd.DataFrame, reference: Metrics) -> pd.DataFrame:
             :func:`~hexaleg.study.ranking.ranking_scores` against them.
 
     """
-    front = grid[non_dominated(grid[list(RANKED_METRICS)].to_numpy(dtype=float))].copy()
+    front = grid[non_dominated(grid[ranked_columns()].to_numpy(dtype=float))].copy()
     front["score"] = ranking_scores(front, reference)
     return front.sort_values("score", ascending=False, kind="stable").reset_index(drop=True)
 
@@ -74,7 +75,7 @@ def pareto_front(
 def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> pd.DataFrame:
     """Every design of the study with the four ranked metrics."""
     grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
-    grid["improved_area"] = improved_area_closed_form(
+    grid[METRICS.improved_area.name] = improved_area_closed_form(
         grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)
     )
     w_a = {
@@ -82,12 +83,11 @@ def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> p
         for i, r1 in enumerate(average_map.l1_ratios)
         for r3, value in zip(average_map.l3_ratios, average_map.improved[i], strict=True)
     }
-    grid["average_manipulability"] = [
+    grid[METRICS.average_manipulability.name] = [
         w_a.get((r1, r3), np.nan) for r1, r3 in zip(grid["l1_ratio"], grid["l3_ratio"], strict=True)
     ]
-    grid["fb"] = study["fb"] if "fb" in study else np.nan
-    for column in ("walking_payload_capacity", "payload_capacity"):
-        grid[column] = study[column] if column in study else np.nan
+    for spec in (METRICS.fb, METRICS.walking_payload_capacity, METRICS.payload_capacity):
+        grid[spec.name] = study[spec.name] if spec.name in study else np.nan
     if "walks" in study:  # a leg that cannot walk the gait has no score: off the front
-        grid.loc[~study["walks"].astype(bool), list(RANKED_METRICS)] = np.nan
+        grid.loc[~study["walks"].astype(bool), ranked_columns()] = np.nan
     return grid

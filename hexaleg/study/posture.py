@@ -3,8 +3,8 @@
 A leg's lengths are judged at their best use. :func:`best_posture` keeps the design's
 segments, body and motors and searches its nominal posture θ = (0, θ2, θ3), θ2 and θ3
 within the design's stance limits, for the design that meets every requirement of a
-:class:`~hexaleg.study.goal.Goal` with the best objective (default: the largest walking
-payload capacity), measured by the one :func:`~hexaleg.study.evaluation.evaluate` every
+:class:`~hexaleg.evaluation.goal.Goal` with the best objective (default: the largest walking
+payload capacity), measured by the one :func:`~hexaleg.evaluation.evaluate.evaluate` every
 decision uses. The answer is a :class:`~hexaleg.study.decide.DecideResult` whose free
 variables are θ2 and θ3, so that it is printed, checked and re-measured (from its own URDF)
 exactly as ``decide`` prints its best; the design as posed is "yours".
@@ -39,19 +39,20 @@ from scipy.optimize import direct, minimize
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign, require_design
+from hexaleg.evaluation.goal import Goal, Objective
+from hexaleg.evaluation.metrics import METRICS
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.decide import CheckedDesign, DecideResult
-from hexaleg.study.goal import Goal, Objective
 from hexaleg.study.optimize import INVALID, objective_and_constraints
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.search_space import POSTURE, FreeVariable
 
 __all__ = ["DEFAULT_OBJECTIVE", "best_posture", "posture_figures", "posture_variables"]
 
-DEFAULT_OBJECTIVE = Objective("walking_payload_capacity")
+DEFAULT_OBJECTIVE = Objective(METRICS.walking_payload_capacity.name)
 """What a posture makes best unless told otherwise: the payload carried walking."""
 
 GLOBAL_EVALUATIONS = 100

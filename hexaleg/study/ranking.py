@@ -20,21 +20,19 @@ The recommendation (:mod:`hexaleg.study.recommendation`), the Pareto front's ord
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-
 import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
+from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 
-RANKED_METRICS = (
-    "improved_area", "average_manipulability", "fb", "walking_payload_capacity",
-)  # fmt: skip
-"""The metrics a score combines [m², m³, -, kg] (:data:`~.metrics.METRICS`), every one
-larger-is-better."""
-
-Metrics = Mapping[str, float]
-"""One design's value of each of :data:`RANKED_METRICS`."""
+RANKED_METRICS: tuple[MetricSpec, ...] = (
+    METRICS.improved_area,
+    METRICS.average_manipulability,
+    METRICS.fb,
+    METRICS.walking_payload_capacity,
+)
+"""The metrics a score combines [m², m³, -, kg], every one larger-is-better."""
 
 RANKING_RULE = (
     "a design's score is the geometric mean of its improved workspace area (eq 16), "
@@ -50,9 +48,15 @@ RANKING_RULE = (
 """The rule in one sentence, for reports."""
 
 
+def ranked_values(metrics: Metrics) -> ArrayF:
+    """One design's :data:`RANKED_METRICS` (M,), in that order (NaN where one is missing)."""
+    return np.array([metrics.value(spec) for spec in RANKED_METRICS])
+
+
 def relative_values(values: ArrayF, reference: Metrics) -> ArrayF:
     """Each metric of ``values`` (..., M) over the reference's (a non-positive one: 1 unit)."""
-    scale = np.array([reference[m] if reference[m] > 0 else 1.0 for m in RANKED_METRICS])
+    scale = ranked_values(reference)
+    scale = np.where(scale > 0, scale, 1.0)
     relative: ArrayF = np.asarray(values, dtype=float) / scale
     return relative
 
@@ -62,8 +66,8 @@ def scores(values: ArrayF, reference: Metrics) -> ArrayF:
 
     Args:
         values: The :data:`RANKED_METRICS` of each design (..., M), last axis in that order.
-        reference: The user's design's value of each metric; a non-positive one is
-            replaced by 1 in its unit (scores scale, the order stays).
+        reference: The user's design's metrics; a non-positive one is replaced by 1 in its
+            unit (scores scale, the order stays).
 
     """
     relative = relative_values(values, reference)
@@ -76,7 +80,7 @@ def scores(values: ArrayF, reference: Metrics) -> ArrayF:
 
 def score(metrics: Metrics, reference: Metrics) -> float:
     """One design's score by :data:`RANKING_RULE` (NaN if a metric is missing)."""
-    return float(scores(np.array([metrics[m] for m in RANKED_METRICS]), reference))
+    return float(scores(ranked_values(metrics), reference))
 
 
 def ranking_scores(table: pd.DataFrame, reference: Metrics) -> pd.Series:
@@ -84,8 +88,13 @@ def ranking_scores(table: pd.DataFrame, reference: Metrics) -> pd.Series:
 
     Args:
         table: One row per design, a column for each of :data:`RANKED_METRICS`.
-        reference: The user's design's value of each metric.
+        reference: The user's design's metrics.
 
     """
-    values = table[list(RANKED_METRICS)].to_numpy(dtype=float)
+    values = table[ranked_columns()].to_numpy(dtype=float)
     return pd.Series(scores(values, reference), index=table.index, name="score")
+
+
+def ranked_columns() -> list[str]:
+    """The table columns of :data:`RANKED_METRICS`: their names."""
+    return [spec.name for spec in RANKED_METRICS]

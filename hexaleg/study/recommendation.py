@@ -21,12 +21,19 @@ from scipy import optimize
 
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, evaluate
+from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate
-from hexaleg.study.ranking import RANKED_METRICS, Metrics, relative_values, score, scores
+from hexaleg.study.ranking import (
+    RANKED_METRICS,
+    ranked_values,
+    relative_values,
+    score,
+    scores,
+)
 from hexaleg.swing.manipulability import AverageManipulabilityMap
 from hexaleg.swing.workspace import improved_area_closed_form
 
@@ -47,8 +54,8 @@ class Recommendation:
         l1_ratio: Recommended coxa ratio [-].
         l3_ratio: Recommended tibia ratio at that coxa ratio, refined between grid points [-].
         l3_band: The tibia ratios keeping ≥ 97 % of its score: of the grid, and the refined one [-].
-        reference: The user's design's metrics: what every score is relative to.
-        metrics: The recommended design's metrics [m², m³, -, kg].
+        reference: The user's design's ranked metrics: what every score is relative to.
+        metrics: The recommended design's ranked metrics [m², m³, -, kg].
         score: Its score [-] (the user's design: 1).
         peaks: Per coxa ratio, the tibia ratio at which each metric and the score peak.
         scores: Every grid design's metrics, each relative to the user's, and score.
@@ -58,8 +65,8 @@ class Recommendation:
     l1_ratio: float
     l3_ratio: float
     l3_band: tuple[float, float]
-    reference: dict[str, float]
-    metrics: dict[str, float]
+    reference: Metrics
+    metrics: Metrics
     score: float
     peaks: pd.DataFrame
     scores: pd.DataFrame
@@ -107,7 +114,7 @@ def your_metrics(
     found = evaluate(design, RANKED_METRICS, options.conditions, model=model, template=template)
     if found.error:
         raise HexalegError(f"your design cannot be ranked: {found.error}")
-    return dict(found.values)
+    return found.metrics
 
 
 def ratio_metrics(
@@ -126,14 +133,27 @@ def ratio_metrics(
     try:
         design = base.with_ratios(l1_ratio, l3_ratio)
     except HexalegError:
-        return dict.fromkeys(RANKED_METRICS, float("nan"))
+        return _unranked()
     found = evaluate(
-        design, RANKED_METRICS, options.conditions, model=model.with_design(design),
+        design,
+        RANKED_METRICS,
+        options.conditions,
+        model=model.with_design(design),
         template=template,
-    )  # fmt: skip
+    )
     if found.error or not found.walks:  # a leg that cannot walk has no score
-        return dict.fromkeys(RANKED_METRICS, float("nan"))
-    return dict(found.values)
+        return _unranked()
+    return found.metrics
+
+
+def _unranked() -> Metrics:
+    """Every ranked metric NaN: a design without a score."""
+    return _ranked(np.full(len(RANKED_METRICS), np.nan))
+
+
+def _ranked(values: ArrayF) -> Metrics:
+    """The ranked metrics of ``values`` (M,), in :data:`RANKED_METRICS` order."""
+    return Metrics(**{spec.name: float(v) for spec, v in zip(RANKED_METRICS, values, strict=True)})
 
 
 def grid_recommendation(
@@ -159,16 +179,16 @@ def grid_recommendation(
     r1, r3 = average_map.l1_ratios, average_map.l3_ratios
     total = design.leg_length
     l2 = (1 - r1[:, None] - r3[None, :]) * total
+    area = np.where(l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan)
+    fb, walking = METRICS.fb, METRICS.walking_payload_capacity
     maps = {
-        "improved_area": np.where(
-            l2 > 0, improved_area_closed_form(l2, r3[None, :] * total), np.nan
-        ),
-        "average_manipulability": average_map.improved,
-        "fb": _study_map(study, "fb", r1, len(r3)),
-        "walking_payload_capacity": _study_map(study, "walking_payload_capacity", r1, len(r3)),
+        METRICS.improved_area: area,
+        METRICS.average_manipulability: average_map.improved,
+        fb: _study_map(study, fb.name, r1, len(r3)),
+        walking: _study_map(study, walking.name, r1, len(r3)),
     }
     walks = _study_map(study, "walks", r1, len(r3)) == 1  # the others have no score
-    maps = {name: np.where(walks, values, np.nan) for name, values in maps.items()}
+    maps = {spec: np.where(walks, values, np.nan) for spec, values in maps.items()}
     return recommend(
         r1,
         r3,
@@ -191,7 +211,7 @@ def _study_map(study: pd.DataFrame, column: str, l1_ratios: np.ndarray, width: i
 def recommend(
     l1_ratios: npt.ArrayLike,
     l3_ratios: npt.ArrayLike,
-    maps: Mapping[str, npt.ArrayLike],
+    maps: Mapping[MetricSpec, npt.ArrayLike],
     reference: Metrics,
     candidates: Sequence[float] | None = None,
     evaluate: Callable[[float, float], Metrics] | None = None,
@@ -201,7 +221,8 @@ def recommend(
     Args:
         l1_ratios: Coxa ratios (R1,) [-].
         l3_ratios: Tibia ratios (R3,) [-].
-        maps: Each of :data:`~hexaleg.study.ranking.RANKED_METRICS` on the grid (R1, R3);
+        maps: Each of :data:`~hexaleg.study.ranking.RANKED_METRICS` on the grid (R1, R3), by
+            its declaration;
             NaN where a design cannot stand.
         reference: The user's design's metrics, which scores are relative to.
         candidates: Coxa ratios the recommendation may take; by default those
@@ -215,14 +236,14 @@ def recommend(
     """
     r1 = np.asarray(l1_ratios, dtype=float)
     r3 = np.asarray(l3_ratios, dtype=float)
-    values = np.stack([np.asarray(maps[name], dtype=float) for name in RANKED_METRICS], axis=-1)
+    values = np.stack([np.asarray(maps[spec], dtype=float) for spec in RANKED_METRICS], axis=-1)
     grid_scores = scores(values, reference)  # (R1, R3)
     allowed = np.where(candidate_mask(r1, candidates)[:, None], grid_scores, np.nan)
     if np.isnan(allowed).all():
         raise HexalegError("no design of the grid has every metric: nothing to recommend")
     i, j = (int(k) for k in np.unravel_index(int(np.nanargmax(allowed)), allowed.shape))
     best, l3_ratio = float(grid_scores[i, j]), float(r3[j])
-    metrics = dict(zip(RANKED_METRICS, (float(v) for v in values[i, j]), strict=True))
+    metrics = _ranked(values[i, j])
     if evaluate is not None:
         l3_ratio, best, metrics = _refine(r1[i], r3, j, (best, metrics), reference, evaluate)
     inside = np.append(r3[grid_scores[i] >= BAND * best], l3_ratio)  # the refined ratio is in it
@@ -231,7 +252,7 @@ def recommend(
         l1_ratio=float(r1[i]),
         l3_ratio=l3_ratio,
         l3_band=band,
-        reference=dict(reference),
+        reference=reference,
         metrics=metrics,
         score=best,
         peaks=_peaks(r1, r3, values, grid_scores),
@@ -264,10 +285,10 @@ def _refine(
     l1_ratio: float,
     r3: ArrayF,
     j: int,
-    grid_best: tuple[float, dict[str, float]],
+    grid_best: tuple[float, Metrics],
     reference: Metrics,
     evaluate: Callable[[float, float], Metrics],
-) -> tuple[float, float, dict[str, float]]:
+) -> tuple[float, float, Metrics]:
     """The best-scoring tibia ratio between the grid neighbours of ``j``.
 
     Returns its ratio, score and metrics; the grid point's if none between scores higher.
@@ -285,8 +306,8 @@ def _refine(
             negative, bounds=(lo, hi), method="bounded", options={"xatol": 1e-5}
         )
     if np.isfinite(result.fun) and -result.fun > grid_best[0]:
-        metrics = seen[float(result.x)]
-        return float(result.x), float(-result.fun), {m: float(metrics[m]) for m in RANKED_METRICS}
+        metrics = _ranked(ranked_values(seen[float(result.x)]))
+        return float(result.x), float(-result.fun), metrics
     return float(r3[j]), *grid_best
 
 
@@ -295,8 +316,8 @@ def _peaks(r1: ArrayF, r3: ArrayF, values: ArrayF, grid_scores: ArrayF) -> pd.Da
     rows = []
     for i, ratio in enumerate(r1):
         row: dict[str, float] = {"l1_ratio": float(ratio)}
-        for k, name in enumerate(RANKED_METRICS):
-            row[f"{name}_peak_l3_ratio"] = _peak(r3, values[i, :, k])
+        for k, spec in enumerate(RANKED_METRICS):
+            row[f"{spec.name}_peak_l3_ratio"] = _peak(r3, values[i, :, k])
         row["score_peak_l3_ratio"] = _peak(r3, grid_scores[i])
         finite = grid_scores[i][np.isfinite(grid_scores[i])]
         row["best_score"] = float(finite.max()) if finite.size else float("nan")
@@ -314,10 +335,10 @@ def _scores(
         {
             "l1_ratio": grid1.ravel(),
             "l3_ratio": grid3.ravel(),
-            **{name: values[..., k].ravel() for k, name in enumerate(RANKED_METRICS)},
+            **{spec.name: values[..., k].ravel() for k, spec in enumerate(RANKED_METRICS)},
             **{
-                f"{name}_relative": relative[..., k].ravel()
-                for k, name in enumerate(RANKED_METRICS)
+                f"{spec.name}_relative": relative[..., k].ravel()
+                for k, spec in enumerate(RANKED_METRICS)
             },
             "score": grid_scores.ravel(),
         }

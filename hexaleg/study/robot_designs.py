@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import hashlib
 import warnings
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from functools import lru_cache
 from typing import Any
@@ -28,7 +28,7 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.feet import FootSearch
 from hexaleg.robot.imported import ImportedRobot, import_robot
-from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model
+from hexaleg.robot.imported_model import ImportedHexapodModel, resized_model, robot_mass
 from hexaleg.robot.resize import SAME_LENGTH, resize_robot
 
 __all__ = ["ROBOT_SPAN", "RobotDesigns", "RobotFile"]
@@ -52,6 +52,7 @@ class RobotFile:
         foot_offset: The foot point in each leg's last link frame [m], if given.
         foot_frame: The glob pattern of the foot links, if given.
         segments: The segments changed from the file's (leg, segment, length [m]).
+        lock: The joints locked at their zero (glob patterns).
 
     """
 
@@ -61,6 +62,7 @@ class RobotFile:
     foot_offset: tuple[float, float, float] | None = None
     foot_frame: str | None = None
     segments: tuple[tuple[str, str, float], ...] = ()
+    lock: tuple[str, ...] = ()
 
     @classmethod
     def of(
@@ -70,6 +72,7 @@ class RobotFile:
         packages: Mapping[str, str],
         foot: FootSearch,
         segments: Mapping[str, Mapping[str, float]],
+        lock: Sequence[str] = (),
     ) -> RobotFile:
         """The recipe of a robot read with these options and segments changed."""
         return cls(
@@ -79,6 +82,7 @@ class RobotFile:
             foot.offset,
             foot.frame,
             tuple((leg, s, float(v)) for leg, asked in segments.items() for s, v in asked.items()),
+            tuple(lock),
         )
 
     def robot(self) -> ImportedRobot:
@@ -92,7 +96,7 @@ def _read(file: RobotFile) -> ImportedRobot:
     foot = FootSearch(offset=file.foot_offset, frame=file.foot_frame, packages=packages)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        robot = import_robot(file.path, dict(file.xacro_args), packages, foot)
+        robot = import_robot(file.path, dict(file.xacro_args), packages, foot, file.lock)
     changes: dict[str, dict[str, float]] = {}
     for leg, segment, length in file.segments:
         changes.setdefault(leg, {})[segment] = length
@@ -165,10 +169,12 @@ class RobotDesigns:
         ``None``: the robot as given. A coxa of 0 in the file stays 0 (``l1`` ignored).
 
         Raises:
-            HexalegError: A length out of range, or a robot that cannot stand at them.
+            HexalegError: A length out of range, a robot that cannot stand at them, or a
+                robot file without masses.
 
         """
         model = _model(self, None if lengths is None else tuple(float(v) for v in lengths))
+        robot_mass(model)  # every design point is weighed: a file without masses is refused
         return model.design, model
 
     def fingerprint(self) -> dict[str, Any]:

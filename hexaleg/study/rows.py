@@ -1,7 +1,7 @@
 """One design of a study as a row: its ratios, lengths and every column its table shows.
 
 A :class:`StudyRow` is made in the worker from the design's one
-:class:`~hexaleg.study.evaluation.Evaluation` (kept analyses included), so only numbers
+:class:`~hexaleg.evaluation.evaluate.Evaluation` (kept analyses included), so only numbers
 travel back: the flexibility (FB, the six ranges, the twelve extremes and what stops
 each), the statics at the nominal stance and at the extremes (peak torques, stability
 margin, the steepest slope, the payload capacity and what limits it) and the study's gait
@@ -18,18 +18,13 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.study.evaluation import (
-    ELECTRICAL_METRICS,
-    PERIOD_METRICS,
-    Conditions,
-    Evaluation,
-    evaluate,
-)
 
 Key = tuple[float, float]
 """(coxa ratio, tibia ratio) of a design [-]."""
@@ -37,8 +32,17 @@ Key = tuple[float, float]
 Cell = float | str | bool
 """A table cell: a number [its column's unit], a description, or a flag."""
 
-WALKING_METRICS = (*PERIOD_METRICS, *ELECTRICAL_METRICS, "walking_payload_capacity")
-"""The metrics of a study's gait (:attr:`~hexaleg.study.sweep.StudySpec.walked`)."""
+WALKING_METRICS: tuple[MetricSpec, ...] = (
+    METRICS.walking_payload_capacity,
+    METRICS.max_speed,
+    METRICS.gait_peak_torque,
+    METRICS.mechanical_cost_of_transport,
+    *(spec for spec in METRICS if spec.torque == "peak"),
+    *(spec for spec in METRICS if spec.analysis == "motors"),
+)
+"""The metrics of a study's gait (:attr:`~hexaleg.study.sweep.StudySpec.walked`): the
+walking payload capacity, the max speed, the period's peak torques (each joint type's
+and the largest) and cost of transport, and those through the motors."""
 
 KEY_COLUMNS = ("l1_ratio", "l3_ratio", "l1", "l2", "l3")
 """The columns every row has: its ratios [-] and lengths [m] (NaN where it failed)."""
@@ -52,7 +56,9 @@ class StudyRow:
         l1_ratio: Coxa ratio l1/L [-].
         l3_ratio: Tibia ratio l3/L [-].
         lengths: (l1, l2, l3) [m]; NaN where the design cannot exist.
-        columns: Every other column, by name [m, rad, N·m, kg, m/s, -], or text.
+        metrics: Its metrics the study measured (each its own column).
+        columns: Every other column, by name [m, rad, N·m, kg, m/s, -], or text: the
+            flexibility's ranges and extremes, the statics at them, what limits a metric.
         error: Why the design could not be measured; empty if it was.
 
     """
@@ -60,6 +66,7 @@ class StudyRow:
     l1_ratio: float
     l3_ratio: float
     lengths: tuple[float, float, float] = (math.nan, math.nan, math.nan)
+    metrics: Metrics = field(default_factory=Metrics)
     columns: Mapping[str, Cell] = field(default_factory=dict)
     error: str = ""
 
@@ -68,25 +75,22 @@ class StudyRow:
         """(coxa ratio, tibia ratio)."""
         return (self.l1_ratio, self.l3_ratio)
 
-    def __getitem__(self, column: str) -> Cell:
-        """The value of ``column`` (a key column or another)."""
-        return self.to_dict()[column]
-
     def to_dict(self) -> dict[str, Any]:
         """The row as a journal line and a table row: key columns first, ``error`` last."""
         key = dict(zip(KEY_COLUMNS, (self.l1_ratio, self.l3_ratio, *self.lengths), strict=True))
-        return key | dict(self.columns) | {"error": self.error}
+        return key | self.metrics.to_dict() | dict(self.columns) | {"error": self.error}
 
     @classmethod
     def from_dict(cls, record: Mapping[str, Any]) -> StudyRow:
         """A row read back from its :meth:`to_dict` (a journal's line)."""
         lengths = tuple(float(record.get(name, math.nan)) for name in KEY_COLUMNS[2:])
-        columns = {k: v for k, v in record.items() if k not in (*KEY_COLUMNS, "error")}
+        rest = {k: v for k, v in record.items() if k not in (*KEY_COLUMNS, "error")}
         return cls(
             float(record["l1_ratio"]),
             float(record["l3_ratio"]),
             (lengths[0], lengths[1], lengths[2]),
-            columns,
+            Metrics.from_dict({k: v for k, v in rest.items() if k in METRICS}),
+            {k: v for k, v in rest.items() if k not in METRICS},
             str(record.get("error", "")),
         )
 
@@ -97,63 +101,62 @@ def study_row(key: Key, design: HexapodDesign, evaluation: Evaluation) -> StudyR
         return StudyRow(*key, error=evaluation.error)
     flexibility = evaluation.flexibility
     assert flexibility is not None  # a study always measures FB, with Conditions.keep
-    columns: dict[str, Cell] = {"fb": flexibility.fb}
+    columns: dict[str, Cell] = {}
     if evaluation.loads is not None:
         columns |= evaluation.loads.study_columns()
     if evaluation.gait is not None:
         columns |= walking_columns(evaluation.gait, evaluation)
-    return StudyRow(*key, design.lengths, columns | flexibility_columns(flexibility))
+    columns |= flexibility_columns(flexibility)
+    return StudyRow(*key, design.lengths, evaluation.metrics, columns)
 
 
 def walking_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, Cell]:
-    """A row's walking columns: peaks per joint and overall [N·m], work [J], CoT [-], speed.
+    """A row's walking columns beside its walking metrics: work [J], feasible, what limits.
 
-    Peak torques, positive work and cost of transport are NaN when the period cannot be
-    walked (a constraint of its motion breaks); ``gait_feasible`` is false then, and also
-    when its ZMP leaves the standing feet's polygon (the robot tips over, whatever its
-    torques); the max speed [m/s] is given either way, at the
-    gait's stride (zero if it is infeasible), and the walking payload capacity [kg], each
-    with what limits it; ``walks``: whether it walks the gait unloaded within its ratings.
+    The positive work is NaN when the period cannot be walked (a constraint of its motion
+    breaks); ``gait_feasible`` is false then, and also when its ZMP leaves the standing
+    feet's polygon (the robot tips over, whatever its torques); what limits the max speed
+    and the walking payload capacity; ``walks``: whether it walks the gait unloaded within
+    its ratings.
     """
-    metrics, ok = walked.metrics, walked.walkable
-    columns: dict[str, Cell] = {
-        f"gait_peak_{joint}_torque": value if ok else math.nan
-        for joint, value in metrics.peak_torque.items()
-    }
-    return columns | {
-        "gait_peak_torque": evaluation["gait_peak_torque"],
-        "gait_positive_work": metrics.positive_work if ok else math.nan,
-        "mechanical_cost_of_transport": evaluation["mechanical_cost_of_transport"],
+    ok = walked.walkable
+    return {
+        "gait_positive_work": walked.metrics.positive_work if ok else math.nan,
         "gait_feasible": ok and walked.tipping is None,
-        "max_speed": evaluation["max_speed"],
-        "max_speed_limited_by": str(evaluation.causes["max_speed"]),
-        "walking_payload_capacity": evaluation["walking_payload_capacity"],
-        "walking_payload_limited_by": str(evaluation.causes["walking_payload_capacity"]),
+        "max_speed_limited_by": _why(evaluation, METRICS.max_speed),
+        "walking_payload_limited_by": _why(evaluation, METRICS.walking_payload_capacity),
         "walks": bool(evaluation.walks),
-        **_electrical_columns(walked, evaluation),
     }
 
 
-def _electrical_columns(walked: GaitAnalysis, evaluation: Evaluation) -> dict[str, Cell]:
-    """The columns through the motors (energy per km, cost, continuous load, range), if any."""
-    if walked.electrical is None:
-        return {}
-    return {name: evaluation[name] for name in ELECTRICAL_METRICS}
+def _why(evaluation: Evaluation, spec: MetricSpec) -> str:
+    """What limits metric ``spec``, or why it has no value ("needs a rating")."""
+    cause = evaluation.causes[spec]
+    return str(cause) if cause is not None else evaluation.unmeasured[spec] or ""
 
 
-def design_walking_columns(
-    design: HexapodDesign, model: HexapodModel, gait: Gait = STUDY_GAIT
-) -> dict[str, Cell]:
-    """``design``'s walking columns as a study row has them: walking ``gait``, no payload.
+def walking_metrics(design: HexapodDesign) -> tuple[MetricSpec, ...]:
+    """:data:`WALKING_METRICS` a design has: those through the motors only with actuators."""
+    motors = design.actuators is not None
+    return tuple(spec for spec in WALKING_METRICS if motors or spec.analysis != "motors")
+
+
+def design_walking_row(
+    design: HexapodDesign, model: HexapodModel, gait: Gait = STUDY_GAIT, key: Key | None = None
+) -> StudyRow:
+    """``design``'s walking metrics and columns as a study row has them: ``gait``, no payload.
+
+    ``key``: the row's ratios (default: the design's own).
 
     Raises:
         HexalegError: the design cannot be measured (its nominal stance cannot stand).
 
     """
-    found = evaluate(design, WALKING_METRICS, Conditions(gait=gait, keep=True), model=model)
+    found = evaluate(design, walking_metrics(design), Conditions(gait=gait, keep=True), model=model)
     if found.error or found.gait is None:
         raise HexalegError(found.error)
-    return walking_columns(found.gait, found)
+    key = key or (design.l1 / design.leg_length, design.l3 / design.leg_length)
+    return StudyRow(*key, design.lengths, found.metrics, walking_columns(found.gait, found))
 
 
 def flexibility_columns(result: FlexibilityResult) -> dict[str, Cell]:

@@ -17,8 +17,8 @@ from typing import Any
 from hexaleg._io import shown
 from hexaleg._journal import Journal as JournalFile
 from hexaleg._journal import JournalKind, Record
-from hexaleg.cause import Cause
-from hexaleg.study.evaluation import Evaluation
+from hexaleg.evaluation.evaluate import Evaluation
+from hexaleg.evaluation.metrics import Causes, Metrics
 
 KIND = JournalKind("decide", "decision", "--journal")
 Point = tuple[str, tuple[float, ...]]
@@ -69,9 +69,14 @@ class Journal:
 
 
 def _record(key: str, x: tuple[float, ...], evaluation: Evaluation) -> Record:
-    causes = {metric: cause.to_dict() for metric, cause in evaluation.causes.items()}
-    return {"search": key, "x": list(x), "values": dict(evaluation.values), "causes": causes,
-            "error": evaluation.error}  # fmt: skip
+    causes = {s.name: c.to_dict() for s, c in evaluation.causes.items() if c is not None}
+    return {
+        "search": key,
+        "x": list(x),
+        "values": evaluation.metrics.to_dict(),
+        "causes": causes,
+        "error": evaluation.error,
+    }
 
 
 def _read(record: Record) -> tuple[Point, Evaluation]:
@@ -84,8 +89,8 @@ def _read(record: Record) -> tuple[Point, Evaluation]:
         raise ValueError("not an evaluated point of a search")
     if not _numbers(values.values()) or not all(math.isfinite(v) for v in x):
         raise ValueError("not an evaluated point of a search")
-    found = {metric: Cause.from_dict(cause) for metric, cause in causes.items()}
-    return (key, tuple(float(v) for v in x)), Evaluation(dict(values), found, error)
+    found = Evaluation(Metrics.from_dict(values), Causes.from_dict(causes), error)
+    return (key, tuple(float(v) for v in x)), found
 
 
 def _numbers(values: Iterable[Any]) -> bool:

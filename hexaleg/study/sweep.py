@@ -36,6 +36,8 @@ from hexaleg.design import (
     require_in_range,
     require_ratio,
 )
+from hexaleg.evaluation.evaluate import Conditions, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
@@ -43,7 +45,6 @@ from hexaleg.grids import ratio_lengths
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.evaluation import Conditions, evaluate, evaluate_many
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
     FOLDER_KIND,
@@ -55,7 +56,7 @@ from hexaleg.study.journal import (
 )
 from hexaleg.study.progress import Progress
 from hexaleg.study.robot_designs import RobotDesigns
-from hexaleg.study.rows import WALKING_METRICS, Key, StudyRow, study_row
+from hexaleg.study.rows import Key, StudyRow, study_row, walking_metrics
 
 TABLE_CSV = "study.csv"
 TABLE_JSON = "study.json"
@@ -115,16 +116,25 @@ class StudySpec:
         require_ratio_grid(self.l1_ratios, self.l3_ratios, self.total)  # no design fails
 
     @property
-    def metrics(self) -> tuple[str, ...]:
-        """What each design is measured for: FB, and the statics' and the gait's if asked."""
-        standing = ("payload_capacity",) if self.statics else ()
-        return ("fb", *standing, *(WALKING_METRICS if self.gait else ()))
+    def metrics(self) -> tuple[MetricSpec, ...]:
+        """What each design is measured for: FB, and the statics' and the gait's if asked.
+
+        The metrics through the motors only when the designs have actuators.
+        """
+        standing = (METRICS.payload_capacity, METRICS.stability_margin) if self.statics else ()
+        walking = walking_metrics(self.base) if self.gait else ()
+        return (METRICS.fb, *standing, *walking)
 
     @property
     def conditions(self) -> Conditions:
         """What each design is measured under: level, no payload, walking :attr:`walked`."""
-        return Conditions(gait=self.walked, stance=self.stance, mode=self.mode,
-                          collisions=self.collisions, keep=True)  # fmt: skip
+        return Conditions(
+            gait=self.walked,
+            stance=self.stance,
+            mode=self.mode,
+            collisions=self.collisions,
+            keep=True,
+        )
 
     def row_of(self, design: HexapodDesign) -> StudyRow:
         """``design``'s row, measured as the study measures its own, on its own model."""
@@ -322,7 +332,12 @@ def write_table(spec: StudySpec, table: pd.DataFrame, out: Path) -> pd.DataFrame
     write_text(out / TABLE_CSV, table.to_csv(index=False))
     payload = {
         "spec": spec.fingerprint(),
-        "units": {"ratios": "1", "lengths and x y z": "m", "roll pitch yaw": "rad", "fb": "1"},
+        "units": {
+            "ratios": "1",
+            "lengths and x y z": "m",
+            "roll pitch yaw": "rad",
+            METRICS.fb.name: METRICS.fb.unit,
+        },
         "peaks": peak_table(table).to_dict(orient="records"),
         "rows": json.loads(table.to_json(orient="records")),
     }
@@ -333,11 +348,12 @@ def write_table(spec: StudySpec, table: pd.DataFrame, out: Path) -> pd.DataFrame
 def peak_table(table: pd.DataFrame) -> pd.DataFrame:
     """For each coxa ratio, the tibia ratio of the largest FB and that FB."""
     rows = []
+    fb = METRICS.fb.name
     for r1, group in table.groupby("l1_ratio", sort=True):
-        valid = group.dropna(subset=["fb"]) if "fb" in group else group.iloc[0:0]
+        valid = group.dropna(subset=[fb]) if fb in group else group.iloc[0:0]
         if valid.empty:
             rows.append({"l1_ratio": r1, "peak_l3_ratio": math.nan, "peak_fb": math.nan})
             continue
-        best = valid.loc[valid["fb"].idxmax()]
-        rows.append({"l1_ratio": r1, "peak_l3_ratio": best["l3_ratio"], "peak_fb": best["fb"]})
+        best = valid.loc[valid[fb].idxmax()]
+        rows.append({"l1_ratio": r1, "peak_l3_ratio": best["l3_ratio"], "peak_fb": best[fb]})
     return pd.DataFrame(rows)

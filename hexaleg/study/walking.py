@@ -4,7 +4,8 @@ The sequel to the paper (Liu, Yang, Wang, Feng, *Dynamic Modeling and Dimensiona
 Optimization of Legged Mechanisms for Construction Robots*) sizes the leg for walking and
 reports cutting peak joint torque and energy by over 20 %. :func:`walking_comparison`
 asks the same of a study's grid: among the designs that walk the study's gait
-(:attr:`~hexaleg.study.sweep.StudySpec.walked`), the one with the least peak joint torque
+(:attr:`~hexaleg.study.sweep.StudySpec.walked`) unloaded within every rating (:func:`walks`,
+as the ranking counts them), the one with the least peak joint torque
 and the one with the least cost of transport, each against the paper's 0.2/0.4/0.4 leg
 (on the study's body, at its total leg length). Pure data; the report presents it.
 """
@@ -17,14 +18,17 @@ from typing import Any
 
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 from hexaleg.exceptions import HexalegError
-from hexaleg.study.rows import Cell, StudyRow, design_walking_columns
+from hexaleg.study.rows import StudyRow, design_walking_row
 from hexaleg.study.sweep import StudySpec, base_model
 
 PAPER_RATIOS = (0.2, 0.4)
 """The paper's leg: coxa and tibia ratios l1/L, l3/L (0.2/0.4/0.4) [-]."""
-TORQUE = "gait_peak_torque"
-ENERGY = "mechanical_cost_of_transport"
+TORQUE = METRICS.gait_peak_torque
+"""What the least-torque design has least."""
+ENERGY = METRICS.mechanical_cost_of_transport
+"""What the least-energy design has least."""
 
 
 @dataclass(frozen=True)
@@ -33,9 +37,11 @@ class WalkingComparison:
 
     Attributes:
         reference: The paper's leg's row (its walking columns).
-        least_torque: The row of the design with the least peak joint torque.
-        least_energy: The row of the design with the least mechanical cost of transport.
-        walking: How many of the grid's designs walk the gait (of ``designs``).
+        least_torque: The row of the walking design with the least peak joint torque.
+        least_energy: The row of the walking design with the least mechanical cost of
+            transport.
+        walking: How many of the grid's designs walk the gait within every rating (of
+            ``designs``).
         designs: How many designs the grid has.
         gait: The gait walked (JSON-ready).
 
@@ -51,39 +57,58 @@ class WalkingComparison:
     @property
     def torque_saving(self) -> float:
         """1 − (least peak torque)/(the paper's leg's) [-]; NaN if the paper's leg cannot walk."""
-        return _saving(self.least_torque[TORQUE], self.reference[TORQUE])
+        return _saving(self.least_torque.metrics, self.reference.metrics, TORQUE)
 
     @property
     def energy_saving(self) -> float:
         """1 − (least cost of transport)/(the paper's leg's) [-]."""
-        return _saving(self.least_energy[ENERGY], self.reference[ENERGY])
+        return _saving(self.least_energy.metrics, self.reference.metrics, ENERGY)
 
     @property
     def cross_savings(self) -> tuple[float, float]:
         """The energy the least-torque design saves, and the torque the least-energy one saves."""
         return (
-            _saving(self.least_torque[ENERGY], self.reference[ENERGY]),
-            _saving(self.least_energy[TORQUE], self.reference[TORQUE]),
+            _saving(self.least_torque.metrics, self.reference.metrics, ENERGY),
+            _saving(self.least_energy.metrics, self.reference.metrics, TORQUE),
         )
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (savings as fractions, torques N·m, speeds m/s)."""
-        keep = ("l1_ratio", "l3_ratio", TORQUE, ENERGY, "max_speed")
         return {
             "gait": self.gait,
             "walking_designs": self.walking,
             "designs": self.designs,
-            "paper_leg": {k: self.reference[k] for k in keep},
-            "least_peak_torque": {k: self.least_torque[k] for k in keep},
-            "least_cost_of_transport": {k: self.least_energy[k] for k in keep},
+            "paper_leg": _kept(self.reference),
+            "least_peak_torque": _kept(self.least_torque),
+            "least_cost_of_transport": _kept(self.least_energy),
             "peak_torque_saving": self.torque_saving,
             "energy_saving": self.energy_saving,
         }
 
 
-def _saving(value: Cell, reference: Cell) -> float:
-    value, reference = float(value), float(reference)
-    return 1.0 - value / reference if reference > 0 and math.isfinite(reference) else math.nan
+def _kept(row: StudyRow) -> dict[str, Any]:
+    """A row's ratios, peak torque [N·m], cost of transport [-] and max speed [m/s]."""
+    metrics = row.metrics
+    return {"l1_ratio": row.l1_ratio, "l3_ratio": row.l3_ratio} | {
+        spec.name: metrics[spec] for spec in (TORQUE, ENERGY, METRICS.max_speed)
+    }
+
+
+def _saving(metrics: Metrics, reference: Metrics, spec: MetricSpec) -> float:
+    """1 − value / the reference's value of metric ``spec`` [-]; NaN without a positive one."""
+    value, base = metrics.value(spec), reference.value(spec)
+    return 1.0 - value / base if base > 0 and math.isfinite(base) else math.nan
+
+
+def walks(table: pd.DataFrame) -> pd.Series:
+    """Which designs of a study walk its gait: unloaded, within every rating.
+
+    The legs the ranking, the Pareto front and their figures count as walking (``walks``),
+    whose period can be walked at all (``gait_feasible``); a table from before the
+    ``walks`` column counts the second alone.
+    """
+    feasible = table["gait_feasible"].fillna(False).astype(bool)
+    return feasible & table["walks"].fillna(False).astype(bool) if "walks" in table else feasible
 
 
 def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison:
@@ -97,22 +122,27 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
         HexalegError: The table has no gait columns, or no design walks the gait.
 
     """
-    if TORQUE not in table:
+    if TORQUE.name not in table:
         raise HexalegError("the study has no walking columns (StudySpec.gait was off)")
-    walking = table[table["gait_feasible"].fillna(False).astype(bool)]
+    walking = table[walks(table)]
     if walking.empty:
         raise HexalegError(f"no design of the study walks {spec.walked.named}")
     paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
-    columns = design_walking_columns(paper, base_model(spec.base).with_design(paper), spec.walked)
-    reference = StudyRow(*PAPER_RATIOS, paper.lengths, columns)
+    model = base_model(spec.base).with_design(paper)
+    reference = design_walking_row(paper, model, spec.walked, PAPER_RATIOS)
     return WalkingComparison(
         reference=reference,
-        least_torque=StudyRow.from_dict(walking.loc[walking[TORQUE].idxmin()].to_dict()),
-        least_energy=StudyRow.from_dict(walking.loc[walking[ENERGY].idxmin()].to_dict()),
+        least_torque=_least(walking, TORQUE),
+        least_energy=_least(walking, ENERGY),
         walking=len(walking),
         designs=len(table),
         gait=spec.walked.to_dict(),
     )
+
+
+def _least(table: pd.DataFrame, spec: MetricSpec) -> StudyRow:
+    """The row of ``table`` with the least value of metric ``spec``."""
+    return StudyRow.from_dict(table.loc[table[spec.name].idxmin()].to_dict())
 
 
 def walking_or_none(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison | None:

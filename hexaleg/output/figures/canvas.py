@@ -19,8 +19,10 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, ParamSpec
 
 import numpy as np
+import numpy.typing as npt
 
 from hexaleg._io import write_bytes
+from hexaleg.output.figures.labels import CORNERS, clear_label
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK, CLAIMED_W_A_PEAK
 
 if TYPE_CHECKING:
@@ -116,24 +118,51 @@ def log_scale(ax: Axes, which: str) -> None:
     axis.set_minor_formatter(NullFormatter())
 
 
+NARROW_SPREAD = 0.25
+"""Values spreading less than this share of their largest look flat on an axis from zero [-]."""
+
+
+def magnitude_axis(ax: Axes, values: npt.ArrayLike, what: str = "") -> None:
+    """Read a magnitude (a torque, a cost, a payload: ≥ 0) on ``ax``'s y axis against zero.
+
+    The rule for every such axis: it starts at 0 and ends a little above the largest value,
+    so a curve's height is its share of the largest and a 10 % spread looks like 10 %, not
+    like the whole axis; matplotlib's offset notation (``+8.8e-2`` above the axis, the ticks
+    read as differences) is off. Where the finite ``values`` spread less than
+    :data:`NARROW_SPREAD` of their largest, the curves look nearly flat from zero, so the
+    panel states their range in numbers (after ``what``, if given), in a corner where
+    the note hides no data.
+    """
+    finite = np.asarray(values, dtype=float)
+    finite = finite[np.isfinite(finite)]
+    high = float(finite.max()) if finite.size else 0.0
+    top = max(ax.get_ylim()[1], 1.06 * high)
+    ax.set_ylim(0.0, top if top > 0 else 1.0)
+    ax.ticklabel_format(axis="y", style="plain", useOffset=False)
+    if high > 0 and high - float(finite.min()) < NARROW_SPREAD * high:
+        low = float(finite.min())
+        clear_label(
+            ax,
+            f"{what} {low:.3g} to {high:.3g}: all within {100 * (high - low) / high:.0f} %".strip(),
+            (0.0, 0.0),
+            CORNERS,
+            xycoords="axes fraction",
+            fontsize=8,
+        )
+
+
 def name_largest(
     ax: Axes, x: Sequence[float], y: Sequence[float], labels: Sequence[str], by: str = "y"
 ) -> None:
-    """Name the point of largest ``by`` (``"x"`` or ``"y"``) beside it, at its left.
+    """Name the point of largest ``by`` (``"x"`` or ``"y"``) beside it, where it hides no data.
 
-    The outlier that stretches an axis over decades, named so the reader knows what it is.
+    The outlier that stretches an axis over decades, named so the reader knows what it is;
+    the name goes at its left if that hides nothing, else at the nearest clear spot
+    (:func:`~hexaleg.output.figures.labels.clear_label`).
     """
-    k = int(np.nanargmax(np.asarray(x if by == "x" else y, dtype=float)))
-    ax.annotate(
-        labels[k],
-        (x[k], y[k]),
-        xytext=(-6, 0),
-        textcoords="offset points",
-        ha="right",
-        va="center",
-        fontsize=8,
-        arrowprops={"arrowstyle": "-", "lw": 0.6},
-    )
+    xs, ys = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+    k = int(np.nanargmax(xs if by == "x" else ys))
+    clear_label(ax, labels[k], (float(xs[k]), float(ys[k])), fontsize=8)
 
 
 def _visible_texts(figure: Figure) -> list[Text]:

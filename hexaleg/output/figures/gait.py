@@ -18,10 +18,11 @@ import numpy as np
 import pandas as pd
 
 from hexaleg._typing import ArrayF
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT, GaitAnalysis
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.output.figures.canvas import COLORS, drawn, new_figure, save
+from hexaleg.output.figures.canvas import COLORS, drawn, magnitude_axis, new_figure, save
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
 
 if TYPE_CHECKING:
@@ -61,8 +62,9 @@ def joint_figure(analysis: GaitAnalysis) -> Figure:
                 stand = np.where(analysis.stance[:, i], values[:, i, j], np.nan)
                 ax.plot(phase, values[:, i, j], color=LEG_COLORS[i], lw=0.6, alpha=0.6)
                 ax.plot(phase, stand, color=LEG_COLORS[i], lw=1.5, label=leg)
-            if quantity in rated:
-                limit = rated[quantity][j]
+            ratings = rated.get(quantity)
+            if ratings is not None:  # a design's ratings, if it gives them
+                limit = ratings[j]
                 for sign in (1, -1):
                     ax.axhline(sign * limit, color="k", ls="--", lw=1)
             ax.set_title(f"{joint} {quantity}")
@@ -72,8 +74,12 @@ def joint_figure(analysis: GaitAnalysis) -> Figure:
                 ax.set_ylabel(label)
             if row == len(QUANTITIES):
                 ax.set_xlabel("phase t/T [-]")
-    fig.legend(*ax.get_legend_handles_labels(), loc="outside lower center", ncols=6,
-               title="one curve per leg, thick while it stands; dashed: the ratings")  # fmt: skip
+    fig.legend(
+        *ax.get_legend_handles_labels(),
+        loc="outside lower center",
+        ncols=6,
+        title="one curve per leg, thick while it stands; dashed: the ratings",
+    )
     fig.suptitle(_title(analysis))
     return fig
 
@@ -91,13 +97,20 @@ def _footfalls(ax: Axes, analysis: GaitAnalysis, phase: ArrayF) -> None:
             stop = phase[end] + step
             spans = [(phase[start], stop)] if start <= end else [(phase[start], 1), (0, stop)]
             for lo, hi in spans:
-                ax.axvspan(lo, hi, ymin=(5 - i) / 6 + 0.02, ymax=(6 - i) / 6 - 0.02,
-                           color=LEG_COLORS[i], alpha=0.7)  # fmt: skip
+                ax.axvspan(
+                    lo,
+                    hi,
+                    ymin=(5 - i) / 6 + 0.02,
+                    ymax=(6 - i) / 6 - 0.02,
+                    color=LEG_COLORS[i],
+                    alpha=0.7,
+                )
     ax.set_yticks((5.5 - np.arange(len(analysis.legs))) / 6, analysis.legs)
     ax.set_ylim(0, 1)
     ax.set_xlim(0, 1)
-    ax.set_title(f"stance (shaded), {analysis.gait.pattern}, duty factor "
-                 f"{analysis.gait.duty_factor:.3g}")  # fmt: skip
+    ax.set_title(
+        f"stance (shaded), {analysis.gait.pattern}, duty factor {analysis.gait.duty_factor:.3g}"
+    )
 
 
 def _title(analysis: GaitAnalysis) -> str:
@@ -169,28 +182,31 @@ def walking_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
-    fig = new_figure(8.8)
-    panels = fig.subplots(4, 1, sharex=True)
+    fig = new_figure(6.2)
+    panels = fig.subplots(2, 2, sharex=True).ravel()
     columns = (
-        ("gait_peak_hip_torque", "peak hip |τ| [N·m]"),
-        ("gait_peak_knee_torque", "peak knee |τ| [N·m]"),
-        ("mechanical_cost_of_transport", "mechanical CoT [-]"),
-        ("walking_payload_capacity", "walking payload [kg]"),
+        (METRICS.gait_peak_hip_torque.name, "peak hip |τ| [N·m]"),
+        (METRICS.gait_peak_knee_torque.name, "peak knee |τ| [N·m]"),
+        (METRICS.mechanical_cost_of_transport.name, "mechanical CoT [-]"),
+        (METRICS.walking_payload_capacity.name, "walking payload [kg]"),
     )
+    walks = table["walks"].astype(bool) if "walks" in table else pd.Series(True, table.index)
     for ax, (column, label) in zip(panels, columns, strict=True):
+        values = table[column].where(walks)  # a leg that cannot walk the gait: a gap, not a 0
         for (r1, group), color in zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False):
-            values = group[column]
-            if "walks" in group:  # a leg that cannot walk the gait: a gap, not a zero
-                values = values.where(group["walks"].astype(bool))
-            ax.plot(group["l3_ratio"], values, color=color, label=f"coxa ratio {r1:.2f}")
+            ax.plot(group["l3_ratio"], values[group.index], color=color,
+                    label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
+        magnitude_axis(ax, values)
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
-        if rated is not None:
+        if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
-    panels[-1].set_xlabel("tibia ratio l3 / L [-]")
-    panels[0].legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize=7.5)
+    for ax in panels[2:]:
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+    fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
+               fontsize=7.5)  # fmt: skip
     fig.suptitle(
         f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
         "that cannot walk it unloaded within their ratings)"

@@ -88,7 +88,7 @@ def rating_line(ax: Axes, rated: float, what: str) -> None:
     ax.axhline(rated, color="k", ls="--", lw=1.1, label="rating")
     low, high = ax.get_ylim()
     if rated > high - 0.1 * (high - low):
-        ax.set_ylim(low, rated + 0.12 * (high - low))
+        ax.set_ylim(low, rated + 0.12 * (max(high, rated) - low))
     ax.annotate(f"{what} rating {rated:g}", (1.0, rated), xycoords=("axes fraction", "data"),
                 xytext=(-4, 3), textcoords="offset points", ha="right", va="bottom",
                 fontsize=7.5)  # fmt: skip

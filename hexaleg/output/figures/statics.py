@@ -3,15 +3,24 @@
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
-from hexaleg.output.figures.canvas import COLORS, drawn, log_scale, name_largest, new_figure
+from hexaleg.output.figures.canvas import (
+    COLORS,
+    drawn,
+    log_scale,
+    magnitude_axis,
+    name_largest,
+    new_figure,
+)
 from hexaleg.output.figures.marks import Mark, draw_marks, rating_line
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis
 
 if TYPE_CHECKING:
@@ -66,10 +75,14 @@ def loads_figure(
     l1, l2, l3 = analysis.design.lengths
     capacity = analysis.capacity
     what = "standing and walking" if walking is not None else "standing"
+    held = (
+        NEEDS_RATING
+        if capacity is None
+        else f"{capacity.mass:.1f} kg, limited by {capacity.limited_by}"
+    )
     fig.suptitle(
         f"Peak joint torques {what} (l1, l2, l3 = {l1:.3g}, {l2:.3g}, {l3:.3g} m) against "
-        f"their ratings\nstanding payload capacity {capacity.mass:.1f} kg, limited by "
-        f"{capacity.limited_by}"
+        f"their ratings\nstanding payload capacity {held}"
     )
     return fig
 
@@ -91,14 +104,16 @@ def _torque_bars(
     for k, (label, peaks) in enumerate(series):
         offset = (k - (len(series) - 1) / 2) * width
         ax.bar(x + offset, [peaks[j] for j in joints], width, color=COLORS[k], label=label)
-    for k, rated in enumerate(analysis.design.rated_torques):
+    ratings = analysis.design.rated_torques or ()  # none drawn where not given
+    for k, rated in enumerate(ratings):
         ax.hlines(rated, k - 0.45, k + 0.45, colors="k", linestyles="--", lw=1.5)
-    ax.plot([], [], "k--", label="rated torque")
+    if ratings:
+        ax.plot([], [], "k--", label="rated torque")
     ax.set_xticks(x, [f"{joint} joints" for joint in joints])
     ax.set_ylabel("largest |τ| over the legs [N·m]")
     ax.set_title(f"Foot forces shared by {DISTRIBUTION_WORDS.get(analysis.distribution, '?')}")
     tops = [max(peaks.values()) for _, peaks in series]
-    ax.set_ylim(0, 1.45 * max(*analysis.design.rated_torques, *tops))
+    ax.set_ylim(0, 1.45 * max(*ratings, *tops))
     ax.legend(loc="upper left", ncols=2, fontsize=7.5)
     ax.grid(True, axis="y", alpha=0.3)
 
@@ -129,10 +144,11 @@ def statics_study_figure(
 ) -> Figure:
     """Hip and knee torques over the extremes and the payload capacities, against tibia ratio.
 
-    One panel under another, sharing the tibia-ratio axis, each joint's rating on its
-    torque panel; the standing payload capacity spans decades over a sweep (a short femur
-    lifts tonnes), so its axis is logarithmic, the largest named, and the walking payload
-    capacity (walking ``gait``, every rating) is drawn beside it, dashed, where the leg walks.
+    The hip and knee side by side over the payload, sharing the tibia-ratio axis, each
+    joint's rating on its torque panel; the standing payload capacity spans decades over a
+    sweep (a short femur lifts tonnes), so its axis is logarithmic, the largest named, and
+    the walking payload capacity (walking ``gait``, every rating) is drawn beside it,
+    dashed, where the leg walks.
 
     Args:
         table: The study's rows.
@@ -141,14 +157,20 @@ def statics_study_figure(
         gait: The gait the study's designs walk (named in the title).
 
     """
-    fig = new_figure(8.4)
-    panels = fig.subplots(3, 1, sharex=True)
+    fig = new_figure(6.6)
+    grid = fig.add_gridspec(2, 2, height_ratios=(1.0, 1.15))
+    hip = fig.add_subplot(grid[0, 0])
+    panels = [hip, fig.add_subplot(grid[0, 1], sharex=hip), fig.add_subplot(grid[1, :])]
+    standing = METRICS.payload_capacity.name
     columns = (
-        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing: nominal and 12 extremes"),
-        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing: nominal and 12 extremes"),
-        ("payload_capacity", "payload [kg], log scale",
-         f"Payload capacity: standing (solid), walking {gait.named} (dashed)"),
-    )  # fmt: skip
+        ("peak_hip_torque", "hip [N·m]", "Largest hip |τ| standing"),
+        ("peak_knee_torque", "knee [N·m]", "Largest knee |τ| standing"),
+        (
+            standing,
+            "payload [kg], log scale",
+            f"Payload capacity: standing (solid), walking {gait.named} (dashed)",
+        ),
+    )
     groups = list(zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False))
     for ax, (column, label, title) in zip(panels, columns, strict=True):
         for (r1, group), color in groups:
@@ -158,27 +180,38 @@ def statics_study_figure(
         ax.set_title(title)
         ax.grid(True, which="both", alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
-        if rated is not None:
+        magnitude_axis(ax, table[f"peak_{joint}_torque"])
+        if rated:  # none drawn where the design gives no ratings
             rating_line(ax, rated[joint], joint)
-    payload = panels[2]
-    if "walking_payload_capacity" in table:
-        for (_, group), color in groups:
-            walking = group["walking_payload_capacity"].where(group["walking_payload_capacity"] > 0)
-            payload.plot(group["l3_ratio"], walking, color=color, ls="--")
-        draw_marks(payload, marks, "l3_ratio", "walking_payload_capacity")
-    log_scale(payload, "y")
-    payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
-    name_largest(payload, table["l3_ratio"], table["payload_capacity"], design_names(table))
+    _walking_payload(panels[2], table, groups, marks)
     handles, labels = panels[0].get_legend_handles_labels()
     unique = dict(zip(labels, handles, strict=True))
-    panels[0].legend(unique.values(), unique.keys(), loc="center left",
-                     bbox_to_anchor=(1.01, 0.5), fontsize=7.5)  # fmt: skip
-    panels[2].set_xlabel("tibia ratio l3 / L [-]")
-    fig.suptitle("What each design of the sweep costs (foot forces shared by least Σ|f|²)")
+    fig.legend(unique.values(), unique.keys(), loc="outside lower center", ncols=4, fontsize=7.5)
+    for ax in panels:
+        ax.set_xlabel("tibia ratio l3 / L [-]")
+    fig.suptitle(
+        "What each design of the sweep costs (foot forces shared by least Σ|f|²)\ntorques: "
+        "the largest over the nominal stance and its 12 extremes"
+    )
     return fig
 
 
-def design_names(table: pd.DataFrame, column: str = "payload_capacity") -> list[str]:
+def _walking_payload(
+    payload: Axes, table: pd.DataFrame, groups: Sequence[Any], marks: Sequence[Mark]
+) -> None:
+    """The walking payload capacity, dashed, beside the standing one; the axis logarithmic."""
+    standing, walking = METRICS.payload_capacity.name, METRICS.walking_payload_capacity.name
+    if walking in table:
+        for (_, group), color in groups:
+            carried = group[walking].where(group[walking] > 0)
+            payload.plot(group["l3_ratio"], carried, color=color, ls="--")
+        draw_marks(payload, marks, "l3_ratio", walking)
+    log_scale(payload, "y")
+    payload.set_ylim(bottom=1.0)  # a leg that walks with less than a kilogram: not drawn
+    name_largest(payload, table["l3_ratio"], table[standing], design_names(table, standing))
+
+
+def design_names(table: pd.DataFrame, column: str) -> list[str]:
     """Each design of a study table named by a capacity (a column [kg]) and its lengths."""
     return [
         f"{row[column]:.0f} kg: coxa {row['l1']:.2f}, femur {row['l2']:.2f}, "

@@ -4,13 +4,14 @@ from __future__ import annotations
 
 import math
 import os
-from collections.abc import Mapping, Sequence
+from collections.abc import Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS, Metrics
 from hexaleg.output.figures.canvas import (
     COLORS,
     drawn,
@@ -25,7 +26,13 @@ from hexaleg.ratios import ratio_text
 from hexaleg.study.sweep import peak_table
 
 if TYPE_CHECKING:
+    from matplotlib.axes import Axes
     from matplotlib.figure import Figure
+
+FB = METRICS.fb.name
+"""The study table's column of FB."""
+WALKING_PAYLOAD = METRICS.walking_payload_capacity.name
+"""The study table's column of the walking payload capacity."""
 
 
 @drawn
@@ -36,8 +43,8 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
     for k, ((r1, group), color) in enumerate(
         zip(table.groupby("l1_ratio", sort=True), COLORS, strict=False)
     ):
-        ax.plot(group["l3_ratio"], group["fb"], color=color, label=f"coxa ratio {r1:.2f}")
-        flat_top(ax, group["l3_ratio"], group["fb"], color, FLAT_LABEL if k == 0 else None)
+        ax.plot(group["l3_ratio"], group[FB], color=color, label=f"coxa ratio {r1:.2f}")
+        flat_top(ax, group["l3_ratio"], group[FB], color, FLAT_LABEL if k == 0 else None)
         peak = peaks[np.isclose(peaks["l1_ratio"], r1)].iloc[0]
         ax.plot(peak["peak_l3_ratio"], peak["peak_fb"], "o", color=color)
         ax.annotate(
@@ -50,7 +57,7 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
             color=color,
         )
     shade_paper_band(ax, "FB peaks")
-    draw_marks(ax, marks, "l3_ratio", "fb")
+    draw_marks(ax, marks, "l3_ratio", FB)
     ax.set_xlabel("tibia ratio l3 / L [-]")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
     ax.set_title("Body flexibility against tibia ratio, for each coxa ratio (grid peaks marked)")
@@ -63,9 +70,11 @@ def fb_figure(table: pd.DataFrame, peaks: pd.DataFrame, marks: Sequence[Mark] = 
 def ranges_figure(table: pd.DataFrame, l1_ratio: float, marks: Sequence[Mark] = ()) -> Figure:
     """Fig 14: the six ranges S_x, S_y, S_z [m] and φ_x, φ_y, φ_z [°] for one coxa ratio.
 
-    ``marks`` (your design, the recommended one) are drawn on each of the six curves at
-    their own tibia ratio and ranges, named once per panel.
+    ``marks`` (your design, the recommended one) at this coxa ratio are drawn on each of
+    the six curves at their own tibia ratio and ranges, named once per panel; a mark at
+    another coxa ratio is not on these curves, so it is not drawn, and the title says so.
     """
+    marks, elsewhere = _on_coxa_ratio(marks, l1_ratio)
     fig = new_figure(4.4 if marks else 3.6)
     left, right = fig.subplots(1, 2)
     group = table[np.isclose(table["l1_ratio"], l1_ratio)]
@@ -94,14 +103,35 @@ def ranges_figure(table: pd.DataFrame, l1_ratio: float, marks: Sequence[Mark] = 
         curves = [k for k, label in enumerate(labels) if label not in {m.label for m in marks}]
         order = curves + [k for k in range(len(labels)) if k not in curves]  # marks last
         if marks:  # under the panel, clear of the curves and the marks
-            ax.legend([handles[k] for k in order], [labels[k] for k in order], ncols=2,
-                      fontsize=7.5, loc="upper center", bbox_to_anchor=(0.5, -0.16))  # fmt: skip
+            ax.legend(
+                [handles[k] for k in order],
+                [labels[k] for k in order],
+                ncols=2,
+                fontsize=7.5,
+                loc="upper center",
+                bbox_to_anchor=(0.5, -0.16),
+            )
         else:
             ax.legend()
-    fig.suptitle(
-        f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
-    )
+    title = f"How far the body can move (eq 28) against tibia ratio, coxa ratio {l1_ratio:.2f}"
+    if elsewhere:
+        title += "\n(not drawn, on other coxa ratios: " + ", ".join(elsewhere) + ")"
+    fig.suptitle(title)
     return fig
+
+
+def _on_coxa_ratio(marks: Sequence[Mark], l1_ratio: float) -> tuple[list[Mark], list[str]]:
+    """The marks at coxa ratio ``l1_ratio``, and the others named with their own coxa ratio."""
+    here: list[Mark] = []
+    elsewhere: list[str] = []
+    for mark in marks:
+        own = float(mark.values.get("l1_ratio", math.nan))
+        if math.isclose(own, l1_ratio, rel_tol=1e-9, abs_tol=1e-9):
+            here.append(mark)
+        else:
+            where = f"{own:.2f}" if math.isfinite(own) else "unknown"
+            elsewhere.append(f"{mark.label.split(' (')[0]} {where}")
+    return here, elsewhere
 
 
 def write_study_figures(
@@ -115,7 +145,7 @@ def write_study_figures(
     ``svg`` writes an SVG beside each PNG; ``marks`` are drawn on both.
     """
     out = Path(out_dir)
-    valid = table.dropna(subset=["fb"]) if "fb" in table else table.iloc[0:0]
+    valid = table.dropna(subset=[FB]) if FB in table else table.iloc[0:0]
     if valid.empty:
         return []
     return [
@@ -129,34 +159,43 @@ def write_study_figures(
 
 
 @drawn
-def pareto_figure(
-    table: pd.DataFrame, front: pd.DataFrame, yours: Mapping[str, float] | None = None
-) -> Figure:
+def pareto_figure(table: pd.DataFrame, front: pd.DataFrame, yours: Metrics | None = None) -> Figure:
     """FB against walking payload capacity for every design; the Pareto front and its best.
 
     Args:
         table: Every design of the sweep (``walking_payload_capacity``, ``fb``).
         front: The front's designs, best first (the same columns).
-        yours: The user's design's metrics (the same keys), marked beside them.
+        yours: The user's design's metrics, marked beside them.
 
     """
-    x = "walking_payload_capacity"
+    x, y = WALKING_PAYLOAD, FB
     fig = new_figure(5.6)
     ax = fig.add_subplot()
     walks = table["walks"].fillna(False).astype(bool) if "walks" in table else table[x] > 0
-    ax.scatter(table.loc[walks, x], table.loc[walks, "fb"], s=8, color="#bbbbbb",
-               label="every design that walks")  # fmt: skip
+    ax.scatter(
+        table.loc[walks, x],
+        table.loc[walks, y],
+        s=8,
+        color="#bbbbbb",
+        label="every design that walks",
+    )
     if (~walks).any():
-        ax.scatter(table.loc[~walks, x], table.loc[~walks, "fb"], s=8, marker="x",
-                   color="#dddddd", label=f"{int((~walks).sum())} that cannot walk the gait "
-                   "unloaded (not ranked)")  # fmt: skip
+        ax.scatter(
+            table.loc[~walks, x],
+            table.loc[~walks, y],
+            s=8,
+            marker="x",
+            color="#dddddd",
+            label=f"{int((~walks).sum())} that cannot walk the gait unloaded (not ranked)",
+        )
     for (r1, group), color in zip(front.groupby("l1_ratio", sort=True), COLORS, strict=False):
-        ax.scatter(group[x], group["fb"], s=24, color=color,
-                   label=f"on the front, coxa ratio {r1:.2f}")  # fmt: skip
+        ax.scatter(
+            group[x], group[y], s=24, color=color, label=f"on the front, coxa ratio {r1:.2f}"
+        )
     best = front.iloc[0]
     ax.scatter(
         [best[x]],
-        [best["fb"]],
+        [best[y]],
         s=220,
         marker="*",
         color="k",
@@ -164,12 +203,26 @@ def pareto_figure(
         f"{ratio_text(best['l3_ratio'])}\n(the recommendation refines it)",
     )
     if yours is not None:
-        ax.scatter([yours[x]], [yours["fb"]], s=90, marker="D", facecolor="none",
-                   edgecolor="#d62728", linewidth=2, label="your design")  # fmt: skip
-    name_largest(ax, table[x], table["fb"], design_names(table, x), by="x")
+        _mark_yours(ax, yours)
+    name_largest(ax, table[x], table[y], design_names(table, x), by="x")
     ax.set_xlabel("walking payload capacity [kg] (default tripod gait, every rating)")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
     ax.set_title("Designs no other beats in workspace, manipulability, FB and walking payload")
     ax.grid(True, which="both", alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize=7.5)
     return fig
+
+
+def _mark_yours(ax: Axes, yours: Metrics) -> None:
+    """The user's design on the Pareto figure: its walking payload capacity and FB."""
+    x, y = yours.value(METRICS.walking_payload_capacity), yours.value(METRICS.fb)
+    ax.scatter(
+        [x],
+        [y],
+        s=90,
+        marker="D",
+        facecolor="none",
+        edgecolor="#d62728",
+        linewidth=2,
+        label="your design",
+    )

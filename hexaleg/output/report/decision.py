@@ -14,6 +14,8 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Section, change, table
 from hexaleg.output.report.pareto import ParetoRecord
@@ -23,28 +25,26 @@ from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.decide import DecideResult, decide
-from hexaleg.study.evaluation import Evaluation, evaluate
 from hexaleg.study.executors import local_pool
-from hexaleg.study.metrics import METRICS
-from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, score
+from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, ranked_columns, score
 from hexaleg.study.recommendation import BAND, Recommendation
 
-COSTS: tuple[str, ...] = (
-    "nominal_height",
-    "stability_margin",
-    "min_zmp_margin",
-    *(f"gait_{kind}_{joint}_torque" for joint in LEG_JOINTS for kind in ("peak", "rms")),
-    "max_speed",
-    "mechanical_energy_per_km",
-    "payload_capacity",
+COSTS: tuple[MetricSpec, ...] = (
+    METRICS.nominal_height,
+    METRICS.stability_margin,
+    METRICS.min_zmp_margin,
+    *(spec for spec in METRICS if spec.torque is not None),
+    METRICS.max_speed,
+    METRICS.mechanical_energy_per_km,
+    METRICS.payload_capacity,
 )
 """What the choice costs, beside the scored metrics: the body's height and stability, the
 report's gait's ZMP margin, torques, speed and energy, and the standing payload capacity."""
 
 
-def cost_metrics(design: HexapodDesign) -> tuple[str, ...]:
+def cost_metrics(design: HexapodDesign) -> tuple[MetricSpec, ...]:
     """:data:`COSTS`, and with actuators the energy per km drawn through them."""
-    return COSTS + (("energy_per_km",) if design.actuators is not None else ())
+    return COSTS + ((METRICS.energy_per_km,) if design.actuators is not None else ())
 
 
 @dataclass(frozen=True)
@@ -123,33 +123,26 @@ def departure(rec: Recommendation) -> str:
     if low <= rec.l3_ratio <= high:
         return f"Its tibia ratio {ratio_text(rec.l3_ratio)} lies within {band}."
     side = "above" if rec.l3_ratio > high else "below"
+    theirs, yours = rec.metrics, rec.reference
     changes = {
-        name: math.log(rec.metrics[name] / rec.reference[name])
-        for name in RANKED_METRICS
-        if rec.metrics[name] > 0 < rec.reference[name]
+        spec: math.log(theirs.value(spec) / yours.value(spec))
+        for spec in RANKED_METRICS
+        if theirs.value(spec) > 0 < yours.value(spec)
     }
-    gain = max(changes, key=lambda name: changes[name])
-    lost = [METRICS[name].label for name, value in changes.items() if value < 0]
+    gain = max(changes, key=lambda spec: changes[spec])
+    lost = [spec.label for spec, value in changes.items() if value < 0]
     cost = f", giving up {' and '.join(lost)}" if lost else ""
     return (
         f"Its tibia ratio {ratio_text(rec.l3_ratio)} lies {side} {band} (chosen there for FB): the "
-        f"score moves it because its {METRICS[gain].label} "
-        f"{change(rec.reference[gain], rec.metrics[gain])} outweighs the rest{cost}."
+        f"score moves it because its {gain.label} "
+        f"{change(yours.value(gain), theirs.value(gain))} outweighs the rest{cost}."
     )
 
 
 def _rows(rec: Recommendation) -> list[tuple[str, ...]]:
     """The scored metrics of both designs, and their scores."""
     yours, theirs = rec.reference, rec.metrics
-    rows: list[tuple[str, ...]] = [
-        (
-            METRICS[name].described,
-            METRICS[name].cell(yours[name]),
-            METRICS[name].cell(theirs[name]),
-            change(yours[name], theirs[name]),
-        )
-        for name in RANKED_METRICS
-    ]
+    rows = [_compared(spec, yours.value(spec), theirs.value(spec)) for spec in RANKED_METRICS]
     your_score = score(yours, yours)
     rows.append(
         (
@@ -164,16 +157,20 @@ def _rows(rec: Recommendation) -> list[tuple[str, ...]]:
 
 def _cost_rows(record: DecisionRecord, design: HexapodDesign) -> list[tuple[str, ...]]:
     """The costs of the choice, a torque beside its rating, a speed beside what binds."""
-    rated = dict(zip(LEG_JOINTS, design.rated_torques, strict=True))
-    rows: list[tuple[str, ...]] = []
-    for name in cost_metrics(design):
-        spec, yours, theirs = METRICS[name], record.yours[name], record.recommended[name]
-        label = spec.described
-        joint = next((j for j in LEG_JOINTS if f"_{j}_" in name), None)
-        if joint is not None:
-            label += f", rated {rated[joint]:g} N·m"
-        rows.append((label, spec.cell(yours), spec.cell(theirs), change(yours, theirs)))
+    rated = dict(zip(LEG_JOINTS, design.rated_torques or (math.nan,) * 3, strict=True))
+    yours, theirs = record.yours.metrics, record.recommended.metrics
+    rows = []
+    for spec in cost_metrics(design):
+        row = _compared(spec, yours.value(spec), theirs.value(spec))
+        if spec.joint is not None:  # a joint's torque: beside its rating
+            row = (f"{row[0]}, rated {rated[spec.joint]:g} N·m", *row[1:])
+        rows.append(row)
     return rows
+
+
+def _compared(spec: MetricSpec, yours: float, theirs: float) -> tuple[str, ...]:
+    """A metric's row: what it is [unit], your design's value, the other's, the change."""
+    return (spec.described, spec.cell(yours), spec.cell(theirs), change(yours, theirs))
 
 
 _WITHOUT_REQUIREMENTS = (
@@ -188,16 +185,19 @@ def to_json(record: DecisionRecord) -> dict[str, Any]:
     out: dict[str, Any] = {
         "decision": {
             "rule": RANKING_RULE,
-            "yours": {"metrics": rec.reference, "score": score(rec.reference, rec.reference)},
+            "yours": {
+                "metrics": rec.reference.to_dict(),
+                "score": score(rec.reference, rec.reference),
+            },
             "recommended": {
                 "lengths_m": [r * leg_length for r in (rec.l1_ratio, rec.l2_ratio, rec.l3_ratio)],
-                "metrics": rec.metrics,
+                "metrics": rec.metrics.to_dict(),
                 "score": rec.score,
             },
-            "metrics": list(RANKED_METRICS),
+            "metrics": ranked_columns(),
             "costs": {
-                "yours": dict(record.yours.values),
-                "recommended": dict(record.recommended.values),
+                "yours": record.yours.metrics.to_dict(),
+                "recommended": record.recommended.metrics.to_dict(),
             },
         }
     }

@@ -10,8 +10,12 @@ each is shown at its natural pixel size (the figures are drawn for the page: at 
 from __future__ import annotations
 
 import html
+import itertools
 import math
-from collections.abc import Sequence
+import re
+from collections.abc import Callable, Collection, Mapping, Sequence
+from dataclasses import dataclass, replace
+from html.parser import HTMLParser
 from pathlib import Path
 from typing import Any, Literal
 
@@ -20,10 +24,10 @@ import pandas as pd
 
 from hexaleg._io import write_text
 from hexaleg._version import __version__
+from hexaleg.evaluation.metrics import significant
 from hexaleg.output.figures.canvas import DPI
 from hexaleg.output.report.part import Part, ReportData, numbered
 from hexaleg.output.report.section import Figure, Section
-from hexaleg.study.metrics import significant
 
 Medium = Literal["screen", "print"]
 """What the HTML is for: a browser (PNG figures) or the PDF (SVG figures, page breaks)."""
@@ -34,6 +38,14 @@ def table(header: Sequence[str], rows: Sequence[Sequence[str]]) -> str:
     lines = ["| " + " | ".join(header) + " |", "|" + "---|" * len(header)]
     lines += ["| " + " | ".join(str(c) for c in row) + " |" for row in rows]
     return "\n".join(lines)
+
+
+def cell(value: float, text: Callable[[float], str], missing: str) -> str:
+    """A table cell: ``text(value)``, or ``missing`` when ``value`` is NaN or infinite.
+
+    ``missing`` says in words why there is no number: a table never prints ``nan``.
+    """
+    return text(value) if math.isfinite(value) else missing
 
 
 TITLE = "hexaleg report"
@@ -89,25 +101,193 @@ def _figure_markdown(figure: Figure, number: int, folder: Path) -> str:
 
 
 def report_html(report: Sequence[Section], folder: Path, medium: Medium = "screen") -> str:
-    """The whole report as one HTML page; figures are read from ``folder`` for their size."""
+    """The whole report as one HTML page; figures are read from ``folder`` for their size.
+
+    For ``"print"``, the blocks of :func:`print_blocks` in reading order, every figure at
+    its drawn size (the PDF's layout, :mod:`~hexaleg.output.report.pages`, may reorder and
+    shrink them).
+    """
+    if medium == "print":
+        return print_html(print_blocks(report, folder))
     numbers = figure_numbers(report)
-    body = [f"<h1>{TITLE}</h1>", _markdown(preamble(folder, medium))]
+    body = [f"<h1>{TITLE}</h1>", markdown_html(preamble(folder, medium))]
     for section in report:
-        body.append(f"<section>\n<div class='keep'><h2>{html.escape(section.title)}</h2>")
-        for k, block in enumerate(section.blocks):  # the heading stays with its first block
+        body.append(f"<section>\n<h2>{html.escape(section.title)}</h2>")
+        for block in section.blocks:
             if isinstance(block, Figure):
-                body.append(_figure_html(block, numbers[block.name], folder, medium))
+                body.append(figure_html(block, numbers[block.name], folder, medium))
             else:
-                body.append(_markdown(block))
-            if k == 0:
-                body.append("</div>")
-        body.append("</section>" if section.blocks else "</div></section>")
+                body.append(markdown_html(block))
+        body.append("</section>")
+    return _page("\n".join(body), STYLE)
+
+
+def _page(body: str, style: str) -> str:
     return (
         "<!DOCTYPE html>\n<html lang='en'><head><meta charset='utf-8'>"
         "<meta name='viewport' content='width=device-width, initial-scale=1'>"
-        f"<title>{TITLE}</title><style>{STYLE}{PRINT_STYLE if medium == 'print' else ''}"
-        "</style></head><body>\n" + "\n".join(body) + "\n</body></html>\n"
+        f"<title>{TITLE}</title><style>{style}</style></head><body>\n{body}\n</body></html>\n"
     )
+
+
+@dataclass(frozen=True)
+class PrintBlock:
+    """A run of the print version with no page break between its elements but inside text.
+
+    Attributes:
+        html: Its HTML.
+        section: The index of its section (-1: the title and reading notes).
+        figure: The figure it shows, or ``""``.
+        keep: It holds only tables and figures: it cannot be cut across pages at all (text
+            can, between lines).
+        heading: It starts with its section's heading.
+
+    """
+
+    html: str
+    section: int
+    figure: str = ""
+    keep: bool = False
+    heading: bool = False
+
+
+def print_blocks(
+    report: Sequence[Section],
+    folder: Path,
+    scales: Mapping[str, float] | None = None,
+    long_tables: Collection[str] = (),
+) -> list[PrintBlock]:
+    """The print version cut into blocks, in reading order.
+
+    Each markdown block is cut into its top-level elements (paragraphs, tables). A heading
+    stays with the element after it, a paragraph with the table after it (the text that
+    introduces a table) and with anything after it when it ends with a colon: no page
+    breaks after such an element (CSS ``break-after: avoid``, class ``intro`` on a
+    paragraph), so at least its last lines go to the next page with what it introduces;
+    a chain of such elements is one block. ``scales`` draws a figure (by name) at that
+    share of its size. Tables are named ``t<n>`` in reading order; those in ``long_tables``
+    may be cut between rows (their header repeated), the others are not cut.
+    """
+    numbers = figure_numbers(report)
+    blocks = [PrintBlock(f"<h1>{TITLE}</h1>" + markdown_html(preamble(folder, "print")), -1)]
+    for index, section in enumerate(report):
+        units: list[tuple[str, str, str]] = [("h2", f"<h2>{html.escape(section.title)}</h2>", "")]
+        for block in section.blocks:
+            if isinstance(block, Figure):
+                scale = (scales or {}).get(block.name, 1.0)
+                shown = figure_html(block, numbers[block.name], folder, "print", scale)
+                units.append(("figure", shown, block.name))
+            else:
+                units += [(tag, part, "") for tag, part in top_level(markdown_html(block))]
+        blocks += _chains(units, index)
+    tables = itertools.count()
+
+    def named(found: re.Match[str]) -> str:
+        name = f"t{next(tables)}"
+        return f"<table id='{name}'{' class=long' if name in long_tables else ''}>"
+
+    return [replace(block, html=re.sub(r"<table>", named, block.html)) for block in blocks]
+
+
+def _chains(units: Sequence[tuple[str, str, str]], section: int) -> list[PrintBlock]:
+    """Join each unit (tag, HTML, figure) that stays with the next into one block."""
+    blocks: list[PrintBlock] = []
+    run: list[tuple[str, str, str]] = []
+    for k, (tag, part, name) in enumerate(units):
+        after = units[k + 1][0] if k + 1 < len(units) else ""
+        stays = bool(after) and _stays_with_next((tag, part, name), after)
+        if stays and tag == "p":
+            part = part.replace("<p>", "<p class='intro'>", 1)
+        run.append((tag, part, name))
+        if stays:
+            continue
+        blocks.append(
+            PrintBlock(
+                "".join(part for _, part, _ in run),
+                section,
+                figure=next((name for _, _, name in run if name), ""),
+                keep=all(tag in ("table", "figure") for tag, _, _ in run),
+                heading=run[0][0] == "h2",
+            )
+        )
+        run = []
+    return blocks
+
+
+def _stays_with_next(unit: tuple[str, str, str], after: str) -> bool:
+    tag, part, _ = unit
+    if tag in ("h2", "h3", "h4"):
+        return True
+    text = re.sub(r"<[^>]+>", "", part).strip()
+    return tag == "p" and (after == "table" or text.endswith(":"))
+
+
+def top_level(fragment: str) -> list[tuple[str, str]]:
+    """The top-level elements of an HTML fragment: (tag, its HTML), in order."""
+    found: list[tuple[str, str]] = []
+    parser = _TopLevel()
+    parser.feed(fragment)
+    parser.close()
+    lines = fragment.splitlines(keepends=True)
+    offsets = [0]
+    for line in lines:
+        offsets.append(offsets[-1] + len(line))
+    left = fragment
+    for tag, (l0, c0), (l1, c1) in parser.spans:
+        start, end = offsets[l0 - 1] + c0, offsets[l1 - 1] + c1
+        found.append((tag, fragment[start:end]))
+        left = left.replace(fragment[start:end], "", 1)
+    if left.strip() or not found:  # text outside any element: the fragment stays whole
+        return [("div", fragment)]
+    return found
+
+
+class _TopLevel(HTMLParser):
+    """Where each top-level element of a fragment starts and ends (line, column)."""
+
+    VOID = frozenset({"br", "hr", "img", "input", "meta", "link", "wbr", "col", "area"})
+
+    def __init__(self) -> None:
+        super().__init__(convert_charrefs=False)
+        self.depth = 0
+        self.open: tuple[str, tuple[int, int]] | None = None
+        self.spans: list[tuple[str, tuple[int, int], tuple[int, int]]] = []
+
+    def handle_starttag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if tag in self.VOID:
+            if self.depth == 0:
+                self.handle_startendtag(tag, attrs)
+            return
+        if self.depth == 0:
+            self.open = (tag, self.getpos())
+        self.depth += 1
+
+    def handle_startendtag(self, tag: str, attrs: list[tuple[str, str | None]]) -> None:
+        if self.depth == 0:
+            line, column = self.getpos()
+            text = self.get_starttag_text() or ""
+            self.spans.append((tag, (line, column), (line, column + len(text))))
+
+    def handle_endtag(self, tag: str) -> None:
+        if tag in self.VOID or self.depth == 0:
+            return
+        self.depth -= 1
+        if self.depth == 0 and self.open is not None:
+            line, column = self.getpos()
+            self.spans.append((self.open[0], self.open[1], (line, column + len(f"</{tag}>"))))
+            self.open = None
+
+
+def print_html(blocks: Sequence[PrintBlock], order: Sequence[int] | None = None) -> str:
+    """The print page of ``blocks`` in ``order`` (reading order by default).
+
+    Each block is a ``<div class='block' id='b<index>'>``.
+    """
+    body = []
+    for k in range(len(blocks)) if order is None else order:
+        block = blocks[k]
+        body.append(f"<div class='block' id='b{k}'>{block.html}</div>")
+    return _page("\n".join(body), STYLE + PRINT_STYLE)
 
 
 STYLE = (
@@ -124,26 +304,32 @@ PRINT_STYLE = (
     "@page{size:A4;margin:12mm;@bottom-center{content:counter(page) ' / ' counter(pages);"
     "font-size:9pt;color:#666}}"
     "body{max-width:none;margin:0;padding:0;font-size:10pt}"
-    "h2,h3{break-after:avoid}.keep{break-inside:avoid}"
-    "table{font-size:8.5pt;break-inside:avoid}tr{break-inside:avoid}"
+    "h2,h3,p.intro{break-after:avoid}h2{margin-top:.9em}"
+    "table{font-size:8.5pt;break-inside:avoid}table.long{break-inside:auto}"
+    "tr{break-inside:avoid}"
     "figure{break-inside:avoid}figcaption{font-size:9pt}"
 )
-"""Print layout (the PDF): A4, numbered pages, no table or figure cut, no heading left alone
-at the foot of a page: a heading is kept on the page of the block it introduces."""
+"""Print layout (the PDF): A4, numbered pages, no figure or table cut across pages (but a
+long table, between rows), no page break after a heading or after the words introducing a
+table (:func:`print_blocks`)."""
 
 
-def _markdown(text: str) -> str:
+def markdown_html(text: str) -> str:
+    """A markdown block (text, tables) as HTML."""
     return str(markdown.markdown(text, extensions=["tables"]))
 
 
-def _figure_html(figure: Figure, number: int, folder: Path, medium: Medium) -> str:
+def figure_html(
+    figure: Figure, number: int, folder: Path, medium: Medium, scale: float = 1.0
+) -> str:
+    """A figure with its caption; for print its SVG at ``scale`` of the size it was drawn."""
     width, height = png_size(folder / f"{figure.name}.png")
     caption = html.escape(f"Figure {number}: {figure.caption}")
     png, svg = f"{figure.name}.png", f"{figure.name}.svg"
     if medium == "print":  # vector, at the size it was drawn
         image = (
             f"<img src='{svg}' alt='{caption}' "
-            f"style='width:{width / DPI:.3f}in;height:{height / DPI:.3f}in'>"
+            f"style='width:{scale * width / DPI:.3f}in;height:{scale * height / DPI:.3f}in'>"
         )
     else:
         image = (

@@ -21,5 +21,6 @@ def study_marks(data: ReportData) -> list[Mark]:
 
 
 def rated_torques(data: ReportData) -> dict[str, float]:
-    """The design's rated torque per joint type [N·m]."""
-    return dict(zip(LEG_JOINTS, data.design.rated_torques, strict=True))
+    """The design's rated torque per joint type [N·m]; none where it gives none."""
+    given = data.design.rated_torques
+    return {} if given is None else dict(zip(LEG_JOINTS, given, strict=True))

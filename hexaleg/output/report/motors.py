@@ -19,11 +19,11 @@ from typing import Any
 from hexaleg.actuators import Actuators
 from hexaleg.electrical.period import ElectricalResult
 from hexaleg.electrical.ratings import RATED
+from hexaleg.evaluation.metrics import significant
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData
-from hexaleg.study.metrics import significant
 
 POWER, ENVELOPE = "gait_power", "gait_envelope"
 """The figures' file names, without extension."""

@@ -6,13 +6,13 @@ from dataclasses import dataclass, field
 
 from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.spec import Gait
 from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import max_workers
 from hexaleg.study.recommendation import DecisionOptions
-from hexaleg.study.requirements import Requirements
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import FieldSweep
 from hexaleg.swing.workspace import MAX_SAMPLES

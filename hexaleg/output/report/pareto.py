@@ -15,7 +15,6 @@ from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.pareto import pareto_front
 from hexaleg.study.ranking import RANKED_METRICS
 
@@ -56,7 +55,7 @@ def section(data: ReportData) -> Section:
         (
             f"{r['l1_ratio']:.2f}",
             ratio_text(r["l3_ratio"]),
-            *(METRICS[name].cell(r[name]) for name in RANKED_METRICS),
+            *(spec.cell(r[spec.name]) for spec in RANKED_METRICS),
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")

@@ -3,22 +3,25 @@
 Engine: WeasyPrint (PyPI ``weasyprint``, the ``[pdf]`` extra). Chosen over Chromium's
 print-to-PDF because it installs with pip like the rest of hexaleg (Chromium is a system
 package, absent on most servers and CI images), it draws SVG figures as vectors into the
-PDF, and it implements CSS paged media: A4 pages with numbered footers, headings kept with
-what follows, and ``break-inside: avoid`` honoured for tables and figures, so no table is cut
-across pages. It needs Pango (a system library present on common Linux distributions).
+PDF, and it implements CSS paged media: A4 pages with numbered footers and
+``break-inside: avoid`` honoured for tables and figures, so no table is cut across pages;
+its layout can be read back (each block's page and position), which the page mending uses.
+It needs Pango (a system library present on common Linux distributions).
 
 The PDF is made from the same sections as ``report.html``, with the print stylesheet of
-:mod:`~hexaleg.output.report.document` and each figure's SVG instead of its PNG.
+:mod:`~hexaleg.output.report.document` and each figure's SVG instead of its PNG, laid out
+on pages by :mod:`~hexaleg.output.report.pages` (headings kept with what follows them, no
+page but the last left mostly blank where a figure can be moved or shrunk).
 """
 
 from __future__ import annotations
 
-import logging
 from collections.abc import Sequence
 from pathlib import Path
 
 from hexaleg.exceptions import HexalegError
-from hexaleg.output.report.document import Section, report_html
+from hexaleg.output.report.document import Section
+from hexaleg.output.report.pages import lay_out
 
 REPORT_PDF = "report.pdf"
 
@@ -38,13 +41,12 @@ def require_pdf_engine() -> None:
 
 
 def write_pdf(report: Sequence[Section], folder: Path) -> Path:
-    """Write ``report.pdf`` into ``folder``, whose figures (PNG and SVG) are written already."""
-    require_pdf_engine()
-    import weasyprint
+    """Write ``report.pdf`` into ``folder``, whose figures (PNG and SVG) are written already.
 
-    logging.getLogger("weasyprint").setLevel(logging.ERROR)  # font-subsetting chatter
-    logging.getLogger("fontTools").setLevel(logging.ERROR)
-    page = report_html(report, folder, medium="print")
+    The pages are laid out by :func:`~hexaleg.output.report.pages.lay_out`.
+    """
+    require_pdf_engine()
+    _, document = lay_out(report, folder)
     path = folder / REPORT_PDF
-    weasyprint.HTML(string=page, base_url=str(folder)).write_pdf(path)
+    document.write_pdf(path)
     return path

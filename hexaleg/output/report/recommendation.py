@@ -7,11 +7,12 @@ relative to the user's design.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.output.report.document import Section, table, write_csv
+from hexaleg.output.report.document import Section, cell, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
@@ -77,15 +78,7 @@ def section(data: ReportData) -> Section:
                     "score peak l3",
                     "best score",
                 ],
-                [
-                    (
-                        f"{r['l1_ratio']:.2f}",
-                        *(ratio_text(r[f"{name}_peak_l3_ratio"]) for name in RANKED_METRICS),
-                        ratio_text(r["score_peak_l3_ratio"]),
-                        f"{r['best_score']:.4f}",
-                    )
-                    for r in rec.peaks.to_dict(orient="records")
-                ],
+                [_peak_row(r) for r in rec.peaks.to_dict(orient="records")],
             ),
             "Workspace, manipulability and flexibility grow as the coxa shrinks (Table 5); "
             "the walking payload capacity peaks where its column says, and the score weighs "
@@ -101,6 +94,23 @@ def section(data: ReportData) -> Section:
             "give those as requirements (`hexaleg decide`, `report --payload …`).",
         ),
     )
+
+
+NO_WALKER = "no leg at this coxa ratio walks the gait within its ratings"
+"""The §5 table's words for a coxa ratio with no leg to rank (every cell would be NaN)."""
+
+
+def _peak_row(peaks: dict[str, float]) -> list[str]:
+    """One coxa ratio's row of peaks: the tibia ratios and best score, or why there are none."""
+    l3_columns = [*(f"{spec.name}_peak_l3_ratio" for spec in RANKED_METRICS), "score_peak_l3_ratio"]
+    values = [peaks[column] for column in l3_columns]
+    if not any(math.isfinite(v) for v in (*values, peaks["best_score"])):
+        return [f"{peaks['l1_ratio']:.2f}", NO_WALKER, *("—" for _ in l3_columns)]
+    return [
+        f"{peaks['l1_ratio']:.2f}",
+        *(cell(v, ratio_text, "none") for v in values),
+        cell(peaks["best_score"], lambda v: f"{v:.4f}", "no score"),
+    ]
 
 
 def write_files(data: ReportData, out: Path) -> None:
@@ -119,9 +129,9 @@ def to_json(record: RecommendationRecord) -> dict[str, Any]:
             "l2_ratio": rec.l2_ratio,
             "l3_ratio": rec.l3_ratio,
             "l3_band": list(rec.l3_band),
-            "metrics": rec.metrics,
+            "metrics": rec.metrics.to_dict(),
             "score": rec.score,
-            "reference": rec.reference,
+            "reference": rec.reference.to_dict(),
             "peaks": rec.peaks.to_dict(orient="records"),
             "lengths_m": [rec.l1_ratio * total, rec.l2_ratio * total, rec.l3_ratio * total],
         }

@@ -8,11 +8,12 @@ each. The decision itself is :func:`hexaleg.study.decide.decide`.
 
 from __future__ import annotations
 
+from hexaleg.evaluation.goal import Objective
+from hexaleg.evaluation.requirements import format_margin
 from hexaleg.output.report.document import table
 from hexaleg.statics.ratings import OverRating
 from hexaleg.study.decide import CheckedDesign, DecideResult
-from hexaleg.study.requirements import RequirementCheck, format_margin, format_value
-from hexaleg.study.search_space import AtBound, value_of
+from hexaleg.study.decide_rows import BoundRow, RequirementRow, answer_rows, value_text
 
 
 def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
@@ -23,21 +24,21 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
         extreme = "largest" if objective.sense == "maximize" else "smallest"
         verdict = (
             f"**The best leg meeting your requirements: l = ({lengths}) m**, the {extreme} "
-            f"{objective.spec.label} of those that do: {_objective(best, objective.name)}"
+            f"{objective.spec.label} of those that do: {_objective(best, objective)}"
         )
     else:
         reason = result.conflict.description if result.conflict else "nothing meets them all"
         verdict = (
             f"**No leg within the bounds meets every requirement:** {reason}. The leg closest "
             f"to meeting them is l = ({lengths}) m, {objective.spec.label} "
-            f"{_objective(best, objective.name)}"
+            f"{_objective(best, objective)}"
         )
-    rows = [_row(result, b, y) for b, y in zip(best.checks, yours.checks, strict=True)]
-    rows += [_bound_row(at, yours) for at in result.bounds_binding]
+    answer = answer_rows(result)
+    rows = [_row(row) for row in answer.requirements] + [_bound_row(b) for b in answer.bounds]
     free = ", ".join(f"{v.name} {v.lower:.3g}–{v.upper:.3g}" for v in result.variables)
     walking = f" Walking: {result.walking_text()}." if result.walks else ""
     return (
-        f"{verdict}; your design: {objective.spec.label} {_objective(yours, objective.name)}.",
+        f"{verdict}; your design: {objective.spec.label} {_objective(yours, objective)}.",
         table(
             ["requirement", "best design", "margin", "binds", "your design", "yours meets it"],
             rows,
@@ -51,33 +52,35 @@ def requirement_blocks(result: DecideResult) -> tuple[str, ...]:
     )
 
 
-def _row(result: DecideResult, best: RequirementCheck, yours: RequirementCheck) -> tuple[str, ...]:
-    limited = f" (limited by {best.limited_by})"
+def _row(row: RequirementRow) -> tuple[str, ...]:
+    """A requirement: the best design's value, margin and whether it binds; yours beside it."""
+    best, yours = row.best, row.yours
     return (
-        result.requirements.describe(best.name),
-        format_value(best.name, best.value) + limited,
-        format_margin(best),
-        "yes" if best.binds else ("" if best.met else "NOT MET"),
-        format_value(yours.name, yours.value),
-        "yes" if yours.met else f"no ({format_margin(yours)})",
+        row.text,
+        "—" if best is None else f"{value_text(best)} (limited by {best.limited_by})",
+        "—" if best is None else format_margin(best),
+        "" if best is None else "yes" if best.binds else "" if best.met else "NOT MET",
+        "—" if yours is None else value_text(yours),
+        "—" if yours is None else "yes" if yours.met else f"no ({format_margin(yours)})",
     )
 
 
-def _bound_row(at: AtBound, yours: CheckedDesign) -> tuple[str, ...]:
+def _bound_row(row: BoundRow) -> tuple[str, ...]:
     """A free variable at its search bound: it binds as a requirement would."""
+    at = row.at
     variable, unit = at.variable, at.variable.unit
     return (
         f"{variable.name} within its searched {variable.lower:.3g}–{variable.upper:.3g} {unit}",
         f"{at.value:.4g} {unit} (at its {at.bound} bound; {at.remedy})",
         "±0",
         "yes",
-        f"{value_of(yours.design, variable.name):.4g} {unit}",
+        f"{row.yours:.4g} {unit}",
         "—",
     )
 
 
-def _objective(checked: CheckedDesign, name: str) -> str:
-    value = checked.evaluation.values.get(name)
+def _objective(checked: CheckedDesign, objective: Objective) -> str:
+    value = checked.evaluation.metrics[objective.spec]
     return "—" if value is None else f"{value:.4g}"
 
 

@@ -19,20 +19,22 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
+from hexaleg.gait.defaults import default_gait
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.output.figures.stance import stance_figure
 from hexaleg.output.report import design, viewer
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.viewer.scene import write_static_html
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate
-from hexaleg.study.metrics import METRICS
 from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.swing.manipulability import analyze_manipulability
 from hexaleg.swing.workspace import analyze_workspace
@@ -53,10 +55,18 @@ SKIPPED = (
 )  # fmt: skip
 """The template report's sections not run on an imported robot, and why."""
 
-METRIC_NAMES = (
-    "fb", "payload_capacity", "walking_payload_capacity", "max_speed", "stability_margin",
-    "max_slope", "ground_clearance", "robot_mass", "nominal_height", "leg_length",
-)  # fmt: skip
+METRIC_NAMES: tuple[MetricSpec, ...] = (
+    METRICS.fb,
+    METRICS.payload_capacity,
+    METRICS.walking_payload_capacity,
+    METRICS.max_speed,
+    METRICS.stability_margin,
+    METRICS.max_slope,
+    METRICS.ground_clearance,
+    METRICS.robot_mass,
+    METRICS.nominal_height,
+    METRICS.leg_length,
+)
 """The robot's metrics the first section lists (as read, under the report's gait)."""
 
 
@@ -126,9 +136,8 @@ def robot_section(data: ReportData) -> Section:
     """The robot, its metrics, and the template's sections left out."""
     record = data[RobotRecord]
     rows = []
-    for name in METRIC_NAMES:
-        spec, value = METRICS[name], record.evaluation.values[name]
-        cause = record.evaluation.causes.get(name)
+    for spec in METRIC_NAMES:
+        value, cause = record.evaluation.metrics.value(spec), record.evaluation.causes[spec]
         unit = "" if spec.unit in ("1", "-") else f" {spec.unit}"
         shown = "—" if math.isnan(value) else f"{value:.4g}{unit}"
         rows.append((spec.label, shown, "" if cause is None else str(cause)))
@@ -137,7 +146,7 @@ def robot_section(data: ReportData) -> Section:
         f"Your robot: {record.source}",
         (
             "The robot file as read (each leg its own general leg, the file's masses, joint "
-            f"limits and feet), walking {data.options.gait.named} for the walking numbers:",
+            f"limits and feet), walking {_gait_named(data)} for the walking numbers:",
             table(["metric", "value", "limited by"], rows),
             "Sections of hexaleg's report left out for an imported robot, and why:",
             table(["section", "why it is left out"], skipped),
@@ -151,8 +160,8 @@ def robot_json(record: RobotRecord) -> dict[str, Any]:
     return {
         "robot": {
             "urdf": record.source,
-            "metrics": dict(evaluation.values),
-            "limited_by": {k: str(v) for k, v in evaluation.causes.items()},
+            "metrics": evaluation.metrics.to_dict(),
+            "limited_by": {k: str(v) for k, v in evaluation.causes.to_dict().items()},
         },
         "skipped": [{"section": title, "why": why} for title, why in SKIPPED],
     }
@@ -242,7 +251,7 @@ class RobotStanceRecord:
 
     flexibility: FlexibilityResult
     loads: LoadsAnalysis
-    walking: WalkingCapacity
+    walking: WalkingCapacity | None
 
 
 def compute_stance(data: ReportData) -> RobotStanceRecord:
@@ -273,18 +282,19 @@ def stance_section(data: ReportData) -> Section:
     record = data[RobotStanceRecord]
     locked, loads = record.flexibility, record.loads
     nominal = loads.nominal.peak_torques()
-    rated = dict(zip(nominal, data.design.rated_torques, strict=True))
+    given = data.design.rated_torques
+    rated = dict(zip(nominal, given or (1.0,) * 3, strict=True))  # 1 N·m: round-off's scale
     peaks = loads.peak_torques
     torques = [
-        (j, f"{rated[j]:g}", _torque(nominal[j], rated[j]), _torque(peaks[j], rated[j]))
+        (
+            j,
+            f"{rated[j]:g}" if given else "not given",
+            _torque(nominal[j], rated[j]),
+            _torque(peaks[j], rated[j]),
+        )
         for j in nominal
     ]
-    walking = record.walking
-    walks = (
-        f"**{walking.mass:.2f} kg**"
-        if walking.walks
-        else "none (it cannot walk it: a design file's `[gait]` table sets one it can)"
-    )
+    standing, walks = _capacities(record)
     return Section(
         "Body flexibility and statics (axis-locked, the file's joint limits)",
         (
@@ -297,12 +307,32 @@ def stance_section(data: ReportData) -> Section:
             Figure("flexibility_extremes", "How far the body moves along and about each axis"),
             f"The robot weighs {loads.nominal.mass:.3f} kg; stability margin at the nominal "
             f"stance {loads.nominal.stability_margin:.4f} m. Payload capacity standing: "
-            f"**{loads.capacity.mass:.2f} kg**, limited by {loads.capacity.limited_by}; walking "
-            f"{data.options.gait.named}: {walks}, limited by {walking.limited_by}. Peak |τ| in "
-            "N·m:",
+            f"{standing}; walking {_gait_named(data)}: {walks}. Peak |τ| in N·m:",
             table(["joint", "rated", "nominal stance", "over the extremes"], torques),
         ),
     )
+
+
+def _gait_named(data: ReportData) -> str:
+    """The walked gait's name: "the default gait" for the robot's own (sized to it)."""
+    gait = data.options.gait
+    return "the default gait" if gait == default_gait(data.model) else gait.named
+
+
+def _capacities(record: RobotStanceRecord) -> tuple[str, str]:
+    """The payload capacities standing and walking, in words (each may need a rating)."""
+    capacity, walking = record.loads.capacity, record.walking
+    standing = (
+        NEEDS_RATING
+        if capacity is None
+        else f"**{capacity.mass:.2f} kg**, limited by {capacity.limited_by}"
+    )
+    if walking is None:
+        return standing, NEEDS_RATING
+    if not walking.walks:
+        cannot = "none (it cannot walk it: a design file's `[gait]` table sets one it can)"
+        return standing, f"{cannot}, limited by {walking.limited_by}"
+    return standing, f"**{walking.mass:.2f} kg**, limited by {walking.limited_by}"
 
 
 def stance_files(data: ReportData, out: Path) -> None:
@@ -322,7 +352,9 @@ def stance_json(record: RobotStanceRecord) -> dict[str, Any]:
     return {
         "flexibility": {"axis": record.flexibility.to_dict()},
         "loads": {"axis": loads},
-        "walking_payload_capacity": record.walking.to_dict(),
+        METRICS.walking_payload_capacity.name: None
+        if record.walking is None
+        else record.walking.to_dict(),
     }
 
 

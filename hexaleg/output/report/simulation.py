@@ -104,10 +104,11 @@ def _walk_rows(result: SimulationResult) -> list[tuple[str, str, str]]:
         ("RMS joint tracking error [rad]", f"{metrics.tracking_rms:.4f}", "0"),
         ("standing-foot slip [m]", f"{metrics.slip:.4f}", "0"),
     ]  # fmt: skip
-    for joint, rated in zip(LEG_JOINTS, design.rated_torques, strict=True):
+    for joint, rated in zip(LEG_JOINTS, design.rated_torques or (None,) * 3, strict=True):
         rows.append(
             (
-                f"peak \\|τ\\| {joint} [N·m] (rated {rated:g})",
+                f"peak \\|τ\\| {joint} [N·m] "
+                + (f"(rated {rated:g})" if rated is not None else "(rating not given)"),
                 f"{metrics.peak_torque[joint]:.1f}",
                 f"{result.planned_peak_torque[joint]:.1f}",
             )

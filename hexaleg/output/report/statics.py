@@ -7,7 +7,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import loads_figure, save, statics_study_figure
 from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
 from hexaleg.output.report.document import Figure, Section, table
@@ -15,6 +15,7 @@ from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 
 
@@ -62,10 +63,10 @@ def section(data: ReportData) -> Section:
             _torque_table(data),
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
             f"Payload capacity at the centre of the body's top face, standing: "
-            f"**{loads.capacity.mass:.1f} kg**, limited by {loads.capacity.limited_by}; "
+            f"{_capacity(loads)}; "
             f"walking {data.options.gait.named}: "
-            f"**{float(yours['walking_payload_capacity']):.1f} kg**, "
-            f"limited by {yours['walking_payload_limited_by']}. "
+            f"**{yours.metrics.value(METRICS.walking_payload_capacity):.1f} kg**, "
+            f"limited by {yours.columns['walking_payload_limited_by']}. "
             f"Steepest slope the robot stands on, body level with the ground (μ = "
             f"{loads.friction:g}):",
             _slope_table(loads, differ),
@@ -85,6 +86,14 @@ def section(data: ReportData) -> Section:
     )
 
 
+def _capacity(loads: LoadsAnalysis) -> str:
+    """The standing payload capacity in words (it may need a rating)."""
+    capacity = loads.capacity
+    if capacity is None:
+        return NEEDS_RATING
+    return f"**{capacity.mass:.1f} kg**, limited by {capacity.limited_by}"
+
+
 def _torque_table(data: ReportData) -> str:
     record = data[StaticsRecord]
     nominal = record.axis.nominal.peak_torques()
@@ -99,11 +108,19 @@ def _torque_table(data: ReportData) -> str:
             f"{record.free.peak_torques[joint]:.1f}",
         )
         for joint, rated, speed in zip(
-            nominal, design.rated_torques, design.rated_speeds, strict=True
+            nominal,
+            design.rated_torques or (math.nan,) * 3,
+            design.rated_speeds or (math.nan,) * 3,
+            strict=True,
         )
     ]
-    header = ["joint", "rated torque", "rated speed [rad/s]", "nominal stance",
-              "over the axis-locked extremes"]  # fmt: skip
+    header = [
+        "joint",
+        "rated torque",
+        "rated speed [rad/s]",
+        "nominal stance",
+        "over the axis-locked extremes",
+    ]
     return table([*header, "over the free-coupled extremes"], rows)
 
 
@@ -140,7 +157,8 @@ def write_files(data: ReportData, out: Path) -> None:
         svg=data.options.svg,
     )
     yours = data[StudyRecord].yours
-    walking = {joint: float(yours[f"gait_peak_{joint}_torque"]) for joint in LEG_JOINTS}
+    peaks = yours.metrics.joint_torques("peak")
+    walking = {joint: math.nan if peak is None else peak for joint, peak in peaks.items()}
     figure = loads_figure(data[StaticsRecord].axis, walking, data.options.gait)
     save(figure, out / "loads.png", svg=data.options.svg)
 

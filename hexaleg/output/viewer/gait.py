@@ -28,6 +28,7 @@ from hexaleg.output.viewer.legend import GAIT_LEGEND, torque_colour
 from hexaleg.output.viewer.server import static_page
 from hexaleg.output.viewer.stage import ROOT, Stage
 from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.ratings import rating_use
 
 NODE = f"{ROOT}/gait"
 """The walking robot's node in the scene tree."""
@@ -53,7 +54,7 @@ def build_gait_scene(viewer: Any, model: HexapodModel, analysis: GaitAnalysis) -
         model,
         analysis.configurations,
         analysis.gait.samples / analysis.gait.period,  # real time
-        np.abs(analysis.joint_torques) / np.array(analysis.design.rated_torques),
+        rating_use(analysis.joint_torques, analysis.design.rated_torques),
     )
 
 

@@ -29,6 +29,7 @@ from hexaleg.stance.configurations import stance_configurations
 from hexaleg.stance.extremes import Extreme, FlexibilityResult
 from hexaleg.statics.forces import StaticState
 from hexaleg.statics.loads import LoadsAnalysis
+from hexaleg.statics.ratings import rating_use
 from hexaleg.swing.workspace import monte_carlo_workspace
 
 ANIMATION_FPS = 30
@@ -104,8 +105,11 @@ def _add_footholds(stage: Stage) -> None:
 
 
 def _colour_by_torque(stage: Stage, robot: Any, state: StaticState) -> None:
-    """Reload each stance leg's links in the colour of its joint's |τ| / rated."""
-    ratios = np.abs(state.joint_torques) / np.asarray(stage.model.design.rated_torques)
+    """Reload each stance leg's links in the colour of its joint's |τ| / rated.
+
+    Without ratings, |τ| over each joint type's largest (:func:`rating_use`).
+    """
+    ratios = rating_use(state.joint_torques, stage.model.design.rated_torques)
     for leg, leg_ratios in zip(state.legs, ratios, strict=True):
         for joint, ratio in zip(LEG_JOINTS, leg_ratios, strict=True):
             colour = list(torque_colour(ratio))

@@ -1,9 +1,9 @@
 """What a decision measures every design for: its requirements and its objective.
 
-An :class:`Objective` makes one metric (:data:`~hexaleg.study.metrics.METRICS`) best; a
-:class:`Goal` pairs it with the requirements (:mod:`hexaleg.study.requirements`), names
+An :class:`Objective` makes one metric (:data:`~hexaleg.evaluation.metrics.METRICS`) best; a
+:class:`Goal` pairs it with the requirements (:mod:`hexaleg.evaluation.requirements`), names
 the metrics both need and the conditions they are measured under, and measures a design
-for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.study.evaluation.evaluate`).
+for them (:meth:`Goal.evaluate`, one :func:`~hexaleg.evaluation.evaluate.evaluate`).
 """
 
 from __future__ import annotations
@@ -12,14 +12,15 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field, replace
 
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.evaluation.metrics import METRICS, Better, MetricSpec, objectives
+from hexaleg.evaluation.requirement_specs import REQUIREMENTS, SLOPE
+from hexaleg.evaluation.requirements import RequirementCheck, Requirements, check
 from hexaleg.exceptions import HexalegError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.study.evaluation import Conditions, Evaluation, evaluate, evaluate_many
-from hexaleg.study.metrics import METRICS, Better, MetricSpec, objectives
-from hexaleg.study.requirements import REQUIREMENTS, RequirementCheck, Requirements, check
 
 
 @dataclass(frozen=True)
@@ -27,13 +28,13 @@ class Objective:
     """What the decision makes best.
 
     Attributes:
-        name: The metric: any of :data:`~hexaleg.study.metrics.METRICS` (the command line
+        name: The metric: any of :data:`~hexaleg.evaluation.metrics.METRICS` (the command line
             offers those declared as objectives, in their better direction).
         sense: ``"maximize"`` or ``"minimize"``.
 
     """
 
-    name: str = "fb"
+    name: str = METRICS.fb.name
     sense: Better = "maximize"
 
     def __post_init__(self) -> None:
@@ -54,7 +55,7 @@ class Objective:
     @property
     def spec(self) -> MetricSpec:
         """The metric's declaration."""
-        return METRICS[self.name]
+        return METRICS.named(self.name)
 
 
 @dataclass(frozen=True)
@@ -78,23 +79,23 @@ class Goal:
         return tuple(name for name in self.requirements.given if name not in self.relaxed)
 
     @property
-    def metrics(self) -> tuple[str, ...]:
+    def metrics(self) -> tuple[MetricSpec, ...]:
         """The metrics to measure: the requirements' and the objective's, in declared order."""
         needed = {REQUIREMENTS[name].metric for name in self.requirements.given}
-        needed.add(self.objective.name)
-        return tuple(name for name in METRICS if name in needed)
+        needed.add(self.objective.spec)
+        return tuple(spec for spec in METRICS if spec in needed)
 
     @property
     def walks(self) -> bool:
         """Whether the designs walk the requirements' gait (a walking metric is needed)."""
-        return any(METRICS[name].analysis == "walking" for name in self.metrics)
+        return any(spec.walks for spec in self.metrics)
 
     @property
     def conditions(self) -> Conditions:
         """The conditions of the requirements: their payload, slope and gait."""
         requirements = self.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
-        return Conditions(payload, requirements.slope, requirements.gait)
+        return Conditions(payload, requirements.required(SLOPE), requirements.gait)
 
     def with_objective(self, objective: Objective, relaxed: tuple[str, ...] = ()) -> Goal:
         """The same requirements for another objective, some of them relaxed."""
@@ -109,12 +110,16 @@ class Goal:
     ) -> Evaluation:
         """``design``'s metrics for this goal; an error if its objective has no value.
 
-        The arguments after ``design`` are :func:`~hexaleg.study.evaluation.evaluate`'s.
+        The arguments after ``design`` are :func:`~hexaleg.evaluation.evaluate.evaluate`'s.
         """
         found = evaluate(
-            design, self.metrics, self.conditions, model=model, template=template,
+            design,
+            self.metrics,
+            self.conditions,
+            model=model,
+            template=template,
             flexibility=flexibility,
-        )  # fmt: skip
+        )
         return self._measured(found)
 
     def evaluate_many(
@@ -126,12 +131,12 @@ class Goal:
 
     def _measured(self, evaluation: Evaluation) -> Evaluation:
         """The evaluation, or an error when the objective could not be measured."""
-        why = evaluation.unmeasured.get(self.objective.name)
+        why = evaluation.unmeasured[self.objective.spec]
         return Evaluation(error=why) if why else evaluation
 
     def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
         """Each requirement checked on an evaluation (its value, margin, what limits it)."""
-        return check(self.requirements, evaluation.values, evaluation.causes)
+        return check(self.requirements, evaluation.metrics, evaluation.causes)
 
     def meets(self, evaluation: Evaluation) -> bool:
         """Whether the design was measured and meets every constraint."""

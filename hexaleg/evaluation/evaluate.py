@@ -1,13 +1,13 @@
 """One evaluation of a design: every metric anyone asks for, each analysis run at most once.
 
-:func:`evaluate` measures the metrics of :data:`~hexaleg.study.metrics.METRICS` that a
+:func:`evaluate` measures the metrics of :data:`~hexaleg.evaluation.metrics.METRICS` that a
 caller names — a study's row, a decision's candidate, the report's recommendation, the
 user's own design — under one set of :class:`Conditions` (payload, slope, gait, stance
 legs, collisions), into one frozen :class:`Evaluation`. Each metric's analysis runs once
 however many of its metrics are asked for: the improved workspace area in closed form
 (eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
 or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
-statics' payload capacity and steepest slope (:mod:`hexaleg.study.standing_limits`), and
+statics' payload capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), and
 one gait period (:func:`~hexaleg.gait.analysis.analyze_gait`) for the max speed, peak
 torque and cost of transport.
 
@@ -21,21 +21,30 @@ from __future__ import annotations
 
 import math
 import warnings
-from collections.abc import Collection, Mapping, Sequence
-from dataclasses import dataclass, field
+from collections.abc import Collection, Iterable, Sequence
+from dataclasses import dataclass, field, replace
 from functools import cached_property
+from typing import TypeVar
 
 import numpy as np
 import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode, StanceSet
-from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
+from hexaleg.evaluation.metrics import (
+    METRICS,
+    WALKING,
+    Analysis,
+    Causes,
+    Metrics,
+    MetricSpec,
+    Reasons,
+)
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
@@ -45,12 +54,14 @@ from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.metrics import METRICS, Analysis
-from hexaleg.study.standing_limits import Standing
+from hexaleg.statics.standing_limits import Standing
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
 
 __all__ = ["Conditions", "Evaluation", "evaluate", "evaluate_many"]
+
+Table = TypeVar("Table", Metrics, Causes, Reasons)
+"""A per-metric record of an evaluation: its values, their causes, why some have none."""
 
 
 @dataclass(frozen=True)
@@ -84,10 +95,12 @@ class Evaluation:
     """One design's metrics, or why it could not be measured.
 
     Attributes:
-        values: Each metric asked for [its unit] (NaN where :attr:`unmeasured` says why).
+        metrics: Each metric asked for [its unit]; ``None`` where not asked for, NaN where
+            :attr:`unmeasured` says why it has no value.
         causes: What limits a metric, where something does (payload, slope, speed).
         error: Why the design cannot exist or stand; empty if it was measured.
-        unmeasured: Metrics without a value, and why (a gait it cannot walk).
+        unmeasured: Why a metric asked for has no value (a gait it cannot walk; a rating
+            the design does not give: :data:`~hexaleg.ratings.NEEDS_RATING`).
         flexibility: Its flexibility, when kept (:attr:`Conditions.keep`).
         loads: The statics at the nominal stance and at the extremes, when kept.
         gait: The gait period walked, when kept.
@@ -96,23 +109,19 @@ class Evaluation:
 
     """
 
-    values: Mapping[str, float] = field(default_factory=dict)
-    causes: Mapping[str, Cause] = field(default_factory=dict)
+    metrics: Metrics = field(default_factory=Metrics)
+    causes: Causes = field(default_factory=Causes)
     error: str = ""
-    unmeasured: Mapping[str, str] = field(default_factory=dict)
+    unmeasured: Reasons = field(default_factory=Reasons)
     flexibility: FlexibilityResult | None = None
     loads: LoadsAnalysis | None = None
     gait: GaitAnalysis | None = None
     walks: bool | None = None
 
-    def __getitem__(self, name: str) -> float:
-        """The value of metric ``name``."""
-        return self.values[name]
-
 
 def evaluate(
     design: HexapodDesign,
-    metrics: Collection[str],
+    metrics: Collection[MetricSpec],
     conditions: Conditions | None = None,
     *,
     model: HexapodModel | None = None,
@@ -123,7 +132,7 @@ def evaluate(
 
     Args:
         design: The design.
-        metrics: Names of :data:`~hexaleg.study.metrics.METRICS` to measure.
+        metrics: Declarations of the metrics to measure (``METRICS.fb``, ...).
         conditions: What it is measured under (level ground, no payload, the default gait).
         model: The design's Pinocchio model (one derived from a model of the same body by
             :meth:`~hexaleg.robot.model.HexapodModel.with_design` is exact); when an
@@ -137,9 +146,6 @@ def evaluate(
     ``error`` set and no values.
 
     """
-    unknown = [name for name in metrics if name not in METRICS]
-    if unknown:
-        raise HexalegError(f"unknown metric {unknown[0]!r}: known are {', '.join(METRICS)}")
     measuring = _Measuring(design, conditions or Conditions(), model, template, flexibility)
     try:
         return measuring.evaluation(metrics)
@@ -149,7 +155,7 @@ def evaluate(
 
 def evaluate_many(
     designs: Sequence[HexapodDesign],
-    metrics: Collection[str],
+    metrics: Collection[MetricSpec],
     conditions: Conditions,
     base: HexapodModel,
     template: StanceGeometry,
@@ -166,7 +172,7 @@ def evaluate_many(
     """
     models = [base.with_design(design) for design in designs]
     found: Sequence[FlexibilityResult | None] = [None] * len(designs)
-    if "fb" in metrics and conditions.mode == "axis" and designs:
+    if METRICS.fb in metrics and conditions.mode == "axis" and designs:
         try:
             found = axis_locked_flexibility_many(
                 designs, template, models, collisions=conditions.collisions
@@ -179,27 +185,27 @@ def evaluate_many(
     ]
 
 
-PERIOD_METRICS = ("max_speed", "gait_peak_torque", "mechanical_cost_of_transport")
-ELECTRICAL_METRICS = (
-    "energy_per_km", "electrical_cost_of_transport", "continuous_load", "battery_range",
-)  # fmt: skip
-"""The metrics of the period through the design's motors (:mod:`hexaleg.electrical`)."""
-PERIOD_DETAILS = (
-    *ELECTRICAL_METRICS,
-    "mechanical_energy_per_km",
-    "min_zmp_margin",
-    *(f"gait_{kind}_{joint}_torque" for joint in LEG_JOINTS for kind in ("peak", "rms")),
-)
-"""The metrics of one period of the gait (:func:`~hexaleg.gait.analysis.analyze_gait`)."""
-
 ANALYSES: tuple[Analysis, ...] = (
-    "geometry", "workspace", "manipulability", "flexibility", "clearance", "standing", "walking",
-)  # fmt: skip
+    "geometry",
+    "workspace",
+    "manipulability",
+    "flexibility",
+    "clearance",
+    "standing",
+    "walking",
+    "speed",
+    "period",
+    "motors",
+)
 """The analyses, in the order an evaluation runs them."""
 
 
 class _Measuring:
-    """One design's evaluation under way: each analysis and model made once, on demand."""
+    """One design's evaluation under way: each analysis and model made once, on demand.
+
+    Each ``_measure_<analysis>`` step returns the metrics it measured; the evaluation keeps
+    those asked for.
+    """
 
     def __init__(
         self,
@@ -211,30 +217,39 @@ class _Measuring:
     ) -> None:
         self.design, self.conditions = design, conditions
         self._model, self._template, self._flexibility = model, template, flexibility
-        self.metrics: set[str] = set()
-        self.values: dict[str, float] = {}
-        self.causes: dict[str, Cause] = {}
-        self.unmeasured: dict[str, str] = {}
+        self.asked: frozenset[str] = frozenset()
+        self.causes = Causes()
+        self.unmeasured = Reasons()
         self.loads: LoadsAnalysis | None = None
-        self.walked: GaitAnalysis | None = None
         self.walks: bool | None = None
 
-    def evaluation(self, metrics: Collection[str]) -> Evaluation:
-        self.metrics = set(metrics)
-        wanted = {METRICS[name].analysis for name in metrics}
+    def evaluation(self, metrics: Collection[MetricSpec]) -> Evaluation:
+        self.asked = frozenset(spec.name for spec in metrics)
+        wanted = {spec.analysis for spec in metrics}
+        if self.conditions.keep and wanted & WALKING:
+            wanted.add("period")  # the period walked is kept
+        measured: dict[str, float | None] = {}
         for analysis in ANALYSES:
             if analysis in wanted:
-                getattr(self, f"_measure_{analysis}")()
+                found: Metrics = getattr(self, f"_measure_{analysis}")()
+                measured |= found.to_dict()
         kept = self.conditions.keep
         return Evaluation(
-            values={name: self.values[name] for name in METRICS if name in metrics},
-            causes={name: cause for name, cause in self.causes.items() if name in metrics},
-            unmeasured={k: v for k, v in self.unmeasured.items() if k in metrics},
+            metrics=self._asked_only(Metrics(**measured)),
+            causes=self._asked_only(self.causes),
+            unmeasured=self._asked_only(self.unmeasured),
             flexibility=self.flexibility if kept and "flexibility" in wanted else None,
             loads=self.loads if kept else None,
-            gait=self.walked if kept else None,
+            gait=self.walked if kept and "period" in wanted else None,
             walks=self.walks,
         )
+
+    def _asked(self, spec: MetricSpec) -> bool:
+        return spec.name in self.asked
+
+    def _asked_only(self, table: Table) -> Table:
+        """``table``'s fields of the metrics asked for (the others ``None``)."""
+        return type(table)(**{k: v for k, v in table.to_dict().items() if k in self.asked})
 
     # -- what the analyses share -----------------------------------------------------------
 
@@ -279,121 +294,148 @@ class _Measuring:
                 collisions=conditions.collisions,
             )
 
+    @cached_property
+    def walked(self) -> GaitAnalysis:
+        """One period of the conditions' gait, with the fastest walk of its stride."""
+        conditions = self.conditions
+        return analyze_gait(
+            self.design,
+            conditions.gait,
+            conditions.payload,
+            model=self.model,
+            limits=False,
+            speed=True,
+        )
+
     # -- the analyses ------------------------------------------------------------------
 
-    def _measure_geometry(self) -> None:
+    def _measure_geometry(self) -> Metrics:
         design, model = self.design, self._model
         mass, height = design.total_mass, design.nominal_height
         if model is not None and getattr(model, "general_legs", False):  # the file's, not ours
             mass, height = pin.computeTotalMass(model.model), self.geometry.nominal_height
-        self.values |= {"leg_length": design.leg_length, "coxa_length": design.l1,
-                        "robot_mass": mass, "nominal_height": height}  # fmt: skip
+        return Metrics(
+            leg_length=design.leg_length,
+            coxa_length=design.l1,
+            robot_mass=mass,
+            nominal_height=height,
+        )
 
-    def _measure_workspace(self) -> None:
-        self.values["improved_area"] = improved_area_closed_form(self.design.l2, self.design.l3)
+    def _measure_workspace(self) -> Metrics:
+        return Metrics(improved_area=improved_area_closed_form(self.design.l2, self.design.l3))
 
-    def _measure_manipulability(self) -> None:
+    def _measure_manipulability(self) -> Metrics:
         _, improved = rectangular_and_improved(self.design.manipulability_limits)
-        value = average_manipulability(self.design.lengths, improved)
-        self.values["average_manipulability"] = float(value)
+        return Metrics(
+            average_manipulability=float(average_manipulability(self.design.lengths, improved))
+        )
 
-    def _measure_flexibility(self) -> None:
-        self.values["fb"] = self.flexibility.fb
+    def _measure_flexibility(self) -> Metrics:
+        return Metrics(fb=self.flexibility.fb)
 
-    def _measure_clearance(self) -> None:
+    def _measure_clearance(self) -> Metrics:
         geometry = self.geometry
         lowest = geometry.lowest_body_height(np.eye(3), [0.0, 0.0, geometry.nominal_height])
-        self.values["ground_clearance"] = float(lowest)
+        return Metrics(ground_clearance=float(lowest))
 
-    def _measure_standing(self) -> None:
+    def _measure_standing(self) -> Metrics:
         conditions, model = self.conditions, self.model
         if conditions.keep:
             self.loads = loads_at_extremes(model, self.flexibility, conditions.payload)
         statics = Statics(model, model.leg_names, conditions.payload)
-        if "stability_margin" in self.metrics:
-            nominal = statics.state(model.nominal_configuration())
-            self.values["stability_margin"] = nominal.stability_margin
+        found = Metrics()
+        if self._asked(METRICS.stability_margin):  # the kept statics' stance legs, if kept
+            nominal = (
+                self.loads.nominal
+                if self.loads is not None
+                else statics.state(model.nominal_configuration())
+            )
+            found = replace(found, stability_margin=nominal.stability_margin)
+        if model.design.rated_torques is None:  # within ratings the design does not give
+            return self._without((METRICS.payload_capacity, METRICS.max_slope), NEEDS_RATING, found)
         if conditions.slope is None:  # level ground: the statics' own payload capacity
             capacity = (
                 self.loads.capacity
-                if self.loads is not None
+                if self.loads is not None and self.loads.capacity is not None
                 else payload_capacity(statics, model.nominal_configuration())
             )
-            self.values["payload_capacity"] = capacity.mass
-            self.causes["payload_capacity"] = capacity.limited_by
-        if conditions.slope is None and "max_slope" not in self.metrics:
-            return
+            found = replace(found, payload_capacity=capacity.mass)
+            self.causes = replace(self.causes, payload_capacity=capacity.limited_by)
+        if conditions.slope is None and not self._asked(METRICS.max_slope):
+            return found
         standing = Standing.of(statics)
         if conditions.slope is not None:
-            found = standing.max_payload(conditions.slope)
-            self.values["payload_capacity"], self.causes["payload_capacity"] = found
-        found = standing.max_slope(conditions.payload.mass)
-        self.values["max_slope"], self.causes["max_slope"] = found
+            mass, cause = standing.max_payload(conditions.slope)
+            found = replace(found, payload_capacity=mass)
+            self.causes = replace(self.causes, payload_capacity=cause)
+        slope, cause = standing.max_slope(conditions.payload.mass)
+        self.causes = replace(self.causes, max_slope=cause)
+        return replace(found, max_slope=slope)
 
-    def _measure_walking(self) -> None:
+    def _measure_walking(self) -> Metrics:
         conditions = self.conditions
-        if "walking_payload_capacity" in self.metrics:
-            found = walking_payload_capacity(
-                self.model, conditions.gait, conditions.payload.position
-            )
-            self.values["walking_payload_capacity"] = found.mass
-            self.causes["walking_payload_capacity"] = found.limited_by
-            self.walks = found.walks
-        if not (self.metrics & {*PERIOD_METRICS, *PERIOD_DETAILS} or conditions.keep):
-            return
-        walked = analyze_gait(
-            self.design, conditions.gait, conditions.payload, model=self.model, limits=False,
-            speed=True,
-        )  # fmt: skip
-        self.walked = walked
-        assert walked.max_speed is not None  # speed=True
-        self.values["max_speed"] = walked.max_speed.value
-        self.causes["max_speed"] = walked.max_speed.limited_by
-        if walked.walkable:
-            self.values |= _period_values(walked)
-            self.unmeasured |= _unmeasured_electrical(walked)
-            return
-        why = f"cannot walk the gait: {walked.violations[0]}"
-        for name in (*PERIOD_METRICS[1:], *PERIOD_DETAILS):
-            self.values[name], self.unmeasured[name] = math.nan, why
+        found = walking_payload_capacity(self.model, conditions.gait, conditions.payload.position)
+        if found is None:  # the design gives no ratings: the capacity within them needs one
+            return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
+        self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
+        self.walks = found.walks
+        return Metrics(walking_payload_capacity=found.mass)
+
+    def _measure_speed(self) -> Metrics:
+        limit = self.walked.max_speed
+        if limit is None:  # speed=True: the design gives no ratings, the max speed needs one
+            return self._without((METRICS.max_speed,), NEEDS_RATING)
+        self.causes = replace(self.causes, max_speed=limit.limited_by)
+        return Metrics(max_speed=limit.value)
+
+    def _measure_period(self) -> Metrics:
+        walked = self.walked
+        if not walked.walkable:
+            return self._without(_of("period"), f"cannot walk the gait: {walked.violations[0]}")
+        metrics = walked.metrics
+        distance = walked.gait.speed * walked.gait.period  # per period [m]
+        torques = {  # each joint type's peak and RMS torque, as declared
+            spec.name: (metrics.peak_torque if spec.torque == "peak" else metrics.rms_torque)[
+                spec.joint
+            ]
+            for spec in METRICS
+            if spec.torque is not None and spec.joint is not None
+        }
+        return Metrics(
+            gait_peak_torque=max(metrics.peak_torque.values()),
+            mechanical_cost_of_transport=metrics.cost_of_transport,
+            mechanical_energy_per_km=metrics.positive_work / distance * 1000 / 3600,
+            min_zmp_margin=walked.min_zmp_margin,
+            **torques,
+        )
+
+    def _measure_motors(self) -> Metrics:
+        walked = self.walked
+        if not walked.walkable:
+            return self._without(_of("motors"), f"cannot walk the gait: {walked.violations[0]}")
+        electrical, design = walked.electrical, walked.design
+        if electrical is None:
+            return self._without(_of("motors"), "the design has no [actuators]")
+        ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
+        battery = electrical.battery
+        if design.battery is None:
+            self.unmeasured = replace(self.unmeasured, battery_range="the design has no [battery]")
+        return Metrics(
+            energy_per_km=electrical.energy_per_km,
+            electrical_cost_of_transport=electrical.cost_of_transport,
+            continuous_load=float(ratios.max()),
+            battery_range=math.nan if battery is None else battery.range,
+        )
+
+    def _without(
+        self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None
+    ) -> Metrics:
+        """``found`` (if any) with ``specs`` without a value (NaN), and ``why`` they have none."""
+        names = [spec.name for spec in specs]
+        self.unmeasured = replace(self.unmeasured, **dict.fromkeys(names, why))
+        return replace(Metrics() if found is None else found, **dict.fromkeys(names, math.nan))
 
 
-def _electrical_values(walked: GaitAnalysis) -> dict[str, float]:
-    """The period's metrics through the motors: energy, cost, continuous load, range."""
-    electrical = walked.electrical
-    if electrical is None:
-        return dict.fromkeys(ELECTRICAL_METRICS, math.nan)
-    ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
-    battery = electrical.battery
-    return {
-        "energy_per_km": electrical.energy_per_km,
-        "electrical_cost_of_transport": electrical.cost_of_transport,
-        "continuous_load": float(ratios.max()),
-        "battery_range": math.nan if battery is None else battery.range,
-    }
-
-
-def _unmeasured_electrical(walked: GaitAnalysis) -> dict[str, str]:
-    """Why a metric through the motors has no value: no actuators, or no battery."""
-    if walked.design.actuators is None:
-        return dict.fromkeys(ELECTRICAL_METRICS, "the design has no [actuators]")
-    if walked.design.battery is None:
-        return {"battery_range": "the design has no [battery]"}
-    return {}
-
-
-def _period_values(walked: GaitAnalysis) -> dict[str, float]:
-    """The metrics of a feasible gait period: peaks, RMS, cost, energy per km, ZMP margin."""
-    metrics = walked.metrics
-    distance = walked.gait.speed * walked.gait.period  # per period [m]
-    values = {
-        "gait_peak_torque": max(metrics.peak_torque.values()),
-        "mechanical_cost_of_transport": metrics.cost_of_transport,
-        "mechanical_energy_per_km": metrics.positive_work / distance * 1000 / 3600,
-        "min_zmp_margin": walked.min_zmp_margin,
-        **_electrical_values(walked),
-    }
-    for joint in LEG_JOINTS:
-        values[f"gait_peak_{joint}_torque"] = metrics.peak_torque[joint]
-        values[f"gait_rms_{joint}_torque"] = metrics.rms_torque[joint]
-    return values
+def _of(analysis: Analysis) -> list[MetricSpec]:
+    """The metrics ``analysis`` measures."""
+    return [spec for spec in METRICS if spec.analysis == analysis]

@@ -33,8 +33,9 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
+from hexaleg.gravity import GRAVITY
 from hexaleg.robot.model import LEG_JOINTS
-from hexaleg.statics.forces import GRAVITY, PAYLOAD_SEARCH_LIMIT, Statics
+from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Statics
 from hexaleg.statics.support import SupportPolygon
 
 BISECTIONS = 48

@@ -1,0 +1,1 @@
+"""The legs' own structure: internal wrenches, tube stresses, foot deflection, sizing."""
