@@ -68,11 +68,11 @@ def bench_decide_walking(evaluations: int | None) -> list[Row]:
         found = decide(design, requirements, Objective("improved_area"), settings=settings,
                        executor=pool, progress=False)  # fmt: skip
         elapsed = time.perf_counter() - start
-    best = found.best.evaluation.values
+    best = found.best.evaluation.metrics
     note = (
-        f"area {best['improved_area']:.5f} m² at l = "
+        f"area {best.improved_area:.5f} m² at l = "
         f"({', '.join(f'{v:.4f}' for v in found.best.design.lengths)}) m, max speed "
-        f"{best['max_speed']:.4f} m/s, feasible {found.feasible}"
+        f"{best.max_speed:.4f} m/s, feasible {found.feasible}"
     )
     name = f"decide, 3 free lengths, speed + payload, {found.evaluations} designs"
     return [Row(name, "hexaleg decide, 2 processes", elapsed, None, None, "≤ 60 s", note=note)]

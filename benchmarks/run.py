@@ -18,7 +18,7 @@ from bench_decide import bench_decide, bench_decide_actuators, bench_decide_walk
 from bench_electrical import bench_electrical
 from bench_explore import bench_explore, bench_explore_robot
 from bench_flexibility import bench_dask, bench_flexibility
-from bench_gait import bench_gait
+from bench_gait import bench_gait, bench_walking_columns
 from bench_import import bench_import
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
@@ -36,6 +36,7 @@ WORKLOADS = {
     "flexibility": lambda quick, r: bench_flexibility(4 if quick else 80, r),
     "dask": lambda quick, r: bench_dask(4 if quick else 80, r),
     "gait": lambda quick, r: bench_gait(4 if quick else 80, r),
+    "walking_columns": lambda quick, r: bench_walking_columns(4 if quick else 80, r),
     "electrical": lambda quick, r: bench_electrical(r),
     "decide": lambda quick, r: bench_decide(60 if quick else None),
     "simulate": lambda quick, r: bench_simulate(2 if quick else 4, r),

@@ -48,8 +48,10 @@ __all__ = [
     "Payload",
     "ReportOptions",
     "Requirements",
+    "Robot",
     "RobotImportError",
     "RobotImportWarning",
+    "RobotSource",
     "STANCE_LIMITS",
     "SearchSettings",
     "SegmentChange",
@@ -138,8 +140,11 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.robot.feet import FootSearch
     from hexaleg.robot.imported import ImportedRobot, import_robot
-    from hexaleg.robot.model import HexapodModel, LegModel
+    from hexaleg.robot.leg_model import LegModel
+    from hexaleg.robot.model import HexapodModel
+    from hexaleg.robot.recipe import RobotSource
     from hexaleg.robot.resize import SegmentChange, resize_robot
+    from hexaleg.robot.robot import Robot
     from hexaleg.robot.urdf import render_hexapod, render_leg, write_urdf
     from hexaleg.sim.result import SimulationResult
     from hexaleg.sim.simulate import simulate_gait

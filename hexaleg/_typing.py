@@ -51,6 +51,10 @@ speed at its rating (payload capacity, gait speed); tipping over or sliding (slo
 centre of mass leaving the support polygon (payload capacity), or a gait's zero-moment point
 leaving it (walking payload capacity); the search's own limit."""
 
+Controller = Literal["servo", "torque"]
+"""How a simulated robot's joints follow a plan: stiff position servos (hobby servos), or
+torque control (the plan's torques, a low-gain PD correcting drift)."""
+
 GaitPattern = Literal["tripod", "tetrapod", "wave"]
 """Which legs swing together: three (duty factor 1/2), two (2/3) or one at a time (5/6)."""
 

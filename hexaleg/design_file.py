@@ -20,6 +20,7 @@ import os
 import re
 import sys
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, TypeVar, cast
 
@@ -117,65 +118,82 @@ class UnknownKeyError(ParameterError):
 # -- reading ------------------------------------------------------------------------------
 
 
-def load_design(path: str | os.PathLike[str]) -> HexapodDesign:
-    """The design a TOML or JSON design file describes (validated).
+@dataclass(frozen=True)
+class DesignFile:
+    """A design file as read and parsed, once: its design and its tables as written.
 
-    Raises:
-        DesignFileError: naming the file, the line where it can be found and the key.
-
-    """
-    return load_design_file(path, lambda table: None)[0]
-
-
-def load_design_file(
-    path: str | os.PathLike[str], read_requirements: Callable[[Mapping[str, Any]], T]
-) -> tuple[HexapodDesign, T]:
-    """The design a design file describes, and its ``[requirements]`` table as read.
-
-    Args:
-        path: The TOML or JSON design file.
-        read_requirements: Reads the table (empty if the file has none); a
-            :class:`~hexaleg.exceptions.ParameterError` it raises is reported with the file
-            and line like the design's own.
-
-    Raises:
-        DesignFileError: naming the file, the line where it can be found and the key.
+    Attributes:
+        path: The file.
+        text: Its text (errors name the line of a key in it).
+        is_json: Whether it is JSON (a hexaleg output's ``design``) rather than TOML.
+        data: Its table of design keys and tables, as parsed.
 
     """
-    path, text, json_file, data = _parsed(path)
-    try:
-        design, table = design_from_mapping(data), data.get(REQUIREMENTS, {})
-        if not isinstance(table, dict):
-            raise ParameterError(REQUIREMENTS, table, "must be a [requirements] table")
-        return design, read_requirements(table)
-    except ParameterError as err:
-        raise _located(path, text, json_file, err) from None
+
+    path: Path
+    text: str
+    is_json: bool
+    data: Mapping[str, Any]
+
+    @property
+    def folder(self) -> Path:
+        """The folder of the file, where the paths it gives start."""
+        return self.path.parent
+
+    def design(self) -> HexapodDesign:
+        """The design it describes (validated).
+
+        Raises:
+            DesignFileError: naming the file, the line where it can be found and the key.
+
+        """
+        try:
+            return design_from_mapping(self.data)
+        except ParameterError as err:
+            raise self._located(err) from None
+
+    def table(self, name: str, read: Callable[[Mapping[str, Any]], T]) -> T:
+        """Its table ``name`` as ``read`` reads it (an empty table if it has none).
+
+        Raises:
+            DesignFileError: The table is no table; naming the line and the key ``read``
+                refused (a :class:`~hexaleg.exceptions.ParameterError` it raises).
+
+        """
+        try:
+            table = self.data.get(name, {})
+            if not isinstance(table, dict):
+                raise ParameterError(name, table, f"must be a [{name}] table")
+            return read(table)
+        except ParameterError as err:
+            raise self._located(err) from None
+
+    def robot_table(self) -> Mapping[str, Any] | None:
+        """Its ``[robot]`` table (the robot file it was imported from), ``None`` if it has none.
+
+        Raises:
+            DesignFileError: ``robot`` that is no table.
+
+        """
+        table = self.data.get(ROBOT)
+        if table is not None and not isinstance(table, dict):
+            raise DesignFileError(f"{self.path}: robot must be a [robot] table")
+        return table
+
+    def _located(self, err: ParameterError) -> DesignFileError:
+        line = _line_of(self.text, err.field, self.is_json)
+        where = f"{self.path}, line {line}" if line else str(self.path)
+        return DesignFileError(f"{where}: {err}")
 
 
-def load_table(
-    path: str | os.PathLike[str], name: str, read: Callable[[Mapping[str, Any]], T]
-) -> T:
-    """Table ``name`` of a design file as ``read`` reads it (an empty table if it has none).
+def read_design_file(path: str | os.PathLike[str]) -> DesignFile:
+    """The design file at ``path``, read and parsed (its design is checked when asked for).
 
     Raises:
-        DesignFileError: naming the file, the line and the key ``read`` refused.
+        DesignFileError: A file that is not ``.toml`` or ``.json``, cannot be read or is not
+            valid TOML or JSON, naming the file (and the line).
 
     """
-    path, text, json_file, data = _parsed(path)
-    try:
-        return read(data.get(name, {}))
-    except ParameterError as err:
-        raise _located(path, text, json_file, err) from None
-
-
-def _located(path: Path, text: str, json_file: bool, err: ParameterError) -> DesignFileError:
-    line = _line_of(text, err.field, json_file)
-    where = f"{path}, line {line}" if line else str(path)
-    return DesignFileError(f"{where}: {err}")
-
-
-def _parsed(path: str | os.PathLike[str]) -> tuple[Path, str, bool, dict[str, Any]]:
-    """The file, its text, whether it is JSON, and its table of design keys."""
     path = Path(path)
     if path.suffix.lower() not in SUFFIXES:
         raise DesignFileError(f"--design {path}: the file must end in .toml or .json")
@@ -195,7 +213,48 @@ def _parsed(path: str | os.PathLike[str]) -> tuple[Path, str, bool, dict[str, An
         data = _printed_design(data)
     if not isinstance(data, dict):
         raise DesignFileError(f"{path}: expected a table of design keys, got {type(data).__name__}")
-    return path, text, json_file, data
+    return DesignFile(path, text, json_file, data)
+
+
+def load_design(path: str | os.PathLike[str]) -> HexapodDesign:
+    """The design a TOML or JSON design file describes (validated).
+
+    Raises:
+        DesignFileError: naming the file, the line where it can be found and the key.
+
+    """
+    return read_design_file(path).design()
+
+
+def load_design_file(
+    path: str | os.PathLike[str], read_requirements: Callable[[Mapping[str, Any]], T]
+) -> tuple[HexapodDesign, T]:
+    """The design a design file describes, and its ``[requirements]`` table as read.
+
+    Args:
+        path: The TOML or JSON design file.
+        read_requirements: Reads the table (empty if the file has none); a
+            :class:`~hexaleg.exceptions.ParameterError` it raises is reported with the file
+            and line like the design's own.
+
+    Raises:
+        DesignFileError: naming the file, the line where it can be found and the key.
+
+    """
+    file = read_design_file(path)
+    return file.design(), file.table(REQUIREMENTS, read_requirements)
+
+
+def load_table(
+    path: str | os.PathLike[str], name: str, read: Callable[[Mapping[str, Any]], T]
+) -> T:
+    """Table ``name`` of a design file as ``read`` reads it (an empty table if it has none).
+
+    Raises:
+        DesignFileError: naming the file, the line and the key ``read`` refused.
+
+    """
+    return read_design_file(path).table(name, read)
 
 
 def _printed_design(data: object) -> object:

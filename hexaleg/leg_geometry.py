@@ -270,7 +270,7 @@ class JointMap:
 
 def _rigid(name: str, value: Any) -> Placement:
     """``value`` as a :data:`Placement` whose rotation is orthonormal and right-handed."""
-    if value is IDENTITY:  # the paper's leg, every design's: nothing to check
+    if value is IDENTITY:  # the paper's leg, made for every sample of a sweep: nothing to check
         return IDENTITY
     try:
         checked = placement(value)

@@ -66,13 +66,14 @@ def _request(request: urllib.request.Request) -> tuple[int, Any]:
 
 
 @contextlib.contextmanager
-def running(*arguments: str) -> Iterator[Explorer]:
-    """``hexaleg explore ARGUMENTS --port 0``, stopped by its pid when the block ends."""
+def running(*arguments: str, cwd: str | os.PathLike[str] | None = None) -> Iterator[Explorer]:
+    """``hexaleg explore ARGUMENTS --port 0`` (in folder ``cwd``), stopped by its pid after."""
     process = subprocess.Popen(
         [sys.executable, "-m", "hexaleg", "explore", *arguments, "--port", "0"],
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
+        cwd=cwd,
     )
     lines: queue.Queue[str] = queue.Queue()
     assert process.stdout is not None

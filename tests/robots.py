@@ -2,6 +2,10 @@
 
 Kraby (MIT, its meshes kept) and Kevin Ochs's PhantomX (BSD, no meshes, no foot: the tests
 give its foot offset) are under ``tests/data/robots``, each with its source and licence.
+
+:data:`KINDS` are the two kinds of robot every analysis takes: hexaleg's template at the
+default design and a robot file (Kraby); a test of a behaviour both share is parametrized
+over them (:func:`robot_of`).
 """
 
 from __future__ import annotations
@@ -17,12 +21,32 @@ from robot_files import draw_hexapod
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.limits import STANCE_LIMITS
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import Robot
 
 ROBOTS = Path(__file__).parent / "data" / "robots"
 KRABY = str(ROBOTS / "kraby" / "hexapod.urdf")
 OCHS = str(ROBOTS / "phantomx_kevinochs" / "urdf" / "phantomX_model.xacro")
 OCHS_OFFSET = (0.0, 0.133, 0.0)
 """PhantomX draws no foot: the foot point in each tibia's frame [m]."""
+
+
+KINDS = ("template", "kraby")
+"""Each kind of robot: hexaleg's template at the default design, and a robot file."""
+
+
+def robot_of(kind: str, design: HexapodDesign | None = None) -> Robot:
+    """The robot of a kind, over ``design`` (the default design); the file's placeholders
+    not warned about."""
+    source = RobotSource() if kind == "template" else RobotSource.of(KRABY)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RobotImportWarning)
+        return Robot.build(source, design)
+
+
+def robot_argv(kind: str) -> list[str]:
+    """The command-line options that choose the robot of a kind."""
+    return [] if kind == "template" else ["--urdf", KRABY]
 
 
 def robot_json(capsys: pytest.CaptureFixture[str], argv: list[str]) -> dict:

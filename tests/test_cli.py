@@ -338,3 +338,17 @@ def test_writing_to_a_folder_or_nowhere_is_one_line(capsys, tmp_path, target):
     assert run_cli(["urdf", "--output", str(tmp_path) if target == "." else target]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "Traceback" not in err
+
+
+def test_json_never_holds_a_number_json_cannot_and_says_where_one_was(capsys):
+    import json
+
+    from hexaleg.cli.output import print_json
+
+    inf, nan = float("inf"), float("nan")
+    print_json({"peak": inf, "rows": [1.5, {"x": nan}], "low": -inf, "ok": 2.0})
+    strict = json.loads(capsys.readouterr().out, parse_constant=lambda word: pytest.fail(word))
+    assert strict == {
+        "peak": None, "rows": [1.5, {"x": None}], "low": None, "ok": 2.0,
+        "not_finite": {"peak": "inf", "rows[1].x": "nan", "low": "-inf"},
+    }  # fmt: skip

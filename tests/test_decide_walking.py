@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from concurrent.futures import ThreadPoolExecutor
 
 import numpy as np
@@ -13,7 +14,8 @@ from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.study.decide import decide
+from hexaleg.robot.robot import Robot
+from hexaleg.study.decide import CheckedDesign, decide
 from hexaleg.study.optimize import SearchSettings
 from hexaleg.study.search_space import SEGMENT_FLOOR
 from hexaleg.study.sweep import base_model
@@ -153,3 +155,17 @@ def test_a_speed_search_is_within_half_a_percent_of_a_grid_walked_forward():
     assert best > 0 and result.feasible
     assert found >= (1 - 5e-3) * best
     assert _walks(result.best.design, 0.33, 10.0)
+
+
+def test_a_gait_the_design_cannot_walk_is_said_so_and_no_speed_is_infinite():
+    """A stride beyond every foot's reach: the walk is not measured joint by joint (its
+    speeds would be unbounded), its first broken constraint is given instead, and the JSON
+    holds no number JSON cannot (the oracle: the gait analysis' own violations)."""
+    design, gait = HexapodDesign(), Gait(stride=1.2)
+    required = Requirements(walking_payload=0.05, walked=gait).resolved(design)
+    checked = CheckedDesign.of(Robot.build(over=design), Goal(required))
+    walked = analyze_gait(design, required.gait, limits=False)
+    assert walked.violations and not np.isfinite(np.abs(walked.joint_velocities).max())
+    assert checked.walking_violation == str(walked.violations[0])
+    assert checked.walking_over_rating == ()
+    json.dumps([o for o in checked.over_rating()], allow_nan=False)

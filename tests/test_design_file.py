@@ -4,10 +4,12 @@ from __future__ import annotations
 
 import json
 import math
+import sys
 
 import pinocchio as pin
 import pytest
 from conftest import run_cli
+from robots import KRABY
 
 from hexaleg import HexapodDesign, HexapodModel, LegMount
 from hexaleg.design_file import design_from_mapping, load_design
@@ -15,6 +17,11 @@ from hexaleg.design_text import design_toml
 from hexaleg.exceptions import DesignError
 from hexaleg.kinematics import foot_position
 from hexaleg.limits import STANCE_LIMITS
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
 
 DESIGNS = {
     "default": HexapodDesign(),
@@ -242,3 +249,25 @@ def test_an_unknown_key_error_survives_pickling():
         design_from_mapping({"body_radus": 0.3})
     again = pickle.loads(pickle.dumps(info.value))
     assert str(again) == str(info.value) == "unknown key 'body_radus': did you mean 'body_radius'?"
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("robot", [False, True])
+@pytest.mark.parametrize(
+    "command", [["design", "show"], ["urdf", "-o", "-"], ["manipulability"], ["gait"]]
+)
+def test_a_run_parses_the_design_file_once(tmp_path, capsys, monkeypatch, robot, command):
+    target = tmp_path / "robot.toml"
+    if robot:
+        assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
+        extra = "[robot.segments]\nfemur = 0.07\n[gait]\nstride = 0.03\nstep_height = 0.02\n"
+    else:
+        target.write_text(design_toml(HexapodDesign()))
+        extra = "[gait]\nstride = 0.3\n[requirements]\npayload = 5.0\n"
+    target.write_text(target.read_text() + "\n" + extra)
+    calls = []
+    loads = tomllib.loads
+    monkeypatch.setattr(tomllib, "loads", lambda text: calls.append(1) or loads(text))
+    capsys.readouterr()
+    assert run_cli([*command, "--design", str(target)]) == 0
+    assert len(calls) == 1

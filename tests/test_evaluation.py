@@ -94,7 +94,8 @@ def test_the_fast_path_of_one_body_equals_each_design_on_its_own_urdf():
     template = StanceGeometry.from_model(model)
     designs = _designs(4, seed=5)
     specs = (METRICS.fb, METRICS.payload_capacity, METRICS.ground_clearance, METRICS.max_speed)
-    batch = evaluate_many(designs, specs, Conditions(), model, template)
+    models = [model.with_design(design) for design in designs]
+    batch = evaluate_many(designs, specs, Conditions(), models, template)
     for design, fast in zip(designs, batch, strict=True):
         exact = evaluate(design, specs)
         assert fast.metrics.to_dict() == pytest.approx(exact.metrics.to_dict(), rel=1e-9, abs=1e-12)

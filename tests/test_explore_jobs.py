@@ -83,3 +83,25 @@ def test_the_free_coupled_search_reports_each_step_up_to_its_total():
     assert len(totals) == 1 and calls[-1][0] == calls[-1][1]
     assert [done for done, _ in calls] == list(range(1, calls[-1][1] + 1))
     assert len(found.extremes) == 12 and calls[-1][1] >= 12
+
+
+def test_a_job_whose_command_crashes_shows_one_line_saying_so():
+    import subprocess
+    import sys
+    import tempfile
+
+    from hexaleg.explore.jobs import Job
+
+    crash = (  # a command's progress, then a Python error where its answer should be
+        "import sys; print('hexaleg: 1/2 designs (50.0 %)', file=sys.stderr, flush=True); "
+        "raise ValueError('Out of range float values are not JSON compliant: inf')"
+    )
+    process = subprocess.Popen(
+        [sys.executable, "-c", crash], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True
+    )
+    job = Job("decide", process, tempfile.TemporaryDirectory())
+    job.follow()
+    shown = job.to_dict()
+    assert shown["state"] == "failed" and (shown["done"], shown["total"]) == (1, 2)
+    assert "\n" not in shown["error"] and shown["error"].startswith("hexaleg decide crashed (")
+    assert "not JSON compliant" in shown["error"] and "terminal" in shown["error"]

@@ -6,16 +6,24 @@ import itertools
 import warnings
 
 import pytest
+from robots import robot_of
 from test_axis_locked import DESIGNS
 
 from hexaleg import HexapodModel
 from hexaleg.stance import AXES, FlexibilityWarning, flexibility, free_flexibility
 
+ROBOTS = [
+    *(pytest.param("template", d, id=f"l={d.l1:.2f},{d.l2:.2f},{d.l3:.2f}") for d in DESIGNS[:3]),
+    pytest.param("kraby", None, id="kraby"),
+]
+"""Hexaleg's template at three designs, and a robot file (each leg its own general leg)."""
 
-@pytest.mark.parametrize("design", DESIGNS[:3], ids=lambda d: f"l={d.l1:.2f},{d.l2:.2f},{d.l3:.2f}")
+
+@pytest.mark.parametrize(("kind", "design"), ROBOTS)
 @pytest.mark.parametrize("stance", ["all", "tripod"])
-def test_free_coupled_is_never_smaller_than_axis_locked(design, stance):
-    model = HexapodModel(design)
+def test_free_coupled_is_never_smaller_than_axis_locked(kind, design, stance):
+    robot = robot_of(kind, design)
+    design, model = robot.design, robot.model
     locked = flexibility(design, "axis", stance, model)
     with warnings.catch_warnings():  # convergence flags have their own test below
         warnings.simplefilter("ignore", FlexibilityWarning)
@@ -23,6 +31,8 @@ def test_free_coupled_is_never_smaller_than_axis_locked(design, stance):
     for axis in AXES:
         assert free.ranges[axis] >= locked.ranges[axis] - 1e-12
     assert free.fb >= locked.fb
+    for mine, theirs in zip(free.extremes, locked.extremes, strict=True):
+        assert mine.sign * mine.value >= theirs.sign * theirs.value - 1e-9
     # the free extremes are real: re-solve the stance for each free pose is done inside;
     # here check the translation ones strictly beat axis-locked where the body can lean
     assert free.extreme("x", 1).value > locked.extreme("x", 1).value

@@ -15,6 +15,7 @@ import io
 import json
 import math
 import os
+import re
 import subprocess
 import sys
 import threading
@@ -86,6 +87,8 @@ class Case:
         message: What the one-line error says; empty when the command must succeed.
         made: Path → what it must then hold (the command's own output), checked exactly.
         says: What its standard output must say, when it succeeds.
+        never: What neither its output nor its error may hold (``inf``, a Python error);
+            a ``--json`` answer must be strict JSON (no NaN, no Infinity).
 
     """
 
@@ -95,6 +98,7 @@ class Case:
     message: str
     made: dict[str, str] = field(default_factory=dict)
     says: str = ""
+    never: tuple[str, ...] = ()
 
 
 def _decide_journal(path: str, resume: bool) -> Callable[[], object]:
@@ -109,6 +113,22 @@ def _causes(value: object) -> str:
     row = {"search": "s", "x": [0.1], "values": {"fb": 0.1}, "causes": value, "error": ""}
     return DECIDE_HEADER + json.dumps(row) + "\n"
 
+
+MOTORS = {
+    "motors.toml": "".join(
+        f'[actuators.{joint}]\ncatalog = "hd_cha_25a_100"\n' for joint in ("root", "hip", "knee")
+    )
+}
+"""A design file with catalog motors and no battery."""
+BATTERY = {"b.toml": "[battery]\ncapacity = 500\nspecific_energy = 150\n"}
+"""A design file with a battery and no motors."""
+FAR = {"far.toml": "[gait]\nstride = 1.2\n"}
+"""A design file whose gait no foot reaches: its joint speeds would be unbounded."""
+KRABY = str(Path(__file__).parent / "data" / "robots" / "kraby" / "hexapod.urdf")
+ROBOT_TEXT = Path(KRABY).read_text()
+"""A robot file's text, copied into the folder a row runs in."""
+NOT_NUMBERS = (r"\binf\b", r"\bnan\b", r"\bInfinity\b", r"\bNaN\b", "Traceback", "Error:")
+"""Patterns of what no answer holds: a number that is none, a Python error."""
 
 CASES = [
     # data lost or overwritten
@@ -137,6 +157,18 @@ CASES = [
     Case("--journal -", {}, ["decide", "--journal", "-"], "it must be a file"),
     *(Case(f"{' '.join(argv)}: '-' is standard output, no file named '-'", {}, argv, "")
       for argv in (["gait", "--samples", "12", "--csv", "-"], ["urdf", "-o", "-"])),
+    # the input robot or design file is never an output
+    *(Case(f"urdf --urdf r.urdf -o {target}", {"r.urdf": ROBOT_TEXT, "sub/keep": "k"},
+           ["urdf", "--urdf", "r.urdf", "--l2", "0.08", "-o", target],
+           f"-o {target} is the robot file read (--urdf r.urdf): write it elsewhere")
+      for target in ("r.urdf", "sub/../r.urdf", "./r.urdf")),
+    Case("urdf --design d.toml -o d.toml", {"d.toml": "l1 = 0.2\n"},
+         ["urdf", "--design", "d.toml", "-o", "d.toml"],
+         "-o d.toml is the design file read (--design d.toml): write it elsewhere"),
+    Case("urdf --design with [robot] urdf, -o that robot file",
+         {"r.urdf": ROBOT_TEXT, "d.toml": '[robot]\nurdf = "r.urdf"\n'},
+         ["urdf", "--design", "d.toml", "-o", "r.urdf"],
+         "-o r.urdf is the robot file read"),
     # hangs
     Case("a FIFO as --journal, --resume", {"j.jsonl": FIFO},
          ["decide", "--journal", "j.jsonl", "--resume"], "j.jsonl is not a regular file"),
@@ -198,6 +230,26 @@ CASES = [
          "argument --evaluations: 1000000 is not valid: must be in 48..100000"),
     Case("decide --leg-length 200", {}, ["decide", "--leg-length", "200"],
          "--leg-length = 200 is not valid: must lie in [0.003, 100] [m]"),
+    # decide: what a design cannot measure is refused before any search
+    *(Case(f"decide {' '.join(argv).replace(KRABY, 'kraby')} without [battery]", files,
+           ["decide", *argv], "--range-km = 5 is not valid: range needs a [battery] table" + more)
+      for argv, files, more in (
+          (["--range-km", "5"], {}, " and an [actuators] table in the design file (or --choose"),
+          (["--urdf", KRABY, "--range-km", "5"], {}, " and an [actuators] table"),
+          (["--range-km", "5", "--choose-actuators"], {}, " in the design file: the distance"),
+          (["--design", "motors.toml", "--range-km", "5"], MOTORS, " in the design file"))),
+    Case("report --range-km 5 without [battery]", {}, ["report", "-o", "r", "--range-km", "5"],
+         "--range-km = 5 is not valid: range needs a [battery] table"),
+    Case("decide --range-km 5 without [actuators]", BATTERY, ["decide", "--design", "b.toml",
+         "--range-km", "5"], "--range-km = 5 is not valid: range needs an [actuators] table"),
+    Case("[requirements] range_km without [battery]", {"r.toml": "[requirements]\nrange_km = 5\n"},
+         ["decide", "--design", "r.toml"], "range_km = 5 is not valid: range needs a [battery]"),
+    Case("decide --continuous-margin 0.8 without [actuators]", {},
+         ["decide", "--continuous-margin", "0.8"],
+         "--continuous-margin = 0.8 is not valid: continuous load needs an [actuators] table"),
+    Case("decide --maximize battery_range without [battery]", {},
+         ["decide", "--maximize", "battery_range"],
+         "--maximize = 'battery_range' is not valid: range needs a [battery] table"),
     # friction, declared once
     *(Case(f"{command} --friction {value}", {}, [command, "--friction", value, *more],
            f"--friction = {shown} is not valid: {allowed}")
@@ -226,8 +278,9 @@ CASES = [
                    ["view", "--gait", "--port", "1"])),
     # the API: hexaleg's own error, naming the argument
     *(Case(f"{name}(None)", {}, lambda name=name: getattr(hexaleg, name)(None),
-           "design = None is not valid: must be a HexapodDesign")
-      for name in ("analyze_loads", "analyze_gait", "decide")),
+           f"design = None is not valid: must be a {kind}")
+      for name, kind in (("analyze_loads", "HexapodDesign"), ("analyze_gait", "HexapodDesign"),
+                         ("decide", "Robot or a HexapodDesign"))),
     *(Case(f"analyze_gait({name}={value})", {},
            lambda name=name, value=value: hexaleg.analyze_gait(HexapodDesign(), **{name: value}),
            f"{name} = {value:g} is not valid: {allowed}")
@@ -255,6 +308,16 @@ CASES = [
          "resume = True is not valid: continues a journal: give journal=FILE"),
 ]  # fmt: skip
 
+SLOW_CASES = [  # each a whole decision (seconds); a robot walks its own default gait, sized
+    # to it, so Kraby too is given the gait it cannot walk (the issue's reproducer walked ours)
+    *(Case(f"decide {name} --walking-payload 0.05{json}: never inf", FAR,
+           [*argv, "--walking-payload", "0.05", "--evaluations", "60", "--workers", "1",
+            *json.split()], "", says=says, never=NOT_NUMBERS)
+      for name, argv in (("far.toml", ["decide", "--design", "far.toml"]),
+                         ("kraby", ["decide", "--urdf", KRABY, "--design", "far.toml"]))
+      for json, says in (("", "cannot walk it"), (" --json", '"walking_violation": "t = '))),
+]  # fmt: skip
+
 SIMULATE_CASES = [
     Case("simulate --l1 100 --l2 100 --l3 100", {},
          ["simulate", "--l1", "100", "--l2", "100", "--l3", "100", "--html", "s.html"],
@@ -267,6 +330,13 @@ SIMULATE_CASES = [
          "--friction = 0 is not valid: must lie in [0.001, 10] [-]"),
     Case("simulate_gait(None)", {}, lambda: hexaleg.simulate_gait(None),
          "design = None is not valid: must be a HexapodDesign"),
+    # a payload far beyond the robot: the simulation diverges, says so, writes no log
+    *(Case(f"simulate --urdf kraby --payload 10000{json}: diverged, said in one line", {},
+           ["simulate", "--urdf", KRABY, "--stride", "0.05", "--step-height", "0.02",
+            "--period", "1", "--cycles", "2", "--payload", "10000", *json.split()], "",
+           says=says, never=(*never, *NOT_NUMBERS))
+      for json, says, never in (("", "DIVERGED while walking, at t = ", (r"\bfell\b",)),
+                                (" --json", '"diverged": "while walking, at t = ', ()))),
 ]  # fmt: skip
 
 
@@ -335,7 +405,11 @@ def _run(case: Case) -> tuple[int, str, str]:
     return status, err.getvalue(), out.getvalue()
 
 
-@pytest.mark.parametrize("case", CASES, ids=[case.name for case in CASES])
+@pytest.mark.parametrize(
+    "case",
+    [*CASES, *(pytest.param(case, marks=pytest.mark.slow) for case in SLOW_CASES)],
+    ids=[case.name for case in (*CASES, *SLOW_CASES)],
+)
 def test_a_fuzz_case_loses_nothing_and_ends_in_one_line(tmp_path, monkeypatch, case):
     _check(case, tmp_path, monkeypatch)
 
@@ -360,6 +434,9 @@ def _check(case: Case, tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
         return
     assert status == 0, err
     assert case.says in out, out
+    assert not any(re.search(word, out + err) for word in case.never), out + err
+    if not callable(case.run) and "--json" in case.run:
+        json.loads(out, parse_constant=lambda word: pytest.fail(f"{word} in the JSON"))
     for name, content in case.made.items():
         assert after.pop(name) == content.encode()
     kept = {name: value for name, value in before.items() if name not in case.made}
@@ -475,3 +552,15 @@ def test_view_gait_refuses_what_gait_refuses_in_the_same_words(tmp_path, monkeyp
         lines[argv[0]] = err.removeprefix(f"hexaleg {argv[0]}: error: ")
     assert lines["gait"] == lines["view"] and "max stride" in lines["gait"]
     assert list(tmp_path.iterdir()) == []
+
+
+@pytest.mark.parametrize("link", [os.link, os.symlink], ids=["hard link", "symbolic link"])
+def test_the_input_robot_file_is_not_written_through_another_name(tmp_path, monkeypatch, link):
+    monkeypatch.chdir(tmp_path)
+    Path("r.urdf").write_text(ROBOT_TEXT)
+    link("r.urdf", "other.urdf")
+    before = _snapshot(tmp_path)
+    status, err, _ = _run(Case("", {}, ["urdf", "--urdf", "r.urdf", "-o", "other.urdf"], "x"))
+    assert status == 2 and err.count("\n") == 1
+    assert "-o other.urdf is the robot file read (--urdf r.urdf)" in err
+    assert _snapshot(tmp_path) == before

@@ -286,6 +286,13 @@ def test_a_file_without_masses_answers_kinematics_as_the_file_with_them(tmp_path
     assert answers[0] == answers[1]
 
 
+def test_design_show_of_a_file_without_masses_says_it_has_none(tmp_path, capsys):
+    (tmp_path / "m.urdf").write_text(MASSLESS)
+    assert run_cli(["design", "show", "--urdf", str(tmp_path / "m.urdf")]) == 0
+    mass = [line for line in capsys.readouterr().out.splitlines() if "mass" in line.split()[:1]]
+    assert len(mass) == 1 and "none: the file gives no masses (kinematics only)" in mass[0]
+
+
 @pytest.mark.slow  # each runs into its limit (seconds), or draws the scene
 def test_a_file_without_masses_is_viewed_uncoloured_and_written(tmp_path, capsys):
     (tmp_path / "m.urdf").write_text(MASSLESS)

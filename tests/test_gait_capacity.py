@@ -27,6 +27,7 @@ from hexaleg.gait.capacity import (
     _zmp_bound,
     walking_payload_capacity,
 )
+from hexaleg.gait.dynamics import payload_wrench
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Walker
 from hexaleg.limits import LEG_JOINTS
@@ -299,9 +300,9 @@ def test_the_zmp_bound_is_where_the_gaits_zmp_reaches_the_polygons_edge():
     model, gait, position = HexapodModel(design), Gait(samples=60), (1.0, 0.3, 0.05)
     walker = Walker(model, gait, Payload(0.0, position))
     walk = walker.stride(gait.stride)
-    probe = walker.carrying(Payload(PROBE_MASS, position))
-    loads = [w.loads(gait.stride, walk, gait.period) for w in (walker, probe)]
-    mass, cause = _zmp_bound(walker, loads, walk.paths.position)
+    probe = payload_wrench(walker.payload.point(model), PROBE_MASS, walker.gravity_vector)
+    rnea = walker.loads(gait.stride, walk, gait.period).rnea
+    mass, cause = _zmp_bound(walker, rnea, probe, walk.paths.position)
 
     def margin(m: float) -> float:
         walked = analyze_gait(design, gait, Payload(m, position), model=model, limits=False)

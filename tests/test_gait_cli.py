@@ -9,6 +9,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from conftest import run_cli
+from robots import KINDS, robot_argv
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.cause import Cause
@@ -42,8 +43,17 @@ GAIT_FIELDS = {
 """The JSON fields the gait command documents."""
 
 
-def test_gait_json_has_the_documented_fields(capsys):
-    assert run_cli(["gait", "--samples", "24", "--json"]) == 0
+SMALL = ["--stride", "0.03", "--step-height", "0.02", "--period", "0.8", "--samples", "60"]
+"""A gait a small robot file walks: short strides, a low step."""
+
+WALKED = {"template": ["--samples", "24"], "kraby": [*robot_argv("kraby"), *SMALL]}
+"""Each kind of robot (:data:`robots.KINDS`) and a gait it walks."""
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_gait_json_has_the_documented_fields(capsys, kind):
+    assert run_cli(["gait", *WALKED[kind], "--json"]) == 0
     data = json.loads(capsys.readouterr().out)
     assert GAIT_FIELDS <= set(data)
     assert set(data["gait"]) == {
@@ -87,10 +97,22 @@ def test_gait_writes_its_time_series(tmp_path, capsys):
     assert "wrote" in capsys.readouterr().err
 
 
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_gait_table_names_the_robot_and_its_max_stride(capsys, kind):
+    assert run_cli(["gait", *WALKED[kind]]) == 0
+    out = capsys.readouterr().out
+    title = out.splitlines()[0]
+    assert title.startswith("Walking") and ("kraby" in title) == (kind == "kraby")
+    assert "max stride" in out and "feasible" in out
+
+
 @pytest.mark.slow
-def test_gait_writes_its_figures(tmp_path):
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_gait_writes_its_figures(tmp_path, kind):
     plots = tmp_path / "plots"
-    assert run_cli(["gait", "--samples", "30", "--payload", "20", "--plot", str(plots)]) == 0
+    assert run_cli(["gait", *WALKED[kind], "--plot", str(plots)]) == 0
     for name in ("gait_joints.png", "gait_feet.png"):
         assert (plots / name).stat().st_size > 20_000
 

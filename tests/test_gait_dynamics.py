@@ -5,9 +5,11 @@
   Christoffel symbols and gravity from exact complex-step derivatives), equal the torques
   the gait computes for a swinging leg (the body moves at constant velocity without
   turning: an inertial frame) and Pinocchio's fixed-base RNEA, to 1e-9.
-- The free-flyer rows balance at every sample, with Pinocchio's own foot Jacobians.
+- The free-flyer rows balance at every sample, with Pinocchio's own foot Jacobians, and
+  the ZMP equals the one from Pinocchio's centroidal momentum rate: on each kind of robot
+  (hexaleg's template, a robot file).
 - The static limit equals the statics (``loads``) at the nominal stance.
-- The ZMP equals the one from Pinocchio's centroidal momentum rate.
+- A payload's torques from its closed-form wrench equal RNEA with its mass on the body.
 """
 
 from __future__ import annotations
@@ -18,10 +20,13 @@ import xml.etree.ElementTree as ET
 import numpy as np
 import pinocchio as pin
 import pytest
+from robots import KINDS, robot_of
 
 from hexaleg import HexapodDesign, HexapodModel, LegModel
 from hexaleg.gait import Gait, Walker, analyze_gait
+from hexaleg.gait.dynamics import carried_load, payload_wrench
 from hexaleg.statics import GRAVITY, Payload, analyze_loads
+from hexaleg.statics.ground import Ground
 
 # -- the Lagrange oracle -------------------------------------------------------------------
 
@@ -217,8 +222,23 @@ def _generalized(model, payload, q, v, a):
     return tau - point.T @ (payload.mass * np.array([0.0, 0.0, -GRAVITY]))
 
 
-def test_free_flyer_rows_balance_at_every_sample(walked, hexapod_model):
-    model = hexapod_model
+@pytest.fixture(scope="module", params=KINDS)
+def robot_walked(request):
+    """Each kind of robot walking a period: the template as ``walked``, Kraby a small gait."""
+    robot = robot_of(request.param)
+    small = request.param != "template"
+    gait = (
+        Gait(stride=0.03, step_height=0.02, period=0.8, samples=60)
+        if small
+        else Gait(period=1.2, samples=60)
+    )
+    payload = Payload(0.4, (0.01, -0.005, 0.01)) if small else Payload(25.0, (0.1, -0.05, 0.1))
+    walked = analyze_gait(robot.design, gait, payload, model=robot.model, limits=False)
+    return robot.model, walked
+
+
+def test_free_flyer_rows_balance_at_every_sample(robot_walked):
+    model, walked = robot_walked
     for k in range(len(walked.times)):
         q = walked.configurations[k]
         v, a = walked.generalized_velocities[k], walked.generalized_accelerations[k]
@@ -227,10 +247,9 @@ def test_free_flyer_rows_balance_at_every_sample(walked, hexapod_model):
         for i, leg in enumerate(model.leg_names):
             tau -= jacobians[leg].T @ walked.foot_forces[k, i]
         np.testing.assert_allclose(tau[:6], 0.0, atol=1e-9)
-        for i, leg in enumerate(model.leg_names):
-            np.testing.assert_allclose(
-                tau[model.leg_v_indices(leg)], walked.joint_torques[k, i], atol=1e-9
-            )
+        for i, leg in enumerate(model.leg_names):  # on θ: s·τ of the model's joints
+            on_theta = model.joint_signs(leg) * tau[model.leg_v_indices(leg)]
+            np.testing.assert_allclose(on_theta, walked.joint_torques[k, i], atol=1e-9)
     assert np.all(walked.foot_forces[~walked.stance] == 0.0)
 
 
@@ -256,7 +275,8 @@ def test_the_static_limit_equals_the_statics_at_the_nominal_stance(hexapod_model
     assert slow.min_zmp_margin == slow.zmp_margin.min()
 
 
-def test_the_zmp_is_the_centroidal_momentum_rates(walked, hexapod_model):
+def test_the_zmp_is_the_centroidal_momentum_rates(robot_walked):
+    hexapod_model, walked = robot_walked
     model = pin.Model(hexapod_model.model)
     base = model.getJointId("root_joint")
     point = pin.Inertia(walked.payload.mass, np.array(walked.payload.position), np.zeros((3, 3)))
@@ -292,3 +312,32 @@ def test_a_random_design_balances_too():
         for i, jac in enumerate(_foot_jacobians(model, q).values()):
             tau -= jac.T @ walked.foot_forces[k, i]
         np.testing.assert_allclose(tau[:6], 0.0, atol=1e-9)
+
+
+@pytest.mark.parametrize(
+    ("seed", "slope", "heading"), [(0, 0.0, None), (1, 0.0, None), (2, 0.2, 0.9), (3, -0.3, None)]
+)
+def test_a_payloads_loads_are_what_pinocchio_gives_with_its_mass_on_the_body(seed, slope, heading):
+    # oracle: Pinocchio's RNEA on a copy of the model whose body inertia holds the point
+    # mass (gravity tilted on a slope), split min-norm as any gait; against the closed-form
+    # wrench the capacity uses, under the same gravity
+    rng = np.random.default_rng(seed)
+    design = HexapodDesign.from_ratios(rng.uniform(0.08, 0.2), rng.uniform(0.35, 0.6))
+    model, gait = HexapodModel(design), Gait(stride=rng.uniform(0.1, 0.25))
+    point, mass = tuple(rng.uniform([-0.3, -0.2, 0.0], [0.3, 0.2, 0.2])), rng.uniform(1, 20)
+    ground = Ground(slope, heading)
+    empty, loaded = (Walker(model, gait, Payload(m, point), ground=ground) for m in (0.0, mass))
+    walk = empty.stride(gait.stride)
+    with_mass = loaded.loads(gait.stride, walk, gait.period).split
+    without = empty.loads(gait.stride, walk, gait.period).split
+    gravity = GRAVITY * np.array(  # the plane's frame, from its definition
+        [-math.sin(slope) * math.cos(gait.heading if heading is None else heading),
+         -math.sin(slope) * math.sin(gait.heading if heading is None else heading),
+         -math.cos(slope)]
+    )  # fmt: skip
+    wrench = payload_wrench(np.array(point), mass, gravity)
+    found = carried_load(empty.frames, empty.phases, walk.paths.position, walk.motion, wrench)
+    torques = with_mass.torques(gait.period) - without.torques(gait.period)
+    forces = with_mass.forces(gait.period) - without.forces(gait.period)
+    np.testing.assert_allclose(found.torques, torques, atol=1e-9 * np.abs(torques).max())
+    np.testing.assert_allclose(found.forces, forces, atol=1e-9 * np.abs(forces).max())

@@ -23,7 +23,8 @@ from conftest import run_cli
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.gait import Gait, Walker, analyze_gait, max_speed
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.analysis import analyze_walker
+from hexaleg.gait.capacity import walker_capacity, walking_payload_capacity
 from hexaleg.statics import GRAVITY, Payload
 from hexaleg.statics.ground import Ground
 
@@ -87,6 +88,27 @@ def test_slope_torques_and_forces_equal_rnea_with_tilted_gravity(model, degrees,
     np.testing.assert_allclose(walked.foot_forces, forces, atol=1e-8, rtol=1e-9)
     level = analyze_gait(model.design, gait, model=model, limits=False)
     np.testing.assert_array_equal(walked.joint_angles, level.joint_angles)  # feet on the plane
+
+
+def test_a_walkers_shared_walk_and_loads_are_its_own_grounds(model):
+    """Walkers of one model, level and on a slope, each analysed after the other: each one's
+    cached walk and loads hold its own gravity (the RNEA oracle), and another payload's
+    walker (the capacity's unloaded one) keeps the ground and the safety factor."""
+    ground = Ground(math.radians(12.0), math.pi / 2)
+    level, sloped = Walker(model, GAIT), Walker(model, GAIT, ground=ground, safety_factor=1.5)
+    for walker in (level, sloped, level, sloped):  # each served from its cache the 2nd time
+        walked = analyze_walker(walker, limits=False)
+        gravity = walker.ground.gravity(GAIT.heading)
+        torques, forces = oracle(model, walked, gravity)
+        np.testing.assert_allclose(walked.joint_torques, torques, atol=1e-8, rtol=1e-9)
+        np.testing.assert_allclose(walked.foot_forces, forces, atol=1e-8, rtol=1e-9)
+    assert walker_capacity(sloped) == walking_payload_capacity(
+        model, GAIT, ground=ground, safety_factor=1.5
+    )
+    carried = sloped.carrying(Payload(3.0))
+    assert (carried.ground, carried.safety_factor, carried.payload.mass) == (ground, 1.5, 3.0)
+    with pytest.raises(AttributeError):
+        level.ground = ground  # type: ignore[misc]  # a cached walk's ground never changes
 
 
 def test_the_zmp_is_the_centre_of_pressure_on_the_plane(model):

@@ -15,10 +15,10 @@ from conftest import run_cli
 from explorer import running
 
 from hexaleg.cli.gait import gait_from_args
+from hexaleg.cli.inputs import design_from_args, inputs_from_args
 from hexaleg.cli.main import build_parser
-from hexaleg.cli.options import load_gait
 from hexaleg.design import HexapodDesign
-from hexaleg.design_file import load_design
+from hexaleg.design_file import GAIT, load_design, load_table
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import walking_payload_capacity
@@ -48,9 +48,15 @@ def _json(capsys, argv):
     return json.loads(capsys.readouterr().out)
 
 
+def load_gait(path):
+    """The gait a design file's ``[gait]`` table describes."""
+    return load_table(path, GAIT, Gait.from_table)
+
+
 def _options_gait(argv):
     """The gait the ``gait`` command's options describe (the oracle)."""
-    return gait_from_args(build_parser().parse_args(["gait", *argv]))
+    args = build_parser().parse_args(["gait", *argv])
+    return gait_from_args(args, inputs_from_args(args).gait)
 
 
 def test_the_table_reads_as_the_options_do(files):
@@ -77,10 +83,8 @@ def test_loads_walking_capacity_walks_the_table(files, capsys):
     with_table, without = files
     found = _json(capsys, ["loads", "--design", str(with_table)])["walking_payload_capacity"]
     args = build_parser().parse_args(["gait", "--design", str(without), *OPTIONS])
-    from hexaleg.cli.options import design_from_args
-
     model = HexapodModel(design_from_args(args))
-    oracle = walking_payload_capacity(model, gait_from_args(args))
+    oracle = walking_payload_capacity(model, gait_from_args(args, Gait()))
     assert found == oracle.to_dict()
     default = _json(capsys, ["loads", "--design", str(without)])["walking_payload_capacity"]
     assert default != found  # the table changed what is computed
@@ -89,9 +93,7 @@ def test_loads_walking_capacity_walks_the_table(files, capsys):
 def test_requirements_walk_the_table_and_override_it(files):
     with_table, _ = files
     args = build_parser().parse_args(["decide", "--design", str(with_table)])
-    from hexaleg.cli.options import inputs_from_args
-
-    requirements = inputs_from_args(args)[1]
+    requirements = inputs_from_args(args).requirements
     assert requirements.gait == load_gait(with_table)
     faster = Requirements(speed=0.3, step_height=0.07, walked=requirements.walked)
     assert faster.gait == Gait(stride=0.25, step_height=0.07).with_speed(0.3)

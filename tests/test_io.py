@@ -154,13 +154,13 @@ def test_dev_null_stays_a_device_in_a_private_mount_namespace(tmp_path):
 def test_unwritable_paths_are_refused_before_computing(
     tmp_path, capsys, monkeypatch, output, message
 ):
-    from hexaleg.cli import urdf
+    from hexaleg.robot.robot import Robot
 
     monkeypatch.chdir(tmp_path)
     (tmp_path / "folder").mkdir()
     (tmp_path / "a-file").write_text("a file, not a folder")
     before = _entries(tmp_path)
-    monkeypatch.setattr(urdf, "write_urdf", lambda *args: pytest.fail("rendered the URDF"))
+    monkeypatch.setattr(Robot, "urdf", lambda *args: pytest.fail("rendered the URDF"))
     assert run_cli(["urdf", "-o", output]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and message in err and len(err) < 300, err

@@ -154,6 +154,7 @@ def test_best_posture_stands_the_design_at_the_posture_commands_answer(printed, 
         (["posture", "--maximize", "speed"], "--maximize"),
         (["posture", "--payload", "-3"], "payload"),
         (["loads", "--urdf", KRABY, "--best-posture"], "--best-posture on an imported robot"),
+        (["posture", "--urdf", KRABY], "posture on an imported robot"),
     ],
 )
 def test_bad_posture_options_are_one_line_and_exit_2(capsys, argv, fragment):

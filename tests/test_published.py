@@ -160,6 +160,33 @@ def test_lock_joint_holds_a_joint_the_file_moves(tmp_path, capsys):
     assert again["nominal"] == loads["nominal"]
 
 
+def test_a_robot_sent_to_a_worker_keeps_its_locked_joints(tmp_path):
+    """A study's or a decision's worker builds the robot from its recipe, the lock included.
+
+    Oracle: the count of the robot's moving joints, six legs of three on a free flyer.
+    """
+    import pickle
+
+    from hexaleg.exceptions import RobotImportError
+    from hexaleg.robot.recipe import RobotSource
+    from hexaleg.robot.robot import Robot
+
+    urdf = write_package(tmp_path, replace(RATED, sensor=True))
+    turned = urdf.read_text().replace('type="prismatic"', 'type="revolute"')
+    turned = turned.replace('lower="-0.0001" upper="0.0001"', 'lower="-1.0" upper="1.0"')
+    (urdf.parent / "turned.urdf").write_text(turned)
+    path = str(urdf.parent / "turned.urdf")
+    with pytest.raises(RobotImportError, match="--lock-joint NAME"):
+        Robot.build(RobotSource.of(path))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        robot = Robot.build(RobotSource.of(path, lock=["leg?_contact_joint"]))
+        sent = pickle.loads(pickle.dumps(robot))
+    assert sent.source.lock == ("leg?_contact_joint",) and sent == robot
+    assert sent.model.model.nq == 7 + 6 * 3
+    assert sent.fingerprint()["robot"]["lock"] == ["leg?_contact_joint"]
+
+
 def test_a_locked_joints_name_cannot_end_the_note_hexaleg_writes(tmp_path, capsys):
     """A name holding ``-->`` and markup stays a name in the rewritten text (XML's own parse)."""
     import xml.etree.ElementTree as ET

@@ -42,6 +42,31 @@ def test_design_show_lists_the_legs(capsys):
     assert out["design"]["l2"] == pytest.approx(0.0602)
 
 
+def test_design_show_weighs_the_file(capsys):
+    # the oracle: Pinocchio's total of the raw file's links, its root link on a free flyer
+    raw = pin.buildModelFromXML(Path(KRABY).read_text(), pin.JointModelFreeFlyer())
+    mass = pin.computeTotalMass(raw)
+    out = _json(capsys, ["design", "show", "--urdf", KRABY, "--json"])
+    assert out["derived"]["total_mass"] == pytest.approx(mass, rel=1e-12)
+    assert run_cli(["design", "show", "--urdf", KRABY]) == 0
+    shown = capsys.readouterr().out
+    assert f"mass                 {mass:.4g} kg" in shown, shown
+    # each foothold at the nominal posture, body frame: from Pinocchio on the raw file
+    data = raw.createData()
+    q = pin.neutral(raw)
+    for leg in out["design"]["legs"]:
+        for name, angle in zip(leg["joints"], leg["nominal"]["urdf_joint_angles"], strict=True):
+            q[raw.joints[raw.getJointId(name)].idx_q] = angle
+    pin.framesForwardKinematics(raw, data, q)
+    base = data.oMf[raw.getFrameId(raw.frames[1].name)]  # the root link's frame
+    plane = np.mean([leg["mount"]["z"] for leg in out["design"]["legs"]])
+    for leg in out["design"]["legs"]:
+        foot = base.actInv(data.oMf[raw.getFrameId(leg["foot"]["source"].split()[-1])].translation)
+        expected = foot - [0.0, 0.0, plane]
+        found = out["derived"]["mounts"][leg["name"]]["foothold"]
+        assert found == pytest.approx(list(expected), abs=1e-9)
+
+
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 def test_workspace_per_leg_against_eq16_and_reach(capsys):
     out = _json(capsys, ["workspace", *HUMA_ARGS, "--urdf", HUMA, "--foot-offset", "0", "-0.1", "0",
@@ -97,9 +122,8 @@ def test_design_import_round_trip(tmp_path, capsys):
     [
         (["flexibility", "--urdf", KRABY, "--l2", "0"], "--l2 = 0 is not valid"),
         (["loads", "--urdf", KRABY, "--l2", "-1"], "--l2 = -1 is not valid"),
-        (["loads", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
-        (["actuators", "--urdf", KRABY], "--urdf does not run on this command yet"),
-        (["design", "init", "x.toml", "--urdf", KRABY], "--urdf does not run"),
+        (["workspace", "--urdf", KRABY, "--plot", "out"], "--plot with --urdf is not supported"),
+        (["actuators", "--urdf", KRABY], "unrecognized arguments: --urdf"),
         (["workspace", "--foot-offset", "0", "0", "0"], "--foot-offset only applies together"),
         (
             ["workspace", "--urdf", KRABY, "--ratios", "0.2", "0.4", "--total", "0.2"],
@@ -121,7 +145,7 @@ def test_refusals_are_one_line(capsys, argv, expected):
 
 
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
-def test_imported_design_file_is_refused_by_other_commands(tmp_path, capsys):
+def test_an_imported_design_file_is_the_robot_to_every_command(tmp_path, capsys):
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
     capsys.readouterr()
@@ -129,8 +153,12 @@ def test_imported_design_file_is_refused_by_other_commands(tmp_path, capsys):
     assert via_file == _json(capsys, ["flexibility", "--urdf", KRABY, "--json"]) | {
         "robot": via_file["robot"]
     }
-    assert run_cli(["design", "init", str(tmp_path / "new.toml"), "--design", str(target)]) == 2
-    assert "describes an imported robot" in capsys.readouterr().err
+    # design init of the robot writes its design file, as design import does
+    again = tmp_path / "again.toml"
+    assert run_cli(["design", "init", str(again), "--design", str(target)]) == 0
+    assert _json(capsys, ["design", "show", "--design", str(again), "--json"]) == _json(
+        capsys, ["design", "show", "--design", str(target), "--json"]
+    )
     # a failed import writes nothing
     bad = tmp_path / "ochs.toml"
     assert run_cli(["design", "import", OCHS, "-o", str(bad)]) == 2

@@ -297,12 +297,6 @@ def test_the_design_files_robot_table_walks_as_the_file(tmp_path, capsys):
     assert direct["urdf_joint_angles"]["lf"] != direct["joint_angles"]["lf"]  # the file's zeros
 
 
-def test_gait_table_on_a_realrobot_under_test(capsys):
-    assert run_cli(["gait", "--urdf", KRABY, *SMALL]) == 0
-    out = capsys.readouterr().out
-    assert "Walking" in out and "kraby" in out and "max stride" in out
-
-
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tmp_path, capsys):
     target = tmp_path / "kraby.toml"
@@ -325,11 +319,3 @@ def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tm
     # and without a [gait] table Kraby walks its own default gait, sized to it
     plain = robot_json(capsys, ["loads", "--urdf", KRABY, "--json"])
     assert plain["walking_payload_capacity"]["walks"]
-
-
-def test_gait_figures_of_an_importedrobot_under_test(tmp_path, capsys):
-    out = tmp_path / "figures"
-    assert run_cli(["gait", "--urdf", KRABY, *SMALL, "--plot", str(out)]) == 0
-    capsys.readouterr()
-    for name in ("gait_joints.png", "gait_feet.png"):
-        assert (out / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

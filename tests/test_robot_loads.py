@@ -138,13 +138,6 @@ def test_the_template_urdf_imported_back_has_the_designs_statics(tmp_path, capsy
     assert back["payload_capacity"]["limited_by"] == own["payload_capacity"]["limited_by"]
 
 
-def test_loads_table_on_a_real_robot(capsys):
-    assert run_cli(["loads", "--urdf", KRABY]) == 0
-    out = capsys.readouterr().out
-    assert "Statics of" in out and "payload capacity" in out
-    assert "peak |τ| hip: nominal / extremes" in out
-
-
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 def test_a_design_file_s_own_ratings_override_the_file_s(tmp_path, capsys):
     """Oracle: the robot file itself with its joints' efforts edited to the same ratings."""

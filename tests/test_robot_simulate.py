@@ -99,10 +99,19 @@ def test_the_imported_robot_walks_and_stands_as_the_statics_say(capsys, tmp_path
     assert measured["hip"] == pytest.approx(planned["hip"], rel=0.2)
 
 
+@pytest.mark.slow
+def test_the_simulated_walk_is_drawn_with_the_files_visuals(capsys, tmp_path):
+    page = tmp_path / "walk.html"
+    argv = ["simulate", "--urdf", KRABY, "--step-height", "0.02", "--stride", "0.03",
+            "--cycles", "2", "--html", str(page)]  # fmt: skip
+    assert run_cli(argv) == 0
+    text = page.read_text()
+    assert "meshcat" in text.lower() and len(text) > 100_000  # the file's STL meshes inside
+
+
 @pytest.mark.parametrize(
     ("extra", "expected"),
     [
-        (["--html", "out.html"], "--html with --urdf is not supported yet"),
         (["--video", "out.gif"], "--video with --urdf is not supported yet"),
         (["--stride", "0.5"], "max stride"),
     ],

@@ -1,4 +1,4 @@
-"""``study``, ``decide`` and ``report`` on an imported robot, held against the single-design path.
+"""``study``, ``decide`` and ``report`` on a robot, held against the single-design path.
 
 Oracles: each row, answer and report number is measured again here with the single-design
 commands (``flexibility --urdf FILE --l1 .. --l2 .. --l3 .. --json``, ``loads --urdf ...
@@ -20,6 +20,7 @@ import numpy as np
 import pandas as pd
 import pytest
 from conftest import run_cli
+from robots import KINDS, robot_argv, robot_of
 
 from hexaleg.design import HexapodDesign
 from hexaleg.robot.feet import FootSearch
@@ -54,10 +55,11 @@ def _lengths(values) -> list[str]:
     return ["--l1", l1, "--l2", l2, "--l3", l3]
 
 
-def _single(capsys, lengths, gait: str) -> dict[str, float]:
+def _single(capsys, lengths, gait: str, robot: list[str] | None = None) -> dict[str, float]:
     """FB, standing and walking payload capacity from the single-design commands."""
-    flex = _json(capsys, ["flexibility", "--urdf", KRABY, *_lengths(lengths), "--json"])
-    argv = ["loads", "--urdf", KRABY, "--design", gait, *_lengths(lengths), "--json"]
+    robot = ["--urdf", KRABY] if robot is None else robot
+    flex = _json(capsys, ["flexibility", *robot, *_lengths(lengths), "--json"])
+    argv = ["loads", *robot, "--design", gait, *_lengths(lengths), "--json"]
     loads = _json(capsys, argv)
     return {
         "fb": flex["fb"],
@@ -73,11 +75,11 @@ def _study(tmp_path: Path, name: str, argv: list[str]) -> pd.DataFrame:
     return pd.read_csv(out / "study.csv", keep_default_na=False, na_values=[""])
 
 
-def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys):
-    gait = _gait_file(tmp_path)
-    table = _study(tmp_path, "study", ["--urdf", KRABY, "--design", gait])
-    robot = import_robot(KRABY, foot=FootSearch())
-    total = sum(robot.legs[0].reading.geometry.lengths)  # the robot's own leg length
+@pytest.mark.parametrize("kind", KINDS)
+def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys, kind):
+    gait, argv = _gait_file(tmp_path), robot_argv(kind)
+    table = _study(tmp_path, "study", [*argv, "--design", gait])
+    total = robot_of(kind).design.leg_length  # the robot's own leg length
     measured = table[table["error"].isna()]
     assert len(measured) == 5  # 0.25 + 0.75 leaves no femur: that row is refused
     for row in measured.to_dict(orient="records"):
@@ -88,10 +90,15 @@ def test_every_study_row_equals_the_single_design_commands(tmp_path, capsys):
              row["l3_ratio"] * total],
             rtol=1e-12,
         )  # fmt: skip
-        single = _single(capsys, lengths, gait)
+        single = _single(capsys, lengths, gait, argv)
         for column, value in single.items():
             assert row[column] == pytest.approx(value, rel=1e-9, abs=1e-12), column
     assert (measured["walking_payload_capacity"] > 0).sum() >= 2  # the file's gait is walked
+
+
+def test_a_study_of_an_imported_design_file_is_the_robot_files(tmp_path):
+    gait = _gait_file(tmp_path)
+    table = _study(tmp_path, "study", ["--urdf", KRABY, "--design", gait])
     # the same study from a design file written by `design import` (its [robot] table)
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
@@ -188,9 +195,7 @@ def test_report_numbers_equal_the_single_design_commands(tmp_path, capsys):
 @pytest.mark.parametrize(
     ("argv", "expected"),
     [
-        (["study", "--urdf", KRABY, "--mode", "free"], "--mode free with study --urdf"),
         (["study", "--urdf", KRABY, "--sensitivity"], "--sensitivity and --sweep with --urdf"),
-        (["study", "--urdf", KRABY, "--collisions"], "--collisions with study --urdf"),
         (["decide", "--urdf", KRABY, "--free-posture"], "--free-posture with --urdf"),
         (["decide", "--urdf", KRABY, "--choose-actuators"], "--choose-actuators with --urdf"),
         (["decide", "--urdf", KRABY, "--free", "body_width=0.1:0.2"], "with --urdf, one of"),
@@ -303,3 +308,23 @@ def test_a_study_carries_the_robot_file_s_reading_options_to_its_workers(tmp_pat
         lengths = _lengths((row["l1"], row["l2"], row["l3"]))
         flex = _json(capsys, ["flexibility", "--urdf", ochs, *foot, *lengths, "--json"])
         assert row["fb"] == pytest.approx(flex["fb"], rel=1e-9)
+
+
+@pytest.mark.slow
+def test_a_free_coupled_study_row_equals_the_single_design_command(tmp_path, capsys):
+    out = tmp_path / "free"
+    argv = ["study", "--urdf", KRABY, "--mode", "free", "--l1-ratios", "0.25",
+            "--l3-points", "2", "--workers", "2", "-o", str(out)]  # fmt: skip
+    assert run_cli(argv) == 0, capsys.readouterr().err
+    rows = pd.read_csv(out / "study.csv", keep_default_na=False, na_values=[""])
+    locked = _study(tmp_path, "locked", ["--urdf", KRABY])
+    measured = [row for row in rows.to_dict(orient="records") if pd.isna(row["error"])]
+    assert measured, rows["error"].tolist()
+    for row in measured:
+        lengths = (row["l1"], row["l2"], row["l3"])
+        argv = ["flexibility", "--urdf", KRABY, *_lengths(lengths), "--mode", "free", "--json"]
+        single = _json(capsys, argv)
+        assert row["fb"] == pytest.approx(single["fb"], rel=1e-9)
+        same = locked[np.isclose(locked["l3_ratio"], row["l3_ratio"])]
+        same = same[np.isclose(same["l1_ratio"], row["l1_ratio"])]
+        assert same.empty or row["fb"] >= float(same["fb"].iloc[0]) - 1e-9  # free ≥ locked

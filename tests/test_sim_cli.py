@@ -118,7 +118,7 @@ def test_the_animation_is_the_simulated_motion_drawn_in_a_browser(tmp_path, walk
         tree = server._bridge.tree
         assert len(_node(tree, f"meshcat/{NODE}/visuals")) == 25  # body, 6 × 4 leg links
         assert _node(tree, ANIMATION_PATH.strip("/")).animation is not None
-    page = _animation(walked, str(tmp_path / "walk.html"))
+    page = _animation(walked, model, str(tmp_path / "walk.html"))
     require_chromium()
     import meshcat
 

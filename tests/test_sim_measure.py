@@ -14,6 +14,7 @@ from hexaleg.sim.measure import (
     WalkMeter,
     fell,
     foot_slip,
+    internal_forces,
     measure_walk,
     peak_torques,
     roll_pitch,
@@ -185,3 +186,37 @@ def test_a_run_measured_in_parts_measures_as_the_whole(cuts):
         assert getattr(parts, name) == getattr(whole, name), name
     assert parts.over_rating == whole.over_rating
     assert ("lm", "knee", "t = 3.200 s") in {(o.leg, o.joint, o.at) for o in parts.over_rating}
+
+
+def _least_forces(feet: np.ndarray, weight: float) -> np.ndarray:
+    """Vertical forces (n, 3) carrying ``weight`` [N] at the feet's centroid: the least-norm
+    forces of that resultant when the centroid is the feet's mean (all equal)."""
+    forces = np.zeros_like(feet)
+    forces[:, 2] = weight / len(feet)
+    return forces
+
+
+@pytest.mark.parametrize("squeeze", [0.0, 7.5, 40.0])
+def test_the_internal_force_is_the_squeeze_the_feet_cancel(squeeze):
+    # oracle: three feet carrying a weight equally, plus a pair pushing 'squeeze' [N]
+    # toward each other along their line (it sums to zero, force and moment)
+    feet = np.array([[0.5, 0.0, 0.0], [-0.25, 0.4, 0.0], [-0.25, -0.4, 0.0]])
+    forces = _least_forces(feet, 900.0)
+    along = (feet[1] - feet[0]) / np.linalg.norm(feet[1] - feet[0])
+    forces[0] += squeeze * along
+    forces[1] -= squeeze * along
+    everyone = np.zeros((1, 6, 3))
+    everyone[0, :3] = forces
+    where = np.zeros((1, 6, 3))
+    where[0, :3], where[0, 3:] = feet, feet + np.array([0.0, 0.0, 0.3])  # swinging feet: up
+    standing = np.array([[True, True, True, False, False, False]])
+    found = internal_forces(everyone, where, standing)
+    np.testing.assert_allclose(found, [squeeze], atol=1e-9)
+
+
+def test_no_internal_force_while_the_load_is_handed_over_or_on_one_foot():
+    feet = np.array([[[0.5, 0.0, 0.0], [-0.5, 0.0, 0.0]]])
+    forces = np.array([[[5.0, 0.0, 100.0], [-5.0, 0.0, 100.0]]])
+    assert internal_forces(forces, feet, [[True, True]])[0] == pytest.approx(5.0)
+    assert internal_forces(forces, feet, [[True, False]])[0] == 0  # a swinging foot touches
+    assert internal_forces(forces[:, :1], feet[:, :1], [[True]])[0] == 0  # alone

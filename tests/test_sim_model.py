@@ -7,6 +7,7 @@ import os
 import numpy as np
 import pinocchio as pin
 import pytest
+from robots import robot_of
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.exceptions import HexalegError
@@ -30,9 +31,13 @@ DESIGNS = [
 ]
 
 
-@pytest.fixture(scope="module", params=DESIGNS, ids=["default", "hexagon"])
+@pytest.fixture(scope="module", params=[*DESIGNS, "kraby"], ids=["default", "hexagon", "kraby"])
 def models(request):
-    model = HexapodModel(request.param)
+    """Hexaleg's template at two designs, and a robot file: each model with its MuJoCo one."""
+    if request.param == "kraby":
+        model = robot_of("kraby").model
+    else:
+        model = HexapodModel(request.param)
     return model, SimModel(model)
 
 
@@ -115,14 +120,13 @@ def test_feet_are_spheres_on_the_foot_frames_and_the_floor_lies_one_radius_down(
     model, sim = models
     q = model.nominal_configuration()
     data = _mujoco_at(sim, q)
-    np.testing.assert_allclose(data.xpos[sim.feet], model.foot_positions(q), atol=1e-12)
-    radius = model.design.link_radius * 1.2  # the foot sphere the URDF draws
-    for leg, geom in zip(model.leg_names, sim.contacts, strict=True):
+    # the foot sphere the template's URDF draws; a robot file's documented 5 mm one
+    radius = 0.005 if model.own_legs is not None else model.design.link_radius * 1.2
+    feet = model.foot_positions(q)
+    for leg, geom, foot in zip(model.leg_names, sim.contacts, feet, strict=True):
         assert mujoco.mj_id2name(sim.mj, mujoco.mjtObj.mjOBJ_GEOM, geom) == contact_geom_name(leg)
         assert sim.mj.geom_size[geom, 0] == pytest.approx(radius)
-        np.testing.assert_allclose(
-            data.geom_xpos[geom], data.xpos[sim.feet[list(sim.contacts).index(geom)]]
-        )
+        np.testing.assert_allclose(data.geom_xpos[geom], foot, atol=1e-12)
     assert data.geom_xpos[sim.floor][2] == pytest.approx(-radius)
     mujoco.mj_forward(sim.mj, data)
     touching = {
@@ -179,7 +183,11 @@ def test_servo_applies_feed_forward_plus_pd_on_the_tracking_error(models):
     mujoco.mj_forward(sim.mj, data)
     kp, kd = np.array(sim.gains.stiffness), np.array(sim.gains.damping)
     q_now, v_now = data.qpos[sim.qpos], data.qvel[sim.dof]
-    expected = feed + kp * (q_ref - q_now) + kd * (v_ref - v_now)
+    # on the model's joints: q = s·θ + o (the identity on the template's), q̇ = s·θ̇, s·τ
+    signs = np.array([model.joint_signs(leg) for leg in model.leg_names])
+    legs = zip(model.leg_names, q_ref, strict=True)
+    q_set = np.array([model.joint_values(leg, theta) for leg, theta in legs])
+    expected = signs * feed + kp * (q_set - q_now) + kd * (signs * v_ref - v_now)
     np.testing.assert_allclose(data.actuator_force[sim.actuators], expected, rtol=1e-9, atol=1e-9)
     np.testing.assert_allclose(data.qfrc_actuator[sim.dof], expected, rtol=1e-9, atol=1e-9)
 

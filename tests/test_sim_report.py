@@ -14,6 +14,7 @@ from hexaleg.output.report import PARTS, ReportData, ReportOptions, build_report
 from hexaleg.output.report.document import Figure
 from hexaleg.output.report.part import numbered
 from hexaleg.output.report.registry import parts_for
+from hexaleg.robot.robot import Robot
 
 if not os.environ.get("CI"):  # CI installs hexaleg[test], which includes the sim extra
     pytest.importorskip("mujoco")
@@ -27,25 +28,32 @@ from hexaleg.sim.video import RenderOutcome
 @pytest.fixture(scope="module")
 def data(default_design):
     options = ReportOptions(simulate=True, vector_figures=True, progress=False)
-    parts = parts_for(options)
+    parts = parts_for(Robot.build(over=default_design), options)
     base = ReportData(default_design, options, HexapodModel(default_design), parts=parts)
     return base.with_record(simulation.compute(base))
 
 
-def test_the_part_comes_after_walking_only_when_asked():
-    assert parts_for(ReportOptions()) == PARTS
-    assert simulation.PART not in PARTS
-    asked = parts_for(ReportOptions(simulate=True))
-    assert len(asked) == len(PARTS) + 1
-    assert asked[asked.index(walking.PART) + 1] is simulation.PART
+def test_the_part_comes_after_walking_only_when_asked(default_design):
+    robot = Robot.build(over=default_design)
+    plain = parts_for(robot, ReportOptions())
+    assert simulation.PART in PARTS and simulation.PART not in plain
+    asked = parts_for(robot, ReportOptions(simulate=True))
+    after = plain.index(walking.PART) + 1
+    assert asked == (*plain[:after], simulation.PART, *plain[after:])
 
 
 def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(data):
-    result = data[simulation.SimulationRecord].result
+    record = data[simulation.SimulationRecord]
+    result, torque = record.result, record.torque
+    assert (result.controller, torque.controller) == ("servo", "torque")
     section = numbered(data, simulation.PART)
     assert section.title.startswith("3.5 Simulated walk")
     text = "\n".join(b for b in section.blocks if isinstance(b, str))
-    assert f"{result.metrics.distance:.3f} ({100 * result.metrics.distance_ratio:.1f} %)" in text
+    assert "| quantity | servos | torque control | planned |" in text
+    for walk in (result, torque):
+        metrics = walk.metrics
+        assert f"{metrics.distance:.3f} ({100 * metrics.distance_ratio:.1f} %)" in text
+        assert f"| {metrics.internal_force:.1f} |" in text
     assert f"| {result.metrics.planned_distance:.3f} |" in text
     for leg in ("lf", "rm", "lr"):
         statics = result.standing.statics_foot_forces_z[leg]
@@ -58,8 +66,28 @@ def test_section_sets_the_walk_beside_the_plan_and_the_feet_beside_the_statics(d
 
 def test_json_is_the_simulate_commands_without_the_design(data):
     fields = simulation.to_json(data[simulation.SimulationRecord])
-    assert set(fields) == {"simulation"}
-    assert set(fields["simulation"]) == JSON_KEYS - {"design"}
+    assert set(fields) == {"simulation"} and set(fields["simulation"]) == {"servo", "torque"}
+    for controller, walk in fields["simulation"].items():
+        assert set(walk) == JSON_KEYS - {"design"} and walk["controller"] == controller
+
+
+def test_the_motor_sizing_says_which_controller_it_holds_for_and_shows_both(data, tmp_path):
+    from hexaleg.design_file import load_design
+    from hexaleg.output.report import motors
+
+    path = tmp_path / "motors.toml"  # catalog motors on every joint (the walks: the default's)
+    path.write_text("".join(f'[actuators.{j}]\ncatalog = "hd_cha_25a_100"\n'
+                            for j in ("root", "hip", "knee")))  # fmt: skip
+    design = load_design(path)
+    mine = ReportData(design, data.options, HexapodModel(design), parts=data.parts)
+    record = data[simulation.SimulationRecord]
+    mine = mine.with_record(record).with_record(motors.compute(mine))
+    text = "\n".join(b for b in motors.section(mine).blocks if isinstance(b, str))
+    assert "what a torque-controlled robot needs" in text and "stiff" in text
+    assert "| joint | plan (the sizing) | servos | torque control |" in text
+    for joint in ("root", "hip", "knee"):
+        servo, torque = (w.metrics.peak_torque[joint] for w in record.walks.values())
+        assert f"| {servo:.3g} | {torque:.3g} |" in text
 
 
 def _picture(path) -> np.ndarray:

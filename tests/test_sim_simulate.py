@@ -24,6 +24,8 @@ JSON_KEYS = {
     "gait",
     "payload",
     "cycles",
+    "controller",
+    "diverged",
     "planned_distance",
     "distance",
     "max_tilt",
@@ -31,6 +33,7 @@ JSON_KEYS = {
     "fell",
     "tracking_rms",
     "slip",
+    "internal_force",
     "peak_torque_measured",
     "over_rating",
     "peak_torque_planned",
@@ -74,6 +77,7 @@ def test_json_has_exactly_the_documented_fields(default_walk):
     assert fields["gait"]["pattern"] == "tripod"
     assert fields["payload"] == {"mass": 0.0, "position": [0.0, 0.0, 0.05]}
     assert fields["fell"] is False
+    assert fields["controller"] == "servo" and fields["diverged"] is None
 
 
 def test_frames_cover_the_run(default_walk):
@@ -141,3 +145,25 @@ def test_random_designs_walk_half_their_max_stride():
         assert metrics.max_tilt < math.radians(5.0), design
         walked += 1
     assert walked >= 3
+
+
+@pytest.mark.slow  # two simulated walks, seconds each
+def test_a_torque_controlled_robot_needs_what_the_plan_says():
+    """The plan's torques with a low-gain PD: every joint type's measured peak within 10 %
+    of the plan's (the oracle: the gait analysis' own peaks, Pinocchio's inverse dynamics),
+    the standing feet barely pushing on each other; stiff servos need far more at the
+    roots and squeeze the feet."""
+    planned = analyze_gait(HexapodDesign(), Gait(), limits=False).metrics.peak_torque
+    torque = simulate_gait(HexapodDesign(), Gait(), controller="torque")
+    servo = simulate_gait(HexapodDesign(), Gait(), controller="servo")
+    assert torque.controller == "torque" and not torque.diverged and not torque.metrics.fell
+    for joint, value in torque.metrics.peak_torque.items():
+        assert value == pytest.approx(planned[joint], rel=0.10), joint
+    assert servo.metrics.peak_torque["root"] > 2 * planned["root"]
+    assert servo.metrics.internal_force > 3 * torque.metrics.internal_force
+    assert torque.metrics.distance >= 0.95 * torque.metrics.planned_distance
+
+
+def test_a_bad_controller_is_refused_naming_it():
+    with pytest.raises(ParameterError, match="controller = 'position' is not valid"):
+        simulate_gait(HexapodDesign(), controller="position")

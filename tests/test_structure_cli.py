@@ -103,9 +103,11 @@ def test_size_true_chooses_the_tubes_first_and_says_how_many_rounds(tmp_path, ca
     assert "tubes sized" in capsys.readouterr().out
 
 
-def test_a_robot_file_refuses_a_structure_in_one_line(tmp_path, capsys):
+@pytest.mark.parametrize("command", ["loads", "workspace", "design show"])
+def test_a_robot_file_refuses_a_structure_in_one_line(tmp_path, capsys, command):
+    """Every command resolves the design the same way: one that sizes nothing refuses too."""
     path = design_file(tmp_path, TUBES)
-    assert main(["loads", "--urdf", str(KRABY), "--design", path]) == 2
+    assert main([*command.split(), "--urdf", str(KRABY), "--design", path]) == 2
     err = capsys.readouterr().err
     assert err.count("\n") == 1 and "[structure]" in err
 

@@ -19,6 +19,7 @@ import psutil
 import pytest
 import umsgpack
 from browser import LEGEND_LAYOUT, evaluate, require_chromium, screenshot
+from robots import KINDS, robot_argv
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.output.viewer import HIGHLIGHT, LoopbackServer, build_scene, client, extreme_name
@@ -194,11 +195,16 @@ def test_the_served_page_shows_the_legend_beside_the_scene(tmp_path, empty_scene
     assert "red" not in layout["text"] and "extreme" not in layout["text"]
 
 
-def test_static_html_draws_the_robot(tmp_path, empty_scene):
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize(
+    "kind",
+    [KINDS[0], pytest.param(KINDS[1], marks=pytest.mark.slow)],  # one drawing by default
+)
+def test_static_html_draws_the_robot(tmp_path, empty_scene, kind):
     from hexaleg.cli import main
 
     page = tmp_path / "scene.html"
-    assert main(["view", "--html", str(page), "--stance", "tripod"]) == 0
+    assert main(["view", *robot_argv(kind), "--html", str(page), "--stance", "tripod"]) == 0
     assert "<html" in page.read_text()[:2000].lower()
     image = screenshot(page.as_uri(), tmp_path / "static.png")
     assert _drawn_share(image, empty_scene) > 0.05

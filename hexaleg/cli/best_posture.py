@@ -1,7 +1,9 @@
 """``--best-posture`` of ``loads``, ``gait`` and ``flexibility``: stand at ``posture``'s answer.
 
 Light to import (the search is imported when the option is used), so that these commands'
-parsers stay quick.
+parsers stay quick. The option is read where the design options resolve
+(:func:`~hexaleg.cli.inputs.inputs_from_args`), before the tubes are sized: they are sized
+for the posture stood.
 """
 
 from __future__ import annotations
@@ -9,9 +11,8 @@ from __future__ import annotations
 import argparse
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import UsageError, inputs_from_args
-from hexaleg.cli.robot_table import load_robot_table
-from hexaleg.design import HexapodDesign
+from hexaleg.cli.options import UsageError
+from hexaleg.robot.robot import POSTURE_FIELD, Robot
 
 if TYPE_CHECKING:
     from hexaleg.evaluation.requirements import Requirements
@@ -28,27 +29,36 @@ def add_best_posture_option(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def posed_inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
-    """The design and requirements the options describe; with ``--best-posture``, posed.
-
-    The design stands at ``hexaleg posture``'s answer with ``--best-posture``, as the options
-    give it otherwise (:func:`~hexaleg.cli.options.inputs_from_args`).
+def require_posable(robot: Robot, what: str) -> None:
+    """Refuse, in one line, a robot whose posture is not searched (a robot file's is its own).
 
     Raises:
-        UsageError: ``--best-posture`` with ``--urdf`` (an imported robot stands as its
-            file does) or with ``--nominal-angles``.
+        UsageError: ``what`` (``--best-posture``, ``posture``) on such a robot.
 
     """
-    design, in_file = inputs_from_args(args)
+    if not robot.searches(POSTURE_FIELD):
+        raise UsageError(f"{what} on an imported robot ({robot.name}): it stands as its file does")
+
+
+def pose_if_asked(args: argparse.Namespace, robot: Robot, requirements: Requirements) -> Robot:
+    """``robot`` at ``hexaleg posture``'s answer with ``--best-posture``; else ``robot``.
+
+    Args:
+        args: The parsed options.
+        robot: The robot the design options describe.
+        requirements: The ``--design`` file's requirements, walking its gait.
+
+    Raises:
+        UsageError: ``--best-posture`` on a robot file (it stands as its file does) or with
+            ``--nominal-angles``.
+
+    """
     if not getattr(args, "best_posture", False):
-        return design, in_file
-    path = getattr(args, "design", None)
-    if getattr(args, "urdf", None) is not None or (
-        path is not None and load_robot_table(path) is not None
-    ):
-        raise UsageError("--best-posture on an imported robot: it stands as its file does")
+        return robot
+    require_posable(robot, "--best-posture")
     if getattr(args, "nominal_angles", None) is not None:
         raise UsageError("--best-posture chooses the nominal angles: drop --nominal-angles")
-    from hexaleg.study.posture import DEFAULT_OBJECTIVE, best_posture  # SciPy, pymoo: heavy
+    from hexaleg.study.posture import DEFAULT_OBJECTIVE, best_posture  # SciPy: heavy
 
-    return best_posture(design, in_file, DEFAULT_OBJECTIVE).best.design, in_file
+    best = best_posture(robot, requirements, DEFAULT_OBJECTIVE).best.design
+    return robot.at(nominal_angles=best.nominal_angles)

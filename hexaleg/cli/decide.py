@@ -8,22 +8,20 @@ from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
 from hexaleg.actuators import Actuator
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     UsageError,
     add_design_options,
     bounded_int,
     capped_workers,
-    inputs_from_args,
-    walked_by,
 )
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
-from hexaleg.cli.robot_options import add_robot_options, robot_designs
 from hexaleg.evaluation.goal import Objective
 from hexaleg.evaluation.metrics import objectives
 from hexaleg.evaluation.requirements import RequirementCheck, format_margin
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.ratings import require_ratings
+from hexaleg.robot.robot import SEGMENT_SPAN, Robot
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
 from hexaleg.study.decide_rows import AnswerRows, answer_rows, value_text
 from hexaleg.study.executors import dask_executor, local_pool
@@ -34,7 +32,6 @@ from hexaleg.study.optimize import (
     POPULATION_PER_VARIABLE,
     SearchSettings,
 )
-from hexaleg.study.robot_designs import ROBOT_SPAN
 from hexaleg.study.search_space import FREEABLE, GEARS, AtBound, FreeVariable
 
 DESCRIPTION = (
@@ -49,11 +46,8 @@ DESCRIPTION = (
     "--design is checked the same way. If nothing meets them all, it names the requirements "
     "that conflict and the nearest value of each that the others allow. With --urdf, your "
     "robot: its file with every leg's segments changed, each searched within "
-    f"{ROBOT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
+    f"{SEGMENT_SPAN:.0%} of its own length (the robot as read is the start and 'your design')."
 )
-
-ROBOT_OPTIONS = True
-
 
 SHOWN_OVER_RATING = 4
 """Joints over their ratings a design's text lists, the furthest over first."""
@@ -117,18 +111,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
     search.add_argument("--resume", action="store_true", help="continue the --journal FILE")
     parser.add_argument("--json", action="store_true", help="print one JSON object")
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
-    design, in_file = inputs_from_args(args)
-    robot = robot_designs(args, design)
-    if robot is not None:
-        refuse_for_robot(args)
-        design, model = robot.point()
-        in_file = walked_by(args, in_file, model)  # the robot's own default gait
-    require_ratings(design.rated_torques, design.rated_speeds, "decide")
+    inputs = inputs_from_args(args)
+    robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
+    refuse_for_robot(args, robot)
     requirements = requirements_from_args(args, in_file)
     objective = (
         Objective(args.minimize, "minimize")
@@ -149,7 +138,7 @@ def run(args: argparse.Namespace) -> int:
     actuators, ranges = _catalog_actuators(args.choose_actuators, args.free_gear_ratio)
     with executor as pool:
         result = decide(
-            design,
+            robot,
             requirements,
             objective,
             free_posture=args.free_posture,
@@ -160,7 +149,6 @@ def run(args: argparse.Namespace) -> int:
             executor=pool,
             journal=args.journal,
             resume=args.resume,
-            robot=robot,
         )
     if args.json:
         print_json(result.to_dict())
@@ -169,10 +157,14 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def refuse_for_robot(args: argparse.Namespace) -> None:
-    """Refuse, with ``--urdf``, what would change more of the robot than its segments."""
-    for flag in ("free_posture", "choose_actuators", "free_gear_ratio"):
-        if getattr(args, flag, False):
+def refuse_for_robot(args: argparse.Namespace, robot: Robot) -> None:
+    """Refuse what would free more of the robot than a search may (a file's: its segments)."""
+    for flag, field in (
+        ("free_posture", "nominal_angles"),
+        ("choose_actuators", "actuators"),
+        ("free_gear_ratio", "actuators"),
+    ):
+        if getattr(args, flag, False) and not robot.searches(field):
             raise UsageError(
                 f"--{flag.replace('_', '-')} with --urdf: an imported robot's posture, motors "
                 "and masses are its file's; decide searches its segments"
@@ -261,6 +253,9 @@ def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]
     lines = []
     for where, flagged in checked.over_rating_groups(result):
         where += " (nominal stance and the 12 body extremes)" if where.startswith("stand") else ""
+        if where.startswith("walking") and checked.walking_violation:
+            lines.append(f"  {where}: cannot walk it, {checked.walking_violation}")
+            continue
         if not flagged:
             lines.append(f"  over its rating {where}: no joint")
         for flag in flagged[:SHOWN_OVER_RATING]:

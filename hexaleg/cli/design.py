@@ -4,32 +4,28 @@ from __future__ import annotations
 
 import argparse
 import math
-from typing import TYPE_CHECKING, Any
+from pathlib import Path
+from typing import Any
 
-from hexaleg.cli.options import UsageError, add_design_options, inputs_from_args
+from hexaleg._io import check_output_file, write_text
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import UsageError, add_design_options, add_robot_options
 from hexaleg.cli.output import print_json, print_table, report_files
-from hexaleg.cli.robot_options import (
-    add_refused_robot_option,
-    add_robot_options,
-    refuse_unsupported,
-    robot_from_args,
-    robot_table,
-)
-from hexaleg.cli.structure_options import size_if_asked, structure_rows, tube_rows
+from hexaleg.cli.structure_options import structure_rows, tube_rows
 from hexaleg.design import HexapodDesign
+from hexaleg.design_text import structure_example
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.evaluation.requirements_table import example_table
 from hexaleg.gait.spec import Gait
 from hexaleg.ratings import ratings_text
-
-if TYPE_CHECKING:
-    from hexaleg.robot.imported import ImportedRobot
+from hexaleg.robot.robot import Robot
 
 INIT_DESCRIPTION = (
     "Write FILE: every design field with its unit in a comment, at the defaults or at "
     "the values the options give (say --layout hexagon --body-radius 0.35), and an example "
     "[requirements] table for decide and report and a [structure] table of the legs' tubes, "
-    "commented out."
+    "commented out. With --urdf (or a --design file's [robot]), the robot file's design and "
+    "its [robot] table, as design import writes."
 )
 
 DESCRIPTION = (
@@ -38,19 +34,16 @@ DESCRIPTION = (
     "a --design file and options resolve to, with its derived values."
 )
 
-
-ROBOT_OPTIONS = True
-
 IMPORT_DESCRIPTION = (
     "Read your hexapod's URDF or Xacro FILE (six yaw-pitch-pitch legs) and write a design "
     "file: the segments, mounts, body mass and ratings hexaleg read, and a [robot] table "
     "that names FILE and records each leg (joints, dimensions, offsets, foot, limits), to "
-    "edit and version. Commands that run on an imported robot take it with --design."
+    "edit and version. Every command takes it with --design."
 )
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    """Add the ``init`` and ``show`` actions and their options."""
+    """Add the ``init``, ``show`` and ``import`` actions and their options."""
     actions = parser.add_subparsers(dest="action", metavar="ACTION", parser_class=type(parser))
     actions.required = True
     init = actions.add_parser(
@@ -59,16 +52,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     init.add_argument("file", metavar="FILE", help="the .toml file to write")
     init.add_argument("--force", action="store_true", help="overwrite FILE if it exists")
     add_design_options(init)
-    add_refused_robot_option(init)
     show = actions.add_parser(
         "show",
         help="print the resolved design and its derived values",
         description="Print the design (defaults, --design file, then options) with its leg "
         "length, nominal height, mass and leg mounts, and the file's [requirements] if it has "
-        "them.",
+        "them. With --urdf, what the robot file says: its legs as read, its mass (Pinocchio's "
+        "total of its links), its standing height and footholds.",
     )
     add_design_options(show)
-    add_robot_options(show)
     show.add_argument("--json", action="store_true", help="print one JSON object")
     imported = actions.add_parser(
         "import",
@@ -85,72 +77,110 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     """Write, import or show the design."""
     if args.action == "import":
-        return _import(args)
-    design, requirements = inputs_from_args(args)
+        path = _target(args.output, "design import -o", args.force)
+        report_files([write_text(path, inputs_from_args(args).robot.design_text(path))])
+        return 0
+    inputs = inputs_from_args(args, size=args.action == "show")
+    requirements, sized = inputs.written, inputs.sized
+    gait = inputs.gait if inputs.gait_given and inputs.gait != inputs.default_gait else None
     if args.action == "init":
-        return _init(args.file, design, args.force, requirements.walked)
-    robot = robot_from_args(args)
-    design, sized = size_if_asked(design, requirements, robot is not None)
-    out = (
-        {"design": design.as_dict(), "derived": derived(design)}
-        if robot is None
-        else _show_robot(args, robot, design)
-    )
+        return _init(args.file, inputs.robot, args.force, gait)
+    out = inputs.robot.record()
     if sized is not None:
         out["derived"]["sizing"] = sized.to_dict() | {"check": sized.check.to_dict()}
     if args.json:
         if requirements.given:
             out["requirements"] = requirements.to_dict()
-        if requirements.walked != Gait():
-            out["gait"] = requirements.walked.to_dict()
+        if gait is not None:
+            out["gait"] = gait.to_dict()
         print_json(out)
         return 0
-    if robot is None:
-        show(design)
-        if design.structure is not None:
-            rows = (
-                tube_rows(design.structure, design.lengths)
-                if sized is None
-                else structure_rows(sized.check, sized)
-            )
-            print_table("Structure (the file's [structure] table)", rows)
+    design = inputs.design
+    show(design, out)
+    if design.structure is not None:
+        rows = (
+            tube_rows(design.structure, design.lengths)
+            if sized is None
+            else structure_rows(sized.check, sized)
+        )
+        print_table("Structure (the file's [structure] table)", rows)
     if requirements.given:
         show_requirements(requirements)
-    if requirements.walked != Gait():
-        print_table("Gait (the file's [gait] table)", gait_rows(requirements.walked))
+    if gait is not None:
+        print_table("Gait (the file's [gait] table)", gait_rows(gait))
     return 0
 
 
-def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> dict[str, Any]:
-    """The imported robot's design and what was read, per leg: JSON-ready, else printed."""
-    from hexaleg.robot.robot_design import robot_design, robot_record
+def _target(file: str, what: str, force: bool) -> Path:
+    """The .toml design file to write, checked: as typed, not there unless ``force``."""
+    path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
+    if path.suffix.lower() != ".toml":
+        raise UsageError(f"{what} {path}: the file must end in .toml")
+    if path.exists() and not force:
+        raise UsageError(f"{what} {path}: the file exists (pass --force to overwrite it)")
+    return path
 
-    refuse_unsupported(args)
-    design = robot_design(robot, design)
-    record = robot_record(robot, design.nominal_angles)
-    shown = {
-        "design": {**design.as_dict(), "legs": record["legs"]},
-        "derived": {**derived(design), "total_mass": robot.mass},  # the file's links
-        "robot": {k: v for k, v in record.items() if k != "legs"},
-    }
-    if args.json:
-        return shown
-    if robot.mass <= 0.0:
-        show(design, "none: the file gives no masses (kinematics only)")
-    else:
-        show(design, f"{robot.mass:.4g} kg, the file's links (body {robot.body_mass.mass:.4g} kg)")
-    print("  legs read from " + str(record["source"]))
-    if record["body_box"] is not None:  # what the extremes stop at
-        box = record["body_box"]
+
+def _init(file: str, robot: Robot, force: bool, gait: Gait | None) -> int:
+    """Write the robot's design file, its gait if given, and the commented examples.
+
+    The ``[structure]`` example where the robot's links are its design's and it has none.
+    """
+    path = _target(file, "design init", force)
+    walked = "" if gait is None else "\n" + gait.to_toml()
+    tubes = robot.design_links and robot.design.structure is None
+    structure = "\n" + structure_example() if tubes else ""
+    text = robot.design_text(path) + walked + structure + "\n" + example_table()
+    report_files([write_text(path, text)])
+    return 0
+
+
+def show(design: HexapodDesign, record: dict[str, Any]) -> None:
+    """The robot's record (``design show --json``) as text: design, derived values, legs."""
+    derived = record["derived"]
+    total, body = derived["total_mass"], derived["body_mass"]
+    mass = (
+        f"{total:.4g} kg (body {body:.4g} kg{_drive(design)})"
+        if total > 0
+        else "none: the file gives no masses (kinematics only)"
+    )
+    print_table(
+        f"Design ({derived['body']})",
+        [
+            ("segments l1, l2, l3", f"{design.l1:.4g}, {design.l2:.4g}, {design.l3:.4g} m"),
+            ("leg length", f"{derived['leg_length']:.4g} m"),
+            ("nominal height", f"{derived['nominal_height']:.4g} m"),
+            ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
+            ("mass", mass),
+            ("rated torques", ratings_text(design.rated_torques, "N·m")),
+            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
+        ],
+    )
+    print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")
+    for name, mount in derived["mounts"].items():
+        print(
+            f"    {name:<20} {mount['x']:8.4f} {mount['y']:8.4f} {mount['z']:8.4f} "
+            f"{mount['yaw']:8.4f} ({math.degrees(mount['yaw']):6.1f}°)  "
+            + ", ".join(f"{v:.4f}" for v in mount["foothold"])
+        )
+    if "robot" in record:
+        _show_legs(record)
+
+
+def _show_legs(record: dict[str, Any]) -> None:
+    """A robot file's legs as read: where from, the segments changed, each leg's numbers."""
+    print("  legs read from " + str(record["robot"]["source"]))
+    box = record["robot"].get("body_box")
+    if box is not None:  # what the extremes stop at
         size = " × ".join(f"{v:.3g}" for v in box["size"])
         print(f"  body box {size} m, where the extremes stop: {box['from']}")
-    for change in record["changed_segments"]:
+    for change in record["robot"]["changed_segments"]:
         print(
             f"    {change['leg']} {change['segment']} changed from the file's "
             f"{change['file_length']:.4g} m to {change['length']:.4g} m (mass × "
             f"{change['mass_ratio']:.4g})"
         )
-    for leg in record["legs"]:
+    for leg in record["design"]["legs"]:
         print(
             f"    {leg['name']}: joints {', '.join(leg['joints'])}; coxa {leg['coxa']:.4g}, "
             f"femur {leg['femur']:.4g}, tibia {leg['tibia']:.4g}, hip height "
@@ -160,99 +190,6 @@ def _show_robot(args: argparse.Namespace, robot: Any, design: HexapodDesign) -> 
         moved = leg["nominal"]["moved_into_limits"]
         if moved:
             print(f"      nominal {', '.join(moved)} angle moved inside the file's limits")
-    return shown
-
-
-def _import(args: argparse.Namespace) -> int:
-    """Write the design file of the robot file ``args.urdf``."""
-    from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_text import design_toml
-    from hexaleg.robot.robot_design import robot_design
-
-    path = check_output_file(args.output)
-    if path.suffix.lower() != ".toml":
-        raise UsageError(f"design import -o {path}: the file must end in .toml")
-    if path.exists() and not args.force:
-        raise UsageError(f"design import -o {path}: the file exists (pass --force to overwrite it)")
-    robot = robot_from_args(args)
-    if robot is None:  # unreachable: FILE is required
-        raise UsageError("design import needs the robot's FILE")
-    design = robot_design(robot)
-    table = _robot_table(args, path, robot)
-    report_files([write_text(path, design_toml(design) + "\n" + table)])
-    return 0
-
-
-def _robot_table(args: argparse.Namespace, output: Any, robot: ImportedRobot) -> str:
-    """The ``[robot]`` table (:func:`~hexaleg.cli.robot_options.robot_table`), commented."""
-    import tomli_w
-
-    comment = "# [robot]: the robot file this design was read from (hexaleg design import);\n"
-    comment += "# [robot.read] records what was read, for reference: editing it changes nothing.\n"
-    comment += "# What if: [robot.segments] coxa/femur/tibia = M (every leg) or\n"
-    comment += "# [robot.segments.<leg>] change the segments along their own lines [m].\n"
-    return comment + tomli_w.dumps({"robot": robot_table(args, output, robot)})
-
-
-def _init(file: str, design: HexapodDesign, force: bool, gait: Gait) -> int:
-    from hexaleg._io import check_output_file, write_text
-    from hexaleg.design_text import design_toml, structure_example
-
-    path = check_output_file(file)  # as typed: an empty path is refused, not read as "."
-    if path.suffix.lower() != ".toml":
-        raise UsageError(f"design init {path}: the file must end in .toml")
-    if path.exists() and not force:
-        raise UsageError(f"design init {path}: the file exists (pass --force to overwrite it)")
-    walked = "" if gait == Gait() else "\n" + gait.to_toml()
-    structure = "" if design.structure is not None else "\n" + structure_example()
-    text = design_toml(design) + walked + structure + "\n" + example_table()
-    report_files([write_text(path, text)])
-    return 0
-
-
-def derived(design: HexapodDesign) -> dict[str, Any]:
-    """What follows from the design: leg length, nominal height, mass, mounts, footholds."""
-    feet = design.nominal_footholds
-    return {
-        "layout": design.layout,
-        "body": design.body_description,
-        "leg_length": design.leg_length,
-        "nominal_height": design.nominal_height,
-        "total_mass": design.total_mass,
-        "mounts": {
-            m.name: {"x": m.x, "y": m.y, "z": m.z, "yaw": m.yaw, "foothold": list(foot)}
-            for m, foot in zip(design.legs, feet, strict=True)
-        },
-        "units": {"lengths": "m", "angles": "rad", "mass": "kg"},
-    }
-
-
-def show(design: HexapodDesign, mass: str | None = None) -> None:
-    """The design as text: the body, derived values, then one row per leg.
-
-    ``mass``: what the mass row says, when it is not the design's (an imported robot's).
-    """
-    if mass is None:
-        mass = f"{design.total_mass:.4g} kg (body {design.body_mass:g} kg{_drive(design)})"
-    print_table(
-        f"Design ({design.body_description})",
-        [
-            ("segments l1, l2, l3", f"{design.l1:.4g}, {design.l2:.4g}, {design.l3:.4g} m"),
-            ("leg length", f"{design.leg_length:.4g} m"),
-            ("nominal height", f"{design.nominal_height:.4g} m"),
-            ("nominal angles", ", ".join(f"{a:.4g}" for a in design.nominal_angles) + " rad"),
-            ("mass", mass),
-            ("rated torques", ratings_text(design.rated_torques, "N·m")),
-            ("rated speeds", ratings_text(design.rated_speeds, "rad/s")),
-        ],
-    )
-    print("  mounts (body frame)       x [m]    y [m]    z [m]   yaw [rad]  foothold x, y, z [m]")
-    for mount, foot in zip(design.legs, design.nominal_footholds, strict=True):
-        print(
-            f"    {mount.name:<20} {mount.x:8.4f} {mount.y:8.4f} {mount.z:8.4f} "
-            f"{mount.yaw:8.4f} ({math.degrees(mount.yaw):6.1f}°)  "
-            + ", ".join(f"{v:.4f}" for v in foot)
-        )
 
 
 def gait_rows(gait: Gait) -> list[tuple[str, str]]:

@@ -6,23 +6,11 @@ import argparse
 import signal
 import sys
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import (
-    add_design_options,
-    bounded_int,
-    inputs_from_args,
-    note,
-    walked_by,
-)
-from hexaleg.cli.robot_options import add_robot_options, robot_model, robot_table
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import add_design_options, bounded_int, note
 from hexaleg.exceptions import HexalegError
-from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.output.viewer.server import browser_url, is_loopback
-
-if TYPE_CHECKING:
-    from hexaleg.design import HexapodDesign
-    from hexaleg.explore.robot import ExploredRobot
 
 DESCRIPTION = (
     "Serve a page where every slider (segment lengths, posture, body size, payload, gait "
@@ -34,9 +22,6 @@ DESCRIPTION = (
     "file's [robot]), your robot: its segments slide along their own lines, its body and "
     "ratings stay the file's."
 )
-
-ROBOT_OPTIONS = True
-"""It runs on an imported robot (``--urdf``)."""
 
 DEFAULT_SAVE = "design.toml"
 
@@ -60,9 +45,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--save",
         metavar="FILE",
         help=f"the .toml file 'save design' writes (default: the --design file if it is "
-        f".toml, else {DEFAULT_SAVE})",
+        f".toml, else {DEFAULT_SAVE}, which is replaced only if this explorer wrote it)",
     )
-    add_robot_options(parser)
+    parser.add_argument(
+        "--force",
+        action="store_true",
+        help=f"let 'save design' replace a {DEFAULT_SAVE} it did not write (without --save "
+        "or a .toml --design)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -70,18 +60,14 @@ def run(args: argparse.Namespace) -> int:
     from hexaleg.explore.server import ExplorerServer
     from hexaleg.explore.session import Session
 
-    design, requirements = inputs_from_args(args)
-    save_to = _save_target(args)
-    robot = _explored_robot(args, design)
-    if robot is not None:
-        design = robot.model.design
-        requirements = walked_by(args, requirements, robot.model)  # its own default gait
+    inputs = inputs_from_args(args)
+    save_to, named = _save_target(args)
     if not is_loopback(args.host):
         note(
             f"--host {args.host} serves the explorer beyond this machine, to anyone who can "
             "reach it, without authentication: they can measure designs and save the design file"
         )
-    session = Session.start(design, requirements, save_to, robot)
+    session = Session.start(inputs.robot, inputs.requirements, save_to, replace=named or args.force)
     try:
         server = ExplorerServer(session, args.host, args.port)
     except OSError as err:
@@ -101,27 +87,13 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _explored_robot(args: argparse.Namespace, design: HexapodDesign) -> ExploredRobot | None:
-    """The imported robot of ``--urdf`` (or the ``--design`` file's ``[robot]``), or ``None``."""
-    from hexaleg.explore.robot import ExploredRobot
-    from hexaleg.robot.imported_model import robot_mass
+def _save_target(args: argparse.Namespace) -> tuple[Path, bool]:
+    """Where 'save design' writes, and whether the user named that file.
 
-    model = robot_model(args, design)
-    if model is None:
-        return None
-    robot_mass(model)  # its payloads and torques need the file's masses: refused before serving
-    lengths = dict(zip(SEGMENT_NAMES, model.robot.legs[0].reading.geometry.lengths, strict=True))
-    for change in model.robot.changes:  # back to the file's: what the saved file's l* say
-        if change.leg == model.robot.legs[0].name:
-            lengths[change.segment] = change.file_length
-    l1, l2, l3 = (lengths[name] for name in SEGMENT_NAMES)
-    return ExploredRobot(model, robot_table(args, None, model.robot), (l1, l2, l3))
-
-
-def _save_target(args: argparse.Namespace) -> Path:
-    """Where 'save design' writes: --save, else a .toml --design file, else design.toml."""
+    --save, else a .toml --design file (both named), else design.toml (not named).
+    """
     if args.save is not None:
-        return Path(args.save)
+        return Path(args.save), True
     if args.design is not None and Path(args.design).suffix.lower() == ".toml":
-        return Path(args.design)
-    return Path(DEFAULT_SAVE)
+        return Path(args.design), True
+    return Path(DEFAULT_SAVE), False

@@ -7,7 +7,8 @@ import math
 import warnings
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
+from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
     add_design_options,
@@ -16,13 +17,9 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, robot_model
-from hexaleg.cli.structure_options import size_if_asked
 
 if TYPE_CHECKING:
-    from hexaleg.design import HexapodDesign
-    from hexaleg.robot.imported_model import ImportedHexapodModel
-    from hexaleg.robot.model import HexapodModel
+    from hexaleg.robot.robot import Robot
     from hexaleg.stance.extremes import FlexibilityResult
 
 DESCRIPTION = (
@@ -35,8 +32,6 @@ DESCRIPTION = (
     "the file's collision geometry."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
@@ -46,57 +41,31 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_collisions_option(parser)
     add_best_posture_option(parser)
     add_output_options(parser)
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
     from hexaleg.output.figures import extremes_figure, save
 
-    design, requirements = posed_inputs_from_args(args)
-    robot = robot_model(args, design)
-    design = size_if_asked(design, requirements, robot is not None)[0]  # tubes drawn, collide
-    if robot is not None:
-        return _run_imported(args, robot)
+    robot = inputs_from_args(args, size=True).robot  # sized tubes are drawn and collide
     check_outputs({}, {"--plot": args.plot})  # before computing
-    result = _extremes(args, design)
+    result = _extremes(args, robot)
     if args.plot is not None:
         write_plots(
             args.plot, lambda out: [save(extremes_figure(result), out / "flexibility_extremes.png")]
         )
     if args.json:
-        print_json(result.to_dict())
-        return 0
-    print_table(
-        lengths_title(
-            f"Body flexibility ({result.mode}, stance {' '.join(result.legs)})", design.lengths
-        ),
-        _rows(result),
-    )
-    return 0
-
-
-def _run_imported(args: argparse.Namespace, model: ImportedHexapodModel) -> int:
-    """The flexibility of an imported robot, in hexaleg's angles and the file's."""
-    result = _extremes(args, model.design, model)
-    source = str(model.robot.source)
-    if args.json:
-        summary = result.to_dict()
+        summary = robot.named() | result.to_dict()
         for extreme, record in zip(result.extremes, summary["extremes"], strict=True):
-            record["urdf_joint_angles"] = {
-                leg: model.joint_values(leg, angles).tolist()
-                for leg, angles in extreme.joint_angles.items()
-            }
-        print_json({"robot": source} | summary)
+            record |= robot.in_file_joints(extreme.joint_angles)
+        print_json(summary)
         return 0
-    title = f"Body flexibility of {source} ({result.mode}, stance {' '.join(result.legs)})"
-    print_table(lengths_title(title, model.design.lengths), _rows(result))
+    title = robot.titled("Body flexibility") + f" ({result.mode}, stance {' '.join(result.legs)})"
+    print_table(lengths_title(title, robot.design.lengths), _rows(result))
     return 0
 
 
-def _extremes(
-    args: argparse.Namespace, design: HexapodDesign, model: HexapodModel | None = None
-) -> FlexibilityResult:
+def _extremes(args: argparse.Namespace, robot: Robot) -> FlexibilityResult:
     """The extremes the options ask for, a progress line per search step."""
     from hexaleg.stance.extremes import FlexibilityWarning
     from hexaleg.stance.flexibility import flexibility
@@ -105,7 +74,12 @@ def _extremes(
     with warnings.catch_warnings(), progress_callback("search steps") as progress:
         warnings.simplefilter("ignore", FlexibilityWarning)  # in the output: "warnings"
         return flexibility(
-            design, args.mode, args.stance, model, collisions=args.collisions, progress=progress
+            robot.design,
+            args.mode,
+            args.stance,
+            robot.model,
+            collisions=args.collisions,
+            progress=progress,
         )
 
 

@@ -7,10 +7,13 @@ import math
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+import numpy as np
+
 from hexaleg._checks import require_in_range
 from hexaleg._io import write_text
 from hexaleg._typing import GaitPattern, choices
-from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
+from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.loads import (
     add_payload_options,
     add_safety_factor_option,
@@ -23,7 +26,6 @@ from hexaleg.cli.options import (
     add_design_options,
     add_output_options,
     bounded_int,
-    design_gait,
 )
 from hexaleg.cli.output import (
     check_outputs,
@@ -34,8 +36,7 @@ from hexaleg.cli.output import (
     summary_stream,
     write_plots,
 )
-from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
-from hexaleg.cli.structure_options import size_if_asked, structure_rows
+from hexaleg.cli.structure_options import structure_rows
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
 from hexaleg.gait.walkable import require_walkable
@@ -46,7 +47,7 @@ from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE, Ground
 
 if TYPE_CHECKING:
     from hexaleg._typing import ArrayF
-    from hexaleg.robot.imported_model import ImportedHexapodModel
+    from hexaleg.robot.robot import Robot
 
 DEFAULT = Gait()
 SLOPE_LIMIT = math.degrees(MAX_SLOPE)
@@ -72,8 +73,6 @@ DESCRIPTION = (
     "tube over its strength makes the period infeasible)."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
@@ -88,7 +87,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument(
         "--html", metavar="FILE", help="write a 3-D animation of the period (meshcat, static HTML)"
     )
-    add_robot_options(parser)
 
 
 def add_gait_options(parser: argparse.ArgumentParser) -> None:
@@ -154,17 +152,17 @@ def ground_from_args(args: argparse.Namespace) -> Ground:
     return Ground(math.radians(slope), args.slope_heading, args.friction)
 
 
-def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
-    """The gait the options describe (validated), over the ``--design`` file's ``[gait]``.
+def gait_from_args(args: argparse.Namespace, base: Gait) -> Gait:
+    """The gait the options describe (validated), over ``base``: the gait the robot walks.
 
-    Both over ``model``'s default gait (a robot file's is sized to it: :func:`design_gait`).
+    ``base``: the ``--design`` file's ``[gait]`` over the robot's own default gait (a robot
+    file's is sized to it: :attr:`~hexaleg.cli.inputs.Inputs.gait`).
 
     The options given override the table's keys, as they would the defaults: the table's
     ``speed`` has set its period, so ``--stride`` alone keeps that period.
     """
     if args.speed is not None and args.period is not None:
         raise UsageError("--speed sets the period: give --speed or --period, not both")
-    base = design_gait(args, model)
     changes = {
         name: getattr(args, name)
         for name in ("pattern", "period", "stride", "step_height", "heading", "samples")
@@ -176,11 +174,10 @@ def gait_from_args(args: argparse.Namespace, model: HexapodModel | None = None) 
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    design, requirements = posed_inputs_from_args(args)
-    robot = robot_model(args, design, plots=True)  # --urdf, or the --design file's [robot]
-    design, sized = size_if_asked(design, requirements, robot is not None)
-    model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args, model)
+    inputs = inputs_from_args(args, size=True)
+    robot, sized = inputs.robot, inputs.sized
+    model = robot.model
+    gait = gait_from_args(args, inputs.gait)
     payload, ground = payload_from_args(args), ground_from_args(args)
     check_outputs({"--csv": args.csv, "--html": args.html}, {"--plot": args.plot})  # before
     analysis = analyze_gait(
@@ -205,39 +202,40 @@ def run(args: argparse.Namespace) -> int:
     report_files(written)
     summary = summary_stream(args.csv, args.html)
     if args.json:
-        mine = {} if robot is None else robot_angles(robot)
         out = analysis.to_dict()
         if sized is not None:
             out["structure"]["sizing"] = sized.to_dict()
-        print_json(mine | out, summary)
+        print_json(robot.posture() | out, summary)
         return 0
-    title = "Walking" if robot is None else f"Walking {robot.robot.source}"
+    title = lengths_title(robot.titled("Walking"), model.design.lengths)
     table = rows(analysis) + structure_rows(analysis.structure, sized)
-    print_table(lengths_title(title, model.design.lengths), table, summary)
+    print_table(title, table, summary)
     return 0
 
 
-def _write_csv(analysis: GaitAnalysis, path: Path, robot: ImportedHexapodModel | None) -> Path:
+def _write_csv(analysis: GaitAnalysis, path: Path, robot: Robot) -> Path:
+    """The time series, a robot file's joints also in the file's own (``_urdf_*`` columns)."""
     import pandas as pd
 
-    columns = analysis.time_series()
-    if robot is not None:
-        columns |= file_columns(analysis, robot)
+    columns = analysis.time_series() | file_columns(analysis, robot)
     return write_text(path, pd.DataFrame(columns).to_csv(index=False))
 
 
-def file_columns(analysis: GaitAnalysis, robot: ImportedHexapodModel) -> dict[str, ArrayF]:
-    """An imported robot's period in its file's joints, as named columns (N,) each.
+def file_columns(analysis: GaitAnalysis, robot: Robot) -> dict[str, ArrayF]:
+    """The period in a robot file's own joints, as named columns (N,) each; none for the template.
 
     Per leg and joint ``<leg>_<joint>_urdf_q`` (q = s·θ + o) [rad] and ``_urdf_tau``
     (s·τ, the torque about the file's joint axis) [N·m].
     """
-    columns = {}
+    columns: dict[str, ArrayF] = {}
     for i, leg in enumerate(analysis.legs):
-        values = robot.joint_values(leg, analysis.joint_angles[:, i])
-        torques = robot.joint_signs(leg) * analysis.joint_torques[:, i]
+        angles = robot.in_file_joints({leg: analysis.joint_angles[:, i]})
+        if not angles:
+            return columns
+        values = angles["urdf_joint_angles"][leg]
+        torques = robot.model.joint_signs(leg) * analysis.joint_torques[:, i]
         for j, joint in enumerate(LEG_JOINTS):
-            columns[f"{leg}_{joint}_urdf_q"] = values[:, j]
+            columns[f"{leg}_{joint}_urdf_q"] = np.asarray(values)[:, j]
             columns[f"{leg}_{joint}_urdf_tau"] = torques[:, j]
     return columns
 
@@ -256,24 +254,16 @@ def _write_figures(analysis: GaitAnalysis, model: HexapodModel, out: Path) -> li
 def reach_clouds(analysis: GaitAnalysis, model: HexapodModel) -> dict[str, ArrayF]:
     """Each leg's reach while standing, body frame (K, 3) [m]: a Monte Carlo cloud.
 
-    The design's stance limits on the design's leg; an imported robot's legs each by its
-    own general leg within its file's limits (what holds them walking).
+    Each leg by its own leg within the limits that hold it standing
+    (:func:`~hexaleg.swing.workspace.standing_reach`).
     """
-    from hexaleg.limits import JointLimits
-    from hexaleg.swing.workspace import monte_carlo_workspace
+    from hexaleg.swing.workspace import standing_reach
 
-    design = analysis.design
-    if not model.general_legs:
-        cloud = monte_carlo_workspace(design, 20_000, seed=0, limits=design.stance_limits)
-        return dict(zip(analysis.legs, analysis.frames.points_in_body(cloud.points), strict=True))
-    clouds = {}
-    for i, leg in enumerate(analysis.legs):
-        lower, upper = model.joint_limits(leg)
-        root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
-        limits = JointLimits(root, hip, knee, name=f"{leg}'s file limits")
-        cloud = monte_carlo_workspace(design, 20_000, 0, limits, model.leg_geometry(leg))
-        clouds[leg] = analysis.frames.points_in_body(cloud.points)[i]
-    return clouds
+    clouds = standing_reach(model)
+    return {
+        leg: analysis.frames.points_in_body(clouds[leg].points)[i]
+        for i, leg in enumerate(analysis.legs)
+    }
 
 
 def _friction_needed(analysis: GaitAnalysis) -> str:

@@ -8,20 +8,18 @@ from typing import TYPE_CHECKING
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import Distribution, choices
-from hexaleg.cli.best_posture import add_best_posture_option, posed_inputs_from_args
+from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
     add_mode_option,
     add_output_options,
     add_stance_option,
-    design_gait,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
-from hexaleg.cli.structure_options import size_if_asked, structure_rows
+from hexaleg.cli.structure_options import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
-from hexaleg.gait.defaults import default_gait
 from hexaleg.gait.spec import Gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.ratings import NEEDS_RATING
@@ -45,8 +43,6 @@ DESCRIPTION = (
     "[requirements] slope (size = true: the lightest tubes that hold, chosen first)."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
@@ -57,7 +53,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
-    add_robot_options(parser)
 
 
 def add_payload_options(parser: argparse.ArgumentParser) -> None:
@@ -133,15 +128,13 @@ def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
     from hexaleg.gait.capacity import walking_payload_capacity
     from hexaleg.output.figures import loads_figure, save
-    from hexaleg.robot.model import HexapodModel
     from hexaleg.statics.loads import analyze_loads
 
-    design, requirements = posed_inputs_from_args(args)
-    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
+    inputs = inputs_from_args(args, size=True)
+    robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload, factor = payload_from_args(args), safety_factor_from_args(args)
-    design, sized = size_if_asked(design, requirements, robot is not None)
-    model = HexapodModel(design) if robot is None else robot
+    model = robot.model
     analysis = analyze_loads(
         model.design,
         payload,
@@ -153,24 +146,22 @@ def run(args: argparse.Namespace) -> int:
         slope=requirements.required(SLOPE) or 0.0,
         safety_factor=factor,
     )
-    gait = design_gait(args, model)
+    gait = inputs.gait
     walking = walking_payload_capacity(model, gait, payload.position, safety_factor=factor)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
-        mine = {} if robot is None else robot_angles(robot)
         walked = None if walking is None else walking.to_dict()  # None: it needs a rating
         out = analysis.to_dict() | {METRICS.walking_payload_capacity.name: walked}
         if sized is not None:
             out["structure"]["sizing"] = sized.to_dict()
-        print_json(mine | out)
+        print_json(robot.posture() | out)
         return 0
     rows = _rows(analysis) + structure_rows(analysis.structure, sized)
     at = rows.index(("payload capacity", _capacity(analysis))) + 1
-    own = gait == default_gait(model)  # no [gait]: the robot's own default gait
+    own = gait == inputs.default_gait  # no [gait]: the robot's own default gait
     rows.insert(at, ("walking payload capacity", _walking(walking, gait, own)))
-    title = "Statics" if robot is None else f"Statics of {robot.robot.source}"
-    print_table(lengths_title(title, model.design.lengths), rows)
+    print_table(lengths_title(robot.titled("Statics"), model.design.lengths), rows)
     return 0
 
 

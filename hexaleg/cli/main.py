@@ -145,10 +145,6 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
             module = importlib.import_module(command.module)
             sub.description = module.DESCRIPTION
             module.add_arguments(sub)
-            if not getattr(module, "ROBOT_OPTIONS", False):
-                from hexaleg.cli.robot_options import add_refused_robot_option
-
-                add_refused_robot_option(sub)
             sub.set_defaults(run=module.run)
     return parser
 

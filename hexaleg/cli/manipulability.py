@@ -5,9 +5,10 @@ from __future__ import annotations
 import argparse
 import math
 
-from hexaleg.cli.options import add_design_options, add_output_options, design_from_args
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import add_design_options, add_output_options
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.robot_options import add_robot_options, robot_legs
+from hexaleg.cli.workspace import refuse_plot
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_manipulability_figures
 from hexaleg.paper import L1_RATIOS
@@ -20,28 +21,25 @@ DESCRIPTION = (
     "your robot (indices from its general leg's Jacobian)."
 )
 
-ROBOT_OPTIONS = True
-
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser, body=False, posture=False)  # one leg: no body, no stance
     add_output_options(parser)
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse manipulability; print a table or JSON, and write figures if asked."""
-    design = design_from_args(args)
-    robot = robot_legs(args, design)
-    if robot is not None:
-        source, legs = robot
+    robot = inputs_from_args(args).robot
+    design, legs = robot.design, robot.own_legs
+    if legs is not None:  # legs of their own: each measured by its general leg
+        refuse_plot(args.plot)
         summaries = {
             name: analyze_manipulability(design, general=leg).to_dict(design=False)
             for name, leg in legs.items()
         }
         if args.json:
-            print_json({"robot": source, "legs": summaries})
+            print_json({"robot": robot.name, "legs": summaries})
             return 0
         for name, leg in legs.items():
             _print(summaries[name], f"Manipulability of leg {name}", leg.lengths)

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import argparse
-import os
 import sys
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Any, cast
+from typing import Any, cast
 
 from hexaleg._typing import FlexibilityMode, StanceSet, choices
 from hexaleg.design import (
@@ -15,19 +14,12 @@ from hexaleg.design import (
     L3_RATIO_POINTS,
     MAX_L3_POINTS,
     SEGMENTS,
-    HexapodDesign,
 )
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_spec import FieldSpec
-from hexaleg.gait.defaults import default_gait
-from hexaleg.gait.spec import Gait
 from hexaleg.layouts import Layout
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import WORKERS_PER_CPU, max_workers
-
-if TYPE_CHECKING:
-    from hexaleg.evaluation.requirements import Requirements
-    from hexaleg.robot.model import HexapodModel
 
 DESIGN_GROUP = "design (SI units: metres, radians; defaults: the paper's leg on hexaleg's body)"
 
@@ -86,6 +78,62 @@ def add_design_options(
             _add_field_option(group, spec)
         if spec.name == SEGMENTS[-1]:
             _add_total_options(group, lengths)
+    add_robot_options(parser)
+
+
+ROBOT_GROUP = "robot file (your hexapod's URDF or Xacro instead of hexaleg's template)"
+
+
+def add_robot_options(parser: argparse.ArgumentParser, required: bool = False) -> None:
+    """``--urdf FILE`` (a positional FILE when ``required``) and how the file is read.
+
+    Every command that takes a design takes them (:func:`add_design_options`); the design
+    options then go over the file's robot as they go over the template
+    (:func:`~hexaleg.cli.inputs.inputs_from_args`).
+    """
+    group = parser.add_argument_group(ROBOT_GROUP)
+    if required:
+        group.add_argument("urdf", metavar="FILE", help="the robot's URDF or Xacro file")
+    else:
+        group.add_argument(
+            "--urdf",
+            metavar="FILE",
+            help="analyse the hexapod of this URDF or Xacro file (six yaw-pitch-pitch legs)",
+        )
+    group.add_argument(
+        "--xacro-arg",
+        action="append",
+        default=[],
+        metavar="NAME:=VALUE",
+        help="a Xacro argument (repeatable)",
+    )
+    group.add_argument(
+        "--package",
+        action="append",
+        default=[],
+        metavar="NAME=DIR",
+        help="the folder of ROS package NAME, for $(find NAME) and package://NAME/ (repeatable)",
+    )
+    group.add_argument(
+        "--foot-frame",
+        metavar="NAME",
+        help="the link at each foot (a glob pattern matching one link beyond each knee)",
+    )
+    group.add_argument(
+        "--foot-offset",
+        nargs=3,
+        type=float,
+        metavar=("X", "Y", "Z"),
+        help="the foot point in each leg's last link frame [m], when the file draws no foot",
+    )
+    group.add_argument(
+        "--lock-joint",
+        action="append",
+        default=[],
+        metavar="NAME",
+        help="hold this joint of the file at its zero, as a fixed joint (a glob pattern; "
+        "repeatable; a [robot] table's lock_joints): a sensor's or a tool's, not the leg's",
+    )
 
 
 def _add_total_options(group: argparse._ArgumentGroup, lengths: bool) -> None:
@@ -161,119 +209,6 @@ DESIGN_FLAGS: tuple[str, ...] = tuple(
     spec.name for spec in DESIGN_FIELDS if spec.option is not None and spec.name not in SEGMENTS
 )
 """Design fields set by an option of the same name (the segments also take --ratios)."""
-
-
-def design_from_args(args: argparse.Namespace) -> HexapodDesign:
-    """Build the design the shared options describe (validated).
-
-    A ``--design`` file gives the starting design (it must be valid on its own, its
-    ``[requirements]`` table included); the options given beside it override its values.
-    """
-    return inputs_from_args(args)[0]
-
-
-def design_gait(args: argparse.Namespace, model: HexapodModel | None = None) -> Gait:
-    """The ``--design`` file's ``[gait]`` table's gait, its keys over the default gait.
-
-    The default gait is ``model``'s own (:func:`~hexaleg.gait.defaults.default_gait`: a
-    robot file's is sized to it), or :class:`Gait`'s defaults without a model.
-    """
-    path = getattr(args, "design", None)
-    base = None if model is None else default_gait(model)
-    if path is None:
-        return Gait() if base is None else base
-    return load_gait(path, base)
-
-
-def walked_by(
-    args: argparse.Namespace, requirements: Requirements, model: HexapodModel
-) -> Requirements:
-    """``requirements`` walking ``model``'s gait: the file's ``[gait]`` over its own default."""
-    return requirements.walking(design_gait(args, model))
-
-
-def load_gait(path: str | os.PathLike[str], base: Gait | None = None) -> Gait:
-    """The gait a design file's ``[gait]`` table describes, over ``base`` (without one: it).
-
-    Raises:
-        DesignFileError: naming the file, the line and ``gait.<key>``.
-
-    """
-    from hexaleg.design_file import GAIT, load_table  # reads TOML only when asked
-
-    return load_table(path, GAIT, lambda table: Gait.from_table(table, base))
-
-
-def inputs_from_args(args: argparse.Namespace) -> tuple[HexapodDesign, Requirements]:
-    """The design the shared options describe, and the ``--design`` file's requirements.
-
-    The file is read once, and every command reads it the same way: a bad
-    ``[requirements]`` table is refused by a command that does not use it too.
-    """
-    from hexaleg.design_file import load_design_file  # reads TOML only when asked
-    from hexaleg.evaluation.requirements import Requirements
-
-    path = getattr(args, "design", None)
-    base, requirements = (
-        (HexapodDesign(), Requirements())
-        if path is None
-        else load_design_file(path, Requirements.from_table)
-    )
-    if path is not None:
-        requirements = requirements.walking(load_gait(path))
-    if path is not None and not getattr(args, "robot_options", False):
-        from hexaleg.cli.robot_options import ROBOT_COMMANDS
-        from hexaleg.cli.robot_table import load_robot_table
-
-        if load_robot_table(path) is not None:
-            raise UsageError(
-                f"{path} describes an imported robot ([robot]); this command does not run "
-                f"on one yet ({', '.join(ROBOT_COMMANDS)} do)"
-            )
-    changes: dict[str, Any] = {
-        name: _value(getattr(args, name))
-        for name in DESIGN_FLAGS
-        if getattr(args, name, None) is not None
-    }
-    if getattr(args, "ratios", None) is not None:
-        given = [f"--{n}" for n in SEGMENTS if getattr(args, n) is not None]
-        if given:
-            raise UsageError(f"--ratios cannot be combined with {', '.join(given)}")
-        total = study_total(args, base)
-        design = base.replace(**changes).with_ratios(args.ratios[0], args.ratios[1], total)
-        if args.total is None and path is None:  # said once the design stands: errors stay 1 line
-            note(f"--ratios without --total: total leg length {DEFAULT_LEG_LENGTH:g} m")
-        return design, requirements
-    if args.total is not None and hasattr(args, "ratios"):
-        raise UsageError("--total only applies together with --ratios")
-    if not _imported(args, path):  # a robot's --l1 --l2 --l3 change its file (robot_from_args)
-        for name in SEGMENTS:
-            if getattr(args, name, None) is not None:
-                changes[name] = getattr(args, name)
-    return (base.replace(**changes) if changes else base), requirements
-
-
-def _imported(args: argparse.Namespace, path: str | None) -> bool:
-    """Whether the command analyses an imported robot (``--urdf``, or a ``[robot]`` file)."""
-    if not getattr(args, "robot_options", False):
-        return False
-    if getattr(args, "urdf", None) is not None:
-        return True
-    from hexaleg.cli.robot_table import load_robot_table
-
-    return path is not None and load_robot_table(path) is not None
-
-
-def _value(given: Any) -> Any:
-    """An option's value as the design takes it: a list of numbers becomes a tuple."""
-    return tuple(given) if isinstance(given, list) else given
-
-
-def study_total(args: argparse.Namespace, design: HexapodDesign) -> float:
-    """Total leg length [m]: ``--total``, else the ``--design`` file's, else the default."""
-    if args.total is not None:
-        return float(args.total)
-    return design.leg_length if getattr(args, "design", None) else DEFAULT_LEG_LENGTH
 
 
 def add_sweep_options(

@@ -9,7 +9,9 @@ no two outputs on one path.
 
 from __future__ import annotations
 
+import contextlib
 import json
+import math
 import os
 import sys
 from collections.abc import Callable, Mapping, Sequence
@@ -25,9 +27,30 @@ PLOT_KIND = "figures"
 
 
 def print_json(data: dict[str, Any], file: TextIO | None = None) -> None:
-    """One JSON object on ``file`` (stdout); NaN and infinity are refused, never printed."""
+    """One JSON object on ``file`` (stdout), strict: never NaN or infinity.
+
+    A number JSON cannot hold is written ``null``, and ``not_finite`` names where and what
+    it was (``{"best.over_rating[0].peak": "inf"}``): the answer is still read by every
+    JSON reader, and says what it could not say.
+    """
     require_stdout()
-    print(json.dumps(data, indent=2, allow_nan=False), file=file)
+    missing: dict[str, str] = {}
+    found = _finite(data, "", missing)
+    if missing:
+        found["not_finite"] = missing
+    print(json.dumps(found, indent=2, allow_nan=False), file=file)
+
+
+def _finite(value: Any, where: str, missing: dict[str, str]) -> Any:
+    """``value`` with every non-finite float ``None``, each recorded by its path."""
+    if isinstance(value, float) and not math.isfinite(value):
+        missing[where] = repr(value)
+        return None
+    if isinstance(value, Mapping):
+        return {k: _finite(v, f"{where}.{k}".lstrip("."), missing) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_finite(v, f"{where}[{i}]", missing) for i, v in enumerate(value)]
+    return value
 
 
 def print_table(title: str, rows: Sequence[tuple[str, str]], file: TextIO | None = None) -> None:
@@ -59,6 +82,40 @@ def vector(values: Sequence[float], unit: str) -> str:
 def lengths_title(what: str, lengths: Sequence[float]) -> str:
     """A table title naming the segment lengths, e.g. ``Manipulability, l = (0.2, 0.4, 0.4) m``."""
     return f"{what}, l = ({lengths[0]:.4g}, {lengths[1]:.4g}, {lengths[2]:.4g}) m"
+
+
+def refuse_inputs_as_outputs(
+    outputs: Mapping[str, str | None], inputs: Mapping[str, tuple[str, str | Path | None]]
+) -> None:
+    """Refuse an output file that is a file the command reads, by any name.
+
+    The same file is the same device and inode, so a link or a ``../`` path to an input is
+    caught as the input itself; an output not there yet is no input.
+
+    Args:
+        outputs: Each output option and its path (``None``: not asked for).
+        inputs: What each input is (``"robot file"``) → how it was named and its path.
+
+    Raises:
+        HexalegError: ``-o r.urdf is the robot file read (--urdf r.urdf): write it elsewhere``.
+
+    """
+    read = {}
+    for what, (named, path) in inputs.items():
+        with contextlib.suppress(OSError):
+            if path is not None:
+                found = os.stat(path)
+                read[(found.st_dev, found.st_ino)] = (what, named)
+    for flag, target in outputs.items():
+        if target is None or standard_stream(target) is not None:
+            continue
+        try:
+            found = os.stat(target)
+        except OSError:  # not there: it is none of the inputs
+            continue
+        if (found.st_dev, found.st_ino) in read:
+            what, named = read[(found.st_dev, found.st_ino)]
+            raise HexalegError(f"{flag} {target} is the {what} read ({named}): write it elsewhere")
 
 
 def require_stdout() -> None:

@@ -6,8 +6,10 @@ import argparse
 import math
 from typing import Any
 
+from hexaleg.cli.best_posture import require_posable
 from hexaleg.cli.decide import render
-from hexaleg.cli.options import add_design_options, inputs_from_args
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import add_design_options
 from hexaleg.cli.output import print_json
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.design import HexapodDesign
@@ -58,8 +60,11 @@ def objective_from_args(args: argparse.Namespace) -> Objective:
 
 def run(args: argparse.Namespace) -> int:
     """Search the posture; print the answer as a table or JSON."""
-    design, in_file = inputs_from_args(args)
-    result = best_posture(design, requirements_from_args(args, in_file), objective_from_args(args))
+    inputs = inputs_from_args(args)
+    robot = inputs.robot
+    require_posable(robot, "posture")
+    requirements = requirements_from_args(args, inputs.requirements)
+    result = best_posture(robot, requirements, objective_from_args(args))
     if args.json:
         print_json(answer_dict(result))
     else:

@@ -6,15 +6,11 @@ import argparse
 import math
 from pathlib import Path
 
+from hexaleg._typing import Controller, choices
 from hexaleg.cli.gait import add_gait_options, gait_from_args
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.loads import add_payload_options, payload_from_args
-from hexaleg.cli.options import (
-    UsageError,
-    add_design_options,
-    bounded_int,
-    inputs_from_args,
-    note,
-)
+from hexaleg.cli.options import UsageError, add_design_options, bounded_int, note
 from hexaleg.cli.output import (
     check_outputs,
     lengths_title,
@@ -23,8 +19,6 @@ from hexaleg.cli.output import (
     report_files,
     summary_stream,
 )
-from hexaleg.cli.robot_options import add_robot_options, robot_angles, robot_model
-from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim.result import SimulationResult
@@ -45,10 +39,18 @@ DESCRIPTION = (
     "A stride beyond the design's max stride is refused before simulating. With --urdf, "
     "your robot: its file's links, masses, inertias and joints in MuJoCo (its meshes left "
     "out: only the feet touch the floor, each a 5 mm sphere), walking the gait `gait --urdf` "
-    "plans."
+    "plans. --controller torque: a torque-controlled robot (the plan's torques, a low-gain "
+    "PD, started at the plan's velocities) instead of stiff position servos; either "
+    "reports the internal force the standing feet push on each other with. A simulation "
+    "that diverges (MuJoCo's accelerations NaN or huge, a body through the ground) stops "
+    "and says so in one line."
 )
 
-ROBOT_OPTIONS = True
+CONTROLLERS = {
+    "servo": "servo: stiff position servos (the plan's torques fed forward), from rest",
+    "torque": "torque: the plan's torques and a low-gain PD, from the plan's velocities",
+}
+"""What each controller is, in the table."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -56,7 +58,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_design_options(parser)
     add_gait_options(parser)
     add_payload_options(parser)
-    add_robot_options(parser)
     low, high = CYCLES_RANGE
     parser.add_argument(
         "--cycles",
@@ -65,6 +66,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         metavar="N",
         help=f"gait periods to walk, {low}..{high}; the first is not measured "
         f"(default {DEFAULT_CYCLES})",
+    )
+    parser.add_argument(
+        "--controller",
+        choices=choices(Controller),
+        default="servo",
+        help="how the joints follow the plan: stiff position 'servo's (default, from rest), "
+        "or 'torque' control (the plan's torques and a low-gain PD)",
     )
     parser.add_argument(
         "--json", action="store_true", help="print one JSON object (SI units, radians)"
@@ -84,17 +92,18 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Simulate; write the animation and video if asked; print a table or JSON."""
-    design, requirements = inputs_from_args(args)
-    robot = robot_model(args, design)  # --urdf, or the --design file's [robot]
-    design = size_if_asked(design, requirements, robot is not None)[0]
-    for flag in ("html", "video"):
-        if robot is not None and getattr(args, flag) is not None:
-            raise UsageError(f"--{flag} with --urdf is not supported yet: use --json")
-    model = HexapodModel(design) if robot is None else robot
-    gait = gait_from_args(args, model)
+    inputs = inputs_from_args(args, size=True)  # sized tubes: their masses and shapes
+    robot = inputs.robot
+    model = robot.model
+    gait = gait_from_args(args, inputs.gait)
     payload = payload_from_args(args)
     check_outputs({"--html": args.html, "--video": args.video})  # before simulating
     if args.video is not None:
+        if not model.simulation_draws_links:
+            raise UsageError(
+                "--video with --urdf is not supported yet: the simulated file has no shapes "
+                "but its feet (use --html, drawn with the file's visuals)"
+            )
         check_video_path(args.video)
     result = simulate_gait(
         model.design,
@@ -104,30 +113,31 @@ def run(args: argparse.Namespace) -> int:
         friction=args.friction,
         distribution=args.distribution,
         model=model,
+        controller=args.controller,
     )
     written: list[Path] = []
     if args.html is not None:
-        written.append(_animation(result, args.html))
+        written.append(_animation(result, model, args.html))
     if args.video is not None:
         written += _video(result, args.video)
     report_files(written)
     summary = summary_stream(args.html, args.video)
     if args.json:
-        print_json(({} if robot is None else robot_angles(robot)) | result.to_dict(), summary)
+        print_json(robot.posture() | result.to_dict(), summary)
         return 0
-    what = "" if robot is None else f" of {robot.robot.source}"
-    title = lengths_title(f"Simulated walk (MuJoCo){what}", model.design.lengths)
-    height = float(model.nominal_base_pose().translation[2])
-    print_table(title, rows(result, height), summary)
+    title = lengths_title(robot.titled("Simulated walk (MuJoCo)"), model.design.lengths)
+    if result.diverged:  # nothing it measured holds: one line, where and why
+        print(f"{title}: DIVERGED {result.diverged}; nothing it measured holds", file=summary)
+        return 0
+    print_table(title, rows(result, model.nominal_height), summary)
     return 0
 
 
-def _animation(result: SimulationResult, path: str) -> Path:
+def _animation(result: SimulationResult, model: HexapodModel, path: str) -> Path:
     """The simulated motion as a meshcat page, links coloured by measured |τ|/rated."""
     from hexaleg.output.viewer.gait import write_motion_html
 
     ratios = rating_use(result.frame_torques, result.design.rated_torques)
-    model = HexapodModel(result.design)
     return write_motion_html(model, result.frames, result.frame_rate, ratios, path)
 
 
@@ -146,13 +156,15 @@ def _video(result: SimulationResult, path: str) -> list[Path]:
 
 def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str]]:
     """The text table's rows (``nominal_height``: the body's over the ground [m])."""
-    metrics, gait, design = result.metrics, result.gait, result.design
+    metrics, gait, design, standing = result.metrics, result.gait, result.design, result.standing
+    assert metrics is not None and standing is not None  # it did not diverge
     rows = [
         (
             "gait",
             f"{gait.pattern}, T = {gait.period:.4g} s, S = {gait.stride:.4g} m, "
             f"H = {gait.step_height:.4g} m, v = {gait.speed:.4g} m/s; {result.cycles} periods",
         ),
+        ("controller", CONTROLLERS[result.controller]),
         ("payload", f"{result.payload.mass:g} kg; friction μ = {result.friction:g}"),
         (
             "distance, periods 2..",
@@ -170,6 +182,7 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
         ("fell", "YES" if metrics.fell else "no"),
         ("RMS joint tracking error", f"{metrics.tracking_rms:.5f} rad"),
         ("standing-foot slip", f"{metrics.slip:.4f} m"),
+        ("internal force, standing feet", f"{metrics.internal_force:.1f} N (planned 0)"),
     ]
     given = design.rated_torques
     for joint, rated in zip(LEG_JOINTS, given or (math.inf,) * 3, strict=True):
@@ -182,7 +195,6 @@ def rows(result: SimulationResult, nominal_height: float) -> list[tuple[str, str
             )
         )
     rows += [("OVER RATING", str(over)) for over in metrics.over_rating]
-    standing = result.standing
     for leg in standing.legs:
         simulated, statics = standing.foot_forces_z[leg], standing.statics_foot_forces_z[leg]
         rows.append(

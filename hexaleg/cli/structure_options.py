@@ -1,10 +1,11 @@
 """The legs' structure on the command line: tubes sized when the file asks, and their rows.
 
 A design file's ``[structure]`` with ``size = true`` has its tubes chosen before a command
-measures the design (:func:`size_if_asked`): the lightest on the grid that hold the nominal
-stance, the twelve extremes and the required slope, carrying the required payload (the
-file's ``[requirements]`` ``payload``, ``payload_at`` and ``slope``; none if it has none).
-:func:`structure_rows` is what the text tables print of a check.
+measures the design (:func:`size_if_asked`, where the design options resolve): the lightest
+on the grid that hold the nominal stance, the twelve extremes and the required slope,
+carrying the required payload (the file's ``[requirements]`` ``payload``, ``payload_at`` and
+``slope``; none if it has none). :func:`structure_rows` is what the text tables print of a
+check.
 """
 
 from __future__ import annotations
@@ -12,7 +13,7 @@ from __future__ import annotations
 import math
 from typing import TYPE_CHECKING
 
-from hexaleg.cli.options import UsageError, note
+from hexaleg.cli.options import note
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.requirement_specs import SLOPE
 from hexaleg.leg_structure import LEG_SEGMENTS, Structure, segment_masses
@@ -30,20 +31,16 @@ IMPORTED = (
 
 
 def size_if_asked(
-    design: HexapodDesign, requirements: Requirements, imported: bool = False
+    design: HexapodDesign, requirements: Requirements
 ) -> tuple[HexapodDesign, SizedStructure | None]:
     """``design`` with its tubes sized if its ``[structure]`` says ``size = true``.
 
-    Raises:
-        UsageError: A ``[structure]`` on an imported robot.
-
+    Called where the design options resolve (:func:`~hexaleg.cli.inputs.inputs_from_args`),
+    for the commands that measure the tubes; a robot file's ``[structure]`` is refused
+    there (:data:`IMPORTED`).
     """
     structure = design.structure
-    if structure is None:
-        return design, None
-    if imported:
-        raise UsageError(IMPORTED)
-    if not structure.size:
+    if structure is None or not structure.size:
         return design, None
     from hexaleg.structure.sizing import size_structure  # the search: not to parse options
 

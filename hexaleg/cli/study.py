@@ -8,6 +8,7 @@ from contextlib import AbstractContextManager
 from pathlib import Path
 
 from hexaleg._io import check_output_folder, write_text
+from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     UsageError,
     add_collisions_option,
@@ -19,17 +20,13 @@ from hexaleg.cli.options import (
     add_sweep_options,
     capped_workers,
     field_sweep_from_args,
-    inputs_from_args,
-    study_total,
-    walked_by,
 )
 from hexaleg.cli.output import report_files
-from hexaleg.cli.robot_options import add_robot_options, robot_designs
-from hexaleg.design import HexapodDesign, l3_ratio_grid
+from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import write_study_figures
 from hexaleg.paper import L1_RATIOS
+from hexaleg.robot.robot import Robot
 from hexaleg.study.executors import dask_executor, local_pool
-from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import sensitivity_table
 from hexaleg.study.sweep import (
     CHUNK,
@@ -47,11 +44,9 @@ DESCRIPTION = (
     "(one free-coupled design) on a local process pool or a Dask cluster. Rows are "
     "written to DIR/rows.jsonl as each task finishes; --resume "
     "continues an interrupted study. Writes study.csv, study.json and the figures. With "
-    "--urdf, your robot (axis-locked): each row its file with every leg's segments at the "
-    "row's lengths, at its own total leg length unless --total is given."
+    "--urdf, your robot: each row its file with every leg's segments at the row's lengths, "
+    "at its own total leg length unless --total is given."
 )
-
-ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -72,22 +67,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_field_sweep_option(
         parser, "also write the sensitivity table (FB peak per value) over one body field"
     )
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Run (or resume) the study, write its table and figures, and print the FB peaks."""
-    base, in_file = inputs_from_args(args)  # in_file.walked: the file's [gait]
+    inputs = inputs_from_args(args)
+    robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
+    base = robot.design
     field_sweep = field_sweep_from_args(args)
-    robot = _robot(args, base, field_sweep is not None)
-    if robot is not None:
-        base, model = robot.point()
-        in_file = walked_by(args, in_file, model)  # the robot's own default gait
+    _refuse(args, robot, field_sweep is not None)
     check_output_folder(args.output)  # the study folder itself is checked as it is claimed
     spec = StudySpec(
         tuple(args.l1_ratios or L1_RATIOS),
         tuple(l3_ratio_grid(args.l3_points)),
-        total=study_total(args, base) if robot is None else args.total or base.leg_length,
+        total=base.leg_length if args.total is None else args.total,
         mode=args.mode,
         stance=args.stance,
         base=base,
@@ -118,18 +111,9 @@ def run(args: argparse.Namespace) -> int:
     return 0
 
 
-def _robot(args: argparse.Namespace, base: HexapodDesign, swept: bool) -> RobotDesigns | None:
-    """The imported robot's designs; the options that do not apply to one refused."""
-    robot = robot_designs(args, base)
-    if robot is None:
-        return None
-    if args.mode != "axis" or args.collisions:  # a study of a robot file: axis-locked, for now
-        flag = "--mode free" if args.mode != "axis" else "--collisions"
-        raise UsageError(
-            f"{flag} with study --urdf is not supported yet: a robot's study is axis-locked "
-            "(flexibility --urdf takes it for one design)"
-        )
-    if args.sensitivity or swept:
+def _refuse(args: argparse.Namespace, robot: Robot, swept: bool) -> None:
+    """Refuse what the robot cannot be studied for: its body varied, a coxa of 0 stretched."""
+    if (args.sensitivity or swept) and not robot.body_sweepable:
         raise UsageError(
             "--sensitivity and --sweep with --urdf: they vary hexaleg's template body, "
             "not your robot's file"
@@ -139,4 +123,3 @@ def _robot(args: argparse.Namespace, base: HexapodDesign, swept: bool) -> RobotD
             "--urdf: the robot's coxa is 0 m (its yaw and hip axes meet): a study of coxa "
             "ratios cannot stretch it; use decide --urdf, which keeps it"
         )
-    return robot

@@ -7,17 +7,9 @@ import sys
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from hexaleg.cli.options import (
-    add_design_options,
-    add_stance_option,
-    bounded_int,
-    design_gait,
-    inputs_from_args,
-    note,
-)
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import add_design_options, add_stance_option, bounded_int, note
 from hexaleg.cli.output import check_outputs, report_files
-from hexaleg.cli.robot_options import add_robot_options, robot_model
-from hexaleg.cli.structure_options import size_if_asked
 from hexaleg.exceptions import ParameterError
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.server import (
@@ -28,6 +20,7 @@ from hexaleg.output.viewer.server import (
 )
 
 if TYPE_CHECKING:
+    from hexaleg.gait.spec import Gait
     from hexaleg.robot.model import HexapodModel
 
 DESCRIPTION = (
@@ -38,9 +31,6 @@ DESCRIPTION = (
     "the scene stays on 127.0.0.1); Ctrl-C stops it. --html writes a self-contained "
     "snapshot instead of serving."
 )
-
-ROBOT_OPTIONS = True
-"""It runs on an imported robot (``--urdf``)."""
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -63,23 +53,19 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help="animate one period of the --design file's [gait] (else the default tripod gait) "
         "instead (hexaleg gait --html for other gaits), legs coloured by |τ|/rated",
     )
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Write the static page, or serve the scene until Ctrl-C or SIGTERM."""
     from hexaleg.output.viewer.scene import build_scene, write_static_html
     from hexaleg.robot.imported_model import has_masses
-    from hexaleg.robot.model import HexapodModel
     from hexaleg.stance.axis_locked import axis_locked_flexibility
     from hexaleg.statics.loads import loads_at_extremes
 
-    design, requirements = inputs_from_args(args)
+    inputs = inputs_from_args(args, size=True)  # sized tubes are drawn
     check_outputs({"--html": args.html})
-    imported = robot_model(args, design)
-    design = size_if_asked(design, requirements, imported is not None)[0]
-    model: HexapodModel = HexapodModel(design) if imported is None else imported
-    missing = None if imported is None else imported.missing_meshes_note("not drawn")
+    model = inputs.robot.model
+    missing = model.missing_meshes_note("not drawn")
     if missing is not None:
         note(missing)
     if args.workspace is not None and args.workspace not in model.leg_names:
@@ -87,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
             "--workspace", args.workspace, f"legs are {', '.join(model.leg_names)}"
         )
     if args.gait:
-        return _view_gait(model, args)
+        return _view_gait(model, inputs.gait, args)
     result = axis_locked_flexibility(model.design, args.stance, model)
     loads = loads_at_extremes(model, result) if has_masses(model) else None  # else uncoloured
     if args.html is not None:
@@ -100,13 +86,13 @@ def run(args: argparse.Namespace) -> int:
     )
 
 
-def _view_gait(model: HexapodModel, args: argparse.Namespace) -> int:
+def _view_gait(model: HexapodModel, gait: Gait, args: argparse.Namespace) -> int:
     """``--gait``: the design file's gait's animation (else the default's), written or served."""
     from hexaleg.gait.analysis import analyze_gait
     from hexaleg.gait.walkable import require_walkable
     from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 
-    analysis = analyze_gait(model.design, design_gait(args, model), model=model, limits=False)
+    analysis = analyze_gait(model.design, gait, model=model, limits=False)
     require_walkable(analysis, model)  # what ``hexaleg gait`` refuses: one line, nothing written
     if args.html is not None:
         report_files([write_gait_html(model, analysis, args.html)])

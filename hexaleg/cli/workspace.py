@@ -4,12 +4,8 @@ from __future__ import annotations
 
 import argparse
 
-from hexaleg.cli.options import (
-    add_design_options,
-    add_output_options,
-    bounded_int,
-    design_from_args,
-)
+from hexaleg.cli.inputs import inputs_from_args
+from hexaleg.cli.options import UsageError, add_design_options, add_output_options, bounded_int
 from hexaleg.cli.output import (
     check_outputs,
     lengths_title,
@@ -18,7 +14,6 @@ from hexaleg.cli.output import (
     vector,
     write_plots,
 )
-from hexaleg.cli.robot_options import add_robot_options, robot_legs
 from hexaleg.output.figures import write_workspace_figures
 from hexaleg.swing.workspace import MAX_SAMPLES, MAX_SEED, analyze_workspace
 
@@ -28,8 +23,6 @@ DESCRIPTION = (
     "eq 16's closed form. Areas in m², positions in m (leg-root frame). With --urdf, each "
     "leg of your robot (its general leg: offsets, bends and all)."
 )
-
-ROBOT_OPTIONS = True
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -48,21 +41,20 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         help=f"random seed, 0..{MAX_SEED} (default 0)",
     )
     add_output_options(parser)
-    add_robot_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Analyse the workspace; print a table or JSON, and write figures if asked."""
-    design = design_from_args(args)
-    robot = robot_legs(args, design)
-    if robot is not None:
-        source, legs = robot
+    robot = inputs_from_args(args).robot
+    design, legs = robot.design, robot.own_legs
+    if legs is not None:  # legs of their own: each measured by its general leg
+        refuse_plot(args.plot)
         summaries = {
             name: analyze_workspace(design, args.samples, args.seed, leg=leg).to_dict(design=False)
             for name, leg in legs.items()
         }
         if args.json:
-            print_json({"robot": source, "legs": summaries})
+            print_json({"robot": robot.name, "legs": summaries})
         for name, leg in legs.items():
             if not args.json:
                 _print(summaries[name], f"leg {name}", leg.lengths)
@@ -77,6 +69,15 @@ def run(args: argparse.Namespace) -> int:
         return 0
     _print(summary, "", design.lengths)
     return 0
+
+
+def refuse_plot(plot: str | None) -> None:
+    """Refuse ``--plot`` for a robot whose legs are its own: the figures draw the design's."""
+    if plot is not None:
+        raise UsageError(
+            "--plot with --urdf is not supported yet: the figures draw the design's leg, your "
+            "robot's legs are each measured on their own (use --json)"
+        )
 
 
 def _print(summary: dict, leg: str, lengths: tuple[float, float, float]) -> None:

@@ -8,7 +8,8 @@ however many of its metrics are asked for: the improved workspace area in closed
 (eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
 or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
 statics' payload capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), and
-one gait period (:func:`~hexaleg.gait.analysis.analyze_gait`) for the max speed, peak
+one walk of the gait (:class:`~hexaleg.gait.walk.Walker`) for the walking payload capacity
+and one period of it (:func:`~hexaleg.gait.analysis.analyze_walker`) for the max speed, peak
 torque and cost of transport.
 
 Given a model and a stance template of the same body (the fast path of sweeps and
@@ -27,7 +28,6 @@ from functools import cached_property
 from typing import TypeVar
 
 import numpy as np
-import pinocchio as pin
 
 from hexaleg._typing import FlexibilityMode, StanceSet
 from hexaleg.design import HexapodDesign
@@ -41,9 +41,10 @@ from hexaleg.evaluation.metrics import (
     Reasons,
 )
 from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
-from hexaleg.gait.capacity import walking_payload_capacity
+from hexaleg.gait.analysis import GaitAnalysis, analyze_walker
+from hexaleg.gait.capacity import walker_capacity
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walk import Walker
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
@@ -157,22 +158,26 @@ def evaluate_many(
     designs: Sequence[HexapodDesign],
     metrics: Collection[MetricSpec],
     conditions: Conditions,
-    base: HexapodModel,
-    template: StanceGeometry,
+    models: Sequence[HexapodModel],
+    template: StanceGeometry | None,
 ) -> list[Evaluation]:
-    """:func:`evaluate` of designs of one body (``base``'s), their flexibility searched together.
+    """:func:`evaluate` of designs of one robot, their flexibility searched together.
 
     Args:
-        designs: Designs differing from ``base``'s only in their legs, ratings and posture.
+        designs: Designs of one body, differing only in their legs, ratings and posture.
         metrics: What to measure.
         conditions: What they are measured under.
-        base: A model of that body: each design's is derived from it.
-        template: The body's stance geometry (``conditions.stance``'s legs).
+        models: Each design's model (derived from its body's, or its own).
+        template: The body's stance geometry (``conditions.stance``'s legs), from which each
+            design's derives in closed form; ``None`` where the legs are their own
+            (:meth:`~hexaleg.stance.geometry.StanceGeometry.template_of`): each design is
+            then read and searched on its own model.
 
     """
-    models = [base.with_design(design) for design in designs]
     found: Sequence[FlexibilityResult | None] = [None] * len(designs)
-    if METRICS.fb in metrics and conditions.mode == "axis" and designs:
+    batched = template is not None and METRICS.fb in metrics and conditions.mode == "axis"
+    if batched and designs:
+        assert template is not None
         try:
             found = axis_locked_flexibility_many(
                 designs, template, models, collisions=conditions.collisions
@@ -274,8 +279,7 @@ class _Measuring:
 
     def _search_flexibility(self) -> FlexibilityResult:
         conditions, design = self.conditions, self.design
-        # an imported robot's geometry is its model's own: the searches read it from there
-        geometry = None if getattr(self._model, "general_legs", False) else self.geometry
+        geometry = self._template  # the body's, if given; else the searches read the model
         if conditions.mode == "axis":
             return axis_locked_flexibility(
                 design,
@@ -295,30 +299,25 @@ class _Measuring:
             )
 
     @cached_property
+    def walker(self) -> Walker:
+        """The conditions' gait walked with their payload, once for every walking metric."""
+        conditions = self.conditions
+        return Walker(self.model, conditions.gait, conditions.payload)
+
+    @cached_property
     def walked(self) -> GaitAnalysis:
         """One period of the conditions' gait, with the fastest walk of its stride."""
-        conditions = self.conditions
-        return analyze_gait(
-            self.design,
-            conditions.gait,
-            conditions.payload,
-            model=self.model,
-            limits=False,
-            speed=True,
-        )
+        return analyze_walker(self.walker, limits=False, speed=True)
 
     # -- the analyses ------------------------------------------------------------------
 
     def _measure_geometry(self) -> Metrics:
-        design, model = self.design, self._model
-        mass, height = design.total_mass, design.nominal_height
-        if model is not None and getattr(model, "general_legs", False):  # the file's, not ours
-            mass, height = pin.computeTotalMass(model.model), self.geometry.nominal_height
+        design, model = self.design, self._model  # without a model, the design's own
         return Metrics(
             leg_length=design.leg_length,
             coxa_length=design.l1,
-            robot_mass=mass,
-            nominal_height=height,
+            robot_mass=design.total_mass if model is None else model.total_mass,
+            nominal_height=design.nominal_height if model is None else model.nominal_height,
         )
 
     def _measure_workspace(self) -> Metrics:
@@ -373,10 +372,12 @@ class _Measuring:
         return replace(found, max_slope=slope)
 
     def _measure_walking(self) -> Metrics:
-        conditions = self.conditions
-        found = walking_payload_capacity(self.model, conditions.gait, conditions.payload.position)
-        if found is None:  # the design gives no ratings: the capacity within them needs one
+        if not self.model.design.rated:  # the capacity within ratings the design does not give
             return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
+        walker, conditions = self.walker, self.conditions
+        empty = conditions.payload.with_mass(0.0)  # the capacity walks the gait unloaded
+        unloaded = walker if walker.payload == empty else walker.carrying(empty)
+        found = walker_capacity(unloaded)
         self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
         self.walks = found.walks
         return Metrics(walking_payload_capacity=found.mass)
@@ -413,19 +414,21 @@ class _Measuring:
         walked = self.walked
         if not walked.walkable:
             return self._without(_of("motors"), f"cannot walk the gait: {walked.violations[0]}")
-        electrical, design = walked.electrical, walked.design
-        if electrical is None:
-            return self._without(_of("motors"), "the design has no [actuators]")
-        ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
-        battery = electrical.battery
-        if design.battery is None:
-            self.unmeasured = replace(self.unmeasured, battery_range="the design has no [battery]")
-        return Metrics(
-            energy_per_km=electrical.energy_per_km,
-            electrical_cost_of_transport=electrical.cost_of_transport,
-            continuous_load=float(ratios.max()),
-            battery_range=math.nan if battery is None else battery.range,
-        )
+        electrical, found = walked.electrical, Metrics()
+        if electrical is not None:
+            ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
+            battery = electrical.battery
+            found = Metrics(
+                energy_per_km=electrical.energy_per_km,
+                electrical_cost_of_transport=electrical.cost_of_transport,
+                continuous_load=float(ratios.max()),
+                battery_range=math.nan if battery is None else battery.range,
+            )
+        for spec in _of("motors"):  # without a table it is measured through: no value
+            lacking = spec.lacks(walked.design)
+            if lacking:
+                found = self._without((spec,), f"the design has no [{lacking[0]}]", found)
+        return found
 
     def _without(
         self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None

@@ -13,10 +13,17 @@ from dataclasses import dataclass, field, replace
 
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
-from hexaleg.evaluation.metrics import METRICS, Better, MetricSpec, objectives
+from hexaleg.evaluation.metrics import (
+    METRICS,
+    TABLE_WORDS,
+    Better,
+    DesignTable,
+    MetricSpec,
+    objectives,
+)
 from hexaleg.evaluation.requirement_specs import REQUIREMENTS, SLOPE
 from hexaleg.evaluation.requirements import RequirementCheck, Requirements, check
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.stance.geometry import StanceGeometry
@@ -123,16 +130,43 @@ class Goal:
         return self._measured(found)
 
     def evaluate_many(
-        self, designs: Sequence[HexapodDesign], base: HexapodModel, template: StanceGeometry
+        self,
+        designs: Sequence[HexapodDesign],
+        models: Sequence[HexapodModel],
+        template: StanceGeometry | None,
     ) -> list[Evaluation]:
-        """:meth:`evaluate` of designs of one body (see :func:`~.evaluation.evaluate_many`)."""
-        found = evaluate_many(designs, self.metrics, self.conditions, base, template)
+        """:meth:`evaluate` of designs of one robot (see :func:`~.evaluation.evaluate_many`)."""
+        found = evaluate_many(designs, self.metrics, self.conditions, models, template)
         return [self._measured(evaluation) for evaluation in found]
 
     def _measured(self, evaluation: Evaluation) -> Evaluation:
         """The evaluation, or an error when the objective could not be measured."""
         why = evaluation.unmeasured[self.objective.spec]
         return Evaluation(error=why) if why else evaluation
+
+    def measurable(self, design: HexapodDesign, actuators: bool = False) -> Goal:
+        """The goal itself, once ``design`` is found to measure all it asks for.
+
+        ``actuators``: motors are being chosen (from a catalog) for every design.
+
+        Raises:
+            ParameterError: Before any search, the requirement (or ``maximize`` /
+                ``minimize``) whose metric needs a design-file table ``design`` lacks
+                (:attr:`~hexaleg.evaluation.metrics.MetricSpec.needs`).
+
+        """
+        requirements = self.requirements
+        asked: list[tuple[str, MetricSpec, object]] = [
+            (spec.name, spec.metric, requirements.required(spec))
+            for spec in REQUIREMENTS.values()
+            if spec.name in requirements.given
+        ]
+        asked.append((self.objective.sense, self.objective.spec, self.objective.name))
+        for name, metric, value in asked:
+            lacking = metric.lacks(design, actuators)
+            if lacking:
+                raise ParameterError(name, value, _needs(metric, lacking))
+        return self
 
     def checks(self, evaluation: Evaluation) -> tuple[RequirementCheck, ...]:
         """Each requirement checked on an evaluation (its value, margin, what limits it)."""
@@ -143,3 +177,10 @@ class Goal:
         if evaluation.error:
             return False
         return all(c.met for c in self.checks(evaluation) if c.name in self.constraints)
+
+
+def _needs(metric: MetricSpec, lacking: tuple[DesignTable, ...]) -> str:
+    """What ``metric`` needs that a design lacks (``lacking``: tables), in words."""
+    needed = " and ".join(words for table, words in TABLE_WORDS.items() if table in lacking)
+    chosen = " (or --choose-actuators)" if "actuators" in lacking else ""
+    return f"{metric.label} needs {needed} in the design file{chosen}: the {metric.text}"

@@ -20,10 +20,13 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 from dataclasses import dataclass, field, fields, replace
-from typing import Any, Generic, Literal, TypeVar
+from typing import TYPE_CHECKING, Any, Generic, Literal, TypeVar
 
 from hexaleg.cause import Cause
 from hexaleg.exceptions import ParameterError
+
+if TYPE_CHECKING:
+    from hexaleg.design import HexapodDesign
 
 T = TypeVar("T")
 
@@ -55,6 +58,15 @@ WALKING: frozenset[Analysis] = frozenset({"walking", "speed", "period", "motors"
 Torque = Literal["peak", "rms"]
 """Which torque of a joint type over a gait period a metric is."""
 
+DesignTable = Literal["actuators", "battery"]
+"""A table of the design file a metric may be measured through (``[actuators]``, ``[battery]``)."""
+
+TABLE_WORDS: Mapping[DesignTable, str] = {
+    "battery": "a [battery] table",
+    "actuators": "an [actuators] table",
+}
+"""Each design-file table a metric may need, in words, in the order a refusal names them."""
+
 
 @dataclass(frozen=True)
 class MetricSpec:
@@ -71,6 +83,7 @@ class MetricSpec:
         objective: Whether ``decide`` offers it as an objective (in its better direction).
         torque: For a joint type's torque over a gait period, which: peak or RMS.
         joint: That joint type (``root``, ``hip`` or ``knee``).
+        needs: The design-file tables it is measured through: without one, it has no value.
 
     """
 
@@ -83,11 +96,23 @@ class MetricSpec:
     objective: bool = False
     torque: Torque | None = None
     joint: str | None = None
+    needs: tuple[DesignTable, ...] = ()
 
     @property
     def walks(self) -> bool:
         """Whether measuring it walks the gait."""
         return self.analysis in WALKING
+
+    def lacks(self, design: HexapodDesign, actuators: bool = False) -> tuple[DesignTable, ...]:
+        """The tables it :attr:`needs` that ``design`` has not, in declared order.
+
+        ``actuators``: motors are being chosen for it (``decide --choose-actuators``).
+        """
+        has = {
+            "actuators": actuators or design.actuators is not None,
+            "battery": design.battery is not None,
+        }
+        return tuple(table for table in self.needs if not has[table])
 
     @property
     def described(self) -> str:
@@ -142,9 +167,10 @@ def declare(
     objective: bool = False,
     torque: Torque | None = None,
     joint: str | None = None,
+    needs: tuple[DesignTable, ...] = (),
 ) -> Any:
     """A field of :class:`PerMetric` declaring its metric (named after the field)."""
-    spec = MetricSpec("", unit, label, text, better, analysis, objective, torque, joint)
+    spec = MetricSpec("", unit, label, text, better, analysis, objective, torque, joint, needs)
     return field(default=None, metadata={_DECLARATION: spec})
 
 
@@ -270,6 +296,7 @@ class PerMetric(Generic[T]):
         better="minimize",
         analysis="motors",
         objective=True,
+        needs=("actuators",),
     )
     electrical_cost_of_transport: T = declare(
         unit="1",
@@ -277,6 +304,7 @@ class PerMetric(Generic[T]):
         text="electrical energy per weight and distance walked",
         better="minimize",
         analysis="motors",
+        needs=("actuators",),
     )
     continuous_load: T = declare(
         unit="1",
@@ -284,6 +312,7 @@ class PerMetric(Generic[T]):
         text="largest RMS torque over its actuator's continuous torque, any joint",
         better="minimize",
         analysis="motors",
+        needs=("actuators",),
     )
     battery_range: T = declare(
         unit="km",
@@ -292,6 +321,7 @@ class PerMetric(Generic[T]):
         better="maximize",
         analysis="motors",
         objective=True,
+        needs=("actuators", "battery"),
     )
     min_zmp_margin: T = declare(
         unit="m",

@@ -25,13 +25,12 @@ from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.evaluation.requirements import Requirements, limited_by_dict
-from hexaleg.limits import LEG_JOINTS, JointLimits
+from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
-from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.forces import Payload
-from hexaleg.swing.workspace import monte_carlo_workspace
+from hexaleg.swing.workspace import standing_reach
 
 __all__ = ["EXPLORED", "answer"]
 
@@ -144,47 +143,26 @@ REACH_POINTS = 400
 def feet_reach(design: HexapodDesign, model: HexapodModel | None = None) -> list[list[list[float]]]:
     """Each leg's foot reach on the ground (x, y), world frame [m], at the nominal body pose.
 
-    The Monte Carlo cloud of one leg within the stance limits (as ``gait --plot`` draws
-    it; an imported robot's legs each by its own general leg within its file limits),
-    placed at each leg's root, kept within :data:`REACH_SLICE` of that leg's nominal
-    foot height, thinned to at most :data:`REACH_POINTS` points. Asked for apart from
-    :func:`answer` (the page shows it on demand): a slider's redraw does not pay it.
+    Each leg's Monte Carlo cloud within the limits that hold it standing (as ``gait
+    --plot`` draws it, :func:`~hexaleg.swing.workspace.standing_reach`), placed at each
+    leg's root, kept within :data:`REACH_SLICE` of that leg's nominal foot height, thinned
+    to at most :data:`REACH_POINTS` points. Asked for apart from :func:`answer` (the page
+    shows it on demand): a slider's redraw does not pay it.
     """
     model = model_of(design) if model is None else model
     ground = model.leg_chains(model.nominal_configuration())[:, -1, 2]
     base = model.nominal_base_pose()
     roots = model.root_placements()
-    clouds = _reach_clouds(design, model)
+    clouds = standing_reach(model, REACH_SAMPLES)
     out = []
-    for leg, height, cloud in zip(model.leg_names, ground, clouds, strict=True):
+    for leg, height in zip(model.leg_names, ground, strict=True):
+        cloud = clouds[leg]
         placed = base * roots[leg]
         world = cloud.points @ placed.rotation.T + placed.translation
         near = world[np.abs(world[:, 2] - height) < REACH_SLICE]
         step = max(1, math.ceil(len(near) / REACH_POINTS))
         out.append(near[::step, :2].round(4).tolist())
     return out
-
-
-def _reach_clouds(design: HexapodDesign, model: HexapodModel) -> list[Any]:
-    """Each leg's Monte Carlo cloud in its leg-root frame: one for all legs of the template."""
-    if not getattr(model, "general_legs", False):
-        cloud = monte_carlo_workspace(design, REACH_SAMPLES, seed=0, limits=design.stance_limits)
-        return [cloud] * len(model.leg_names)
-    geometry = StanceGeometry.from_model(model, model.leg_names)
-    return [
-        monte_carlo_workspace(
-            design,
-            REACH_SAMPLES,
-            seed=0,
-            limits=JointLimits(
-                (low[0], high[0]), (low[1], high[1]), (low[2], high[2]), name=f"{leg} file"
-            ),
-            leg=model.leg_geometry(leg),
-        )
-        for leg, low, high in zip(
-            model.leg_names, geometry.joint_lower, geometry.joint_upper, strict=True
-        )
-    ]
 
 
 def _extremes(model: HexapodModel, found: Evaluation) -> list[dict[str, Any]]:

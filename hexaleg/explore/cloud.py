@@ -1,25 +1,24 @@
 """The study's cloud of designs that the page places the current design on.
 
-Designs of the loaded body and leg length at the paper's coxa ratios and the loaded
-design's own, over a grid of tibia ratios, each measured for FB and the walking payload
-capacity under the loaded conditions (one batch,
-:func:`~hexaleg.evaluation.evaluate.evaluate_many`). It is measured once, in a background
-thread, while the page already answers.
+The loaded robot at its leg length, at the paper's coxa ratios and its own, over a grid
+of tibia ratios (:meth:`~hexaleg.robot.robot.Robot.at_ratios`), each measured for FB and
+the walking payload capacity under the loaded conditions (a batch per coxa ratio,
+:func:`~hexaleg.evaluation.evaluate.evaluate_many`).
+It is measured once, in a background thread, while the page already answers.
 """
 
 from __future__ import annotations
 
 import math
 import threading
-from collections.abc import Callable
 from typing import Any
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
-from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate, evaluate_many
+from hexaleg.evaluation.evaluate import Conditions, evaluate_many
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.paper import L1_RATIOS
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.robot import Robot
 from hexaleg.stance.geometry import StanceGeometry
 
 __all__ = ["CLOUD_METRICS", "Cloud"]
@@ -34,14 +33,9 @@ TIBIA_POINTS = 12
 class Cloud:
     """The cloud, measured in a background thread; :meth:`to_dict` answers what is there."""
 
-    def __init__(
-        self,
-        design: HexapodDesign,
-        conditions: Conditions,
-        models: Callable[[HexapodDesign], HexapodModel] | None = None,
-    ) -> None:
-        """``models``: an imported robot's model of each design (hexaleg's template if none)."""
-        self._design, self._conditions, self._models = design, conditions, models
+    def __init__(self, robot: Robot, conditions: Conditions) -> None:
+        """``robot``: the loaded robot, whose designs at other ratios the cloud is."""
+        self._robot, self._conditions = robot, conditions
         self._points: list[dict[str, float | None]] = []
         self._error = ""
         self._done = threading.Event()
@@ -62,7 +56,7 @@ class Cloud:
 
     def _measure(self) -> None:
         try:
-            for l1_ratio in coxa_ratios(self._design):
+            for l1_ratio in coxa_ratios(self._robot.design):
                 self._points += self._row(l1_ratio)
         except HexalegError as err:  # the loaded body cannot stand at these ratios
             self._error = str(err)
@@ -71,20 +65,18 @@ class Cloud:
 
     def _row(self, l1_ratio: float) -> list[dict[str, float | None]]:
         """One coxa ratio's designs, measured together."""
-        designs = []
+        robots = []
         for l3_ratio in l3_ratio_grid(TIBIA_POINTS):
             try:
-                designs.append(self._design.with_ratios(l1_ratio, float(l3_ratio)))
+                robots.append(self._robot.at_ratios(l1_ratio, float(l3_ratio)))
             except HexalegError:
                 continue  # this leg cannot stand on the loaded body
-        if not designs:
+        if not robots:
             return []
-        if self._models is None:
-            base = HexapodModel(designs[0])
-            template = StanceGeometry.from_model(base, self._conditions.stance)
-            found = evaluate_many(designs, CLOUD_METRICS, self._conditions, base, template)
-        else:
-            designs, found = self._each(designs)
+        template = StanceGeometry.template_of(robots[0].model, self._conditions.stance)
+        designs = [robot.design for robot in robots]
+        models = [robot.model for robot in robots]
+        found = evaluate_many(designs, CLOUD_METRICS, self._conditions, models, template)
         points = []
         for design, evaluation in zip(designs, found, strict=True):
             if evaluation.error:
@@ -98,19 +90,6 @@ class Cloud:
                 point[spec.name] = value if math.isfinite(value) else None
             points.append(point)
         return points
-
-    def _each(self, designs: list[HexapodDesign]) -> tuple[list[HexapodDesign], list[Evaluation]]:
-        """An imported robot's designs, each on its own model (those it cannot take left out)."""
-        assert self._models is not None
-        kept, found = [], []
-        for design in designs:
-            try:
-                model = self._models(design)
-            except HexalegError:
-                continue  # a segment it cannot stretch to that length
-            kept.append(model.design)
-            found.append(evaluate(model.design, CLOUD_METRICS, self._conditions, model=model))
-        return kept, found
 
 
 def coxa_ratios(design: HexapodDesign) -> list[float]:

@@ -88,13 +88,14 @@ class Job:
     def follow(self) -> None:
         """Read its progress lines to the end, then its answer (run in a thread)."""
         assert self.process.stderr is not None and self.process.stdout is not None
-        last = ""
+        last, crashed = "", False
         for line in self.process.stderr:
             found = PROGRESS_LINE.match(line)
             if found:
                 self.done, self.total = int(found[1]), int(found[2])
             elif line.strip():
                 last = line.strip()
+                crashed = crashed or line.startswith("Traceback ")
         out = self.process.stdout.read()
         status = self.process.wait()
         if status == 0:
@@ -102,6 +103,9 @@ class Job:
                 self.answer = json.loads(out)
             except json.JSONDecodeError:
                 self.error = "the command's answer is not JSON"
+        elif crashed:  # a bug, not the user's mistake: one line, and where to see more
+            command = JOB_KINDS[self.kind][0]
+            self.error = f"hexaleg {command} crashed ({last}): run it in a terminal to see why"
         else:
             self.error = last or f"the command ended with status {status}"
         self.folder.cleanup()

@@ -322,13 +322,23 @@ def analyze_gait(
     gait = Gait() if gait is None else gait
     model = HexapodModel(design) if model is None else model
     walker = Walker(model, gait, payload, distribution, ground, gravity, safety_factor)
+    return analyze_walker(walker, limits=limits, speed=speed)
+
+
+def analyze_walker(walker: Walker, *, limits: bool = True, speed: bool = False) -> GaitAnalysis:
+    """:func:`analyze_gait` of a walker already made (its gait's walk shared with others).
+
+    The walker's ground, payload, split and safety factor are the analysis's; ``limits``
+    and ``speed`` are :func:`analyze_gait`'s.
+    """
+    gait, distribution = walker.gait, walker.distribution
     walk = walker.stride(gait.stride)
     loads = walker.loads(gait.stride, walk, gait.period)
     known = (walk, loads) if distribution == "min-norm" else None
     stride_limit = max_stride(walker) if limits else None
     speed_limit = (
         max_speed(walker, stride_limit, known, fallback=limits)
-        if (limits or speed) and model.design.rated
+        if (limits or speed) and walker.model.design.rated
         else None  # no ratings: the max speed needs one
     )
     return _analysis(walker, walk, loads, stride_limit, speed_limit)

@@ -1,13 +1,16 @@
 """The largest payload a design carries walking a gait, exactly: what binds, and at what mass.
 
 A payload m at a fixed point of the body (default: the centre of its top face) changes
-nothing in a gait period but the loads: the body moves level at constant velocity, so the
-payload's weight is its only force, and the generalized forces of the free-flyer model are
-affine in m. The minimum-norm foot forces are linear in them, so every joint torque is
-affine in m as well, τ(m) = τ₀ + m·Δτ, and so are the base wrench and, once multiplied by
-the vertical force F_z(m) > 0, the zero-moment point's side of every edge of the standing
-feet's polygon. Two walks of the gait — unloaded and with 1 kg — give τ₀, Δτ and the
-wrench's two parts, and every constraint becomes a bound on m:
+nothing in a gait period but the loads: the body moves parallel to the ground at constant
+velocity, so the payload's weight is its only force, and the generalized forces of the
+free-flyer model are affine in m: the base rows gain m times the closed-form wrench of
+1 kg (:func:`~hexaleg.gait.dynamics.payload_wrench`: −g and its moment, g the walker's
+gravity in the body frame, tilted on a slope). The minimum-norm foot forces are linear in
+them, so every foot force and joint torque is affine in m as well, τ(m) = τ₀ + m·Δτ, and
+so are the base wrench and, once multiplied by the normal force F_z(m) > 0, the
+zero-moment point's side of every edge of the standing feet's polygon. One walk of the
+gait (unloaded) and one min-norm solve with the wrench beside its own give τ₀, Δτ, the
+forces' two parts and the wrench's, and every constraint becomes a bound on m:
 
 - each joint at each sample: |τ₀ + m·Δτ| ≤ its rated torque;
 - each edge of the support polygon at each sample: the ZMP on its inner side;
@@ -33,7 +36,7 @@ and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacit
 smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
 and the constraint that gives it is what binds; broken unloaded, the first broken in the
 order above (peak torque, ZMP, friction, continuous torque, voltage) is what stops the walk.
-On a slope (:class:`~hexaleg.statics.ground.Ground`) both walks have gravity tilted in the
+On a slope (:class:`~hexaleg.statics.ground.Ground`) the walk has gravity tilted in the
 body frame, and the payload's weight with it; a safety factor F divides the peak torque and
 speed ratings (:meth:`~hexaleg.gait.walk.Walker.rated`). No search
 and no bisection: the tests hold it against a bisection on
@@ -52,10 +55,12 @@ from hexaleg._typing import ArrayF, CauseKind
 from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
+from hexaleg.exceptions import ParameterError
+from hexaleg.gait.dynamics import CarriedLoad, GeneralizedForces, payload_wrench
 from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
-from hexaleg.gait.walk import Loads, Stride, Walker
+from hexaleg.gait.walk import Loads, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -63,7 +68,7 @@ from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.ground import LEVEL, Ground
 
 PROBE_MASS = 1.0
-"""The payload of the second walk [kg]: any positive mass gives the same affine maps."""
+"""The payload whose wrench gives the change per kg [kg]: any positive mass gives the same maps."""
 
 
 @dataclass(frozen=True)
@@ -116,6 +121,28 @@ def walking_payload_capacity(
     gait = Gait() if gait is None else gait
     unloaded = Walker(model, gait, Payload(0.0, position), ground=ground, gravity=gravity,
                       safety_factor=safety_factor)  # fmt: skip
+    return walker_capacity(unloaded)
+
+
+def walker_capacity(unloaded: Walker) -> WalkingCapacity:
+    """:func:`walking_payload_capacity` of a walker already made, sharing its gait's walk.
+
+    The walker's ground (its slope turns the payload's weight too, its friction holds the
+    feet) and safety factor are the capacity's.
+
+    Args:
+        unloaded: The robot walking the gait without payload, the payload's point its
+            position, min-norm forces.
+
+    Raises:
+        ParameterError: A walker with a payload, or another force distribution.
+
+    """
+    if unloaded.payload.mass != 0 or unloaded.distribution != "min-norm":
+        raise ParameterError(
+            "walker", unloaded.payload.mass, "carries no payload and splits min-norm forces"
+        )
+    model, gait = unloaded.model, unloaded.gait
     walk = unloaded.stride(gait.stride)
     if walk.violations:
         return WalkingCapacity(0.0, walk.violations[0].cause, False)
@@ -125,14 +152,15 @@ def walking_payload_capacity(
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    loads = _probe_loads(unloaded, walk, position)
-    base = loads[0].split.torques(gait.period)  # τ₀ (N, 6, 3)
-    slope = (loads[1].split.torques(gait.period) - base) / PROBE_MASS  # Δτ
+    probe = payload_wrench(unloaded.payload.point(model), PROBE_MASS, unloaded.gravity_vector)
+    loads, carried = unloaded.own_loads_carrying(probe)
+    base = loads.split.torques(gait.period)  # τ₀ (N, 6, 3)
+    slope = carried.torques / PROBE_MASS  # Δτ
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
-        _zmp_bound(unloaded, loads, walk.paths.position),
-        _grip_bound(unloaded, loads),
+        _zmp_bound(unloaded, loads.rnea, probe, walk.paths.position),
+        _grip_bound(unloaded, loads, carried),
     ]
     actuators, bus = model.design.actuators, model.design.bus_voltage
     if actuators is not None and bus is not None:
@@ -148,18 +176,6 @@ def walking_payload_capacity(
     if mass > PAYLOAD_SEARCH_LIMIT:
         return WalkingCapacity(PAYLOAD_SEARCH_LIMIT, Cause("search limit"), True)
     return WalkingCapacity(float(mass), cause, True)
-
-
-def _probe_loads(
-    unloaded: Walker, walk: Stride, position: tuple[float, float, float] | None
-) -> list[Loads]:
-    """The walk's loads without a payload and with :data:`PROBE_MASS` at ``position``."""
-    gait = unloaded.gait
-    loaded = unloaded.carrying(Payload(PROBE_MASS, position))
-    first = unloaded.loads(gait.stride, walk, gait.period)
-    inertial = first.rnea.inertial  # the payload adds no inertial force (it does not accelerate)
-    again = loaded.generalized_forces(gait.stride, walk, inertial)
-    return [first, loaded.loads(gait.stride, walk, gait.period, again)]
 
 
 def _largest(offset: ArrayF, slope: ArrayF) -> tuple[float, int] | None:
@@ -276,36 +292,38 @@ def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
     return reach
 
 
-def _zmp_bound(walker: Walker, loads: list[Loads], feet: ArrayF) -> tuple[float, Cause] | None:
+def _zmp_bound(
+    walker: Walker, rnea: GeneralizedForces, probe: ArrayF, feet: ArrayF
+) -> tuple[float, Cause] | None:
     """The ZMP on the inner side of every edge of the standing feet's polygon.
 
-    Each side, F_z·cross(edge, ZMP − vertex), is linear in the wrench
-    (:func:`~hexaleg.gait.stability.zmp_sides`), hence affine in the payload.
+    Each side (:func:`~hexaleg.gait.stability.zmp_sides`) is linear in the base's wrench,
+    which is affine in the payload: the unloaded walk's sides and their change per kg
+    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows, under the walker's
+    gravity: on a slope its weight pushes along the plane too).
     """
     period, height = walker.gait.period, walker.frames.height
-    configurations = loads[0].rnea.configurations
-    travel = configurations[:, :2]  # the body's footprint, ground frame
-    on_ground = feet_on_ground(feet, configurations, height)
-    stance = walker.phases.stance
-    sides = [
-        zmp_sides(
-            load.rnea.static[:, :6] + load.rnea.inertial[:, :6] / period**2,
-            height,
-            travel,
-            on_ground,
-            stance,
-        )
-        for load in loads
-    ]
-    found = _largest(sides[0], (sides[1] - sides[0]) / PROBE_MASS)
+    configurations = rnea.configurations  # the body's path, as the payload's
+    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
+    base, change = zmp_sides(
+        np.stack((wrench, np.broadcast_to(probe / PROBE_MASS, wrench.shape))),
+        height,
+        configurations[:, :2],
+        feet_on_ground(feet, configurations, height),
+        walker.phases.stance,
+    )
+    found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))
 
 
-def _grip_bound(walker: Walker, loads: list[Loads]) -> tuple[float, Cause] | None:
-    """Every standing foot's force within the friction cone, |f_t| ≤ μ·f_n (affine in m)."""
-    period = walker.gait.period
-    base = loads[0].split.forces(period)
-    slope = (loads[1].split.forces(period) - base) / PROBE_MASS
+def _grip_bound(walker: Walker, loads: Loads, carried: CarriedLoad) -> tuple[float, Cause] | None:
+    """Every standing foot's force within the friction cone, |f_t| ≤ μ·f_n (affine in m).
+
+    The feet's forces are the unloaded walk's plus m times what :data:`PROBE_MASS`
+    adds per kg (``carried``: its min-norm share, split with the walk's).
+    """
+    base = loads.split.forces(walker.gait.period)
+    slope = carried.forces / PROBE_MASS
     found = cone_limit(base, slope, walker.phases.stance, walker.ground.friction)
     if found is None:
         return None

@@ -65,6 +65,36 @@ class GeneralizedForces:
     inertial: ArrayF
 
 
+def payload_wrench(point: ArrayF, mass: float, gravity: ArrayF) -> ArrayF:
+    """What a point mass on the body adds to the base's generalized forces (6,).
+
+    The body's rows hold the wrench that carries it, in the body's frame at its origin:
+    the force f = −m·g [N] against gravity g (3,) [m/s²] given in the body frame (−g·z on
+    level ground, tilted on a slope: :class:`~hexaleg.statics.ground.Ground`) and the
+    moment p × f [N·m] of the point p [m] (body frame). With the body at constant velocity
+    and not turning (a gait period's body, parallel to the ground), the point's inertial
+    forces are zero, so this is exactly what RNEA gives with the mass added to the body's
+    inertia.
+    """
+    force = -mass * np.asarray(gravity, dtype=float)
+    return np.concatenate((force, np.cross(point, force)))
+
+
+@dataclass(frozen=True)
+class CarriedLoad:
+    """What a constant wrench on the base's rows adds to a min-norm split (any period).
+
+    Attributes:
+        forces: The standing feet's added forces (N, 6, 3), ground frame [N] (zero while
+            a foot swings).
+        torques: The joints' added torques (N, 6, 3) [N·m].
+
+    """
+
+    forces: ArrayF
+    torques: ArrayF
+
+
 class LoadedRobot:
     """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
 
@@ -100,18 +130,13 @@ class LoadedRobot:
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
 
-    def generalized_forces(
-        self, motion: JointMotion, base_travel: ArrayF, inertial: ArrayF | None = None
-    ) -> GeneralizedForces:
+    def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
         """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
 
         Args:
             motion: Joint angles θ and their phase derivatives (N, 6, 3), ``leg_names``
                 order (the model's joints at q = s·θ + o).
             base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
-            inertial: The inertial part (N, nv) if known: another payload's on the same
-                motion. A payload fixed to a body moving at constant velocity without turning
-                has no acceleration and no momentum rate, so it changes the static part only.
 
         """
         count, model, data = len(motion.angles), self.model, self.data
@@ -126,17 +151,15 @@ class LoadedRobot:
         velocity[:, self.v_index] = self.signs * motion.velocity
         acceleration = np.zeros((count, model.nv))
         acceleration[:, self.v_index] = self.signs * motion.acceleration
-        static = np.empty((count, model.nv))
+        static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
         for k in range(count):
             static[k] = pin.computeGeneralizedGravity(model, data, q[k])
-        if inertial is None:
-            inertial = np.empty((count, model.nv))
-            model.gravity.linear = np.zeros(3)
-            try:
-                for k in range(count):
-                    inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
-            finally:
-                model.gravity.linear = self.gravity
+        model.gravity.linear = np.zeros(3)
+        try:
+            for k in range(count):
+                inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
+        finally:
+            model.gravity.linear = self.gravity
         return GeneralizedForces(q, velocity, acceleration, static, inertial)
 
 
@@ -208,19 +231,72 @@ def min_norm_split(
         rnea: The generalized forces.
 
     """
-    count = len(feet)
+    return min_norm_split_carrying(model, frames, phases, feet, motion, rnea)[0]
+
+
+def min_norm_split_carrying(
+    model: HexapodModel,
+    frames: LegFrames,
+    phases: GaitPhases,
+    feet: ArrayF,
+    motion: JointMotion,
+    rnea: GeneralizedForces,
+    wrench: ArrayF | None = None,
+) -> tuple[ForceSplit, CarriedLoad | None]:
+    """:func:`min_norm_split`, and in the same solve :func:`carried_load` of ``wrench``.
+
+    Arguments as :func:`min_norm_split`'s; ``wrench`` (6,) [N, N·m], or none (``None``).
+    """
+    columns = [rnea.static[:, :6], rnea.inertial[:, :6]]
+    if wrench is not None:
+        columns.append(np.broadcast_to(np.asarray(wrench, dtype=float), (len(feet), 6)))
+    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
+    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
+    torques = joints - pushed[:2]
+    split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    return split, (None if wrench is None else CarriedLoad(forces[..., 2], -pushed[2]))
+
+
+def carried_load(
+    frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrench: ArrayF
+) -> CarriedLoad:
+    """The feet's forces and joint torques a constant wrench (6,) on the base's rows adds.
+
+    What :func:`min_norm_split` gives with the wrench added to the base's rows less what it
+    gives without (the split is linear in them): the minimum-norm forces carrying the
+    wrench, e.g. a payload's (:func:`payload_wrench`), and −Jᵀ of them. Arguments as
+    :func:`min_norm_split`'s.
+    """
+    columns = np.broadcast_to(np.asarray(wrench, dtype=float)[:, None], (len(feet), 6, 1))
+    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, columns)
+    return CarriedLoad(forces[..., 0], -pushed[0])
+
+
+def _min_norm_pushes(
+    frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrenches: ArrayF
+) -> tuple[ArrayF, ArrayF]:
+    """The minimum-norm feet's forces balancing base wrenches, and the torques they push.
+
+    Args:
+        frames: The legs.
+        phases: Who stands when.
+        feet: Foot positions (N, 6, 3) in the body frame [m].
+        motion: Joint angles (N, 6, 3).
+        wrenches: K base wrenches at each sample (N, 6, K) [N, N·m].
+
+    Returns:
+        The forces (N, 6, 3, K) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
+
+    """
+    count, kinds = len(feet), wrenches.shape[-1]
     standing = stance_indices(phases)
     rows = np.arange(count)[:, None]
     a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
-    both = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]), axis=-1)  # (N, 6, 2)
-    split = min_norm_forces(a, both).reshape(count, -1, 3, 2)
-    forces = np.zeros((count, 6, 3, 2))
+    split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
+    forces = np.zeros((count, 6, 3, kinds))
     forces[rows, standing] = split
-    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (2, N, 6, 3)
-    pushed = transpose_times(motion.partials, in_roots)  # Jᵀf per leg
-    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
-    torques = joints - pushed
-    return ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
+    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (K, N, 6, 3)
+    return forces, transpose_times(motion.partials, in_roots)
 
 
 def min_torque_split(

@@ -62,12 +62,12 @@ class JointBounds:
 
     @classmethod
     def from_model(cls, model: HexapodModel) -> JointBounds:
-        """The model's URDF limits and its design's stance limits (none: a robot file's)."""
+        """The model's URDF limits and the limits that hold its standing legs (if others)."""
         limits = [model.joint_limits(leg) for leg in model.leg_names]
         return cls(
             urdf_lower=np.array([lower for lower, _ in limits]),
             urdf_upper=np.array([upper for _, upper in limits]),
-            stance=None if model.general_legs else model.design.stance_limits,
+            stance=model.stance_limits,
         )
 
     def bounds(

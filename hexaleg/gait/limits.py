@@ -184,10 +184,8 @@ def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
     """
     height, configurations = walker.frames.height, rnea.configurations
     feet = feet_on_ground(walk.paths.position, configurations, height)
-    static, inertial = (
-        zmp_sides(part[:, :6], height, configurations[:, :2], feet, walker.phases.stance)
-        for part in (rnea.static, rnea.inertial)
-    )
+    parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
+    static, inertial = zmp_sides(parts, height, configurations[:, :2], feet, walker.phases.stance)
     if (static < 0).any():
         return -1.0
     shrinking = inertial < 0

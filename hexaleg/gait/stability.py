@@ -75,30 +75,36 @@ def zmp_margins(zmp: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> Arr
 def zmp_sides(
     wrench: ArrayF, height: float, travel: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]
 ) -> ArrayF:
-    """F_z·cross(edge, ZMP − vertex) for every edge of every sample's polygon (flat) [N·m²].
+    """F_z·cross(edge, ZMP − vertex) for every edge of every sample's polygon [N·m²].
 
     All ≥ 0 (with F_z > 0): the ZMP is inside every sample's polygon. Linear in ``wrench``.
 
     Args:
-        wrench: The base rows of the RNEA (N, 6), as in :func:`zero_moment_points`.
+        wrench: The base rows of the RNEA (..., N, 6), as in :func:`zero_moment_points`:
+            several wrenches of one motion (leading axes) share its polygons.
         height: The body origin's height above the ground [m].
         travel: The body origin's footprint (N, 2), ground frame [m].
         feet: Foot positions (N, 6, ≥2), ground frame [m].
         stance: Which feet stand (N, 6).
 
+    Returns:
+        The sides (..., E), every edge of every sample, flat (one order for every wrench).
+
     """
-    force, moment = wrench[:, :3], wrench[:, 3:]
+    force, moment = wrench[..., :3], wrench[..., 3:]
     numerator = np.stack(  # F_z·ZMP, relative to the body origin's footprint
-        (-(moment[:, 1] + height * force[:, 0]), moment[:, 0] - height * force[:, 1]), axis=-1
+        (-(moment[..., 1] + height * force[..., 0]), moment[..., 0] - height * force[..., 1]),
+        axis=-1,
     )
     sides = []
     for run in _runs(stance):
         polygon = SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2])
         corners = polygon.vertices - travel[run, None]  # from the body origin's footprint
-        relative = numerator[run, None] - corners * force[run, 2, None, None]
+        relative = numerator[..., run, None, :] - corners * force[..., run, 2, None, None]
         edges = polygon.edges
-        sides.append((edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]).ravel())
-    return np.concatenate(sides)
+        side = edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]
+        sides.append(side.reshape(*side.shape[:-2], -1))
+    return np.concatenate(sides, axis=-1)
 
 
 def _runs(stance: npt.NDArray[np.bool_]) -> list[npt.NDArray[np.intp]]:

@@ -29,14 +29,13 @@ from dataclasses import dataclass
 from functools import lru_cache
 
 import numpy as np
-import pinocchio as pin
 
 from hexaleg._typing import ArrayF, Lengths
 from hexaleg.gait.jacobian import LegPartials, inverse_times, leg_partials, rate_times
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.kinematics import foot_position, leg_solution
 from hexaleg.leg_geometry import LegRows, leg_parameters
-from hexaleg.robot.model import ROOT_JOINT, HexapodModel, joint_name
+from hexaleg.robot.model import HexapodModel
 
 
 @dataclass(frozen=True)
@@ -65,7 +64,7 @@ class LegFrames:
     def from_model(cls, model: HexapodModel) -> LegFrames:
         """The legs of ``model`` at its nominal stance (each leg its own posture)."""
         legs = model.leg_names
-        roots = _root_placements(model)
+        roots = model.root_placements()
         rotations = np.array([roots[leg].rotation for leg in legs])
         positions = np.array([roots[leg].translation for leg in legs])
         parameters = np.array([leg_parameters(model.leg_geometry(leg)) for leg in legs])
@@ -99,24 +98,6 @@ class LegFrames:
     def to_body(self, vectors: ArrayF) -> ArrayF:
         """Leg-root-frame directions (..., 6, 3) in the body frame."""
         return _rotate(vectors, self.root_rotations, transpose=False)
-
-
-def _root_placements(model: HexapodModel) -> dict[str, pin.SE3]:
-    """Each leg-root frame in the body frame: the root joints' placements on the free flyer.
-
-    Read without kinematics when the roots hang on the free-flyer joint, as the templates
-    build them (a study's designs then need no Pinocchio data); otherwise (an imported
-    robot's leg-root frames are fixed frames on its body) from the model's forward
-    kinematics.
-    """
-    if model.general_legs:
-        return model.root_placements()
-    pinocchio = model.model
-    base = pinocchio.getJointId(ROOT_JOINT)
-    ids = {leg: pinocchio.getJointId(joint_name(leg, "root")) for leg in model.leg_names}
-    if any(pinocchio.parents[i] != base for i in ids.values()):
-        return model.root_placements()
-    return {leg: pinocchio.jointPlacements[i] for leg, i in ids.items()}
 
 
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:

@@ -9,18 +9,20 @@ the limits of :mod:`hexaleg.gait.limits` and the study's columns all walk throug
 
 from __future__ import annotations
 
-import copy
 from dataclasses import dataclass
 
 import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution, require_choice
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.dynamics import (
+    CarriedLoad,
     ForceSplit,
     GeneralizedForces,
     LoadedRobot,
+    carried_load,
     min_norm_split,
+    min_norm_split_carrying,
     min_torque_split,
 )
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
@@ -75,6 +77,10 @@ class Walker:
         safety_factor: F ≥ 1 [-]: every peak torque and joint speed is held within its
             rating / F (:meth:`rated`).
 
+    The gait's own stride is walked once and its min-norm loads computed once (every
+    analysis of the walker shares them); they hold for this walker's ground, payload and
+    g, which are read-only: another ground is another walker.
+
     """
 
     def __init__(
@@ -88,25 +94,79 @@ class Walker:
         safety_factor: float = 1.0,
     ) -> None:
         require_choice("distribution", distribution, Distribution)
-        self.model = model
-        self.gait = gait
-        self.payload = payload or Payload()
-        self.distribution = distribution
-        self.ground = ground
-        self.friction = ground.friction
-        self.gravity = check_gravity(gravity)
-        self.safety_factor = check_safety_factor(safety_factor)
+        self._model = model
+        self._gait = gait
+        self._payload = payload or Payload()
+        self._distribution: Distribution = distribution
+        self._ground = ground
+        self._gravity = check_gravity(gravity)
+        self._safety_factor = check_safety_factor(safety_factor)
         self.frames = LegFrames.from_model(model)
         self.bounds = JointBounds.from_model(model)
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
         self.shapes: PathShapes = path_shapes(self.phases)
         self._robot: LoadedRobot | None = None
+        self._own: Stride | None = None  # the gait's own stride, walked once
+        self._own_loads: Loads | None = None  # its min-norm loads, computed once
 
     def carrying(self, payload: Payload) -> Walker:
-        """The same walker with another payload (frames, bounds and phases shared)."""
-        other = copy.copy(self)
-        other.payload, other._robot = payload, None
-        return other
+        """The same robot walking the same gait on the same ground with another payload.
+
+        A new walker (its own walk and loads, none of this one's): what it walks on, how
+        it splits the load, g and F are this one's.
+        """
+        return Walker(
+            self.model,
+            self.gait,
+            payload,
+            self.distribution,
+            self.ground,
+            self.gravity,
+            self.safety_factor,
+        )
+
+    # What the walk's caches depend on is read-only: another ground, payload, split, g
+    # or F is another walker (:meth:`carrying`), never a cached walk or load of this one.
+
+    @property
+    def model(self) -> HexapodModel:
+        """The robot's Pinocchio model."""
+        return self._model
+
+    @property
+    def gait(self) -> Gait:
+        """The gait walked."""
+        return self._gait
+
+    @property
+    def payload(self) -> Payload:
+        """The point mass on the body."""
+        return self._payload
+
+    @property
+    def distribution(self) -> Distribution:
+        """How the standing feet share the load."""
+        return self._distribution
+
+    @property
+    def ground(self) -> Ground:
+        """The ground walked on: its slope and friction."""
+        return self._ground
+
+    @property
+    def friction(self) -> float:
+        """The ground's friction coefficient μ [-]."""
+        return self._ground.friction
+
+    @property
+    def gravity(self) -> float:
+        """Gravitational acceleration g [m/s²]."""
+        return self._gravity
+
+    @property
+    def safety_factor(self) -> float:
+        """F ≥ 1 [-]: peak torques and joint speeds held within rating / F."""
+        return self._safety_factor
 
     @property
     def gravity_vector(self) -> ArrayF:
@@ -126,14 +186,22 @@ class Walker:
         return np.array([np.cos(self.gait.heading), np.sin(self.gait.heading), 0.0])
 
     def stride(self, stride: float) -> Stride:
-        """The paths, joint motion and violations of stride S [m]."""
+        """The paths, joint motion and violations of stride S [m].
+
+        The gait's own stride is walked once: every analysis of it shares that walk.
+        """
+        if stride == self.gait.stride and self._own is not None:
+            return self._own
         paths = foot_paths(
             self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
         )
         motion = joint_motion(self.frames, paths)
         margins = self.margins(motion.angles, motion.reach)
         found = violations(margins, self.frames.legs, self.times(self.gait.period))
-        return Stride(paths, motion, found)
+        walk = Stride(paths, motion, found)
+        if stride == self.gait.stride:
+            self._own = walk
+        return walk
 
     def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
@@ -155,9 +223,16 @@ class Walker:
         """RNEA along the period and the feet's forces (min-torque: at period T [s]).
 
         ``rnea``, the stride's generalized forces if already computed (they do not depend
-        on the period), saves the inverse dynamics.
+        on the period), saves the inverse dynamics. The gait's own stride's min-norm loads
+        (any period) are computed once.
         """
-        rnea = self.generalized_forces(stride, walk) if rnea is None else rnea
+        shared = walk is self._own and self.distribution == "min-norm"
+        known = self._own_loads
+        if shared and known is not None and (rnea is None or rnea is known.rnea):
+            return known
+        if rnea is None:
+            travel = stride / self.phases.duty_factor * self.heading
+            rnea = self.robot.generalized_forces(walk.motion, travel)
         position = walk.paths.position
         if self.distribution == "min-norm":
             split = min_norm_split(
@@ -174,18 +249,50 @@ class Walker:
                 period,
                 self.friction,
             )
-        return Loads(rnea, split)
+        found = Loads(rnea, split)
+        if shared and self._own_loads is None:
+            self._own_loads = found
+        return found
 
-    def generalized_forces(
-        self, stride: float, walk: Stride, inertial: ArrayF | None = None
-    ) -> GeneralizedForces:
+    def own_loads_carrying(self, wrench: ArrayF) -> tuple[Loads, CarriedLoad]:
+        """The gait's own stride's min-norm loads and what a wrench adds, in one solve.
+
+        What the wrench (6,) [N, N·m], constant on the base's rows (a payload's, on this
+        walker's ground: :func:`~hexaleg.gait.dynamics.payload_wrench` of
+        :attr:`gravity_vector`), adds is the feet's forces and the joint torques
+        (N, 6, 3). The loads are the ones :meth:`loads` then shares.
+
+        Raises:
+            ParameterError: The walker splits the load otherwise than min-norm.
+
+        """
+        if self.distribution != "min-norm":
+            raise ParameterError(
+                "distribution", self.distribution, "'min-norm': a wrench's torques are its"
+            )
+        walk, known = self.stride(self.gait.stride), self._own_loads
+        if known is not None:
+            loads = self.loads(self.gait.stride, walk, self.gait.period)
+            position, motion = walk.paths.position, walk.motion
+            return loads, carried_load(self.frames, self.phases, position, motion, wrench)
+        travel = self.gait.stride / self.phases.duty_factor * self.heading
+        rnea = self.robot.generalized_forces(walk.motion, travel)
+        split, carried = min_norm_split_carrying(
+            self.model, self.frames, self.phases, walk.paths.position, walk.motion, rnea, wrench
+        )
+        assert carried is not None  # a wrench was given
+        self._own_loads = Loads(rnea, split)
+        return self._own_loads, carried
+
+    def generalized_forces(self, stride: float, walk: Stride) -> GeneralizedForces:
         """RNEA along the period of stride S [m], as static + inertial/T² (any period).
 
-        ``inertial``: the inertial part of another payload's walk of the same stride (the
-        payload changes only the static part: :meth:`LoadedRobot.generalized_forces`).
+        The gait's own stride's are computed once (for its walk from :meth:`stride`).
         """
+        if walk is self._own and self.distribution == "min-norm":
+            return self.loads(stride, walk, self.gait.period).rnea
         travel = stride / self.phases.duty_factor * self.heading
-        return self.robot.generalized_forces(walk.motion, travel, inertial)
+        return self.robot.generalized_forces(walk.motion, travel)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
         """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F.

@@ -24,10 +24,10 @@ __all__ = [
 __getattr__, __dir__ = lazy_exports(__name__)
 
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
+    from hexaleg.robot.leg_model import LegModel
     from hexaleg.robot.model import (
         LEG_JOINTS,
         HexapodModel,
-        LegModel,
         foot_frame_name,
         joint_name,
         root_frame_name,

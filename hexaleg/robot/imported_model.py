@@ -60,6 +60,10 @@ PREFIX = "hexaleg_"
 BODY_LINK = PREFIX + "body"
 """The link added as the body frame of an imported robot's model."""
 
+CONTACT_RADIUS = 0.005
+"""The sphere each foot point touches the ground with in a simulation [m]: small beside a
+robot's legs, so that the contact is where the file's foot point is."""
+
 
 def imported_model_urdf(robot: ImportedRobot, design: HexapodDesign) -> str:
     """The robot's URDF with its feet, a body link at ``design``'s body frame, leg-root frames.
@@ -186,16 +190,24 @@ class ImportedHexapodModel(HexapodModel):
         robot: The imported robot.
         base: The design its numbers go over (:func:`robot_design`); the default design's
             if omitted.
+        design: ``robot``'s design over ``base``, if already made (:func:`imported_design`).
+
+    A continuous leg joint is analysed as a revolute one over :data:`CONTINUOUS_RANGE`
+    (every angle once); legs of different segments each by their own general leg.
 
     Raises:
-        RobotImportError: The nominal posture does not put the feet level. A continuous
-            leg joint is analysed as a revolute one over :data:`CONTINUOUS_RANGE` (every
-            angle once); legs of different segments each by their own general leg.
+        RobotImportError: No posture stands within the file's limits
+            (:func:`~hexaleg.robot.standing.standing_posture`, naming what breaks).
 
     """
 
-    def __init__(self, robot: ImportedRobot, base: HexapodDesign | None = None) -> None:
-        design = _design(robot, base)
+    def __init__(
+        self,
+        robot: ImportedRobot,
+        base: HexapodDesign | None = None,
+        design: HexapodDesign | None = None,
+    ) -> None:
+        design = imported_design(robot, base) if design is None else design
         self.robot = robot
         self._text = imported_model_urdf(robot, design)
         try:
@@ -210,18 +222,77 @@ class ImportedHexapodModel(HexapodModel):
         self._maps = {leg.name: leg.reading.joint_map for leg in robot.legs}
         standing = standing_posture(robot, design.nominal_angles, body_depth(robot))
         self._nominal = dict(zip(robot.leg_names, standing.angles, strict=True))
-        self._height = self._standing_height()
+        self._feet = self.foot_positions(self.configuration(pin.SE3.Identity()))[:, 2]
         self._geometry = {leg.name: leg.reading.geometry for leg in robot.legs}
         shape = robot.body_shape
         box = [design.body_length, design.body_width, design.body_height]
         self.body_box = np.array(box) / 2 if shape is None else shape.half_extents.copy()
 
-    general_legs = True
-    own_default_gait = True  # a robot file's: the template's gait is a 1 m leg's
-
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg, as read from the file."""
         return self._geometry[self._leg(leg).name]
+
+    @property
+    def own_legs(self) -> dict[str, LegGeometry]:
+        """Each leg's general leg as the file draws it (offsets, bends), by name."""
+        return {name: self._geometry[name] for name in self.leg_names}
+
+    @property
+    def stance_limits(self) -> None:
+        """None: each leg's own file limits hold it standing as they hold it swinging."""
+        return None
+
+    @property
+    def own_default_gait(self) -> bool:
+        """True: the template's default gait is a 1 m leg's; a robot file walks one sized to it."""
+        return True
+
+    @property
+    def design_links(self) -> bool:
+        """False: a robot file's links are its file's (a ``[structure]`` describes none)."""
+        return False
+
+    @property
+    def mirror_symmetric(self) -> bool:
+        """False: a robot file's parts may not be drawn mirror-symmetric."""
+        return False
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the robot [kg]: Pinocchio's total of the file's links (its design's none)."""
+        return float(pin.computeTotalMass(self.model))
+
+    @property
+    def body_mass(self) -> float:
+        """Mass of the body's links in the file [kg] (a placeholder's, if the file has one)."""
+        return float(self.robot.body_mass.mass)
+
+    @property
+    def nominal_footholds(self) -> ArrayF:
+        """Every foot at the nominal posture, body frame at the origin (6, 3) [m]."""
+        return self.foot_positions(self.configuration(pin.SE3.Identity()))
+
+    def contact_radius(self, leg: str) -> float:
+        """:data:`CONTACT_RADIUS` [m]: the file's feet draw no sphere hexaleg reads."""
+        self._leg(leg)
+        return CONTACT_RADIUS
+
+    @property
+    def simulation_draws_links(self) -> bool:
+        """False: the simulated file has no shapes but its feet (:attr:`simulation_urdf`)."""
+        return False
+
+    @property
+    def simulation_urdf(self) -> str:
+        """The URDF without its links' shapes (masses and joints kept): only the feet touch.
+
+        A file's meshes would need their files and make poor contact shapes.
+        """
+        tree = ET.fromstring(self._text)
+        for link in tree.iter("link"):
+            for shape in link.findall("visual") + link.findall("collision"):
+                link.remove(shape)
+        return ET.tostring(tree, encoding="unicode")
 
     @property
     def urdf(self) -> str:
@@ -310,21 +381,32 @@ class ImportedHexapodModel(HexapodModel):
         return self._maps[self._leg(leg).name].theta_bounds(lower, upper)
 
     def nominal_base_pose(self) -> pin.SE3:
-        """The body level, at the height that puts the feet on the ground (their mean)."""
-        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self._height]))
+        """The body level, at the height that puts the feet on the ground (their mean).
 
-    def _standing_height(self) -> float:
-        feet = self.foot_positions(self.configuration(pin.SE3.Identity()))[:, 2]
-        if feet.max() - feet.min() > LEVEL_FEET:
+        Raises:
+            RobotImportError: The nominal posture does not put the feet level: the robot
+                cannot stand as the analyses stand it.
+
+        """
+        spread = self._feet.max() - self._feet.min()
+        if spread > LEVEL_FEET:
             raise RobotImportError(
-                f"the nominal posture puts the feet {1000 * (feet.max() - feet.min()):.1f} mm "
-                f"apart in height (at most {1000 * LEVEL_FEET:g} mm): the legs do not stand level"
+                f"the nominal posture puts the feet {1000 * spread:.1f} mm apart in height "
+                f"(at most {1000 * LEVEL_FEET:g} mm): the legs do not stand level"
             )
-        return float(-feet.mean())
+        return pin.SE3(np.eye(3), np.array([0.0, 0.0, self.nominal_height]))
+
+    @property
+    def nominal_height(self) -> float:
+        """The body's height that puts the feet, on average, on the ground [m]."""
+        return float(-self._feet.mean())
 
 
-def _design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
-    """:func:`robot_design`, saying that a placeholder body's mass is the file's here."""
+def imported_design(robot: ImportedRobot, base: HexapodDesign | None) -> HexapodDesign:
+    """The design of ``robot`` over ``base`` (:func:`robot_design`), its warnings shown.
+
+    A placeholder body's mass is said to be the file's here: the model weighs the file's.
+    """
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
         design = robot_design(robot, base)

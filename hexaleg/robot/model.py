@@ -1,13 +1,14 @@
-"""Pinocchio models built from the rendered URDF.
+"""The hexapod's Pinocchio model, built from the rendered URDF.
 
 :class:`HexapodModel` is the free-flyer hexapod (root joint :data:`ROOT_JOINT`,
-configuration ``[x, y, z, qx, qy, qz, qw, legs…]``); :class:`LegModel` is one
-leg on a fixed base whose world frame is the leg-root frame of eq 7. Frames,
-joint axes and limits are read from the model, never re-typed here.
+configuration ``[x, y, z, qx, qy, qz, qw, legs…]``); one leg on a fixed base is
+:class:`~hexaleg.robot.leg_model.LegModel`. Frames, joint axes and limits are read from
+the model, never re-typed here.
 """
 
 from __future__ import annotations
 
+import xml.etree.ElementTree as ET
 from collections.abc import Iterable, Mapping
 from dataclasses import fields
 
@@ -19,7 +20,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ModelError
 from hexaleg.leg_geometry import LegGeometry
-from hexaleg.limits import LEG_JOINTS
+from hexaleg.limits import LEG_JOINTS, JointLimits
 from hexaleg.ratings import as_written
 from hexaleg.robot.inertia import (
     body_inertial,
@@ -27,7 +28,7 @@ from hexaleg.robot.inertia import (
     pinocchio_inertia,
     set_armature,
 )
-from hexaleg.robot.urdf import SINGLE_LEG_NAME, render_hexapod, render_leg
+from hexaleg.robot.urdf import render_hexapod
 
 ROOT_JOINT = "root_joint"
 """Name of the free-flyer joint that carries the body (the simulators' free joint too)."""
@@ -76,57 +77,6 @@ BASE_FRAME = "base_link"
 """The body's frame in hexaleg's URDF (the free flyer's)."""
 
 
-class LegModel:
-    """One leg on a fixed base, as Pinocchio sees it.
-
-    Attributes:
-        design: The design the model was built from.
-        urdf: The rendered URDF text.
-        model: The Pinocchio model (nq = nv = 3, q = (θ1, θ2, θ3) [rad]).
-        data: Pinocchio workspace for ``model``.
-
-    """
-
-    def __init__(self, design: HexapodDesign) -> None:
-        self.design = design
-        self.urdf = render_leg(design)
-        self.model = pin.buildModelFromXML(self.urdf)
-        self._leg = _LegIndex(self.model, SINGLE_LEG_NAME)
-        set_armature(self.model, [self._leg.v], design)
-        self.data = self.model.createData()
-        if self.model.nq != 3 or list(self._leg.q) != [0, 1, 2]:
-            raise ModelError(f"single-leg model has nq = {self.model.nq}, expected 3 in leg order")
-
-    @property
-    def joint_lower(self) -> ArrayF:
-        """Joint lower limits read from the URDF (θ1, θ2, θ3) [rad]."""
-        return self._leg.lower
-
-    @property
-    def joint_upper(self) -> ArrayF:
-        """Joint upper limits read from the URDF (θ1, θ2, θ3) [rad]."""
-        return self._leg.upper
-
-    def foot_position(self, theta: npt.ArrayLike) -> ArrayF:
-        """Foot position in the leg-root frame [m] at joint angles θ (3,) [rad]."""
-        q = np.asarray(theta, dtype=float)
-        pin.framesForwardKinematics(self.model, self.data, q)
-        return self.data.oMf[self._leg.foot_frame].translation.copy()
-
-    def foot_jacobian(self, theta: npt.ArrayLike) -> ArrayF:
-        """Foot linear-velocity Jacobian dp/dθ (3, 3) in the leg-root frame [m/rad]."""
-        q = np.asarray(theta, dtype=float)
-        jac = pin.computeFrameJacobian(
-            self.model, self.data, q, self._leg.foot_frame, pin.LOCAL_WORLD_ALIGNED
-        )
-        return jac[:3].copy()
-
-    def foot_positions(self, thetas: npt.ArrayLike) -> ArrayF:
-        """Foot positions (N, 3) [m] for joint angles (N, 3) [rad], one Pinocchio call each."""
-        thetas = np.asarray(thetas, dtype=float).reshape(-1, 3)
-        return np.array([self.foot_position(t) for t in thetas])
-
-
 DERIVED_FIELDS = frozenset(
     "l1 l2 l3 rated_torques rated_speeds nominal_angles actuators battery structure".split()
 )
@@ -168,13 +118,105 @@ class HexapodModel:
         self.body_box: ArrayF | None = None  # None: the body's collision shape is the URDF's
         self._collision: pin.GeometryModel | None = None
 
-    general_legs = False  # whether the legs are a robot file's (:meth:`leg_geometry`)
-    own_default_gait = False  # a default gait sized to it (:mod:`hexaleg.gait.defaults`)
-
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
         self._leg(leg)
         return LegGeometry.from_lengths(self.design.lengths)
+
+    # -- what the robot is, as the analyses ask it ------------------------------------------
+
+    @property
+    def own_legs(self) -> dict[str, LegGeometry] | None:
+        """Each leg's own general leg, by name, where the legs are not the design's.
+
+        ``None`` here: every leg is the paper's leg of the design's l1, l2, l3 within its
+        stance limits, so the closed forms on the design's lengths hold for every leg
+        (a robot file's legs are each their own: offsets and bends as drawn, its limits).
+        """
+        return None
+
+    @property
+    def stance_limits(self) -> JointLimits | None:
+        """The limits that hold a standing leg over the URDF's: the design's (§6).
+
+        ``None`` where each leg's own joint limits hold it standing too (a robot file's).
+        """
+        return self.design.stance_limits
+
+    @property
+    def own_default_gait(self) -> bool:
+        """Whether its default gait is sized to it (:mod:`hexaleg.gait.defaults`).
+
+        False here: :class:`~hexaleg.gait.spec.Gait`'s defaults are the template's, sized
+        for the paper's 1 m leg.
+        """
+        return False
+
+    @property
+    def design_links(self) -> bool:
+        """Whether its leg links are built from the design (segments, ``[structure]`` tubes).
+
+        True here: the template renders each segment's link from the design, a tube of
+        its ``[structure]`` included, each along x of its joint's frame.
+        """
+        return True
+
+    @property
+    def mirror_symmetric(self) -> bool:
+        """Whether the robot is drawn mirror-symmetric left to right, as the templates are.
+
+        The self-collision search then checks one side's pairs and mirrors them.
+        """
+        return True
+
+    @property
+    def total_mass(self) -> float:
+        """Mass of the whole robot [kg]: the design's, which the rendered URDF carries."""
+        return self.design.total_mass
+
+    @property
+    def body_mass(self) -> float:
+        """Mass of the body alone [kg]: the design's."""
+        return self.design.body_mass
+
+    @property
+    def nominal_height(self) -> float:
+        """Height of the body frame above the ground at the nominal stance [m]."""
+        return float(self.nominal_base_pose().translation[2])
+
+    @property
+    def nominal_footholds(self) -> ArrayF:
+        """Every foot at the nominal stance, body frame at the origin (6, 3) [m]."""
+        return self.design.nominal_footholds
+
+    @property
+    def missing_meshes(self) -> tuple[str, ...]:
+        """Visual mesh references whose files were not found: none, the templates draw none."""
+        return ()
+
+    def missing_meshes_note(self, what: str) -> str | None:
+        """One sentence on the visual meshes not found (``what`` that means); ``None``: none."""
+        return None
+
+    def contact_radius(self, leg: str) -> float:
+        """Radius of the sphere ``leg``'s foot touches the ground with [m]: the URDF's foot's."""
+        link = ET.fromstring(self.urdf).find(
+            f"link[@name='{foot_frame_name(self._leg(leg).name)}']"
+        )
+        sphere = None if link is None else link.find("visual/geometry/sphere")
+        if sphere is None:
+            raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
+        return float(sphere.attrib["radius"])
+
+    @property
+    def simulation_urdf(self) -> str:
+        """The URDF a physics simulator loads: this one, its primitive shapes touching."""
+        return self.urdf
+
+    @property
+    def simulation_draws_links(self) -> bool:
+        """Whether the simulated robot has its links' shapes, so that a render shows it."""
+        return True
 
     @property
     def data(self) -> pin.Data:
@@ -358,10 +400,26 @@ class HexapodModel:
         return np.array(chains)
 
     def root_placements(self) -> dict[str, pin.SE3]:
-        """Placement of every leg-root frame in the body frame, read from the model."""
+        """Placement of every leg-root frame in the body frame, read from the model.
+
+        Read without kinematics where each leg-root frame is its root joint's own and that
+        joint hangs on the free flyer, as the templates build them (a study's designs then
+        need no Pinocchio data).
+        """
+        joints = {leg: self._legs[leg].joints[0] for leg in self.leg_names}
+        if all(self._root_on_flyer(leg) for leg in self.leg_names):
+            return {leg: pin.SE3(self.model.jointPlacements[j]) for leg, j in joints.items()}
         pin.framesForwardKinematics(self.model, self.data, pin.neutral(self.model))
         base_inv = self.data.oMf[self.base_frame].inverse()
         return {leg: base_inv * self.data.oMf[self._legs[leg].root_frame] for leg in self.leg_names}
+
+    def _root_on_flyer(self, leg: str) -> bool:
+        """Whether ``leg``'s root frame is its root joint's own, on the free-flyer joint."""
+        index = self._legs[leg]
+        frame, joint = self.model.frames[index.root_frame], index.joints[0]
+        on_flyer = self.model.parents[joint] == self.model.getJointId(ROOT_JOINT)
+        own = frame.parentJoint == joint and frame.placement.isIdentity()
+        return bool(on_flyer and own)
 
     def foot_jacobian(self, q: npt.ArrayLike, leg: str) -> ArrayF:
         """dp/dv (3, nv) of the foot of ``leg`` in world axes (LOCAL_WORLD_ALIGNED) [m]."""

@@ -1,4 +1,8 @@
-"""Running a :class:`~hexaleg.sim.model.SimModel`: its start state, and what the feet feel."""
+"""Running a :class:`~hexaleg.sim.model.SimModel`: its start, its feet, whether it diverged.
+
+What the feet feel is the floor's contact force on each; a run has diverged when its
+state no longer means anything (:func:`divergence`).
+"""
 
 from __future__ import annotations
 
@@ -19,6 +23,29 @@ def start(sim: SimModel, q: npt.ArrayLike) -> Any:
     data.qpos[:] = sim.qpos_of(q)
     mujoco.mj_forward(sim.mj, data)
     return data
+
+
+DIVERGED_SPEED = 100.0
+"""A body or joint faster than this [m/s or rad/s] is a simulation blowing up, not a walk."""
+
+
+def divergence(sim: SimModel, data: Any, floor: float) -> str:
+    """Why the run has diverged (empty if it has not): its state no longer means anything.
+
+    MuJoCo found NaN, infinite or huge accelerations (it then resets the state, and every
+    measure after is of another run); a coordinate's speed not finite or beyond
+    :data:`DIVERGED_SPEED`; or the body below ``floor`` [m], far through the ground.
+    """
+    mujoco = require_mujoco()
+    if data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number:
+        return "MuJoCo's accelerations became NaN, infinite or huge (the simulation is unstable)"
+    fastest = float(np.abs(data.qvel).max())
+    if not fastest <= DIVERGED_SPEED:
+        return f"a speed of {fastest:.3g} (m/s or rad/s) beyond {DIVERGED_SPEED:g}: it blew up"
+    height = float(data.xpos[sim.base][2])
+    if not height >= floor:
+        return f"the body fell through the ground to z = {height:.3g} m"
+    return ""
 
 
 def foot_forces(sim: SimModel, data: Any) -> ArrayF:

@@ -1,47 +1,29 @@
 """The feet in MuJoCo: each foot's contact sphere, how big, on which body; the model's names.
 
-hexaleg's URDF draws each foot as a sphere (:func:`foot_radius`); an imported robot's file
-draws none hexaleg reads, so each of its feet gets a sphere of :data:`IMPORTED_FOOT_RADIUS`.
-The sphere is centred on the foot frame and carried by the first body up from it with a
-mass or a joint (:func:`contact_body`): hexaleg's feet on a robot file are massless links,
-and MuJoCo scales a contact's impedance by its body's weight, so on a massless body the
-floor would be far softer than its contact parameters say. The bodies and joints are named
-as the Pinocchio model names them (:func:`frame_name`, :func:`leg_joint_names`): the same URDF.
+Each foot touches the floor with a sphere the model gives
+(:meth:`~hexaleg.robot.model.HexapodModel.contact_radius`: the URDF's own foot sphere, or a
+small one at a robot file's foot point). The sphere is centred on the foot frame and
+carried by the first body up from it with a mass or a joint (:func:`contact_body`):
+hexaleg's feet on a robot file are massless links, and MuJoCo scales a contact's impedance
+by its body's weight, so on a massless body the floor would be far softer than its contact
+parameters say. The bodies and joints are named as the Pinocchio model names them
+(:func:`frame_name`, :func:`leg_joint_names`): the same URDF.
 """
 
 from __future__ import annotations
 
-import xml.etree.ElementTree as ET
 from typing import Any
 
 import numpy as np
 
 from hexaleg._typing import ArrayF
-from hexaleg.exceptions import ModelError
-from hexaleg.robot.model import HexapodModel, foot_frame_name
+from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
-
-IMPORTED_FOOT_RADIUS = 0.005
-"""An imported robot's contact sphere at each foot point [m]."""
 
 
 def contact_geom_name(leg: str) -> str:
     """Name of the contact sphere of ``leg``'s foot."""
     return f"{leg}_foot_contact"
-
-
-def foot_radius(urdf: str, leg: str) -> float:
-    """Radius of the sphere the URDF draws as ``leg``'s foot [m]."""
-    link = ET.fromstring(urdf).find(f"link[@name='{foot_frame_name(leg)}']")
-    sphere = None if link is None else link.find("visual/geometry/sphere")
-    if sphere is None:
-        raise ModelError(f"the URDF has no foot sphere for leg {leg!r}")
-    return float(sphere.attrib["radius"])
-
-
-def contact_radius(model: HexapodModel, leg: str) -> float:
-    """Radius of ``leg``'s contact sphere [m]: its URDF foot's, an imported robot's constant."""
-    return IMPORTED_FOOT_RADIUS if model.general_legs else foot_radius(model.urdf, leg)
 
 
 def contact_body(body: Any) -> tuple[Any, ArrayF]:

@@ -13,6 +13,11 @@ rest does not count; a fall counts wherever it happens.
 - tracking RMS: root mean square of q_ref − q over every leg joint and step [rad];
 - slip: the largest horizontal distance a planned standing foot moves from where it
   stood when its stance began, over every stance interval [m];
+- internal force: the largest force on a standing foot that the other standing feet's
+  forces cancel — the feet pushed against (or away from) each other: each step's forces
+  less the least forces giving the same resultant force and moment [N], over the steps
+  where the feet touching the ground are the plan's standing feet (the plan's forces are
+  the least ones: its internal force is zero);
 - peak torque: the largest |τ| any servo applies, per joint type [N·m];
 - over rating: each servo whose largest |τ| exceeds its rated torque, with when it peaks
   (:mod:`hexaleg.statics.ratings`, as ``loads`` and ``gait`` flag them).
@@ -23,6 +28,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import numpy.typing as npt
@@ -31,6 +37,7 @@ from scipy.spatial.transform import Rotation
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import HexalegError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.statics.forces import equilibrium
 from hexaleg.statics.ratings import OverRating, at_times, over_rating_at
 
 FALL_TILT = math.radians(30.0)
@@ -52,6 +59,7 @@ class Trace:
         joint_torques: Servo torques (K, L, 3) [N·m].
         foot_positions: Foot frame origins (K, L, 3), world frame [m].
         standing: Whether the plan has each foot standing (K, L).
+        foot_forces: The floor's force on each foot (K, L, 3), world frame [N], if recorded.
 
     """
 
@@ -63,6 +71,7 @@ class Trace:
     joint_torques: ArrayF
     foot_positions: ArrayF
     standing: npt.NDArray[np.bool_]
+    foot_forces: ArrayF | None = None
 
     def window(self, start: float) -> Trace:
         """The rows from time ``start`` [s] on."""
@@ -70,7 +79,11 @@ class Trace:
 
     def rows(self, index: slice | npt.NDArray[np.bool_]) -> Trace:
         """The rows ``index`` selects (a slice or a mask over the steps)."""
-        return Trace(*(getattr(self, name)[index] for name in self.__dataclass_fields__))
+        picked: dict[str, Any] = {}
+        for name in self.__dataclass_fields__:
+            value = getattr(self, name)
+            picked[name] = None if value is None else value[index]
+        return Trace(**picked)
 
 
 @dataclass(frozen=True)
@@ -89,6 +102,8 @@ class WalkMetrics:
         peak_torque: Largest |τ| per joint type (root, hip, knee) [N·m].
         over_rating: Each servo whose largest |τ| exceeds its rated torque, leg then
             joint order, with the time of its peak.
+        internal_force: Largest internal force between the standing feet [N] (NaN if
+            the floor's forces were not recorded).
 
     """
 
@@ -102,6 +117,7 @@ class WalkMetrics:
     slip: float
     peak_torque: dict[str, float]
     over_rating: tuple[OverRating, ...]
+    internal_force: float = math.nan
 
     @property
     def max_tilt(self) -> float:
@@ -168,6 +184,39 @@ def _slip_part(xy: ArrayF, standing: npt.NDArray[np.bool_], anchor: ArrayF) -> t
     moved = np.where(stands, np.linalg.norm(xy - start, axis=-1), 0.0)
     worst = float(moved.max(initial=0.0))
     return worst, np.where(stands[-1][:, None], start[-1], np.nan)
+
+
+def internal_forces(forces: npt.ArrayLike, feet: npt.ArrayLike, standing: npt.ArrayLike) -> ArrayF:
+    """The largest internal force between the standing feet at each step (K,) [N].
+
+    At each step where the feet touching the ground are the plan's standing feet (not
+    while a lifting foot still touches or a landing one already does: the load is then
+    handed over, as the plan does in no time), their forces less the least-norm forces
+    with the same resultant force and moment (the pseudo-inverse of the equilibrium rows,
+    about the feet's centre): what is left sums to zero — the feet pushing on each other
+    through the ground. Other steps, and a foot standing alone: zero.
+
+    Args:
+        forces: The floor's force on each foot (K, L, 3) [N] (zero: not touching).
+        feet: Where each foot is (K, L, 3) [m], in the same frame.
+        standing: Whether the plan has each foot standing (K, L).
+
+    """
+    forces, feet = np.asarray(forces, dtype=float), np.asarray(feet, dtype=float)
+    touching = np.linalg.norm(forces, axis=-1) > 0
+    touching[(touching != np.asarray(standing, dtype=bool)).any(axis=1)] = False
+    found = np.zeros(len(forces))
+    for mask in np.unique(touching, axis=0):
+        rows, count = np.all(touching == mask, axis=1), int(mask.sum())
+        if count < 2:
+            continue
+        at = feet[rows][:, mask]
+        rows_a, _ = equilibrium(at, at.mean(axis=1), 0.0, np.zeros(3))  # (K, 6, 3n)
+        flat = forces[rows][:, mask].reshape(len(at), -1)
+        resultant = np.einsum("kij,kj->ki", rows_a, flat)
+        least = np.einsum("kij,kj->ki", np.linalg.pinv(rows_a), resultant)
+        found[rows] = np.linalg.norm((flat - least).reshape(len(at), count, 3), axis=-1).max(1)
+    return found
 
 
 def peak_torques(torques: npt.ArrayLike) -> dict[str, float]:
@@ -237,6 +286,7 @@ class WalkMeter:
         self._anchor = np.full((len(self._legs), 2), np.nan)
         self._peaks = np.full((len(self._legs), 3), -math.inf)
         self._peak_times = np.zeros((len(self._legs), 3))
+        self._internal = math.nan
 
     def add(self, part: Trace) -> None:
         """Measure the next part of the run (its rows follow the previous part's)."""
@@ -265,6 +315,11 @@ class WalkMeter:
         higher = peaks > self._peaks
         self._peaks = np.where(higher, peaks, self._peaks)
         self._peak_times = np.where(higher, measured.time[worst], self._peak_times)
+        if measured.foot_forces is not None:
+            found = internal_forces(
+                measured.foot_forces, measured.foot_positions, measured.standing
+            )
+            self._internal = float(np.fmax(self._internal, found.max()))
 
     def metrics(self, cycles: int) -> WalkMetrics:
         """The measures of the run added so far, ``cycles`` periods long."""
@@ -282,4 +337,5 @@ class WalkMeter:
             slip=self._slip,
             peak_torque=peak_torques(self._peaks),
             over_rating=over_rating_at(self._legs, self._peaks, self._rated, where),
+            internal_force=self._internal,
         )

@@ -20,18 +20,17 @@ URDF's mass and inertia) and adds what a URDF does not say:
 Only the feet touch the floor and the robot does not collide with itself: contacts
 between the leg links are the collision analysis' business (:mod:`hexaleg.stance.collisions`).
 
-An imported robot (:class:`~hexaleg.robot.imported_model.ImportedHexapodModel`) is its
-model's URDF — the file's links, masses, inertias and joints, the free joint on the body
-link hexaleg adds — without the file's visual and collision shapes (meshes MuJoCo would
-have to find; only the feet touch the floor), each foot a sphere on its foot point
-(:mod:`.feet`). Its servos act on the file's joints: the plan's angles, rates and torques
-on hexaleg's θ are mapped by q = s·θ + o, and what the servos measure is mapped back.
+The URDF loaded is the model's :attr:`~hexaleg.robot.model.HexapodModel.simulation_urdf`:
+a robot file's is its links, masses, inertias and joints without the file's visual and
+collision shapes (meshes MuJoCo would have to find; only the feet touch the floor), each
+foot a sphere on its foot point (:mod:`.feet`). The servos act on the model's own joints:
+the plan's angles, rates and torques on hexaleg's θ are mapped by the model's
+q = s·θ + o (the identity on the templates), and what the servos measure is mapped back.
 """
 
 from __future__ import annotations
 
 import math
-import xml.etree.ElementTree as ET
 from dataclasses import dataclass
 from typing import Any
 
@@ -49,7 +48,6 @@ from hexaleg.sim._mujoco import compiled, refusal, require_mujoco
 from hexaleg.sim.feet import (
     contact_body,
     contact_geom_name,
-    contact_radius,
     frame_name,
     leg_joint_names,
 )
@@ -164,15 +162,6 @@ def reflected_inertia(model: HexapodModel, carried: float | None = None) -> Arra
     return np.asarray(inertia.max(axis=0), dtype=float)
 
 
-def without_shapes(urdf: str) -> str:
-    """The URDF text without its links' visual and collision shapes (masses and joints kept)."""
-    tree = ET.fromstring(urdf)
-    for link in tree.iter("link"):
-        for shape in link.findall("visual") + link.findall("collision"):
-            link.remove(shape)
-    return ET.tostring(tree, encoding="unicode")
-
-
 def robot_spec(
     model: HexapodModel,
     payload: Payload | None = None,
@@ -194,8 +183,7 @@ def robot_spec(
     check_friction(friction)
     require_in_range("timestep", timestep, 1e-5, 1e-2, "s")
     gains = ServoGains.from_bandwidth(model) if gains is None else gains
-    urdf = without_shapes(model.urdf) if model.general_legs else model.urdf
-    spec = _parsed(mujoco, urdf)
+    spec = _parsed(mujoco, model.simulation_urdf)
     spec.compiler.fusestatic = False  # keep every link (the feet) as its own body
     spec.option.timestep = timestep
     spec.option.gravity = [0.0, 0.0, -GRAVITY]
@@ -205,7 +193,7 @@ def robot_spec(
     base.add_freejoint(name=ROOT_JOINT)
     for geom in spec.geoms:  # the URDF's collision shapes: touch the floor, not each other
         geom.contype, geom.conaffinity = ROBOT_CONTACT, 0
-    radius = contact_radius(model, model.leg_names[0])
+    radius = model.contact_radius(model.leg_names[0])
     spec.worldbody.add_geom(
         name=FLOOR,
         type=mujoco.mjtGeom.mjGEOM_PLANE,
@@ -220,7 +208,7 @@ def robot_spec(
         body.add_geom(
             name=contact_geom_name(leg),
             type=mujoco.mjtGeom.mjGEOM_SPHERE,
-            size=[contact_radius(model, leg), 0.0, 0.0],
+            size=[model.contact_radius(leg), 0.0, 0.0],
             pos=at.tolist(),
             contype=ROBOT_CONTACT,
             conaffinity=0,

@@ -26,14 +26,18 @@ class SimulationResult:
         friction: Coefficient of friction μ between feet and floor [-].
         cycles: Gait periods simulated (the first one is not measured).
         gains: The joint servos' gains.
-        metrics: The walk's measures over the cycles after the first.
+        metrics: The walk's measures over the cycles after the first (``None``: it
+            diverged, and measures nothing).
         planned_peak_torque: The gait's planned peak |τ| per joint type [N·m].
-        standing: The tripod standing check.
+        standing: The tripod standing check (``None``: the walk or the stand diverged).
         frames: The robot's Pinocchio configuration (F, nq) at ``frame_rate``, whole run.
         frame_torques: The servos' torques (F, legs, 3) at those frames [N·m].
         frame_rate: Frames per second [1/s].
-        robot: The imported robot's model it walked (``None``: the design's own, which
+        model: The Pinocchio model it walked (``None``: the design's own, which
             :meth:`sim_model` builds again from the design).
+        controller: How the joints followed the plan: ``"servo"`` or ``"torque"``.
+        diverged: Where and why the simulation diverged and stopped (``while walking, at
+            t = 0.038 s: …``): nothing it measured holds then; empty if it did not.
 
     """
 
@@ -43,13 +47,15 @@ class SimulationResult:
     friction: float
     cycles: int
     gains: ServoGains
-    metrics: WalkMetrics
+    metrics: WalkMetrics | None
     planned_peak_torque: dict[str, float]
-    standing: StandingCheck
+    standing: StandingCheck | None
     frames: ArrayF
     frame_torques: ArrayF
     frame_rate: float
-    robot: HexapodModel | None = None
+    model: HexapodModel | None = None
+    controller: str = "servo"
+    diverged: str = ""
 
     @property
     def mid_stride_frame(self) -> int:
@@ -59,26 +65,45 @@ class SimulationResult:
 
     def sim_model(self) -> SimModel:
         """The MuJoCo model the walk ran on, built again (for a video or a still)."""
-        model = HexapodModel(self.design) if self.robot is None else self.robot
+        model = HexapodModel(self.design) if self.model is None else self.model
         return SimModel(model, self.payload, self.friction, self.gains)
 
     def to_dict(self) -> dict[str, Any]:
-        """JSON-ready: what ``hexaleg simulate --json`` prints (SI units: m, rad, N, N·m)."""
-        metrics = self.metrics
+        """JSON-ready: what ``hexaleg simulate --json`` prints (SI units: m, rad, N, N·m).
+
+        A run that diverged has ``diverged`` (where, why) and ``null`` measures.
+        """
+        metrics, standing = self.metrics, self.standing
+        measured: dict[str, Any] = dict.fromkeys(WALK_FIELDS)
+        if metrics is not None:
+            measured = {
+                "planned_distance": metrics.planned_distance,
+                "distance": metrics.distance,
+                "max_tilt": metrics.max_tilt,
+                "min_height": metrics.min_height,
+                "fell": metrics.fell,
+                "tracking_rms": metrics.tracking_rms,
+                "slip": metrics.slip,
+                "internal_force": metrics.internal_force,
+                "peak_torque_measured": dict(metrics.peak_torque),
+                "over_rating": [o.to_dict() for o in metrics.over_rating],
+            }
         return {
             "design": self.design.as_dict(),
             "gait": self.gait.to_dict(),
             "payload": self.payload.to_dict(self.design),
             "cycles": self.cycles,
-            "planned_distance": metrics.planned_distance,
-            "distance": metrics.distance,
-            "max_tilt": metrics.max_tilt,
-            "min_height": metrics.min_height,
-            "fell": metrics.fell,
-            "tracking_rms": metrics.tracking_rms,
-            "slip": metrics.slip,
-            "peak_torque_measured": dict(metrics.peak_torque),
+            "controller": self.controller,
+            "diverged": self.diverged or None,
+            **{key: value for key, value in measured.items() if key != "over_rating"},
             "peak_torque_planned": dict(self.planned_peak_torque),
-            "over_rating": [o.to_dict() for o in metrics.over_rating],
-            "standing": self.standing.to_dict(),
+            "over_rating": measured["over_rating"],
+            "standing": None if standing is None else standing.to_dict(),
         }
+
+
+WALK_FIELDS = (
+    "planned_distance", "distance", "max_tilt", "min_height", "fell", "tracking_rms", "slip",
+    "internal_force", "peak_torque_measured", "over_rating",
+)  # fmt: skip
+"""The JSON's measures of the walk (``null`` each when it diverged)."""

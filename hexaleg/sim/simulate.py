@@ -2,16 +2,28 @@
 
 :func:`simulate_gait` plans one period, refuses a gait the design cannot walk before
 simulating anything (a stride beyond its max stride, or any constraint the planned
-period breaks), then runs ``cycles`` periods from rest at the period's first pose
-(:mod:`.run`) with the planned joint trajectory and inverse-dynamics torques fed to
-the servos (:mod:`.model`), measures the cycles after the first (:mod:`.measure`) and
-stands the robot on a tripod beside the statics (:mod:`.standing`).
+period breaks), then runs ``cycles`` periods from the period's first pose (:mod:`.run`)
+with the planned joint trajectory and inverse-dynamics torques fed to the joints
+(:mod:`.model`), measures the cycles after the first (:mod:`.measure`) and stands the
+robot on a tripod beside the statics (:mod:`.standing`). A run that diverges stops
+there, and the result says so instead of measuring it.
+
+Two controllers follow the plan (:data:`~hexaleg._typing.Controller`), each the plan's
+torques fed forward plus a PD on the tracking error, differing in its gains:
+
+- ``servo``: stiff position servos, as hobby servos are
+  (:data:`~.model.DEFAULT_BANDWIDTH`, critically damped), from rest. With three feet
+  planted they also push the feet against each other, and drag a lifting foot still
+  pressed into the floor: their torques exceed the plan's (the root's most);
+- ``torque``: a torque-controlled robot, the PD's gains low (:data:`TORQUE_BANDWIDTH`,
+  :data:`TORQUE_DAMPING_RATIO`), enough to hold the body's drift; it starts at the
+  plan's velocities (its gains are too low to catch up from rest within a period).
 """
 
 from __future__ import annotations
 
 from hexaleg._checks import require_int
-from hexaleg._typing import ArrayF, Distribution
+from hexaleg._typing import ArrayF, Controller, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
@@ -24,10 +36,17 @@ from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.sim.plan import Plan
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, run_plan
-from hexaleg.sim.standing_tripod import standing_check
+from hexaleg.sim.standing_tripod import StandingCheck, standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
 from hexaleg.statics.ground import Ground
 
+TORQUE_BANDWIDTH = 0.5
+"""The torque controller's PD bandwidth [Hz] on a standing leg's joints. Measured on the
+default design: at 0.45 Hz the body drifts away within ten periods; above it the PD adds
+more of its own (at 0.7 Hz the roots need 18 % more than the plan, at 1 Hz 64 %)."""
+TORQUE_DAMPING_RATIO = 0.7
+"""The torque controller's damping ratio [-]: more damping resists the lifting foot's
+drag and adds to the roots' torques (ζ = 1: 11 % over the plan's at the roots)."""
 DEFAULT_CYCLES = 4
 """Gait periods simulated by default."""
 CYCLES_RANGE = (2, 200)
@@ -56,6 +75,7 @@ def simulate_gait(
     distribution: Distribution = "min-norm",
     gains: ServoGains | None = None,
     model: HexapodModel | None = None,
+    controller: Controller = "servo",
 ) -> SimulationResult:
     """Walk ``gait`` with ``design`` in MuJoCo for ``cycles`` periods; stand on a tripod.
 
@@ -67,8 +87,10 @@ def simulate_gait(
         friction: Coefficient of friction μ between feet and floor [-].
         distribution: How the plan shares the load among the standing feet
             (``"min-norm"`` or ``"min-torque"``, as in ``loads``): its feed-forward torques.
-        gains: Joint servo gains (default: :meth:`ServoGains.from_bandwidth`).
+        gains: Joint servo gains (default: the controller's).
         model: The design's Pinocchio model, if already built, or an imported robot's.
+        controller: ``"servo"`` (stiff position servos, from rest) or ``"torque"`` (the
+            plan's torques, a low-gain PD, from the plan's velocities).
 
     Raises:
         ParameterError: ``stride`` beyond the design's max stride, or bad ``cycles``.
@@ -78,34 +100,49 @@ def simulate_gait(
     require_mujoco()
     cycles = _checked_cycles(cycles, (Gait() if gait is None else gait).period, friction)
     model = HexapodModel(design) if model is None else model
-    analysis = analyze_gait(
-        design,
-        gait,
-        payload,
-        distribution=distribution,
-        ground=Ground(friction=friction),
-        model=model,
-        limits=False,
-    )
+    ground = Ground(friction=friction)  # level: MuJoCo's floor
+    analysis = analyze_gait(design, gait, payload, distribution=distribution, ground=ground,
+                            model=model, limits=False)  # fmt: skip
     require_walkable(analysis, model)
+    gains = controller_gains(model, require_choice("controller", controller, Controller), gains)
     sim = SimModel(model, analysis.payload, friction, gains)
     plan, meter = plan_of(analysis), _meter(analysis.gait.period, analysis.base_velocity, model)
-    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE, record=meter.add)
+    run = run_plan(sim, plan, cycles * plan.period, FRAME_RATE, record=meter.add,
+                   moving=controller == "torque")  # fmt: skip
+    standing, diverged = _stand(sim, analysis.payload, friction, run.diverged)
     return SimulationResult(
-        design=design,
-        gait=analysis.gait,
-        payload=analysis.payload,
-        friction=friction,
-        cycles=cycles,
-        gains=sim.gains,
-        metrics=meter.metrics(cycles),
-        planned_peak_torque=dict(analysis.metrics.peak_torque),
-        standing=standing_check(model, analysis.payload, friction, sim=sim),
-        frames=run.frames,
-        frame_torques=run.frame_torques,
-        frame_rate=run.frame_rate,
-        robot=model if model.general_legs else None,
-    )
+        design=design, gait=analysis.gait, payload=analysis.payload, friction=friction,
+        cycles=cycles, gains=sim.gains, metrics=None if diverged else meter.metrics(cycles),
+        planned_peak_torque=dict(analysis.metrics.peak_torque), standing=standing,
+        frames=run.frames, frame_torques=run.frame_torques, frame_rate=run.frame_rate,
+        model=model, controller=controller, diverged=diverged,
+    )  # fmt: skip
+
+
+def _stand(
+    sim: SimModel, payload: Payload, friction: float, walk_diverged: str
+) -> tuple[StandingCheck | None, str]:
+    """The tripod standing check after the walk, and where the simulation diverged if it did.
+
+    A walk that diverged is not stood after; a stand that diverges has no check.
+    """
+    if walk_diverged:
+        return None, f"while walking, {walk_diverged}"
+    standing = standing_check(sim.hexapod, payload, friction, sim=sim)
+    if standing.diverged:
+        return None, f"while standing on {', '.join(standing.legs)}, {standing.diverged}"
+    return standing, ""
+
+
+def controller_gains(
+    model: HexapodModel, controller: Controller, gains: ServoGains | None = None
+) -> ServoGains:
+    """``gains`` if given, else the controller's: a bandwidth on the model's joints."""
+    if gains is not None:
+        return gains
+    if controller == "torque":
+        return ServoGains.from_bandwidth(model, TORQUE_BANDWIDTH, TORQUE_DAMPING_RATIO)
+    return ServoGains.from_bandwidth(model)
 
 
 def _checked_cycles(cycles: int, period: float, friction: float) -> int:

@@ -20,8 +20,8 @@ import pinocchio as pin
 from hexaleg._typing import ArrayF
 from hexaleg.kinematics import foot_position, inverse_kinematics
 from hexaleg.robot.model import HexapodModel
-from hexaleg.sim._mujoco import require_mujoco
-from hexaleg.sim.engine import foot_forces, start
+from hexaleg.sim._mujoco import mujoco_warnings, pass_on, require_mujoco
+from hexaleg.sim.engine import divergence, foot_forces, start
 from hexaleg.sim.model import ServoGains, SimModel
 from hexaleg.stance.geometry import stance_legs
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics
@@ -43,6 +43,9 @@ class StandingCheck:
         foot_forces_z: Floor's vertical force on each standing foot in MuJoCo [N].
         statics_foot_forces_z: The same from the statics at the nominal stance [N].
         duration: How long the robot stood [s].
+        diverged: When and why the simulation diverged (``at t = 0.038 s: …``), stopping it
+            (:func:`~hexaleg.sim.engine.divergence`): its forces then mean nothing; empty
+            if it did not.
 
     """
 
@@ -50,6 +53,7 @@ class StandingCheck:
     foot_forces_z: dict[str, float]
     statics_foot_forces_z: dict[str, float]
     duration: float
+    diverged: str = ""
 
     @property
     def worst_relative_error(self) -> float:
@@ -117,10 +121,18 @@ def standing_check(
     steps = round(DURATION / sim.timestep)
     window = round(AVERAGE_WINDOW / sim.timestep)
     total = np.zeros((len(model.leg_names), 3))
-    for k in range(steps):
-        mujoco.mj_step(sim.mj, data)
-        if k >= steps - window:
-            total += foot_forces(sim, data)
+    floor, diverged = -float(model.nominal_base_pose().translation[2]), ""
+    with mujoco_warnings() as caught:  # no log file is written
+        for k in range(steps):
+            mujoco.mj_step(sim.mj, data)
+            if k >= steps - window:
+                total += foot_forces(sim, data)
+            why = divergence(sim, data, floor)
+            if why:
+                diverged = f"at t = {k * sim.timestep:.3f} s: {why}"
+                break
+    if not diverged:  # a divergence says what they meant
+        pass_on(caught)
     measured = total[:, 2] / window
     expected = statics.state(model.nominal_configuration()).foot_forces[:, 2]
     index = {leg: i for i, leg in enumerate(model.leg_names)}
@@ -129,6 +141,7 @@ def standing_check(
         foot_forces_z={leg: float(measured[index[leg]]) for leg in legs},
         statics_foot_forces_z={leg: float(f) for leg, f in zip(legs, expected, strict=True)},
         duration=steps * sim.timestep,
+        diverged=diverged,
     )
 
 

@@ -61,7 +61,7 @@ class SelfCollision:
     def __init__(self, model: HexapodModel, geometry: StanceGeometry) -> None:
         self.model = model
         self.geometry = geometry
-        self.mirrored = not model.general_legs
+        self.mirrored = model.mirror_symmetric
         self.geometry_model = model.collision_model()
         self.geometry_model.addAllCollisionPairs()
         parent_joints = [o.parentJoint for o in self.geometry_model.geometryObjects]

@@ -84,10 +84,11 @@ class StanceGeometry:
             or (radius, radius, half height) of its cylinder.
         body_round: Whether the body's collision shape is a cylinder about z (else a box).
         limits: Joint limits that stop the body (the design's ``stance_limits``).
-        leg_geometries: Each stance leg's general leg, for a robot file's legs (empty:
-            the paper's leg of ``lengths`` on every leg).
-        leg_bounds: Each stance leg's joint limits (2, N, 3) [rad], lower then upper, for
-            a robot file's legs (None: ``limits`` on every leg).
+        leg_geometries: Each stance leg's general leg, where the legs are their own
+            (:attr:`~hexaleg.robot.model.HexapodModel.own_legs`; empty: the paper's leg of
+            ``lengths`` on every leg).
+        leg_bounds: Each stance leg's joint limits (2, N, 3) [rad], lower then upper, where
+            its own limits hold it standing (None: ``limits`` on every leg).
 
     """
 
@@ -113,7 +114,7 @@ class StanceGeometry:
         roots = model.root_placements()
         feet = model.foot_positions(model.nominal_configuration())
         index = [model.leg_names.index(leg) for leg in legs]
-        general = model.general_legs
+        own = model.own_legs
         return cls(
             legs=legs,
             lengths=model.design.lengths,
@@ -124,9 +125,21 @@ class StanceGeometry:
             body_half_extents=half_extents,
             body_round=round_body,
             limits=model.design.stance_limits,
-            leg_geometries=tuple(model.leg_geometry(leg) for leg in legs) if general else (),
-            leg_bounds=_file_bounds(model, legs) if general else None,
+            leg_geometries=() if own is None else tuple(own[leg] for leg in legs),
+            leg_bounds=_leg_bounds(model, legs) if model.stance_limits is None else None,
         )
+
+    @classmethod
+    def template_of(
+        cls, model: HexapodModel, stance: StanceSet | Sequence[str] = "all"
+    ) -> StanceGeometry | None:
+        """The geometry other designs of ``model``'s body derive theirs from in closed form.
+
+        By :meth:`with_design`; ``None`` where its legs are their own
+        (:attr:`~hexaleg.robot.model.HexapodModel.own_legs`): each design's is then read from
+        its own model.
+        """
+        return cls.from_model(model, stance) if model.own_legs is None else None
 
     @classmethod
     def of_design(
@@ -258,8 +271,8 @@ FINITE_BOUND = 2 * np.pi
 """A continuous joint's limits in the stance kernels: ±2π [rad] (θ never leaves (−π, π])."""
 
 
-def _file_bounds(model: HexapodModel, legs: Sequence[str]) -> ArrayF:
-    """The stance legs' joint limits (2, N, 3) on θ [rad], continuous joints at ±2π."""
+def _leg_bounds(model: HexapodModel, legs: Sequence[str]) -> ArrayF:
+    """The stance legs' own joint limits (2, N, 3) on θ [rad], continuous joints at ±2π."""
     bounds = np.array([model.joint_limits(leg) for leg in legs]).transpose(1, 0, 2)
     return np.clip(bounds, -FINITE_BOUND, FINITE_BOUND)
 

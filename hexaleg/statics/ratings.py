@@ -8,6 +8,7 @@ it occurs.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
@@ -83,11 +84,12 @@ class OverRating:
 
     def __str__(self) -> str:
         unit, label = UNITS[self.quantity], LABELS[self.quantity]
+        peak = f"{self.peak:.2f} {unit}" if math.isfinite(self.peak) else "without bound"
         held = f"its rating {self.rated:g} {unit}"
         if self.safety_factor != 1.0:
             rating, factor = self.rated * self.safety_factor, self.safety_factor
             held = f"its rating {rating:g} {unit} / F {factor:g} = {self.rated:.4g} {unit}"
-        return f"{self.leg} {self.joint} {label} {self.peak:.2f} {unit} over {held} ({self.at})"
+        return f"{self.leg} {self.joint} {label} {peak} over {held} ({self.at})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (N·m, rad/s or V)."""
@@ -101,6 +103,11 @@ class OverRating:
             "safety_factor": self.safety_factor,
             "description": str(self),
         }
+
+
+def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
+    """Joints over their ratings, the furthest over (peak / rating) first."""
+    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
 
 
 def at_times(times: npt.ArrayLike) -> list[str]:

@@ -37,12 +37,13 @@ class SupportPolygon:
     def of_feet(cls, feet_xy: npt.ArrayLike) -> SupportPolygon:
         """The support polygon of the feet (x, y) (N, 2) [m]."""
         feet_xy = np.asarray(feet_xy, dtype=float)
-        vertices = feet_xy[_hull(feet_xy)]
-        if len(vertices) < 3:
+        indices = _hull(feet_xy)
+        if len(indices) < 3:
             raise HexalegError(
                 f"the stance feet span no support polygon: {len(feet_xy)} feet on one line"
             )
-        edges = np.roll(vertices, -1, axis=0) - vertices
+        vertices = feet_xy[indices]
+        edges = feet_xy[indices[1:] + indices[:1]] - vertices  # each vertex to the next
         return cls(vertices, edges, np.hypot(edges[:, 0], edges[:, 1]))
 
     def signed_distance(self, point: npt.ArrayLike) -> float:
@@ -90,13 +91,12 @@ def _hull(points: ArrayF) -> list[int]:
     A handful of feet: plain Python beats qhull's setup tenfold. Collinear points on an
     edge are left out; all points on one line give fewer than three.
     """
-    order = sorted(range(len(points)), key=lambda k: (points[k, 0], points[k, 1]))
+    xy = points[:, :2].tolist()  # plain floats: a handful of points, many small products
+    order = sorted(range(len(xy)), key=lambda k: (xy[k][0], xy[k][1]))
 
     def turn(o: int, a: int, b: int) -> float:
-        return float(
-            (points[a, 0] - points[o, 0]) * (points[b, 1] - points[o, 1])
-            - (points[a, 1] - points[o, 1]) * (points[b, 0] - points[o, 0])
-        )
+        (ox, oy), (ax, ay), (bx, by) = xy[o], xy[a], xy[b]
+        return float((ax - ox) * (by - oy) - (ay - oy) * (bx - ox))
 
     def chain(indices: list[int]) -> list[int]:
         kept: list[int] = []

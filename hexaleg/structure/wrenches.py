@@ -97,8 +97,11 @@ def _axis(joint: pin.JointModel) -> ArrayF:
 
 
 def require_template(model: HexapodModel) -> None:
-    """Refuse a robot file's model: ``[structure]`` describes hexaleg's own legs' tubes."""
-    if model.general_legs:
+    """Refuse a model whose links are not its design's (:attr:`~HexapodModel.design_links`).
+
+    ``[structure]`` describes hexaleg's own legs' tubes; a robot file's links are its own.
+    """
+    if not model.design_links:
         raise ParameterError(
             "structure",
             model.design.structure,

@@ -28,22 +28,23 @@ import numpy.typing as npt
 from hexaleg._checks import require_instance
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
-from hexaleg.design import SEGMENTS, HexapodDesign
+from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.evaluate import Evaluation
 from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.requirement_specs import LEG_LENGTH, MIN_COXA, RANGE_KM
 from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
-from hexaleg.robot.model import HexapodModel
+from hexaleg.ratings import require_ratings
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
 from hexaleg.statics.loads import loads_at_extremes
-from hexaleg.statics.ratings import OverRating
+from hexaleg.statics.ratings import OverRating, furthest_first
 from hexaleg.study.conflict import Conflict, find_conflict
 from hexaleg.study.executors import local_pool
-from hexaleg.study.optimize import SearchOutcome, SearchSettings, design_at, run_search
-from hexaleg.study.robot_designs import RobotDesigns
+from hexaleg.study.optimize import SearchOutcome, SearchSettings, run_search
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import (
     AtBound,
@@ -65,7 +66,9 @@ class CheckedDesign:
         standing_over_rating: Each joint over its rated torque carrying the required
             payload, at the nominal stance or an axis-locked extreme.
         walking_over_rating: Each joint over its rated torque or speed walking the
-            requirements' gait (none when no gait is walked).
+            requirements' gait (none when no gait is walked, or it cannot be).
+        walking_violation: The gait's first broken constraint when it cannot be walked at
+            all (a foothold out of reach: speeds without bound); empty otherwise.
 
     """
 
@@ -74,23 +77,16 @@ class CheckedDesign:
     checks: tuple[RequirementCheck, ...]
     standing_over_rating: tuple[OverRating, ...] = ()
     walking_over_rating: tuple[OverRating, ...] = ()
+    walking_violation: str = ""
 
     @classmethod
-    def of(
-        cls, design: HexapodDesign, goal: Goal, robot: RobotDesigns | None = None
-    ) -> CheckedDesign:
-        """Measure ``design`` from its own URDF and model, check it, flag joints over ratings.
-
-        With ``robot``, ``design``'s segments are the imported robot's, changed on every
-        leg: its file's model at them is measured (and its design reported).
-        """
+    def of(cls, robot: Robot, goal: Goal) -> CheckedDesign:
+        """Measure ``robot`` from its own URDF and model, check it, flag joints over ratings."""
         requirements = goal.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
+        design = robot.design
         try:
-            if robot is None:
-                model: HexapodModel = HexapodModel(design)
-            else:
-                design, model = robot.point(design.lengths)
+            model = robot.rebuilt().model
             locked = flexibility(design, "axis", model=model)
             standing = loads_at_extremes(model, locked, payload).over_rating
         except HexalegError as err:
@@ -98,11 +94,12 @@ class CheckedDesign:
         evaluation = goal.evaluate(design, model, flexibility=locked)
         if evaluation.error:
             return cls(design, evaluation, (), standing)
-        walking: tuple[OverRating, ...] = ()
-        if goal.walks:
-            gait = requirements.gait
-            walking = analyze_gait(design, gait, payload, model=model, limits=False).over_rating
-        return cls(design, evaluation, goal.checks(evaluation), standing, walking)
+        if not goal.walks:
+            return cls(design, evaluation, goal.checks(evaluation), standing)
+        walked = analyze_gait(design, requirements.gait, payload, model=model, limits=False)
+        flags, broken = walked.over_rating, [str(found) for found in walked.violations[:1]]
+        walking = () if broken else flags
+        return cls(design, evaluation, goal.checks(evaluation), standing, walking, *broken)
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
         """(where, flags furthest over first) standing with the payload, and walking if walked."""
@@ -135,11 +132,6 @@ class CheckedDesign:
         }
 
 
-def furthest_first(flags: Sequence[OverRating]) -> list[OverRating]:
-    """Joints over their ratings, the furthest over (peak / rating) first."""
-    return sorted(flags, key=lambda flag: flag.peak / flag.rated, reverse=True)
-
-
 @dataclass(frozen=True)
 class DecideResult:
     """The decision: the best design, yours, and what conflicts if nothing is feasible.
@@ -155,8 +147,8 @@ class DecideResult:
         method: The search algorithm and its settings.
         evaluations: Designs evaluated by the search (and the conflict's searches).
         seed: The search's seed.
-        robot: The imported robot's file whose segments were searched (``None``: the
-            template's designs).
+        robot: The robot file whose segments were searched (``None``: hexaleg's template's
+            designs).
 
     """
 
@@ -206,6 +198,7 @@ class DecideResult:
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
                 "over_rating": self.best.over_rating(),
+                "walking_violation": self.best.walking_violation or None,
                 "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
             "yours": {
@@ -213,6 +206,7 @@ class DecideResult:
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},
                 "over_rating": self.yours.over_rating(),
+                "walking_violation": self.yours.walking_violation or None,
             },
             "feasible": self.feasible,
         }
@@ -234,7 +228,7 @@ class DecideResult:
 
 
 def decide(
-    design: HexapodDesign,
+    robot: Robot | HexapodDesign,
     requirements: Requirements | None = None,
     objective: Objective | None = None,
     *,
@@ -248,13 +242,13 @@ def decide(
     journal: str | os.PathLike[str] | None = None,
     resume: bool = False,
     progress: bool | None = None,
-    robot: RobotDesigns | None = None,
 ) -> DecideResult:
-    """The best design meeting ``requirements``, by ``objective``, and ``design`` checked.
+    """The best design of ``robot`` meeting ``requirements``, by ``objective``, and it checked.
 
     Args:
-        design: The user's design: every field not freed, and the design checked.
-        requirements: What the robot must do (none by default; leg length: ``design``'s).
+        robot: The user's robot (a design: hexaleg's template at it): every field not
+            freed, the start, and the design checked beside the best.
+        requirements: What the robot must do (none by default; leg length: the robot's).
         objective: What to make best (default: maximize FB).
         free_posture: Also free the nominal hip and knee angles.
         free: More free variables (body fields), or other bounds for l1, l2, l3.
@@ -268,52 +262,53 @@ def decide(
         journal: A file keeping every evaluated design (JSON lines), to resume from.
         resume: Continue ``journal`` instead of refusing to overwrite it.
         progress: ``False`` shows nothing; else a bar on a terminal, a line every few seconds.
-        robot: An imported robot (``design`` its design): its file with every leg's segments
-            changed, searched around its own (:func:`~.search_space.search_space`).
 
     Raises:
-        ParameterError: No design, ``resume`` without ``journal``, a bound out of range.
+        ParameterError: No design, ``resume`` without ``journal``, a bound out of range, a
+            rating not given; a robot file without masses (``RobotImportError``).
 
     """
-    _check_arguments(design, journal, resume)
+    robot = _robot(robot)
+    _check_arguments(journal, resume)
+    design = robot.design
     requirements = (requirements or Requirements()).resolved(design)
     settings = settings or SearchSettings()
-    goal = Goal(requirements, objective or Objective())
-    space = _space(design, requirements, free_posture, free, actuators, ratio_ranges, settings,
-                   robot)  # fmt: skip
+    goal = Goal(requirements, objective or Objective()).measurable(design, bool(actuators))
+    space = _space(robot, requirements, free_posture, free, actuators, ratio_ranges, settings)
     kept = Journal(journal, _fingerprint(design, goal, space, settings), resume)
     with kept, _executor(executor, workers) as pool:
         search = _Searches(design, settings, pool, kept, progress)
         outcome, conflict = _search_or_conflict(space, goal, search)
-    best = CheckedDesign.of(design_at(space, outcome.x), goal, robot)
+    best = CheckedDesign.of(space.robot_at(outcome.x), goal)
     return DecideResult(
         requirements=requirements, objective=goal.objective, variables=space.variables,
-        best=best, yours=CheckedDesign.of(design, goal, robot), feasible=best.meets_all,
+        best=best, yours=CheckedDesign.of(robot, goal), feasible=best.meets_all,
         conflict=conflict, method=outcome.method, seed=settings.seed,
         evaluations=sum(found.evaluations for found in search.done),
-        robot=None if robot is None else robot.file.path,
+        robot=robot.source.path,
     )  # fmt: skip
 
 
 def _space(
-    design: HexapodDesign,
+    robot: Robot,
     requirements: Requirements,
     free_posture: bool,
     free: Sequence[FreeVariable],
     actuators: Sequence[Actuator],
     ratio_ranges: Sequence[tuple[float, float] | None] | None,
     settings: SearchSettings,
-    robot: RobotDesigns | None = None,
 ) -> SearchSpace:
     """What the search varies; a budget of partial generations is refused before any work.
 
-    An imported robot's posture, motors and body are its file's: only its segments are free.
+    Only the fields the robot lets a search free (:meth:`~hexaleg.robot.robot.Robot.searches`:
+    a robot file's segments; its posture, motors and body are its file's).
     """
-    if robot is not None and any(v.name not in SEGMENTS for v in free):
-        typed = next(f"{v.name}={v.typed}" for v in free if v.name not in SEGMENTS)
+    refused = [v for v in free if not robot.searches(v.name)]
+    if refused:
+        typed = f"{refused[0].name}={refused[0].typed}"
         raise ParameterError("--free", typed, "with --urdf, one of l1, l2, l3 (the segments)")
     space = search_space(
-        design,
+        robot.design,
         requirements.required(LEG_LENGTH) or 0.0,
         requirements.required(MIN_COXA),
         free_posture,
@@ -327,10 +322,23 @@ def _space(
     return space
 
 
-def _check_arguments(
-    design: HexapodDesign, journal: str | os.PathLike[str] | None, resume: bool
-) -> None:
-    require_instance("design", design, HexapodDesign, "a HexapodDesign")
+def _robot(given: Robot | HexapodDesign) -> Robot:
+    """The robot decided on (a design: hexaleg's template at it), weighed and rated.
+
+    Raises:
+        RobotImportError: A robot file without masses (the payloads and torques need them).
+        ParameterError: A rating the robot does not give.
+
+    """
+    if not isinstance(given, Robot):
+        require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
+        given = robot_of(RobotSource(), given)
+    given.require_masses()
+    require_ratings(given.design.rated_torques, given.design.rated_speeds, "decide")
+    return given
+
+
+def _check_arguments(journal: str | os.PathLike[str] | None, resume: bool) -> None:
     if resume and journal is None:
         raise ParameterError("resume", resume, "continues a journal: give journal=FILE")
 
@@ -406,5 +414,5 @@ def _fingerprint(
         "ratio_ranges": [None if r is None else [*r] for r in space.ratio_ranges],
         "seed": settings.seed,
         "evaluations": settings.evaluations,
-        **({} if space.robot is None else {"robot": space.robot.fingerprint()}),
+        **space.robot.fingerprint(),
     }

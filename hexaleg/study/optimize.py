@@ -47,16 +47,14 @@ from scipy.stats import qmc
 
 from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
-from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.evaluate import Evaluation
 from hexaleg.evaluation.goal import Goal
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.robot import Robot
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.progress import Progress
 from hexaleg.study.search_journal import Journal
 from hexaleg.study.search_space import SearchSpace
-from hexaleg.study.sweep import base_model
 
 GENERATIONS = 60
 """Generations of a search with the default budget."""
@@ -168,55 +166,26 @@ class _Task:
 
 
 @lru_cache(maxsize=4)
-def _template(base: HexapodDesign) -> StanceGeometry:
-    """The base design's stance geometry, read once per process."""
-    return StanceGeometry.from_model(base_model(base))
+def _template(robot: Robot) -> StanceGeometry | None:
+    """The stance geometry the space's designs of the robot's body derive from (or None)."""
+    return StanceGeometry.template_of(robot.model)
 
 
 def evaluate_points(task: _Task) -> list[Evaluation]:
-    """The evaluation of each point of a task (runs in a worker)."""
+    """The evaluation of each point of a task (runs in a worker): the space's robot at it."""
     space, goal = task.space, task.goal
-    if space.robot is not None:  # no template design: the robot's file at the point's segments
-        return [robot_evaluation(space, goal, x) for x in task.points]
-    designs: dict[int, HexapodDesign] = {}
+    robots: dict[int, Robot] = {}
     out: dict[int, Evaluation] = {}
     for k, x in enumerate(task.points):
         try:
-            designs[k] = space.design(x)
+            robots[k] = space.robot_at(x)
         except HexalegError as err:
             out[k] = Evaluation(error=str(err))
-    if not space.same_body:
-        out |= {k: goal.evaluate(design) for k, design in designs.items()}
-    else:
-        base, template = base_model(space.base), _template(space.base)
-        found = goal.evaluate_many(list(designs.values()), base, template)
-        out |= dict(zip(designs, found, strict=True))
+    template = _template(space.robot) if space.same_body else None
+    designs = [robot.design for robot in robots.values()]
+    found = goal.evaluate_many(designs, [robot.model for robot in robots.values()], template)
+    out |= dict(zip(robots, found, strict=True))
     return [out[k] for k in range(len(task.points))]
-
-
-def robot_evaluation(space: SearchSpace, goal: Goal, x: npt.ArrayLike) -> Evaluation:
-    """``goal``'s evaluation of the imported robot with every leg's segments at point ``x``.
-
-    The point is no template design (whose checks are not the robot's): the robot's file
-    at its segments is.
-    """
-    try:
-        point, model = _robot_point(space, x)
-    except HexalegError as err:
-        return Evaluation(error=str(err))
-    return goal.evaluate(point, model)
-
-
-def design_at(space: SearchSpace, x: npt.ArrayLike) -> HexapodDesign:
-    """The design at point ``x``: the space's, or the imported robot's at its segments."""
-    return space.design(x) if space.robot is None else _robot_point(space, x)[0]
-
-
-def _robot_point(space: SearchSpace, x: npt.ArrayLike) -> tuple[HexapodDesign, HexapodModel]:
-    robot = space.robot
-    assert robot is not None
-    values = dict(zip(space.names, np.asarray(x, dtype=float).tolist(), strict=True))
-    return robot.point(robot.lengths_at(values))
 
 
 # -- the search ---------------------------------------------------------------------------

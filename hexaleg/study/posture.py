@@ -37,20 +37,27 @@ from typing import Any
 import numpy as np
 from scipy.optimize import direct, minimize
 
+from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF
-from hexaleg.design import HexapodDesign, require_design
+from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirements import Requirements
-from hexaleg.exceptions import HexalegError
+from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.kinematics import foot_position
-from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import POSTURE_FIELD, Robot, robot_of
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.decide import CheckedDesign, DecideResult
 from hexaleg.study.optimize import INVALID, objective_and_constraints
 from hexaleg.study.search_space import POSTURE, FreeVariable
 
-__all__ = ["DEFAULT_OBJECTIVE", "best_posture", "posture_figures", "posture_variables"]
+__all__ = [
+    "DEFAULT_OBJECTIVE",
+    "best_posture",
+    "posture_figures",
+    "posture_variables",
+]
 
 DEFAULT_OBJECTIVE = Objective(METRICS.walking_payload_capacity.name)
 """What a posture makes best unless told otherwise: the payload carried walking."""
@@ -99,12 +106,12 @@ def posture_figures(design: HexapodDesign) -> dict[str, Any]:
 class _Scores:
     """Each posture's score, measured once: the unit square mapped onto θ2 and θ3."""
 
-    def __init__(self, design: HexapodDesign, goal: Goal, model: HexapodModel) -> None:
-        self.design, self.goal, self.model = design, goal, model
-        self.variables = posture_variables(design)
+    def __init__(self, robot: Robot, goal: Goal) -> None:
+        self.robot, self.design, self.goal = robot, robot.design, goal
+        self.variables = posture_variables(self.design)
         self.lower = np.array([v.lower for v in self.variables])
         self.span = np.array([v.upper - v.lower for v in self.variables])
-        self.template = StanceGeometry.from_model(model)
+        self.template = StanceGeometry.from_model(robot.model)
         self.seen: dict[tuple[float, float], float] = {}
 
     def angles(self, unit: ArrayF) -> tuple[float, float]:
@@ -117,9 +124,9 @@ class _Scores:
         unit: ArrayF = (np.array(design.nominal_angles[1:]) - self.lower) / self.span
         return unit
 
-    def posed(self, angles: tuple[float, float]) -> HexapodDesign:
-        """The design at θ = (0, θ2, θ3)."""
-        return self.design.replace(nominal_angles=(0.0, *angles))
+    def posed(self, angles: tuple[float, float]) -> Robot:
+        """The robot at θ = (0, θ2, θ3) (its model derived from the robot's)."""
+        return self.robot.at(nominal_angles=(0.0, *angles))
 
     def __call__(self, unit: ArrayF) -> float:
         """The score of the posture at ``unit`` (see the module docstring)."""
@@ -130,8 +137,8 @@ class _Scores:
 
     def _score(self, angles: tuple[float, float]) -> float:
         try:
-            design = self.posed(angles)
-            evaluation = self.goal.evaluate(design, self.model.with_design(design), self.template)
+            posed = self.posed(angles)
+            evaluation = self.goal.evaluate(posed.design, posed.model, self.template)
         except HexalegError:
             return 10 * PENALTY
         cost, violations = objective_and_constraints(self.goal, evaluation)
@@ -142,41 +149,59 @@ class _Scores:
 
 
 def best_posture(
-    design: HexapodDesign,
+    robot: Robot | HexapodDesign,
     requirements: Requirements | None = None,
     objective: Objective = DEFAULT_OBJECTIVE,
-    *,
-    model: HexapodModel | None = None,
 ) -> DecideResult:
-    """The best nominal posture of ``design``'s lengths for ``objective``, meeting ``requirements``.
+    """The best nominal posture of ``robot``'s lengths for ``objective``, meeting ``requirements``.
 
     Args:
-        design: The design: its lengths, body, motors and stance limits are kept; its
-            posture is "yours" and a candidate.
+        robot: The robot (a design: hexaleg's template at it): its lengths, body, motors
+            and stance limits are kept; its posture is "yours" and a candidate. Each
+            posture's robot is derived from it (:meth:`~hexaleg.robot.robot.Robot.at`).
         requirements: What the robot must do (none by default).
         objective: What to make best (default: the walking payload capacity).
-        model: The design's Pinocchio model, if already built (each posture's is derived
-            from it).
 
     Returns:
         The decision over θ2 and θ3: ``best`` the lengths at their best posture, re-measured
-        from their own URDF; ``yours`` the design as posed.
+        from their own URDF; ``yours`` the robot as posed.
 
     Raises:
-        ParameterError: ``design`` is no design.
+        ParameterError: ``robot`` is neither a robot nor a design; a robot whose posture is
+            not searched (a robot file stands as its file does); a requirement or the
+            objective the robot cannot measure (a table its design file lacks).
 
     """
-    design = require_design(design)
+    robot = _robot(robot)
     requirements = requirements or Requirements()  # the lengths stay: no leg length to hold
-    goal = Goal(requirements, objective)
-    scores = _Scores(design, goal, HexapodModel(design) if model is None else model)
-    best = _search(scores, scores.unit(design))
+    goal = Goal(requirements, objective).measurable(robot.design)
+    scores = _Scores(robot, goal)
+    best = _search(scores, scores.unit(robot.design))
     checked = CheckedDesign.of(scores.posed(scores.angles(best)), goal)
     return DecideResult(
         requirements=requirements, objective=objective, variables=scores.variables,
-        best=checked, yours=CheckedDesign.of(design, goal), feasible=checked.meets_all,
+        best=checked, yours=CheckedDesign.of(robot, goal), feasible=checked.meets_all,
         conflict=None, method=METHOD, evaluations=len(scores.seen), seed=0,
+        robot=robot.source.path,
     )  # fmt: skip
+
+
+def _robot(given: Robot | HexapodDesign) -> Robot:
+    """The robot posed (a design: hexaleg's template at it), if its posture may be searched.
+
+    Raises:
+        ParameterError: Neither a robot nor a design; a robot file (its posture is its own).
+
+    """
+    if not isinstance(given, Robot):
+        require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
+        given = robot_of(RobotSource(), given)
+    if not given.searches(POSTURE_FIELD):
+        raise ParameterError(
+            "robot", given.name, "a robot whose posture may change: a robot file stands as "
+            "its file does"
+        )  # fmt: skip
+    return given
 
 
 def _search(score: Callable[[ArrayF], float], given: ArrayF) -> ArrayF:

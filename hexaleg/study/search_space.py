@@ -32,6 +32,8 @@ from hexaleg.battery import Battery
 from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.study.actuator_variables import (
     CHOICES,
     GEARS,
@@ -40,7 +42,6 @@ from hexaleg.study.actuator_variables import (
     gear_coordinate,
     geared_entry,
 )
-from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import SWEEPABLE
 
 SEGMENT_FLOOR = 0.02
@@ -137,8 +138,9 @@ class SearchSpace:
         entries: The actuators a choice variable picks from, in the catalog's order.
         ratio_ranges: Each entry's lowest and highest gear ratio [-] (None: its ratio
             only), what a gear ratio variable spans; empty without such variables.
-        robot: The imported robot whose file, its segments changed, each point is
-            (:mod:`~hexaleg.study.robot_designs`); ``None``: hexaleg's template.
+        robot: The robot each point is, at the point's fields
+            (:meth:`~hexaleg.robot.robot.Robot.at`); hexaleg's template over ``base`` if not
+            given. It reaches workers as its recipe.
 
     """
 
@@ -146,7 +148,11 @@ class SearchSpace:
     variables: tuple[FreeVariable, ...]
     entries: tuple[Actuator, ...] = ()
     ratio_ranges: tuple[tuple[float, float] | None, ...] = ()
-    robot: RobotDesigns | None = None
+    robot: Robot = None  # type: ignore[assignment]  # hexaleg's template over base
+
+    def __post_init__(self) -> None:
+        if self.robot is None:
+            object.__setattr__(self, "robot", robot_of(RobotSource(), self.base))
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -170,6 +176,19 @@ class SearchSpace:
 
     def design(self, x: npt.ArrayLike) -> HexapodDesign:
         """The design at point ``x`` (validated: raises if it cannot exist)."""
+        return self.base.replace(**self.changes(x))
+
+    def robot_at(self, x: npt.ArrayLike) -> Robot:
+        """The robot at point ``x``: :attr:`robot` with the point's fields changed.
+
+        Raises:
+            HexalegError: A design that cannot exist, or a robot that cannot be built so.
+
+        """
+        return self.robot.at(**self.changes(x))
+
+    def changes(self, x: npt.ArrayLike) -> dict[str, Any]:
+        """The design fields point ``x`` sets over :attr:`base`'s."""
         changes: dict[str, Any] = {}
         angles = list(self.base.nominal_angles)
         picks: dict[str, int] = {}
@@ -194,7 +213,7 @@ class SearchSpace:
             given = self.base.actuators
             kept = {j: getattr(given, j) for j in LEG_JOINTS} if given is not None else {}
             changes["actuators"] = Actuators(**(kept | chosen))
-        return self.base.replace(**changes)
+        return changes
 
     def point(self, design: HexapodDesign) -> ArrayF:
         """``design``'s point, clipped into the bounds (V,)."""
@@ -323,7 +342,7 @@ def search_space(
     actuators: Sequence[Actuator] = (),
     battery: bool = False,
     ratio_ranges: Sequence[tuple[float, float] | None] | None = None,
-    robot: RobotDesigns | None = None,
+    robot: Robot | None = None,
 ) -> SearchSpace:
     """The default free variables of a decision, with ``free`` added or overriding them.
 
@@ -338,9 +357,11 @@ def search_space(
         battery: Free the battery's capacity (a range is required), if the design has one.
         ratio_ranges: Each of ``actuators``' lowest and highest gear ratio [-] (None: its
             own only): free each joint type's within its entry's (None: ratios kept).
-        robot: An imported robot: its segments around its own (``segment_bounds``).
+        robot: The robot the points are (hexaleg's template over ``base`` if omitted): its
+            segments searched within its :meth:`~hexaleg.robot.robot.Robot.segment_bounds`.
 
     """
+    robot = robot_of(RobotSource(), base) if robot is None else robot
     chosen = _segments(leg_length, min_coxa, robot)
     limits = base.stance_limits
     if free_posture:
@@ -369,14 +390,9 @@ def search_space(
     return SearchSpace(base, tuple(chosen.values()), tuple(actuators), spans, robot)
 
 
-def _segments(
-    leg_length: float, min_coxa: float | None, robot: RobotDesigns | None
-) -> dict[str, FreeVariable]:
-    """The segments' default bounds: the template's, or around an imported robot's own."""
-    floor = segment_floor(leg_length)
-    own = dict.fromkeys(SEGMENTS, (floor, leg_length))
-    if robot is not None:
-        own = robot.segment_bounds(floor, leg_length)
+def _segments(leg_length: float, min_coxa: float | None, robot: Robot) -> dict[str, FreeVariable]:
+    """The segments' default bounds: the robot's (the whole leg, or around a file's own)."""
+    own = robot.segment_bounds(segment_floor(leg_length), leg_length)
     if min_coxa is not None and min_coxa >= leg_length:
         raise ParameterError("min_coxa", min_coxa, f"must be below leg_length ({leg_length:g} m)")
     if min_coxa is not None and "l1" in own:

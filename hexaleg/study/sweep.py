@@ -41,9 +41,10 @@ from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
-from hexaleg.grids import ratio_lengths
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
@@ -55,7 +56,6 @@ from hexaleg.study.journal import (
     write_finished_journal,
 )
 from hexaleg.study.progress import Progress
-from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.rows import Key, StudyRow, study_row, walking_metrics
 
 TABLE_CSV = "study.csv"
@@ -78,9 +78,9 @@ class StudySpec:
         gait: Also compute each design's walking columns, walking ``walked``.
         walked: The gait every design walks: the design file's ``[gait]`` table, else
             :data:`~hexaleg.gait.analysis.STUDY_GAIT` (the default gait).
-        robot: An imported robot whose designs these are (its file with every leg's
-            segments at a row's lengths, :mod:`~hexaleg.study.robot_designs`); ``None``:
-            hexaleg's template over ``base``.
+        robot: The robot whose designs these are, each at a row's segment lengths
+            (:meth:`~hexaleg.robot.robot.Robot.at`); hexaleg's template over ``base`` if
+            not given. It reaches workers as its recipe.
 
     """
 
@@ -94,9 +94,11 @@ class StudySpec:
     statics: bool = True
     gait: bool = True
     walked: Gait = STUDY_GAIT
-    robot: RobotDesigns | None = None
+    robot: Robot = None  # type: ignore[assignment]  # hexaleg's template over base
 
     def __post_init__(self) -> None:
+        if self.robot is None:
+            object.__setattr__(self, "robot", robot_of(RobotSource(), self.base))
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
         object.__setattr__(self, "l3_ratios", tuple(float(r) for r in self.l3_ratios))
         require_choice("mode", self.mode, FlexibilityMode)
@@ -136,21 +138,12 @@ class StudySpec:
             keep=True,
         )
 
-    def row_of(self, design: HexapodDesign) -> StudyRow:
-        """``design``'s row, measured as the study measures its own, on its own model."""
+    def row_of(self, robot: Robot) -> StudyRow:
+        """``robot``'s row (a design of the study's, or the user's), measured as the study's."""
+        design = robot.design
         key = (design.l1 / design.leg_length, design.l3 / design.leg_length)
-        if self.robot is None:
-            return study_row(key, design, evaluate(design, self.metrics, self.conditions))
-        return self.robot_row(key, design.lengths)
-
-    def robot_row(self, key: Key, lengths: tuple[float, float, float]) -> StudyRow:
-        """The row of the imported robot with every leg's segments at ``lengths`` [m]."""
-        assert self.robot is not None
-        try:
-            design, model = self.robot.point(lengths)
-        except HexalegError as err:
-            return StudyRow(*key, error=str(err))
-        return study_row(key, design, evaluate(design, self.metrics, self.conditions, model=model))
+        evaluation = evaluate(design, self.metrics, self.conditions, model=robot.model)
+        return study_row(key, design, evaluation)
 
     def keys(self) -> list[Key]:
         """(l1 ratio, l3 ratio) of every design, in table order."""
@@ -169,7 +162,7 @@ class StudySpec:
             "gait": self.gait,
             **({} if self.walked == STUDY_GAIT else {"walked": self.walked.to_dict()}),
             "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
-            **({} if self.robot is None else {"robot": self.robot.fingerprint()}),
+            **self.robot.fingerprint(),
         }
 
 
@@ -182,37 +175,28 @@ design than one by one), and two workers still share 320 designs evenly."""
 class _Task:
     keys: tuple[Key, ...]  # (l1 ratio, l3 ratio) of each design
     spec: StudySpec
-    template: StanceGeometry | None  # the study's body and mounts, read once (template only)
+    template: StanceGeometry | None  # the robot's body's, read once (None: legs of its own)
 
 
 def evaluate_task(task: _Task) -> list[StudyRow]:
-    """The rows of a task's designs; a design's error becomes its row's ``error``."""
+    """The rows of a task's designs; a design's error becomes its row's ``error``.
+
+    Each design is the study's robot at the row's segment lengths.
+    """
     spec = task.spec
-    if spec.robot is not None:  # each design its own file and model
-        return [_imported_row(spec, key) for key in task.keys]
-    designs: dict[Key, HexapodDesign] = {}
+    points: dict[Key, Robot] = {}
     rows: dict[Key, StudyRow] = {}
     for key in task.keys:
         try:
-            designs[key] = spec.base.with_ratios(key[0], key[1], spec.total)
+            points[key] = spec.robot.at_ratios(key[0], key[1], spec.total)
         except HexalegError as err:
             rows[key] = StudyRow(*key, error=str(err))
-    assert task.template is not None  # made for every template study
-    found = evaluate_many(
-        list(designs.values()), spec.metrics, spec.conditions, base_model(spec.base), task.template
-    )
-    for (key, design), evaluation in zip(designs.items(), found, strict=True):
-        rows[key] = study_row(key, design, evaluation)
+    robots = list(points.values())
+    designs, models = [r.design for r in robots], [r.model for r in robots]
+    found = evaluate_many(designs, spec.metrics, spec.conditions, models, task.template)
+    for (key, point), evaluation in zip(points.items(), found, strict=True):
+        rows[key] = study_row(key, point.design, evaluation)
     return [rows[key] for key in task.keys]
-
-
-def _imported_row(spec: StudySpec, key: Key) -> StudyRow:
-    """The row at ratios ``key`` of an imported robot's study."""
-    try:
-        lengths = ratio_lengths(key[0], key[1], spec.total)
-    except HexalegError as err:
-        return StudyRow(*key, error=str(err))
-    return spec.robot_row(key, lengths)
 
 
 def sweep(
@@ -256,14 +240,9 @@ def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
 
     A free-coupled design takes a few tenths of a second, so it is a task of its own.
     """
-    template = None if spec.robot is not None else _template_geometry(spec)
+    template = StanceGeometry.template_of(spec.robot.model, spec.stance)
     size = CHUNK if spec.mode == "axis" else 1
     return [_Task(tuple(keys[i : i + size]), spec, template) for i in range(0, len(keys), size)]
-
-
-def _template_geometry(spec: StudySpec) -> StanceGeometry:
-    """Root placements and body box of the study's body, read once from Pinocchio."""
-    return StanceGeometry.from_model(base_model(spec.base), spec.stance)
 
 
 def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
@@ -294,9 +273,13 @@ def run_study(
 
     Raises:
         HexalegError: ``out_dir`` is not a study folder, is in use by another run, holds
-            a study with other options or a corrupt journal; a journal write failed.
+            a study with other options or a corrupt journal; a journal write failed; the
+            statics or the gait asked of a robot without masses (before any folder is
+            touched).
 
     """
+    if spec.statics or spec.gait:
+        spec.robot.require_masses()
     adopt_unmarked_study(out_dir)
     out = claim_folder(out_dir, FOLDER_KIND)
     with lock_folder(out, "study"):

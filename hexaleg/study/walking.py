@@ -21,7 +21,7 @@ import pandas as pd
 from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
 from hexaleg.exceptions import HexalegError
 from hexaleg.study.rows import StudyRow, design_walking_row
-from hexaleg.study.sweep import StudySpec, base_model
+from hexaleg.study.sweep import StudySpec
 
 PAPER_RATIOS = (0.2, 0.4)
 """The paper's leg: coxa and tibia ratios l1/L, l3/L (0.2/0.4/0.4) [-]."""
@@ -127,9 +127,8 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     walking = table[walks(table)]
     if walking.empty:
         raise HexalegError(f"no design of the study walks {spec.walked.named}")
-    paper = spec.base.with_ratios(*PAPER_RATIOS, spec.total)
-    model = base_model(spec.base).with_design(paper)
-    reference = design_walking_row(paper, model, spec.walked, PAPER_RATIOS)
+    paper = spec.robot.at_ratios(*PAPER_RATIOS, spec.total)
+    reference = design_walking_row(paper.design, paper.model, spec.walked, PAPER_RATIOS)
     return WalkingComparison(
         reference=reference,
         least_torque=_least(walking, TORQUE),

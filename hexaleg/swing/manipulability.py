@@ -20,7 +20,7 @@ from hexaleg.design import DEFAULT_LEG_LENGTH, HexapodDesign, require_design
 from hexaleg.kinematics import foot_jacobian, manipulability
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import JointLimits
-from hexaleg.robot.model import LegModel
+from hexaleg.robot.leg_model import LegModel
 
 GRID_STEP = math.radians(1.0)
 """Spacing of the w_A grid (eq 27): one characteristic value per degree [rad]."""

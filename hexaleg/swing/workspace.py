@@ -26,6 +26,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.kinematics import foot_position, planar_foot_position
 from hexaleg.leg_geometry import LegGeometry
 from hexaleg.limits import JointLimits
+from hexaleg.robot.model import HexapodModel
 
 Length = TypeVar("Length", float, ArrayF)
 
@@ -93,6 +94,32 @@ def monte_carlo_workspace(
         theta[:, 2] = knee_lower + rng.random(samples) * (limits.theta3[1] - knee_lower)
     shape = design.lengths if leg is None else leg
     return MonteCarloWorkspace(theta, foot_position(shape, theta), seed, limits)
+
+
+def standing_reach(
+    model: HexapodModel, samples: int = 20_000, seed: int = 0
+) -> dict[str, MonteCarloWorkspace]:
+    """Each leg's reach while it stands, in its leg-root frame: a Monte Carlo cloud by leg.
+
+    Each leg's own general leg within the limits that hold it standing: the model's
+    stance limits, else (a robot file's) the leg's own joint limits. Legs alike (every
+    leg of hexaleg's template) share one cloud.
+    """
+    clouds: dict[str, MonteCarloWorkspace] = {}
+    made: dict[tuple[object, ...], MonteCarloWorkspace] = {}
+    for leg in model.leg_names:
+        limits = model.stance_limits
+        if limits is None:
+            lower, upper = model.joint_limits(leg)
+            root, hip, knee = ((float(a), float(b)) for a, b in zip(lower, upper, strict=True))
+            limits = JointLimits(root, hip, knee, name=f"{leg}'s own limits")
+        shape = model.leg_geometry(leg)
+        key = (limits.lower.tobytes(), limits.upper.tobytes(), limits.coupled_knee, shape.lengths,
+               shape.hip_height, shape.foot_lateral)  # fmt: skip
+        if key not in made:
+            made[key] = monte_carlo_workspace(model.design, samples, seed, limits, shape)
+        clouds[leg] = made[key]
+    return clouds
 
 
 @dataclass(frozen=True)

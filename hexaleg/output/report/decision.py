@@ -18,14 +18,15 @@ from hexaleg.evaluation.evaluate import Evaluation, evaluate
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Section, change, table
+from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.pareto import ParetoRecord
 from hexaleg.output.report.part import Part, ReportData
-from hexaleg.output.report.recommendation import RecommendationRecord
+from hexaleg.output.report.recommendation import RANKED_GRID, RecommendationRecord
 from hexaleg.output.report.requirements import requirement_blocks
+from hexaleg.output.report.robot import answer_lines, requirements_answer
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.ratios import proportions_text, ratio_text
-from hexaleg.study.decide import DecideResult, decide
-from hexaleg.study.executors import local_pool
+from hexaleg.study.decide import DecideResult
 from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, ranked_columns, score
 from hexaleg.study.recommendation import BAND, Recommendation
 
@@ -73,15 +74,10 @@ def compute(data: ReportData) -> DecisionRecord:
     """What the choice costs; decide from the user's requirements, if they gave some."""
     grid = data[RecommendationRecord]
     rec = grid.recommendation
-    theirs = data.design.with_ratios(rec.l1_ratio, rec.l3_ratio)
+    theirs = data.robot.at_ratios(rec.l1_ratio, rec.l3_ratio)
     metrics, conditions = cost_metrics(data.design), data.options.decision.conditions
-    costs = [evaluate(design, metrics, conditions) for design in (data.design, theirs)]
-    requirements = data.options.requirements
-    answer = None
-    if requirements is not None:
-        with local_pool(data.options.workers) as pool:
-            answer = decide(data.design, requirements, executor=pool, progress=False)
-    return DecisionRecord(rec, grid.leg_length, costs[0], costs[1], answer)
+    costs = [evaluate(r.design, metrics, conditions, model=r.model) for r in (data.robot, theirs)]
+    return DecisionRecord(rec, grid.leg_length, costs[0], costs[1], requirements_answer(data))
 
 
 def section(data: ReportData) -> Section:
@@ -206,6 +202,19 @@ def to_json(record: DecisionRecord) -> dict[str, Any]:
     return out
 
 
+def headline(data: ReportData) -> tuple[str, ...]:
+    """The recommended ratios, this design's FB, and the lengths meeting the requirements."""
+    record = data[DecisionRecord]
+    rec = record.recommendation
+    fb = data[FlexibilityRecord].axis.fb
+    return (
+        f"recommended l1 : l2 : l3 = {rec.l1_ratio:.3f} : {rec.l2_ratio:.3f} : "
+        f"{rec.l3_ratio:.3f} (tibia ratio band {rec.l3_band[0]:.3f}-{rec.l3_band[1]:.3f}); "
+        f"this design: FB = {fb:.4f}",
+        *answer_lines(record.requirements, ".3f"),
+    )
+
+
 PART = Part(
     DecisionRecord,
     compute,
@@ -214,4 +223,6 @@ PART = Part(
     step="decision",
     json=to_json,
     level=0,
+    holds=RANKED_GRID,
+    headline=headline,
 )

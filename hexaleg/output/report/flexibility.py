@@ -10,7 +10,7 @@ from typing import Any
 
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
@@ -111,6 +111,14 @@ def to_json(record: FlexibilityRecord) -> dict[str, Any]:
     return {"flexibility": {"axis": record.axis.to_dict(), "free": record.free.to_dict()}}
 
 
+FREE_COUPLED = where_legs_are_the_designs(
+    "Free-coupled flexibility and its statics",
+    "not yet in this report of an imported robot: `flexibility --urdf FILE --mode free` "
+    "runs it (with `--collisions`, on the file's collision geometry)",
+)
+"""Where this report's flexibility in both modes and its statics hold (not yet where the
+legs are their own: the robot's axis-locked stance section is shown instead)."""
+
 PART = Part(
     FlexibilityRecord,
     compute,
@@ -118,4 +126,5 @@ PART = Part(
     step="body flexibility",
     files=write_files,
     json=to_json,
+    holds=FREE_COUPLED,
 )

@@ -11,9 +11,10 @@ from hexaleg.design import l3_ratio_grid
 from hexaleg.output.figures import table5_surfaces, write_manipulability_figures
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.workspace import PAPER_SWEEPS
 from hexaleg.paper import CLAIMED_W_A_PEAK
 from hexaleg.paper.reproduction import digits_transposed, table6_reproduction
-from hexaleg.robot.model import LegModel
+from hexaleg.robot.leg_model import LegModel
 from hexaleg.swing.manipulability import (
     AverageManipulabilityMap,
     ManipulabilityAnalysis,
@@ -204,4 +205,5 @@ PART = Part(
     step="manipulability",
     files=write_files,
     json=to_json,
+    holds=PAPER_SWEEPS,
 )

@@ -12,12 +12,15 @@ if TYPE_CHECKING:
 
 
 def study_marks(data: ReportData) -> list[Mark]:
-    """Your design and the recommended one, each as the study measures its own designs."""
+    """Your design and the recommended one (if any), each as the study measures its designs."""
     from hexaleg.output.report.recommendation import RecommendationRecord
     from hexaleg.output.report.study import StudyRecord
 
     yours = data[StudyRecord].yours.to_dict()
-    return your_and_recommended(yours, data[RecommendationRecord].recommended.to_dict())
+    recommended = data.records.get(RecommendationRecord)
+    if recommended is None:  # a robot whose own legs the report recommends nothing for
+        return [Mark("your design", yours)]
+    return your_and_recommended(yours, recommended.recommended.to_dict())
 
 
 def rated_torques(data: ReportData) -> dict[str, float]:

@@ -6,6 +6,8 @@ Presentation only: the numbers come from one gait period of the report's design
 (:mod:`hexaleg.electrical`): each joint type's actuator, its every margin to its ratings
 (peak torque, continuous torque against the RMS, supply voltage, speed), where the power
 goes (mechanical against copper loss), the energy per kilometre and the battery's range.
+The sizing is the plan's torques, what a torque-controlled robot needs; the part says so,
+and with ``--simulate`` sets both simulated controllers' peaks beside the plan's.
 A design without ``[actuators]`` gets one sentence saying how to give them.
 """
 
@@ -23,7 +25,9 @@ from hexaleg.evaluation.metrics import significant
 from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
+from hexaleg.output.report.simulation import SimulationRecord
+from hexaleg.sim.measure import WalkMetrics
 
 POWER, ENVELOPE = "gait_power", "gait_envelope"
 """The figures' file names, without extension."""
@@ -89,6 +93,7 @@ def section(data: ReportData) -> Section:
             f"{electrical.winding_temperature:g} °C (R below at that temperature). Each joint "
             "type's actuator (V: the supply its datasheet quotes):",
             _actuator_table(actuators),
+            *_controller_blocks(data, walked),
             "Every margin to the ratings, worst leg of each joint type (ratio above 1: over "
             "the rating):",
             _margin_table(electrical),
@@ -99,6 +104,33 @@ def section(data: ReportData) -> Section:
                    "peak and continuous torque, speed rating and the bus's voltage line"),
         ),
     )  # fmt: skip
+
+
+def _controller_blocks(data: ReportData, walked: GaitAnalysis) -> tuple[str, ...]:
+    """Which controller the sizing holds for, and (``--simulate``) both controllers' peaks."""
+    said = (
+        "The margins below are the plan's joint torques: what a torque-controlled robot needs "
+        "(walked in MuJoCo on the plan's torques with a low-gain PD, it needs them within "
+        "10 %). Position servos as stiff as hobby servos need more, the roots most: they push "
+        "the standing feet against each other and drag a lifting foot"
+    )
+    if not data.options.simulate:
+        return (said + " (`report --simulate` measures both).",)
+    walks = data[SimulationRecord].walks
+    rows = [
+        [joint, f"{walked.metrics.peak_torque[joint]:.3g}"]
+        + [_peak(walk.metrics, joint) for walk in walks.values()]
+        for joint in LEG_JOINTS
+    ]
+    return (
+        said + ". Peak joint torque [N·m], worst leg, planned and simulated:",
+        table(["joint", "plan (the sizing)", "servos", "torque control"], rows),
+    )
+
+
+def _peak(metrics: WalkMetrics | None, joint: str) -> str:
+    """A simulated walk's peak torque of ``joint`` [N·m] (or that it diverged)."""
+    return "diverged" if metrics is None else f"{metrics.peak_torque[joint]:.3g}"
 
 
 def _battery_mass(data: ReportData) -> str:
@@ -201,4 +233,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=where_legs_are_the_designs("", ""),
 )

@@ -13,7 +13,6 @@ from hexaleg.paper import L1_RATIOS, L3_RATIO_POINTS
 from hexaleg.ratios import MAX_L1_RATIOS
 from hexaleg.study.executors import max_workers
 from hexaleg.study.recommendation import DecisionOptions
-from hexaleg.study.robot_designs import RobotDesigns
 from hexaleg.study.sensitivity import FieldSweep
 from hexaleg.swing.workspace import MAX_SAMPLES
 
@@ -51,8 +50,6 @@ class ReportOptions:
             "Simulated walk" section.
         gait: The gait every walking number of the report is measured on: the design
             file's ``[gait]`` table, else the default gait.
-        robot: An imported robot to report on instead of a design of hexaleg's template
-            (:mod:`~hexaleg.output.report.robot`: the sections that hold for its file).
 
     """
 
@@ -69,7 +66,6 @@ class ReportOptions:
     requirements: Requirements | None = None
     simulate: bool = False
     gait: Gait = field(default_factory=Gait)
-    robot: RobotDesigns | None = None
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:

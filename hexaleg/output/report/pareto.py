@@ -12,7 +12,7 @@ from hexaleg.output.figures import pareto_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
 from hexaleg.output.report.part import Part, ReportData
-from hexaleg.output.report.recommendation import RecommendationRecord
+from hexaleg.output.report.recommendation import RANKED_GRID, RecommendationRecord
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.pareto import pareto_front
@@ -122,4 +122,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=RANKED_GRID,
 )

@@ -1,11 +1,13 @@
 """The shape of a report part, the record of computed parts, and the compute step.
 
 A :class:`Part` is what one module of the report contributes: a frozen record it
-computes from the design and from the records of the parts it ``needs``, one
+computes from the robot and from the records of the parts it ``needs``, one
 :class:`~hexaleg.output.report.document.Section` of text, tables and figures made
-from the records, the files it writes (figures, CSV), and its keys in ``report.json``.
-:func:`compute_parts` runs every part once, each after the parts it needs, into a
-frozen :class:`ReportData`.
+from the records, the files it writes (figures, CSV), its keys in ``report.json``, and
+whether it holds for the robot reported on (:attr:`Part.holds`, asked of the robot's
+capabilities: the paper's sweeps hold where every leg is the design's, the sensitivity
+table where the body may be varied). :func:`compute_parts` runs every part that holds
+once, each after the parts it needs, into a frozen :class:`ReportData`.
 """
 
 from __future__ import annotations
@@ -23,6 +25,8 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.section import Section
 from hexaleg.robot.model import HexapodModel
+from hexaleg.robot.recipe import RobotSource
+from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.study.progress import Progress
 
 R = TypeVar("R")
@@ -32,15 +36,32 @@ Level = Literal[0, 1, 2]
 
 
 @dataclass(frozen=True)
-class ReportData:
-    """The design, the options, its model, and every part's record, computed once.
+class LeftOut:
+    """A section of the report that does not hold for the robot reported on, and why.
 
     Attributes:
-        design: The analysed design.
+        section: The section, in words.
+        why: Why it is left out; empty where there is nothing to say (a section of another
+            robot's report, or of an option not given).
+
+    """
+
+    section: str = ""
+    why: str = ""
+
+
+@dataclass(frozen=True)
+class ReportData:
+    """The robot, the options, and every part's record, computed once.
+
+    Attributes:
+        design: The analysed design (the robot's).
         options: The sweep sizes and choices used.
-        model: The design's Pinocchio model (its URDF is ``model.urdf``).
+        model: The robot's Pinocchio model (its URDF is ``model.urdf``).
         records: Each part's record, keyed by the record's type; read with ``data[Type]``.
         parts: The report's parts, in reading order.
+        robot: The robot reported on (hexaleg's template at ``design`` if not given).
+        left_out: The sections that do not hold for it, each said once.
 
     """
 
@@ -49,6 +70,12 @@ class ReportData:
     model: HexapodModel
     records: Mapping[type, Any] = field(default_factory=dict)
     parts: tuple[Part[Any], ...] = ()
+    robot: Robot = None  # type: ignore[assignment]  # hexaleg's template at design
+    left_out: tuple[LeftOut, ...] = ()
+
+    def __post_init__(self) -> None:
+        if self.robot is None:
+            object.__setattr__(self, "robot", robot_of(RobotSource(), self.design))
 
     def __getitem__(self, kind: type[R]) -> R:
         """The record of type ``kind``; fails if no part computed it (yet)."""
@@ -110,6 +137,34 @@ def _no_json(record: Any) -> dict[str, Any]:
     return {}
 
 
+Holds = Callable[[Robot, ReportOptions], "LeftOut | None"]
+"""Whether a part holds for a robot and the options: ``None``, or what is left out and why."""
+
+
+def always(robot: Robot, options: ReportOptions) -> LeftOut | None:
+    """A part that holds for every robot."""
+    return None
+
+
+def where_legs_are_the_designs(section: str, why: str) -> Holds:
+    """A part that holds where every leg is the design's (the paper's leg of l1, l2, l3)."""
+
+    def holds(robot: Robot, options: ReportOptions) -> LeftOut | None:
+        return None if robot.own_legs is None else LeftOut(section, why)
+
+    return holds
+
+
+def where_legs_are_their_own(robot: Robot, options: ReportOptions) -> LeftOut | None:
+    """A part that holds where the legs are their own (each by its general leg)."""
+    return None if robot.own_legs is not None else LeftOut()
+
+
+def _no_headline(data: ReportData) -> tuple[str, ...]:
+    """A part that says nothing where the command line says where the report is."""
+    return ()
+
+
 @dataclass(frozen=True)
 class Part(Generic[R]):
     """One part of the report (see the package docstring for how to add one).
@@ -124,6 +179,8 @@ class Part(Generic[R]):
         json: The part's top-level keys of ``report.json`` (SI units, radians).
         level: Its heading's level: 1 a numbered section, 2 a numbered subsection of the
             section before it, 0 unnumbered.
+        holds: Whether it holds for the robot and options (:data:`Holds`).
+        headline: The lines the command line prints of it, beside where the report is.
 
     """
 
@@ -135,6 +192,8 @@ class Part(Generic[R]):
     files: Callable[[ReportData, Path], None] = _no_files
     json: Callable[[R], dict[str, Any]] = _no_json
     level: Level = 1
+    holds: Holds = always
+    headline: Callable[[ReportData], tuple[str, ...]] = _no_headline
 
 
 def section_numbers(parts: Sequence[Part[Any]]) -> dict[type, str]:
@@ -186,20 +245,36 @@ def compute_order(parts: Sequence[Part[Any]]) -> list[Part[Any]]:
 
 
 def compute_parts(
-    design: HexapodDesign, options: ReportOptions, parts: Sequence[Part[Any]]
+    robot: Robot | HexapodDesign, options: ReportOptions, parts: Sequence[Part[Any]]
 ) -> ReportData:
-    """Every part's record, each computed from only what it needs.
+    """Every part's record that holds for ``robot``, each computed from only what it needs.
 
-    Progress is shown as a study's (:class:`~hexaleg.study.progress.Progress`): a bar on a
-    terminal, a line every few seconds elsewhere, naming the step that runs.
+    A design is hexaleg's template at it. Progress is shown as a study's
+    (:class:`~hexaleg.study.progress.Progress`): a bar on a terminal, a line every few
+    seconds elsewhere, naming the step that runs.
+
+    Raises:
+        RobotImportError: A robot file without masses, before any part is computed.
+
     """
-    ordered = compute_order(parts)
+    if not isinstance(robot, Robot):
+        robot = robot_of(RobotSource(), robot)
+    robot.require_masses()  # its statics, walking and decision weigh it: refused up front
+    verdicts = [(part, part.holds(robot, options)) for part in parts]
+    held = tuple(part for part, left in verdicts if left is None)
+    said = tuple(dict.fromkeys(left for _, left in verdicts if left is not None and left.why))
+    ordered = compute_order(held)
     with Progress(len(ordered) + 1, unit="steps", show=options.progress) as shown:
         shown.update(0, "model and URDF")
-        model = HexapodModel(design) if options.robot is None else options.robot.point()[1]
-        data = ReportData(design, options, model, parts=tuple(parts))
+        model = robot.model
+        data = ReportData(robot.design, options, model, parts=held, robot=robot, left_out=said)
         for part in ordered:
             shown.update(1, part.step or part.record.__name__)
             data = data.with_record(part.compute(data.only(part.needs)))
         shown.update(1)
     return data
+
+
+def headline(data: ReportData) -> list[str]:
+    """What the command line prints of the report beside where it is, part by part."""
+    return [line for part in data.parts for line in part.headline(data)]

@@ -14,7 +14,7 @@ from typing import Any
 
 from hexaleg.output.report.document import Section, cell, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.stance.geometry import StanceGeometry
@@ -52,7 +52,7 @@ def compute(data: ReportData) -> RecommendationRecord:
         study.table,
         data.options.decision,
     )
-    theirs = data.design.with_ratios(rec.l1_ratio, rec.l3_ratio)
+    theirs = data.robot.at_ratios(rec.l1_ratio, rec.l3_ratio)
     return RecommendationRecord(rec, data.design.leg_length, study.spec.row_of(theirs))
 
 
@@ -138,6 +138,13 @@ def to_json(record: RecommendationRecord) -> dict[str, Any]:
     }
 
 
+RANKED_GRID = where_legs_are_the_designs(
+    "Recommendation, Pareto front and the decision's costs",
+    "they rank the paper's ratio grid with the template's manipulability map; with "
+    "requirements, the decision over your robot's segments is shown instead",
+)
+"""Where the ranked grid holds: every leg the paper's leg of l1, l2, l3."""
+
 PART = Part(
     RecommendationRecord,
     compute,
@@ -146,4 +153,5 @@ PART = Part(
     step="recommendation",
     files=write_files,
     json=to_json,
+    holds=RANKED_GRID,
 )

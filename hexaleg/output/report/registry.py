@@ -1,4 +1,9 @@
-"""The report's parts, in the order the report shows them (one line a part)."""
+"""The report's parts, in the order the report shows them (one line a part).
+
+One registry for every robot: each part says whether it holds for the robot reported on
+(:attr:`~hexaleg.output.report.part.Part.holds`), so a robot file's report runs the parts
+that hold for its own legs and names the others with why.
+"""
 
 from __future__ import annotations
 
@@ -13,7 +18,6 @@ from hexaleg.output.report import (
     pareto,
     recommendation,
     robot,
-    robot_study,
     sensitivity,
     simulation,
     statics,
@@ -23,18 +27,24 @@ from hexaleg.output.report import (
     workspace,
 )
 from hexaleg.output.report.options import ReportOptions
-from hexaleg.output.report.part import Part
+from hexaleg.output.report.part import LeftOut, Part
+from hexaleg.robot.robot import Robot
 
 PARTS: tuple[Part[Any], ...] = (
     decision.PART,
+    robot.DECISION,
     design.PART,
+    robot.ROBOT,
     workspace.PART,
     manipulability.PART,
+    robot.SWING,
     flexibility.PART,
+    robot.STANCE,
     study.PART,
     sensitivity.PART,
     statics.PART,
     walking.PART,
+    simulation.PART,
     motors.PART,
     viewer.PART,
     recommendation.PART,
@@ -43,26 +53,29 @@ PARTS: tuple[Part[Any], ...] = (
 """Every part of the report, in reading order; each is computed after the parts it needs."""
 
 
-ROBOT_PARTS: tuple[Part[Any], ...] = (
-    robot_study.DECISION,
-    robot.DESIGN,
-    robot.ROBOT,
-    robot.SWING,
-    robot.STANCE,
-    robot_study.STUDY,
-    robot.VIEWER,
-)
-"""The parts of an imported robot's report (:mod:`.robot`, :mod:`.robot_study`), in order."""
+def parts_for(robot: Robot, options: ReportOptions) -> tuple[Part[Any], ...]:
+    """The parts of :data:`PARTS` that hold for ``robot`` and ``options``, in reading order."""
+    return tuple(part for part in PARTS if part.holds(robot, options) is None)
 
 
-def parts_for(options: ReportOptions) -> tuple[Part[Any], ...]:
-    """:data:`PARTS`, with the simulated walk after the walking when ``options.simulate``.
+OPTION_PARTS: dict[str, Part[Any]] = {
+    "collisions": flexibility.PART,
+    "simulate": simulation.PART,
+    "sweep": sensitivity.PART,
+    "sensitivity_points": sensitivity.PART,
+}
+"""The part each of :class:`~.options.ReportOptions`' choices is for."""
 
-    An imported robot's report has its own parts (:data:`~.robot.ROBOT_PARTS`).
+
+def refused_options(robot: Robot, options: ReportOptions) -> list[tuple[str, LeftOut]]:
+    """The options given whose part does not hold for ``robot`` (option, what is left out).
+
+    An option is given when it differs from :class:`~.options.ReportOptions`' default.
     """
-    if options.robot is not None:
-        return ROBOT_PARTS
-    if not options.simulate:
-        return PARTS
-    after = PARTS.index(walking.PART) + 1
-    return (*PARTS[:after], simulation.PART, *PARTS[after:])
+    default = ReportOptions()
+    refused = []
+    for name, part in OPTION_PARTS.items():
+        left = part.holds(robot, options)
+        if getattr(options, name) != getattr(default, name) and left is not None:
+            refused.append((name, left))
+    return refused

@@ -1,15 +1,14 @@
-"""Report parts of an imported robot: what the report tells of a user's own hexapod.
+"""Report parts of a robot whose legs are its own: what the report tells of a robot file.
 
-The report of hexaleg's template (:data:`~hexaleg.output.report.registry.PARTS`) is built
-around the paper's leg: its closed-form workspace and manipulability on the segment
-lengths alone, its reproduction tables, the free-coupled flexibility, the template body's
-sensitivity, the recommendation on the paper's ratio grid. On an imported robot
-(``report --urdf FILE``) the report runs what holds for the robot's own file
-(:data:`~hexaleg.output.report.registry.ROBOT_PARTS`): its metrics as read, the
-axis-locked flexibility, the statics and walking payload, the study of its segments at
-other ratios and, with requirements, the decision over them
-(:mod:`~hexaleg.output.report.robot_study`), the 3-D view. :data:`SKIPPED` says which
-sections are left out and why; the report prints it in its first section.
+The paper's sections (the workspace and manipulability sweeps, the free-coupled
+flexibility, the template body's sensitivity, the recommendation on the paper's ratio
+grid) hold where every leg is the design's, the paper's leg of l1, l2, l3. A robot whose
+legs are its own (a robot file's, each leg its general leg) has these parts instead
+(:data:`~hexaleg.output.report.registry.PARTS` holds both; each part says whether it holds):
+its metrics as read and the sections left out with why (:data:`ROBOT`), each leg's swing
+phase (:data:`SWING`), the axis-locked flexibility with its statics and walking payload
+(:data:`STANCE`) and, with requirements, the decision over its segments (:data:`DECISION`).
+The design, the study of its segments and the 3-D view are the report's own parts.
 """
 
 from __future__ import annotations
@@ -25,35 +24,18 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
 from hexaleg.gait.defaults import default_gait
 from hexaleg.output.figures import extremes_figure, save
-from hexaleg.output.figures.stance import stance_figure
-from hexaleg.output.report import design, viewer
 from hexaleg.output.report.document import Figure, Section, table, write_csv
-from hexaleg.output.report.part import Part, ReportData
-from hexaleg.output.viewer.scene import write_static_html
+from hexaleg.output.report.part import LeftOut, Part, ReportData, where_legs_are_their_own
+from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
-from hexaleg.study.robot_designs import RobotDesigns
+from hexaleg.study.decide import DecideResult, decide
+from hexaleg.study.executors import local_pool
 from hexaleg.swing.manipulability import analyze_manipulability
 from hexaleg.swing.workspace import analyze_workspace
-
-SKIPPED = (
-    ("The paper's workspace and manipulability sweeps (Fig 8–11) and its Tables 5 and 6",
-     "they reproduce the paper's leg over its segment ratios; your robot's own legs are "
-     "measured in the swing-phase section instead"),
-    ("Free-coupled flexibility and its statics",
-     "not yet in this report of an imported robot: `flexibility --urdf FILE --mode free` "
-     "runs it (with `--collisions`, on the file's collision geometry)"),
-    ("Posture and body sensitivity",
-     "it varies hexaleg's template body and mounts, not your robot's file"),
-    ("Recommendation, Pareto front and the decision's costs",
-     "they rank the paper's ratio grid with the template's manipulability map; with "
-     "requirements, the decision over your robot's segments is shown instead"),
-    ("Walking comparison with the paper's leg", "there is no paper's leg on your robot's body"),
-)  # fmt: skip
-"""The template report's sections not run on an imported robot, and why."""
 
 METRIC_NAMES: tuple[MetricSpec, ...] = (
     METRICS.fb,
@@ -70,57 +52,23 @@ METRIC_NAMES: tuple[MetricSpec, ...] = (
 """The robot's metrics the first section lists (as read, under the report's gait)."""
 
 
-def robot_of(data: ReportData) -> RobotDesigns:
-    """The imported robot of the report (its options')."""
-    robot = data.options.robot
-    if robot is None:
-        raise HexalegError("an imported robot's report part ran without a robot")
-    return robot
-
-
 # -- the robot as read ----------------------------------------------------------------------
-
-
-def design_section(data: ReportData) -> Section:
-    """The robot's segments and mounts, and where its URDF is."""
-    d = data.design
-    rows = [
-        ("coxa l1, femur l2, tibia l3 [m]", f"{d.l1:.4g}, {d.l2:.4g}, {d.l3:.4g}"),
-        ("leg length L [m]", f"{d.leg_length:.4g}"),
-        (
-            "legs (x, y, yaw)",
-            "; ".join(
-                f"{m.name} ({m.x:.4g}, {m.y:.4g}, {math.degrees(m.yaw):.0f}°)" for m in d.legs
-            ),
-        ),
-    ]
-    return Section(
-        "Design",
-        (
-            "Your robot's segments and leg mounts as read from its file. The URDF analysed "
-            f"(the file's, with hexaleg's body and leg-root frames) is [{design.URDF}]"
-            f"({design.URDF}); the design is in [report.json](report.json).",
-            table(["field", "value"], rows),
-        ),
-    )
-
-
-DESIGN = Part(design.DesignRecord, design.compute, design_section, step="URDF",
-              files=design.write_files, level=0)  # fmt: skip
 
 
 @dataclass(frozen=True)
 class RobotRecord:
-    """The imported robot as read, measured once for every metric the report lists.
+    """The robot as read, measured once for every metric the report lists.
 
     Attributes:
-        source: The robot file.
+        source: What names it (its robot file).
         evaluation: Its metrics under the report's gait (no payload, level ground).
+        left_out: The report's sections that do not hold for it, and why.
 
     """
 
     source: str
     evaluation: Evaluation
+    left_out: tuple[LeftOut, ...] = ()
 
 
 def compute_robot(data: ReportData) -> RobotRecord:
@@ -128,8 +76,8 @@ def compute_robot(data: ReportData) -> RobotRecord:
     conditions = Conditions(gait=data.options.gait)
     found = evaluate(data.design, METRIC_NAMES, conditions, model=data.model)
     if found.error:
-        raise HexalegError(f"{robot_of(data).file.path}: {found.error}")
-    return RobotRecord(robot_of(data).file.path, found)
+        raise HexalegError(f"{data.robot.name}: {found.error}")
+    return RobotRecord(data.robot.name, found, data.left_out)
 
 
 def robot_section(data: ReportData) -> Section:
@@ -141,7 +89,7 @@ def robot_section(data: ReportData) -> Section:
         unit = "" if spec.unit in ("1", "-") else f" {spec.unit}"
         shown = "—" if math.isnan(value) else f"{value:.4g}{unit}"
         rows.append((spec.label, shown, "" if cause is None else str(cause)))
-    skipped = [(title, why) for title, why in SKIPPED]
+    skipped = [(left.section, left.why) for left in record.left_out]
     return Section(
         f"Your robot: {record.source}",
         (
@@ -163,11 +111,18 @@ def robot_json(record: RobotRecord) -> dict[str, Any]:
             "metrics": evaluation.metrics.to_dict(),
             "limited_by": {k: str(v) for k, v in evaluation.causes.to_dict().items()},
         },
-        "skipped": [{"section": title, "why": why} for title, why in SKIPPED],
+        "skipped": [{"section": left.section, "why": left.why} for left in record.left_out],
     }
 
 
-ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json)
+def robot_headline(data: ReportData) -> tuple[str, ...]:
+    """The robot and its FB."""
+    record = data[RobotRecord]
+    return (f"{record.source}: FB = {record.evaluation.metrics.value(METRICS.fb):.4f}",)
+
+
+ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json,
+             holds=where_legs_are_their_own, headline=robot_headline)  # fmt: skip
 
 
 # -- the swing phase of each leg -----------------------------------------------------------
@@ -190,9 +145,10 @@ def compute_swing(data: ReportData) -> RobotSwingRecord:
     """Monte Carlo and planar workspace, optimum pose and w_A of every leg."""
     design, samples = data.design, data.options.monte_carlo_samples
     legs = {}
-    for leg in robot_of(data).robot.legs:
-        geometry = leg.reading.geometry
-        legs[leg.name] = {
+    own = data.robot.own_legs
+    assert own is not None  # the part holds where the legs are their own
+    for name, geometry in own.items():
+        legs[name] = {
             "workspace": analyze_workspace(design, samples, leg=geometry).to_dict(design=False),
             "manipulability": analyze_manipulability(design, general=geometry).to_dict(
                 design=False
@@ -232,7 +188,7 @@ def swing_json(record: RobotSwingRecord) -> dict[str, Any]:
 
 
 SWING = Part(RobotSwingRecord, compute_swing, swing_section, step="swing phase",
-             json=swing_json, level=2)  # fmt: skip
+             json=swing_json, level=2, holds=where_legs_are_their_own)  # fmt: skip
 
 
 # -- axis-locked flexibility and the statics --------------------------------------------
@@ -366,27 +322,68 @@ STANCE = Part(
     files=stance_files,
     json=stance_json,
     level=2,
+    holds=where_legs_are_their_own,
 )
 
 
-# -- the 3-D view ------------------------------------------------------------------------
+# -- the decision over its segments ------------------------------------------------------
 
 
-def viewer_files(data: ReportData, out: Path) -> None:
-    """The static viewer page and its still, as the template report's."""
-    record = data[RobotStanceRecord]
-    save(stance_figure(data.model), out / f"{viewer.STILL}.png", svg=data.options.svg)
-    write_static_html(
-        data.model,
-        record.flexibility,
-        out / viewer.PAGE,
-        data[viewer.ViewerRecord].workspace_leg,
-        record.loads,
-    )
+@dataclass(frozen=True)
+class RobotDecisionRecord:
+    """The best segments for the user's requirements (``None``: none given)."""
+
+    answer: DecideResult | None
 
 
-VIEWER = Part(viewer.ViewerRecord, viewer.compute, viewer.section, step="3-D view",
-              files=viewer_files)  # fmt: skip
+def compute_decision(data: ReportData) -> RobotDecisionRecord:
+    """Decide over the robot's segments when the user gave requirements."""
+    return RobotDecisionRecord(requirements_answer(data))
 
 
-__all__ = ["DESIGN", "ROBOT", "SKIPPED", "STANCE", "SWING", "VIEWER"]
+def requirements_answer(data: ReportData) -> DecideResult | None:
+    """The decision over the robot for the user's requirements; ``None`` without them."""
+    requirements = data.options.requirements
+    if requirements is None:
+        return None
+    with local_pool(data.options.workers) as pool:
+        return decide(data.robot, requirements, executor=pool, progress=False)
+
+
+def decision_section(data: ReportData) -> Section:
+    """The answer to the requirements, or how to ask."""
+    answer = data[RobotDecisionRecord].answer
+    if answer is None:
+        return Section(
+            "Your requirements",
+            ("None given: `report --urdf FILE --payload KG ...` (or a `[requirements]` table) "
+             "adds the best segments of your robot that meet them.",),
+        )  # fmt: skip
+    return Section("Your requirements", requirement_blocks(answer))
+
+
+def decision_json(record: RobotDecisionRecord) -> dict[str, Any]:
+    """``requirements_decision`` when requirements were given."""
+    return {} if record.answer is None else {"requirements_decision": record.answer.to_dict()}
+
+
+def answer_lines(answer: DecideResult | None, digits: str) -> tuple[str, ...]:
+    """The lengths that meet the requirements, if some were given (``digits``: the format)."""
+    if answer is None:
+        return ()
+    lengths = ", ".join(f"{length:{digits}}" for length in answer.best.design.lengths)
+    verdict = "meets" if answer.feasible else "comes closest to meeting"
+    return (f"l = ({lengths}) m {verdict} your requirements",)
+
+
+def decision_headline(data: ReportData) -> tuple[str, ...]:
+    """The lengths that meet the requirements, if some were given."""
+    return answer_lines(data[RobotDecisionRecord].answer, ".4g")
+
+
+DECISION = Part(RobotDecisionRecord, compute_decision, decision_section, step="decision",
+                json=decision_json, level=0, holds=where_legs_are_their_own,
+                headline=decision_headline)  # fmt: skip
+
+
+__all__ = ["DECISION", "ROBOT", "STANCE", "SWING", "requirements_answer"]

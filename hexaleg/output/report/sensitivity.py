@@ -12,8 +12,10 @@ import pandas as pd
 from hexaleg._io import write_text
 from hexaleg.design import l3_ratio_grid
 from hexaleg.output.report.document import Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.options import ReportOptions
+from hexaleg.output.report.part import LeftOut, Part, ReportData
 from hexaleg.paper import L1_RATIOS
+from hexaleg.robot.robot import Robot
 from hexaleg.study.sensitivity import sensitivity_table
 
 
@@ -100,6 +102,16 @@ def to_json(record: SensitivityRecord) -> dict[str, Any]:
     return {"sensitivity": record.table.to_dict(orient="records")}
 
 
+def body_sweepable(robot: Robot, options: ReportOptions) -> LeftOut | None:
+    """Where the table holds: a robot whose body may be varied (hexaleg's template's)."""
+    if robot.body_sweepable:
+        return None
+    return LeftOut(
+        "Posture and body sensitivity",
+        "it varies hexaleg's template body and mounts, not your robot's file",
+    )
+
+
 PART = Part(
     SensitivityRecord,
     compute,
@@ -108,4 +120,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=body_sweepable,
 )

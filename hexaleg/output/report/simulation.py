@@ -1,11 +1,11 @@
 """Report part (``report --simulate``): the planned gait walked in MuJoCo, and a still of it.
 
 The part walks the report's gait (:attr:`~.options.ReportOptions.gait`) with the report's
-design for :data:`CYCLES` periods
-(:func:`~hexaleg.sim.simulate_gait`), sets the measures beside the plan's, and shows the
-robot half a period into the last one, one tripod in mid-swing: MuJoCo's own picture
-where an offscreen OpenGL works (EGL or OSMesa), else the links drawn as lines from the
-same simulated configuration.
+design for :data:`CYCLES` periods (:func:`~hexaleg.sim.simulate_gait`) twice — with stiff
+position servos and torque-controlled — sets both walks' measures beside the plan's, and
+shows the servo robot half a period into the last one, one tripod in mid-swing: MuJoCo's
+own picture where an offscreen OpenGL works (EGL or OSMesa), else the links drawn as lines
+from the same simulated configuration.
 """
 
 from __future__ import annotations
@@ -22,8 +22,10 @@ import pinocchio as pin
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import COLORS, FULL_WIDTH, drawn, new_figure, save
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.options import ReportOptions
+from hexaleg.output.report.part import LeftOut, Part, ReportData
 from hexaleg.robot.model import HexapodModel, joint_name
+from hexaleg.robot.robot import Robot
 from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.simulate import DEFAULT_CYCLES, simulate_gait
 
@@ -38,47 +40,63 @@ STILL = "simulated_walk"
 
 @dataclass(frozen=True)
 class SimulationRecord:
-    """The simulated walk of the report's design.
+    """The simulated walks of the report's design.
 
     Attributes:
-        result: The walk, its measures and the tripod standing check.
+        result: The walk with stiff position servos (the still's), its measures and the
+            tripod standing check.
+        torque: The same walk torque-controlled (the plan's torques, a low-gain PD).
 
     """
 
     result: SimulationResult
+    torque: SimulationResult
+
+    @property
+    def walks(self) -> dict[str, SimulationResult]:
+        """Each walk by its controller, servos first."""
+        return {walk.controller: walk for walk in (self.result, self.torque)}
 
 
 def compute(data: ReportData) -> SimulationRecord:
-    """Walk the report's gait for :data:`CYCLES` periods in MuJoCo."""
+    """Walk the report's gait for :data:`CYCLES` periods in MuJoCo, with each controller."""
     gait = data.options.gait
-    return SimulationRecord(simulate_gait(data.design, gait, cycles=CYCLES, model=data.model))
+    walks = (
+        simulate_gait(data.design, gait, cycles=CYCLES, model=data.model, controller=controller)
+        for controller in ("servo", "torque")
+    )
+    return SimulationRecord(*walks)
 
 
 def section(data: ReportData) -> Section:
-    """The measures beside the plan's, the standing forces beside the statics', the still."""
-    result = data[SimulationRecord].result
+    """Both walks' measures beside the plan's, the standing feet beside the statics', the still."""
+    record = data[SimulationRecord]
+    result = record.result
     gait = result.gait
     stiffness = zip(LEG_JOINTS, result.gains.stiffness, strict=True)
     kp = ", ".join(f"{joint} {k:.0f}" for joint, k in stiffness)
+    diverged = [f"The {c}-controlled walk diverged {w.diverged}: its measures are left out."
+                for c, w in record.walks.items() if w.diverged]  # fmt: skip
     return Section(
         "Simulated walk: the plan in a physics engine",
         (
             f"The design walked {gait.named} ({gait.pattern}, T = {gait.period:g} s, "
             f"S = {gait.stride:g} m, H = {gait.step_height:g} m: v = {gait.speed:.3g} m/s) "
-            f"for {result.cycles} periods in MuJoCo, from rest: hexaleg's URDF on a free "
-            f"body, foot spheres on a floor (μ = {result.friction:g}), joint servos fed the "
-            "planned joint trajectory with its inverse-dynamics torques as feed-forward "
-            f"(stiffness {kp} N·m/rad). Measured over the periods after the first:",
-            table(["quantity", "simulated", "planned"], _walk_rows(result)),
-            "The plan shares each instant's load among the standing feet with the least "
-            "forces; feet planted in the simulation and held by stiff servos also push "
-            "against each other, so the simulated torques, the roots' most, carry forces "
-            "the plan does not.",
-            "Standing 2 s on one tripod with the other feet lifted 2 cm, each standing "
-            "foot's vertical force beside the statics' (`loads --stance tripod`):",
-            table(
-                ["foot", "MuJoCo f_z [N]", "statics f_z [N]", "difference"], _standing_rows(result)
-            ),
+            f"for {result.cycles} periods in MuJoCo: hexaleg's URDF on a free body, foot "
+            f"spheres on a floor (μ = {result.friction:g}), the planned joint trajectory "
+            "followed twice — by stiff position servos fed its inverse-dynamics torques "
+            f"(stiffness {kp} N·m/rad), from rest, as hobby servos are; and torque-controlled, "
+            "its torques with a low-gain PD, from the plan's velocities. Measured over the "
+            "periods after the first:",
+            table(["quantity", "servos", "torque control", "planned"], _walk_rows(record)),
+            *diverged,
+            "The plan hands each instant's load to the standing feet with the least forces. "
+            "Stiff servos planted on three feet also push them against each other (the "
+            "internal force), and a lifting foot still pressed into MuJoCo's soft floor is "
+            "dragged by its swing: their torques, the roots' most, carry forces the plan does "
+            "not. Torque control needs what the plan says: size motors on the plan for a "
+            "torque-controlled robot, and give stiff servos the margin the servo column shows.",
+            *_standing_blocks(result),
             Figure(
                 STILL,
                 f"The simulated robot at t = {result.mid_stride_frame / result.frame_rate:.2f} s, "
@@ -89,41 +107,62 @@ def section(data: ReportData) -> Section:
     )
 
 
-def _walk_rows(result: SimulationResult) -> list[tuple[str, str, str]]:
-    metrics, design = result.metrics, result.design
-    rows = [
-        (
-            "distance [m]",
-            f"{metrics.distance:.3f} ({100 * metrics.distance_ratio:.1f} %)",
-            f"{metrics.planned_distance:.3f}",
-        ),
-        ("max \\|roll\\|, \\|pitch\\| [°]", f"{math.degrees(metrics.max_roll):.2f}, "
-         f"{math.degrees(metrics.max_pitch):.2f}", "0, 0"),
-        ("lowest body height [m]", f"{metrics.min_height:.3f}", f"{design.nominal_height:.3f}"),
-        ("fell", "yes" if metrics.fell else "no", "no"),
-        ("RMS joint tracking error [rad]", f"{metrics.tracking_rms:.4f}", "0"),
-        ("standing-foot slip [m]", f"{metrics.slip:.4f}", "0"),
+def _walk_rows(record: SimulationRecord) -> list[tuple[str, ...]]:
+    """Each measure with both controllers (``-``: that walk diverged) and the plan's."""
+    design, result = record.result.design, record.result
+    columns = [_measures(walk) for walk in record.walks.values()]
+    planned = [
+        f"{result.gait.speed * result.gait.period * (result.cycles - 1):.3f}", "0, 0",
+        f"{design.nominal_height:.3f}", "no", "0", "0", "0",
+        *(f"{result.planned_peak_torque[joint]:.1f}" for joint in LEG_JOINTS),
     ]  # fmt: skip
-    for joint, rated in zip(LEG_JOINTS, design.rated_torques or (None,) * 3, strict=True):
-        rows.append(
-            (
-                f"peak \\|τ\\| {joint} [N·m] "
-                + (f"(rated {rated:g})" if rated is not None else "(rating not given)"),
-                f"{metrics.peak_torque[joint]:.1f}",
-                f"{result.planned_peak_torque[joint]:.1f}",
-            )
-        )
-    return rows
+    names = [
+        "distance [m]", "max \\|roll\\|, \\|pitch\\| [°]", "lowest body height [m]", "fell",
+        "RMS joint tracking error [rad]", "standing-foot slip [m]",
+        "internal force, standing feet [N]",
+        *(f"peak \\|τ\\| {joint} [N·m] ({_rating(r)})"
+          for joint, r in zip(LEG_JOINTS, design.rated_torques or (None,) * 3, strict=True)),
+    ]  # fmt: skip
+    return [
+        (name, *(column[k] if column else "-" for column in columns), planned[k])
+        for k, name in enumerate(names)
+    ]
 
 
-def _standing_rows(result: SimulationResult) -> list[tuple[str, str, str, str]]:
+def _rating(rated: float | None) -> str:
+    """A joint's rated torque [N·m] in a row's name, or that the design gives none."""
+    return "rating not given" if rated is None else f"rated {rated:g}"
+
+
+def _measures(result: SimulationResult) -> list[str]:
+    """A walk's measures as :func:`_walk_rows` lists them (none: it diverged)."""
+    metrics = result.metrics
+    if metrics is None:
+        return []
+    return [
+        f"{metrics.distance:.3f} ({100 * metrics.distance_ratio:.1f} %)",
+        f"{math.degrees(metrics.max_roll):.2f}, {math.degrees(metrics.max_pitch):.2f}",
+        f"{metrics.min_height:.3f}", "yes" if metrics.fell else "no",
+        f"{metrics.tracking_rms:.4f}", f"{metrics.slip:.4f}", f"{metrics.internal_force:.1f}",
+        *(f"{metrics.peak_torque[joint]:.1f}" for joint in LEG_JOINTS),
+    ]  # fmt: skip
+
+
+def _standing_blocks(result: SimulationResult) -> tuple[str, ...]:
+    """The tripod standing check's sentence and table (none if it diverged)."""
     standing = result.standing
+    if standing is None:
+        return ()
     rows = []
     for leg in standing.legs:
         simulated, statics = standing.foot_forces_z[leg], standing.statics_foot_forces_z[leg]
         difference = 100 * (simulated - statics) / statics
         rows.append((leg, f"{simulated:.1f}", f"{statics:.1f}", f"{difference:+.2f} %"))
-    return rows
+    return (
+        "Standing 2 s on one tripod with the other feet lifted 2 cm, each standing "
+        "foot's vertical force beside the statics' (`loads --stance tripod`):",
+        table(["foot", "MuJoCo f_z [N]", "statics f_z [N]", "difference"], rows),
+    )
 
 
 def write_files(data: ReportData, out: Path) -> None:
@@ -191,9 +230,28 @@ def _leg_points(model: HexapodModel, leg: str) -> np.ndarray:
 
 
 def to_json(record: SimulationRecord) -> dict[str, Any]:
-    """``simulation``: the simulate command's JSON, without the design (stated once)."""
-    fields = record.result.to_dict()
-    return {"simulation": {key: value for key, value in fields.items() if key != "design"}}
+    """``simulation``: each controller's walk as the simulate command's JSON, no design."""
+    return {
+        "simulation": {
+            controller: {key: value for key, value in walk.to_dict().items() if key != "design"}
+            for controller, walk in record.walks.items()
+        }
+    }
+
+
+def simulated(robot: Robot, options: ReportOptions) -> LeftOut | None:
+    """Where the section holds: asked for (``simulate``), legs the design's.
+
+    A robot file's walk is ``simulate --urdf FILE``'s, not yet this report's.
+    """
+    if not options.simulate:
+        return LeftOut()
+    if robot.own_legs is None:
+        return None
+    return LeftOut(
+        "Simulated walk",
+        "not yet in this report of an imported robot: `simulate --urdf FILE` walks it",
+    )
 
 
 PART = Part(
@@ -204,4 +262,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=simulated,
 )

@@ -11,7 +11,7 @@ from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import loads_figure, save, statics_study_figure
 from hexaleg.output.figures.statics import SLOPE_CAUSES, slopes_differ
 from hexaleg.output.report.document import Figure, Section, table
-from hexaleg.output.report.flexibility import FlexibilityRecord
+from hexaleg.output.report.flexibility import FREE_COUPLED, FlexibilityRecord
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study import StudyRecord
@@ -186,4 +186,5 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=FREE_COUPLED,
 )

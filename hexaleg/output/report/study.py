@@ -47,19 +47,24 @@ class StudyRecord:
 
 
 def compute(data: ReportData) -> StudyRecord:
-    """Run the study over the swept coxa ratios × the report's tibia ratios."""
-    design, options = data.design, data.options
+    """Run the study over the swept coxa ratios × the report's tibia ratios.
+
+    Each design is the report's robot at the row's segment lengths (a robot file's changed
+    along its legs' own lines), at its leg length.
+    """
+    options = data.options
     spec = StudySpec(
         options.swept_l1_ratios,
         tuple(l3_ratio_grid(options.l3_points)),
-        design.leg_length,
-        base=design,
+        data.design.leg_length,
+        base=data.design,
         collisions=options.collisions,
         walked=options.gait,
+        robot=data.robot,
     )
     with local_pool(options.workers) as pool:
         table = study_table(spec, sweep(spec, pool))
-    return StudyRecord(spec, table, spec.row_of(design))
+    return StudyRecord(spec, table, spec.row_of(data.robot))
 
 
 def section(data: ReportData) -> Section:
@@ -68,38 +73,43 @@ def section(data: ReportData) -> Section:
     study, spec = record.table, record.spec
     peaks = peak_table(study)
     failed = int((study["error"] != "").sum())
-    return Section(
-        "Design study: FB against segment ratios (Fig 14–15)",
-        (
-            f"{len(study)} designs ({len(spec.l1_ratios)} coxa ratios × "
-            f"{len(spec.l3_ratios)} tibia ratios, total {data.design.leg_length:g} m, "
-            f"this design's body and posture); {failed} could not stand. Table: "
-            "[study/study.csv](study/study.csv).",
-            Figure(
-                "flexibility_ranges",
-                "The six ranges of the body pose against tibia ratio, for the smallest coxa ratio "
-                "(the paper's Fig 14)",
-            ),
-            Figure(
-                "flexibility_fb",
-                "Body flexibility FB against tibia ratio, for each coxa ratio, its grid peaks "
-                "marked and its flat top (within 1 % of the peak) thickened; the band is the "
-                "paper's claim (the paper's Fig 15); your design and the recommended one marked",
-            ),
-            table(
-                ["l1 ratio", f"FB peak l3 ratio ({data.options.l3_points}-point grid)", "peak FB"],
-                [
-                    (f"{p['l1_ratio']:.2f}", f"{p['peak_l3_ratio']:.3f}", f"{p['peak_fb']:.4f}")
-                    for p in peaks.to_dict(orient="records")
-                ],
-            ),
+    designs = (
+        "this design's body and posture"
+        if data.robot.own_legs is None
+        else "each your robot's file with every leg's segments changed along their own lines"
+    )
+    blocks: list[str | Figure] = [
+        f"{len(study)} designs ({len(spec.l1_ratios)} coxa ratios × "
+        f"{len(spec.l3_ratios)} tibia ratios, total {spec.total:.4g} m, {designs}); "
+        f"{failed} could not stand. Table: [study/study.csv](study/study.csv).",
+        Figure(
+            "flexibility_ranges",
+            "The six ranges of the body pose against tibia ratio, for the smallest coxa ratio "
+            "(the paper's Fig 14)",
+        ),
+        Figure(
+            "flexibility_fb",
+            "Body flexibility FB against tibia ratio, for each coxa ratio, its grid peaks "
+            "marked and its flat top (within 1 % of the peak) thickened; the band is the "
+            "paper's claim (the paper's Fig 15); your design (and the recommended one) marked",
+        ),
+        table(
+            ["l1 ratio", f"FB peak l3 ratio ({data.options.l3_points}-point grid)", "peak FB"],
+            [
+                (f"{p['l1_ratio']:.2f}", f"{p['peak_l3_ratio']:.3f}", f"{p['peak_fb']:.4f}")
+                for p in peaks.to_dict(orient="records")
+            ],
+        ),
+    ]
+    if data.robot.body_sweepable:  # the next table varies the body the paper does not give
+        blocks.append(
             "The paper reports FB falling as the coxa grows and peaking at l3 ≈ "
             f"{CLAIMED_L3_RATIO_PEAK[0]:.2f}–{CLAIMED_L3_RATIO_PEAK[1]:.2f} (§6.3). "
             "hexaleg confirms the fall; with this posture the peaks lie at "
             f"{peaks['peak_l3_ratio'].min():.3f}–{peaks['peak_l3_ratio'].max():.3f}. The paper "
-            "gives no posture or body: the next table shows how the peak moves with them.",
-        ),
-    )
+            "gives no posture or body: the next table shows how the peak moves with them."
+        )
+    return Section("Design study: FB against segment ratios (Fig 14–15)", tuple(blocks))
 
 
 def write_files(data: ReportData, out: Path) -> None:
@@ -111,8 +121,15 @@ def write_files(data: ReportData, out: Path) -> None:
 
 
 def to_json(record: StudyRecord) -> dict[str, Any]:
-    """``study_peaks``: per coxa ratio, the tibia ratio of the largest FB and that FB."""
-    return {"study_peaks": peak_table(record.table).to_dict(orient="records")}
+    """``study_peaks`` and ``study_yours``: the FB peaks, the robot as a study row.
+
+    Per coxa ratio, the tibia ratio of the largest FB and that FB; the robot reported on,
+    measured as the study measures its rows.
+    """
+    return {
+        "study_peaks": peak_table(record.table).to_dict(orient="records"),
+        "study_yours": record.yours.to_dict(),
+    }
 
 
 PART = Part(

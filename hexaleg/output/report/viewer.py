@@ -10,8 +10,11 @@ from hexaleg.output.figures.stance import stance_figure
 from hexaleg.output.report.document import Figure, Section
 from hexaleg.output.report.flexibility import FlexibilityRecord
 from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.robot import RobotStanceRecord
 from hexaleg.output.report.statics import StaticsRecord
 from hexaleg.output.viewer.scene import write_static_html
+from hexaleg.stance.extremes import FlexibilityResult
+from hexaleg.statics.loads import LoadsAnalysis
 
 PAGE = "viewer.html"
 STILL = "viewer_still"
@@ -59,14 +62,21 @@ def section(data: ReportData) -> Section:
 
 def write_files(data: ReportData, out: Path) -> None:
     """The static viewer page (torque colours from the statics), and its still for print."""
+    locked, loads = _stance(data)
     save(stance_figure(data.model), out / f"{STILL}.png", svg=data.options.svg)
-    write_static_html(
-        data.model,
-        data[FlexibilityRecord].axis,
-        out / PAGE,
-        data[ViewerRecord].workspace_leg,
-        data[StaticsRecord].axis,
-    )
+    write_static_html(data.model, locked, out / PAGE, data[ViewerRecord].workspace_leg, loads)
+
+
+def _stance(data: ReportData) -> tuple[FlexibilityResult, LoadsAnalysis]:
+    """The axis-locked extremes and their statics the report computed.
+
+    The paper's sections' (:mod:`.flexibility`, :mod:`.statics`), or where the legs are
+    their own, the robot's stance section's (:mod:`.robot`).
+    """
+    own = data.records.get(RobotStanceRecord)
+    if own is not None:
+        return own.flexibility, own.loads
+    return data[FlexibilityRecord].axis, data[StaticsRecord].axis
 
 
 PART = Part(ViewerRecord, compute, section, step="3-D view", files=write_files)

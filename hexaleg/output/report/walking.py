@@ -18,7 +18,7 @@ from hexaleg.output.figures.gait import walking_study_figure
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.motors import MotorsRecord, summary
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.study import StudyRecord
 from hexaleg.study.rows import StudyRow
 from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
@@ -195,4 +195,7 @@ PART = Part(
     files=write_files,
     json=to_json,
     level=2,
+    holds=where_legs_are_the_designs(
+        "Walking comparison with the paper's leg", "there is no paper's leg on your robot's body"
+    ),
 )

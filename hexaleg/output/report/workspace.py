@@ -8,7 +8,7 @@ from typing import Any
 
 from hexaleg.output.figures import write_workspace_figures
 from hexaleg.output.report.document import Figure, Section, table, write_csv
-from hexaleg.output.report.part import Part, ReportData
+from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.paper import L1_RATIOS
 from hexaleg.paper.reproduction import table5_reproduction
 from hexaleg.swing.workspace import CoxaSeries, WorkspaceAnalysis, analyze_workspace, coxa_series
@@ -111,4 +111,12 @@ def to_json(record: WorkspaceRecord) -> dict[str, Any]:
     return {"workspace": record.analysis.to_dict(), "table5": record.table5}
 
 
-PART = Part(WorkspaceRecord, compute, section, step="workspace", files=write_files, json=to_json)
+PAPER_SWEEPS = where_legs_are_the_designs(
+    "The paper's workspace and manipulability sweeps (Fig 8–11) and its Tables 5 and 6",
+    "they reproduce the paper's leg over its segment ratios; your robot's own legs are "
+    "measured in the swing-phase section instead",
+)
+"""Where the paper's swing-phase sections hold: every leg the paper's leg of l1, l2, l3."""
+
+PART = Part(WorkspaceRecord, compute, section, step="workspace", files=write_files, json=to_json,
+            holds=PAPER_SWEEPS)  # fmt: skip

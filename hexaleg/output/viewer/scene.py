@@ -122,8 +122,7 @@ def _add_workspace(viewer: Any, model: HexapodModel, leg: str, samples: int) -> 
 
     if leg not in model.leg_names:
         raise ParameterError("--workspace", leg, f"legs are {', '.join(model.leg_names)}")
-    general = model.leg_geometry(leg) if getattr(model, "general_legs", False) else None
-    cloud = monte_carlo_workspace(model.design, samples=samples, seed=0, leg=general)
+    cloud = monte_carlo_workspace(model.design, samples, 0, leg=model.leg_geometry(leg))
     root = model.nominal_base_pose() * model.root_placements()[leg]
     points = cloud.points @ root.rotation.T + root.translation
     heights = (cloud.points[:, 2] - cloud.points[:, 2].min()) / max(
