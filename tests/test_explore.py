@@ -456,3 +456,30 @@ def test_the_sized_tubes_are_the_loads_and_gait_commands(tmp_path, monkeypatch, 
     assert got["worst"]["case"] == worst["worst"]["case"]
     assert got["feasible"] is (loads["feasible"] and gait["feasible"])
     assert session.evaluate({})["structure"]["tubes"] != got["tubes"]  # sized per design
+
+
+@pytest.mark.parametrize(
+    ("params", "options", "field"),
+    [
+        ({}, (), None),
+        ({"maximize": "fb"}, ("--maximize", "fb"), None),
+        ({"minimize": "robot_mass"}, ("--minimize", "robot_mass"), None),
+        ({"maximize": "robot_mass"}, None, "maximize"),  # made smallest, not largest
+        ({"maximize": "fb", "minimize": "robot_mass"}, None, "minimize"),
+    ],
+)
+def test_the_posture_job_takes_its_command_s_objective_and_nothing_else(params, options, field):
+    from hexaleg.evaluation.metrics import objectives
+    from hexaleg.exceptions import ParameterError
+    from hexaleg.explore.jobs import job_options
+
+    assert "robot_mass" in objectives("minimize") and "fb" in objectives("maximize")
+    asked = {"l2": "0.41", **params}
+    if field is None:
+        assert job_options("posture", asked) == options
+        assert asked == {"l2": "0.41"}  # taken out: the rest is the design's
+        assert job_options("decide", {"maximize": "fb"}) == ()  # not decide's key: left
+    else:
+        with pytest.raises(ParameterError) as refused:
+            job_options("posture", asked)
+        assert refused.value.field == field

@@ -211,3 +211,108 @@ def test_one_motor_fills_the_others_and_a_refused_design_greys_the_numbers():
     assert refused["stale"] and "last design measured" in refused["status"], got
     assert refused["fb"] == got["fb"]  # the numbers kept are the last measured design's
     assert not got["again"]  # a design measured again: no longer grey
+
+
+POSTURE = (
+    """
+(async (ANGLES) => {
+"""
+    + PAGE_READY
+    + """  const set = async (id, value) => {
+    const input = document.getElementById(id);
+    input.value = value;
+    input.dispatchEvent(new Event('input', {bubbles: true}));
+    await idle();
+  };
+  const shown = () => Object.fromEntries([...document.querySelectorAll('#numbers tr')]
+    .map(tr => [tr.dataset.key, tr.dataset.value === '' ? null : Number(tr.dataset.value)]));
+  const endpoint = () => fetch('api/evaluate?' + e.query()).then(r => r.json());
+  await idle();
+  await set('theta2', ANGLES[0]);
+  await set('theta3', ANGLES[1]);
+  const moved = {query: e.query(), numbers: shown(), endpoint: await endpoint()};
+  const box = document.querySelector('.job[data-kind="posture"]');
+  const button = box.querySelector('button');
+  const pressed = {disabled: button.disabled, title: button.title,
+                   objective: document.getElementById('posture_objective').value};
+  if (button.disabled) return {moved: moved, pressed: pressed};
+  button.click();
+  const start = Date.now();
+  while (box.dataset.state !== 'done' && box.dataset.state !== 'failed'
+         && Date.now() - start < 240000) await sleep(200);
+  await sleep(0);
+  await idle();
+  const job = await fetch('api/job?kind=posture').then(r => r.json());
+  return {moved: moved, pressed: pressed, job: job, query: e.query(), numbers: shown(),
+          endpoint: await endpoint(), text: box.querySelector('.job-state').textContent,
+          sliders: [e.exact.theta2, e.exact.theta3]};
+})(%s)
+"""
+)
+
+
+def _numbers_are_the_endpoint_s(numbers: dict, endpoint: dict) -> None:
+    for key, value in numbers.items():
+        expected = _endpoint_value(endpoint, key)
+        if expected is None:
+            assert value is None, key
+        else:
+            assert value == pytest.approx(expected, rel=1e-12), key
+
+
+def _cli_json(*argv: str) -> dict:
+    """A command's ``--json``, run in this process."""
+    import contextlib
+    import io
+
+    from hexaleg.cli import main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main([*argv, "--json"]) == 0
+    return json.loads(out.getvalue())
+
+
+@pytest.mark.parametrize(
+    ("robot", "angles"),
+    [((), (-0.3, -1.75)), (("--urdf", str(KRABY)), (0.1, -1.4))],
+    ids=["template", "kraby"],
+)
+def test_the_posture_sliders_and_the_best_posture_button(tmp_path, robot, angles):
+    require_chromium()
+    if robot:  # its own gait, fixed (its default one is sized to it at each posture)
+        gait = tmp_path / "gait.toml"
+        gait.write_text("[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.8\n")
+        robot = (*robot, "--design", str(gait))
+    options = [*robot, "--save", str(tmp_path / "saved.toml")]
+    with running(*options) as server:
+        got = evaluate(server.url, POSTURE % json.dumps(list(angles)))
+    moved = got["moved"]
+    assert f"theta2={angles[0]}&theta3={angles[1]}" in moved["query"]
+    _numbers_are_the_endpoint_s(moved["numbers"], moved["endpoint"])
+    posed = [*robot, "--nominal-angles", "0", str(angles[0]), str(angles[1])]
+    loads = _cli_json("loads", *posed)
+    gait = _cli_json("gait", *posed)
+    endpoint = moved["endpoint"]
+    assert endpoint["payload_capacity"] == pytest.approx(loads["payload_capacity"]["mass"], 1e-9)
+    walking = loads["walking_payload_capacity"]["mass"]
+    assert endpoint["walking_payload_capacity"] == pytest.approx(walking, rel=1e-9)
+    for joint, value in gait["peak_torque"].items():
+        assert endpoint["peak_torque"][joint] == pytest.approx(value, rel=1e-9), joint
+    pressed = got["pressed"]
+    assert pressed["objective"] == "maximize=walking_payload_capacity"
+    if robot:  # a robot file's posture is slid, not searched: the button says so
+        assert pressed["disabled"] and "robot file" in pressed["title"]
+        return
+    job = got["job"]
+    assert job["state"] == "done", job
+    best = job["answer"]["best"]
+    assert got["sliders"] == best["nominal_angles"][1:]  # the page asks at the exact angles
+    assert f"theta2={got['sliders'][0]!r}&theta3={got['sliders'][1]!r}" in got["query"]
+    expected = _cli_json("posture", *posed)  # the command on the design the button was pressed on
+    assert best["nominal_angles"] == pytest.approx(expected["best"]["nominal_angles"], abs=1e-12)
+    value = expected["best"]["objective"]["value"]
+    assert best["objective"]["value"] == pytest.approx(value, rel=1e-9)
+    assert got["endpoint"]["walking_payload_capacity"] == pytest.approx(value, rel=1e-9)
+    _numbers_are_the_endpoint_s(got["numbers"], got["endpoint"])
+    assert got["text"].startswith(f"θ2 {best['nominal_angles'][1]:.3f}, θ3 ")

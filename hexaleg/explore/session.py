@@ -25,7 +25,7 @@ from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
-from hexaleg.evaluation.metrics import METRICS, objectives
+from hexaleg.evaluation.metrics import objectives
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import HexalegError, ParameterError
@@ -34,7 +34,8 @@ from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs, job_options
 from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, POSTURE_KEYS, Query, parse_query
 from hexaleg.gait.spec import Gait
-from hexaleg.robot.robot import Robot
+from hexaleg.robot.robot import POSTURE_FIELD, Robot
+from hexaleg.study.posture import DEFAULT_OBJECTIVE
 
 __all__ = ["Session"]
 
@@ -235,7 +236,8 @@ class Session:
             "sliders": ranges,
             "posture": posture,
             "objectives": {better: objectives(better) for better in ("maximize", "minimize")},
-            "posture_objective": f"maximize={METRICS.walking_payload_capacity.name}",
+            "posture_objective": f"{DEFAULT_OBJECTIVE.sense}={DEFAULT_OBJECTIVE.name}",
+            "posture_search": self.robot.searches(POSTURE_FIELD),
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),

@@ -3,7 +3,7 @@
 // measures run from the slider's input event to the page drawn with its answer.
 "use strict";
 
-const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws: 0,
+const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws: 0, exact: {},
                   pending: false, inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
 window.explorer = explorer;
 
@@ -41,7 +41,7 @@ function slider(parent, key, label, low, high, start, step) {
   row.append(label, input, out);
   parent.append(row);
   const show = () => { out.textContent = Number(input.value).toPrecision(3); };
-  input.addEventListener("input", () => { show(); changed(); });
+  input.addEventListener("input", () => { delete explorer.exact[key]; show(); changed(); });
   show();
   return input;
 }
@@ -143,6 +143,10 @@ function postureJob(parent, loaded) {  // "best posture": a job whose answer mov
   const button = document.createElement("button");
   button.type = "button";
   button.textContent = "best posture";
+  if (!loaded.posture_search) {  // a robot file stands within its own limits: slid, not searched
+    button.disabled = true;
+    button.title = "a robot file's posture is its own: slide it (hexaleg posture refuses it)";
+  }
   const bar = document.createElement("progress");
   Object.assign(bar, {max: 1, value: 0});
   const state = document.createElement("span");
@@ -152,7 +156,8 @@ function postureJob(parent, loaded) {  // "best posture": a job whose answer mov
 }
 
 function query() {
-  const get = (id) => document.getElementById(id).value;
+  const get = (id) => id in explorer.exact ? String(explorer.exact[id])
+    : document.getElementById(id).value;  // a value set by a job: exact, not the slider's rounding
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
   for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
@@ -457,9 +462,10 @@ async function pollCloud() {
 
 const JOB_ANSWERS = {
   posture: (a) => "θ2 " + a.best.nominal_angles[1].toFixed(3) + ", θ3 " +
-    a.best.nominal_angles[2].toFixed(3) + " rad: " + a.objective.name.replaceAll("_", " ") + " " +
-    a.best.objective.value.toPrecision(4) + " (as posed " + a.yours.objective.value.toPrecision(4) +
-    ")" + (a.feasible ? "" : " — no posture meets every requirement"),
+    a.best.nominal_angles[2].toFixed(3) + " rad: " +
+    a.best.objective.name.replaceAll("_", " ") + " " + a.best.objective.value.toPrecision(4) +
+    " (as posed " + a.yours.objective.value.toPrecision(4) + ")" +
+    (a.feasible ? "" : " — no posture meets every requirement"),
   free: (a) => "FB " + a.fb.toPrecision(4) + " with the other five coordinates free" +
     (a.converged ? "" : " (not shown to be the maximum)"),
   decide: (a) => a.best ? "best: l1 " + a.best.design.l1.toPrecision(3) + ", l2 " +
@@ -495,6 +501,7 @@ const JOB_DONE = {
       const input = document.getElementById(id);
       input.value = angle;
       input.nextElementSibling.textContent = Number(input.value).toPrecision(3);
+      explorer.exact[id] = angle;  // the range input keeps 15 digits: the query sends them all
     }
     changed();
   },
@@ -527,6 +534,7 @@ async function startOrStopJob(box) {
 }
 
 function reset() {
+  explorer.exact = {};
   const v = explorer.loaded.values;
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
     body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
