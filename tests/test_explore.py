@@ -132,6 +132,10 @@ def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer,
         ("theta3=-2.5", "theta3"),
         ("theta3=inf", "theta3"),
         ("theta2=0.1&nominal_angles=0,0.1,-1.5", "theta2"),
+        ("slope_deg=61", "slope_deg"),
+        ("slope_deg=-60.5", "slope_deg"),
+        ("slope_deg=nan", "slope_deg"),
+        ("slope_deg=5", "slope_deg"),  # a slope not walked by this version's evaluation
     ],
 )
 def test_a_bad_value_answers_400_naming_its_field_and_the_server_keeps_serving(
@@ -191,11 +195,13 @@ def test_save_writes_the_design_file_with_its_requirements(tmp_path):
         leg_length = next(c for c in got["requirements"] if c["name"] == "leg_length")
         assert leg_length["required"] == pytest.approx(loaded_design.leg_length)
         assert all(c["met"] == (c["margin"] >= 0) for c in got["requirements"])
-        status, wrote = server.post("api/save?l3=0.42&l2=0.39")
+        status, wrote = server.post("api/save?l3=0.42&l2=0.39&theta2=0.1&theta3=-1.4&slope_deg=0")
         assert status == 200 and wrote["wrote"] == str(source)
         assert server.post("api/save?l3=-1")[0] == 400
+        assert server.post("api/save?theta3=-3")[0] == 400  # beyond the stance limits
     design, requirements = load_design_file(source, Requirements.from_table)
     assert (design.l1, design.l2, design.l3) == pytest.approx((0.18, 0.39, 0.42))
+    assert design.nominal_angles == (0.0, 0.1, -1.4)  # the posture slid, exactly
     assert requirements == before
     assert [p.name for p in tmp_path.iterdir()] == ["robot.toml"]  # no temporary file left
 
@@ -220,6 +226,25 @@ def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
     assert posed == asked.design.replace(l1=base.l1)  # θ1 kept, θ2 and θ3 set
     knee = parse_query({"theta3": "-1.2"}, posed, Conditions()).design
     assert knee.nominal_angles == (0.0, 0.1, -1.2)
+
+
+def test_the_walking_slope_is_checked_against_the_ground_s_bound_in_degrees():
+    from hexaleg.explore.answer import walking_on
+    from hexaleg.statics.ground import LEVEL
+
+    base = HexapodDesign()
+    for degrees in ("60", "-60", "0", "12.5"):  # the bound itself walks
+        ground = parse_query({"slope_deg": degrees}, base, Conditions()).ground
+        assert ground.slope == np.deg2rad(float(degrees)) and ground.heading is None
+    assert parse_query({}, base, Conditions()).ground == LEVEL
+    for degrees in ("60.0001", "-61", "inf", "ten"):
+        with pytest.raises(ParameterError) as refused:
+            parse_query({"slope_deg": degrees}, base, Conditions())
+        assert refused.value.field == "slope_deg" and "[-60, 60] [°]" in refused.value.allowed
+    assert walking_on(Conditions(), LEVEL) == Conditions()
+    sloped = parse_query({"slope_deg": "10"}, base, Conditions()).ground
+    with pytest.raises(ParameterError, match="slope_deg"):  # never answered as level ground
+        walking_on(Conditions(), sloped)
 
 
 def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
@@ -419,6 +444,7 @@ def test_an_answer_evaluates_its_design_once_and_its_checks_read_the_numbers_sho
     for query, unlike in [
         ({"l3": "0.42"}, []),  # the sliders at the requirements' conditions
         ({"l3": "0.42", "payload": "3", "speed": "0.2"}, ["payload.mass", "gait.period"]),
+        ({"theta2": "0.1", "theta3": "-1.4", "slope_deg": "0"}, []),  # the posture is the design
     ]:
         evaluated.clear()
         got = session.evaluate(query)
@@ -429,6 +455,9 @@ def test_an_answer_evaluates_its_design_once_and_its_checks_read_the_numbers_sho
         assert checks["payload"] == got["payload_capacity"]
         assert checks["speed"] == got["max_speed"]
         assert checks["walking_payload"] == got["walking_payload_capacity"]
+        for row in got["rows"]:  # the page's rows: each a number of this answer, by its key
+            name, _, joint = row["key"].partition(".")
+            assert name in got and (not joint or joint in got[name]), row
 
 
 SIZED = """[structure]

@@ -228,9 +228,16 @@ POSTURE = (
     .map(tr => [tr.dataset.key, tr.dataset.value === '' ? null : Number(tr.dataset.value)]));
   const endpoint = () => fetch('api/evaluate?' + e.query()).then(r => r.json());
   await idle();
+  const slope = document.getElementById('slope_deg');
+  const stale = () => document.getElementById('results').classList.contains('stale');
+  await set('slope_deg', 5);  // a slope this version's evaluation does not walk: refused
+  const sloped = {range: [slope.min, slope.max], stale: stale(),
+                  status: document.getElementById('status').textContent};
+  await set('slope_deg', 0);
+  Object.assign(sloped, {level: document.getElementById('status').textContent, back: stale()});
   await set('theta2', ANGLES[0]);
   await set('theta3', ANGLES[1]);
-  const moved = {query: e.query(), numbers: shown(), endpoint: await endpoint()};
+  const moved = {query: e.query(), numbers: shown(), endpoint: await endpoint(), sloped: sloped};
   const box = document.querySelector('.job[data-kind="posture"]');
   const button = box.querySelector('button');
   const pressed = {disabled: button.disabled, title: button.title,
@@ -289,6 +296,10 @@ def test_the_posture_sliders_and_the_best_posture_button(tmp_path, robot, angles
         got = evaluate(server.url, POSTURE % json.dumps(list(angles)))
     moved = got["moved"]
     assert f"theta2={angles[0]}&theta3={angles[1]}" in moved["query"]
+    sloped = moved["sloped"]  # the walking slope slider: the ground's bound, refused off level
+    assert sloped["range"] == ["-60", "60"] and sloped["stale"] and "slope_deg" in sloped["status"]
+    assert not sloped["back"] and "walking on level ground" in sloped["level"]
+    assert "slope_deg=0&" in moved["query"] + "&"
     _numbers_are_the_endpoint_s(moved["numbers"], moved["endpoint"])
     posed = [*robot, "--nominal-angles", "0", str(angles[0]), str(angles[1])]
     loads = _cli_json("loads", *posed)

@@ -29,14 +29,17 @@ from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.evaluation.requirements import Requirements, limited_by_dict
+from hexaleg.exceptions import ParameterError
+from hexaleg.explore.query import SLOPE_KEY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
+from hexaleg.statics.ground import LEVEL, Ground
 from hexaleg.swing.workspace import standing_reach
 
-__all__ = ["EXPLORED", "answer", "conditions_unlike"]
+__all__ = ["EXPLORED", "ROWS", "answer", "conditions_unlike", "walking_on"]
 
 SCALARS: tuple[MetricSpec, ...] = (
     METRICS.fb,
@@ -62,11 +65,26 @@ EXPLORED: tuple[MetricSpec, ...] = (
 peak and RMS torque over the gait period (answered as ``peak_torque`` and ``rms_torque``)."""
 
 
+def _row(spec: MetricSpec) -> dict[str, str]:
+    """A metric's row of the page's table: its key in the answer, what it is, its unit."""
+    key = spec.name if spec.torque is None else f"{spec.torque}_torque.{spec.joint}"
+    return {"key": key, "label": spec.text, "unit": "" if spec.unit == "1" else spec.unit}
+
+
+_GAIT = SCALARS.index(METRICS.max_speed) + 1
+ROWS: tuple[dict[str, str], ...] = tuple(
+    _row(spec) for spec in (*SCALARS[:_GAIT], *EXPLORED[len(SCALARS) :], *SCALARS[_GAIT:])
+)
+"""The page's table of numbers: a row per metric of :data:`EXPLORED`, as its declaration
+says it (the page declares none of its own), the torques after the max speed."""
+
+
 def answer(
     design: HexapodDesign,
     conditions: Conditions,
     requirements: Requirements,
     model: HexapodModel | None = None,
+    ground: Ground = LEVEL,
 ) -> dict[str, Any]:
     """The page's numbers for ``design`` under ``conditions``, checked against ``requirements``.
 
@@ -77,20 +95,49 @@ def answer(
             on the same evaluation, under ``conditions``.
         model: Its model (an imported robot's at these segments); derived from hexaleg's
             template (:func:`~hexaleg.robot.model_cache.model_of`) if omitted.
+        ground: The ground the gait is walked on (the slope slider's), :func:`walking_on`.
+
+    Raises:
+        ParameterError: ``slope_deg``: a ground the evaluation cannot walk.
 
     """
     start = time.perf_counter()
+    conditions = walking_on(conditions, ground)
     model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
     metrics = {*EXPLORED, *(goal.metrics if goal is not None else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
     out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
+    out["ground"] = ground.to_dict(conditions.gait.heading) | {
+        "text": ground.describe(conditions.gait.heading)
+    }
     out["structure"] = _structure(found)
     if goal is not None:
         out["requirements"] = _checks(goal, found)
         out["requirements_conditions"] = conditions_unlike(goal.conditions, conditions, design)
     out["evaluate_ms"] = 1000 * (time.perf_counter() - start)
     return out
+
+
+def walking_on(conditions: Conditions, ground: Ground) -> Conditions:
+    """``conditions`` with the gait walked on ``ground`` (the slope slider's).
+
+    :class:`~hexaleg.evaluation.evaluate.Conditions` walk the gait on level ground in this
+    version; the walking ground is :func:`~hexaleg.evaluation.evaluate.evaluate`'s to take
+    (issue #39 item 3). Until it does, a slope is refused, naming ``slope_deg``, rather
+    than answered with numbers walked on level ground.
+
+    Raises:
+        ParameterError: ``slope_deg``: a ground that is not level.
+
+    """
+    if not ground.level:
+        raise ParameterError(
+            SLOPE_KEY,
+            f"{math.degrees(ground.slope):g}",
+            "0 [°]: this version's evaluation walks the gait on level ground only",
+        )
+    return conditions
 
 
 def _numbers(found: Evaluation) -> dict[str, Any]:
@@ -107,7 +154,7 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
     out["limited_by"] = {s.name: limited_by_dict(c) for s, c in causes if c is not None}
     out["unmeasured"] = {s.name: why for s, why in found.unmeasured.items() if why is not None}
     out["walks"] = found.walks
-    out["units"] = {spec.name: spec.unit for spec in SCALARS} | {"torque": "N·m"}
+    out["rows"] = ROWS
     return out
 
 
@@ -216,19 +263,28 @@ def conditions_unlike(
     """Where the conditions ``shown`` differ from the ``required`` ones, condition by condition.
 
     Each entry: ``name`` (``payload.mass``, ``gait.period``, ...), the ``required`` value and
-    the value ``shown`` [SI units, radians]; empty when the checks are made under the
+    the value ``shown`` [SI units, radians] (``None`` where one side has no such condition:
+    more grounds walked on one side); empty when the checks are made under the
     requirements' own conditions. The payload's default position is spelled out first.
     """
     wanted, given = _flat(_placed(required, design)), _flat(_placed(shown, design))
+    names = [*wanted, *(name for name in given if name not in wanted)]
     return [
-        {"name": name, "required": value, "shown": given[name]}
-        for name, value in wanted.items()
-        if given[name] != value
+        {"name": name, "required": wanted.get(name), "shown": given.get(name)}
+        for name in names
+        if given.get(name) != wanted.get(name)
     ]
 
 
 def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
-    """A record's fields, and its records' fields, by dotted name (JSON-ready values)."""
+    """A record's fields, and its records' fields, by dotted name (JSON-ready values).
+
+    A tuple of records (several grounds) is flattened item by item: ``grounds.0.slope``.
+    """
+    if isinstance(value, tuple) and any(is_dataclass(item) for item in value):
+        return {
+            k: v for i, item in enumerate(value) for k, v in _flat(item, f"{prefix}.{i}").items()
+        }
     if not is_dataclass(value) or isinstance(value, type):
         return {prefix: list(value) if isinstance(value, tuple) else value}
     out: dict[str, Any] = {}

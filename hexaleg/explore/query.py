@@ -6,7 +6,9 @@ A query names any design field by its key in a design file (``l1=0.25``,
 (``theta2``, ``theta3`` [rad], each within the design's stance limits; θ1 kept) and the
 conditions the sliders set: the payload
 (``payload`` [kg], ``payload_at`` = x,y,z in the body frame [m]) and the gait's
-``speed`` [m/s], ``stride`` [m] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
+``speed`` [m/s], ``stride`` [m] and ``step_height`` [m], and the walking slope
+``slope_deg`` [°] (the ground rising along the gait's heading: negative walks downhill;
+:class:`~hexaleg.statics.ground.Ground`). ``actuators.root``, ``actuators.hip`` and
 ``actuators.knee`` choose each joint type's motor by its catalog name (``hexaleg
 actuators``), as ``catalog = "NAME"`` does in a design file; empty values take the
 motors away (the ratings they gave kept, no motor model); a joint type not named keeps
@@ -16,8 +18,9 @@ the loaded design's motor. Every value is checked by its declaration; a bad one 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 from hexaleg.actuator_catalog import shipped_catalog
@@ -27,15 +30,24 @@ from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
+from hexaleg.statics.ground import LEVEL, MAX_SLOPE, Ground
 
 __all__ = [
     "ACTUATOR_KEYS",
     "CONDITION_KEYS",
     "DESIGN_KEYS",
     "POSTURE_KEYS",
+    "SLOPE_KEY",
+    "SLOPE_LIMIT",
     "Query",
     "parse_query",
 ]
+
+SLOPE_KEY = "slope_deg"
+"""The query key of the walking slope [°]."""
+SLOPE_LIMIT = round(math.degrees(MAX_SLOPE), 9)
+"""The steepest walking slope a query asks either way [°]: the ground's own bound (60,
+not the 59.99999999999999 its conversion back from radians gives)."""
 
 DESIGN_KEYS: dict[str, Any] = {
     spec.key: spec for spec in DESIGN_FIELDS if spec.kind in ("number", "triple", "choice")
@@ -51,6 +63,8 @@ CONDITION_KEYS: dict[str, str] = {
     "speed": "gait speed [m/s] (the stride kept, the period set)",
     "stride": "gait stride [m] (the period kept; with speed, the speed kept)",
     "step_height": "gait step height [m]",
+    SLOPE_KEY: f"walking slope in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°], rising along the "
+    "gait's heading (uphill; negative: downhill)",
 }
 """The conditions a query may set, with what each is."""
 
@@ -65,11 +79,13 @@ class Query:
     Attributes:
         design: The design asked about.
         conditions: What it is measured under.
+        ground: The ground the gait is walked on (level unless ``slope_deg`` says).
 
     """
 
     design: HexapodDesign
     conditions: Conditions
+    ground: Ground = field(default=LEVEL)
 
 
 def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Conditions) -> Query:
@@ -96,7 +112,8 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
     if any(key in params for key in POSTURE_KEYS):
         changes["nominal_angles"] = _posture(params, base.replace(**changes))
     design = base.replace(**changes) if changes else base
-    return Query(design, _conditions(params, conditions))
+    ground = _ground(params[SLOPE_KEY]) if SLOPE_KEY in params else LEVEL
+    return Query(design, _conditions(params, conditions), ground)
 
 
 def _field(key: str, text: str) -> Any:
@@ -175,7 +192,20 @@ def _conditions(params: Mapping[str, str], base: Conditions) -> Conditions:
         gait = gait.replace(step_height=_number("step_height", params["step_height"], "m"))
     if "speed" in params:
         gait = gait.with_speed(_number("speed", params["speed"], "m/s"))
-    return Conditions(payload, base.slope, gait, base.stance, base.mode, base.collisions)
+    return replace(base, payload=payload, gait=gait)
+
+
+def _ground(text: str) -> Ground:
+    """The ground ``slope_deg`` walks: inclined as many degrees, rising along the heading."""
+    within = f"must be a number in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°]"
+    try:
+        degrees = float(text)
+    except ValueError:
+        raise ParameterError(SLOPE_KEY, text, within) from None
+    slope = math.radians(degrees)
+    if not abs(slope) <= MAX_SLOPE:  # NaN too
+        raise ParameterError(SLOPE_KEY, text, within)
+    return Ground(slope)
 
 
 def _checked_payload(mass: float, position: tuple[float, float, float] | None) -> Payload:

@@ -32,7 +32,14 @@ from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
 from hexaleg.explore.jobs import Jobs, job_options
-from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, POSTURE_KEYS, Query, parse_query
+from hexaleg.explore.query import (
+    ACTUATOR_KEYS,
+    DESIGN_KEYS,
+    POSTURE_KEYS,
+    SLOPE_LIMIT,
+    Query,
+    parse_query,
+)
 from hexaleg.gait.spec import Gait
 from hexaleg.robot.robot import POSTURE_FIELD, Robot
 from hexaleg.study.posture import DEFAULT_OBJECTIVE
@@ -203,7 +210,7 @@ class Session:
         sized = sized_for(robot.design, self.requirements)
         if sized is not None:
             robot = robot.at(sized.design)
-        out = answer(robot.design, asked.conditions, required, robot.model)
+        out = answer(robot.design, asked.conditions, required, robot.model, asked.ground)
         if sized is not None and out["structure"] is not None:
             out["structure"]["sizing"] = {
                 "found": sized.found,
@@ -235,6 +242,7 @@ class Session:
             "has_actuators": self.design.actuators is not None,
             "sliders": ranges,
             "posture": posture,
+            "slope_deg": [-SLOPE_LIMIT, SLOPE_LIMIT],
             "objectives": {better: objectives(better) for better in ("maximize", "minimize")},
             "posture_objective": f"{DEFAULT_OBJECTIVE.sense}={DEFAULT_OBJECTIVE.name}",
             "posture_search": self.robot.searches(POSTURE_FIELD),

@@ -7,28 +7,6 @@ const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws:
                   pending: false, inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
 window.explorer = explorer;
 
-const ROWS = [
-  ["fb", "FB (eq 29, axis-locked)", 4, ""],
-  ["improved_area", "improved workspace area (eq 16)", 4, "m²"],
-  ["average_manipulability", "average manipulability w_A", 4, "m³"],
-  ["payload_capacity", "payload capacity, standing", 4, "kg"],
-  ["walking_payload_capacity", "walking payload capacity", 4, "kg"],
-  ["max_speed", "max speed", 4, "m/s"],
-  ["peak_torque.root", "peak torque, root", 4, "N·m"],
-  ["peak_torque.hip", "peak torque, hip", 4, "N·m"],
-  ["peak_torque.knee", "peak torque, knee", 4, "N·m"],
-  ["rms_torque.root", "RMS torque, root", 4, "N·m"],
-  ["rms_torque.hip", "RMS torque, hip", 4, "N·m"],
-  ["rms_torque.knee", "RMS torque, knee", 4, "N·m"],
-  ["mechanical_energy_per_km", "mechanical energy per km", 4, "Wh/km"],
-  ["energy_per_km", "energy per km, through the motors", 4, "Wh/km"],
-  ["electrical_cost_of_transport", "electrical cost of transport", 4, ""],
-  ["continuous_load", "continuous load, RMS/continuous torque (worst joint)", 4, ""],
-  ["battery_range", "range on the battery", 4, "km"],
-  ["ground_clearance", "ground clearance", 4, "m"],
-  ["robot_mass", "robot mass", 4, "kg"],
-];
-
 function value(answer, key) {
   return key.split(".").reduce((o, k) => (o === null || o === undefined ? o : o[k]), answer);
 }
@@ -114,6 +92,8 @@ function buildControls(loaded) {
          "any");
   slider(c, "step_height", "step height [m]", 0.01 * leg, Math.max(0.3 * leg, 2 * v.step_height),
          v.step_height, "any");
+  const slope = loaded.slope_deg;  // the ground rising along the heading: + uphill, − downhill
+  slider(c, "slope_deg", "walking slope [°], + uphill", slope[0], slope[1], 0, "any");
   if (loaded.robot) {  // an imported robot: its motors are its file's ratings
     const name = loaded.robot.split("/").pop();
     heading(c, "robot " + name + ": body, masses and ratings the file's").title = loaded.robot;
@@ -161,7 +141,7 @@ function query() {
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
   for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
-                     "speed", "step_height"]) {
+                     "speed", "step_height", "slope_deg"]) {
     if (document.getElementById(key)) params.set(key, get(key));
   }
   params.set("theta2", get("theta2"));
@@ -204,7 +184,8 @@ async function evaluate() {
       await loadReach();
       draw(answer.body);
       status.textContent = (answer.body.error ||
-        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms") + gaitHint(answer.body);
+        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms, walking on " +
+        answer.body.ground.text) + gaitHint(answer.body);
       status.className = answer.body.error ? "error" : "";
     }
   } catch (err) {
@@ -234,14 +215,14 @@ function draw(answer) {
 function drawNumbers(answer) {
   const body = document.querySelector("#numbers tbody");
   body.replaceChildren();
-  for (const [key, label, digits, unit] of ROWS) {
+  for (const {key, label, unit} of answer.rows) {  // the rows as the server declares them
     const x = value(answer, key);
     const tr = document.createElement("tr");
     tr.dataset.key = key;
     tr.dataset.value = x === null || x === undefined ? "" : String(x);
     const why = answer.limited_by[key] ? answer.limited_by[key].description
       : (answer.unmeasured[key] || "");
-    const shown = x === null || x === undefined ? "—" : Number(x).toPrecision(digits);
+    const shown = x === null || x === undefined ? "—" : Number(x).toPrecision(4);
     for (const [text, cls] of [[label, ""], [shown + " " + unit, "value"], [why, "why"]]) {
       const td = document.createElement("td");
       td.textContent = text;
@@ -539,7 +520,7 @@ function reset() {
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
     body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
     payload: v.payload, payload_x: v.payload_at[0], payload_y: v.payload_at[1],
-    speed: v.speed, stride: v.stride, step_height: v.step_height};
+    speed: v.speed, stride: v.stride, step_height: v.step_height, slope_deg: 0};
   for (const [id, x] of Object.entries(start)) {
     const input = document.getElementById(id);
     if (!input) continue;
