@@ -66,9 +66,10 @@ peak and RMS torque over the gait period (answered as ``peak_torque`` and ``rms_
 
 
 def _row(spec: MetricSpec) -> dict[str, str]:
-    """A metric's row of the page's table: its key in the answer, what it is, its unit."""
+    """A metric's row of the page's table: its key in the answer, its name, what it is, its unit."""
     key = spec.name if spec.torque is None else f"{spec.torque}_torque.{spec.joint}"
-    return {"key": key, "label": spec.text, "unit": "" if spec.unit == "1" else spec.unit}
+    unit = "" if spec.unit == "1" else spec.unit
+    return {"key": key, "label": spec.label, "text": spec.text, "unit": unit}
 
 
 _GAIT = SCALARS.index(METRICS.max_speed) + 1

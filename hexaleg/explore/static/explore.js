@@ -93,7 +93,7 @@ function buildControls(loaded) {
   slider(c, "step_height", "step height [m]", 0.01 * leg, Math.max(0.3 * leg, 2 * v.step_height),
          v.step_height, "any");
   const slope = loaded.slope_deg;  // the ground rising along the heading: + uphill, − downhill
-  slider(c, "slope_deg", "walking slope [°], + uphill", slope[0], slope[1], 0, "any");
+  slider(c, "slope_deg", "walking slope [°]", slope[0], slope[1], 0, "any");
   if (loaded.robot) {  // an imported robot: its motors are its file's ratings
     const name = loaded.robot.split("/").pop();
     heading(c, "robot " + name + ": body, masses and ratings the file's").title = loaded.robot;
@@ -215,7 +215,7 @@ function draw(answer) {
 function drawNumbers(answer) {
   const body = document.querySelector("#numbers tbody");
   body.replaceChildren();
-  for (const {key, label, unit} of answer.rows) {  // the rows as the server declares them
+  for (const {key, label, text, unit} of answer.rows) {  // the rows as the server declares them
     const x = value(answer, key);
     const tr = document.createElement("tr");
     tr.dataset.key = key;
@@ -229,6 +229,7 @@ function drawNumbers(answer) {
       if (cls) td.className = cls;
       tr.append(td);
     }
+    tr.firstChild.title = text;  // what it is, with its source
     body.append(tr);
   }
 }
