@@ -236,12 +236,14 @@ def test_the_walking_slope_is_checked_against_the_ground_s_bound_in_degrees():
     for degrees in ("60", "-60", "0", "12.5"):  # the bound itself walks
         ground = parse_query({"slope_deg": degrees}, base, Conditions()).ground
         assert ground.slope == np.deg2rad(float(degrees)) and ground.heading is None
-    assert parse_query({}, base, Conditions()).ground == LEVEL
+    assert parse_query({}, base, Conditions()).ground is None  # the loaded ground kept
     for degrees in ("60.0001", "-61", "inf", "ten"):
         with pytest.raises(ParameterError) as refused:
             parse_query({"slope_deg": degrees}, base, Conditions())
         assert refused.value.field == "slope_deg" and "[-60, 60] [°]" in refused.value.allowed
-    assert walking_on(Conditions(), LEVEL) == Conditions()
+    assert (
+        walking_on(Conditions(), LEVEL) == walking_on(Conditions(), None) == (Conditions(), LEVEL)
+    )
     sloped = parse_query({"slope_deg": "10"}, base, Conditions()).ground
     with pytest.raises(ParameterError, match="slope_deg"):  # never answered as level ground
         walking_on(Conditions(), sloped)

@@ -85,7 +85,7 @@ def answer(
     conditions: Conditions,
     requirements: Requirements,
     model: HexapodModel | None = None,
-    ground: Ground = LEVEL,
+    ground: Ground | None = None,
 ) -> dict[str, Any]:
     """The page's numbers for ``design`` under ``conditions``, checked against ``requirements``.
 
@@ -96,22 +96,22 @@ def answer(
             on the same evaluation, under ``conditions``.
         model: Its model (an imported robot's at these segments); derived from hexaleg's
             template (:func:`~hexaleg.robot.model_cache.model_of`) if omitted.
-        ground: The ground the gait is walked on (the slope slider's), :func:`walking_on`.
+        ground: The ground the gait is walked on (the slope slider's; ``None``: the
+            conditions' own), :func:`walking_on`; the answer's ``grounds`` say which.
 
     Raises:
         ParameterError: ``slope_deg``: a ground the evaluation cannot walk.
 
     """
     start = time.perf_counter()
-    conditions = walking_on(conditions, ground)
+    conditions, walked = walking_on(conditions, ground)
     model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
     metrics = {*EXPLORED, *(goal.metrics if goal is not None else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
     out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
-    out["ground"] = ground.to_dict(conditions.gait.heading) | {
-        "text": ground.describe(conditions.gait.heading)
-    }
+    heading = conditions.gait.heading
+    out["grounds"] = [g.to_dict(heading) | {"text": g.describe(heading)} for g in (walked,)]
     out["structure"] = _structure(found)
     if goal is not None:
         out["requirements"] = _checks(goal, found)
@@ -120,25 +120,26 @@ def answer(
     return out
 
 
-def walking_on(conditions: Conditions, ground: Ground) -> Conditions:
-    """``conditions`` with the gait walked on ``ground`` (the slope slider's).
+def walking_on(conditions: Conditions, ground: Ground | None) -> tuple[Conditions, Ground]:
+    """``conditions`` with the gait walked on ``ground`` (the slope slider's), and that ground.
 
-    :class:`~hexaleg.evaluation.evaluate.Conditions` walk the gait on level ground in this
-    version; the walking ground is :func:`~hexaleg.evaluation.evaluate.evaluate`'s to take
-    (issue #39 item 3). Until it does, a slope is refused, naming ``slope_deg``, rather
-    than answered with numbers walked on level ground.
+    ``None``: the conditions' own ground. :class:`~hexaleg.evaluation.evaluate.Conditions`
+    walk the gait on level ground in this version; the walking ground is
+    :func:`~hexaleg.evaluation.evaluate.evaluate`'s to take (issue #39 item 3). Until it
+    does, a slope is refused, naming ``slope_deg``, rather than answered with numbers
+    walked on level ground.
 
     Raises:
         ParameterError: ``slope_deg``: a ground that is not level.
 
     """
-    if not ground.level:
+    if ground is not None and not ground.level:
         raise ParameterError(
             SLOPE_KEY,
             f"{math.degrees(ground.slope):g}",
             "0 [°]: this version's evaluation walks the gait on level ground only",
         )
-    return conditions
+    return conditions, LEVEL
 
 
 def _numbers(found: Evaluation) -> dict[str, Any]:
@@ -351,6 +352,7 @@ def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str,
         "speed": conditions.gait.speed,
         "stride": conditions.gait.stride,
         "step_height": conditions.gait.step_height,
+        "slope_deg": 0.0,  # level: the walking ground evaluate() takes in this version
     }
 
 

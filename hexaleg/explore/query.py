@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, replace
 from typing import Any
 
 from hexaleg.actuator_catalog import shipped_catalog
@@ -30,7 +30,7 @@ from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
-from hexaleg.statics.ground import LEVEL, MAX_SLOPE, Ground
+from hexaleg.statics.ground import MAX_SLOPE, Ground
 
 __all__ = [
     "ACTUATOR_KEYS",
@@ -79,13 +79,13 @@ class Query:
     Attributes:
         design: The design asked about.
         conditions: What it is measured under.
-        ground: The ground the gait is walked on (level unless ``slope_deg`` says).
+        ground: The ground the gait is walked on (``None``: the loaded conditions' own).
 
     """
 
     design: HexapodDesign
     conditions: Conditions
-    ground: Ground = field(default=LEVEL)
+    ground: Ground | None = None
 
 
 def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Conditions) -> Query:
@@ -112,7 +112,7 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
     if any(key in params for key in POSTURE_KEYS):
         changes["nominal_angles"] = _posture(params, base.replace(**changes))
     design = base.replace(**changes) if changes else base
-    ground = _ground(params[SLOPE_KEY]) if SLOPE_KEY in params else LEVEL
+    ground = _ground(params[SLOPE_KEY]) if SLOPE_KEY in params else None
     return Query(design, _conditions(params, conditions), ground)
 
 

@@ -93,7 +93,7 @@ function buildControls(loaded) {
   slider(c, "step_height", "step height [m]", 0.01 * leg, Math.max(0.3 * leg, 2 * v.step_height),
          v.step_height, "any");
   const slope = loaded.slope_deg;  // the ground rising along the heading: + uphill, − downhill
-  slider(c, "slope_deg", "walking slope [°]", slope[0], slope[1], 0, "any");
+  slider(c, "slope_deg", "walking slope [°]", slope[0], slope[1], v.slope_deg, "any");
   if (loaded.robot) {  // an imported robot: its motors are its file's ratings
     const name = loaded.robot.split("/").pop();
     heading(c, "robot " + name + ": body, masses and ratings the file's").title = loaded.robot;
@@ -141,9 +141,11 @@ function query() {
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
   for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
-                     "speed", "step_height", "slope_deg"]) {
+                     "speed", "step_height"]) {
     if (document.getElementById(key)) params.set(key, get(key));
   }
+  const slope = get("slope_deg");  // sent once moved: else the loaded conditions' grounds
+  if (Number(slope) !== v.slope_deg) params.set("slope_deg", slope);
   params.set("theta2", get("theta2"));
   params.set("theta3", get("theta3"));
   params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
@@ -185,7 +187,7 @@ async function evaluate() {
       draw(answer.body);
       status.textContent = (answer.body.error ||
         "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms, walking on " +
-        answer.body.ground.text) + gaitHint(answer.body);
+        answer.body.grounds.map((g) => g.text).join("; ")) + gaitHint(answer.body);
       status.className = answer.body.error ? "error" : "";
     }
   } catch (err) {
@@ -521,7 +523,7 @@ function reset() {
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
     body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
     payload: v.payload, payload_x: v.payload_at[0], payload_y: v.payload_at[1],
-    speed: v.speed, stride: v.stride, step_height: v.step_height, slope_deg: 0};
+    speed: v.speed, stride: v.stride, step_height: v.step_height, slope_deg: v.slope_deg};
   for (const [id, x] of Object.entries(start)) {
     const input = document.getElementById(id);
     if (!input) continue;
