@@ -265,28 +265,19 @@ def conditions_unlike(
     """Where the conditions ``shown`` differ from the ``required`` ones, condition by condition.
 
     Each entry: ``name`` (``payload.mass``, ``gait.period``, ...), the ``required`` value and
-    the value ``shown`` [SI units, radians] (``None`` where one side has no such condition:
-    more grounds walked on one side); empty when the checks are made under the
+    the value ``shown`` [SI units, radians]; empty when the checks are made under the
     requirements' own conditions. The payload's default position is spelled out first.
     """
     wanted, given = _flat(_placed(required, design)), _flat(_placed(shown, design))
-    names = [*wanted, *(name for name in given if name not in wanted)]
     return [
-        {"name": name, "required": wanted.get(name), "shown": given.get(name)}
-        for name in names
-        if given.get(name) != wanted.get(name)
+        {"name": name, "required": value, "shown": given[name]}
+        for name, value in wanted.items()
+        if given[name] != value
     ]
 
 
 def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
-    """A record's fields, and its records' fields, by dotted name (JSON-ready values).
-
-    A tuple of records (several grounds) is flattened item by item: ``grounds.0.slope``.
-    """
-    if isinstance(value, tuple) and any(is_dataclass(item) for item in value):
-        return {
-            k: v for i, item in enumerate(value) for k, v in _flat(item, f"{prefix}.{i}").items()
-        }
+    """A record's fields, and its records' fields, by dotted name (JSON-ready values)."""
     if not is_dataclass(value) or isinstance(value, type):
         return {prefix: list(value) if isinstance(value, tuple) else value}
     out: dict[str, Any] = {}
