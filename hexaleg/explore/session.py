@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import os
 import threading
+import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -203,6 +204,7 @@ class Session:
         the commands that measure tubes size them); the answer's ``structure.sizing`` says
         how.
         """
+        start = time.perf_counter()
         asked, robot = self.robot_at(params)
         required = self.requirements
         if required.given:  # the leg length the loaded design has, unless the file says
@@ -217,6 +219,7 @@ class Session:
                 "iterations": sized.iterations,
                 "settled": sized.settled,
             }
+        out["evaluate_ms"] = 1000 * (time.perf_counter() - start)  # the sizing's time too
         return out
 
     def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
