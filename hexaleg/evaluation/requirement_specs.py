@@ -34,6 +34,15 @@ Sense = Literal["at least", "at most"]
 BINDING_SHARE = 0.01
 """A met requirement binds when its margin is within this share of the required value."""
 
+AT_LIMIT_SHARE = 0.005
+"""A met requirement is *at the limit* when its margin is within this share of the required
+value: no margin a workshop's tolerances or a motor's spread could eat into is left."""
+
+ROUNDOFF = 1e-12
+"""A value within this share of the required one meets it [-]: the floating-point sum of
+lengths a workshop gives in millimetres (0.02 + 0.569 + 0.411 m) is their decimal sum only
+to this, and a value equal to its limit to twelve digits is at it, not past it."""
+
 DEGREES = "_deg"
 """The suffix of a key giving a requirement in degrees (``slope_deg``)."""
 
@@ -106,9 +115,17 @@ class RequirementSpec:
         """How far ``value`` is on the good side of ``required`` [unit] (< 0: not met)."""
         return value - required if self.sense == "at least" else required - value
 
+    def met(self, required: float, margin: float) -> bool:
+        """Whether a value ``margin`` from ``required`` meets it (within :data:`ROUNDOFF`)."""
+        return margin >= -ROUNDOFF * max(abs(required), 1e-12)
+
     def binds(self, required: float, margin: float) -> bool:
         """Whether a design meeting it with ``margin`` sits on it."""
-        return 0 <= margin <= BINDING_SHARE * max(abs(required), 1e-12)
+        return self.met(required, margin) and margin <= BINDING_SHARE * max(abs(required), 1e-12)
+
+    def at_limit(self, required: float, margin: float) -> bool:
+        """Whether a design meeting it with ``margin`` has no margin left to speak of."""
+        return self.met(required, margin) and margin <= AT_LIMIT_SHARE * max(abs(required), 1e-12)
 
 
 ConditionKind = Literal["position", "number", "degrees"]

@@ -278,22 +278,27 @@ class RequirementCheck:
 
     @property
     def met(self) -> bool:
-        """Whether the design meets it."""
-        return self.margin >= 0
+        """Whether the design meets it (to :data:`~.requirement_specs.ROUNDOFF`)."""
+        return REQUIREMENTS[self.name].met(self.required, self.margin)
 
     @property
     def binds(self) -> bool:
         """Whether the design meets it with almost no margin to spare."""
         return REQUIREMENTS[self.name].binds(self.required, self.margin)
 
+    @property
+    def at_limit(self) -> bool:
+        """Whether it binds with no margin left to speak of (within 0.5 % of the limit)."""
+        return REQUIREMENTS[self.name].at_limit(self.required, self.margin)
+
     def to_dict(self, binding: bool) -> dict[str, Any]:
-        """JSON-ready: ``binds`` for the best design, ``met`` for the user's."""
+        """JSON-ready: ``binds`` and ``at_limit`` for the best design, ``met`` for the user's."""
         out: dict[str, Any] = {
             "required": self.required,
             "value": self.value,
             "margin": self.margin,
         }
-        out |= {"binds": self.binds} if binding else {"met": self.met}
+        out |= {"binds": self.binds, "at_limit": self.at_limit} if binding else {"met": self.met}
         return out | {"limited_by": limited_by_dict(self.limited_by)}
 
 
