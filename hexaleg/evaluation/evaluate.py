@@ -40,6 +40,7 @@ from hexaleg.evaluation.metrics import (
     MetricSpec,
     Reasons,
 )
+from hexaleg.evaluation.sizing import size_tubes
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import GaitAnalysis, analyze_walker
 from hexaleg.gait.capacity import walker_capacity
@@ -50,12 +51,16 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 from hexaleg.statics.standing_limits import Standing
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.sizing import SizedStructure
+from hexaleg.structure.standing import check_standing, standing_cases
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
 
@@ -107,6 +112,11 @@ class Evaluation:
         gait: The gait period walked, when kept.
         walks: Whether the design walks the gait unloaded within its ratings (``None``
             unless the walking payload capacity was measured).
+        sized: The legs' tubes sized for the conditions' payload and slope, when the
+            design's ``[structure]`` says ``size = true`` (every metric is the sized
+            design's: :attr:`design`).
+        structure: The legs' tubes checked standing (the sizing's check, or the given
+            tubes'), when sized or when the structure was measured.
 
     """
 
@@ -118,6 +128,12 @@ class Evaluation:
     loads: LoadsAnalysis | None = None
     gait: GaitAnalysis | None = None
     walks: bool | None = None
+    sized: SizedStructure | None = None
+    structure: StructureCheck | None = None
+
+    def design(self, given: HexapodDesign) -> HexapodDesign:
+        """The design measured: ``given`` (the one evaluated), with its tubes if sized."""
+        return given if self.sized is None else self.sized.design
 
 
 def evaluate(
@@ -143,8 +159,10 @@ def evaluate(
             design's own is read from the model if omitted.
         flexibility: The design's flexibility, if already computed (a batch's).
 
-    A design whose analyses fail (its nominal stance cannot stand) is returned with
-    ``error`` set and no values.
+    A design whose ``[structure]`` says ``size = true`` has its tubes sized first, for the
+    conditions' payload and slope (:func:`~hexaleg.evaluation.sizing.size_tubes`): their
+    masses enter every metric. A design whose analyses fail (its nominal stance cannot
+    stand) is returned with ``error`` set and no values.
 
     """
     measuring = _Measuring(design, conditions or Conditions(), model, template, flexibility)
@@ -201,6 +219,7 @@ ANALYSES: tuple[Analysis, ...] = (
     "speed",
     "period",
     "motors",
+    "structure",
 )
 """The analyses, in the order an evaluation runs them."""
 
@@ -227,9 +246,12 @@ class _Measuring:
         self.unmeasured = Reasons()
         self.loads: LoadsAnalysis | None = None
         self.walks: bool | None = None
+        self.sized: SizedStructure | None = None
+        self.structure: StructureCheck | None = None
 
     def evaluation(self, metrics: Collection[MetricSpec]) -> Evaluation:
         self.asked = frozenset(spec.name for spec in metrics)
+        self._size()
         wanted = {spec.analysis for spec in metrics}
         if self.conditions.keep and wanted & WALKING:
             wanted.add("period")  # the period walked is kept
@@ -247,6 +269,8 @@ class _Measuring:
             loads=self.loads if kept else None,
             gait=self.walked if kept and "period" in wanted else None,
             walks=self.walks,
+            sized=self.sized,
+            structure=self.structure,
         )
 
     def _asked(self, spec: MetricSpec) -> bool:
@@ -257,6 +281,26 @@ class _Measuring:
         return type(table)(**{k: v for k, v in table.to_dict().items() if k in self.asked})
 
     # -- what the analyses share -----------------------------------------------------------
+
+    def _size(self) -> None:
+        """Size the legs' tubes where the design's ``[structure]`` asks: every metric is theirs.
+
+        The axis-locked extremes of every leg are the evaluation's own when it searches
+        those (they depend on the geometry only, which the tubes leave).
+        """
+        structure = self.design.structure
+        if structure is None or not structure.size:
+            return
+        conditions = self.conditions
+        same = conditions.mode == "axis" and conditions.stance == "all"
+        extremes = self.flexibility.extremes if same else None
+        sized = size_tubes(
+            self.design, conditions.payload, conditions.slope, model=self.model, extremes=extremes
+        )
+        if sized is None:
+            return
+        self.sized, self.structure, self.design = sized, sized.check, sized.design
+        self._model = self.model.with_design(sized.design)
 
     @property
     def model(self) -> HexapodModel:
@@ -429,6 +473,27 @@ class _Measuring:
             if lacking:
                 found = self._without((spec,), f"the design has no [{lacking[0]}]", found)
         return found
+
+    def _measure_structure(self) -> Metrics:
+        """The legs' tubes standing (the sizing's check, or the given tubes' own)."""
+        if self.structure is None:
+            structure = self.design.structure
+            if structure is None or None in structure.tubes:
+                why = "the design's [structure] neither sizes its tubes nor gives every one"
+                return self._without((METRICS.structure_load,), why)
+            self.structure = self._standing_structure()
+        check = self.structure
+        return Metrics(structure_load=max(check.worst_ratio, check.deflection / check.limit))
+
+    def _standing_structure(self) -> StructureCheck:
+        """The given tubes in every standing case of the conditions (every leg standing)."""
+        conditions, model = self.conditions, self.model
+        same = conditions.mode == "axis" and conditions.stance == "all"
+        found = self.flexibility if same else flexibility(self.design, "axis", "all", self._model)
+        cases = standing_cases(
+            model, model.leg_names, found.extremes, conditions.payload, conditions.slope or 0.0
+        )
+        return check_standing(model, cases)
 
     def _without(
         self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None

@@ -65,6 +65,8 @@ class RequirementSpec:
         zero: Whether zero is a valid requirement (else it must be positive).
         below: Whether it must be below its upper bound, not at it.
         degrees: Whether it is an angle also given in degrees, as ``<name>_deg``.
+        implied: Whether the design asks it rather than the user: never a key or an option
+            (:meth:`~.requirements.Requirements.resolved` sets it), never relaxed.
 
     """
 
@@ -79,6 +81,7 @@ class RequirementSpec:
     zero: bool = False
     below: bool = False
     degrees: bool = False
+    implied: bool = False
 
     def __post_init__(self) -> None:
         if not self.name:
@@ -307,6 +310,24 @@ CONTINUOUS_MARGIN = RequirementSpec(
 """Every joint's RMS torque over that gait period as a share of its actuator's continuous
 torque — at most this [-]."""
 
+STRUCTURE = RequirementSpec(
+    METRICS.structure_load,
+    "at most",
+    (1.0, 1.0),
+    "every leg tube within its strength / safety factor and the foot's deflection within its "
+    "limit [-] (the design's [structure] asks it)",
+    "1",
+    1.0,
+    "the legs' tubes and their loads",
+    name="structure",
+    implied=True,
+)
+"""The legs' tubes hold, a requirement whenever the design's ``[structure]`` gives every
+tube or sizes them: the largest von Mises stress over strength / safety factor and the foot's
+deflection over its limit at most 1 — standing with the payload at the nominal stance, the
+twelve extremes and every heading of the required slope, and walking the gait when a walking
+metric is measured (:data:`~hexaleg.evaluation.metrics.METRICS` ``structure_load``)."""
+
 REQUIREMENTS: Mapping[str, RequirementSpec] = {
     spec.name: spec
     for spec in (
@@ -320,6 +341,7 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
         WALKING_PAYLOAD,
         RANGE_KM,
         CONTINUOUS_MARGIN,
+        STRUCTURE,
     )
 }
 """Every requirement by name, in the order answers list them."""
@@ -361,6 +383,8 @@ def table_keys() -> tuple[RequirementSpec | ConditionSpec, ...]:
     """Every key of the ``[requirements]`` table, each condition after its requirement."""
     keys: list[RequirementSpec | ConditionSpec] = []
     for requirement in REQUIREMENTS.values():
+        if requirement.implied:
+            continue
         keys.append(requirement)
         keys += [] if requirement.in_degrees is None else [requirement.in_degrees]
         keys += [c for c in CONDITIONS.values() if c.of is requirement]

@@ -34,6 +34,7 @@ from hexaleg.evaluation.requirement_specs import (
     SLOPE,
     SPEED,
     STEP_HEIGHT,
+    STRUCTURE,
     ConditionSpec,
     RequirementSpec,
     condition_keys,
@@ -70,6 +71,7 @@ class Requirements:
 
     def __init__(self, walked: Gait | None = None, **given: Any) -> None:
         keys = {key.name: key for key in table_keys() if key.name not in degree_keys()}
+        keys |= {spec.name: spec for spec in REQUIREMENTS.values() if spec.implied}
         unknown = [name for name in given if name not in keys]
         if unknown:
             raise ParameterError(unknown[0], given[unknown[0]], "no requirement of that name")
@@ -141,10 +143,19 @@ class Requirements:
         return Requirements(gait, **dict(self.values))
 
     def resolved(self, design: HexapodDesign) -> Requirements:
-        """These requirements with the defaults filled in from ``design`` (its leg length)."""
-        if self.required(LEG_LENGTH) is not None:
-            return self
-        return self.replace(**{LEG_LENGTH.name: design.leg_length})
+        """These requirements with what ``design`` sets filled in.
+
+        The leg length, if not given: the design's. The legs' tubes hold
+        (:data:`~.requirement_specs.STRUCTURE`), if the design's ``[structure]`` sizes them
+        or gives every one.
+        """
+        changes: dict[str, float] = {}
+        if self.required(LEG_LENGTH) is None:
+            changes[LEG_LENGTH.name] = design.leg_length
+        structure = design.structure
+        if structure is not None and (structure.size or None not in structure.tubes):
+            changes[STRUCTURE.name] = STRUCTURE.bounds[1]
+        return self.replace(**changes) if changes else self
 
     # -- queries ------------------------------------------------------------------------
 

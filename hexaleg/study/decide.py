@@ -99,17 +99,26 @@ class CheckedDesign:
 
     @classmethod
     def of(cls, robot: Robot, goal: Goal) -> CheckedDesign:
-        """Measure ``robot`` from its own URDF and model, check it, flag joints over ratings."""
+        """Measure ``robot`` from its own URDF and model, check it, flag joints over ratings.
+
+        Where its ``[structure]`` sizes the tubes, the design checked is the sized one.
+        """
         requirements = goal.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
         design = robot.design
         try:
             model = robot.rebuilt().model
             locked = flexibility(design, "axis", model=model)
-            standing = loads_at_extremes(model, locked, payload).over_rating
         except HexalegError as err:
             return cls(design, Evaluation(error=str(err)), ())
         evaluation = goal.evaluate(design, model, flexibility=locked)
+        if evaluation.sized is not None:  # the tubes' masses: every flag is the sized design's
+            design = evaluation.sized.design
+            model = model.with_design(design)
+        try:
+            standing = loads_at_extremes(model, locked, payload).over_rating
+        except HexalegError as err:
+            return cls(design, Evaluation(error=str(err)), ())
         if evaluation.error:
             return cls(design, evaluation, (), standing)
         if not goal.walks:
