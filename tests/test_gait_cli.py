@@ -17,6 +17,7 @@ from hexaleg.evaluation.metrics import METRICS
 from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.statics import Payload, analyze_loads
+from hexaleg.statics.ground import Ground
 from hexaleg.study.rows import design_walking_row
 
 GAIT_FIELDS = {
@@ -235,7 +236,8 @@ def test_the_study_columns_are_the_single_design_numbers(hexapod_model):
 def test_a_min_torque_gait_balances_and_respects_friction(hexapod_model):
     gait = Gait(samples=16)
     walked = analyze_gait(hexapod_model.design, gait, distribution="min-torque",
-                          friction=0.5, model=hexapod_model, limits=False)  # fmt: skip
+                          ground=Ground(friction=0.5), model=hexapod_model,
+                          limits=False)  # fmt: skip
     norm = analyze_gait(hexapod_model.design, gait, model=hexapod_model, limits=False)
     standing = walked.foot_forces[walked.stance]
     assert (standing[:, 2] >= -1e-6).all()

@@ -6,6 +6,7 @@ import argparse
 import math
 import warnings
 
+from hexaleg.cli.best_posture import add_best_posture_option
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
@@ -40,6 +41,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_mode_option(parser)
     add_stance_option(parser)
     add_collisions_option(parser)
+    add_best_posture_option(parser)
     add_output_options(parser)
 
 

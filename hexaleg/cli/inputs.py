@@ -2,9 +2,11 @@
 
 The ``--design`` file is read and parsed once (:func:`~hexaleg.design_file.read_design_file`);
 the options given beside it set design fields over its design, and say which robot file to
-read and how (``--urdf FILE`` and its reading options over the file's ``[robot]`` table).
-What they resolve to, the robot built once with its requirements and gait, is
-:func:`hexaleg.evaluation.inputs.resolve_inputs`' to say; this module only parses.
+read and how (``--urdf FILE`` and its reading options over the file's ``[robot]`` table);
+``--best-posture`` asks the robot to stand at ``hexaleg posture``'s answer
+(:func:`~hexaleg.cli.best_posture.posing`). What they resolve to, the robot built once
+with its requirements and gait, is :func:`hexaleg.evaluation.inputs.resolve_inputs`' to
+say; this module only parses.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ from __future__ import annotations
 import argparse
 from typing import Any
 
+from hexaleg.cli.best_posture import posing
 from hexaleg.cli.options import DESIGN_FLAGS, UsageError, note
 from hexaleg.design import DEFAULT_LEG_LENGTH, SEGMENTS, HexapodDesign
 from hexaleg.design_file import DesignFile, read_design_file
@@ -47,7 +50,9 @@ def inputs_from_args(args: argparse.Namespace, *, sizing: Sizing | None = None) 
     given = _given(args)
     design = _design(args, base, source, given)
     of_file = file is not None and source.path is not None and getattr(args, "urdf", None) is None
-    return resolve_inputs(design, source, file, given=given, robot_of_file=of_file, sizing=sizing)
+    return resolve_inputs(
+        design, source, file, given=given, robot_of_file=of_file, posing=posing(args), sizing=sizing
+    )
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:
