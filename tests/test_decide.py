@@ -66,7 +66,7 @@ def test_search_finds_the_closed_form_optimum_of_a_random_problem(seed):
     assert result.feasible and all(c.met for c in result.best.checks)
     assert found == pytest.approx(best, rel=1e-2) and found <= best * (1 + 1e-9)
     mm = np.arange(1, 1401)  # every length on the grid [mm]
-    l1 = int(math.ceil(coxa * 1000 - 1e-9))
+    l1 = math.ceil(coxa * 1000 - 1e-9)
     tibias = mm[mm >= (clearance + 0.05) * 1000]
     femurs = np.floor(total * 1000 + 1e-9) - l1 - tibias
     areas = 2 * math.pi * np.where(femurs > 0, femurs, 0) * tibias / 3 / 1e6
