@@ -287,10 +287,12 @@ def _design_block(
 def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]:
     """Each joint over its rating standing (and walking), or that none is."""
     lines = []
-    for where, flagged in checked.over_rating_groups(result):
+    groups = checked.over_rating_groups(result)  # standing, then each walk (if walked)
+    violations = ["", *(walk.violation for walk in checked.walks)][: len(groups)]
+    for (where, flagged), violation in zip(groups, violations, strict=True):
         where += " (nominal stance and the 12 body extremes)" if where.startswith("stand") else ""
-        if where.startswith("walking") and checked.walking_violation:
-            lines.append(f"  {where}: cannot walk it, {checked.walking_violation}")
+        if violation:
+            lines.append(f"  {where}: cannot walk it, {violation}")
             continue
         if not flagged:
             lines.append(f"  over its rating {where}: no joint")

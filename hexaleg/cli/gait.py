@@ -99,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
         distribution=args.distribution,
         ground=ground,
         model=model,
-        safety_factor=safety_factor_from_args(args),
+        safety_factor=safety_factor_from_args(args, inputs.written),
     )
     require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []

@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
     inputs = inputs_from_args(args, sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
-    payload, factor = payload_from_args(args), safety_factor_from_args(args)
+    payload, factor = payload_from_args(args), safety_factor_from_args(args, requirements)
     model = robot.model
     analysis = analyze_loads(
         model.design,

@@ -27,6 +27,8 @@ from hexaleg.design import SEGMENT_RANGE
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import PAYLOAD_REACH, PAYLOAD_SEARCH_LIMIT
+from hexaleg.statics.ground import MAX_SLOPE
+from hexaleg.statics.ratings import SAFETY_FACTOR_RANGE
 
 Sense = Literal["at least", "at most"]
 """Which side of the required value meets a requirement."""
@@ -102,17 +104,7 @@ class RequirementSpec:
         """The key giving it in degrees (``slope_deg``), if it is an angle."""
         if not self.degrees:
             return None
-        low, high = self.bounds
-        return ConditionSpec(
-            self.name + DEGREES,
-            self,
-            "degrees",
-            f"the same {self.metric.label} in degrees [°]",
-            ("DEG",),
-            round(math.degrees(self.example), 9),
-            "°",
-            (round(math.degrees(low), 9), round(math.degrees(high), 9)),
-        )
+        return _in_degrees(self, self, self.metric.label, self.example, self.bounds)
 
     def margin(self, required: float, value: float) -> float:
         """How far ``value`` is on the good side of ``required`` [unit] (< 0: not met)."""
@@ -137,11 +129,15 @@ ConditionKind = Literal["position", "number", "degrees"]
 
 @dataclass(frozen=True)
 class ConditionSpec:
-    """One condition of a requirement: a key of the table that is no requirement itself.
+    """One condition: a key of the table that is no requirement itself.
+
+    A condition of one requirement (where the payload sits, how high the gait steps), or of
+    every requirement and metric measured (the slope walked, the motors' safety factor).
 
     Attributes:
         name: Its key in files and JSON, and (with dashes) its option.
-        of: The requirement it belongs to (its option follows that one's).
+        of: The requirement it belongs to (its option follows that one's); ``None``: every
+            requirement's and metric's (its option follows the requirements').
         kind: What its value is.
         help: What it is, with its unit in brackets.
         metavar: The option's metavar (three, for a position).
@@ -149,13 +145,16 @@ class ConditionSpec:
         unit: Its unit (of each coordinate, for a position).
         bounds: Its plausible values, inclusive (of each coordinate, for a position).
         needs: Why it is refused without its requirement (empty: a degrees key, which
-            gives the requirement itself).
+            gives the requirement itself, or a condition of every requirement).
         also: Other requirements it is a condition of too.
+        zero: Whether a number may be zero (else it must be positive).
+        degrees: Whether it is an angle also given in degrees, as ``<name>_deg``.
+        gives: For a key in degrees, the requirement or condition it gives in radians.
 
     """
 
     name: str
-    of: RequirementSpec
+    of: RequirementSpec | None
     kind: ConditionKind
     help: str
     metavar: tuple[str, ...]
@@ -164,11 +163,44 @@ class ConditionSpec:
     bounds: tuple[float, float]
     needs: str = ""
     also: tuple[RequirementSpec, ...] = ()
+    zero: bool = False
+    degrees: bool = False
+    gives: RequirementSpec | ConditionSpec | None = None
 
     @property
     def option(self) -> str:
         """Its command-line option, ``--payload-at``."""
         return "--" + self.name.replace("_", "-")
+
+    @property
+    def in_degrees(self) -> ConditionSpec | None:
+        """The key giving it in degrees (``walking_slope_deg``), if it is an angle."""
+        if not self.degrees or not isinstance(self.example, float):
+            return None
+        return _in_degrees(self, self.of, self.name.replace("_", " "), self.example, self.bounds)
+
+
+def _in_degrees(
+    spec: RequirementSpec | ConditionSpec,
+    of: RequirementSpec | None,
+    label: str,
+    example: float,
+    bounds: tuple[float, float],
+) -> ConditionSpec:
+    """The key giving ``spec`` (an angle [rad]) in degrees: ``<name>_deg`` [°]."""
+    low, high = bounds
+    return ConditionSpec(
+        spec.name + DEGREES,
+        of,
+        "degrees",
+        f"the same {label} in degrees [°]",
+        ("DEG",),
+        round(math.degrees(example), 9),
+        "°",
+        (round(math.degrees(low), 9), round(math.degrees(high), 9)),
+        zero=True,
+        gives=spec,
+    )
 
 
 PAYLOAD = RequirementSpec(
@@ -374,9 +406,47 @@ STEP_HEIGHT = ConditionSpec(
 )
 """How high the gait of :data:`SPEED` lifts its feet [m] (the gait's own if omitted)."""
 
-CONDITIONS: Mapping[str, ConditionSpec] = {spec.name: spec for spec in (PAYLOAD_AT, STEP_HEIGHT)}
+WALKING_SLOPE = ConditionSpec(
+    "walking_slope",
+    None,
+    "number",
+    f"slope the robot must walk, uphill, downhill and across; every walking requirement and "
+    f"metric is its worst of the three walks [rad], at most {math.degrees(MAX_SLOPE):g}° "
+    "(default 0: level ground)",
+    ("RAD",),
+    math.radians(10.0),
+    "rad",
+    (0.0, MAX_SLOPE),
+    zero=True,
+    degrees=True,
+)
+"""The slope [rad] (``walking_slope_deg`` [°]) the robot walks its gait on: uphill (the
+ground rising along the gait's heading), downhill and across
+(:func:`~hexaleg.evaluation.walks.walking_grounds`); the speed, walking payload, range,
+torques, cost of transport and every other walking metric are each the worst of the three
+walks. The slope it must stand on is :data:`SLOPE`."""
+
+MOTOR_SAFETY_FACTOR = ConditionSpec(
+    "motor_safety_factor",
+    None,
+    "number",
+    "the motors' safety factor F: every peak joint torque and speed within its rating / F, "
+    "standing and walking [-] (default 1; the legs' tubes have [structure] safety_factor)",
+    ("F",),
+    1.5,
+    "1",
+    SAFETY_FACTOR_RANGE,
+)
+"""The motors' safety factor F ≥ 1 [-]: every rated torque and speed is divided by F wherever a
+payload, a slope or a speed is measured within the ratings, standing and walking (the
+``[structure]`` table's ``safety_factor`` is the legs' tubes')."""
+
+CONDITIONS: Mapping[str, ConditionSpec] = {
+    spec.name: spec for spec in (PAYLOAD_AT, STEP_HEIGHT, WALKING_SLOPE, MOTOR_SAFETY_FACTOR)
+}
 """Every condition by name, each after the requirement it belongs to in the table and the
-options (the keys in degrees are their requirements', :attr:`RequirementSpec.in_degrees`)."""
+options (the keys in degrees are their requirements', :attr:`RequirementSpec.in_degrees`),
+the conditions of every requirement last."""
 
 
 def table_keys() -> tuple[RequirementSpec | ConditionSpec, ...]:
@@ -388,6 +458,9 @@ def table_keys() -> tuple[RequirementSpec | ConditionSpec, ...]:
         keys.append(requirement)
         keys += [] if requirement.in_degrees is None else [requirement.in_degrees]
         keys += [c for c in CONDITIONS.values() if c.of is requirement]
+    for condition in CONDITIONS.values():
+        if condition.of is None:
+            keys += [condition] + ([] if condition.in_degrees is None else [condition.in_degrees])
     return tuple(keys)
 
 
@@ -396,6 +469,10 @@ def condition_keys() -> dict[str, ConditionSpec]:
     return {key.name: key for key in table_keys() if isinstance(key, ConditionSpec)}
 
 
-def degree_keys() -> dict[str, RequirementSpec]:
-    """Keys giving a requirement in degrees, and that requirement: ``{"slope_deg": SLOPE}``."""
-    return {key.name: key.of for key in condition_keys().values() if key.kind == "degrees"}
+def degree_keys() -> dict[str, RequirementSpec | ConditionSpec]:
+    """Keys giving a key in degrees, and that key: ``{"slope_deg": SLOPE, ...}``."""
+    return {
+        key.name: key.gives
+        for key in condition_keys().values()
+        if key.kind == "degrees" and key.gives is not None
+    }

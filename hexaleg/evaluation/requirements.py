@@ -28,6 +28,7 @@ from hexaleg.evaluation.metrics import Causes, Metrics
 from hexaleg.evaluation.requirement_specs import (
     CONDITIONS,
     LEG_LENGTH,
+    MOTOR_SAFETY_FACTOR,
     PAYLOAD,
     PAYLOAD_AT,
     REQUIREMENTS,
@@ -35,6 +36,7 @@ from hexaleg.evaluation.requirement_specs import (
     SPEED,
     STEP_HEIGHT,
     STRUCTURE,
+    WALKING_SLOPE,
     ConditionSpec,
     RequirementSpec,
     condition_keys,
@@ -185,6 +187,18 @@ class Requirements:
         return value if isinstance(value, tuple) else None
 
     @property
+    def walking_slope(self) -> float:
+        """The slope walked uphill, downhill and across [rad] (0: level ground)."""
+        value = self.condition(WALKING_SLOPE)
+        return float(value) if isinstance(value, float) else 0.0
+
+    @property
+    def motor_safety_factor(self) -> float:
+        """The motors' safety factor F [-] (1 unless given)."""
+        value = self.condition(MOTOR_SAFETY_FACTOR)
+        return float(value) if isinstance(value, float) else 1.0
+
+    @property
     def needs_gait(self) -> bool:
         """Whether a walking requirement is set."""
         return self.required(SPEED) is not None
@@ -201,13 +215,22 @@ class Requirements:
         return gait if speed is None else gait.with_speed(speed)
 
     def walking_conditions(self) -> str:
-        """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``."""
+        """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``.
+
+        With the slope walked (up, down and across it) and the motors' safety factor, if
+        given.
+        """
         gait = self.gait
         carrying = f"carrying {self.payload_mass:g} kg" if self.payload_mass else "no payload"
-        return (
+        text = (
             f"{gait.pattern}, stride {gait.stride:g} m, step height {gait.step_height:g} m, "
             f"{carrying}"
         )
+        if self.walking_slope:
+            text += f", up, down and across a {math.degrees(self.walking_slope):.3g}° slope"
+        if self.motor_safety_factor != 1:
+            text += f", within ratings / {self.motor_safety_factor:g}"
+        return text
 
     def to_dict(self) -> dict[str, Any]:
         """The requirements and conditions set, JSON-ready (SI units, radians)."""
@@ -245,11 +268,15 @@ def _checked(spec: RequirementSpec, value: Any) -> float:
 def _condition(
     spec: ConditionSpec, value: Any, required: Mapping[str, float | Position]
 ) -> float | Position:
-    """A condition's value checked, refused when none of its requirements is given."""
+    """A condition's value checked, refused when none of its requirements is given.
+
+    A condition of every requirement (``of`` ``None``) is never alone.
+    """
     checked = condition_value(spec, value)
-    owners = (spec.of, *spec.also)
-    lonely = all(owner.name not in required for owner in owners)
-    if lonely or (spec.kind == "number" and isinstance(checked, float) and checked <= 0):
+    owners = () if spec.of is None else (spec.of, *spec.also)
+    lonely = bool(owners) and all(owner.name not in required for owner in owners)
+    zero = spec.kind == "number" and isinstance(checked, float) and checked <= 0
+    if lonely or (zero and not spec.zero):
         raise ParameterError(spec.name, value, spec.needs)
     return checked
 

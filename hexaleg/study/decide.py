@@ -38,12 +38,15 @@ from hexaleg.evaluation.requirement_specs import LEG_LENGTH, MIN_COXA, RANGE_KM
 from hexaleg.evaluation.requirements import RequirementCheck, Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.analysis import analyze_gait
+from hexaleg.gait.spec import Gait
 from hexaleg.kinematics import foot_position
 from hexaleg.ratings import require_ratings
+from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot, robot_of
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
+from hexaleg.statics.ground import Ground
 from hexaleg.statics.loads import loads_at_extremes
 from hexaleg.statics.ratings import OverRating, furthest_first
 from hexaleg.study.conflict import Conflict, find_conflict
@@ -74,19 +77,42 @@ before the nearest (breaking a requirement) is answered instead."""
 
 
 @dataclass(frozen=True)
+class WalkCheck:
+    """The requirements' gait walked on one ground by one design, its joints flagged.
+
+    Attributes:
+        ground: The ground walked (level, or the walking slope up, down or across).
+        over_rating: Each joint over its rated torque or speed walking it (none when it
+            cannot be walked at all).
+        violation: The gait's first broken constraint when it cannot be walked at all (a
+            foothold out of reach: speeds without bound); empty otherwise.
+
+    """
+
+    ground: Ground
+    over_rating: tuple[OverRating, ...] = ()
+    violation: str = ""
+
+    def where(self, gait: Gait) -> str:
+        """``walking at 0.3 m/s`` on level ground, ``walking at 0.3 m/s uphill on 10°`` else."""
+        ground, text = self.ground, f"walking at {gait.speed:.4g} m/s"
+        if ground.level:
+            return text
+        return text + f" {ground.way(gait.heading)} on {math.degrees(abs(ground.slope)):.3g}°"
+
+
+@dataclass(frozen=True)
 class CheckedDesign:
     """One design measured with the exact single-design analyses and checked.
 
     Attributes:
-        design: The design.
+        design: The design (its tubes sized, where its ``[structure]`` asks).
         evaluation: Its metrics (what the requirements and the objective need).
         checks: Each requirement checked on it.
-        standing_over_rating: Each joint over its rated torque carrying the required
+        standing_over_rating: Each joint over its rated torque / F carrying the required
             payload, at the nominal stance or an axis-locked extreme.
-        walking_over_rating: Each joint over its rated torque or speed walking the
-            requirements' gait (none when no gait is walked, or it cannot be).
-        walking_violation: The gait's first broken constraint when it cannot be walked at
-            all (a foothold out of reach: speeds without bound); empty otherwise.
+        walks: The requirements' gait walked on each ground, its joints over their
+            ratings / F flagged (none when no gait is walked).
 
     """
 
@@ -94,8 +120,7 @@ class CheckedDesign:
     evaluation: Evaluation
     checks: tuple[RequirementCheck, ...]
     standing_over_rating: tuple[OverRating, ...] = ()
-    walking_over_rating: tuple[OverRating, ...] = ()
-    walking_violation: str = ""
+    walks: tuple[WalkCheck, ...] = ()
 
     @classmethod
     def of(cls, robot: Robot, goal: Goal) -> CheckedDesign:
@@ -103,8 +128,8 @@ class CheckedDesign:
 
         Where its ``[structure]`` sizes the tubes, the design checked is the sized one.
         """
-        requirements = goal.requirements
-        payload = Payload(requirements.payload_mass, requirements.payload_at)
+        conditions = goal.conditions
+        payload, factor = conditions.payload, conditions.safety_factor
         design = robot.design
         try:
             model = robot.rebuilt().model
@@ -116,32 +141,49 @@ class CheckedDesign:
             design = evaluation.sized.design
             model = model.with_design(design)
         try:
-            standing = loads_at_extremes(model, locked, payload).over_rating
+            standing = loads_at_extremes(model, locked, payload, safety_factor=factor).over_rating
         except HexalegError as err:
             return cls(design, Evaluation(error=str(err)), ())
         if evaluation.error:
             return cls(design, evaluation, (), standing)
         if not goal.walks:
             return cls(design, evaluation, goal.checks(evaluation), standing)
-        walked = analyze_gait(design, requirements.gait, payload, model=model, limits=False)
-        flags, broken = walked.over_rating, [str(found) for found in walked.violations[:1]]
-        walking = () if broken else flags
-        return cls(design, evaluation, goal.checks(evaluation), standing, walking, *broken)
+        walks = tuple(
+            _walked(design, model, conditions.gait, payload, ground, factor)
+            for ground in conditions.grounds
+        )
+        return cls(design, evaluation, goal.checks(evaluation), standing, walks)
+
+    @property
+    def walking_over_rating(self) -> tuple[OverRating, ...]:
+        """Each joint over its rating walking, on every ground walked."""
+        return tuple(flag for walk in self.walks for flag in walk.over_rating)
+
+    @property
+    def walking_violation(self) -> str:
+        """The first broken constraint of a walk that cannot be walked at all (or empty)."""
+        return next((walk.violation for walk in self.walks if walk.violation), "")
 
     def over_rating_groups(self, result: DecideResult) -> list[tuple[str, list[OverRating]]]:
-        """(where, flags furthest over first) standing with the payload, and walking if walked."""
+        """(where, flags furthest over first) standing with the payload, and each walk."""
         payload = result.requirements.payload_mass
         standing = f"standing with {payload:g} kg" if payload else "standing without payload"
         groups = [(standing, furthest_first(self.standing_over_rating))]
         if result.walks:
-            walking = f"walking at {result.requirements.gait.speed:.4g} m/s"
-            groups.append((walking, furthest_first(self.walking_over_rating)))
+            gait = result.requirements.gait
+            groups += [(walk.where(gait), furthest_first(walk.over_rating)) for walk in self.walks]
         return groups
 
-    def over_rating(self) -> list[dict[str, Any]]:
-        """Every joint over its rating, JSON-ready, each saying ``while`` standing or walking."""
+    def over_rating(self, gait: Gait | None = None) -> list[dict[str, Any]]:
+        """Every joint over its rating, JSON-ready, each saying ``while`` standing or walking.
+
+        A walking flag also names its ``ground`` (walking ``gait``'s heading).
+        """
+        heading = 0.0 if gait is None else gait.heading
         return [o.to_dict() | {"while": "standing"} for o in self.standing_over_rating] + [
-            o.to_dict() | {"while": "walking"} for o in self.walking_over_rating
+            o.to_dict() | {"while": "walking", "ground": walk.ground.to_dict(heading)}
+            for walk in self.walks
+            for o in walk.over_rating
         ]
 
     @property
@@ -218,9 +260,10 @@ class DecideResult:
     def walking_text(self) -> str:
         """The gait the designs walk and what is measured on it, in words."""
         speed = self.requirements.gait.speed
+        worst = "; each the worst of the three walks" if self.requirements.walking_slope else ""
         return (
             f"{self.requirements.walking_conditions()}; speed: the fastest within the "
-            f"ratings at that stride; peak torque and cost of transport at {speed:.4g} m/s"
+            f"ratings at that stride; peak torque and cost of transport at {speed:.4g} m/s" + worst
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -232,7 +275,7 @@ class DecideResult:
                 **(posture_figures(self.best.design) if posed else {}),
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
-                "over_rating": self.best.over_rating(),
+                "over_rating": self.best.over_rating(self.requirements.gait),
                 "walking_violation": self.best.walking_violation or None,
                 "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
@@ -241,7 +284,7 @@ class DecideResult:
                 "design": self.yours.design.as_dict(),
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},
-                "over_rating": self.yours.over_rating(),
+                "over_rating": self.yours.over_rating(self.requirements.gait),
                 "walking_violation": self.yours.walking_violation or None,
             },
             "feasible": self.feasible,
@@ -263,6 +306,23 @@ class DecideResult:
             "free": {v.name: [v.lower, v.upper] for v in self.variables},
         }
         return out
+
+
+def _walked(
+    design: HexapodDesign,
+    model: HexapodModel,
+    gait: Gait,
+    payload: Payload,
+    ground: Ground,
+    factor: float,
+) -> WalkCheck:
+    """The gait walked on ``ground`` with the payload, its joints over rating / F flagged."""
+    walked = analyze_gait(
+        design, gait, payload, ground=ground, model=model, limits=False, safety_factor=factor
+    )
+    if walked.violations:
+        return WalkCheck(ground, (), str(walked.violations[0]))
+    return WalkCheck(ground, walked.over_rating)
 
 
 def posture_figures(design: HexapodDesign) -> dict[str, Any]:
