@@ -6,7 +6,7 @@ import argparse
 import math
 import warnings
 
-from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.best_posture import add_best_posture_option, posing
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
@@ -47,7 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
-    robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes are drawn and collide
+    # sized tubes are drawn and collide
+    robot = inputs_from_args(args, posing=posing(args), sizing=sized_for).robot
     check_outputs({}, {"--plot": args.plot})  # before computing
     result = _extremes(args, robot)
     if args.plot is not None:

@@ -7,7 +7,7 @@ import math
 from pathlib import Path
 
 from hexaleg._io import write_text
-from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.best_posture import add_best_posture_option, posing
 from hexaleg.cli.gait_options import (
     add_gait_options,
     add_ground_options,
@@ -86,7 +86,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Walk one period; print a table or JSON; write the CSV, figures and animation if asked."""
-    inputs = inputs_from_args(args, sizing=sized_for)
+    inputs = inputs_from_args(args, posing=posing(args), sizing=sized_for)
     robot, sized = inputs.robot, inputs.sized
     model = robot.model
     gait = gait_from_args(args, inputs.gait)

@@ -5,7 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
-from hexaleg.cli.best_posture import add_best_posture_option
+from hexaleg.cli.best_posture import add_best_posture_option, posing
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
@@ -59,7 +59,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
-    inputs = inputs_from_args(args, sizing=sized_for)
+    inputs = inputs_from_args(args, posing=posing(args), sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
     payload, factor = payload_from_args(args), safety_factor_from_args(args, requirements)
