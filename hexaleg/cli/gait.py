@@ -147,8 +147,14 @@ def _friction_needed(analysis: GaitAnalysis) -> str:
 
 
 def _feasible(analysis: GaitAnalysis) -> str:
-    why = analysis.infeasible_because
-    return "yes" if why is None else f"no: {why}"
+    """``yes``, ``no: why``, and which ratings it could not check (the design gives none)."""
+    why, unchecked = analysis.infeasible_because, analysis.unchecked_ratings
+    said = "yes" if why is None else f"no: {why}"
+    if not unchecked:
+        return said
+    options = ", ".join(f"--rated-{kind}s" for kind in unchecked)
+    kinds = " and ".join(f"{kind}s" for kind in unchecked)
+    return f"{said}; the rated {kinds} NOT checked: the design gives none ({options})"
 
 
 def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
