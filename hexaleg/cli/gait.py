@@ -273,7 +273,9 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     if analysis.safety_factor != 1:
         factor = analysis.safety_factor
-        rows.append(("safety factor", f"{factor:g}: peak torques and speeds within rating / F"))
+        rows.append(
+            ("motor safety factor", f"{factor:g}: peak torques and speeds within rating / F")
+        )
     rows += joint_rows(analysis)
     rows += [
         ("positive work per period", f"{metrics.positive_work:.2f} J"),

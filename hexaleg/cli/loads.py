@@ -113,7 +113,9 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         ("stability margin, nominal", margin),
     ]
     if analysis.safety_factor != 1:
-        rows.append(("safety factor", f"{analysis.safety_factor:g}: torques within rating / F"))
+        rows.append(
+            ("motor safety factor", f"{analysis.safety_factor:g}: torques within rating / F")
+        )
     for joint in LEG_JOINTS:
         held = rated[joint] / analysis.safety_factor
         rows.append(

@@ -77,7 +77,8 @@ def safety_factor_from_args(args: argparse.Namespace, written: Requirements | No
     given = getattr(args, MOTOR_SAFETY_FACTOR.name, None)
     if given is None:
         return 1.0 if written is None else written.motor_safety_factor
-    return require_in_range(MOTOR_SAFETY_FACTOR.option, given, *MOTOR_SAFETY_FACTOR.bounds, "-")
+    spec = MOTOR_SAFETY_FACTOR
+    return require_in_range(spec.option, given, *spec.bounds, spec.unit)
 
 
 def rated_text(rating: float, safety_factor: float, unit: str) -> str:

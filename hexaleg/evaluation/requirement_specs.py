@@ -434,7 +434,7 @@ MOTOR_SAFETY_FACTOR = ConditionSpec(
     "standing and walking [-] (default 1; the legs' tubes have [structure] safety_factor)",
     ("F",),
     1.5,
-    "1",
+    "-",
     SAFETY_FACTOR_RANGE,
 )
 """The motors' safety factor F ≥ 1 [-]: every rated torque and speed is divided by F wherever a
