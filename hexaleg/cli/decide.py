@@ -265,7 +265,8 @@ def _design_block(
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
     spec = result.objective.spec
     value = checked.evaluation.metrics.value(spec)
-    head += f", {spec.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
+    unit = "" if spec.unit == "1" else f" {spec.unit}"
+    head += f", {spec.label} = {value:.6g}{unit}" + (f" ({verdict})" if verdict else "")
     cause = checked.evaluation.causes[spec]
     above = [] if posture is None else [f"  {posture.text()}"]
     above += [] if cause is None else [f"  {spec.label} limited by {cause}"]
