@@ -420,7 +420,8 @@ def workshop_answer(
     """
     searched = tuple(float(v) for v in np.asarray(x, dtype=float))
     nearest = rounding.rounded(space, x)
-    answer = Rounded(rounding, space.names, searched, tuple(float(v) for v in nearest))
+    units = tuple(v.unit for v in space.variables)
+    answer = Rounded(rounding, space.names, searched, tuple(float(v) for v in nearest), 0, units)
     if not feasible:
         return _checked_at(space, nearest, goal), answer
 

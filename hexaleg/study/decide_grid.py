@@ -197,6 +197,7 @@ class Rounded:
         answer: The grid point answered.
         measured: Grid points around the search's best measured to choose it (0: only the
             nearest, when the search met not every requirement).
+        units: Each free variable's unit (``m`` and ``rad`` are rounded; empty: both).
 
     """
 
@@ -205,6 +206,7 @@ class Rounded:
     searched: tuple[float, ...]
     answer: tuple[float, ...]
     measured: int = 0
+    units: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready: the grids, the search's unrounded best, the grid points measured."""
@@ -215,9 +217,14 @@ class Rounded:
 
     def describe(self) -> str:
         """How the answer was rounded, in words."""
-        grids = (
-            f"lengths on a {self.rounding.resolution * 1e3:g} mm grid, angles on "
-            f"{self.rounding.angle_step:g} rad"
+        units = set(self.units) or {"m", "rad"}
+        grids = " and ".join(
+            text
+            for unit, text in (
+                ("m", f"lengths on a {self.rounding.resolution * 1e3:g} mm grid"),
+                ("rad", f"angles on {self.rounding.angle_step:g} rad"),
+            )
+            if unit in units
         )
         if not self.measured:
             return f"{grids}: the grid point nearest the search's best, measured again"
