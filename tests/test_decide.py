@@ -299,6 +299,15 @@ def test_decide_command_prints_json_and_reads_the_design_file_table(tmp_path, ca
         (["--free", "wheels=1:2"], "a field among"),
         (["--speed", "50"], "--speed = 50 is not valid"),
         (["--step-height", "0.1"], "needs a speed"),
+        (
+            ["--walking-slope-deg", "61"],
+            "--walking-slope-deg = 61 is not valid: must lie in [0, 60]",
+        ),
+        (
+            ["--motor-safety-factor", "0.9"],
+            "--motor-safety-factor = 0.9 is not valid: must lie in [1, 100]",
+        ),
+        (["--resolution", "0"], "--resolution = 0 is not valid: must lie in [1e-06, 0.1] [m]"),
     ],
 )
 def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):
