@@ -175,7 +175,7 @@ def test_bad_battery_keys_are_one_line_and_exit_2(tmp_path, capsys, table, fragm
 
 
 def test_loads_prints_the_safety_factor_and_flags_against_rating_over_f(capsys):
-    argv = ["loads", "--payload", "30", "--safety-factor", "2.5"]
+    argv = ["loads", "--payload", "30", "--motor-safety-factor", "2.5"]
     assert run_cli([*argv, "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
     assert printed["safety_factor"] == 2.5
