@@ -161,8 +161,8 @@ def test_motors_of_different_voltages_need_a_bus_voltage():
 @pytest.mark.parametrize(
     ("table", "fragment"),
     [
-        ("reserve = 1", "battery.reserve = 1 is not valid: must lie in [0, 1) [-]"),
-        ("reserve = -0.1", "battery.reserve"),
+        ("reserve = 1", "battery.reserve = 1 is not valid: must be a number in [0, 0.99]"),
+        ("reserve = -0.1", "battery.reserve = -0.1 is not valid: must be a number in [0, 0.99]"),
         ("voltage = -48", "battery.voltage"),
     ],
 )
