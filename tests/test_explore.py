@@ -135,7 +135,6 @@ def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer,
         ("slope_deg=61", "slope_deg"),
         ("slope_deg=-60.5", "slope_deg"),
         ("slope_deg=nan", "slope_deg"),
-        ("slope_deg=5", "slope_deg"),  # a slope not walked by this version's evaluation
     ],
 )
 def test_a_bad_value_answers_400_naming_its_field_and_the_server_keeps_serving(
@@ -230,7 +229,6 @@ def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
 
 def test_the_walking_slope_is_checked_against_the_ground_s_bound_in_degrees():
     from hexaleg.explore.answer import walking_on
-    from hexaleg.statics.ground import LEVEL
 
     base = HexapodDesign()
     for degrees in ("60", "-60", "0", "12.5"):  # the bound itself walks
@@ -241,12 +239,22 @@ def test_the_walking_slope_is_checked_against_the_ground_s_bound_in_degrees():
         with pytest.raises(ParameterError) as refused:
             parse_query({"slope_deg": degrees}, base, Conditions())
         assert refused.value.field == "slope_deg" and "[-60, 60] [°]" in refused.value.allowed
-    assert (
-        walking_on(Conditions(), LEVEL) == walking_on(Conditions(), None) == (Conditions(), LEVEL)
-    )
+    assert walking_on(Conditions(), None) == Conditions()  # the loaded grounds
     sloped = parse_query({"slope_deg": "10"}, base, Conditions()).ground
-    with pytest.raises(ParameterError, match="slope_deg"):  # never answered as level ground
-        walking_on(Conditions(), sloped)
+    assert walking_on(Conditions(), sloped).grounds == (sloped,)
+
+
+@pytest.mark.parametrize("degrees", ["10", "-7.5"])
+def test_the_walking_slope_is_the_gait_command_s_slope(explorer, capsys, degrees):
+    status, got = explorer.get(f"api/evaluate?l3=0.42&slope_deg={degrees}")
+    assert status == 200 and got["error"] == "", got
+    gait = _cli(capsys, "gait", "--l3", "0.42", "--slope-deg", degrees)
+    assert [g["slope_deg"] for g in got["grounds"]] == pytest.approx([float(degrees)])
+    assert got["max_speed"] == pytest.approx(gait["max_speed"]["value"], rel=RTOL)
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    level = explorer.get("api/evaluate?l3=0.42")[1]
+    assert level["peak_torque"]["hip"] != got["peak_torque"]["hip"]  # the slope is walked
 
 
 def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
@@ -514,3 +522,18 @@ def test_the_posture_job_takes_its_command_s_objective_and_nothing_else(params, 
         with pytest.raises(ParameterError) as refused:
             job_options("posture", asked)
         assert refused.value.field == field
+
+
+def test_the_slider_starts_at_the_required_walking_slope_and_names_it_once_moved(
+    tmp_path, monkeypatch
+):
+    text = "[requirements]\nwalking_payload = 5\nwalking_slope_deg = 10\n"
+    session = _session(tmp_path, monkeypatch, text)
+    assert session.loaded()["values"]["slope_deg"] == pytest.approx(10)
+    got = session.evaluate({})  # up, down and across the required slope, as decide walks it
+    assert [g["slope_deg"] for g in got["grounds"]] == pytest.approx([10, -10, 10])
+    assert got["requirements_conditions"] == []
+    moved = session.evaluate({"slope_deg": "5"})
+    assert [c["name"] for c in moved["requirements_conditions"]] == ["grounds"]
+    shown = moved["requirements_conditions"][0]["shown"]
+    assert [g["slope"] for g in shown] == pytest.approx([np.deg2rad(5)])  # one plane, uphill

@@ -230,9 +230,10 @@ POSTURE = (
   await idle();
   const slope = document.getElementById('slope_deg');
   const stale = () => document.getElementById('results').classList.contains('stale');
-  await set('slope_deg', 5);  // a slope this version's evaluation does not walk: refused
-  const sloped = {range: [slope.min, slope.max], stale: stale(),
-                  status: document.getElementById('status').textContent};
+  await set('slope_deg', 5);  // walked uphill
+  const sloped = {range: [slope.min, slope.max], stale: stale(), query: e.query(),
+                  status: document.getElementById('status').textContent,
+                  numbers: shown(), endpoint: await endpoint()};
   await set('slope_deg', 0);
   Object.assign(sloped, {level: document.getElementById('status').textContent, back: stale()});
   await set('theta2', ANGLES[0]);
@@ -296,8 +297,17 @@ def test_the_posture_sliders_and_the_best_posture_button(tmp_path, robot, angles
         got = evaluate(server.url, POSTURE % json.dumps(list(angles)))
     moved = got["moved"]
     assert f"theta2={angles[0]}&theta3={angles[1]}" in moved["query"]
-    sloped = moved["sloped"]  # the walking slope slider: the ground's bound, refused off level
-    assert sloped["range"] == ["-60", "60"] and sloped["stale"] and "slope_deg" in sloped["status"]
+    sloped = moved["sloped"]  # the walking slope slider: the ground's bound, walked uphill
+    assert (
+        sloped["range"] == ["-60", "60"]
+        and not sloped["stale"]
+        and "slope_deg=5" in sloped["query"]
+    )
+    assert "5° slope" in sloped["status"] and "uphill" in sloped["status"]
+    _numbers_are_the_endpoint_s(sloped["numbers"], sloped["endpoint"])
+    uphill = _cli_json("gait", *robot, "--slope-deg", "5")
+    for joint, value in uphill["peak_torque"].items():
+        assert sloped["endpoint"]["peak_torque"][joint] == pytest.approx(value, rel=1e-9), joint
     assert not sloped["back"] and "walking on level ground" in sloped["level"]
     assert "slope_deg" not in moved["query"]  # back at its start: the loaded ground
     _numbers_are_the_endpoint_s(moved["numbers"], moved["endpoint"])

@@ -29,14 +29,13 @@ from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.evaluation.requirements import Requirements, limited_by_dict
-from hexaleg.exceptions import ParameterError
-from hexaleg.explore.query import SLOPE_KEY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
-from hexaleg.statics.ground import LEVEL, Ground
+from hexaleg.statics.ground import Ground
+from hexaleg.structure.sizing import SizedStructure
 from hexaleg.swing.workspace import standing_reach
 
 __all__ = ["EXPLORED", "ROWS", "answer", "conditions_unlike", "walking_on"]
@@ -104,14 +103,16 @@ def answer(
 
     """
     start = time.perf_counter()
-    conditions, walked = walking_on(conditions, ground)
+    conditions = walking_on(conditions, ground)
     model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
     metrics = {*EXPLORED, *(goal.metrics if goal is not None else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
     out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
     heading = conditions.gait.heading
-    out["grounds"] = [g.to_dict(heading) | {"text": g.describe(heading)} for g in (walked,)]
+    out["grounds"] = [
+        g.to_dict(heading) | {"text": g.describe(heading)} for g in conditions.grounds
+    ]
     out["structure"] = _structure(found)
     if goal is not None:
         out["requirements"] = _checks(goal, found)
@@ -120,26 +121,13 @@ def answer(
     return out
 
 
-def walking_on(conditions: Conditions, ground: Ground | None) -> tuple[Conditions, Ground]:
-    """``conditions`` with the gait walked on ``ground`` (the slope slider's), and that ground.
+def walking_on(conditions: Conditions, ground: Ground | None) -> Conditions:
+    """``conditions`` with the gait walked on ``ground`` (the slope slider's) alone.
 
-    ``None``: the conditions' own ground. :class:`~hexaleg.evaluation.evaluate.Conditions`
-    walk the gait on level ground in this version; the walking ground is
-    :func:`~hexaleg.evaluation.evaluate.evaluate`'s to take (issue #39 item 3). Until it
-    does, a slope is refused, naming ``slope_deg``, rather than answered with numbers
-    walked on level ground.
-
-    Raises:
-        ParameterError: ``slope_deg``: a ground that is not level.
-
+    ``None``: the conditions' own grounds (the requirements' walking slope, walked up, down
+    and across, or level ground).
     """
-    if ground is not None and not ground.level:
-        raise ParameterError(
-            SLOPE_KEY,
-            f"{math.degrees(ground.slope):g}",
-            "0 [°]: this version's evaluation walks the gait on level ground only",
-        )
-    return conditions, LEVEL
+    return conditions if ground is None else replace(conditions, grounds=(ground,))
 
 
 def _numbers(found: Evaluation) -> dict[str, Any]:
@@ -277,7 +265,12 @@ def conditions_unlike(
 
 
 def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
-    """A record's fields, and its records' fields, by dotted name (JSON-ready values)."""
+    """A record's fields, and its records' fields, by dotted name (JSON-ready values).
+
+    A tuple of records (the grounds walked) is one condition: a list of each one's fields.
+    """
+    if isinstance(value, tuple) and value and all(is_dataclass(item) for item in value):
+        return {prefix: [_flat(item) for item in value]}
     if not is_dataclass(value) or isinstance(value, type):
         return {prefix: list(value) if isinstance(value, tuple) else value}
     out: dict[str, Any] = {}
@@ -304,7 +297,7 @@ def _structure(found: Evaluation) -> dict[str, Any] | None:
     deflection, with its ``deflection_limit`` [m]; ``feasible``: every ratio ≤ 1 and the
     deflection within its limit.
     """
-    standing = None if found.loads is None else found.loads.structure
+    standing = found.structure or (None if found.loads is None else found.loads.structure)
     if standing is None:
         return None
     walking = None if found.gait is None else found.gait.structure
@@ -319,7 +312,13 @@ def _structure(found: Evaluation) -> dict[str, Any] | None:
         "deflection": standing.deflection,
         "deflection_limit": standing.limit,
         "feasible": all(check.feasible for check in checks),
+        "sizing": None if found.sized is None else _sizing(found.sized),
     }
+
+
+def _sizing(sized: SizedStructure) -> dict[str, Any]:
+    """How the tubes were sized: whether the grid held every case, in how many rounds."""
+    return {"found": sized.found, "iterations": sized.iterations, "settled": sized.settled}
 
 
 def _finite(value: float) -> float | None:
@@ -343,7 +342,7 @@ def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str,
         "speed": conditions.gait.speed,
         "stride": conditions.gait.stride,
         "step_height": conditions.gait.step_height,
-        "slope_deg": 0.0,  # level: the walking ground evaluate() takes in this version
+        "slope_deg": math.degrees(conditions.grounds[0].slope),  # uphill: the first walked
     }
 
 

@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import os
 import threading
-import time
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -28,7 +27,6 @@ from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.metrics import objectives
 from hexaleg.evaluation.requirements import Requirements
-from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
@@ -197,30 +195,17 @@ class Session:
         return asked, self.robot.at(asked.design)
 
     def evaluate(self, params: Mapping[str, str]) -> dict[str, Any]:
-        """The page's numbers for the design a query asks for.
+        """The page's numbers for the design a query asks for (one evaluation).
 
-        Where its ``[structure]`` says ``size = true``, its tubes are sized first, for the
-        requirements' payload and slope (:func:`~hexaleg.evaluation.sizing.sized_for`, as
-        the commands that measure tubes size them); the answer's ``structure.sizing`` says
-        how.
+        Where its ``[structure]`` says ``size = true``, the evaluation sizes its tubes first,
+        for the sliders' payload and the requirements' slope; the answer's
+        ``structure.sizing`` says how.
         """
-        start = time.perf_counter()
         asked, robot = self.robot_at(params)
         required = self.requirements
         if required.given:  # the leg length the loaded design has, unless the file says
             required = required.resolved(self.design)
-        sized = sized_for(robot.design, self.requirements)
-        if sized is not None:
-            robot = robot.at(sized.design)
-        out = answer(robot.design, asked.conditions, required, robot.model, asked.ground)
-        if sized is not None and out["structure"] is not None:
-            out["structure"]["sizing"] = {
-                "found": sized.found,
-                "iterations": sized.iterations,
-                "settled": sized.settled,
-            }
-        out["evaluate_ms"] = 1000 * (time.perf_counter() - start)  # the sizing's time too
-        return out
+        return answer(robot.design, asked.conditions, required, robot.model, asked.ground)
 
     def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
         """Each foot's reach on the ground for the design a query asks for (``reach``)."""

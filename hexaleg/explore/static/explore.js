@@ -268,9 +268,12 @@ function drawStructure(structure) {  // the legs' tubes, from the same evaluatio
   box.classList.toggle("failed", !structure.feasible);
 }
 
-function conditionText(c) {
-  const shown = (x) => Array.isArray(x) ? x.map((y) => Number(y).toPrecision(3)).join(", ")
-    : x === null ? "none" : typeof x === "number" ? Number(x.toPrecision(4)) : x;
+function conditionText(c) {  // a number, a triple, or records (the grounds) field by field
+  const shown = (x) => x === null ? "none" : typeof x === "number" ? Number(x.toPrecision(4))
+    : Array.isArray(x) ? x.map((y) => typeof y === "number" ? Number(y).toPrecision(3)
+      : shown(y)).join(x.every((y) => typeof y === "number") ? ", " : "; ")
+    : typeof x === "object" ? Object.entries(x).map(([k, v]) => k + " " + shown(v)).join(", ")
+    : x;
   return c.name + " " + shown(c.shown) + " (required " + shown(c.required) + ")";
 }
 
