@@ -186,8 +186,9 @@ async function evaluate() {
       await loadReach();
       draw(answer.body);
       status.textContent = (answer.body.error ||
-        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms, walking on " +
-        answer.body.grounds.map((g) => g.text).join("; ")) + gaitHint(answer.body);
+        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms, " +
+        walkedOn(answer.body.grounds)) + gaitHint(answer.body);
+      status.title = answer.body.grounds.map((g) => g.text).join("; ");
       status.className = answer.body.error ? "error" : "";
     }
   } catch (err) {
@@ -304,6 +305,13 @@ function project(p, view, scale, centre) {
   const x = cy * p[0] - sy * p[1];
   const y = sy * p[0] + cy * p[1];
   return [centre[0] + scale * x, centre[1] - scale * (cp * p[2] - sp * y)];
+}
+
+function walkedOn(grounds) {  // one ground in words; several (up, down, across) in short
+  if (grounds.length === 1) return "walking on " + grounds[0].text;
+  const ways = grounds.map((g) => (/walked ([^,]+)/.exec(g.text) || [null, g.text])[1]);
+  return "walking " + ways.join(", ") + " a " + Math.abs(grounds[0].slope_deg).toPrecision(3) +
+    "° slope (each number the worst)";
 }
 
 function gaitHint(answer) {  // a gait too big for the robot: say what to change
