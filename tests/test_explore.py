@@ -537,3 +537,6 @@ def test_the_slider_starts_at_the_required_walking_slope_and_names_it_once_moved
     assert [c["name"] for c in moved["requirements_conditions"]] == ["grounds"]
     shown = moved["requirements_conditions"][0]["shown"]
     assert [g["slope"] for g in shown] == pytest.approx([np.deg2rad(5)])  # one plane, uphill
+    each = [session.evaluate({"slope_deg": s})["stance"]["utilisation"] for s in ("10", "-10")]
+    worst = got["stance"]["utilisation"]  # the legs coloured by the worst of the walks
+    assert all(u is not None for u in worst) and np.all(np.asarray(worst) >= np.max(each, axis=0))

@@ -98,9 +98,6 @@ def answer(
         ground: The ground the gait is walked on (the slope slider's; ``None``: the
             conditions' own), :func:`walking_on`; the answer's ``grounds`` say which.
 
-    Raises:
-        ParameterError: ``slope_deg``: a ground the evaluation cannot walk.
-
     """
     start = time.perf_counter()
     conditions = walking_on(conditions, ground)
@@ -152,17 +149,19 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
     ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
-    peak |τ| over a gait period against its joint's rating [-] (``None`` where the period
-    breaks a constraint: a joint limit, a foot out of reach — it is not walked; and every
-    leg's when the design gives no ratings, as ``rated_torques``).
+    peak |τ| over a gait period, on every ground walked, against its joint's rating [-]
+    (``None`` where a period breaks a constraint: a joint limit, a foot out of reach — it is
+    not walked; and every leg's when the design gives no ratings, as ``rated_torques``).
     """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
     rated = design.rated_torques
-    if found.gait is not None and found.gait.walkable and rated is not None:
-        peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
-        used = dict(zip(found.gait.legs, peaks / np.asarray(rated), strict=True))
+    periods = found.gaits or (() if found.gait is None else (found.gait,))
+    if periods and all(period.walkable for period in periods) and rated is not None:
+        torques = np.concatenate([period.joint_torques for period in periods])  # (T, legs, 3)
+        peaks = np.abs(torques).max(axis=0)  # (legs, joints) [N·m]
+        used = dict(zip(periods[0].legs, peaks / np.asarray(rated), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)
             _finite(float(used[leg].max())) if leg in used else None for leg in model.leg_names
         ]
