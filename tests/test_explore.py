@@ -540,3 +540,18 @@ def test_the_slider_starts_at_the_required_walking_slope_and_names_it_once_moved
     each = [session.evaluate({"slope_deg": s})["stance"]["utilisation"] for s in ("10", "-10")]
     worst = got["stance"]["utilisation"]  # the legs coloured by the worst of the walks
     assert all(u is not None for u in worst) and np.all(np.asarray(worst) >= np.max(each, axis=0))
+
+
+def test_save_writes_the_slope_slid_as_the_walking_slope_the_requirements_declare(
+    tmp_path, monkeypatch
+):
+    session = _session(tmp_path, monkeypatch, REQUIRED)
+    before = session.requirements.to_dict()
+    path = session.save({"slope_deg": "-12"})  # downhill 12°: a 12° slope must be walked
+    _, saved = load_design_file(path, Requirements.from_table)
+    assert saved.walking_slope == pytest.approx(np.deg2rad(12), abs=1e-15)
+    assert {k: v for k, v in saved.to_dict().items() if k != "walking_slope"} == before
+    again = _session(tmp_path, monkeypatch, path.read_text())  # the slider starts there
+    assert again.loaded()["values"]["slope_deg"] == pytest.approx(12)
+    _, level = load_design_file(again.save({"slope_deg": "0"}), Requirements.from_table)
+    assert level.to_dict() == before  # level ground: no walking slope written

@@ -26,6 +26,7 @@ from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
 from hexaleg.evaluation.metrics import objectives
+from hexaleg.evaluation.requirement_specs import WALKING_SLOPE
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
@@ -156,11 +157,7 @@ class Session:
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
-        conditions = (
-            Goal(requirements.resolved(robot.design)).conditions
-            if requirements.given
-            else Conditions(gait=requirements.walked)
-        )
+        conditions = Goal(requirements.resolved(robot.design)).conditions
         cloud = Cloud(robot, conditions).start()
         return cls(robot, conditions, requirements, path, SaveTarget(path, replace), cloud)
 
@@ -244,15 +241,23 @@ class Session:
         """The design file (TOML) of the design a query asks for, the requirements kept.
 
         The sliders' gait is its ``[gait]`` table (none for the default gait); the payload
-        is a condition, not part of a design, so it is not written. ``at``: where the file
-        is written (an imported robot's file paths relative to it).
+        is a condition, not part of a design, so it is not written. A slope slid
+        (``slope_deg``) is the ``[requirements]``' ``walking_slope``, which the file declares
+        as the slope the robot must walk (up, down and across it: :data:`WALKING_SLOPE`);
+        level ground, none. ``at``: where the file is written (an imported robot's file
+        paths relative to it).
         """
         asked, robot = self.robot_at(params)
         text, gait = robot.design_text(at), asked.conditions.gait
         if gait != Gait():
             text += "\n" + gait.to_toml()
-        if self.requirements.given:
-            text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
+        table = self.requirements.to_dict()
+        if asked.ground is not None:
+            table.pop(WALKING_SLOPE.name, None)
+            if not asked.ground.level:
+                table[WALKING_SLOPE.name] = abs(asked.ground.slope)
+        if table:
+            text += "\n" + tomli_w.dumps({"requirements": table})
         return text
 
     def save(self, params: Mapping[str, str]) -> Path:
