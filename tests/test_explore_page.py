@@ -107,16 +107,18 @@ def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(
     assert moves[0]["scene"] != moves[1]["scene"]
     assert len(got["redraws"]) == 3 and all(d > 0 for d in got["redraws"])
     assert got["saved"] == f"wrote {saved}"
-    shown = _design_show(saved)  # the saved file reads back as the robot at the last slider
+    shown = _design_show("--design", str(saved))  # read back as the robot at the last slider
     assert shown["l3"] == pytest.approx(float(values[-1]), abs=1e-9)
+    loaded_design = _design_show(*robot)  # the sliders not moved: their loaded values, exactly
+    assert shown["nominal_angles"] == loaded_design["nominal_angles"]
     assert got["reset"] == {"numbers": before["numbers"], "query": before["query"]}
     print(f"redraw after a slider move [ms]: {', '.join(f'{d:.0f}' for d in got['redraws'])}")
 
 
-def _design_show(path: Path) -> dict:
-    """``design show --design PATH --json``'s design, run as a user would."""
+def _design_show(*options: str) -> dict:
+    """``design show OPTIONS --json``'s design, run as a user would."""
     found = subprocess.run(
-        [sys.executable, "-m", "hexaleg", "design", "show", "--design", str(path), "--json"],
+        [sys.executable, "-m", "hexaleg", "design", "show", *options, "--json"],
         capture_output=True, text=True, timeout=300, check=True,
     )  # fmt: skip
     return json.loads(found.stdout)["design"]

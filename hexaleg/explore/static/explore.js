@@ -21,6 +21,7 @@ function slider(parent, key, label, low, high, start, step) {
   const show = () => { out.textContent = Number(input.value).toPrecision(3); };
   input.addEventListener("input", () => { delete explorer.exact[key]; show(); changed(); });
   show();
+  explorer.exact[key] = start;  // not moved: the loaded value, not the range input's rounding
   return input;
 }
 
@@ -137,7 +138,7 @@ function postureJob(parent, loaded) {  // "best posture": a job whose answer mov
 
 function query() {
   const get = (id) => id in explorer.exact ? String(explorer.exact[id])
-    : document.getElementById(id).value;  // a value set by a job: exact, not the slider's rounding
+    : document.getElementById(id).value;  // loaded or set by a job: exact, not the slider's rounding
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
   for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
@@ -540,6 +541,7 @@ function reset() {
     if (!input) continue;
     input.value = x;
     input.nextElementSibling.textContent = Number(x).toPrecision(3);
+    explorer.exact[id] = x;
   }
   for (const joint of ["root", "hip", "knee"]) {
     const choice = document.getElementById("motor_" + joint);
