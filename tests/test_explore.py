@@ -19,10 +19,11 @@ from explorer import Explorer, running
 from hexaleg.cli import main
 from hexaleg.design import HexapodDesign
 from hexaleg.design_file import load_design_file
-from hexaleg.evaluation.evaluate import Conditions
+from hexaleg.evaluation.evaluate import Conditions, _Measuring
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import ParameterError
 from hexaleg.explore.query import parse_query
+from hexaleg.explore.session import Session
 
 RTOL = 1e-9
 """Endpoint against command line: the same computation, summed in another order at most."""
@@ -127,6 +128,13 @@ def test_the_gait_sliders_are_the_gait_command_s_speed_and_step_height(explorer,
         ("speed=1000", "speed"),
         ("step_height=x", "step_height"),
         ("colour=red", "colour"),
+        ("theta2=0.9", "theta2"),
+        ("theta3=-2.5", "theta3"),
+        ("theta3=inf", "theta3"),
+        ("theta2=0.1&nominal_angles=0,0.1,-1.5", "theta2"),
+        ("slope_deg=61", "slope_deg"),
+        ("slope_deg=-60.5", "slope_deg"),
+        ("slope_deg=nan", "slope_deg"),
     ],
 )
 def test_a_bad_value_answers_400_naming_its_field_and_the_server_keeps_serving(
@@ -186,11 +194,13 @@ def test_save_writes_the_design_file_with_its_requirements(tmp_path):
         leg_length = next(c for c in got["requirements"] if c["name"] == "leg_length")
         assert leg_length["required"] == pytest.approx(loaded_design.leg_length)
         assert all(c["met"] == (c["margin"] >= 0) for c in got["requirements"])
-        status, wrote = server.post("api/save?l3=0.42&l2=0.39")
+        status, wrote = server.post("api/save?l3=0.42&l2=0.39&theta2=0.1&theta3=-1.4&slope_deg=0")
         assert status == 200 and wrote["wrote"] == str(source)
         assert server.post("api/save?l3=-1")[0] == 400
+        assert server.post("api/save?theta3=-3")[0] == 400  # beyond the stance limits
     design, requirements = load_design_file(source, Requirements.from_table)
     assert (design.l1, design.l2, design.l3) == pytest.approx((0.18, 0.39, 0.42))
+    assert design.nominal_angles == (0.0, 0.1, -1.4)  # the posture slid, exactly
     assert requirements == before
     assert [p.name for p in tmp_path.iterdir()] == ["robot.toml"]  # no temporary file left
 
@@ -211,6 +221,40 @@ def test_a_query_sets_the_design_fields_by_their_file_keys_and_the_conditions():
     assert gait.stride == Conditions().gait.stride  # the stride kept, the period set
     with pytest.raises(ParameterError, match=r"nominal_angles\.theta2"):
         parse_query({"nominal_angles": "0,x,-1"}, base, Conditions())
+    posed = parse_query({"theta2": "0.1", "theta3": "-1.4"}, base, Conditions()).design
+    assert posed == asked.design.replace(l1=base.l1)  # θ1 kept, θ2 and θ3 set
+    knee = parse_query({"theta3": "-1.2"}, posed, Conditions()).design
+    assert knee.nominal_angles == (0.0, 0.1, -1.2)
+
+
+def test_the_walking_slope_is_checked_against_the_ground_s_bound_in_degrees():
+    from hexaleg.explore.answer import walking_on
+
+    base = HexapodDesign()
+    for degrees in ("60", "-60", "0", "12.5"):  # the bound itself walks
+        ground = parse_query({"slope_deg": degrees}, base, Conditions()).ground
+        assert ground.slope == np.deg2rad(float(degrees)) and ground.heading is None
+    assert parse_query({}, base, Conditions()).ground is None  # the loaded ground kept
+    for degrees in ("60.0001", "-61", "inf", "ten"):
+        with pytest.raises(ParameterError) as refused:
+            parse_query({"slope_deg": degrees}, base, Conditions())
+        assert refused.value.field == "slope_deg" and "[-60, 60] [°]" in refused.value.allowed
+    assert walking_on(Conditions(), None) == Conditions()  # the loaded grounds
+    sloped = parse_query({"slope_deg": "10"}, base, Conditions()).ground
+    assert walking_on(Conditions(), sloped).grounds == (sloped,)
+
+
+@pytest.mark.parametrize("degrees", ["10", "-7.5"])
+def test_the_walking_slope_is_the_gait_command_s_slope(explorer, capsys, degrees):
+    status, got = explorer.get(f"api/evaluate?l3=0.42&slope_deg={degrees}")
+    assert status == 200 and got["error"] == "", got
+    gait = _cli(capsys, "gait", "--l3", "0.42", "--slope-deg", degrees)
+    assert [g["slope_deg"] for g in got["grounds"]] == pytest.approx([float(degrees)])
+    assert got["max_speed"] == pytest.approx(gait["max_speed"]["value"], rel=RTOL)
+    for joint, value in gait["peak_torque"].items():
+        assert got["peak_torque"][joint] == pytest.approx(value, rel=RTOL), joint
+    level = explorer.get("api/evaluate?l3=0.42")[1]
+    assert level["peak_torque"]["hip"] != got["peak_torque"]["hip"]  # the slope is walked
 
 
 def test_a_save_file_that_is_not_toml_is_refused_before_serving(capsys):
@@ -369,3 +413,145 @@ def test_a_page_that_goes_away_mid_answer_is_not_reported(capsys):
     except ConnectionResetError:
         ExplorerServer.handle_error(None, None, None)  # type: ignore[arg-type]
     assert capsys.readouterr().err == ""
+
+
+REQUIRED = """[requirements]
+payload = 10
+slope_deg = 5
+min_fb = 0.2
+speed = 0.1
+walking_payload = 5
+"""
+"""Requirements whose conditions (payload, slope, gait) the sliders start at."""
+
+
+def _session(tmp_path, monkeypatch, text: str) -> Session:
+    """The explorer's session of a design file ``text``, its study cloud left unmeasured."""
+    from hexaleg.cli import build_parser
+    from hexaleg.cli.inputs import inputs_from_args
+    from hexaleg.explore.cloud import Cloud
+
+    monkeypatch.setattr(Cloud, "start", lambda cloud: cloud)  # not measured: not counted
+    path = tmp_path / "design.toml"
+    path.write_text(text)
+    args = build_parser("explore").parse_args(["explore", "--design", str(path)])
+    inputs = inputs_from_args(args)
+    return Session.start(inputs.robot, inputs.requirements, path)
+
+
+def test_an_answer_evaluates_its_design_once_and_its_checks_read_the_numbers_shown(
+    tmp_path, monkeypatch
+):
+    session = _session(tmp_path, monkeypatch, REQUIRED)
+    evaluated: list[HexapodDesign] = []
+    measure = _Measuring.evaluation
+
+    def counted(self, metrics):
+        evaluated.append(self.design)
+        return measure(self, metrics)
+
+    monkeypatch.setattr(_Measuring, "evaluation", counted)
+    for query, unlike in [
+        ({"l3": "0.42"}, []),  # the sliders at the requirements' conditions
+        ({"l3": "0.42", "payload": "3", "speed": "0.2"}, ["payload.mass", "gait.period"]),
+        ({"theta2": "0.1", "theta3": "-1.4", "slope_deg": "0"}, []),  # the posture is the design
+    ]:
+        evaluated.clear()
+        got = session.evaluate(query)
+        assert len(evaluated) == 1, query  # one evaluation, whoever reads it
+        assert [c["name"] for c in got["requirements_conditions"]] == unlike
+        checks = {c["name"]: c["value"] for c in got["requirements"]}
+        assert checks["min_fb"] == got["fb"]
+        assert checks["payload"] == got["payload_capacity"]
+        assert checks["speed"] == got["max_speed"]
+        assert checks["walking_payload"] == got["walking_payload_capacity"]
+        for row in got["rows"]:  # the page's rows: each a number of this answer, by its key
+            name, _, joint = row["key"].partition(".")
+            assert name in got and (not joint or joint in got[name]), row
+
+
+SIZED = """[structure]
+material = "aluminium_7075_t6"
+size = true
+
+[requirements]
+payload = 15
+"""
+
+
+def test_the_sized_tubes_are_the_loads_and_gait_commands(tmp_path, monkeypatch, capsys):
+    session = _session(tmp_path, monkeypatch, SIZED)
+    got = session.evaluate({"l2": "0.42"})["structure"]
+    options = ["--design", str(tmp_path / "design.toml"), "--l2", "0.42", "--payload", "15"]
+    loads = _cli(capsys, "loads", *options)["structure"]
+    gait = _cli(capsys, "gait", *options)["structure"]
+    assert got["sizing"] == {k: loads["sizing"][k] for k in ("found", "iterations", "settled")}
+    for segment, tube in loads["tubes"].items():
+        for key, value in tube.items():
+            assert got["tubes"][segment][key] == pytest.approx(value, rel=RTOL), (segment, key)
+    assert got["deflection"] == pytest.approx(loads["deflection"], rel=RTOL)
+    worst = max((loads, gait), key=lambda check: check["worst_ratio"])
+    assert got["worst_ratio"] == pytest.approx(worst["worst_ratio"], rel=RTOL)
+    assert got["worst"]["case"] == worst["worst"]["case"]
+    assert got["feasible"] is (loads["feasible"] and gait["feasible"])
+    assert session.evaluate({})["structure"]["tubes"] != got["tubes"]  # sized per design
+
+
+@pytest.mark.parametrize(
+    ("params", "options", "field"),
+    [
+        ({}, (), None),
+        ({"maximize": "fb"}, ("--maximize", "fb"), None),
+        ({"minimize": "robot_mass"}, ("--minimize", "robot_mass"), None),
+        ({"maximize": "robot_mass"}, None, "maximize"),  # made smallest, not largest
+        ({"maximize": "fb", "minimize": "robot_mass"}, None, "minimize"),
+    ],
+)
+def test_the_posture_job_takes_its_command_s_objective_and_nothing_else(params, options, field):
+    from hexaleg.evaluation.metrics import objectives
+    from hexaleg.exceptions import ParameterError
+    from hexaleg.explore.jobs import job_options
+
+    assert "robot_mass" in objectives("minimize") and "fb" in objectives("maximize")
+    asked = {"l2": "0.41", **params}
+    if field is None:
+        assert job_options("posture", asked) == options
+        assert asked == {"l2": "0.41"}  # taken out: the rest is the design's
+        assert job_options("decide", {"maximize": "fb"}) == ()  # not decide's key: left
+    else:
+        with pytest.raises(ParameterError) as refused:
+            job_options("posture", asked)
+        assert refused.value.field == field
+
+
+def test_the_slider_starts_at_the_required_walking_slope_and_names_it_once_moved(
+    tmp_path, monkeypatch
+):
+    text = "[requirements]\nwalking_payload = 5\nwalking_slope_deg = 10\n"
+    session = _session(tmp_path, monkeypatch, text)
+    assert session.loaded()["values"]["slope_deg"] == pytest.approx(10)
+    got = session.evaluate({})  # up, down and across the required slope, as decide walks it
+    assert [g["slope_deg"] for g in got["grounds"]] == pytest.approx([10, -10, 10])
+    assert got["requirements_conditions"] == []
+    moved = session.evaluate({"slope_deg": "5"})
+    assert [c["name"] for c in moved["requirements_conditions"]] == ["grounds"]
+    shown = moved["requirements_conditions"][0]["shown"]
+    assert [g["slope"] for g in shown] == pytest.approx([np.deg2rad(5)])  # one plane, uphill
+    each = [session.evaluate({"slope_deg": s})["stance"]["utilisation"] for s in ("10", "-10")]
+    worst = got["stance"]["utilisation"]  # the legs coloured by the worst of the walks
+    assert all(u is not None for u in worst) and np.all(np.asarray(worst) >= np.max(each, axis=0))
+
+
+def test_save_writes_the_slope_slid_as_the_walking_slope_the_requirements_declare(
+    tmp_path, monkeypatch
+):
+    session = _session(tmp_path, monkeypatch, REQUIRED)
+    before = session.requirements.to_dict()
+    path = session.save({"slope_deg": "-12"})  # downhill 12°: a 12° slope must be walked
+    _, saved = load_design_file(path, Requirements.from_table)
+    assert saved.walking_slope == pytest.approx(np.deg2rad(12), abs=1e-15)
+    assert {k: v for k, v in saved.to_dict().items() if k != "walking_slope"} == before
+    again = _session(tmp_path, monkeypatch, path.read_text())  # the slider starts there
+    assert again.loaded()["values"]["slope_deg"] == pytest.approx(12)
+    _, level = load_design_file(again.save({"slope_deg": "0"}), Requirements.from_table)
+    assert level.to_dict() == before  # level ground: no walking slope written

@@ -107,16 +107,18 @@ def test_a_slider_moved_redraws_numbers_and_stance_equal_to_the_endpoint_s(
     assert moves[0]["scene"] != moves[1]["scene"]
     assert len(got["redraws"]) == 3 and all(d > 0 for d in got["redraws"])
     assert got["saved"] == f"wrote {saved}"
-    shown = _design_show(saved)  # the saved file reads back as the robot at the last slider
+    shown = _design_show("--design", str(saved))  # read back as the robot at the last slider
     assert shown["l3"] == pytest.approx(float(values[-1]), abs=1e-9)
+    loaded_design = _design_show(*robot)  # the sliders not moved: their loaded values, exactly
+    assert shown["nominal_angles"] == loaded_design["nominal_angles"]
     assert got["reset"] == {"numbers": before["numbers"], "query": before["query"]}
     print(f"redraw after a slider move [ms]: {', '.join(f'{d:.0f}' for d in got['redraws'])}")
 
 
-def _design_show(path: Path) -> dict:
-    """``design show --design PATH --json``'s design, run as a user would."""
+def _design_show(*options: str) -> dict:
+    """``design show OPTIONS --json``'s design, run as a user would."""
     found = subprocess.run(
-        [sys.executable, "-m", "hexaleg", "design", "show", "--design", str(path), "--json"],
+        [sys.executable, "-m", "hexaleg", "design", "show", *options, "--json"],
         capture_output=True, text=True, timeout=300, check=True,
     )  # fmt: skip
     return json.loads(found.stdout)["design"]
@@ -211,3 +213,129 @@ def test_one_motor_fills_the_others_and_a_refused_design_greys_the_numbers():
     assert refused["stale"] and "last design measured" in refused["status"], got
     assert refused["fb"] == got["fb"]  # the numbers kept are the last measured design's
     assert not got["again"]  # a design measured again: no longer grey
+
+
+POSTURE = (
+    """
+(async (ANGLES) => {
+"""
+    + PAGE_READY
+    + """  const set = async (id, value) => {
+    const input = document.getElementById(id);
+    input.value = value;
+    input.dispatchEvent(new Event('input', {bubbles: true}));
+    await idle();
+  };
+  const shown = () => Object.fromEntries([...document.querySelectorAll('#numbers tr')]
+    .map(tr => [tr.dataset.key, tr.dataset.value === '' ? null : Number(tr.dataset.value)]));
+  const endpoint = () => fetch('api/evaluate?' + e.query()).then(r => r.json());
+  await idle();
+  const slope = document.getElementById('slope_deg');
+  const stale = () => document.getElementById('results').classList.contains('stale');
+  await set('slope_deg', 5);  // walked uphill
+  const sloped = {range: [slope.min, slope.max], stale: stale(), query: e.query(),
+                  status: document.getElementById('status').textContent,
+                  numbers: shown(), endpoint: await endpoint()};
+  await set('slope_deg', 0);
+  Object.assign(sloped, {level: document.getElementById('status').textContent, back: stale()});
+  await set('theta2', ANGLES[0]);
+  await set('theta3', ANGLES[1]);
+  const moved = {query: e.query(), numbers: shown(), endpoint: await endpoint(), sloped: sloped};
+  const box = document.querySelector('.job[data-kind="posture"]');
+  const button = box.querySelector('button');
+  const pressed = {disabled: button.disabled, title: button.title,
+                   objective: document.getElementById('posture_objective').value};
+  if (button.disabled) return {moved: moved, pressed: pressed};
+  button.click();
+  const start = Date.now();
+  while (box.dataset.state !== 'done' && box.dataset.state !== 'failed'
+         && Date.now() - start < 240000) await sleep(200);
+  await sleep(0);
+  await idle();
+  const job = await fetch('api/job?kind=posture').then(r => r.json());
+  return {moved: moved, pressed: pressed, job: job, query: e.query(), numbers: shown(),
+          endpoint: await endpoint(), text: box.querySelector('.job-state').textContent,
+          sliders: [e.exact.theta2, e.exact.theta3]};
+})(%s)
+"""
+)
+
+
+def _numbers_are_the_endpoint_s(numbers: dict, endpoint: dict) -> None:
+    for key, value in numbers.items():
+        expected = _endpoint_value(endpoint, key)
+        if expected is None:
+            assert value is None, key
+        else:
+            assert value == pytest.approx(expected, rel=1e-12), key
+
+
+def _cli_json(*argv: str) -> dict:
+    """A command's ``--json``, run in this process."""
+    import contextlib
+    import io
+
+    from hexaleg.cli import main
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        assert main([*argv, "--json"]) == 0
+    return json.loads(out.getvalue())
+
+
+@pytest.mark.parametrize(
+    ("robot", "angles"),
+    [((), (-0.3, -1.75)), (("--urdf", str(KRABY)), (0.1, -1.4))],
+    ids=["template", "kraby"],
+)
+def test_the_posture_sliders_and_the_best_posture_button(tmp_path, robot, angles):
+    require_chromium()
+    if robot:  # its own gait, fixed (its default one is sized to it at each posture)
+        gait = tmp_path / "gait.toml"
+        gait.write_text("[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.8\n")
+        robot = (*robot, "--design", str(gait))
+    options = [*robot, "--save", str(tmp_path / "saved.toml")]
+    with running(*options) as server:
+        got = evaluate(server.url, POSTURE % json.dumps(list(angles)))
+    moved = got["moved"]
+    assert f"theta2={angles[0]}&theta3={angles[1]}" in moved["query"]
+    sloped = moved["sloped"]  # the walking slope slider: the ground's bound, walked uphill
+    assert (
+        sloped["range"] == ["-60", "60"]
+        and not sloped["stale"]
+        and "slope_deg=5" in sloped["query"]
+    )
+    assert "5° slope" in sloped["status"] and "uphill" in sloped["status"]
+    _numbers_are_the_endpoint_s(sloped["numbers"], sloped["endpoint"])
+    uphill = _cli_json("gait", *robot, "--slope-deg", "5")
+    for joint, value in uphill["peak_torque"].items():
+        assert sloped["endpoint"]["peak_torque"][joint] == pytest.approx(value, rel=1e-9), joint
+    assert not sloped["back"] and "walking on level ground" in sloped["level"]
+    assert "slope_deg" not in moved["query"]  # back at its start: the loaded ground
+    _numbers_are_the_endpoint_s(moved["numbers"], moved["endpoint"])
+    posed = [*robot, "--nominal-angles", "0", str(angles[0]), str(angles[1])]
+    loads = _cli_json("loads", *posed)
+    gait = _cli_json("gait", *posed)
+    endpoint = moved["endpoint"]
+    assert endpoint["payload_capacity"] == pytest.approx(loads["payload_capacity"]["mass"], 1e-9)
+    walking = loads["walking_payload_capacity"]["mass"]
+    assert endpoint["walking_payload_capacity"] == pytest.approx(walking, rel=1e-9)
+    for joint, value in gait["peak_torque"].items():
+        assert endpoint["peak_torque"][joint] == pytest.approx(value, rel=1e-9), joint
+    pressed = got["pressed"]
+    assert pressed["objective"] == "maximize=walking_payload_capacity"
+    if robot:  # a robot file's posture is slid, not searched: the button says so
+        assert pressed["disabled"] and "robot file" in pressed["title"]
+        return
+    job = got["job"]
+    assert job["state"] == "done", job
+    best = job["answer"]["best"]
+    assert got["sliders"] == best["nominal_angles"][1:]  # the page asks at the exact angles
+    assert f"theta2={got['sliders'][0]!r}&theta3={got['sliders'][1]!r}" in got["query"]
+    expected = _cli_json("posture", *posed)  # the command on the design the button was pressed on
+    assert best["nominal_angles"] == pytest.approx(expected["best"]["nominal_angles"], abs=1e-12)
+    value = expected["best"]["objective"]["value"]
+    assert best["objective"]["value"] == pytest.approx(value, rel=1e-9)
+    assert got["endpoint"]["walking_payload_capacity"] == pytest.approx(value, rel=1e-9)
+    _numbers_are_the_endpoint_s(got["numbers"], got["endpoint"])
+    assert got["text"].startswith(f"θ2 {best['nominal_angles'][1]:.3f}, θ3 ")

@@ -155,3 +155,25 @@ def test_the_decide_job_answers_as_the_command_line_on_the_saved_design(
     ]
     assert lengths[0] == pytest.approx(lengths[1], rel=1e-9)
     assert job["answer"]["best"]["objective"] == pytest.approx(decided["best"]["objective"])
+
+
+def test_save_writes_the_segments_and_posture_slid_into_the_robot_s_design_file(
+    tmp_path, monkeypatch
+):
+    from hexaleg.cli import build_parser
+    from hexaleg.cli.inputs import inputs_from_args
+    from hexaleg.explore.cloud import Cloud
+    from hexaleg.explore.session import Session
+
+    monkeypatch.setattr(Cloud, "start", lambda cloud: cloud)  # not measured here
+
+    def robot(*argv: str):
+        return inputs_from_args(build_parser("explore").parse_args(["explore", *argv]))
+
+    loaded = robot("--urdf", KRABY)
+    session = Session.start(loaded.robot, loaded.requirements, tmp_path / "kraby.toml")
+    path = session.save({"l2": "0.07", "theta2": "0.1", "theta3": "-1.4", "slope_deg": "0"})
+    saved = robot("--design", str(path)).robot.design
+    assert saved.l2 == pytest.approx(0.07, abs=1e-12) and saved.l3 == pytest.approx(0.088)
+    assert saved.nominal_angles == (0.0, 0.1, -1.4)  # the posture slid, read back exactly
+    assert loaded.robot.design.nominal_angles != saved.nominal_angles

@@ -1,11 +1,15 @@
 """The explorer's answer about one design: every number the page shows, JSON-ready.
 
-One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the metrics of
-:data:`EXPLORED` under the query's conditions; the answer names them as the command
-line's ``--json`` does (``fb``, ``payload_capacity``, ``peak_torque`` per joint type,
-``max_speed`` ...) with what limits each, the nominal stance's points for the drawing,
-and, when the design file has ``[requirements]``, each one checked under the
-requirements' own conditions (the same evaluation when they are the sliders' too).
+One :func:`~hexaleg.evaluation.evaluate.evaluate` measures the design under the sliders'
+conditions, and every number of the answer reads it: the metrics of :data:`EXPLORED`,
+named as the command line's ``--json`` names them (``fb``, ``payload_capacity``,
+``peak_torque`` per joint type, ``max_speed`` ...) with what limits each, the nominal
+stance's points and the extremes for the drawing, the legs' tubes where the design has a
+``[structure]``, and, when the design file has ``[requirements]``, each one checked on
+that same evaluation. The sliders start at the requirements' conditions (payload, slope,
+gait); where they have been moved off them, the answer says which condition differs
+(``requirements_conditions``), so a check is never read as made under conditions it was
+not, and no quantity is shown with two values.
 """
 
 from __future__ import annotations
@@ -13,7 +17,7 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Mapping
-from dataclasses import replace
+from dataclasses import fields, is_dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -30,9 +34,11 @@ from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.statics.forces import Payload
+from hexaleg.statics.ground import Ground
+from hexaleg.structure.sizing import SizedStructure
 from hexaleg.swing.workspace import standing_reach
 
-__all__ = ["EXPLORED", "answer"]
+__all__ = ["EXPLORED", "ROWS", "answer", "conditions_unlike", "walking_on"]
 
 SCALARS: tuple[MetricSpec, ...] = (
     METRICS.fb,
@@ -58,34 +64,67 @@ EXPLORED: tuple[MetricSpec, ...] = (
 peak and RMS torque over the gait period (answered as ``peak_torque`` and ``rms_torque``)."""
 
 
+def _row(spec: MetricSpec) -> dict[str, str]:
+    """A metric's row of the page's table: its key in the answer, its name, what it is, its unit."""
+    key = spec.name if spec.torque is None else f"{spec.torque}_torque.{spec.joint}"
+    unit = "" if spec.unit == "1" else spec.unit
+    return {"key": key, "label": spec.label, "text": spec.text, "unit": unit}
+
+
+_GAIT = SCALARS.index(METRICS.max_speed) + 1
+ROWS: tuple[dict[str, str], ...] = tuple(
+    _row(spec) for spec in (*SCALARS[:_GAIT], *EXPLORED[len(SCALARS) :], *SCALARS[_GAIT:])
+)
+"""The page's table of numbers: a row per metric of :data:`EXPLORED`, as its declaration
+says it (the page declares none of its own), the torques after the max speed."""
+
+
 def answer(
     design: HexapodDesign,
     conditions: Conditions,
     requirements: Requirements,
     model: HexapodModel | None = None,
+    ground: Ground | None = None,
 ) -> dict[str, Any]:
     """The page's numbers for ``design`` under ``conditions``, checked against ``requirements``.
 
     Args:
         design: The design.
         conditions: What it is measured under (the sliders' payload and gait).
-        requirements: The design file's requirements (none given: nothing checked).
+        requirements: The design file's requirements (none given: nothing checked), checked
+            on the same evaluation, under ``conditions``.
         model: Its model (an imported robot's at these segments); derived from hexaleg's
             template (:func:`~hexaleg.robot.model_cache.model_of`) if omitted.
+        ground: The ground the gait is walked on (the slope slider's; ``None``: the
+            conditions' own), :func:`walking_on`; the answer's ``grounds`` say which.
 
     """
     start = time.perf_counter()
+    conditions = walking_on(conditions, ground)
     model = model_of(design) if model is None else model
     goal = Goal(requirements.resolved(design)) if requirements.given else None
-    shared = goal is not None and _placed(goal.conditions, design) == _placed(conditions, design)
-    metrics = {*EXPLORED, *(goal.metrics if shared and goal else ())}
+    metrics = {*EXPLORED, *(goal.metrics if goal is not None else ())}
     found = evaluate(design, metrics, replace(conditions, keep=True), model=model)
     out = _numbers(found) | {"stance": _stance(model, found), "extremes": _extremes(model, found)}
+    heading = conditions.gait.heading
+    out["grounds"] = [
+        g.to_dict(heading) | {"text": g.describe(heading)} for g in conditions.grounds
+    ]
+    out["structure"] = _structure(found)
     if goal is not None:
-        checked = found if shared else goal.evaluate(design, model=model)
-        out["requirements"] = _checks(goal, checked)
+        out["requirements"] = _checks(goal, found)
+        out["requirements_conditions"] = conditions_unlike(goal.conditions, conditions, design)
     out["evaluate_ms"] = 1000 * (time.perf_counter() - start)
     return out
+
+
+def walking_on(conditions: Conditions, ground: Ground | None) -> Conditions:
+    """``conditions`` with the gait walked on ``ground`` (the slope slider's) alone.
+
+    ``None``: the conditions' own grounds (the requirements' walking slope, walked up, down
+    and across, or level ground).
+    """
+    return conditions if ground is None else replace(conditions, grounds=(ground,))
 
 
 def _numbers(found: Evaluation) -> dict[str, Any]:
@@ -102,7 +141,7 @@ def _numbers(found: Evaluation) -> dict[str, Any]:
     out["limited_by"] = {s.name: limited_by_dict(c) for s, c in causes if c is not None}
     out["unmeasured"] = {s.name: why for s, why in found.unmeasured.items() if why is not None}
     out["walks"] = found.walks
-    out["units"] = {spec.name: spec.unit for spec in SCALARS} | {"torque": "N·m"}
+    out["rows"] = ROWS
     return out
 
 
@@ -110,17 +149,19 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     """The nominal stance's points, world frame [m], and each leg's use of its ratings.
 
     ``chains``: each leg's three joints and its foot; ``utilisation``: each leg's largest
-    peak |τ| over a gait period against its joint's rating [-] (``None`` where the period
-    breaks a constraint: a joint limit, a foot out of reach — it is not walked; and every
-    leg's when the design gives no ratings, as ``rated_torques``).
+    peak |τ| over a gait period, on every ground walked, against its joint's rating [-]
+    (``None`` where a period breaks a constraint: a joint limit, a foot out of reach — it is
+    not walked; and every leg's when the design gives no ratings, as ``rated_torques``).
     """
     design = model.design
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
     rated = design.rated_torques
-    if found.gait is not None and found.gait.walkable and rated is not None:
-        peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
-        used = dict(zip(found.gait.legs, peaks / np.asarray(rated), strict=True))
+    periods = found.gaits or (() if found.gait is None else (found.gait,))
+    if periods and all(period.walkable for period in periods) and rated is not None:
+        torques = np.concatenate([period.joint_torques for period in periods])  # (T, legs, 3)
+        peaks = np.abs(torques).max(axis=0)  # (legs, joints) [N·m]
+        used = dict(zip(periods[0].legs, peaks / np.asarray(rated), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)
             _finite(float(used[leg].max())) if leg in used else None for leg in model.leg_names
         ]
@@ -205,11 +246,78 @@ def _checks(goal: Goal, found: Evaluation) -> list[dict[str, Any]]:
     return checks
 
 
+def conditions_unlike(
+    required: Conditions, shown: Conditions, design: HexapodDesign
+) -> list[dict[str, Any]]:
+    """Where the conditions ``shown`` differ from the ``required`` ones, condition by condition.
+
+    Each entry: ``name`` (``payload.mass``, ``gait.period``, ...), the ``required`` value and
+    the value ``shown`` [SI units, radians]; empty when the checks are made under the
+    requirements' own conditions. The payload's default position is spelled out first.
+    """
+    wanted, given = _flat(_placed(required, design)), _flat(_placed(shown, design))
+    return [
+        {"name": name, "required": value, "shown": given[name]}
+        for name, value in wanted.items()
+        if given[name] != value
+    ]
+
+
+def _flat(value: Any, prefix: str = "") -> dict[str, Any]:
+    """A record's fields, and its records' fields, by dotted name (JSON-ready values).
+
+    A tuple of records (the grounds walked) is one condition: a list of each one's fields.
+    """
+    if isinstance(value, tuple) and value and all(is_dataclass(item) for item in value):
+        return {prefix: [_flat(item) for item in value]}
+    if not is_dataclass(value) or isinstance(value, type):
+        return {prefix: list(value) if isinstance(value, tuple) else value}
+    out: dict[str, Any] = {}
+    for spec in fields(value):
+        if spec.name != "keep":  # what an evaluation keeps, not what it is measured under
+            out |= _flat(getattr(value, spec.name), f"{prefix}.{spec.name}".lstrip("."))
+    return out
+
+
 def _placed(conditions: Conditions, design: HexapodDesign) -> Conditions:
     """The conditions with the payload's position spelled out (its default made explicit)."""
     payload = conditions.payload
     x, y, z = payload.position_on(design)
     return replace(conditions, payload=Payload(payload.mass, (x, y, z)))
+
+
+def _structure(found: Evaluation) -> dict[str, Any] | None:
+    """The legs' tubes as the evaluation checked them; ``None`` without a tube to check.
+
+    ``tubes``: each segment's outer diameter, wall [m] and mass [kg]; ``worst_ratio`` and
+    ``worst`` (case, leg, segment): the largest von Mises stress over what is allowed [-],
+    over the standing cases (nominal stance and the twelve extremes, with the payload) and
+    the gait period, where it is walked; ``deflection`` [m]: the largest standing foot
+    deflection, with its ``deflection_limit`` [m]; ``feasible``: every ratio ≤ 1 and the
+    deflection within its limit.
+    """
+    standing = found.structure or (None if found.loads is None else found.loads.structure)
+    if standing is None:
+        return None
+    walking = None if found.gait is None else found.gait.structure
+    checks = [standing]  # the period's where it was walked (not broken off: finite ratios)
+    checks += [walking] if walking is not None and math.isfinite(walking.worst_ratio) else []
+    worst = max(checks, key=lambda check: check.worst_ratio)
+    return {
+        "material": standing.structure.material.name,
+        "tubes": standing.tubes_dict(),
+        "worst_ratio": worst.worst_ratio,
+        "worst": worst.worst,
+        "deflection": standing.deflection,
+        "deflection_limit": standing.limit,
+        "feasible": all(check.feasible for check in checks),
+        "sizing": None if found.sized is None else _sizing(found.sized),
+    }
+
+
+def _sizing(sized: SizedStructure) -> dict[str, Any]:
+    """How the tubes were sized: whether the grid held every case, in how many rounds."""
+    return {"found": sized.found, "iterations": sized.iterations, "settled": sized.settled}
 
 
 def _finite(value: float) -> float | None:
@@ -233,6 +341,7 @@ def loaded_values(design: HexapodDesign, conditions: Conditions) -> Mapping[str,
         "speed": conditions.gait.speed,
         "stride": conditions.gait.stride,
         "step_height": conditions.gait.step_height,
+        "slope_deg": math.degrees(conditions.grounds[0].slope),  # uphill: the first walked
     }
 
 

@@ -1,8 +1,9 @@
-"""The explorer's long jobs: a free-coupled search or a decision, run beside the sliders.
+"""The explorer's long jobs: a free-coupled search, the best posture or a decision.
 
-A job is the command line itself (``hexaleg flexibility --mode free --json`` or
-``hexaleg decide --json``) on the design the sliders show, written to a temporary design
-file with the session's ``[requirements]``: its numbers are the command's, and, being
+A job is the command line itself (``hexaleg flexibility --mode free --json``, ``hexaleg
+posture --json`` or ``hexaleg decide --json``) on the design the sliders show, written to a
+temporary design file with the session's ``[requirements]``: its numbers are the command's,
+and, being
 another process, it never slows the sliders' evaluations down. Its progress is read
 from the command's own progress lines on its stderr (:mod:`hexaleg.study.progress`,
 printed at every step here: :mod:`hexaleg.cli.job_runner`), its answer
@@ -21,17 +22,22 @@ import threading
 import time
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any
+from typing import Any, cast
 
+from hexaleg.evaluation.metrics import Better, objectives
 from hexaleg.exceptions import ParameterError
 
-__all__ = ["JOB_KINDS", "Job", "Jobs", "require_job_kind"]
+__all__ = ["JOB_KINDS", "JOB_OPTIONS", "Job", "Jobs", "job_options", "require_job_kind"]
 
 JOB_KINDS: dict[str, tuple[str, ...]] = {
     "free": ("flexibility", "--mode", "free", "--json"),
+    "posture": ("posture", "--json"),
     "decide": ("decide", "--json"),
 }
 """Each kind of job: the hexaleg command and options it runs on the shown design."""
+
+JOB_OPTIONS: dict[str, tuple[str, ...]] = {"posture": ("maximize", "minimize")}
+"""The keys a request may add for a kind of job: each its command's option of that name."""
 
 PROGRESS_LINE = re.compile(r"^hexaleg: (\d+)/(\d+) ")
 """A progress line of :class:`~hexaleg.study.progress.Progress`: ``done/total``."""
@@ -129,6 +135,28 @@ def require_job_kind(kind: str) -> str:
     return kind
 
 
+def job_options(kind: str, params: dict[str, str]) -> tuple[str, ...]:
+    """The command-line options a request gives its job of ``kind``, taken out of ``params``.
+
+    ``maximize=NAME`` or ``minimize=NAME`` (the posture's objective): a metric its command
+    offers in that direction (:func:`~hexaleg.evaluation.metrics.objectives`).
+
+    Raises:
+        ParameterError: A value that is not one of them, or both keys given.
+
+    """
+    given = [key for key in JOB_OPTIONS.get(kind, ()) if key in params]
+    if len(given) > 1:
+        raise ParameterError(given[1], params[given[1]], f"give {given[0]} or {given[1]}, not both")
+    options: list[str] = []
+    for key in given:
+        name, offered = params.pop(key), objectives(cast(Better, key))
+        if name not in offered:
+            raise ParameterError(key, name, f"must be one of {', '.join(offered)}")
+        options += [f"--{key}", name]
+    return tuple(options)
+
+
 class Jobs:
     """The explorer's jobs, at most one of each kind running."""
 
@@ -136,8 +164,11 @@ class Jobs:
         self._jobs: dict[str, Job] = {}
         self._lock = threading.Lock()
 
-    def start(self, kind: str, design_text: str) -> Job:
-        """Run the job ``kind`` on the design file text ``design_text`` (TOML)."""
+    def start(self, kind: str, design_text: str, options: tuple[str, ...] = ()) -> Job:
+        """Run the job ``kind`` on the design file text ``design_text`` (TOML).
+
+        ``options``: more of its command's options (:func:`job_options`).
+        """
         kind = require_job_kind(kind)
         with self._lock:
             if kind in self._jobs:
@@ -146,7 +177,7 @@ class Jobs:
             design = Path(folder.name) / "design.toml"
             design.write_text(design_text, encoding="utf-8")
             command = [sys.executable, "-m", "hexaleg.cli.job_runner",
-                       *JOB_KINDS[kind], "--design", str(design)]  # fmt: skip
+                       *JOB_KINDS[kind], *options, "--design", str(design)]  # fmt: skip
             process = subprocess.Popen(
                 command,
                 stdin=subprocess.DEVNULL,

@@ -2,9 +2,13 @@
 
 A query names any design field by its key in a design file (``l1=0.25``,
 ``body_width=0.7``, a triple as three comma-separated numbers:
-``nominal_angles=0,0.1,-1.5``) and the conditions the sliders set: the payload
+``nominal_angles=0,0.1,-1.5``), the posture's hip and knee angles on their own
+(``theta2``, ``theta3`` [rad], each within the design's stance limits; θ1 kept) and the
+conditions the sliders set: the payload
 (``payload`` [kg], ``payload_at`` = x,y,z in the body frame [m]) and the gait's
-``speed`` [m/s], ``stride`` [m] and ``step_height`` [m]. ``actuators.root``, ``actuators.hip`` and
+``speed`` [m/s], ``stride`` [m] and ``step_height`` [m], and the walking slope
+``slope_deg`` [°] (the ground rising along the gait's heading: negative walks downhill;
+:class:`~hexaleg.statics.ground.Ground`). ``actuators.root``, ``actuators.hip`` and
 ``actuators.knee`` choose each joint type's motor by its catalog name (``hexaleg
 actuators``), as ``catalog = "NAME"`` does in a design file; empty values take the
 motors away (the ratings they gave kept, no motor model); a joint type not named keeps
@@ -14,8 +18,9 @@ the loaded design's motor. Every value is checked by its declaration; a bad one 
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from hexaleg.actuator_catalog import shipped_catalog
@@ -25,13 +30,32 @@ from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
+from hexaleg.statics.ground import MAX_SLOPE, Ground
 
-__all__ = ["ACTUATOR_KEYS", "CONDITION_KEYS", "DESIGN_KEYS", "Query", "parse_query"]
+__all__ = [
+    "ACTUATOR_KEYS",
+    "CONDITION_KEYS",
+    "DESIGN_KEYS",
+    "POSTURE_KEYS",
+    "SLOPE_KEY",
+    "SLOPE_LIMIT",
+    "Query",
+    "parse_query",
+]
+
+SLOPE_KEY = "slope_deg"
+"""The query key of the walking slope [°]."""
+SLOPE_LIMIT = round(math.degrees(MAX_SLOPE), 9)
+"""The steepest walking slope a query asks either way [°]: the ground's own bound (60,
+not the 59.99999999999999 its conversion back from radians gives)."""
 
 DESIGN_KEYS: dict[str, Any] = {
     spec.key: spec for spec in DESIGN_FIELDS if spec.kind in ("number", "triple", "choice")
 }
 """Design fields a query may set, by their design-file key."""
+
+POSTURE_KEYS: dict[str, int] = {"theta2": 1, "theta3": 2}
+"""The posture's angles a query may set on their own, with their place in ``nominal_angles``."""
 
 CONDITION_KEYS: dict[str, str] = {
     "payload": "payload mass [kg]",
@@ -39,6 +63,8 @@ CONDITION_KEYS: dict[str, str] = {
     "speed": "gait speed [m/s] (the stride kept, the period set)",
     "stride": "gait stride [m] (the period kept; with speed, the speed kept)",
     "step_height": "gait step height [m]",
+    SLOPE_KEY: f"walking slope in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°], rising along the "
+    "gait's heading (uphill; negative: downhill)",
 }
 """The conditions a query may set, with what each is."""
 
@@ -53,11 +79,13 @@ class Query:
     Attributes:
         design: The design asked about.
         conditions: What it is measured under.
+        ground: The ground the gait is walked on (``None``: the loaded conditions' own).
 
     """
 
     design: HexapodDesign
     conditions: Conditions
+    ground: Ground | None = None
 
 
 def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Conditions) -> Query:
@@ -72,7 +100,7 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
         ParameterError: An unknown key, or a value out of its field's range.
 
     """
-    known = (*DESIGN_KEYS, *CONDITION_KEYS, *ACTUATOR_KEYS)
+    known = (*DESIGN_KEYS, *POSTURE_KEYS, *CONDITION_KEYS, *ACTUATOR_KEYS)
     unknown = [key for key in params if key not in known]
     if unknown:
         raise ParameterError(
@@ -81,8 +109,11 @@ def parse_query(params: Mapping[str, str], base: HexapodDesign, conditions: Cond
     changes = {key: _field(key, text) for key, text in params.items() if key in DESIGN_KEYS}
     if any(key in params for key in ACTUATOR_KEYS):
         changes["actuators"] = _actuators(params, base.actuators)
+    if any(key in params for key in POSTURE_KEYS):
+        changes["nominal_angles"] = _posture(params, base.replace(**changes))
     design = base.replace(**changes) if changes else base
-    return Query(design, _conditions(params, conditions))
+    ground = _ground(params[SLOPE_KEY]) if SLOPE_KEY in params else None
+    return Query(design, _conditions(params, conditions), ground)
 
 
 def _field(key: str, text: str) -> Any:
@@ -94,6 +125,30 @@ def _field(key: str, text: str) -> Any:
         return spec.check(tuple(_number(f"{key}.{item}", part, spec.unit)
                                 for item, part in _three(key, text, spec.items)))  # fmt: skip
     return spec.check(_number(key, text, spec.unit, spec.bounds))
+
+
+def _posture(params: Mapping[str, str], base: HexapodDesign) -> tuple[float, float, float]:
+    """The posture a query's ``theta2`` and ``theta3`` set over ``base``'s [rad].
+
+    Each within ``base``'s stance limits (the limits the sliders span and the posture search
+    keeps to); given beside ``nominal_angles``, refused.
+    """
+    if "nominal_angles" in params:
+        key = next(key for key in POSTURE_KEYS if key in params)
+        raise ParameterError(key, params[key], "give nominal_angles or theta2 and theta3, not both")
+    angles = list(base.nominal_angles)
+    for key, index in POSTURE_KEYS.items():
+        if key in params:
+            low, high = getattr(base.stance_limits, key)
+            angle = _number(key, params[key], "rad", (low, high))
+            if not low <= angle <= high:
+                raise ParameterError(
+                    key,
+                    params[key],
+                    f"must be within the stance limits [{low:.6g}, {high:.6g}] [rad]",
+                )
+            angles[index] = angle
+    return angles[0], angles[1], angles[2]
 
 
 def _actuators(params: Mapping[str, str], loaded: Actuators | None) -> Actuators | None:
@@ -137,7 +192,20 @@ def _conditions(params: Mapping[str, str], base: Conditions) -> Conditions:
         gait = gait.replace(step_height=_number("step_height", params["step_height"], "m"))
     if "speed" in params:
         gait = gait.with_speed(_number("speed", params["speed"], "m/s"))
-    return Conditions(payload, base.slope, gait, base.stance, base.mode, base.collisions)
+    return replace(base, payload=payload, gait=gait)
+
+
+def _ground(text: str) -> Ground:
+    """The ground ``slope_deg`` walks: inclined as many degrees, rising along the heading."""
+    within = f"must be a number in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°]"
+    try:
+        degrees = float(text)
+    except ValueError:
+        raise ParameterError(SLOPE_KEY, text, within) from None
+    slope = math.radians(degrees)
+    if not abs(slope) <= MAX_SLOPE:  # NaN too
+        raise ParameterError(SLOPE_KEY, text, within)
+    return Ground(slope)
 
 
 def _checked_payload(mass: float, position: tuple[float, float, float] | None) -> Payload:

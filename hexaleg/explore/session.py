@@ -25,14 +25,24 @@ from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.metrics import objectives
+from hexaleg.evaluation.requirement_specs import WALKING_SLOPE
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.explore.answer import answer, feet_reach, loaded_values
 from hexaleg.explore.cloud import Cloud
-from hexaleg.explore.jobs import Jobs
-from hexaleg.explore.query import ACTUATOR_KEYS, DESIGN_KEYS, Query, parse_query
+from hexaleg.explore.jobs import Jobs, job_options
+from hexaleg.explore.query import (
+    ACTUATOR_KEYS,
+    DESIGN_KEYS,
+    POSTURE_KEYS,
+    SLOPE_LIMIT,
+    Query,
+    parse_query,
+)
 from hexaleg.gait.spec import Gait
-from hexaleg.robot.robot import Robot
+from hexaleg.robot.robot import POSTURE_FIELD, Robot
+from hexaleg.study.posture import DEFAULT_OBJECTIVE
 
 __all__ = ["Session"]
 
@@ -147,11 +157,7 @@ class Session:
         path = check_output_file(save_to)
         if path.suffix.lower() != ".toml":
             raise HexalegError(f"{path}: the design is saved as TOML, the file must end in .toml")
-        conditions = (
-            Goal(requirements.resolved(robot.design)).conditions
-            if requirements.given
-            else Conditions(gait=requirements.walked)
-        )
+        conditions = Goal(requirements.resolved(robot.design)).conditions
         cloud = Cloud(robot, conditions).start()
         return cls(robot, conditions, requirements, path, SaveTarget(path, replace), cloud)
 
@@ -186,12 +192,17 @@ class Session:
         return asked, self.robot.at(asked.design)
 
     def evaluate(self, params: Mapping[str, str]) -> dict[str, Any]:
-        """The page's numbers for the design a query asks for."""
+        """The page's numbers for the design a query asks for (one evaluation).
+
+        Where its ``[structure]`` says ``size = true``, the evaluation sizes its tubes first,
+        for the sliders' payload and the requirements' slope; the answer's
+        ``structure.sizing`` says how.
+        """
         asked, robot = self.robot_at(params)
         required = self.requirements
         if required.given:  # the leg length the loaded design has, unless the file says
             required = required.resolved(self.design)
-        return answer(robot.design, asked.conditions, required, robot.model)
+        return answer(robot.design, asked.conditions, required, robot.model, asked.ground)
 
     def reach(self, params: Mapping[str, str]) -> dict[str, Any]:
         """Each foot's reach on the ground for the design a query asks for (``reach``)."""
@@ -206,6 +217,8 @@ class Session:
             key: [low * values[key], high * values[key], label] for key, label, low, high in shown
         }
         bounds = {spec.key: spec.bounds for spec in DESIGN_FIELDS if spec.bounds is not None}
+        limits = self.design.stance_limits
+        posture = {key: list(getattr(limits, key)) for key in POSTURE_KEYS}
         motors = [{key: entry.to_dict()[key] for key in CATALOG_COLUMNS}
                   for entry in shipped_catalog()]  # fmt: skip
         return {
@@ -213,6 +226,11 @@ class Session:
             "catalog": motors,
             "has_actuators": self.design.actuators is not None,
             "sliders": ranges,
+            "posture": posture,
+            "slope_deg": [-SLOPE_LIMIT, SLOPE_LIMIT],
+            "objectives": {better: objectives(better) for better in ("maximize", "minimize")},
+            "posture_objective": f"{DEFAULT_OBJECTIVE.sense}={DEFAULT_OBJECTIVE.name}",
+            "posture_search": self.robot.searches(POSTURE_FIELD),
             "bounds": bounds,
             "requirements": self.requirements.to_dict(),
             "save_to": str(self.save_to),
@@ -223,15 +241,23 @@ class Session:
         """The design file (TOML) of the design a query asks for, the requirements kept.
 
         The sliders' gait is its ``[gait]`` table (none for the default gait); the payload
-        is a condition, not part of a design, so it is not written. ``at``: where the file
-        is written (an imported robot's file paths relative to it).
+        is a condition, not part of a design, so it is not written. A slope slid
+        (``slope_deg``) is the ``[requirements]``' ``walking_slope``, which the file declares
+        as the slope the robot must walk (up, down and across it: :data:`WALKING_SLOPE`);
+        level ground, none. ``at``: where the file is written (an imported robot's file
+        paths relative to it).
         """
         asked, robot = self.robot_at(params)
         text, gait = robot.design_text(at), asked.conditions.gait
         if gait != Gait():
             text += "\n" + gait.to_toml()
-        if self.requirements.given:
-            text += "\n" + tomli_w.dumps({"requirements": self.requirements.to_dict()})
+        table = self.requirements.to_dict()
+        if asked.ground is not None:
+            table.pop(WALKING_SLOPE.name, None)
+            if not asked.ground.level:
+                table[WALKING_SLOPE.name] = abs(asked.ground.slope)
+        if table:
+            text += "\n" + tomli_w.dumps({"requirements": table})
         return text
 
     def save(self, params: Mapping[str, str]) -> Path:
@@ -239,8 +265,14 @@ class Session:
         return self.target.write(self.design_text(params, self.save_to))
 
     def start_job(self, kind: str, params: Mapping[str, str]) -> dict[str, Any]:
-        """Start the long job ``kind`` (``free`` or ``decide``) on the design a query asks for."""
-        return self.jobs.start(kind, self.design_text(params)).to_dict()
+        """Start the long job ``kind`` on the design a query asks for.
+
+        ``kind``: ``free``, ``posture`` or ``decide`` (:data:`~.jobs.JOB_KINDS`); the
+        posture's objective is the query's ``maximize`` or ``minimize`` (:func:`job_options`).
+        """
+        asked = dict(params)
+        options = job_options(kind, asked)
+        return self.jobs.start(kind, self.design_text(asked), options).to_dict()
 
     def job(self, kind: str) -> dict[str, Any]:
         """The latest job of ``kind``: its state and progress (``state`` ``none``: never run)."""

@@ -3,31 +3,9 @@
 // measures run from the slider's input event to the page drawn with its answer.
 "use strict";
 
-const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws: 0,
+const explorer = {loaded: null, answer: null, reach: null, cloud: null, redraws: 0, exact: {},
                   pending: false, inFlight: false, view: {yaw: -0.6, pitch: 0.45}};
 window.explorer = explorer;
-
-const ROWS = [
-  ["fb", "FB (eq 29, axis-locked)", 4, ""],
-  ["improved_area", "improved workspace area (eq 16)", 4, "m²"],
-  ["average_manipulability", "average manipulability w_A", 4, "m³"],
-  ["payload_capacity", "payload capacity, standing", 4, "kg"],
-  ["walking_payload_capacity", "walking payload capacity", 4, "kg"],
-  ["max_speed", "max speed", 4, "m/s"],
-  ["peak_torque.root", "peak torque, root", 4, "N·m"],
-  ["peak_torque.hip", "peak torque, hip", 4, "N·m"],
-  ["peak_torque.knee", "peak torque, knee", 4, "N·m"],
-  ["rms_torque.root", "RMS torque, root", 4, "N·m"],
-  ["rms_torque.hip", "RMS torque, hip", 4, "N·m"],
-  ["rms_torque.knee", "RMS torque, knee", 4, "N·m"],
-  ["mechanical_energy_per_km", "mechanical energy per km", 4, "Wh/km"],
-  ["energy_per_km", "energy per km, through the motors", 4, "Wh/km"],
-  ["electrical_cost_of_transport", "electrical cost of transport", 4, ""],
-  ["continuous_load", "continuous load, RMS/continuous torque (worst joint)", 4, ""],
-  ["battery_range", "range on the battery", 4, "km"],
-  ["ground_clearance", "ground clearance", 4, "m"],
-  ["robot_mass", "robot mass", 4, "kg"],
-];
 
 function value(answer, key) {
   return key.split(".").reduce((o, k) => (o === null || o === undefined ? o : o[k]), answer);
@@ -41,8 +19,9 @@ function slider(parent, key, label, low, high, start, step) {
   row.append(label, input, out);
   parent.append(row);
   const show = () => { out.textContent = Number(input.value).toPrecision(3); };
-  input.addEventListener("input", () => { show(); changed(); });
+  input.addEventListener("input", () => { delete explorer.exact[key]; show(); changed(); });
   show();
+  explorer.exact[key] = start;  // not moved: the loaded value, not the range input's rounding
   return input;
 }
 
@@ -95,9 +74,11 @@ function buildControls(loaded) {
   const s = loaded.sliders;
   heading(c, "legs [m]");
   for (const key of ["l1", "l2", "l3"]) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
-  heading(c, "nominal posture [rad]");
-  slider(c, "theta2", "hip θ2", -0.5236, 0.5236, v.nominal_angles[1], "any");
-  slider(c, "theta3", "knee θ3", -2.356, -0.2618, v.nominal_angles[2], "any");
+  heading(c, "nominal posture [rad]");  // within the stance limits
+  const p = loaded.posture;
+  slider(c, "theta2", "hip θ2", p.theta2[0], p.theta2[1], v.nominal_angles[1], "any");
+  slider(c, "theta3", "knee θ3", p.theta3[0], p.theta3[1], v.nominal_angles[2], "any");
+  postureJob(c, loaded);
   const body = ["body_length", "body_width"].filter((key) => key in s);  // not a file's body
   if (body.length) heading(c, "body [m]");
   for (const key of body) slider(c, key, s[key][2], s[key][0], s[key][1], v[key], "any");
@@ -112,6 +93,8 @@ function buildControls(loaded) {
          "any");
   slider(c, "step_height", "step height [m]", 0.01 * leg, Math.max(0.3 * leg, 2 * v.step_height),
          v.step_height, "any");
+  const slope = loaded.slope_deg;  // the ground rising along the heading: + uphill, − downhill
+  slider(c, "slope_deg", "walking slope [°]", slope[0], slope[1], v.slope_deg, "any");
   if (loaded.robot) {  // an imported robot: its motors are its file's ratings
     const name = loaded.robot.split("/").pop();
     heading(c, "robot " + name + ": body, masses and ratings the file's").title = loaded.robot;
@@ -121,15 +104,51 @@ function buildControls(loaded) {
   for (const joint of ["root", "hip", "knee"]) motorChoice(c, joint, loaded);
 }
 
+function postureJob(parent, loaded) {  // "best posture": a job whose answer moves the sliders
+  const row = document.createElement("label");
+  const select = document.createElement("select");
+  select.id = "posture_objective";
+  for (const [sense, names] of Object.entries(loaded.objectives)) {
+    for (const name of names) {
+      const o = document.createElement("option");
+      o.value = sense + "=" + name;
+      o.textContent = sense + " " + name.replaceAll("_", " ");
+      select.append(o);
+    }
+  }
+  select.value = loaded.posture_objective;
+  row.append("for", select);
+  const box = document.createElement("div");
+  box.className = "job";
+  box.dataset.kind = "posture";
+  const button = document.createElement("button");
+  button.type = "button";
+  button.textContent = "best posture";
+  if (!loaded.posture_search) {  // a robot file stands within its own limits: slid, not searched
+    button.disabled = true;
+    button.title = "a robot file's posture is its own: slide it (hexaleg posture refuses it)";
+  }
+  const bar = document.createElement("progress");
+  Object.assign(bar, {max: 1, value: 0});
+  const state = document.createElement("span");
+  state.className = "job-state";
+  box.append(button, bar, state);
+  parent.append(row, box);
+}
+
 function query() {
-  const get = (id) => document.getElementById(id).value;
+  const get = (id) => id in explorer.exact ? String(explorer.exact[id])
+    : document.getElementById(id).value;  // loaded or set by a job: exact, not the slider's rounding
   const v = explorer.loaded.values;
   const params = new URLSearchParams();
   for (const key of ["l1", "l2", "l3", "body_length", "body_width", "payload", "stride",
                      "speed", "step_height"]) {
     if (document.getElementById(key)) params.set(key, get(key));
   }
-  params.set("nominal_angles", [v.nominal_angles[0], get("theta2"), get("theta3")].join(","));
+  const slope = get("slope_deg");  // sent once moved: else the loaded conditions' grounds
+  if (Number(slope) !== v.slope_deg) params.set("slope_deg", slope);
+  params.set("theta2", get("theta2"));
+  params.set("theta3", get("theta3"));
   params.set("payload_at", [get("payload_x"), get("payload_y"), v.payload_at[2]].join(","));
   for (const joint of ["root", "hip", "knee"]) {
     if (!document.getElementById("motor_" + joint)) continue;
@@ -168,7 +187,9 @@ async function evaluate() {
       await loadReach();
       draw(answer.body);
       status.textContent = (answer.body.error ||
-        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms") + gaitHint(answer.body);
+        "measured in " + answer.body.evaluate_ms.toFixed(0) + " ms, " +
+        walkedOn(answer.body.grounds)) + gaitHint(answer.body);
+      status.title = answer.body.grounds.map((g) => g.text).join("; ");
       status.className = answer.body.error ? "error" : "";
     }
   } catch (err) {
@@ -188,7 +209,8 @@ async function loadReach() {  // only while it is shown: a redraw without it doe
 
 function draw(answer) {
   drawNumbers(answer);
-  drawRequirements(answer.requirements);
+  drawStructure(answer.structure);
+  drawRequirements(answer.requirements, answer.requirements_conditions);
   drawExtremes(answer.extremes);
   drawScene(answer);
   drawChart();
@@ -197,28 +219,74 @@ function draw(answer) {
 function drawNumbers(answer) {
   const body = document.querySelector("#numbers tbody");
   body.replaceChildren();
-  for (const [key, label, digits, unit] of ROWS) {
+  for (const {key, label, text, unit} of answer.rows) {  // the rows as the server declares them
     const x = value(answer, key);
     const tr = document.createElement("tr");
     tr.dataset.key = key;
     tr.dataset.value = x === null || x === undefined ? "" : String(x);
     const why = answer.limited_by[key] ? answer.limited_by[key].description
       : (answer.unmeasured[key] || "");
-    const shown = x === null || x === undefined ? "—" : Number(x).toPrecision(digits);
+    const shown = x === null || x === undefined ? "—" : Number(x).toPrecision(4);
     for (const [text, cls] of [[label, ""], [shown + " " + unit, "value"], [why, "why"]]) {
       const td = document.createElement("td");
       td.textContent = text;
       if (cls) td.className = cls;
       tr.append(td);
     }
+    tr.firstChild.title = text;  // what it is, with its source
     body.append(tr);
   }
 }
 
-function drawRequirements(checks) {
+function drawStructure(structure) {  // the legs' tubes, from the same evaluation
+  const box = document.getElementById("structure");
+  box.hidden = !structure;
+  if (!structure) return;
+  const body = box.querySelector("tbody");
+  body.replaceChildren();
+  const mm = (x) => (1000 * x).toFixed(1) + " mm";
+  const rows = Object.entries(structure.tubes).map(([segment, t]) => [segment,
+    "⌀ " + mm(t.outer_diameter) + ", wall " + mm(t.wall) + ", " + t.mass.toFixed(3) + " kg",
+    segment]);
+  const w = structure.worst;
+  rows.push(["worst stress ratio", structure.worst_ratio.toFixed(3) + " (" + w.leg + " " +
+    w.segment + ", " + w.case + ")", "worst_ratio"]);
+  rows.push(["foot deflection", mm(structure.deflection) + " (limit " +
+    mm(structure.deflection_limit) + ")", "deflection"]);
+  for (const [label, text, key] of rows) {
+    const tr = document.createElement("tr");
+    tr.dataset.key = key;
+    for (const cell of [label, text]) {
+      const td = document.createElement("td");
+      td.textContent = cell;
+      tr.append(td);
+    }
+    body.append(tr);
+  }
+  const sizing = structure.sizing;
+  box.querySelector("p").textContent = structure.material + (sizing ? ", sized in " +
+    sizing.iterations + " rounds" + (sizing.found ? "" : ": no tubes of the grid hold, the " +
+    "strongest shown") : "") + (structure.feasible ? "" : " — OVER its strength or deflection limit");
+  box.classList.toggle("failed", !structure.feasible);
+}
+
+function conditionText(c) {  // a number, a triple, or records (the grounds) field by field
+  const shown = (x) => x === null ? "none" : typeof x === "number" ? Number(x.toPrecision(4))
+    : Array.isArray(x) ? x.map((y) => typeof y === "number" ? Number(y).toPrecision(3)
+      : shown(y)).join(x.every((y) => typeof y === "number") ? ", " : "; ")
+    : typeof x === "object" ? Object.entries(x).map(([k, v]) => k + " " + shown(v)).join(", ")
+    : x;
+  return c.name + " " + shown(c.shown) + " (required " + shown(c.required) + ")";
+}
+
+function drawRequirements(checks, unlike) {
   const box = document.getElementById("requirements");
   box.hidden = !checks;
   if (!checks) return;
+  const note = box.querySelector("p");  // the checks read the numbers shown: say under what
+  note.textContent = unlike.length ? "checked under the sliders' conditions, not the " +
+    "requirements': " + unlike.map(conditionText).join("; ") : "";
+  note.hidden = !unlike.length;
   const list = box.querySelector("ul");
   list.replaceChildren();
   for (const c of checks) {
@@ -238,6 +306,13 @@ function project(p, view, scale, centre) {
   const x = cy * p[0] - sy * p[1];
   const y = sy * p[0] + cy * p[1];
   return [centre[0] + scale * x, centre[1] - scale * (cp * p[2] - sp * y)];
+}
+
+function walkedOn(grounds) {  // one ground in words; several (up, down, across) in short
+  if (grounds.length === 1) return "walking on " + grounds[0].text;
+  const ways = grounds.map((g) => (/walked ([^,]+)/.exec(g.text) || [null, g.text])[1]);
+  return "walking " + ways.join(", ") + " a " + Math.abs(grounds[0].slope_deg).toPrecision(3) +
+    "° slope (each number the worst)";
 }
 
 function gaitHint(answer) {  // a gait too big for the robot: say what to change
@@ -382,6 +457,11 @@ async function pollCloud() {
 }
 
 const JOB_ANSWERS = {
+  posture: (a) => "θ2 " + a.best.nominal_angles[1].toFixed(3) + ", θ3 " +
+    a.best.nominal_angles[2].toFixed(3) + " rad: " +
+    a.best.objective.name.replaceAll("_", " ") + " " + a.best.objective.value.toPrecision(4) +
+    " (as posed " + a.yours.objective.value.toPrecision(4) + ")" +
+    (a.feasible ? "" : " — no posture meets every requirement"),
   free: (a) => "FB " + a.fb.toPrecision(4) + " with the other five coordinates free" +
     (a.converged ? "" : " (not shown to be the maximum)"),
   decide: (a) => a.best ? "best: l1 " + a.best.design.l1.toPrecision(3) + ", l2 " +
@@ -404,6 +484,27 @@ function showJob(box, job) {
     (box.dataset.lengths ? ", for l = " + box.dataset.lengths + " m" : "") + ")"
     : job.state + (job.error ? ": " + job.error : "");
   if (job.state === "done") { bar.max = 1; bar.value = 1; }
+  if (job.state === "done" && JOB_DONE[job.kind] && box.dataset.applied !== String(job.pid)) {
+    box.dataset.applied = String(job.pid);  // once per job: the sliders moved to its answer
+    JOB_DONE[job.kind](job.answer);
+  }
+}
+
+const JOB_DONE = {
+  posture: (a) => {  // the sliders moved to the best posture, and the design measured there
+    for (const [id, angle] of [["theta2", a.best.nominal_angles[1]],
+                               ["theta3", a.best.nominal_angles[2]]]) {
+      const input = document.getElementById(id);
+      input.value = angle;
+      input.nextElementSibling.textContent = Number(input.value).toPrecision(3);
+      explorer.exact[id] = angle;  // the range input keeps 15 digits: the query sends them all
+    }
+    changed();
+  },
+};
+
+function jobParams(kind) {  // what a job asks beside the design shown: the posture's objective
+  return kind === "posture" ? "&" + document.getElementById("posture_objective").value : "";
 }
 
 async function pollJob(box) {
@@ -415,7 +516,8 @@ async function pollJob(box) {
 async function startOrStopJob(box) {
   const kind = box.dataset.kind;
   const running = box.dataset.state === "running";
-  const url = running ? "api/job/stop?kind=" + kind : "api/job?kind=" + kind + "&" + query();
+  const url = running ? "api/job/stop?kind=" + kind
+    : "api/job?kind=" + kind + "&" + query() + jobParams(kind);
   if (!running) {  // the answer is of the design shown now: say which
     box.dataset.lengths = ["l1", "l2", "l3"].map(
       (k) => Number(document.getElementById(k).value).toPrecision(3)).join(", ");
@@ -428,16 +530,18 @@ async function startOrStopJob(box) {
 }
 
 function reset() {
+  explorer.exact = {};
   const v = explorer.loaded.values;
   const start = {l1: v.l1, l2: v.l2, l3: v.l3, body_length: v.body_length,
     body_width: v.body_width, theta2: v.nominal_angles[1], theta3: v.nominal_angles[2],
     payload: v.payload, payload_x: v.payload_at[0], payload_y: v.payload_at[1],
-    speed: v.speed, stride: v.stride, step_height: v.step_height};
+    speed: v.speed, stride: v.stride, step_height: v.step_height, slope_deg: v.slope_deg};
   for (const [id, x] of Object.entries(start)) {
     const input = document.getElementById(id);
     if (!input) continue;
     input.value = x;
     input.nextElementSibling.textContent = Number(x).toPrecision(3);
+    explorer.exact[id] = x;
   }
   for (const joint of ["root", "hip", "knee"]) {
     const choice = document.getElementById("motor_" + joint);
@@ -477,7 +581,7 @@ async function start() {
     await loadReach();
     drawScene(explorer.answer);
   });
-  for (const box of document.querySelectorAll("#jobs .job")) {
+  for (const box of document.querySelectorAll(".job")) {
     const button = box.querySelector("button");
     box.dataset.label = button.textContent;
     button.addEventListener("click", () => startOrStopJob(box));
