@@ -44,7 +44,7 @@ def test_the_search_picks_the_combination_an_exhaustive_search_does():
     entries = [entry.actuator for entry in CATALOG]
     with ThreadPoolExecutor(1) as here:
         found = decide(
-            design, requirements, objective, free=pinned, actuators=entries,
+            design, requirements, objective, free=pinned, actuators=entries, free_posture=False,
             settings=SearchSettings(seed=3, evaluations=120), executor=here, progress=False,
         )  # fmt: skip
     goal = Goal(requirements.resolved(design), objective)

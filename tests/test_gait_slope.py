@@ -223,6 +223,14 @@ def test_bad_ground_and_margin_options_are_one_line_and_exit_2(capsys, argv, fra
     assert "\n" not in err and "Traceback" not in err and fragment in err
 
 
+@pytest.mark.parametrize("edge", ["60", "-60"])
+def test_the_steepest_slope_stated_is_accepted(capsys, edge):
+    """The bound the refusal states is a slope the command takes (no 59.99999999999999)."""
+    assert run_cli(["gait", "--samples", "20", "--slope-deg", edge, "--json"]) == 0
+    walked = __import__("json").loads(capsys.readouterr().out)
+    assert walked["ground"]["slope_deg"] == pytest.approx(float(edge))
+
+
 def test_gait_json_states_the_ground_and_the_table_names_it(capsys):
     argv = ["gait", "--samples", "40", "--slope-deg", "-10", "--slope-heading", "3.1416"]
     assert run_cli([*argv, "--json"]) == 0

@@ -9,12 +9,12 @@ from hexaleg._checks import require_in_range
 from hexaleg._typing import GaitPattern, choices
 from hexaleg.cli.options import UsageError, bounded_int
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
-from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE, Ground
+from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE_DEG, Ground
 
 DEFAULT = Gait()
 """The defaults each option's help names (hexaleg's template's gait)."""
 
-SLOPE_LIMIT = math.degrees(MAX_SLOPE)
+SLOPE_LIMIT = MAX_SLOPE_DEG
 """The steepest ``--slope-deg`` either way [°]: 60."""
 
 

@@ -30,7 +30,7 @@ from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import PAYLOAD_REACH, Payload
-from hexaleg.statics.ground import MAX_SLOPE, Ground
+from hexaleg.statics.ground import MAX_SLOPE, MAX_SLOPE_DEG, Ground
 
 __all__ = [
     "ACTUATOR_KEYS",
@@ -45,7 +45,7 @@ __all__ = [
 
 SLOPE_KEY = "slope_deg"
 """The query key of the walking slope [°]."""
-SLOPE_LIMIT = round(math.degrees(MAX_SLOPE), 9)
+SLOPE_LIMIT = MAX_SLOPE_DEG
 """The steepest walking slope a query asks either way [°]: the ground's own bound (60,
 not the 59.99999999999999 its conversion back from radians gives)."""
 

@@ -19,11 +19,13 @@ from hexaleg._typing import ArrayF
 from hexaleg.gravity import GRAVITY, slope_gravity
 from hexaleg.statics.forces import DEFAULT_FRICTION, check_friction
 
-__all__ = ["LEVEL", "MAX_SLOPE", "Ground"]
+__all__ = ["LEVEL", "MAX_SLOPE", "MAX_SLOPE_DEG", "Ground"]
 
-MAX_SLOPE = math.radians(60.0)
-"""Steepest slope |α| walked [rad]: 60° (issue #39's bound). Standing on it at all, with the
-weight shared evenly, already needs μ ≥ tan 60° ≈ 1.73."""
+MAX_SLOPE_DEG = 60.0
+"""Steepest slope |α| walked [°] (issue #39's bound), as options in degrees state it."""
+MAX_SLOPE = math.radians(MAX_SLOPE_DEG)
+"""Steepest slope |α| walked [rad]. Standing on it at all, with the weight shared evenly,
+already needs μ ≥ tan 60° ≈ 1.73."""
 
 HEADING_RANGE = (-2 * math.pi, 2 * math.pi)
 """Directions φ accepted [rad] (any turn, either way)."""
