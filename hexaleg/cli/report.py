@@ -93,6 +93,7 @@ def run(args: argparse.Namespace) -> int:
         requirements=requirements if requirements.given else None,
         simulate=args.simulate,
         gait=requirements.walked,
+        default_gait=inputs.default_gait,
     )
     refused = refused_options(robot, options)  # an option whose section is left out
     if refused:

@@ -245,10 +245,15 @@ def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
     return [_Task(tuple(keys[i : i + size]), spec, template) for i in range(0, len(keys), size)]
 
 
-def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
-    """The whole study evaluated in this process, as a table (for small, fast studies)."""
-    rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate_task(task)]
-    return study_table(spec, {row.key: row for row in rows})
+def sweep_in_process(spec: StudySpec, known: Mapping[Key, StudyRow] | None = None) -> pd.DataFrame:
+    """The whole study evaluated in this process, as a table (for small, fast studies).
+
+    ``known``: rows already measured, by key: not measured again.
+    """
+    known = known or {}
+    keys = [key for key in spec.keys() if key not in known]
+    rows = [row for task in _tasks(spec, keys) for row in evaluate_task(task)]
+    return study_table(spec, {**known, **{row.key: row for row in rows}})
 
 
 def run_study(

@@ -24,11 +24,13 @@ import hexaleg.output.report.study as study
 import hexaleg.output.report.viewer as viewer
 import hexaleg.output.report.walking as walking
 import hexaleg.output.report.workspace as workspace
+import hexaleg.output.report.yours as yours
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import LeftOut, Part
 from hexaleg.robot.robot import Robot
 
 PARTS: tuple[Part[Any], ...] = (
+    yours.PART,
     decision.PART,
     robot.DECISION,
     design.PART,

@@ -41,7 +41,7 @@ class WalkingRecord:
 def compute(data: ReportData) -> WalkingRecord:
     """Compare the study's walking columns with the paper's leg on this design's body."""
     study = data[StudyRecord]
-    return WalkingRecord(walking_or_none(study.table, study.spec))
+    return WalkingRecord(walking_or_none(study.table, study.spec, study.yours))
 
 
 def section(data: ReportData) -> Section:
