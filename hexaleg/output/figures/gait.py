@@ -169,6 +169,7 @@ def walking_study_figure(
     rated: Mapping[str, float] | None = None,
     marks: Sequence[Mark] = (),
     gait: Gait = STUDY_GAIT,
+    standing: str = "",
 ) -> Figure:
     """The study's walking against tibia ratio: hip and knee peaks, CoT, walking payload.
 
@@ -180,6 +181,7 @@ def walking_study_figure(
         rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
         marks: Designs marked on every panel (your design, the recommended one).
         gait: The gait the study's designs walk (named in the title).
+        standing: The posture and ground they walk it at, in words (in the title).
 
     """
     import pandas as pd  # heavy: only where a study is drawn
@@ -210,8 +212,9 @@ def walking_study_figure(
     fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
                fontsize=7.5)  # fmt: skip
     fig.suptitle(
-        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
-        "that cannot walk it unloaded within their ratings)"
+        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s"
+        f"{', ' + standing if standing else ''}\n(gaps: designs that cannot walk it unloaded "
+        "within their ratings)"
     )
     return fig
 

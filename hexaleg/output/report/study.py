@@ -12,7 +12,7 @@ from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study_record import StudyRecord
-from hexaleg.output.report.yours import YoursRecord, ratio_key
+from hexaleg.output.report.yours import YoursRecord, ratio_key, standing_text
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.study.executors import local_pool
 from hexaleg.study.rows import Key
@@ -72,8 +72,9 @@ def section(data: ReportData) -> Section:
     )
     blocks: list[str | Figure] = [
         f"{len(study)} designs ({len(spec.l1_ratios)} coxa ratios × "
-        f"{len(spec.l3_ratios)} tibia ratios, total {spec.total:.4g} m, {designs}); "
-        f"{failed} could not stand. Table: [study/study.csv](study/study.csv).",
+        f"{len(spec.l3_ratios)} tibia ratios, total {spec.total:.4g} m, {designs}), each "
+        f"{standing_text(spec)}; {failed} could not stand. Table: "
+        "[study/study.csv](study/study.csv).",
         Figure(
             "flexibility_ranges",
             "The six ranges of the body pose against tibia ratio, for the smallest coxa ratio "

@@ -44,6 +44,17 @@ def report_study(data: ReportData) -> StudySpec:
     )
 
 
+def standing_text(spec: StudySpec) -> str:
+    """The posture and ground every leg of the study stands and walks at, in words.
+
+    ``"standing at your posture θ = (0.000, 0.000, -1.571) rad on level ground"``.
+    """
+    angles = ", ".join(f"{a:.3f}" for a in spec.robot.design.nominal_angles)
+    slope = spec.conditions.slope
+    ground = "on level ground" if not slope else f"on a {slope:.3g} rad slope"
+    return f"standing at your posture θ = ({angles}) rad {ground}"
+
+
 def ratio_key(design: HexapodDesign) -> Key:
     """(coxa ratio, tibia ratio) of ``design`` [-]."""
     return (design.l1 / design.leg_length, design.l3 / design.leg_length)
