@@ -22,6 +22,7 @@ from bench_gait import bench_gait, bench_walking_columns
 from bench_import import bench_import
 from bench_kinematics import bench_forward_kinematics, bench_inverse_kinematics, bench_monte_carlo
 from bench_manipulability import bench_manipulability_grid, bench_optimum_pose
+from bench_posture import bench_posture
 from bench_simulate import bench_simulate
 from bench_structure import bench_structure
 from harness import Row, seconds
@@ -44,6 +45,7 @@ WORKLOADS = {
     "explore": lambda quick, r: bench_explore(4 if quick else 12, r),
     "explore_robot": lambda quick, r: bench_explore_robot(4 if quick else 12, r),
     "decide_actuators": lambda quick, r: bench_decide_actuators(120 if quick else None),
+    "posture": lambda quick, r: bench_posture(1 if quick else r, grid=not quick),
     "structure": lambda quick, r: bench_structure(r),
 }
 

@@ -25,6 +25,7 @@ __all__ = [
     "FootSearch",
     "Gait",
     "GaitAnalysis",
+    "Ground",
     "HexalegError",
     "HexapodDesign",
     "HexapodModel",
@@ -68,6 +69,7 @@ __all__ = [
     "analyze_loads",
     "analyze_manipulability",
     "analyze_workspace",
+    "best_posture",
     "build_report",
     "decide",
     "default_mounts",
@@ -150,10 +152,12 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
     from hexaleg.stance.flexibility import flexibility
     from hexaleg.stance.geometry import StanceGeometry
     from hexaleg.statics.forces import Payload
+    from hexaleg.statics.ground import Ground
     from hexaleg.statics.loads import analyze_loads
     from hexaleg.structure.sizing import size_structure
     from hexaleg.study.decide import DecideResult, decide
     from hexaleg.study.optimize import SearchSettings
+    from hexaleg.study.posture import best_posture
     from hexaleg.study.sweep import StudySpec, run_study
     from hexaleg.swing.manipulability import ManipulabilityAnalysis, analyze_manipulability
     from hexaleg.swing.workspace import WorkspaceAnalysis, analyze_workspace

@@ -27,7 +27,15 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from hexaleg.actuators import ACTUATOR_FIELDS, GEAR_RATIO_RANGE, TABLE, Actuator, Actuators
+from hexaleg.actuators import (
+    ACTUATOR_FIELDS,
+    GEAR_RATIO_RANGE,
+    REFERENCE_TEMPERATURE,
+    TABLE,
+    TEMPERATURE_KEY,
+    Actuator,
+    Actuators,
+)
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.table_records import ENTRY_NAME, record_from_table, require_table, unknown_name
@@ -265,12 +273,19 @@ def actuators_from_table(table: Any, catalog: Catalog | None = None) -> Actuator
 
     """
     table = require_table(TABLE, table, "root, hip and knee actuators")
+    keys = (*LEG_JOINTS, TEMPERATURE_KEY)
     for joint in table:
-        if joint not in LEG_JOINTS:
-            close = difflib.get_close_matches(joint, LEG_JOINTS, n=1)
-            hint = f"did you mean {close[0]!r}?" if close else "use root, hip and knee"
+        if joint not in keys:
+            close = difflib.get_close_matches(joint, keys, n=1)
+            hint = (
+                f"did you mean {close[0]!r}?"
+                if close
+                else f"use root, hip and knee (and {TEMPERATURE_KEY})"
+            )
             raise ParameterError(f"{TABLE}.{joint}", table[joint], f"no such joint: {hint}")
-    return Actuators(**{joint: _actuator(table, joint, catalog) for joint in LEG_JOINTS})
+    joints = {joint: _actuator(table, joint, catalog) for joint in LEG_JOINTS}
+    temperature = table.get(TEMPERATURE_KEY, REFERENCE_TEMPERATURE)
+    return Actuators(**joints, winding_temperature=temperature)
 
 
 def _actuator(table: Mapping[str, Any], joint: str, catalog: Catalog | None) -> Actuator:

@@ -11,6 +11,17 @@ keys given beside ``catalog`` override the entry's, each on its own (an overridd
 The model is a DC-equivalent motor: torque τ_m = k_t·i at the motor, terminal
 resistance R in the same convention (copper loss i²R), a gearbox of ratio N and
 efficiency η between motor and joint (:mod:`hexaleg.electrical` has the equations).
+
+One bus feeds every motor: the ``[battery]``'s ``voltage``, else the actuators' own
+``voltage`` when all three agree (:meth:`Actuators.supply_voltage`; the design refuses
+actuators of different voltages without a bus voltage). An actuator's ``voltage`` is the
+supply its datasheet quotes its figures at (its no-load speed among them).
+
+The windings' resistance is the datasheet's at its reference temperature, 25 °C; the
+``[actuators]`` table's ``winding_temperature`` T [°C] scales every R by
+1 + α·(T − 25) with copper's temperature coefficient α = :data:`COPPER_ALPHA`
+(:attr:`Actuators.resistances`). α is the International Annealed Copper Standard's at
+20 °C; used from 25 °C it overstates the resistance by α·5/(1 + α·5) ≈ 2 % of the change.
 Derived per joint: the no-load speed V/(k_t·N) [rad/s] (the speed rating when
 ``max_speed`` is not given) and the reflected rotor inertia N²·J [kg·m²], the joint's
 armature.
@@ -42,6 +53,7 @@ import dataclasses
 from dataclasses import dataclass
 from typing import Any, cast
 
+from hexaleg._checks import require_in_range
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.limits import LEG_JOINTS
@@ -56,6 +68,24 @@ SPEED_RANGE = (1e-3, 1e4)
 
 TABLE = "actuators"
 """The design file's table of actuators: one sub-table per joint type."""
+
+COPPER_ALPHA = 0.00393
+"""Temperature coefficient of resistance of copper [1/K]: the International Annealed Copper
+Standard's at 20 °C (National Bureau of Standards, Handbook 100, *Copper Wire Tables*, 1966,
+Part I §1.1(b) "Temperature coefficient of resistance of copper", p. 3; first measured by
+J. H. Dellinger, Bulletin of the Bureau of Standards 7(1), 1911, pp. 71–101)."""
+
+REFERENCE_TEMPERATURE = 25.0
+"""The winding temperature datasheets quote the resistance at [°C]: R is used as given there."""
+
+WINDING_TEMPERATURE_RANGE = (-50.0, 200.0)
+"""Winding temperatures accepted [°C]: a cold start outdoors up to beyond the hottest
+standard insulation class for motor windings, class 180 (H) of IEC 60085 (180 °C)."""
+
+TEMPERATURE_KEY = "winding_temperature"
+"""The ``[actuators]`` table's key of the windings' temperature, beside the joint tables."""
+TEMPERATURE_TEXT = "the windings' temperature: every R scaled from the datasheets' 25 °C [°C]"
+"""What ``winding_temperature`` is, as a design file's comment says it."""
 
 
 @dataclass(frozen=True)
@@ -174,17 +204,25 @@ class Actuators:
         root: The root (yaw) joints' actuator.
         hip: The hip joints' actuator.
         knee: The knee joints' actuator.
+        winding_temperature: The windings' temperature T [°C] (default the datasheets'
+            reference, 25 °C): every resistance is scaled to it (:attr:`resistances`).
 
     """
 
     root: Actuator
     hip: Actuator
     knee: Actuator
+    winding_temperature: float = REFERENCE_TEMPERATURE
 
     def __post_init__(self) -> None:
         for joint in LEG_JOINTS:
             if not isinstance(getattr(self, joint), Actuator):
                 raise ParameterError(f"{TABLE}.{joint}", getattr(self, joint), "an Actuator")
+        temperature = require_in_range(
+            f"{TABLE}.{TEMPERATURE_KEY}", self.winding_temperature,
+            *WINDING_TEMPERATURE_RANGE, "°C",
+        )  # fmt: skip
+        object.__setattr__(self, "winding_temperature", temperature)
 
     @property
     def joints(self) -> tuple[Actuator, Actuator, Actuator]:
@@ -212,6 +250,34 @@ class Actuators:
         return self.values("rated_speed")
 
     @property
+    def resistances(self) -> tuple[float, float, float]:
+        """Winding resistances (root, hip, knee) at :attr:`winding_temperature` [Ω].
+
+        R·(1 + α·(T − 25)), α = :data:`COPPER_ALPHA`: the datasheets' R at 25 °C.
+        """
+        scale = 1.0 + COPPER_ALPHA * (self.winding_temperature - REFERENCE_TEMPERATURE)
+        root, hip, knee = (r * scale for r in self.values("resistance"))
+        return (root, hip, knee)
+
+    def supply_voltage(self) -> float:
+        """The voltage the three actuators share [V]: their bus when no battery gives one.
+
+        Raises:
+            ParameterError: ``battery.voltage`` is needed: their voltages differ (named).
+
+        """
+        voltages = self.values("voltage")
+        if len(set(voltages)) > 1:
+            named = ", ".join(f"{j} {v:g} V" for j, v in zip(LEG_JOINTS, voltages, strict=True))
+            raise ParameterError(
+                "battery.voltage",
+                None,
+                f"is required: one bus feeds every motor, and the actuators' voltages differ "
+                f"({named}); give the bus voltage [V] > 0 in [battery]",
+            )
+        return voltages[0]
+
+    @property
     def armatures(self) -> tuple[float, float, float]:
         """Reflected rotor inertias N²·J (root, hip, knee) [kg·m²]."""
         return self.values("armature")
@@ -230,8 +296,14 @@ class Actuators:
         return self.to_table()
 
     def to_table(self) -> dict[str, Any]:
-        """The design file's ``[actuators]`` table: each joint type's keys that are set."""
-        return {joint: getattr(self, joint).to_table() for joint in LEG_JOINTS}
+        """The design file's ``[actuators]`` table: each joint type's keys that are set.
+
+        ``winding_temperature`` only when it is not the datasheets' reference.
+        """
+        table: dict[str, Any] = {}
+        if self.winding_temperature != REFERENCE_TEMPERATURE:
+            table[TEMPERATURE_KEY] = self.winding_temperature
+        return table | {joint: getattr(self, joint).to_table() for joint in LEG_JOINTS}
 
     @property
     def total_mass(self) -> float:

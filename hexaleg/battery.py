@@ -6,7 +6,9 @@ watt-hours per kilogram [Wh/kg], as datasheets give them. The battery's mass
 capacity / specific energy is a point mass at ``battery_at`` in the body frame. The
 share ``regeneration`` of the power the motors give back while braking returns to the
 battery; the electronics draw ``electronics_power`` all the time
-(:mod:`hexaleg.electrical` has the equations).
+(:mod:`hexaleg.electrical` has the equations). Its ``voltage`` is the bus every motor is
+fed from (unset: the actuators' own voltage, when they agree); the share ``reserve`` of
+its capacity is never used, so the runtime and range count only the rest.
 """
 
 from __future__ import annotations
@@ -14,6 +16,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, cast
 
+from hexaleg._checks import require_instance
+from hexaleg.actuators import Actuators
+from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.table_records import REQUIRED, check_record, record_from_table
 
@@ -22,6 +27,14 @@ POSITION_RANGE = (-100.0, 100.0)
 
 TABLE = "battery"
 """The design file's table of the battery."""
+
+VOLTAGE_RANGE = (0.1, 1e4)
+"""Plausible bus voltage [V] (an actuator's supply range): positive."""
+
+DEFAULT_RESERVE = 0.2
+"""Share of the capacity kept in reserve by default [-]: hexaleg's choice, not a datasheet's
+(a pack left a fifth charged is spared deep discharge and keeps the robot able to walk
+home); set ``reserve = 0`` to count the whole capacity."""
 
 
 @dataclass(frozen=True)
@@ -46,10 +59,25 @@ class Battery:
     electronics_power: float = declare(
         0.0, "power P₀ the electronics draw all the time", "W", (0.0, 1e6)
     )
+    voltage: float | None = declare(
+        None, "bus voltage V feeding every motor; unset: the actuators' own voltage, when "
+        "all three agree", "V", VOLTAGE_RANGE,
+    )
+    reserve: float = declare(
+        DEFAULT_RESERVE, "share of the capacity never used (runtime and range count the "
+        "rest), in [0, 1)", "-", (0.0, 1.0),
+    )
     # fmt: on
 
     def __post_init__(self) -> None:
         check_record(self, BATTERY_FIELDS)
+        if not self.reserve < 1.0:
+            raise ParameterError("reserve", self.reserve, "must lie in [0, 1) [-]")
+
+    @property
+    def usable(self) -> float:
+        """The capacity a charge gives before the reserve: capacity·(1 − reserve) [Wh]."""
+        return self.capacity * (1.0 - self.reserve)
 
     @classmethod
     def from_table(cls, table: Any) -> Battery:
@@ -72,8 +100,9 @@ class Battery:
         return self.to_table() | {"mass": self.mass}
 
     def to_table(self) -> dict[str, Any]:
-        """The design file's ``[battery]`` table: every key (:meth:`from_table` reads it)."""
+        """The design file's ``[battery]`` table: every key set (:meth:`from_table` reads it)."""
         out: dict[str, Any] = {spec.name: getattr(self, spec.name) for spec in BATTERY_FIELDS}
+        out = {key: value for key, value in out.items() if value is not None}
         return out | {"battery_at": list(self.battery_at)}
 
 
@@ -81,3 +110,22 @@ BATTERY_FIELDS: tuple[FieldSpec, ...] = field_specs(Battery)
 """Every battery key's declaration, in order."""
 
 Battery.__doc__ = cast(str, Battery.__doc__).rstrip() + "\n\n" + attributes_section(BATTERY_FIELDS)
+
+
+def bus_voltage(battery: Battery | None, actuators: Actuators | None) -> float | None:
+    """The voltage every motor is fed from [V] (``None`` without actuators).
+
+    The battery's ``voltage``, else the actuators' own when all three agree.
+
+    Raises:
+        ParameterError: ``battery`` is no Battery, or ``battery.voltage`` is needed (the
+            actuators' voltages differ: :meth:`~hexaleg.actuators.Actuators.supply_voltage`).
+
+    """
+    if battery is not None:
+        require_instance("battery", battery, Battery, "a Battery or None")
+    if actuators is None:
+        return None
+    if battery is not None and battery.voltage is not None:
+        return battery.voltage
+    return actuators.supply_voltage()

@@ -24,13 +24,15 @@ class Cause:
             ``"range"`` (nothing broke within the searched range), ``"torque"`` or
             ``"speed"`` (a joint at its rated torque or speed), ``"continuous_torque"``
             (a joint's RMS torque at its actuator's continuous torque), ``"voltage"`` (the
-            voltage its motor needs at the supply's), ``"tip"`` (the gravity
+            voltage its motor needs at the bus voltage), ``"tip"`` (the gravity
             line leaves the support polygon on a slope), ``"slide"`` (the slope's
-            tangent reaches the friction coefficient), ``"stability"`` (the centre of
+            tangent reaches the friction coefficient; with ``leg``, that standing foot's
+            force leaves the friction cone walking), ``"stability"`` (the centre of
             mass leaves the support polygon), ``"zmp"`` (a gait's zero-moment point leaves
             the standing feet's polygon) or ``"search limit"`` (nothing binds below the
             search's own bound).
-        leg: Leg name, for joint, reach, torque, speed, voltage and a leg's ground causes.
+        leg: Leg name, for joint, reach, torque, speed, voltage and a leg's ground and
+            slide causes.
         joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque, speed and voltage causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
         links: The two links that touch, for collision causes.
@@ -57,6 +59,8 @@ class Cause:
             return f"{self.leg} {self.joint} {self.kind.replace('_', ' ')} at its rating"
         if self.kind == "voltage":
             return f"{self.leg} {self.joint} motor's voltage at the supply's"
+        if self.kind == "slide" and self.leg:
+            return f"{self.leg} foot slides (friction cone)"
         if self.kind == "zmp":
             return "ZMP leaves the support polygon"
         if self.kind in ("tip", "slide", "stability", "search limit"):

@@ -7,9 +7,8 @@ names the field, the value given and what is allowed.
 Every default is a field's declaration (none hidden in code): the paper's segments
 l1 = 0.2 m, l2 = 0.4 m, l3 = 0.4 m (§4.1) on hexaleg's box body, legs at its corners
 and side mid-points (:mod:`hexaleg.layouts`), standing with femur level and tibia
-vertical, so that the body stands at l3 above the ground.
-The paper gives no body size, mounting or posture; the study functions report
-how results depend on them.
+vertical, so that the body stands at l3 above the ground. The paper gives no body size,
+mounting or posture; the study functions report how results depend on them.
 """
 
 from __future__ import annotations
@@ -24,7 +23,7 @@ import numpy.typing as npt
 
 from hexaleg._checks import require_in_range, require_instance, require_ratio
 from hexaleg.actuators import Actuators
-from hexaleg.battery import Battery
+from hexaleg.battery import Battery, bus_voltage
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.grids import (  # noqa: F401
@@ -201,6 +200,7 @@ class HexapodDesign:
         if self.actuators is not None:
             object.__setattr__(self, "rated_torques", self.actuators.rated_torques)
             object.__setattr__(self, "rated_speeds", self.actuators.rated_speeds)
+        bus_voltage(self.battery, self.actuators)  # a Battery or None; motors of one bus
         layout = resolve_layout(self.layout, self.mounts)
         object.__setattr__(self, "layout", layout)
         mounts = checked_mounts(layout, self.mounts, self.layout_mounts(), self.link_radius)
@@ -277,6 +277,11 @@ class HexapodDesign:
         legs = 6 * (sum(segments) + FOOT_MASS)
         motors = 0.0 if self.actuators is None else self.actuators.total_mass
         return self.body_mass + legs + motors + (0.0 if self.battery is None else self.battery.mass)
+
+    @property
+    def bus_voltage(self) -> float | None:
+        """The voltage every motor is fed from [V] (:func:`~hexaleg.battery.bus_voltage`)."""
+        return bus_voltage(self.battery, self.actuators)
 
     @property
     def legs(self) -> tuple[LegMount, ...]:

@@ -12,7 +12,7 @@ from typing import Any
 
 import tomli_w
 
-from hexaleg.actuators import ACTUATOR_FIELDS
+from hexaleg.actuators import ACTUATOR_FIELDS, TEMPERATURE_KEY, TEMPERATURE_TEXT
 from hexaleg.battery import BATTERY_FIELDS
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.design_file import ANGLES, MOUNT_KEYS
@@ -70,6 +70,9 @@ def _record_tables(design: HexapodDesign) -> list[str]:
     lines: list[str] = []
     comments = {s.name: s.described for s in (*ACTUATOR_FIELDS, *BATTERY_FIELDS)}
     tables = {} if design.actuators is None else design.actuators.to_table()
+    if TEMPERATURE_KEY in tables:  # the [actuators] table's own key, beside the joints'
+        temperature = tables.pop(TEMPERATURE_KEY)
+        lines += ["", "[actuators]", _line(TEMPERATURE_KEY, temperature, TEMPERATURE_TEXT)]
     tables = {f"actuators.{joint}": table for joint, table in tables.items()}
     if design.battery is not None:
         tables["battery"] = design.battery.to_table()

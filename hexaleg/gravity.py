@@ -15,12 +15,12 @@ to three significant digits. The statics, the gait, the leg frames' gravity torq
 MuJoCo model all take this one value."""
 
 
-def slope_gravity(angle: float, heading: float) -> ArrayF:
-    """Gravity [m/s²] in the ground frame of a slope α uphill toward heading ψ.
+def slope_gravity(angle: float, heading: float, gravity: float = GRAVITY) -> ArrayF:
+    """Gravity [m/s²] in the ground frame of a slope α uphill toward heading ψ (g [m/s²]).
 
     g·(−sin α cos ψ, −sin α sin ψ, −cos α): on level ground (α = 0), :data:`LEVEL_GRAVITY`.
     """
-    return GRAVITY * np.array(
+    return gravity * np.array(
         [
             -math.sin(angle) * math.cos(heading),
             -math.sin(angle) * math.sin(heading),

@@ -29,6 +29,7 @@ capacity = 500
 specific_energy = 200
 battery_at = [0, 0, 0.05]
 regeneration = 0.25
+voltage = 48
 """
 
 
@@ -61,7 +62,8 @@ def test_the_files_tables_are_the_catalogs_entries_with_their_overrides(tmp_path
         knee.values["peak_torque"],
     )
     assert design.rated_speeds == tuple(a.rated_speed for a in design.actuators.joints)
-    assert design.battery == Battery(500.0, 200.0, (0.0, 0.0, 0.05), 0.25)
+    assert design.battery == Battery(500.0, 200.0, (0.0, 0.0, 0.05), 0.25, voltage=48.0)
+    assert design.bus_voltage == 48.0  # the battery's, fed to every motor
 
 
 def test_a_design_without_them_keeps_its_rated_torques_and_speeds():
@@ -102,6 +104,11 @@ def test_the_whole_robots_mass_holds_the_motors_and_the_battery():
         (FILE.replace("capacity = 500", "capacity = -5"), ["battery.capacity", "[0.001"]),
         (FILE.replace("l1 = 0.2", "rated_torques = [1, 2, 3]"), ["rated_torques", "[actuators]"]),
         (FILE.replace('"hd_cha_25a_100"', '"hd_cha_25a_10"'), ["actuators.hip.catalog"]),
+        (FILE.replace("voltage = 48", "voltage = 0"), ["battery.voltage", "[0.1"]),
+        (  # one bus: 48 V and 680 V motors need the battery's voltage
+            FILE.replace("voltage = 48", ""),
+            ["battery.voltage", "root 48 V, hip 680 V, knee 680 V"],
+        ),
     ],
 )
 def test_bad_tables_are_one_line_and_exit_2(tmp_path, capsys, text, fragments):

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import json
 
 import numpy as np
@@ -136,12 +137,20 @@ def test_a_period_by_hand(period):
     assert period.cost_of_transport == pytest.approx(1.506626, rel=1e-6)
     # E/(v·T) = 29.56/0.2 = 147.8 J/m = 147.8·1000/3600 Wh/km = 41.05556 Wh/km
     assert period.energy_per_km == pytest.approx(41.05556, rel=1e-6)
-    # battery: 100 Wh / 200 Wh/kg = 0.5 kg; runtime 100 Wh / 14.78 W = 6.765900 h;
-    # range 6.765900 h · 0.1 m/s · 3.6 = 2.435724 km
+    # battery: 100 Wh / 200 Wh/kg = 0.5 kg; the default reserve keeps 20 %: runtime
+    # 80 Wh / 14.78 W = 5.412720 h; range 5.412720 h · 0.1 m/s · 3.6 = 1.948579 km
     battery = period.battery
-    assert (battery.mass, battery.capacity) == (0.5, 100.0)
-    assert battery.runtime == pytest.approx(6.765900, rel=1e-6)
-    assert battery.range == pytest.approx(2.435724, rel=1e-6)
+    assert (battery.mass, battery.capacity, battery.reserve) == (0.5, 100.0, 0.2)
+    assert battery.runtime == pytest.approx(5.412720, rel=1e-6)
+    assert battery.range == pytest.approx(1.948579, rel=1e-6)
+
+
+def test_no_reserve_uses_the_whole_capacity():
+    # reserve 0: runtime 100 Wh / 14.78 W = 6.765900 h; range 6.765900 · 0.36 = 2.435724 km
+    whole = dataclasses.replace(BATTERY, reserve=0.0)
+    found = analyze_electrical(*TWO_SAMPLES, 2.0, 0.1, 10.0, 9.81, same(), whole, ["lf"])
+    assert found.battery.runtime == pytest.approx(6.765900, rel=1e-6)
+    assert found.battery.range == pytest.approx(2.435724, rel=1e-6)
 
 
 def test_a_period_per_joint_by_hand(period):
@@ -183,6 +192,8 @@ def test_the_json_form(period):
     out = json.loads(json.dumps(period.to_dict(), allow_nan=False))
     assert set(out) == {"electrical", "battery"}
     assert set(out["electrical"]) == {
+        "supply",
+        "winding_temperature",
         "energy_per_period",
         "copper_loss_per_period",
         "mechanical_power",
@@ -199,7 +210,8 @@ def test_the_json_form(period):
         "peak_voltage",
         "energy_per_period",
     }
-    assert set(out["battery"]) == {"mass", "capacity", "runtime", "range"}
+    assert set(out["battery"]) == {"mass", "capacity", "reserve", "runtime", "range"}
+    assert out["electrical"]["supply"] == 48.0 and out["electrical"]["winding_temperature"] == 25
 
 
 def test_without_a_battery_and_with_nothing_drawn():

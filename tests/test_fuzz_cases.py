@@ -33,6 +33,7 @@ from hexaleg._io import write_text
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
+from hexaleg.statics.ground import Ground
 from hexaleg.study import optimize
 from hexaleg.study import progress as progress_module
 from hexaleg.study.optimize import SearchSettings
@@ -286,8 +287,17 @@ CASES = [
       for name, value, allowed in (
           ("gravity", 0.0, "must lie in [0.01, 1000] [m/s²]"),
           ("gravity", math.nan, "must be finite"), ("gravity", -9.81, "must lie in [0.01, 1000]"),
+          ("safety_factor", 0.5, "must lie in [1, 100] [-]"),
+          ("safety_factor", math.nan, "must be finite"))),
+    *(Case(f"Ground({name}={value})", {},
+           lambda name=name, value=value: hexaleg.analyze_gait(
+               HexapodDesign(), ground=Ground(**{name: value})),
+           f"{name} = {value:g} is not valid: {allowed}")
+      for name, value, allowed in (
           ("friction", math.nan, "must be finite"),
-          ("friction", 0.0, "must lie in [0.001, 10] [-]"))),
+          ("friction", 0.0, "must lie in [0.001, 10] [-]"),
+          ("slope", 1.1, "must lie in [-1.0472, 1.0472] [rad]"),
+          ("slope", math.nan, "must be finite"))),
     Case("analyze_loads(friction=nan)", {},
          lambda: hexaleg.analyze_loads(HexapodDesign(), friction=math.nan),
          "friction = nan is not valid: must be finite"),

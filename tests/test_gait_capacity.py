@@ -17,12 +17,20 @@ from conftest import run_cli
 from hexaleg import HexapodDesign, HexapodModel, analyze_gait
 from hexaleg.actuator_catalog import actuators_from_table
 from hexaleg.actuators import Actuator, Actuators
+from hexaleg.battery import Battery
 from hexaleg.design_file import load_design
 from hexaleg.electrical.ratings import motor_loads
 from hexaleg.evaluation.evaluate import evaluate
 from hexaleg.evaluation.metrics import METRICS
-from hexaleg.gait.capacity import _voltage_bound, walking_payload_capacity
+from hexaleg.gait.capacity import (
+    PROBE_MASS,
+    _voltage_bound,
+    _zmp_bound,
+    walking_payload_capacity,
+)
+from hexaleg.gait.dynamics import payload_wrench
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walk import Walker
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.statics.forces import Payload
 
@@ -64,14 +72,21 @@ def test_the_capacity_equals_a_bisection_on_analyze_gait(design, position, gait)
     assert found.mass == pytest.approx(oracle, abs=1e-6)
 
 
-def test_a_payload_far_out_is_limited_by_the_zmp_leaving_the_feet():
+def test_a_payload_far_out_unloads_a_foot_until_it_cannot_grip():
+    """As the ZMP nears the polygon's edge the far feet unload: their planned tangential
+    force leaves the friction cone (or they would have to pull) just before it leaves."""
     design = HexapodDesign(rated_torques=(1e5, 1e5, 1e5))
     model, gait, position = HexapodModel(design), Gait(), (2.0, 0.0, 0.05)
     found = walking_payload_capacity(model, gait, position)
-    assert found.limited_by.kind == "zmp" and str(found.limited_by) == (
-        "ZMP leaves the support polygon"
+    assert found.limited_by.kind == "slide" and str(found.limited_by) == (
+        f"{found.limited_by.leg} foot slides (friction cone)"
     )
     assert found.mass == pytest.approx(_bisect(design, model, gait, position, 100.0), abs=1e-6)
+    above = analyze_gait(
+        design, gait, Payload(found.mass * (1 + 1e-6), position), model=model, limits=False
+    )
+    assert above.walkable and above.tipping is None
+    assert found.limited_by.leg in {slip.leg for slip in above.slips}
 
 
 def test_a_design_that_cannot_walk_unloaded_carries_nothing_and_says_why():
@@ -124,9 +139,13 @@ def _check_against_bisection(design, gait, position, kind):
 def test_catalog_actuators_bind_on_the_rating_the_gait_analysis_breaks_first(knee, kind, text):
     catalog = {"root": "hd_cha_17a_e_100", "hip": "hd_cha_25a_100", "knee": knee}
     actuators = actuators_from_table({j: {"catalog": name} for j, name in catalog.items()})
-    design = HexapodDesign(actuators=actuators, **SMALL_LEG)
+    design = HexapodDesign(actuators=actuators, battery=BUS_680, **SMALL_LEG)
     found = _check_against_bisection(design, Gait(stride=0.2), None, kind)
     assert str(found.limited_by).endswith(text)
+
+
+BUS_680 = Battery(capacity=500.0, specific_energy=200.0, voltage=680.0)
+"""One bus for the catalog's 48 V and 680 V drives: the 680 V ones' supply."""
 
 
 def _random_actuator(rng, **keys) -> Actuator:
@@ -177,14 +196,14 @@ def test_a_lower_continuous_torque_binds_exactly(seed):
 
 
 @pytest.mark.parametrize("seed", [5, 6])
-def test_a_lower_supply_binds_exactly_on_the_voltage(seed):
+def test_a_lower_bus_voltage_binds_exactly_on_the_voltage(seed):
     rng, design, position, gait = _random_motor_case(seed)
     unloaded = analyze_gait(design, gait, Payload(0.0, position), limits=False)
-    joint = LEG_JOINTS[int(rng.integers(1, 3))]
-    volts = unloaded.electrical.per_joint[joint].peak_voltage
-    design = _lowered(design, joint, voltage=volts * rng.uniform(1.1, 1.4))
+    volts = max(figures.peak_voltage for figures in unloaded.electrical.per_joint.values())
+    bus = Battery(capacity=1e3, specific_energy=1e4, voltage=volts * rng.uniform(1.1, 1.4))
+    design = dataclasses.replace(design, battery=bus)  # one bus for every motor
     found = _check_against_bisection(design, gait, position, "voltage")
-    assert found.limited_by.joint == joint
+    assert found.limited_by.joint in LEG_JOINTS
 
 
 @pytest.mark.parametrize("turning", [1.0, -1.0])
@@ -199,10 +218,11 @@ def test_the_voltage_bound_is_exact_where_the_torque_changes_sign(turning):
     base = rng.uniform(1, 10, shape)  # τ₀ > 0 ...
     slope = -rng.uniform(1.0, 2.0, shape)  # ... falling through zero by m = 10
     legs = tuple(f"leg{i}" for i in range(6))
-    mass, cause = _voltage_bound(legs, base, slope, speeds, actuators)
+    mass, cause = _voltage_bound(legs, base, slope, speeds, actuators, 30.0)
 
     def within(m: float) -> bool:
-        return bool((motor_loads(base + m * slope, speeds, actuators, legs).ratios[2] <= 1).all())
+        loads = motor_loads(base + m * slope, speeds, actuators, legs, supply=30.0)
+        return bool((loads.ratios[2] <= 1).all())
 
     low, high = 0.0, 1e6
     assert within(low) and not within(high)
@@ -233,8 +253,13 @@ catalog = "hd_cha_25a_100"
 continuous_torque = 80.0
 [actuators.knee]
 catalog = "hd_cha_17a_e_100"
+[battery]
+capacity = 500
+specific_energy = 200
+voltage = 680
 """
-"""A design whose hips' continuous torque, lowered below the catalog's, binds walking."""
+"""A design whose hips' continuous torque, lowered below the catalog's, binds walking (one
+680 V bus for its 48 V and 680 V drives)."""
 
 
 def test_loads_json_and_the_study_see_the_continuous_torque_bind(tmp_path, capsys):
@@ -255,15 +280,38 @@ def test_loads_json_and_the_study_see_the_continuous_torque_bind(tmp_path, capsy
     assert cause is not None and cause.kind == "continuous_torque"
 
 
-def test_the_capacity_bound_by_the_zmp_is_where_the_gait_turns_infeasible():
-    """The capacity and ``feasible`` agree: just under it feasible, just over it tipping."""
+def test_the_capacity_is_where_the_gait_turns_infeasible():
+    """The capacity and ``feasible`` agree: just under it feasible, just over it a foot slides."""
     design = HexapodDesign(rated_torques=(1e5, 1e5, 1e5))
     model, gait, position = HexapodModel(design), Gait(samples=60), (1.0, 0.3, 0.05)
     found = walking_payload_capacity(model, gait, position)
-    assert found.walks and found.limited_by.kind == "zmp" and found.mass > 0
+    assert found.walks and found.limited_by.kind == "slide" and found.mass > 0
     below, above = (
         analyze_gait(design, gait, Payload(found.mass * f, position), model=model, limits=False)
         for f in (1 - 1e-6, 1 + 1e-6)
     )
-    assert below.feasible and below.tipping is None
-    assert not above.feasible and above.walkable and above.tipping.cause == found.limited_by
+    assert below.feasible and not below.slips
+    assert not above.feasible and above.walkable and above.tipping is None
+    assert [slip.cause for slip in above.slips] == [found.limited_by]
+
+
+def test_the_zmp_bound_is_where_the_gaits_zmp_reaches_the_polygons_edge():
+    """The capacity's ZMP bound alone, against a bisection on the gait's own ZMP margin."""
+    design = HexapodDesign(rated_torques=(1e5, 1e5, 1e5))
+    model, gait, position = HexapodModel(design), Gait(samples=60), (1.0, 0.3, 0.05)
+    walker = Walker(model, gait, Payload(0.0, position))
+    walk = walker.stride(gait.stride)
+    probe = payload_wrench(walker.payload.point(model), PROBE_MASS, walker.gravity_vector)
+    rnea = walker.loads(gait.stride, walk, gait.period).rnea
+    mass, cause = _zmp_bound(walker, rnea, probe, walk.paths.position)
+
+    def margin(m: float) -> float:
+        walked = analyze_gait(design, gait, Payload(m, position), model=model, limits=False)
+        return walked.min_zmp_margin
+
+    low, high = 0.0, 2 * mass + 1
+    assert margin(low) > 0 > margin(high)
+    while high - low > 1e-7:
+        middle = (low + high) / 2
+        low, high = (middle, high) if margin(middle) >= 0 else (low, middle)
+    assert cause.kind == "zmp" and mass == pytest.approx(low, abs=1e-6)

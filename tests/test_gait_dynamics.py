@@ -24,8 +24,9 @@ from robots import KINDS, robot_of
 
 from hexaleg import HexapodDesign, HexapodModel, LegModel
 from hexaleg.gait import Gait, Walker, analyze_gait
-from hexaleg.gait.dynamics import carried_torques, payload_wrench
+from hexaleg.gait.dynamics import carried_load, payload_wrench
 from hexaleg.statics import GRAVITY, Payload, analyze_loads
+from hexaleg.statics.ground import Ground
 
 # -- the Lagrange oracle -------------------------------------------------------------------
 
@@ -313,18 +314,30 @@ def test_a_random_design_balances_too():
         np.testing.assert_allclose(tau[:6], 0.0, atol=1e-9)
 
 
-@pytest.mark.parametrize("seed", [0, 1])
-def test_a_payloads_torques_are_what_pinocchio_gives_with_its_mass_on_the_body(seed):
+@pytest.mark.parametrize(
+    ("seed", "slope", "heading"), [(0, 0.0, None), (1, 0.0, None), (2, 0.2, 0.9), (3, -0.3, None)]
+)
+def test_a_payloads_loads_are_what_pinocchio_gives_with_its_mass_on_the_body(seed, slope, heading):
     # oracle: Pinocchio's RNEA on a copy of the model whose body inertia holds the point
-    # mass, split min-norm as any gait; against the closed-form wrench the capacity uses
+    # mass (gravity tilted on a slope), split min-norm as any gait; against the closed-form
+    # wrench the capacity uses, under the same gravity
     rng = np.random.default_rng(seed)
     design = HexapodDesign.from_ratios(rng.uniform(0.08, 0.2), rng.uniform(0.35, 0.6))
     model, gait = HexapodModel(design), Gait(stride=rng.uniform(0.1, 0.25))
     point, mass = tuple(rng.uniform([-0.3, -0.2, 0.0], [0.3, 0.2, 0.2])), rng.uniform(1, 20)
-    empty, loaded = (Walker(model, gait, Payload(m, point)) for m in (0.0, mass))
+    ground = Ground(slope, heading)
+    empty, loaded = (Walker(model, gait, Payload(m, point), ground=ground) for m in (0.0, mass))
     walk = empty.stride(gait.stride)
-    with_mass = loaded.loads(gait.stride, walk, gait.period).split.torques(gait.period)
-    without = empty.loads(gait.stride, walk, gait.period).split.torques(gait.period)
-    wrench = payload_wrench(np.array(point), mass, GRAVITY)
-    found = carried_torques(empty.frames, empty.phases, walk.paths.position, walk.motion, wrench)
-    np.testing.assert_allclose(found, with_mass - without, atol=1e-9 * np.abs(with_mass).max())
+    with_mass = loaded.loads(gait.stride, walk, gait.period).split
+    without = empty.loads(gait.stride, walk, gait.period).split
+    gravity = GRAVITY * np.array(  # the plane's frame, from its definition
+        [-math.sin(slope) * math.cos(gait.heading if heading is None else heading),
+         -math.sin(slope) * math.sin(gait.heading if heading is None else heading),
+         -math.cos(slope)]
+    )  # fmt: skip
+    wrench = payload_wrench(np.array(point), mass, gravity)
+    found = carried_load(empty.frames, empty.phases, walk.paths.position, walk.motion, wrench)
+    torques = with_mass.torques(gait.period) - without.torques(gait.period)
+    forces = with_mass.forces(gait.period) - without.forces(gait.period)
+    np.testing.assert_allclose(found.torques, torques, atol=1e-9 * np.abs(torques).max())
+    np.testing.assert_allclose(found.forces, forces, atol=1e-9 * np.abs(forces).max())

@@ -111,7 +111,8 @@ def test_gait_json_text_csv_and_plots_show_the_motors(tmp_path, capsys):
             "rms_torque", "peak_current", "peak_voltage", "energy_per_period"
         }  # fmt: skip
     assert battery["mass"] == pytest.approx(2.5)
-    assert battery["runtime"] == pytest.approx(500.0 / electrical["average_power"], rel=1e-12)
+    usable = 500.0 * (1 - 0.2)  # the default reserve keeps a fifth
+    assert battery["runtime"] == pytest.approx(usable / electrical["average_power"], rel=1e-12)
     assert battery["range"] == pytest.approx(battery["runtime"] * data["gait"]["speed"] * 3.6)
     assert "mechanical_cost_of_transport" in data and "cost_of_transport" not in data
     csv, plots = tmp_path / "period.csv", tmp_path / "plots"

@@ -13,6 +13,7 @@ from hypothesis import strategies as st
 
 from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.gait import Gait, Walker, analyze_gait, max_speed, max_stride
+from hexaleg.gait.limits import _zmp_room
 from hexaleg.gait.metrics import positive_work
 from hexaleg.statics import GRAVITY, Payload
 
@@ -230,33 +231,58 @@ def _upright(model: HexapodModel, gait: Gait, payload: Payload) -> bool:
     return walked.min_zmp_margin >= 0
 
 
-@pytest.mark.parametrize(
-    ("pattern", "position"),
-    [("tripod", (0.0, 0.0, 0.05)), ("tripod", (0.25, -0.1, 0.3)), ("tetrapod", (0.1, 0.2, 0.1))],
-)
-def test_the_max_speed_stops_where_the_zmp_leaves_the_feet_as_a_bisection_finds(pattern, position):
-    model, gait, payload = (
-        HexapodModel(STRONG),
-        Gait(pattern=pattern, samples=60),
-        Payload(20.0, position),
-    )
-    limit = max_speed(Walker(model, gait, payload))
-    assert limit.limited_by.kind == "zmp" and limit.stride == gait.stride
-    low, high = 0.05, 50.0  # periods [s]: tips at the first, upright at the second
-    assert not _upright(model, gait.replace(period=low), payload)
-    assert _upright(model, gait.replace(period=high), payload)
+CASES = [("tripod", (0.0, 0.0, 0.05)), ("tripod", (0.25, -0.1, 0.3)), ("tetrapod", (0.1, 0.2, 0.1))]
+"""Gaits and payload points whose speed only the feet's support bounds (:data:`STRONG`)."""
+
+
+def _shortest_period(model: HexapodModel, gait: Gait, payload: Payload, holds) -> float:
+    """The oracle: the shortest period [s] at which ``holds(walked)``, bisected to 1e-9."""
+    low, high = 0.05, 50.0  # periods [s]: broken at the first, held at the second
+
+    def held(period: float) -> bool:
+        walked = analyze_gait(model.design, gait.replace(period=period), payload, model=model,
+                              limits=False)  # fmt: skip
+        return bool(holds(walked))
+
+    assert not held(low) and held(high)
     while high - low > 1e-9 * high:
         middle = (low + high) / 2
-        low, high = (low, middle) if _upright(model, gait.replace(period=middle), payload) else (
-            middle, high)  # fmt: skip
+        low, high = (low, middle) if held(middle) else (middle, high)
+    return high
+
+
+@pytest.mark.parametrize(("pattern", "position"), CASES)
+def test_the_max_speed_stops_where_a_foot_cannot_grip_as_a_bisection_finds(pattern, position):
+    """Faster, the ZMP nears the polygon's edge and the far feet unload: their planned
+    tangential force leaves the friction cone just before the ZMP would leave the feet."""
+    model, gait = HexapodModel(STRONG), Gait(pattern=pattern, samples=60)
+    payload = Payload(20.0, position)
+    limit = max_speed(Walker(model, gait, payload))
+    assert limit.limited_by.kind == "slide" and limit.stride == gait.stride
+    high = _shortest_period(model, gait, payload, lambda walked: walked.feasible)
     assert limit.period == pytest.approx(high, rel=1e-8)
     assert limit.value == pytest.approx(gait.replace(period=high).speed, rel=1e-8)
     walked = analyze_gait(STRONG, gait.replace(period=limit.period * (1 + JUST)), payload,
                           model=model, limits=False)  # fmt: skip
-    assert walked.feasible and walked.tipping is None
+    assert walked.feasible and not walked.slips
     faster = analyze_gait(STRONG, gait.replace(period=limit.period * (1 - JUST)), payload,
                           model=model, limits=False)  # fmt: skip
-    assert not faster.feasible and faster.walkable and faster.tipping.cause.kind == "zmp"
+    assert not faster.feasible and faster.walkable and faster.tipping is None
+    assert limit.limited_by in {slip.cause for slip in faster.slips}  # mirror legs tie
+
+
+@pytest.mark.parametrize(("pattern", "position"), CASES)
+def test_the_zmp_bounds_the_speed_where_it_leaves_the_feet_as_a_bisection_finds(pattern, position):
+    model, gait = HexapodModel(STRONG), Gait(pattern=pattern, samples=60)
+    payload = Payload(20.0, position)
+    walker = Walker(model, gait, payload)
+    walk = walker.stride(gait.stride)
+    room = _zmp_room(walker, walk, walker.generalized_forces(gait.stride, walk))
+    high = _shortest_period(model, gait, payload, lambda walked: walked.min_zmp_margin >= 0)
+    assert 1 / math.sqrt(room) == pytest.approx(high, rel=1e-8)
+    faster = analyze_gait(STRONG, gait.replace(period=high * (1 - JUST)), payload,
+                          model=model, limits=False)  # fmt: skip
+    assert faster.tipping is not None and faster.tipping.cause.kind == "zmp"
 
 
 def test_a_gait_whose_zmp_leaves_the_feet_is_infeasible_and_names_the_zmp():

@@ -209,6 +209,7 @@ def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
             f'[actuators.{joint}]\ncatalog = "{name}"\n'
             for joint, name in zip(("root", "hip", "knee"), MOTORS, strict=True)
         )
+        + "[battery]\ncapacity = 500\nspecific_energy = 200\nvoltage = 680\n"  # one bus
     )
     with_motors = load_design(motors_file)
     data = ReportData(with_motors, options, HexapodModel(with_motors))

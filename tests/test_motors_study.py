@@ -78,8 +78,9 @@ def test_the_report_has_a_motors_and_battery_section(tmp_path):
     section = PART.section(data)
     text = "\n".join(b for b in section.blocks if isinstance(b, str))
     assert section.title == "Motors and battery"
-    for words in ("RMS torque / continuous", "voltage needed / supply", "Wh/km", "km.", "copper"):
-        assert words in text
+    words = ("RMS torque / continuous", "voltage needed / bus", "Wh/km", "km.", "copper",
+             "V bus, its windings at 25 °C")  # fmt: skip
+    assert all(word in text for word in words), text
     PART.files(data, tmp_path)
     assert (tmp_path / "gait_power.png").is_file() and (tmp_path / "gait_envelope.png").is_file()
     assert PART.json(data[MotorsRecord])["motors"]["electrical"]["energy_per_km"] > 0

@@ -421,6 +421,7 @@ def test_a_design_s_gait_is_what_the_whole_report_walks(tmp_path):
     motors.write_text(
         '[actuators.root]\ncatalog = "hd_cha_17a_e_100"\n[actuators.hip]\ncatalog = '
         '"hd_cha_25a_100"\n[actuators.knee]\ncatalog = "hd_cha_20a_100"\n'
+        "[battery]\ncapacity = 20\nspecific_energy = 200\nvoltage = 680\n"  # one bus
     )
     design = load_design(motors)
     options = replace(REDUCED, l1_ratios=(0.1,), gait=gait)

@@ -24,6 +24,7 @@ from hexaleg.gravity import GRAVITY, slope_gravity
 from hexaleg.leg_structure import Structure, Tube
 from hexaleg.materials import shipped_materials
 from hexaleg.statics.forces import Payload
+from hexaleg.statics.ground import Ground
 from hexaleg.statics.loads import analyze_loads
 from hexaleg.statics.slopes import SLOPE_HEADINGS
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
@@ -289,12 +290,24 @@ def test_the_standing_deflection_is_the_worst_over_cases_and_legs():
     assert check.feasible == (check.worst_ratio <= 1 and check.deflection <= check.limit)
 
 
-@pytest.mark.parametrize("seed", [7, pytest.param(8, marks=pytest.mark.slow)])
-def test_walking_wrenches_carry_the_links_inertial_forces(seed):
-    """The knee's force on the tibia, in the world: m·(a − g) − f_foot, a by finite differences."""
+@pytest.mark.parametrize(
+    ("seed", "slope_deg", "heading"),
+    [(7, 0.0, None), (7, 12.0, 0.5), pytest.param(8, 0.0, None, marks=pytest.mark.slow)],
+)
+def test_walking_wrenches_carry_the_links_inertial_forces(seed, slope_deg, heading):
+    """The knee's force on the tibia, in the world: m·(a − g) − f_foot, a by finite differences.
+
+    On a slope (issue #39) the body stays parallel to the ground and gravity turns in its frame:
+    g·(−sin α cos φ, −sin α sin φ, −cos α), written here from the definition.
+    """
     design = seeded_design(seed)
     gait = Gait(samples=400, period=1.2, stride=0.1)
-    walk = analyze_gait(design, gait, limits=False)
+    alpha = math.radians(slope_deg)
+    phi = gait.heading if heading is None else heading
+    walk = analyze_gait(design, gait, limits=False, ground=Ground(alpha, heading))
+    gravity = GRAVITY * np.array(
+        [-math.sin(alpha) * math.cos(phi), -math.sin(alpha) * math.sin(phi), -math.cos(alpha)]
+    )
     check = walk.structure
     tube = design.structure.tibia
     tube_mass = design.structure.material.density * tube.area * design.l3
@@ -318,7 +331,7 @@ def test_walking_wrenches_carry_the_links_inertial_forces(seed):
         behind = np.roll(centres, 1, axis=0)
         behind[0] -= count * travel
         acceleration = (ahead - 2 * centres + behind) / step**2
-        expected = (tube_mass + FOOT_MASS) * (acceleration - np.array([0, 0, -GRAVITY]))
+        expected = (tube_mass + FOOT_MASS) * (acceleration - gravity)
         expected -= walk.foot_forces[:, i]
         got = np.einsum("kij,kj->ki", np.array(frames), _knee_forces(check, i))
         # where the foot lands or lifts the acceleration jumps: differences span the jump

@@ -6,6 +6,7 @@ import argparse
 import math
 import warnings
 
+from hexaleg.cli.best_posture import add_best_posture_option, posing
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_collisions_option,
@@ -40,12 +41,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     add_mode_option(parser)
     add_stance_option(parser)
     add_collisions_option(parser)
+    add_best_posture_option(parser)
     add_output_options(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Compute the extremes; print a table or JSON, and write the figure if asked."""
-    robot = inputs_from_args(args, sizing=sized_for).robot  # sized tubes are drawn and collide
+    # sized tubes are drawn and collide
+    robot = inputs_from_args(args, posing=posing(args), sizing=sized_for).robot
     check_outputs({}, {"--plot": args.plot})  # before computing
     result = _extremes(args, robot)
     if args.plot is not None:

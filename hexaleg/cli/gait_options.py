@@ -1,15 +1,21 @@
-"""The gait's options, over the gait the robot walks: gait and simulate."""
+"""The gait's options, over the gait the robot walks, and the ground it walks on: gait, simulate."""
 
 from __future__ import annotations
 
 import argparse
+import math
 
+from hexaleg._checks import require_in_range
 from hexaleg._typing import GaitPattern, choices
 from hexaleg.cli.options import UsageError, bounded_int
 from hexaleg.gait.spec import SAMPLES_RANGE, Gait
+from hexaleg.statics.ground import HEADING_RANGE, MAX_SLOPE, Ground
 
 DEFAULT = Gait()
 """The defaults each option's help names (hexaleg's template's gait)."""
+
+SLOPE_LIMIT = math.degrees(MAX_SLOPE)
+"""The steepest ``--slope-deg`` either way [°]: 60."""
 
 
 def add_gait_options(parser: argparse.ArgumentParser) -> None:
@@ -65,3 +71,31 @@ def gait_from_args(args: argparse.Namespace, base: Gait) -> Gait:
     }
     gait = base.replace(**changes)
     return gait if args.speed is None else gait.with_speed(args.speed)
+
+
+def add_ground_options(parser: argparse.ArgumentParser) -> None:
+    """``--slope-deg`` and ``--slope-heading``: the plane the gait is walked on."""
+    group = parser.add_argument_group("ground (default level; --friction is its μ)")
+    group.add_argument(
+        "--slope-deg",
+        type=float,
+        default=0.0,
+        metavar="DEG",
+        help=f"walk on a plane inclined DEG in [-{SLOPE_LIMIT:g}, {SLOPE_LIMIT:g}] [°]: "
+        "positive rises along --slope-heading (uphill), negative falls (downhill)",
+    )
+    group.add_argument(
+        "--slope-heading",
+        type=float,
+        metavar="RAD",
+        help="direction in the body frame along which the ground rises [rad] (default: the "
+        "gait's heading, so the walk is up or down the fall line; heading ± π/2 walks across)",
+    )
+
+
+def ground_from_args(args: argparse.Namespace) -> Ground:
+    """The ground ``--slope-deg``, ``--slope-heading`` and ``--friction`` describe (checked)."""
+    slope = require_in_range("--slope-deg", args.slope_deg, -SLOPE_LIMIT, SLOPE_LIMIT, "°")
+    if args.slope_heading is not None:
+        require_in_range("--slope-heading", args.slope_heading, *HEADING_RANGE, "rad")
+    return Ground(math.radians(slope), args.slope_heading, args.friction)

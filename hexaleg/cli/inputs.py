@@ -2,8 +2,10 @@
 
 The ``--design`` file is read and parsed once (:func:`~hexaleg.design_file.read_design_file`);
 the options given beside it set design fields over its design, and say which robot file to
-read and how (``--urdf FILE`` and its reading options over the file's ``[robot]`` table).
-What they resolve to, the robot built once with its requirements and gait, is
+read and how (``--urdf FILE`` and its reading options over the file's ``[robot]`` table);
+the commands that offer ``--best-posture`` pass how the robot then stands
+(:func:`~hexaleg.cli.best_posture.posing`: the search is theirs to import). What they
+resolve to, the robot built once with its requirements and gait, is
 :func:`hexaleg.evaluation.inputs.resolve_inputs`' to say; this module only parses.
 """
 
@@ -15,7 +17,7 @@ from typing import Any
 from hexaleg.cli.options import DESIGN_FLAGS, UsageError, note
 from hexaleg.design import DEFAULT_LEG_LENGTH, SEGMENTS, HexapodDesign
 from hexaleg.design_file import DesignFile, read_design_file
-from hexaleg.evaluation.inputs import Inputs, Sizing, resolve_inputs
+from hexaleg.evaluation.inputs import Inputs, Posing, Sizing, resolve_inputs
 from hexaleg.layouts import LEG_NAMES
 from hexaleg.leg_geometry import SEGMENT_NAMES
 from hexaleg.robot.recipe import RobotSource, SegmentLength
@@ -27,11 +29,16 @@ READING_OPTIONS = ("xacro_arg", "package", "foot_frame", "foot_offset", "lock_jo
 """How a robot file is read: options that need one."""
 
 
-def inputs_from_args(args: argparse.Namespace, *, sizing: Sizing | None = None) -> Inputs:
+def inputs_from_args(
+    args: argparse.Namespace, *, posing: Posing | None = None, sizing: Sizing | None = None
+) -> Inputs:
     """The robot, requirements and gait that the design options and ``--design`` describe.
 
     Args:
         args: The parsed options.
+        posing: How the robot stands before it is sized, for a command with
+            ``--best-posture`` (:func:`~hexaleg.cli.best_posture.posing`); ``None``: as
+            designed.
         sizing: How a command that measures the legs' tubes sizes them first, where the
             file's ``[structure]`` says ``size = true``
             (:func:`~hexaleg.evaluation.sizing.sized_for`).
@@ -47,7 +54,9 @@ def inputs_from_args(args: argparse.Namespace, *, sizing: Sizing | None = None) 
     given = _given(args)
     design = _design(args, base, source, given)
     of_file = file is not None and source.path is not None and getattr(args, "urdf", None) is None
-    return resolve_inputs(design, source, file, given=given, robot_of_file=of_file, sizing=sizing)
+    return resolve_inputs(
+        design, source, file, given=given, robot_of_file=of_file, posing=posing, sizing=sizing
+    )
 
 
 def design_from_args(args: argparse.Namespace) -> HexapodDesign:

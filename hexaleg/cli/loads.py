@@ -5,6 +5,7 @@ from __future__ import annotations
 import argparse
 import math
 
+from hexaleg.cli.best_posture import add_best_posture_option, posing
 from hexaleg.cli.inputs import inputs_from_args
 from hexaleg.cli.options import (
     add_design_options,
@@ -13,7 +14,13 @@ from hexaleg.cli.options import (
     add_stance_option,
 )
 from hexaleg.cli.output import check_outputs, lengths_title, print_json, print_table, write_plots
-from hexaleg.cli.payload_options import add_payload_options, payload_from_args
+from hexaleg.cli.payload_options import (
+    add_payload_options,
+    add_safety_factor_option,
+    payload_from_args,
+    rated_text,
+    safety_factor_from_args,
+)
 from hexaleg.cli.structure_rows import structure_rows
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirement_specs import SLOPE
@@ -43,6 +50,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
     add_design_options(parser)
     add_payload_options(parser)
+    add_safety_factor_option(parser)
+    add_best_posture_option(parser)
     add_stance_option(parser)
     add_mode_option(parser)
     add_output_options(parser)
@@ -50,10 +59,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Compute the statics; print a table or JSON, and write the figure if asked."""
-    inputs = inputs_from_args(args, sizing=sized_for)
+    inputs = inputs_from_args(args, posing=posing(args), sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
-    payload = payload_from_args(args)
+    payload, factor = payload_from_args(args), safety_factor_from_args(args)
     model = robot.model
     analysis = analyze_loads(
         model.design,
@@ -64,9 +73,10 @@ def run(args: argparse.Namespace) -> int:
         args.mode,
         model=model,
         slope=requirements.required(SLOPE) or 0.0,
+        safety_factor=factor,
     )
     gait = inputs.gait
-    walking = walking_payload_capacity(model, gait, payload.position)
+    walking = walking_payload_capacity(model, gait, payload.position, safety_factor=factor)
     if args.plot is not None:
         write_plots(args.plot, lambda out: [save(loads_figure(analysis), out / "loads.png")])
     if args.json:
@@ -102,13 +112,20 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         ("total mass", f"{analysis.nominal.mass:.3f} kg (payload {analysis.payload.mass:g} kg)"),
         ("stability margin, nominal", margin),
     ]
+    if analysis.safety_factor != 1:
+        rows.append(("safety factor", f"{analysis.safety_factor:g}: torques within rating / F"))
     for joint in LEG_JOINTS:
+        held = rated[joint] / analysis.safety_factor
         rows.append(
             (
                 f"peak |τ| {joint}: nominal / extremes",
                 f"{nominal[joint]:.2f} / {analysis.peak_torques[joint]:.2f} N·m "
-                + (f"(rated {rated[joint]:g} N·m)" if given else "(rating not given)")
-                + (", OVER RATING" if analysis.peak_torques[joint] > rated[joint] else ""),
+                + (
+                    f"(rated {rated_text(rated[joint], analysis.safety_factor, 'N·m')})"
+                    if given
+                    else "(rating not given)"
+                )
+                + (", OVER RATING" if analysis.peak_torques[joint] > held else ""),
             )
         )
     for slope in analysis.slopes:

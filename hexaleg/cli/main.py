@@ -75,6 +75,11 @@ COMMANDS: tuple[Command, ...] = (
         "walking: torques, joint speeds, power and energy of a gait period; max stride and speed",
     ),
     Command(
+        "posture",
+        "hexaleg.cli.posture",
+        "the best nominal posture of your lengths for an objective, meeting the requirements",
+    ),
+    Command(
         "simulate",
         "hexaleg.cli.simulate",
         "the planned gait walked in MuJoCo, and the tripod statics checked (the [sim] extra)",

@@ -12,8 +12,9 @@ from hexaleg.cli.options import add_design_options, add_stance_option, bounded_i
 from hexaleg.cli.output import check_outputs, report_files
 from hexaleg.evaluation.sizing import sized_for
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait.analysis import analyze_gait, require_walkable
+from hexaleg.gait.analysis import analyze_gait
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walkable import require_walkable
 from hexaleg.output.viewer.gait import build_gait_scene, write_gait_html
 from hexaleg.output.viewer.legend import GAIT_LEGEND, STATICS_LEGEND, Legend
 from hexaleg.output.viewer.scene import build_scene, write_static_html

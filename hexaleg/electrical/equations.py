@@ -2,7 +2,9 @@
 
 For each joint and each sample of one period, with output torque τ [N·m] and output speed
 ω [rad/s], and the joint type's actuator (:mod:`hexaleg.actuators`: gear ratio N, gearbox
-efficiency η, torque constant k_t [N·m/A], resistance R [Ω], supply V [V]):
+efficiency η, torque constant k_t [N·m/A], resistance R [Ω] at the windings' temperature
+(:attr:`~hexaleg.actuators.Actuators.resistances`), and the bus voltage V [V] that feeds
+every motor (:attr:`~hexaleg.design.HexapodDesign.bus_voltage`)):
 
 - motor speed ω_m = N·ω [rad/s];
 - motor torque τ_m = τ/(N·η) when τ·ω ≥ 0 (motoring: the motor also pays the gearbox's
@@ -19,16 +21,17 @@ and summed by the same rule as the mechanical positive work of :mod:`hexaleg.gai
 - energy E = Σ_joints Σ_k P_b·T/N_s + P₀·T [J], P₀ the electronics' power;
 - average power E/T [W]; electrical cost of transport E/(M·g·v·T) [-] (M the mass
   carried, g gravity, v the body's speed); energy per km E/(v·T)·1000/3600 [Wh/km];
-- battery runtime capacity/(E/T) [h] and range runtime·v·3.6 [km] (unbounded, ``None``
-  in JSON, when the period takes nothing from the battery).
+- battery runtime capacity·(1 − reserve)/(E/T) [h] and range runtime·v·3.6 [km]
+  (unbounded, ``None`` in JSON, when the period takes nothing from the battery).
 
-Ratings, per leg and joint: its peak |τ| against the peak torque, its RMS τ over the
-period against the continuous torque, its largest voltage needed against V and its
-largest |ω| against the speed rating. Each gives a ratio value/rating; a ratio above 1
-is an :class:`~hexaleg.statics.ratings.OverRating`, and the largest ratio is the rating
-that binds first (:func:`~hexaleg.electrical.ratings.binding_rating`, what a max-speed
-search bisects on). A joint type's RMS torque is its worst leg's; its energy is the sum
-over its legs (:mod:`hexaleg.electrical.period`).
+Ratings, per leg and joint: its peak |τ| against the peak torque / F, its RMS τ over the
+period against the continuous torque, its largest voltage needed against the bus voltage V
+and its largest |ω| against the speed rating / F (F ≥ 1 the safety factor). Each gives a
+ratio value/rating; a ratio above 1 is an :class:`~hexaleg.statics.ratings.OverRating`, and
+the largest ratio is the rating that binds first
+(:func:`~hexaleg.electrical.ratings.binding_rating`, what a max-speed search bisects on). A
+joint type's RMS torque is its worst leg's; its energy is the sum over its legs
+(:mod:`hexaleg.electrical.period`).
 """
 
 from __future__ import annotations
@@ -83,10 +86,11 @@ def motor_samples(
 
     """
     tau, omega = np.asarray(torques, dtype=float), np.asarray(speeds, dtype=float)
-    ratio, kt, resistance, eta = (
+    ratio, kt, eta = (
         np.array(actuators.values(key))
-        for key in ("gear_ratio", "torque_constant", "resistance", "gearbox_efficiency")
+        for key in ("gear_ratio", "torque_constant", "gearbox_efficiency")
     )
+    resistance = np.array(actuators.resistances)  # at the windings' temperature
     motor_speed = ratio * omega
     motor_torque = np.where(tau * omega >= 0, tau / (ratio * eta), tau * eta / ratio)
     current = motor_torque / kt

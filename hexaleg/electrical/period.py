@@ -22,6 +22,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.actuators import Actuators
 from hexaleg.battery import Battery
 from hexaleg.electrical.equations import (
+    MotorSamples,
     motor_samples,
     require_actuators,
     require_samples,
@@ -64,13 +65,16 @@ class BatteryUse:
     Attributes:
         mass: The battery's mass [kg].
         capacity: Its capacity [Wh].
-        runtime: capacity / average power [h] (infinite if the period takes nothing).
+        reserve: The share of it never used [-].
+        runtime: capacity·(1 − reserve) / average power [h] (infinite if the period
+            takes nothing).
         range: runtime·v [km] (infinite likewise).
 
     """
 
     mass: float
     capacity: float
+    reserve: float
     runtime: float
     range: float
 
@@ -105,6 +109,8 @@ class ElectricalResult:
         electrical_power: P_e (N_s, L, 3) [W].
         battery: What the period asks of the battery (``None`` without one).
         ratings: Each joint against its ratings (peaks, RMS, voltage, speed).
+        supply: The bus voltage every motor is fed from [V].
+        winding_temperature: The windings' temperature the resistances are taken at [°C].
 
     """
 
@@ -125,6 +131,8 @@ class ElectricalResult:
     electrical_power: ArrayF
     battery: BatteryUse | None
     ratings: RatingLoads
+    supply: float
+    winding_temperature: float
 
     @property
     def times(self) -> ArrayF:
@@ -158,9 +166,12 @@ class ElectricalResult:
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form: ``electrical`` and ``battery`` (``None`` without a battery).
 
-        Units: J, W, - and Wh/km; per joint N·m, A, V and J; the battery's kg, Wh, h, km.
+        Units: V, °C, J, W, - and Wh/km; per joint N·m, A, V and J; the battery's kg, Wh,
+        -, h, km.
         """
         electrical = {
+            "supply": self.supply,
+            "winding_temperature": self.winding_temperature,
             "energy_per_period": self.energy_per_period,
             "copper_loss_per_period": self.copper_loss_per_period,
             "mechanical_power": self.mechanical_power,
@@ -184,6 +195,8 @@ def analyze_electrical(
     actuators: Actuators,
     battery: Battery | None = None,
     legs: Sequence[str] | None = None,
+    supply: float | None = None,
+    safety_factor: float = 1.0,
 ) -> ElectricalResult:
     """The electrical figures of one gait period (see the module docstring).
 
@@ -197,6 +210,8 @@ def analyze_electrical(
         actuators: The joint types' actuators.
         battery: The battery (regeneration r and electronics' power P₀; both 0 without).
         legs: Leg names (L,); :data:`~hexaleg.layouts.LEG_NAMES` for six legs if omitted.
+        supply: The bus voltage V [V]; the actuators' own, when they agree, if omitted.
+        safety_factor: F ≥ 1 [-]: peak torques and speeds are held within rating / F.
 
     Raises:
         ParameterError: An input of the wrong shape, not finite, or not positive.
@@ -207,23 +222,17 @@ def analyze_electrical(
     period, speed, weight = _period_speed_weight(period, speed, mass, gravity)
     regeneration, electronics = _battery_terms(battery)
     motors = motor_samples(tau, omega, actuators, regeneration)
-    step = period / len(tau)
-    joint_energy = motors.battery_power.sum(axis=(0, 1)) * step  # (3,) [J]
-    energy = float(motors.battery_power.sum() * step + electronics * period)
-    average = energy / period
-    copper = float(motors.copper_loss.sum() * step)
-    shaft = float((motors.motor_torque * motors.motor_speed).sum() * step)
-    ratings = rating_loads(tau, omega, actuators, names, motors.voltage)
+    joint_energy = motors.battery_power.sum(axis=(0, 1)) * (period / len(tau))  # (3,) [J]
+    sums = _sums(motors, period, electronics)
+    energy, average = sums["energy_per_period"], sums["average_power"]
+    bus = actuators.supply_voltage() if supply is None else _positive("supply", supply, "V")
+    ratings = rating_loads(tau, omega, actuators, names, motors.voltage, bus, safety_factor)
     return ElectricalResult(
         period=period,
         speed=speed,
         legs=names,
-        energy_per_period=energy,
-        copper_loss_per_period=copper,
-        mechanical_power=shaft / period,
-        copper_power=copper / period,
+        **sums,
         electronics_power=electronics,
-        average_power=average,
         cost_of_transport=energy / (weight * speed * period),
         energy_per_km=energy / (speed * period) * 1000.0 / JOULES_PER_WATT_HOUR,
         per_joint=_per_joint(ratings, motors.current, joint_energy),
@@ -232,7 +241,20 @@ def analyze_electrical(
         electrical_power=motors.electrical_power,
         battery=None if battery is None else _battery_use(battery, average, speed),
         ratings=ratings,
+        supply=bus,
+        winding_temperature=actuators.winding_temperature,
     )
+
+
+def _sums(motors: MotorSamples, period: float, electronics: float) -> dict[str, float]:
+    """The period's energy, copper loss, and its shaft, copper and average power [J, W]."""
+    step = period / len(motors.current)
+    energy = float(motors.battery_power.sum() * step + electronics * period)
+    copper = float(motors.copper_loss.sum() * step)
+    shaft = float((motors.motor_torque * motors.motor_speed).sum() * step)
+    return {"energy_per_period": energy, "copper_loss_per_period": copper,
+            "mechanical_power": shaft / period, "copper_power": copper / period,
+            "average_power": energy / period}  # fmt: skip
 
 
 def _per_joint(ratings: RatingLoads, current: ArrayF, energy: ArrayF) -> dict[str, JointElectrical]:
@@ -272,9 +294,11 @@ def _period_speed_weight(
 
 
 def _battery_use(battery: Battery, average_power: float, speed: float) -> BatteryUse:
-    """Runtime capacity/(E/T) [h] and range runtime·v·3.6 [km]; unbounded if E ≤ 0."""
-    runtime = battery.capacity / average_power if average_power > 0 else math.inf
-    return BatteryUse(battery.mass, battery.capacity, runtime, runtime * speed * 3.6)
+    """Runtime capacity·(1 − reserve)/(E/T) [h] and range runtime·v·3.6 [km] (∞ if E ≤ 0)."""
+    runtime = battery.usable / average_power if average_power > 0 else math.inf
+    return BatteryUse(
+        battery.mass, battery.capacity, battery.reserve, runtime, runtime * speed * 3.6
+    )
 
 
 def _positive(name: str, value: float, unit: str) -> float:

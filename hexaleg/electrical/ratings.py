@@ -1,8 +1,9 @@
 """Each joint against its actuator's ratings: which binds first, and which are exceeded.
 
 Per leg and joint over one period (:mod:`hexaleg.electrical.equations`): its peak |τ|
-against the peak torque, its RMS τ against the continuous torque, its largest voltage
-needed against the supply V and its peak |ω| against the speed rating. Each gives a
+against the peak torque / F, its RMS τ against the continuous torque, its largest voltage
+needed against the bus voltage V and its peak |ω| against the speed rating / F (F ≥ 1 the
+safety factor, 1 by default). Each gives a
 ratio value/rating; above 1 the joint is over that rating (an
 :class:`~hexaleg.statics.ratings.OverRating`), and the largest ratio names the rating
 that binds first, e.g. ``"hip continuous torque"``: what a max-speed or max-stride
@@ -22,7 +23,7 @@ from hexaleg._typing import ArrayF
 from hexaleg.actuators import Actuators
 from hexaleg.electrical.equations import motor_samples, require_actuators, require_samples
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.statics.ratings import OverRating, Quantity, at_times
+from hexaleg.statics.ratings import DERATED, OverRating, Quantity, at_times, check_safety_factor
 
 RATED: tuple[Quantity, ...] = ("peak_torque", "continuous_torque", "voltage", "speed")
 """The quantities held against the actuators' ratings, in the order of :class:`RatingLoads`."""
@@ -73,8 +74,10 @@ class RatingLoads:
         legs: Leg names (L,).
         values: Per :data:`RATED` quantity, leg and joint: peak |τ| [N·m], RMS τ [N·m],
             largest voltage needed [V], peak |ω| [rad/s] (4, L, 3).
-        ratings: The ratings they are held against, per quantity and joint type (4, 3).
+        ratings: What they are held against, per quantity and joint type (4, 3): the
+            peak torque and speed ratings divided by the safety factor.
         peak_samples: The sample each peak occurs at (4, L, 3); -1 for the RMS.
+        safety_factor: F [-] the peak torque and speed ratings are divided by.
 
     """
 
@@ -82,6 +85,7 @@ class RatingLoads:
     values: ArrayF
     ratings: ArrayF
     peak_samples: npt.NDArray[np.intp]
+    safety_factor: float = 1.0
 
     @property
     def ratios(self) -> ArrayF:
@@ -120,30 +124,42 @@ class RatingLoads:
                 float(self.values[kind, leg, joint]),
                 float(self.ratings[kind, joint]),
                 place if sample >= 0 else "RMS over the period",
+                self.safety_factor if RATED[kind] in DERATED else 1.0,
             )
             for (kind, leg, joint), sample, place in zip(found, samples, places, strict=True)
         )
 
 
 def rating_loads(
-    torques: ArrayF, speeds: ArrayF, actuators: Actuators, legs: Sequence[str], voltage: ArrayF
+    torques: ArrayF,
+    speeds: ArrayF,
+    actuators: Actuators,
+    legs: Sequence[str],
+    voltage: ArrayF,
+    supply: float,
+    safety_factor: float = 1.0,
 ) -> RatingLoads:
-    """Peaks, RMS and voltages (4, L, 3) of one period's (N, L, 3) samples, with their ratings."""
+    """Peaks, RMS and voltages (4, L, 3) of one period's (N, L, 3) samples, with their ratings.
+
+    ``voltage`` is what each sample needs [V], held against the bus voltage ``supply`` [V];
+    the peak torque and speed ratings are divided by ``safety_factor`` F.
+    """
     peaks = np.stack((np.abs(torques), voltage, np.abs(speeds)))  # (3, N, L, 3)
     at = peaks.argmax(axis=1)
     top = np.take_along_axis(peaks, at[:, None], axis=1)[:, 0]
     rms = np.sqrt(np.mean(torques**2, axis=0))
+    factor = check_safety_factor(safety_factor)
     ratings = np.array(
         [
-            actuators.rated_torques,
+            np.array(actuators.rated_torques) / factor,
             actuators.continuous_torques,
-            actuators.values("voltage"),
-            actuators.rated_speeds,
+            np.full(3, supply),
+            np.array(actuators.rated_speeds) / factor,
         ]
     )
     values = np.stack((top[0], rms, top[1], top[2]))
     samples = np.stack((at[0], np.full_like(at[0], -1), at[1], at[2]))
-    return RatingLoads(tuple(legs), values, ratings, samples)
+    return RatingLoads(tuple(legs), values, ratings, samples, factor)
 
 
 def binding_rating(
@@ -151,6 +167,7 @@ def binding_rating(
     speeds: npt.ArrayLike,
     actuators: Actuators,
     legs: Sequence[str] | None = None,
+    supply: float | None = None,
 ) -> RatingBinding:
     """Which rating binds first for one period's samples, and by what ratio.
 
@@ -159,13 +176,14 @@ def binding_rating(
         speeds: ω (N, L, 3) [rad/s].
         actuators: The joint types' actuators.
         legs: Leg names (L,); :data:`~hexaleg.layouts.LEG_NAMES` for six legs if omitted.
+        supply: The bus voltage [V]; the actuators' own (when they agree) if omitted.
 
     Returns:
         The largest value / rating, named like ``"hip continuous torque"``: at most 1
         when every joint is within its ratings.
 
     """
-    return motor_loads(torques, speeds, actuators, legs).binding()
+    return motor_loads(torques, speeds, actuators, legs, supply).binding()
 
 
 def motor_loads(
@@ -173,9 +191,16 @@ def motor_loads(
     speeds: npt.ArrayLike,
     actuators: Actuators,
     legs: Sequence[str] | None = None,
+    supply: float | None = None,
+    safety_factor: float = 1.0,
 ) -> RatingLoads:
-    """One period's (N, L, 3) τ [N·m] and ω [rad/s] against every rating (see the module)."""
+    """One period's (N, L, 3) τ [N·m] and ω [rad/s] against every rating (see the module).
+
+    ``supply`` is the bus voltage [V] (the actuators' own, when they agree, if omitted);
+    ``safety_factor`` F divides the peak torque and speed ratings.
+    """
     tau, omega, names = require_samples(torques, speeds, legs)
     actuators = require_actuators(actuators)
     voltage = motor_samples(tau, omega, actuators).voltage
-    return rating_loads(tau, omega, actuators, names, voltage)
+    bus = actuators.supply_voltage() if supply is None else supply
+    return rating_loads(tau, omega, actuators, names, voltage, bus, safety_factor)

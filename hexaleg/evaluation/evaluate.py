@@ -376,7 +376,7 @@ class _Measuring:
             return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
         walker, conditions = self.walker, self.conditions
         empty = conditions.payload.with_mass(0.0)  # the capacity walks the gait unloaded
-        unloaded = walker if walker.payload == empty else Walker(self.model, conditions.gait, empty)
+        unloaded = walker if walker.payload == empty else walker.carrying(empty)
         found = walker_capacity(unloaded)
         self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
         self.walks = found.walks

@@ -33,7 +33,7 @@ from hexaleg.robot.robot import Robot
 if TYPE_CHECKING:  # the result's type only: the search is the caller's (Sizing)
     from hexaleg.structure.sizing import SizedStructure
 
-__all__ = ["IMPORTED", "Inputs", "Sizing", "resolve_inputs", "written_requirements"]
+__all__ = ["IMPORTED", "Inputs", "Posing", "Sizing", "resolve_inputs", "written_requirements"]
 
 IMPORTED = (
     "[structure] describes hexaleg's own legs' tubes; an imported robot keeps its file's "
@@ -45,6 +45,11 @@ Sizing = Callable[[HexapodDesign, Requirements], "SizedStructure | None"]
 """How a caller that measures the tubes sizes them: a design's tubes sized for the
 requirements where its ``[structure]`` asks, else ``None``
 (:func:`hexaleg.evaluation.sizing.sized_for`)."""
+
+
+Posing = Callable[[Robot, Requirements], Robot]
+"""How a caller stands the robot before its tubes are sized: the robot at another posture
+for the requirements (``--best-posture``: ``hexaleg posture``'s answer)."""
 
 
 @dataclass(frozen=True)
@@ -108,6 +113,7 @@ def resolve_inputs(
     *,
     given: Mapping[str, Any] | None = None,
     robot_of_file: bool = False,
+    posing: Posing | None = None,
     sizing: Sizing | None = None,
 ) -> Inputs:
     """The robot, requirements and gait of ``design`` built as ``source`` says.
@@ -124,8 +130,10 @@ def resolve_inputs(
             values: a robot file refuses those it fixes.
         robot_of_file: Whether the robot is the one the file's ``[robot]`` table names (its
             design file was written from it: what the robot file fixes must be its own).
-        sizing: The sizing of the legs' tubes, for a caller that measures them: run first
-            with the file's requirements (it sizes where the ``[structure]`` says
+        posing: How the caller stands the robot, before its tubes are sized (they are sized
+            for the posture it stands in).
+        sizing: The sizing of the legs' tubes, for a caller that measures them: run with
+            the file's requirements (it sizes where the ``[structure]`` says
             ``size = true``).
 
     Raises:
@@ -137,7 +145,9 @@ def resolve_inputs(
     robot.check_over(given or {}, file if robot_of_file else None)
     if design.structure is not None and not robot.design_links:
         raise HexalegError(IMPORTED)
-    sized = None if sizing is None else sizing(design, requirements)
+    if posing is not None:
+        robot = posing(robot, requirements)
+    sized = None if sizing is None else sizing(robot.design, requirements)
     if sized is not None:
         robot = Robot.build(source, sized.design)
     return Inputs(robot, requirements, file, sized)

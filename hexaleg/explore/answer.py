@@ -118,7 +118,7 @@ def _stance(model: HexapodModel, found: Evaluation) -> dict[str, Any]:
     chains = model.leg_chains(model.nominal_configuration())
     utilisation: list[float | None] = [None] * len(model.leg_names)
     rated = design.rated_torques
-    if found.gait is not None and found.gait.feasible and rated is not None:
+    if found.gait is not None and found.gait.walkable and rated is not None:
         peaks = np.abs(found.gait.joint_torques).max(axis=0)  # (legs, joints) [N·m]
         used = dict(zip(found.gait.legs, peaks / np.asarray(rated), strict=True))
         utilisation = [  # None where the period has no torque (a foot out of reach: NaN)

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.actuator_catalog import shipped_catalog
-from hexaleg.actuators import TABLE, Actuator, Actuators
+from hexaleg.actuators import REFERENCE_TEMPERATURE, TABLE, Actuator, Actuators
 from hexaleg.design import DESIGN_FIELDS, HexapodDesign
 from hexaleg.evaluation.evaluate import Conditions
 from hexaleg.exceptions import ParameterError
@@ -115,7 +115,8 @@ def _actuators(params: Mapping[str, str], loaded: Actuators | None) -> Actuators
         raise ParameterError(
             key, params.get(key, ""), "choose a motor for every joint type, or none"
         )
-    return Actuators(**given)
+    temperature = REFERENCE_TEMPERATURE if loaded is None else loaded.winding_temperature
+    return Actuators(given["root"], given["hip"], given["knee"], temperature)
 
 
 def _conditions(params: Mapping[str, str], base: Conditions) -> Conditions:

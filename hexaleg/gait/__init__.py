@@ -18,6 +18,7 @@ __all__ = [
     "Gait",
     "GaitAnalysis",
     "GaitMetrics",
+    "Slip",
     "SpeedLimit",
     "StrideLimit",
     "Violation",
@@ -35,6 +36,7 @@ __getattr__, __dir__ = lazy_exports(__name__)
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
     from hexaleg.gait.feasibility import Violation
+    from hexaleg.gait.friction import Slip
     from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
     from hexaleg.gait.metrics import GaitMetrics
     from hexaleg.gait.pattern import GROUPS, duty_factor, gait_phases, legs_around

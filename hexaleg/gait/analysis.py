@@ -10,6 +10,7 @@ torques and the feet's forces at each sample.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import cached_property
 from typing import Any
@@ -21,8 +22,8 @@ from hexaleg._typing import ArrayF, Distribution
 from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.electrical.period import ElectricalResult, analyze_electrical
-from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.feasibility import TOLERANCE, Violation
+from hexaleg.gait.friction import Slip, friction_ratios, slips
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
@@ -32,7 +33,8 @@ from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.statics.forces import Payload
+from hexaleg.statics.ground import LEVEL, Ground
 from hexaleg.statics.ratings import OverRating, at_times, over_rating
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.walking import check_walking
@@ -50,6 +52,9 @@ class GaitAnalysis:
         gait: The gait.
         payload: The payload carried.
         distribution: How the standing feet share the load.
+        ground: The ground walked on (its slope turns gravity in the body frame; its
+            friction holds the standing feet).
+        safety_factor: F [-]: peak torques and joint speeds are held within rating / F.
         mass: Total mass, payload included [kg].
         legs: Leg names.
         frames: The legs' roots and nominal footholds in the body frame (from the model).
@@ -69,8 +74,8 @@ class GaitAnalysis:
         foot_forces: Each foot's force from the ground (N, 6, 3), ground frame [N]
             (zero while it swings).
         feet: Foot positions (N, 6, 3) in the body frame [m].
-        zmp: The zero-moment point (N, 2) [m], ground frame (its margin:
-            :attr:`zmp_margin`, computed on first use).
+        zmp: The zero-moment point (N, 2) [m], ground frame, on the ground's plane (its
+            margin: :attr:`zmp_margin`, computed on first use).
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
@@ -86,6 +91,8 @@ class GaitAnalysis:
     gait: Gait
     payload: Payload
     distribution: Distribution
+    ground: Ground
+    safety_factor: float
     mass: float
     legs: tuple[str, ...]
     frames: LegFrames
@@ -134,47 +141,75 @@ class GaitAnalysis:
         outside = np.flatnonzero(self.zmp_margin < -TOLERANCE)
         return None if not outside.size else Violation(float(self.times[outside[0]]), Cause("zmp"))
 
+    @cached_property
+    def friction_ratios(self) -> ArrayF:
+        """|f_t| / f_n of each standing foot's planned force (N, 6) [-] (0 swinging)."""
+        return friction_ratios(self.foot_forces, self.stance)
+
+    @property
+    def friction_needed(self) -> float:
+        """The least friction coefficient μ every standing foot's force needs [-].
+
+        Infinite (``null`` in JSON) when the plan makes a standing foot pull on the ground.
+        """
+        return float(self.friction_ratios.max())
+
+    @cached_property
+    def slips(self) -> tuple[Slip, ...]:
+        """Each foot whose planned force leaves the friction cone, at its worst (leg order)."""
+        return slips(self.friction_ratios, self.times, self.legs, self.ground.friction)
+
     @property
     def feasible(self) -> bool:
-        """Whether the period is walkable, upright, within its actuators' ratings and strong.
+        """Whether the period can be walked as planned: every constraint, rating and tube.
 
         Walkable: no constraint of its motion breaks (:attr:`violations`); upright: its
-        ZMP never leaves the standing feet's polygon (:attr:`tipping`); ratings: only for
-        a design with actuators; strong: no leg tube over its strength (:attr:`structure`).
+        ZMP never leaves the standing feet's polygon (:attr:`tipping`); gripping: no
+        standing foot's force leaves the friction cone (:attr:`slips`); strong: no leg tube
+        over its strength (:attr:`structure`); within every rating (:attr:`over_rating`):
+        peak torque and joint speed within rating / F and, with actuators, RMS torque and
+        the voltage the motors need. The max speed is then at least the speed walked.
         """
-        motors = self.electrical is not None and bool(self.electrical.over_rating)
-        broken = self.structure is not None and self.structure.worst_ratio > 1
-        return self.walkable and self.tipping is None and not motors and not broken
+        return self.infeasible_because is None
 
     @property
     def infeasible_because(self) -> str | None:
         """What makes the period infeasible, in one line (None: it is feasible).
 
         The first broken constraint of the motion, else the ZMP leaving the polygon (with
-        the smallest margin), else the actuators' ratings.
+        the smallest margin), else a foot sliding, else the joints over their ratings.
         """
         if self.violations:
             return str(self.violations[0])
         if self.tipping is not None:
             return f"{self.tipping} (min ZMP margin {self.min_zmp_margin:.4g} m)"
+        if self.slips:
+            more = f" (and {len(self.slips) - 1} more feet)" if len(self.slips) > 1 else ""
+            return f"{self.slips[0]}{more}"
         if self.structure is not None and self.structure.worst_ratio > 1:
             return "a leg segment over its strength (below)"
-        return None if self.feasible else "over its actuators' ratings (below)"
+        over = self.over_rating
+        if over:
+            more = f" (and {len(over) - 1} more, below)" if len(over) > 1 else ""
+            return f"over its ratings: {over[0]}{more}"
+        return None
 
     @property
     def over_rating(self) -> tuple[OverRating, ...]:
         """Each joint over a rating, with when it peaks.
 
-        With actuators: peak torque, continuous (RMS) torque, voltage and speed; without,
-        the peak |τ| and |q̇| against the rated torque and speed.
+        With actuators: peak torque and speed (within rating / F), continuous (RMS) torque
+        and voltage; without, the peak |τ| and |q̇| against the rated torque and speed / F.
         """
         if self.electrical is not None:
             return self.electrical.over_rating
         places = at_times(self.times)
-        design = self.design
+        design, factor = self.design, self.safety_factor
         return over_rating(
-            self.legs, self.joint_torques, design.rated_torques, places
-        ) + over_rating(self.legs, self.joint_velocities, design.rated_speeds, places, "speed")
+            self.legs, self.joint_torques, design.rated_torques, places, "torque", factor
+        ) + over_rating(
+            self.legs, self.joint_velocities, design.rated_speeds, places, "speed", factor
+        )
 
     def time_series(self) -> dict[str, ArrayF]:
         """The time series as named columns (N,) each.
@@ -218,10 +253,15 @@ class GaitAnalysis:
             "gait": self.gait.to_dict(),
             "payload": self.payload.to_dict(self.design),
             "distribution": self.distribution,
+            "ground": self.ground.to_dict(self.gait.heading),
+            "safety_factor": self.safety_factor,
             "mass": self.mass,
             **self.metrics.to_dict(),
             "min_zmp_margin": self.min_zmp_margin,
+            "friction_needed": _finite(self.friction_needed),
+            "slips": [slip.to_dict() for slip in self.slips],
             "feasible": self.feasible,
+            "infeasible_because": self.infeasible_because,
             "violations": [v.to_dict() for v in self.violations],
             "tipping": None if self.tipping is None else self.tipping.to_dict(),
             "max_stride": None if self.max_stride is None else self.max_stride.value,
@@ -232,7 +272,9 @@ class GaitAnalysis:
             "units": {
                 "period, time": "s",
                 "stride, step_height, max_stride, min_zmp_margin, position": "m",
-                "heading": "rad",
+                "heading, slope": "rad",
+                "slope_deg": "°",
+                "friction, friction_needed, safety_factor": "1",
                 "speed, max_speed": "m/s",
                 "mass": "kg",
                 "peak_torque, rms_torque": "N·m",
@@ -244,6 +286,11 @@ class GaitAnalysis:
                 "battery": "kg, Wh, h, km",
             },
         }
+
+
+def _finite(value: float) -> float | None:
+    """``value``, or ``None`` (JSON's null) where it is unbounded."""
+    return value if math.isfinite(value) else None
 
 
 def _electrical_dict(electrical: ElectricalResult | None) -> dict[str, Any]:
@@ -259,11 +306,12 @@ def analyze_gait(
     payload: Payload | None = None,
     *,
     distribution: Distribution = "min-norm",
-    friction: float = DEFAULT_FRICTION,
+    ground: Ground = LEVEL,
     model: HexapodModel | None = None,
     limits: bool = True,
     speed: bool = False,
     gravity: float = GRAVITY,
+    safety_factor: float = 1.0,
 ) -> GaitAnalysis:
     """One gait period of ``design``: time series, metrics, feasibility, max stride and speed.
 
@@ -272,26 +320,29 @@ def analyze_gait(
         gait: The gait (:class:`~hexaleg.gait.spec.Gait`'s defaults if omitted).
         payload: A point mass on the body (none by default).
         distribution: ``"min-norm"`` (default) or ``"min-torque"`` forces.
-        friction: Friction coefficient μ [-] (min-torque forces).
+        ground: The ground walked on (:class:`~hexaleg.statics.ground.Ground`): its slope
+            and friction μ (level, the default μ, if omitted).
         model: The design's Pinocchio model, if already built.
         limits: Also compute the max stride and max speed (the slower part).
         speed: Without ``limits``, still compute the max speed, at the gait's stride only
             (zero if it is infeasible): with min-norm forces that needs no search and no
             more inverse dynamics.
         gravity: Gravitational acceleration g [m/s²].
+        safety_factor: F ≥ 1 [-]: peak torques and joint speeds within rating / F (the
+            feasibility, the flags, the max stride and the max speed).
 
     """
     gait = Gait() if gait is None else gait
     model = HexapodModel(design) if model is None else model
-    return analyze_walker(
-        Walker(model, gait, payload, distribution, friction, gravity), limits=limits, speed=speed
-    )
+    walker = Walker(model, gait, payload, distribution, ground, gravity, safety_factor)
+    return analyze_walker(walker, limits=limits, speed=speed)
 
 
 def analyze_walker(walker: Walker, *, limits: bool = True, speed: bool = False) -> GaitAnalysis:
     """:func:`analyze_gait` of a walker already made (its gait's walk shared with others).
 
-    ``limits`` and ``speed`` are :func:`analyze_gait`'s.
+    The walker's ground, payload, split and safety factor are the analysis's; ``limits``
+    and ``speed`` are :func:`analyze_gait`'s.
     """
     gait, distribution = walker.gait, walker.distribution
     walk = walker.stride(gait.stride)
@@ -324,6 +375,8 @@ def _analysis(
         gait=gait,
         payload=walker.payload,
         distribution=walker.distribution,
+        ground=walker.ground,
+        safety_factor=walker.safety_factor,
         mass=walker.robot.mass,
         legs=walker.frames.legs,
         frames=walker.frames,
@@ -352,7 +405,7 @@ def _analysis(
             loads.rnea.velocities / period,
             loads.rnea.accelerations / period**2,
             loads.split.forces(period),
-            walker.gravity,
+            walker.gravity_vector,
         ),
     )
 
@@ -372,37 +425,9 @@ def _electrical(walker: Walker, torques: ArrayF, velocities: ArrayF) -> Electric
         design.actuators,
         design.battery,
         walker.frames.legs,
+        design.bus_voltage,
+        walker.safety_factor,
     )
-
-
-def require_walkable(analysis: GaitAnalysis, model: HexapodModel) -> None:
-    """Raise a one-line error if the planned period breaks a constraint.
-
-    A stride beyond the design's max stride is named as such, with the max stride as the
-    valid range; a gait no stride makes walkable (too high a step, say) by its first
-    violation. ``gait`` refuses such a period before writing anything, ``simulate``
-    before simulating.
-
-    Raises:
-        ParameterError: ``stride`` beyond the design's max stride.
-        HexalegError: The period breaks a constraint at any stride.
-
-    """
-    if analysis.walkable:
-        return
-    gait = analysis.gait
-    limit = analysis.max_stride
-    if limit is None:
-        limit = max_stride(Walker(model, gait, analysis.payload, analysis.distribution))
-    if 0 < limit.value < gait.stride:  # at 0 no stride at all is walkable: say why
-        raise ParameterError(
-            "stride",
-            gait.stride,
-            f"must be at most {limit.value:.4g} [m], this design's max stride at step height "
-            f"{gait.step_height:g} m (beyond it: {limit.limited_by})",
-        )
-    why = "" if limit.value > 0 else f" (no stride walks at step height {gait.step_height:g} m)"
-    raise HexalegError(f"this design cannot walk the gait: {analysis.violations[0]}{why}")
 
 
 STUDY_GAIT = Gait()

@@ -1,16 +1,22 @@
 """The largest payload a design carries walking a gait, exactly: what binds, and at what mass.
 
 A payload m at a fixed point of the body (default: the centre of its top face) changes
-nothing in a gait period but the loads: the body moves level at constant velocity, so the
-payload's weight is its only force, and the generalized forces of the free-flyer model are
-affine in m. The minimum-norm foot forces are linear in them, so every joint torque is
-affine in m as well, τ(m) = τ₀ + m·Δτ, and so are the base wrench and, once multiplied by
-the vertical force F_z(m) > 0, the zero-moment point's side of every edge of the standing
-feet's polygon. Two walks of the gait — unloaded and with 1 kg — give τ₀, Δτ and the
-wrench's two parts, and every constraint becomes a bound on m:
+nothing in a gait period but the loads: the body moves parallel to the ground at constant
+velocity, so the payload's weight is its only force, and the generalized forces of the
+free-flyer model are affine in m: the base rows gain m times the closed-form wrench of
+1 kg (:func:`~hexaleg.gait.dynamics.payload_wrench`: −g and its moment, g the walker's
+gravity in the body frame, tilted on a slope). The minimum-norm foot forces are linear in
+them, so every foot force and joint torque is affine in m as well, τ(m) = τ₀ + m·Δτ, and
+so are the base wrench and, once multiplied by the normal force F_z(m) > 0, the
+zero-moment point's side of every edge of the standing feet's polygon. One walk of the
+gait (unloaded) and one min-norm solve with the wrench beside its own give τ₀, Δτ, the
+forces' two parts and the wrench's, and every constraint becomes a bound on m:
 
 - each joint at each sample: |τ₀ + m·Δτ| ≤ its rated torque;
 - each edge of the support polygon at each sample: the ZMP on its inner side;
+- each standing foot at each sample: its force within the friction cone,
+  |f_t| ≤ μ·f_n, with f = f₀ + m·Δf: the end of an interval of m from 0, a root of a
+  quadratic (:func:`~hexaleg.gait.friction.cone_limit`);
 - with actuators (:mod:`hexaleg.actuators`), each leg's joint over the period: its RMS
   torque within the continuous torque C. The mean square over the samples is a quadratic
   in m, mean(τ₀²) + 2m·mean(τ₀·Δτ) + m²·mean(Δτ²) ≤ C², whose larger root is the bound;
@@ -29,7 +35,10 @@ The actuators' masses and armatures are in the model both walks use, so they are
 and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacity is the
 smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
 and the constraint that gives it is what binds; broken unloaded, the first broken in the
-order above (peak torque, ZMP, continuous torque, voltage) is what stops the walk. No search
+order above (peak torque, ZMP, friction, continuous torque, voltage) is what stops the walk.
+On a slope (:class:`~hexaleg.statics.ground.Ground`) the walk has gravity tilted in the
+body frame, and the payload's weight with it; a safety factor F divides the peak torque and
+speed ratings (:meth:`~hexaleg.gait.walk.Walker.rated`). No search
 and no bisection: the tests hold it against a bisection on
 :func:`~hexaleg.gait.analysis.analyze_gait`, whose ``over_rating`` and ZMP margin first
 report a broken rating just past the capacity.
@@ -47,17 +56,19 @@ from hexaleg.actuators import Actuators
 from hexaleg.cause import Cause
 from hexaleg.electrical.equations import motor_samples
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait.dynamics import GeneralizedForces, payload_wrench
+from hexaleg.gait.dynamics import CarriedLoad, GeneralizedForces, payload_wrench
+from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
-from hexaleg.gait.walk import Walker
+from hexaleg.gait.walk import Loads, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
+from hexaleg.statics.ground import LEVEL, Ground
 
 PROBE_MASS = 1.0
-"""The payload of the second walk [kg]: any positive mass gives the same affine maps."""
+"""The payload whose wrench gives the change per kg [kg]: any positive mass gives the same maps."""
 
 
 @dataclass(frozen=True)
@@ -87,6 +98,8 @@ def walking_payload_capacity(
     gait: Gait | None = None,
     position: tuple[float, float, float] | None = None,
     gravity: float = GRAVITY,
+    ground: Ground = LEVEL,
+    safety_factor: float = 1.0,
 ) -> WalkingCapacity | None:
     """The largest payload at ``position`` the design carries walking ``gait``.
 
@@ -99,16 +112,23 @@ def walking_payload_capacity(
         position: Where the payload sits, body frame [m]; the centre of the body's top
             face if omitted.
         gravity: Gravitational acceleration g [m/s²].
+        ground: The ground walked on: its slope and friction (level by default).
+        safety_factor: F ≥ 1 [-]: peak torques and joint speeds within rating / F.
 
     """
     if not model.design.rated:
         return None  # the capacity within the ratings needs them
     gait = Gait() if gait is None else gait
-    return walker_capacity(Walker(model, gait, Payload(0.0, position), gravity=gravity))
+    unloaded = Walker(model, gait, Payload(0.0, position), ground=ground, gravity=gravity,
+                      safety_factor=safety_factor)  # fmt: skip
+    return walker_capacity(unloaded)
 
 
 def walker_capacity(unloaded: Walker) -> WalkingCapacity:
     """:func:`walking_payload_capacity` of a walker already made, sharing its gait's walk.
+
+    The walker's ground (its slope turns the payload's weight too, its friction holds the
+    feet) and safety factor are the capacity's.
 
     Args:
         unloaded: The robot walking the gait without payload, the payload's point its
@@ -122,7 +142,7 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
         raise ParameterError(
             "walker", unloaded.payload.mass, "carries no payload and splits min-norm forces"
         )
-    model, gait, gravity = unloaded.model, unloaded.gait, unloaded.gravity
+    model, gait = unloaded.model, unloaded.gait
     walk = unloaded.stride(gait.stride)
     if walk.violations:
         return WalkingCapacity(0.0, walk.violations[0].cause, False)
@@ -132,19 +152,21 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
     over = speeds > rated_speeds
     if over.any():
         return WalkingCapacity(0.0, _fastest(unloaded, over, speeds), False)
-    probe = payload_wrench(unloaded.payload.point(model), PROBE_MASS, gravity)
+    probe = payload_wrench(unloaded.payload.point(model), PROBE_MASS, unloaded.gravity_vector)
     loads, carried = unloaded.own_loads_carrying(probe)
-    base, slope = loads.split.torques(gait.period), carried / PROBE_MASS  # τ₀, Δτ (N, 6, 3)
+    base = loads.split.torques(gait.period)  # τ₀ (N, 6, 3)
+    slope = carried.torques / PROBE_MASS  # Δτ
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
         _zmp_bound(unloaded, loads.rnea, probe, walk.paths.position),
+        _grip_bound(unloaded, loads, carried),
     ]
-    actuators = model.design.actuators
-    if actuators is not None:
+    actuators, bus = model.design.actuators, model.design.bus_voltage
+    if actuators is not None and bus is not None:
         bounds += [
             _continuous_bound(legs, base, slope, actuators),
-            _voltage_bound(legs, base, slope, velocities, actuators),
+            _voltage_bound(legs, base, slope, velocities, actuators, bus),
         ]
     found = [b for b in bounds if b is not None]
     broken = [b for b in found if b[0] < 0]
@@ -232,9 +254,14 @@ def _continuous_bound(
 
 
 def _voltage_bound(
-    legs: tuple[str, ...], base: ArrayF, slope: ArrayF, speeds: ArrayF, actuators: Actuators
+    legs: tuple[str, ...],
+    base: ArrayF,
+    slope: ArrayF,
+    speeds: ArrayF,
+    actuators: Actuators,
+    supply: float,
 ) -> tuple[float, Cause] | None:
-    """Each joint's motor at every sample within the supply: a torque window around zero.
+    """Each joint's motor at every sample within the bus voltage V: a window around τ = 0.
 
     The voltage needed at speed ω is e + s₊·τ for τ ≥ 0 and e − s₋·τ for τ < 0 (e the
     back-EMF; s₊, s₋ ≥ 0 the two branches' volts per N·m), read off the motor equations at
@@ -246,7 +273,7 @@ def _voltage_bound(
         motor_samples(torque, speeds, actuators).voltage
         for torque in (np.zeros_like(probe), probe, -probe)
     )
-    headroom = np.asarray(actuators.values("voltage")) - emf
+    headroom = supply - emf
     return _window_bound(
         "voltage",
         legs,
@@ -272,7 +299,8 @@ def _zmp_bound(
 
     Each side (:func:`~hexaleg.gait.stability.zmp_sides`) is linear in the base's wrench,
     which is affine in the payload: the unloaded walk's sides and their change per kg
-    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows).
+    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows, under the walker's
+    gravity: on a slope its weight pushes along the plane too).
     """
     period, height = walker.gait.period, walker.frames.height
     configurations = rnea.configurations  # the body's path, as the payload's
@@ -286,6 +314,22 @@ def _zmp_bound(
     )
     found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))
+
+
+def _grip_bound(walker: Walker, loads: Loads, carried: CarriedLoad) -> tuple[float, Cause] | None:
+    """Every standing foot's force within the friction cone, |f_t| ≤ μ·f_n (affine in m).
+
+    The feet's forces are the unloaded walk's plus m times what :data:`PROBE_MASS`
+    adds per kg (``carried``: its min-norm share, split with the walk's).
+    """
+    base = loads.split.forces(walker.gait.period)
+    slope = carried.forces / PROBE_MASS
+    found = cone_limit(base, slope, walker.phases.stance, walker.ground.friction)
+    if found is None:
+        return None
+    mass, index = found
+    leg = index % len(walker.frames.legs)
+    return mass, Cause("slide", walker.frames.legs[leg])
 
 
 def _fastest(walker: Walker, over: np.ndarray, speeds: ArrayF) -> Cause:

@@ -65,36 +65,55 @@ class GeneralizedForces:
     inertial: ArrayF
 
 
-def payload_wrench(point: ArrayF, mass: float, gravity: float) -> ArrayF:
-    """What a point mass on a level body adds to the base's generalized forces (6,).
+def payload_wrench(point: ArrayF, mass: float, gravity: ArrayF) -> ArrayF:
+    """What a point mass on the body adds to the base's generalized forces (6,).
 
     The body's rows hold the wrench that carries it, in the body's frame at its origin:
-    its weight upward f = (0, 0, m·g) [N] and the moment p × f [N·m] of the point p [m]
-    (body frame). With the body level and at constant velocity (no rotation, no
-    acceleration: a gait period's body), the point's inertial forces are zero, so this is
-    exactly what RNEA gives with the mass added to the body's inertia.
+    the force f = −m·g [N] against gravity g (3,) [m/s²] given in the body frame (−g·z on
+    level ground, tilted on a slope: :class:`~hexaleg.statics.ground.Ground`) and the
+    moment p × f [N·m] of the point p [m] (body frame). With the body at constant velocity
+    and not turning (a gait period's body, parallel to the ground), the point's inertial
+    forces are zero, so this is exactly what RNEA gives with the mass added to the body's
+    inertia.
     """
-    force = np.array([0.0, 0.0, mass * gravity])
+    force = -mass * np.asarray(gravity, dtype=float)
     return np.concatenate((force, np.cross(point, force)))
+
+
+@dataclass(frozen=True)
+class CarriedLoad:
+    """What a constant wrench on the base's rows adds to a min-norm split (any period).
+
+    Attributes:
+        forces: The standing feet's added forces (N, 6, 3), ground frame [N] (zero while
+            a foot swings).
+        torques: The joints' added torques (N, 6, 3) [N·m].
+
+    """
+
+    forces: ArrayF
+    torques: ArrayF
 
 
 class LoadedRobot:
     """The robot's Pinocchio model carrying the payload: a copy, built once per walker.
 
     The payload is a point mass added to the body's inertia (its weight and, were the body
-    to accelerate, its inertia); gravity g [m/s²] points along −z. Without a payload, at
-    the model's own gravity, the model itself serves (a study's designs are not copied).
+    to accelerate, its inertia). Gravity is given in the body frame, which stays parallel
+    to the ground: −g·z on level ground, tilted on a slope
+    (:class:`~hexaleg.statics.ground.Ground`). Without a payload, at the model's own
+    gravity, the model itself serves (a study's designs are not copied).
 
     Args:
         model: The robot.
         payload: A point mass on the body.
-        gravity: Gravitational acceleration g [m/s²].
+        gravity: Gravitational acceleration in the body (ground) frame (3,) [m/s²].
 
     """
 
-    def __init__(self, model: HexapodModel, payload: Payload, gravity: float) -> None:
+    def __init__(self, model: HexapodModel, payload: Payload, gravity: ArrayF) -> None:
         robot_mass(model)  # a robot file without masses is refused here
-        self.gravity = np.array([0.0, 0.0, -gravity])
+        self.gravity = np.array(gravity, dtype=float)
         own = payload.mass == 0 and bool(np.all(model.model.gravity.linear == self.gravity))
         self.model = model.model if own else pin.Model(model.model)
         if payload.mass > 0:
@@ -223,8 +242,8 @@ def min_norm_split_carrying(
     motion: JointMotion,
     rnea: GeneralizedForces,
     wrench: ArrayF | None = None,
-) -> tuple[ForceSplit, ArrayF | None]:
-    """:func:`min_norm_split`, and in the same solve :func:`carried_torques` of ``wrench``.
+) -> tuple[ForceSplit, CarriedLoad | None]:
+    """:func:`min_norm_split`, and in the same solve :func:`carried_load` of ``wrench``.
 
     Arguments as :func:`min_norm_split`'s; ``wrench`` (6,) [N, N·m], or none (``None``).
     """
@@ -235,21 +254,22 @@ def min_norm_split_carrying(
     joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
     torques = joints - pushed[:2]
     split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
-    return split, (None if wrench is None else -pushed[2])
+    return split, (None if wrench is None else CarriedLoad(forces[..., 2], -pushed[2]))
 
 
-def carried_torques(
+def carried_load(
     frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrench: ArrayF
-) -> ArrayF:
-    """The joint torques (N, 6, 3) [N·m] a constant wrench (6,) on the base's rows adds.
+) -> CarriedLoad:
+    """The feet's forces and joint torques a constant wrench (6,) on the base's rows adds.
 
     What :func:`min_norm_split` gives with the wrench added to the base's rows less what it
-    gives without (the split is linear in them): −Jᵀ of the minimum-norm forces carrying
-    the wrench, e.g. a payload's (:func:`payload_wrench`). Arguments as
+    gives without (the split is linear in them): the minimum-norm forces carrying the
+    wrench, e.g. a payload's (:func:`payload_wrench`), and −Jᵀ of them. Arguments as
     :func:`min_norm_split`'s.
     """
     columns = np.broadcast_to(np.asarray(wrench, dtype=float)[:, None], (len(feet), 6, 1))
-    return -_min_norm_pushes(frames, phases, feet, motion, columns)[1][0]
+    forces, pushed = _min_norm_pushes(frames, phases, feet, motion, columns)
+    return CarriedLoad(forces[..., 0], -pushed[0])
 
 
 def _min_norm_pushes(

@@ -17,19 +17,23 @@
   :data:`REACH_SHARE` of a stride where a foot runs out of
   reach (that reach is named).
 - Max speed: the largest v = S/(β·T) at which every joint's peak |τ| and |q̇| stays within
-  its rating, the zero-moment point within the standing feet's polygon (each edge's side
-  is affine in 1/T², :func:`~hexaleg.gait.stability.zmp_sides`: solved in closed form,
-  ``"zmp"`` when it binds) and the period is feasible: a shorter period at the gait's
-  stride S, or, if
-  that stride is infeasible, at the max stride. (Not the faster of the two: at a max
-  stride bound by reach a leg straightens, its joint speeds are unbounded and the speed
-  there is zero; the search would cost more than the walk.) With minimum-norm forces every
-  torque is τ_s + τ_i/T² and every speed θ'/T exactly, so the shortest period is solved
-  joint by joint in closed form; min-torque forces are bisected on 1/T² to
-  :data:`SPEED_TOLERANCE`. A design with actuators also keeps every joint's RMS torque
-  within its continuous torque and the voltage its motor needs within the supply
-  (:mod:`hexaleg.electrical`): below the speed the peaks allow, 1/T² is bisected on the
-  larger of those two ratios.
+  its rating, the zero-moment point within the standing feet's polygon (each edge's side is
+  affine in 1/T², :func:`~hexaleg.gait.stability.zmp_sides`: solved in closed form,
+  ``"zmp"`` when it binds), every standing foot's force within the friction cone (|f_t| ≤
+  μ·f_n with f = f_s + f_i/T²: the end of an interval of 1/T², a root of a quadratic,
+  :func:`~hexaleg.gait.friction.cone_limit`; ``"slide"`` with the foot's leg when it binds)
+  and the period is feasible: a shorter period at the gait's stride S, or, if that stride is
+  infeasible, at the max stride. (Not the faster of the two: at a max stride bound by reach
+  a leg straightens, its joint speeds are unbounded and the speed there is zero; the search
+  would cost more than the walk.) With minimum-norm forces every torque is τ_s + τ_i/T² and
+  every speed θ'/T exactly, so the shortest period is solved joint by joint in closed form;
+  min-torque forces are bisected on 1/T² to :data:`SPEED_TOLERANCE` (their grip too). On a
+  slope gravity is tilted in the body frame (:class:`~hexaleg.statics.ground.Ground`), and
+  the ratings are divided by the walker's safety factor F
+  (:meth:`~hexaleg.gait.walk.Walker.rated`). A design with actuators also keeps every
+  joint's RMS torque within its continuous torque and the voltage its motor needs within the
+  bus voltage (:mod:`hexaleg.electrical`): below the speed the peaks allow, 1/T² is bisected
+  on the larger of those two ratios.
 
 The actuators' ratings lower the limits of the motion and of the peaks last
 (:func:`stride_within_motors`, :func:`speed_within_motors`): a design with ``[actuators]``
@@ -52,6 +56,7 @@ from hexaleg.cause import Cause
 from hexaleg.electrical.ratings import RATED, RatingLoads, motor_loads
 from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
+from hexaleg.gait.friction import cone_limit, friction_ratios
 from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
@@ -232,10 +237,11 @@ def max_speed(
         return SpeedLimit(0.0, stride, math.inf, Cause("zmp"))
     if walker.distribution != "min-norm":
         limit = _bisected_speed(walker, stride, walk, speed_room, rnea, upright)
-        return speed_within_motors(walker, walk, _upright(walker, limit, upright))
+        limit = _bisected_grip(walker, walk, rnea, _upright(walker, limit, upright))
+        return speed_within_motors(walker, walk, limit)
     loads = walker.loads(stride, walk, 1.0, rnea) if known is None else known
-    limit = _closed_form_speed(walker, stride, loads, speed_room)
-    return speed_within_motors(walker, walk, _upright(walker, limit, upright), loads)
+    limit = _upright(walker, _closed_form_speed(walker, stride, loads, speed_room), upright)
+    return speed_within_motors(walker, walk, _gripping(walker, loads, limit), loads)
 
 
 def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
@@ -256,11 +262,55 @@ def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
 
 def _upright(walker: Walker, limit: SpeedLimit, room: float) -> SpeedLimit:
     """``limit``, or the slower one at w = ``room`` where the ZMP reaches the polygon's edge."""
+    return _slower(walker, limit, room, Cause("zmp"))
+
+
+def _slower(walker: Walker, limit: SpeedLimit, room: float, cause: Cause) -> SpeedLimit:
+    """``limit``, or the slower one at w = 1/T² = ``room`` (≥ 0), where ``cause`` binds."""
     if room >= 1.0 / limit.period**2:
         return limit
     value = limit.stride * math.sqrt(room) / walker.phases.duty_factor
     period = math.inf if room == 0 else 1.0 / math.sqrt(room)
-    return SpeedLimit(float(value), limit.stride, period, Cause("zmp"))
+    return SpeedLimit(float(value), limit.stride, period, cause)
+
+
+def _gripping(walker: Walker, loads: Loads, limit: SpeedLimit) -> SpeedLimit:
+    """``limit``, or the slower one where a standing foot's force reaches the friction cone.
+
+    Min-norm forces are f_s + w·f_i (w = 1/T²): the cone bounds w in closed form.
+    """
+    split, legs = loads.split, walker.frames.legs
+    found = cone_limit(
+        split.static_forces, split.inertial_forces, walker.phases.stance, walker.friction
+    )
+    if found is None:
+        return limit
+    room, index = found
+    return _slower(walker, limit, max(room, 0.0), Cause("slide", legs[index % len(legs)]))
+
+
+def _bisected_grip(
+    walker: Walker, walk: Stride, rnea: GeneralizedForces, limit: SpeedLimit
+) -> SpeedLimit:
+    """Min-torque forces: ``limit``, or the slower one (bisected on w = 1/T²) that grips."""
+    stance, legs = walker.phases.stance, walker.frames.legs
+
+    def worst(w: float) -> tuple[float, int]:  # the largest |f_t|/(μ f_n), and its foot
+        period = math.inf if w == 0 else 1.0 / math.sqrt(w)
+        forces = walker.loads(limit.stride, walk, period, rnea).split.forces(period)
+        ratios = friction_ratios(forces, stance) / walker.friction
+        return float(ratios.max()), int(np.argmax(ratios))
+
+    high = 0.0 if math.isinf(limit.period) else 1.0 / limit.period**2
+    if worst(high)[0] <= 1:
+        return limit
+    low = 0.0
+    if worst(low)[0] > 1:
+        return _slower(walker, limit, 0.0, Cause("slide", legs[worst(low)[1] % len(legs)]))
+    while high - low > SPEED_TOLERANCE * high:
+        middle = 0.5 * (low + high)
+        low, high = (middle, high) if worst(middle)[0] <= 1 else (low, middle)
+    return _slower(walker, limit, low, Cause("slide", legs[worst(high)[1] % len(legs)]))
 
 
 def _speed_room(walker: Walker, walk: Stride) -> ArrayF:
@@ -341,6 +391,7 @@ def stride_within_motors(walker: Walker, limit: StrideLimit, scan_steps: int) ->
     if actuators is None:
         return limit
     period, legs = walker.gait.period, walker.frames.legs
+    bus = walker.model.design.bus_voltage
 
     def loads(stride: float) -> RatingLoads | None:  # None: a joint's speed is unbounded
         walk = walker.stride(stride)
@@ -348,7 +399,7 @@ def stride_within_motors(walker: Walker, limit: StrideLimit, scan_steps: int) ->
         speeds = walk.motion.velocity / period
         if not (np.isfinite(torques).all() and np.isfinite(speeds).all()):
             return None  # a leg straight at the walkable max stride bound by reach
-        return motor_loads(torques, speeds, actuators, legs)
+        return motor_loads(torques, speeds, actuators, legs, bus, walker.safety_factor)
 
     def over(stride: float) -> bool:
         found = loads(stride)
@@ -400,7 +451,7 @@ def speed_within_motors(
     if actuators is None or limit.value == 0:
         return limit
     rnea = walker.generalized_forces(limit.stride, walk) if loads is None else None
-    legs = walker.frames.legs
+    legs, bus = walker.frames.legs, walker.model.design.bus_voltage
 
     def ratios(w: float) -> ArrayF:  # (continuous, voltage) ratios (2, L, 3) at w = 1/T²
         if loads is not None:
@@ -409,7 +460,12 @@ def speed_within_motors(
             period = math.inf if w == 0 else 1.0 / math.sqrt(w)
             torques = walker.loads(limit.stride, walk, period, rnea).split.torques(period)
         found: ArrayF = motor_loads(
-            torques, walk.motion.velocity * math.sqrt(w), actuators, legs
+            torques,
+            walk.motion.velocity * math.sqrt(w),
+            actuators,
+            legs,
+            bus,
+            walker.safety_factor,
         ).ratios
         return found[1:3]
 

@@ -16,10 +16,11 @@ import numpy as np
 from hexaleg._typing import ArrayF, Distribution, require_choice
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.gait.dynamics import (
+    CarriedLoad,
     ForceSplit,
     GeneralizedForces,
     LoadedRobot,
-    carried_torques,
+    carried_load,
     min_norm_split,
     min_norm_split_carrying,
     min_torque_split,
@@ -39,7 +40,9 @@ from hexaleg.gait.trajectory import (
 from hexaleg.gravity import GRAVITY
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction, check_gravity
+from hexaleg.statics.forces import Payload, check_gravity
+from hexaleg.statics.ground import LEVEL, Ground
+from hexaleg.statics.ratings import check_safety_factor
 
 
 @dataclass(frozen=True)
@@ -67,8 +70,16 @@ class Walker:
         gait: The gait (its pattern, samples, step height and heading are used).
         payload: A point mass on the body.
         distribution: How the standing feet share the load.
-        friction: Friction coefficient μ [-] (min-torque distribution).
+        ground: The ground walked on: its slope (gravity turns in the body frame, which
+            stays parallel to it) and friction μ (the min-torque distribution's, and what
+            the standing feet's forces are held to); level by default.
         gravity: Gravitational acceleration g [m/s²].
+        safety_factor: F ≥ 1 [-]: every peak torque and joint speed is held within its
+            rating / F (:meth:`rated`).
+
+    The gait's own stride is walked once and its min-norm loads computed once (every
+    analysis of the walker shares them); they hold for this walker's ground, payload and
+    g, which are read-only: another ground is another walker.
 
     """
 
@@ -78,16 +89,18 @@ class Walker:
         gait: Gait,
         payload: Payload | None = None,
         distribution: Distribution = "min-norm",
-        friction: float = DEFAULT_FRICTION,
+        ground: Ground = LEVEL,
         gravity: float = GRAVITY,
+        safety_factor: float = 1.0,
     ) -> None:
         require_choice("distribution", distribution, Distribution)
-        self.model = model
-        self.gait = gait
-        self.payload = payload or Payload()
-        self.distribution = distribution
-        self.friction = check_friction(friction)
-        self.gravity = check_gravity(gravity)
+        self._model = model
+        self._gait = gait
+        self._payload = payload or Payload()
+        self._distribution: Distribution = distribution
+        self._ground = ground
+        self._gravity = check_gravity(gravity)
+        self._safety_factor = check_safety_factor(safety_factor)
         self.frames = LegFrames.from_model(model)
         self.bounds = JointBounds.from_model(model)
         self.phases: GaitPhases = gait_phases(model.design, gait.pattern, gait.samples)
@@ -96,11 +109,75 @@ class Walker:
         self._own: Stride | None = None  # the gait's own stride, walked once
         self._own_loads: Loads | None = None  # its min-norm loads, computed once
 
+    def carrying(self, payload: Payload) -> Walker:
+        """The same robot walking the same gait on the same ground with another payload.
+
+        A new walker (its own walk and loads, none of this one's): what it walks on, how
+        it splits the load, g and F are this one's.
+        """
+        return Walker(
+            self.model,
+            self.gait,
+            payload,
+            self.distribution,
+            self.ground,
+            self.gravity,
+            self.safety_factor,
+        )
+
+    # What the walk's caches depend on is read-only: another ground, payload, split, g
+    # or F is another walker (:meth:`carrying`), never a cached walk or load of this one.
+
+    @property
+    def model(self) -> HexapodModel:
+        """The robot's Pinocchio model."""
+        return self._model
+
+    @property
+    def gait(self) -> Gait:
+        """The gait walked."""
+        return self._gait
+
+    @property
+    def payload(self) -> Payload:
+        """The point mass on the body."""
+        return self._payload
+
+    @property
+    def distribution(self) -> Distribution:
+        """How the standing feet share the load."""
+        return self._distribution
+
+    @property
+    def ground(self) -> Ground:
+        """The ground walked on: its slope and friction."""
+        return self._ground
+
+    @property
+    def friction(self) -> float:
+        """The ground's friction coefficient μ [-]."""
+        return self._ground.friction
+
+    @property
+    def gravity(self) -> float:
+        """Gravitational acceleration g [m/s²]."""
+        return self._gravity
+
+    @property
+    def safety_factor(self) -> float:
+        """F ≥ 1 [-]: peak torques and joint speeds held within rating / F."""
+        return self._safety_factor
+
+    @property
+    def gravity_vector(self) -> ArrayF:
+        """Gravity in the body frame, which stays parallel to the ground (3,) [m/s²]."""
+        return self.ground.gravity(self.gait.heading, self.gravity)
+
     @property
     def robot(self) -> LoadedRobot:
         """The Pinocchio model with the payload (built on first use)."""
         if self._robot is None:
-            self._robot = LoadedRobot(self.model, self.payload, self.gravity)
+            self._robot = LoadedRobot(self.model, self.payload, self.gravity_vector)
         return self._robot
 
     @property
@@ -177,11 +254,13 @@ class Walker:
             self._own_loads = found
         return found
 
-    def own_loads_carrying(self, wrench: ArrayF) -> tuple[Loads, ArrayF]:
+    def own_loads_carrying(self, wrench: ArrayF) -> tuple[Loads, CarriedLoad]:
         """The gait's own stride's min-norm loads and what a wrench adds, in one solve.
 
-        What the wrench (6,) [N, N·m], constant on the base's rows (a payload's), adds is
-        joint torques (N, 6, 3) [N·m]. The loads are the ones :meth:`loads` then shares.
+        What the wrench (6,) [N, N·m], constant on the base's rows (a payload's, on this
+        walker's ground: :func:`~hexaleg.gait.dynamics.payload_wrench` of
+        :attr:`gravity_vector`), adds is the feet's forces and the joint torques
+        (N, 6, 3). The loads are the ones :meth:`loads` then shares.
 
         Raises:
             ParameterError: The walker splits the load otherwise than min-norm.
@@ -195,7 +274,7 @@ class Walker:
         if known is not None:
             loads = self.loads(self.gait.stride, walk, self.gait.period)
             position, motion = walk.paths.position, walk.motion
-            return loads, carried_torques(self.frames, self.phases, position, motion, wrench)
+            return loads, carried_load(self.frames, self.phases, position, motion, wrench)
         travel = self.gait.stride / self.phases.duty_factor * self.heading
         rnea = self.robot.generalized_forces(walk.motion, travel)
         split, carried = min_norm_split_carrying(
@@ -216,14 +295,14 @@ class Walker:
         return self.robot.generalized_forces(walk.motion, travel)
 
     def rated(self) -> tuple[ArrayF, ArrayF]:
-        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee).
+        """Rated torques [N·m] and speeds [rad/s] (root, hip, knee), each divided by F.
 
         Raises:
             HexalegError: The design gives no ratings (a robot file's efforts of 0): what
                 asks for them needs a rating (callers ask :attr:`HexapodDesign.rated` first).
 
         """
-        design = self.model.design
+        design, factor = self.model.design, self.safety_factor
         if design.rated_torques is None or design.rated_speeds is None:
             raise HexalegError(f"the design gives no rated torques and speeds: {NEEDS_RATING}")
-        return np.array(design.rated_torques), np.array(design.rated_speeds)
+        return np.array(design.rated_torques) / factor, np.array(design.rated_speeds) / factor

@@ -50,13 +50,24 @@ from hexaleg.robot.robot_design import robot_design, robot_record
 from hexaleg.robot.robot_table import check_written_fixed, check_written_lengths, robot_table
 from hexaleg.robot.urdf import render_hexapod
 
-__all__ = ["FILE_FIXES", "FILE_TAKES", "SEGMENT_SPAN", "Robot", "derived_numbers", "robot_of"]
+__all__ = [
+    "FILE_FIXES",
+    "FILE_TAKES",
+    "POSTURE_FIELD",
+    "SEGMENT_SPAN",
+    "Robot",
+    "derived_numbers",
+    "robot_of",
+]
 
 SEGMENT_SPAN = 0.5
 """A decision searches a robot file's segment within this share of its own length either
 side of it [-]: its l1, l2, l3 are the centre of the bounds."""
 
-FILE_TAKES = frozenset((*SEGMENTS, "nominal_angles"))
+POSTURE_FIELD = "nominal_angles"
+"""The design field of a robot's posture (θ1, θ2, θ3) [rad]: what a posture search frees."""
+
+FILE_TAKES = frozenset((*SEGMENTS, POSTURE_FIELD))
 """The design fields a robot file's robot takes from a caller: its segments (every leg's,
 changed along their own lines) and its posture. Its body, mounts, masses, limits and
 ratings are the file's (and the design file's overrides it was built over)."""

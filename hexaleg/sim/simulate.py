@@ -26,8 +26,9 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF, Controller, Distribution, require_choice
 from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait, require_walkable
+from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.walkable import require_walkable
 from hexaleg.robot.model import HexapodModel
 from hexaleg.sim._mujoco import require_mujoco
 from hexaleg.sim.measure import WalkMeter
@@ -37,6 +38,7 @@ from hexaleg.sim.result import SimulationResult
 from hexaleg.sim.run import FRAME_RATE, MAX_DURATION, run_plan
 from hexaleg.sim.standing_tripod import StandingCheck, standing_check
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, check_friction
+from hexaleg.statics.ground import Ground
 
 TORQUE_BANDWIDTH = 0.5
 """The torque controller's PD bandwidth [Hz] on a standing leg's joints. Measured on the
@@ -98,8 +100,9 @@ def simulate_gait(
     require_mujoco()
     cycles = _checked_cycles(cycles, (Gait() if gait is None else gait).period, friction)
     model = HexapodModel(design) if model is None else model
-    analysis = analyze_gait(design, gait, payload, distribution=distribution,
-                            friction=friction, model=model, limits=False)  # fmt: skip
+    ground = Ground(friction=friction)  # level: MuJoCo's floor
+    analysis = analyze_gait(design, gait, payload, distribution=distribution, ground=ground,
+                            model=model, limits=False)  # fmt: skip
     require_walkable(analysis, model)
     gains = controller_gains(model, require_choice("controller", controller, Controller), gains)
     sim = SimModel(model, analysis.payload, friction, gains)

@@ -2,8 +2,9 @@
 
 :mod:`.forces` balances gravity with the stance feet's forces and gives the joint
 torques; :mod:`.support` is the support polygon and the stability margin; :mod:`.slopes`
-the steepest slope per heading; :mod:`.capacity` the largest payload; :mod:`.loads`
-gathers them at the nominal stance and at each body extreme.
+the steepest slope per heading; :mod:`.ground` the plane a gait walks on (slope,
+friction); :mod:`.capacity` the largest payload; :mod:`.loads` gathers them at the nominal
+stance and at each body extreme.
 """
 
 from __future__ import annotations
@@ -17,6 +18,7 @@ __all__ = [
     "GRAVITY",
     "SLOPE_HEADINGS",
     "ExtremeLoads",
+    "Ground",
     "LoadsAnalysis",
     "Payload",
     "PayloadCapacity",
@@ -50,6 +52,7 @@ if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs an
         equilibrium,
         friction_pyramid,
     )
+    from hexaleg.statics.ground import Ground
     from hexaleg.statics.loads import (
         ExtremeLoads,
         LoadsAnalysis,

@@ -37,6 +37,7 @@ from hexaleg.limits import LEG_JOINTS
 from hexaleg.ratings import torque_scale
 from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.ratings import check_safety_factor
 from hexaleg.statics.support import SupportPolygon, ground_point
 
 DEFAULT_FRICTION = 0.6
@@ -158,6 +159,8 @@ class Statics:
         legs: Stance legs.
         payload: A point mass on the body.
         friction: Friction coefficient μ [-] (min-torque distribution and slopes).
+        safety_factor: F ≥ 1 [-]: every joint is held within its rated torque / F
+            (:attr:`rated`: the payload capacity, the slopes' torque limits).
 
     """
 
@@ -167,13 +170,15 @@ class Statics:
         legs: Sequence[str],
         payload: Payload | None = None,
         friction: float = DEFAULT_FRICTION,
+        safety_factor: float = 1.0,
     ) -> None:
         friction = check_friction(friction)
         self.model = model
         self.legs = tuple(legs)
         self.payload = payload or Payload()
         self.friction = friction
-        self.rated = torque_scale(model.design.rated_torques)
+        self.safety_factor = check_safety_factor(safety_factor)
+        self.rated = torque_scale(model.design.rated_torques) / self.safety_factor
         self._feet = [model.foot_frame_id(leg) for leg in self.legs]
         self._v = np.array([model.leg_v_indices(leg) for leg in self.legs])  # (N, 3)
         self._signs = np.array([model.joint_signs(leg) for leg in self.legs])  # torques on θ

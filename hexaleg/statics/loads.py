@@ -57,12 +57,13 @@ class LoadsAnalysis:
         nominal: The statics at the nominal stance.
         extremes: The statics at each of the twelve extremes.
         slopes: The steepest slope per heading.
-        capacity: The largest payload at the payload's point; ``None`` when the design
-            gives no rated torques (it needs a rating).
+        capacity: The largest payload at the payload's point (torques within rating / F);
+            ``None`` when the design gives no rated torques (it needs a rating).
         mode: Which flexibility extremes (axis-locked or free-coupled).
         structure: The legs' tubes checked at the nominal stance, the extremes and the
             slope (:mod:`hexaleg.structure`); ``None`` without a ``[structure]`` whose
             tubes are all given.
+        safety_factor: F [-]: every torque is held within its rating / F.
 
     """
 
@@ -76,6 +77,7 @@ class LoadsAnalysis:
     capacity: PayloadCapacity | None
     mode: FlexibilityMode
     structure: StructureCheck | None = None
+    safety_factor: float = 1.0
 
     @property
     def peak_torques(self) -> dict[str, float]:
@@ -120,7 +122,7 @@ class LoadsAnalysis:
 
     @property
     def over_rating(self) -> tuple[OverRating, ...]:
-        """Each stance joint whose |τ| exceeds its rating at the nominal stance or an extreme."""
+        """Each stance joint over its rating / F (|τ|) at the nominal stance or an extreme."""
         states = [self.nominal, *(e.state for e in self.extremes)]
         places = ["nominal", *(e.extreme.name for e in self.extremes)]
         return over_rating(
@@ -128,6 +130,8 @@ class LoadsAnalysis:
             [s.joint_torques for s in states],
             self.design.rated_torques,
             places,
+            "torque",
+            self.safety_factor,
         )
 
     def to_dict(self) -> dict[str, Any]:
@@ -138,6 +142,7 @@ class LoadsAnalysis:
             "payload": self.payload.to_dict(self.design),
             "friction": self.friction,
             "distribution": self.distribution,
+            "safety_factor": self.safety_factor,
             "stance": list(legs),
             "mass": self.nominal.mass,
             "com": self.nominal.com.tolist(),
@@ -210,6 +215,7 @@ def analyze_loads(
     mode: FlexibilityMode = "axis",
     model: HexapodModel | None = None,
     slope: float = 0.0,
+    safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
     """The statics of ``design``: nominal stance, twelve extremes, slopes, payload capacity.
 
@@ -222,11 +228,12 @@ def analyze_loads(
         mode: The extremes of axis-locked or free-coupled flexibility.
         model: The design's Pinocchio model, if already built.
         slope: The slope [rad] the legs' structure is also checked on, every heading.
+        safety_factor: F ≥ 1 [-]: torques held within rating / F (flags and capacity).
 
     """
     model = HexapodModel(design) if model is None else model
     result = flexibility(design, mode, stance_legs(model, stance), model)
-    return loads_at_extremes(model, result, payload, friction, distribution, slope)
+    return loads_at_extremes(model, result, payload, friction, distribution, slope, safety_factor)
 
 
 def loads_at_extremes(
@@ -236,14 +243,16 @@ def loads_at_extremes(
     friction: float = DEFAULT_FRICTION,
     distribution: Distribution = "min-norm",
     slope: float = 0.0,
+    safety_factor: float = 1.0,
 ) -> LoadsAnalysis:
     """The statics of a flexibility result's design, at its nominal stance and extremes.
 
     With a ``[structure]`` whose tubes are given, the legs' tubes are checked there too,
-    and on ``slope`` [rad] in every heading.
+    and on ``slope`` [rad] in every heading. ``safety_factor`` F divides every rated torque
+    (the flags and the payload capacity).
     """
     design, legs, mode = result.design, result.legs, result.mode
-    statics = Statics(model, legs, payload, friction)
+    statics = Statics(model, legs, payload, friction, safety_factor)
     q = model.nominal_configuration()
     nominal, *at_extremes = statics.states(
         [q, *extreme_configurations(model, result.extremes)], distribution
@@ -264,6 +273,7 @@ def loads_at_extremes(
         else payload_capacity(statics, q, distribution, at=nominal),
         mode=mode,
         structure=_structure(model, result, statics, distribution, slope),
+        safety_factor=statics.safety_factor,
     )
 
 

@@ -16,8 +16,18 @@ from typing import Any, Literal
 import numpy as np
 import numpy.typing as npt
 
+from hexaleg._checks import require_in_range
 from hexaleg._typing import ArrayF
 from hexaleg.limits import LEG_JOINTS
+
+SAFETY_FACTOR_RANGE = (1.0, 100.0)
+"""Safety factors F [-] the analyses take: 1 (the ratings as given) up to 100."""
+
+
+def check_safety_factor(safety_factor: float) -> float:
+    """``safety_factor`` as a float if it lies in :data:`SAFETY_FACTOR_RANGE`; else an error."""
+    return require_in_range("safety_factor", safety_factor, *SAFETY_FACTOR_RANGE, "-")
+
 
 Quantity = Literal["torque", "speed", "peak_torque", "continuous_torque", "voltage"]
 """What is compared with its rating: joint torque [N·m] or joint speed [rad/s]; with
@@ -41,6 +51,10 @@ LABELS: dict[str, str] = {
 }
 """How each quantity is named in a sentence."""
 
+DERATED: tuple[Quantity, ...] = ("torque", "speed", "peak_torque")
+"""The quantities a safety factor F divides the rating of: peak torque and speed (the RMS
+torque and the voltage are held to their ratings as given)."""
+
 
 @dataclass(frozen=True)
 class OverRating:
@@ -53,8 +67,10 @@ class OverRating:
             ``"peak_torque"``, ``"continuous_torque"`` [N·m] or ``"voltage"`` [V].
         peak: The largest |τ| or |q̇| of that joint [N·m or rad/s]; for
             ``"continuous_torque"`` its RMS τ, for ``"voltage"`` the largest voltage needed.
-        rated: Its rating [N·m, rad/s or V].
+        rated: What it is held to [N·m, rad/s or V]: its rating, divided by the safety
+            factor for a peak torque or a speed.
         at: Where the peak occurs: a pose (``"nominal"``, ``"x+"``) or a time (``"t = 0.42 s"``).
+        safety_factor: The safety factor F the rating was divided by [-] (1: as given).
 
     """
 
@@ -64,12 +80,16 @@ class OverRating:
     peak: float
     rated: float
     at: str
+    safety_factor: float = 1.0
 
     def __str__(self) -> str:
         unit, label = UNITS[self.quantity], LABELS[self.quantity]
         peak = f"{self.peak:.2f} {unit}" if math.isfinite(self.peak) else "without bound"
-        rated = f"{self.rated:g} {unit}"
-        return f"{self.leg} {self.joint} {label} {peak} over its rating {rated} ({self.at})"
+        held = f"its rating {self.rated:g} {unit}"
+        if self.safety_factor != 1.0:
+            rating, factor = self.rated * self.safety_factor, self.safety_factor
+            held = f"its rating {rating:g} {unit} / F {factor:g} = {self.rated:.4g} {unit}"
+        return f"{self.leg} {self.joint} {label} {peak} over {held} ({self.at})"
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready form (N·m, rad/s or V)."""
@@ -80,6 +100,7 @@ class OverRating:
             "peak": self.peak,
             "rated": self.rated,
             "at": self.at,
+            "safety_factor": self.safety_factor,
             "description": str(self),
         }
 
@@ -100,8 +121,9 @@ def over_rating(
     rated: npt.ArrayLike | None,
     places: Sequence[str],
     quantity: Quantity = "torque",
+    safety_factor: float = 1.0,
 ) -> tuple[OverRating, ...]:
-    """Each (leg, joint) whose largest |value| over ``places`` exceeds its rating.
+    """Each (leg, joint) whose largest |value| over ``places`` exceeds its rating / F.
 
     Args:
         legs: Leg names (N,).
@@ -110,6 +132,7 @@ def over_rating(
             none is known to be exceeded (the results that need them say so).
         places: What each of the K places is called (``"nominal"``, ``"t = 0.42 s"``).
         quantity: ``"torque"`` or ``"speed"``.
+        safety_factor: F [-]: each rating is held at rating / F.
 
     Returns:
         One entry per joint over its rating, in leg then joint order.
@@ -120,7 +143,7 @@ def over_rating(
     magnitude = np.abs(np.asarray(values, dtype=float))  # (K, N, 3)
     worst = magnitude.argmax(axis=0)  # (N, 3)
     where = [[places[k] for k in row] for row in worst]
-    return over_rating_at(legs, magnitude.max(axis=0), rated, where, quantity)
+    return over_rating_at(legs, magnitude.max(axis=0), rated, where, quantity, safety_factor)
 
 
 def over_rating_at(
@@ -129,8 +152,9 @@ def over_rating_at(
     rated: npt.ArrayLike | None,
     where: Sequence[Sequence[str]],
     quantity: Quantity = "torque",
+    safety_factor: float = 1.0,
 ) -> tuple[OverRating, ...]:
-    """Each (leg, joint) whose peak |value| exceeds its rating, the peaks already found.
+    """Each (leg, joint) whose peak |value| exceeds its rating / F, the peaks already found.
 
     Args:
         legs: Leg names (N,).
@@ -138,17 +162,20 @@ def over_rating_at(
         rated: Ratings (root, hip, knee) (3,) [N·m or rad/s]; ``None``: not given.
         where: Where each joint's peak occurs (N lists of 3).
         quantity: ``"torque"`` or ``"speed"``.
+        safety_factor: F [-]: each rating is held at rating / F.
 
     """
     if rated is None:
         return ()
     peaks = np.asarray(peaks, dtype=float)
-    rated = np.asarray(rated, dtype=float)
+    held = np.asarray(rated, dtype=float) / safety_factor
     return tuple(
-        OverRating(leg, joint, quantity, float(peaks[i, j]), float(rated[j]), where[i][j])
+        OverRating(
+            leg, joint, quantity, float(peaks[i, j]), float(held[j]), where[i][j], safety_factor
+        )
         for i, leg in enumerate(legs)
         for j, joint in enumerate(LEG_JOINTS)
-        if peaks[i, j] > rated[j]
+        if peaks[i, j] > held[j]
     )
 
 

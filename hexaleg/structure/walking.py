@@ -24,7 +24,7 @@ def check_walking(
     velocities: npt.ArrayLike,
     accelerations: npt.ArrayLike,
     foot_forces: npt.ArrayLike,
-    gravity: float,
+    gravity: npt.ArrayLike,
 ) -> StructureCheck | None:
     """The model's tubes at every sample of a period; ``None`` without them all given.
 
@@ -35,7 +35,8 @@ def check_walking(
         velocities: v (N, nv) [m/s, rad/s].
         accelerations: a (N, nv) [m/s², rad/s²].
         foot_forces: Each foot's force from the ground (N, 6, 3), world frame [N].
-        gravity: g [m/s²], along −z.
+        gravity: Gravitational acceleration (3,) in the body (ground) frame [m/s²]: −g·z
+            on level ground, tilted on a slope (:class:`~hexaleg.statics.ground.Ground`).
 
     """
     design = model.design
@@ -44,7 +45,7 @@ def check_walking(
         return None
     require_template(model)
     states = leg_states(
-        model, configurations, np.array([0.0, 0.0, -gravity]), velocities, accelerations
+        model, configurations, np.asarray(gravity, dtype=float), velocities, accelerations
     )
     wrenches = segment_wrenches(states, foot_forces)
     return StructureCheck(

@@ -15,6 +15,7 @@ from hexaleg._lazy import lazy_exports
 __all__ = [
     "Recommendation",
     "StudySpec",
+    "best_posture",
     "dask_executor",
     "local_pool",
     "peak_table",
@@ -29,6 +30,7 @@ __getattr__, __dir__ = lazy_exports(__name__)
 
 if TYPE_CHECKING:  # where each name is from: read by type checkers, the docs and lazy_exports
     from hexaleg.study.executors import dask_executor, local_pool
+    from hexaleg.study.posture import best_posture
     from hexaleg.study.recommendation import Recommendation, recommend
     from hexaleg.study.sensitivity import relative_variants, sensitivity_table
     from hexaleg.study.sweep import StudySpec, peak_table, run_study, sweep_in_process

@@ -275,7 +275,7 @@ class AtBound:
         moved = f"--free {name}=LOWER:UPPER moves it"
         if name == "l1" and self.bound == "lower":
             return f"--min-coxa sets the coxa you can build; {moved}"
-        return moved
+        return f"stance_limits in the design file or {moved}" if name in POSTURE else moved
 
     def __str__(self) -> str:
         return (

@@ -28,28 +28,37 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
 
 
-def voltage_line(actuator: Actuator, speeds: ArrayF) -> ArrayF:
-    """The largest motoring output torque the supply drives at each output speed [N·m].
+def voltage_line(actuator: Actuator, speeds: ArrayF, supply: float, resistance: float) -> ArrayF:
+    """The largest motoring output torque the bus drives at each output speed [N·m].
 
-    From |k_t·N·ω| + |i|·R = V with τ = N·η·k_t·i (motoring): τ = N·η·k_t·(V − k_t·N·ω)/R;
-    infinite for R = 0 below the no-load speed, zero above it.
+    From |k_t·N·ω| + |i|·R = V with τ = N·η·k_t·i (motoring): τ = N·η·k_t·(V − k_t·N·ω)/R,
+    V the bus voltage [V] and R the windings' resistance at their temperature [Ω]; infinite
+    for R = 0 below the no-load speed, zero above it.
     """
     kt, ratio, eta = actuator.torque_constant, actuator.gear_ratio, actuator.gearbox_efficiency
-    room = np.clip(actuator.voltage - kt * ratio * np.abs(speeds), 0.0, None)
-    if actuator.resistance == 0:
+    room = np.clip(supply - kt * ratio * np.abs(speeds), 0.0, None)
+    if resistance == 0:
         return np.where(room > 0, np.inf, 0.0)
-    torque: ArrayF = ratio * eta * kt * room / actuator.resistance
+    torque: ArrayF = ratio * eta * kt * room / resistance
     return torque
 
 
-def voltage_speed(actuator: Actuator, torque: float) -> float:
-    """The output speed at which the supply drives at most ``torque`` motoring [rad/s].
+def voltage_speed(actuator: Actuator, torque: float, supply: float, resistance: float) -> float:
+    """The output speed at which the bus drives at most ``torque`` motoring [rad/s].
 
-    :func:`voltage_line` solved for the speed: ω = (V − τ·R/(N·η·k_t)) / (k_t·N).
+    :func:`voltage_line` solved for the speed: ω = (V − τ·R/(N·η·k_t)) / (k_t·N), V the bus
+    voltage [V] and R the windings' resistance at their temperature [Ω].
     """
     kt, ratio, eta = actuator.torque_constant, actuator.gear_ratio, actuator.gearbox_efficiency
-    drop = torque * actuator.resistance / (ratio * eta * kt)
-    return max(actuator.voltage - drop, 0.0) / (kt * ratio)
+    drop = torque * resistance / (ratio * eta * kt)
+    return max(supply - drop, 0.0) / (kt * ratio)
+
+
+def _bus(analysis: GaitAnalysis, j: int) -> tuple[float, float]:
+    """The bus voltage [V] and joint type ``j``'s winding resistance at its temperature [Ω]."""
+    electrical, actuators = _need(analysis), analysis.design.actuators
+    resistance = float("nan") if actuators is None else actuators.resistances[j]
+    return electrical[0].supply, resistance
 
 
 def _need(analysis: GaitAnalysis) -> tuple[ElectricalResult, tuple[Actuator, ...]]:
@@ -62,12 +71,12 @@ def _need(analysis: GaitAnalysis) -> tuple[ElectricalResult, tuple[Actuator, ...
 @drawn
 def power_split_figure(analysis: GaitAnalysis) -> Figure:
     """Each joint type's motors' power against the phase: mechanical and copper loss."""
-    electrical, actuators = _need(analysis)
+    electrical, _ = _need(analysis)
     fig = new_figure(3.2)
     axes = fig.subplots(1, 3, sharey=True)
     phase = analysis.times / analysis.gait.period
     for j, (ax, joint) in enumerate(zip(axes, LEG_JOINTS, strict=True)):
-        copper = (electrical.current[:, :, j] ** 2 * actuators[j].resistance).sum(axis=1)
+        copper = (electrical.current[:, :, j] ** 2 * _bus(analysis, j)[1]).sum(axis=1)
         mechanical = electrical.electrical_power[:, :, j].sum(axis=1) - copper
         ax.fill_between(phase, 0.0, copper, color=COLORS[3], alpha=0.35, label="copper loss i²R")
         ax.plot(phase, mechanical, color=COLORS[0], lw=1.5, label="mechanical τ_m·ω_m")
@@ -158,8 +167,9 @@ def _off_axes(actuator: Actuator, analysis: GaitAnalysis, j: int) -> list[str]:
     off = [f"{what} {torque:.3g} N·m" for torque, what, _ in _torques(actuator) if torque > top]
     if actuator.rated_speed > right:
         off.append(f"speed rating {actuator.rated_speed:.3g} rad/s")
-    if voltage_speed(actuator, top) > right:
-        off.append(f"voltage line past {voltage_speed(actuator, top):.3g} rad/s")
+    past = voltage_speed(actuator, top, *_bus(analysis, j))
+    if past > right:
+        off.append(f"voltage line past {past:.3g} rad/s")
     return off
 
 
@@ -167,6 +177,7 @@ def _envelope(ax: Axes, actuator: Actuator, analysis: GaitAnalysis, j: int) -> N
     """The samples, one colour per leg, and the ratings on the axes of :func:`_reach`."""
     speeds, torques = _samples(analysis, j)
     right, top = _reach(actuator, analysis, j)
+    bus, resistance = _bus(analysis, j)
     for i, leg in enumerate(analysis.legs):
         ax.scatter(speeds[:, i], torques[:, i], s=4, color=COLORS[i % len(COLORS)],
                    label=leg)  # fmt: skip
@@ -175,10 +186,11 @@ def _envelope(ax: Axes, actuator: Actuator, analysis: GaitAnalysis, j: int) -> N
             ax.axhline(torque, color="k", ls=style, lw=1.1, label=what)
     if actuator.rated_speed <= right:
         ax.axvline(actuator.rated_speed, color="k", ls=":", lw=1.0, label="speed rating")
-    if voltage_speed(actuator, top) <= right:
+    if voltage_speed(actuator, top, bus, resistance) <= right:
         grid = np.linspace(0.0, right, 200)
-        ax.plot(grid, np.minimum(voltage_line(actuator, grid), 2 * top), color="k", ls="-.",
-                lw=1.1, label="voltage line (supply V)")  # fmt: skip
+        line = voltage_line(actuator, grid, bus, resistance)
+        ax.plot(grid, np.minimum(line, 2 * top), color="k", ls="-.", lw=1.1,
+                label=f"voltage line ({bus:g} V bus)")  # fmt: skip
     ax.set_xlim(0, right)
     ax.set_ylim(0, top)
     ax.grid(True, alpha=0.3)

@@ -88,8 +88,10 @@ def section(data: ReportData) -> Section:
         (
             f"Walking {walked.gait.named} ({walked.gait.pattern} at {walked.gait.speed:.2g} m/s), "
             f"the robot weighs {significant(walked.mass)} kg with its motors "
-            f"({significant(actuators.total_mass)} kg){_battery_mass(data)}. Each joint "
-            "type's actuator:",
+            f"({significant(actuators.total_mass)} kg){_battery_mass(data)}. Every motor is "
+            f"fed from one {electrical.supply:g} V bus, its windings at "
+            f"{electrical.winding_temperature:g} °C (R below at that temperature). Each joint "
+            "type's actuator (V: the supply its datasheet quotes):",
             _actuator_table(actuators),
             *_controller_blocks(data, walked),
             "Every margin to the ratings, worst leg of each joint type (ratio above 1: over "
@@ -99,7 +101,7 @@ def section(data: ReportData) -> Section:
             Figure(POWER, "Each joint type's six motors' power over the period: the shafts' "
                    "mechanical power τ_m·ω_m, the copper loss i²R, and their sum P_e"),
             Figure(ENVELOPE, "Every sample's joint speed and torque over its motor's envelope: "
-                   "peak and continuous torque, speed rating and the supply's voltage line"),
+                   "peak and continuous torque, speed rating and the bus's voltage line"),
         ),
     )  # fmt: skip
 
@@ -141,10 +143,10 @@ def _actuator_table(actuators: Actuators) -> str:
               "V [V]", "speed [rad/s]", "mass [kg]"]  # fmt: skip
     rows = [
         [joint, a.catalog or "given", f"{a.gear_ratio:g}", significant(a.torque_constant),
-         significant(a.resistance), significant(a.gearbox_efficiency),
+         significant(r), significant(a.gearbox_efficiency),
          f"{significant(a.peak_torque)} / {significant(a.continuous_torque)}",
          f"{a.voltage:g}", significant(a.rated_speed), significant(a.mass)]
-        for joint, a in zip(LEG_JOINTS, actuators.joints, strict=True)
+        for joint, a, r in zip(LEG_JOINTS, actuators.joints, actuators.resistances, strict=True)
     ]  # fmt: skip
     return table(header, rows)
 
@@ -154,7 +156,7 @@ def _margin_table(electrical: ElectricalResult) -> str:
     worst = ratings.ratios.max(axis=1)  # (4, 3): each quantity's worst leg per joint type
     values = ratings.values.max(axis=1)
     units = {"peak_torque": "N·m", "continuous_torque": "N·m", "voltage": "V", "speed": "rad/s"}
-    names = {"continuous_torque": "RMS torque / continuous", "voltage": "voltage needed / supply"}
+    names = {"continuous_torque": "RMS torque / continuous", "voltage": "voltage needed / bus"}
     rows = [
         [names.get(quantity, quantity.replace("_", " ") + " / rating") + f" [{units[quantity]}]"]
         + [
