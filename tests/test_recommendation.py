@@ -193,3 +193,40 @@ def test_the_report_table_gives_a_reason_where_a_coxa_ratio_has_no_leg_that_walk
     for row, l1_ratio in zip(rows[1:], R1[1:], strict=True):  # the others as the rule has them
         assert row[-1] == f"{max(_by_hand(l1_ratio, b) for b in R3):.4f}"
     assert len(RANKED_METRICS) + 3 == len(rows[1])
+
+
+def test_a_payload_no_leg_walks_with_ranks_the_legs_walking_unloaded_and_says_so(monkeypatch):
+    from hexaleg.evaluation.requirements import Requirements
+    from hexaleg.output.report import recommendation as part
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.study.recommendation import NothingToRecommend, Recommendation
+
+    asked: list[WalkingConstraint] = []
+    leg = SimpleNamespace(
+        l1_ratio=0.1,
+        l3_ratio=0.45,
+        design=SimpleNamespace(lengths=(0.1, 0.45, 0.45)),
+        evaluation=SimpleNamespace(metrics=YOURS),
+    )
+
+    def searched(data, constraint):
+        asked.append(constraint)
+        if constraint.payload > 0:
+            raise NothingToRecommend("no allowed leg walks the gait carrying 500 kg")
+        return Recommendation(leg, leg, leg, (0.45, 0.45), (), (), constraint,  # type: ignore[arg-type]
+                              pd.DataFrame(), pd.DataFrame(), 0)  # fmt: skip
+
+    monkeypatch.setattr(part, "_recommended", searched)
+    options = ReportOptions(requirements=Requirements(payload=500.0))
+    data = SimpleNamespace(options=options, design=SimpleNamespace(leg_length=1.0))
+    rec = part.compute(data).recommendation  # type: ignore[arg-type]
+    assert asked == [WalkingConstraint(500.0), WalkingConstraint()]
+    assert rec.relaxed == WalkingConstraint(500.0) and rec.constraint == WalkingConstraint()
+    said = part.relaxed_text(rec)
+    assert "carrying 500 kg" in said and "unloaded" in said
+    asked.clear()
+    unloaded = SimpleNamespace(options=ReportOptions(), design=data.design)
+    monkeypatch.setattr(part, "_recommended", lambda d, c: (_ for _ in ()).throw(
+        NothingToRecommend("none")))  # fmt: skip
+    with pytest.raises(NothingToRecommend):  # nothing to relax: the report says why it stops
+        part.compute(unloaded)  # type: ignore[arg-type]

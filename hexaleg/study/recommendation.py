@@ -67,6 +67,10 @@ kinematic metric improves as the coxa shrinks, so unless the user fixes the coxa
 recommendation is made among coxa ratios at least this large."""
 
 
+class NothingToRecommend(HexalegError):
+    """No allowed leg meets the ranking's constraint."""
+
+
 @dataclass(frozen=True)
 class DecisionOptions:
     """What the decision may choose from, and what every leg must do.
@@ -167,6 +171,8 @@ class Recommendation:
         scores: Every grid leg's metrics, relative to yours, whether it meets the
             constraint, and its score.
         evaluations: Legs measured by the searches and the profiles.
+        relaxed: The constraint asked for, when no allowed leg met it and the legs were
+            ranked by :attr:`constraint` instead (walking the gait unloaded).
 
     """
 
@@ -180,6 +186,7 @@ class Recommendation:
     peaks: pd.DataFrame
     scores: pd.DataFrame
     evaluations: int
+    relaxed: WalkingConstraint | None = None
 
     @property
     def l1_ratio(self) -> float:
@@ -488,7 +495,7 @@ def recommendation(
         executor: Where the searches run.
 
     Raises:
-        HexalegError: No allowed leg meets the constraint.
+        NothingToRecommend: No allowed leg meets the constraint.
 
     """
     reposed, searched, count = recommend(searching, options, executor)
@@ -496,9 +503,9 @@ def recommendation(
     legs.know((reposed, *searched))
     settled_legs = [settled(legs, leg, searching.l3_range) for leg in searched if leg.ranked]
     if not settled_legs:
-        raise HexalegError(
-            f"no allowed leg {options.constraint.describe()} ({options.describe_candidates()}):"
-            " nothing to recommend"
+        raise NothingToRecommend(
+            f"no allowed leg {searching.constraint.describe()} "
+            f"({options.describe_candidates()}): nothing to recommend"
         )
     best, profile = max(settled_legs, key=lambda found: found[0].score)
     return Recommendation(

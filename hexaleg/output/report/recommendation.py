@@ -10,7 +10,7 @@ design. The recommended leg and your lengths re-posed are searched with their po
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any
 
@@ -23,10 +23,11 @@ from hexaleg.output.report.yours import YoursRecord, report_metrics
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.best_leg import Leg, ranked_leg
 from hexaleg.study.executors import local_pool
-from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, rule_note
+from hexaleg.study.ranking import RANKED_METRICS, RANKING_RULE, WalkingConstraint, rule_note
 from hexaleg.study.recommendation import (
     BAND,
     CLIFF_MARGIN,
+    NothingToRecommend,
     Recommendation,
     Searching,
     grid_ranking,
@@ -53,23 +54,38 @@ class RecommendationRecord:
 
 
 def compute(data: ReportData) -> RecommendationRecord:
-    """Search the recommended leg and your best posture; rank the study's grid."""
+    """Search the recommended leg and your best posture; rank the study's grid.
+
+    Every ranked leg walks the gait carrying the required payload; if no allowed leg can,
+    the legs are ranked walking it unloaded, and the recommendation says so.
+    """
+    constraint = data.options.decision.constraint
+    try:
+        rec = _recommended(data, constraint)
+    except NothingToRecommend:
+        if constraint.payload == 0:
+            raise
+        rec = replace(_recommended(data, WalkingConstraint()), relaxed=constraint)
+    best = rec.best
+    row = StudyRow(best.l1_ratio, best.l3_ratio, best.design.lengths, best.evaluation.metrics)
+    return RecommendationRecord(rec, data.design.leg_length, row)
+
+
+def _recommended(data: ReportData, constraint: WalkingConstraint) -> Recommendation:
+    """The recommendation with every ranked leg meeting ``constraint``."""
     yours, options = data[YoursRecord], data.options.decision
     reference = yours.evaluation.metrics
-    mine = ranked_leg(data.robot, yours.evaluation, options.constraint, reference)
+    mine = ranked_leg(data.robot, yours.evaluation, constraint, reference)
     grid = grid_ranking(
         data[ManipulabilityRecord].average_map,
         data[StudyRecord].table,
         reference,
-        options.constraint,
+        constraint,
         data.design.leg_length,
     )
-    searching = Searching(yours.spec, report_metrics(data.design), options.constraint, mine)
+    searching = Searching(yours.spec, report_metrics(data.design), constraint, mine)
     with local_pool(data.options.workers) as pool:
-        rec = recommendation(searching, options, grid, pool)
-    best = rec.best
-    row = StudyRow(best.l1_ratio, best.l3_ratio, best.design.lengths, best.evaluation.metrics)
-    return RecommendationRecord(rec, data.design.leg_length, row)
+        return recommendation(searching, options, grid, pool)
 
 
 def section(data: ReportData) -> Section:
@@ -134,11 +150,22 @@ def _answer(rec: Recommendation, total: float) -> str:
     )
 
 
+def relaxed_text(rec: Recommendation) -> str:
+    """Why the ranking walks the gait unloaded though a payload was required (or nothing)."""
+    if rec.relaxed is None:
+        return ""
+    return (
+        f"No allowed leg {rec.relaxed.describe()}, even at its best posture: the legs are "
+        f"ranked by what they can do, {rec.constraint.describe()}. "
+    )
+
+
 def band_text(rec: Recommendation) -> str:
     """The band in words, where the cliffs beside it are, and any step back from one."""
     low, high = rec.l3_band
     margin = f"{CLIFF_MARGIN:.2f} ({CLIFF_MARGIN:.0%} of the leg)"
-    text = (
+    text = relaxed_text(rec)
+    text += (
         f"At this coxa ratio and posture, any tibia ratio in {ratio_text(low)}–"
         f"{ratio_text(high)} keeps ≥ {BAND:.0%} of its score, still {rec.constraint.describe()} "
         f"and lies at least {margin} from a cliff where that stops holding."
@@ -212,6 +239,7 @@ def to_json(record: RecommendationRecord) -> dict[str, Any]:
         "recommendation": {
             "rule": RANKING_RULE,
             "constraint": {"payload": rec.constraint.payload, "words": rec.constraint.describe()},
+            "relaxed_from": None if rec.relaxed is None else rec.relaxed.payload,
             "l1_ratio": rec.l1_ratio,
             "l2_ratio": rec.l2_ratio,
             "l3_ratio": rec.l3_ratio,

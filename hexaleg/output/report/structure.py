@@ -51,7 +51,7 @@ def segment_rows(check: StructureCheck) -> list[tuple[str, ...]]:
     """Each segment: its tube, its mass, its worst stress ratio and where (leg, load case)."""
     masses = segment_masses(check.structure, check.lengths, math.nan)
     ratios = check.ratios  # (cases, legs, segments)
-    rows = []
+    rows: list[tuple[str, ...]] = []
     for j, (segment, tube) in enumerate(zip(LEG_SEGMENTS, check.structure.tubes, strict=True)):
         case, leg = np.unravel_index(int(ratios[:, :, j].argmax()), ratios.shape[:2])
         worst = float(ratios[case, leg, j])
