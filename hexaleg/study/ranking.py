@@ -112,10 +112,14 @@ class WalkingConstraint:
         walks = table["walks"].fillna(False).astype(bool)
         return walks & (table[WALKING.name].astype(float) >= self.payload)
 
-    def describe(self) -> str:
-        """The constraint in words: ``"walks the gait unloaded within every rating"``."""
+    def describe(self, plural: bool = False) -> str:
+        """The constraint in words: ``"walks the gait unloaded within every rating, …"``.
+
+        ``plural``: for several legs (``"walk the gait …"``).
+        """
         carrying = "unloaded" if self.payload == 0 else f"carrying {self.payload:g} kg"
-        return f"walks the gait {carrying} within every rating, its ZMP inside the standing feet"
+        verb = "walk" if plural else "walks"
+        return f"{verb} the gait {carrying} within every rating, its ZMP inside the standing feet"
 
 
 def scored_metrics(reference: Metrics) -> tuple[MetricSpec, ...]:

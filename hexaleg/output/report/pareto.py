@@ -68,7 +68,7 @@ def section(data: ReportData) -> Section:
         (
             f"Among the sweep's designs at the allowed coxa ratios (as in section "
             f"{recommended}), each at your posture, {len(front)} "
-            f"{rec.constraint.describe().replace('walks', 'walk', 1)} ({data.options.gait.named})"
+            f"{rec.constraint.describe(plural=True)} ({data.options.gait.named})"
             " and are beaten by no other in improved area, w_A and FB at once (their walking "
             "payload is shown, not ranked: walking is the constraint). The grid is dense and "
             "every metric on it exact, so the front is read off it directly (no evolutionary "

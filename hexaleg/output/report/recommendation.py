@@ -98,7 +98,7 @@ def section(data: ReportData) -> Section:
         (
             f"Every leg is ranked by one rule: {RANKING_RULE}.{' ' + note if note else ''} "
             f"The design study stands every leg at your posture; among its legs that "
-            f"{rec.constraint.describe()}, where each metric and the score peak (the "
+            f"{rec.constraint.describe(plural=True)}, where each metric and the score peak (the "
             "kinematic metrics' own peaks over every leg are in sections "
             f"{data.number(ManipulabilityRecord)} and {data.number(StudyRecord)}), and the "
             "best score each coxa ratio reaches:",

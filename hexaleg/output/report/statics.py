@@ -79,7 +79,8 @@ def section(data: ReportData) -> Section:
                 "study_statics",
                 "Every design of the sweep: largest hip and knee torque standing, beside their "
                 "ratings, and the standing and walking payload capacity (log scale), against "
-                "tibia ratio for each coxa ratio; your design and the recommended one marked",
+                "tibia ratio for each coxa ratio; your design and the recommended leg (at its "
+                "own posture) marked",
             ),
         ),
     )

@@ -84,7 +84,8 @@ def section(data: ReportData) -> Section:
             "flexibility_fb",
             "Body flexibility FB against tibia ratio, for each coxa ratio, its grid peaks "
             "marked and its flat top (within 1 % of the peak) thickened; the band is the "
-            "paper's claim (the paper's Fig 15); your design (and the recommended one) marked",
+            "paper's claim (the paper's Fig 15); your design (and the recommended leg, at its "
+            "own posture) marked",
         ),
         table(
             ["l1 ratio", f"FB peak l3 ratio ({data.options.l3_points}-point grid)", "peak FB"],

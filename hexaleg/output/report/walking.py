@@ -89,7 +89,7 @@ def section(data: ReportData) -> Section:
                 "torque beside their ratings, "
                 "mechanical cost of transport and walking payload capacity against the tibia "
                 "ratio, for each coxa ratio (gaps: designs that cannot walk it unloaded); your "
-                "design and the recommended one marked",
+                "design and the recommended leg (at its own posture) marked",
             ),
         ),
     )
