@@ -9,6 +9,7 @@ transport against the tibia ratio per coxa ratio.
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -202,6 +203,10 @@ def walking_study_figure(
                     label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
         magnitude_axis(ax, values)
+        marked = [float(m.values[column]) for m in marks if column in m.values]
+        finite = [v for v in marked if math.isfinite(v)]
+        if finite and 1.06 * max(finite) > ax.get_ylim()[1]:  # a mark off the curves: shown
+            ax.set_ylim(0.0, 1.06 * max(finite))
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
@@ -211,10 +216,10 @@ def walking_study_figure(
         ax.set_xlabel("tibia ratio l3 / L [-]")
     fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
                fontsize=7.5)  # fmt: skip
+    posed = f"\n{standing}" if standing else ""
     fig.suptitle(
-        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s"
-        f"{', ' + standing if standing else ''}\n(gaps: designs that cannot walk it unloaded "
-        "within their ratings)"
+        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s{posed}\n(gaps: "
+        "designs that cannot walk it unloaded within their ratings)"
     )
     return fig
 

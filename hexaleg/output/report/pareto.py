@@ -68,8 +68,9 @@ def section(data: ReportData) -> Section:
         (
             f"Among the sweep's designs at the allowed coxa ratios (as in section "
             f"{recommended}), each at your posture, {len(front)} "
-            f"{rec.constraint.describe(plural=True)} ({data.options.gait.named})"
-            " and are beaten by no other in improved area, w_A and FB at once (their walking "
+            f"{rec.constraint.describe(plural=len(front) != 1)} ({data.options.gait.named})"
+            f" and {'are' if len(front) != 1 else 'is'} beaten by no other in improved area, "
+            "w_A and FB at once (their walking "
             "payload is shown, not ranked: walking is the constraint). The grid is dense and "
             "every metric on it exact, so the front is read off it directly (no evolutionary "
             f"search could be more exact). The front is ranked by the rule of section "
