@@ -25,7 +25,7 @@ from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.recommendation import RANKED_GRID, RecommendationRecord, band_text
 from hexaleg.output.report.requirements import requirement_blocks
 from hexaleg.output.report.robot import answer_lines, requirements_answer
-from hexaleg.output.report.yours import report_metrics
+from hexaleg.output.report.yours import YoursRecord, report_metrics
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.ratios import proportions_text, ratio_text
 from hexaleg.study.best_leg import Leg
@@ -89,6 +89,7 @@ def section(data: ReportData) -> Section:
             f"best posture and walking {gait.named} ({gait.pattern} at {gait.speed:.2g} m/s). "
             f"{band_text(rec)} {_reposed(rec)} All three keep your body, mounts and ratings; "
             f"what changes is below. {departure(rec)}",
+            _measured_under(data),
             table(
                 [
                     "",
@@ -103,6 +104,23 @@ def section(data: ReportData) -> Section:
             f"(section {data.number(RecommendationRecord)}) and the Pareto front (section "
             f"{data.number(ParetoRecord)}): {RANKING_RULE}.{' ' + note if note else ''}",
         ),
+    )
+
+
+def _measured_under(data: ReportData) -> str:
+    """What the three legs below are measured under (the requirements' answer: under them)."""
+    conditions = data[YoursRecord].spec.conditions
+    slope = conditions.slope
+    ground = "level ground" if not slope else f"a {slope:.3g} rad slope"
+    mass = conditions.payload.mass
+    payload = "no payload" if mass == 0 else f"{mass:g} kg"
+    above = (
+        "" if data[DecisionRecord].requirements is None
+        else " (the answer to your requirements above is measured under them)"
+    )  # fmt: skip
+    return (
+        f"Each leg below stands at its own posture on {ground}, carrying {payload} and walking "
+        f"{data.options.gait.named}{above}:"
     )
 
 
@@ -247,7 +265,7 @@ PART = Part(
     DecisionRecord,
     compute,
     section,
-    needs=(RecommendationRecord,),
+    needs=(RecommendationRecord, YoursRecord),
     step="decision",
     json=to_json,
     level=0,
