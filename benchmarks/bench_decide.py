@@ -150,3 +150,89 @@ def bench_decide_actuators(evaluations: int | None) -> list[Row]:
             "with free ratios / choosing only",
         ),
     ]
+
+
+def _timed_pair(requirements, first, second, budget):
+    """Two decisions of the same requirements in one warm pool: (seconds, result) each.
+
+    ``first`` and ``second``: (design, decide's keyword arguments); ``budget(options)``: each
+    search's designs (``None``: decide's default budget).
+    """
+    results = []
+    with ProcessPoolExecutor(2) as pool:
+        pool.submit(int).result()  # workers started before timing, as a long-lived pool is
+        for design, options in (first, second):
+            settings = SearchSettings(seed=0, evaluations=budget(options))
+            start = time.perf_counter()
+            found = decide(design, requirements, settings=settings, executor=pool,
+                           progress=False, **options)  # fmt: skip
+            results.append((time.perf_counter() - start, found))
+    return results
+
+
+def _note(result) -> str:
+    best = result.best
+    return (
+        f"FB {best.evaluation.metrics.value(METRICS.fb):.5f} at l = "
+        f"({', '.join(f'{v:g}' for v in best.design.lengths)}) m, θ = "
+        f"({', '.join(f'{v:g}' for v in best.design.nominal_angles[1:])}) rad, "
+        f"{result.evaluations} designs + {result.rounded.measured} grid points, "
+        f"feasible {result.feasible}"
+    )
+
+
+def _compared(name, labels, timed, target, what) -> list[Row]:
+    """The baseline's row, then the compared decision's with the ratio of their times."""
+    (t_base, base), (t_other, other) = timed
+    ratio = t_other / t_base
+    return [
+        Row(name, labels[0], t_base, None, None, note=_note(base)),
+        Row(name, labels[1], t_other, ratio, None, target, note=f"ratio: {what}; {_note(other)}"),
+    ]
+
+
+def bench_decide_posture(generations: int | None) -> list[Row]:
+    """Decide with the posture free (the default) against the same decision with it fixed.
+
+    60 kg on 20° in every heading, FB maximized; each search its default budget (its
+    generations of 10 designs a free variable: 3 variables fixed, 5 free), or ``generations``
+    of them (quick). The target: free ≤ 1.5 × fixed, wall time of the whole decision.
+    """
+    requirements = Requirements(payload=60.0, slope=math.radians(20))
+    design = HexapodDesign()
+
+    def budget(options):
+        variables = 5 if options["free_posture"] else 3
+        return None if generations is None else generations * POPULATION_PER_VARIABLE * variables
+
+    timed = _timed_pair(
+        requirements, (design, {"free_posture": False}), (design, {"free_posture": True}), budget
+    )
+    labels = ("hexaleg decide --fixed-posture, 2 processes", "hexaleg decide (posture free)")
+    name = "decide, posture free vs fixed, payload + slope"
+    return _compared(name, labels, timed, "ratio ≤ 1.5", "free / fixed wall time")
+
+
+def bench_decide_sizing(generations: int | None) -> list[Row]:
+    """Decide sizing every candidate's tubes against the same decision without tubes.
+
+    The template's legs of 6061-T6 tubes sized per candidate (``[structure] size = true``,
+    hexaleg's tube grid) against its link_linear_density, the posture fixed; 60 kg on 20°,
+    FB maximized. The target: sized ≤ 2 × unsized, wall time of the whole decision.
+    """
+    from hexaleg.leg_structure import Structure
+    from hexaleg.materials import shipped_materials
+
+    requirements = Requirements(payload=60.0, slope=math.radians(20))
+    plain = HexapodDesign()
+    tubes = Structure(shipped_materials().material("aluminium_6061_t6"), size=True)
+    sized = plain.replace(structure=tubes)
+
+    def budget(_options):
+        return None if generations is None else generations * POPULATION_PER_VARIABLE * 3
+
+    fixed = {"free_posture": False}
+    timed = _timed_pair(requirements, (plain, fixed), (sized, fixed), budget)
+    labels = ("hexaleg decide, link density, 2 processes", "hexaleg decide, [structure] size")
+    name = "decide, tubes sized per candidate vs none"
+    return _compared(name, labels, timed, "ratio ≤ 2", "sized / unsized wall time")

@@ -14,7 +14,13 @@ import json
 import platform
 import sys
 
-from bench_decide import bench_decide, bench_decide_actuators, bench_decide_walking
+from bench_decide import (
+    bench_decide,
+    bench_decide_actuators,
+    bench_decide_posture,
+    bench_decide_sizing,
+    bench_decide_walking,
+)
 from bench_electrical import bench_electrical
 from bench_explore import bench_explore, bench_explore_robot
 from bench_flexibility import bench_dask, bench_flexibility
@@ -47,6 +53,8 @@ WORKLOADS = {
     "decide_actuators": lambda quick, r: bench_decide_actuators(120 if quick else None),
     "posture": lambda quick, r: bench_posture(1 if quick else r, grid=not quick),
     "structure": lambda quick, r: bench_structure(r),
+    "decide_posture": lambda quick, r: bench_decide_posture(2 if quick else None),
+    "decide_sizing": lambda quick, r: bench_decide_sizing(2 if quick else None),
 }
 
 

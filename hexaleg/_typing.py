@@ -44,12 +44,15 @@ CauseKind = Literal[
     "stability",
     "zmp",
     "search limit",
+    "strength",
+    "deflection",
 ]
 """What binds: a joint limit, a foothold out of reach, the ground, two of the robot's own
 parts touching, nothing within the searched range (extremes, gaits); a joint's torque or
 speed at its rating (payload capacity, gait speed); tipping over or sliding (slopes); the
 centre of mass leaving the support polygon (payload capacity), or a gait's zero-moment point
-leaving it (walking payload capacity); the search's own limit."""
+leaving it (walking payload capacity); the search's own limit; a leg tube at its strength
+or a foot at its deflection limit (the legs' structure)."""
 
 Controller = Literal["servo", "torque"]
 """How a simulated robot's joints follow a plan: stiff position servos (hobby servos), or

@@ -20,10 +20,8 @@ from __future__ import annotations
 import difflib
 import functools
 import math
-import sys
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from importlib import resources
 from pathlib import Path
 from typing import Any
 
@@ -36,14 +34,16 @@ from hexaleg.actuators import (
     Actuator,
     Actuators,
 )
+from hexaleg.catalog_file import (
+    NamedCatalog,
+    entry_tables,
+    load_catalog_file,
+    named_table,
+    shipped_file,
+)
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.table_records import ENTRY_NAME, record_from_table, require_table, unknown_name
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+from hexaleg.table_records import record_from_table, require_table
 
 ENTRY_TABLE = "actuator"
 """The catalog file's array of tables: ``[[actuator]]``."""
@@ -121,7 +121,7 @@ class CatalogEntry:
 
 
 @dataclass(frozen=True)
-class Catalog:
+class Catalog(NamedCatalog[CatalogEntry]):
     """Actuator catalog entries by name.
 
     Attributes:
@@ -129,34 +129,13 @@ class Catalog:
 
     """
 
-    entries: tuple[CatalogEntry, ...]
-
-    def __post_init__(self) -> None:
-        seen: set[str] = set()
-        for entry in self.entries:
-            if entry.name in seen:
-                raise ParameterError(
-                    f"{ENTRY_TABLE}.name", entry.name, "each name once (it is given twice)"
-                )
-            seen.add(entry.name)
-
-    def __iter__(self) -> Iterator[CatalogEntry]:
-        return iter(self.entries)
-
-    def __len__(self) -> int:
-        return len(self.entries)
-
-    @property
-    def names(self) -> tuple[str, ...]:
-        """Every entry's name, in order."""
-        return tuple(entry.name for entry in self.entries)
+    ENTRY_TABLE = ENTRY_TABLE
+    KIND = "actuator"
+    LISTED_BY = "hexaleg actuators"
 
     def entry(self, name: Any, field: str = "catalog") -> CatalogEntry:
         """The entry called ``name``; else a ParameterError naming ``field`` and the nearest."""
-        for entry in self.entries:
-            if entry.name == name:
-                return entry
-        raise unknown_name(field, name, self.names, "actuator", "hexaleg actuators lists them")
+        return self.find(name, field)
 
 
 def catalog_from_data(data: Mapping[str, Any]) -> Catalog:
@@ -166,30 +145,16 @@ def catalog_from_data(data: Mapping[str, Any]) -> Catalog:
         ParameterError: One line naming ``actuator.<name>.<key>`` and what is allowed.
 
     """
-    unknown = [key for key in data if key != ENTRY_TABLE]
-    if unknown:
-        allowed = f"a catalog holds [[{ENTRY_TABLE}]] tables only"
-        raise ParameterError(unknown[0], data[unknown[0]], allowed)
-    tables = data.get(ENTRY_TABLE, [])
-    if not isinstance(tables, list):
-        raise ParameterError(ENTRY_TABLE, tables, f"must be [[{ENTRY_TABLE}]] tables")
+    tables = entry_tables(data, ENTRY_TABLE)
     return Catalog(tuple(_entry(raw, index) for index, raw in enumerate(tables)))
 
 
 def _entry(raw: Any, index: int) -> CatalogEntry:
-    table = require_table(f"{ENTRY_TABLE}[{index}]", raw, "actuator keys")
-    name = table.get("name")
-    if not isinstance(name, str) or not ENTRY_NAME.fullmatch(name):
-        raise ParameterError(
-            f"{ENTRY_TABLE}[{index}].name", name, "lower-case letters, digits and '_'"
-        )
-    where = f"{ENTRY_TABLE}.{name}"
+    table, name, where = named_table(raw, index, ENTRY_TABLE, "actuator keys", TEXT_KEYS["source"])
     texts = {key: table[key] for key in TEXT_KEYS if key in table}
     for key, value in texts.items():
         if not isinstance(value, str) or not value.strip():
             raise ParameterError(f"{where}.{key}", value, f"must be text: {TEXT_KEYS[key]}")
-    if "source" not in texts:
-        raise ParameterError(f"{where}.source", None, f"is required: {TEXT_KEYS['source']}")
     values = {k: v for k, v in table.items() if k not in TEXT_KEYS and k != "gear_ratio_range"}
     if "catalog" in values:
         raise ParameterError(f"{where}.catalog", values["catalog"], "an entry names no catalog")
@@ -232,22 +197,12 @@ def load_catalog(path: str | Path) -> Catalog:
             one line naming the file and the key.
 
     """
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as err:
-        raise CatalogError(f"{path}: cannot read it ({err})") from None
-    except tomllib.TOMLDecodeError as err:
-        raise CatalogError(f"{path}: not valid TOML ({err})") from None
-    try:
-        return catalog_from_data(data)
-    except ParameterError as err:
-        raise CatalogError(f"{path}: {err}") from None
+    return load_catalog_file(path, catalog_from_data, CatalogError)
 
 
 def shipped_catalog_path() -> Path:
     """Where hexaleg's own catalog file is installed."""
-    return Path(str(resources.files("hexaleg") / "data" / "actuators.toml"))
+    return shipped_file("actuators.toml")
 
 
 @functools.cache

@@ -18,7 +18,6 @@ from typing import Any, cast
 
 from hexaleg._checks import require_instance
 from hexaleg.actuators import Actuators
-from hexaleg.exceptions import ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
 from hexaleg.table_records import REQUIRED, check_record, record_from_table
 
@@ -35,6 +34,9 @@ DEFAULT_RESERVE = 0.2
 """Share of the capacity kept in reserve by default [-]: hexaleg's choice, not a datasheet's
 (a pack left a fifth charged is spared deep discharge and keeps the robot able to walk
 home); set ``reserve = 0`` to count the whole capacity."""
+RESERVE_RANGE = (0.0, 0.99)
+"""A reserve's range [-]: none kept, up to all but a hundredth (a whole capacity kept in
+reserve leaves nothing to walk on)."""
 
 
 @dataclass(frozen=True)
@@ -65,14 +67,12 @@ class Battery:
     )
     reserve: float = declare(
         DEFAULT_RESERVE, "share of the capacity never used (runtime and range count the "
-        "rest), in [0, 1)", "-", (0.0, 1.0),
+        "rest)", "-", RESERVE_RANGE,
     )
     # fmt: on
 
     def __post_init__(self) -> None:
         check_record(self, BATTERY_FIELDS)
-        if not self.reserve < 1.0:
-            raise ParameterError("reserve", self.reserve, "must lie in [0, 1) [-]")
 
     @property
     def usable(self) -> float:

@@ -29,13 +29,15 @@ class Cause:
             tangent reaches the friction coefficient; with ``leg``, that standing foot's
             force leaves the friction cone walking), ``"stability"`` (the centre of
             mass leaves the support polygon), ``"zmp"`` (a gait's zero-moment point leaves
-            the standing feet's polygon) or ``"search limit"`` (nothing binds below the
-            search's own bound).
+            the standing feet's polygon), ``"search limit"`` (nothing binds below the
+            search's own bound), ``"strength"`` (a leg tube's stress at its strength /
+            safety factor) or ``"deflection"`` (a foot's deflection at its limit).
         leg: Leg name, for joint, reach, torque, speed, voltage and a leg's ground and
             slide causes.
         joint: ``"root"``, ``"hip"`` or ``"knee"``, for joint, torque, speed and voltage causes.
         bound: ``"lower"``/``"upper"`` for joints, ``"outer"``/``"inner"`` for reach.
         links: The two links that touch, for collision causes.
+        segment: ``"coxa"``, ``"femur"`` or ``"tibia"``, for strength causes.
 
     """
 
@@ -44,6 +46,7 @@ class Cause:
     joint: str | None = None
     bound: str | None = None
     links: tuple[str, str] | None = None
+    segment: str | None = None
 
     def __str__(self) -> str:
         if self.kind == "joint":
@@ -61,6 +64,10 @@ class Cause:
             return f"{self.leg} {self.joint} motor's voltage at the supply's"
         if self.kind == "slide" and self.leg:
             return f"{self.leg} foot slides (friction cone)"
+        if self.kind == "strength":
+            return f"{self.leg} {self.segment} at its strength / safety factor"
+        if self.kind == "deflection":
+            return f"{self.leg} foot's deflection at its limit"
         if self.kind == "zmp":
             return "ZMP leaves the support polygon"
         if self.kind in ("tip", "slide", "stability", "search limit"):
@@ -80,6 +87,7 @@ class Cause:
             "joint": self.joint,
             "bound": self.bound,
             "links": list(self.links) if self.links else None,
+            "segment": self.segment,
             "description": str(self),
         }
 
@@ -93,11 +101,11 @@ class Cause:
         """
         if not isinstance(record, dict):
             raise ValueError("a cause is a JSON object")
-        names = {key: record.get(key) for key in ("leg", "joint", "bound")}
+        names = {key: record.get(key) for key in ("leg", "joint", "bound", "segment")}
         links = record.get("links")
         pair = links is None or (isinstance(links, list) and len(links) == 2)
         texts = [*names.values(), *(links if isinstance(links, list) else [])]
         if not pair or not all(text is None or isinstance(text, str) for text in texts):
-            raise ValueError("a cause names its leg, joint, bound and two links in text")
+            raise ValueError("a cause names its leg, joint, bound, segment and links in text")
         kind = require_choice("kind", record.get("kind"), CauseKind)
         return cls(kind, **names, links=None if links is None else (links[0], links[1]))

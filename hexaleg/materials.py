@@ -18,28 +18,21 @@ from __future__ import annotations
 
 import dataclasses
 import functools
-import sys
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass
-from importlib import resources
 from pathlib import Path
 from typing import Any, cast
 
+from hexaleg.catalog_file import (
+    NamedCatalog,
+    entry_tables,
+    load_catalog_file,
+    named_table,
+    shipped_file,
+)
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.field_spec import FieldSpec, attributes_section, declare, field_specs
-from hexaleg.table_records import (
-    ENTRY_NAME,
-    REQUIRED,
-    check_record,
-    record_from_table,
-    require_table,
-    unknown_name,
-)
-
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
+from hexaleg.table_records import REQUIRED, check_record, record_from_table, require_table
 
 ENTRY_TABLE = "material"
 """The catalog file's array of tables: ``[[material]]``."""
@@ -133,7 +126,7 @@ class MaterialCatalogError(HexalegError):
 
 
 @dataclass(frozen=True)
-class MaterialCatalog:
+class MaterialCatalog(NamedCatalog[Material]):
     """Materials by name, in the catalog's order (each name once).
 
     Attributes:
@@ -141,34 +134,13 @@ class MaterialCatalog:
 
     """
 
-    entries: tuple[Material, ...]
-
-    def __post_init__(self) -> None:
-        seen: set[str] = set()
-        for entry in self.entries:
-            if entry.name in seen:
-                raise ParameterError(
-                    f"{ENTRY_TABLE}.name", entry.name, "each name once (it is given twice)"
-                )
-            seen.add(entry.name)
-
-    def __iter__(self) -> Iterator[Material]:
-        return iter(self.entries)
-
-    def __len__(self) -> int:
-        return len(self.entries)
-
-    @property
-    def names(self) -> tuple[str, ...]:
-        """Every entry's name, in order."""
-        return tuple(entry.name for entry in self.entries)
+    ENTRY_TABLE = ENTRY_TABLE
+    KIND = "material"
+    LISTED_BY = "hexaleg materials"
 
     def material(self, name: Any, field: str = "material") -> Material:
         """The material called ``name``; else a ParameterError naming ``field`` and the nearest."""
-        for entry in self.entries:
-            if entry.name == name:
-                return entry
-        raise unknown_name(field, name, self.names, "material", "hexaleg materials lists them")
+        return self.find(name, field)
 
 
 def catalog_from_data(data: Mapping[str, Any]) -> MaterialCatalog:
@@ -178,26 +150,12 @@ def catalog_from_data(data: Mapping[str, Any]) -> MaterialCatalog:
         ParameterError: One line naming ``material.<name>.<key>`` and what is allowed.
 
     """
-    unknown = [key for key in data if key != ENTRY_TABLE]
-    if unknown:
-        allowed = f"a catalog holds [[{ENTRY_TABLE}]] tables only"
-        raise ParameterError(unknown[0], data[unknown[0]], allowed)
-    tables = data.get(ENTRY_TABLE, [])
-    if not isinstance(tables, list):
-        raise ParameterError(ENTRY_TABLE, tables, f"must be [[{ENTRY_TABLE}]] tables")
+    tables = entry_tables(data, ENTRY_TABLE)
     return MaterialCatalog(tuple(_entry(raw, index) for index, raw in enumerate(tables)))
 
 
 def _entry(raw: Any, index: int) -> Material:
-    table = require_table(f"{ENTRY_TABLE}[{index}]", raw, "material keys")
-    name = table.get("name")
-    if not isinstance(name, str) or not ENTRY_NAME.fullmatch(name):
-        raise ParameterError(
-            f"{ENTRY_TABLE}[{index}].name", name, "lower-case letters, digits and '_'"
-        )
-    where = f"{ENTRY_TABLE}.{name}"
-    if "source" not in table:
-        raise ParameterError(f"{where}.source", None, f"is required: {TEXT_KEYS['source']}")
+    table, _, where = named_table(raw, index, ENTRY_TABLE, "material keys", TEXT_KEYS["source"])
     return Material.from_table(table, where)
 
 
@@ -209,22 +167,12 @@ def load_materials(path: str | Path) -> MaterialCatalog:
             entry; one line naming the file and the key.
 
     """
-    path = Path(path)
-    try:
-        data = tomllib.loads(path.read_text(encoding="utf-8"))
-    except (OSError, UnicodeDecodeError) as err:
-        raise MaterialCatalogError(f"{path}: cannot read it ({err})") from None
-    except tomllib.TOMLDecodeError as err:
-        raise MaterialCatalogError(f"{path}: not valid TOML ({err})") from None
-    try:
-        return catalog_from_data(data)
-    except ParameterError as err:
-        raise MaterialCatalogError(f"{path}: {err}") from None
+    return load_catalog_file(path, catalog_from_data, MaterialCatalogError)
 
 
 def shipped_materials_path() -> Path:
     """Where hexaleg's own materials catalog is installed."""
-    return Path(str(resources.files("hexaleg") / "data" / "materials.toml"))
+    return shipped_file("materials.toml")
 
 
 @functools.cache

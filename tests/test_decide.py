@@ -29,10 +29,14 @@ from hexaleg.study.search_space import SEGMENT_FLOOR
 AREA = Objective("improved_area")
 
 
-def _decide(design, requirements, objective=AREA, **kwargs):
-    """A decision evaluated in this process (a thread), without a progress bar."""
+def _decide(design, requirements, objective=AREA, free_posture=False, **kwargs):
+    """A decision evaluated in this process (a thread), without a progress bar.
+
+    The posture fixed unless asked: the closed forms below hold at the design's posture.
+    """
     with ThreadPoolExecutor(1) as here:
-        return decide(design, requirements, objective, executor=here, progress=False, **kwargs)
+        return decide(design, requirements, objective, executor=here, progress=False,
+                      free_posture=free_posture, **kwargs)  # fmt: skip
 
 
 def _clearance(design):
@@ -47,7 +51,9 @@ def _clearance(design):
 @pytest.mark.parametrize("seed", [1, 2, 3])
 def test_search_finds_the_closed_form_optimum_of_a_random_problem(seed):
     """Largest improved area 2π·l2·l3/3 with l1 ≥ c, l1+l2+l3 ≤ L and a clearance h: the
-    best puts l1 = c and splits the rest evenly unless the tibia must be longer."""
+    best puts l1 = c and splits the rest evenly unless the tibia must be longer. On the 1 mm
+    grid, the best grid point: l1 the first millimetre at or above c, and of the tibias on the
+    grid long enough, the one whose femur (the millimetres left) gives the largest area."""
     rng = np.random.default_rng(seed)
     total, coxa = rng.uniform(0.6, 1.4), rng.uniform(0.05, 0.2)
     design = HexapodDesign(l1=coxa, l2=0.45 * total, l3=0.45 * total, body_height=0.1)
@@ -58,9 +64,17 @@ def test_search_finds_the_closed_form_optimum_of_a_random_problem(seed):
     best = 2 * math.pi * (total - coxa - tibia) * tibia / 3
     found = result.best.evaluation.metrics.improved_area
     assert result.feasible and all(c.met for c in result.best.checks)
-    assert found == pytest.approx(best, rel=5e-3) and found <= best * (1 + 1e-9)
+    assert found == pytest.approx(best, rel=1e-2) and found <= best * (1 + 1e-9)
+    mm = np.arange(1, 1401)  # every length on the grid [mm]
+    l1 = math.ceil(coxa * 1000 - 1e-9)
+    tibias = mm[mm >= (clearance + 0.05) * 1000]
+    femurs = np.floor(total * 1000 + 1e-9) - l1 - tibias
+    areas = 2 * math.pi * np.where(femurs > 0, femurs, 0) * tibias / 3 / 1e6
+    k = int(np.argmax(areas))
+    assert result.best.design.lengths == pytest.approx((l1 / 1e3, femurs[k] / 1e3, tibias[k] / 1e3))
+    assert found == pytest.approx(areas[k], rel=1e-12)
     binds = {c.name for c in result.best.checks if c.binds}
-    assert binds >= {"leg_length", "min_coxa"}
+    assert "leg_length" in binds
     assert result.bounds_binding == ()  # l1 at min_coxa: that requirement's row says it binds
     assert ("ground_clearance" in binds) == (clearance + 0.05 > (total - coxa) / 2)
 
@@ -71,7 +85,8 @@ def test_a_seed_gives_the_same_design_on_any_executor():
     settings = SearchSettings(seed=5, evaluations=240)
     here = _decide(design, requirements, settings=settings)
     with local_pool(2) as pool:
-        there = decide(design, requirements, AREA, settings=settings, executor=pool)
+        there = decide(design, requirements, AREA, settings=settings, executor=pool,
+                       free_posture=False)  # fmt: skip
     assert here.best.design == there.best.design
     assert here.to_dict() == there.to_dict()
 
@@ -219,16 +234,19 @@ def test_the_search_fast_path_measures_as_the_exact_one():
 
 
 def test_the_json_answer_has_exactly_the_documented_fields():
-    result = _decide(HexapodDesign(), Requirements(ground_clearance=0.3),
-                     settings=SearchSettings(evaluations=90))  # fmt: skip
+    result = _decide(HexapodDesign(), Requirements(ground_clearance=0.3), free_posture=True,
+                     settings=SearchSettings(evaluations=100))  # fmt: skip
     out = result.to_dict()
-    assert set(out) == {"requirements", "best", "yours", "feasible", "search"}
-    assert set(out["best"]) >= {"design", "objective", "bounds_binding"}
-    assert set(out["best"]["objective"]) >= {"name", "value"}
-    assert set(out["yours"]) >= {"design", "requirements"}
+    assert set(out) == {"requirements", "best", "yours", "feasible", "rounded", "search"}
+    posture = {"nominal_angles", "nominal_height", "foothold_radius"}
+    assert set(out["best"]) >= {"design", "objective", "bounds_binding"} | posture
+    assert set(out["best"]["objective"]) >= {"name", "value", "limited_by"}
+    assert set(out["yours"]) >= {"design", "requirements"} | posture
     assert set(out["search"]) >= {"method", "evaluations", "seed"}
+    assert set(out["rounded"]) == {"resolution", "angle_step", "searched", "grid_points_measured"}
+    assert set(out["rounded"]["searched"]) == {"l1", "l2", "l3", "theta2", "theta3"}
     for entry in out["requirements"].values():
-        assert set(entry) >= {"required", "value", "margin", "binds"}
+        assert set(entry) >= {"required", "value", "margin", "binds", "at_limit"}
     for entry in out["yours"]["requirements"].values():
         assert set(entry) >= {"required", "value", "margin", "met"}
     json.dumps(out, allow_nan=False)
@@ -261,7 +279,7 @@ def test_decide_command_prints_json_and_reads_the_design_file_table(tmp_path, ca
     path = tmp_path / "robot.toml"
     path.write_text("l1 = 0.15\n\n[requirements]\nground_clearance = 0.3\nmin_coxa = 0.1\n")
     argv = ["decide", "--design", str(path), "--maximize", "improved_area", "--min-coxa", "0.12",
-            "--evaluations", "90", "--workers", "1", "--json"]  # fmt: skip
+            "--evaluations", "100", "--workers", "1", "--json"]  # fmt: skip
     assert run_cli(argv) == 0
     out = json.loads(capsys.readouterr().out)
     assert out["feasible"] is True
@@ -281,6 +299,15 @@ def test_decide_command_prints_json_and_reads_the_design_file_table(tmp_path, ca
         (["--free", "wheels=1:2"], "a field among"),
         (["--speed", "50"], "--speed = 50 is not valid"),
         (["--step-height", "0.1"], "needs a speed"),
+        (
+            ["--walking-slope-deg", "61"],
+            "--walking-slope-deg = 61 is not valid: must lie in [0, 60]",
+        ),
+        (
+            ["--motor-safety-factor", "0.9"],
+            "--motor-safety-factor = 0.9 is not valid: must lie in [1, 100]",
+        ),
+        (["--resolution", "0"], "--resolution = 0 is not valid: must lie in [1e-06, 0.1] [m]"),
     ],
 )
 def test_decide_refuses_bad_input_in_one_line(argv, words, capsys):

@@ -71,9 +71,16 @@ def _oracle(design: HexapodDesign) -> dict[str, float]:
         },
         "nominal_height": float(HexapodModel(design).nominal_base_pose().translation[2]),
         "stability_margin": loads.nominal.stability_margin,
-        # no actuators: nothing through the motors (test_motors_study has a design with them)
+        # no actuators: nothing through the motors (test_motors_study has a design with them);
+        # no [structure]: no tubes to load
         **dict.fromkeys(
-            ("energy_per_km", "electrical_cost_of_transport", "continuous_load", "battery_range"),
+            (
+                "energy_per_km",
+                "electrical_cost_of_transport",
+                "continuous_load",
+                "battery_range",
+                "structure_load",
+            ),
             math.nan,
         ),
     }

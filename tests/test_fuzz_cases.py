@@ -214,13 +214,15 @@ CASES = [
          ["decide", "--free", "l1=0.1:0.2", "--free", "l1=0.1:0.3"],
          "--free = 'l1=0.1:0.3' is not valid: l1 is given twice"),
     Case("decide --free body_height=50:100: no design can stand", {},
-         ["decide", "--free", "body_height=50:100", "--evaluations", "80", "--workers", "1"],
+         ["decide", "--fixed-posture", "--free", "body_height=50:100", "--evaluations", "80",
+          "--workers", "1"],
          "no design within the search bounds (l1 0.02:1, l2 0.02:1, l3 0.02:1, body_height "
          "50:100) can be measured: nominal_angles"),
     Case("decide --evaluations 48 with four free variables", {},
-         ["decide", "--free", "body_width=0.4:0.8", "--evaluations", "48"],
+         ["decide", "--fixed-posture", "--free", "body_width=0.4:0.8", "--evaluations", "48"],
          "--evaluations = 48 is not valid: whole generations of 40 designs"),
-    Case("decide --evaluations 48 with three free lengths", {}, ["decide", "--evaluations", "48"],
+    Case("decide --evaluations 48 with three free lengths", {},
+         ["decide", "--fixed-posture", "--evaluations", "48"],
          "--evaluations = 48 is not valid: whole generations of 30 designs (10 a free variable, "
          "at least 24) for 3 free variables, at least two, at most 100000: e.g. 60 or 90"),
     Case("decide --evaluations 70 with the posture free", {},

@@ -210,7 +210,10 @@ def test_the_max_speed_on_a_slope_equals_a_bisection(model):
         (["--slope-deg", "61"], "--slope-deg = 61 is not valid: must lie in [-60, 60] [°]"),
         (["--slope-deg", "-70"], "--slope-deg"),
         (["--slope-heading", "9"], "--slope-heading"),
-        (["--safety-factor", "0.9"], "--safety-factor = 0.9 is not valid: must lie in [1, 100]"),
+        (
+            ["--motor-safety-factor", "0.9"],
+            "--motor-safety-factor = 0.9 is not valid: must lie in [1, 100]",
+        ),
         (["--friction", "0"], "friction"),
     ],
 )

@@ -161,8 +161,8 @@ def test_motors_of_different_voltages_need_a_bus_voltage():
 @pytest.mark.parametrize(
     ("table", "fragment"),
     [
-        ("reserve = 1", "battery.reserve = 1 is not valid: must lie in [0, 1) [-]"),
-        ("reserve = -0.1", "battery.reserve"),
+        ("reserve = 1", "battery.reserve = 1 is not valid: must be a number in [0, 0.99]"),
+        ("reserve = -0.1", "battery.reserve = -0.1 is not valid: must be a number in [0, 0.99]"),
         ("voltage = -48", "battery.voltage"),
     ],
 )
@@ -175,7 +175,7 @@ def test_bad_battery_keys_are_one_line_and_exit_2(tmp_path, capsys, table, fragm
 
 
 def test_loads_prints_the_safety_factor_and_flags_against_rating_over_f(capsys):
-    argv = ["loads", "--payload", "30", "--safety-factor", "2.5"]
+    argv = ["loads", "--payload", "30", "--motor-safety-factor", "2.5"]
     assert run_cli([*argv, "--json"]) == 0
     printed = json.loads(capsys.readouterr().out)
     assert printed["safety_factor"] == 2.5

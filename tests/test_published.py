@@ -239,7 +239,13 @@ def test_gait_and_decide_need_a_rating(tmp_path, capsys):
     walked = ["--urdf", str(urdf), "--stride", "0.04", "--step-height", "0.02", "--period", "1"]
     gait, _ = _json(capsys, ["gait", *walked])
     assert gait["max_speed"] is None and gait["max_stride"] > 0 and gait["over_rating"] == []
+    assert gait["ratings_not_checked"] == ["torque", "speed"]  # effort="0" velocity="0"
     capsys.readouterr()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["gait", *walked]) == 0
+    feasible = next(line for line in capsys.readouterr().out.splitlines() if "feasible" in line)
+    assert "NOT checked" in feasible and "--rated-torques, --rated-speeds" in feasible
     assert run_cli(["decide", "--urdf", str(urdf), "--evaluations", "48"]) == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "--rated-torques ROOT HIP KNEE" in err[0], err

@@ -16,7 +16,8 @@ from hexaleg.output.report.requirements import requirement_blocks
 def _decide(requirements):
     with ThreadPoolExecutor(1) as here:
         return decide(HexapodDesign(), requirements, Objective("improved_area"), executor=here,
-                      progress=False, settings=SearchSettings(evaluations=240))  # fmt: skip
+                      progress=False, settings=SearchSettings(evaluations=240),
+                      free_posture=False)  # fmt: skip
 
 
 def test_the_blocks_give_the_verdict_and_one_row_per_requirement():

@@ -113,7 +113,10 @@ def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_pa
     block = text[text.index("# [requirements]") :].splitlines()
     assert all(line.startswith("# ") for line in block)
     keys = [line[2:].split(" = ")[0] for line in block[1:]]
-    assert set(keys) == {*REQUIREMENTS, "payload_at", "step_height", "slope_deg"} - {"slope"}
+    written = {name for name, spec in REQUIREMENTS.items() if not spec.implied}  # not structure
+    conditions = {"payload_at", "step_height", "slope_deg", "walking_slope_deg",
+                  "motor_safety_factor"}  # fmt: skip
+    assert set(keys) == (written | conditions) - {"slope"}
     assert all(re.search(r"\[(kg|m|°|-|m/s|km)\]", line) for line in block[1:])  # units
     uncommented = text[: text.index("# [requirements]")] + "\n".join(line[2:] for line in block)
     path.write_text(uncommented)
@@ -122,6 +125,7 @@ def test_design_init_writes_every_requirement_commented_out_with_its_unit(tmp_pa
         payload=30.0, payload_at=(0.0, 0.0, 0.05), slope=math.radians(15), ground_clearance=0.25,
         min_fb=0.2, leg_length=1.0, min_coxa=0.08, speed=0.3, step_height=0.1,
         walking_payload=10.0, range_km=5.0, continuous_margin=0.8,
+        walking_slope=math.radians(10), motor_safety_factor=1.5,
     )  # fmt: skip
 
 

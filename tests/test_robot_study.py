@@ -139,9 +139,10 @@ def _grid_oracle(min_fb: float, points: int = 5) -> tuple[float, dict]:
 def test_decide_meets_its_requirement_and_beats_a_brute_force_grid(tmp_path, capsys, seed):
     min_fb = float(np.random.default_rng(seed).uniform(0.25, 0.33))
     journal = tmp_path / "journal.jsonl"
+    # the oracle's grid points lie off a millimetre's: Kraby's ~3 cm segments on 0.01 mm
     argv = ["decide", "--urdf", KRABY, "--min-fb", repr(min_fb), "--maximize",
             "payload_capacity", "--evaluations", "300", "--workers", "2", "--json",
-            "--journal", str(journal)]  # fmt: skip
+            "--journal", str(journal), "--resolution", "1e-5"]  # fmt: skip
     answer = _json(capsys, argv)
     assert answer["feasible"] and answer["robot"] == KRABY
     robot = import_robot(KRABY, foot=FootSearch())

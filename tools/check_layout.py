@@ -7,8 +7,8 @@ layer and those below it, never one above::
                 _lazy, _input
     design      design, design_file, field_spec, ratios, layouts, limits, leg_geometry,
                 kinematics, leg_frames, gravity, cause, actuators, actuator_catalog,
-                battery, table_records, grids, design_text, ratings, materials, leg_structure,
-                field_sweep
+                battery, table_records, catalog_file, grids, design_text, ratings, materials,
+                leg_structure, field_sweep
     numerics    numerics/          (generic: below every analysis)
     robot       robot/
     analysis    swing/, stance/, statics/, gait/, sim/, electrical, structure/
@@ -96,6 +96,7 @@ LAYERS: tuple[tuple[str, tuple[str, ...]], ...] = (
             "actuator_catalog",
             "battery",
             "table_records",
+            "catalog_file",
             "grids",
             "design_text",
             "ratings",

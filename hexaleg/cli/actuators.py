@@ -7,8 +7,8 @@ from typing import Any
 
 from hexaleg.actuator_catalog import Catalog, CatalogEntry, shipped_catalog, shipped_catalog_path
 from hexaleg.actuators import ACTUATOR_NUMBERS
-from hexaleg.cli.output import columns, print_json, require_stdout
-from hexaleg.table_records import key_line
+from hexaleg.cli import catalog_listing
+from hexaleg.cli.catalog_listing import catalog_lines, print_catalog
 
 DESCRIPTION = (
     "List the actuator catalog: each entry's gear ratio, motor constants (at the motor), "
@@ -20,20 +20,13 @@ DESCRIPTION = (
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     """Add this command's options."""
-    parser.add_argument(
-        "--json", action="store_true", help="print JSON: every number of every entry, its source"
-    )
+    catalog_listing.add_arguments(parser)
 
 
 def run(args: argparse.Namespace) -> int:
     """Print the catalog as a table (or JSON)."""
     catalog = shipped_catalog()
-    if args.json:
-        print_json(catalog_json(catalog))
-        return 0
-    require_stdout()
-    print("\n".join(catalog_text(catalog)))
-    return 0
+    return print_catalog(args, lambda: catalog_json(catalog), lambda: catalog_text(catalog))
 
 
 def catalog_json(catalog: Catalog) -> dict[str, Any]:
@@ -46,23 +39,17 @@ def catalog_json(catalog: Catalog) -> dict[str, Any]:
     }
 
 
-def _cells(entry: CatalogEntry) -> list[str]:
+def _numbers(entry: CatalogEntry) -> list[float]:
     actuator = entry.actuator
     numbers = {spec.name: getattr(actuator, spec.name) for spec in ACTUATOR_NUMBERS}
     numbers["max_speed"] = actuator.rated_speed
-    return [entry.name] + [f"{numbers[spec.name]:.4g}" for spec in ACTUATOR_NUMBERS]
+    return [numbers[spec.name] for spec in ACTUATOR_NUMBERS]
 
 
 def catalog_text(catalog: Catalog) -> list[str]:
     """The catalog as lines: a table (one entry a row), what each key is, each source."""
-    header = ["name"] + [spec.name for spec in ACTUATOR_NUMBERS]
-    units = [""] + [f"[{spec.unit}]" for spec in ACTUATOR_NUMBERS]
-    rows = [_cells(entry) for entry in catalog]
-    lines = [f"Actuator catalog ({len(catalog)} entries, {shipped_catalog_path()})", ""]
-    lines += [*columns([header, units, *rows]), "", "Keys:"]
-    lines += [f"  {spec.name}: {key_line(spec)}" for spec in ACTUATOR_NUMBERS]
-    lines += ["  (max_speed listed: the given one, or the no-load speed when not given)", ""]
-    lines.append("Sources:")
-    for entry in catalog:
-        lines.append(f"  {entry.name}: {entry.source}")
-    return lines
+    rows = [(entry, _numbers(entry)) for entry in catalog]
+    note = "(max_speed listed: the given one, or the no-load speed when not given)"
+    return catalog_lines(
+        "Actuator catalog", shipped_catalog_path(), ACTUATOR_NUMBERS, rows, key_notes=[note]
+    )

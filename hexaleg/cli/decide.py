@@ -7,6 +7,7 @@ import math
 from concurrent.futures import Executor
 from contextlib import AbstractContextManager
 
+from hexaleg._checks import require_in_range
 from hexaleg.actuator_catalog import shipped_catalog
 from hexaleg.actuators import Actuator
 from hexaleg.cli.inputs import inputs_from_args
@@ -24,7 +25,8 @@ from hexaleg.evaluation.requirements import RequirementCheck, format_margin
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.robot import SEGMENT_SPAN, Robot
 from hexaleg.study.decide import CheckedDesign, DecideResult, decide
-from hexaleg.study.decide_rows import AnswerRows, answer_rows, value_text
+from hexaleg.study.decide_grid import ANGLE_STEP, DEFAULT_RESOLUTION, RESOLUTION_RANGE, Rounding
+from hexaleg.study.decide_rows import AnswerRows, PostureRow, answer_rows, exact, value_text
 from hexaleg.study.executors import dask_executor, local_pool
 from hexaleg.study.optimize import (
     GENERATIONS,
@@ -66,11 +68,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     objective.add_argument(
         "--minimize", choices=objectives("minimize"), help="what to make smallest"
     )
-    search.add_argument(
-        "--free-posture",
-        action="store_true",
-        help="also free the nominal hip and knee angles (theta2, theta3) within the stance limits",
-    )
+    _add_answer_options(search)
     search.add_argument(
         "--free",
         action="append",
@@ -114,8 +112,34 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--json", action="store_true", help="print one JSON object")
 
 
+def _add_answer_options(search: argparse._ArgumentGroup) -> None:
+    """The posture freed or fixed, and the grid the answer is put on."""
+    posture = search.add_mutually_exclusive_group()
+    posture.add_argument(
+        "--free-posture",
+        action="store_true",
+        help="free the nominal hip and knee angles (theta2, theta3) within the stance limits "
+        "beside the lengths (the default, for hexaleg's legs)",
+    )
+    posture.add_argument(
+        "--fixed-posture",
+        action="store_true",
+        help="keep the design's nominal angles: only the lengths (and --free fields) change",
+    )
+    search.add_argument(
+        "--resolution",
+        type=float,
+        metavar="M",
+        default=DEFAULT_RESOLUTION,
+        help="the grid the answer's lengths are put on [m] (default 0.001: a millimetre; "
+        f"within [{RESOLUTION_RANGE[0]:g}, {RESOLUTION_RANGE[1]:g}]); its angles are put on "
+        f"{ANGLE_STEP:g} rad; that design is measured again and printed as measured",
+    )
+
+
 def run(args: argparse.Namespace) -> int:
     """Decide; print the answer as a table or JSON."""
+    rounding = Rounding(require_in_range("--resolution", args.resolution, *RESOLUTION_RANGE, "m"))
     inputs = inputs_from_args(args)
     robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
     refuse_for_robot(args, robot)
@@ -142,7 +166,7 @@ def run(args: argparse.Namespace) -> int:
             robot,
             requirements,
             objective,
-            free_posture=args.free_posture,
+            free_posture=not args.fixed_posture,
             free=free,
             actuators=actuators,
             ratio_ranges=ranges,
@@ -150,6 +174,7 @@ def run(args: argparse.Namespace) -> int:
             executor=pool,
             journal=args.journal,
             resume=args.resume,
+            rounding=rounding,
         )
     if args.json:
         print_json(result.to_dict())
@@ -197,26 +222,34 @@ def render(result: DecideResult) -> str:
     ]
     if result.walks:
         lines.append(f"  walking: {result.walking_text()}")
+    if result.rounded is not None:
+        lines.append(f"  answer: {result.rounded.describe()}")
     lines.append("")
     verdict = "meets every requirement" if result.feasible else "LEAST INFEASIBLE: meets not all"
     answer = answer_rows(result)
-    lines += _design_block("Best design", result.best, result, answer, verdict)
-    lines += _design_block("Your design", result.yours, result, answer, "")
+    postures = answer.postures or (None, None)
+    lines += _design_block("Best design", result.best, result, answer, verdict, postures[0])
+    lines += _design_block("Your design", result.yours, result, answer, "", postures[1])
     if result.conflict is not None:
         lines += [f"No design meets every requirement: {result.conflict.description}."]
     return "\n".join(lines).rstrip()
 
 
 def _design_block(
-    title: str, checked: CheckedDesign, result: DecideResult, answer: AnswerRows, verdict: str
+    title: str,
+    checked: CheckedDesign,
+    result: DecideResult,
+    answer: AnswerRows,
+    verdict: str,
+    posture: PostureRow | None,
 ) -> list[str]:
-    """One design: its head line, its requirements, the bounds that bind, joints over ratings.
+    """One design: head line, posture, requirements, the bounds that bind, joints over ratings.
 
     The best design's rows say what binds, your design's what it passes; the bounds that
-    bind are the best design's.
+    bind are the best design's. Lengths and angles are printed exactly as measured.
     """
     binding = checked is result.best
-    lengths = ", ".join(f"{v:.4g}" for v in checked.design.lengths)
+    lengths = ", ".join(exact(v) for v in checked.design.lengths)
     head = f"{title}: l = ({lengths}) m"
     motors = checked.design.actuators
     if motors is not None:
@@ -230,8 +263,13 @@ def _design_block(
         head += f", battery {checked.design.battery.capacity:.4g} Wh"
     if checked.evaluation.error:
         return [head, f"  cannot be measured: {checked.evaluation.error}", ""]
-    value = checked.evaluation.metrics.value(result.objective.spec)
-    head += f", {result.objective.spec.label} = {value:.6g}" + (f" ({verdict})" if verdict else "")
+    spec = result.objective.spec
+    value = checked.evaluation.metrics.value(spec)
+    unit = "" if spec.unit == "1" else f" {spec.unit}"
+    head += f", {spec.label} = {value:.6g}{unit}" + (f" ({verdict})" if verdict else "")
+    cause = checked.evaluation.causes[spec]
+    above = [] if posture is None else [f"  {posture.text()}"]
+    above += [] if cause is None else [f"  {spec.label} limited by {cause}"]
     rows = []
     for requirement in answer.requirements:
         check = requirement.best if binding else requirement.yours
@@ -240,7 +278,7 @@ def _design_block(
     if binding:
         rows += [_bound_row(bound.at) for bound in answer.bounds]
     width = [max((len(r[k]) for r in rows), default=0) for k in range(3)]
-    lines = [head]
+    lines = [head, *above]
     for row in rows:
         cells = "  ".join(cell.ljust(w) for cell, w in zip(row, width, strict=False))
         lines.append(f"  {cells}  {row[3]}".rstrip())
@@ -250,10 +288,12 @@ def _design_block(
 def over_rating_lines(checked: CheckedDesign, result: DecideResult) -> list[str]:
     """Each joint over its rating standing (and walking), or that none is."""
     lines = []
-    for where, flagged in checked.over_rating_groups(result):
+    groups = checked.over_rating_groups(result)  # standing, then each walk (if walked)
+    violations = ["", *(walk.violation for walk in checked.walks)][: len(groups)]
+    for (where, flagged), violation in zip(groups, violations, strict=True):
         where += " (nominal stance and the 12 body extremes)" if where.startswith("stand") else ""
-        if where.startswith("walking") and checked.walking_violation:
-            lines.append(f"  {where}: cannot walk it, {checked.walking_violation}")
+        if violation:
+            lines.append(f"  {where}: cannot walk it, {violation}")
             continue
         if not flagged:
             lines.append(f"  over its rating {where}: no joint")
@@ -275,7 +315,13 @@ def _bound_row(at: AtBound) -> tuple[str, ...]:
 def _row(text: str, check: RequirementCheck, binding: bool) -> tuple[str, ...]:
     """A requirement checked on one design: the best (binds?) or yours (passes?)."""
     if binding:
-        state = "binds" if check.binds else ("" if check.met else "NOT MET")
+        state = (
+            "binds, at the limit"
+            if check.at_limit
+            else "binds"
+            if check.binds
+            else ("" if check.met else "NOT MET")
+        )
     else:
         state = "pass" if check.met else "FAIL"
     if math.isnan(check.value):  # nothing to measure it on: no actuators, no battery

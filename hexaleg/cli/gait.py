@@ -99,7 +99,7 @@ def run(args: argparse.Namespace) -> int:
         distribution=args.distribution,
         ground=ground,
         model=model,
-        safety_factor=safety_factor_from_args(args),
+        safety_factor=safety_factor_from_args(args, inputs.written),
     )
     require_walkable(analysis, model)  # an unwalkable period: one line, nothing written
     written = []
@@ -147,8 +147,14 @@ def _friction_needed(analysis: GaitAnalysis) -> str:
 
 
 def _feasible(analysis: GaitAnalysis) -> str:
-    why = analysis.infeasible_because
-    return "yes" if why is None else f"no: {why}"
+    """``yes``, ``no: why``, and which ratings it could not check (the design gives none)."""
+    why, unchecked = analysis.infeasible_because, analysis.unchecked_ratings
+    said = "yes" if why is None else f"no: {why}"
+    if not unchecked:
+        return said
+    options = ", ".join(f"--rated-{kind}s" for kind in unchecked)
+    kinds = " and ".join(f"{kind}s" for kind in unchecked)
+    return f"{said}; the rated {kinds} NOT checked: the design gives none ({options})"
 
 
 def electrical_rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
@@ -267,7 +273,9 @@ def rows(analysis: GaitAnalysis) -> list[tuple[str, str]]:
     ]
     if analysis.safety_factor != 1:
         factor = analysis.safety_factor
-        rows.append(("safety factor", f"{factor:g}: peak torques and speeds within rating / F"))
+        rows.append(
+            ("motor safety factor", f"{factor:g}: peak torques and speeds within rating / F")
+        )
     rows += joint_rows(analysis)
     rows += [
         ("positive work per period", f"{metrics.positive_work:.2f} J"),

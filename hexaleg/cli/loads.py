@@ -62,7 +62,7 @@ def run(args: argparse.Namespace) -> int:
     inputs = inputs_from_args(args, posing=posing(args), sizing=sized_for)
     robot, requirements, sized = inputs.robot, inputs.written, inputs.sized
     check_outputs({}, {"--plot": args.plot})  # before computing
-    payload, factor = payload_from_args(args), safety_factor_from_args(args)
+    payload, factor = payload_from_args(args), safety_factor_from_args(args, requirements)
     model = robot.model
     analysis = analyze_loads(
         model.design,
@@ -113,7 +113,9 @@ def _rows(analysis: LoadsAnalysis) -> list[tuple[str, str]]:
         ("stability margin, nominal", margin),
     ]
     if analysis.safety_factor != 1:
-        rows.append(("safety factor", f"{analysis.safety_factor:g}: torques within rating / F"))
+        rows.append(
+            ("motor safety factor", f"{analysis.safety_factor:g}: torques within rating / F")
+        )
     for joint in LEG_JOINTS:
         held = rated[joint] / analysis.safety_factor
         rows.append(

@@ -6,8 +6,9 @@ import argparse
 
 from hexaleg._checks import require_in_range
 from hexaleg._typing import Distribution, choices
+from hexaleg.evaluation.requirement_specs import MOTOR_SAFETY_FACTOR
+from hexaleg.evaluation.requirements import Requirements
 from hexaleg.statics.forces import DEFAULT_FRICTION, FRICTION_RANGE, PAYLOAD_REACH, Payload
-from hexaleg.statics.ratings import SAFETY_FACTOR_RANGE
 
 
 def add_payload_options(parser: argparse.ArgumentParser) -> None:
@@ -56,20 +57,28 @@ def payload_at_from_args(values: list[float]) -> tuple[float, float, float]:
 
 
 def add_safety_factor_option(parser: argparse.ArgumentParser) -> None:
-    """``--safety-factor F``: peak torques and speeds held within rating / F (loads, gait)."""
+    """``--motor-safety-factor F``: peak torques and speeds within rating / F (loads, gait).
+
+    The requirement's one declaration (:data:`~hexaleg.evaluation.requirement_specs.
+    MOTOR_SAFETY_FACTOR`): its name, range and words, as ``decide`` offers it.
+    """
+    spec = MOTOR_SAFETY_FACTOR
     parser.add_argument(
-        "--safety-factor",
+        spec.option,
         type=float,
-        default=1.0,
-        metavar="F",
-        help="hold every peak joint torque and speed within its rating / F, in "
-        "[{:g}, {:g}] [-] (default 1: the ratings as given)".format(*SAFETY_FACTOR_RANGE),
+        metavar=spec.metavar[0],
+        help=f"{spec.help}, in [{spec.bounds[0]:g}, {spec.bounds[1]:g}]; default: the design "
+        "file's [requirements] value, else 1 (the ratings as given)",
     )
 
 
-def safety_factor_from_args(args: argparse.Namespace) -> float:
-    """``--safety-factor`` checked: a number in :data:`SAFETY_FACTOR_RANGE` [-]."""
-    return require_in_range("--safety-factor", args.safety_factor, *SAFETY_FACTOR_RANGE, "-")
+def safety_factor_from_args(args: argparse.Namespace, written: Requirements | None = None) -> float:
+    """``--motor-safety-factor`` checked, else the design file's requirement, else 1 [-]."""
+    given = getattr(args, MOTOR_SAFETY_FACTOR.name, None)
+    if given is None:
+        return 1.0 if written is None else written.motor_safety_factor
+    spec = MOTOR_SAFETY_FACTOR
+    return require_in_range(spec.option, given, *spec.bounds, spec.unit)
 
 
 def rated_text(rating: float, safety_factor: float, unit: str) -> str:

@@ -19,7 +19,7 @@ def tube_rows(structure: Structure, lengths: tuple[float, float, float]) -> list
     rows = [
         (
             "structure",
-            f"{material.name}: {material.yield_strength / 1e6:.4g} MPa / safety factor "
+            f"{material.name}: {material.yield_strength / 1e6:.4g} MPa / the tubes' safety factor "
             f"{structure.safety_factor:g} = {structure.allowed_stress / 1e6:.4g} MPa allowed",
         )
     ]

@@ -2,15 +2,17 @@
 
 :func:`evaluate` measures the metrics of :data:`~hexaleg.evaluation.metrics.METRICS` that a
 caller names — a study's row, a decision's candidate, the report's recommendation, the
-user's own design — under one set of :class:`Conditions` (payload, slope, gait, stance
-legs, collisions), into one frozen :class:`Evaluation`. Each metric's analysis runs once
-however many of its metrics are asked for: the improved workspace area in closed form
-(eq 16), the average manipulability w_A on the improved domain (eq 27), the axis-locked
-or free-coupled flexibility FB (eq 29), the ground clearance of the nominal stance, the
-statics' payload capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), and
-one walk of the gait (:class:`~hexaleg.gait.walk.Walker`) for the walking payload capacity
-and one period of it (:func:`~hexaleg.gait.analysis.analyze_walker`) for the max speed, peak
-torque and cost of transport.
+user's own design — under one set of :class:`Conditions` (payload, slope stood on, gait,
+the grounds it is walked on, the motors' safety factor, stance legs, collisions), into one
+frozen :class:`Evaluation`. Each metric's analysis runs once however many of its metrics
+are asked for: the improved workspace area in closed form (eq 16), the average
+manipulability w_A on the improved domain (eq 27), the axis-locked or free-coupled
+flexibility FB (eq 29), the ground clearance of the nominal stance, the statics' payload
+capacity and steepest slope (:mod:`hexaleg.statics.standing_limits`), the gait walked on
+each ground for the walking payload capacity and one period for the max speed, peak torque
+and cost of transport (:mod:`.walks`: each the worst over the grounds), and the legs' tubes
+(:mod:`hexaleg.structure`). A design whose ``[structure]`` says ``size = true`` has its
+tubes sized first (:mod:`.sizing`): every metric is the sized design's.
 
 Given a model and a stance template of the same body (the fast path of sweeps and
 searches), a design's own are derived from them in closed form; without, they are built
@@ -30,6 +32,7 @@ from typing import TypeVar
 import numpy as np
 
 from hexaleg._typing import FlexibilityMode, StanceSet
+from hexaleg.cause import Cause
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.metrics import (
     METRICS,
@@ -40,22 +43,28 @@ from hexaleg.evaluation.metrics import (
     MetricSpec,
     Reasons,
 )
-from hexaleg.exceptions import HexalegError
-from hexaleg.gait.analysis import GaitAnalysis, analyze_walker
-from hexaleg.gait.capacity import walker_capacity
+from hexaleg.evaluation.sizing import size_tubes
+from hexaleg.evaluation.walks import Walks
+from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.walk import Walker
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.model_cache import model_of
 from hexaleg.stance.axis_locked import axis_locked_flexibility, axis_locked_flexibility_many
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
+from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.free_coupled import free_flexibility
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.statics.capacity import payload_capacity
 from hexaleg.statics.forces import Payload, Statics
+from hexaleg.statics.ground import LEVEL, Ground
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.statics.ratings import check_safety_factor
 from hexaleg.statics.standing_limits import Standing
+from hexaleg.structure.check import StructureCheck
+from hexaleg.structure.sizing import SizedStructure
+from hexaleg.structure.standing import check_standing, standing_cases
 from hexaleg.swing.manipulability import average_manipulability, rectangular_and_improved
 from hexaleg.swing.workspace import improved_area_closed_form
 
@@ -77,8 +86,14 @@ class Conditions:
         stance: The stance legs of the flexibility.
         mode: Axis-locked or free-coupled flexibility.
         collisions: The robot's own parts touching also stop the body (FB).
-        keep: Keep the flexibility, the statics at its extremes and the gait period in
+        keep: Keep the flexibility, the statics at its extremes and the gait periods in
             the evaluation (a study's row shows them).
+        grounds: The grounds the gait is walked on (:func:`~.walks.walking_grounds`: a
+            walking slope uphill, downhill and across); each walking metric is its worst
+            over them.
+        safety_factor: The motors' safety factor F ≥ 1 [-]: every peak joint torque and
+            speed held within its rating / F, standing and walking (the tubes' own is
+            their ``[structure]``'s).
 
     """
 
@@ -89,6 +104,15 @@ class Conditions:
     mode: FlexibilityMode = "axis"
     collisions: bool = False
     keep: bool = False
+    grounds: tuple[Ground, ...] = (LEVEL,)
+    safety_factor: float = 1.0
+
+    def __post_init__(self) -> None:
+        grounds = tuple(self.grounds) if isinstance(self.grounds, Sequence) else ()
+        if not grounds or not all(isinstance(g, Ground) for g in grounds):
+            raise ParameterError("grounds", self.grounds, "one Ground or more")
+        object.__setattr__(self, "grounds", grounds)
+        object.__setattr__(self, "safety_factor", check_safety_factor(self.safety_factor))
 
 
 @dataclass(frozen=True)
@@ -104,9 +128,15 @@ class Evaluation:
             the design does not give: :data:`~hexaleg.ratings.NEEDS_RATING`).
         flexibility: Its flexibility, when kept (:attr:`Conditions.keep`).
         loads: The statics at the nominal stance and at the extremes, when kept.
-        gait: The gait period walked, when kept.
+        gait: The gait period walked on the first ground, when kept.
+        gaits: The gait period walked on each ground, when kept.
         walks: Whether the design walks the gait unloaded within its ratings (``None``
             unless the walking payload capacity was measured).
+        sized: The legs' tubes sized for the conditions' payload and slope, when the
+            design's ``[structure]`` says ``size = true`` (every metric is the sized
+            design's: :attr:`design`).
+        structure: The legs' tubes checked standing (the sizing's check, or the given
+            tubes'), when sized or when the structure was measured.
 
     """
 
@@ -118,6 +148,13 @@ class Evaluation:
     loads: LoadsAnalysis | None = None
     gait: GaitAnalysis | None = None
     walks: bool | None = None
+    sized: SizedStructure | None = None
+    gaits: tuple[GaitAnalysis, ...] = ()
+    structure: StructureCheck | None = None
+
+    def design(self, given: HexapodDesign) -> HexapodDesign:
+        """The design measured: ``given`` (the one evaluated), with its tubes if sized."""
+        return given if self.sized is None else self.sized.design
 
 
 def evaluate(
@@ -143,8 +180,10 @@ def evaluate(
             design's own is read from the model if omitted.
         flexibility: The design's flexibility, if already computed (a batch's).
 
-    A design whose analyses fail (its nominal stance cannot stand) is returned with
-    ``error`` set and no values.
+    A design whose ``[structure]`` says ``size = true`` has its tubes sized first, for the
+    conditions' payload and slope (:func:`~hexaleg.evaluation.sizing.size_tubes`): their
+    masses enter every metric. A design whose analyses fail (its nominal stance cannot
+    stand) is returned with ``error`` set and no values.
 
     """
     measuring = _Measuring(design, conditions or Conditions(), model, template, flexibility)
@@ -201,6 +240,7 @@ ANALYSES: tuple[Analysis, ...] = (
     "speed",
     "period",
     "motors",
+    "structure",
 )
 """The analyses, in the order an evaluation runs them."""
 
@@ -223,14 +263,18 @@ class _Measuring:
         self.design, self.conditions = design, conditions
         self._model, self._template, self._flexibility = model, template, flexibility
         self.asked: frozenset[str] = frozenset()
+        self.wanted: set[Analysis] = set()
         self.causes = Causes()
         self.unmeasured = Reasons()
         self.loads: LoadsAnalysis | None = None
         self.walks: bool | None = None
+        self.sized: SizedStructure | None = None
+        self.structure: StructureCheck | None = None
 
     def evaluation(self, metrics: Collection[MetricSpec]) -> Evaluation:
         self.asked = frozenset(spec.name for spec in metrics)
-        wanted = {spec.analysis for spec in metrics}
+        self._size()
+        wanted = self.wanted = {spec.analysis for spec in metrics}
         if self.conditions.keep and wanted & WALKING:
             wanted.add("period")  # the period walked is kept
         measured: dict[str, float | None] = {}
@@ -239,14 +283,18 @@ class _Measuring:
                 found: Metrics = getattr(self, f"_measure_{analysis}")()
                 measured |= found.to_dict()
         kept = self.conditions.keep
+        periods = self.walking.periods if kept and "period" in wanted else ()
         return Evaluation(
             metrics=self._asked_only(Metrics(**measured)),
             causes=self._asked_only(self.causes),
             unmeasured=self._asked_only(self.unmeasured),
             flexibility=self.flexibility if kept and "flexibility" in wanted else None,
             loads=self.loads if kept else None,
-            gait=self.walked if kept and "period" in wanted else None,
+            gait=periods[0] if periods else None,
             walks=self.walks,
+            sized=self.sized,
+            structure=self.structure,
+            gaits=periods,
         )
 
     def _asked(self, spec: MetricSpec) -> bool:
@@ -257,6 +305,26 @@ class _Measuring:
         return type(table)(**{k: v for k, v in table.to_dict().items() if k in self.asked})
 
     # -- what the analyses share -----------------------------------------------------------
+
+    def _size(self) -> None:
+        """Size the legs' tubes where the design's ``[structure]`` asks: every metric is theirs.
+
+        The axis-locked extremes of every leg are the evaluation's own when it searches
+        those (they depend on the geometry only, which the tubes leave).
+        """
+        structure = self.design.structure
+        if structure is None or not structure.size:
+            return
+        conditions = self.conditions
+        same = conditions.mode == "axis" and conditions.stance == "all"
+        extremes = self.flexibility.extremes if same else None
+        sized = size_tubes(
+            self.design, conditions.payload, conditions.slope, model=self.model, extremes=extremes
+        )
+        if sized is None:
+            return
+        self.sized, self.structure, self.design = sized, sized.check, sized.design
+        self._model = self.model.with_design(sized.design)
 
     @property
     def model(self) -> HexapodModel:
@@ -299,15 +367,20 @@ class _Measuring:
             )
 
     @cached_property
-    def walker(self) -> Walker:
-        """The conditions' gait walked with their payload, once for every walking metric."""
+    def walking(self) -> Walks:
+        """The conditions' gait walked with their payload on each of their grounds."""
         conditions = self.conditions
-        return Walker(self.model, conditions.gait, conditions.payload)
+        return Walks(
+            self.model, conditions.gait, conditions.payload, conditions.grounds,
+            conditions.safety_factor,
+        )  # fmt: skip
 
-    @cached_property
-    def walked(self) -> GaitAnalysis:
-        """One period of the conditions' gait, with the fastest walk of its stride."""
-        return analyze_walker(self.walker, limits=False, speed=True)
+    def _walked(self, analysis: Analysis) -> Metrics:
+        """The metrics ``analysis`` measures walking, each its worst over the grounds."""
+        found = self.walking.measure(analysis)
+        self.causes = replace(self.causes, **found.causes.to_dict())
+        self.unmeasured = replace(self.unmeasured, **found.unmeasured.to_dict())
+        return found.metrics
 
     # -- the analyses ------------------------------------------------------------------
 
@@ -339,9 +412,12 @@ class _Measuring:
 
     def _measure_standing(self) -> Metrics:
         conditions, model = self.conditions, self.model
+        factor = conditions.safety_factor
         if conditions.keep:
-            self.loads = loads_at_extremes(model, self.flexibility, conditions.payload)
-        statics = Statics(model, model.leg_names, conditions.payload)
+            self.loads = loads_at_extremes(
+                model, self.flexibility, conditions.payload, safety_factor=factor
+            )
+        statics = Statics(model, model.leg_names, conditions.payload, safety_factor=factor)
         found = Metrics()
         if self._asked(METRICS.stability_margin):  # the kept statics' stance legs, if kept
             nominal = (
@@ -372,63 +448,43 @@ class _Measuring:
         return replace(found, max_slope=slope)
 
     def _measure_walking(self) -> Metrics:
-        if not self.model.design.rated:  # the capacity within ratings the design does not give
-            return self._without((METRICS.walking_payload_capacity,), NEEDS_RATING)
-        walker, conditions = self.walker, self.conditions
-        empty = conditions.payload.with_mass(0.0)  # the capacity walks the gait unloaded
-        unloaded = walker if walker.payload == empty else walker.carrying(empty)
-        found = walker_capacity(unloaded)
-        self.causes = replace(self.causes, walking_payload_capacity=found.limited_by)
-        self.walks = found.walks
-        return Metrics(walking_payload_capacity=found.mass)
+        found = self._walked("walking")
+        self.walks = self.walking.walks
+        return found
 
     def _measure_speed(self) -> Metrics:
-        limit = self.walked.max_speed
-        if limit is None:  # speed=True: the design gives no ratings, the max speed needs one
-            return self._without((METRICS.max_speed,), NEEDS_RATING)
-        self.causes = replace(self.causes, max_speed=limit.limited_by)
-        return Metrics(max_speed=limit.value)
+        return self._walked("speed")
 
     def _measure_period(self) -> Metrics:
-        walked = self.walked
-        if not walked.walkable:
-            return self._without(_of("period"), f"cannot walk the gait: {walked.violations[0]}")
-        metrics = walked.metrics
-        distance = walked.gait.speed * walked.gait.period  # per period [m]
-        torques = {  # each joint type's peak and RMS torque, as declared
-            spec.name: (metrics.peak_torque if spec.torque == "peak" else metrics.rms_torque)[
-                spec.joint
-            ]
-            for spec in METRICS
-            if spec.torque is not None and spec.joint is not None
-        }
-        return Metrics(
-            gait_peak_torque=max(metrics.peak_torque.values()),
-            mechanical_cost_of_transport=metrics.cost_of_transport,
-            mechanical_energy_per_km=metrics.positive_work / distance * 1000 / 3600,
-            min_zmp_margin=walked.min_zmp_margin,
-            **torques,
-        )
+        return self._walked("period")
 
     def _measure_motors(self) -> Metrics:
-        walked = self.walked
-        if not walked.walkable:
-            return self._without(_of("motors"), f"cannot walk the gait: {walked.violations[0]}")
-        electrical, found = walked.electrical, Metrics()
-        if electrical is not None:
-            ratios = electrical.ratings.ratios[1]  # RMS over continuous torque (L, 3)
-            battery = electrical.battery
-            found = Metrics(
-                energy_per_km=electrical.energy_per_km,
-                electrical_cost_of_transport=electrical.cost_of_transport,
-                continuous_load=float(ratios.max()),
-                battery_range=math.nan if battery is None else battery.range,
-            )
-        for spec in _of("motors"):  # without a table it is measured through: no value
-            lacking = spec.lacks(walked.design)
-            if lacking:
-                found = self._without((spec,), f"the design has no [{lacking[0]}]", found)
-        return found
+        return self._walked("motors")
+
+    def _measure_structure(self) -> Metrics:
+        """The legs' tubes standing (the sizing's check, or the given tubes' own)."""
+        if self.structure is None:
+            structure = self.design.structure
+            if structure is None or None in structure.tubes:
+                why = "the design's [structure] neither sizes its tubes nor gives every one"
+                return self._without((METRICS.structure_load,), why)
+            self.structure = self._standing_structure()
+        checks = [self.structure]
+        if self.wanted & WALKING:  # the robot must walk: its tubes, walking the periods too
+            checks += [p.structure for p in self.walking.periods if p.structure is not None]
+        load, cause = max((structure_load(check) for check in checks), key=lambda lc: lc[0])
+        self.causes = replace(self.causes, structure_load=cause)
+        return Metrics(structure_load=load)
+
+    def _standing_structure(self) -> StructureCheck:
+        """The given tubes in every standing case of the conditions (every leg standing)."""
+        conditions, model = self.conditions, self.model
+        same = conditions.mode == "axis" and conditions.stance == "all"
+        found = self.flexibility if same else flexibility(self.design, "axis", "all", self._model)
+        cases = standing_cases(
+            model, model.leg_names, found.extremes, conditions.payload, conditions.slope or 0.0
+        )
+        return check_standing(model, cases)
 
     def _without(
         self, specs: Iterable[MetricSpec], why: str, found: Metrics | None = None
@@ -439,6 +495,16 @@ class _Measuring:
         return replace(Metrics() if found is None else found, **dict.fromkeys(names, math.nan))
 
 
-def _of(analysis: Analysis) -> list[MetricSpec]:
-    """The metrics ``analysis`` measures."""
-    return [spec for spec in METRICS if spec.analysis == analysis]
+def structure_load(check: StructureCheck) -> tuple[float, Cause]:
+    """A check's structure load [-] and what sets it (the larger of the two).
+
+    The worst stress ratio (von Mises over strength / safety factor), and standing the
+    largest foot deflection over its limit.
+    """
+    worst = check.worst
+    strength = (check.worst_ratio, Cause("strength", leg=worst["leg"], segment=worst["segment"]))
+    at = check.deflection_at
+    if at is None:
+        return strength
+    bent = (check.deflection / check.limit, Cause("deflection", leg=at["leg"]))
+    return max(strength, bent, key=lambda found: found[0])

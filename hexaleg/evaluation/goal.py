@@ -23,6 +23,7 @@ from hexaleg.evaluation.metrics import (
 )
 from hexaleg.evaluation.requirement_specs import REQUIREMENTS, SLOPE
 from hexaleg.evaluation.requirements import RequirementCheck, Requirements, check
+from hexaleg.evaluation.walks import walking_grounds
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.extremes import FlexibilityResult
@@ -99,10 +100,21 @@ class Goal:
 
     @property
     def conditions(self) -> Conditions:
-        """The conditions of the requirements: their payload, slope and gait."""
+        """The conditions of the requirements.
+
+        Their payload, the slope stood on, the gait, the grounds it is walked on (the
+        walking slope up, down and across) and the motors' safety factor.
+        """
         requirements = self.requirements
         payload = Payload(requirements.payload_mass, requirements.payload_at)
-        return Conditions(payload, requirements.required(SLOPE), requirements.gait)
+        gait = requirements.gait
+        return Conditions(
+            payload,
+            requirements.required(SLOPE),
+            gait,
+            grounds=walking_grounds(requirements.walking_slope, gait),
+            safety_factor=requirements.motor_safety_factor,
+        )
 
     def with_objective(self, objective: Objective, relaxed: tuple[str, ...] = ()) -> Goal:
         """The same requirements for another objective, some of them relaxed."""

@@ -44,12 +44,14 @@ Analysis = Literal[
     "speed",
     "period",
     "motors",
+    "structure",
 ]
 """The analysis that measures a metric (the evaluation runs each one at most once).
 
 ``walking``: the largest payload carried walking the gait; ``speed``: the fastest walk of
 its stride; ``period``: one period of the gait (torques, work, ZMP); ``motors``: that
-period through the design's actuators and battery.
+period through the design's actuators and battery; ``structure``: the legs' tubes under
+their loads.
 """
 
 WALKING: frozenset[Analysis] = frozenset({"walking", "speed", "period", "motors"})
@@ -397,6 +399,15 @@ class PerMetric(Generic[T]):
         text="centre of mass's footprint inside the support polygon (nominal stance)",
         better="maximize",
         analysis="standing",
+    )
+    structure_load: T = declare(
+        unit="1",
+        label="structure load",
+        text="the legs' tubes: the largest von Mises stress over strength / safety factor, "
+        "or foot deflection over its limit (nominal stance, 12 extremes, the slope; and "
+        "walking the gait when the robot must walk)",
+        better="minimize",
+        analysis="structure",
     )
 
     def __getitem__(self, spec: MetricSpec) -> T:

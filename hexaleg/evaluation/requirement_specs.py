@@ -27,12 +27,23 @@ from hexaleg.design import SEGMENT_RANGE
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
 from hexaleg.gait.spec import Gait
 from hexaleg.statics.forces import PAYLOAD_REACH, PAYLOAD_SEARCH_LIMIT
+from hexaleg.statics.ground import MAX_SLOPE
+from hexaleg.statics.ratings import SAFETY_FACTOR_RANGE
 
 Sense = Literal["at least", "at most"]
 """Which side of the required value meets a requirement."""
 
 BINDING_SHARE = 0.01
 """A met requirement binds when its margin is within this share of the required value."""
+
+AT_LIMIT_SHARE = 0.005
+"""A met requirement is *at the limit* when its margin is within this share of the required
+value: no margin a workshop's tolerances or a motor's spread could eat into is left."""
+
+ROUNDOFF = 1e-12
+"""A value within this share of the required one meets it [-]: the floating-point sum of
+lengths a workshop gives in millimetres (0.02 + 0.569 + 0.411 m) is their decimal sum only
+to this, and a value equal to its limit to twelve digits is at it, not past it."""
 
 DEGREES = "_deg"
 """The suffix of a key giving a requirement in degrees (``slope_deg``)."""
@@ -56,6 +67,8 @@ class RequirementSpec:
         zero: Whether zero is a valid requirement (else it must be positive).
         below: Whether it must be below its upper bound, not at it.
         degrees: Whether it is an angle also given in degrees, as ``<name>_deg``.
+        implied: Whether the design asks it rather than the user: never a key or an option
+            (:meth:`~.requirements.Requirements.resolved` sets it), never relaxed.
 
     """
 
@@ -70,6 +83,7 @@ class RequirementSpec:
     zero: bool = False
     below: bool = False
     degrees: bool = False
+    implied: bool = False
 
     def __post_init__(self) -> None:
         if not self.name:
@@ -90,25 +104,23 @@ class RequirementSpec:
         """The key giving it in degrees (``slope_deg``), if it is an angle."""
         if not self.degrees:
             return None
-        low, high = self.bounds
-        return ConditionSpec(
-            self.name + DEGREES,
-            self,
-            "degrees",
-            f"the same {self.metric.label} in degrees [°]",
-            ("DEG",),
-            round(math.degrees(self.example), 9),
-            "°",
-            (round(math.degrees(low), 9), round(math.degrees(high), 9)),
-        )
+        return _in_degrees(self, self, self.metric.label, self.example, self.bounds)
 
     def margin(self, required: float, value: float) -> float:
         """How far ``value`` is on the good side of ``required`` [unit] (< 0: not met)."""
         return value - required if self.sense == "at least" else required - value
 
+    def met(self, required: float, margin: float) -> bool:
+        """Whether a value ``margin`` from ``required`` meets it (within :data:`ROUNDOFF`)."""
+        return margin >= -ROUNDOFF * max(abs(required), 1e-12)
+
     def binds(self, required: float, margin: float) -> bool:
         """Whether a design meeting it with ``margin`` sits on it."""
-        return 0 <= margin <= BINDING_SHARE * max(abs(required), 1e-12)
+        return self.met(required, margin) and margin <= BINDING_SHARE * max(abs(required), 1e-12)
+
+    def at_limit(self, required: float, margin: float) -> bool:
+        """Whether a design meeting it with ``margin`` has no margin left to speak of."""
+        return self.met(required, margin) and margin <= AT_LIMIT_SHARE * max(abs(required), 1e-12)
 
 
 ConditionKind = Literal["position", "number", "degrees"]
@@ -117,11 +129,15 @@ ConditionKind = Literal["position", "number", "degrees"]
 
 @dataclass(frozen=True)
 class ConditionSpec:
-    """One condition of a requirement: a key of the table that is no requirement itself.
+    """One condition: a key of the table that is no requirement itself.
+
+    A condition of one requirement (where the payload sits, how high the gait steps), or of
+    every requirement and metric measured (the slope walked, the motors' safety factor).
 
     Attributes:
         name: Its key in files and JSON, and (with dashes) its option.
-        of: The requirement it belongs to (its option follows that one's).
+        of: The requirement it belongs to (its option follows that one's); ``None``: every
+            requirement's and metric's (its option follows the requirements').
         kind: What its value is.
         help: What it is, with its unit in brackets.
         metavar: The option's metavar (three, for a position).
@@ -129,13 +145,16 @@ class ConditionSpec:
         unit: Its unit (of each coordinate, for a position).
         bounds: Its plausible values, inclusive (of each coordinate, for a position).
         needs: Why it is refused without its requirement (empty: a degrees key, which
-            gives the requirement itself).
+            gives the requirement itself, or a condition of every requirement).
         also: Other requirements it is a condition of too.
+        zero: Whether a number may be zero (else it must be positive).
+        degrees: Whether it is an angle also given in degrees, as ``<name>_deg``.
+        gives: For a key in degrees, the requirement or condition it gives in radians.
 
     """
 
     name: str
-    of: RequirementSpec
+    of: RequirementSpec | None
     kind: ConditionKind
     help: str
     metavar: tuple[str, ...]
@@ -144,11 +163,44 @@ class ConditionSpec:
     bounds: tuple[float, float]
     needs: str = ""
     also: tuple[RequirementSpec, ...] = ()
+    zero: bool = False
+    degrees: bool = False
+    gives: RequirementSpec | ConditionSpec | None = None
 
     @property
     def option(self) -> str:
         """Its command-line option, ``--payload-at``."""
         return "--" + self.name.replace("_", "-")
+
+    @property
+    def in_degrees(self) -> ConditionSpec | None:
+        """The key giving it in degrees (``walking_slope_deg``), if it is an angle."""
+        if not self.degrees or not isinstance(self.example, float):
+            return None
+        return _in_degrees(self, self.of, self.name.replace("_", " "), self.example, self.bounds)
+
+
+def _in_degrees(
+    spec: RequirementSpec | ConditionSpec,
+    of: RequirementSpec | None,
+    label: str,
+    example: float,
+    bounds: tuple[float, float],
+) -> ConditionSpec:
+    """The key giving ``spec`` (an angle [rad]) in degrees: ``<name>_deg`` [°]."""
+    low, high = bounds
+    return ConditionSpec(
+        spec.name + DEGREES,
+        of,
+        "degrees",
+        f"the same {label} in degrees [°]",
+        ("DEG",),
+        round(math.degrees(example), 9),
+        "°",
+        (round(math.degrees(low), 9), round(math.degrees(high), 9)),
+        zero=True,
+        gives=spec,
+    )
 
 
 PAYLOAD = RequirementSpec(
@@ -290,6 +342,24 @@ CONTINUOUS_MARGIN = RequirementSpec(
 """Every joint's RMS torque over that gait period as a share of its actuator's continuous
 torque — at most this [-]."""
 
+STRUCTURE = RequirementSpec(
+    METRICS.structure_load,
+    "at most",
+    (1.0, 1.0),
+    "every leg tube within its strength / safety factor and the foot's deflection within its "
+    "limit [-] (the design's [structure] asks it)",
+    "1",
+    1.0,
+    "the legs' tubes and their loads",
+    name="structure",
+    implied=True,
+)
+"""The legs' tubes hold, a requirement whenever the design's ``[structure]`` gives every
+tube or sizes them: the largest von Mises stress over strength / safety factor and the foot's
+deflection over its limit at most 1 — standing with the payload at the nominal stance, the
+twelve extremes and every heading of the required slope, and walking the gait when a walking
+metric is measured (:data:`~hexaleg.evaluation.metrics.METRICS` ``structure_load``)."""
+
 REQUIREMENTS: Mapping[str, RequirementSpec] = {
     spec.name: spec
     for spec in (
@@ -303,6 +373,7 @@ REQUIREMENTS: Mapping[str, RequirementSpec] = {
         WALKING_PAYLOAD,
         RANGE_KM,
         CONTINUOUS_MARGIN,
+        STRUCTURE,
     )
 }
 """Every requirement by name, in the order answers list them."""
@@ -335,18 +406,61 @@ STEP_HEIGHT = ConditionSpec(
 )
 """How high the gait of :data:`SPEED` lifts its feet [m] (the gait's own if omitted)."""
 
-CONDITIONS: Mapping[str, ConditionSpec] = {spec.name: spec for spec in (PAYLOAD_AT, STEP_HEIGHT)}
+WALKING_SLOPE = ConditionSpec(
+    "walking_slope",
+    None,
+    "number",
+    f"slope the robot must walk, uphill, downhill and across; every walking requirement and "
+    f"metric is its worst of the three walks [rad], at most {math.degrees(MAX_SLOPE):g}° "
+    "(default 0: level ground)",
+    ("RAD",),
+    math.radians(10.0),
+    "rad",
+    (0.0, MAX_SLOPE),
+    zero=True,
+    degrees=True,
+)
+"""The slope [rad] (``walking_slope_deg`` [°]) the robot walks its gait on: uphill (the
+ground rising along the gait's heading), downhill and across
+(:func:`~hexaleg.evaluation.walks.walking_grounds`); the speed, walking payload, range,
+torques, cost of transport and every other walking metric are each the worst of the three
+walks. The slope it must stand on is :data:`SLOPE`."""
+
+MOTOR_SAFETY_FACTOR = ConditionSpec(
+    "motor_safety_factor",
+    None,
+    "number",
+    "the motors' safety factor F: every peak joint torque and speed within its rating / F, "
+    "standing and walking [-] (default 1; the legs' tubes have [structure] safety_factor)",
+    ("F",),
+    1.5,
+    "-",
+    SAFETY_FACTOR_RANGE,
+)
+"""The motors' safety factor F ≥ 1 [-]: every rated torque and speed is divided by F wherever a
+payload, a slope or a speed is measured within the ratings, standing and walking (the
+``[structure]`` table's ``safety_factor`` is the legs' tubes')."""
+
+CONDITIONS: Mapping[str, ConditionSpec] = {
+    spec.name: spec for spec in (PAYLOAD_AT, STEP_HEIGHT, WALKING_SLOPE, MOTOR_SAFETY_FACTOR)
+}
 """Every condition by name, each after the requirement it belongs to in the table and the
-options (the keys in degrees are their requirements', :attr:`RequirementSpec.in_degrees`)."""
+options (the keys in degrees are their requirements', :attr:`RequirementSpec.in_degrees`),
+the conditions of every requirement last."""
 
 
 def table_keys() -> tuple[RequirementSpec | ConditionSpec, ...]:
     """Every key of the ``[requirements]`` table, each condition after its requirement."""
     keys: list[RequirementSpec | ConditionSpec] = []
     for requirement in REQUIREMENTS.values():
+        if requirement.implied:
+            continue
         keys.append(requirement)
         keys += [] if requirement.in_degrees is None else [requirement.in_degrees]
         keys += [c for c in CONDITIONS.values() if c.of is requirement]
+    for condition in CONDITIONS.values():
+        if condition.of is None:
+            keys += [condition] + ([] if condition.in_degrees is None else [condition.in_degrees])
     return tuple(keys)
 
 
@@ -355,6 +469,10 @@ def condition_keys() -> dict[str, ConditionSpec]:
     return {key.name: key for key in table_keys() if isinstance(key, ConditionSpec)}
 
 
-def degree_keys() -> dict[str, RequirementSpec]:
-    """Keys giving a requirement in degrees, and that requirement: ``{"slope_deg": SLOPE}``."""
-    return {key.name: key.of for key in condition_keys().values() if key.kind == "degrees"}
+def degree_keys() -> dict[str, RequirementSpec | ConditionSpec]:
+    """Keys giving a key in degrees, and that key: ``{"slope_deg": SLOPE, ...}``."""
+    return {
+        key.name: key.gives
+        for key in condition_keys().values()
+        if key.kind == "degrees" and key.gives is not None
+    }

@@ -28,12 +28,15 @@ from hexaleg.evaluation.metrics import Causes, Metrics
 from hexaleg.evaluation.requirement_specs import (
     CONDITIONS,
     LEG_LENGTH,
+    MOTOR_SAFETY_FACTOR,
     PAYLOAD,
     PAYLOAD_AT,
     REQUIREMENTS,
     SLOPE,
     SPEED,
     STEP_HEIGHT,
+    STRUCTURE,
+    WALKING_SLOPE,
     ConditionSpec,
     RequirementSpec,
     condition_keys,
@@ -70,6 +73,7 @@ class Requirements:
 
     def __init__(self, walked: Gait | None = None, **given: Any) -> None:
         keys = {key.name: key for key in table_keys() if key.name not in degree_keys()}
+        keys |= {spec.name: spec for spec in REQUIREMENTS.values() if spec.implied}
         unknown = [name for name in given if name not in keys]
         if unknown:
             raise ParameterError(unknown[0], given[unknown[0]], "no requirement of that name")
@@ -141,10 +145,19 @@ class Requirements:
         return Requirements(gait, **dict(self.values))
 
     def resolved(self, design: HexapodDesign) -> Requirements:
-        """These requirements with the defaults filled in from ``design`` (its leg length)."""
-        if self.required(LEG_LENGTH) is not None:
-            return self
-        return self.replace(**{LEG_LENGTH.name: design.leg_length})
+        """These requirements with what ``design`` sets filled in.
+
+        The leg length, if not given: the design's. The legs' tubes hold
+        (:data:`~.requirement_specs.STRUCTURE`), if the design's ``[structure]`` sizes them
+        or gives every one.
+        """
+        changes: dict[str, float] = {}
+        if self.required(LEG_LENGTH) is None:
+            changes[LEG_LENGTH.name] = design.leg_length
+        structure = design.structure
+        if structure is not None and (structure.size or None not in structure.tubes):
+            changes[STRUCTURE.name] = STRUCTURE.bounds[1]
+        return self.replace(**changes) if changes else self
 
     # -- queries ------------------------------------------------------------------------
 
@@ -174,6 +187,18 @@ class Requirements:
         return value if isinstance(value, tuple) else None
 
     @property
+    def walking_slope(self) -> float:
+        """The slope walked uphill, downhill and across [rad] (0: level ground)."""
+        value = self.condition(WALKING_SLOPE)
+        return float(value) if isinstance(value, float) else 0.0
+
+    @property
+    def motor_safety_factor(self) -> float:
+        """The motors' safety factor F [-] (1 unless given)."""
+        value = self.condition(MOTOR_SAFETY_FACTOR)
+        return float(value) if isinstance(value, float) else 1.0
+
+    @property
     def needs_gait(self) -> bool:
         """Whether a walking requirement is set."""
         return self.required(SPEED) is not None
@@ -190,13 +215,22 @@ class Requirements:
         return gait if speed is None else gait.with_speed(speed)
 
     def walking_conditions(self) -> str:
-        """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``."""
+        """The gait's conditions in words: ``tripod, stride 0.3 m, step height 0.1 m, …``.
+
+        With the slope walked (up, down and across it) and the motors' safety factor, if
+        given.
+        """
         gait = self.gait
         carrying = f"carrying {self.payload_mass:g} kg" if self.payload_mass else "no payload"
-        return (
+        text = (
             f"{gait.pattern}, stride {gait.stride:g} m, step height {gait.step_height:g} m, "
             f"{carrying}"
         )
+        if self.walking_slope:
+            text += f", up, down and across a {math.degrees(self.walking_slope):.3g}° slope"
+        if self.motor_safety_factor != 1:
+            text += f", within ratings / {self.motor_safety_factor:g}"
+        return text
 
     def to_dict(self) -> dict[str, Any]:
         """The requirements and conditions set, JSON-ready (SI units, radians)."""
@@ -234,11 +268,15 @@ def _checked(spec: RequirementSpec, value: Any) -> float:
 def _condition(
     spec: ConditionSpec, value: Any, required: Mapping[str, float | Position]
 ) -> float | Position:
-    """A condition's value checked, refused when none of its requirements is given."""
+    """A condition's value checked, refused when none of its requirements is given.
+
+    A condition of every requirement (``of`` ``None``) is never alone.
+    """
     checked = condition_value(spec, value)
-    owners = (spec.of, *spec.also)
-    lonely = all(owner.name not in required for owner in owners)
-    if lonely or (spec.kind == "number" and isinstance(checked, float) and checked <= 0):
+    owners = () if spec.of is None else (spec.of, *spec.also)
+    lonely = bool(owners) and all(owner.name not in required for owner in owners)
+    zero = spec.kind == "number" and isinstance(checked, float) and checked <= 0
+    if lonely or (zero and not spec.zero):
         raise ParameterError(spec.name, value, spec.needs)
     return checked
 
@@ -278,22 +316,27 @@ class RequirementCheck:
 
     @property
     def met(self) -> bool:
-        """Whether the design meets it."""
-        return self.margin >= 0
+        """Whether the design meets it (to :data:`~.requirement_specs.ROUNDOFF`)."""
+        return REQUIREMENTS[self.name].met(self.required, self.margin)
 
     @property
     def binds(self) -> bool:
         """Whether the design meets it with almost no margin to spare."""
         return REQUIREMENTS[self.name].binds(self.required, self.margin)
 
+    @property
+    def at_limit(self) -> bool:
+        """Whether it binds with no margin left to speak of (within 0.5 % of the limit)."""
+        return REQUIREMENTS[self.name].at_limit(self.required, self.margin)
+
     def to_dict(self, binding: bool) -> dict[str, Any]:
-        """JSON-ready: ``binds`` for the best design, ``met`` for the user's."""
+        """JSON-ready: ``binds`` and ``at_limit`` for the best design, ``met`` for the user's."""
         out: dict[str, Any] = {
             "required": self.required,
             "value": self.value,
             "margin": self.margin,
         }
-        out |= {"binds": self.binds} if binding else {"met": self.met}
+        out |= {"binds": self.binds, "at_limit": self.at_limit} if binding else {"met": self.met}
         return out | {"limited_by": limited_by_dict(self.limited_by)}
 
 

@@ -211,6 +211,19 @@ class GaitAnalysis:
             self.legs, self.joint_velocities, design.rated_speeds, places, "speed", factor
         )
 
+    @property
+    def unchecked_ratings(self) -> tuple[str, ...]:
+        """The ratings the design does not give, so :attr:`feasible` could not check them.
+
+        ``"torque"``, ``"speed"`` or both (a robot file's ``effort="0"``); none with
+        actuators, whose tables give both.
+        """
+        if self.electrical is not None:
+            return ()
+        design = self.design
+        given = {"torque": design.rated_torques, "speed": design.rated_speeds}
+        return tuple(kind for kind, rating in given.items() if rating is None)
+
     def time_series(self) -> dict[str, ArrayF]:
         """The time series as named columns (N,) each.
 
@@ -262,6 +275,7 @@ class GaitAnalysis:
             "slips": [slip.to_dict() for slip in self.slips],
             "feasible": self.feasible,
             "infeasible_because": self.infeasible_because,
+            "ratings_not_checked": list(self.unchecked_ratings),
             "violations": [v.to_dict() for v in self.violations],
             "tipping": None if self.tipping is None else self.tipping.to_dict(),
             "max_stride": None if self.max_stride is None else self.max_stride.value,

@@ -205,6 +205,7 @@ def _manifest_name(path: str) -> str | None:
 @lru_cache(maxsize=64)
 def _declared_name(path: str, mtime_ns: int, size: int) -> str | None:
     """:func:`_manifest_name` of the file as it was at ``mtime_ns`` and ``size`` (cached)."""
+    del mtime_ns, size  # the cache's key only: a file changed since is read anew
     try:  # a regular file within the cap only, never waited on (as a robot file is read)
         data = read_input_file(path, MAX_MANIFEST_BYTES, path)
         if b"<!ENTITY" in data:

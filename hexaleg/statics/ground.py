@@ -71,20 +71,27 @@ class Ground:
         """The ground in words: ``level ground`` or ``10° slope, uphill (rises along 0 rad)``."""
         if self.level:
             return f"level ground, μ = {self.friction:g}"
-        rises = self.uphill(walking)
-        off = math.degrees(math.remainder(rises - walking, 2 * math.pi))  # [°]
-        if abs(off) < 0.5:
-            way = "uphill" if self.slope > 0 else "downhill"
-        elif abs(abs(off) - 180) < 0.5:
-            way = "downhill" if self.slope > 0 else "uphill"
-        elif abs(abs(off) - 90) < 0.5:
-            way = "across"
-        else:
-            way = f"{off:+.0f}° off the fall line"
         return (
-            f"{math.degrees(self.slope):g}° slope rising along {rises:.4g} rad, walked {way}, "
-            f"μ = {self.friction:g}"
+            f"{math.degrees(self.slope):g}° slope rising along {self.uphill(walking):.4g} rad, "
+            f"walked {self.way(walking)}, μ = {self.friction:g}"
         )
+
+    def way(self, walking: float = 0.0) -> str:
+        """How the direction walked ψ = ``walking`` [rad] meets the slope, in words.
+
+        ``uphill``, ``downhill``, ``across``, or ``+30° off the fall line``; ``level`` on
+        level ground.
+        """
+        if self.level:
+            return "level"
+        off = math.degrees(math.remainder(self.uphill(walking) - walking, 2 * math.pi))  # [°]
+        if abs(off) < 0.5:
+            return "uphill" if self.slope > 0 else "downhill"
+        if abs(abs(off) - 180) < 0.5:
+            return "downhill" if self.slope > 0 else "uphill"
+        if abs(abs(off) - 90) < 0.5:
+            return "across"
+        return f"{off:+.0f}° off the fall line"
 
     def to_dict(self, walking: float = 0.0) -> dict[str, Any]:
         """JSON-ready: ``slope`` [rad], ``slope_deg`` [°], ``heading`` (φ resolved) [rad], μ."""

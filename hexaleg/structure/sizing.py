@@ -31,6 +31,7 @@ from hexaleg.design import HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_structure import Structure, Tube
 from hexaleg.robot.model import HexapodModel
+from hexaleg.stance.extremes import Extreme
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
@@ -96,6 +97,7 @@ def size_structure(
     mode: FlexibilityMode = "axis",
     model: HexapodModel | None = None,
     grid: TubeGrid | None = None,
+    extremes: Sequence[Extreme] | None = None,
 ) -> SizedStructure:
     """The lightest tubes of ``grid`` that hold every standing case of ``design``.
 
@@ -110,6 +112,8 @@ def size_structure(
         mode: Which flexibility extremes: axis-locked or free-coupled.
         model: ``design``'s model (hexaleg's template), if already built.
         grid: The tubes to choose from (:class:`TubeGrid`'s defaults if omitted).
+        extremes: The design's flexibility extremes of ``stance`` and ``mode``, if already
+            found (an evaluation's; they depend on the geometry only).
 
     """
     if design.structure is None:
@@ -117,7 +121,8 @@ def size_structure(
     grid = DEFAULT_GRID if grid is None else grid
     model = HexapodModel(design) if model is None else model
     legs = stance_legs(model, stance)
-    extremes = flexibility(design, mode, legs, model).extremes
+    if extremes is None:
+        extremes = flexibility(design, mode, legs, model).extremes
     cases = standing_cases(model, legs, extremes, payload, slope, friction, distribution)
     return size_for_cases(design, cases, model, grid)
 

@@ -110,7 +110,8 @@ def find_conflict(space: SearchSpace, goal: Goal, least: Evaluation, search: Sea
 
     """
     checks = goal.checks(least) if not least.error else ()
-    suspects = [c.name for c in checks if not c.met or c.binds] or list(goal.requirements.given)
+    asked = [name for name in goal.requirements.given if not REQUIREMENTS[name].implied]
+    suspects = [c.name for c in checks if (not c.met or c.binds) and c.name in asked] or asked
     relaxations = []
     for name in suspects:
         relaxation = _relax(space, goal, name, search)

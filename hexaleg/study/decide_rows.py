@@ -13,12 +13,21 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 from hexaleg.evaluation.requirements import RequirementCheck, format_value
-from hexaleg.study.decide import DecideResult
+from hexaleg.study.decide import DecideResult, posture_figures
 from hexaleg.study.search_space import AtBound, value_of
 
-__all__ = ["AnswerRows", "BoundRow", "RequirementRow", "answer_rows", "value_text"]
+__all__ = [
+    "AnswerRows",
+    "BoundRow",
+    "PostureRow",
+    "RequirementRow",
+    "answer_rows",
+    "exact",
+    "value_text",
+]
 
 
 @dataclass(frozen=True)
@@ -52,17 +61,48 @@ class BoundRow:
 
 
 @dataclass(frozen=True)
+class PostureRow:
+    """A design's posture and what it means for the robot (:func:`~.decide.posture_figures`).
+
+    Attributes:
+        nominal_angles: θ1, θ2, θ3 [rad].
+        nominal_height: The body frame above the ground [m].
+        foothold_radius: Each nominal foothold's horizontal distance from its leg's root [m].
+
+    """
+
+    nominal_angles: tuple[float, float, float]
+    nominal_height: float
+    foothold_radius: float
+
+    def text(self) -> str:
+        """``posture θ = (0, -0.418, -1.553) rad (0°, -24°, -89°), body height …, …``.
+
+        The angles exactly as measured (a rounded answer's are milliradians).
+        """
+        radians = ", ".join(exact(a) for a in self.nominal_angles)
+        degrees = ", ".join(f"{math.degrees(a):.3g}°" for a in self.nominal_angles)
+        return (
+            f"posture θ = ({radians}) rad ({degrees}), body height {self.nominal_height:.4g} m, "
+            f"foothold radius {self.foothold_radius:.4g} m"
+        )
+
+
+@dataclass(frozen=True)
 class AnswerRows:
     """Every row of the answer: the requirements in declared order, then the bounds that bind.
 
     Attributes:
         requirements: One row per requirement given.
         bounds: One row per free variable at a search bound.
+        postures: The best design's posture and the user's (``None``: a robot file's legs,
+            which stand as their file does).
 
     """
 
     requirements: tuple[RequirementRow, ...]
     bounds: tuple[BoundRow, ...]
+    postures: tuple[PostureRow, PostureRow] | None = None
 
 
 def answer_rows(result: DecideResult) -> AnswerRows:
@@ -76,7 +116,25 @@ def answer_rows(result: DecideResult) -> AnswerRows:
     )
     design = result.yours.design
     bounds = tuple(BoundRow(at, value_of(design, at.variable.name)) for at in result.bounds_binding)
-    return AnswerRows(requirements, bounds)
+    postures = None
+    if result.robot is None:
+        best_posture, your_posture = (
+            _posture(posture_figures(checked.design)) for checked in (result.best, result.yours)
+        )
+        postures = (best_posture, your_posture)
+    return AnswerRows(requirements, bounds, postures)
+
+
+def _posture(figures: dict[str, Any]) -> PostureRow:
+    angles = figures["nominal_angles"]
+    return PostureRow(
+        (angles[0], angles[1], angles[2]), figures["nominal_height"], figures["foothold_radius"]
+    )
+
+
+def exact(value: float) -> str:
+    """``value`` exactly as measured: the shortest decimal that reads back as the same float."""
+    return repr(float(value))
 
 
 def value_text(check: RequirementCheck) -> str:

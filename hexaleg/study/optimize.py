@@ -49,6 +49,7 @@ from hexaleg._checks import require_int
 from hexaleg._typing import ArrayF
 from hexaleg.evaluation.evaluate import Evaluation
 from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.requirement_specs import ROUNDOFF
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.robot.robot import Robot
 from hexaleg.stance.geometry import StanceGeometry
@@ -188,6 +189,27 @@ def evaluate_points(task: _Task) -> list[Evaluation]:
     return [out[k] for k in range(len(task.points))]
 
 
+def _tasks(space: SearchSpace, goal: Goal, points: Sequence[tuple[float, ...]]) -> list[_Task]:
+    """The points in tasks of :data:`CHUNK` designs."""
+    return [_Task(space, goal, tuple(points[i : i + CHUNK])) for i in range(0, len(points), CHUNK)]
+
+
+def _run(tasks: Sequence[_Task], executor: Executor | None) -> list[list[Evaluation]]:
+    """Each task's evaluations, on ``executor`` (this process if ``None``), in task order."""
+    if executor is None:
+        return [evaluate_points(task) for task in tasks]
+    return [f.result() for f in [executor.submit(evaluate_points, t) for t in tasks]]
+
+
+def evaluate_batch(
+    space: SearchSpace, goal: Goal, points: Sequence[npt.ArrayLike], executor: Executor | None
+) -> list[Evaluation]:
+    """The evaluation of the space's robot at each point for ``goal``, on ``executor``."""
+    keys = [tuple(float(v) for v in np.asarray(x, dtype=float)) for x in points]
+    tasks = _tasks(space, goal, keys)
+    return [found for evaluations in _run(tasks, executor) for found in evaluations]
+
+
 # -- the search ---------------------------------------------------------------------------
 
 
@@ -216,17 +238,8 @@ class _Evaluator:
                 found[x] = known
         missing = list(dict.fromkeys(x for x in keys if x not in found))
         self.bar.update(len(keys) - len(missing))
-        tasks = [
-            _Task(self.space, self.goal, tuple(missing[i : i + CHUNK]))
-            for i in range(0, len(missing), CHUNK)
-        ]
-        if self.executor is None:
-            results = [evaluate_points(task) for task in tasks]
-        else:
-            results = [
-                f.result() for f in [self.executor.submit(evaluate_points, t) for t in tasks]
-            ]
-        for task, evaluations in zip(tasks, results, strict=True):
+        tasks = _tasks(self.space, self.goal, missing)
+        for task, evaluations in zip(tasks, _run(tasks, self.executor), strict=True):
             found.update(zip(task.points, evaluations, strict=True))
             if self.journal is not None:
                 self.journal.record(self.key, task.points, evaluations)
@@ -257,7 +270,10 @@ def objective_and_constraints(goal: Goal, evaluation: Evaluation) -> tuple[float
     if evaluation.error:
         return INVALID, np.full(count, INVALID)
     checks = {c.name: c for c in goal.checks(evaluation)}
-    g = [-checks[name].margin / max(abs(checks[name].required), 1e-9) for name in goal.constraints]
+    g = [  # met within round-off (ROUNDOFF) is met: g ≤ 0, as the checks say
+        -checks[name].margin / max(abs(checks[name].required), 1e-9) - ROUNDOFF
+        for name in goal.constraints
+    ]
     cost = goal.objective.cost(evaluation.metrics.value(goal.objective.spec))
     return cost, np.array(g or [0.0])
 

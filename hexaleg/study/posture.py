@@ -6,8 +6,9 @@ within the design's stance limits, for the design that meets every requirement o
 :class:`~hexaleg.evaluation.goal.Goal` with the best objective (default: the largest walking
 payload capacity), measured by the one :func:`~hexaleg.evaluation.evaluate.evaluate` every
 decision uses. The answer is a :class:`~hexaleg.study.decide.DecideResult` whose free
-variables are θ2 and θ3, so that it is printed, checked and re-measured (from its own URDF)
-exactly as ``decide`` prints its best; the design as posed is "yours".
+variables are θ2 and θ3, so that it is put on the workshop's grid (0.001 rad), checked,
+re-measured (from its own URDF) and printed exactly as ``decide`` answers its best; the design
+as posed is "yours".
 
 The search is deterministic and two-stage, on the box of the stance limits scaled to the
 unit square (:func:`~hexaleg.numerics.box_search.box_minimum`, which the report's
@@ -31,9 +32,6 @@ brute-force grid over the stance limits on seeded random designs.
 
 from __future__ import annotations
 
-import math
-from typing import Any
-
 import numpy as np
 
 from hexaleg._checks import require_instance
@@ -43,14 +41,14 @@ from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
-from hexaleg.kinematics import foot_position
 from hexaleg.numerics.box_search import box_minimum
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import POSTURE_FIELD, Robot, robot_of
 from hexaleg.stance.geometry import StanceGeometry
-from hexaleg.study.decide import CheckedDesign, DecideResult
+from hexaleg.study.decide import CheckedDesign, DecideResult, posture_figures, workshop_answer
+from hexaleg.study.decide_grid import Rounding
 from hexaleg.study.optimize import INVALID, objective_and_constraints
-from hexaleg.study.search_space import POSTURE, FreeVariable
+from hexaleg.study.search_space import POSTURE, FreeVariable, SearchSpace
 
 __all__ = [
     "DEFAULT_OBJECTIVE",
@@ -82,21 +80,6 @@ def posture_variables(design: HexapodDesign) -> tuple[FreeVariable, FreeVariable
     """θ2 and θ3, each within the design's stance limits [rad]."""
     limits = design.stance_limits
     return FreeVariable(POSTURE[0], *limits.theta2), FreeVariable(POSTURE[1], *limits.theta3)
-
-
-def posture_figures(design: HexapodDesign) -> dict[str, Any]:
-    """What a posture means for the robot: its body height and its legs' reach [m, rad].
-
-    ``nominal_angles`` (θ1, θ2, θ3) [rad]; ``nominal_height``, the body frame above the
-    ground; ``foothold_radius``, each nominal foothold's horizontal distance from its leg's
-    root (eq 7: l1 + l2·cos θ2 + l3·cos(θ2 + θ3) at θ1 = 0) [m].
-    """
-    x, y, _ = foot_position(design.lengths, design.nominal_angles)
-    return {
-        "nominal_angles": list(design.nominal_angles),
-        "nominal_height": design.nominal_height,
-        "foothold_radius": float(math.hypot(x, y)),
-    }
 
 
 class _Scores:
@@ -148,6 +131,7 @@ def best_posture(
     robot: Robot | HexapodDesign,
     requirements: Requirements | None = None,
     objective: Objective = DEFAULT_OBJECTIVE,
+    rounding: Rounding | None = None,
 ) -> DecideResult:
     """The best nominal posture of ``robot``'s lengths for ``objective``, meeting ``requirements``.
 
@@ -157,10 +141,12 @@ def best_posture(
             posture's robot is derived from it (:meth:`~hexaleg.robot.robot.Robot.at`).
         requirements: What the robot must do (none by default).
         objective: What to make best (default: the walking payload capacity).
+        rounding: The grid the answer's angles are put on (default 0.001 rad), as
+            ``decide``'s (:func:`~hexaleg.study.decide.workshop_answer`).
 
     Returns:
-        The decision over θ2 and θ3: ``best`` the lengths at their best posture, re-measured
-        from their own URDF; ``yours`` the robot as posed.
+        The decision over θ2 and θ3: ``best`` the lengths at their best posture on the
+        grid, re-measured from their own URDF; ``yours`` the robot as posed.
 
     Raises:
         ParameterError: ``robot`` is neither a robot nor a design; a robot whose posture is
@@ -175,12 +161,16 @@ def best_posture(
     best = box_minimum(
         scores, scores.unit(robot.design), global_evaluations=GLOBAL_EVALUATIONS, polish=POLISH
     )
-    checked = CheckedDesign.of(scores.posed(scores.angles(best)), goal)
+    space = SearchSpace(robot.design, scores.variables, robot=robot)
+    feasible = scores(best) < PENALTY  # meets every requirement
+    checked, rounded = workshop_answer(
+        space, goal, scores.angles(best), feasible, rounding or Rounding(), None
+    )
     return DecideResult(
         requirements=requirements, objective=objective, variables=scores.variables,
         best=checked, yours=CheckedDesign.of(robot, goal), feasible=checked.meets_all,
         conflict=None, method=METHOD, evaluations=len(scores.seen), seed=0,
-        robot=robot.source.path,
+        robot=robot.source.path, rounded=rounded,
     )  # fmt: skip
 
 

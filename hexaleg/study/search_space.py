@@ -19,7 +19,7 @@ from __future__ import annotations
 import dataclasses
 import math
 import re
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any, Literal
 
@@ -303,19 +303,25 @@ def value_of(design: HexapodDesign, name: str) -> float:
     return float(getattr(design, name))
 
 
-def bounds_reached(variables: Sequence[FreeVariable], design: HexapodDesign) -> tuple[AtBound, ...]:
+def bounds_reached(
+    variables: Sequence[FreeVariable],
+    design: HexapodDesign,
+    steps: Mapping[str, float | None] | None = None,
+) -> tuple[AtBound, ...]:
     """Each free variable ``design`` holds at a bound (within :data:`AT_BOUND_SHARE` of its range).
 
     A search's answer pressed against a bound is limited by that bound, as by a requirement
-    that binds: moving the bound would move the answer.
+    that binds: moving the bound would move the answer. ``steps``: each variable's grid
+    step where the answer was rounded [m or rad]: the grid point next to a bound is at it.
     """
     reached = []
     for variable in variables:
         if variable.name in (*CHOICES, *GEARS):
             continue  # a catalog entry has no bound to press against; its ratio range is its own
+        step = (steps or {}).get(variable.name) or 0.0
         value, near = (
             value_of(design, variable.name),
-            AT_BOUND_SHARE * (variable.upper - variable.lower),
+            max(AT_BOUND_SHARE * (variable.upper - variable.lower), step),
         )
         if value <= variable.lower + near:
             reached.append(AtBound(variable, "lower"))
