@@ -4,7 +4,8 @@ The rule (:data:`RANKING_RULE`) has two steps:
 
 1. **A constraint** (:class:`WalkingConstraint`): what the robot must do comes first. A leg
    is ranked only if it walks the report's gait (the design file's ``[gait]``, else the
-   default tripod) carrying the payload (none unless one is required) within every
+   default tripod) carrying the payload (none unless one is required) on level ground (the
+   report's study's ground; a required walking slope is not yet part of it) within every
    rating, its ZMP inside the standing feet (:mod:`hexaleg.gait.capacity`: its walking
    payload capacity is at least the payload, and it walks the gait unloaded). A leg that
    does not is not scored, however flexible it is.
@@ -50,11 +51,12 @@ WALKING = METRICS.walking_payload_capacity
 
 RANKING_RULE = (
     "what the robot must do comes first: a leg is ranked only if it walks the gait (the "
-    "design file's [gait], else the default tripod) carrying the payload within every "
-    "rating, its ZMP inside the standing feet; among those, a leg's score is the geometric "
-    "mean of its improved workspace area (eq 16), average manipulability w_A (eq 27) and "
-    "axis-locked body flexibility FB (eq 29), each divided by your design's own value: your "
-    "design scores 1, and 1.10 is 10 % better on that average, every metric counting alike "
+    "design file's [gait], else the default tripod) carrying the payload on level ground "
+    "within every rating, its ZMP inside the standing feet; among those, a leg's score is "
+    "the geometric mean of its improved workspace area (eq 16), average manipulability w_A "
+    "(eq 27) and axis-locked body flexibility FB (eq 29), each divided by your design's own "
+    "value: your design scores 1, and 1.10 is 10 % better on that average, every metric "
+    "counting alike "
     "whatever its unit. A metric your design has no positive value of is left out of every "
     "score rather than divided by. A score depends on that leg and yours alone, so adding "
     "or removing other legs never changes it"
@@ -119,7 +121,10 @@ class WalkingConstraint:
         """
         carrying = "unloaded" if self.payload == 0 else f"carrying {self.payload:g} kg"
         verb = "walk" if plural else "walks"
-        return f"{verb} the gait {carrying} within every rating, its ZMP inside the standing feet"
+        return (
+            f"{verb} the gait {carrying} on level ground within every rating, its ZMP inside "
+            "the standing feet"
+        )
 
 
 def scored_metrics(reference: Metrics) -> tuple[MetricSpec, ...]:
