@@ -230,3 +230,35 @@ def test_a_payload_no_leg_walks_with_ranks_the_legs_walking_unloaded_and_says_so
         NothingToRecommend("none")))  # fmt: skip
     with pytest.raises(NothingToRecommend):  # nothing to relax: the report says why it stops
         part.compute(unloaded)  # type: ignore[arg-type]
+
+
+def test_a_required_walking_slope_is_what_every_leg_of_the_report_walks_and_ranks_by():
+    """The report's one set of conditions: its study, your design and every searched leg."""
+    from hexaleg import HexapodDesign, HexapodModel
+    from hexaleg.evaluation.requirements import Requirements
+    from hexaleg.evaluation.walks import walking_grounds
+    from hexaleg.exceptions import HexalegError
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.output.report.part import ReportData
+    from hexaleg.output.report.yours import report_study, standing_text
+    from hexaleg.study.sweep import StudySpec
+
+    slope = math.radians(10)
+    required = Requirements(payload=20.0, walking_slope=slope, motor_safety_factor=1.5)
+    options = ReportOptions(l3_points=10, requirements=required)
+    design = HexapodDesign()
+    spec = report_study(ReportData(design, options, HexapodModel(design)))
+    conditions = spec.conditions
+    assert conditions.grounds == walking_grounds(slope, options.gait)  # up, down, across
+    assert len(conditions.grounds) == 3 and conditions.safety_factor == 1.5
+    assert conditions.payload.mass == 0.0  # the payload is the constraint, not a condition
+    constraint = options.decision.constraint
+    assert constraint == WalkingConstraint(20.0, slope)
+    assert "carrying 20 kg up, down and across a 10° slope" in constraint.describe()
+    assert "10° slope" in standing_text(spec)
+    plain = report_study(ReportData(design, ReportOptions(l3_points=10), HexapodModel(design)))
+    assert len(plain.conditions.grounds) == 1 and plain.fingerprint().keys() == (
+        StudySpec(plain.l1_ratios, plain.l3_ratios).fingerprint().keys()
+    )  # a level study's journal reads as before
+    with pytest.raises(HexalegError, match="walking_slope"):
+        StudySpec((0.1,), (0.4,), walking_slope=-0.1)

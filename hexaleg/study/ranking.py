@@ -4,8 +4,8 @@ The rule (:data:`RANKING_RULE`) has two steps:
 
 1. **A constraint** (:class:`WalkingConstraint`): what the robot must do comes first. A leg
    is ranked only if it walks the report's gait (the design file's ``[gait]``, else the
-   default tripod) carrying the payload (none unless one is required) on level ground (the
-   report's study's ground; a required walking slope is not yet part of it) within every
+   default tripod) carrying the payload (none unless one is required) on the ground it must
+   walk (level, or the required walking slope up, down and across) within every
    rating, its ZMP inside the standing feet (:mod:`hexaleg.gait.capacity`: its walking
    payload capacity is at least the payload, and it walks the gait unloaded). A leg that
    does not is not scored, however flexible it is.
@@ -51,12 +51,12 @@ WALKING = METRICS.walking_payload_capacity
 
 RANKING_RULE = (
     "what the robot must do comes first: a leg is ranked only if it walks the gait (the "
-    "design file's [gait], else the default tripod) carrying the payload on level ground "
-    "within every rating, its ZMP inside the standing feet; among those, a leg's score is "
-    "the geometric mean of its improved workspace area (eq 16), average manipulability w_A "
-    "(eq 27) and axis-locked body flexibility FB (eq 29), each divided by your design's own "
-    "value: your design scores 1, and 1.10 is 10 % better on that average, every metric "
-    "counting alike "
+    "design file's [gait], else the default tripod) carrying the payload on the ground it "
+    "must walk (level, or the required walking slope up, down and across) within every "
+    "rating, its ZMP inside the standing feet; among those, a leg's score is the geometric "
+    "mean of its improved workspace area (eq 16), average manipulability w_A (eq 27) and "
+    "axis-locked body flexibility FB (eq 29), each divided by your design's own value: your "
+    "design scores 1, and 1.10 is 10 % better on that average, every metric counting alike "
     "whatever its unit. A metric your design has no positive value of is left out of every "
     "score rather than divided by. A score depends on that leg and yours alone, so adding "
     "or removing other legs never changes it"
@@ -74,10 +74,13 @@ class WalkingConstraint:
 
     Attributes:
         payload: The payload carried [kg] (0: walking unloaded).
+        walking_slope: The slope it is walked up, down and across [rad] (0: level ground);
+            the legs are measured on it (the study's conditions), this names it.
 
     """
 
     payload: float = 0.0
+    walking_slope: float = 0.0
 
     def __post_init__(self) -> None:
         if not (math.isfinite(self.payload) and self.payload >= 0):
@@ -121,9 +124,14 @@ class WalkingConstraint:
         """
         carrying = "unloaded" if self.payload == 0 else f"carrying {self.payload:g} kg"
         verb = "walk" if plural else "walks"
+        ground = (
+            "on level ground"
+            if self.walking_slope == 0
+            else f"up, down and across a {math.degrees(self.walking_slope):.3g}° slope"
+        )
         return (
-            f"{verb} the gait {carrying} on level ground within every rating, its ZMP inside "
-            "the standing feet"
+            f"{verb} the gait {carrying} {ground} within every rating, its ZMP inside the "
+            "standing feet"
         )
 
 

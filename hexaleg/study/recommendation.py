@@ -81,6 +81,8 @@ class DecisionOptions:
         collisions: The robot's own parts touching also stop the body (FB).
         gait: The gait every leg walks (the design file's ``[gait]``, else the default).
         payload: The payload every ranked leg walks it with [kg] (the requirements', or 0).
+        walking_slope: The slope every ranked leg walks it up, down and across [rad] (the
+            requirements', or 0: level ground).
 
     """
 
@@ -88,11 +90,12 @@ class DecisionOptions:
     collisions: bool = False
     gait: Gait = field(default_factory=Gait)
     payload: float = 0.0
+    walking_slope: float = 0.0
 
     @property
     def constraint(self) -> WalkingConstraint:
         """What every ranked leg must do: walk the gait carrying :attr:`payload`."""
-        return WalkingConstraint(self.payload)
+        return WalkingConstraint(self.payload, self.walking_slope)
 
     def describe_candidates(self) -> str:
         """The allowed coxa ratios, in words."""

@@ -109,10 +109,14 @@ def section(data: ReportData) -> Section:
 
 def _measured_under(data: ReportData) -> str:
     """What the three legs below are measured under (the requirements' answer: under them)."""
-    conditions = data[YoursRecord].spec.conditions
-    slope = conditions.slope
-    ground = "level ground" if not slope else f"a {slope:.3g} rad slope"
-    mass = conditions.payload.mass
+    spec = data[YoursRecord].spec
+    slope = spec.walking_slope
+    ground = (
+        "level ground"
+        if not slope
+        else f"level ground, walking up, down and across a {math.degrees(slope):.3g}° slope"
+    )
+    mass = spec.conditions.payload.mass
     payload = "no payload" if mass == 0 else f"{mass:g} kg"
     above = (
         "" if data[DecisionRecord].requirements is None

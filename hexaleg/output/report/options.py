@@ -107,12 +107,13 @@ class ReportOptions:
     def decision(self) -> DecisionOptions:
         """What the decision may choose from (coxa ratios, collisions, gait) and its payload.
 
-        Every ranked leg walks the gait carrying the payload the requirements ask for: the
-        larger of the standing and the walking payload given (none without requirements).
+        Every ranked leg walks the gait carrying the payload the requirements ask for (the
+        larger of the standing and the walking payload given), up, down and across their
+        walking slope (none and level ground without requirements).
         """
         required = self.requirements
-        payload = 0.0
+        payload = slope = 0.0
         if required is not None:
             walking = required.required(WALKING_PAYLOAD) or 0.0
-            payload = max(required.payload_mass, walking)
-        return DecisionOptions(self.l1_ratios, self.collisions, self.gait, payload)
+            payload, slope = max(required.payload_mass, walking), required.walking_slope
+        return DecisionOptions(self.l1_ratios, self.collisions, self.gait, payload, slope)

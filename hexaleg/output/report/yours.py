@@ -11,6 +11,7 @@ design can print two values. It shows no section of its own.
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 from hexaleg.design import HexapodDesign, l3_ratio_grid
@@ -30,9 +31,12 @@ def report_metrics(design: HexapodDesign) -> tuple[MetricSpec, ...]:
 def report_study(data: ReportData) -> StudySpec:
     """The report's study: the swept coxa ratios × the report's tibia ratios, on its robot.
 
-    Its conditions are those every design of the report is measured under.
+    Its conditions are those every design of the report is measured under: walking the
+    report's gait up, down and across the requirements' walking slope (level ground
+    without one), within the ratings over the requirements' motor safety factor.
     """
     options = data.options
+    required = options.requirements
     return StudySpec(
         options.swept_l1_ratios,
         tuple(l3_ratio_grid(options.l3_points)),
@@ -41,6 +45,8 @@ def report_study(data: ReportData) -> StudySpec:
         collisions=options.collisions,
         walked=options.gait,
         robot=data.robot,
+        walking_slope=0.0 if required is None else required.walking_slope,
+        safety_factor=1.0 if required is None else required.motor_safety_factor,
     )
 
 
@@ -50,8 +56,12 @@ def standing_text(spec: StudySpec) -> str:
     ``"standing at your posture θ = (0.000, 0.000, -1.571) rad on level ground"``.
     """
     angles = ", ".join(f"{a:.3f}" for a in spec.robot.design.nominal_angles)
-    slope = spec.conditions.slope
-    ground = "on level ground" if not slope else f"on a {slope:.3g} rad slope"
+    slope = spec.walking_slope
+    ground = (
+        "on level ground"
+        if not slope
+        else f"on level ground, walking up, down and across a {math.degrees(slope):.3g}° slope"
+    )
     return f"standing at your posture θ = ({angles}) rad {ground}"
 
 
