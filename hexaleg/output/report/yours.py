@@ -24,8 +24,16 @@ from hexaleg.study.sweep import StudySpec
 
 
 def report_metrics(design: HexapodDesign) -> tuple[MetricSpec, ...]:
-    """Every metric ``design`` can have: those through its motors only with actuators."""
-    return tuple(spec for spec in METRICS if not spec.lacks(design))
+    """Every metric ``design`` can have.
+
+    Those through its motors only with actuators, the tubes' load only with a ``[structure]``.
+    """
+    tubes = design.structure is not None
+    return tuple(
+        spec
+        for spec in METRICS
+        if not spec.lacks(design) and (tubes or spec is not METRICS.structure_load)
+    )
 
 
 def report_study(data: ReportData) -> StudySpec:
