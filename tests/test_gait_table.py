@@ -25,6 +25,7 @@ from hexaleg.gait.capacity import walking_payload_capacity
 from hexaleg.gait.spec import Gait
 from hexaleg.output.report import motors as report_motors
 from hexaleg.output.report import study as report_study
+from hexaleg.output.report import yours as report_yours
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import ReportData
 from hexaleg.robot.model import HexapodModel
@@ -187,7 +188,7 @@ def test_the_report_walks_the_table(files, monkeypatch):
     assert run_cli(["report", "--design", str(with_table), "-o", "unused"]) == 2
     options = asked["options"]
     assert options.gait == load_gait(with_table) != Gait()
-    assert options.decision.conditions.gait == options.gait  # what the decision ranks by
+    assert options.decision.gait == options.gait  # what the decision ranks by
 
 
 def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
@@ -196,7 +197,8 @@ def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
     gait = load_gait(with_table)
     design = HexapodDesign(l3=0.35)
     options = ReportOptions(l3_points=10, workers=1, progress=False, l1_ratios=(0.1,), gait=gait)
-    study = report_study.compute(ReportData(design, options, HexapodModel(design)))
+    data = ReportData(design, options, HexapodModel(design))
+    study = report_study.compute(data.with_record(report_yours.compute(data)))
     assert study.spec.walked == gait
     oracle = _gait_json(capsys, without, design)
     assert study.yours.metrics.gait_peak_hip_torque == pytest.approx(
@@ -213,7 +215,7 @@ def test_the_report_s_study_and_motors_walk_its_gait(files, capsys, tmp_path):
     )
     with_motors = load_design(motors_file)
     data = ReportData(with_motors, options, HexapodModel(with_motors))
-    walked = report_motors.compute(data).walked
+    walked = report_motors.compute(data.with_record(report_yours.compute(data))).walked
     args = ["gait", "--design", str(motors_file), *OPTIONS]
     energy = _json(capsys, args)["electrical"]["energy_per_km"]
     assert walked.gait == gait and walked.electrical.energy_per_km == pytest.approx(energy, 1e-12)

@@ -72,8 +72,10 @@ def test_the_report_has_a_motors_and_battery_section(tmp_path):
     from hexaleg.output.report.motors import PART, MotorsRecord
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.output.report.part import ReportData
+    from hexaleg.output.report.yours import compute as measured_once
 
     data = ReportData(DESIGN, ReportOptions(), HexapodModel(DESIGN))
+    data = data.with_record(measured_once(data))  # your design's one evaluation, read by it
     data = data.with_record(PART.compute(data))
     section = PART.section(data)
     text = "\n".join(b for b in section.blocks if isinstance(b, str))

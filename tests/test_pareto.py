@@ -14,7 +14,7 @@ COLUMNS = ranked_columns()
 
 
 def _ranked(values) -> Metrics:
-    """The four ranked metrics, in their order."""
+    """The three ranked metrics, in their order."""
     return Metrics(**{name: float(v) for name, v in zip(COLUMNS, values, strict=True)})
 
 
@@ -40,25 +40,25 @@ def _grid(values, names):
 
 def test_the_front_is_ranked_by_the_geometric_mean_relative_to_yours():
     grid = _grid(
-        [[1.0, 1.0, 1.0, 4.0], [2.0, 1.5, 1.0, 1.0], [2.0, 1.0, 1.0, 1.0], [4.0, 1.0, 1.0, 2.0]],
+        [[1.0, 1.0, 2.0], [2.0, 1.5, 0.5], [2.0, 1.0, 0.5], [4.0, 1.0, 1.0]],
         ["p", "q", "r", "s"],
     )
-    yours = _ranked([1.0, 1.0, 1.0, 2.0])
+    yours = _ranked([1.0, 1.0, 1.0])
     front = pareto_table(grid, yours)
     assert set(front["name"]) == {"p", "q", "s"}  # r is beaten by q
     scores = dict(zip(front["name"], front["score"], strict=True))
-    # by hand: the fourth roots of the products of the ratios to yours
-    assert scores == pytest.approx({"p": 2**0.25, "q": 1.5**0.25, "s": 4**0.25})
+    # by hand: the cube roots of the products of the ratios to yours
+    assert scores == pytest.approx({"p": 2 ** (1 / 3), "q": 1.5 ** (1 / 3), "s": 4 ** (1 / 3)})
     assert list(front["name"]) == ["s", "p", "q"]
 
 
 def test_adding_designs_never_changes_a_score_on_the_front():
     rng = np.random.default_rng(7)
-    grid = _grid(rng.uniform(0.1, 1.0, (40, 4)), range(40))
-    reference = rng.uniform(0.1, 1.0, 4)
+    grid = _grid(rng.uniform(0.1, 1.0, (40, 3)), range(40))
+    reference = rng.uniform(0.1, 1.0, 3)
     yours = _ranked(reference)
     before = pareto_table(grid, yours).set_index("name")["score"]
-    more = pd.concat([grid, _grid(rng.uniform(0.1, 1.2, (40, 4)), range(40, 80))])
+    more = pd.concat([grid, _grid(rng.uniform(0.1, 1.0, (40, 3)), range(40, 80))])
     after = pareto_table(more, yours).set_index("name")["score"]
     kept = before.index.intersection(after.index)
     assert len(kept) > 0

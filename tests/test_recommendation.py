@@ -1,160 +1,264 @@
-"""The recommendation: one rule, scores that stay put, the coxa can be fixed, peaks refined."""
+"""The recommendation: one rule on the grid, the cliff kept at a distance, the band beside it."""
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
+from types import SimpleNamespace
+
 import numpy as np
+import pandas as pd
 import pytest
 
 from hexaleg.evaluation.metrics import METRICS, Metrics
-from hexaleg.study.ranking import RANKED_METRICS
-from hexaleg.study.recommendation import BAND, recommend
+from hexaleg.study.ranking import RANKED_METRICS, WalkingConstraint
+from hexaleg.study.recommendation import (
+    BAND,
+    CLIFF_MARGIN,
+    PROFILE_STEP,
+    band_and_cliffs,
+    band_of,
+    candidate_mask,
+    grid_ranking,
+    settled,
+)
+from hexaleg.swing.workspace import improved_area_closed_form
 
 R1 = np.array([0.05, 0.10, 0.15, 0.20])
 R3 = np.linspace(0.2, 0.6, 9)
-YOURS = Metrics(
-    improved_area=0.3, average_manipulability=0.08, fb=0.2, walking_payload_capacity=150.0
-)
+YOURS = Metrics(improved_area=0.3, average_manipulability=0.08, fb=0.2)
+WALKING = METRICS.walking_payload_capacity.name
 
 
-def _ranked(values) -> Metrics:
-    return Metrics(**{spec.name: float(v) for spec, v in zip(RANKED_METRICS, values, strict=True)})
+def _w_a(l1_ratio, l3_ratio):
+    return 0.1 * (1 - (l3_ratio - 0.43) ** 2) * (1 - l1_ratio)
 
 
-def _metric(k: int, l1_ratio, l3_ratio, peak: float):
-    """Smooth metrics peaking at l3 = peak; the kinematic ones fall as the coxa grows,
-    the payload rises with it."""
-    shape = 1 - (l3_ratio - peak) ** 2
-    if RANKED_METRICS[k] is METRICS.walking_payload_capacity:
-        return 100.0 * shape * (1 + l1_ratio)
-    return (k + 1) * shape * (1 - l1_ratio)
+def _fb(l1_ratio, l3_ratio):
+    return 0.3 * (1 - (l3_ratio - 0.5) ** 2) * (1 - l1_ratio)
 
 
-def _maps(peak: float = 0.43, r1=R1) -> dict:
-    return {
-        spec: _metric(k, r1[:, None], R3[None, :], peak) for k, spec in enumerate(RANKED_METRICS)
-    }
+def _capacity(l1_ratio, l3_ratio):
+    return 100.0 * (1 - l3_ratio)  # a longer tibia carries less
 
 
-def _by_hand(l1_ratio, l3_ratio, peak=0.43):
-    """The rule, written out: the fourth root of the product of the ratios to yours."""
-    product = 1.0
-    for k, spec in enumerate(RANKED_METRICS):
-        product *= _metric(k, l1_ratio, l3_ratio, peak) / YOURS.value(spec)
-    return product**0.25
+def _study() -> pd.DataFrame:
+    rows = [
+        {"l1_ratio": a, "l3_ratio": b, "fb": _fb(a, b), WALKING: _capacity(a, b), "walks": True}
+        for a in R1
+        for b in R3
+    ]
+    return pd.DataFrame(rows)
 
 
-def test_the_score_is_the_rule_and_compares_across_coxa_ratios():
-    rec = recommend(R1, R3, _maps(), YOURS)
-    table = rec.scores
+def _by_hand(l1_ratio, l3_ratio, total=1.0):
+    """The rule, written out: the cube root of the product of the ratios to yours."""
+    area = 2 * math.pi * (1 - l1_ratio - l3_ratio) * l3_ratio * total**2 / 3  # eq 16
+    return (area / 0.3 * _w_a(l1_ratio, l3_ratio) / 0.08 * _fb(l1_ratio, l3_ratio) / 0.2) ** (1 / 3)
+
+
+def test_the_grid_is_scored_by_the_rule_among_the_legs_that_meet_the_constraint():
+    average_map = SimpleNamespace(l1_ratios=R1, l3_ratios=R3, improved=_w_a(R1[:, None], R3[None]))
+    assert improved_area_closed_form(0.5, 0.4) == pytest.approx(2 * math.pi * 0.2 / 3)
+    peaks, table = grid_ranking(average_map, _study(), YOURS, WalkingConstraint(55.0), 1.0)
+    meets = 100.0 * (1 - table["l3_ratio"]) >= 55.0  # the tibia ratio ≤ 0.45 carries 55 kg
+    assert table["meets"].tolist() == meets.tolist()
     expected = [_by_hand(a, b) for a, b in zip(table["l1_ratio"], table["l3_ratio"], strict=True)]
-    np.testing.assert_allclose(table["score"], expected, rtol=1e-12)
-    best = rec.peaks["best_score"].to_numpy()
-    np.testing.assert_allclose(best, [_by_hand(a, 0.45) for a in R1], rtol=1e-12)
+    np.testing.assert_allclose(table.loc[meets, "score"], np.array(expected)[meets], rtol=1e-12)
+    assert table.loc[~meets, "score"].isna().all()  # missing the constraint: no score
+    for row in peaks.to_dict(orient="records"):  # brute force over the legs that meet it
+        candidates = [(b, _by_hand(row["l1_ratio"], b)) for b in R3 if 100 * (1 - b) >= 55]
+        best = max(candidates, key=lambda pair: pair[1])
+        assert row["score_peak_l3_ratio"] == pytest.approx(best[0])
+        assert row["best_score"] == pytest.approx(best[1], rel=1e-12)
 
 
-def test_adding_unrelated_grid_rows_changes_no_score():
-    """The old rule divided by the grid's best: one more coxa ratio changed every score."""
-    narrow = recommend(R1[1:], R3, _maps(r1=R1[1:]), YOURS)
-    wide = recommend(R1, R3, _maps(), YOURS)
-    np.testing.assert_array_equal(
-        wide.scores["score"].to_numpy()[len(R3) :], narrow.scores["score"].to_numpy()
+# -- the cliff: a synthetic profile ---------------------------------------------------------
+
+CLIFF = 0.725
+"""The synthetic legs carry 72.7 kg up to tibia ratio 0.725 and nothing beyond (the review's
+coxa 0.1: 72.7 kg at tibia 0.717, 0 kg at 0.725)."""
+
+
+def _synthetic_score(l3_ratio: float) -> float:
+    return 1.0 + l3_ratio  # rising toward the cliff: the best sits on its edge
+
+
+@dataclass(frozen=True)
+class _Design:
+    l3_ratio: float
+    nominal_angles: tuple[float, float, float] = (0.0, 0.1, -1.0)
+
+
+@dataclass(frozen=True)
+class _Leg:
+    l3_ratio: float
+    l1_ratio: float = 0.1
+
+    @property
+    def meets(self) -> bool:
+        return self.l3_ratio < CLIFF
+
+    @property
+    def score(self) -> float:
+        return _synthetic_score(self.l3_ratio) if self.meets else math.nan
+
+    @property
+    def ranked(self) -> bool:
+        return self.meets
+
+    @property
+    def capacity(self) -> float:
+        return 72.7 if self.meets else 0.0
+
+    @property
+    def limited_by(self) -> str:
+        return "knee torque over its rating"
+
+    @property
+    def design(self) -> _Design:
+        return _Design(round(self.l3_ratio, 12))
+
+
+class _Legs:
+    """Measures a synthetic leg at a tibia ratio, counting how many."""
+
+    def __init__(self) -> None:
+        self.measured = 0
+
+    def at(self, l1_ratio, l3_ratio, angles):
+        self.measured += 1
+        return _Leg(l3_ratio, l1_ratio)
+
+
+def test_a_leg_at_the_edge_of_a_cliff_is_not_recommended_and_the_band_keeps_away():
+    legs = _Legs()
+    edge = _Leg(0.717)  # the search's best: 0.8 % of the leg from the cliff
+    chosen, profile = settled(legs, edge, (0.2, 0.8))  # type: ignore[arg-type]
+    (cliff,) = profile.cliffs
+    assert abs(cliff.l3_ratio - CLIFF) <= PROFILE_STEP / 2**6  # located by bisection
+    assert cliff.held < CLIFF <= cliff.broken and cliff.capacity == 72.7
+    assert "knee torque" in cliff.describe() and "0.725" in cliff.describe()
+    # brute force: the profile's lattice from 0.717 in steps of 0.01, clear of the cliff
+    lattice = [0.717 - k * PROFILE_STEP for k in range(60) if 0.717 - k * PROFILE_STEP >= 0.2]
+    clear = [r for r in lattice if CLIFF - r >= CLIFF_MARGIN]
+    best = max(clear, key=_synthetic_score)
+    assert chosen.l3_ratio == pytest.approx(best) and best == pytest.approx(0.697)
+    low, high = band_of(chosen, profile)  # type: ignore[arg-type]
+    kept = [r for r in clear if _synthetic_score(r) >= BAND * _synthetic_score(best)]
+    assert (low, high) == pytest.approx((min(kept), max(kept)))
+    assert CLIFF - high >= CLIFF_MARGIN - 1e-12
+
+
+def test_a_leg_clear_of_every_cliff_stays_and_its_band_stops_short_of_the_cliff():
+    ratios = [0.60, 0.62, 0.64, 0.66, 0.68, 0.70, 0.72, 0.74]
+    scores = [_synthetic_score(r) if r < CLIFF else math.nan for r in ratios]
+    meets = [r < CLIFF for r in ratios]
+    band = band_and_cliffs(ratios, scores, meets, chosen=2, cliffs=[CLIFF])
+    # by hand: 0.72 meets the constraint but lies within 0.02 of the cliff at 0.725
+    assert band == pytest.approx((0.60, 0.70))
+    assert band_and_cliffs(ratios, scores, meets, chosen=6, cliffs=[CLIFF]) is None
+    assert band_and_cliffs(ratios, scores, meets, chosen=2, cliffs=[]) == pytest.approx(
+        (0.60, 0.72)
     )
-    np.testing.assert_array_equal(
-        wide.peaks["best_score"].to_numpy()[1:], narrow.peaks["best_score"].to_numpy()
-    )
-    assert (wide.l1_ratio, wide.l3_ratio, wide.score) == (narrow.l1_ratio, narrow.l3_ratio,
-                                                          narrow.score)  # fmt: skip
-
-
-def test_default_recommends_at_the_practical_coxa_ratio_and_the_user_can_fix_it():
-    assert recommend(R1, R3, _maps(), YOURS).l1_ratio == pytest.approx(0.10)
-    assert recommend(R1, R3, _maps(), YOURS, candidates=[0.15]).l1_ratio == pytest.approx(0.15)
-    both = recommend(R1, R3, _maps(), YOURS, candidates=[0.05, 0.2])
-    assert both.l1_ratio == pytest.approx(0.05)
-
-
-def test_refinement_finds_the_peak_between_grid_points():
-    peak = 0.4321
-
-    def exact(l1_ratio: float, l3_ratio: float) -> Metrics:
-        return _ranked(_metric(k, l1_ratio, l3_ratio, peak) for k in range(len(RANKED_METRICS)))
-
-    maps = _maps(peak)
-    coarse = recommend(R1, R3, maps, YOURS)
-    refined = recommend(R1, R3, maps, YOURS, evaluate=exact)
-    assert coarse.l3_ratio == pytest.approx(0.45)  # the nearest grid point
-    assert refined.l3_ratio == pytest.approx(peak, abs=1e-4)
-    assert refined.score >= coarse.score
-    assert refined.score == pytest.approx(_by_hand(0.1, refined.l3_ratio, peak), rel=1e-12)
-    found, expected = refined.metrics.to_dict(), exact(0.1, refined.l3_ratio).to_dict()
-    assert found == pytest.approx(expected, rel=1e-12)
-    lo, hi = refined.l3_band
-    assert lo <= refined.l3_ratio <= hi
-    inside = [r for r in R3 if _by_hand(0.1, r, peak) >= BAND * refined.score]
-    assert (lo, hi) == (min(inside), max(inside))
-
-
-def test_the_band_holds_the_refined_peak_beside_its_grid_point():
-    """Peak 0.4321 between grid points 0.40 and 0.45: only 0.45 keeps 97 % of the refined score,
-    so the band is the refined ratio up to 0.45, not 0.45 alone."""
-    peak = 0.4321
-
-    def gaussian(l1_ratio, l3_ratio):
-        shape = np.exp(-(((l3_ratio - peak) / 0.12) ** 2))
-        return [(k + 1) * shape * (1 - l1_ratio) for k in range(len(RANKED_METRICS))]
-
-    maps = dict(zip(RANKED_METRICS, gaussian(R1[:, None], R3[None, :]), strict=True))
-    refined = recommend(R1, R3, maps, YOURS, evaluate=lambda a, b: _ranked(gaussian(a, b)))
-    assert refined.l3_ratio == pytest.approx(peak, abs=1e-4)
-    grid = refined.scores[np.isclose(refined.scores["l1_ratio"], refined.l1_ratio)]
-    kept = grid.loc[grid["score"] >= BAND * refined.score, "l3_ratio"].tolist()
-    assert kept == pytest.approx([0.45])  # the grid alone would leave the recommendation out
-    assert refined.l3_band == pytest.approx((refined.l3_ratio, 0.45))
-
-
-def test_nothing_to_recommend_when_no_allowed_design_stands():
-    from hexaleg.exceptions import HexalegError
-
-    maps = _maps()
-    maps[METRICS.fb] = np.full_like(maps[METRICS.fb], np.nan)
-    with pytest.raises(HexalegError, match="nothing to recommend"):
-        recommend(R1, R3, maps, YOURS)
 
 
 def test_candidate_mask_allows_the_practical_or_the_given_coxa_ratios():
-    from hexaleg.study.recommendation import candidate_mask
-
     assert candidate_mask(R1, None).tolist() == [False, True, True, True]  # ≥ 0.10
     assert candidate_mask(R1, [0.15]).tolist() == [False, False, True, False]
     assert candidate_mask([0.05, 0.05, 0.15], [0.05]).tolist() == [True, True, False]
     assert candidate_mask([0.02, 0.05], None).tolist() == [True, True]  # none practical: all
 
 
-def test_decision_options_say_which_coxa_ratios_compete():
+def test_decision_options_say_which_coxa_ratios_compete_and_what_every_leg_carries():
     from hexaleg.study.recommendation import DecisionOptions
 
     assert "≥ 0.10" in DecisionOptions().describe_candidates()
     assert "(0.125)" in DecisionOptions(l1_ratios=(0.125,)).describe_candidates()
+    assert DecisionOptions(payload=30.0).constraint == WalkingConstraint(30.0)
 
 
 def test_the_report_table_gives_a_reason_where_a_coxa_ratio_has_no_leg_that_walks():
-    """A coxa ratio whose legs all fail to walk has no peaks: the table says so, not nan."""
-    from hexaleg import HexapodDesign
+    """A coxa ratio whose legs all miss the constraint has no peaks: the table says so."""
+    from hexaleg.output.report.recommendation import NO_WALKER, _peak_row
+
+    study = _study()
+    study.loc[np.isclose(study["l1_ratio"], 0.05), "walks"] = False
+    average_map = SimpleNamespace(l1_ratios=R1, l3_ratios=R3, improved=_w_a(R1[:, None], R3[None]))
+    peaks, _ = grid_ranking(average_map, study, YOURS, WalkingConstraint(), 1.0)
+    rows = [_peak_row(r) for r in peaks.to_dict(orient="records")]
+    assert rows[0][:2] == ["0.05", NO_WALKER]
+    text = " ".join(" ".join(row) for row in rows).lower()
+    assert "nan" not in text and "inf" not in text
+    for row, l1_ratio in zip(rows[1:], R1[1:], strict=True):  # the others as the rule has them
+        assert row[-1] == f"{max(_by_hand(l1_ratio, b) for b in R3):.4f}"
+    assert len(RANKED_METRICS) + 3 == len(rows[1])
+
+
+def test_a_payload_no_leg_walks_with_ranks_the_legs_walking_unloaded_and_says_so(monkeypatch):
+    from hexaleg.evaluation.requirements import Requirements
+    from hexaleg.output.report import recommendation as part
+    from hexaleg.output.report.options import ReportOptions
+    from hexaleg.study.recommendation import NothingToRecommend, Recommendation
+
+    asked: list[WalkingConstraint] = []
+    leg = SimpleNamespace(
+        l1_ratio=0.1,
+        l3_ratio=0.45,
+        design=SimpleNamespace(lengths=(0.1, 0.45, 0.45)),
+        evaluation=SimpleNamespace(metrics=YOURS),
+    )
+
+    def searched(data, constraint):
+        asked.append(constraint)
+        if constraint.payload > 0:
+            raise NothingToRecommend("no allowed leg walks the gait carrying 500 kg")
+        return Recommendation(leg, leg, leg, (0.45, 0.45), (), (), constraint,  # type: ignore[arg-type]
+                              pd.DataFrame(), pd.DataFrame(), 0)  # fmt: skip
+
+    monkeypatch.setattr(part, "_recommended", searched)
+    options = ReportOptions(requirements=Requirements(payload=500.0))
+    data = SimpleNamespace(options=options, design=SimpleNamespace(leg_length=1.0))
+    rec = part.compute(data).recommendation  # type: ignore[arg-type]
+    assert asked == [WalkingConstraint(500.0), WalkingConstraint()]
+    assert rec.relaxed == WalkingConstraint(500.0) and rec.constraint == WalkingConstraint()
+    said = part.relaxed_text(rec)
+    assert "carrying 500 kg" in said and "unloaded" in said
+    asked.clear()
+    unloaded = SimpleNamespace(options=ReportOptions(), design=data.design)
+    monkeypatch.setattr(part, "_recommended", lambda d, c: (_ for _ in ()).throw(
+        NothingToRecommend("none")))  # fmt: skip
+    with pytest.raises(NothingToRecommend):  # nothing to relax: the report says why it stops
+        part.compute(unloaded)  # type: ignore[arg-type]
+
+
+def test_a_required_walking_slope_is_what_every_leg_of_the_report_walks_and_ranks_by():
+    """The report's one set of conditions: its study, your design and every searched leg."""
+    from hexaleg import HexapodDesign, HexapodModel
+    from hexaleg.evaluation.requirements import Requirements
+    from hexaleg.evaluation.walks import walking_grounds
+    from hexaleg.exceptions import HexalegError
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.output.report.part import ReportData
-    from hexaleg.output.report.recommendation import NO_WALKER, RecommendationRecord, section
-    from hexaleg.study.rows import StudyRow
+    from hexaleg.output.report.yours import report_study, standing_text
+    from hexaleg.study.sweep import StudySpec
 
-    maps = _maps()
-    for values in maps.values():
-        values[0, :] = np.nan  # coxa ratio 0.05: no leg walks (the ranking's NaN)
-    rec = recommend(R1, R3, maps, YOURS)
-    record = RecommendationRecord(rec, 1.0, StudyRow(rec.l1_ratio, rec.l3_ratio))
-    data = ReportData(HexapodDesign(), ReportOptions(), None, {RecommendationRecord: record})  # type: ignore[arg-type]
-    (peaks,) = [block for block in section(data).blocks if "| l1 ratio |" in block]
-    rows = [line.split(" | ") for line in peaks.splitlines()[2:]]
-    assert len(rows) == len(R1)
-    assert "nan" not in peaks.lower() and "inf" not in peaks.lower()
-    assert rows[0][0] == "| 0.05" and rows[0][1] == NO_WALKER
-    for row, l1_ratio in zip(rows[1:], R1[1:], strict=True):  # the others as the rule has them
-        assert row[-1].rstrip(" |") == f"{_by_hand(l1_ratio, 0.45):.4f}"
+    slope = math.radians(10)
+    required = Requirements(payload=20.0, walking_slope=slope, motor_safety_factor=1.5)
+    options = ReportOptions(l3_points=10, requirements=required)
+    design = HexapodDesign()
+    spec = report_study(ReportData(design, options, HexapodModel(design)))
+    conditions = spec.conditions
+    assert conditions.grounds == walking_grounds(slope, options.gait)  # up, down, across
+    assert len(conditions.grounds) == 3 and conditions.safety_factor == 1.5
+    assert conditions.payload.mass == 0.0  # the payload is the constraint, not a condition
+    constraint = options.decision.constraint
+    assert constraint == WalkingConstraint(20.0, slope)
+    assert "carrying 20 kg up, down and across a 10° slope" in constraint.describe()
+    assert "10° slope" in standing_text(spec)
+    plain = report_study(ReportData(design, ReportOptions(l3_points=10), HexapodModel(design)))
+    assert len(plain.conditions.grounds) == 1 and plain.fingerprint().keys() == (
+        StudySpec(plain.l1_ratios, plain.l3_ratios).fingerprint().keys()
+    )  # a level study's journal reads as before
+    with pytest.raises(HexalegError, match="walking_slope"):
+        StudySpec((0.1,), (0.4,), walking_slope=-0.1)

@@ -19,6 +19,7 @@ from hexaleg.cli.options import (
 )
 from hexaleg.cli.requirement_options import add_requirement_options, requirements_from_args
 from hexaleg.evaluation.goal import Goal
+from hexaleg.evaluation.sizing import sized_for
 from hexaleg.output.report import (
     REPORT_HTML,
     REPORT_MD,
@@ -77,7 +78,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def run(args: argparse.Namespace) -> int:
     """Build the report and print where it is and what it recommends."""
-    inputs = inputs_from_args(args)  # a bad design is refused before any note
+    inputs = inputs_from_args(args, sizing=sized_for)  # a bad design: refused before any note
     robot, in_file = inputs.robot, inputs.requirements  # in_file.walked: the robot's gait
     requirements = requirements_from_args(args, in_file)
     if requirements.given:  # what the design cannot measure, refused before any section
@@ -93,6 +94,7 @@ def run(args: argparse.Namespace) -> int:
         requirements=requirements if requirements.given else None,
         simulate=args.simulate,
         gait=requirements.walked,
+        default_gait=inputs.default_gait,
     )
     refused = refused_options(robot, options)  # an option whose section is left out
     if refused:

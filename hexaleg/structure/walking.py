@@ -44,10 +44,11 @@ def check_walking(
     if structure is None or any(tube is None for tube in structure.tubes):
         return None
     require_template(model)
-    states = leg_states(
-        model, configurations, np.asarray(gravity, dtype=float), velocities, accelerations
-    )
-    wrenches = segment_wrenches(states, foot_forces)
+    with np.errstate(invalid="ignore"):  # a straight leg's unbounded rates: NaN, as the walk's
+        states = leg_states(
+            model, configurations, np.asarray(gravity, dtype=float), velocities, accelerations
+        )
+        wrenches = segment_wrenches(states, foot_forces)
     return StructureCheck(
         structure,
         design.lengths,

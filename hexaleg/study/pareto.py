@@ -1,12 +1,13 @@
 """The designs no other design beats in every metric at once (the Pareto front).
 
-On the study's grid of (coxa, tibia) ratios every design has its improved area,
-w_A, FB and payload capacity (:data:`~hexaleg.study.ranking.RANKED_METRICS`), all to be
-maximized. The grid is dense and every metric on it exact, so the front is read off the
-grid directly (no evolutionary search is needed, and none could be more exact). The
-front is ordered by the one ranking rule (:mod:`hexaleg.study.ranking`): a design that
-beats another in every metric also scores higher, so the grid's best-scoring design is
-always on the front, first.
+On the study's grid of (coxa, tibia) ratios, at the user's posture, every design that meets
+the ranking's constraint (it walks the gait with the payload within every rating,
+:class:`~hexaleg.study.ranking.WalkingConstraint`) has its improved area, w_A and FB
+(:data:`~hexaleg.study.ranking.RANKED_METRICS`), all to be maximized. The grid is dense and
+every metric on it exact, so the front is read off the grid directly (no evolutionary search
+is needed, and none could be more exact). The front is ordered by the one ranking rule
+(:mod:`hexaleg.study.ranking`): a design that beats another in every metric also scores
+higher, so the grid's best-scoring design is always on the front, first.
 """
 
 from __future__ import annotations
@@ -16,7 +17,7 @@ import pandas as pd
 
 from hexaleg._typing import ArrayF
 from hexaleg.evaluation.metrics import METRICS, Metrics
-from hexaleg.study.ranking import ranked_columns, ranking_scores
+from hexaleg.study.ranking import WalkingConstraint, ranked_columns, ranking_scores
 from hexaleg.study.recommendation import DecisionOptions, Recommendation, candidate_mask
 from hexaleg.swing.manipulability import AverageManipulabilityMap
 from hexaleg.swing.workspace import improved_area_closed_form
@@ -63,17 +64,25 @@ def pareto_front(
     Args:
         average_map: w_A on the study's grid.
         study: The study's table (columns ``fb``, ``walking_payload_capacity``, ``walks``).
-        recommendation: The recommendation (its reference: the user's design's metrics).
+        recommendation: The recommendation (its reference: the user's design's metrics;
+            its constraint).
         options: The allowed coxa ratios.
 
     """
-    grid = pareto_grid(average_map, study)
+    grid = pareto_grid(average_map, study, recommendation.constraint)
     allowed = candidate_mask(grid["l1_ratio"].to_numpy(dtype=float), options.l1_ratios)
     return pareto_table(grid[allowed], recommendation.reference)
 
 
-def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> pd.DataFrame:
-    """Every design of the study with the four ranked metrics."""
+def pareto_grid(
+    average_map: AverageManipulabilityMap,
+    study: pd.DataFrame,
+    constraint: WalkingConstraint | None = None,
+) -> pd.DataFrame:
+    """Every design of the study with the ranked metrics (NaN where it misses ``constraint``).
+
+    ``constraint``: what a ranked design must do (default: walk the gait unloaded).
+    """
     grid = study[["l1_ratio", "l3_ratio", "l1", "l2", "l3"]].copy()
     grid[METRICS.improved_area.name] = improved_area_closed_form(
         grid["l2"].to_numpy(dtype=float), grid["l3"].to_numpy(dtype=float)
@@ -88,6 +97,6 @@ def pareto_grid(average_map: AverageManipulabilityMap, study: pd.DataFrame) -> p
     ]
     for spec in (METRICS.fb, METRICS.walking_payload_capacity, METRICS.payload_capacity):
         grid[spec.name] = study[spec.name] if spec.name in study else np.nan
-    if "walks" in study:  # a leg that cannot walk the gait has no score: off the front
-        grid.loc[~study["walks"].astype(bool), ranked_columns()] = np.nan
+    met = (constraint or WalkingConstraint()).met_rows(study)
+    grid.loc[~met, ranked_columns()] = np.nan  # a leg that misses it has no score: off the front
     return grid

@@ -11,7 +11,8 @@ re-measured (from its own URDF) and printed exactly as ``decide`` answers its be
 as posed is "yours".
 
 The search is deterministic and two-stage, on the box of the stance limits scaled to the
-unit square:
+unit square (:func:`~hexaleg.numerics.box_search.box_minimum`, which the report's
+recommendation shares):
 
 - SciPy's DIRECT (Jones' dividing rectangles, locally biased, :data:`GLOBAL_EVALUATIONS`
   designs) finds the basin of the best posture: the objective of a posture is piecewise
@@ -31,10 +32,7 @@ brute-force grid over the stance limits on seeded random designs.
 
 from __future__ import annotations
 
-from collections.abc import Callable
-
 import numpy as np
-from scipy.optimize import direct, minimize
 
 from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF
@@ -43,6 +41,7 @@ from hexaleg.evaluation.goal import Goal, Objective
 from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
+from hexaleg.numerics.box_search import box_minimum
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import POSTURE_FIELD, Robot, robot_of
 from hexaleg.stance.geometry import StanceGeometry
@@ -69,10 +68,6 @@ POLISH: tuple[tuple[int, float], ...] = ((80, 1e-2), (40, 1e-3))
 
 PENALTY = 1e9
 """Score added to a posture that misses a requirement (its violations are added to it)."""
-
-TOLERANCE = 1e-10
-"""Nelder–Mead's tolerances on the unit box and on the score."""
-
 
 METHOD = (
     f"DIRECT (locally biased, {GLOBAL_EVALUATIONS} designs) over the stance limits, then "
@@ -163,7 +158,9 @@ def best_posture(
     requirements = requirements or Requirements()  # the lengths stay: no leg length to hold
     goal = Goal(requirements, objective).measurable(robot.design)
     scores = _Scores(robot, goal)
-    best = _search(scores, scores.unit(robot.design))
+    best = box_minimum(
+        scores, scores.unit(robot.design), global_evaluations=GLOBAL_EVALUATIONS, polish=POLISH
+    )
     space = SearchSpace(robot.design, scores.variables, robot=robot)
     feasible = scores(best) < PENALTY  # meets every requirement
     checked, rounded = workshop_answer(
@@ -193,29 +190,3 @@ def _robot(given: Robot | HexapodDesign) -> Robot:
             "its file does"
         )  # fmt: skip
     return given
-
-
-def _search(score: Callable[[ArrayF], float], given: ArrayF) -> ArrayF:
-    """The unit-square point with the least score: DIRECT, then Nelder–Mead from its best."""
-    found = direct(
-        score, [(0.0, 1.0), (0.0, 1.0)], maxfun=GLOBAL_EVALUATIONS, locally_biased=True,
-        vol_tol=0.0, len_tol=TOLERANCE,
-    )  # fmt: skip
-    best = min((np.clip(found.x, 0.0, 1.0), np.clip(given, 0.0, 1.0)), key=score)
-    for most, size in POLISH:
-        polished = minimize(
-            score, best, method="Nelder-Mead", bounds=[(0.0, 1.0), (0.0, 1.0)],
-            options={"maxfev": most, "xatol": TOLERANCE, "fatol": TOLERANCE,
-                     "initial_simplex": _simplex(best, size)},
-        )  # fmt: skip
-        candidate = np.clip(polished.x, 0.0, 1.0)
-        if score(candidate) < score(best):
-            best = candidate
-    return best
-
-
-def _simplex(point: ArrayF, size: float) -> ArrayF:
-    """A right triangle of legs ``size`` at ``point``, turned inward at the square's edges."""
-    steps = np.where(point + size <= 1.0, size, -size)
-    simplex: ArrayF = np.vstack((point, point + np.diag(steps)))
-    return simplex

@@ -11,7 +11,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
+import numpy as np
 import pandas as pd
 
 from hexaleg._typing import StanceSet
@@ -19,6 +21,7 @@ from hexaleg.design import DEFAULT_LEG_LENGTH, HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_sweep import Variant
 from hexaleg.study.progress import Progress
+from hexaleg.study.rows import Key, StudyRow
 from hexaleg.study.sweep import StudySpec, peak_table, sweep_in_process
 
 
@@ -63,6 +66,7 @@ def sensitivity_table(
     base: HexapodDesign | None = None,
     variants: Sequence[Variant] | None = None,
     progress: bool | None = None,
+    known: pd.DataFrame | None = None,
 ) -> pd.DataFrame:
     """Peak tibia ratio and FB per coxa ratio for each posture/body variant (axis-locked).
 
@@ -78,6 +82,9 @@ def sensitivity_table(
         variants: Names and changes; by default :func:`relative_variants` of ``base``.
         progress: ``False`` shows nothing; otherwise a bar on stderr if it is a terminal,
             else a line every few seconds, naming the variant being swept.
+        known: Rows of ``base`` itself already measured the same way (a study's table,
+            axis-locked on ``stance``, without collisions): a variant that changes nothing
+            takes its designs' FB from them instead of measuring them again.
 
     """
     base = HexapodDesign() if base is None else base
@@ -86,8 +93,24 @@ def sensitivity_table(
     rows: list[dict[str, object]] = []
     with Progress(total_designs, unit="designs", show=progress) as shown:
         for variant in chosen:
-            rows += _variant_rows(variant, l1_ratios, l3_ratios, total, stance, base, shown)
+            rows += _variant_rows(variant, l1_ratios, l3_ratios, total, stance, base, shown, known)
     return pd.DataFrame(rows)
+
+
+def _known(spec: StudySpec, table: pd.DataFrame | None) -> dict[Key, StudyRow]:
+    """The rows of ``table`` at the keys of ``spec``, by ``spec``'s own key."""
+    if table is None or table.empty:
+        return {}
+    found = {}
+    r1, r3 = table["l1_ratio"].to_numpy(float), table["l3_ratio"].to_numpy(float)
+    records = table.to_dict(orient="records")
+    for key in spec.keys():
+        at = np.flatnonzero(np.isclose(r1, key[0], rtol=0, atol=1e-12)
+                            & np.isclose(r3, key[1], rtol=0, atol=1e-12))  # fmt: skip
+        if at.size:
+            found[key] = replace(StudyRow.from_dict(records[at[0]]), l1_ratio=key[0],
+                                 l3_ratio=key[1])  # fmt: skip
+    return found
 
 
 def _variant_rows(
@@ -98,8 +121,13 @@ def _variant_rows(
     stance: StanceSet,
     base: HexapodDesign,
     shown: Progress,
+    known: pd.DataFrame | None,
 ) -> list[dict[str, object]]:
-    """The sensitivity table's rows of one variant: its peak per coxa ratio."""
+    """The sensitivity table's rows of one variant: its peak per coxa ratio.
+
+    Only FB is measured (no statics, no gait); a variant that changes nothing takes the
+    rows of ``known`` on its grid.
+    """
     name, changes = variant
     shown.update(0, doing=f"sensitivity, {name}")
     try:
@@ -118,9 +146,16 @@ def _variant_rows(
             for r1 in l1_ratios
         ]
     spec = StudySpec(
-        tuple(l1_ratios), tuple(l3_ratios), total, "axis", stance, changed, statics=False
+        tuple(l1_ratios),
+        tuple(l3_ratios),
+        total,
+        "axis",
+        stance,
+        changed,
+        statics=False,
+        gait=False,
     )
-    table = sweep_in_process(spec)
+    table = sweep_in_process(spec, _known(spec, known) if not changes else None)
     shown.update(len(l1_ratios) * len(l3_ratios))
     rows: list[dict[str, object]] = []
     for peak in peak_table(table).to_dict(orient="records"):

@@ -38,6 +38,7 @@ from hexaleg.design import (
 )
 from hexaleg.evaluation.evaluate import Conditions, evaluate, evaluate_many
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
+from hexaleg.evaluation.walks import walking_grounds
 from hexaleg.exceptions import HexalegError
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
@@ -81,6 +82,9 @@ class StudySpec:
         robot: The robot whose designs these are, each at a row's segment lengths
             (:meth:`~hexaleg.robot.robot.Robot.at`); hexaleg's template over ``base`` if
             not given. It reaches workers as its recipe.
+        walking_slope: The slope every design walks ``walked`` up, down and across, as a
+            requirement's ``walking_slope`` asks [rad] (0: level ground).
+        safety_factor: The motors' safety factor the walks hold their ratings by [-].
 
     """
 
@@ -95,6 +99,8 @@ class StudySpec:
     gait: bool = True
     walked: Gait = STUDY_GAIT
     robot: Robot = None  # type: ignore[assignment]  # hexaleg's template over base
+    walking_slope: float = 0.0
+    safety_factor: float = 1.0
 
     def __post_init__(self) -> None:
         if self.robot is None:
@@ -115,6 +121,8 @@ class StudySpec:
         for r3 in self.l3_ratios:
             require_ratio("l3_ratios", r3)
         require_in_range("total", self.total, 3 * SEGMENT_RANGE[0], 3 * SEGMENT_RANGE[1], "m")
+        require_in_range("walking_slope", self.walking_slope, 0.0, math.pi / 2, "rad")
+        require_in_range("safety_factor", self.safety_factor, 1.0, math.inf, "")
         require_ratio_grid(self.l1_ratios, self.l3_ratios, self.total)  # no design fails
 
     @property
@@ -129,13 +137,18 @@ class StudySpec:
 
     @property
     def conditions(self) -> Conditions:
-        """What each design is measured under: level, no payload, walking :attr:`walked`."""
+        """What each design is measured under: no payload, walking :attr:`walked`.
+
+        Standing on level ground; walking on the grounds of :attr:`walking_slope`.
+        """
         return Conditions(
             gait=self.walked,
             stance=self.stance,
             mode=self.mode,
             collisions=self.collisions,
             keep=True,
+            grounds=walking_grounds(self.walking_slope, self.walked),
+            safety_factor=self.safety_factor,
         )
 
     def row_of(self, robot: Robot) -> StudyRow:
@@ -161,6 +174,8 @@ class StudySpec:
             "statics": self.statics,
             "gait": self.gait,
             **({} if self.walked == STUDY_GAIT else {"walked": self.walked.to_dict()}),
+            **({} if not self.walking_slope else {"walking_slope": self.walking_slope}),
+            **({} if self.safety_factor == 1 else {"safety_factor": self.safety_factor}),
             "base": {k: v for k, v in self.base.as_dict().items() if k not in SEGMENTS},
             **self.robot.fingerprint(),
         }
@@ -245,10 +260,15 @@ def _tasks(spec: StudySpec, keys: list[tuple[float, float]]) -> list[_Task]:
     return [_Task(tuple(keys[i : i + size]), spec, template) for i in range(0, len(keys), size)]
 
 
-def sweep_in_process(spec: StudySpec) -> pd.DataFrame:
-    """The whole study evaluated in this process, as a table (for small, fast studies)."""
-    rows = [row for task in _tasks(spec, spec.keys()) for row in evaluate_task(task)]
-    return study_table(spec, {row.key: row for row in rows})
+def sweep_in_process(spec: StudySpec, known: Mapping[Key, StudyRow] | None = None) -> pd.DataFrame:
+    """The whole study evaluated in this process, as a table (for small, fast studies).
+
+    ``known``: rows already measured, by key: not measured again.
+    """
+    known = known or {}
+    keys = [key for key in spec.keys() if key not in known]
+    rows = [row for task in _tasks(spec, keys) for row in evaluate_task(task)]
+    return study_table(spec, {**known, **{row.key: row for row in rows}})
 
 
 def run_study(

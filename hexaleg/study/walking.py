@@ -13,9 +13,10 @@ and the one with the least cost of transport, each against the paper's 0.2/0.4/0
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from hexaleg.evaluation.metrics import METRICS, Metrics, MetricSpec
@@ -111,12 +112,16 @@ def walks(table: pd.DataFrame) -> pd.Series:
     return feasible & table["walks"].fillna(False).astype(bool) if "walks" in table else feasible
 
 
-def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison:
+def walking_comparison(
+    table: pd.DataFrame, spec: StudySpec, yours: StudyRow | None = None
+) -> WalkingComparison:
     """Compare the study's best walking designs with the paper's leg on the same body.
 
     Args:
         table: The study's table, with its ``gait_*`` columns.
         spec: The study (its base design and total leg length).
+        yours: The study's robot's own row, if measured: the paper's leg's when that is
+            the robot's design (as a row of the table is, when it is the grid's).
 
     Raises:
         HexalegError: The table has no gait columns, or no design walks the gait.
@@ -127,10 +132,8 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     walking = table[walks(table)]
     if walking.empty:
         raise HexalegError(f"no design of the study walks {spec.walked.named}")
-    paper = spec.robot.at_ratios(*PAPER_RATIOS, spec.total)
-    reference = design_walking_row(paper.design, paper.model, spec.walked, PAPER_RATIOS)
     return WalkingComparison(
-        reference=reference,
+        reference=paper_row(table, spec, yours),
         least_torque=_least(walking, TORQUE),
         least_energy=_least(walking, ENERGY),
         walking=len(walking),
@@ -139,14 +142,33 @@ def walking_comparison(table: pd.DataFrame, spec: StudySpec) -> WalkingCompariso
     )
 
 
+def paper_row(table: pd.DataFrame, spec: StudySpec, yours: StudyRow | None) -> StudyRow:
+    """The paper's leg on the study's body as a row: measured once.
+
+    The robot's own row when the paper's leg is its design, the table's row when it is a
+    design of the grid; otherwise walked here.
+    """
+    paper = spec.robot.at_ratios(*PAPER_RATIOS, spec.total)
+    if yours is not None and paper.design == spec.robot.design:
+        return replace(yours, l1_ratio=PAPER_RATIOS[0], l3_ratio=PAPER_RATIOS[1])
+    on_grid = np.isclose(table["l1_ratio"], PAPER_RATIOS[0]) & np.isclose(
+        table["l3_ratio"], PAPER_RATIOS[1]
+    )
+    if on_grid.any():
+        return StudyRow.from_dict(table[on_grid].iloc[0].to_dict())
+    return design_walking_row(paper.design, paper.model, spec.walked, PAPER_RATIOS)
+
+
 def _least(table: pd.DataFrame, spec: MetricSpec) -> StudyRow:
     """The row of ``table`` with the least value of metric ``spec``."""
     return StudyRow.from_dict(table.loc[table[spec.name].idxmin()].to_dict())
 
 
-def walking_or_none(table: pd.DataFrame, spec: StudySpec) -> WalkingComparison | None:
+def walking_or_none(
+    table: pd.DataFrame, spec: StudySpec, yours: StudyRow | None = None
+) -> WalkingComparison | None:
     """:func:`walking_comparison`, or None when the study has no walking design to compare."""
     try:
-        return walking_comparison(table, spec)
+        return walking_comparison(table, spec, yours)
     except HexalegError:
         return None

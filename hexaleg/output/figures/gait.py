@@ -9,6 +9,7 @@ transport against the tibia ratio per coxa ratio.
 
 from __future__ import annotations
 
+import math
 import os
 from collections.abc import Mapping, Sequence
 from pathlib import Path
@@ -169,6 +170,7 @@ def walking_study_figure(
     rated: Mapping[str, float] | None = None,
     marks: Sequence[Mark] = (),
     gait: Gait = STUDY_GAIT,
+    standing: str = "",
 ) -> Figure:
     """The study's walking against tibia ratio: hip and knee peaks, CoT, walking payload.
 
@@ -180,6 +182,7 @@ def walking_study_figure(
         rated: Rated torque per joint type [N·m] (``hip``, ``knee``), drawn as lines.
         marks: Designs marked on every panel (your design, the recommended one).
         gait: The gait the study's designs walk (named in the title).
+        standing: The posture and ground they walk it at, in words (in the title).
 
     """
     import pandas as pd  # heavy: only where a study is drawn
@@ -200,6 +203,10 @@ def walking_study_figure(
                     label=f"coxa ratio {r1:.2f}")  # fmt: skip
         draw_marks(ax, marks, "l3_ratio", column)
         magnitude_axis(ax, values)
+        marked = [float(m.values[column]) for m in marks if column in m.values]
+        finite = [v for v in marked if math.isfinite(v)]
+        if finite and 1.06 * max(finite) > ax.get_ylim()[1]:  # a mark off the curves: shown
+            ax.set_ylim(0.0, 1.06 * max(finite))
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
     for ax, joint in zip(panels[:2], ("hip", "knee"), strict=True):
@@ -209,9 +216,10 @@ def walking_study_figure(
         ax.set_xlabel("tibia ratio l3 / L [-]")
     fig.legend(*panels[0].get_legend_handles_labels(), loc="outside lower center", ncols=4,
                fontsize=7.5)  # fmt: skip
+    posed = f"\n{standing}" if standing else ""
     fig.suptitle(
-        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s\n(gaps: designs "
-        "that cannot walk it unloaded within their ratings)"
+        f"Walking {gait.named}, a {gait.pattern} at {gait.speed:.2g} m/s{posed}\n(gaps: "
+        "designs that cannot walk it unloaded within their ratings)"
     )
     return fig
 

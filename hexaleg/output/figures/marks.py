@@ -67,7 +67,7 @@ def your_and_recommended(yours: Mapping[str, Any], recommended: Mapping[str, Any
     """The two marks every study figure carries: your design and the recommended one."""
     return [
         Mark("your design", yours),
-        Mark("recommended (refined tibia ratio)", recommended, marker="*", color="k"),
+        Mark("recommended (at its own posture)", recommended, marker="*", color="k"),
     ]
 
 

@@ -68,8 +68,12 @@ def preamble(folder: Path, medium: Medium = "screen") -> str:
 
 
 def sections(data: ReportData, parts: Sequence[Part[Any]] | None = None) -> list[Section]:
-    """Every part's section, numbered, in the order of ``parts`` (the report's by default)."""
-    return [numbered(data, part) for part in (data.parts if parts is None else parts)]
+    """Every part's section, numbered, in the order of ``parts`` (the report's by default).
+
+    A part that shows no section of its own (:attr:`~.part.Part.section` ``None``) has none.
+    """
+    chosen = data.parts if parts is None else parts
+    return [numbered(data, part) for part in chosen if part.section is not None]
 
 
 def figure_numbers(report: Sequence[Section]) -> dict[str, int]:

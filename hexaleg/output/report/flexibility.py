@@ -11,7 +11,7 @@ from typing import Any
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
-from hexaleg.stance.axis_locked import axis_locked_flexibility
+from hexaleg.output.report.yours import YoursRecord
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult, FlexibilityWarning
 from hexaleg.stance.free_coupled import free_flexibility
@@ -32,9 +32,10 @@ class FlexibilityRecord:
 
 
 def compute(data: ReportData) -> FlexibilityRecord:
-    """Axis-locked and free-coupled flexibility of the design."""
+    """Free-coupled flexibility of the design, beside its axis-locked one (measured once)."""
     design, model, collisions = data.design, data.model, data.options.collisions
-    axis = axis_locked_flexibility(design, "all", model, collisions=collisions)
+    axis = data[YoursRecord].evaluation.flexibility
+    assert axis is not None  # the evaluation keeps its analyses
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", FlexibilityWarning)  # reported as "converged"
         free = free_flexibility(design, "all", model, collisions=collisions)
@@ -123,6 +124,7 @@ PART = Part(
     FlexibilityRecord,
     compute,
     section,
+    needs=(YoursRecord,),
     step="body flexibility",
     files=write_files,
     json=to_json,

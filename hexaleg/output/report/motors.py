@@ -22,13 +22,14 @@ from hexaleg.actuators import Actuators
 from hexaleg.electrical.period import ElectricalResult
 from hexaleg.electrical.ratings import RATED
 from hexaleg.evaluation.metrics import significant
-from hexaleg.gait.analysis import GaitAnalysis, analyze_gait
+from hexaleg.gait.analysis import GaitAnalysis
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.motors import envelope_figure, power_split_figure
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.simulation import SimulationRecord
+from hexaleg.output.report.yours import YoursRecord
 from hexaleg.sim.measure import WalkMetrics
 
 POWER, ENVELOPE = "gait_power", "gait_envelope"
@@ -48,13 +49,10 @@ class MotorsRecord:
 
 
 def compute(data: ReportData) -> MotorsRecord:
-    """Walk the report's gait with the design's own model, if it has actuators."""
+    """The report's gait walked by your design (its one evaluation's), if it has actuators."""
     if data.design.actuators is None:
         return MotorsRecord(None)
-    walked = analyze_gait(
-        data.design, data.options.gait, model=data.model, limits=False, speed=True
-    )
-    return MotorsRecord(walked)
+    return MotorsRecord(data[YoursRecord].evaluation.gait)
 
 
 def summary(record: MotorsRecord) -> str:
@@ -228,6 +226,7 @@ PART = Part(
     MotorsRecord,
     compute,
     section,
+    needs=(YoursRecord,),
     step="motors",
     files=write_files,
     json=to_json,

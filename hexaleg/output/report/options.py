@@ -6,6 +6,7 @@ from dataclasses import dataclass, field
 
 from hexaleg._checks import require_int
 from hexaleg.design import MAX_L3_POINTS, require_ratio
+from hexaleg.evaluation.requirement_specs import WALKING_PAYLOAD
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError
 from hexaleg.field_sweep import FieldSweep
@@ -50,6 +51,9 @@ class ReportOptions:
             "Simulated walk" section.
         gait: The gait every walking number of the report is measured on: the design
             file's ``[gait]`` table, else the default gait.
+        default_gait: The robot's own default gait, if the caller found it already (a robot
+            file's is found by walking it: :func:`~hexaleg.gait.defaults.default_gait`);
+            the report finds it when it needs it otherwise.
 
     """
 
@@ -66,6 +70,7 @@ class ReportOptions:
     requirements: Requirements | None = None
     simulate: bool = False
     gait: Gait = field(default_factory=Gait)
+    default_gait: Gait | None = None
 
     def __post_init__(self) -> None:
         if self.l1_ratios is not None:
@@ -100,5 +105,15 @@ class ReportOptions:
 
     @property
     def decision(self) -> DecisionOptions:
-        """What the decision may choose from (the allowed coxa ratios, collisions, gait)."""
-        return DecisionOptions(self.l1_ratios, self.collisions, self.gait)
+        """What the decision may choose from (coxa ratios, collisions, gait) and its payload.
+
+        Every ranked leg walks the gait carrying the payload the requirements ask for (the
+        larger of the standing and the walking payload given), up, down and across their
+        walking slope (none and level ground without requirements).
+        """
+        required = self.requirements
+        payload = slope = 0.0
+        if required is not None:
+            walking = required.required(WALKING_PAYLOAD) or 0.0
+            payload, slope = max(required.payload_mass, walking), required.walking_slope
+        return DecisionOptions(self.l1_ratios, self.collisions, self.gait, payload, slope)

@@ -1,4 +1,4 @@
-"""Report part: the Pareto front with payload capacity, ranked by the recommendation's rule."""
+"""Report part: the Pareto front of the paper's metrics among the legs that walk, ranked."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from typing import Any
 
 import pandas as pd
 
+from hexaleg.evaluation.metrics import METRICS
 from hexaleg.output.figures import pareto_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.manipulability import ManipulabilityRecord
@@ -21,7 +22,7 @@ from hexaleg.study.ranking import RANKED_METRICS
 
 @dataclass(frozen=True)
 class ParetoRecord:
-    """The designs of the grid no other beats in area, w_A, FB and payload capacity.
+    """The designs of the grid that walk and that no other beats in area, w_A and FB.
 
     Attributes:
         front: One row per front design, best score first (the first is the grid's best,
@@ -45,8 +46,9 @@ def compute(data: ReportData) -> ParetoRecord:
 
 
 def section(data: ReportData) -> Section:
-    """The Pareto front with payload capacity, ranked by the one rule."""
+    """The Pareto front of the paper's metrics among the legs that walk, ranked by the rule."""
     front = data[ParetoRecord].front
+    rec = data[RecommendationRecord].recommendation
     best = front.iloc[0]
     l2_ratio = 1 - best["l1_ratio"] - best["l3_ratio"]
     proportions = proportions_text(best["l1_ratio"], l2_ratio, best["l3_ratio"])
@@ -56,23 +58,26 @@ def section(data: ReportData) -> Section:
             f"{r['l1_ratio']:.2f}",
             ratio_text(r["l3_ratio"]),
             *(spec.cell(r[spec.name]) for spec in RANKED_METRICS),
+            METRICS.walking_payload_capacity.cell(r[METRICS.walking_payload_capacity.name]),
             f"{r['score']:.4f}",
         )
         for r in front.head(12).to_dict(orient="records")
     ]
     return Section(
-        "Pareto front: workspace, manipulability, flexibility and walking payload",
+        "Pareto front: workspace, manipulability and flexibility among the legs that walk",
         (
             f"Among the sweep's designs at the allowed coxa ratios (as in section "
-            f"{recommended}), {len(front)} walk {data.options.gait.named} and are beaten by no "
-            "other in improved area, w_A, FB and walking payload capacity at once. The grid is "
-            "dense and every metric on it exact, so the front is read off it directly (no "
-            "evolutionary search could be more exact). The front is ranked by the rule of "
-            f"section {recommended} (each score relative to your design's 1); a design that "
-            "beats another in every metric also scores higher, so its first, "
-            f"{proportions}, "
-            f"is the grid's best point, which section {recommended} "
-            "refines between grid points into the one recommendation.",
+            f"{recommended}), each at your posture, {len(front)} "
+            f"{rec.constraint.describe(plural=len(front) != 1)} ({data.options.gait.named})"
+            f" and {'are' if len(front) != 1 else 'is'} beaten by no other in improved area, "
+            "w_A and FB at once (their walking "
+            "payload is shown, not ranked: walking is the constraint). The grid is dense and "
+            "every metric on it exact, so the front is read off it directly (no evolutionary "
+            f"search could be more exact). The front is ranked by the rule of section "
+            f"{recommended} (each score relative to your design's 1); a design that beats "
+            f"another in every metric also scores higher, so its first, {proportions}, is the "
+            f"grid's best point at your posture; section {recommended} searches each leg at "
+            "its own best posture for the one recommendation.",
             table(
                 [
                     "l1 ratio",

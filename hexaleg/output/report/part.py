@@ -172,7 +172,9 @@ class Part(Generic[R]):
     Attributes:
         record: The type of the frozen record :attr:`compute` returns.
         compute: The record, from the design, options, model and the needed records.
-        section: The part's section of the report, from every record (pure).
+        section: The part's section of the report, from every record (pure); ``None`` for
+            a part whose record other sections read and which shows none of its own (the
+            designs the report measures, each once).
         needs: Record types of the parts whose records :attr:`compute` reads.
         step: What the progress bar says while computing it.
         files: Writes the part's figures and tables into the report folder.
@@ -186,7 +188,7 @@ class Part(Generic[R]):
 
     record: type[R]
     compute: Callable[[ReportData], R]
-    section: Callable[[ReportData], Section]
+    section: Callable[[ReportData], Section] | None
     needs: tuple[type, ...] = ()
     step: str = ""
     files: Callable[[ReportData, Path], None] = _no_files
@@ -212,6 +214,8 @@ def section_numbers(parts: Sequence[Part[Any]]) -> dict[type, str]:
 
 def numbered(data: ReportData, part: Part[Any]) -> Section:
     """The part's section, its title numbered (``"3.3 Statics"``, ``"3. Body …"``)."""
+    if part.section is None:
+        raise HexalegError(f"report part {part.record.__name__} shows no section")
     section = part.section(data)
     number = data.number(part.record)
     if not number:

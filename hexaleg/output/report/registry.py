@@ -20,15 +20,18 @@ import hexaleg.output.report.robot as robot
 import hexaleg.output.report.sensitivity as sensitivity
 import hexaleg.output.report.simulation as simulation
 import hexaleg.output.report.statics as statics
+import hexaleg.output.report.structure as structure
 import hexaleg.output.report.study as study
 import hexaleg.output.report.viewer as viewer
 import hexaleg.output.report.walking as walking
 import hexaleg.output.report.workspace as workspace
+import hexaleg.output.report.yours as yours
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import LeftOut, Part
 from hexaleg.robot.robot import Robot
 
 PARTS: tuple[Part[Any], ...] = (
+    yours.PART,
     decision.PART,
     robot.DECISION,
     design.PART,
@@ -41,6 +44,7 @@ PARTS: tuple[Part[Any], ...] = (
     study.PART,
     sensitivity.PART,
     statics.PART,
+    structure.PART,
     walking.PART,
     simulation.PART,
     motors.PART,

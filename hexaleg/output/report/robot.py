@@ -18,20 +18,19 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from hexaleg.evaluation.evaluate import Conditions, Evaluation, evaluate
+from hexaleg.evaluation.evaluate import Evaluation
 from hexaleg.evaluation.metrics import METRICS, MetricSpec
-from hexaleg.exceptions import HexalegError
-from hexaleg.gait.capacity import WalkingCapacity, walking_payload_capacity
+from hexaleg.gait.capacity import WalkingCapacity
 from hexaleg.gait.defaults import default_gait
 from hexaleg.output.figures import extremes_figure, save
 from hexaleg.output.report.document import Figure, Section, table, write_csv
 from hexaleg.output.report.part import LeftOut, Part, ReportData, where_legs_are_their_own
 from hexaleg.output.report.requirements import requirement_blocks
+from hexaleg.output.report.yours import YoursRecord
 from hexaleg.ratings import NEEDS_RATING
-from hexaleg.stance.axis_locked import axis_locked_flexibility
 from hexaleg.stance.constraints import TRANSLATIONS
 from hexaleg.stance.extremes import FlexibilityResult
-from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.statics.loads import LoadsAnalysis
 from hexaleg.study.decide import DecideResult, decide
 from hexaleg.study.executors import local_pool
 from hexaleg.swing.manipulability import analyze_manipulability
@@ -63,21 +62,20 @@ class RobotRecord:
         source: What names it (its robot file).
         evaluation: Its metrics under the report's gait (no payload, level ground).
         left_out: The report's sections that do not hold for it, and why.
+        gait_named: The walked gait's name ("the default gait" for the robot's own).
 
     """
 
     source: str
     evaluation: Evaluation
     left_out: tuple[LeftOut, ...] = ()
+    gait_named: str = ""
 
 
 def compute_robot(data: ReportData) -> RobotRecord:
-    """The robot's metrics as one evaluation of it measures them."""
-    conditions = Conditions(gait=data.options.gait)
-    found = evaluate(data.design, METRIC_NAMES, conditions, model=data.model)
-    if found.error:
-        raise HexalegError(f"{data.robot.name}: {found.error}")
-    return RobotRecord(data.robot.name, found, data.left_out)
+    """The robot's metrics, as its one evaluation measured them."""
+    evaluation = data[YoursRecord].evaluation
+    return RobotRecord(data.robot.name, evaluation, data.left_out, _gait_named(data))
 
 
 def robot_section(data: ReportData) -> Section:
@@ -94,7 +92,7 @@ def robot_section(data: ReportData) -> Section:
         f"Your robot: {record.source}",
         (
             "The robot file as read (each leg its own general leg, the file's masses, joint "
-            f"limits and feet), walking {_gait_named(data)} for the walking numbers:",
+            f"limits and feet), walking {record.gait_named} for the walking numbers:",
             table(["metric", "value", "limited by"], rows),
             "Sections of hexaleg's report left out for an imported robot, and why:",
             table(["section", "why it is left out"], skipped),
@@ -121,8 +119,9 @@ def robot_headline(data: ReportData) -> tuple[str, ...]:
     return (f"{record.source}: FB = {record.evaluation.metrics.value(METRICS.fb):.4f}",)
 
 
-ROBOT = Part(RobotRecord, compute_robot, robot_section, step="your robot", json=robot_json,
-             holds=where_legs_are_their_own, headline=robot_headline)  # fmt: skip
+ROBOT = Part(RobotRecord, compute_robot, robot_section, needs=(YoursRecord,), step="your robot",
+             json=robot_json, holds=where_legs_are_their_own,
+             headline=robot_headline)  # fmt: skip
 
 
 # -- the swing phase of each leg -----------------------------------------------------------
@@ -211,11 +210,17 @@ class RobotStanceRecord:
 
 
 def compute_stance(data: ReportData) -> RobotStanceRecord:
-    """Axis-locked flexibility on the robot's model, its statics, its walking capacity."""
-    locked = axis_locked_flexibility(data.design, "all", data.model)
-    loads = loads_at_extremes(data.model, locked)
-    walking = walking_payload_capacity(data.model, data.options.gait)
-    return RobotStanceRecord(locked, loads, walking)
+    """Axis-locked flexibility, its statics and the walking capacity: the one evaluation's."""
+    found = data[YoursRecord].evaluation
+    assert found.flexibility is not None and found.loads is not None  # kept
+    spec = METRICS.walking_payload_capacity
+    cause, walks = found.causes[spec], found.walks
+    walking = (
+        None
+        if cause is None or walks is None
+        else WalkingCapacity(found.metrics.value(spec), cause, walks)
+    )
+    return RobotStanceRecord(found.flexibility, found.loads, walking)
 
 
 def _displacement(value: float, axis: str) -> str:
@@ -263,16 +268,21 @@ def stance_section(data: ReportData) -> Section:
             Figure("flexibility_extremes", "How far the body moves along and about each axis"),
             f"The robot weighs {loads.nominal.mass:.3f} kg; stability margin at the nominal "
             f"stance {loads.nominal.stability_margin:.4f} m. Payload capacity standing: "
-            f"{standing}; walking {_gait_named(data)}: {walks}. Peak |τ| in N·m:",
+            f"{standing}; walking {data[RobotRecord].gait_named}: {walks}. Peak |τ| in N·m:",
             table(["joint", "rated", "nominal stance", "over the extremes"], torques),
         ),
     )
 
 
 def _gait_named(data: ReportData) -> str:
-    """The walked gait's name: "the default gait" for the robot's own (sized to it)."""
-    gait = data.options.gait
-    return "the default gait" if gait == default_gait(data.model) else gait.named
+    """The walked gait's name: "the default gait" for the robot's own (sized to it).
+
+    The robot's own is :attr:`~.options.ReportOptions.default_gait` when the caller found
+    it already (the command line has), else found here.
+    """
+    gait, default = data.options.gait, data.options.default_gait
+    default = default_gait(data.model) if default is None else default
+    return "the default gait" if gait == default else gait.named
 
 
 def _capacities(record: RobotStanceRecord) -> tuple[str, str]:
@@ -318,6 +328,7 @@ STANCE = Part(
     RobotStanceRecord,
     compute_stance,
     stance_section,
+    needs=(YoursRecord,),
     step="flexibility and statics",
     files=stance_files,
     json=stance_json,

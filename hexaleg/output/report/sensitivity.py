@@ -14,6 +14,7 @@ from hexaleg.design import l3_ratio_grid
 from hexaleg.output.report.document import Section, table
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.part import LeftOut, Part, ReportData
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.paper import L1_RATIOS
 from hexaleg.robot.robot import Robot
 from hexaleg.study.sensitivity import sensitivity_table
@@ -32,8 +33,14 @@ class SensitivityRecord:
 
 
 def compute(data: ReportData) -> SensitivityRecord:
-    """The sensitivity table: the design's variants, or the user's field sweep."""
+    """The sensitivity table: the design's variants, or the user's field sweep.
+
+    The study's designs (your body and posture) are not measured again: where the table's
+    grid meets the study's, your design's variant takes the study's FB (measured the same
+    way unless the study counts collisions).
+    """
     design, options = data.design, data.options
+    known = None if options.collisions else data[StudyRecord].table
     return SensitivityRecord(
         sensitivity_table(
             _sensitivity_l1_ratios(options.swept_l1_ratios),
@@ -41,6 +48,7 @@ def compute(data: ReportData) -> SensitivityRecord:
             design.leg_length,
             base=design,
             variants=None if options.sweep is None else options.sweep.variants(),
+            known=known,
         )
     )
 
@@ -116,6 +124,7 @@ PART = Part(
     SensitivityRecord,
     compute,
     section,
+    needs=(StudyRecord,),
     step="posture sensitivity",
     files=write_files,
     json=to_json,

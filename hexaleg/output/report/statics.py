@@ -15,6 +15,7 @@ from hexaleg.output.report.flexibility import FREE_COUPLED, FlexibilityRecord
 from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study_record import StudyRecord
+from hexaleg.output.report.yours import YoursRecord
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
 
@@ -34,12 +35,10 @@ class StaticsRecord:
 
 
 def compute(data: ReportData) -> StaticsRecord:
-    """Statics at the extremes of both modes."""
-    flexibility = data[FlexibilityRecord]
-    return StaticsRecord(
-        loads_at_extremes(data.model, flexibility.axis),
-        loads_at_extremes(data.model, flexibility.free),
-    )
+    """Statics at the extremes of both modes (the axis-locked ones: your design's evaluation's)."""
+    axis = data[YoursRecord].evaluation.loads
+    assert axis is not None  # the evaluation keeps its analyses
+    return StaticsRecord(axis, loads_at_extremes(data.model, data[FlexibilityRecord].free))
 
 
 def section(data: ReportData) -> Section:
@@ -80,7 +79,8 @@ def section(data: ReportData) -> Section:
                 "study_statics",
                 "Every design of the sweep: largest hip and knee torque standing, beside their "
                 "ratings, and the standing and walking payload capacity (log scale), against "
-                "tibia ratio for each coxa ratio; your design and the recommended one marked",
+                "tibia ratio for each coxa ratio; your design and the recommended leg (at its "
+                "own posture) marked",
             ),
         ),
     )
@@ -181,7 +181,7 @@ PART = Part(
     StaticsRecord,
     compute,
     section,
-    needs=(FlexibilityRecord,),
+    needs=(FlexibilityRecord, YoursRecord),
     step="statics",
     files=write_files,
     json=to_json,

@@ -2,17 +2,20 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from hexaleg.design import l3_ratio_grid
+from hexaleg.exceptions import HexalegError
 from hexaleg.output.figures import write_study_figures
 from hexaleg.output.report.document import Figure, Section, table
 from hexaleg.output.report.marks import study_marks
 from hexaleg.output.report.part import Part, ReportData
 from hexaleg.output.report.study_record import StudyRecord
+from hexaleg.output.report.yours import YoursRecord, ratio_key, standing_text
 from hexaleg.paper import CLAIMED_L3_RATIO_PEAK
 from hexaleg.study.executors import local_pool
+from hexaleg.study.rows import Key
 from hexaleg.study.sweep import (
     StudySpec,
     peak_table,
@@ -30,21 +33,30 @@ def compute(data: ReportData) -> StudyRecord:
     """Run the study over the swept coxa ratios × the report's tibia ratios.
 
     Each design is the report's robot at the row's segment lengths (a robot file's changed
-    along its legs' own lines), at its leg length.
+    along its legs' own lines), at its leg length. Where your design is one of them, its
+    row is your design's one evaluation, not measured again.
     """
-    options = data.options
-    spec = StudySpec(
-        options.swept_l1_ratios,
-        tuple(l3_ratio_grid(options.l3_points)),
-        data.design.leg_length,
-        base=data.design,
-        collisions=options.collisions,
-        walked=options.gait,
-        robot=data.robot,
-    )
-    with local_pool(options.workers) as pool:
-        table = study_table(spec, sweep(spec, pool))
-    return StudyRecord(spec, table, spec.row_of(data.robot))
+    yours = data[YoursRecord]
+    spec, row = yours.spec, yours.row
+    mine = _your_key(spec)
+    with local_pool(data.options.workers) as pool:
+        rows = sweep(spec, pool, skip=mine)
+    rows |= {key: replace(row, l1_ratio=key[0], l3_ratio=key[1]) for key in mine}
+    return StudyRecord(spec, study_table(spec, rows), row)
+
+
+def _your_key(spec: StudySpec) -> tuple[Key, ...]:
+    """The study's key whose design is your design, if one is (none or one)."""
+    design = spec.robot.design
+    r1, r3 = ratio_key(design)
+    for key in spec.keys():
+        if abs(key[0] - r1) < 1e-9 and abs(key[1] - r3) < 1e-9:
+            try:
+                if spec.robot.at_ratios(*key, spec.total).design == design:
+                    return (key,)
+            except HexalegError:
+                return ()
+    return ()
 
 
 def section(data: ReportData) -> Section:
@@ -60,8 +72,9 @@ def section(data: ReportData) -> Section:
     )
     blocks: list[str | Figure] = [
         f"{len(study)} designs ({len(spec.l1_ratios)} coxa ratios × "
-        f"{len(spec.l3_ratios)} tibia ratios, total {spec.total:.4g} m, {designs}); "
-        f"{failed} could not stand. Table: [study/study.csv](study/study.csv).",
+        f"{len(spec.l3_ratios)} tibia ratios, total {spec.total:.4g} m, {designs}), each "
+        f"{standing_text(spec)}; {failed} could not stand. Table: "
+        "[study/study.csv](study/study.csv).",
         Figure(
             "flexibility_ranges",
             "The six ranges of the body pose against tibia ratio, for the smallest coxa ratio "
@@ -71,7 +84,8 @@ def section(data: ReportData) -> Section:
             "flexibility_fb",
             "Body flexibility FB against tibia ratio, for each coxa ratio, its grid peaks "
             "marked and its flat top (within 1 % of the peak) thickened; the band is the "
-            "paper's claim (the paper's Fig 15); your design (and the recommended one) marked",
+            "paper's claim (the paper's Fig 15); your design (and the recommended leg, at its "
+            "own posture) marked",
         ),
         table(
             ["l1 ratio", f"FB peak l3 ratio ({data.options.l3_points}-point grid)", "peak FB"],
@@ -113,5 +127,12 @@ def to_json(record: StudyRecord) -> dict[str, Any]:
 
 
 PART = Part(
-    StudyRecord, compute, section, step="design study", files=write_files, json=to_json, level=2
+    StudyRecord,
+    compute,
+    section,
+    needs=(YoursRecord,),
+    step="design study",
+    files=write_files,
+    json=to_json,
+    level=2,
 )

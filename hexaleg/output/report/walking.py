@@ -20,6 +20,7 @@ from hexaleg.output.report.marks import rated_torques, study_marks
 from hexaleg.output.report.motors import MotorsRecord, summary
 from hexaleg.output.report.part import Part, ReportData, where_legs_are_the_designs
 from hexaleg.output.report.study_record import StudyRecord
+from hexaleg.output.report.yours import standing_text
 from hexaleg.study.rows import StudyRow
 from hexaleg.study.walking import ENERGY, TORQUE, WalkingComparison, walking_or_none
 
@@ -41,7 +42,7 @@ class WalkingRecord:
 def compute(data: ReportData) -> WalkingRecord:
     """Compare the study's walking columns with the paper's leg on this design's body."""
     study = data[StudyRecord]
-    return WalkingRecord(walking_or_none(study.table, study.spec))
+    return WalkingRecord(walking_or_none(study.table, study.spec, study.yours))
 
 
 def section(data: ReportData) -> Section:
@@ -60,7 +61,8 @@ def section(data: ReportData) -> Section:
     return Section(
         title,
         (
-            f"Every design of the grid walks one period of {named}: a "
+            f"Every design of the grid, {standing_text(data[StudyRecord].spec)}, walks one "
+            f"period of {named}: a "
             f"{gait['pattern']} at {gait['speed']:.2g} m/s (period {gait['period']:g} s, stride "
             f"{gait['stride']:g} m, step height {gait['step_height']:g} m), no payload; "
             f"{comparison.walking} of the {comparison.designs} designs walk it within every "
@@ -83,10 +85,11 @@ def section(data: ReportData) -> Section:
             *_motors(data),
             Figure(
                 FIGURE,
-                f"Walking {named}: peak hip and knee torque beside their ratings, "
+                f"Walking {named}, {standing_text(data[StudyRecord].spec)}: peak hip and knee "
+                "torque beside their ratings, "
                 "mechanical cost of transport and walking payload capacity against the tibia "
                 "ratio, for each coxa ratio (gaps: designs that cannot walk it unloaded); your "
-                "design and the recommended one marked",
+                "design and the recommended leg (at its own posture) marked",
             ),
         ),
     )
@@ -176,7 +179,11 @@ def write_files(data: ReportData, out: Path) -> None:
     """The study's peak torque and cost of transport against tibia ratio."""
     study = data[StudyRecord]
     figure = walking_study_figure(
-        study.table, rated_torques(data), study_marks(data), data.options.gait
+        study.table,
+        rated_torques(data),
+        study_marks(data),
+        data.options.gait,
+        standing_text(study.spec).replace("standing ", "", 1),
     )
     save(figure, out / f"{FIGURE}.png", svg=data.options.svg)
 
