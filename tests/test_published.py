@@ -402,3 +402,16 @@ def test_a_posture_that_cannot_stand_is_refused_naming_what_breaks(tmp_path, cap
     )
     moved = shown["design"]["legs"][0]["nominal"]["moved_into_limits"]
     assert moved == ["root", "hip", "knee"]
+
+
+@pytest.mark.slow
+def test_the_report_of_an_unrated_robot_says_what_needs_a_rating(tmp_path, capsys):
+    """No 'nan kg' where a capacity needs the ratings the file does not give."""
+    urdf = write_package(tmp_path / "unrated", UNRATED)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert run_cli(["report", "--urdf", str(urdf), "-o", str(tmp_path / "out")]) == 0
+    text = (tmp_path / "out" / "report.md").read_text()
+    statics = text.split("Payload capacity standing:")[1].split("\n")[0]
+    assert statics.count("needs a rating") == 2, statics  # standing and walking
+    assert "nan" not in text.lower().replace("nano", "")

@@ -18,6 +18,7 @@ from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.output.report.yours import YoursRecord
 from hexaleg.ratings import NEEDS_RATING
 from hexaleg.statics.loads import LoadsAnalysis, loads_at_extremes
+from hexaleg.study.rows import StudyRow
 
 
 @dataclass(frozen=True)
@@ -63,9 +64,7 @@ def section(data: ReportData) -> Section:
             f"Stability margin at the nominal stance: {loads.nominal.stability_margin:.3f} m. "
             f"Payload capacity at the centre of the body's top face, standing: "
             f"{_capacity(loads)}; "
-            f"walking {data.options.gait.named}: "
-            f"**{yours.metrics.value(METRICS.walking_payload_capacity):.1f} kg**, "
-            f"limited by {yours.columns['walking_payload_limited_by']}. "
+            f"walking {data.options.gait.named}: {_walking_capacity(yours)}. "
             f"Steepest slope the robot stands on, body level with the ground (μ = "
             f"{loads.friction:g}):",
             _slope_table(loads, differ),
@@ -92,6 +91,14 @@ def _capacity(loads: LoadsAnalysis) -> str:
     if capacity is None:
         return NEEDS_RATING
     return f"**{capacity.mass:.1f} kg**, limited by {capacity.limited_by}"
+
+
+def _walking_capacity(yours: StudyRow) -> str:
+    """The walking payload capacity in words (it may need a rating)."""
+    mass = yours.metrics.value(METRICS.walking_payload_capacity)
+    if math.isnan(mass):
+        return NEEDS_RATING
+    return f"**{mass:.1f} kg**, limited by {yours.columns['walking_payload_limited_by']}"
 
 
 def _torque_table(data: ReportData) -> str:
