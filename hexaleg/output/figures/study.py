@@ -207,7 +207,7 @@ def pareto_figure(table: pd.DataFrame, front: pd.DataFrame, yours: Metrics | Non
     name_largest(ax, table[x], table[y], design_names(table, x), by="x")
     ax.set_xlabel("walking payload capacity [kg] (default tripod gait, every rating)")
     ax.set_ylabel("body flexibility FB [-] (eq 29)")
-    ax.set_title("Designs no other beats in workspace, manipulability, FB and walking payload")
+    ax.set_title("Designs that walk and that no other beats in workspace, w_A and FB at once")
     ax.grid(True, which="both", alpha=0.3)
     fig.legend(loc="outside lower center", ncols=2, fontsize=7.5)
     return fig
