@@ -53,16 +53,41 @@ def deflection_integrals(
         gravity: Gravitational acceleration (K, 3) or (3,), world frame [m/s²].
 
     """
+    masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
+    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
+    return chain_integrals(
+        design.lengths, masses, (hip, knee, FOOT_MASS), states, foot_forces, gravity
+    )
+
+
+def chain_integrals(
+    lengths: tuple[float, float, float],
+    masses: tuple[float, float, float],
+    points: tuple[float, float, float],
+    states: LegStates,
+    foot_forces: npt.ArrayLike,
+    gravity: npt.ArrayLike,
+) -> ArrayF:
+    """:func:`deflection_integrals` of given masses: linear in (masses, points, foot_forces).
+
+    Args:
+        lengths: The segments' lengths (l1, l2, l3) [m].
+        masses: The segments' own masses, spread along them [kg].
+        points: The point masses at the hip, the knee and the foot [kg].
+        states: The legs in K standing poses.
+        foot_forces: Each leg's foot force from the ground (K, 6, 3), world frame [N].
+        gravity: Gravitational acceleration (K, 3) or (3,), world frame [m/s²].
+
+    """
     origins, axes, feet = states.origins, states.axes, states.feet
     g = np.broadcast_to(np.asarray(gravity, dtype=float), (len(feet), 3))[:, None, :]
-    lengths = np.array(design.lengths)
-    masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
-    densities = np.array(masses) / lengths
-    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
-    foot_force = np.asarray(foot_forces, dtype=float) + FOOT_MASS * g
+    length = np.array(lengths)
+    densities = np.array(masses) / length
+    hip, knee, foot = points
+    foot_force = np.asarray(foot_forces, dtype=float) + foot * g
     # the loads beyond each segment's end: (position, force) of each, (K, 6, 3) both; one
     # row per segment (coxa, femur, tibia), laid out as the chain is (fmt: skip below)
-    middle = origins + axes * (lengths / 2)[:, None]
+    middle = origins + axes * (length / 2)[:, None]
     beyond = [
         [(middle[:, :, 1], masses[1] * g), (origins[:, :, 1], hip * g),
          (middle[:, :, 2], masses[2] * g), (origins[:, :, 2], knee * g),
@@ -73,14 +98,14 @@ def deflection_integrals(
     out = np.zeros((*feet.shape[:2], 3, 3))
     for k in range(3):
         axis = axes[:, :, k]
-        for weight, s in zip(SIMPSON, (0.0, lengths[k] / 2, lengths[k]), strict=True):
+        for weight, s in zip(SIMPSON, (0.0, length[k] / 2, length[k]), strict=True):
             point = origins[:, :, k] + s * axis
-            rest = lengths[k] - s  # the segment's own weight beyond s, at its middle
+            rest = length[k] - s  # the segment's own weight beyond s, at its middle
             moment = cross((rest / 2) * axis, densities[k] * rest * g)
             for position, force in beyond[k]:
                 moment = moment + cross(position - point, force)
             across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
-            out[:, :, k] += weight * lengths[k] * cross(across, feet - point)
+            out[:, :, k] += weight * length[k] * cross(across, feet - point)
     return out
 
 

@@ -19,8 +19,8 @@ small grid checked under its own loads.
 from __future__ import annotations
 
 import copy
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -35,6 +35,7 @@ from hexaleg.stance.extremes import Extreme
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.structure.affine import affine_terms
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import foot_deflections
 from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
@@ -128,36 +129,100 @@ def size_structure(
 
 
 def size_for_cases(
-    design: HexapodDesign, cases: StandingCases, model: HexapodModel, grid: TubeGrid
+    design: HexapodDesign,
+    cases: StandingCases,
+    model: HexapodModel,
+    grid: TubeGrid,
+    *,
+    affine: bool = True,
 ) -> SizedStructure:
-    """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`)."""
+    """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`).
+
+    With the min-norm distribution (and ``affine``) the rounds read the loads off
+    :func:`affine_terms` (measured once at ``model``'s masses: no new Pinocchio model a
+    round); the tubes they settle on are then loaded for real (their own model's
+    :func:`standing_terms`), and the rounds go on with real loads if those move them. Another distribution has real loads
+    every round (as with ``affine=False``: the same tubes, slower).
+    """
     structure = design.structure
     if structure is None:
         raise ParameterError("structure", None, "the design has no [structure] to size")
-    area = grid.sections[1]
-    lightest = int(np.argmin(area))
-    chosen: tuple[int, int, int] = (lightest, lightest, lightest)
-    found, settled, iterations = True, False, 0
     limit = structure.limit(design.leg_length)
     active: list[int] = []
-    while iterations < MAX_ITERATIONS and not settled:
-        iterations += 1
+
+    def choose(terms: tuple[ArrayF, ArrayF]) -> tuple[tuple[int, int, int], bool]:
+        loads = section_loads(terms[0])
+        best = choose_tubes(loads, terms[1], structure, design.lengths, limit, grid, active)
+        return (_strongest(loads, structure, grid), False) if best is None else (best, True)
+
+    def loaded(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
         sized = _with_structure(design, structure.with_tubes(_tubes(grid, chosen)))
-        wrenches, integrals = standing_terms(model.with_design(sized), cases)
-        loads = section_loads(wrenches)
-        best = choose_tubes(loads, integrals, structure, design.lengths, limit, grid, active)
-        found = best is not None
-        best = _strongest(loads, structure, grid) if best is None else best
-        settled, chosen = best == chosen, best
-    final = structure.with_tubes(_tubes(grid, chosen))
-    if not settled:  # the last loads were the tubes' before: check the last tubes' own
-        sized = _with_structure(design, final)
-        wrenches, integrals = standing_terms(model.with_design(sized), cases)
+        return standing_terms(model.with_design(sized), cases)
+
+    lightest = int(np.argmin(grid.sections[1]))
+    start = (lightest, lightest, lightest)
+    if affine and cases.distribution == "min-norm":
+        terms = affine_terms(model, cases)
+        densities = [structure.material.density * length for length in design.lengths]
+
+        def estimated(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
+            area = grid.sections[1][list(chosen)]
+            return terms.at([d * a for d, a in zip(densities, area, strict=True)])
+
+        rounds = _rounds(estimated, choose, start, MAX_ITERATIONS)
+        if rounds.settled:  # hold them to their own real loads (the same, to rounding)
+            real = _rounds(loaded, choose, rounds.chosen, MAX_ITERATIONS - rounds.iterations + 1)
+            rounds = replace(real, iterations=rounds.iterations + real.iterations - 1)
+    else:
+        rounds = _rounds(loaded, choose, start, MAX_ITERATIONS)
+    final = structure.with_tubes(_tubes(grid, rounds.chosen))
+    # unsettled, the last loads were the tubes' before: check the last tubes' own
+    wrenches, integrals = rounds.terms if rounds.settled else loaded(rounds.chosen)
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
         final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit
     )
-    return SizedStructure(_with_structure(design, final), check, iterations, settled, found, grid)
+    return SizedStructure(
+        _with_structure(design, final), check, rounds.iterations, rounds.settled, rounds.found, grid
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class _Rounds:
+    """Where rounds of loads and tubes ended.
+
+    Attributes:
+        chosen: The last tubes chosen (grid indices).
+        settled: Whether they are the tubes that loaded them.
+        found: Whether tubes of the grid held the last loads (else the strongest are chosen).
+        iterations: The rounds run.
+        terms: The last loads (wrenches, deflection integrals): ``chosen``'s if settled.
+
+    """
+
+    chosen: tuple[int, int, int]
+    settled: bool
+    found: bool
+    iterations: int
+    terms: tuple[ArrayF, ArrayF]
+
+
+def _rounds(
+    loads: Callable[[tuple[int, int, int]], tuple[ArrayF, ArrayF]],
+    choose: Callable[[tuple[ArrayF, ArrayF]], tuple[tuple[int, int, int], bool]],
+    chosen: tuple[int, int, int],
+    most: int,
+) -> _Rounds:
+    """Load ``chosen``, choose the tubes that hold the loads, ... until they settle."""
+    iterations, settled, found = 0, False, True
+    terms = loads(chosen)
+    while True:
+        iterations += 1
+        best, found = choose(terms)
+        settled, chosen = best == chosen, best
+        if settled or iterations >= most:
+            return _Rounds(chosen, settled, found, iterations, terms)
+        terms = loads(chosen)
 
 
 def _with_structure(design: HexapodDesign, structure: Structure) -> HexapodDesign:

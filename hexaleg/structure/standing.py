@@ -23,7 +23,7 @@ from hexaleg.gravity import GRAVITY, LEVEL_GRAVITY, slope_gravity
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics
+from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics, StaticState
 from hexaleg.statics.slopes import SLOPE_HEADINGS
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
@@ -93,16 +93,27 @@ def standing_forces(model: HexapodModel, cases: StandingCases) -> ArrayF:
     The stance feet's forces balance the robot and its payload (the statics); a foot in
     the air carries none.
     """
+    return case_forces(model, cases, standing_statics(model, cases))
+
+
+def standing_statics(model: HexapodModel, cases: StandingCases) -> list[StaticState]:
+    """The statics of each case (its stance feet's forces, centre of mass, mass), in order."""
     statics = Statics(model, cases.legs, cases.payload, cases.friction)
-    stance = [model.leg_names.index(leg) for leg in cases.legs]
-    out = np.zeros((len(cases.names), len(model.leg_names), 3))
     level = np.flatnonzero(cases.gravities[:, 2] == -GRAVITY)
     states = statics.states(list(cases.configurations[level]), cases.distribution)
-    tilted = [
-        (k, statics.state(cases.configurations[k], cases.distribution, cases.gravities[k]))
-        for k in np.flatnonzero(cases.gravities[:, 2] != -GRAVITY)
-    ]
-    for k, state in [*zip(level, states, strict=True), *tilted]:
+    out: list[StaticState | None] = [None] * len(cases.names)
+    for k, state in zip(level, states, strict=True):
+        out[k] = state
+    for k in np.flatnonzero(cases.gravities[:, 2] != -GRAVITY):
+        out[k] = statics.state(cases.configurations[k], cases.distribution, cases.gravities[k])
+    return [state for state in out if state is not None]
+
+
+def case_forces(model: HexapodModel, cases: StandingCases, states: list[StaticState]) -> ArrayF:
+    """The statics' foot forces laid out per case and leg (K, 6, 3) [N], zero in the air."""
+    stance = [model.leg_names.index(leg) for leg in cases.legs]
+    out = np.zeros((len(cases.names), len(model.leg_names), 3))
+    for k, state in enumerate(states):
         out[k, stance] = state.foot_forces
     return out
 

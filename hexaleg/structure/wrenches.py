@@ -234,3 +234,29 @@ def segment_wrenches(states: LegStates, foot_forces: npt.ArrayLike) -> ArrayF:
     along = np.einsum("klsji,klsj->klsi", states.rotations, np.broadcast_to(force, arm.shape))
     about = np.einsum("klsji,klsj->klsi", states.rotations, cross(arm, force))
     return states.own - np.concatenate((along, about), axis=-1)
+
+
+def weight_wrenches(
+    states: LegStates, lengths: tuple[float, float, float], gravity: npt.ArrayLike
+) -> ArrayF:
+    """What one kilogram more of each segment, at its middle, adds to the wrenches at rest.
+
+    Returns:
+        (3, K, 6, 3, 6): per segment whose mass grows (coxa, femur, tibia), state, leg and
+        joint, the force [N/kg] then the moment [N·m/kg] the parent exerts on the joint's
+        subtree in the joint's frame (:attr:`LegStates.own`'s, per kilogram): −g, and its
+        moment about the joint, at each joint from the body out to that segment's own.
+
+    """
+    count = len(states.feet)
+    force = np.broadcast_to(-np.asarray(gravity, dtype=float), (count, 3))[:, None, :]
+    force = np.broadcast_to(force, states.feet.shape)  # (K, 6, 3)
+    out = np.zeros((3, *states.origins.shape[:3], 6))
+    for segment in range(3):
+        middle = states.origins[:, :, segment] + states.axes[:, :, segment] * (lengths[segment] / 2)
+        for joint in range(segment + 1):
+            rotation = states.rotations[:, :, joint]
+            moment = cross(middle - states.origins[:, :, joint], force)
+            out[segment, :, :, joint, :3] = np.einsum("klji,klj->kli", rotation, force)
+            out[segment, :, :, joint, 3:] = np.einsum("klji,klj->kli", rotation, moment)
+    return out
