@@ -141,8 +141,9 @@ def size_for_cases(
     With the min-norm distribution (and ``affine``) the rounds read the loads off
     :func:`affine_terms` (measured once at ``model``'s masses: no new Pinocchio model a
     round); the tubes they settle on are then loaded for real (their own model's
-    :func:`standing_terms`), and the rounds go on with real loads if those move them. Another distribution has real loads
-    every round (as with ``affine=False``: the same tubes, slower).
+    :func:`standing_terms`), and the rounds go on with real loads if those move them.
+    Another distribution has real loads every round (as with ``affine=False``: the same
+    tubes, slower).
     """
     structure = design.structure
     if structure is None:
