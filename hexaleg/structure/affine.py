@@ -138,4 +138,3 @@ def _force_slopes(
     out = np.zeros((3, len(com), len(model.leg_names), 3))
     out[:, :, stance] = solved.reshape(len(com), len(stance), 3, 3).transpose(3, 0, 1, 2)
     return out
-
