@@ -100,19 +100,7 @@ def affine_terms(model: HexapodModel, cases: StandingCases) -> AffineTerms:
         segment_wrenches(states, forces),
         deflection_integrals(design, states, forces, cases.gravities),
         np.stack([segment_wrenches(replace(states, own=weights[s]), slopes[s]) for s in range(3)]),
-        np.stack(
-            [
-                chain_integrals(
-                    design.lengths,
-                    (UNIT_MASSES[s, 0], UNIT_MASSES[s, 1], UNIT_MASSES[s, 2]),
-                    (0.0, 0.0, 0.0),
-                    states,
-                    slopes[s],
-                    cases.gravities,
-                )
-                for s in range(3)
-            ]
-        ),
+        chain_integrals(design.lengths, UNIT_MASSES, np.zeros(3), states, slopes, cases.gravities),
     )
 
 

@@ -62,8 +62,8 @@ def deflection_integrals(
 
 def chain_integrals(
     lengths: tuple[float, float, float],
-    masses: tuple[float, float, float],
-    points: tuple[float, float, float],
+    masses: npt.ArrayLike,
+    points: npt.ArrayLike,
     states: LegStates,
     foot_forces: npt.ArrayLike,
     gravity: npt.ArrayLike,
@@ -72,40 +72,49 @@ def chain_integrals(
 
     Args:
         lengths: The segments' lengths (l1, l2, l3) [m].
-        masses: The segments' own masses, spread along them [kg].
-        points: The point masses at the hip, the knee and the foot [kg].
+        masses: The segments' own masses, spread along them (..., 3) [kg]: leading axes
+            (B...) give as many sets of loads at once.
+        points: The point masses at the hip, the knee and the foot (..., 3) [kg], likewise.
         states: The legs in K standing poses.
-        foot_forces: Each leg's foot force from the ground (K, 6, 3), world frame [N].
+        foot_forces: Each leg's foot force from the ground (B..., K, 6, 3), world frame [N].
         gravity: Gravitational acceleration (K, 3) or (3,), world frame [m/s²].
+
+    Returns:
+        The integrals (B..., K, 6, 3, 3) [N·m³].
 
     """
     origins, axes, feet = states.origins, states.axes, states.feet
     g = np.broadcast_to(np.asarray(gravity, dtype=float), (len(feet), 3))[:, None, :]
     length = np.array(lengths)
-    densities = np.array(masses) / length
-    hip, knee, foot = points
-    foot_force = np.asarray(foot_forces, dtype=float) + foot * g
+    mass, point_mass = np.asarray(masses, dtype=float), np.asarray(points, dtype=float)
+    batch = np.broadcast_shapes(mass.shape[:-1], point_mass.shape[:-1])
+
+    def weight(values: ArrayF, i: int) -> ArrayF:  # (B..., 1, 1, 1) times g: (B..., K, 1, 3)
+        return np.broadcast_to(values[..., i], batch).reshape(*batch, 1, 1, 1) * g
+
+    foot_force = np.asarray(foot_forces, dtype=float) + weight(point_mass, 2)
     # the loads beyond each segment's end: (position, force) of each, (K, 6, 3) both; one
     # row per segment (coxa, femur, tibia), laid out as the chain is (fmt: skip below)
     middle = origins + axes * (length / 2)[:, None]
+    femur, tibia = weight(mass, 1), weight(mass, 2)
+    hip, knee = weight(point_mass, 0), weight(point_mass, 1)
     beyond = [
-        [(middle[:, :, 1], masses[1] * g), (origins[:, :, 1], hip * g),
-         (middle[:, :, 2], masses[2] * g), (origins[:, :, 2], knee * g),
-         (feet, foot_force)],
-        [(middle[:, :, 2], masses[2] * g), (origins[:, :, 2], knee * g), (feet, foot_force)],
+        [(middle[:, :, 1], femur), (origins[:, :, 1], hip), (middle[:, :, 2], tibia),
+         (origins[:, :, 2], knee), (feet, foot_force)],
+        [(middle[:, :, 2], tibia), (origins[:, :, 2], knee), (feet, foot_force)],
         [(feet, foot_force)],
     ]  # fmt: skip
-    out = np.zeros((*feet.shape[:2], 3, 3))
+    out = np.zeros((*batch, *feet.shape[:2], 3, 3))
     for k in range(3):
-        axis = axes[:, :, k]
-        for weight, s in zip(SIMPSON, (0.0, length[k] / 2, length[k]), strict=True):
+        axis, own = axes[:, :, k], weight(mass, k) / length[k]
+        for share, s in zip(SIMPSON, (0.0, length[k] / 2, length[k]), strict=True):
             point = origins[:, :, k] + s * axis
             rest = length[k] - s  # the segment's own weight beyond s, at its middle
-            moment = cross((rest / 2) * axis, densities[k] * rest * g)
+            moment = cross((rest / 2) * axis, rest * own)
             for position, force in beyond[k]:
                 moment = moment + cross(position - point, force)
             across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
-            out[:, :, k] += weight * length[k] * cross(across, feet - point)
+            out[..., k, :] += share * length[k] * cross(across, feet - point)
     return out
 
 

@@ -246,20 +246,12 @@ def segment_ratios(loads: ArrayF, structure: Structure, grid: TubeGrid) -> Array
     outer, area, moment = grid.sections
     out = np.empty((3, len(outer)))
     for segment in range(3):
-        cases = _dominant(np.abs(loads[:, :, segment].reshape(-1, 3)))
+        cases = loads[:, :, segment].reshape(-1, 3)
         _, tau, von_mises = tube_stresses(
             cases[None, :, :], outer[:, None], area[:, None], moment[:, None]
         )
         out[segment] = stress_ratio(von_mises, tau, structure).max(axis=1)
     return out
-
-
-def _dominant(loads: ArrayF) -> ArrayF:
-    """The loads (m, 3) no other load exceeds in all of N, M_b and T (stress grows in each)."""
-    loads = np.unique(loads, axis=0)
-    at_least = np.all(loads[None, :, :] >= loads[:, None, :], axis=-1)  # [i, j]: j ≥ i
-    np.fill_diagonal(at_least, False)
-    return loads[~at_least.any(axis=1)]
 
 
 def _strongest(loads: ArrayF, structure: Structure, grid: TubeGrid) -> tuple[int, int, int]:

@@ -127,6 +127,7 @@ def leg_states(
 
     """
     legs = _Legs.of(model)
+    at_rest = velocities is None and accelerations is None
     q = np.asarray(configurations, dtype=float).reshape(-1, model.model.nq)
     count = len(q)
     v = np.zeros((count, model.model.nv)) if velocities is None else np.asarray(velocities)
@@ -146,22 +147,26 @@ def leg_states(
     forces, moments, centres = (np.empty((count, 6, 3, 3)) for _ in range(3))
     for k in range(3):
         origin = parent_o + (parent_r @ legs.offsets[:, k, :, None])[..., 0]
-        arm = origin - parent_o
-        acceleration = acceleration + cross(alpha, arm) + cross(omega, cross(omega, arm))
         placed = np.einsum("klij,ljm->klim", parent_r, legs.turns[:, k])
         rotation = placed @ _rodrigues(legs.axes[:, k], q[:, legs.q[:, k]])
-        axis = (placed @ legs.axes[:, k, :, None])[..., 0]
-        rate, rate2 = v[:, legs.v[:, k]][..., None], a[:, legs.v[:, k]][..., None]
-        alpha = alpha + axis * rate2 + cross(omega, axis * rate)
-        omega = omega + axis * rate
         lever = (rotation @ legs.levers[:, k, :, None])[..., 0]
-        centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
-        forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
-        spin_here = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
-        turn_here = np.einsum("klji,klj->kli", rotation, alpha)
-        spun = (legs.inertias[:, k] @ spin_here[..., None])[..., 0]
-        local = (legs.inertias[:, k] @ turn_here[..., None])[..., 0] + cross(spin_here, spun)
-        moments[:, :, k] = (rotation @ local[..., None])[..., 0]
+        if at_rest:  # the weights alone: what the motion's terms below add up to at rest
+            forces[:, :, k] = legs.masses[:, k, None] * -g
+            moments[:, :, k] = 0.0
+        else:
+            arm = origin - parent_o
+            acceleration = acceleration + cross(alpha, arm) + cross(omega, cross(omega, arm))
+            axis = (placed @ legs.axes[:, k, :, None])[..., 0]
+            rate, rate2 = v[:, legs.v[:, k]][..., None], a[:, legs.v[:, k]][..., None]
+            alpha = alpha + axis * rate2 + cross(omega, axis * rate)
+            omega = omega + axis * rate
+            centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
+            forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
+            spin_here = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
+            turn_here = np.einsum("klji,klj->kli", rotation, alpha)
+            spun = (legs.inertias[:, k] @ spin_here[..., None])[..., 0]
+            local = (legs.inertias[:, k] @ turn_here[..., None])[..., 0] + cross(spin_here, spun)
+            moments[:, :, k] = (rotation @ local[..., None])[..., 0]
         centres[:, :, k] = origin + lever
         rotations[:, :, k], origins[:, :, k] = rotation, origin
         parent_r, parent_o = rotation, origin
