@@ -33,7 +33,7 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.leg_structure import segment_masses
 from hexaleg.robot.model import HexapodModel
 from hexaleg.statics.forces import StaticState, equilibrium, min_norm_forces
-from hexaleg.structure.deflection import chain_integrals, deflection_integrals
+from hexaleg.structure.deflection import chain_integrals, point_masses
 from hexaleg.structure.standing import StandingCases, case_forces, standing_statics
 from hexaleg.structure.wrenches import (
     LegStates,
@@ -95,10 +95,18 @@ def affine_terms(model: HexapodModel, cases: StandingCases) -> AffineTerms:
     slopes = _force_slopes(model, cases, states, statics)  # (3, K, 6, 3)
     weights = weight_wrenches(states, design.lengths, cases.gravities)
     masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
+    integrals = chain_integrals(  # at the masses, then per kilogram of each segment
+        design.lengths,
+        np.vstack([masses, UNIT_MASSES]),
+        np.vstack([point_masses(design), np.zeros((3, 3))]),
+        states,
+        np.concatenate([forces[None], slopes]),
+        cases.gravities,
+    )
     return AffineTerms(
         np.array(masses),
         segment_wrenches(states, forces),
-        deflection_integrals(design, states, forces, cases.gravities),
+        integrals[0],
         np.stack([segment_wrenches(replace(states, own=weights[s]), slopes[s]) for s in range(3)]),
         chain_integrals(design.lengths, UNIT_MASSES, np.zeros(3), states, slopes, cases.gravities),
     )

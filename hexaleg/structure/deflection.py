@@ -54,10 +54,15 @@ def deflection_integrals(
 
     """
     masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
-    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
     return chain_integrals(
-        design.lengths, masses, (hip, knee, FOOT_MASS), states, foot_forces, gravity
+        design.lengths, masses, point_masses(design), states, foot_forces, gravity
     )
+
+
+def point_masses(design: HexapodDesign) -> tuple[float, float, float]:
+    """The masses at the hip (its actuator), the knee (its actuator) and the foot [kg]."""
+    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
+    return (hip, knee, FOOT_MASS)
 
 
 def chain_integrals(
@@ -107,12 +112,14 @@ def chain_integrals(
     out = np.zeros((*batch, *feet.shape[:2], 3, 3))
     for k in range(3):
         axis, own = axes[:, :, k], weight(mass, k) / length[k]
+        # the moment of the loads beyond about a point x: Σ p × F − x × Σ F
+        about_origin, total = np.zeros(3), np.zeros(3)
+        for position, force in beyond[k]:
+            about_origin, total = about_origin + cross(position, force), total + force
         for share, s in zip(SIMPSON, (0.0, length[k] / 2, length[k]), strict=True):
             point = origins[:, :, k] + s * axis
             rest = length[k] - s  # the segment's own weight beyond s, at its middle
-            moment = cross((rest / 2) * axis, rest * own)
-            for position, force in beyond[k]:
-                moment = moment + cross(position - point, force)
+            moment = cross((rest / 2) * axis, rest * own) + about_origin - cross(point, total)
             across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
             out[..., k, :] += share * length[k] * cross(across, feet - point)
     return out
