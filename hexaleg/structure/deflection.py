@@ -33,6 +33,8 @@ from hexaleg.structure.wrenches import LegStates, cross
 
 SIMPSON = np.array([1.0, 4.0, 1.0]) / 6
 """Simpson's weights at s = 0, l/2, l, times the segment's length."""
+SIMPSON_POINTS = np.array([0.0, 0.5, 1.0])
+"""Where Simpson's rule samples a segment, over its length."""
 
 
 def deflection_integrals(
@@ -116,12 +118,13 @@ def chain_integrals(
         about_origin, total = np.zeros(3), np.zeros(3)
         for position, force in beyond[k]:
             about_origin, total = about_origin + cross(position, force), total + force
-        for share, s in zip(SIMPSON, (0.0, length[k] / 2, length[k]), strict=True):
-            point = origins[:, :, k] + s * axis
-            rest = length[k] - s  # the segment's own weight beyond s, at its middle
-            moment = cross((rest / 2) * axis, rest * own) + about_origin - cross(point, total)
-            across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
-            out[..., k, :] += share * length[k] * cross(across, feet - point)
+        # Simpson's points s = 0, l/2, l along the segment, on a leading axis
+        s = (length[k] * SIMPSON_POINTS).reshape(3, *(1,) * len(batch), 1, 1, 1)
+        point = origins[:, :, k] + s * axis
+        rest = length[k] - s  # the segment's own weight beyond s, at its middle
+        moment = cross((rest / 2) * axis, rest * own) + about_origin - cross(point, total)
+        across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
+        out[..., k, :] = length[k] * np.tensordot(SIMPSON, cross(across, feet - point), axes=1)
     return out
 
 

@@ -243,15 +243,41 @@ def _tubes(grid: TubeGrid, chosen: tuple[int, int, int]) -> tuple[Tube, Tube, Tu
 
 def segment_ratios(loads: ArrayF, structure: Structure, grid: TubeGrid) -> ArrayF:
     """Each grid tube's worst ratio (3, n) per segment, over every case and leg [-]."""
-    outer, area, moment = grid.sections
-    out = np.empty((3, len(outer)))
+    outer = grid.sections[0]
+    every = np.arange(len(outer))
+    return np.stack(
+        [_worst_ratio(loads[:, :, s].reshape(-1, 3), every, structure, grid) for s in range(3)]
+    )
+
+
+def segment_holds(loads: ArrayF, structure: Structure, grid: TubeGrid) -> npt.NDArray[np.bool_]:
+    """Whether each grid tube's worst ratio is at most 1 (3, n): ``segment_ratios(...) <= 1``.
+
+    Bit for bit, and cheaper: a tube's ratio grows with each of |N|, |M_b| and |T| (so do
+    its floating-point operations), so its worst lies between that of the loads largest
+    in one of them and that of their three maxima together; only the tubes those two do
+    not decide are loaded with every case and leg.
+    """
+    every = np.arange(len(grid.sections[0]))
+    out = np.empty((3, len(every)), dtype=bool)
     for segment in range(3):
-        cases = loads[:, :, segment].reshape(-1, 3)
-        _, tau, von_mises = tube_stresses(
-            cases[None, :, :], outer[:, None], area[:, None], moment[:, None]
-        )
-        out[segment] = stress_ratio(von_mises, tau, structure).max(axis=1)
+        rows = np.abs(loads[:, :, segment].reshape(-1, 3))
+        high = _worst_ratio(rows.max(axis=0)[None], every, structure, grid)
+        low = _worst_ratio(rows[np.argmax(rows, axis=0)], every, structure, grid)
+        out[segment] = high <= 1
+        unsure = np.flatnonzero((low <= 1) & (high > 1))
+        out[segment, unsure] = _worst_ratio(rows, unsure, structure, grid) <= 1
     return out
+
+
+def _worst_ratio(
+    rows: ArrayF, tubes: npt.NDArray[np.intp], structure: Structure, grid: TubeGrid
+) -> ArrayF:
+    """The worst ratio [-] of section loads ``rows`` (R, 3) on each of ``tubes`` (indices)."""
+    outer, area, moment = (values[tubes, None] for values in grid.sections)
+    _, tau, von_mises = tube_stresses(rows[None, :, :], outer, area, moment)
+    worst: ArrayF = stress_ratio(von_mises, tau, structure).max(axis=1)
+    return worst
 
 
 def _strongest(loads: ArrayF, structure: Structure, grid: TubeGrid) -> tuple[int, int, int]:
@@ -284,7 +310,7 @@ def choose_tubes(
 
     """
     _, area, moment = grid.sections
-    holds = segment_ratios(loads, structure, grid) <= 1
+    holds = segment_holds(loads, structure, grid)
     fronts = [_stiffest_for_mass(np.flatnonzero(ok), area, moment) for ok in holds]
     if any(len(front) == 0 for front in fronts):
         return None
