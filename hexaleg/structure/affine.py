@@ -32,9 +32,9 @@ from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
 from hexaleg.leg_structure import segment_masses
 from hexaleg.robot.model import HexapodModel
-from hexaleg.statics.forces import StaticState, equilibrium, min_norm_forces
+from hexaleg.statics.forces import equilibrium, min_norm_forces
 from hexaleg.structure.deflection import chain_integrals, point_masses
-from hexaleg.structure.standing import StandingCases, case_forces, standing_statics
+from hexaleg.structure.standing import StandingCases, standing_balance
 from hexaleg.structure.wrenches import (
     LegStates,
     leg_states,
@@ -89,10 +89,9 @@ def affine_terms(model: HexapodModel, cases: StandingCases) -> AffineTerms:
         )
     require_template(model)
     design = model.design
-    statics = standing_statics(model, cases)
     states = leg_states(model, cases.configurations, cases.gravities)
-    forces = case_forces(model, cases, statics)
-    slopes = _force_slopes(model, cases, states, statics)  # (3, K, 6, 3)
+    forces, com = standing_balance(model, cases, states.feet)
+    slopes = _force_slopes(model, cases, states, com)  # (3, K, 6, 3)
     weights = weight_wrenches(states, design.lengths, cases.gravities)
     masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
     integrals = chain_integrals(  # at the masses, then per kilogram of each segment
@@ -113,15 +112,14 @@ def affine_terms(model: HexapodModel, cases: StandingCases) -> AffineTerms:
 
 
 def _force_slopes(
-    model: HexapodModel, cases: StandingCases, states: LegStates, statics: list[StaticState]
+    model: HexapodModel, cases: StandingCases, states: LegStates, com: ArrayF
 ) -> ArrayF:
     """The feet's forces' change per kilogram of each segment (3, K, 6, 3) [N/kg].
 
     Every leg's segment s gains the kilogram at its middle: the weight grows by n·g and
-    its moment about the centre of mass c by Σ_legs (p_middle − c) × g.
+    its moment about the centre of mass c (K, 3) by Σ_legs (p_middle − c) × g.
     """
     stance = [model.leg_names.index(leg) for leg in cases.legs]
-    com = np.array([state.com for state in statics])  # (K, 3)
     rows, _ = equilibrium(states.feet[:, stance], com, 1.0, cases.gravities)  # (K, 6, 3N)
     g, lengths = cases.gravities, model.design.lengths  # (K, 3), [m]
     rhs = np.empty((len(com), 6, 3))
