@@ -142,9 +142,9 @@ def leg_states(
     omega = np.broadcast_to(spin[:, None], (count, 6, 3))
     alpha = np.broadcast_to(np.einsum("kij,kj->ki", body, a[:, 3:6])[:, None], (count, 6, 3))
     acceleration = np.broadcast_to(linear[:, None], (count, 6, 3))
-    rotations = np.empty((count, 6, 3, 3, 3))
-    origins = np.empty((count, 6, 3, 3))
-    forces, moments, centres = (np.empty((count, 6, 3, 3)) for _ in range(3))
+    rotations, origins = np.empty((count, 6, 3, 3, 3)), np.empty((count, 6, 3, 3))
+    forces, centres = np.empty((count, 6, 3, 3)), np.empty((count, 6, 3, 3))
+    moments = np.zeros((count, 6, 3, 3))  # at rest, none
     for k in range(3):
         origin = parent_o + (parent_r @ legs.offsets[:, k, :, None])[..., 0]
         placed = np.einsum("klij,ljm->klim", parent_r, legs.turns[:, k])
@@ -152,7 +152,6 @@ def leg_states(
         lever = (rotation @ legs.levers[:, k, :, None])[..., 0]
         if at_rest:  # the weights alone: what the motion's terms below add up to at rest
             forces[:, :, k] = legs.masses[:, k, None] * -g
-            moments[:, :, k] = 0.0
         else:
             arm = origin - parent_o
             acceleration = acceleration + cross(alpha, arm) + cross(omega, cross(omega, arm))
@@ -162,11 +161,7 @@ def leg_states(
             omega = omega + axis * rate
             centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
             forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
-            spin_here = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
-            turn_here = np.einsum("klji,klj->kli", rotation, alpha)
-            spun = (legs.inertias[:, k] @ spin_here[..., None])[..., 0]
-            local = (legs.inertias[:, k] @ turn_here[..., None])[..., 0] + cross(spin_here, spun)
-            moments[:, :, k] = (rotation @ local[..., None])[..., 0]
+            moments[:, :, k] = _spin_moment(legs.inertias[:, k], rotation, omega, alpha)
         centres[:, :, k] = origin + lever
         rotations[:, :, k], origins[:, :, k] = rotation, origin
         parent_r, parent_o = rotation, origin
@@ -174,6 +169,16 @@ def leg_states(
     return LegStates(
         rotations, origins, feet, _subtree(rotations, origins, forces, moments, centres)
     )
+
+
+def _spin_moment(inertia: ArrayF, rotation: ArrayF, omega: ArrayF, alpha: ArrayF) -> ArrayF:
+    """A link's I·α + ω × I·ω (K, 6, 3), world frame, its inertia (6, 3, 3) in its own axes."""
+    spin = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
+    turn = np.einsum("klji,klj->kli", rotation, alpha)
+    spun = (inertia @ spin[..., None])[..., 0]
+    local = (inertia @ turn[..., None])[..., 0] + cross(spin, spun)
+    moment: ArrayF = (rotation @ local[..., None])[..., 0]
+    return moment
 
 
 def _subtree(
