@@ -13,7 +13,9 @@ the loads with the grid's lightest tubes, the lightest tubes that hold them, the
 with those, ... until the tubes chosen are the tubes that loaded them
 (:attr:`SizedStructure.iterations` rounds, :data:`MAX_ITERATIONS` at most). The loads so
 grow from below; hexaleg's tests hold the tubes settled on against every triple of a
-small grid checked under its own loads.
+small grid checked under its own loads. With the min-norm distribution a round's loads
+are read off their affine model in the three segments' masses (:mod:`.affine`), and the
+tubes settled on are loaded for real once, which gives their check (:func:`size_for_cases`).
 """
 
 from __future__ import annotations
