@@ -107,7 +107,7 @@ def affine_terms(model: HexapodModel, cases: StandingCases) -> AffineTerms:
         segment_wrenches(states, forces),
         integrals[0],
         np.stack([segment_wrenches(replace(states, own=weights[s]), slopes[s]) for s in range(3)]),
-        chain_integrals(design.lengths, UNIT_MASSES, np.zeros(3), states, slopes, cases.gravities),
+        integrals[1:],
     )
 
 
