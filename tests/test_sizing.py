@@ -17,11 +17,13 @@ import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.exceptions import ParameterError
 from hexaleg.leg_structure import Structure, Tube
 from hexaleg.materials import shipped_materials
 from hexaleg.statics.forces import Payload
-from hexaleg.structure.grid import TubeGrid
-from hexaleg.structure.sizing import size_for_cases, size_structure
+from hexaleg.structure.affine import affine_terms
+from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
+from hexaleg.structure.sizing import segment_holds, size_for_cases, size_structure
 from hexaleg.structure.standing import check_standing, standing_cases, standing_terms
 
 CATALOG = shipped_materials()
@@ -182,3 +184,89 @@ def test_a_grid_with_no_tube_that_holds_keeps_the_strongest_and_says_so():
     sized = size_structure(design, grid=tiny)
     assert not sized.found and not sized.check.feasible
     assert sized.check.over_strength  # every segment over its strength is named
+
+
+def random_tubes(rng):
+    """Three tubes of random diameter and wall (a solid rod at times)."""
+    outer = rng.uniform(0.008, 0.08, 3)
+    return tuple(Tube(float(d), float(rng.uniform(0.0005, 0.5) * d)) for d in outer)
+
+
+def requirement_cases(design, model, rng, extremes=True):
+    """Seeded standing cases: the extremes, a payload somewhere on the body, a slope."""
+    from hexaleg.stance.flexibility import flexibility
+
+    found = flexibility(design, "axis", model.leg_names, model).extremes if extremes else []
+    payload = Payload(rng.uniform(0, 40), tuple(rng.uniform(-0.1, 0.1, 3)))
+    return standing_cases(model, model.leg_names, found, payload, rng.uniform(0, 0.4))
+
+
+@pytest.mark.parametrize("seed", [3, 6, pytest.param(11, marks=pytest.mark.slow)])
+def test_the_affine_terms_are_the_full_computation_at_any_tube_masses(seed):
+    # the oracle: the wrenches and deflection integrals of a model built with the tubes
+    design = seeded(seed)
+    model = HexapodModel(design)
+    rng = np.random.default_rng(seed)
+    cases = requirement_cases(design, model, rng)
+    terms = affine_terms(model, cases)
+    for _ in range(3):
+        tubes = random_tubes(rng)
+        wrenches, integrals = evaluate(design, model, cases, tubes)
+        density = design.structure.material.density
+        masses = [
+            density * t.area * length for t, length in zip(tubes, design.lengths, strict=True)
+        ]
+        predicted_w, predicted_d = terms.at(masses)
+        np.testing.assert_allclose(
+            predicted_w, wrenches, rtol=0, atol=1e-9 * np.abs(wrenches).max()
+        )
+        np.testing.assert_allclose(
+            predicted_d, integrals, rtol=0, atol=1e-9 * np.abs(integrals).max()
+        )
+
+
+def test_the_affine_terms_refuse_a_distribution_that_is_not_linear():
+    design = seeded(0)
+    model = HexapodModel(design)
+    cases = standing_cases(model, model.leg_names, distribution="min-torque")
+    with pytest.raises(ParameterError, match="min-norm"):
+        affine_terms(model, cases)
+
+
+@pytest.mark.parametrize(
+    "seed", [0, 10, *(pytest.param(s, marks=pytest.mark.slow) for s in (12, 15, 16, 17, 18, 19))]
+)
+def test_sizing_on_the_affine_loads_answers_as_the_real_rounds_do(seed):
+    # the oracle: the rounds with a new model and its real loads every round
+    design = seeded(seed)
+    model = HexapodModel(design)
+    cases = requirement_cases(design, model, np.random.default_rng(seed))
+    fast = size_for_cases(design, cases, model, DEFAULT_GRID)
+    real = size_for_cases(design, cases, model, DEFAULT_GRID, affine=False)
+    assert fast.structure.tubes == real.structure.tubes
+    assert (fast.iterations, fast.settled, fast.found) == (
+        real.iterations,
+        real.settled,
+        real.found,
+    )
+    np.testing.assert_allclose(fast.check.ratios, real.check.ratios, rtol=1e-12)
+    np.testing.assert_allclose(fast.check.deflections, real.check.deflections, rtol=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_a_tube_holds_where_its_worst_ratio_over_every_load_is_at_most_one(seed):
+    # the oracle: each tube's ratio under each load, by the brief's formulas, here
+    rng = np.random.default_rng(seed)
+    structure = seeded(seed).structure
+    scale = np.array([200.0, 30.0, 5.0]) * 10 ** rng.uniform(-0.5, 1)  # N [N], M_b, T [N·m]
+    loads = rng.normal(size=(5, 6, 3, 3)) * scale
+    outer, area, moment = DEFAULT_GRID.sections
+    magnitude = np.abs(loads)[..., None]  # (5, 6, 3, 3, n)
+    sigma = magnitude[..., 0, :] / area + magnitude[..., 1, :] * (outer / 2) / moment
+    tau = magnitude[..., 2, :] * (outer / 2) / (2 * moment)
+    ratio = np.sqrt(sigma**2 + 3 * tau**2) / structure.allowed_stress
+    if structure.material.shear_strength is not None:
+        ratio = np.maximum(ratio, tau * structure.safety_factor / structure.material.shear_strength)
+    expected = ratio.max(axis=(0, 1)) <= 1  # (3, n)
+    assert 0 < expected.sum() < expected.size  # some tubes hold, some do not
+    np.testing.assert_array_equal(segment_holds(loads, structure, DEFAULT_GRID), expected)

@@ -33,6 +33,8 @@ from hexaleg.structure.wrenches import LegStates, cross
 
 SIMPSON = np.array([1.0, 4.0, 1.0]) / 6
 """Simpson's weights at s = 0, l/2, l, times the segment's length."""
+SIMPSON_POINTS = np.array([0.0, 0.5, 1.0])
+"""Where Simpson's rule samples a segment, over its length."""
 
 
 def deflection_integrals(
@@ -53,34 +55,76 @@ def deflection_integrals(
         gravity: Gravitational acceleration (K, 3) or (3,), world frame [m/s²].
 
     """
+    masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
+    return chain_integrals(
+        design.lengths, masses, point_masses(design), states, foot_forces, gravity
+    )
+
+
+def point_masses(design: HexapodDesign) -> tuple[float, float, float]:
+    """The masses at the hip (its actuator), the knee (its actuator) and the foot [kg]."""
+    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
+    return (hip, knee, FOOT_MASS)
+
+
+def chain_integrals(
+    lengths: tuple[float, float, float],
+    masses: npt.ArrayLike,
+    points: npt.ArrayLike,
+    states: LegStates,
+    foot_forces: npt.ArrayLike,
+    gravity: npt.ArrayLike,
+) -> ArrayF:
+    """:func:`deflection_integrals` of given masses: linear in (masses, points, foot_forces).
+
+    Args:
+        lengths: The segments' lengths (l1, l2, l3) [m].
+        masses: The segments' own masses, spread along them (..., 3) [kg]: leading axes
+            (B...) give as many sets of loads at once.
+        points: The point masses at the hip, the knee and the foot (..., 3) [kg], likewise.
+        states: The legs in K standing poses.
+        foot_forces: Each leg's foot force from the ground (B..., K, 6, 3), world frame [N].
+        gravity: Gravitational acceleration (K, 3) or (3,), world frame [m/s²].
+
+    Returns:
+        The integrals (B..., K, 6, 3, 3) [N·m³].
+
+    """
     origins, axes, feet = states.origins, states.axes, states.feet
     g = np.broadcast_to(np.asarray(gravity, dtype=float), (len(feet), 3))[:, None, :]
-    lengths = np.array(design.lengths)
-    masses = segment_masses(design.structure, design.lengths, design.link_linear_density)
-    densities = np.array(masses) / lengths
-    hip, knee = (0.0, 0.0) if design.actuators is None else design.actuators.masses[1:]
-    foot_force = np.asarray(foot_forces, dtype=float) + FOOT_MASS * g
+    length = np.array(lengths)
+    mass, point_mass = np.asarray(masses, dtype=float), np.asarray(points, dtype=float)
+    batch = np.broadcast_shapes(mass.shape[:-1], point_mass.shape[:-1])
+
+    def weight(values: ArrayF, i: int) -> ArrayF:  # (B..., 1, 1, 1) times g: (B..., K, 1, 3)
+        return np.broadcast_to(values[..., i], batch).reshape(*batch, 1, 1, 1) * g
+
+    foot_force = np.asarray(foot_forces, dtype=float) + weight(point_mass, 2)
     # the loads beyond each segment's end: (position, force) of each, (K, 6, 3) both; one
     # row per segment (coxa, femur, tibia), laid out as the chain is (fmt: skip below)
-    middle = origins + axes * (lengths / 2)[:, None]
+    middle = origins + axes * (length / 2)[:, None]
+    femur, tibia = weight(mass, 1), weight(mass, 2)
+    hip, knee = weight(point_mass, 0), weight(point_mass, 1)
     beyond = [
-        [(middle[:, :, 1], masses[1] * g), (origins[:, :, 1], hip * g),
-         (middle[:, :, 2], masses[2] * g), (origins[:, :, 2], knee * g),
-         (feet, foot_force)],
-        [(middle[:, :, 2], masses[2] * g), (origins[:, :, 2], knee * g), (feet, foot_force)],
+        [(middle[:, :, 1], femur), (origins[:, :, 1], hip), (middle[:, :, 2], tibia),
+         (origins[:, :, 2], knee), (feet, foot_force)],
+        [(middle[:, :, 2], tibia), (origins[:, :, 2], knee), (feet, foot_force)],
         [(feet, foot_force)],
     ]  # fmt: skip
-    out = np.zeros((*feet.shape[:2], 3, 3))
+    out = np.zeros((*batch, *feet.shape[:2], 3, 3))
     for k in range(3):
-        axis = axes[:, :, k]
-        for weight, s in zip(SIMPSON, (0.0, lengths[k] / 2, lengths[k]), strict=True):
-            point = origins[:, :, k] + s * axis
-            rest = lengths[k] - s  # the segment's own weight beyond s, at its middle
-            moment = cross((rest / 2) * axis, densities[k] * rest * g)
-            for position, force in beyond[k]:
-                moment = moment + cross(position - point, force)
-            across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
-            out[:, :, k] += weight * lengths[k] * cross(across, feet - point)
+        axis, own = axes[:, :, k], weight(mass, k) / length[k]
+        # the moment of the loads beyond about a point x: Σ p × F − x × Σ F
+        about_origin, total = np.zeros(3), np.zeros(3)
+        for position, force in beyond[k]:
+            about_origin, total = about_origin + cross(position, force), total + force
+        # Simpson's points s = 0, l/2, l along the segment, on a leading axis
+        s = (length[k] * SIMPSON_POINTS).reshape(3, *(1,) * len(batch), 1, 1, 1)
+        point = origins[:, :, k] + s * axis
+        rest = length[k] - s  # the segment's own weight beyond s, at its middle
+        moment = cross((rest / 2) * axis, rest * own) + about_origin - cross(point, total)
+        across = moment - np.sum(moment * axis, axis=-1)[..., None] * axis
+        out[..., k, :] = length[k] * np.tensordot(SIMPSON, cross(across, feet - point), axes=1)
     return out
 
 

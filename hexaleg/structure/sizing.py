@@ -13,14 +13,16 @@ the loads with the grid's lightest tubes, the lightest tubes that hold them, the
 with those, ... until the tubes chosen are the tubes that loaded them
 (:attr:`SizedStructure.iterations` rounds, :data:`MAX_ITERATIONS` at most). The loads so
 grow from below; hexaleg's tests hold the tubes settled on against every triple of a
-small grid checked under its own loads.
+small grid checked under its own loads. With the min-norm distribution a round's loads
+are read off their affine model in the three segments' masses (:mod:`.affine`), and the
+tubes settled on are loaded for real once, which gives their check (:func:`size_for_cases`).
 """
 
 from __future__ import annotations
 
 import copy
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, replace
 from typing import Any
 
 import numpy as np
@@ -35,6 +37,7 @@ from hexaleg.stance.extremes import Extreme
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import stance_legs
 from hexaleg.statics.forces import DEFAULT_FRICTION, Payload
+from hexaleg.structure.affine import affine_terms
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import foot_deflections
 from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
@@ -128,36 +131,101 @@ def size_structure(
 
 
 def size_for_cases(
-    design: HexapodDesign, cases: StandingCases, model: HexapodModel, grid: TubeGrid
+    design: HexapodDesign,
+    cases: StandingCases,
+    model: HexapodModel,
+    grid: TubeGrid,
+    *,
+    affine: bool = True,
 ) -> SizedStructure:
-    """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`)."""
+    """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`).
+
+    With the min-norm distribution (and ``affine``) the rounds read the loads off
+    :func:`affine_terms` (measured once at ``model``'s masses: no new Pinocchio model a
+    round); the tubes they settle on are then loaded for real (their own model's
+    :func:`standing_terms`), and the rounds go on with real loads if those move them.
+    Another distribution has real loads every round (as with ``affine=False``: the same
+    tubes, slower).
+    """
     structure = design.structure
     if structure is None:
         raise ParameterError("structure", None, "the design has no [structure] to size")
-    area = grid.sections[1]
-    lightest = int(np.argmin(area))
-    chosen: tuple[int, int, int] = (lightest, lightest, lightest)
-    found, settled, iterations = True, False, 0
     limit = structure.limit(design.leg_length)
     active: list[int] = []
-    while iterations < MAX_ITERATIONS and not settled:
-        iterations += 1
+
+    def choose(terms: tuple[ArrayF, ArrayF]) -> tuple[tuple[int, int, int], bool]:
+        loads = section_loads(terms[0])
+        best = choose_tubes(loads, terms[1], structure, design.lengths, limit, grid, active)
+        return (_strongest(loads, structure, grid), False) if best is None else (best, True)
+
+    def loaded(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
         sized = _with_structure(design, structure.with_tubes(_tubes(grid, chosen)))
-        wrenches, integrals = standing_terms(model.with_design(sized), cases)
-        loads = section_loads(wrenches)
-        best = choose_tubes(loads, integrals, structure, design.lengths, limit, grid, active)
-        found = best is not None
-        best = _strongest(loads, structure, grid) if best is None else best
-        settled, chosen = best == chosen, best
-    final = structure.with_tubes(_tubes(grid, chosen))
-    if not settled:  # the last loads were the tubes' before: check the last tubes' own
-        sized = _with_structure(design, final)
-        wrenches, integrals = standing_terms(model.with_design(sized), cases)
+        return standing_terms(model.with_design(sized), cases)
+
+    lightest = int(np.argmin(grid.sections[1]))
+    start = (lightest, lightest, lightest)
+    if affine and cases.distribution == "min-norm":
+        terms = affine_terms(model, cases)
+        densities = [structure.material.density * length for length in design.lengths]
+
+        def estimated(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
+            area = grid.sections[1][list(chosen)]
+            return terms.at([d * a for d, a in zip(densities, area, strict=True)])
+
+        rounds = _rounds(estimated, choose, start, MAX_ITERATIONS)
+        if rounds.settled:  # hold them to their own real loads (the same, to rounding)
+            real = _rounds(loaded, choose, rounds.chosen, MAX_ITERATIONS - rounds.iterations + 1)
+            rounds = replace(real, iterations=rounds.iterations + real.iterations - 1)
+    else:
+        rounds = _rounds(loaded, choose, start, MAX_ITERATIONS)
+    final = structure.with_tubes(_tubes(grid, rounds.chosen))
+    # unsettled, the last loads were the tubes' before: check the last tubes' own
+    wrenches, integrals = rounds.terms if rounds.settled else loaded(rounds.chosen)
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
         final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit
     )
-    return SizedStructure(_with_structure(design, final), check, iterations, settled, found, grid)
+    return SizedStructure(
+        _with_structure(design, final), check, rounds.iterations, rounds.settled, rounds.found, grid
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class _Rounds:
+    """Where rounds of loads and tubes ended.
+
+    Attributes:
+        chosen: The last tubes chosen (grid indices).
+        settled: Whether they are the tubes that loaded them.
+        found: Whether tubes of the grid held the last loads (else the strongest are chosen).
+        iterations: The rounds run.
+        terms: The last loads (wrenches, deflection integrals): ``chosen``'s if settled.
+
+    """
+
+    chosen: tuple[int, int, int]
+    settled: bool
+    found: bool
+    iterations: int
+    terms: tuple[ArrayF, ArrayF]
+
+
+def _rounds(
+    loads: Callable[[tuple[int, int, int]], tuple[ArrayF, ArrayF]],
+    choose: Callable[[tuple[ArrayF, ArrayF]], tuple[tuple[int, int, int], bool]],
+    chosen: tuple[int, int, int],
+    most: int,
+) -> _Rounds:
+    """Load ``chosen``, choose the tubes that hold the loads, ... until they settle."""
+    iterations, settled, found = 0, False, True
+    terms = loads(chosen)
+    while True:
+        iterations += 1
+        best, found = choose(terms)
+        settled, chosen = best == chosen, best
+        if settled or iterations >= most:
+            return _Rounds(chosen, settled, found, iterations, terms)
+        terms = loads(chosen)
 
 
 def _with_structure(design: HexapodDesign, structure: Structure) -> HexapodDesign:
@@ -177,23 +245,41 @@ def _tubes(grid: TubeGrid, chosen: tuple[int, int, int]) -> tuple[Tube, Tube, Tu
 
 def segment_ratios(loads: ArrayF, structure: Structure, grid: TubeGrid) -> ArrayF:
     """Each grid tube's worst ratio (3, n) per segment, over every case and leg [-]."""
-    outer, area, moment = grid.sections
-    out = np.empty((3, len(outer)))
+    outer = grid.sections[0]
+    every = np.arange(len(outer))
+    return np.stack(
+        [_worst_ratio(loads[:, :, s].reshape(-1, 3), every, structure, grid) for s in range(3)]
+    )
+
+
+def segment_holds(loads: ArrayF, structure: Structure, grid: TubeGrid) -> npt.NDArray[np.bool_]:
+    """Whether each grid tube's worst ratio is at most 1 (3, n): ``segment_ratios(...) <= 1``.
+
+    Bit for bit, and cheaper: a tube's ratio grows with each of |N|, |M_b| and |T| (so do
+    its floating-point operations), so its worst lies between that of the loads largest
+    in one of them and that of their three maxima together; only the tubes those two do
+    not decide are loaded with every case and leg.
+    """
+    every = np.arange(len(grid.sections[0]))
+    out = np.empty((3, len(every)), dtype=bool)
     for segment in range(3):
-        cases = _dominant(np.abs(loads[:, :, segment].reshape(-1, 3)))
-        _, tau, von_mises = tube_stresses(
-            cases[None, :, :], outer[:, None], area[:, None], moment[:, None]
-        )
-        out[segment] = stress_ratio(von_mises, tau, structure).max(axis=1)
+        rows = np.abs(loads[:, :, segment].reshape(-1, 3))
+        high = _worst_ratio(rows.max(axis=0)[None], every, structure, grid)
+        low = _worst_ratio(rows[np.argmax(rows, axis=0)], every, structure, grid)
+        out[segment] = high <= 1
+        unsure = np.flatnonzero((low <= 1) & (high > 1))
+        out[segment, unsure] = _worst_ratio(rows, unsure, structure, grid) <= 1
     return out
 
 
-def _dominant(loads: ArrayF) -> ArrayF:
-    """The loads (m, 3) no other load exceeds in all of N, M_b and T (stress grows in each)."""
-    loads = np.unique(loads, axis=0)
-    at_least = np.all(loads[None, :, :] >= loads[:, None, :], axis=-1)  # [i, j]: j ≥ i
-    np.fill_diagonal(at_least, False)
-    return loads[~at_least.any(axis=1)]
+def _worst_ratio(
+    rows: ArrayF, tubes: npt.NDArray[np.intp], structure: Structure, grid: TubeGrid
+) -> ArrayF:
+    """The worst ratio [-] of section loads ``rows`` (R, 3) on each of ``tubes`` (indices)."""
+    outer, area, moment = (values[tubes, None] for values in grid.sections)
+    _, tau, von_mises = tube_stresses(rows[None, :, :], outer, area, moment)
+    worst: ArrayF = stress_ratio(von_mises, tau, structure).max(axis=1)
+    return worst
 
 
 def _strongest(loads: ArrayF, structure: Structure, grid: TubeGrid) -> tuple[int, int, int]:
@@ -226,7 +312,7 @@ def choose_tubes(
 
     """
     _, area, moment = grid.sections
-    holds = segment_ratios(loads, structure, grid) <= 1
+    holds = segment_holds(loads, structure, grid)
     fronts = [_stiffest_for_mass(np.flatnonzero(ok), area, moment) for ok in holds]
     if any(len(front) == 0 for front in fronts):
         return None

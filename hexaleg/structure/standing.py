@@ -23,11 +23,17 @@ from hexaleg.gravity import GRAVITY, LEVEL_GRAVITY, slope_gravity
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme
-from hexaleg.statics.forces import DEFAULT_FRICTION, Payload, Statics
+from hexaleg.statics.forces import (
+    DEFAULT_FRICTION,
+    Payload,
+    Statics,
+    equilibrium,
+    min_norm_forces,
+)
 from hexaleg.statics.slopes import SLOPE_HEADINGS
 from hexaleg.structure.check import StructureCheck
 from hexaleg.structure.deflection import deflection_integrals, foot_deflections
-from hexaleg.structure.wrenches import leg_states, require_template, segment_wrenches
+from hexaleg.structure.wrenches import LegStates, leg_states, require_template, segment_wrenches
 
 NOMINAL = "nominal"
 """The first standing case: the nominal stance."""
@@ -87,24 +93,57 @@ def standing_cases(
     )
 
 
-def standing_forces(model: HexapodModel, cases: StandingCases) -> ArrayF:
+def standing_forces(
+    model: HexapodModel, cases: StandingCases, states: LegStates | None = None
+) -> ArrayF:
     """Every foot's force from the ground in each case (K, 6, 3), world frame [N].
 
     The stance feet's forces balance the robot and its payload (the statics); a foot in
-    the air carries none.
+    the air carries none. ``states``: the legs in the cases, if already found.
+    """
+    if states is None:
+        states = leg_states(model, cases.configurations, cases.gravities)
+    return standing_balance(model, cases, states.feet)[0]
+
+
+def standing_balance(
+    model: HexapodModel, cases: StandingCases, feet: ArrayF
+) -> tuple[ArrayF, ArrayF]:
+    """Each case's feet's forces (K, 6, 3) [N] and centre of mass (K, 3) [m], world frame.
+
+    The level cases' are their statics' (:class:`~hexaleg.statics.forces.Statics`), in
+    one batch. A tilted case (a slope's) at a level case's pose has that case's centre of
+    mass and feet (``feet``, (K, 6, 3) [m]: :attr:`~.wrenches.LegStates.feet`), so with the
+    min-norm distribution its forces are the statics' least-norm balance
+    (:func:`~hexaleg.statics.forces.equilibrium`, :func:`~hexaleg.statics.forces.min_norm_forces`)
+    of its own gravity, all at once; other tilted cases have their own statics.
     """
     statics = Statics(model, cases.legs, cases.payload, cases.friction)
     stance = [model.leg_names.index(leg) for leg in cases.legs]
-    out = np.zeros((len(cases.names), len(model.leg_names), 3))
-    level = np.flatnonzero(cases.gravities[:, 2] == -GRAVITY)
-    states = statics.states(list(cases.configurations[level]), cases.distribution)
-    tilted = [
-        (k, statics.state(cases.configurations[k], cases.distribution, cases.gravities[k]))
-        for k in np.flatnonzero(cases.gravities[:, 2] != -GRAVITY)
-    ]
-    for k, state in [*zip(level, states, strict=True), *tilted]:
-        out[k, stance] = state.foot_forces
-    return out
+    q, gravities = cases.configurations, cases.gravities
+    forces = np.zeros((len(q), len(model.leg_names), 3))
+    com = np.empty((len(q), 3))
+    level = np.flatnonzero(gravities[:, 2] == -GRAVITY)
+    states = statics.states(list(q[level]), cases.distribution)
+    for k, state in zip(level, states, strict=True):
+        forces[k, stance], com[k] = state.foot_forces, state.com
+    posed, alone = [], []  # tilted cases at a level case's pose (and that case), the others
+    for k in np.flatnonzero(gravities[:, 2] != -GRAVITY):
+        same = [j for j in level if np.array_equal(q[j], q[k])]
+        if cases.distribution == "min-norm" and same:
+            posed.append((k, same[0]))
+        else:
+            alone.append(k)
+    if posed:
+        tilted, poses = (np.array(index) for index in zip(*posed, strict=True))
+        com[tilted] = com[poses]
+        mass = states[0].mass
+        rows = equilibrium(feet[tilted][:, stance], com[tilted], mass, gravities[tilted])
+        forces[tilted[:, None], stance] = min_norm_forces(*rows).reshape(len(tilted), -1, 3)
+    for k in alone:
+        state = statics.state(q[k], cases.distribution, gravities[k])
+        forces[k, stance], com[k] = state.foot_forces, state.com
+    return forces, com
 
 
 def standing_terms(model: HexapodModel, cases: StandingCases) -> tuple[ArrayF, ArrayF]:
@@ -114,8 +153,8 @@ def standing_terms(model: HexapodModel, cases: StandingCases) -> tuple[ArrayF, A
     (:func:`~.wrenches.segment_wrenches`, :func:`~.deflection.deflection_integrals`).
     """
     require_template(model)
-    forces = standing_forces(model, cases)
     states = leg_states(model, cases.configurations, cases.gravities)
+    forces = standing_forces(model, cases, states)
     integrals = deflection_integrals(model.design, states, forces, cases.gravities)
     return segment_wrenches(states, forces), integrals
 

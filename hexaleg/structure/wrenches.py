@@ -127,6 +127,7 @@ def leg_states(
 
     """
     legs = _Legs.of(model)
+    at_rest = velocities is None and accelerations is None
     q = np.asarray(configurations, dtype=float).reshape(-1, model.model.nq)
     count = len(q)
     v = np.zeros((count, model.model.nv)) if velocities is None else np.asarray(velocities)
@@ -141,27 +142,26 @@ def leg_states(
     omega = np.broadcast_to(spin[:, None], (count, 6, 3))
     alpha = np.broadcast_to(np.einsum("kij,kj->ki", body, a[:, 3:6])[:, None], (count, 6, 3))
     acceleration = np.broadcast_to(linear[:, None], (count, 6, 3))
-    rotations = np.empty((count, 6, 3, 3, 3))
-    origins = np.empty((count, 6, 3, 3))
-    forces, moments, centres = (np.empty((count, 6, 3, 3)) for _ in range(3))
+    rotations, origins = np.empty((count, 6, 3, 3, 3)), np.empty((count, 6, 3, 3))
+    forces, centres = np.empty((count, 6, 3, 3)), np.empty((count, 6, 3, 3))
+    moments = np.zeros((count, 6, 3, 3))  # at rest, none
     for k in range(3):
         origin = parent_o + (parent_r @ legs.offsets[:, k, :, None])[..., 0]
-        arm = origin - parent_o
-        acceleration = acceleration + cross(alpha, arm) + cross(omega, cross(omega, arm))
         placed = np.einsum("klij,ljm->klim", parent_r, legs.turns[:, k])
         rotation = placed @ _rodrigues(legs.axes[:, k], q[:, legs.q[:, k]])
-        axis = (placed @ legs.axes[:, k, :, None])[..., 0]
-        rate, rate2 = v[:, legs.v[:, k]][..., None], a[:, legs.v[:, k]][..., None]
-        alpha = alpha + axis * rate2 + cross(omega, axis * rate)
-        omega = omega + axis * rate
         lever = (rotation @ legs.levers[:, k, :, None])[..., 0]
-        centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
-        forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
-        spin_here = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
-        turn_here = np.einsum("klji,klj->kli", rotation, alpha)
-        spun = (legs.inertias[:, k] @ spin_here[..., None])[..., 0]
-        local = (legs.inertias[:, k] @ turn_here[..., None])[..., 0] + cross(spin_here, spun)
-        moments[:, :, k] = (rotation @ local[..., None])[..., 0]
+        if at_rest:  # the weights alone: what the motion's terms below add up to at rest
+            forces[:, :, k] = legs.masses[:, k, None] * -g
+        else:
+            arm = origin - parent_o
+            acceleration = acceleration + cross(alpha, arm) + cross(omega, cross(omega, arm))
+            axis = (placed @ legs.axes[:, k, :, None])[..., 0]
+            rate, rate2 = v[:, legs.v[:, k]][..., None], a[:, legs.v[:, k]][..., None]
+            alpha = alpha + axis * rate2 + cross(omega, axis * rate)
+            omega = omega + axis * rate
+            centre = acceleration + cross(alpha, lever) + cross(omega, cross(omega, lever))
+            forces[:, :, k] = legs.masses[:, k, None] * (centre - g)
+            moments[:, :, k] = _spin_moment(legs.inertias[:, k], rotation, omega, alpha)
         centres[:, :, k] = origin + lever
         rotations[:, :, k], origins[:, :, k] = rotation, origin
         parent_r, parent_o = rotation, origin
@@ -169,6 +169,16 @@ def leg_states(
     return LegStates(
         rotations, origins, feet, _subtree(rotations, origins, forces, moments, centres)
     )
+
+
+def _spin_moment(inertia: ArrayF, rotation: ArrayF, omega: ArrayF, alpha: ArrayF) -> ArrayF:
+    """A link's I·α + ω × I·ω (K, 6, 3), world frame, its inertia (6, 3, 3) in its own axes."""
+    spin = np.einsum("klji,klj->kli", rotation, omega)  # ω, α in the link's axes
+    turn = np.einsum("klji,klj->kli", rotation, alpha)
+    spun = (inertia @ spin[..., None])[..., 0]
+    local = (inertia @ turn[..., None])[..., 0] + cross(spin, spun)
+    moment: ArrayF = (rotation @ local[..., None])[..., 0]
+    return moment
 
 
 def _subtree(
@@ -234,3 +244,29 @@ def segment_wrenches(states: LegStates, foot_forces: npt.ArrayLike) -> ArrayF:
     along = np.einsum("klsji,klsj->klsi", states.rotations, np.broadcast_to(force, arm.shape))
     about = np.einsum("klsji,klsj->klsi", states.rotations, cross(arm, force))
     return states.own - np.concatenate((along, about), axis=-1)
+
+
+def weight_wrenches(
+    states: LegStates, lengths: tuple[float, float, float], gravity: npt.ArrayLike
+) -> ArrayF:
+    """What one kilogram more of each segment, at its middle, adds to the wrenches at rest.
+
+    Returns:
+        (3, K, 6, 3, 6): per segment whose mass grows (coxa, femur, tibia), state, leg and
+        joint, the force [N/kg] then the moment [N·m/kg] the parent exerts on the joint's
+        subtree in the joint's frame (:attr:`LegStates.own`'s, per kilogram): −g, and its
+        moment about the joint, at each joint from the body out to that segment's own.
+
+    """
+    count = len(states.feet)
+    force = np.broadcast_to(-np.asarray(gravity, dtype=float), (count, 3))[:, None, :]
+    force = np.broadcast_to(force, states.feet.shape)  # (K, 6, 3)
+    out = np.zeros((3, *states.origins.shape[:3], 6))
+    for segment in range(3):
+        middle = states.origins[:, :, segment] + states.axes[:, :, segment] * (lengths[segment] / 2)
+        for joint in range(segment + 1):
+            rotation = states.rotations[:, :, joint]
+            moment = cross(middle - states.origins[:, :, joint], force)
+            out[segment, :, :, joint, :3] = np.einsum("klji,klj->kli", rotation, force)
+            out[segment, :, :, joint, 3:] = np.einsum("klji,klj->kli", rotation, moment)
+    return out
