@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import math
 
+import pandas as pd
 import pytest
 
 from hexaleg import HexapodDesign, HexapodModel
@@ -12,6 +13,7 @@ from hexaleg.gait import Gait, analyze_gait
 from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.output.figures.canvas import save
 from hexaleg.output.figures.gait import walking_study_figure
+from hexaleg.output.report.study_record import StudyRecord
 from hexaleg.output.report.walking import WalkingRecord, section
 from hexaleg.study.rows import StudyRow, design_walking_row
 from hexaleg.study.sweep import StudySpec, sweep_in_process
@@ -67,8 +69,12 @@ def _comparison(torque: float, energy: float) -> WalkingComparison:
         "max_speed": 0.3,
         "max_speed_limited_by": "lf knee speed at its rating",
     }
-    rows = StudyRow.from_dict(base), StudyRow.from_dict(best)
+    rows = _row(base), _row(best)
     return WalkingComparison(rows[0], rows[1], rows[1], 5, 8, STUDY_GAIT.to_dict())
+
+
+def _row(values: dict) -> StudyRow:
+    return StudyRow.from_dict({"l1_ratio": 0.2, "l3_ratio": 0.4} | values)
 
 
 @pytest.mark.parametrize(
@@ -87,9 +93,11 @@ def test_the_section_states_the_claim_whatever_the_grid_shows(torque, energy, ve
     change = 100 * (1 - torque / 100)  # the saving against the paper's leg's 100 N·m
     words = f"{abs(change):.0f} % {'less' if change >= 0 else 'more'} peak torque"
     assert f"the least-torque leg needs {words} than the paper's leg" in text
-    assert "-" not in text.split("The sequel")[1].split("|")[0].replace("least-", "")
+    claim = text.split("The sequel")[1].split("\n")[0].split("|")[0]
+    assert "-" not in claim.replace("least-", "")  # savings in words, never negative
     assert "its hip" in text and "walks slower" in text and "study_walking" in text
     assert "| least peak torque | 0.2 | 0.6 |" in text
+    assert "standing at your posture θ = (0.000, 0.000, -1.571) rad on level ground" in text
 
 
 def test_the_least_cost_leg_is_chosen_among_the_legs_that_walk_within_their_ratings(
@@ -117,7 +125,12 @@ def _section_text(comparison: WalkingComparison | None) -> str:
     from hexaleg.output.report.options import ReportOptions
     from hexaleg.output.report.part import ReportData
 
-    records = {WalkingRecord: WalkingRecord(comparison), MotorsRecord: MotorsRecord(None)}
+    study = StudyRecord(StudySpec((0.2,), (0.4, 0.6)), pd.DataFrame(), _row({}))
+    records = {
+        WalkingRecord: WalkingRecord(comparison),
+        MotorsRecord: MotorsRecord(None),
+        StudyRecord: study,
+    }
     data = ReportData(HexapodDesign(), ReportOptions(), None, records)  # type: ignore[arg-type]
     found = section(data)
     return found.title + "\n" + "\n".join(str(block) for block in found.blocks)
