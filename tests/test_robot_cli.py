@@ -55,25 +55,6 @@ def test_workspace_per_leg_against_eq16_and_reach(capsys):
         assert np.all(np.abs(bounds) <= reach + 1e-3)
 
 
-def test_manipulability_indices_equal_pinocchio_on_the_file(capsys):
-    out = _json(capsys, ["manipulability", "--urdf", KRABY, "--json"])
-    robot = import_robot(KRABY)
-    model = pin.buildModelFromXML(robot.text)
-    data = model.createData()
-    for leg in robot.legs:
-        optimum = out["legs"][leg.name]["optimum"]
-        theta = np.array([0.0, optimum["theta2"], optimum["theta3"]])
-        q = pin.neutral(model)
-        ids = [model.getJointId(n) for n in leg.joint_names]
-        for i, value in zip(ids, leg.reading.joint_map.to_file(theta), strict=True):
-            q[model.joints[i].idx_q] = value
-        foot = model.getFrameId(leg.reading.foot.source.removeprefix("link "))
-        jac = pin.computeFrameJacobian(model, data, q, foot, pin.LOCAL_WORLD_ALIGNED)[:3]
-        singular = np.linalg.svd(jac[:, [model.joints[i].idx_v for i in ids]], compute_uv=False)
-        assert optimum["w"] == pytest.approx(np.prod(singular), rel=1e-9)
-        assert optimum["min_singular_value"] == pytest.approx(singular[-1], rel=1e-9)
-
-
 @pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
 def test_design_import_round_trip(tmp_path, capsys):
     target = tmp_path / "robot.toml"
