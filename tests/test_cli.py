@@ -276,7 +276,11 @@ SEGMENT_OUT_OF_RANGE = [
 
 
 @pytest.mark.parametrize("kind", KINDS)
-@pytest.mark.parametrize(("argv", "expected"), SEGMENT_OUT_OF_RANGE, ids=lambda v: " ".join(v))
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    SEGMENT_OUT_OF_RANGE,
+    ids=lambda v: " ".join(v) if isinstance(v, list) else "",
+)
 def test_a_segment_out_of_range_is_refused_alike_on_each_kind(
     tmp_path, monkeypatch, capsys, kind, argv, expected
 ):
