@@ -2,8 +2,9 @@
 
 Oracles, each computed here independently of :class:`~hexaleg.robot.robot.Robot`: Pinocchio's
 total mass of the raw URDF (the template's rendered by Xacro, the robot file's as it lies on
-disk) and its forward kinematics (the footholds ``design show`` prints), the SHA-256 of the file's bytes, the segment lengths read again from a design file the
-robot writes, and the design's own fields.
+disk) and its forward kinematics (the footholds ``design show`` prints), the SHA-256 of the
+file's bytes, the segment lengths read again from a design file the robot writes, and the
+design's own fields.
 """
 
 from __future__ import annotations
