@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from hexaleg import HexapodDesign, HexapodModel, LegModel
+from hexaleg.stance import collision_starts, free_coupled
 
 
 @pytest.fixture(scope="session")
@@ -21,6 +22,15 @@ def hexapod_model(default_design: HexapodDesign) -> HexapodModel:
 @pytest.fixture(scope="session")
 def leg_model(default_design: HexapodDesign) -> LegModel:
     return LegModel(default_design)
+
+
+def small_free_search(patch: pytest.MonkeyPatch) -> None:
+    """The free-coupled search with small budgets (a few climbs and collision starts): for
+    oracles that check what an answer is, not that it is the best."""
+    patch.setattr(free_coupled, "CLIMBS", 8)
+    patch.setattr(free_coupled, "COLLISION_BASINS", 2)
+    patch.setattr(collision_starts, "COLLISION_DRAWS", 16)
+    patch.setattr(collision_starts, "COLLISION_STARTS", 2)
 
 
 def random_designs(count: int, seed: int) -> list[HexapodDesign]:

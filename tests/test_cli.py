@@ -8,6 +8,7 @@ import sys
 import pinocchio as pin
 import pytest
 from conftest import run_cli
+from robots import KINDS, robot_argv
 
 from hexaleg import HexapodDesign, render_hexapod
 from hexaleg.cli import main
@@ -264,6 +265,29 @@ def test_bad_values_are_refused_in_one_line_and_write_nothing(
     assert run_cli([*argv, *output]) == 2
     captured = capsys.readouterr()
     _assert_one_line_error(captured.err, expected)
+    assert list(tmp_path.iterdir()) == []
+
+
+SEGMENT_OUT_OF_RANGE = [
+    (["flexibility", "--l2", "0"], "--l2 = 0 is not valid: must lie in [0.001, 100] [m]"),
+    (["loads", "--l2", "-1"], "--l2 = -1 is not valid: must lie in [0.001, 100] [m]"),
+    (["urdf", "--l2", "101"], "--l2 = 101 is not valid: must lie in [0.001, 100] [m]"),
+]
+
+
+@pytest.mark.parametrize("kind", KINDS)
+@pytest.mark.parametrize(
+    ("argv", "expected"),
+    SEGMENT_OUT_OF_RANGE,
+    ids=lambda v: " ".join(v) if isinstance(v, list) else "",
+)
+def test_a_segment_out_of_range_is_refused_alike_on_each_kind(
+    tmp_path, monkeypatch, capsys, kind, argv, expected
+):
+    monkeypatch.chdir(tmp_path)
+    output = ["-o", str(tmp_path / "out")] if argv[0] == "urdf" else []
+    assert run_cli([argv[0], *robot_argv(kind), *argv[1:], *output]) == 2
+    _assert_one_line_error(capsys.readouterr().err, expected)
     assert list(tmp_path.iterdir()) == []
 
 

@@ -1,4 +1,5 @@
-"""Free-coupled flexibility: never smaller than axis-locked, and feasible."""
+"""Free-coupled flexibility: never smaller than axis-locked, and feasible; its table, for each
+kind of robot."""
 
 from __future__ import annotations
 
@@ -6,7 +7,8 @@ import itertools
 import warnings
 
 import pytest
-from robots import robot_of
+from conftest import run_cli, small_free_search
+from robots import KINDS, KRABY, robot_argv, robot_of
 from test_axis_locked import DESIGNS
 
 from hexaleg import HexapodModel
@@ -411,3 +413,14 @@ def test_a_search_whose_starts_disagree_is_flagged(monkeypatch):
     flagged = [e for e in result.extremes if not e.evidence.converged]
     assert flagged and all(f"{e.name}: " in messages[0] for e in flagged)
     assert result.to_dict()["warnings"] == list(result.doubts)
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_table_names_the_robot_the_free_mode_and_its_evidence(capsys, monkeypatch, kind):
+    small_free_search(monkeypatch)
+    assert run_cli(["flexibility", *robot_argv(kind), "--mode", "free"]) == 0
+    out = capsys.readouterr().out
+    named = f"of {KRABY} " if kind == "kraby" else ""
+    assert f"Body flexibility {named}(free, stance lf lm lr rf rm rr)" in out
+    assert "evidence" in out and "extremes reached from nominal by a feasible path" in out

@@ -1,4 +1,5 @@
-"""The walking payload capacity against a bisection on the gait analysis itself.
+"""The walking payload capacity against a bisection on the gait analysis itself (and, for
+each kind of robot, ``loads``' capacity against that analysis just under and over it).
 
 With actuators, the bisection runs on the full :func:`analyze_gait` (its electrical
 ``over_rating``: peak and continuous torque, voltage, speed), never on the capacity's own
@@ -13,6 +14,7 @@ import json
 import numpy as np
 import pytest
 from conftest import run_cli
+from robots import KINDS, KRABY, robot_argv, robot_json
 
 from hexaleg import HexapodDesign, HexapodModel, analyze_gait
 from hexaleg.actuator_catalog import actuators_from_table
@@ -32,6 +34,8 @@ from hexaleg.gait.dynamics import payload_wrench
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Walker
 from hexaleg.limits import LEG_JOINTS
+from hexaleg.robot.imported import import_robot
+from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.statics.forces import Payload
 
 
@@ -315,3 +319,39 @@ def test_the_zmp_bound_is_where_the_gaits_zmp_reaches_the_polygons_edge():
         middle = (low + high) / 2
         low, high = (middle, high) if margin(middle) >= 0 else (low, middle)
     assert cause.kind == "zmp" and mass == pytest.approx(low, abs=1e-6)
+
+
+WALKED = "[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.6\nsamples = 48\n"
+"""A gait table both kinds of robot walk (Kraby's legs are 20 cm long)."""
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_loads_walking_capacity_is_where_the_design_files_gait_breaks(tmp_path, capsys, kind):
+    """The oracle: the gait analysis of the model built here from what the design file names
+    (the template's design, the robot file imported), at the capacity ± 1e-6 of it."""
+    target = tmp_path / "robot.toml"
+    if kind == "template":
+        target.write_text(WALKED)
+        model = HexapodModel(load_design(target))
+    else:
+        assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
+        with target.open("a") as file:
+            file.write("\n" + WALKED)
+        model = ImportedHexapodModel(import_robot(KRABY))
+    loads = robot_json(capsys, ["loads", "--design", str(target), "--json"])
+    capacity = loads["walking_payload_capacity"]
+    assert capacity["walks"] and capacity["mass"] > 0.1
+    gait = Gait(stride=0.03, step_height=0.02, period=0.6, samples=48)
+
+    def holds(mass):
+        walked = analyze_gait(model.design, gait, Payload(mass), model=model, limits=False)
+        return walked.walkable and walked.tipping is None and not walked.over_rating
+
+    for factor, expected in ((1 - 1e-6, True), (1 + 1e-6, False)):
+        mass = capacity["mass"] * factor
+        assert holds(mass) is expected
+        assert _walks(model.design, model, gait, mass, None) is expected
+    if kind == "kraby":  # without a [gait] table a robot file walks its own gait, sized to it
+        plain = robot_json(capsys, ["loads", *robot_argv(kind), "--json"])
+        assert plain["walking_payload_capacity"]["walks"]

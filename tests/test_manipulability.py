@@ -1,15 +1,20 @@
-"""Manipulability: indices, Table 6, w_A kernel against a Pinocchio loop, the Fig 11 map."""
+"""Manipulability: indices, Table 6, w_A kernel against a Pinocchio loop, the Fig 11 map;
+the command's optimum for each kind of robot against Pinocchio on its raw URDF."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+import pinocchio as pin
 import pytest
+from robots import KINDS, KRABY, robot_argv, robot_json
 from scipy import optimize
 
 from hexaleg import MANIPULABILITY_LIMITS, HexapodDesign, LegModel, manipulability
 from hexaleg.paper import TABLE6, TABLE6_PRINTED_DIGITS
+from hexaleg.robot.imported import import_robot
+from hexaleg.robot.urdf import render_hexapod
 from hexaleg.swing.manipulability import (
     analyze_manipulability,
     average_manipulability,
@@ -185,3 +190,46 @@ def test_manipulability_surface_is_the_closed_form_on_the_one_degree_grid(defaul
     # |det J| of the 3-DOF leg, by hand: l2·l3·|sin θ3|·|l1 + l2 cos θ2 + l3 cos(θ2 + θ3)|
     expected = l2 * l3 * np.abs(np.sin(t3)) * np.abs(l1 + l2 * np.cos(t2) + l3 * np.cos(t2 + t3))
     np.testing.assert_allclose(surface.w, expected, rtol=1e-12, atol=1e-15)
+
+
+def _raw_legs(kind: str, shown: dict) -> tuple[str, list[tuple[list[str], np.ndarray, str, dict]]]:
+    """The raw URDF's text and, per leg, its joints, their values at the leg's optimum, its
+    foot frame and that optimum, as ``manipulability --json`` gives them (one optimum for
+    the template's equal legs, whose joints are θ, named by its Xacro)."""
+    if kind == "template":
+        optimum = shown["optimum"]
+        theta = np.array([0.0, optimum["theta2"], optimum["theta3"]])
+        names = [mount["name"] for mount in shown["design"]["mounts"]]
+        legs = [([f"{n}_{j}_joint" for j in ("root", "hip", "knee")], theta, f"{n}_foot", optimum)
+                for n in names]  # fmt: skip
+        return render_hexapod(HexapodDesign()), legs
+    robot = import_robot(KRABY)
+    legs = []
+    for leg in robot.legs:
+        optimum = shown["legs"][leg.name]["optimum"]
+        theta = np.array([0.0, optimum["theta2"], optimum["theta3"]])
+        foot = leg.reading.foot.source.removeprefix("link ")
+        legs.append((list(leg.joint_names), leg.reading.joint_map.to_file(theta), foot, optimum))
+    return robot.text, legs
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_commands_optimum_indices_equal_pinocchio_on_the_raw_urdf(capsys, kind):
+    # the oracle: the singular values of the foot's translational Jacobian in Pinocchio on
+    # the raw URDF, at the optimum's angles put on the file's own joints
+    shown = robot_json(capsys, ["manipulability", *robot_argv(kind), "--json"])
+    text, legs = _raw_legs(kind, shown)
+    model = pin.buildModelFromXML(text)
+    data = model.createData()
+    assert len(legs) == 6
+    for joints, values, foot, optimum in legs:
+        q = pin.neutral(model)
+        ids = [model.getJointId(name) for name in joints]
+        for i, value in zip(ids, values, strict=True):
+            q[model.joints[i].idx_q] = value
+        frame = model.getFrameId(foot)
+        jac = pin.computeFrameJacobian(model, data, q, frame, pin.LOCAL_WORLD_ALIGNED)[:3]
+        singular = np.linalg.svd(jac[:, [model.joints[i].idx_v for i in ids]], compute_uv=False)
+        assert optimum["w"] == pytest.approx(np.prod(singular), rel=1e-9)
+        assert optimum["min_singular_value"] == pytest.approx(singular[-1], rel=1e-9)

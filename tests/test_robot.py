@@ -2,8 +2,9 @@
 
 Oracles, each computed here independently of :class:`~hexaleg.robot.robot.Robot`: Pinocchio's
 total mass of the raw URDF (the template's rendered by Xacro, the robot file's as it lies on
-disk), the SHA-256 of the file's bytes, the segment lengths read again from a design file the
-robot writes, and the design's own fields.
+disk) and its forward kinematics (the footholds ``design show`` prints), the SHA-256 of the
+file's bytes, the segment lengths read again from a design file the robot writes, and the
+design's own fields.
 """
 
 from __future__ import annotations
@@ -14,9 +15,11 @@ import pickle
 import sys
 from pathlib import Path
 
+import numpy as np
 import pinocchio as pin
 import pytest
-from robots import KINDS, KRABY, OCHS, OCHS_OFFSET, robot_of
+from conftest import run_cli
+from robots import KINDS, KRABY, OCHS, OCHS_OFFSET, robot_argv, robot_json, robot_of
 
 from hexaleg.design import SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
@@ -56,6 +59,60 @@ def test_the_mass_is_pinocchios_of_what_the_robot_is_built_from(kind):
     expected = pin.computeTotalMass(raw_model(kind))
     assert robot.model.total_mass == pytest.approx(expected, rel=1e-12)
     assert robot.record()["derived"]["total_mass"] == pytest.approx(expected, rel=1e-12)
+
+
+def _raw_nominal(kind: str, shown: dict) -> dict[str, tuple[list[str], list[float], str]]:
+    """Each leg's raw-URDF joints, their values at the nominal posture and its foot frame, as
+    ``design show --json`` names them (the template's joints are θ, named by its Xacro)."""
+    if kind == "template":
+        theta = shown["design"]["nominal_angles"]
+        joints = ("root", "hip", "knee")
+        return {
+            mount["name"]: (
+                [f"{mount['name']}_{j}_joint" for j in joints],
+                theta,
+                f"{mount['name']}_foot",
+            )
+            for mount in shown["design"]["mounts"]
+        }
+    return {
+        leg["name"]: (
+            leg["joints"],
+            leg["nominal"]["urdf_joint_angles"],
+            leg["foot"]["source"].split()[-1],
+        )
+        for leg in shown["design"]["legs"]
+    }
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+def test_design_show_weighs_the_raw_urdf_and_puts_the_feet_where_it_does(kind, capsys):
+    # the oracle: Pinocchio on the raw URDF, its root link on a free flyer: the total of its
+    # links, and each foot in the root link's frame at the nominal posture (body frame: the
+    # mounts' plane is its origin)
+    raw = raw_model(kind)
+    mass = pin.computeTotalMass(raw)
+    shown = robot_json(capsys, ["design", "show", *robot_argv(kind), "--json"])
+    assert shown["derived"]["total_mass"] == pytest.approx(mass, rel=1e-12)
+    assert run_cli(["design", "show", *robot_argv(kind)]) == 0
+    printed = capsys.readouterr().out
+    assert f"mass                 {mass:.4g} kg" in printed, printed
+    data = raw.createData()
+    q = pin.neutral(raw)
+    nominal = _raw_nominal(kind, shown)
+    for joints, values, _ in nominal.values():
+        for name, value in zip(joints, values, strict=True):
+            q[raw.joints[raw.getJointId(name)].idx_q] = value
+    pin.framesForwardKinematics(raw, data, q)
+    base = data.oMf[raw.getFrameId(raw.frames[2].name)]  # the root link's frame
+    assert raw.frames[2].type == pin.FrameType.BODY
+    mounts = shown["derived"]["mounts"]
+    written = shown["design"]["mounts" if kind == "template" else "legs"]  # the root link's
+    plane = np.mean([m["z"] if kind == "template" else m["mount"]["z"] for m in written])
+    assert sorted(nominal) == sorted(mounts) == ["lf", "lm", "lr", "rf", "rm", "rr"]
+    for leg, (_, _, foot) in nominal.items():
+        expected = base.actInv(data.oMf[raw.getFrameId(foot)].translation) - [0.0, 0.0, plane]
+        assert mounts[leg]["foothold"] == pytest.approx(list(expected), abs=1e-9)
 
 
 def test_the_nominal_footholds_are_where_the_models_feet_stand(kind):

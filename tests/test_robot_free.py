@@ -29,10 +29,10 @@ from pathlib import Path
 import numpy as np
 import pinocchio as pin
 import pytest
-from conftest import run_cli
+from conftest import run_cli, small_free_search
 from raw_chain import RawChain, body_pose
 from robot_files import draw_hexapod
-from robots import KINDS, equal_limits_design, robot_argv
+from robots import equal_limits_design
 
 from hexaleg import HexapodDesign
 from hexaleg.cli import main
@@ -42,7 +42,6 @@ from hexaleg.robot.imported import import_robot, robot_from_text
 from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
-from hexaleg.stance import collision_starts, free_coupled
 from hexaleg.stance.configurations import stance_configurations
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.stance.geometry import (
@@ -66,17 +65,6 @@ TOUCHING = 3e-5
 """Two parts that touch are this close [m] (hexaleg stops 1e-5 m short of contact)."""
 
 
-@pytest.fixture(scope="module")
-def small_search():
-    """The free-coupled search with small budgets (a few climbs and collision starts)."""
-    with pytest.MonkeyPatch.context() as patch:
-        patch.setattr(free_coupled, "CLIMBS", 8)
-        patch.setattr(free_coupled, "COLLISION_BASINS", 2)
-        patch.setattr(collision_starts, "COLLISION_DRAWS", 16)
-        patch.setattr(collision_starts, "COLLISION_STARTS", 2)
-        yield
-
-
 def _json(argv):
     out = io.StringIO()
     with warnings.catch_warnings(), contextlib.redirect_stdout(out):
@@ -97,6 +85,14 @@ ROBOT_CASES = {
     "phantomx": (OCHS, OCHS_FOOT),
     "drawn 3 (hip height, lateral offset, bends)": ("drawn:3", []),
 }
+
+
+@pytest.fixture(scope="module")
+def small_search():
+    """This module's free-coupled searches with small budgets."""
+    with pytest.MonkeyPatch.context() as patch:
+        small_free_search(patch)
+        yield
 
 
 @pytest.fixture(scope="module", params=list(ROBOT_CASES))
@@ -404,17 +400,6 @@ def test_a_general_legs_mirror_is_found_where_every_margin_mirrors(changes, expe
 
 def _has(flips, flip):
     return any(np.array_equal(f, flip) for f in flips)
-
-
-@pytest.mark.parametrize("kind", KINDS)
-def test_the_table_names_the_robot_the_free_mode_and_its_evidence(capsys, small_search, kind):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", RobotImportWarning)
-        assert run_cli(["flexibility", *robot_argv(kind), "--mode", "free"]) == 0
-    out = capsys.readouterr().out
-    named = f"of {KRABY} " if kind == "kraby" else ""
-    assert f"Body flexibility {named}(free, stance lf lm lr rf rm rr)" in out
-    assert "evidence" in out and "extremes reached from nominal by a feasible path" in out
 
 
 def test_the_template_urdf_imported_back_collides_where_the_design_does():

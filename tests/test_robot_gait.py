@@ -32,7 +32,6 @@ from hexaleg.robot.imported import import_robot, robot_from_text
 from hexaleg.robot.imported_model import ImportedHexapodModel
 from hexaleg.robot.model import HexapodModel
 from hexaleg.robot.urdf import render_hexapod
-from hexaleg.statics.forces import Payload
 
 G = 9.81
 SMALL = ["--stride", "0.03", "--step-height", "0.02", "--period", "0.8", "--samples", "60"]
@@ -283,27 +282,3 @@ def test_the_design_files_robot_table_walks_as_the_file(tmp_path, capsys):
     direct = robot_json(capsys, ["gait", "--urdf", KRABY, *SMALL, "--json"])
     assert via_file == direct | {"robot": via_file["robot"]}
     assert direct["urdf_joint_angles"]["lf"] != direct["joint_angles"]["lf"]  # the file's zeros
-
-
-@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
-def test_loads_walking_capacity_of_an_imported_robot_is_where_its_gait_breaks(tmp_path, capsys):
-    target = tmp_path / "kraby.toml"
-    assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
-    with target.open("a") as file:  # a gait this small robot walks
-        file.write("\n[gait]\nstride = 0.03\nstep_height = 0.02\nperiod = 0.6\nsamples = 48\n")
-    capsys.readouterr()
-    loads = robot_json(capsys, ["loads", "--design", str(target), "--json"])
-    capacity = loads["walking_payload_capacity"]
-    assert capacity["walks"] and capacity["mass"] > 0.1
-    model = _imported(KRABY)
-    gait = Gait(stride=0.03, step_height=0.02, period=0.6, samples=48)
-
-    def holds(mass):
-        walked = analyze_gait(model.design, gait, Payload(mass), model=model, limits=False)
-        return walked.walkable and walked.tipping is None and not walked.over_rating
-
-    assert holds(capacity["mass"] * (1 - 1e-6))
-    assert not holds(capacity["mass"] * (1 + 1e-6))
-    # and without a [gait] table Kraby walks its own default gait, sized to it
-    plain = robot_json(capsys, ["loads", "--urdf", KRABY, "--json"])
-    assert plain["walking_payload_capacity"]["walks"]

@@ -326,15 +326,6 @@ def test_legs_changed_apart_stand_as_the_changed_file_does(tmp_path, capsys):
     assert torques["lm"] != pytest.approx(uniform["lm"], rel=1e-3)  # the longer femurs count
 
 
-def test_loads_weighs_the_changed_robot(capsys):
-    loads = _json(capsys, ["loads", "--urdf", KRABY, "--l3", "0.1", "--json"])
-    original = import_robot(KRABY)
-    added = sum(
-        (0.1 / leg.reading.geometry.tibia - 1) * leg.masses[2].mass for leg in original.legs
-    )
-    assert loads["mass"] == pytest.approx(_total_mass(original.text) + added, rel=1e-12)
-
-
 ZERO_COXA = (
     Path(KRABY)
     .read_text()

@@ -9,7 +9,7 @@ import time
 import numpy as np
 import pytest
 from conftest import run_cli
-from robots import KINDS, robot_argv
+from robots import KINDS, KRABY, robot_argv
 
 from hexaleg import HexapodDesign
 
@@ -62,11 +62,17 @@ def test_bad_options_are_refused_before_simulating(monkeypatch, tmp_path, capsys
     assert list(tmp_path.iterdir()) == []
 
 
-def test_json_has_the_documented_fields(monkeypatch, capsys, walked):
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_json_has_the_documented_fields(monkeypatch, capsys, walked, kind):
     monkeypatch.setattr(command, "simulate_gait", lambda *args, **kwargs: walked)
-    assert run_cli(["simulate", "--json", "--cycles", "2"]) == 0
+    assert run_cli(["simulate", *robot_argv(kind), "--json", "--cycles", "2"]) == 0
     fields = json.loads(capsys.readouterr().out)
-    assert set(fields) == JSON_KEYS
+    # a robot file's JSON also names it and gives its posture in both conventions
+    posture = {"robot", "joint_angles", "urdf_joint_angles"} if kind == "kraby" else set()
+    assert set(fields) == JSON_KEYS | posture
+    if kind == "kraby":
+        assert fields["robot"] == KRABY
     assert fields["cycles"] == 2
     assert fields["distance"] == pytest.approx(walked.metrics.distance)
 

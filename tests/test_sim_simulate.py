@@ -1,4 +1,9 @@
-"""The planned gait walked in MuJoCo: the default robot walks; impossible gaits are refused."""
+"""The planned gait walked in MuJoCo: each kind of robot walks; impossible gaits are refused.
+
+Oracles: the plan itself (its distance, its peak torques from Pinocchio's inverse dynamics)
+and the statics' foot forces for the robot standing on a tripod (the statics held to RNEA
+on the raw file in ``test_robot_loads``, to closed forms in ``test_statics``).
+"""
 
 from __future__ import annotations
 
@@ -8,6 +13,7 @@ import os
 
 import numpy as np
 import pytest
+from robots import KINDS, robot_of
 
 from hexaleg import HexapodDesign
 from hexaleg.exceptions import HexalegError, ParameterError
@@ -41,52 +47,72 @@ JSON_KEYS = {
 }
 
 
-@pytest.fixture(scope="module")
-def default_walk():
-    return simulate_gait(HexapodDesign(), Gait(), cycles=4)
+SMALL = Gait(stride=0.03, step_height=0.02, period=0.8)
+"""A short walk the small robot file takes (the default gait's stride is beyond its reach)."""
 
 
-def test_the_default_robot_walks_four_tripod_cycles(default_walk):
-    metrics = default_walk.metrics
-    gait = default_walk.gait
-    assert gait.pattern == "tripod" and default_walk.cycles == 4
+@pytest.fixture(scope="module", params=KINDS)
+def walk(request):
+    """The kind's robot walked: the template four default cycles, the robot file three small."""
+    if request.param == "template":
+        return simulate_gait(HexapodDesign(), Gait(), cycles=4), HexapodDesign(), None
+    robot = robot_of(request.param)
+    walked = simulate_gait(robot.design, SMALL, cycles=3, model=robot.model)
+    return walked, robot.design, robot.model
+
+
+def test_each_robot_walks_its_tripod_cycles_and_stands_as_the_statics_say(walk):
+    walked, design, _ = walk
+    metrics = walked.metrics
+    gait = walked.gait
+    assert gait.pattern == "tripod"
     assert not metrics.fell
-    assert metrics.planned_distance == pytest.approx(gait.speed * gait.period * 3)
-    assert metrics.distance >= 0.85 * metrics.planned_distance
+    measured = walked.cycles - 1  # the first period is not measured
+    assert metrics.planned_distance == pytest.approx(gait.speed * gait.period * measured)
+    assert metrics.distance >= 0.9 * metrics.planned_distance
     assert metrics.distance <= 1.1 * metrics.planned_distance
     assert metrics.max_tilt < math.radians(5.0)
-    assert metrics.min_height > 0.9 * HexapodDesign().nominal_height
+    assert metrics.min_height > 0.9 * design.nominal_height
+    assert metrics.tracking_rms < 0.05
+    standing = walked.standing
+    for leg, force in standing.foot_forces_z.items():
+        assert force == pytest.approx(standing.statics_foot_forces_z[leg], rel=0.03)
 
 
-def test_measured_hip_and_knee_torques_are_near_the_plans(default_walk):
+def test_measured_hip_and_knee_torques_are_near_the_plans(walk):
     # Pinocchio's inverse dynamics with min-norm feet against MuJoCo's contacts and servos
-    planned, measured = default_walk.planned_peak_torque, default_walk.metrics.peak_torque
+    walked, design, model = walk
+    planned, measured = walked.planned_peak_torque, walked.metrics.peak_torque
     for joint in ("hip", "knee"):
         assert measured[joint] == pytest.approx(planned[joint], rel=0.10)
-    planned_again = analyze_gait(HexapodDesign(), Gait(), limits=False).metrics.peak_torque
-    assert planned == planned_again
+    again = analyze_gait(design, walked.gait, limits=False, model=model)
+    assert planned == again.metrics.peak_torque
 
 
-def test_json_has_exactly_the_documented_fields(default_walk):
-    fields = json.loads(json.dumps(default_walk.to_dict()))
+def test_json_has_exactly_the_documented_fields(walk):
+    walked, design, _ = walk
+    fields = json.loads(json.dumps(walked.to_dict()))
     assert set(fields) == JSON_KEYS
     assert set(fields["standing"]) == {"foot_forces_z", "statics_foot_forces_z"}
     assert set(fields["standing"]["foot_forces_z"]) == {"lf", "rm", "lr"}
     for key in ("peak_torque_measured", "peak_torque_planned"):
         assert set(fields[key]) == {"root", "hip", "knee"}
     assert fields["gait"]["pattern"] == "tripod"
-    assert fields["payload"] == {"mass": 0.0, "position": [0.0, 0.0, 0.05]}
+    top = [0.0, 0.0, design.body_height / 2]  # none, on the centre of the body's top face
+    assert fields["payload"] == {"mass": 0.0, "position": pytest.approx(top)}
     assert fields["fell"] is False
     assert fields["controller"] == "servo" and fields["diverged"] is None
 
 
-def test_frames_cover_the_run(default_walk):
-    frames = default_walk.frames
-    duration = default_walk.cycles * default_walk.gait.period
-    assert len(frames) == pytest.approx(duration * default_walk.frame_rate, abs=1)
-    travelled = frames[-1, 0] - frames[0, 0]
-    assert travelled == pytest.approx(default_walk.metrics.distance * 4 / 3, rel=0.15)
-    mid = frames[default_walk.mid_stride_frame]
+def test_frames_cover_the_run(walk):
+    walked = walk[0]
+    frames = walked.frames
+    duration = walked.cycles * walked.gait.period
+    assert len(frames) == pytest.approx(duration * walked.frame_rate, abs=1)
+    travelled = frames[-1, 0] - frames[0, 0]  # every cycle, the measured ones' distance
+    whole = walked.metrics.distance * walked.cycles / (walked.cycles - 1)
+    assert travelled == pytest.approx(whole, rel=0.15)
+    mid = frames[walked.mid_stride_frame]
     assert np.isfinite(mid).all()
 
 

@@ -1,15 +1,19 @@
-"""Statics against independent oracles: least squares, moments by hand, a hand-built polygon."""
+"""Statics against independent oracles: least squares, moments by hand, a hand-built polygon;
+each kind of robot weighed by Pinocchio on its raw URDF."""
 
 from __future__ import annotations
 
 import math
+import xml.etree.ElementTree as ET
 
 import numpy as np
 import pinocchio as pin
 import pytest
-from robots import KINDS, robot_argv, robot_of
+from robots import KINDS, KRABY, robot_argv, robot_json, robot_of
 
 from hexaleg import HexapodDesign, HexapodModel
+from hexaleg.robot.imported import import_robot
+from hexaleg.robot.urdf import render_hexapod
 from hexaleg.stance import StanceGeometry, stance_configuration
 from hexaleg.statics import (
     Payload,
@@ -422,3 +426,29 @@ def test_loads_table_names_the_robot_its_torques_and_capacity(capsys, kind):
     title = out.splitlines()[0]
     assert title.startswith("Statics") and ("kraby" in title) == (kind == "kraby")
     assert "payload capacity" in out and "peak |τ| hip: nominal / extremes" in out
+
+
+@pytest.mark.filterwarnings("ignore::hexaleg.exceptions.RobotImportWarning")
+@pytest.mark.parametrize("kind", KINDS)
+def test_loads_weighs_the_robot_at_a_longer_tibia(capsys, kind):
+    """The oracle: Pinocchio's total of the raw URDF at its own lengths plus each tibia's
+    mass stretched with its length (the template's rods weigh by length, a file's tibia
+    is stretched so), the tibias' masses read from the raw URDF's links or the file."""
+    if kind == "template":
+        design = HexapodDesign()
+        text, tibia, longer = render_hexapod(design), design.l3, 0.45
+        links = ET.fromstring(text).iter("link")
+        tibias = [float(link.find("inertial/mass").get("value"))
+                  for link in links if link.get("name").endswith("_tibia")]  # fmt: skip
+        added = sum((longer / tibia - 1) * mass for mass in tibias)
+    else:
+        original = import_robot(KRABY)
+        text, longer = original.text, 0.1
+        tibias = [leg.masses[2].mass for leg in original.legs]
+        added = sum(
+            (longer / leg.reading.geometry.tibia - 1) * leg.masses[2].mass for leg in original.legs
+        )
+    assert len(tibias) == 6 and all(mass > 0 for mass in tibias)
+    loads = robot_json(capsys, ["loads", *robot_argv(kind), "--l3", str(longer), "--json"])
+    raw = pin.computeTotalMass(pin.buildModelFromXML(text, pin.JointModelFreeFlyer()))
+    assert loads["mass"] == pytest.approx(raw + added, rel=1e-12)
