@@ -24,7 +24,8 @@ def bench_decide(evaluations: int | None) -> list[Row]:
 
     def run(executor):
         start = time.perf_counter()
-        result = decide(design, requirements, settings=settings, executor=executor, progress=False)
+        result = decide(design, requirements, settings=settings, executor=executor,
+                        free_posture=False, progress=False)  # fmt: skip
         return time.perf_counter() - start, result
 
     with ProcessPoolExecutor(2) as pool:
@@ -66,7 +67,7 @@ def bench_decide_walking(evaluations: int | None) -> list[Row]:
         pool.submit(int).result()
         start = time.perf_counter()
         found = decide(design, requirements, Objective("improved_area"), settings=settings,
-                       executor=pool, progress=False)  # fmt: skip
+                       executor=pool, free_posture=False, progress=False)  # fmt: skip
         elapsed = time.perf_counter() - start
     best = found.best.evaluation.metrics
     note = (
@@ -102,7 +103,7 @@ def bench_decide_actuators(evaluations: int | None) -> list[Row]:
     def run(pool, base, settings=settings, **options):
         start = time.perf_counter()
         found = decide(base, requirements, objective, settings=settings, executor=pool,
-                       progress=False, **options)  # fmt: skip
+                       free_posture=False, progress=False, **options)  # fmt: skip
         return time.perf_counter() - start, found
 
     with ProcessPoolExecutor(2) as pool:

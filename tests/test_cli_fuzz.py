@@ -147,7 +147,7 @@ def quick_backends():
             HexapodDesign(),
             Requirements(ground_clearance=0.3),
             Objective("improved_area"),
-            settings=SearchSettings(evaluations=60),
+            settings=SearchSettings(evaluations=100),  # five free: 3 lengths, θ2, θ3
             executor=here,
             progress=False,
         )

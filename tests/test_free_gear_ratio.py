@@ -158,7 +158,7 @@ def test_decide_finds_the_ratios_a_brute_force_search_does(seed):
     geared = [CATALOG.entry("geared")]
     with ProcessPoolExecutor(2) as pool:
         found = decide(
-            design, GOAL_REQUIREMENTS, OBJECTIVE, free=pinned,
+            design, GOAL_REQUIREMENTS, OBJECTIVE, free=pinned, free_posture=False,
             actuators=[e.actuator for e in geared],
             ratio_ranges=[e.gear_ratio_range for e in geared],
             settings=SearchSettings(seed=seed, evaluations=90 * 8), executor=pool,

@@ -313,7 +313,7 @@ CASES = [
 SLOW_CASES = [  # each a whole decision (seconds); a robot walks its own default gait, sized
     # to it, so Kraby too is given the gait it cannot walk (the reproducer walked ours)
     *(Case(f"decide {name} --walking-payload 0.05{json}: never inf", FAR,
-           [*argv, "--walking-payload", "0.05", "--evaluations", "60", "--workers", "1",
+           [*argv, "--walking-payload", "0.05", "--evaluations", "150", "--workers", "1",
             *json.split()], "", says=says, never=NOT_NUMBERS)
       for name, argv in (("far.toml", ["decide", "--design", "far.toml"]),
                          ("kraby", ["decide", "--urdf", KRABY, "--design", "far.toml"]))

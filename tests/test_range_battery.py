@@ -46,7 +46,7 @@ def test_the_least_capacity_for_a_range_is_found():
     with ThreadPoolExecutor(1) as here:
         found = decide(
             DESIGN, Requirements(range_km=required, leg_length=1.001),
-            Objective("robot_mass", "minimize"), free=pinned,
+            Objective("robot_mass", "minimize"), free=pinned, free_posture=False,
             settings=SearchSettings(seed=1, evaluations=400), executor=here, progress=False,
         )  # fmt: skip
     battery = found.best.design.battery
