@@ -27,7 +27,7 @@ import warnings
 from collections.abc import Collection, Iterable, Sequence
 from dataclasses import dataclass, field, replace
 from functools import cached_property
-from typing import TypeVar
+from typing import TypeVar, cast, get_args
 
 import numpy as np
 
@@ -229,20 +229,8 @@ def evaluate_many(
     ]
 
 
-ANALYSES: tuple[Analysis, ...] = (
-    "geometry",
-    "workspace",
-    "manipulability",
-    "flexibility",
-    "clearance",
-    "standing",
-    "walking",
-    "speed",
-    "period",
-    "motors",
-    "structure",
-)
-"""The analyses, in the order an evaluation runs them."""
+ANALYSES: tuple[Analysis, ...] = cast(tuple[Analysis, ...], get_args(Analysis))
+"""The analyses, in the order an evaluation runs them (as :data:`Analysis` lists them)."""
 
 
 class _Measuring:

@@ -46,7 +46,7 @@ Analysis = Literal[
     "motors",
     "structure",
 ]
-"""The analysis that measures a metric (the evaluation runs each one at most once).
+"""The analysis that measures a metric (the evaluation runs each one at most once, in this order).
 
 ``walking``: the largest payload carried walking the gait; ``speed``: the fastest walk of
 its stride; ``period``: one period of the gait (torques, work, ZMP); ``motors``: that
