@@ -217,9 +217,9 @@ def _walks(seed: int):
 def test_feasible_means_within_every_rating_so_the_max_speed_reaches_the_speed(
     design, gait, ground, factor
 ):
-    """Issue #39 item 7: "feasible yes" beside a joint over its rating and a max speed below
-    the speed walked. A walkable period is feasible exactly when its max speed (at its own
-    stride) reaches the speed it walks, and then no joint is over any rating."""
+    """Never "feasible yes" beside a joint over its rating or a max speed below the speed
+    walked: a walkable period is feasible exactly when its max speed (at its own stride)
+    reaches the speed it walks, and then no joint is over any rating."""
     walked = analyze_gait(design, gait, ground=ground, limits=False, speed=True,
                           safety_factor=factor)  # fmt: skip
     if not walked.walkable:  # a joint limit or a foot's reach breaks: named first

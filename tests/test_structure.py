@@ -297,7 +297,7 @@ def test_the_standing_deflection_is_the_worst_over_cases_and_legs():
 def test_walking_wrenches_carry_the_links_inertial_forces(seed, slope_deg, heading):
     """The knee's force on the tibia, in the world: m·(a − g) − f_foot, a by finite differences.
 
-    On a slope (issue #39) the body stays parallel to the ground and gravity turns in its frame:
+    On a slope the body stays parallel to the ground and gravity turns in its frame:
     g·(−sin α cos φ, −sin α sin φ, −cos α), written here from the definition.
     """
     design = seeded_design(seed)

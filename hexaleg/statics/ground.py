@@ -22,7 +22,7 @@ from hexaleg.statics.forces import DEFAULT_FRICTION, check_friction
 __all__ = ["LEVEL", "MAX_SLOPE", "MAX_SLOPE_DEG", "Ground"]
 
 MAX_SLOPE_DEG = 60.0
-"""Steepest slope |α| walked [°] (issue #39's bound), as options in degrees state it."""
+"""Steepest slope |α| walked [°], as options in degrees state it."""
 MAX_SLOPE = math.radians(MAX_SLOPE_DEG)
 """Steepest slope |α| walked [rad]. Standing on it at all, with the weight shared evenly,
 already needs μ ≥ tan 60° ≈ 1.73."""
