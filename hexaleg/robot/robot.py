@@ -28,6 +28,7 @@ from typing import Any
 import numpy as np
 import tomli_w
 
+from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF
 from hexaleg.design import SEGMENT_RANGE, SEGMENTS, HexapodDesign, ratio_lengths
 from hexaleg.design_file import DesignFile
@@ -56,8 +57,10 @@ __all__ = [
     "POSTURE_FIELD",
     "SEGMENT_SPAN",
     "Robot",
+    "as_robot",
     "derived_numbers",
     "robot_of",
+    "template_robot",
 ]
 
 SEGMENT_SPAN = 0.5
@@ -577,6 +580,24 @@ def robot_of(source: RobotSource, over: HexapodDesign, lengths: SegmentChanges =
         warnings.simplefilter("ignore")  # shown where the robot was first built
         robot = Robot.build(source, over)
         return robot.at(**_fields(lengths)) if lengths else robot
+
+
+def template_robot(design: HexapodDesign) -> Robot:
+    """Hexaleg's template at ``design``, built once per process (:func:`robot_of`)."""
+    return robot_of(RobotSource(), design)
+
+
+def as_robot(given: Robot | HexapodDesign) -> Robot:
+    """``given`` if it is a robot, else hexaleg's template at the design given.
+
+    Raises:
+        ParameterError: ``given`` is neither.
+
+    """
+    if isinstance(given, Robot):
+        return given
+    require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
+    return template_robot(given)
 
 
 def _differing(design: HexapodDesign, other: HexapodDesign) -> dict[str, Any]:

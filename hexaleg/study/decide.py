@@ -27,7 +27,6 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
-from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF
 from hexaleg._version import __version__
 from hexaleg.actuators import Actuator
@@ -42,8 +41,7 @@ from hexaleg.gait.spec import Gait
 from hexaleg.kinematics import foot_position
 from hexaleg.ratings import require_ratings
 from hexaleg.robot.model import HexapodModel
-from hexaleg.robot.recipe import RobotSource
-from hexaleg.robot.robot import Robot, robot_of
+from hexaleg.robot.robot import Robot, as_robot
 from hexaleg.stance.flexibility import flexibility
 from hexaleg.statics.forces import Payload
 from hexaleg.statics.ground import Ground
@@ -502,9 +500,7 @@ def _robot(given: Robot | HexapodDesign) -> Robot:
         ParameterError: A rating the robot does not give.
 
     """
-    if not isinstance(given, Robot):
-        require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
-        given = robot_of(RobotSource(), given)
+    given = as_robot(given)
     given.require_masses()
     require_ratings(given.design.rated_torques, given.design.rated_speeds, "decide")
     return given

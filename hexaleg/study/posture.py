@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from hexaleg._checks import require_instance
 from hexaleg._typing import ArrayF
 from hexaleg.design import HexapodDesign
 from hexaleg.evaluation.goal import Goal, Objective
@@ -42,8 +41,7 @@ from hexaleg.evaluation.metrics import METRICS
 from hexaleg.evaluation.requirements import Requirements
 from hexaleg.exceptions import HexalegError, ParameterError
 from hexaleg.numerics.box_search import box_minimum
-from hexaleg.robot.recipe import RobotSource
-from hexaleg.robot.robot import POSTURE_FIELD, Robot, robot_of
+from hexaleg.robot.robot import POSTURE_FIELD, Robot, as_robot
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.decide import CheckedDesign, DecideResult, posture_figures, workshop_answer
 from hexaleg.study.decide_grid import Rounding
@@ -181,9 +179,7 @@ def _robot(given: Robot | HexapodDesign) -> Robot:
         ParameterError: Neither a robot nor a design; a robot file (its posture is its own).
 
     """
-    if not isinstance(given, Robot):
-        require_instance("design", given, HexapodDesign, "a Robot or a HexapodDesign")
-        given = robot_of(RobotSource(), given)
+    given = as_robot(given)
     if not given.searches(POSTURE_FIELD):
         raise ParameterError(
             "robot", given.name, "a robot whose posture may change: a robot file stands as "

@@ -33,8 +33,7 @@ from hexaleg.design import FIELD_RANGES, SEGMENT_RANGE, SEGMENTS, HexapodDesign
 from hexaleg.exceptions import ParameterError
 from hexaleg.field_sweep import SWEEPABLE
 from hexaleg.limits import LEG_JOINTS
-from hexaleg.robot.recipe import RobotSource
-from hexaleg.robot.robot import Robot, robot_of
+from hexaleg.robot.robot import Robot, template_robot
 from hexaleg.study.actuator_variables import (
     CHOICES,
     GEARS,
@@ -152,7 +151,7 @@ class SearchSpace:
 
     def __post_init__(self) -> None:
         if self.robot is None:
-            object.__setattr__(self, "robot", robot_of(RobotSource(), self.base))
+            object.__setattr__(self, "robot", template_robot(self.base))
 
     @property
     def names(self) -> tuple[str, ...]:
@@ -367,7 +366,7 @@ def search_space(
             segments searched within its :meth:`~hexaleg.robot.robot.Robot.segment_bounds`.
 
     """
-    robot = robot_of(RobotSource(), base) if robot is None else robot
+    robot = template_robot(base) if robot is None else robot
     chosen = _segments(leg_length, min_coxa, robot)
     limits = base.stance_limits
     if free_posture:

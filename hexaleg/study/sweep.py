@@ -44,8 +44,7 @@ from hexaleg.gait.analysis import STUDY_GAIT
 from hexaleg.gait.spec import Gait
 from hexaleg.ratios import MAX_L1_RATIOS, require_ratio_grid
 from hexaleg.robot.model import HexapodModel
-from hexaleg.robot.recipe import RobotSource
-from hexaleg.robot.robot import Robot, robot_of
+from hexaleg.robot.robot import Robot, template_robot
 from hexaleg.stance.geometry import StanceGeometry
 from hexaleg.study.executors import local_pool, worker_failures
 from hexaleg.study.journal import (
@@ -104,7 +103,7 @@ class StudySpec:
 
     def __post_init__(self) -> None:
         if self.robot is None:
-            object.__setattr__(self, "robot", robot_of(RobotSource(), self.base))
+            object.__setattr__(self, "robot", template_robot(self.base))
         object.__setattr__(self, "l1_ratios", tuple(float(r) for r in self.l1_ratios))
         object.__setattr__(self, "l3_ratios", tuple(float(r) for r in self.l3_ratios))
         require_choice("mode", self.mode, FlexibilityMode)

@@ -25,8 +25,7 @@ from hexaleg.exceptions import HexalegError
 from hexaleg.output.report.options import ReportOptions
 from hexaleg.output.report.section import Section
 from hexaleg.robot.model import HexapodModel
-from hexaleg.robot.recipe import RobotSource
-from hexaleg.robot.robot import Robot, robot_of
+from hexaleg.robot.robot import Robot, as_robot, template_robot
 from hexaleg.study.progress import Progress
 
 R = TypeVar("R")
@@ -75,7 +74,7 @@ class ReportData:
 
     def __post_init__(self) -> None:
         if self.robot is None:
-            object.__setattr__(self, "robot", robot_of(RobotSource(), self.design))
+            object.__setattr__(self, "robot", template_robot(self.design))
 
     def __getitem__(self, kind: type[R]) -> R:
         """The record of type ``kind``; fails if no part computed it (yet)."""
@@ -261,8 +260,7 @@ def compute_parts(
         RobotImportError: A robot file without masses, before any part is computed.
 
     """
-    if not isinstance(robot, Robot):
-        robot = robot_of(RobotSource(), robot)
+    robot = as_robot(robot)
     robot.require_masses()  # its statics, walking and decision weigh it: refused up front
     verdicts = [(part, part.holds(robot, options)) for part in parts]
     held = tuple(part for part, left in verdicts if left is None)
