@@ -250,6 +250,15 @@ class DecideResult:
             if not (at.variable.name == "l1" and at.bound == "lower" and at.value == coxa)
         )
 
+    def postures(self) -> tuple[dict[str, Any], dict[str, Any]] | None:
+        """The best design's and yours' :func:`posture_figures`, or ``None``.
+
+        Eq 7 holds for hexaleg's legs only: a robot file's posture is the file's.
+        """
+        if self.robot is not None:
+            return None
+        return posture_figures(self.best.design), posture_figures(self.yours.design)
+
     @property
     def walks(self) -> bool:
         """Whether the designs walk a gait (a walking requirement or objective)."""
@@ -266,11 +275,11 @@ class DecideResult:
 
     def to_dict(self) -> dict[str, Any]:
         """JSON-ready (SI units, radians)."""
-        posed = self.robot is None  # hexaleg's legs: their posture in figures (eq 7)
+        best_posture, your_posture = self.postures() or ({}, {})
         out: dict[str, Any] = {
             "requirements": {c.name: c.to_dict(binding=True) for c in self.best.checks},
             "best": {
-                **(posture_figures(self.best.design) if posed else {}),
+                **best_posture,
                 "design": self.best.design.as_dict(),
                 "objective": self.best.objective(self.objective),
                 "over_rating": self.best.over_rating(self.requirements.gait),
@@ -278,7 +287,7 @@ class DecideResult:
                 "bounds_binding": [at.to_dict() for at in self.bounds_binding],
             },
             "yours": {
-                **(posture_figures(self.yours.design) if posed else {}),
+                **your_posture,
                 "design": self.yours.design.as_dict(),
                 "objective": self.yours.objective(self.objective),
                 "requirements": {c.name: c.to_dict(binding=False) for c in self.yours.checks},

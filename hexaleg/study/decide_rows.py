@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from hexaleg.evaluation.requirements import RequirementCheck, format_value
-from hexaleg.study.decide import DecideResult, posture_figures
+from hexaleg.study.decide import DecideResult
 from hexaleg.study.search_space import AtBound, value_of
 
 __all__ = [
@@ -116,12 +116,8 @@ def answer_rows(result: DecideResult) -> AnswerRows:
     )
     design = result.yours.design
     bounds = tuple(BoundRow(at, value_of(design, at.variable.name)) for at in result.bounds_binding)
-    postures = None
-    if result.robot is None:
-        best_posture, your_posture = (
-            _posture(posture_figures(checked.design)) for checked in (result.best, result.yours)
-        )
-        postures = (best_posture, your_posture)
+    figures = result.postures()
+    postures = None if figures is None else (_posture(figures[0]), _posture(figures[1]))
     return AnswerRows(requirements, bounds, postures)
 
 
