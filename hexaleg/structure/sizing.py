@@ -14,15 +14,16 @@ with those, ... until the tubes chosen are the tubes that loaded them
 (:attr:`SizedStructure.iterations` rounds, :data:`MAX_ITERATIONS` at most). The loads so
 grow from below; hexaleg's tests hold the tubes settled on against every triple of a
 small grid checked under its own loads. With the min-norm distribution a round's loads
-are read off their affine model in the three segments' masses (:mod:`.affine`), and the
-tubes settled on are loaded for real once, which gives their check (:func:`size_for_cases`).
+are read off their affine model in the three segments' masses (:mod:`.affine`): exact, not
+an estimate (the loads are affine in those masses), so the tubes settled on are checked
+with them (:func:`size_for_cases`; hexaleg's tests hold both to a model built with the tubes).
 """
 
 from __future__ import annotations
 
 import copy
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -141,11 +142,10 @@ def size_for_cases(
     """The lightest tubes of ``grid`` that hold ``cases`` (see :func:`size_structure`).
 
     With the min-norm distribution (and ``affine``) the rounds read the loads off
-    :func:`affine_terms` (measured once at ``model``'s masses: no new Pinocchio model a
-    round); the tubes they settle on are then loaded for real (their own model's
-    :func:`standing_terms`), and the rounds go on with real loads if those move them.
-    Another distribution has real loads every round (as with ``affine=False``: the same
-    tubes, slower).
+    :func:`affine_terms` (measured once at ``model``'s masses, with their exact
+    derivatives: no new Pinocchio model a round), and so does the check of the tubes they
+    settle on. Another distribution has real loads every round (their own model's
+    :func:`standing_terms`), as with ``affine=False``: the same tubes and check, slower.
     """
     structure = design.structure
     if structure is None:
@@ -162,25 +162,21 @@ def size_for_cases(
         sized = _with_structure(design, structure.with_tubes(_tubes(grid, chosen)))
         return standing_terms(model.with_design(sized), cases)
 
-    lightest = int(np.argmin(grid.sections[1]))
-    start = (lightest, lightest, lightest)
+    load = loaded
     if affine and cases.distribution == "min-norm":
         terms = affine_terms(model, cases)
         densities = [structure.material.density * length for length in design.lengths]
 
-        def estimated(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
+        def exact(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
             area = grid.sections[1][list(chosen)]
             return terms.at([d * a for d, a in zip(densities, area, strict=True)])
 
-        rounds = _rounds(estimated, choose, start, MAX_ITERATIONS)
-        if rounds.settled:  # hold them to their own real loads (the same, to rounding)
-            real = _rounds(loaded, choose, rounds.chosen, MAX_ITERATIONS - rounds.iterations + 1)
-            rounds = replace(real, iterations=rounds.iterations + real.iterations - 1)
-    else:
-        rounds = _rounds(loaded, choose, start, MAX_ITERATIONS)
+        load = exact
+    lightest = int(np.argmin(grid.sections[1]))
+    rounds = _rounds(load, choose, (lightest, lightest, lightest), MAX_ITERATIONS)
     final = structure.with_tubes(_tubes(grid, rounds.chosen))
     # unsettled, the last loads were the tubes' before: check the last tubes' own
-    wrenches, integrals = rounds.terms if rounds.settled else loaded(rounds.chosen)
+    wrenches, integrals = rounds.terms if rounds.settled else load(rounds.chosen)
     deflections = np.linalg.norm(foot_deflections(integrals, final), axis=-1)
     check = StructureCheck(
         final, design.lengths, model.leg_names, cases.names, wrenches, deflections, limit
