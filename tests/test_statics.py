@@ -227,6 +227,22 @@ def test_states_of_many_poses_equal_each_pose_alone(model, distribution):
         assert state.stability_margin == pytest.approx(alone.stability_margin, abs=1e-15)
 
 
+@pytest.mark.parametrize("payload", [Payload(), Payload(12.0, (0.05, 0.02, 0.05))])
+def test_centres_of_mass_are_those_of_the_model_with_the_payload_built_in(model, payload):
+    # the oracle: Pinocchio's centre of mass of a copy whose body holds the payload's mass
+    legs = ("lf", "rm", "lr")
+    statics = Statics(model, legs, payload)
+    poses = _poses(model, legs, 4, seed=5)
+    loaded = pin.Model(model.model)
+    if payload.mass > 0:
+        body = loaded.frames[model.base_frame]
+        point = body.placement.act(np.asarray(payload.point(model), dtype=float))
+        loaded.inertias[body.parentJoint] += pin.Inertia(payload.mass, point, np.zeros((3, 3)))
+    expected = [pin.centerOfMass(loaded, loaded.createData(), q) for q in poses]
+    np.testing.assert_allclose(statics.centres_of_mass(poses), expected, rtol=0, atol=1e-14)
+    assert statics.mass == pytest.approx(pin.computeTotalMass(loaded), rel=1e-15)
+
+
 def test_extreme_configurations_put_the_body_at_each_pose_and_swing_legs_at_rest(model):
     """Against Pinocchio's own rpy module and the extremes' joint angles, leg by leg."""
     from hexaleg.stance import axis_locked_flexibility, free_flexibility

@@ -297,16 +297,45 @@ class Statics:
             feet[i] = data.oMf[fid].translation
         com = pin.centerOfMass(model, data, False)
         if payload.mass > 0:  # the payload's weight through the body at its point
-            body = data.oMf[self.model.base_frame]
-            offset = body.rotation @ payload.point(self.model)
+            offset = data.oMf[self.model.base_frame].rotation @ payload.point(self.model)
             frame = pin.getFrameJacobian(
                 model, data, self.model.base_frame, pin.LOCAL_WORLD_ALIGNED
             )
             point_jacobian = frame[:3] - pin.skew(offset) @ frame[3:]
             generalized -= point_jacobian.T @ (payload.mass * gravity)
-            mass = self._robot_mass + payload.mass
-            com = (self._robot_mass * com + payload.mass * (body.translation + offset)) / mass
+            com = self._carrying(com, payload)
         return generalized, com
+
+    def centres_of_mass(
+        self, configurations: Sequence[npt.ArrayLike], payload: Payload | None = None
+    ) -> ArrayF:
+        """The centre of mass of robot and payload at each configuration (K, 3) [m].
+
+        What :meth:`states` finds, without the Jacobians, torques and margins: all that
+        the min-norm forces need beside the feet (:func:`equilibrium`).
+        """
+        model, data = self.model.model, self.model.data
+        payload = self.payload if payload is None else payload
+        com = np.empty((len(configurations), 3))
+        for k, q in enumerate(configurations):
+            com[k] = pin.centerOfMass(model, data, np.asarray(q, dtype=float), False)
+            if payload.mass > 0:
+                pin.updateFramePlacement(model, data, self.model.base_frame)
+                com[k] = self._carrying(com[k], payload)
+        return com
+
+    @property
+    def mass(self) -> float:
+        """The robot's mass and its own payload's [kg]."""
+        return self._robot_mass + self.payload.mass
+
+    def _carrying(self, com: ArrayF, payload: Payload) -> ArrayF:
+        """The robot's centre of mass ``com`` moved by the payload, its body placed in data."""
+        body = self.model.data.oMf[self.model.base_frame]
+        point = body.translation + body.rotation @ payload.point(self.model)
+        total = self._robot_mass + payload.mass
+        moved: ArrayF = (self._robot_mass * com + payload.mass * point) / total
+        return moved
 
     def _min_torque(
         self,

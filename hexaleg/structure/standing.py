@@ -19,7 +19,7 @@ import numpy as np
 
 from hexaleg._typing import ArrayF, Distribution
 from hexaleg.exceptions import ParameterError
-from hexaleg.gravity import GRAVITY, LEVEL_GRAVITY, slope_gravity
+from hexaleg.gravity import LEVEL_GRAVITY, slope_gravity
 from hexaleg.robot.model import HexapodModel
 from hexaleg.stance.configurations import extreme_configurations
 from hexaleg.stance.extremes import Extreme
@@ -111,36 +111,24 @@ def standing_balance(
 ) -> tuple[ArrayF, ArrayF]:
     """Each case's feet's forces (K, 6, 3) [N] and centre of mass (K, 3) [m], world frame.
 
-    The level cases' are their statics' (:class:`~hexaleg.statics.forces.Statics`), in
-    one batch. A tilted case (a slope's) at a level case's pose has that case's centre of
-    mass and feet (``feet``, (K, 6, 3) [m]: :attr:`~.wrenches.LegStates.feet`), so with the
-    min-norm distribution its forces are the statics' least-norm balance
-    (:func:`~hexaleg.statics.forces.equilibrium`, :func:`~hexaleg.statics.forces.min_norm_forces`)
-    of its own gravity, all at once; other tilted cases have their own statics.
+    They are the statics' (:class:`~hexaleg.statics.forces.Statics`). With the min-norm
+    distribution the forces are its least-norm balance
+    (:func:`~hexaleg.statics.forces.equilibrium`,
+    :func:`~hexaleg.statics.forces.min_norm_forces`) of the feet (``feet``, (K, 6, 3) [m]:
+    :attr:`~.wrenches.LegStates.feet`) about each case's centre of mass under its own
+    gravity, all cases at once; with another, each case's statics.
     """
     statics = Statics(model, cases.legs, cases.payload, cases.friction)
     stance = [model.leg_names.index(leg) for leg in cases.legs]
     q, gravities = cases.configurations, cases.gravities
     forces = np.zeros((len(q), len(model.leg_names), 3))
+    if cases.distribution == "min-norm":
+        com = statics.centres_of_mass(q)
+        rows = equilibrium(feet[:, stance], com, statics.mass, gravities)
+        forces[:, stance] = min_norm_forces(*rows).reshape(len(q), -1, 3)
+        return forces, com
     com = np.empty((len(q), 3))
-    level = np.flatnonzero(gravities[:, 2] == -GRAVITY)
-    states = statics.states(list(q[level]), cases.distribution)
-    for k, state in zip(level, states, strict=True):
-        forces[k, stance], com[k] = state.foot_forces, state.com
-    posed, alone = [], []  # tilted cases at a level case's pose (and that case), the others
-    for k in np.flatnonzero(gravities[:, 2] != -GRAVITY):
-        same = [j for j in level if np.array_equal(q[j], q[k])]
-        if cases.distribution == "min-norm" and same:
-            posed.append((k, same[0]))
-        else:
-            alone.append(k)
-    if posed:
-        tilted, poses = (np.array(index) for index in zip(*posed, strict=True))
-        com[tilted] = com[poses]
-        mass = states[0].mass
-        rows = equilibrium(feet[tilted][:, stance], com[tilted], mass, gravities[tilted])
-        forces[tilted[:, None], stance] = min_norm_forces(*rows).reshape(len(tilted), -1, 3)
-    for k in alone:
+    for k in range(len(q)):
         state = statics.state(q[k], cases.distribution, gravities[k])
         forces[k, stance], com[k] = state.foot_forces, state.com
     return forces, com
