@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import itertools
 import math
+import pickle
 
 import numpy as np
 import pytest
@@ -270,3 +271,14 @@ def test_a_tube_holds_where_its_worst_ratio_over_every_load_is_at_most_one(seed)
     expected = ratio.max(axis=(0, 1)) <= 1  # (3, n)
     assert 0 < expected.sum() < expected.size  # some tubes hold, some do not
     np.testing.assert_array_equal(segment_holds(loads, structure, DEFAULT_GRID), expected)
+
+
+def test_a_grid_pickles_by_its_fields_and_the_default_one_comes_back_as_itself():
+    # a sized design sent back from a worker carries its grid: not its 7 000 tubes
+    assert len(DEFAULT_GRID.useful) > 0  # the caches are filled
+    assert pickle.loads(pickle.dumps(DEFAULT_GRID)) is DEFAULT_GRID
+    assert len(pickle.dumps(DEFAULT_GRID)) < 500
+    other = TubeGrid(wall_step=0.001, max_slenderness=30.0)
+    back = pickle.loads(pickle.dumps(other))
+    assert back == other and back is not DEFAULT_GRID
+    np.testing.assert_array_equal(back.sections, other.sections)

@@ -307,18 +307,19 @@ class Statics:
         return generalized, com
 
     def centres_of_mass(
-        self, configurations: Sequence[npt.ArrayLike], payload: Payload | None = None
+        self, configurations: npt.ArrayLike, payload: Payload | None = None
     ) -> ArrayF:
-        """The centre of mass of robot and payload at each configuration (K, 3) [m].
+        """The centre of mass of robot and payload at each configuration q (K, nq) (K, 3) [m].
 
         What :meth:`states` finds, without the Jacobians, torques and margins: all that
         the min-norm forces need beside the feet (:func:`equilibrium`).
         """
         model, data = self.model.model, self.model.data
         payload = self.payload if payload is None else payload
-        com = np.empty((len(configurations), 3))
-        for k, q in enumerate(configurations):
-            com[k] = pin.centerOfMass(model, data, np.asarray(q, dtype=float), False)
+        q = np.asarray(configurations, dtype=float).reshape(-1, model.nq)
+        com = np.empty((len(q), 3))
+        for k in range(len(q)):
+            com[k] = pin.centerOfMass(model, data, q[k], False)
             if payload.mass > 0:
                 pin.updateFramePlacement(model, data, self.model.base_frame)
                 com[k] = self._carrying(com[k], payload)
