@@ -38,6 +38,7 @@ COMPILED_MODULES = (
     "stance/leg_kernel.py",
     "stance/climb.py",
     "stance/paths.py",
+    "structure/tube_kernel.py",
 )
 """The modules (relative to the package) that define compiled functions."""
 

@@ -94,6 +94,12 @@ class TubeGrid:
         outer, wall = (values[self.useful] for values in self.tubes)
         return outer, _area(outer, wall), _moment(outer, wall)
 
+    @cached_property
+    def by_area(self) -> npt.NDArray[np.int64]:
+        """The useful tubes (indices into :attr:`sections`) by area, the stiffer first."""
+        _, area, moment = self.sections
+        return np.lexsort((-moment, area)).astype(np.int64)
+
     def tube(self, index: int) -> Tube:
         """The useful tube ``index`` (into :attr:`sections`)."""
         outer, wall = (values[self.useful] for values in self.tubes)

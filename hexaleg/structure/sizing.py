@@ -44,6 +44,7 @@ from hexaleg.structure.deflection import foot_deflections
 from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
 from hexaleg.structure.standing import StandingCases, standing_cases, standing_terms
 from hexaleg.structure.stresses import section_loads, stress_ratio, tube_stresses
+from hexaleg.structure.tube_kernel import holding_tubes, lightest_triple
 
 MAX_ITERATIONS = 30
 """Most rounds of loads and tubes before sizing gives up settling."""
@@ -153,9 +154,13 @@ def size_for_cases(
     limit = structure.limit(design.leg_length)
     active: list[int] = []
 
-    def choose(terms: tuple[ArrayF, ArrayF]) -> tuple[tuple[int, int, int], bool]:
+    def choose(
+        terms: tuple[ArrayF, ArrayF], loading: tuple[int, int, int]
+    ) -> tuple[tuple[int, int, int], bool]:
         loads = section_loads(terms[0])
-        best = choose_tubes(loads, terms[1], structure, design.lengths, limit, grid, active)
+        best = choose_tubes(
+            loads, terms[1], structure, design.lengths, limit, grid, active, loading
+        )
         return (_strongest(loads, structure, grid), False) if best is None else (best, True)
 
     def loaded(chosen: tuple[int, int, int]) -> tuple[ArrayF, ArrayF]:
@@ -208,7 +213,9 @@ class _Rounds:
 
 def _rounds(
     loads: Callable[[tuple[int, int, int]], tuple[ArrayF, ArrayF]],
-    choose: Callable[[tuple[ArrayF, ArrayF]], tuple[tuple[int, int, int], bool]],
+    choose: Callable[
+        [tuple[ArrayF, ArrayF], tuple[int, int, int]], tuple[tuple[int, int, int], bool]
+    ],
     chosen: tuple[int, int, int],
     most: int,
 ) -> _Rounds:
@@ -217,7 +224,7 @@ def _rounds(
     terms = loads(chosen)
     while True:
         iterations += 1
-        best, found = choose(terms)
+        best, found = choose(terms, chosen)
         settled, chosen = best == chosen, best
         if settled or iterations >= most:
             return _Rounds(chosen, settled, found, iterations, terms)
@@ -251,24 +258,17 @@ def segment_ratios(loads: ArrayF, structure: Structure, grid: TubeGrid) -> Array
 def segment_holds(loads: ArrayF, structure: Structure, grid: TubeGrid) -> npt.NDArray[np.bool_]:
     """Whether each grid tube's worst ratio is at most 1 (3, n): ``segment_ratios(...) <= 1``.
 
-    Bit for bit, and cheaper: a tube's ratio grows with each of |N|, |M_b| and |T| (so do
-    its floating-point operations), so its worst lies between that of the loads largest
-    in one of them and that of their three maxima together; only the tubes those two do
-    not decide are loaded with every case and leg.
+    Compiled (:func:`~.tube_kernel.holding_tubes`): each tube's loads until one breaks it.
     """
-    every = np.arange(len(grid.sections[0]))
-    rows = np.abs(loads.reshape(-1, 3, 3)).swapaxes(0, 1)  # (3 segments, R, 3)
-    peaks = rows.max(axis=1)  # each segment's three maxima (3, 3)
-    largest = rows[np.arange(3)[:, None], np.argmax(rows, axis=1)]  # their loads (3, 3, 3)
-    high = _worst_ratio(peaks[:, None], every, structure, grid)  # (3, n)
-    low = _worst_ratio(largest, every, structure, grid)
-    out = high <= 1
-    for segment in range(3):
-        unsure = np.flatnonzero((low[segment] <= 1) & (high[segment] > 1))
-        if unsure.size:
-            worst = _worst_ratio(rows[segment], unsure, structure, grid)
-            out[segment, unsure] = worst <= 1
-    return out
+    rows = np.ascontiguousarray(np.abs(loads.reshape(-1, 3, 3)).swapaxes(0, 1))  # (3, R, 3)
+    shear = structure.material.shear_strength
+    return holding_tubes(
+        rows,
+        *grid.sections,
+        structure.allowed_stress,
+        structure.safety_factor,
+        0.0 if shear is None else shear,
+    )
 
 
 def _worst_ratio(
@@ -299,6 +299,7 @@ def choose_tubes(
     limit: float,
     grid: TubeGrid,
     active: list[int] | None = None,
+    hint: tuple[int, int, int] | None = None,
 ) -> tuple[int, int, int] | None:
     """The grid tubes (coxa, femur, tibia) of least mass that hold these loads, if any.
 
@@ -311,130 +312,27 @@ def choose_tubes(
         grid: The tubes (indices into its :attr:`~TubeGrid.sections`).
         active: The cases (flat index of case and leg) that bound the deflection last
             time, searched from the start; the cases found binding are added to it.
+        hint: Tubes likely to hold (the ones that loaded them, in sizing's rounds): if
+            they do, their mass bounds the search (:func:`~.tube_kernel.lightest_triple`).
 
     """
     _, area, moment = grid.sections
     holds = segment_holds(loads, structure, grid)
-    fronts = [_stiffest_for_mass(np.flatnonzero(ok), area, moment) for ok in holds]
-    if any(len(front) == 0 for front in fronts):
-        return None
     density = structure.material.density
-    masses = [density * area[f] * length for f, length in zip(fronts, lengths, strict=True)]
     vectors = integrals.reshape(-1, 3, 3) / structure.material.youngs_modulus  # (C, 3, 3)
-    per_segment = vectors.transpose(1, 0, 2).reshape(3, -1)  # (3, C·3)
-    inverse = [1.0 / moment[f] for f in fronts]
-    bound = _bound(masses, inverse, per_segment, limit)
-    if bound is not None:  # no triple heavier than a feasible one can be the lightest
-        floor = sum(m[0] for m in masses)
-        kept = [np.flatnonzero(m - m[0] <= bound - floor) for m in masses]
-        fronts = [f[k] for f, k in zip(fronts, kept, strict=True)]
-        masses = [m[k] for m, k in zip(masses, kept, strict=True)]
-        inverse = [x[k] for x, k in zip(inverse, kept, strict=True)]
     active = [] if active is None else active
-    while True:
-        best = _least_mass(masses, inverse, vectors[active], limit)
-        if best is None:
-            return None
-        x = np.array([[inverse[s][best[s]] for s in range(3)]])
-        bent = _bends(per_segment, x)[0]
-        worst = int(np.argmax(bent))
-        if bent[worst] <= limit:
-            return (int(fronts[0][best[0]]), int(fronts[1][best[1]]), int(fronts[2][best[2]]))
-        active.append(worst)
-
-
-def _bends(per_segment: ArrayF, inverse: ArrayF) -> ArrayF:
-    """Each foot's deflection [m] in each case (S, C) of S triples' 1/I (S, 3) [m⁻⁴].
-
-    ``per_segment`` (3, C·3): each case's deflection vector per unit 1/I of each segment
-    (the deflection integrals over E), the cases' side by side.
-    """
-    bent = (inverse @ per_segment).reshape(len(inverse), -1, 3)  # (S, C, 3)
-    found: ArrayF = np.sqrt((bent * bent).sum(axis=-1))
-    return found
-
-
-def _bound(
-    masses: list[ArrayF], inverse: list[ArrayF], per_segment: ArrayF, limit: float
-) -> float | None:
-    """The mass of some triple that holds every case, if one is found, else ``None``.
-
-    Each front is walked up together, at the same share of its length: the first share
-    whose triple holds bounds the lightest from above, found to 1/4096 of the way by
-    three rounds of 16 shares at once (each round within the last one's step).
-    """
-    ends = np.array([len(m) - 1 for m in masses])
-
-    def triples(shares: ArrayF) -> npt.NDArray[np.intp]:  # (S, 3)
-        return np.minimum(np.round(shares[:, None] * ends), ends).astype(np.intp)
-
-    def holding(index: npt.NDArray[np.intp]) -> npt.NDArray[np.bool_]:  # (S,)
-        x = np.stack([inverse[s][index[:, s]] for s in range(3)], axis=-1)  # (S, 3)
-        return _bends(per_segment, x).max(axis=1) <= limit
-
-    if not holding(triples(np.ones(1)))[0]:
+    triple, added = lightest_triple(
+        holds,
+        grid.by_area,
+        area,
+        moment,
+        np.array([density * length for length in lengths]),
+        np.ascontiguousarray(vectors),
+        limit,
+        np.array(active, dtype=np.int64),
+        np.array((-1, -1, -1) if hint is None else hint, dtype=np.int64),
+    )
+    active.extend(int(case) for case in added)
+    if triple[0] < 0:
         return None
-    low, high = 0.0, 1.0
-    for _ in range(3):
-        shares = low + (high - low) * np.arange(1, 17) / 16
-        held = holding(triples(shares))
-        if not held.any():  # the last share is high, which holds (kept, whatever rounding)
-            break
-        first = int(np.argmax(held))
-        low, high = (low if first == 0 else float(shares[first - 1])), float(shares[first])
-    best = triples(np.array([high]))[0]
-    return float(sum(m[i] for m, i in zip(masses, best, strict=True)))
-
-
-def _stiffest_for_mass(
-    indices: npt.NDArray[np.intp], area: ArrayF, moment: ArrayF
-) -> npt.NDArray[np.intp]:
-    """Of ``indices``, by area, those stiffer (I) than every lighter one."""
-    order = indices[np.lexsort((-moment[indices], area[indices]))]
-    stiffest = np.maximum.accumulate(moment[order])
-    kept = np.ones(len(order), dtype=bool)
-    kept[1:] = moment[order][1:] > stiffest[:-1]
-    return order[kept]
-
-
-def _least_mass(
-    masses: list[ArrayF], inverse: list[ArrayF], vectors: ArrayF, limit: float
-) -> tuple[int, int, int] | None:
-    """Indices into each front of the lightest triple whose feet deflect within ``limit``.
-
-    Args:
-        masses: Each segment's front's masses, ascending [kg].
-        inverse: Their 1/I, descending [m⁻⁴].
-        vectors: Each active case's deflection per unit 1/I of each segment (A, 3, 3).
-        limit: The deflection limit [m].
-
-    A case's deflection is ‖Σ_s x_s·v_s‖, x_s a segment's 1/I: for a coxa and a femur,
-    ‖b + x·c‖ with x the tibia's is within the limit on an interval of x (a convex
-    quadratic's sublevel set), written with the products v_s·v_t; the lightest tibia is
-    the least stiff one inside every case's interval.
-
-    """
-    if len(vectors) == 0:
-        return (0, 0, 0)
-    gram = np.einsum("aik,ajk->aij", vectors, vectors)[:, :, :, None, None]  # (A, 3, 3, 1, 1)
-    xc, xf = inverse[0][:, None], inverse[1][None, :]  # (C, 1), (1, F)
-    bb = gram[:, 0, 0] * xc * xc + 2 * gram[:, 0, 1] * xc * xf + gram[:, 1, 1] * xf * xf
-    bc = gram[:, 0, 2] * xc + gram[:, 1, 2] * xf  # (A, C, F)
-    cc = np.broadcast_to(gram[:, 2, 2], bb.shape)
-    square = bc * bc - cc * (bb - limit * limit)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        root = np.sqrt(np.maximum(square, 0.0))
-        low = np.where(cc > 0, (-bc - root) / cc, np.where(bb <= limit * limit, -np.inf, np.inf))
-        high = np.where(cc > 0, (-bc + root) / cc, np.where(bb <= limit * limit, np.inf, -np.inf))
-    empty = (cc > 0) & (square < 0)
-    low, high = np.where(empty, np.inf, low).max(axis=0), np.where(empty, -np.inf, high).min(axis=0)
-    descending = -inverse[2]  # ascending: the tibia's front from light (large 1/I) to stiff
-    first = np.searchsorted(descending, -high, side="left")  # first tibia with 1/I ≤ high
-    last = np.searchsorted(descending, -low, side="right") - 1  # last with 1/I ≥ low
-    ok = (first <= last) & (first < len(descending))
-    if not ok.any():
-        return None
-    tibia = masses[2][np.minimum(first, len(descending) - 1)]
-    total = np.where(ok, masses[0][:, None] + masses[1][None, :] + tibia, np.inf)
-    i, j = np.unravel_index(int(np.argmin(total)), total.shape)
-    return (int(i), int(j), int(first[i, j]))
+    return (int(triple[0]), int(triple[1]), int(triple[2]))
