@@ -24,7 +24,7 @@ from hexaleg.materials import shipped_materials
 from hexaleg.statics.forces import Payload
 from hexaleg.structure.affine import affine_terms
 from hexaleg.structure.grid import DEFAULT_GRID, TubeGrid
-from hexaleg.structure.sizing import segment_holds, size_for_cases, size_structure
+from hexaleg.structure.sizing import choose_tubes, segment_holds, size_for_cases, size_structure
 from hexaleg.structure.standing import check_standing, standing_cases, standing_terms
 
 CATALOG = shipped_materials()
@@ -282,3 +282,52 @@ def test_a_grid_pickles_by_its_fields_and_the_default_one_comes_back_as_itself()
     back = pickle.loads(pickle.dumps(other))
     assert back == other and back is not DEFAULT_GRID
     np.testing.assert_array_equal(back.sections, other.sections)
+
+
+MEDIUM = TubeGrid(
+    smallest_diameter=0.006,
+    largest_diameter=0.040,
+    diameter_step=0.002,
+    wall_step=0.001,
+    max_slenderness=30.0,
+)
+
+
+@pytest.mark.parametrize("seed", range(6))
+def test_the_tube_choice_is_the_lightest_triple_by_brute_force_with_or_without_a_hint(seed):
+    # the oracle: every triple of a 44-tube grid, its ratios and deflections by the formulas
+    rng = np.random.default_rng(100 + seed)
+    structure = seeded(seed).structure
+    lengths = tuple(rng.uniform(0.05, 0.5, 3))
+    loads = rng.normal(size=(3, 6, 3, 3)) * np.array([300.0, 20.0, 3.0]) * 10 ** rng.uniform(0, 1.5)
+    integrals = rng.normal(size=(3, 6, 3, 3)) * 10 ** rng.uniform(-2, 0)
+    outer, area, moment = MEDIUM.sections
+    magnitude = np.abs(loads).reshape(-1, 3, 3)  # (R, segment, 3)
+    fibre = outer / 2
+    sigma = magnitude[..., 0, None] / area + magnitude[..., 1, None] * fibre / moment
+    tau = magnitude[..., 2, None] * fibre / (2 * moment)
+    ratio = np.sqrt(sigma**2 + 3 * tau**2) / structure.allowed_stress  # (R, segment, n)
+    if structure.material.shear_strength is not None:
+        ratio = np.maximum(ratio, tau * structure.safety_factor / structure.material.shear_strength)
+    holds = (ratio <= 1).all(axis=0)  # (segment, n)
+    index = np.array(list(itertools.product(range(len(area)), repeat=3)))  # (T, 3)
+    vectors = integrals.reshape(-1, 3, 3) / structure.material.youngs_modulus  # (C, s, 3)
+    bent = np.linalg.norm(np.einsum("csk,ts->tck", vectors, 1 / moment[index]), axis=-1)
+    mass = (structure.material.density * area[index] * np.array(lengths)).sum(axis=1)
+    strong = holds[0, index[:, 0]] & holds[1, index[:, 1]] & holds[2, index[:, 2]]
+    # a limit that binds: the median deflection of the triples strong enough
+    limit = float(np.median(bent[strong].max(axis=1))) if strong.any() else 1.0
+    feasible = strong & (bent.max(axis=1) <= limit)
+    hints = [None, tuple(int(i) for i in index[rng.integers(len(index))])]
+    if feasible.any():
+        hints.append(tuple(int(i) for i in index[np.flatnonzero(feasible)[-1]]))
+    for hint in hints:
+        active: list[int] = []
+        chosen = choose_tubes(loads, integrals, structure, lengths, limit, MEDIUM, active, hint)
+        if not feasible.any():
+            assert chosen is None
+            continue
+        assert chosen is not None
+        row = int(np.flatnonzero((index == chosen).all(axis=1))[0])
+        assert feasible[row]  # it holds, by the formulas
+        assert mass[row] <= mass[feasible].min() * (1 + 1e-12)  # and none is lighter
