@@ -1,9 +1,12 @@
 """Inverse dynamics of a gait period on the free-flyer model, and the standing feet's forces.
 
-At each sample, Pinocchio's RNEA on the free-flyer model (the design's URDF, the payload a
-point mass fixed to the body) gives the generalized forces of the motion: base velocity
-v·u, base acceleration 0, the legs' joint motion. The standing feet's forces f_i (ground
-frame, at the foot frame's origin) balance its six base rows,
+At each sample, the RNEA on the free-flyer Pinocchio model (the design's URDF, the payload
+a point mass fixed to the body) gives the generalized forces of the motion: base velocity
+v·u, base acceleration 0, the legs' joint motion. The body neither turns nor accelerates,
+so the legs' chains are solved for every sample at once
+(:mod:`~hexaleg.gait.newton_euler`, held to Pinocchio's ``rnea`` by the tests); a model
+whose legs are not plain chains takes Pinocchio's calls, sample by sample. The standing
+feet's forces f_i (ground frame, at the foot frame's origin) balance its six base rows,
 Σ J_i,baseᵀ f_i = RNEA[0:6], and the joint torques are τ = RNEA[6:] − Σ J_i,jointsᵀ f_i;
 swinging legs carry their own inertia and gravity. The split is the minimum-norm one
 (:func:`~hexaleg.statics.forces.min_norm_forces`) or the min-torque QP with friction of
@@ -16,14 +19,15 @@ runs at q, q̇ = s·θ̇, q̈ = s·θ̈ and each joint's torque on θ is s times
 
 Every joint velocity is (1/T)·(a derivative by the phase) and every acceleration (1/T²)·(…),
 so RNEA = g(q) + (M(q)·q'' + C(q, q')·q')/T² exactly: a static part and an inertial part
-over T². Both are computed once (Pinocchio's generalized gravity, and RNEA without
-gravity on the phase derivatives); the minimum-norm forces and the torques are linear in
+over T². Both are computed once (the generalized gravity, and RNEA without gravity on
+the phase derivatives); the minimum-norm forces and the torques are linear in
 them, so one evaluation serves every period of the same stride.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import numpy.typing as npt
@@ -31,6 +35,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.gait.jacobian import transpose_times
+from hexaleg.gait.newton_euler import LegBodies, leg_bodies, leg_forces
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
@@ -121,7 +126,8 @@ class LoadedRobot:
             point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
             self.model.inertias[base] = self.model.inertias[base] + point
         self.model.gravity.linear = self.gravity
-        self.data = model.data if own else self.model.createData()
+        self._shared = model if own else None  # whose Pinocchio data serves, if any
+        self._data: pin.Data | None = None
         self.mass = float(pin.computeTotalMass(self.model))
         self.legs = model.leg_names
         self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
@@ -129,9 +135,32 @@ class LoadedRobot:
         self.signs = joint_signs(model)
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
+        self._joints = [list(model.leg_joint_ids(leg)) for leg in model.leg_names]
+
+    @property
+    def data(self) -> pin.Data:
+        """Pinocchio's workspace for :attr:`model` (made on first use: the chains need none)."""
+        if self._data is None:
+            shared = self._shared
+            self._data = shared.data if shared is not None else self.model.createData()
+        return self._data
+
+    @cached_property
+    def bodies(self) -> LegBodies | None:
+        """The legs as chains for :func:`~hexaleg.gait.newton_euler.leg_forces`, or ``None``.
+
+        ``None`` where the model is not six chains of three revolute joints on the body
+        (:func:`~hexaleg.gait.newton_euler.leg_bodies`): Pinocchio's calls serve it.
+        """
+        return leg_bodies(self.model, self._joints)
 
     def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
-        """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
+        """RNEA at each sample, by its two parts.
+
+        The body translates at a constant velocity without turning, so the legs' chains
+        are solved for every sample at once (:func:`~hexaleg.gait.newton_euler.leg_forces`);
+        a model whose legs are not such chains (:attr:`bodies`) takes one Pinocchio call
+        per part and sample.
 
         Args:
             motion: Joint angles θ and their phase derivatives (N, 6, 3), ``leg_names``
@@ -139,7 +168,7 @@ class LoadedRobot:
             base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
 
         """
-        count, model, data = len(motion.angles), self.model, self.data
+        count, model = len(motion.angles), self.model
         q = np.zeros((count, model.nq))
         q[:, :3] = np.arange(count)[:, None] / count * base_travel
         q[:, 2] += self.height
@@ -151,6 +180,34 @@ class LoadedRobot:
         velocity[:, self.v_index] = self.signs * motion.velocity
         acceleration = np.zeros((count, model.nv))
         acceleration[:, self.v_index] = self.signs * motion.acceleration
+        rows = self._chain_rows if self.bodies is not None else self._pinocchio_rows
+        static, inertial = rows(q, velocity, acceleration)
+        return GeneralizedForces(q, velocity, acceleration, static, inertial)
+
+    def _chain_rows(
+        self, q: ArrayF, velocity: ArrayF, acceleration: ArrayF
+    ) -> tuple[ArrayF, ArrayF]:
+        """The static and inertial rows (N, nv) from the legs' chains (every joint a leg's)."""
+        assert self.bodies is not None
+        parts = leg_forces(
+            self.bodies,
+            q[:, self.q_index],
+            velocity[:, self.v_index],
+            acceleration[:, self.v_index],
+            velocity[0, :3],
+            self.gravity,
+        )
+        rows = np.empty((2, len(q), self.model.nv))  # every row is a leg's or the body's
+        for row, part in zip(rows, parts, strict=True):
+            row[:, :6] = part.base
+            row[:, self.v_index] = part.torques
+        return rows[0], rows[1]
+
+    def _pinocchio_rows(
+        self, q: ArrayF, velocity: ArrayF, acceleration: ArrayF
+    ) -> tuple[ArrayF, ArrayF]:
+        """The static and inertial rows (N, nv): Pinocchio's, one call per part and sample."""
+        model, data, count = self.model, self.data, len(q)
         static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
         for k in range(count):
             static[k] = pin.computeGeneralizedGravity(model, data, q[k])
@@ -160,7 +217,7 @@ class LoadedRobot:
                 inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
         finally:
             model.gravity.linear = self.gravity
-        return GeneralizedForces(q, velocity, acceleration, static, inertial)
+        return static, inertial
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,356 @@
+"""Inverse dynamics of the walking robot's legs, every sample of a period at once.
+
+While the robot walks, its body neither turns nor accelerates: it translates at a
+constant velocity. A frame moving so is inertial, so each leg's joint torques and the
+wrench it puts on the body depend on that leg's own motion only, and the body's rows of
+the generalized forces are its own weight plus the six legs' wrenches. The recursive
+Newton–Euler algorithm (Featherstone, *Rigid Body Dynamics Algorithms*, 2008, §5.3)
+then runs over the six three-joint chains for all N samples at once, with arrays of
+shape (N, 6, 3): one pass instead of 2N calls of Pinocchio's ``rnea`` from Python, the
+walks' inverse dynamics (:meth:`~hexaleg.gait.dynamics.LoadedRobot.generalized_forces`).
+
+Geometry and inertias are read from the Pinocchio model (its joint placements, axes and
+body inertias: the URDF's), never from the design. A model whose legs are not three
+revolute joints in a row on the body (a robot file with other joints) gets ``None`` from
+:func:`leg_bodies`, and Pinocchio's per-sample ``rnea`` serves it. The tests hold this
+module to Pinocchio's ``rnea`` on seeded designs, postures and motions, on a robot file
+and on random general hexapods.
+
+Spatial vectors are kept as their two 3-vector parts, in each joint's frame: a motion
+by its angular part ω and the linear velocity of the frame's origin v; a force by its
+linear part f and its moment n about the origin.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import pinocchio as pin
+
+from hexaleg._compiled import compiled
+from hexaleg._typing import ArrayF
+
+REVOLUTE = ("JointModelRX", "JointModelRY", "JointModelRZ", "JointModelRevoluteUnaligned")
+"""Pinocchio's one-angle revolute joints (a continuous joint has two coordinates)."""
+JOINTS_PER_LEG = 3
+"""Root, hip and knee."""
+ROOT = 1
+"""The free-flyer's joint index in a Pinocchio model (0 is the universe)."""
+
+
+@dataclass(frozen=True)
+class LegBodies:
+    """The legs' joints and bodies as Pinocchio has them, one array per quantity.
+
+    Index order: leg (L, the model's ``leg_names``), then joint (3, root to knee).
+
+    Attributes:
+        rotations: Each joint frame's rotation in its parent's at zero angle (L, 3, 3, 3).
+        translations: Its origin in its parent's frame (L, 3, 3) [m].
+        axes: Its rotation axis, in its own frame (L, 3, 3) (unit).
+        masses: The body it moves (L, 3) [kg].
+        centers: That body's centre of mass in the joint frame (L, 3, 3) [m].
+        inertias: Its rotational inertia about the centre (L, 3, 3, 3) [kg·m²].
+        armatures: The joint's armature, the rotor's inertia seen at the joint (L, 3)
+            [kg·m²]: its torque gains armature × acceleration, as in ``rnea``.
+        base_mass: The body's (with anything carried on it) [kg].
+        base_center: Its centre of mass in the body frame (3,) [m].
+
+    """
+
+    rotations: ArrayF
+    translations: ArrayF
+    axes: ArrayF
+    masses: ArrayF
+    centers: ArrayF
+    inertias: ArrayF
+    armatures: ArrayF
+    base_mass: float
+    base_center: ArrayF
+
+
+@dataclass(frozen=True)
+class LegForces:
+    """Inverse dynamics over a period: what each joint and the body must supply.
+
+    Attributes:
+        torques: Each leg joint's generalized force (N, L, 3) [N·m].
+        base: The body's six rows, linear then angular, in the body frame (N, 6) [N, N·m].
+
+    """
+
+    torques: ArrayF
+    base: ArrayF
+
+
+def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | None:
+    """The bodies of ``model``'s legs, or ``None`` if they are not this module's kind.
+
+    Args:
+        model: A free-floating robot's Pinocchio model.
+        leg_joints: Each leg's joint indices, root to knee.
+
+    Returns:
+        ``None`` unless every joint besides the universe and the free-flyer belongs to a
+        leg, each leg is three one-angle revolute joints in a row hung on the body.
+
+    """
+    joints = [j for leg in leg_joints for j in leg]
+    if model.joints[ROOT].shortname() != "JointModelFreeFlyer" or sorted(joints) != list(
+        range(ROOT + 1, model.njoints)
+    ):
+        return None
+    for leg in leg_joints:
+        if len(leg) != JOINTS_PER_LEG or [model.parents[j] for j in leg] != [ROOT, *leg[:-1]]:
+            return None
+    kinds = {model.joints[j].shortname() for j in joints}
+    if not kinds <= set(REVOLUTE):
+        return None
+    placements = [model.jointPlacements[j] for j in joints]
+    inertias = [model.inertias[j] for j in joints]
+    axes = [_axis(model.joints[j].extract()) for j in joints]
+    shape = (len(leg_joints), JOINTS_PER_LEG)
+
+    def per_joint(values: list[ArrayF] | list[float]) -> ArrayF:
+        array = np.array(values, dtype=float)
+        return array.reshape(*shape, *array.shape[1:])
+
+    base = model.inertias[ROOT]
+    return LegBodies(
+        rotations=per_joint([placement.rotation for placement in placements]),
+        translations=per_joint([placement.translation for placement in placements]),
+        axes=per_joint(axes),
+        masses=per_joint([inertia.mass for inertia in inertias]),
+        centers=per_joint([inertia.lever for inertia in inertias]),
+        inertias=per_joint([inertia.inertia for inertia in inertias]),
+        armatures=per_joint([float(model.armature[model.joints[j].idx_v]) for j in joints]),
+        base_mass=float(base.mass),
+        base_center=np.array(base.lever, dtype=float),
+    )
+
+
+def _axis(joint: object) -> ArrayF:
+    """A one-angle revolute joint's axis in its own frame (unit)."""
+    axis = getattr(joint, "axis", None)  # unaligned; RX, RY, RZ name theirs
+    found = joint.getMotionAxis() if axis is None else axis  # type: ignore[attr-defined]
+    return np.array(found, dtype=np.float64)
+
+
+def leg_forces(
+    bodies: LegBodies,
+    angles: ArrayF,
+    rates: ArrayF,
+    accelerations: ArrayF,
+    base_velocity: ArrayF,
+    gravity: ArrayF,
+) -> tuple[LegForces, LegForces]:
+    """Recursive Newton–Euler over every leg and sample: Pinocchio's ``rnea``, batched.
+
+    The body moves at ``base_velocity`` without turning or accelerating. The forces come
+    in two parts, as the walks use them: the static part holds the robot still in
+    gravity, ``rnea(q, 0, 0)`` (Pinocchio's ``computeGeneralizedGravity``), the inertial
+    part moves it without gravity, ``rnea(q, v, a)`` at zero gravity.
+
+    Args:
+        bodies: The legs (:func:`leg_bodies`).
+        angles: Joint coordinates q (N, L, 3) [rad].
+        rates: Their rates (N, L, 3) [rad/s].
+        accelerations: Their accelerations (N, L, 3) [rad/s²].
+        base_velocity: The body's linear velocity in its own frame (3,) [m/s].
+        gravity: Gravitational acceleration in the body frame (3,) [m/s²].
+
+    Returns:
+        The static part and the inertial part.
+
+    """
+    torques = np.empty((2, *np.shape(angles)))
+    base = np.zeros((2, len(angles), 6))  # the body's own weight, then the legs' wrenches
+    base[0, :, :3] = -bodies.base_mass * np.asarray(gravity, dtype=float)
+    base[0, :, 3:] = np.cross(bodies.base_center, base[0, 0, :3])
+    _newton_euler(
+        bodies.rotations,
+        bodies.translations,
+        bodies.axes,
+        bodies.masses,
+        bodies.centers,
+        bodies.inertias,
+        bodies.armatures,
+        np.ascontiguousarray(angles, dtype=float),
+        np.ascontiguousarray(rates, dtype=float),
+        np.ascontiguousarray(accelerations, dtype=float),
+        np.asarray(base_velocity, dtype=float),
+        np.asarray(gravity, dtype=float),
+        bodies.base_mass,
+        bodies.base_center,
+        torques,
+        base,
+    )
+    return LegForces(torques[0], base[0]), LegForces(torques[1], base[1])
+
+
+@compiled
+def _newton_euler(
+    rotations: ArrayF,
+    translations: ArrayF,
+    axes: ArrayF,
+    masses: ArrayF,
+    centers: ArrayF,
+    inertias: ArrayF,
+    armatures: ArrayF,
+    angles: ArrayF,
+    rates: ArrayF,
+    accelerations: ArrayF,
+    base_velocity: ArrayF,
+    gravity: ArrayF,
+    base_mass: float,
+    base_center: ArrayF,
+    torques: ArrayF,
+    base: ArrayF,
+) -> None:  # pragma: no cover - compiled; tested against Pinocchio's rnea
+    """:func:`leg_forces`' work: fills ``torques`` (2, N, L, 3), adds the legs to ``base``.
+
+    Index 0 is the static part: at rest in gravity, every body's acceleration is the
+    upward −g carried down the chain. Index 1 the inertial part, moving without gravity.
+    The body neither turns nor accelerates. The forward pass keeps each joint's rotation
+    in its parent's frame (``frame``) and each body's I·a + v ×* (I·v) per part in its
+    joint's frame (``forces``) for the backward pass (:func:`_carry_up`).
+    """
+    count, legs, joints = angles.shape
+    frame, forces = np.empty((joints, 3, 3)), np.empty((2, joints, 2, 3))
+    zero = (0.0, 0.0, 0.0)
+    for n, leg in np.ndindex(count, legs):
+        lifted = _scale(-1.0, _vector(gravity))
+        omega, velocity, alpha, linear = zero, _vector(base_velocity), zero, zero
+        for k in range(joints):
+            axis, offset = _vector(axes[leg, k]), _vector(translations[leg, k])
+            _joint_frame(rotations[leg, k], axis, angles[n, leg, k], frame[k])
+            spin = _scale(rates[n, leg, k], axis)
+            # the parent's motion carried to this joint's frame, then the joint's own
+            lifted = _inverse_rotate(frame[k], lifted)
+            velocity = _inverse_rotate(frame[k], _add(velocity, _cross(omega, offset)))
+            linear = _inverse_rotate(frame[k], _add(linear, _cross(alpha, offset)))
+            omega = _add(_inverse_rotate(frame[k], omega), spin)
+            alpha = _add(_inverse_rotate(frame[k], alpha), _scale(accelerations[n, leg, k], axis))
+            alpha, linear = _add(alpha, _cross(omega, spin)), _add(linear, _cross(velocity, spin))
+            mass, center = masses[leg, k], _vector(centers[leg, k])
+            momentum = _scale(mass, _add(velocity, _cross(omega, center)))
+            angular = _add(_rotate(inertias[leg, k], omega), _cross(center, momentum))
+            force = _scale(mass, _add(linear, _cross(alpha, center)))
+            moment = _add(_rotate(inertias[leg, k], alpha), _cross(center, force))
+            force = _add(force, _cross(omega, momentum))
+            moment = _add(_add(moment, _cross(omega, angular)), _cross(velocity, momentum))
+            weight = _scale(mass, lifted)
+            _store(forces[0, k], weight, _cross(center, weight))
+            _store(forces[1, k], force, moment)
+        for part in range(2):
+            force, moment = _carry_up(translations, axes, frame, forces, torques, part, n, leg)
+            for i in range(3):
+                base[part, n, i] += force[i]
+                base[part, n, 3 + i] += moment[i]
+        for k in range(joints):
+            torques[1, n, leg, k] += armatures[leg, k] * accelerations[n, leg, k]
+
+
+@compiled
+def _carry_up(
+    translations: ArrayF,
+    axes: ArrayF,
+    frame: ArrayF,
+    forces: ArrayF,
+    torques: ArrayF,
+    part: int,
+    n: int,
+    leg: int,
+) -> tuple[Vector, Vector]:  # pragma: no cover - compiled
+    """Leg ``leg``'s backward pass of one part at sample ``n``: torques, wrench on the body."""
+    force, moment = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+    for k in range(forces.shape[1] - 1, -1, -1):
+        force = _add(force, _vector(forces[part, k, 0]))
+        moment = _add(moment, _vector(forces[part, k, 1]))
+        torques[part, n, leg, k] = _dot(_vector(axes[leg, k]), moment)
+        force = _rotate(frame[k], force)
+        moment = _add(_rotate(frame[k], moment), _cross(_vector(translations[leg, k]), force))
+    return force, moment
+
+
+Vector = tuple[float, float, float]
+
+
+@compiled
+def _store(out: ArrayF, force: Vector, moment: Vector) -> None:  # pragma: no cover - compiled
+    """A force and its moment into the rows of ``out`` (2, 3)."""
+    for i in range(3):
+        out[0, i], out[1, i] = force[i], moment[i]
+
+
+@compiled
+def _vector(a: ArrayF) -> Vector:  # pragma: no cover - compiled
+    """A 3-array as a tuple."""
+    return (a[0], a[1], a[2])
+
+
+@compiled
+def _add(a: Vector, b: Vector) -> Vector:  # pragma: no cover - compiled
+    """A + b."""
+    return (a[0] + b[0], a[1] + b[1], a[2] + b[2])
+
+
+@compiled
+def _scale(s: float, a: Vector) -> Vector:  # pragma: no cover - compiled
+    """s·a."""
+    return (s * a[0], s * a[1], s * a[2])
+
+
+@compiled
+def _dot(a: Vector, b: Vector) -> float:  # pragma: no cover - compiled
+    """A · b."""
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+@compiled
+def _cross(a: Vector, b: Vector) -> Vector:  # pragma: no cover - compiled
+    """A × b."""
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+@compiled
+def _rotate(matrix: ArrayF, a: Vector) -> Vector:  # pragma: no cover - compiled
+    """M·a of a 3 × 3 array."""
+    return (
+        matrix[0, 0] * a[0] + matrix[0, 1] * a[1] + matrix[0, 2] * a[2],
+        matrix[1, 0] * a[0] + matrix[1, 1] * a[1] + matrix[1, 2] * a[2],
+        matrix[2, 0] * a[0] + matrix[2, 1] * a[1] + matrix[2, 2] * a[2],
+    )
+
+
+@compiled
+def _inverse_rotate(rotation: ArrayF, a: Vector) -> Vector:  # pragma: no cover - compiled
+    """Rᵀ·a: a parent-frame vector in the child's frame."""
+    return (
+        rotation[0, 0] * a[0] + rotation[1, 0] * a[1] + rotation[2, 0] * a[2],
+        rotation[0, 1] * a[0] + rotation[1, 1] * a[1] + rotation[2, 1] * a[2],
+        rotation[0, 2] * a[0] + rotation[1, 2] * a[1] + rotation[2, 2] * a[2],
+    )
+
+
+@compiled
+def _joint_frame(
+    placement: ArrayF, axis: Vector, angle: float, out: ArrayF
+) -> None:  # pragma: no cover - compiled
+    """Placement · Rot(axis, angle) into ``out``: Rodrigues' formula for the joint's turn."""
+    x, y, z = axis
+    s, c = np.sin(angle), np.cos(angle)
+    t = 1.0 - c
+    turn = (
+        (c + t * x * x, t * x * y - s * z, t * x * z + s * y),
+        (t * x * y + s * z, c + t * y * y, t * y * z - s * x),
+        (t * x * z - s * y, t * y * z + s * x, c + t * z * z),
+    )
+    for i in range(3):
+        for j in range(3):
+            out[i, j] = (
+                placement[i, 0] * turn[0][j]
+                + placement[i, 1] * turn[1][j]
+                + placement[i, 2] * turn[2][j]
+            )
