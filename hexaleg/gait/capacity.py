@@ -64,6 +64,7 @@ from hexaleg.gait.walk import Loads, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.capacity import first_lowest_index
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.ground import LEVEL, Ground
 
@@ -179,42 +180,49 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
 
 
 def _largest(offset: ArrayF, slope: ArrayF) -> tuple[float, int] | None:
-    """The largest m ≥ 0 with every ``offset + m·slope ≥ 0`` (flat arrays), and which binds.
+    """The largest m ≥ 0 with every ``offset + m·slope ≥ 0``, and which binds (flat index).
 
-    Negative (with the index of the broken one) when one is broken at m = 0 already;
-    ``None`` when none bounds m.
+    Negative (the most broken offset, with its index) when one is broken at m = 0
+    already; ``None`` when none bounds m. Of bounds that tie (mirror-image legs) the first
+    in the arrays' order binds (:func:`~hexaleg.statics.capacity.first_lowest_index`).
     """
+    offset, slope = offset.ravel(), slope.ravel()
     if (offset < 0).any():
-        index = int(np.argmin(offset))
-        return float(offset[index]), index
+        return float(offset.min()), first_lowest_index(offset)
     shrinking = slope < 0
     if not shrinking.any():
         return None
     limits = np.full(offset.shape, np.inf)
     limits[shrinking] = -offset[shrinking] / slope[shrinking]
-    index = int(np.argmin(limits))
-    return float(limits[index]), index
+    return float(limits.min()), first_lowest_index(limits)
 
 
 def _joint_cause(
     kind: CauseKind, legs: tuple[str, ...], index: int, shape: tuple[int, ...]
 ) -> Cause:
-    """The cause of a bound on flat ``index`` into an array of ``shape`` (..., 6, 3)."""
-    *_, leg, joint = np.unravel_index(index, shape)
+    """The cause of a bound on flat ``index`` into an array of ``shape`` (6, 3, ...)."""
+    leg, joint, *_ = np.unravel_index(index, shape)
     return Cause(kind, legs[leg], LEG_JOINTS[joint])
 
 
 def _window_bound(
     kind: CauseKind, legs: tuple[str, ...], base: ArrayF, slope: ArrayF, low: ArrayF, high: ArrayF
 ) -> tuple[float, Cause] | None:
-    """Every joint at every sample with low ≤ τ₀ + m·Δτ ≤ high (each broadcast to (N, 6, 3))."""
+    """Every joint at every sample with low ≤ τ₀ + m·Δτ ≤ high (each broadcast to (N, 6, 3)).
+
+    Ties go in leg order, then joint order: the bounds are ordered (leg, joint, side, sample).
+    """
     low, high = np.broadcast_to(low, base.shape), np.broadcast_to(high, base.shape)
-    offset = np.concatenate(((high - base).ravel(), (base - low).ravel()))
-    found = _largest(offset, np.concatenate(((-slope).ravel(), slope.ravel())))
+    offset = np.stack((high - base, base - low)).transpose(_LEG_FIRST)
+    found = _largest(offset, np.stack((-slope, slope)).transpose(_LEG_FIRST))
     if found is None:
         return None
     mass, index = found
-    return mass, _joint_cause(kind, legs, index % base.size, base.shape)
+    return mass, _joint_cause(kind, legs, index, offset.shape)
+
+
+_LEG_FIRST = (2, 3, 0, 1)
+"""(side, sample, leg, joint) → (leg, joint, side, sample)."""
 
 
 def _torque_bound(
@@ -236,10 +244,8 @@ def _continuous_bound(
     quadratic, linear = np.mean(slope**2, axis=0), np.mean(base * slope, axis=0)  # (6, 3)
     headroom = np.square(actuators.continuous_torques) - np.mean(base**2, axis=0)
     if (headroom < 0).any():
-        index = int(np.argmin(headroom))
-        return float(headroom.flat[index]), _joint_cause(
-            "continuous_torque", legs, index, headroom.shape
-        )
+        index = first_lowest_index(headroom)
+        return float(headroom.min()), _joint_cause("continuous_torque", legs, index, headroom.shape)
     grows = quadratic > 0  # else Δτ = 0 throughout: the RMS does not change with m
     if not grows.any():
         return None
@@ -249,8 +255,8 @@ def _continuous_bound(
     limits[ahead] = headroom[ahead] / (linear[ahead] + root[ahead])
     behind = grows & (linear < 0)
     limits[behind] = (root[behind] - linear[behind]) / quadratic[behind]
-    index = int(np.argmin(limits))
-    return float(limits.flat[index]), _joint_cause("continuous_torque", legs, index, limits.shape)
+    index = first_lowest_index(limits)
+    return float(limits.min()), _joint_cause("continuous_torque", legs, index, limits.shape)
 
 
 def _voltage_bound(
@@ -333,6 +339,6 @@ def _grip_bound(walker: Walker, loads: Loads, carried: CarriedLoad) -> tuple[flo
 
 
 def _fastest(walker: Walker, over: np.ndarray, speeds: ArrayF) -> Cause:
-    """The fastest of the joints over their rated speed (N, 6, 3), as a cause."""
-    index = np.unravel_index(int(np.argmax(np.where(over, speeds, -np.inf))), speeds.shape)
-    return Cause("speed", walker.frames.legs[index[1]], LEG_JOINTS[index[2]])
+    """The fastest of the joints over their rated speed (N, 6, 3), as a cause (ties: leg order)."""
+    fastest = np.where(over, -speeds, np.inf).transpose(1, 2, 0)  # (leg, joint, sample)
+    return _joint_cause("speed", walker.frames.legs, first_lowest_index(fastest), fastest.shape)
