@@ -159,6 +159,8 @@ def violations(margins: ArrayF, legs: Sequence[str], times: ArrayF) -> tuple[Vio
     broken = margins < -TOLERANCE
     flat = broken.reshape(len(times), -1)
     ever = flat.any(axis=0)
+    if not ever.any():
+        return ()
     first = flat.argmax(axis=0)
     causes = [cause for leg in legs for cause in leg_causes(leg)]
     order = sorted(np.flatnonzero(ever), key=lambda c: (first[c], c))
