@@ -309,7 +309,7 @@ def test_the_zmp_bound_is_where_the_gaits_zmp_reaches_the_polygons_edge():
     walk = walker.stride(gait.stride)
     probe = payload_wrench(walker.payload.point(model), PROBE_MASS, walker.gravity_vector)
     rnea = walker.loads(gait.stride, walk, gait.period).rnea
-    mass, cause = _zmp_bound(walker, rnea, probe, walk.paths.position)
+    mass, cause = _zmp_bound(walker, walk, rnea, probe)
 
     def margin(m: float) -> float:
         walked = analyze_gait(design, gait, Payload(m, position), model=model, limits=False)

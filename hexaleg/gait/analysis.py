@@ -27,7 +27,7 @@ from hexaleg.gait.friction import Slip, friction_ratios, slips
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
+from hexaleg.gait.stability import Supports, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.gravity import GRAVITY
@@ -76,6 +76,7 @@ class GaitAnalysis:
         feet: Foot positions (N, 6, 3) in the body frame [m].
         zmp: The zero-moment point (N, 2) [m], ground frame, on the ground's plane (its
             margin: :attr:`zmp_margin`, computed on first use).
+        supports: The standing feet's support polygons along the period, ground frame.
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
@@ -109,6 +110,7 @@ class GaitAnalysis:
     foot_forces: ArrayF
     feet: ArrayF
     zmp: ArrayF
+    supports: Supports
     metrics: GaitMetrics
     violations: tuple[Violation, ...]
     max_stride: StrideLimit | None
@@ -119,8 +121,7 @@ class GaitAnalysis:
     @cached_property
     def zmp_margin(self) -> ArrayF:
         """The ZMP's signed distance inside the standing feet's polygon (N,) [m]."""
-        feet = feet_on_ground(self.feet, self.configurations, self.frames.height)
-        return zmp_margins(self.zmp, feet, self.stance)
+        return zmp_margins(self.zmp, self.supports)
 
     @property
     def min_zmp_margin(self) -> float:
@@ -407,6 +408,7 @@ def _analysis(
         foot_forces=loads.split.forces(period),
         feet=walk.paths.position,
         zmp=zero_moment_points(wrench, walker.frames.height) + travel,
+        supports=walker.supports(walk, loads.rnea.configurations),
         metrics=gait_metrics(torques, velocities, period, weight_travel),
         violations=walk.violations,
         max_stride=stride_limit,

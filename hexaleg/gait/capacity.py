@@ -59,8 +59,8 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.gait.dynamics import CarriedLoad, GeneralizedForces, payload_wrench
 from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import feet_on_ground, zmp_sides
-from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gait.stability import zmp_sides
+from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
@@ -160,7 +160,7 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
-        _zmp_bound(unloaded, loads.rnea, probe, walk.paths.position),
+        _zmp_bound(unloaded, walk, loads.rnea, probe),
         _grip_bound(unloaded, loads, carried),
     ]
     actuators, bus = model.design.actuators, model.design.bus_voltage
@@ -299,7 +299,7 @@ def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
 
 
 def _zmp_bound(
-    walker: Walker, rnea: GeneralizedForces, probe: ArrayF, feet: ArrayF
+    walker: Walker, walk: Stride, rnea: GeneralizedForces, probe: ArrayF
 ) -> tuple[float, Cause] | None:
     """The ZMP on the inner side of every edge of the standing feet's polygon.
 
@@ -315,8 +315,7 @@ def _zmp_bound(
         np.stack((wrench, np.broadcast_to(probe / PROBE_MASS, wrench.shape))),
         height,
         configurations[:, :2],
-        feet_on_ground(feet, configurations, height),
-        walker.phases.stance,
+        walker.supports(walk, configurations),
     )
     found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))

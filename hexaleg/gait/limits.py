@@ -57,7 +57,7 @@ from hexaleg.electrical.ratings import RATED, RatingLoads, motor_loads
 from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.friction import cone_limit, friction_ratios
-from hexaleg.gait.stability import feet_on_ground, zmp_sides
+from hexaleg.gait.stability import zmp_sides
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
 from hexaleg.limits import LEG_JOINTS
@@ -251,9 +251,9 @@ def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
     (:func:`~hexaleg.gait.stability.zmp_sides`): the largest w keeping all ≥ 0 is exact.
     """
     height, configurations = walker.frames.height, rnea.configurations
-    feet = feet_on_ground(walk.paths.position, configurations, height)
+    supports = walker.supports(walk, configurations)
     parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
-    static, inertial = zmp_sides(parts, height, configurations[:, :2], feet, walker.phases.stance)
+    static, inertial = zmp_sides(parts, height, configurations[:, :2], supports)
     if (static < 0).any():
         return -1.0
     shrinking = inertial < 0

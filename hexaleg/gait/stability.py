@@ -23,6 +23,8 @@ is linear in the wrench (:func:`zmp_sides`): with the wrench static + w·inertia
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 import numpy.typing as npt
 
@@ -52,29 +54,48 @@ def feet_on_ground(feet: ArrayF, configurations: ArrayF, height: float) -> Array
     return on_ground
 
 
-def zmp_margins(zmp: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> ArrayF:
+@dataclass(frozen=True)
+class Supports:
+    """The standing feet's support polygons along a walk, ground frame.
+
+    Standing feet do not move, so one polygon serves each run of samples with the same
+    standing legs; every ZMP check of a walk (:func:`zmp_margins`, :func:`zmp_sides`)
+    shares them.
+
+    Attributes:
+        runs: The samples of each run (ascending, together every sample once).
+        polygons: Each run's polygon.
+
+    """
+
+    runs: tuple[npt.NDArray[np.intp], ...]
+    polygons: tuple[SupportPolygon, ...]
+
+    @classmethod
+    def of_feet(cls, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> Supports:
+        """The polygons of feet (N, 6, ≥2), ground frame [m], standing where ``stance`` (N, 6)."""
+        runs = _runs(stance)
+        return cls(
+            tuple(runs),
+            tuple(SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2]) for run in runs),
+        )
+
+
+def zmp_margins(zmp: ArrayF, supports: Supports) -> ArrayF:
     """Signed distance (N,) of each ZMP to its standing feet's support polygon [m].
 
     Args:
         zmp: Zero-moment points (N, 2), ground frame [m].
-        feet: Foot positions (N, 6, ≥2), ground frame [m].
-        stance: Which feet stand (N, 6).
-
-    Standing feet do not move, so one polygon serves each run of samples with the same
-    standing legs.
+        supports: The standing feet's polygons at those samples.
 
     """
     margins = np.empty(len(zmp))
-    for run in _runs(stance):
-        first = run[0]
-        polygon = SupportPolygon.of_feet(feet[first, stance[first], :2])
+    for run, polygon in zip(supports.runs, supports.polygons, strict=True):
         margins[run] = polygon.signed_distances(zmp[run])
     return margins
 
 
-def zmp_sides(
-    wrench: ArrayF, height: float, travel: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]
-) -> ArrayF:
+def zmp_sides(wrench: ArrayF, height: float, travel: ArrayF, supports: Supports) -> ArrayF:
     """F_z·cross(edge, ZMP − vertex) for every edge of every sample's polygon [N·m²].
 
     All ≥ 0 (with F_z > 0): the ZMP is inside every sample's polygon. Linear in ``wrench``.
@@ -84,8 +105,7 @@ def zmp_sides(
             several wrenches of one motion (leading axes) share its polygons.
         height: The body origin's height above the ground [m].
         travel: The body origin's footprint (N, 2), ground frame [m].
-        feet: Foot positions (N, 6, ≥2), ground frame [m].
-        stance: Which feet stand (N, 6).
+        supports: The standing feet's polygons at the N samples.
 
     Returns:
         The sides (..., E), every edge of every sample, flat (one order for every wrench).
@@ -97,8 +117,7 @@ def zmp_sides(
         axis=-1,
     )
     sides = []
-    for run in _runs(stance):
-        polygon = SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2])
+    for run, polygon in zip(supports.runs, supports.polygons, strict=True):
         corners = polygon.vertices - travel[run, None]  # from the body origin's footprint
         relative = numerator[..., run, None, :] - corners * force[..., run, 2, None, None]
         edges = polygon.edges

@@ -28,6 +28,7 @@ from hexaleg.gait.dynamics import (
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
 from hexaleg.gait.pattern import GaitPhases, gait_phases
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.stability import Supports, feet_on_ground
 from hexaleg.gait.trajectory import (
     FootPaths,
     JointMotion,
@@ -108,6 +109,7 @@ class Walker:
         self._robot: LoadedRobot | None = None
         self._own: Stride | None = None  # the gait's own stride, walked once
         self._own_loads: Loads | None = None  # its min-norm loads, computed once
+        self._own_supports: Supports | None = None  # its support polygons, found once
 
     def carrying(self, payload: Payload) -> Walker:
         """The same robot walking the same gait on the same ground with another payload.
@@ -202,6 +204,21 @@ class Walker:
         if stride == self.gait.stride:
             self._own = walk
         return walk
+
+    def supports(self, walk: Stride, configurations: ArrayF) -> Supports:
+        """The standing feet's polygons along ``walk``, ground frame.
+
+        ``configurations``: the body's poses along it (its generalized forces', (N, nq)).
+        The gait's own stride's are found once: its capacity, max speed and ZMP margins
+        share them.
+        """
+        if walk is self._own and self._own_supports is not None:
+            return self._own_supports
+        feet = feet_on_ground(walk.paths.position, configurations, self.frames.height)
+        found = Supports.of_feet(feet, self.phases.stance)
+        if walk is self._own:
+            self._own_supports = found
+        return found
 
     def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
