@@ -112,19 +112,17 @@ def cone_limit(
         the worst foot when one slides at t = 0 already; ``None`` when no t bounds them.
 
     """
-    f0, df = base[stance], slope[stance]  # (K, 3)
-    n0, dn = f0[:, 2], df[:, 2]
-    t0, dt = f0[:, :2], df[:, :2]
-    size = np.linalg.norm(f0, axis=1) + GRIP_TOLERANCE
-    start = friction * n0 - np.hypot(t0[:, 0], t0[:, 1])
+    (x0, y0, n0), (dx, dy, dn) = base[stance].T, slope[stance].T  # each (K,): x, y, normal
+    size = np.sqrt(x0 * x0 + y0 * y0 + n0 * n0) + GRIP_TOLERANCE  # |f₀|
+    start = friction * n0 - np.hypot(x0, y0)
     where = np.flatnonzero(stance.ravel())
     if (start < -GRIP_TOLERANCE * size).any():
         worst = int(np.argmin(start / size))
         return float(start[worst]), int(where[worst])
     mu2 = friction**2
-    a = mu2 * dn**2 - (dt**2).sum(axis=1)
-    b = 2 * (mu2 * n0 * dn - (t0 * dt).sum(axis=1))
-    c = mu2 * n0**2 - (t0**2).sum(axis=1)
+    a = mu2 * dn**2 - (dx * dx + dy * dy)
+    b = 2 * (mu2 * n0 * dn - (x0 * dx + y0 * dy))
+    c = mu2 * n0**2 - (x0 * x0 + y0 * y0)
     ends = _first_ends(a, b, c, n0, dn)
     if not np.isfinite(ends).any():
         return None

@@ -97,22 +97,25 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
 
     """
     joints = [j for leg in leg_joints for j in leg]
-    if model.joints[ROOT].shortname() != "JointModelFreeFlyer" or sorted(joints) != list(
+    models, parents = list(model.joints), list(model.parents)  # read once: each read copies
+    if models[ROOT].shortname() != "JointModelFreeFlyer" or sorted(joints) != list(
         range(ROOT + 1, model.njoints)
     ):
         return None
     for leg in leg_joints:
-        if len(leg) != JOINTS_PER_LEG or [model.parents[j] for j in leg] != [ROOT, *leg[:-1]]:
+        if len(leg) != JOINTS_PER_LEG or [parents[j] for j in leg] != [ROOT, *leg[:-1]]:
             return None
-    kinds = {model.joints[j].shortname() for j in joints}
-    if not kinds <= set(REVOLUTE):
+    kinds = [models[j].shortname() for j in joints]
+    if not set(kinds) <= set(REVOLUTE):
         return None
     placements = [model.jointPlacements[j] for j in joints]
     inertias = [model.inertias[j] for j in joints]
-    axes = [_axis(model.joints[j].extract()) for j in joints]
+    axes = [
+        _AXES.get(kind) or _axis(models[j].extract()) for kind, j in zip(kinds, joints, strict=True)
+    ]
     shape = (len(leg_joints), JOINTS_PER_LEG)
 
-    def per_joint(values: list[ArrayF] | list[float]) -> ArrayF:
+    def per_joint(values: list[ArrayF] | list[float] | ArrayF) -> ArrayF:
         array = np.array(values, dtype=float)
         return array.reshape(*shape, *array.shape[1:])
 
@@ -124,10 +127,18 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
         masses=per_joint([inertia.mass for inertia in inertias]),
         centers=per_joint([inertia.lever for inertia in inertias]),
         inertias=per_joint([inertia.inertia for inertia in inertias]),
-        armatures=per_joint([float(model.armature[model.joints[j].idx_v]) for j in joints]),
+        armatures=per_joint(np.asarray(model.armature)[[models[j].idx_v for j in joints]]),
         base_mass=float(base.mass),
         base_center=np.array(base.lever, dtype=float),
     )
+
+
+_AXES: dict[str, tuple[float, float, float]] = {
+    "JointModelRX": (1.0, 0.0, 0.0),
+    "JointModelRY": (0.0, 1.0, 0.0),
+    "JointModelRZ": (0.0, 0.0, 1.0),
+}
+"""The axes of the revolute joints that name theirs; an unaligned one carries its own."""
 
 
 def _axis(joint: object) -> ArrayF:

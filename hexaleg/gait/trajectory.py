@@ -103,14 +103,16 @@ class LegFrames:
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
     """R·v (or Rᵀ·v) per leg for vectors (..., 6, 3) and rotations (6, 3, 3).
 
-    One matrix product per leg, its vectors as rows (vᵀ·Rᵀ, or vᵀ·R): a stacked product
-    of 3×3 blocks, or broadcast products over a last axis of three, are many times slower
-    on a period's samples and on a stride scan.
+    One matrix product per leg, its vectors as rows (vᵀ·Rᵀ, or vᵀ·R), written in place
+    into the result's (..., 6, 3) layout: a stacked product of 3×3 blocks, or broadcast
+    products over a last axis of three, are many times slower on a period's samples and on
+    a stride scan, and a result in legs-first layout slows every reduction after it.
     """
     columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
-    per_leg = np.moveaxis(vectors, -2, 0)  # (6, ..., 3)
-    turned = per_leg.reshape(len(columns), -1, 3) @ columns
-    return np.moveaxis(turned.reshape(per_leg.shape), 0, -2)
+    rows = np.reshape(vectors, (-1, *np.shape(vectors)[-2:]))  # (K, 6, 3)
+    turned = np.empty(rows.shape)
+    np.matmul(np.moveaxis(rows, 1, 0), columns, out=np.moveaxis(turned, 1, 0))
+    return turned.reshape(np.shape(vectors))
 
 
 @dataclass(frozen=True)
