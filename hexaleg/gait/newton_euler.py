@@ -26,6 +26,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+import numpy.typing as npt
 import pinocchio as pin
 
 from hexaleg._compiled import compiled
@@ -115,7 +116,7 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
     ]
     shape = (len(leg_joints), JOINTS_PER_LEG)
 
-    def per_joint(values: list[ArrayF] | list[float] | ArrayF) -> ArrayF:
+    def per_joint(values: npt.ArrayLike) -> ArrayF:
         array = np.array(values, dtype=float)
         return array.reshape(*shape, *array.shape[1:])
 
