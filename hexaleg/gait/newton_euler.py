@@ -112,7 +112,8 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
     placements = [model.jointPlacements[j] for j in joints]
     inertias = [model.inertias[j] for j in joints]
     axes = [
-        _AXES.get(kind) or _axis(models[j].extract()) for kind, j in zip(kinds, joints, strict=True)
+        _AXES[kind] if kind in _AXES else _axis(models[j].extract())
+        for kind, j in zip(kinds, joints, strict=True)
     ]
     shape = (len(leg_joints), JOINTS_PER_LEG)
 
@@ -134,10 +135,10 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
     )
 
 
-_AXES: dict[str, tuple[float, float, float]] = {
-    "JointModelRX": (1.0, 0.0, 0.0),
-    "JointModelRY": (0.0, 1.0, 0.0),
-    "JointModelRZ": (0.0, 0.0, 1.0),
+_AXES: dict[str, ArrayF] = {
+    "JointModelRX": np.array([1.0, 0.0, 0.0]),
+    "JointModelRY": np.array([0.0, 1.0, 0.0]),
+    "JointModelRZ": np.array([0.0, 0.0, 1.0]),
 }
 """The axes of the revolute joints that name theirs; an unaligned one carries its own."""
 
