@@ -310,8 +310,8 @@ def min_norm_split_carrying(
     forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
     joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
     torques = joints - pushed[:2]
-    split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
-    return split, (None if wrench is None else CarriedLoad(forces[..., 2], -pushed[2]))
+    split = ForceSplit(forces[0], forces[1], torques[0], torques[1])
+    return split, (None if wrench is None else CarriedLoad(forces[2], -pushed[2]))
 
 
 def carried_load(
@@ -326,7 +326,7 @@ def carried_load(
     """
     columns = np.broadcast_to(np.asarray(wrench, dtype=float)[:, None], (len(feet), 6, 1))
     forces, pushed = _min_norm_pushes(frames, phases, feet, motion, columns)
-    return CarriedLoad(forces[..., 0], -pushed[0])
+    return CarriedLoad(forces[0], -pushed[0])
 
 
 def _min_norm_pushes(
@@ -342,7 +342,7 @@ def _min_norm_pushes(
         wrenches: K base wrenches at each sample (N, 6, K) [N, N·m].
 
     Returns:
-        The forces (N, 6, 3, K) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
+        The forces (K, N, 6, 3) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
 
     """
     count, kinds = len(feet), wrenches.shape[-1]
@@ -350,9 +350,9 @@ def _min_norm_pushes(
     rows = np.arange(count)[:, None]
     a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
     split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
-    forces = np.zeros((count, 6, 3, kinds))
-    forces[rows, standing] = split
-    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (K, N, 6, 3)
+    forces = np.zeros((kinds, count, 6, 3))  # each wrench's forces in one block
+    forces[:, rows, standing] = np.moveaxis(split, -1, 0)
+    in_roots = frames.to_roots(forces, points=False)
     return forces, transpose_times(motion.partials, in_roots)
 
 

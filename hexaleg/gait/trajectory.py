@@ -218,18 +218,23 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
     return JointMotion(angles, rates, accelerations, reach, leg)
 
 
-def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:
+def knee_heights(frames: LegFrames, angles: ArrayF, partials: LegPartials | None = None) -> ArrayF:
     """Each knee's height above the ground (..., 6) [m], body level at its nominal height.
 
     The knee is the femur's tip, eq 7 without the tibia (of a general leg, the point of
     the knee axis in the tibia's plane, e off the leg plane); only its height is needed,
-    so only the leg-root frames' z rows turn it into the body frame.
+    so only the leg-root frames' z rows turn it into the body frame. ``partials``: those
+    of ``angles`` (:func:`~hexaleg.gait.jacobian.leg_partials`), whose cosines and sines
+    serve, if known.
     """
     a1, l2, _, h, e = leg_parameters(frames.parameters)
-    t1, t2 = angles[..., 0], angles[..., 1]
-    out = a1 + l2 * np.cos(t2)
-    c1, s1 = np.cos(t1), np.sin(t1)
+    if partials is None:
+        t1, t2 = angles[..., 0], angles[..., 1]
+        c1, s1, c2, s2 = np.cos(t1), np.sin(t1), np.cos(t2), np.sin(t2)
+    else:
+        c1, s1, c2, s2 = partials.c1, partials.s1, partials.c2, partials.s2
+    out = a1 + l2 * c2
     up = frames.root_rotations[:, 2, :]  # (6, 3)
     rise = up[:, 0] * (c1 * out - s1 * e) + up[:, 1] * (s1 * out + c1 * e)
-    rise = rise + up[:, 2] * (h + l2 * np.sin(t2))
+    rise = rise + up[:, 2] * (h + l2 * s2)
     return frames.height + frames.root_positions[:, 2] + rise

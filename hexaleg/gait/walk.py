@@ -26,6 +26,7 @@ from hexaleg.gait.dynamics import (
     min_torque_split,
 )
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
+from hexaleg.gait.jacobian import LegPartials
 from hexaleg.gait.pattern import GaitPhases, gait_phases
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.stability import Supports, feet_on_ground
@@ -198,7 +199,7 @@ class Walker:
             self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
         )
         motion = joint_motion(self.frames, paths)
-        margins = self.margins(motion.angles, motion.reach)
+        margins = self.margins(motion.angles, motion.reach, motion.partials)
         found = violations(margins, self.frames.legs, self.times(self.gait.period))
         walk = Stride(paths, motion, found)
         if stride == self.gait.stride:
@@ -220,15 +221,17 @@ class Walker:
             self._own_supports = found
         return found
 
-    def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
+    def margins(self, theta: ArrayF, reach: ArrayF, partials: LegPartials | None = None) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
 
         Args:
             theta: Joint angles (..., N, 6, 3) [rad].
             reach: Hip-to-foot distances (..., N, 6) [m].
+            partials: The angles' partials, if known (:func:`gait_margins`).
 
         """
-        return gait_margins(self.frames, self.bounds, self.phases.stance, theta, reach)
+        stance = self.phases.stance
+        return gait_margins(self.frames, self.bounds, stance, theta, reach, partials)
 
     def times(self, period: float) -> ArrayF:
         """The sample times t_k = k·T/N (N,) [s]."""

@@ -11,6 +11,7 @@ from __future__ import annotations
 import xml.etree.ElementTree as ET
 from collections.abc import Iterable, Mapping
 from dataclasses import fields
+from functools import cached_property
 
 import numpy as np
 import numpy.typing as npt
@@ -121,6 +122,11 @@ class HexapodModel:
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
         self._leg(leg)
+        return self._paper_leg
+
+    @cached_property
+    def _paper_leg(self) -> LegGeometry:
+        """The paper's leg of the design's lengths, every leg's (made once)."""
         return LegGeometry.from_lengths(self.design.lengths)
 
     # -- what the robot is, as the analyses ask it ------------------------------------------
