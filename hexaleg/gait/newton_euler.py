@@ -225,44 +225,69 @@ def _newton_euler(
 
     Index 0 is the static part: at rest in gravity, every body's acceleration is the
     upward −g carried down the chain. Index 1 the inertial part, moving without gravity.
-    The body neither turns nor accelerates. The forward pass keeps each joint's rotation
-    in its parent's frame (``frame``) and each body's I·a + v ×* (I·v) per part in its
-    joint's frame (``forces``) for the backward pass (:func:`_carry_up`).
+    The body neither turns nor accelerates. Leg by leg and joint by joint, the forward
+    pass runs over every sample (the joint's constants read once), keeping each joint's
+    rotation in its parent's frame (``frame``) and each body's I·a + v ×* (I·v) per part
+    in its joint's frame (``forces``) for the backward pass (:func:`_carry_up`); the
+    chain's motion so far (``state``: ω, v, α, the origin's linear acceleration and the
+    upward gravity, each (N, 3)) is carried from joint to joint.
     """
     count, legs, joints = angles.shape
-    frame, forces = np.empty((joints, 3, 3)), np.empty((2, joints, 2, 3))
+    frame = np.empty((joints, count, 3, 3))
+    forces = np.empty((2, joints, 2, count, 3))
+    state = np.empty((5, count, 3))
+    omega, velocity, alpha, linear, lifted = state[0], state[1], state[2], state[3], state[4]
     zero = (0.0, 0.0, 0.0)
-    for n, leg in np.ndindex(count, legs):
-        lifted = _scale(-1.0, _vector(gravity))
-        omega, velocity, alpha, linear = zero, _vector(base_velocity), zero, zero
+    for leg in range(legs):
+        for n in range(count):
+            _put(omega, n, zero)
+            _put(velocity, n, _vector(base_velocity))
+            _put(alpha, n, zero)
+            _put(linear, n, zero)
+            _put(lifted, n, _scale(-1.0, _vector(gravity)))
         for k in range(joints):
             axis, offset = _vector(axes[leg, k]), _vector(translations[leg, k])
-            _joint_frame(rotations[leg, k], axis, angles[n, leg, k], frame[k])
-            spin = _scale(rates[n, leg, k], axis)
-            # the parent's motion carried to this joint's frame, then the joint's own
-            lifted = _inverse_rotate(frame[k], lifted)
-            velocity = _inverse_rotate(frame[k], _add(velocity, _cross(omega, offset)))
-            linear = _inverse_rotate(frame[k], _add(linear, _cross(alpha, offset)))
-            omega = _add(_inverse_rotate(frame[k], omega), spin)
-            alpha = _add(_inverse_rotate(frame[k], alpha), _scale(accelerations[n, leg, k], axis))
-            alpha, linear = _add(alpha, _cross(omega, spin)), _add(linear, _cross(velocity, spin))
-            mass, center = masses[leg, k], _vector(centers[leg, k])
-            momentum = _scale(mass, _add(velocity, _cross(omega, center)))
-            angular = _add(_rotate(inertias[leg, k], omega), _cross(center, momentum))
-            force = _scale(mass, _add(linear, _cross(alpha, center)))
-            moment = _add(_rotate(inertias[leg, k], alpha), _cross(center, force))
-            force = _add(force, _cross(omega, momentum))
-            moment = _add(_add(moment, _cross(omega, angular)), _cross(velocity, momentum))
-            weight = _scale(mass, lifted)
-            _store(forces[0, k], weight, _cross(center, weight))
-            _store(forces[1, k], force, moment)
+            mass, center, inertia = masses[leg, k], _vector(centers[leg, k]), inertias[leg, k]
+            for n in range(count):
+                turn = frame[k, n]
+                _joint_frame(rotations[leg, k], axis, angles[n, leg, k], turn)
+                spin = _scale(rates[n, leg, k], axis)
+                # the parent's motion carried to this joint's frame, then the joint's own
+                up = _inverse_rotate(turn, _get(lifted, n))
+                omega_n, alpha_n = _get(omega, n), _get(alpha, n)
+                moving = _inverse_rotate(turn, _add(_get(velocity, n), _cross(omega_n, offset)))
+                along = _inverse_rotate(turn, _add(_get(linear, n), _cross(alpha_n, offset)))
+                omega_n = _add(_inverse_rotate(turn, omega_n), spin)
+                driven = _add(
+                    _inverse_rotate(turn, alpha_n), _scale(accelerations[n, leg, k], axis)
+                )
+                alpha_n = _add(driven, _cross(omega_n, spin))
+                along = _add(along, _cross(moving, spin))
+                _put(lifted, n, up)
+                _put(omega, n, omega_n)
+                _put(velocity, n, moving)
+                _put(alpha, n, alpha_n)
+                _put(linear, n, along)
+                momentum = _scale(mass, _add(moving, _cross(omega_n, center)))
+                angular = _add(_rotate(inertia, omega_n), _cross(center, momentum))
+                force = _scale(mass, _add(along, _cross(alpha_n, center)))
+                moment = _add(_rotate(inertia, alpha_n), _cross(center, force))
+                force = _add(force, _cross(omega_n, momentum))
+                moment = _add(_add(moment, _cross(omega_n, angular)), _cross(moving, momentum))
+                weight = _scale(mass, up)
+                _put(forces[0, k, 0], n, weight)
+                _put(forces[0, k, 1], n, _cross(center, weight))
+                _put(forces[1, k, 0], n, force)
+                _put(forces[1, k, 1], n, moment)
         for part in range(2):
-            force, moment = _carry_up(translations, axes, frame, forces, torques, part, n, leg)
-            for i in range(3):
-                base[part, n, i] += force[i]
-                base[part, n, 3 + i] += moment[i]
+            for n in range(count):
+                force, moment = _carry_up(translations, axes, frame, forces, torques, part, n, leg)
+                for i in range(3):
+                    base[part, n, i] += force[i]
+                    base[part, n, 3 + i] += moment[i]
         for k in range(joints):
-            torques[1, n, leg, k] += armatures[leg, k] * accelerations[n, leg, k]
+            for n in range(count):
+                torques[1, n, leg, k] += armatures[leg, k] * accelerations[n, leg, k]
 
 
 @compiled
@@ -279,11 +304,11 @@ def _carry_up(
     """Leg ``leg``'s backward pass of one part at sample ``n``: torques, wrench on the body."""
     force, moment = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
     for k in range(forces.shape[1] - 1, -1, -1):
-        force = _add(force, _vector(forces[part, k, 0]))
-        moment = _add(moment, _vector(forces[part, k, 1]))
+        force = _add(force, _get(forces[part, k, 0], n))
+        moment = _add(moment, _get(forces[part, k, 1], n))
         torques[part, n, leg, k] = _dot(_vector(axes[leg, k]), moment)
-        force = _rotate(frame[k], force)
-        moment = _add(_rotate(frame[k], moment), _cross(_vector(translations[leg, k]), force))
+        force = _rotate(frame[k, n], force)
+        moment = _add(_rotate(frame[k, n], moment), _cross(_vector(translations[leg, k]), force))
     return force, moment
 
 
@@ -291,10 +316,15 @@ Vector = tuple[float, float, float]
 
 
 @compiled
-def _store(out: ArrayF, force: Vector, moment: Vector) -> None:  # pragma: no cover - compiled
-    """A force and its moment into the rows of ``out`` (2, 3)."""
-    for i in range(3):
-        out[0, i], out[1, i] = force[i], moment[i]
+def _get(rows: ArrayF, n: int) -> Vector:  # pragma: no cover - compiled
+    """Row ``n`` of an (N, 3) array as a tuple."""
+    return (rows[n, 0], rows[n, 1], rows[n, 2])
+
+
+@compiled
+def _put(rows: ArrayF, n: int, value: Vector) -> None:  # pragma: no cover - compiled
+    """``value`` into row ``n`` of an (N, 3) array."""
+    rows[n, 0], rows[n, 1], rows[n, 2] = value[0], value[1], value[2]
 
 
 @compiled
