@@ -225,60 +225,35 @@ def _newton_euler(
 
     Index 0 is the static part: at rest in gravity, every body's acceleration is the
     upward −g carried down the chain. Index 1 the inertial part, moving without gravity.
-    The body neither turns nor accelerates. Leg by leg and joint by joint, the forward
-    pass runs over every sample (the joint's constants read once), keeping each joint's
-    rotation in its parent's frame (``frame``) and each body's I·a + v ×* (I·v) per part
-    in its joint's frame (``forces``) for the backward pass (:func:`_carry_up`); the
-    chain's motion so far (``state``: ω, v, α, the origin's linear acceleration and the
-    upward gravity, each (N, 3)) is carried from joint to joint.
+    The body neither turns nor accelerates. Joint by joint, the forward pass runs over
+    every sample (:func:`_forward`), keeping each joint's rotation in its parent's frame
+    (``frame``) and each body's I·a + v ×* (I·v) per part in its joint's frame
+    (``forces``) for the backward pass (:func:`_carry_up`).
     """
     count, legs, joints = angles.shape
     frame = np.empty((joints, count, 3, 3))
     forces = np.empty((2, joints, 2, count, 3))
-    state = np.empty((5, count, 3))
-    omega, velocity, alpha, linear, lifted = state[0], state[1], state[2], state[3], state[4]
-    zero = (0.0, 0.0, 0.0)
+    state = np.empty((5, count, 3))  # ω, v, α, the origin's acceleration, upward gravity
     for leg in range(legs):
         for n in range(count):
-            _put(omega, n, zero)
-            _put(velocity, n, _vector(base_velocity))
-            _put(alpha, n, zero)
-            _put(linear, n, zero)
-            _put(lifted, n, _scale(-1.0, _vector(gravity)))
+            for i in range(3):
+                state[0, n, i] = state[2, n, i] = state[3, n, i] = 0.0
+                state[1, n, i], state[4, n, i] = base_velocity[i], -gravity[i]
         for k in range(joints):
-            axis, offset = _vector(axes[leg, k]), _vector(translations[leg, k])
-            mass, center, inertia = masses[leg, k], _vector(centers[leg, k]), inertias[leg, k]
-            for n in range(count):
-                turn = frame[k, n]
-                _joint_frame(rotations[leg, k], axis, angles[n, leg, k], turn)
-                spin = _scale(rates[n, leg, k], axis)
-                # the parent's motion carried to this joint's frame, then the joint's own
-                up = _inverse_rotate(turn, _get(lifted, n))
-                omega_n, alpha_n = _get(omega, n), _get(alpha, n)
-                moving = _inverse_rotate(turn, _add(_get(velocity, n), _cross(omega_n, offset)))
-                along = _inverse_rotate(turn, _add(_get(linear, n), _cross(alpha_n, offset)))
-                omega_n = _add(_inverse_rotate(turn, omega_n), spin)
-                driven = _add(
-                    _inverse_rotate(turn, alpha_n), _scale(accelerations[n, leg, k], axis)
-                )
-                alpha_n = _add(driven, _cross(omega_n, spin))
-                along = _add(along, _cross(moving, spin))
-                _put(lifted, n, up)
-                _put(omega, n, omega_n)
-                _put(velocity, n, moving)
-                _put(alpha, n, alpha_n)
-                _put(linear, n, along)
-                momentum = _scale(mass, _add(moving, _cross(omega_n, center)))
-                angular = _add(_rotate(inertia, omega_n), _cross(center, momentum))
-                force = _scale(mass, _add(along, _cross(alpha_n, center)))
-                moment = _add(_rotate(inertia, alpha_n), _cross(center, force))
-                force = _add(force, _cross(omega_n, momentum))
-                moment = _add(_add(moment, _cross(omega_n, angular)), _cross(moving, momentum))
-                weight = _scale(mass, up)
-                _put(forces[0, k, 0], n, weight)
-                _put(forces[0, k, 1], n, _cross(center, weight))
-                _put(forces[1, k, 0], n, force)
-                _put(forces[1, k, 1], n, moment)
+            _forward(
+                rotations[leg, k],
+                translations[leg, k],
+                axes[leg, k],
+                masses[leg, k],
+                centers[leg, k],
+                inertias[leg, k],
+                angles[:, leg, k],
+                rates[:, leg, k],
+                accelerations[:, leg, k],
+                state,
+                frame[k],
+                forces[:, k],
+            )
         for part in range(2):
             for n in range(count):
                 force, moment = _carry_up(translations, axes, frame, forces, torques, part, n, leg)
@@ -288,6 +263,60 @@ def _newton_euler(
         for k in range(joints):
             for n in range(count):
                 torques[1, n, leg, k] += armatures[leg, k] * accelerations[n, leg, k]
+
+
+@compiled
+def _forward(
+    placement: ArrayF,
+    offset: ArrayF,
+    axis: ArrayF,
+    mass: float,
+    center: ArrayF,
+    inertia: ArrayF,
+    angles: ArrayF,
+    rates: ArrayF,
+    accelerations: ArrayF,
+    state: ArrayF,
+    frame: ArrayF,
+    forces: ArrayF,
+) -> None:  # pragma: no cover - compiled
+    """One joint's forward pass over every sample: its frames, its body's forces per part.
+
+    ``state`` (ω, v, α, the origin's linear acceleration, upward gravity; each (N, 3)) is
+    the parent's motion, carried to this joint's frame and given its own; ``frame`` (N, 3,
+    3) receives the joint's rotations, ``forces`` (2, 2, N, 3) its body's force and moment.
+    """
+    turn_axis, lever, middle = _vector(axis), _vector(offset), _vector(center)
+    omega, velocity, alpha, linear, lifted = state[0], state[1], state[2], state[3], state[4]
+    for n in range(len(angles)):
+        turn = frame[n]
+        _joint_frame(placement, turn_axis, angles[n], turn)
+        spin = _scale(rates[n], turn_axis)
+        # the parent's motion carried to this joint's frame, then the joint's own
+        up = _inverse_rotate(turn, _get(lifted, n))
+        omega_n, alpha_n = _get(omega, n), _get(alpha, n)
+        moving = _inverse_rotate(turn, _add(_get(velocity, n), _cross(omega_n, lever)))
+        along = _inverse_rotate(turn, _add(_get(linear, n), _cross(alpha_n, lever)))
+        omega_n = _add(_inverse_rotate(turn, omega_n), spin)
+        driven = _add(_inverse_rotate(turn, alpha_n), _scale(accelerations[n], turn_axis))
+        alpha_n = _add(driven, _cross(omega_n, spin))
+        along = _add(along, _cross(moving, spin))
+        _put(lifted, n, up)
+        _put(omega, n, omega_n)
+        _put(velocity, n, moving)
+        _put(alpha, n, alpha_n)
+        _put(linear, n, along)
+        momentum = _scale(mass, _add(moving, _cross(omega_n, middle)))
+        angular = _add(_rotate(inertia, omega_n), _cross(middle, momentum))
+        force = _scale(mass, _add(along, _cross(alpha_n, middle)))
+        moment = _add(_rotate(inertia, alpha_n), _cross(middle, force))
+        force = _add(force, _cross(omega_n, momentum))
+        moment = _add(_add(moment, _cross(omega_n, angular)), _cross(moving, momentum))
+        weight = _scale(mass, up)
+        _put(forces[0, 0], n, weight)
+        _put(forces[0, 1], n, _cross(middle, weight))
+        _put(forces[1, 0], n, force)
+        _put(forces[1, 1], n, moment)
 
 
 @compiled
