@@ -63,21 +63,22 @@ class Supports:
     shares them.
 
     Attributes:
-        runs: The samples of each run (ascending, together every sample once).
+        runs: The samples of each run (consecutive; together every sample once).
         polygons: Each run's polygon.
 
     """
 
-    runs: tuple[npt.NDArray[np.intp], ...]
+    runs: tuple[slice, ...]
     polygons: tuple[SupportPolygon, ...]
 
     @classmethod
     def of_feet(cls, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> Supports:
         """The polygons of feet (N, 6, ≥2), ground frame [m], standing where ``stance`` (N, 6)."""
-        runs = _runs(stance)
+        starts = [0, *(np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1)]
+        ends = [*starts[1:], len(stance)]
         return cls(
-            tuple(runs),
-            tuple(SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2]) for run in runs),
+            tuple(slice(int(start), int(end)) for start, end in zip(starts, ends, strict=True)),
+            tuple(SupportPolygon.of_feet(feet[k, stance[k], :2]) for k in starts),
         )
 
 
@@ -124,9 +125,3 @@ def zmp_sides(wrench: ArrayF, height: float, travel: ArrayF, supports: Supports)
         side = edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]
         sides.append(side.reshape(*side.shape[:-2], -1))
     return np.concatenate(sides, axis=-1)
-
-
-def _runs(stance: npt.NDArray[np.bool_]) -> list[npt.NDArray[np.intp]]:
-    """The runs of samples with the same standing legs (their feet do not move)."""
-    change = np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1
-    return np.split(np.arange(len(stance)), change)
