@@ -351,7 +351,7 @@ def _min_norm_pushes(
     a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
     split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
     forces = np.zeros((kinds, count, 6, 3))  # each wrench's forces in one block
-    forces[:, rows, standing] = np.moveaxis(split, -1, 0)
+    forces[:, rows, standing] = split.transpose(3, 0, 1, 2)
     in_roots = frames.to_roots(forces, points=False)
     return forces, transpose_times(motion.partials, in_roots)
 

@@ -111,7 +111,7 @@ def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
     columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
     rows = np.reshape(vectors, (-1, *np.shape(vectors)[-2:]))  # (K, 6, 3)
     turned = np.empty(rows.shape)
-    np.matmul(np.moveaxis(rows, 1, 0), columns, out=np.moveaxis(turned, 1, 0))
+    np.matmul(rows.swapaxes(0, 1), columns, out=turned.swapaxes(0, 1))
     return turned.reshape(np.shape(vectors))
 
 
