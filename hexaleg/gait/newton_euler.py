@@ -109,30 +109,31 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
     kinds = [models[j].shortname() for j in joints]
     if not set(kinds) <= set(REVOLUTE):
         return None
-    placements = [model.jointPlacements[j] for j in joints]
-    inertias = [model.inertias[j] for j in joints]
+    placements, inertias = list(model.jointPlacements), list(model.inertias)
+    frames = _per_joint([placements[j].homogeneous for j in joints])  # rotation | translation
     axes = [
         _AXES[kind] if kind in _AXES else _axis(models[j].extract())
         for kind, j in zip(kinds, joints, strict=True)
     ]
-    shape = (len(leg_joints), JOINTS_PER_LEG)
-
-    def per_joint(values: npt.ArrayLike) -> ArrayF:
-        array = np.array(values, dtype=float)
-        return array.reshape(*shape, *array.shape[1:])
-
-    base = model.inertias[ROOT]
+    bodies = [inertias[j] for j in joints]
+    base = inertias[ROOT]
     return LegBodies(
-        rotations=per_joint([placement.rotation for placement in placements]),
-        translations=per_joint([placement.translation for placement in placements]),
-        axes=per_joint(axes),
-        masses=per_joint([inertia.mass for inertia in inertias]),
-        centers=per_joint([inertia.lever for inertia in inertias]),
-        inertias=per_joint([inertia.inertia for inertia in inertias]),
-        armatures=per_joint(np.asarray(model.armature)[[models[j].idx_v for j in joints]]),
+        rotations=np.ascontiguousarray(frames[..., :3, :3]),
+        translations=np.ascontiguousarray(frames[..., :3, 3]),
+        axes=_per_joint(axes),
+        masses=_per_joint([inertia.mass for inertia in bodies]),
+        centers=_per_joint([inertia.lever for inertia in bodies]),
+        inertias=_per_joint([inertia.inertia for inertia in bodies]),
+        armatures=_per_joint(np.asarray(model.armature)[[models[j].idx_v for j in joints]]),
         base_mass=float(base.mass),
         base_center=np.array(base.lever, dtype=float),
     )
+
+
+def _per_joint(values: npt.ArrayLike) -> ArrayF:
+    """Values of the legs' joints in leg order, as (6, 3, ...)."""
+    array = np.array(values, dtype=float)
+    return array.reshape(-1, JOINTS_PER_LEG, *array.shape[1:])
 
 
 _AXES: dict[str, ArrayF] = {
