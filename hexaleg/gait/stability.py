@@ -26,9 +26,9 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.gait.pattern import GaitPhases
 from hexaleg.statics.support import SupportPolygon
 
 
@@ -72,14 +72,11 @@ class Supports:
     polygons: tuple[SupportPolygon, ...]
 
     @classmethod
-    def of_feet(cls, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> Supports:
-        """The polygons of feet (N, 6, ≥2), ground frame [m], standing where ``stance`` (N, 6)."""
-        starts = [0, *(np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1)]
-        ends = [*starts[1:], len(stance)]
-        return cls(
-            tuple(slice(int(start), int(end)) for start, end in zip(starts, ends, strict=True)),
-            tuple(SupportPolygon.of_feet(feet[k, stance[k], :2]) for k in starts),
-        )
+    def of_feet(cls, feet: ArrayF, phases: GaitPhases) -> Supports:
+        """The polygons of feet (N, 6, ≥2), ground frame [m], standing as ``phases`` say."""
+        stance = phases.stance
+        polygons = (SupportPolygon.of_feet(feet[r.start, stance[r.start], :2]) for r in phases.runs)
+        return cls(phases.runs, tuple(polygons))
 
 
 def zmp_margins(zmp: ArrayF, supports: Supports) -> ArrayF:

@@ -216,7 +216,7 @@ class Walker:
         if walk is self._own and self._own_supports is not None:
             return self._own_supports
         feet = feet_on_ground(walk.paths.position, configurations, self.frames.height)
-        found = Supports.of_feet(feet, self.phases.stance)
+        found = Supports.of_feet(feet, self.phases)
         if walk is self._own:
             self._own_supports = found
         return found
