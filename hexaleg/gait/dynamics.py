@@ -334,6 +334,13 @@ def _min_norm_pushes(
 ) -> tuple[ArrayF, ArrayF]:
     """The minimum-norm feet's forces balancing base wrenches, and the torques they push.
 
+    The least-norm forces do not depend on the point the moments are taken about, and
+    during a run of samples (:attr:`~hexaleg.gait.pattern.GaitPhases.runs`) the standing
+    feet do not move on the ground while the body translates: about the body's origin at
+    the run's first sample (its moment M + d × F, d how far the body has moved since, as
+    far as its standing feet have moved back), one set of balance rows and one solve
+    (:func:`~hexaleg.statics.forces.min_norm_forces`) serve every sample of the run.
+
     Args:
         frames: The legs.
         phases: Who stands when.
@@ -345,13 +352,24 @@ def _min_norm_pushes(
         The forces (K, N, 6, 3) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
 
     """
-    count, kinds = len(feet), wrenches.shape[-1]
-    standing = stance_indices(phases)
-    rows = np.arange(count)[:, None]
-    a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
-    split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
-    forces = np.zeros((kinds, count, 6, 3))  # each wrench's forces in one block
-    forces[:, rows, standing] = split.transpose(3, 0, 1, 2)
+    kinds = wrenches.shape[-1]
+    forces = np.zeros((kinds, len(feet), 6, 3))  # each wrench's forces in one block
+    for run in phases.runs:  # the standing feet stay put: one set of rows serves the run
+        legs = np.flatnonzero(phases.stance[run.start])
+        rows, _ = equilibrium(feet[run.start, legs], np.zeros(3), 0.0, np.zeros(3))
+        moved = feet[run.start, legs[0]] - feet[run, legs[0]]  # the body, since (n, 3)
+        force, moment = wrenches[run, :3], wrenches[run, 3:]  # (n, 3, K) each
+        about_start = np.stack(  # M + moved × F: the moments about the run's first origin
+            [
+                moment[:, 0] + (moved[:, 1, None] * force[:, 2] - moved[:, 2, None] * force[:, 1]),
+                moment[:, 1] + (moved[:, 2, None] * force[:, 0] - moved[:, 0, None] * force[:, 2]),
+                moment[:, 2] + (moved[:, 0, None] * force[:, 1] - moved[:, 1, None] * force[:, 0]),
+            ],
+            axis=1,
+        )
+        rhs = np.concatenate((force, about_start), axis=1).transpose(1, 0, 2)  # (6, n, K)
+        split = min_norm_forces(rows, rhs.reshape(6, -1))  # (3·legs, n·K)
+        forces[:, run, legs] = split.reshape(len(legs), 3, -1, kinds).transpose(3, 2, 0, 1)
     in_roots = frames.to_roots(forces, points=False)
     return forces, transpose_times(motion.partials, in_roots)
 
