@@ -82,7 +82,16 @@ def payload_wrench(point: ArrayF, mass: float, gravity: ArrayF) -> ArrayF:
     inertia.
     """
     force = -mass * np.asarray(gravity, dtype=float)
-    return np.concatenate((force, np.cross(point, force)))
+    return np.concatenate((force, moment_of(point, force)))
+
+
+def moment_of(point: npt.ArrayLike, force: ArrayF) -> ArrayF:
+    """The moment p × f (3,) [N·m] of a force f (3,) [N] at a point p (3,) [m].
+
+    Written out: NumPy's cross product costs more than the product on a single pair.
+    """
+    (px, py, pz), (fx, fy, fz) = np.asarray(point, dtype=float), force
+    return np.array([py * fz - pz * fy, pz * fx - px * fz, px * fy - py * fx])
 
 
 @dataclass(frozen=True)
@@ -259,13 +268,13 @@ def joint_signs(model: HexapodModel) -> ArrayF:
 
 
 def leg_rows(model: HexapodModel, rows: ArrayF) -> ArrayF:
-    """The legs' joint rows (N, 6, 3) of generalized forces (N, nv), on hexaleg's θ.
+    """The legs' joint rows (..., N, 6, 3) of generalized forces (..., N, nv), on hexaleg's θ.
 
     ``leg_names`` order; each row times its joint's sign dq/dθ (a torque about the
     model's joint axis is s times the torque on θ).
     """
     v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
-    on_theta: ArrayF = rows[:, v_index] * joint_signs(model)
+    on_theta: ArrayF = rows[..., v_index] * joint_signs(model)
     return on_theta
 
 
@@ -308,7 +317,7 @@ def min_norm_split_carrying(
     if wrench is not None:
         columns.append(np.broadcast_to(np.asarray(wrench, dtype=float), (len(feet), 6)))
     forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
-    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
+    joints = leg_rows(model, np.stack((rnea.static, rnea.inertial)))
     torques = joints - pushed[:2]
     split = ForceSplit(forces[0], forces[1], torques[0], torques[1])
     return split, (None if wrench is None else CarriedLoad(forces[2], -pushed[2]))
@@ -352,23 +361,22 @@ def _min_norm_pushes(
         The forces (K, N, 6, 3) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
 
     """
-    kinds = wrenches.shape[-1]
+    kinds, runs = wrenches.shape[-1], phases.runs
+    starts = np.repeat([run.start for run in runs], [run.stop - run.start for run in runs])
+    lead = np.argmax(phases.stance[starts], axis=1)  # a standing leg of each sample's run
+    moved = feet[starts, lead] - feet[np.arange(len(feet)), lead]  # the body, since (N, 3)
+    force, moment = wrenches[:, :3], wrenches[:, 3:]  # (N, 3, K) each
+    about_start = np.empty((len(feet), 6, kinds))  # F, and M + moved × F: the same wrench
+    about_start[:, :3] = force  # about the body's origin at its run's first sample
+    for axis, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
+        turn = moved[:, i, None] * force[:, j] - moved[:, j, None] * force[:, i]
+        about_start[:, 3 + axis] = moment[:, axis] + turn
     forces = np.zeros((kinds, len(feet), 6, 3))  # each wrench's forces in one block
-    for run in phases.runs:  # the standing feet stay put: one set of rows serves the run
+    for run in runs:  # the standing feet stay put: one set of rows serves the run
         legs = np.flatnonzero(phases.stance[run.start])
         rows, _ = equilibrium(feet[run.start, legs], np.zeros(3), 0.0, np.zeros(3))
-        moved = feet[run.start, legs[0]] - feet[run, legs[0]]  # the body, since (n, 3)
-        force, moment = wrenches[run, :3], wrenches[run, 3:]  # (n, 3, K) each
-        about_start = np.stack(  # M + moved × F: the moments about the run's first origin
-            [
-                moment[:, 0] + (moved[:, 1, None] * force[:, 2] - moved[:, 2, None] * force[:, 1]),
-                moment[:, 1] + (moved[:, 2, None] * force[:, 0] - moved[:, 0, None] * force[:, 2]),
-                moment[:, 2] + (moved[:, 0, None] * force[:, 1] - moved[:, 1, None] * force[:, 0]),
-            ],
-            axis=1,
-        )
-        rhs = np.concatenate((force, about_start), axis=1).transpose(1, 0, 2)  # (6, n, K)
-        split = min_norm_forces(rows, rhs.reshape(6, -1))  # (3·legs, n·K)
+        rhs = about_start[run].transpose(1, 0, 2).reshape(6, -1)  # (6, n·K)
+        split = min_norm_forces(rows, rhs)  # (3·legs, n·K)
         forces[:, run, legs] = split.reshape(len(legs), 3, -1, kinds).transpose(3, 2, 0, 1)
     in_roots = frames.to_roots(forces, points=False)
     return forces, transpose_times(motion.partials, in_roots)

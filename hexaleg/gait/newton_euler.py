@@ -181,7 +181,7 @@ def leg_forces(
     torques = np.empty((2, *np.shape(angles)))
     base = np.zeros((2, len(angles), 6))  # the body's own weight, then the legs' wrenches
     base[0, :, :3] = -bodies.base_mass * np.asarray(gravity, dtype=float)
-    base[0, :, 3:] = np.cross(bodies.base_center, base[0, 0, :3])
+    base[0, :, 3:] = _cross(_vector(bodies.base_center), _vector(base[0, 0, :3]))
     _newton_euler(
         bodies.rotations,
         bodies.translations,
