@@ -178,35 +178,40 @@ class LoadedRobot:
 
         """
         count, model = len(motion.angles), self.model
+        values = [self._joint_values(leg, motion.angles[:, i]) for i, leg in enumerate(self.legs)]
+        joints = np.stack(values, axis=1)  # the model's q of every leg (N, 6, 3)
+        rates, accelerations = self.signs * motion.velocity, self.signs * motion.acceleration
         q = np.zeros((count, model.nq))
         q[:, :3] = np.arange(count)[:, None] / count * base_travel
         q[:, 2] += self.height
         q[:, 6] = 1.0  # level: the identity quaternion (x, y, z, w)
-        for i, leg in enumerate(self.legs):
-            q[:, self.q_index[i]] = self._joint_values(leg, motion.angles[:, i])
+        q[:, self.q_index] = joints
         velocity = np.zeros((count, model.nv))
         velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
-        velocity[:, self.v_index] = self.signs * motion.velocity
+        velocity[:, self.v_index] = rates
         acceleration = np.zeros((count, model.nv))
-        acceleration[:, self.v_index] = self.signs * motion.acceleration
-        rows = self._chain_rows if self.bodies is not None else self._pinocchio_rows
-        static, inertial = rows(q, velocity, acceleration)
+        acceleration[:, self.v_index] = accelerations
+        if self.bodies is not None:
+            static, inertial = self._chain_rows(joints, rates, accelerations, base_travel)
+        else:
+            static, inertial = self._pinocchio_rows(q, velocity, acceleration)
         return GeneralizedForces(q, velocity, acceleration, static, inertial)
 
     def _chain_rows(
-        self, q: ArrayF, velocity: ArrayF, acceleration: ArrayF
+        self, joints: ArrayF, rates: ArrayF, accelerations: ArrayF, base_velocity: ArrayF
     ) -> tuple[ArrayF, ArrayF]:
-        """The static and inertial rows (N, nv) from the legs' chains (every joint a leg's)."""
+        """The static and inertial rows (N, nv) from the legs' chains (every joint a leg's).
+
+        Args:
+            joints: The model's joint values (N, 6, 3) [rad].
+            rates: Their phase derivatives (N, 6, 3) [rad].
+            accelerations: Their second phase derivatives (N, 6, 3) [rad].
+            base_velocity: The body's, per unit phase, in its own frame (3,) [m].
+
+        """
         assert self.bodies is not None
-        parts = leg_forces(
-            self.bodies,
-            q[:, self.q_index],
-            velocity[:, self.v_index],
-            acceleration[:, self.v_index],
-            velocity[0, :3],
-            self.gravity,
-        )
-        rows = np.empty((2, len(q), self.model.nv))  # every row is a leg's or the body's
+        parts = leg_forces(self.bodies, joints, rates, accelerations, base_velocity, self.gravity)
+        rows = np.empty((2, len(joints), self.model.nv))  # every row is a leg's or the body's
         for row, part in zip(rows, parts, strict=True):
             row[:, :6] = part.base
             row[:, self.v_index] = part.torques
