@@ -324,21 +324,19 @@ def _closed_form_speed(
     walker: Walker, stride: float, loads: Loads, speed_room: ArrayF
 ) -> SpeedLimit:
     """Largest w = 1/T² with |τ_s + w·τ_i| ≤ τ_rated and |θ'|·√w ≤ q̇_rated, joint by joint."""
-    rated_torque, _ = walker.rated()
     static, inertial = loads.split.static_torques, loads.split.inertial_torques
+    rated = np.tile(walker.rated()[0], (*static.shape[:-1], 1))  # each joint's, every sample
     with np.errstate(divide="ignore", invalid="ignore"):
-        room = np.where(
-            inertial > 0, (rated_torque - static) / inertial, (rated_torque + static) / -inertial
-        )
+        room = np.where(inertial > 0, (rated - static) / inertial, (rated + static) / -inertial)
     room = np.where(inertial != 0, room, np.inf)
-    room = np.where(np.abs(static) > rated_torque, 0.0, room)
+    room = np.where(np.abs(static) > rated, 0.0, room)
     return _limit(walker, stride, room, speed_room)
 
 
 def _limit(walker: Walker, stride: float, torque_room: ArrayF, speed_room: ArrayF) -> SpeedLimit:
     """The speed limit from each joint's largest w = 1/T² (N, 6, 3) by torque and by speed."""
-    rooms = np.nan_to_num(np.stack((torque_room, speed_room)), nan=0.0)  # (2, N, 6, 3)
-    rooms = np.moveaxis(rooms, 1, -1)  # (kind, leg, joint, sample): ties go in leg order
+    rooms = np.nan_to_num(np.stack((torque_room, speed_room)), copy=False, nan=0.0)
+    rooms = rooms.transpose(0, 2, 3, 1)  # (kind, leg, joint, sample): ties go in leg order
     least = float(rooms.min())
     tied = rooms <= least + TIE_TOLERANCE * max(abs(least), 1e-300)  # mirror legs tie
     kind, leg, joint, _ = np.unravel_index(int(np.argmax(tied)), rooms.shape)
