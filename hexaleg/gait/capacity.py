@@ -304,19 +304,21 @@ def _zmp_bound(
     """The ZMP on the inner side of every edge of the standing feet's polygon.
 
     Each side (:func:`~hexaleg.gait.stability.zmp_sides`) is linear in the base's wrench,
-    which is affine in the payload: the unloaded walk's sides and their change per kg
-    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows, under the walker's
-    gravity: on a slope its weight pushes along the plane too).
+    which is affine in the payload: the unloaded walk's sides at its period (from their
+    static and inertial parts, :meth:`~hexaleg.gait.walk.Walker.zmp_sides`, the max
+    speed's too) and their change per kg (``probe``: the wrench of :data:`PROBE_MASS` on
+    the base rows, under the walker's gravity: on a slope its weight pushes along the
+    plane too).
     """
-    period, height = walker.gait.period, walker.frames.height
+    static, inertial = walker.zmp_sides(walk, rnea)
     configurations = rnea.configurations  # the body's path, as the payload's
-    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
-    base, change = zmp_sides(
-        np.stack((wrench, np.broadcast_to(probe / PROBE_MASS, wrench.shape))),
-        height,
+    change = zmp_sides(
+        np.broadcast_to(probe / PROBE_MASS, (len(configurations), 6)),
+        walker.frames.height,
         configurations[:, :2],
         walker.supports(walk, configurations),
     )
+    base = static + inertial / walker.gait.period**2
     found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))
 

@@ -57,7 +57,6 @@ from hexaleg.electrical.ratings import RATED, RatingLoads, motor_loads
 from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.friction import cone_limit, friction_ratios
-from hexaleg.gait.stability import zmp_sides
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
 from hexaleg.limits import LEG_JOINTS
@@ -248,12 +247,9 @@ def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
     """The largest w = 1/T² keeping the ZMP inside the standing feet's polygon (< 0: none).
 
     Each edge's F_z·cross(edge, ZMP − vertex) is affine in w
-    (:func:`~hexaleg.gait.stability.zmp_sides`): the largest w keeping all ≥ 0 is exact.
+    (:meth:`~hexaleg.gait.walk.Walker.zmp_sides`): the largest w keeping all ≥ 0 is exact.
     """
-    height, configurations = walker.frames.height, rnea.configurations
-    supports = walker.supports(walk, configurations)
-    parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
-    static, inertial = zmp_sides(parts, height, configurations[:, :2], supports)
+    static, inertial = walker.zmp_sides(walk, rnea)
     if (static < 0).any():
         return -1.0
     shrinking = inertial < 0

@@ -29,7 +29,7 @@ from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, viola
 from hexaleg.gait.jacobian import LegPartials
 from hexaleg.gait.pattern import GaitPhases, gait_phases
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import Supports, feet_on_ground
+from hexaleg.gait.stability import Supports, feet_on_ground, zmp_sides
 from hexaleg.gait.trajectory import (
     FootPaths,
     JointMotion,
@@ -111,6 +111,7 @@ class Walker:
         self._own: Stride | None = None  # the gait's own stride, walked once
         self._own_loads: Loads | None = None  # its min-norm loads, computed once
         self._own_supports: Supports | None = None  # its support polygons, found once
+        self._own_sides: ArrayF | None = None  # its ZMP's sides, static and inertial, once
 
     def carrying(self, payload: Payload) -> Walker:
         """The same robot walking the same gait on the same ground with another payload.
@@ -219,6 +220,24 @@ class Walker:
         found = Supports.of_feet(feet, self.phases)
         if walk is self._own:
             self._own_supports = found
+        return found
+
+    def zmp_sides(self, walk: Stride, rnea: GeneralizedForces) -> ArrayF:
+        """The ZMP's side of every support edge along ``walk``: static, inertial (2, E).
+
+        F_z·cross(edge, ZMP − vertex) (:func:`~hexaleg.gait.stability.zmp_sides`) of the
+        generalized forces' two parts, ``rnea`` (the walk's): at period T the sides are
+        static + inertial/T², all ≥ 0 while the ZMP is inside. The gait's own stride's are
+        found once: its walking capacity and max speed share them.
+        """
+        if walk is self._own and self._own_sides is not None:
+            return self._own_sides
+        configurations = rnea.configurations
+        parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
+        supports = self.supports(walk, configurations)
+        found = zmp_sides(parts, self.frames.height, configurations[:, :2], supports)
+        if walk is self._own:
+            self._own_sides = found
         return found
 
     def margins(self, theta: ArrayF, reach: ArrayF, partials: LegPartials | None = None) -> ArrayF:
