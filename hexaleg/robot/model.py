@@ -72,6 +72,7 @@ class _LegIndex:
         self.root_frame = _frame_id(model, prefix + root_frame_name(leg))
         self.foot_frame = _frame_id(model, prefix + foot_frame_name(leg))
         self.foot_joint_frame = _frame_id(model, f"{prefix}{leg}_foot_joint")
+        self.root_on_flyer: bool | None = None  # found on first use (models sharing it agree)
 
 
 BASE_FRAME = "base_link"
@@ -420,12 +421,18 @@ class HexapodModel:
         return {leg: base_inv * self.data.oMf[self._legs[leg].root_frame] for leg in self.leg_names}
 
     def _root_on_flyer(self, leg: str) -> bool:
-        """Whether ``leg``'s root frame is its root joint's own, on the free-flyer joint."""
+        """Whether ``leg``'s root frame is its root joint's own, on the free-flyer joint.
+
+        Found once per leg index: the models that share it (:meth:`with_design`) share
+        their joints and these frames.
+        """
         index = self._legs[leg]
-        frame, joint = self.model.frames[index.root_frame], index.joints[0]
-        on_flyer = self.model.parents[joint] == self.model.getJointId(ROOT_JOINT)
-        own = frame.parentJoint == joint and frame.placement.isIdentity()
-        return bool(on_flyer and own)
+        if index.root_on_flyer is None:
+            frame, joint = self.model.frames[index.root_frame], index.joints[0]
+            on_flyer = self.model.parents[joint] == self.model.getJointId(ROOT_JOINT)
+            own = frame.parentJoint == joint and frame.placement.isIdentity()
+            index.root_on_flyer = bool(on_flyer and own)
+        return index.root_on_flyer
 
     def foot_jacobian(self, q: npt.ArrayLike, leg: str) -> ArrayF:
         """dp/dv (3, nv) of the foot of ``leg`` in world axes (LOCAL_WORLD_ALIGNED) [m]."""
