@@ -380,10 +380,12 @@ def _analysis(
     speed_limit: SpeedLimit | None,
 ) -> GaitAnalysis:
     """The result of a walk: its time series at the gait's period, metrics and limits."""
-    gait, period = walker.gait, walker.gait.period
+    gait, period, rnea = walker.gait, walker.gait.period, loads.rnea
     torques, velocities = loads.split.torques(period), walk.motion.velocity / period
-    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
-    travel = loads.rnea.configurations[:, :2]  # the body's origin over the ground
+    times, forces = walker.times(period), loads.split.forces(period)
+    rates, accelerations = rnea.velocities / period, rnea.accelerations / period**2
+    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
+    travel = rnea.configurations[:, :2]  # the body's origin over the ground
     weight_travel = walker.robot.mass * walker.gravity * gait.stride / walker.phases.duty_factor
     return GaitAnalysis(
         design=walker.model.design,
@@ -395,20 +397,20 @@ def _analysis(
         mass=walker.robot.mass,
         legs=walker.frames.legs,
         frames=walker.frames,
-        times=walker.times(period),
+        times=times,
         stance=walker.phases.stance,
         joint_angles=walk.motion.angles,
         joint_velocities=velocities,
         joint_accelerations=walk.motion.acceleration / period**2,
-        configurations=loads.rnea.configurations,
-        generalized_velocities=loads.rnea.velocities / period,
-        generalized_accelerations=loads.rnea.accelerations / period**2,
+        configurations=rnea.configurations,
+        generalized_velocities=rates,
+        generalized_accelerations=accelerations,
         base_velocity=gait.speed * walker.heading,
         joint_torques=torques,
-        foot_forces=loads.split.forces(period),
+        foot_forces=forces,
         feet=walk.paths.position,
         zmp=zero_moment_points(wrench, walker.frames.height) + travel,
-        supports=walker.supports(walk, loads.rnea.configurations),
+        supports=walker.supports(walk, rnea.configurations),
         metrics=gait_metrics(torques, velocities, period, weight_travel),
         violations=walk.violations,
         max_stride=stride_limit,
@@ -416,11 +418,11 @@ def _analysis(
         electrical=_electrical(walker, torques, velocities),
         structure=check_walking(
             walker.model,
-            walker.times(period),
-            loads.rnea.configurations,
-            loads.rnea.velocities / period,
-            loads.rnea.accelerations / period**2,
-            loads.split.forces(period),
+            times,
+            rnea.configurations,
+            rates,
+            accelerations,
+            forces,
             walker.gravity_vector,
         ),
     )
