@@ -7,7 +7,8 @@ accelerations, a random gravity, body velocity, rotor armatures and payload: on 
 random designs of hexaleg's template, on a robot file (Kraby) and on random general
 hexapods (hip heights, lateral offsets, legs written in turned and mirrored frames). A model with
 a joint outside the legs gets no chains, and its walk takes Pinocchio's calls: the two
-ways give the same walk.
+ways give the same walk. Designs derived from one body's model share its chains and walk
+by their own bodies, as Pinocchio does on each.
 """
 
 from __future__ import annotations
@@ -24,7 +25,7 @@ from hexaleg import HexapodDesign, HexapodModel
 from hexaleg.actuator_catalog import actuators_from_table
 from hexaleg.exceptions import RobotImportWarning
 from hexaleg.gait import Gait, Walker
-from hexaleg.gait.newton_euler import leg_bodies, leg_forces
+from hexaleg.gait.newton_euler import leg_bodies, leg_chains, leg_forces
 from hexaleg.robot.recipe import RobotSource
 from hexaleg.robot.robot import Robot
 
@@ -49,8 +50,9 @@ def _assert_matches_pinocchio(model: HexapodModel, rng: np.random.Generator) -> 
     pin_model.armature[6:] = rng.uniform(0.0, 0.05, pin_model.nv - 6)  # the rotors
     payload = pin.Inertia(rng.uniform(0.5, 5.0), rng.normal(scale=0.1, size=3), np.zeros((3, 3)))
     pin_model.inertias[1] = pin_model.inertias[1] + payload  # a point mass on the body
-    bodies = leg_bodies(pin_model, _leg_joints(model))
-    assert bodies is not None
+    chains = leg_chains(pin_model, _leg_joints(model))
+    assert chains is not None
+    bodies = leg_bodies(pin_model, chains)
     count = 7
     q = np.tile(model.nominal_configuration(), (count, 1))
     q[:, :3] += rng.normal(size=(count, 3))  # where the body is does not matter
@@ -108,10 +110,10 @@ def _with_joint_beyond_the_legs(model: HexapodModel) -> HexapodModel:
 def test_what_is_not_six_chains_on_the_body_gets_no_chains():
     model = HexapodModel(HexapodDesign())
     joints = _leg_joints(model)
-    assert leg_bodies(model.model, joints[:5]) is None  # a sixth leg's joints unaccounted for
+    assert leg_chains(model.model, joints[:5]) is None  # a sixth leg's joints unaccounted for
     shuffled = [[leg[1], leg[0], leg[2]] for leg in joints]
-    assert leg_bodies(model.model, shuffled) is None  # not a chain from the body
-    assert leg_bodies(_with_joint_beyond_the_legs(model).model, joints) is None
+    assert leg_chains(model.model, shuffled) is None  # not a chain from the body
+    assert leg_chains(_with_joint_beyond_the_legs(model).model, joints) is None
 
 
 def test_a_model_with_a_joint_beyond_its_legs_walks_by_pinocchio():
@@ -138,3 +140,26 @@ def test_a_model_with_a_joint_beyond_its_legs_walks_by_pinocchio():
         scale = np.abs(expected).max()
         np.testing.assert_allclose(found[:, :nv], expected, atol=1e-10 * scale)
         np.testing.assert_array_equal(found[:, nv:], 0.0)
+
+
+def test_designs_derived_from_one_body_share_its_chains_and_walk_by_their_own_bodies():
+    """A study's designs derive from one body's model (``with_design``): the legs' chains
+    are found once for all, and each design walks by its own lengths and masses. Oracle:
+    Pinocchio's calls on each derived model."""
+    base = HexapodModel(HexapodDesign())
+    assert Walker(base, Gait()).robot.bodies is not None  # the body's chains, found
+    gait = Gait(samples=20)
+    for l2, l3 in ((0.35, 0.5), (0.5, 0.35)):
+        model = base.with_design(HexapodDesign(l2=l2, l3=l3))
+        model.structural("leg chains", lambda: pytest.fail("the chains are found again"))
+        walker = Walker(model, gait)
+        walked = walker.generalized_forces(gait.stride, walker.stride(gait.stride))
+        expected = _pinocchio_parts(
+            model.model,
+            walked.configurations,
+            walked.velocities,
+            walked.accelerations,
+            walker.gravity_vector,
+        )
+        for found, oracle in zip((walked.static, walked.inertial), expected, strict=True):
+            np.testing.assert_allclose(found, oracle, atol=1e-10 * np.abs(oracle).max())

@@ -35,7 +35,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.gait.jacobian import transpose_times
-from hexaleg.gait.newton_euler import LegBodies, leg_bodies, leg_forces
+from hexaleg.gait.newton_euler import LegBodies, leg_bodies, leg_chains, leg_forces
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
@@ -145,6 +145,7 @@ class LoadedRobot:
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
         self._joints = [list(model.leg_joint_ids(leg)) for leg in model.leg_names]
+        self._source = model
 
     @property
     def data(self) -> pin.Data:
@@ -159,9 +160,11 @@ class LoadedRobot:
         """The legs as chains for :func:`~hexaleg.gait.newton_euler.leg_forces`, or ``None``.
 
         ``None`` where the model is not six chains of three revolute joints on the body
-        (:func:`~hexaleg.gait.newton_euler.leg_bodies`): Pinocchio's calls serve it.
+        (:func:`~hexaleg.gait.newton_euler.leg_chains`, found once for every model of the
+        body): Pinocchio's calls serve it.
         """
-        return leg_bodies(self.model, self._joints)
+        chains = self._source.structural("leg chains", lambda: leg_chains(self.model, self._joints))
+        return None if chains is None else leg_bodies(self.model, chains)
 
     def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
         """RNEA at each sample, by its two parts.

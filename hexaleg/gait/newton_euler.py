@@ -12,7 +12,7 @@ walks' inverse dynamics (:meth:`~hexaleg.gait.dynamics.LoadedRobot.generalized_f
 Geometry and inertias are read from the Pinocchio model (its joint placements, axes and
 body inertias: the URDF's), never from the design. A model whose legs are not three
 revolute joints in a row on the body (a robot file with other joints) gets ``None`` from
-:func:`leg_bodies`, and Pinocchio's per-sample ``rnea`` serves it. The tests hold this
+:func:`leg_chains`, and Pinocchio's per-sample ``rnea`` serves it. The tests hold this
 module to Pinocchio's ``rnea`` on seeded designs, postures and motions, on a robot file
 and on random general hexapods.
 
@@ -85,8 +85,27 @@ class LegForces:
     base: ArrayF
 
 
-def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | None:
-    """The bodies of ``model``'s legs, or ``None`` if they are not this module's kind.
+@dataclass(frozen=True)
+class LegChains:
+    """Which joints of a model make its legs' chains, and how they turn: its structure only.
+
+    Attributes:
+        joints: Every leg joint's index, leg by leg, root to knee (L·3,).
+        axes: Each joint's rotation axis, in its own frame (L, 3, 3) (unit).
+        velocities: Each joint's index in the model's velocity vector (L·3,).
+
+    """
+
+    joints: tuple[int, ...]
+    axes: ArrayF
+    velocities: tuple[int, ...]
+
+
+def leg_chains(model: pin.Model, leg_joints: list[list[int]]) -> LegChains | None:
+    """The chains of ``model``'s legs, or ``None`` if they are not this module's kind.
+
+    They depend on the model's joints alone, not on its lengths or masses: every model of
+    one body shares them (:meth:`~hexaleg.robot.model.HexapodModel.structural`).
 
     Args:
         model: A free-floating robot's Pinocchio model.
@@ -109,22 +128,28 @@ def leg_bodies(model: pin.Model, leg_joints: list[list[int]]) -> LegBodies | Non
     kinds = [models[j].shortname() for j in joints]
     if not set(kinds) <= set(REVOLUTE):
         return None
-    placements, inertias = list(model.jointPlacements), list(model.inertias)
-    frames = _per_joint([placements[j].homogeneous for j in joints])  # rotation | translation
     axes = [
         _AXES[kind] if kind in _AXES else _axis(models[j].extract())
         for kind, j in zip(kinds, joints, strict=True)
     ]
+    return LegChains(tuple(joints), _per_joint(axes), tuple(models[j].idx_v for j in joints))
+
+
+def leg_bodies(model: pin.Model, chains: LegChains) -> LegBodies:
+    """The bodies of ``model``'s legs, whose chains are ``chains`` (:func:`leg_chains`)."""
+    joints = chains.joints
+    placements, inertias = list(model.jointPlacements), list(model.inertias)
+    frames = _per_joint([placements[j].homogeneous for j in joints])  # rotation | translation
     bodies = [inertias[j] for j in joints]
     base = inertias[ROOT]
     return LegBodies(
         rotations=np.ascontiguousarray(frames[..., :3, :3]),
         translations=np.ascontiguousarray(frames[..., :3, 3]),
-        axes=_per_joint(axes),
+        axes=chains.axes,
         masses=_per_joint([inertia.mass for inertia in bodies]),
         centers=_per_joint([inertia.lever for inertia in bodies]),
         inertias=_per_joint([inertia.inertia for inertia in bodies]),
-        armatures=_per_joint(np.asarray(model.armature)[[models[j].idx_v for j in joints]]),
+        armatures=_per_joint(np.asarray(model.armature)[list(chains.velocities)]),
         base_mass=float(base.mass),
         base_center=np.array(base.lever, dtype=float),
     )
