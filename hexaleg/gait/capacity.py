@@ -34,8 +34,10 @@ forces' two parts and the wrench's, and every constraint becomes a bound on m:
 The actuators' masses and armatures are in the model both walks use, so they are in τ₀
 and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacity is the
 smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
-and the constraint that gives it is what binds; broken unloaded, the first broken in the
-order above (peak torque, ZMP, friction, continuous torque, voltage) is what stops the walk.
+and the constraint that gives it is what binds (of mirror-image legs that bind together, the
+first in leg order, as the max speed and the standing capacity name them: round-off never
+chooses); broken unloaded, the first broken in the order above (peak torque, ZMP, friction,
+continuous torque, voltage) is what stops the walk.
 On a slope (:class:`~hexaleg.statics.ground.Ground`) the walk has gravity tilted in the
 body frame, and the payload's weight with it; a safety factor F divides the peak torque and
 speed ratings (:meth:`~hexaleg.gait.walk.Walker.rated`). No search
