@@ -280,12 +280,8 @@ def _newton_euler(
                 frame[k],
                 forces[:, k],
             )
-        for part in range(2):
-            for n in range(count):
-                force, moment = _carry_up(translations, axes, frame, forces, torques, part, n, leg)
-                for i in range(3):
-                    base[part, n, i] += force[i]
-                    base[part, n, 3 + i] += moment[i]
+        for n in range(count):
+            _carry_up(translations, axes, frame, forces, torques, base, n, leg)
         for k in range(joints):
             for n in range(count):
                 torques[1, n, leg, k] += armatures[leg, k] * accelerations[n, leg, k]
@@ -352,19 +348,29 @@ def _carry_up(
     frame: ArrayF,
     forces: ArrayF,
     torques: ArrayF,
-    part: int,
+    base: ArrayF,
     n: int,
     leg: int,
-) -> tuple[Vector, Vector]:  # pragma: no cover - compiled
-    """Leg ``leg``'s backward pass of one part at sample ``n``: torques, wrench on the body."""
+) -> None:  # pragma: no cover - compiled
+    """Leg ``leg``'s backward pass at sample ``n``, both parts: torques, wrench on the body."""
+    static, static_moment = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
     force, moment = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
     for k in range(forces.shape[1] - 1, -1, -1):
-        force = _add(force, _get(forces[part, k, 0], n))
-        moment = _add(moment, _get(forces[part, k, 1], n))
-        torques[part, n, leg, k] = _dot(_vector(axes[leg, k]), moment)
-        force = _rotate(frame[k, n], force)
-        moment = _add(_rotate(frame[k, n], moment), _cross(_vector(translations[leg, k]), force))
-    return force, moment
+        turn, axis, offset = frame[k, n], _vector(axes[leg, k]), _vector(translations[leg, k])
+        static = _add(static, _get(forces[0, k, 0], n))
+        static_moment = _add(static_moment, _get(forces[0, k, 1], n))
+        force = _add(force, _get(forces[1, k, 0], n))
+        moment = _add(moment, _get(forces[1, k, 1], n))
+        torques[0, n, leg, k] = _dot(axis, static_moment)
+        torques[1, n, leg, k] = _dot(axis, moment)
+        static = _rotate(turn, static)
+        static_moment = _add(_rotate(turn, static_moment), _cross(offset, static))
+        force = _rotate(turn, force)
+        moment = _add(_rotate(turn, moment), _cross(offset, force))
+    for part, (pushed, turned) in enumerate(((static, static_moment), (force, moment))):
+        for i in range(3):
+            base[part, n, i] += pushed[i]
+            base[part, n, 3 + i] += turned[i]
 
 
 Vector = tuple[float, float, float]
