@@ -135,7 +135,7 @@ class LoadedRobot:
             point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
             self.model.inertias[base] = self.model.inertias[base] + point
         self.model.gravity.linear = self.gravity
-        self._shared = model if own else None  # whose Pinocchio data serves, if any
+        self._source, self._own = model, own  # the robot, and whether its model serves
         self._data: pin.Data | None = None
         self.mass = float(pin.computeTotalMass(self.model))
         self.legs = model.leg_names
@@ -145,14 +145,12 @@ class LoadedRobot:
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
         self._joints = [list(model.leg_joint_ids(leg)) for leg in model.leg_names]
-        self._source = model
 
     @property
     def data(self) -> pin.Data:
         """Pinocchio's workspace for :attr:`model` (made on first use: the chains need none)."""
         if self._data is None:
-            shared = self._shared
-            self._data = shared.data if shared is not None else self.model.createData()
+            self._data = self._source.data if self._own else self.model.createData()
         return self._data
 
     @cached_property
