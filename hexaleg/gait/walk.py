@@ -79,9 +79,10 @@ class Walker:
         safety_factor: F ≥ 1 [-]: every peak torque and joint speed is held within its
             rating / F (:meth:`rated`).
 
-    The gait's own stride is walked once and its min-norm loads computed once (every
-    analysis of the walker shares them); they hold for this walker's ground, payload and
-    g, which are read-only: another ground is another walker.
+    The gait's own stride is walked once, and its min-norm loads, support polygons and ZMP
+    sides found once (every analysis of the walker shares them: its walking capacity and
+    its period with the max speed); they hold for this walker's ground, payload and g,
+    which are read-only: another ground is another walker.
 
     """
 
