@@ -32,6 +32,8 @@ F = TypeVar("F", bound=Callable[..., Any])
 
 PACKAGE = Path(__file__).resolve().parent
 COMPILED_MODULES = (
+    "gait/friction.py",
+    "gait/newton_euler.py",
     "numerics/lp.py",
     "stance/margin_kernel.py",
     "stance/margin_jacobian.py",

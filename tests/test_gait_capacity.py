@@ -20,6 +20,7 @@ from hexaleg import HexapodDesign, HexapodModel, analyze_gait
 from hexaleg.actuator_catalog import actuators_from_table
 from hexaleg.actuators import Actuator, Actuators
 from hexaleg.battery import Battery
+from hexaleg.cause import Cause
 from hexaleg.design_file import load_design
 from hexaleg.electrical.ratings import motor_loads
 from hexaleg.evaluation.evaluate import evaluate
@@ -33,6 +34,7 @@ from hexaleg.gait.capacity import (
 from hexaleg.gait.dynamics import payload_wrench
 from hexaleg.gait.spec import Gait
 from hexaleg.gait.walk import Walker
+from hexaleg.grids import ratio_lengths
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.imported import import_robot
 from hexaleg.robot.imported_model import ImportedHexapodModel
@@ -307,7 +309,7 @@ def test_the_zmp_bound_is_where_the_gaits_zmp_reaches_the_polygons_edge():
     walk = walker.stride(gait.stride)
     probe = payload_wrench(walker.payload.point(model), PROBE_MASS, walker.gravity_vector)
     rnea = walker.loads(gait.stride, walk, gait.period).rnea
-    mass, cause = _zmp_bound(walker, rnea, probe, walk.paths.position)
+    mass, cause = _zmp_bound(walker, walk, rnea, probe)
 
     def margin(m: float) -> float:
         walked = analyze_gait(design, gait, Payload(m, position), model=model, limits=False)
@@ -355,3 +357,35 @@ def test_loads_walking_capacity_is_where_the_design_files_gait_breaks(tmp_path, 
     if kind == "kraby":  # without a [gait] table a robot file walks its own gait, sized to it
         plain = robot_json(capsys, ["loads", *robot_argv(kind), "--json"])
         assert plain["walking_payload_capacity"]["walks"]
+
+
+@pytest.mark.parametrize(("l1_ratio", "l3_ratio"), [(0.2, 0.435), (0.2, 0.205)])
+def test_mirror_legs_that_bind_together_are_named_in_leg_order(l1_ratio, l3_ratio):
+    """Mirror-image legs bind at the same payload: the first in leg order is named.
+
+    Round-off never chooses between them (as the statics' capacity and the max speed do).
+    Oracle: each joint's bound from the gait analysis itself, unloaded and with 1 kg (every
+    torque affine in the payload), or its unloaded peak speed when one is over its rating.
+    """
+    l1, l2, l3 = ratio_lengths(l1_ratio, l3_ratio, 1.0)
+    design = HexapodDesign(l1=l1, l2=l2, l3=l3)
+    model, gait = HexapodModel(design), Gait()
+    found = walking_payload_capacity(model, gait)
+    unloaded = analyze_gait(design, gait, model=model, limits=False)
+    speeds = np.abs(unloaded.joint_velocities).max(axis=0)  # (6, 3)
+    rated = np.array(design.rated_torques)
+    if (speeds > np.array(design.rated_speeds)).any():
+        kind, bound = "speed", -speeds  # the fastest stops the walk
+    else:
+        loaded = analyze_gait(design, gait, Payload(1.0), model=model, limits=False)
+        base, slope = unloaded.joint_torques, loaded.joint_torques - unloaded.joint_torques
+        with np.errstate(divide="ignore", invalid="ignore"):
+            up, down = (rated - base) / slope, (-rated - base) / slope
+        bound = np.where(slope > 0, up, np.where(slope < 0, down, np.inf)).min(axis=0)
+        kind = "torque"
+    least = bound.min()
+    tied = np.argwhere(bound <= least + 1e-9 * max(1.0, abs(least)))
+    assert len({leg for leg, _ in tied}) >= 2  # the case: two legs tie
+    leg, joint = tied[0]
+    assert found is not None
+    assert found.limited_by == Cause(kind, design.leg_names[leg], LEG_JOINTS[joint])

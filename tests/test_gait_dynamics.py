@@ -5,7 +5,8 @@
   Christoffel symbols and gravity from exact complex-step derivatives), equal the torques
   the gait computes for a swinging leg (the body moves at constant velocity without
   turning: an inertial frame) and Pinocchio's fixed-base RNEA, to 1e-9.
-- The free-flyer rows balance at every sample, with Pinocchio's own foot Jacobians, and
+- The free-flyer rows balance at every sample, with Pinocchio's own foot Jacobians, the
+  standing feet's forces are their least-norm balance (NumPy's lstsq) in every pattern, and
   the ZMP equals the one from Pinocchio's centroidal momentum rate: on each kind of robot
   (hexaleg's template, a robot file).
 - The static limit equals the statics (``loads``) at the nominal stance.
@@ -251,6 +252,26 @@ def test_free_flyer_rows_balance_at_every_sample(robot_walked):
             on_theta = model.joint_signs(leg) * tau[model.leg_v_indices(leg)]
             np.testing.assert_allclose(on_theta, walked.joint_torques[k, i], atol=1e-9)
     assert np.all(walked.foot_forces[~walked.stance] == 0.0)
+
+
+@pytest.mark.parametrize("pattern", ["tripod", "tetrapod", "wave"])
+def test_the_standing_feet_carry_each_sample_at_least_norm(hexapod_model, pattern):
+    """The min-norm split: at each sample, the least-norm forces on the standing feet that
+    balance the free-flyer rows. Oracle: NumPy's least-squares minimum-norm solution of
+    those rows, written with Pinocchio's foot Jacobians and RNEA (a payload on the body)."""
+    gait = Gait(pattern=pattern, period=1.2, samples=30)
+    payload = Payload(25.0, (0.1, -0.05, 0.1))
+    model = hexapod_model
+    walked = analyze_gait(model.design, gait, payload, model=model, limits=False)
+    for k in range(gait.samples):
+        q = walked.configurations[k]
+        v, a = walked.generalized_velocities[k], walked.generalized_accelerations[k]
+        base = _generalized(model, payload, q, v, a)[:6]
+        jacobians = _foot_jacobians(model, q)
+        legs = np.flatnonzero(walked.stance[k])
+        rows = np.hstack([jacobians[model.leg_names[i]][:, :6].T for i in legs])  # (6, 3n)
+        least = np.linalg.lstsq(rows, base, rcond=None)[0].reshape(-1, 3)
+        np.testing.assert_allclose(walked.foot_forces[k, legs], least, atol=1e-9)
 
 
 def test_the_static_limit_equals_the_statics_at_the_nominal_stance(hexapod_model):

@@ -366,8 +366,11 @@ class _Measuring:
     def _walked(self, analysis: Analysis) -> Metrics:
         """The metrics ``analysis`` measures walking, each its worst over the grounds."""
         found = self.walking.measure(analysis)
-        self.causes = replace(self.causes, **found.causes.to_dict())
-        self.unmeasured = replace(self.unmeasured, **found.unmeasured.to_dict())
+        causes, reasons = found.causes.to_dict(), found.unmeasured.to_dict()
+        if causes:
+            self.causes = replace(self.causes, **causes)
+        if reasons:
+            self.unmeasured = replace(self.unmeasured, **reasons)
         return found.metrics
 
     # -- the analyses ------------------------------------------------------------------

@@ -27,7 +27,7 @@ from hexaleg.gait.friction import Slip, friction_ratios, slips
 from hexaleg.gait.limits import SpeedLimit, StrideLimit, max_speed, max_stride
 from hexaleg.gait.metrics import GaitMetrics, gait_metrics
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import feet_on_ground, zero_moment_points, zmp_margins
+from hexaleg.gait.stability import Supports, zero_moment_points, zmp_margins
 from hexaleg.gait.trajectory import LegFrames
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.gravity import GRAVITY
@@ -76,6 +76,7 @@ class GaitAnalysis:
         feet: Foot positions (N, 6, 3) in the body frame [m].
         zmp: The zero-moment point (N, 2) [m], ground frame, on the ground's plane (its
             margin: :attr:`zmp_margin`, computed on first use).
+        supports: The standing feet's support polygons along the period, ground frame.
         metrics: Peaks, RMS, positive work, cost of transport.
         violations: Every constraint the period breaks, earliest first (none: feasible).
         max_stride: The largest feasible stride (None if not computed).
@@ -109,6 +110,7 @@ class GaitAnalysis:
     foot_forces: ArrayF
     feet: ArrayF
     zmp: ArrayF
+    supports: Supports
     metrics: GaitMetrics
     violations: tuple[Violation, ...]
     max_stride: StrideLimit | None
@@ -119,8 +121,7 @@ class GaitAnalysis:
     @cached_property
     def zmp_margin(self) -> ArrayF:
         """The ZMP's signed distance inside the standing feet's polygon (N,) [m]."""
-        feet = feet_on_ground(self.feet, self.configurations, self.frames.height)
-        return zmp_margins(self.zmp, feet, self.stance)
+        return zmp_margins(self.zmp, self.supports)
 
     @property
     def min_zmp_margin(self) -> float:
@@ -379,10 +380,12 @@ def _analysis(
     speed_limit: SpeedLimit | None,
 ) -> GaitAnalysis:
     """The result of a walk: its time series at the gait's period, metrics and limits."""
-    gait, period = walker.gait, walker.gait.period
+    gait, period, rnea = walker.gait, walker.gait.period, loads.rnea
     torques, velocities = loads.split.torques(period), walk.motion.velocity / period
-    wrench = loads.rnea.static[:, :6] + loads.rnea.inertial[:, :6] / period**2
-    travel = loads.rnea.configurations[:, :2]  # the body's origin over the ground
+    times, forces = walker.times(period), loads.split.forces(period)
+    rates, accelerations = rnea.velocities / period, rnea.accelerations / period**2
+    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
+    travel = rnea.configurations[:, :2]  # the body's origin over the ground
     weight_travel = walker.robot.mass * walker.gravity * gait.stride / walker.phases.duty_factor
     return GaitAnalysis(
         design=walker.model.design,
@@ -394,19 +397,20 @@ def _analysis(
         mass=walker.robot.mass,
         legs=walker.frames.legs,
         frames=walker.frames,
-        times=walker.times(period),
+        times=times,
         stance=walker.phases.stance,
         joint_angles=walk.motion.angles,
         joint_velocities=velocities,
         joint_accelerations=walk.motion.acceleration / period**2,
-        configurations=loads.rnea.configurations,
-        generalized_velocities=loads.rnea.velocities / period,
-        generalized_accelerations=loads.rnea.accelerations / period**2,
+        configurations=rnea.configurations,
+        generalized_velocities=rates,
+        generalized_accelerations=accelerations,
         base_velocity=gait.speed * walker.heading,
         joint_torques=torques,
-        foot_forces=loads.split.forces(period),
+        foot_forces=forces,
         feet=walk.paths.position,
         zmp=zero_moment_points(wrench, walker.frames.height) + travel,
+        supports=walker.supports(walk, rnea.configurations),
         metrics=gait_metrics(torques, velocities, period, weight_travel),
         violations=walk.violations,
         max_stride=stride_limit,
@@ -414,11 +418,11 @@ def _analysis(
         electrical=_electrical(walker, torques, velocities),
         structure=check_walking(
             walker.model,
-            walker.times(period),
-            loads.rnea.configurations,
-            loads.rnea.velocities / period,
-            loads.rnea.accelerations / period**2,
-            loads.split.forces(period),
+            times,
+            rnea.configurations,
+            rates,
+            accelerations,
+            forces,
             walker.gravity_vector,
         ),
     )

@@ -34,8 +34,10 @@ forces' two parts and the wrench's, and every constraint becomes a bound on m:
 The actuators' masses and armatures are in the model both walks use, so they are in τ₀
 and Δτ as they are in :func:`~hexaleg.gait.analysis.analyze_gait`. The capacity is the
 smallest of those bounds (at most :data:`~hexaleg.statics.forces.PAYLOAD_SEARCH_LIMIT`),
-and the constraint that gives it is what binds; broken unloaded, the first broken in the
-order above (peak torque, ZMP, friction, continuous torque, voltage) is what stops the walk.
+and the constraint that gives it is what binds (of mirror-image legs that bind together, the
+first in leg order, as the max speed and the standing capacity name them: round-off never
+chooses); broken unloaded, the first broken in the order above (peak torque, ZMP, friction,
+continuous torque, voltage) is what stops the walk.
 On a slope (:class:`~hexaleg.statics.ground.Ground`) the walk has gravity tilted in the
 body frame, and the payload's weight with it; a safety factor F divides the peak torque and
 speed ratings (:meth:`~hexaleg.gait.walk.Walker.rated`). No search
@@ -59,11 +61,12 @@ from hexaleg.exceptions import ParameterError
 from hexaleg.gait.dynamics import CarriedLoad, GeneralizedForces, payload_wrench
 from hexaleg.gait.friction import cone_limit
 from hexaleg.gait.spec import Gait
-from hexaleg.gait.stability import feet_on_ground, zmp_sides
-from hexaleg.gait.walk import Loads, Walker
+from hexaleg.gait.stability import zmp_sides
+from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.gravity import GRAVITY
 from hexaleg.limits import LEG_JOINTS
 from hexaleg.robot.model import HexapodModel
+from hexaleg.statics.capacity import first_lowest_index
 from hexaleg.statics.forces import PAYLOAD_SEARCH_LIMIT, Payload
 from hexaleg.statics.ground import LEVEL, Ground
 
@@ -159,7 +162,7 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
     legs = unloaded.frames.legs
     bounds = [
         _torque_bound(legs, base, slope, rated_torques),
-        _zmp_bound(unloaded, loads.rnea, probe, walk.paths.position),
+        _zmp_bound(unloaded, walk, loads.rnea, probe),
         _grip_bound(unloaded, loads, carried),
     ]
     actuators, bus = model.design.actuators, model.design.bus_voltage
@@ -179,42 +182,49 @@ def walker_capacity(unloaded: Walker) -> WalkingCapacity:
 
 
 def _largest(offset: ArrayF, slope: ArrayF) -> tuple[float, int] | None:
-    """The largest m ≥ 0 with every ``offset + m·slope ≥ 0`` (flat arrays), and which binds.
+    """The largest m ≥ 0 with every ``offset + m·slope ≥ 0``, and which binds (flat index).
 
-    Negative (with the index of the broken one) when one is broken at m = 0 already;
-    ``None`` when none bounds m.
+    Negative (the most broken offset, with its index) when one is broken at m = 0
+    already; ``None`` when none bounds m. Of bounds that tie (mirror-image legs) the first
+    in the arrays' order binds (:func:`~hexaleg.statics.capacity.first_lowest_index`).
     """
+    offset, slope = offset.ravel(), slope.ravel()
     if (offset < 0).any():
-        index = int(np.argmin(offset))
-        return float(offset[index]), index
+        return float(offset.min()), first_lowest_index(offset)
     shrinking = slope < 0
     if not shrinking.any():
         return None
     limits = np.full(offset.shape, np.inf)
     limits[shrinking] = -offset[shrinking] / slope[shrinking]
-    index = int(np.argmin(limits))
-    return float(limits[index]), index
+    return float(limits.min()), first_lowest_index(limits)
 
 
 def _joint_cause(
     kind: CauseKind, legs: tuple[str, ...], index: int, shape: tuple[int, ...]
 ) -> Cause:
-    """The cause of a bound on flat ``index`` into an array of ``shape`` (..., 6, 3)."""
-    *_, leg, joint = np.unravel_index(index, shape)
+    """The cause of a bound on flat ``index`` into an array of ``shape`` (6, 3, ...)."""
+    leg, joint, *_ = np.unravel_index(index, shape)
     return Cause(kind, legs[leg], LEG_JOINTS[joint])
 
 
 def _window_bound(
     kind: CauseKind, legs: tuple[str, ...], base: ArrayF, slope: ArrayF, low: ArrayF, high: ArrayF
 ) -> tuple[float, Cause] | None:
-    """Every joint at every sample with low ≤ τ₀ + m·Δτ ≤ high (each broadcast to (N, 6, 3))."""
+    """Every joint at every sample with low ≤ τ₀ + m·Δτ ≤ high (each broadcast to (N, 6, 3)).
+
+    Ties go in leg order, then joint order: the bounds are ordered (leg, joint, side, sample).
+    """
     low, high = np.broadcast_to(low, base.shape), np.broadcast_to(high, base.shape)
-    offset = np.concatenate(((high - base).ravel(), (base - low).ravel()))
-    found = _largest(offset, np.concatenate(((-slope).ravel(), slope.ravel())))
+    offset = np.stack((high - base, base - low)).transpose(_LEG_FIRST)
+    found = _largest(offset, np.stack((-slope, slope)).transpose(_LEG_FIRST))
     if found is None:
         return None
     mass, index = found
-    return mass, _joint_cause(kind, legs, index % base.size, base.shape)
+    return mass, _joint_cause(kind, legs, index, offset.shape)
+
+
+_LEG_FIRST = (2, 3, 0, 1)
+"""(side, sample, leg, joint) → (leg, joint, side, sample)."""
 
 
 def _torque_bound(
@@ -236,10 +246,8 @@ def _continuous_bound(
     quadratic, linear = np.mean(slope**2, axis=0), np.mean(base * slope, axis=0)  # (6, 3)
     headroom = np.square(actuators.continuous_torques) - np.mean(base**2, axis=0)
     if (headroom < 0).any():
-        index = int(np.argmin(headroom))
-        return float(headroom.flat[index]), _joint_cause(
-            "continuous_torque", legs, index, headroom.shape
-        )
+        index = first_lowest_index(headroom)
+        return float(headroom.min()), _joint_cause("continuous_torque", legs, index, headroom.shape)
     grows = quadratic > 0  # else Δτ = 0 throughout: the RMS does not change with m
     if not grows.any():
         return None
@@ -249,8 +257,8 @@ def _continuous_bound(
     limits[ahead] = headroom[ahead] / (linear[ahead] + root[ahead])
     behind = grows & (linear < 0)
     limits[behind] = (root[behind] - linear[behind]) / quadratic[behind]
-    index = int(np.argmin(limits))
-    return float(limits.flat[index]), _joint_cause("continuous_torque", legs, index, limits.shape)
+    index = first_lowest_index(limits)
+    return float(limits.min()), _joint_cause("continuous_torque", legs, index, limits.shape)
 
 
 def _voltage_bound(
@@ -293,25 +301,26 @@ def _reach(headroom: ArrayF, volts_per_torque: ArrayF) -> ArrayF:
 
 
 def _zmp_bound(
-    walker: Walker, rnea: GeneralizedForces, probe: ArrayF, feet: ArrayF
+    walker: Walker, walk: Stride, rnea: GeneralizedForces, probe: ArrayF
 ) -> tuple[float, Cause] | None:
     """The ZMP on the inner side of every edge of the standing feet's polygon.
 
     Each side (:func:`~hexaleg.gait.stability.zmp_sides`) is linear in the base's wrench,
-    which is affine in the payload: the unloaded walk's sides and their change per kg
-    (``probe``: the wrench of :data:`PROBE_MASS` on the base rows, under the walker's
-    gravity: on a slope its weight pushes along the plane too).
+    which is affine in the payload: the unloaded walk's sides at its period (from their
+    static and inertial parts, :meth:`~hexaleg.gait.walk.Walker.zmp_sides`, the max
+    speed's too) and their change per kg (``probe``: the wrench of :data:`PROBE_MASS` on
+    the base rows, under the walker's gravity: on a slope its weight pushes along the
+    plane too).
     """
-    period, height = walker.gait.period, walker.frames.height
+    static, inertial = walker.zmp_sides(walk, rnea)
     configurations = rnea.configurations  # the body's path, as the payload's
-    wrench = rnea.static[:, :6] + rnea.inertial[:, :6] / period**2
-    base, change = zmp_sides(
-        np.stack((wrench, np.broadcast_to(probe / PROBE_MASS, wrench.shape))),
-        height,
+    change = zmp_sides(
+        np.broadcast_to(probe / PROBE_MASS, (len(configurations), 6)),
+        walker.frames.height,
         configurations[:, :2],
-        feet_on_ground(feet, configurations, height),
-        walker.phases.stance,
+        walker.supports(walk, configurations),
     )
+    base = static + inertial / walker.gait.period**2
     found = _largest(base, change)
     return None if found is None else (found[0], Cause("zmp"))
 
@@ -333,6 +342,6 @@ def _grip_bound(walker: Walker, loads: Loads, carried: CarriedLoad) -> tuple[flo
 
 
 def _fastest(walker: Walker, over: np.ndarray, speeds: ArrayF) -> Cause:
-    """The fastest of the joints over their rated speed (N, 6, 3), as a cause."""
-    index = np.unravel_index(int(np.argmax(np.where(over, speeds, -np.inf))), speeds.shape)
-    return Cause("speed", walker.frames.legs[index[1]], LEG_JOINTS[index[2]])
+    """The fastest of the joints over their rated speed (N, 6, 3), as a cause (ties: leg order)."""
+    fastest = np.where(over, -speeds, np.inf).transpose(1, 2, 0)  # (leg, joint, sample)
+    return _joint_cause("speed", walker.frames.legs, first_lowest_index(fastest), fastest.shape)

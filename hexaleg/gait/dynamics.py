@@ -1,9 +1,12 @@
 """Inverse dynamics of a gait period on the free-flyer model, and the standing feet's forces.
 
-At each sample, Pinocchio's RNEA on the free-flyer model (the design's URDF, the payload a
-point mass fixed to the body) gives the generalized forces of the motion: base velocity
-v·u, base acceleration 0, the legs' joint motion. The standing feet's forces f_i (ground
-frame, at the foot frame's origin) balance its six base rows,
+At each sample, the RNEA on the free-flyer Pinocchio model (the design's URDF, the payload
+a point mass fixed to the body) gives the generalized forces of the motion: base velocity
+v·u, base acceleration 0, the legs' joint motion. The body neither turns nor accelerates,
+so the legs' chains are solved for every sample at once
+(:mod:`~hexaleg.gait.newton_euler`, held to Pinocchio's ``rnea`` by the tests); a model
+whose legs are not plain chains takes Pinocchio's calls, sample by sample. The standing
+feet's forces f_i (ground frame, at the foot frame's origin) balance its six base rows,
 Σ J_i,baseᵀ f_i = RNEA[0:6], and the joint torques are τ = RNEA[6:] − Σ J_i,jointsᵀ f_i;
 swinging legs carry their own inertia and gravity. The split is the minimum-norm one
 (:func:`~hexaleg.statics.forces.min_norm_forces`) or the min-torque QP with friction of
@@ -16,14 +19,15 @@ runs at q, q̇ = s·θ̇, q̈ = s·θ̈ and each joint's torque on θ is s times
 
 Every joint velocity is (1/T)·(a derivative by the phase) and every acceleration (1/T²)·(…),
 so RNEA = g(q) + (M(q)·q'' + C(q, q')·q')/T² exactly: a static part and an inertial part
-over T². Both are computed once (Pinocchio's generalized gravity, and RNEA without
-gravity on the phase derivatives); the minimum-norm forces and the torques are linear in
+over T². Both are computed once (the generalized gravity, and RNEA without gravity on
+the phase derivatives); the minimum-norm forces and the torques are linear in
 them, so one evaluation serves every period of the same stride.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 import numpy.typing as npt
@@ -31,6 +35,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.gait.jacobian import transpose_times
+from hexaleg.gait.newton_euler import LegBodies, leg_bodies, leg_chains, leg_forces
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
@@ -77,7 +82,16 @@ def payload_wrench(point: ArrayF, mass: float, gravity: ArrayF) -> ArrayF:
     inertia.
     """
     force = -mass * np.asarray(gravity, dtype=float)
-    return np.concatenate((force, np.cross(point, force)))
+    return np.concatenate((force, moment_of(point, force)))
+
+
+def moment_of(point: npt.ArrayLike, force: ArrayF) -> ArrayF:
+    """The moment p × f (3,) [N·m] of a force f (3,) [N] at a point p (3,) [m].
+
+    Written out: NumPy's cross product costs more than the product on a single pair.
+    """
+    (px, py, pz), (fx, fy, fz) = np.asarray(point, dtype=float), force
+    return np.array([py * fz - pz * fy, pz * fx - px * fz, px * fy - py * fx])
 
 
 @dataclass(frozen=True)
@@ -121,7 +135,8 @@ class LoadedRobot:
             point = pin.Inertia(payload.mass, payload.point(model), np.zeros((3, 3)))
             self.model.inertias[base] = self.model.inertias[base] + point
         self.model.gravity.linear = self.gravity
-        self.data = model.data if own else self.model.createData()
+        self._source, self._own = model, own  # the robot, and whether its model serves
+        self._data: pin.Data | None = None
         self.mass = float(pin.computeTotalMass(self.model))
         self.legs = model.leg_names
         self.q_index = np.array([model.leg_q_indices(leg) for leg in model.leg_names])
@@ -129,9 +144,33 @@ class LoadedRobot:
         self.signs = joint_signs(model)
         self.height = float(model.nominal_base_pose().translation[2])
         self._joint_values = model.joint_values
+        self._joints = [list(model.leg_joint_ids(leg)) for leg in model.leg_names]
+
+    @property
+    def data(self) -> pin.Data:
+        """Pinocchio's workspace for :attr:`model` (made on first use: the chains need none)."""
+        if self._data is None:
+            self._data = self._source.data if self._own else self.model.createData()
+        return self._data
+
+    @cached_property
+    def bodies(self) -> LegBodies | None:
+        """The legs as chains for :func:`~hexaleg.gait.newton_euler.leg_forces`, or ``None``.
+
+        ``None`` where the model is not six chains of three revolute joints on the body
+        (:func:`~hexaleg.gait.newton_euler.leg_chains`, found once for every model of the
+        body): Pinocchio's calls serve it.
+        """
+        chains = self._source.structural("leg chains", lambda: leg_chains(self.model, self._joints))
+        return None if chains is None else leg_bodies(self.model, chains)
 
     def generalized_forces(self, motion: JointMotion, base_travel: ArrayF) -> GeneralizedForces:
-        """RNEA at each sample, by its two parts (one Pinocchio call each per sample).
+        """RNEA at each sample, by its two parts.
+
+        The body translates at a constant velocity without turning, so the legs' chains
+        are solved for every sample at once (:func:`~hexaleg.gait.newton_euler.leg_forces`);
+        a model whose legs are not such chains (:attr:`bodies`) takes one Pinocchio call
+        per part and sample.
 
         Args:
             motion: Joint angles θ and their phase derivatives (N, 6, 3), ``leg_names``
@@ -139,18 +178,51 @@ class LoadedRobot:
             base_travel: How far the body moves in one period, v·T·u, body frame (3,) [m].
 
         """
-        count, model, data = len(motion.angles), self.model, self.data
+        count, model = len(motion.angles), self.model
+        values = [self._joint_values(leg, motion.angles[:, i]) for i, leg in enumerate(self.legs)]
+        joints = np.stack(values, axis=1)  # the model's q of every leg (N, 6, 3)
+        rates, accelerations = self.signs * motion.velocity, self.signs * motion.acceleration
         q = np.zeros((count, model.nq))
         q[:, :3] = np.arange(count)[:, None] / count * base_travel
         q[:, 2] += self.height
         q[:, 6] = 1.0  # level: the identity quaternion (x, y, z, w)
-        for i, leg in enumerate(self.legs):
-            q[:, self.q_index[i]] = self._joint_values(leg, motion.angles[:, i])
+        q[:, self.q_index] = joints
         velocity = np.zeros((count, model.nv))
         velocity[:, :3] = base_travel  # the body's, per unit phase, in its own (level) frame
-        velocity[:, self.v_index] = self.signs * motion.velocity
+        velocity[:, self.v_index] = rates
         acceleration = np.zeros((count, model.nv))
-        acceleration[:, self.v_index] = self.signs * motion.acceleration
+        acceleration[:, self.v_index] = accelerations
+        if self.bodies is not None:
+            static, inertial = self._chain_rows(joints, rates, accelerations, base_travel)
+        else:
+            static, inertial = self._pinocchio_rows(q, velocity, acceleration)
+        return GeneralizedForces(q, velocity, acceleration, static, inertial)
+
+    def _chain_rows(
+        self, joints: ArrayF, rates: ArrayF, accelerations: ArrayF, base_velocity: ArrayF
+    ) -> tuple[ArrayF, ArrayF]:
+        """The static and inertial rows (N, nv) from the legs' chains (every joint a leg's).
+
+        Args:
+            joints: The model's joint values (N, 6, 3) [rad].
+            rates: Their phase derivatives (N, 6, 3) [rad].
+            accelerations: Their second phase derivatives (N, 6, 3) [rad].
+            base_velocity: The body's, per unit phase, in its own frame (3,) [m].
+
+        """
+        assert self.bodies is not None
+        parts = leg_forces(self.bodies, joints, rates, accelerations, base_velocity, self.gravity)
+        rows = np.empty((2, len(joints), self.model.nv))  # every row is a leg's or the body's
+        for row, part in zip(rows, parts, strict=True):
+            row[:, :6] = part.base
+            row[:, self.v_index] = part.torques
+        return rows[0], rows[1]
+
+    def _pinocchio_rows(
+        self, q: ArrayF, velocity: ArrayF, acceleration: ArrayF
+    ) -> tuple[ArrayF, ArrayF]:
+        """The static and inertial rows (N, nv): Pinocchio's, one call per part and sample."""
+        model, data, count = self.model, self.data, len(q)
         static, inertial = np.empty((count, model.nv)), np.empty((count, model.nv))
         for k in range(count):
             static[k] = pin.computeGeneralizedGravity(model, data, q[k])
@@ -160,7 +232,7 @@ class LoadedRobot:
                 inertial[k] = pin.rnea(model, data, q[k], velocity[k], acceleration[k])
         finally:
             model.gravity.linear = self.gravity
-        return GeneralizedForces(q, velocity, acceleration, static, inertial)
+        return static, inertial
 
 
 @dataclass(frozen=True)
@@ -202,13 +274,13 @@ def joint_signs(model: HexapodModel) -> ArrayF:
 
 
 def leg_rows(model: HexapodModel, rows: ArrayF) -> ArrayF:
-    """The legs' joint rows (N, 6, 3) of generalized forces (N, nv), on hexaleg's θ.
+    """The legs' joint rows (..., N, 6, 3) of generalized forces (..., N, nv), on hexaleg's θ.
 
     ``leg_names`` order; each row times its joint's sign dq/dθ (a torque about the
     model's joint axis is s times the torque on θ).
     """
     v_index = np.array([model.leg_v_indices(leg) for leg in model.leg_names])
-    on_theta: ArrayF = rows[:, v_index] * joint_signs(model)
+    on_theta: ArrayF = rows[..., v_index] * joint_signs(model)
     return on_theta
 
 
@@ -251,10 +323,10 @@ def min_norm_split_carrying(
     if wrench is not None:
         columns.append(np.broadcast_to(np.asarray(wrench, dtype=float), (len(feet), 6)))
     forces, pushed = _min_norm_pushes(frames, phases, feet, motion, np.stack(columns, axis=-1))
-    joints = np.stack((leg_rows(model, rnea.static), leg_rows(model, rnea.inertial)))
+    joints = leg_rows(model, np.stack((rnea.static, rnea.inertial)))
     torques = joints - pushed[:2]
-    split = ForceSplit(forces[..., 0], forces[..., 1], torques[0], torques[1])
-    return split, (None if wrench is None else CarriedLoad(forces[..., 2], -pushed[2]))
+    split = ForceSplit(forces[0], forces[1], torques[0], torques[1])
+    return split, (None if wrench is None else CarriedLoad(forces[2], -pushed[2]))
 
 
 def carried_load(
@@ -269,13 +341,20 @@ def carried_load(
     """
     columns = np.broadcast_to(np.asarray(wrench, dtype=float)[:, None], (len(feet), 6, 1))
     forces, pushed = _min_norm_pushes(frames, phases, feet, motion, columns)
-    return CarriedLoad(forces[..., 0], -pushed[0])
+    return CarriedLoad(forces[0], -pushed[0])
 
 
 def _min_norm_pushes(
     frames: LegFrames, phases: GaitPhases, feet: ArrayF, motion: JointMotion, wrenches: ArrayF
 ) -> tuple[ArrayF, ArrayF]:
     """The minimum-norm feet's forces balancing base wrenches, and the torques they push.
+
+    The least-norm forces do not depend on the point the moments are taken about, and
+    during a run of samples (:attr:`~hexaleg.gait.pattern.GaitPhases.runs`) the standing
+    feet do not move on the ground while the body translates: about the body's origin at
+    the run's first sample (its moment M + d × F, d how far the body has moved since, as
+    far as its standing feet have moved back), one set of balance rows and one solve
+    (:func:`~hexaleg.statics.forces.min_norm_forces`) serve every sample of the run.
 
     Args:
         frames: The legs.
@@ -285,17 +364,27 @@ def _min_norm_pushes(
         wrenches: K base wrenches at each sample (N, 6, K) [N, N·m].
 
     Returns:
-        The forces (N, 6, 3, K) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
+        The forces (K, N, 6, 3) [N] and Jᵀf per leg (K, N, 6, 3) [N·m].
 
     """
-    count, kinds = len(feet), wrenches.shape[-1]
-    standing = stance_indices(phases)
-    rows = np.arange(count)[:, None]
-    a, _ = equilibrium(feet[rows, standing], np.zeros((count, 3)), 0.0, np.zeros(3))
-    split = min_norm_forces(a, wrenches).reshape(count, -1, 3, kinds)
-    forces = np.zeros((count, 6, 3, kinds))
-    forces[rows, standing] = split
-    in_roots = frames.to_roots(np.moveaxis(forces, -1, 0), points=False)  # (K, N, 6, 3)
+    kinds, runs = wrenches.shape[-1], phases.runs
+    starts = np.repeat([run.start for run in runs], [run.stop - run.start for run in runs])
+    lead = np.argmax(phases.stance[starts], axis=1)  # a standing leg of each sample's run
+    moved = feet[starts, lead] - feet[np.arange(len(feet)), lead]  # the body, since (N, 3)
+    force, moment = wrenches[:, :3], wrenches[:, 3:]  # (N, 3, K) each
+    about_start = np.empty((len(feet), 6, kinds))  # F, and M + moved × F: the same wrench
+    about_start[:, :3] = force  # about the body's origin at its run's first sample
+    for axis, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
+        turn = moved[:, i, None] * force[:, j] - moved[:, j, None] * force[:, i]
+        about_start[:, 3 + axis] = moment[:, axis] + turn
+    forces = np.zeros((kinds, len(feet), 6, 3))  # each wrench's forces in one block
+    for run in runs:  # the standing feet stay put: one set of rows serves the run
+        legs = np.flatnonzero(phases.stance[run.start])
+        rows, _ = equilibrium(feet[run.start, legs], np.zeros(3), 0.0, np.zeros(3))
+        rhs = about_start[run].transpose(1, 0, 2).reshape(6, -1)  # (6, n·K)
+        split = min_norm_forces(rows, rhs)  # (3·legs, n·K)
+        forces[:, run, legs] = split.reshape(len(legs), 3, -1, kinds).transpose(3, 2, 0, 1)
+    in_roots = frames.to_roots(forces, points=False)
     return forces, transpose_times(motion.partials, in_roots)
 
 

@@ -25,6 +25,7 @@ import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
+from hexaleg.gait.jacobian import LegPartials
 from hexaleg.gait.trajectory import LegFrames, knee_heights
 from hexaleg.leg_geometry import leg_parameters
 from hexaleg.limits import LEG_JOINTS, JointLimits
@@ -96,6 +97,7 @@ def gait_margins(
     stance: npt.NDArray[np.bool_],
     theta: ArrayF,
     reach: ArrayF,
+    partials: LegPartials | None = None,
 ) -> ArrayF:
     """Every constraint's margin (..., N, 6, :data:`COLUMNS`): ≥ 0 holds [m or rad].
 
@@ -105,6 +107,8 @@ def gait_margins(
         stance: Whether each leg stands at each sample (N, 6).
         theta: Joint angles (..., N, 6, 3) [rad].
         reach: Hip-to-foot distances (..., N, 6) [m].
+        partials: The angles' partials (:func:`~hexaleg.gait.jacobian.leg_partials`), if
+            known (their trigonometry serves the knees' heights).
 
     """
     _, l2, l3, _, _ = leg_parameters(frames.parameters)
@@ -115,7 +119,7 @@ def gait_margins(
             (l2 + l3 - reach)[..., None],
             (reach - abs(l2 - l3))[..., None],
             joints,
-            knee_heights(frames, theta)[..., None],
+            knee_heights(frames, theta, partials)[..., None],
         ),
         axis=-1,
     )
@@ -159,6 +163,8 @@ def violations(margins: ArrayF, legs: Sequence[str], times: ArrayF) -> tuple[Vio
     broken = margins < -TOLERANCE
     flat = broken.reshape(len(times), -1)
     ever = flat.any(axis=0)
+    if not ever.any():
+        return ()
     first = flat.argmax(axis=0)
     causes = [cause for leg in legs for cause in leg_causes(leg)]
     order = sorted(np.flatnonzero(ever), key=lambda c: (first[c], c))

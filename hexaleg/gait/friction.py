@@ -23,6 +23,7 @@ from typing import Any
 import numpy as np
 import numpy.typing as npt
 
+from hexaleg._compiled import compiled
 from hexaleg._typing import ArrayF
 from hexaleg.cause import Cause
 
@@ -112,47 +113,82 @@ def cone_limit(
         the worst foot when one slides at t = 0 already; ``None`` when no t bounds them.
 
     """
-    f0, df = base[stance], slope[stance]  # (K, 3)
-    n0, dn = f0[:, 2], df[:, 2]
-    t0, dt = f0[:, :2], df[:, :2]
-    size = np.linalg.norm(f0, axis=1) + GRIP_TOLERANCE
-    start = friction * n0 - np.hypot(t0[:, 0], t0[:, 1])
-    where = np.flatnonzero(stance.ravel())
-    if (start < -GRIP_TOLERANCE * size).any():
-        worst = int(np.argmin(start / size))
-        return float(start[worst]), int(where[worst])
-    mu2 = friction**2
-    a = mu2 * dn**2 - (dt**2).sum(axis=1)
-    b = 2 * (mu2 * n0 * dn - (t0 * dt).sum(axis=1))
-    c = mu2 * n0**2 - (t0**2).sum(axis=1)
-    ends = _first_ends(a, b, c, n0, dn)
-    if not np.isfinite(ends).any():
-        return None
-    index = int(np.argmin(ends))
-    return float(ends[index]), int(where[index])
+    value, index = _cone_limit(base, slope, stance, friction, friction**2)
+    return None if index < 0 else (value, index)
 
 
-def _first_ends(a: ArrayF, b: ArrayF, c: ArrayF, n0: ArrayF, dn: ArrayF) -> ArrayF:
-    """Each least t > 0 where μ²f_n² − |f_t|² = a·t² + b·t + c reaches 0 with f_n ≥ 0 (∞: none).
+@compiled
+def _cone_limit(
+    base: ArrayF, slope: ArrayF, stance: npt.NDArray[np.bool_], friction: float, mu2: float
+) -> tuple[float, int]:  # pragma: no cover - compiled; tested through cone_limit
+    """:func:`cone_limit`'s work, foot by foot (index −1: no t bounds them).
 
-    Each foot grips at t = 0 (c ≥ 0 up to round-off, f_n ≥ 0); g = μf_n − |f_t| is concave,
+    A foot sliding at t = 0 by more than :data:`GRIP_TOLERANCE` of its force's size
+    breaks the walk: the worst one (the least μ·f_n − |f_t| over that size) is returned.
+    Else μ²f_n² − |f_t|² = a·t² + b·t + c, and :func:`_first_end` ends each interval.
+    """
+    count, legs = stance.shape
+    worst, worst_at, broken = math.inf, -1, False
+    for k in range(count * legs):
+        n, leg = divmod(k, legs)
+        if stance[n, leg]:
+            x0, y0, n0 = base[n, leg, 0], base[n, leg, 1], base[n, leg, 2]
+            size = math.sqrt(x0 * x0 + y0 * y0 + n0 * n0) + GRIP_TOLERANCE
+            start = friction * n0 - math.hypot(x0, y0)
+            broken |= start < -GRIP_TOLERANCE * size
+            share = start / size
+            if worst_at < 0 or share < worst or (share != share and worst == worst):
+                worst, worst_at = share, k  # the first least, or the first NaN (argmin's)
+    if broken:
+        n, leg = divmod(worst_at, legs)
+        x0, y0, n0 = base[n, leg, 0], base[n, leg, 1], base[n, leg, 2]
+        return friction * n0 - math.hypot(x0, y0), worst_at
+    least, least_at = math.inf, -1
+    for k in range(count * legs):
+        n, leg = divmod(k, legs)
+        if stance[n, leg]:
+            x0, y0, n0 = base[n, leg, 0], base[n, leg, 1], base[n, leg, 2]
+            dx, dy, dn = slope[n, leg, 0], slope[n, leg, 1], slope[n, leg, 2]
+            a = mu2 * (dn * dn) - (dx * dx + dy * dy)
+            b = 2 * (mu2 * n0 * dn - (x0 * dx + y0 * dy))
+            c = mu2 * (n0 * n0) - (x0 * x0 + y0 * y0)
+            end = _first_end(a, b, c, n0, dn)
+            if end < least:
+                least, least_at = end, k
+    return least, least_at
+
+
+@compiled
+def _first_end(
+    a: float, b: float, c: float, n0: float, dn: float
+) -> float:  # pragma: no cover - compiled
+    """The least t > 0 where μ²f_n² − |f_t|² = a·t² + b·t + c reaches 0 with f_n ≥ 0 (∞: none).
+
+    The foot grips at t = 0 (c ≥ 0 up to round-off, f_n ≥ 0); g = μf_n − |f_t| is concave,
     so the first root on the f_n ≥ 0 branch ends the interval that grips. The roots are
     taken without cancellation: q = −(b + sign(b)·√(b² − 4ac))/2, t = q/a and c/q.
     """
-    scale = np.maximum(np.maximum(np.abs(a), np.abs(b)), np.maximum(np.abs(c), 1e-300))
-    flat = np.abs(a) <= 1e-12 * scale
-    with np.errstate(divide="ignore", invalid="ignore"):
-        linear = np.where(np.abs(b) > 1e-12 * scale, -c / b, np.nan)
-        disc = b * b - 4 * a * c
-        q = -0.5 * (b + np.copysign(np.sqrt(np.maximum(disc, 0.0)), b))
-        real = ~flat & (disc >= 0)
-        roots = np.stack(
-            (np.where(flat, linear, np.where(real, q / a, np.nan)),
-             np.where(real & (q != 0), c / q, np.nan))
-        )  # fmt: skip
-    slack = -GRIP_TOLERANCE * (np.abs(n0) + np.abs(roots * dn))
-    valid = (roots > 0) & (n0 + roots * dn >= slack)
-    ends = np.where(valid, roots, np.inf).min(axis=0)
-    ends[(c <= 0) & (b < 0)] = 0.0  # touching the cone at t = 0 and leaving it
-    out: ArrayF = ends
-    return out
+    if c <= 0 and b < 0:
+        return 0.0  # touching the cone at t = 0 and leaving it
+    scale = _larger(_larger(abs(a), abs(b)), _larger(abs(c), 1e-300))
+    flat = abs(a) <= 1e-12 * scale
+    disc = b * b - 4 * a * c
+    q = -0.5 * (b + math.copysign(math.sqrt(_larger(disc, 0.0)), b))
+    real = not flat and disc >= 0
+    if flat:
+        first = -c / b if abs(b) > 1e-12 * scale else math.nan
+    else:
+        first = q / a if real else math.nan
+    second = c / q if real and q != 0 else math.nan
+    end = math.inf
+    for root in (first, second):
+        slack = -GRIP_TOLERANCE * (abs(n0) + abs(root * dn))
+        if root > 0 and n0 + root * dn >= slack and root < end:
+            end = root
+    return end
+
+
+@compiled
+def _larger(x: float, y: float) -> float:  # pragma: no cover - compiled
+    """NumPy's maximum of two numbers: NaN if either is."""
+    return x if x >= y or x != x else y

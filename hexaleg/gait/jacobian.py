@@ -94,17 +94,13 @@ def inverse_times(leg: LegPartials, rhs: npt.ArrayLike) -> ArrayF:
     radial = leg.c1 * rhs[..., 0] + leg.s1 * rhs[..., 1]
     across = -leg.s1 * rhs[..., 0] + leg.c1 * rhs[..., 1]
     det = leg.r2 * leg.z3 - leg.r3 * leg.z2
+    rates = np.empty((*np.broadcast_shapes(np.shape(leg.c1), rhs.shape[:-1]), 3))
     with np.errstate(divide="ignore", invalid="ignore"):
-        root = across / leg.reach
+        rates[..., 0] = root = across / leg.reach
         radial = radial + leg.lateral * root  # what the hip and knee move along the coxa
-        return np.stack(
-            (
-                root,
-                (leg.z3 * radial - leg.r3 * rhs[..., 2]) / det,
-                (leg.r2 * rhs[..., 2] - leg.z2 * radial) / det,
-            ),
-            axis=-1,
-        )
+        rates[..., 1] = (leg.z3 * radial - leg.r3 * rhs[..., 2]) / det
+        rates[..., 2] = (leg.r2 * rhs[..., 2] - leg.z2 * radial) / det
+    return rates
 
 
 def transpose_times(leg: LegPartials, force: npt.ArrayLike) -> ArrayF:
@@ -112,14 +108,11 @@ def transpose_times(leg: LegPartials, force: npt.ArrayLike) -> ArrayF:
     force = np.asarray(force, dtype=float)
     radial = leg.c1 * force[..., 0] + leg.s1 * force[..., 1]
     across = -leg.s1 * force[..., 0] + leg.c1 * force[..., 1]
-    return np.stack(
-        (
-            leg.reach * across - leg.lateral * radial,
-            leg.r2 * radial + leg.z2 * force[..., 2],
-            leg.r3 * radial + leg.z3 * force[..., 2],
-        ),
-        axis=-1,
-    )
+    torques = np.empty((*np.broadcast_shapes(np.shape(leg.c1), force.shape[:-1]), 3))
+    torques[..., 0] = leg.reach * across - leg.lateral * radial
+    torques[..., 1] = leg.r2 * radial + leg.z2 * force[..., 2]
+    torques[..., 2] = leg.r3 * radial + leg.z3 * force[..., 2]
+    return torques
 
 
 def rate_times(leg: LegPartials, rates: npt.ArrayLike) -> ArrayF:
@@ -138,7 +131,8 @@ def rate_times(leg: LegPartials, rates: npt.ArrayLike) -> ArrayF:
         height_q = -(leg.l2 * leg.s2 * w2**2 + leg.l3 * leg.s23 * w23**2)
         radial = reach_q - leg.reach * w1**2
         across = 2 * reach_rate * w1 - leg.lateral * w1**2
-        return np.stack(
-            (leg.c1 * radial - leg.s1 * across, leg.s1 * radial + leg.c1 * across, height_q),
-            axis=-1,
-        )
+        acceleration = np.empty((*np.broadcast_shapes(np.shape(leg.c1), rates.shape[:-1]), 3))
+        acceleration[..., 0] = leg.c1 * radial - leg.s1 * across
+        acceleration[..., 1] = leg.s1 * radial + leg.c1 * across
+        acceleration[..., 2] = height_q
+        return acceleration

@@ -57,7 +57,6 @@ from hexaleg.electrical.ratings import RATED, RatingLoads, motor_loads
 from hexaleg.gait.dynamics import GeneralizedForces
 from hexaleg.gait.feasibility import TOLERANCE, feasible, leg_causes
 from hexaleg.gait.friction import cone_limit, friction_ratios
-from hexaleg.gait.stability import feet_on_ground, zmp_sides
 from hexaleg.gait.walk import Loads, Stride, Walker
 from hexaleg.kinematics import leg_solution
 from hexaleg.limits import LEG_JOINTS
@@ -248,12 +247,9 @@ def _zmp_room(walker: Walker, walk: Stride, rnea: GeneralizedForces) -> float:
     """The largest w = 1/T² keeping the ZMP inside the standing feet's polygon (< 0: none).
 
     Each edge's F_z·cross(edge, ZMP − vertex) is affine in w
-    (:func:`~hexaleg.gait.stability.zmp_sides`): the largest w keeping all ≥ 0 is exact.
+    (:meth:`~hexaleg.gait.walk.Walker.zmp_sides`): the largest w keeping all ≥ 0 is exact.
     """
-    height, configurations = walker.frames.height, rnea.configurations
-    feet = feet_on_ground(walk.paths.position, configurations, height)
-    parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
-    static, inertial = zmp_sides(parts, height, configurations[:, :2], feet, walker.phases.stance)
+    static, inertial = walker.zmp_sides(walk, rnea)
     if (static < 0).any():
         return -1.0
     shrinking = inertial < 0
@@ -324,21 +320,19 @@ def _closed_form_speed(
     walker: Walker, stride: float, loads: Loads, speed_room: ArrayF
 ) -> SpeedLimit:
     """Largest w = 1/T² with |τ_s + w·τ_i| ≤ τ_rated and |θ'|·√w ≤ q̇_rated, joint by joint."""
-    rated_torque, _ = walker.rated()
     static, inertial = loads.split.static_torques, loads.split.inertial_torques
+    rated = np.tile(walker.rated()[0], (*static.shape[:-1], 1))  # each joint's, every sample
     with np.errstate(divide="ignore", invalid="ignore"):
-        room = np.where(
-            inertial > 0, (rated_torque - static) / inertial, (rated_torque + static) / -inertial
-        )
+        room = np.where(inertial > 0, (rated - static) / inertial, (rated + static) / -inertial)
     room = np.where(inertial != 0, room, np.inf)
-    room = np.where(np.abs(static) > rated_torque, 0.0, room)
+    room = np.where(np.abs(static) > rated, 0.0, room)
     return _limit(walker, stride, room, speed_room)
 
 
 def _limit(walker: Walker, stride: float, torque_room: ArrayF, speed_room: ArrayF) -> SpeedLimit:
     """The speed limit from each joint's largest w = 1/T² (N, 6, 3) by torque and by speed."""
-    rooms = np.nan_to_num(np.stack((torque_room, speed_room)), nan=0.0)  # (2, N, 6, 3)
-    rooms = np.moveaxis(rooms, 1, -1)  # (kind, leg, joint, sample): ties go in leg order
+    rooms = np.nan_to_num(np.stack((torque_room, speed_room)), copy=False, nan=0.0)
+    rooms = rooms.transpose(0, 2, 3, 1)  # (kind, leg, joint, sample): ties go in leg order
     least = float(rooms.min())
     tied = rooms <= least + TIE_TOLERANCE * max(abs(least), 1e-300)  # mirror legs tie
     kind, leg, joint, _ = np.unravel_index(int(np.argmax(tied)), rooms.shape)

@@ -23,7 +23,8 @@ swings for t/T − φ_a ∈ [0, 1/n) (mod 1) and stands otherwise, so at every i
 from __future__ import annotations
 
 from dataclasses import dataclass
-from functools import lru_cache
+from functools import cached_property, lru_cache
+from itertools import pairwise
 
 import numpy as np
 import numpy.typing as npt
@@ -82,6 +83,17 @@ class GaitPhases:
     def stance(self) -> npt.NDArray[np.bool_]:
         """Whether each leg stands (N, 6)."""
         return ~self.swing
+
+    @cached_property
+    def runs(self) -> tuple[slice, ...]:
+        """The runs of consecutive samples with the same standing legs, in order.
+
+        Standing feet do not move on the ground during a run: one support polygon, and one
+        set of balance rows about a point fixed on the ground, serve all its samples.
+        """
+        changes = np.flatnonzero((self.swing[1:] != self.swing[:-1]).any(axis=1)) + 1
+        bounds = [0, *(int(k) for k in changes), len(self.swing)]
+        return tuple(slice(start, end) for start, end in pairwise(bounds))
 
 
 def gait_phases(design: HexapodDesign, pattern: GaitPattern, samples: int) -> GaitPhases:

@@ -23,10 +23,12 @@ is linear in the wrench (:func:`zmp_sides`): with the wrench static + w·inertia
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
-import numpy.typing as npt
 
 from hexaleg._typing import ArrayF
+from hexaleg.gait.pattern import GaitPhases
 from hexaleg.statics.support import SupportPolygon
 
 
@@ -52,29 +54,46 @@ def feet_on_ground(feet: ArrayF, configurations: ArrayF, height: float) -> Array
     return on_ground
 
 
-def zmp_margins(zmp: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]) -> ArrayF:
+@dataclass(frozen=True)
+class Supports:
+    """The standing feet's support polygons along a walk, ground frame.
+
+    Standing feet do not move, so one polygon serves each run of samples with the same
+    standing legs; every ZMP check of a walk (:func:`zmp_margins`, :func:`zmp_sides`)
+    shares them.
+
+    Attributes:
+        runs: The samples of each run (consecutive; together every sample once).
+        polygons: Each run's polygon.
+
+    """
+
+    runs: tuple[slice, ...]
+    polygons: tuple[SupportPolygon, ...]
+
+    @classmethod
+    def of_feet(cls, feet: ArrayF, phases: GaitPhases) -> Supports:
+        """The polygons of feet (N, 6, ≥2), ground frame [m], standing as ``phases`` say."""
+        stance = phases.stance
+        polygons = (SupportPolygon.of_feet(feet[r.start, stance[r.start], :2]) for r in phases.runs)
+        return cls(phases.runs, tuple(polygons))
+
+
+def zmp_margins(zmp: ArrayF, supports: Supports) -> ArrayF:
     """Signed distance (N,) of each ZMP to its standing feet's support polygon [m].
 
     Args:
         zmp: Zero-moment points (N, 2), ground frame [m].
-        feet: Foot positions (N, 6, ≥2), ground frame [m].
-        stance: Which feet stand (N, 6).
-
-    Standing feet do not move, so one polygon serves each run of samples with the same
-    standing legs.
+        supports: The standing feet's polygons at those samples.
 
     """
     margins = np.empty(len(zmp))
-    for run in _runs(stance):
-        first = run[0]
-        polygon = SupportPolygon.of_feet(feet[first, stance[first], :2])
+    for run, polygon in zip(supports.runs, supports.polygons, strict=True):
         margins[run] = polygon.signed_distances(zmp[run])
     return margins
 
 
-def zmp_sides(
-    wrench: ArrayF, height: float, travel: ArrayF, feet: ArrayF, stance: npt.NDArray[np.bool_]
-) -> ArrayF:
+def zmp_sides(wrench: ArrayF, height: float, travel: ArrayF, supports: Supports) -> ArrayF:
     """F_z·cross(edge, ZMP − vertex) for every edge of every sample's polygon [N·m²].
 
     All ≥ 0 (with F_z > 0): the ZMP is inside every sample's polygon. Linear in ``wrench``.
@@ -84,8 +103,7 @@ def zmp_sides(
             several wrenches of one motion (leading axes) share its polygons.
         height: The body origin's height above the ground [m].
         travel: The body origin's footprint (N, 2), ground frame [m].
-        feet: Foot positions (N, 6, ≥2), ground frame [m].
-        stance: Which feet stand (N, 6).
+        supports: The standing feet's polygons at the N samples.
 
     Returns:
         The sides (..., E), every edge of every sample, flat (one order for every wrench).
@@ -97,17 +115,10 @@ def zmp_sides(
         axis=-1,
     )
     sides = []
-    for run in _runs(stance):
-        polygon = SupportPolygon.of_feet(feet[run[0], stance[run[0]], :2])
+    for run, polygon in zip(supports.runs, supports.polygons, strict=True):
         corners = polygon.vertices - travel[run, None]  # from the body origin's footprint
         relative = numerator[..., run, None, :] - corners * force[..., run, 2, None, None]
         edges = polygon.edges
         side = edges[:, 0] * relative[..., 1] - edges[:, 1] * relative[..., 0]
         sides.append(side.reshape(*side.shape[:-2], -1))
     return np.concatenate(sides, axis=-1)
-
-
-def _runs(stance: npt.NDArray[np.bool_]) -> list[npt.NDArray[np.intp]]:
-    """The runs of samples with the same standing legs (their feet do not move)."""
-    change = np.flatnonzero((stance[1:] != stance[:-1]).any(axis=1)) + 1
-    return np.split(np.arange(len(stance)), change)

@@ -103,15 +103,16 @@ class LegFrames:
 def _rotate(vectors: ArrayF, rotations: ArrayF, transpose: bool) -> ArrayF:
     """R·v (or Rᵀ·v) per leg for vectors (..., 6, 3) and rotations (6, 3, 3).
 
-    Written as three broadcast products: NumPy's stacked matmul of 3×3 blocks is slower on
-    the many small blocks of a stride scan.
+    One matrix product per leg, its vectors as rows (vᵀ·Rᵀ, or vᵀ·R), written in place
+    into the result's (..., 6, 3) layout: a stacked product of 3×3 blocks, or broadcast
+    products over a last axis of three, are many times slower on a period's samples and on
+    a stride scan, and a result in legs-first layout slows every reduction after it.
     """
     columns = rotations if transpose else np.swapaxes(rotations, 1, 2)
-    return (
-        vectors[..., 0:1] * columns[:, 0, :]
-        + vectors[..., 1:2] * columns[:, 1, :]
-        + vectors[..., 2:3] * columns[:, 2, :]
-    )
+    rows = np.reshape(vectors, (-1, *np.shape(vectors)[-2:]))  # (K, 6, 3)
+    turned = np.empty(rows.shape)
+    np.matmul(rows.swapaxes(0, 1), columns, out=turned.swapaxes(0, 1))
+    return turned.reshape(np.shape(vectors))
 
 
 @dataclass(frozen=True)
@@ -170,8 +171,11 @@ def foot_paths(
     u = np.array([np.cos(heading), np.sin(heading), 0.0])
     z = np.array([0.0, 0.0, 1.0])
 
-    def combine(along: ArrayF, lift: ArrayF) -> ArrayF:
-        combined: ArrayF = stride * along[..., None] * u + step_height * lift[..., None] * z
+    def combine(along: ArrayF, lift: ArrayF) -> ArrayF:  # S·along·u + H·lift·z
+        forward, up = stride * along, step_height * lift
+        combined = np.empty((*along.shape, 3))
+        for axis in range(3):  # per axis: a broadcast over a last axis of three is slow
+            combined[..., axis] = forward * u[axis] + up * z[axis]
         return combined
 
     return FootPaths(
@@ -214,18 +218,23 @@ def joint_motion(frames: LegFrames, paths: FootPaths) -> JointMotion:
     return JointMotion(angles, rates, accelerations, reach, leg)
 
 
-def knee_heights(frames: LegFrames, angles: ArrayF) -> ArrayF:
+def knee_heights(frames: LegFrames, angles: ArrayF, partials: LegPartials | None = None) -> ArrayF:
     """Each knee's height above the ground (..., 6) [m], body level at its nominal height.
 
     The knee is the femur's tip, eq 7 without the tibia (of a general leg, the point of
     the knee axis in the tibia's plane, e off the leg plane); only its height is needed,
-    so only the leg-root frames' z rows turn it into the body frame.
+    so only the leg-root frames' z rows turn it into the body frame. ``partials``: those
+    of ``angles`` (:func:`~hexaleg.gait.jacobian.leg_partials`), whose cosines and sines
+    serve, if known.
     """
     a1, l2, _, h, e = leg_parameters(frames.parameters)
-    t1, t2 = angles[..., 0], angles[..., 1]
-    out = a1 + l2 * np.cos(t2)
-    c1, s1 = np.cos(t1), np.sin(t1)
+    if partials is None:
+        t1, t2 = angles[..., 0], angles[..., 1]
+        c1, s1, c2, s2 = np.cos(t1), np.sin(t1), np.cos(t2), np.sin(t2)
+    else:
+        c1, s1, c2, s2 = partials.c1, partials.s1, partials.c2, partials.s2
+    out = a1 + l2 * c2
     up = frames.root_rotations[:, 2, :]  # (6, 3)
     rise = up[:, 0] * (c1 * out - s1 * e) + up[:, 1] * (s1 * out + c1 * e)
-    rise = rise + up[:, 2] * (h + l2 * np.sin(t2))
+    rise = rise + up[:, 2] * (h + l2 * s2)
     return frames.height + frames.root_positions[:, 2] + rise

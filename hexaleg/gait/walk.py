@@ -26,8 +26,10 @@ from hexaleg.gait.dynamics import (
     min_torque_split,
 )
 from hexaleg.gait.feasibility import JointBounds, Violation, gait_margins, violations
+from hexaleg.gait.jacobian import LegPartials
 from hexaleg.gait.pattern import GaitPhases, gait_phases
 from hexaleg.gait.spec import Gait
+from hexaleg.gait.stability import Supports, feet_on_ground, zmp_sides
 from hexaleg.gait.trajectory import (
     FootPaths,
     JointMotion,
@@ -77,9 +79,10 @@ class Walker:
         safety_factor: F ≥ 1 [-]: every peak torque and joint speed is held within its
             rating / F (:meth:`rated`).
 
-    The gait's own stride is walked once and its min-norm loads computed once (every
-    analysis of the walker shares them); they hold for this walker's ground, payload and
-    g, which are read-only: another ground is another walker.
+    The gait's own stride is walked once, and its min-norm loads, support polygons and ZMP
+    sides found once (every analysis of the walker shares them: its walking capacity and
+    its period with the max speed); they hold for this walker's ground, payload and g,
+    which are read-only: another ground is another walker.
 
     """
 
@@ -108,6 +111,8 @@ class Walker:
         self._robot: LoadedRobot | None = None
         self._own: Stride | None = None  # the gait's own stride, walked once
         self._own_loads: Loads | None = None  # its min-norm loads, computed once
+        self._own_supports: Supports | None = None  # its support polygons, found once
+        self._own_sides: ArrayF | None = None  # its ZMP's sides, static and inertial, once
 
     def carrying(self, payload: Payload) -> Walker:
         """The same robot walking the same gait on the same ground with another payload.
@@ -196,22 +201,57 @@ class Walker:
             self.frames, self.shapes, stride, self.gait.step_height, self.gait.heading
         )
         motion = joint_motion(self.frames, paths)
-        margins = self.margins(motion.angles, motion.reach)
+        margins = self.margins(motion.angles, motion.reach, motion.partials)
         found = violations(margins, self.frames.legs, self.times(self.gait.period))
         walk = Stride(paths, motion, found)
         if stride == self.gait.stride:
             self._own = walk
         return walk
 
-    def margins(self, theta: ArrayF, reach: ArrayF) -> ArrayF:
+    def supports(self, walk: Stride, configurations: ArrayF) -> Supports:
+        """The standing feet's polygons along ``walk``, ground frame.
+
+        ``configurations``: the body's poses along it (its generalized forces', (N, nq)).
+        The gait's own stride's are found once: its capacity, max speed and ZMP margins
+        share them.
+        """
+        if walk is self._own and self._own_supports is not None:
+            return self._own_supports
+        feet = feet_on_ground(walk.paths.position, configurations, self.frames.height)
+        found = Supports.of_feet(feet, self.phases)
+        if walk is self._own:
+            self._own_supports = found
+        return found
+
+    def zmp_sides(self, walk: Stride, rnea: GeneralizedForces) -> ArrayF:
+        """The ZMP's side of every support edge along ``walk``: static, inertial (2, E).
+
+        F_z·cross(edge, ZMP − vertex) (:func:`~hexaleg.gait.stability.zmp_sides`) of the
+        generalized forces' two parts, ``rnea`` (the walk's): at period T the sides are
+        static + inertial/T², all ≥ 0 while the ZMP is inside. The gait's own stride's are
+        found once: its walking capacity and max speed share them.
+        """
+        if walk is self._own and self._own_sides is not None:
+            return self._own_sides
+        configurations = rnea.configurations
+        parts = np.stack((rnea.static[:, :6], rnea.inertial[:, :6]))
+        supports = self.supports(walk, configurations)
+        found = zmp_sides(parts, self.frames.height, configurations[:, :2], supports)
+        if walk is self._own:
+            self._own_sides = found
+        return found
+
+    def margins(self, theta: ArrayF, reach: ArrayF, partials: LegPartials | None = None) -> ArrayF:
         """Every constraint's margin (..., N, 6, 9) along the period [m or rad].
 
         Args:
             theta: Joint angles (..., N, 6, 3) [rad].
             reach: Hip-to-foot distances (..., N, 6) [m].
+            partials: The angles' partials, if known (:func:`gait_margins`).
 
         """
-        return gait_margins(self.frames, self.bounds, self.phases.stance, theta, reach)
+        stance = self.phases.stance
+        return gait_margins(self.frames, self.bounds, stance, theta, reach, partials)
 
     def times(self, period: float) -> ArrayF:
         """The sample times t_k = k·T/N (N,) [s]."""

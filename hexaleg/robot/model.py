@@ -9,8 +9,10 @@ the model, never re-typed here.
 from __future__ import annotations
 
 import xml.etree.ElementTree as ET
-from collections.abc import Iterable, Mapping
+from collections.abc import Callable, Iterable, Mapping
 from dataclasses import fields
+from functools import cached_property
+from typing import Any, TypeVar
 
 import numpy as np
 import numpy.typing as npt
@@ -73,6 +75,8 @@ class _LegIndex:
         self.foot_joint_frame = _frame_id(model, f"{prefix}{leg}_foot_joint")
 
 
+T = TypeVar("T")
+
 BASE_FRAME = "base_link"
 """The body's frame in hexaleg's URDF (the free flyer's)."""
 
@@ -101,6 +105,7 @@ class HexapodModel:
         _model: pin.Model | None = None,
         _legs: dict[str, _LegIndex] | None = None,
         _base: str = BASE_FRAME,
+        _structural: dict[str, Any] | None = None,
     ) -> None:
         self.design = design
         self._urdf = None if _model is not None else render_hexapod(design)
@@ -112,6 +117,7 @@ class HexapodModel:
         self._data: pin.Data | None = None
         self.leg_names: tuple[str, ...] = design.leg_names
         self._legs = _legs or {leg: _LegIndex(self.model, leg) for leg in self.leg_names}
+        self._structural: dict[str, Any] = {} if _structural is None else _structural
         if _model is None:
             set_armature(self.model, [leg.v for leg in self._legs.values()], design)
         self.base_frame = _frame_id(self.model, _base)
@@ -121,6 +127,11 @@ class HexapodModel:
     def leg_geometry(self, leg: str) -> LegGeometry:
         """``leg``'s general leg: the paper's leg of the design's lengths."""
         self._leg(leg)
+        return self._paper_leg
+
+    @cached_property
+    def _paper_leg(self) -> LegGeometry:
+        """The paper's leg of the design's lengths, every leg's (made once)."""
         return LegGeometry.from_lengths(self.design.lengths)
 
     # -- what the robot is, as the analyses ask it ------------------------------------------
@@ -285,7 +296,8 @@ class HexapodModel:
                 frame = model.frames[frame_id]
                 frame.placement = foot
                 model.frames[frame_id] = frame
-        return HexapodModel(design, _model=model, _legs=self._legs)  # same joints and frames
+        # the same joints and frames: what depends on them only is shared
+        return HexapodModel(design, _model=model, _legs=self._legs, _structural=self._structural)
 
     # -- indices ------------------------------------------------------------------------
 
@@ -415,11 +427,27 @@ class HexapodModel:
 
     def _root_on_flyer(self, leg: str) -> bool:
         """Whether ``leg``'s root frame is its root joint's own, on the free-flyer joint."""
-        index = self._legs[leg]
-        frame, joint = self.model.frames[index.root_frame], index.joints[0]
-        on_flyer = self.model.parents[joint] == self.model.getJointId(ROOT_JOINT)
-        own = frame.parentJoint == joint and frame.placement.isIdentity()
-        return bool(on_flyer and own)
+
+        def found() -> bool:
+            index = self._legs[leg]
+            frame, joint = self.model.frames[index.root_frame], index.joints[0]
+            on_flyer = self.model.parents[joint] == self.model.getJointId(ROOT_JOINT)
+            own = frame.parentJoint == joint and frame.placement.isIdentity()
+            return bool(on_flyer and own)
+
+        return self.structural(f"root on flyer: {leg}", found)
+
+    def structural(self, what: str, make: Callable[[], T]) -> T:
+        """``what`` of this model's joints and frames: made by ``make`` the first time.
+
+        Kept for every model :meth:`with_design` derives from the same one (their joints,
+        axes and frames are this one's); ``make`` must read nothing else (no length, mass,
+        inertia or rating), and the caller must not change what it returns.
+        """
+        if what not in self._structural:
+            self._structural[what] = make()
+        found: T = self._structural[what]
+        return found
 
     def foot_jacobian(self, q: npt.ArrayLike, leg: str) -> ArrayF:
         """dp/dv (3, nv) of the foot of ``leg`` in world axes (LOCAL_WORLD_ALIGNED) [m]."""

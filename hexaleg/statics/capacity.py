@@ -134,8 +134,17 @@ def first_lowest(values: ArrayF, tolerance: float = 1e-9) -> tuple[int, int]:
 
     Mirror-image legs tie, and round-off must not choose between them.
     """
+    leg, joint = np.unravel_index(first_lowest_index(values, tolerance), values.shape)
+    return int(leg), int(joint)
+
+
+def first_lowest_index(values: ArrayF, tolerance: float = 1e-9) -> int:
+    """The flat index of the smallest value, the first (C order) among near-equal ones.
+
+    Within ``tolerance`` of it (relative, at least absolute) a value ties: mirror-image
+    legs do, and the order of the axes decides between them, never round-off.
+    """
     flat = values.ravel()
     lowest = float(flat.min())
     slack = tolerance * max(1.0, abs(lowest)) if math.isfinite(lowest) else 0.0
-    leg, joint = np.unravel_index(int(np.flatnonzero(flat <= lowest + slack)[0]), values.shape)
-    return int(leg), int(joint)
+    return int(np.flatnonzero(flat <= lowest + slack)[0])
