@@ -24,7 +24,7 @@ import stat
 import sys
 import tempfile
 from collections.abc import Callable
-from functools import cache
+from functools import cache, update_wrapper
 from pathlib import Path
 from typing import Any, TypeVar, cast
 
@@ -46,25 +46,71 @@ COMPILED_MODULES = (
 
 
 def compiled(function: F) -> F:
-    """``numba.njit(cache=True)`` with the cache in :func:`cache_directory` (off if None)."""
+    """``numba.njit(cache=True)`` with the cache in :func:`cache_directory` (off if None).
+
+    Deferred (:class:`Kernel`): Numba is imported and the function handed to it when a
+    kernel first runs, so importing a module that holds kernels costs nothing (a command's
+    parser, ``hexaleg --help``, imports the analyses it names without running them).
+    """
     source = Path(function.__code__.co_filename).resolve()
     listed = source.is_relative_to(PACKAGE) and (
         source.relative_to(PACKAGE).as_posix() in COMPILED_MODULES
     )
     if not listed:
         raise RuntimeError(f"{source} defines compiled code but is not in COMPILED_MODULES")
+    return cast(F, Kernel(function))
+
+
+class Kernel:
+    """A function compiled by Numba on its first call (from Python or from another kernel).
+
+    Called from Python, it calls its dispatcher; named in another kernel, Numba types it
+    as that dispatcher (:func:`_register_kernel_type`), so kernels call each other as
+    compiled functions do.
+    """
+
+    def __init__(self, function: Callable[..., Any]) -> None:
+        update_wrapper(self, function)
+        self.function = function
+        self._dispatcher: Any = None
+
+    @property
+    def dispatcher(self) -> Any:
+        """Numba's dispatcher of the function, made on first use."""
+        if self._dispatcher is None:
+            self._dispatcher = _njit(self.function)
+        return self._dispatcher
+
+    def __call__(self, *args: Any) -> Any:
+        return self.dispatcher(*args)
+
+
+def _njit(function: Callable[..., Any]) -> Any:
+    """``numba.njit`` of ``function``, cached in :func:`cache_directory` when there is one."""
     import numba
 
+    _register_kernel_type()
     directory = cache_directory()
     if directory is None:
-        return cast(F, numba.njit(cache=False)(function))
+        return numba.njit(cache=False)(function)
     config: Any = numba.config
     previous = config.CACHE_DIR
     config.CACHE_DIR = str(directory)  # numba fixes a function's cache path here
     try:
-        return cast(F, numba.njit(cache=True)(function))
+        return numba.njit(cache=True)(function)
     finally:
         config.CACHE_DIR = previous
+
+
+@cache
+def _register_kernel_type() -> None:
+    """Teach Numba that a :class:`Kernel` named in compiled code is its dispatcher."""
+    from numba.core import types
+    from numba.extending import typeof_impl
+
+    @typeof_impl.register(Kernel)
+    def _typeof(value: Kernel, context: Any) -> Any:
+        return types.Dispatcher(value.dispatcher)
 
 
 @cache

@@ -66,7 +66,7 @@ def test_without_a_cache_folder_functions_still_compile(monkeypatch):
     exec(code, namespace)  # a function that claims lp.py as its source
     double = _compiled.compiled(namespace["double"])
     assert double(np.arange(3.0)).tolist() == [0.0, 2.0, 4.0]
-    assert not double._cache_hits  # numba's dispatcher: nothing came from a cache
+    assert not double.dispatcher._cache_hits  # numba's dispatcher: nothing came from a cache
 
 
 def test_a_function_of_an_unlisted_module_is_refused():
