@@ -135,7 +135,7 @@ def _grid_oracle(min_fb: float, points: int = 5) -> tuple[float, dict]:
     return best, where
 
 
-@pytest.mark.parametrize("seed", [1, 2])
+@pytest.mark.parametrize("seed", [1, pytest.param(2, marks=pytest.mark.slow)])
 def test_decide_meets_its_requirement_and_beats_a_brute_force_grid(tmp_path, capsys, seed):
     min_fb = float(np.random.default_rng(seed).uniform(0.25, 0.33))
     journal = tmp_path / "journal.jsonl"
@@ -231,6 +231,7 @@ def test_decide_measures_segments_the_template_design_would_refuse(capsys):
     assert answer["best"]["objective"]["value"] == pytest.approx(flex["fb"], rel=1e-9)
 
 
+@pytest.mark.slow  # a decision and a report on a robot file: 18 s
 def test_decide_and_report_read_the_robot_from_an_imported_design_file(tmp_path, capsys):
     target = tmp_path / "kraby.toml"
     assert run_cli(["design", "import", KRABY, "-o", str(target)]) == 0
