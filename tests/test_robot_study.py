@@ -277,6 +277,7 @@ def _walking_grid(min_walking: float, gait, points: int = 4) -> float:
     return best
 
 
+@pytest.mark.slow  # about 5 s
 def test_decide_with_a_walking_payload_meets_it_and_beats_a_grid(tmp_path, capsys):
     from hexaleg.gait.spec import Gait
 

@@ -148,6 +148,7 @@ def test_meshes_not_found_are_named_once_and_found_when_their_package_is_given(t
     assert len(meshes) == len(_visual_meshes(model.robot.text))
 
 
+@pytest.mark.slow  # about 5 s
 def test_view_writes_the_scene_of_an_imported_robot(tmp_path, capsys):
     out = tmp_path / "kraby.html"
     with warnings.catch_warnings():
