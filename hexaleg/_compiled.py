@@ -109,7 +109,7 @@ def _register_kernel_type() -> None:
     from numba.extending import typeof_impl
 
     @typeof_impl.register(Kernel)
-    def _typeof(value: Kernel, context: Any) -> Any:
+    def _typeof(value: Kernel, _context: Any) -> Any:
         return types.Dispatcher(value.dispatcher)
 
 
