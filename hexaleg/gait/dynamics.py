@@ -39,6 +39,7 @@ from hexaleg.gait.newton_euler import LegBodies, leg_bodies, leg_chains, leg_for
 from hexaleg.gait.pattern import GaitPhases
 from hexaleg.gait.trajectory import JointMotion, LegFrames
 from hexaleg.kinematics import foot_jacobian
+from hexaleg.numerics.vectors import cross
 from hexaleg.ratings import torque_scale
 from hexaleg.robot.imported_model import robot_mass
 from hexaleg.robot.model import ROOT_JOINT, HexapodModel
@@ -82,16 +83,7 @@ def payload_wrench(point: ArrayF, mass: float, gravity: ArrayF) -> ArrayF:
     inertia.
     """
     force = -mass * np.asarray(gravity, dtype=float)
-    return np.concatenate((force, moment_of(point, force)))
-
-
-def moment_of(point: npt.ArrayLike, force: ArrayF) -> ArrayF:
-    """The moment p × f (3,) [N·m] of a force f (3,) [N] at a point p (3,) [m].
-
-    Written out: NumPy's cross product costs more than the product on a single pair.
-    """
-    (px, py, pz), (fx, fy, fz) = np.asarray(point, dtype=float), force
-    return np.array([py * fz - pz * fy, pz * fx - px * fz, px * fy - py * fx])
+    return np.concatenate((force, cross(point, force)))
 
 
 @dataclass(frozen=True)
@@ -374,9 +366,8 @@ def _min_norm_pushes(
     force, moment = wrenches[:, :3], wrenches[:, 3:]  # (N, 3, K) each
     about_start = np.empty((len(feet), 6, kinds))  # F, and M + moved × F: the same wrench
     about_start[:, :3] = force  # about the body's origin at its run's first sample
-    for axis, (i, j) in enumerate(((1, 2), (2, 0), (0, 1))):
-        turn = moved[:, i, None] * force[:, j] - moved[:, j, None] * force[:, i]
-        about_start[:, 3 + axis] = moment[:, axis] + turn
+    turn = cross(moved[:, None], force.transpose(0, 2, 1))  # (N, K, 3)
+    about_start[:, 3:] = moment + turn.transpose(0, 2, 1)
     forces = np.zeros((kinds, len(feet), 6, 3))  # each wrench's forces in one block
     for run in runs:  # the standing feet stay put: one set of rows serves the run
         legs = np.flatnonzero(phases.stance[run.start])

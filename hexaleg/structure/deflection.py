@@ -29,7 +29,8 @@ from hexaleg._typing import ArrayF
 from hexaleg.design import FOOT_MASS, HexapodDesign
 from hexaleg.exceptions import HexalegError
 from hexaleg.leg_structure import Structure, segment_masses
-from hexaleg.structure.wrenches import LegStates, cross
+from hexaleg.numerics.vectors import cross
+from hexaleg.structure.wrenches import LegStates
 
 SIMPSON = np.array([1.0, 4.0, 1.0]) / 6
 """Simpson's weights at s = 0, l/2, l, times the segment's length."""

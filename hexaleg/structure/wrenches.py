@@ -26,6 +26,7 @@ import pinocchio as pin
 
 from hexaleg._typing import ArrayF
 from hexaleg.exceptions import ParameterError
+from hexaleg.numerics.vectors import cross
 from hexaleg.robot.model import HexapodModel
 
 
@@ -194,18 +195,6 @@ def _subtree(
         out[:, :, k, :3] = np.einsum("klji,klj->kli", rotations[:, :, k], force)
         out[:, :, k, 3:] = np.einsum("klji,klj->kli", rotations[:, :, k], moment)
     return out
-
-
-_NEXT, _AFTER = np.array([1, 2, 0]), np.array([2, 0, 1])
-"""Each component's next and after next, cyclically: (a × b)_i = a_j·b_k − a_k·b_j."""
-
-
-def cross(a: ArrayF, b: ArrayF) -> ArrayF:
-    """The cross product a × b over the last axis, broadcast (faster than NumPy's on small ones)."""
-    product: ArrayF = np.take(a, _NEXT, axis=-1) * np.take(b, _AFTER, axis=-1) - np.take(
-        a, _AFTER, axis=-1
-    ) * np.take(b, _NEXT, axis=-1)
-    return product
 
 
 def _quaternion_matrix(xyzw: ArrayF) -> ArrayF:
